@@ -1,0 +1,167 @@
+#include "core/analysis/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/contact/quadratic_model.h"
+
+namespace terra::analysis {
+namespace {
+
+using contact::ContactParameters;
+using contact::OperatingPoint;
+using contact::WheelForces;
+
+struct Row {
+    std::vector<double> values;
+    std::string warning;
+};
+
+// One slip angle over all slips, warm-starting each solve from the previous one.
+std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSpec& spec,
+                               double beta) {
+    std::vector<Row> rows;
+    std::optional<double> previous;
+    for (double s : spec.slips) {
+        if (spec.cancel && spec.cancel->load(std::memory_order_relaxed)) break;
+        double theta_f = spec.entry_angle_rad;
+        if (spec.load_n) {
+            contact::EntryAngleProblem problem{*spec.load_n, s,     beta,   spec.exit,
+                                               spec.max_stress_angle_rad, spec.model,
+                                               spec.integration, previous};
+            const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
+            if (!solution.ok()) {
+                rows.push_back({{}, "β = " + formatNumber(units::radToDeg(beta)) + "°, s = " +
+                                        formatNumber(s) + ": " + solution.message});
+                previous.reset();
+                continue;
+            }
+            theta_f = solution.entry_angle_rad;
+            previous = theta_f;
+        }
+        const double theta_r = std::max(spec.exit.exitAngle(theta_f), -theta_f);
+        const OperatingPoint<double> op{s, beta, theta_f, theta_r, spec.max_stress_angle_rad};
+        const WheelForces<double> f = spec.model == contact::ContactModel::kFull
+                                          ? contact::computeForces(p, op, spec.bulldozing,
+                                                                   spec.integration)
+                                          : contact::computeQuadraticForces(p, op, spec.bulldozing);
+        rows.push_back({{units::radToDeg(beta), s, units::radToDeg(theta_f),
+                         units::radToDeg(theta_r), p.radius_m * (1.0 - std::cos(theta_f)), f.fx,
+                         f.fy, f.fz, f.mx, f.my, f.mz, f.fb, f.fs},
+                        {}});
+    }
+    return rows;
+}
+
+void validateSpec(const SweepSpec& spec) {
+    std::vector<Issue> issues;
+    if (spec.slips.empty()) issues.push_back({"slips", "no slip values to sweep"});
+    if (spec.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles to sweep"});
+    for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
+    for (double b : spec.slip_angles_rad) {
+        checkRange(issues, "slip_angle_deg", units::radToDeg(b), {-90.0, 90.0, true, true}, "deg");
+    }
+    if (spec.load_n) {
+        checkRange(issues, "load_N", *spec.load_n, {0.0, 1e7, true, false}, "N");
+    } else {
+        checkRange(issues, "entry_angle_deg", units::radToDeg(spec.entry_angle_rad),
+                   {0.0, 90.0, true, false}, "deg");
+    }
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+}
+
+}  // namespace
+
+std::vector<double> linspace(double first, double last, int count) {
+    if (count < 1) throw std::invalid_argument("linspace needs at least one point");
+    if (count == 1) return {first};
+    std::vector<double> out(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) out[i] = first + (last - first) * i / (count - 1);
+    return out;
+}
+
+std::vector<double> thesisSlips(int count) {
+    std::vector<double> out;
+    for (int i = 0; i < count; ++i) out.push_back(static_cast<double>(i) / count);
+    return out;
+}
+
+const std::vector<std::string>& sweepColumns() {
+    static const std::vector<std::string> columns{
+        "slip_angle_deg", "slip",  "entry_angle_deg", "exit_angle_deg", "sinkage_m",
+        "Fx_N",           "Fy_N",  "Fz_N",            "Mx_Nm",          "My_Nm",
+        "Mz_Nm",          "Fb_N",  "Fs_N"};
+    return columns;
+}
+
+SweepResult sweepSlip(const ContactParameters<double>& p, const SweepSpec& spec) {
+    validateSpec(spec);
+    const std::size_t angles = spec.slip_angles_rad.size();
+    std::vector<std::vector<Row>> per_angle(angles);
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t workers =
+        std::min<std::size_t>(angles, spec.threads > 0 ? spec.threads : hardware);
+    {
+        std::vector<std::jthread> pool;
+        for (std::size_t w = 0; w < workers; ++w) {
+            pool.emplace_back([&, w] {
+                for (std::size_t i = w; i < angles; i += workers) {
+                    per_angle[i] = sweepOneAngle(p, spec, spec.slip_angles_rad[i]);
+                }
+            });
+        }
+    }
+    SweepResult result;
+    result.table.columns = sweepColumns();
+    for (auto& rows : per_angle) {
+        for (Row& row : rows) {
+            if (row.warning.empty()) {
+                result.table.rows.push_back(std::move(row.values));
+            } else {
+                result.warnings.push_back(std::move(row.warning));
+            }
+        }
+    }
+    result.cancelled = spec.cancel && spec.cancel->load();
+    return result;
+}
+
+std::vector<SensitivityParameter> thesisSensitivityParameters() {
+    return {{"n", {0.6, 0.8, 1.0, 1.2}},          {"c_kPa", {0.0, 1.5, 3.0, 4.5}},
+            {"phi_deg", {25.0, 30.0, 35.0, 40.0}}, {"kc", {0.0, 5.0, 10.0, 20.0}},
+            {"kphi", {900.0, 1200.0, 1600.0, 2000.0}}, {"K_m", {0.01, 0.02, 0.03, 0.04}}};
+}
+
+SweepResult sensitivity(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
+                        const SensitivityParameter& parameter, const SweepSpec& spec) {
+    const soil::SoilField* field = soil::findSoilField(parameter.key);
+    if (!field) throw std::invalid_argument("unknown soil parameter '" + parameter.key + "'");
+    SweepResult result;
+    result.table.columns = {parameter.key};
+    for (const std::string& c : sweepColumns()) result.table.columns.push_back(c);
+    for (double value : parameter.values) {
+        soil::SoilParameters varied = soil;
+        soil::setUserValue(varied, *field, value);
+        const SweepResult one = sweepSlip(contact::makeContactParameters(varied, wheel), spec);
+        for (const auto& row : one.table.rows) {
+            std::vector<double> values{value};
+            values.insert(values.end(), row.begin(), row.end());
+            result.table.rows.push_back(std::move(values));
+        }
+        for (const std::string& w : one.warnings) {
+            result.warnings.push_back(std::string(parameter.key) + " = " + formatNumber(value) +
+                                      ": " + w);
+        }
+        if (one.cancelled) {
+            result.cancelled = true;
+            break;
+        }
+    }
+    return result;
+}
+
+}  // namespace terra::analysis

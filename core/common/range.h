@@ -1,0 +1,31 @@
+#pragma once
+/// @file range.h
+/// Allowed ranges of user-facing fields, checked the same way everywhere so that every error names
+/// the field, the value and the range ("phi_deg = 75 is outside the allowed range [0, 60)").
+
+#include <string>
+#include <vector>
+
+#include "core/common/issue.h"
+
+namespace terra {
+
+/// A closed or half-open interval of allowed values, in the units the user sees.
+struct Range {
+    double low;
+    double high;
+    bool low_open = false;   ///< true: `low` itself is not allowed
+    bool high_open = false;  ///< true: `high` itself is not allowed
+
+    bool contains(double value) const;
+    std::string describe() const;  ///< "[0, 60)"
+};
+
+/// Formats a number for messages: shortest round-trip text ("0.025", "1e-06", "nan").
+std::string formatNumber(double value);
+
+/// Appends an issue when `value` is NaN, infinite or outside `range`; returns whether it was fine.
+bool checkRange(std::vector<Issue>& issues, const std::string& field, double value,
+                const Range& range, const std::string& unit = {});
+
+}  // namespace terra

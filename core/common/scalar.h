@@ -1,0 +1,32 @@
+#pragma once
+/// @file scalar.h
+/// Helpers that let the wheel–soil model be written once for a generic scalar: `double` for the
+/// CLI, the GUI and the rover, and automatic-differentiation types (ceres::Jet) for identification.
+/// A scalar type T must provide the usual arithmetic, comparisons and the math functions found by
+/// argument-dependent lookup (sin, cos, pow, exp, expm1, sqrt, acos, tan); ceres::Jet does.
+
+#include <type_traits>
+
+namespace terra {
+
+/// The plain value of a scalar: the number itself for arithmetic types.
+inline double scalarValue(double x) { return x; }
+
+/// The plain value of an automatic-differentiation scalar (the `a` part of a ceres::Jet).
+template <typename J>
+    requires requires(const J& j) { j.a; }
+double scalarValue(const J& j) {
+    return scalarValue(j.a);
+}
+
+/// Converts between scalar types: a plain value becomes a constant (zero derivative).
+template <typename T, typename U>
+T scalarCast(const U& x) {
+    if constexpr (std::is_same_v<T, U>) {
+        return x;
+    } else {
+        return T(scalarValue(x));
+    }
+}
+
+}  // namespace terra

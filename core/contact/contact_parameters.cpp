@@ -1,0 +1,43 @@
+#include "core/contact/contact_parameters.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "core/common/range.h"
+#include "core/common/units.h"
+
+namespace terra::contact {
+
+ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil,
+                                                const wheel::WheelParameters& wheel) {
+    soil::requireValid(soil);
+    wheel::requireValid(wheel);
+    const double pressure_modulus = soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus;
+    if (!(pressure_modulus > 0.0)) {
+        throw std::invalid_argument("K_s = kc/b + kphi = " + formatNumber(pressure_modulus) +
+                                    " must be > 0 (soil kc, kphi with wheel width b)");
+    }
+    return {wheel.radius_m,          wheel.width_m,           soil.sinkage_exponent,
+            soil.sinkage_exponent_slip, pressure_modulus,     soil.cohesion_pa,
+            soil.friction_angle_rad, soil.shear_modulus_m,    soil.unit_weight_n_m3,
+            soil.max_stress_a0,      soil.max_stress_a1,      soil.max_shear_deformation_m};
+}
+
+void requireValid(const OperatingPoint<double>& op) {
+    std::vector<Issue> issues;
+    checkRange(issues, "slip", op.slip, {-1.0, 1.0, true, true});
+    checkRange(issues, "slip_angle_deg", units::radToDeg(op.slip_angle_rad),
+               {-90.0, 90.0, true, true}, "deg");
+    checkRange(issues, "entry_angle_deg", units::radToDeg(op.entry_angle_rad), {0.0, 90.0, true},
+               "deg");
+    const double theta_f_deg = units::radToDeg(op.entry_angle_rad);
+    checkRange(issues, "exit_angle_deg", units::radToDeg(op.exit_angle_rad), {-theta_f_deg, 0.0},
+               "deg");
+    if (op.max_stress_angle_rad) {
+        checkRange(issues, "max_stress_angle_deg", units::radToDeg(*op.max_stress_angle_rad),
+                   {units::radToDeg(op.exit_angle_rad), theta_f_deg}, "deg");
+    }
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+}
+
+}  // namespace terra::contact

@@ -1,0 +1,108 @@
+#include "core/contact/kinks.h"
+
+#include <algorithm>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <cstdint>
+
+namespace terra::contact {
+namespace {
+
+struct Shear {
+    const ShearGeometry& g;
+    double sin_entry = std::sin(g.entry_angle_rad);
+
+    double tangential(double theta) const {
+        return g.radius_m *
+               ((g.entry_angle_rad - theta) - g.velocity_ratio * (sin_entry - std::sin(theta)));
+    }
+    double magnitude(double theta) const {
+        return std::hypot(tangential(theta),
+                          g.radius_m * g.lateral_velocity * (g.entry_angle_rad - theta));
+    }
+};
+
+// A root of f on [a, b] where f(a), f(b) have opposite signs, to full double precision.
+template <typename F>
+double bracketedRoot(F f, double a, double b, double fa, double fb) {
+    std::uintmax_t iterations = 100;
+    const auto [lo, hi] = boost::math::tools::toms748_solve(
+        f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(52), iterations);
+    return 0.5 * (lo + hi);
+}
+
+void add(Kinks& kinks, double theta, const ShearGeometry& g) {
+    if (theta > g.exit_angle_rad && theta < g.entry_angle_rad && kinks.count < kMaxKinks) {
+        kinks.angles[kinks.count++] = theta;
+    }
+}
+
+// Adds every crossing of j = j_max on [a, b]. `monotone`: one end-to-end check suffices.
+void addShearLimitCrossings(Kinks& kinks, const Shear& shear, double a, double b, bool monotone) {
+    const double limit = shear.g.max_shear_m;
+    auto excess = [&](double theta) { return shear.magnitude(theta) - limit; };
+    const int pieces = monotone ? 1 : 8;
+    double x0 = a;
+    double f0 = excess(x0);
+    for (int i = 1; i <= pieces; ++i) {
+        const double x1 = a + (b - a) * i / pieces;
+        const double f1 = excess(x1);
+        if ((f0 < 0.0) != (f1 < 0.0)) add(kinks, bracketedRoot(excess, x0, x1, f0, f1), shear.g);
+        x0 = x1;
+        f0 = f1;
+    }
+}
+
+}  // namespace
+
+Kinks findKinks(const ShearGeometry& geometry) {
+    Kinks kinks;
+    const Shear shear{geometry};
+    const double lo = geometry.exit_angle_rad;
+    const double hi = geometry.entry_angle_rad;
+    if (!(hi > lo)) return kinks;
+    const bool limited = std::isfinite(geometry.max_shear_m);
+
+    if (geometry.velocity_ratio <= 1.0) {
+        // Driving: dj_t/dθ = r(κ cos θ − 1) ≤ 0 and |j_l| grows away from θ_f, so j decreases
+        // monotonically from θ_r to θ_f: at most one crossing of j_max.
+        if (limited) addShearLimitCrossings(kinks, shear, lo, hi, true);
+        return kinks;
+    }
+
+    // Braking (κ > 1): the tangential shear velocity 1 − κ cos θ vanishes at ±θ* = ±acos(1/κ),
+    // where j_t has its extrema; between them j_t is monotone and may change sign once.
+    const double star = std::acos(1.0 / geometry.velocity_ratio);
+    std::array<double, 3> pieces_end{};
+    int piece_count = 0;
+    double start = lo;
+    for (double edge : {-star, star}) {
+        if (edge > start && edge < hi) {
+            add(kinks, edge, geometry);
+            pieces_end[piece_count++] = edge;
+            start = edge;
+        }
+    }
+    pieces_end[piece_count++] = hi;
+    start = lo;
+    for (int i = 0; i < piece_count; ++i) {
+        const double end = pieces_end[i];
+        auto tangential = [&](double theta) { return shear.tangential(theta); };
+        const double f0 = tangential(start);
+        const double f1 = tangential(end);
+        double split = start;
+        if (f0 != 0.0 && f1 != 0.0 && (f0 < 0.0) != (f1 < 0.0)) {
+            split = bracketedRoot(tangential, start, end, f0, f1);
+            add(kinks, split, geometry);
+        }
+        if (limited) {
+            if (split > start) addShearLimitCrossings(kinks, shear, start, split, false);
+            addShearLimitCrossings(kinks, shear, split, end, false);
+        }
+        start = end;
+    }
+    std::sort(kinks.angles.begin(), kinks.angles.begin() + kinks.count);
+    return kinks;
+}
+
+}  // namespace terra::contact

@@ -1,0 +1,150 @@
+#pragma once
+/// @file quadratic_model.h
+/// The quadratic stress approximation and its closed-form forces (thesis section 2.5,
+/// Eqs. 2.36–2.46, with the corrections E3, E3b, E3c, E4 of MODEL-NOTES). Each stress p ∈
+/// {σ, τ, τ_t, τ_l} is replaced on each region by the parabola through its values at θ_m, at the
+/// region's mid angle (Eq. 2.36) and at the region's end (θ_f or θ_r): an exact 3-point
+/// interpolation (E4). The polynomials are written in x = θ − θ_m, which is better conditioned than
+/// the thesis's powers of θ and gives the same parabola; the antiderivatives of x^k sin θ and
+/// x^k cos θ are derived in docs/model.md.
+
+#include <array>
+#include <cmath>
+
+#include "core/contact/bulldozing.h"
+#include "core/contact/stress_field.h"
+#include "core/contact/wheel_forces.h"
+
+namespace terra::contact {
+
+/// p(θ) = a x² + b x + c with x = θ − θ_m.
+template <typename T>
+struct Parabola {
+    T a{}, b{}, c{};
+    T operator()(const T& x) const { return (a * x + b) * x + c; }
+};
+
+/// The parabolas of the four stresses over one region (front [θ_m, θ_f] or rear [θ_r, θ_m]).
+template <typename T>
+struct QuadraticRegion {
+    T lower;  ///< ˡθ_i [rad]
+    T upper;  ///< ᵘθ_i [rad]
+    Parabola<T> sigma, tau, tau_t, tau_l;
+};
+
+/// The quadratic approximation of the whole contact.
+template <typename T>
+struct QuadraticStress {
+    T max_stress_angle;    ///< θ_m [rad], the origin of x
+    QuadraticRegion<T> front;
+    QuadraticRegion<T> rear;
+
+    /// The approximated stresses at θ (σ, τ, τ_t, τ_l set; shear deformations left at zero).
+    StressSample<T> at(const T& theta) const {
+        const QuadraticRegion<T>& region = theta >= max_stress_angle ? front : rear;
+        const T x = theta - max_stress_angle;
+        return {region.sigma(x), region.tau(x), region.tau_t(x), region.tau_l(x), T(0), T(0), T(0)};
+    }
+};
+
+namespace detail {
+
+// The parabola through (0, p0), (h/2, p_mid), (h, p_end); h = 0 gives the constant p0.
+template <typename T>
+Parabola<T> interpolate(const T& h, const T& p0, const T& p_mid, const T& p_end) {
+    if (h == 0.0) return {T(0), T(0), p0};
+    const T a = 2.0 * (p_end - 2.0 * p_mid + p0) / (h * h);
+    const T b = (4.0 * p_mid - 3.0 * p0 - p_end) / h;
+    return {a, b, p0};
+}
+
+template <typename T>
+QuadraticRegion<T> fitRegion(const StressField<T>& field, const T& theta_m, const T& theta_end,
+                             const StressSample<T>& at_m) {
+    const T h = theta_end - theta_m;
+    const StressSample<T> mid = field.at(theta_m + 0.5 * h);  // θ_fm or θ_rm, Eq. 2.36
+    const StressSample<T> end = field.at(theta_end);
+    QuadraticRegion<T> region;
+    region.lower = h >= 0.0 ? theta_m : theta_end;
+    region.upper = h >= 0.0 ? theta_end : theta_m;
+    region.sigma = interpolate(h, at_m.sigma, mid.sigma, end.sigma);
+    region.tau = interpolate(h, at_m.tau, mid.tau, end.tau);
+    region.tau_t = interpolate(h, at_m.tau_t, mid.tau_t, end.tau_t);
+    region.tau_l = interpolate(h, at_m.tau_l, mid.tau_l, end.tau_l);
+    return region;
+}
+
+// Antiderivatives at x (θ = θ_m + x, with sin θ, cos θ given):
+//   ∫ p cos θ dx = (p − 2a) sin θ + (2a x + b) cos θ
+//   ∫ p sin θ dx = −(p − 2a) cos θ + (2a x + b) sin θ
+//   ∫ p dx       = a x³/3 + b x²/2 + c x
+template <typename T>
+T integralCos(const Parabola<T>& p, const T& x, const T& s, const T& c) {
+    return (p(x) - 2.0 * p.a) * s + (2.0 * p.a * x + p.b) * c;
+}
+template <typename T>
+T integralSin(const Parabola<T>& p, const T& x, const T& s, const T& c) {
+    return -(p(x) - 2.0 * p.a) * c + (2.0 * p.a * x + p.b) * s;
+}
+template <typename T>
+T integralOne(const Parabola<T>& p, const T& x) {
+    return ((p.a / 3.0 * x + p.b / 2.0) * x + p.c) * x;
+}
+
+// Adds ∫ over [x0, x1] of one region (upper minus lower: MODEL-NOTES E3).
+template <typename T>
+void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums) {
+    using std::cos;
+    using std::sin;
+    if (!(q.upper > q.lower)) return;
+    const T x0 = q.lower - theta_m;
+    const T x1 = q.upper - theta_m;
+    const T s0 = sin(q.lower), c0 = cos(q.lower);
+    const T s1 = sin(q.upper), c1 = cos(q.upper);
+    auto cosInt = [&](const Parabola<T>& p) { return integralCos(p, x1, s1, c1) - integralCos(p, x0, s0, c0); };
+    auto sinInt = [&](const Parabola<T>& p) { return integralSin(p, x1, s1, c1) - integralSin(p, x0, s0, c0); };
+    sums.fx += cosInt(q.tau_t) - sinInt(q.sigma);  // Eq. 2.41 (E3)
+    sums.fz += cosInt(q.sigma) + sinInt(q.tau_t);  // Eq. 2.43 (E3)
+    sums.fy += integralOne(q.tau_l, x1) - integralOne(q.tau_l, x0);  // Eq. 2.42 (E3b)
+    sums.mx += cosInt(q.tau_l);                                       // Eq. 2.44 (E3)
+    sums.my += integralOne(q.tau_t, x1) - integralOne(q.tau_t, x0);  // Eq. 2.45 (E3c)
+    sums.mz += sinInt(q.tau_l);                                       // Eq. 2.46 (E3)
+}
+
+}  // namespace detail
+
+/// Fits the parabolas of Eq. 2.37 by exact interpolation (Eq. 2.38, E4): five stress evaluations.
+template <typename T>
+QuadraticStress<T> fitQuadraticStress(const StressField<T>& field) {
+    const T& theta_m = field.maxStressAngle();
+    const StressSample<T> at_m = field.at(theta_m);
+    return {theta_m, detail::fitRegion(field, theta_m, field.entryAngle(), at_m),
+            detail::fitRegion(field, theta_m, field.exitAngle(), at_m)};
+}
+
+/// F̃_x, F̃_y, F̃_z, M̃_x, M̃_y, M̃_z (Eqs. 2.41–2.46 corrected) plus F_b and F_s, without numerical
+/// integration.
+template <typename T>
+WheelForces<T> computeQuadraticForces(const ContactParameters<T>& p, const OperatingPoint<T>& op,
+                                      BulldozingModel bulldozing = BulldozingModel::kBekker) {
+    const StressField<T> field(p, op);
+    const QuadraticStress<T> q = fitQuadraticStress(field);
+    detail::ForceSums<T> sums;
+    detail::addRegion(q.front, q.max_stress_angle, sums);
+    detail::addRegion(q.rear, q.max_stress_angle, sums);
+    return assembleForces(p, op, sums, bulldozing);
+}
+
+/// RMSE and MAE of one approximated stress against the exact one (Eqs. 2.39, 2.40).
+struct ApproximationError {
+    double rmse = 0.0;  ///< [Pa]
+    double mae = 0.0;   ///< [Pa]
+};
+
+/// Errors of σ, τ, τ_t, τ_l (in this order), over a uniform grid θ_r, θ_r + step, …, ≤ θ_f.
+/// MODEL-NOTES: Tables 2.4–2.5 use a 0.01° step.
+std::array<ApproximationError, 4> quadraticApproximationErrors(const ContactParameters<double>& p,
+                                                               const OperatingPoint<double>& op,
+                                                               double step_rad);
+
+}  // namespace terra::contact

@@ -1,0 +1,184 @@
+#include "core/contact/sinkage.h"
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/contact/quadratic_model.h"
+
+namespace terra::contact {
+namespace {
+
+constexpr double kRightAngle = std::numbers::pi / 2.0;
+constexpr double kSmallestAngle = 1e-6;  // [rad] F_z is ~1e-12 of its 90° value here
+constexpr int kToleranceBits = 42;       // θ_f to ~2e-13 relative: F_z = W to ~1e-12
+
+void requirePositiveLoad(double load_n) {
+    if (!(load_n > 0.0) || !std::isfinite(load_n)) {
+        throw std::invalid_argument("load W = " + formatNumber(load_n) + " N must be > 0 and finite");
+    }
+}
+
+// Root of f(θ) − target on [lo, hi] (f increasing), starting from a guess, with TOMS 748.
+template <typename F>
+SinkageSolution bracketAndSolve(F force, double target, double guess, int& evaluations) {
+    SinkageSolution out;
+    auto residual = [&](double theta) {
+        ++evaluations;
+        return force(theta) - target;
+    };
+    const double f_max = residual(kRightAngle);
+    if (f_max < 0.0) {
+        out.status = SinkageSolution::Status::kNoEquilibrium;
+        out.entry_angle_rad = kRightAngle;
+        out.vertical_force_n = f_max + target;
+        out.message = "no equilibrium: at 90° (sunk to the axle) the soil carries only " +
+                      formatNumber(f_max + target) + " N of the load " + formatNumber(target) +
+                      " N; the wheel would sink to its axle";
+        return out;
+    }
+    // Bracket around the guess, widening by 1.3× per step; fall back to the whole range.
+    double lo = kSmallestAngle, hi = kRightAngle;
+    double f_lo = std::nan(""), f_hi = f_max;
+    if (guess > kSmallestAngle && guess < kRightAngle) {
+        const double f_guess = residual(guess);
+        if (f_guess == 0.0) {
+            out.entry_angle_rad = guess;
+            out.vertical_force_n = target;
+            return out;
+        }
+        double a = guess, fa = f_guess;
+        for (int step = 0; step < 12; ++step) {
+            const double b = f_guess < 0.0 ? std::min(a * 1.3, kRightAngle)
+                                           : std::max(a / 1.3, kSmallestAngle);
+            const double fb = b == kRightAngle ? f_max : residual(b);
+            if ((fa < 0.0) != (fb < 0.0) || fb == 0.0) {
+                lo = std::min(a, b), hi = std::max(a, b);
+                f_lo = a < b ? fa : fb, f_hi = a < b ? fb : fa;
+                break;
+            }
+            a = b, fa = fb;
+            if (b == kRightAngle || b == kSmallestAngle) break;
+        }
+    }
+    if (std::isnan(f_lo)) {
+        lo = kSmallestAngle, hi = kRightAngle;
+        f_lo = residual(lo), f_hi = f_max;
+    }
+    if (f_lo > 0.0) {
+        out.status = SinkageSolution::Status::kNoEquilibrium;
+        out.message = "F_z does not rise through the load W = " + formatNumber(target) +
+                      " N on (0°, 90°]: no unique equilibrium";
+        return out;
+    }
+    std::uintmax_t iterations = 60;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        residual, lo, hi, f_lo, f_hi, boost::math::tools::eps_tolerance<double>(kToleranceBits),
+        iterations);
+    out.entry_angle_rad = 0.5 * (a + b);
+    out.vertical_force_n = force(out.entry_angle_rad);
+    ++evaluations;
+    return out;
+}
+
+// ∫_0^θs (cos θ − cos θ_s)^n cos θ dθ with the end mapping of wheel_forces.h (singular at θ_s).
+double staticIntegral(double n, double theta_s) {
+    const GaussRule& rule = gaussRule(15);
+    const int q = endExponent(n, 0);
+    const double cos_s = std::cos(theta_s);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+        const double u = rule.nodes[i];
+        const double uq1 = std::pow(u, q - 1);
+        const double theta = theta_s * (1.0 - uq1 * u);
+        const double base = std::cos(theta) - cos_s;
+        if (base > 0.0) sum += rule.weights[i] * q * uq1 * theta_s * std::pow(base, n) * std::cos(theta);
+    }
+    return sum;
+}
+
+}  // namespace
+
+double bekkerStaticSinkage(const ContactParameters<double>& p, double load_n) {
+    requirePositiveLoad(load_n);
+    const double n = p.sinkage_exponent;
+    const double denominator =
+        std::sqrt(2.0 * p.radius_m) * p.width_m * p.pressure_modulus * (1.0 - n / 3.0);
+    return std::pow(load_n / denominator, 1.0 / (n + 0.5));
+}
+
+double staticLoad(const ContactParameters<double>& p, double static_angle_rad,
+                  StaticContact contact) {
+    const double n = p.sinkage_exponent;
+    const double halves = contact == StaticContact::kSymmetric ? 2.0 : 1.0;
+    return halves * p.radius_m * p.width_m * p.pressure_modulus * std::pow(p.radius_m, n) *
+           staticIntegral(n, static_angle_rad);
+}
+
+SinkageSolution solveStaticSinkage(const ContactParameters<double>& p, double load_n,
+                                   StaticContact contact) {
+    requirePositiveLoad(load_n);
+    int evaluations = 0;
+    const double h_bekker = bekkerStaticSinkage(p, load_n);
+    const double guess = h_bekker < p.radius_m ? std::acos(1.0 - h_bekker / p.radius_m) : 1.0;
+    SinkageSolution out = bracketAndSolve(
+        [&](double theta) { return staticLoad(p, theta, contact); }, load_n, guess, evaluations);
+    out.evaluations = evaluations;
+    out.exit_angle_rad = contact == StaticContact::kSymmetric ? -out.entry_angle_rad : 0.0;
+    out.sinkage_m = p.radius_m * (1.0 - std::cos(out.entry_angle_rad));
+    return out;
+}
+
+double ExitCondition::exitAngle(double entry_angle_rad) const {
+    return kind == Kind::kAngle ? value : exitAngleFromRutRatio(entry_angle_rad, value);
+}
+
+OperatingPoint<double> operatingPoint(const EntryAngleProblem& problem, double entry_angle_rad) {
+    return {problem.slip, problem.slip_angle_rad, entry_angle_rad,
+            std::max(problem.exit.exitAngle(entry_angle_rad), -entry_angle_rad),
+            problem.max_stress_angle_rad};
+}
+
+double verticalForce(const ContactParameters<double>& p, const EntryAngleProblem& problem,
+                     double entry_angle_rad) {
+    OperatingPoint<double> op = operatingPoint(problem, entry_angle_rad);
+    if (op.max_stress_angle_rad) {
+        op.max_stress_angle_rad = std::min(*op.max_stress_angle_rad, entry_angle_rad);
+    }
+    return problem.model == ContactModel::kFull
+               ? computeForces(p, op, BulldozingModel::kBekker, problem.integration).fz
+               : computeQuadraticForces(p, op).fz;
+}
+
+SinkageSolution solveEntryAngle(const ContactParameters<double>& p,
+                                const EntryAngleProblem& problem) {
+    requirePositiveLoad(problem.load_n);
+    // Validate the kinematics once, at a representative entry angle.
+    OperatingPoint<double> probe = operatingPoint(problem, kRightAngle);
+    probe.max_stress_angle_rad.reset();
+    requireValid(probe);
+    if (problem.exit.kind == ExitCondition::Kind::kRutRatio &&
+        !(problem.exit.value >= 0.0 && problem.exit.value <= 1.0)) {
+        throw std::invalid_argument("rut ratio λ = " + formatNumber(problem.exit.value) +
+                                    " is outside the allowed range [0, 1]");
+    }
+    double guess = problem.initial_guess_rad.value_or(0.0);
+    if (!problem.initial_guess_rad) {
+        const double h = bekkerStaticSinkage(p, problem.load_n);
+        guess = h < p.radius_m ? std::acos(1.0 - h / p.radius_m) : 1.2;
+    }
+    int evaluations = 0;
+    SinkageSolution out = bracketAndSolve(
+        [&](double theta) { return verticalForce(p, problem, theta); }, problem.load_n, guess,
+        evaluations);
+    out.evaluations = evaluations;
+    out.exit_angle_rad = operatingPoint(problem, out.entry_angle_rad).exit_angle_rad;
+    out.sinkage_m = p.radius_m * (1.0 - std::cos(out.entry_angle_rad));
+    return out;
+}
+
+}  // namespace terra::contact

@@ -1,0 +1,186 @@
+#pragma once
+/// @file stress_field.h
+/// Normal and shear stresses along the wheel–soil contact (thesis section 2.3, Eqs. 2.13–2.22,
+/// with the kinematics of MODEL-NOTES for braking). Header-only and templated on the scalar, so
+/// that Ceres can differentiate it.
+///
+/// Angles are measured from the vertical through the wheel centre, positive toward the direction
+/// of travel: the contact runs from the exit angle θ_r ≤ 0 to the entry angle θ_f > 0, with the
+/// maximum normal stress at θ_m in between.
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/common/scalar.h"
+#include "core/contact/contact_parameters.h"
+
+namespace terra::contact {
+
+/// The stresses and shear deformation at one contact angle θ.
+template <typename T>
+struct StressSample {
+    T sigma;          ///< σ [Pa]: normal stress (Eq. 2.17)
+    T tau;            ///< τ [Pa]: shear stress magnitude (Eq. 2.20)
+    T tau_t;          ///< τ_t [Pa]: tangential (longitudinal) shear stress (Eq. 2.22)
+    T tau_l;          ///< τ_l [Pa]: lateral shear stress (Eq. 2.22)
+    T shear_t;        ///< j_t [m]: tangential shear deformation (Eq. 2.14)
+    T shear_l;        ///< j_l [m]: lateral shear deformation (Eq. 2.14)
+    T shear;          ///< j [m]: √(j_t² + j_l²) limited to j_max (Eqs. 2.15, 2.16)
+};
+
+/// κ = v_x/(rω) from the slip (MODEL-NOTES, Eq. 2.1): 1 − s when driving, 1/(1 + s) when braking.
+template <typename T>
+T velocityRatio(const T& slip) {
+    return slip >= 0.0 ? T(1.0 - slip) : T(1.0 / (1.0 + slip));
+}
+
+/// θ_m: the user's fixed angle, or (a₀ + a₁ s) θ_f (Eq. 2.18), kept inside [θ_r, θ_f] (MODEL-NOTES;
+/// a₀ + a₁ s < 0 happens for strong braking).
+template <typename T>
+T maxStressAngle(const ContactParameters<T>& p, const OperatingPoint<T>& op) {
+    T theta_m = op.max_stress_angle_rad ? *op.max_stress_angle_rad
+                                        : T((p.max_stress_a0 + p.max_stress_a1 * op.slip) *
+                                            op.entry_angle_rad);
+    if (theta_m < op.exit_angle_rad) theta_m = op.exit_angle_rad;
+    if (theta_m > op.entry_angle_rad) theta_m = op.entry_angle_rad;
+    return theta_m;
+}
+
+/// The stress distribution of one wheel at one operating point. Construction precomputes
+/// everything that does not depend on θ, so `at(θ)` costs one sin/cos pair, one pow and one exp.
+template <typename T>
+class StressField {
+public:
+    StressField(const ContactParameters<T>& p, const OperatingPoint<T>& op)
+        : radius_(p.radius_m),
+          entry_(op.entry_angle_rad),
+          exit_(op.exit_angle_rad),
+          max_stress_(contact::maxStressAngle(p, op)),
+          exponent_(p.sinkage_exponent + p.sinkage_exponent_slip * op.slip),
+          modulus_(p.pressure_modulus),
+          cohesion_(p.cohesion_pa),
+          shear_modulus_(p.shear_modulus_m),
+          max_shear_(p.max_shear_deformation_m),
+          driving_(op.slip >= 0.0) {
+        using std::cos;
+        using std::sin;
+        using std::tan;
+        tan_phi_ = tan(p.friction_angle_rad);
+        cos_entry_ = cos(entry_);
+        sin_entry_ = sin(entry_);
+        kappa_ = contact::velocityRatio(op.slip);
+        // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0).
+        one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
+        lateral_velocity_ = kappa_ * tan(op.slip_angle_rad);
+        rear_slope_ = max_stress_ > exit_ ? T((entry_ - max_stress_) / (max_stress_ - exit_)) : T(0.0);
+    }
+
+    const T& entryAngle() const { return entry_; }      ///< θ_f [rad]
+    const T& exitAngle() const { return exit_; }        ///< θ_r [rad]
+    const T& maxStressAngle() const { return max_stress_; }  ///< θ_m [rad]
+    const T& velocityRatio() const { return kappa_; }  ///< κ = v_x/(rω)
+    const T& sinkageExponent() const { return exponent_; }  ///< N = n₀ + n₁ s
+    bool driving() const { return driving_; }
+    double maxShearDeformation() const { return max_shear_; }
+
+    /// σ(θ) [Pa], Eqs. 2.17 and 2.19: the front law for θ ≥ θ_m, the equivalent front angle θ_e
+    /// behind it. Zero outside the contact and exactly at its ends.
+    T normalStress(const T& theta, const T& cos_theta) const {
+        using std::cos;
+        using std::pow;
+        T base;
+        if (theta >= max_stress_) {
+            base = cos_theta - cos_entry_;
+        } else {
+            const T equivalent = entry_ - (theta - exit_) * rear_slope_;  // θ_e, Eq. 2.19
+            base = cos(equivalent) - cos_entry_;
+        }
+        // Guard the ends: pow(0, N) has an infinite derivative, and the value is 0 there anyway.
+        if (!(base > 0.0)) return T(0.0);
+        return modulus_ * pow(radius_ * base, exponent_);
+    }
+
+    /// All stresses at θ (Eqs. 2.14–2.22).
+    StressSample<T> at(const T& theta) const {
+        using std::cos;
+        using std::sin;
+        return at(theta, sin(theta), cos(theta));
+    }
+
+    /// All stresses at θ, given sin θ and cos θ (the integrator computes them once per node).
+    StressSample<T> at(const T& theta, const T& sin_theta, const T& cos_theta) const {
+        using std::exp;
+        using std::expm1;
+        using std::sqrt;
+        StressSample<T> out;
+        out.sigma = normalStress(theta, cos_theta);
+
+        // Shear deformation, Eq. 2.14 in the κ form of MODEL-NOTES.
+        const T arc = entry_ - theta;
+        out.shear_t = radius_ * (arc - kappa_ * (sin_entry_ - sin_theta));
+        out.shear_l = radius_ * lateral_velocity_ * arc;
+        const T squared = out.shear_t * out.shear_t + out.shear_l * out.shear_l;
+        // sqrt(0) has an infinite derivative; j is identically 0 at θ_f whatever the parameters.
+        T shear = squared > 0.0 ? T(sqrt(squared)) : T(0.0);
+        if (shear > max_shear_) shear = T(max_shear_);  // Eq. 2.16
+        out.shear = shear;
+
+        // Eqs. 2.20, 2.21; −expm1(−j/K) = 1 − exp(−j/K) without cancellation for small j.
+        out.tau = (cohesion_ + out.sigma * tan_phi_) * (-expm1(-shear / shear_modulus_));
+
+        // Shear velocity direction, Eq. 2.13 divided by rω: (1 − κ cos θ, κ tan β), with
+        // 1 − κ cos θ = (1 − cos θ) + (1 − κ) cos θ and 1 − cos θ = sin²θ / (1 + cos θ).
+        const T tangential = sin_theta * sin_theta / (1.0 + cos_theta) + one_minus_kappa_ * cos_theta;
+        const T speed_squared = tangential * tangential + lateral_velocity_ * lateral_velocity_;
+        if (speed_squared > 0.0) {
+            const T inverse_speed = 1.0 / sqrt(speed_squared);
+            out.tau_t = out.tau * tangential * inverse_speed;
+            out.tau_l = out.tau * lateral_velocity_ * inverse_speed;
+        } else {
+            // Stagnation point (s = 0, β = 0, θ = 0): the one-sided limit, along +x when driving
+            // (MODEL-NOTES) and −x when braking.
+            out.tau_t = driving_ ? out.tau : T(-out.tau);
+            out.tau_l = T(0.0);
+        }
+        return out;
+    }
+
+    /// The tangential shear deformation j_t(θ) [m] alone, in double (used to find where the
+    /// integrand has kinks; cheap: one sin).
+    double shearTangential(double theta) const {
+        return scalarValue(radius_) * ((scalarValue(entry_) - theta) -
+                                       scalarValue(kappa_) * (scalarValue(sin_entry_) - std::sin(theta)));
+    }
+
+    /// j(θ) before the j_max limit [m], in double.
+    double shearUnlimited(double theta) const {
+        const double jt = shearTangential(theta);
+        const double jl =
+            scalarValue(radius_) * scalarValue(lateral_velocity_) * (scalarValue(entry_) - theta);
+        return std::hypot(jt, jl);
+    }
+
+    /// Lateral shear velocity κ tan β [-] (per unit rω).
+    const T& lateralVelocity() const { return lateral_velocity_; }
+
+private:
+    T radius_;
+    T entry_;
+    T exit_;
+    T max_stress_;
+    T exponent_;
+    T modulus_;
+    T cohesion_;
+    T shear_modulus_;
+    double max_shear_;
+    bool driving_;
+    T tan_phi_;
+    T cos_entry_;
+    T sin_entry_;
+    T kappa_;
+    T one_minus_kappa_;
+    T lateral_velocity_;
+    T rear_slope_;  // (θ_f − θ_m)/(θ_m − θ_r) of Eq. 2.19
+};
+
+}  // namespace terra::contact

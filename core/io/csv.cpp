@@ -1,0 +1,117 @@
+#include "core/io/csv.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/common/range.h"
+#include "core/io/atomic_file.h"
+
+namespace terra::io {
+namespace {
+
+std::string trim(const std::string& s) {
+    const auto begin = s.find_first_not_of(" \t\r");
+    if (begin == std::string::npos) return {};
+    const auto end = s.find_last_not_of(" \t\r");
+    return s.substr(begin, end - begin + 1);
+}
+
+std::vector<std::string> splitLine(const std::string& line) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char ch = line[i];
+        if (quoted) {
+            if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                cell += '"';
+                ++i;
+            } else if (ch == '"') {
+                quoted = false;
+            } else {
+                cell += ch;
+            }
+        } else if (ch == '"') {
+            quoted = true;
+        } else if (ch == ',') {
+            cells.push_back(trim(cell));
+            cell.clear();
+        } else {
+            cell += ch;
+        }
+    }
+    cells.push_back(trim(cell));
+    return cells;
+}
+
+}  // namespace
+
+std::string toCsv(const Table& table) {
+    std::string out;
+    for (std::size_t i = 0; i < table.columns.size(); ++i) {
+        out += (i ? "," : "") + table.columns[i];
+    }
+    out += '\n';
+    for (const auto& row : table.rows) {
+        for (std::size_t i = 0; i < row.size(); ++i) {
+            if (i) out += ',';
+            if (std::isfinite(row[i])) out += formatNumber(row[i]);
+        }
+        out += '\n';
+    }
+    return out;
+}
+
+Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) {
+    CsvDocument doc;
+    std::vector<Issue> issues;
+    int line_number = 0;
+    std::size_t start = 0;
+    bool have_header = false;
+    while (start <= text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::string line = text.substr(start, end - start);
+        start = end + 1;
+        ++line_number;
+        if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // BOM
+        const std::string stripped = trim(line);
+        if (stripped.empty() || stripped[0] == '#') {
+            if (end == text.size()) break;
+            continue;
+        }
+        std::vector<std::string> cells = splitLine(line);
+        if (!have_header) {
+            doc.header = std::move(cells);
+            have_header = true;
+        } else if (cells.size() != doc.header.size()) {
+            issues.push_back({where + ":" + std::to_string(line_number),
+                              std::to_string(cells.size()) + " cells, the header has " +
+                                  std::to_string(doc.header.size())});
+        } else {
+            doc.rows.push_back(std::move(cells));
+            doc.line_numbers.push_back(line_number);
+        }
+        if (end == text.size()) break;
+    }
+    if (!have_header) issues.push_back({where, "empty file: expected a header row"});
+    if (!issues.empty()) return issues;
+    return doc;
+}
+
+Result<CsvDocument> readCsv(const std::filesystem::path& path) {
+    std::string text;
+    if (const auto error = readFile(path, text)) return std::vector<Issue>{{path.string(), *error}};
+    return parseCsv(text, path.string());
+}
+
+bool parseNumber(const std::string& cell, double& value) {
+    const std::string s = trim(cell);
+    if (s.empty()) return false;
+    const char* first = s.data();
+    if (*first == '+') ++first;
+    const auto [end, error] = std::from_chars(first, s.data() + s.size(), value);
+    return error == std::errc{} && end == s.data() + s.size() && std::isfinite(value);
+}
+
+}  // namespace terra::io

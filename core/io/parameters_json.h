@@ -1,0 +1,49 @@
+#pragma once
+/// @file parameters_json.h
+/// Soil and wheel parameter files (JSON, thesis units with unit-suffixed keys, see docs/soils.md)
+/// and the presets in resources/. Every problem is reported with the file, the field, the value
+/// and the allowed range; nothing throws.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/common/issue.h"
+#include "core/soil/soil_parameters.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::io {
+
+/// Soil from a JSON object; `where` prefixes every issue ("soils/x.json").
+Result<soil::SoilParameters> soilFromJson(const nlohmann::json& json, const std::string& where);
+/// Wheel from a JSON object ({"name", "r_m", "b_m"}).
+Result<wheel::WheelParameters> wheelFromJson(const nlohmann::json& json, const std::string& where);
+
+/// The JSON form of a soil or wheel (thesis units; optional keys only when set).
+nlohmann::json toJson(const soil::SoilParameters& soil);
+nlohmann::json toJson(const wheel::WheelParameters& wheel);
+
+/// Loads a file; a parse error is reported with its byte position.
+Result<soil::SoilParameters> loadSoil(const std::filesystem::path& path);
+Result<wheel::WheelParameters> loadWheel(const std::filesystem::path& path);
+
+/// Where presets are looked up: each directory holds soils/ and wheels/.
+struct PresetLocations {
+    std::vector<std::filesystem::path> directories;
+    /// The directories to search: $TERRASTUDIO_RESOURCES, `<exe dir>/../share/terrastudio`,
+    /// `<exe dir>/resources`, and the source tree's resources/ (built in).
+    static PresetLocations standard(const std::filesystem::path& executable_dir);
+};
+
+/// The names of the presets of one kind ("soils" or "wheels"), sorted.
+std::vector<std::string> presetNames(const PresetLocations& locations, const std::string& kind);
+
+/// A preset name ("sandy-loam", "A") or a path to a JSON file.
+Result<soil::SoilParameters> resolveSoil(const PresetLocations& locations,
+                                         const std::string& name_or_path);
+Result<wheel::WheelParameters> resolveWheel(const PresetLocations& locations,
+                                            const std::string& name_or_path);
+
+}  // namespace terra::io

@@ -1,0 +1,68 @@
+#pragma once
+/// @file soil_parameters.h
+/// Soil parameters of the wheel–soil model, in SI units (thesis Table 2.1 gives them in kPa, deg,
+/// kN/m^(n+1), kN/m^(n+2), kN/m³; the conversion happens in the field table below, at the edge).
+
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/common/issue.h"
+#include "core/common/range.h"
+
+namespace terra::soil {
+
+/// Parameters of a homogeneous deformable soil (Bekker pressure–sinkage, Janosi–Hanamoto shear).
+struct SoilParameters {
+    std::string name;    ///< human-readable name ("sandy loam")
+    std::string source;  ///< where the values come from (paper, table)
+    /// n [-]: sinkage exponent of Bekker's law σ = (k_c/b + k_φ) h^n (Eq. 2.3). When
+    /// `sinkage_exponent_slip` is non-zero this is n₀ of Ding's N = n₀ + n₁ s.
+    double sinkage_exponent = 0.7;
+    double sinkage_exponent_slip = 0.0;  ///< n₁ [-] of N = n₀ + n₁ s (Ding [5]); 0: constant n
+    double cohesion_pa = 1.7e3;          ///< c [Pa]: cohesion (Eqs. 2.20, 2.21)
+    double friction_angle_rad = 0.5061;  ///< φ [rad]: internal friction angle (Eq. 2.21)
+    double cohesive_modulus = 5.3e3;     ///< k_c [N/m^(n+1)] (Eq. 2.3)
+    double frictional_modulus = 1.515e6; ///< k_φ [N/m^(n+2)] (Eq. 2.3)
+    double shear_modulus_m = 0.025;      ///< K [m]: shear deformation modulus (Eq. 2.20)
+    double unit_weight_n_m3 = 15.2e3;    ///< γ [N/m³]: specific weight (Eq. 2.27)
+    double max_stress_a0 = 0.2;          ///< a₀ [-] of θ_m = (a₀ + a₁ s) θ_f (Eq. 2.18)
+    double max_stress_a1 = 0.3;          ///< a₁ [-] of Eq. 2.18
+    /// j_max [m]: shear deformation limit of a smooth wheel (Eq. 2.16); +inf = no limit.
+    double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+
+    bool hasShearLimit() const { return max_shear_deformation_m < std::numeric_limits<double>::infinity(); }
+};
+
+/// One user-facing field of the soil: its file key, unit, allowed range and SI conversion.
+/// This table drives the JSON reader, the writer, validation and the command-line overrides.
+struct SoilField {
+    const char* key;        ///< JSON key, unit-suffixed ("phi_deg")
+    const char* unit;       ///< unit shown to the user ("deg")
+    const char* symbol;     ///< literature symbol ("φ")
+    Range range;            ///< allowed values, in the user's unit
+    double to_si;           ///< SI value = file value × to_si
+    double SoilParameters::*member;
+    bool required;          ///< false: optional key, default kept when absent
+};
+
+/// The field table (n, c, φ, k_c, k_φ, K, γ, a₀, a₁, j_max, n₁).
+std::span<const SoilField> soilFields();
+
+/// The field of the table with this key, or nullptr.
+const SoilField* findSoilField(const std::string& key);
+
+/// The value of a field in the user's unit.
+double userValue(const SoilParameters& soil, const SoilField& field);
+
+/// Sets a field from a value in the user's unit.
+void setUserValue(SoilParameters& soil, const SoilField& field, double value);
+
+/// Every out-of-range or non-finite field, each naming the field, the value and the range.
+std::vector<Issue> validate(const SoilParameters& soil, const std::string& prefix = {});
+
+/// Throws std::invalid_argument listing every problem when `soil` is not valid (API misuse).
+void requireValid(const SoilParameters& soil);
+
+}  // namespace terra::soil

@@ -1,0 +1,24 @@
+# Fails when an include crosses the dependency rules of STYLE.md:
+#   core/ includes no Qt and nothing from widgets/ or app/; widgets/ includes nothing from app/;
+#   inside core, the lower modules do not include the higher ones.
+function(check_dir dir pattern message)
+  file(GLOB_RECURSE files "${SOURCE_DIR}/${dir}/*.h" "${SOURCE_DIR}/${dir}/*.cpp")
+  foreach(file IN LISTS files)
+    file(STRINGS "${file}" hits REGEX "${pattern}")
+    if(hits)
+      message(SEND_ERROR "${file}: ${message}: ${hits}")
+    endif()
+  endforeach()
+endfunction()
+
+check_dir(core "#include *[<\"](Q[A-Za-z]|qcustomplot)" "core must stay Qt-free")
+check_dir(core "#include *\"(widgets|app)/" "core must not include widgets/ or app/")
+check_dir(widgets "#include *\"app/" "widgets must not include app/")
+check_dir(core/common "#include *\"core/(soil|wheel|contact|analysis|identification|dynamics|scenario|io)/"
+          "core/common is the bottom layer")
+check_dir(core/soil "#include *\"core/(wheel|contact|analysis|identification|dynamics|scenario|io)/"
+          "core/soil depends only on common")
+check_dir(core/wheel "#include *\"core/(soil|contact|analysis|identification|dynamics|scenario|io)/"
+          "core/wheel depends only on common")
+check_dir(core/contact "#include *\"core/(analysis|identification|dynamics|scenario|io)/"
+          "core/contact must not include higher modules")
