@@ -1,1 +1,48 @@
-int main(){}
+// terrastudio: the studio GUI when started plainly, headless subcommands otherwise (docs/cli.md).
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/cli/cli_support.h"
+#include "app/cli/commands.h"
+
+namespace {
+
+int runHeadless(int argc, char** argv) {
+    using namespace terra::app;
+    const terra::io::PresetLocations locations =
+        terra::io::PresetLocations::standard(executableDirectory());
+    CLI::App app{"TerraStudio: wheel-soil interaction (terramechanics) for wheeled mobile robots"};
+    app.set_version_flag("--version", std::string("terrastudio 0.1.0"));
+    app.require_subcommand(1);
+    addWheelCommand(app, locations);
+    addSinkageCommand(app, locations);
+    addSweepCommands(app, locations);
+    addPresetsCommand(app, locations);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::RuntimeError& e) {
+        return e.get_exit_code();
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);  // prints the message and usage hint on stderr
+        return kBadInput;
+    } catch (const InputError& e) {
+        std::cerr << "error: " << e.what() << '\n';
+        return kBadInput;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << '\n';
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << '\n';
+        return kFailure;
+    }
+    return kSuccess;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return runHeadless(argc, argv);
+}

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 
@@ -80,7 +82,14 @@ std::vector<double> linspace(double first, double last, int count) {
     if (count < 1) throw std::invalid_argument("linspace needs at least one point");
     if (count == 1) return {first};
     std::vector<double> out(static_cast<std::size_t>(count));
-    for (int i = 0; i < count; ++i) out[i] = first + (last - first) * i / (count - 1);
+    for (int i = 0; i < count; ++i) {
+        const double value = first + (last - first) * i / (count - 1);
+        // Round to 12 significant digits so that decimal grids print as typed (0.27, not
+        // 0.26999999999999996); far below any physical resolution of slip or angle.
+        char text[32];
+        std::snprintf(text, sizeof text, "%.12g", value);
+        out[i] = std::strtod(text, nullptr);
+    }
     return out;
 }
 

@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace terra {
 
@@ -23,6 +25,13 @@ std::string formatNumber(double value) {
     char buffer[32];
     const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
     return error == std::errc{} ? std::string(buffer, end) : std::to_string(value);
+}
+
+double roundSignificant(double value, int digits) {
+    if (!std::isfinite(value) || value == 0.0) return value;
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    return std::strtod(buffer, nullptr);
 }
 
 bool checkRange(std::vector<Issue>& issues, const std::string& field, double value,

@@ -24,6 +24,10 @@ struct Range {
 /// Formats a number for messages: shortest round-trip text ("0.025", "1e-06", "nan").
 std::string formatNumber(double value);
 
+/// `value` rounded to `digits` significant decimal digits: unit conversions at the edges (rad→deg)
+/// then give back the number the user typed (29, not 29.000000000000004).
+double roundSignificant(double value, int digits = 12);
+
 /// Appends an issue when `value` is NaN, infinite or outside `range`; returns whether it was fine.
 bool checkRange(std::vector<Issue>& issues, const std::string& field, double value,
                 const Range& range, const std::string& unit = {});

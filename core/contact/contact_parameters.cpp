@@ -24,18 +24,20 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
 }
 
 void requireValid(const OperatingPoint<double>& op) {
+    // Compare in the user's degrees, rounded so that 90° typed is 90° checked.
+    auto deg = [](double rad) { return roundSignificant(units::radToDeg(rad)); };
     std::vector<Issue> issues;
     checkRange(issues, "slip", op.slip, {-1.0, 1.0, true, true});
-    checkRange(issues, "slip_angle_deg", units::radToDeg(op.slip_angle_rad),
+    checkRange(issues, "slip_angle_deg", deg(op.slip_angle_rad),
                {-90.0, 90.0, true, true}, "deg");
-    checkRange(issues, "entry_angle_deg", units::radToDeg(op.entry_angle_rad), {0.0, 90.0, true},
+    checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true},
                "deg");
-    const double theta_f_deg = units::radToDeg(op.entry_angle_rad);
-    checkRange(issues, "exit_angle_deg", units::radToDeg(op.exit_angle_rad), {-theta_f_deg, 0.0},
+    const double theta_f_deg = deg(op.entry_angle_rad);
+    checkRange(issues, "exit_angle_deg", deg(op.exit_angle_rad), {-theta_f_deg, 0.0},
                "deg");
     if (op.max_stress_angle_rad) {
-        checkRange(issues, "max_stress_angle_deg", units::radToDeg(*op.max_stress_angle_rad),
-                   {units::radToDeg(op.exit_angle_rad), theta_f_deg}, "deg");
+        checkRange(issues, "max_stress_angle_deg", deg(*op.max_stress_angle_rad),
+                   {deg(op.exit_angle_rad), theta_f_deg}, "deg");
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }

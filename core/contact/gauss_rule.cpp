@@ -1,7 +1,9 @@
 #include "core/contact/gauss_rule.h"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,7 +38,41 @@ StoredRule makeRule() {
     return stored;
 }
 
+struct StoredKronrod {
+    std::vector<double> nodes, weights, gauss_weights;
+    KronrodRule rule;
+};
+
+StoredKronrod makeKronrod() {
+    using Kronrod = boost::math::quadrature::gauss_kronrod<double, 15>;
+    using Gauss = boost::math::quadrature::gauss<double, 7>;
+    const auto& x = Kronrod::abscissa();
+    const auto& w = Kronrod::weights();
+    const auto& gw = Gauss::weights();
+    // Boost's Kronrod abscissae interleave the Gauss nodes at the even indices 0, 2, 4, 6.
+    std::vector<std::array<double, 3>> points;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double g = i % 2 == 0 ? gw[i / 2] : 0.0;
+        points.push_back({0.5 * (1.0 + x[i]), 0.5 * w[i], 0.5 * g});
+        if (x[i] != 0.0) points.push_back({0.5 * (1.0 - x[i]), 0.5 * w[i], 0.5 * g});
+    }
+    std::sort(points.begin(), points.end());
+    StoredKronrod stored;
+    for (const auto& p : points) {
+        stored.nodes.push_back(p[0]);
+        stored.weights.push_back(p[1]);
+        stored.gauss_weights.push_back(p[2]);
+    }
+    stored.rule = {stored.nodes, stored.weights, stored.gauss_weights};
+    return stored;
+}
+
 }  // namespace
+
+const KronrodRule& kronrodRule() {
+    static const StoredKronrod stored = makeKronrod();
+    return stored.rule;
+}
 
 const GaussRule& gaussRule(int points) {
     static const StoredRule r7 = makeRule<7>();

@@ -109,7 +109,10 @@ bool parseNumber(const std::string& cell, double& value) {
     const std::string s = trim(cell);
     if (s.empty()) return false;
     const char* first = s.data();
-    if (*first == '+') ++first;
+    if (*first == '+') {
+        ++first;
+        if (first == s.data() + s.size() || *first == '-' || *first == '+') return false;
+    }
     const auto [end, error] = std::from_chars(first, s.data() + s.size(), value);
     return error == std::errc{} && end == s.data() + s.size() && std::isfinite(value);
 }

@@ -42,7 +42,15 @@ const SoilField* findSoilField(const std::string& key) {
 }
 
 double userValue(const SoilParameters& soil, const SoilField& field) {
-    return soil.*field.member / field.to_si;
+    // The shortest decimal that converts back to the identical SI double: "29" for a typed 29°
+    // (not 29.000000000000004), and an exact round trip for fitted values.
+    const double si = soil.*field.member;
+    const double raw = si / field.to_si;
+    for (int digits = 12; digits <= 17; ++digits) {
+        const double candidate = roundSignificant(raw, digits);
+        if (candidate * field.to_si == si) return candidate;
+    }
+    return raw;
 }
 
 void setUserValue(SoilParameters& soil, const SoilField& field, double value) {
@@ -51,6 +59,7 @@ void setUserValue(SoilParameters& soil, const SoilField& field, double value) {
 
 std::vector<Issue> validate(const SoilParameters& soil, const std::string& prefix) {
     std::vector<Issue> issues;
+    bool ok = true;
     for (const SoilField& field : kFields) {
         const double value = userValue(soil, field);
         // An optional limit left at +inf means "no limit" (j_max), not an error.
@@ -58,10 +67,13 @@ std::vector<Issue> validate(const SoilParameters& soil, const std::string& prefi
             &SoilParameters::max_shear_deformation_m) {
             continue;
         }
-        checkRange(issues, prefix + field.key, value, field.range, field.unit);
+        ok = checkRange(issues, prefix + field.key, value, field.range,
+                        std::string(field.unit) == "-" ? "" : field.unit) && ok;
     }
+    // N = n0 + n1 s stays in range over s ∈ [0, 1) when it does at s = 1 (checked only when n0
+    // and n1 themselves are valid, so one mistake gives one message).
     const double n_at_full_slip = soil.sinkage_exponent + soil.sinkage_exponent_slip;
-    if (std::isfinite(n_at_full_slip) && (n_at_full_slip < 0.1 || n_at_full_slip > 2.0)) {
+    if (ok && (n_at_full_slip < 0.1 || n_at_full_slip > 2.0)) {
         issues.push_back({prefix + "n1", "n + n1 = " + formatNumber(n_at_full_slip) +
                                              " leaves the allowed range [0.1, 2] of N = n0 + n1 s"});
     }

@@ -1,0 +1,157 @@
+#include "app/cli/cli_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "core/analysis/sweep.h"
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+
+namespace terra::app {
+
+void ModelOptions::addTo(CLI::App& command, bool with_geometry) {
+    command.add_option("--soil", soil, "Soil preset name or JSON file")->capture_default_str();
+    command.add_option("--wheel", wheel, "Wheel preset name or JSON file")->capture_default_str();
+    command.add_option("--set", set, "Override a soil field in file units, e.g. --set phi_deg=30");
+    command.add_option("--a0", a0, "a0 of theta_m = (a0 + a1 s) theta_f (Eq. 2.18)");
+    command.add_option("--a1", a1, "a1 of Eq. 2.18");
+    auto* jmax = command.add_option("--jmax", jmax_m, "Shear deformation limit j_max [m] (Eq. 2.16)");
+    command.add_flag("--no-jmax", no_jmax, "No shear deformation limit")->excludes(jmax);
+    command.add_option("--bulldozing", bulldozing, "Side-wall pressure coefficients (Eq. 2.27)")
+        ->check(CLI::IsMember({"bekker", "hegedus"}))
+        ->capture_default_str();
+    command.add_option("--model", model, "full (numerical integration) or quadratic (closed form)")
+        ->check(CLI::IsMember({"full", "quadratic"}))
+        ->capture_default_str();
+    if (with_geometry) {
+        command.add_option("--max-stress-angle", max_stress_angle_deg,
+                           "Fix theta_m [deg] instead of Eq. 2.18");
+        auto* exit = command.add_option("--exit-angle", exit_angle_deg,
+                                        "Exit angle theta_r [deg], <= 0 (default 0)");
+        command.add_option("--rut-ratio", rut_ratio, "Rut ratio lambda = h_r/h_f in [0, 1] (Eq. 2.12)")
+            ->excludes(exit);
+    }
+}
+
+soil::SoilParameters ModelOptions::soilParameters(const io::PresetLocations& locations) const {
+    Result<soil::SoilParameters> resolved = io::resolveSoil(locations, soil);
+    if (!resolved) throw InputError(resolved.message());
+    soil::SoilParameters out = resolved.value();
+    std::vector<Issue> issues;
+    for (const std::string& assignment : set) {
+        const auto equals = assignment.find('=');
+        const std::string key = assignment.substr(0, equals);
+        const soil::SoilField* field = soil::findSoilField(key);
+        double value = 0.0;
+        if (!field) {
+            std::string keys;
+            for (const auto& f : soil::soilFields()) keys += (keys.empty() ? "" : ", ") + std::string(f.key);
+            issues.push_back({"--set " + key, "unknown soil field; fields: " + keys});
+        } else if (equals == std::string::npos ||
+                   !io::parseNumber(assignment.substr(equals + 1), value)) {
+            issues.push_back({"--set " + key, "expected KEY=NUMBER, got '" + assignment + "'"});
+        } else if (checkRange(issues, "--set " + key, value, field->range, field->unit)) {
+            soil::setUserValue(out, *field, value);
+        }
+    }
+    if (a0 && checkRange(issues, "--a0", *a0, {0.0, 1.0})) out.max_stress_a0 = *a0;
+    if (a1 && checkRange(issues, "--a1", *a1, {-1.0, 1.0})) out.max_stress_a1 = *a1;
+    if (jmax_m && checkRange(issues, "--jmax", *jmax_m, {0.0, 1.0, true, false}, "m")) {
+        out.max_shear_deformation_m = *jmax_m;
+    }
+    if (no_jmax) out.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    for (Issue& issue : soil::validate(out, "soil ")) issues.push_back(std::move(issue));
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    return out;
+}
+
+wheel::WheelParameters ModelOptions::wheelParameters(const io::PresetLocations& locations) const {
+    Result<wheel::WheelParameters> resolved = io::resolveWheel(locations, wheel);
+    if (!resolved) throw InputError(resolved.message());
+    return resolved.value();
+}
+
+contact::BulldozingModel ModelOptions::bulldozingModel() const {
+    return bulldozing == "hegedus" ? contact::BulldozingModel::kHegedus
+                                   : contact::BulldozingModel::kBekker;
+}
+
+contact::ContactModel ModelOptions::contactModel() const {
+    return model == "quadratic" ? contact::ContactModel::kQuadratic : contact::ContactModel::kFull;
+}
+
+contact::ExitCondition ModelOptions::exitCondition() const {
+    std::vector<Issue> issues;
+    if (rut_ratio) {
+        checkRange(issues, "--rut-ratio", *rut_ratio, {0.0, 1.0});
+        if (!issues.empty()) throw InputError(formatIssues(issues));
+        return {contact::ExitCondition::Kind::kRutRatio, *rut_ratio};
+    }
+    const double deg = exit_angle_deg.value_or(0.0);
+    checkRange(issues, "--exit-angle", deg, {-90.0, 0.0}, "deg");
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    return {contact::ExitCondition::Kind::kAngle, units::degToRad(deg)};
+}
+
+std::optional<double> ModelOptions::maxStressAngleRad() const {
+    if (!max_stress_angle_deg) return std::nullopt;
+    std::vector<Issue> issues;
+    checkRange(issues, "--max-stress-angle", *max_stress_angle_deg, {-90.0, 90.0}, "deg");
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    return units::degToRad(*max_stress_angle_deg);
+}
+
+std::vector<double> parseValues(const std::string& text, const std::string& what) {
+    auto number = [&](const std::string& cell) {
+        double value = 0.0;
+        if (!io::parseNumber(cell, value)) {
+            throw InputError(what + ": '" + cell + "' is not a number (expected a value, a list " +
+                             "a,b,c or a range first:last:count)");
+        }
+        return value;
+    };
+    std::vector<std::string> parts;
+    const char separator = text.find(':') != std::string::npos ? ':' : ',';
+    std::stringstream stream(text);
+    for (std::string part; std::getline(stream, part, separator);) parts.push_back(part);
+    if (parts.empty()) throw InputError(what + ": empty value");
+    if (separator == ':') {
+        if (parts.size() != 3) throw InputError(what + ": a range is first:last:count, got '" + text + "'");
+        const double count = number(parts[2]);
+        if (count < 1 || count > 100000 || count != std::floor(count)) {
+            throw InputError(what + ": count " + parts[2] + " must be a whole number in [1, 100000]");
+        }
+        return analysis::linspace(number(parts[0]), number(parts[1]), static_cast<int>(count));
+    }
+    std::vector<double> values;
+    for (const std::string& part : parts) values.push_back(number(part));
+    return values;
+}
+
+void writeOutput(const std::string& path, const std::string& content) {
+    if (path.empty() || path == "-") {
+        std::cout << content;
+        std::cout.flush();
+        return;
+    }
+    if (const auto error = io::writeFileAtomically(path, content)) throw std::runtime_error(*error);
+}
+
+std::filesystem::path executableDirectory() {
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    return ec ? std::filesystem::path() : exe.parent_path();
+}
+
+std::string fixed(double value, int decimals) {
+    if (!std::isfinite(value)) return "-";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    return buffer;
+}
+
+}  // namespace terra::app

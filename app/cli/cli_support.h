@@ -1,0 +1,66 @@
+#pragma once
+/// @file cli_support.h
+/// Shared pieces of the headless subcommands: the error types that map to exit codes, soil and
+/// wheel resolution with flag overrides, list/range parsing and output writing.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/contact/bulldozing.h"
+#include "core/contact/contact_parameters.h"
+#include "core/contact/sinkage.h"
+#include "core/io/parameters_json.h"
+
+namespace terra::app {
+
+/// Exit codes of the command line (docs/cli.md).
+enum ExitCode : int { kSuccess = 0, kFailure = 1, kBadInput = 2 };
+
+/// Bad user input: reported on stderr, exit code 2.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Soil and wheel options shared by the subcommands, with the model flags that override the soil
+/// file (Table 2.3 fixes θ_m = 15° and uses no j_max).
+struct ModelOptions {
+    std::string soil = "sandy-loam";
+    std::string wheel = "A";
+    std::vector<std::string> set;          ///< KEY=VALUE soil overrides in file units
+    std::optional<double> a0, a1, jmax_m;
+    bool no_jmax = false;
+    std::optional<double> max_stress_angle_deg;
+    std::optional<double> exit_angle_deg;
+    std::optional<double> rut_ratio;
+    std::string bulldozing = "bekker";
+    std::string model = "full";
+
+    void addTo(CLI::App& command, bool with_geometry = true);
+
+    /// The resolved soil and wheel (presets or files, overrides applied, validated).
+    soil::SoilParameters soilParameters(const io::PresetLocations& locations) const;
+    wheel::WheelParameters wheelParameters(const io::PresetLocations& locations) const;
+
+    contact::BulldozingModel bulldozingModel() const;
+    contact::ContactModel contactModel() const;
+    contact::ExitCondition exitCondition() const;
+    std::optional<double> maxStressAngleRad() const;
+};
+
+/// "0:0.99:100" (first:last:count), "5,10,15" or "0.3": the values, or InputError naming `what`.
+std::vector<double> parseValues(const std::string& text, const std::string& what);
+
+/// Writes `content` to `path` atomically, or to stdout when `path` is empty or "-".
+void writeOutput(const std::string& path, const std::string& content);
+
+/// Directory of the running executable (for finding resources/).
+std::filesystem::path executableDirectory();
+
+/// Fixed-width number for human tables.
+std::string fixed(double value, int decimals);
+
+}  // namespace terra::app

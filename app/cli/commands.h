@@ -1,0 +1,18 @@
+#pragma once
+/// @file commands.h
+/// The headless subcommands of `terrastudio` (docs/cli.md). Each registers itself on the CLI11
+/// application; its callback does the work when the subcommand is given, and throws InputError
+/// (exit 2) or std::runtime_error (exit 1) on failure.
+
+#include <CLI/CLI.hpp>
+
+#include "core/io/parameters_json.h"
+
+namespace terra::app {
+
+void addWheelCommand(CLI::App& app, const io::PresetLocations& locations);
+void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations);
+void addSweepCommands(CLI::App& app, const io::PresetLocations& locations);
+void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations);
+
+}  // namespace terra::app

@@ -1,0 +1,288 @@
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/cli/cli_support.h"
+#include "app/cli/commands.h"
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/contact/quadratic_model.h"
+#include "core/contact/sinkage.h"
+#include "core/contact/wheel_forces.h"
+#include "core/io/csv.h"
+
+namespace terra::app {
+namespace {
+
+using contact::ContactParameters;
+using contact::OperatingPoint;
+using contact::WheelForces;
+
+struct WheelOptions {
+    ModelOptions model;
+    double slip = 0.0;
+    double slip_angle_deg = 0.0;
+    std::optional<double> entry_angle_deg;
+    std::optional<double> load_n;
+    bool json = false;
+    std::string input;
+    std::string output;
+    bool skip_bad_rows = false;
+};
+
+// One operating point: either θ_f or W given.
+struct PointInput {
+    double slip = 0.0;
+    double slip_angle_deg = 0.0;
+    std::optional<double> entry_angle_deg;
+    std::optional<double> load_n;
+    contact::ExitCondition exit;
+    std::optional<double> max_stress_angle_rad;
+};
+
+struct PointResult {
+    WheelForces<double> forces;
+    double entry_angle_deg = 0.0;
+    double exit_angle_deg = 0.0;
+    double sinkage_m = 0.0;
+    bool solved_from_load = false;
+    std::string failure;  ///< non-empty: no equilibrium
+};
+
+PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& options,
+                     const PointInput& in) {
+    std::vector<Issue> issues;
+    checkRange(issues, "slip", in.slip, {-1.0, 1.0, true, true});
+    checkRange(issues, "slip_angle_deg", in.slip_angle_deg, {-90.0, 90.0, true, true}, "deg");
+    if (in.load_n) checkRange(issues, "load_N", *in.load_n, {0.0, 1e7, true, false}, "N");
+    if (in.entry_angle_deg) {
+        checkRange(issues, "entry_angle_deg", *in.entry_angle_deg, {0.0, 90.0, true, false}, "deg");
+    }
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+
+    PointResult out;
+    double theta_f = 0.0;
+    const double beta = units::degToRad(in.slip_angle_deg);
+    if (in.load_n) {
+        contact::EntryAngleProblem problem;
+        problem.load_n = *in.load_n;
+        problem.slip = in.slip;
+        problem.slip_angle_rad = beta;
+        problem.exit = in.exit;
+        problem.max_stress_angle_rad = in.max_stress_angle_rad;
+        problem.model = options.model.contactModel();
+        const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
+        if (!solution.ok()) {
+            out.failure = solution.message;
+            return out;
+        }
+        theta_f = solution.entry_angle_rad;
+        out.solved_from_load = true;
+    } else {
+        theta_f = units::degToRad(*in.entry_angle_deg);
+    }
+    const OperatingPoint<double> op{in.slip, beta, theta_f, in.exit.exitAngle(theta_f),
+                                    in.max_stress_angle_rad};
+    contact::requireValid(op);
+    out.forces = options.model.contactModel() == contact::ContactModel::kFull
+                     ? contact::computeForces(p, op, options.model.bulldozingModel())
+                     : contact::computeQuadraticForces(p, op, options.model.bulldozingModel());
+    out.entry_angle_deg = units::radToDeg(theta_f);
+    out.exit_angle_deg = units::radToDeg(op.exit_angle_rad);
+    out.sinkage_m = p.radius_m * (1.0 - std::cos(theta_f));
+    return out;
+}
+
+nlohmann::json toJson(const PointResult& r) {
+    const WheelForces<double>& f = r.forces;
+    return {{"Fx_N", f.fx},   {"Fy_N", f.fy},   {"Fz_N", f.fz},
+            {"Mx_Nm", f.mx},  {"My_Nm", f.my},  {"Mz_Nm", f.mz},
+            {"Fb_N", f.fb},   {"Fs_N", f.fs},   {"entry_angle_deg", r.entry_angle_deg},
+            {"exit_angle_deg", r.exit_angle_deg}, {"sinkage_m", r.sinkage_m}};
+}
+
+void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
+                const WheelOptions& o, const PointInput& in, const PointResult& r) {
+    std::ostringstream s;
+    s << soil.name << ", " << wheel.name << " (r = " << wheel.radius_m << " m, b = " << wheel.width_m
+      << " m), " << o.model.model << " model\n";
+    s << "s = " << in.slip << ", beta = " << in.slip_angle_deg << " deg, ";
+    if (r.solved_from_load) {
+        s << "W = " << *in.load_n << " N -> theta_f = " << fixed(r.entry_angle_deg, 4)
+          << " deg, sinkage = " << fixed(r.sinkage_m * 1e3, 3) << " mm\n";
+    } else {
+        s << "theta_f = " << fixed(r.entry_angle_deg, 4) << " deg (given), sinkage = "
+          << fixed(r.sinkage_m * 1e3, 3) << " mm\n";
+    }
+    s << "theta_r = " << fixed(r.exit_angle_deg, 4) << " deg\n\n";
+    const WheelForces<double>& f = r.forces;
+    auto line = [&](const char* name, double value, const char* unit, const char* what) {
+        char buffer[128];
+        std::snprintf(buffer, sizeof buffer, "  %-3s %12.4f %-4s %s\n", name, value, unit, what);
+        s << buffer;
+    };
+    line("Fx", f.fx, "N", "drawbar pull (Eq. 2.23)");
+    line("Fy", f.fy, "N", "lateral force from shear (Eq. 2.25)");
+    line("Fz", f.fz, "N", "vertical force (Eq. 2.31)");
+    line("Mx", f.mx, "N·m", "roll moment (Eq. 2.32)");
+    line("My", f.my, "N·m", "resistance torque (Eq. 2.34)");
+    line("Mz", f.mz, "N·m", "yaw moment (Eq. 2.35)");
+    line("Fb", f.fb, "N", ("bulldozing, one side wall (Eq. 2.30, " + o.model.bulldozing + ")").c_str());
+    line("Fs", f.fs, "N", "side force Fy - sign(beta) Fb (Eq. 2.24)");
+    std::cout << s.str();
+}
+
+// Batch mode: one operating point per CSV row.
+int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
+    Result<io::CsvDocument> read = io::readCsv(o.input);
+    if (!read) throw InputError(read.message());
+    const io::CsvDocument& doc = read.value();
+    auto index = [&](const std::string& name) -> int {
+        for (std::size_t i = 0; i < doc.header.size(); ++i) {
+            if (doc.header[i] == name) return static_cast<int>(i);
+        }
+        return -1;
+    };
+    const int c_slip = index("slip"), c_beta = index("slip_angle_deg"),
+              c_theta = index("entry_angle_deg"), c_load = index("load_N"),
+              c_exit = index("exit_angle_deg"), c_rut = index("rut_ratio"),
+              c_theta_m = index("max_stress_angle_deg");
+    if (c_theta < 0 && c_load < 0 && !o.entry_angle_deg && !o.load_n) {
+        throw InputError(o.input + ": needs a column entry_angle_deg or load_N (or the flag " +
+                         "--entry-angle / --load for every row)");
+    }
+    std::vector<Issue> issues;
+    std::string csv;
+    for (std::size_t i = 0; i < doc.header.size(); ++i) csv += (i ? "," : "") + doc.header[i];
+    csv += ",status,entry_angle_deg_out,exit_angle_deg_out,sinkage_m,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
+           "Mz_Nm,Fb_N,Fs_N\n";
+    int skipped = 0, failed = 0;
+    for (std::size_t row = 0; row < doc.rows.size(); ++row) {
+        const auto& cells = doc.rows[row];
+        const std::string where = o.input + ":" + std::to_string(doc.line_numbers[row]);
+        const std::size_t before = issues.size();
+        auto cell = [&](int column, const char* name, std::optional<double> fallback) {
+            std::optional<double> value = fallback;
+            if (column >= 0 && !cells[column].empty()) {
+                double parsed = 0.0;
+                if (io::parseNumber(cells[column], parsed)) {
+                    value = parsed;
+                } else {
+                    issues.push_back({where, std::string(name) + " = '" + cells[column] +
+                                                 "' is not a finite number"});
+                }
+            }
+            return value;
+        };
+        PointInput in;
+        in.slip = cell(c_slip, "slip", o.slip).value_or(0.0);
+        in.slip_angle_deg = cell(c_beta, "slip_angle_deg", o.slip_angle_deg).value_or(0.0);
+        in.entry_angle_deg = cell(c_theta, "entry_angle_deg", o.entry_angle_deg);
+        in.load_n = cell(c_load, "load_N", o.load_n);
+        if (in.entry_angle_deg && in.load_n) {
+            if (c_theta >= 0 && c_load >= 0 && !cells[c_theta].empty() && !cells[c_load].empty()) {
+                issues.push_back({where, "give entry_angle_deg or load_N, not both"});
+            } else if (c_load >= 0 && !cells[c_load].empty()) {
+                in.entry_angle_deg.reset();
+            } else {
+                in.load_n.reset();
+            }
+        }
+        if (!in.entry_angle_deg && !in.load_n) issues.push_back({where, "no entry_angle_deg or load_N"});
+        in.exit = o.model.exitCondition();
+        if (auto exit = cell(c_exit, "exit_angle_deg", std::nullopt)) {
+            in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
+        }
+        if (auto rut = cell(c_rut, "rut_ratio", std::nullopt)) {
+            in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
+        }
+        in.max_stress_angle_rad = o.model.maxStressAngleRad();
+        if (auto theta_m = cell(c_theta_m, "max_stress_angle_deg", std::nullopt)) {
+            in.max_stress_angle_rad = units::degToRad(*theta_m);
+        }
+        PointResult result;
+        if (issues.size() == before) {
+            try {
+                result = evaluate(p, o, in);
+            } catch (const std::exception& e) {  // InputError and invalid_argument: a bad row
+                issues.push_back({where, e.what()});
+            }
+        }
+        if (issues.size() != before) {
+            ++skipped;
+            continue;
+        }
+        for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
+        if (!result.failure.empty()) {
+            ++failed;
+            csv += ",no-equilibrium,,,,,,,,,,,\n";
+            continue;
+        }
+        const WheelForces<double>& f = result.forces;
+        csv += ",ok";
+        for (double v : {result.entry_angle_deg, result.exit_angle_deg, result.sinkage_m, f.fx, f.fy,
+                         f.fz, f.mx, f.my, f.mz, f.fb, f.fs}) {
+            csv += "," + formatNumber(v);
+        }
+        csv += '\n';
+    }
+    if (!issues.empty()) {
+        std::cerr << formatIssues(issues) << '\n';
+        if (!o.skip_bad_rows) {
+            std::cerr << skipped << " bad row(s); nothing written (use --skip-bad-rows to skip them)\n";
+            return kBadInput;
+        }
+        std::cerr << "skipped " << skipped << " bad row(s)\n";
+    }
+    writeOutput(o.output, csv);
+    if (!o.output.empty() && o.output != "-") {
+        std::cerr << "wrote " << o.output << ": " << doc.rows.size() - skipped << " rows ("
+                  << failed << " without equilibrium)\n";
+    }
+    return kSuccess;
+}
+
+}  // namespace
+
+void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
+    auto options = std::make_shared<WheelOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "wheel", "Forces and moments of one wheel at one operating point (or a CSV of points)");
+    options->model.addTo(*cmd);
+    cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1) (Eq. 2.1)")->capture_default_str();
+    cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle beta [deg] (Eq. 2.2)")
+        ->capture_default_str();
+    auto* entry = cmd->add_option("--entry-angle", options->entry_angle_deg, "Entry angle theta_f [deg]");
+    cmd->add_option("--load", options->load_n, "Wheel load W [N]: solve theta_f from F_z = W")
+        ->excludes(entry);
+    cmd->add_flag("--json", options->json, "Machine-readable JSON output");
+    cmd->add_option("--input", options->input, "Batch mode: CSV of operating points");
+    cmd->add_option("--output", options->output, "Batch mode: result CSV (default: stdout)");
+    cmd->add_flag("--skip-bad-rows", options->skip_bad_rows, "Batch mode: skip invalid rows");
+    cmd->callback([options, &locations] {
+        const WheelOptions& o = *options;
+        const soil::SoilParameters soil = o.model.soilParameters(locations);
+        const wheel::WheelParameters wheel = o.model.wheelParameters(locations);
+        const ContactParameters<double> p = contact::makeContactParameters(soil, wheel);
+        if (!o.input.empty()) {
+            const int code = runBatch(p, o);
+            if (code != kSuccess) throw CLI::RuntimeError(code);
+            return;
+        }
+        if (!o.entry_angle_deg && !o.load_n) {
+            throw InputError("wheel: give --entry-angle DEG or --load N (or --input points.csv)");
+        }
+        PointInput in{o.slip, o.slip_angle_deg, o.entry_angle_deg, o.load_n,
+                      o.model.exitCondition(), o.model.maxStressAngleRad()};
+        const PointResult result = evaluate(p, o, in);
+        if (!result.failure.empty()) throw std::runtime_error(result.failure);
+        if (o.json) {
+            std::cout << toJson(result).dump(2) << '\n';
+        } else {
+            printHuman(soil, wheel, o, in, result);
+        }
+    });
+}
+
+}  // namespace terra::app

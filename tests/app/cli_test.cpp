@@ -1,0 +1,156 @@
+// The real `terrastudio` executable on good and bad inputs: exit codes, messages and output.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct CliRun {
+    int exit_code = -1;
+    std::string out;  // stdout
+    std::string err;  // stderr
+};
+
+CliRun run(const std::string& arguments) {
+    const auto dir = std::filesystem::temp_directory_path();
+    const std::string err_path = (dir / ("terra_cli_err_" + std::to_string(::getpid()))).string();
+    const std::string command = std::string(TERRASTUDIO_EXE) + " " + arguments + " 2>" + err_path;
+    CliRun r;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
+    const int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream err(err_path);
+    r.err.assign(std::istreambuf_iterator<char>(err), {});
+    std::filesystem::remove(err_path);
+    return r;
+}
+
+std::string data(const std::string& name) { return std::string(TERRA_TEST_DATA_DIR) + "/" + name; }
+
+TEST(Cli, WheelJsonHasTheDocumentedKeys) {
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 15 --load 58.86 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm", "Mz_Nm", "Fb_N", "Fs_N",
+                            "entry_angle_deg", "sinkage_m"}) {
+        EXPECT_TRUE(j.contains(key)) << key;
+    }
+    EXPECT_NEAR(j["Fz_N"].get<double>(), 58.86, 1e-8);  // the entry angle carries the load
+    const double theta = j["entry_angle_deg"].get<double>() * M_PI / 180;
+    EXPECT_NEAR(j["sinkage_m"].get<double>(), 0.092 * (1 - std::cos(theta)), 1e-12);
+}
+
+TEST(Cli, Table23FlagsOverrideTheSoilFile) {
+    // θ_m fixed at 15° and no j_max: the vertical force differs from the default soil file's.
+    const CliRun table = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 12 --entry-angle 30 "
+                          "--max-stress-angle 15 --no-jmax --json");
+    const CliRun plain = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 12 --entry-angle 30 --json");
+    ASSERT_EQ(table.exit_code, 0) << table.err;
+    ASSERT_EQ(plain.exit_code, 0) << plain.err;
+    EXPECT_NE(nlohmann::json::parse(table.out)["Fz_N"], nlohmann::json::parse(plain.out)["Fz_N"]);
+}
+
+TEST(Cli, HumanTableNamesEveryForce) {
+    const CliRun r = run("wheel --soil clayey-soil --wheel B --slip 0.2 --entry-angle 20");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* name : {"Fx", "Fy", "Fz", "Mx", "My", "Mz", "Fb", "Fs"}) {
+        EXPECT_NE(r.out.find(name), std::string::npos) << name;
+    }
+}
+
+TEST(Cli, BadInputExitsTwoAndNamesTheProblem) {
+    struct Case {
+        std::string args;
+        std::string expected;
+    } cases[] = {
+        {"wheel --soil sandy-loam --wheel A --slip 1.5 --load 50", "slip"},
+        {"wheel --soil nowhere --wheel A --load 50", "nowhere"},
+        {"wheel --soil sandy-loam --wheel A --set phi_deg=75 --load 50", "phi_deg"},
+        {"wheel --soil sandy-loam --wheel A --slip 0.2", "--entry-angle"},
+        {"wheel --soil sandy-loam --wheel A --entry-angle 120", "entry_angle_deg"},
+        {"wheel --soil sandy-loam --wheel A --entry-angle 30 --load 50", "excludes"},
+        {"wheel --soil sandy-loam --wheel A --entry-angle 30 --model cubic", "model"},
+        {"sweep --soil sandy-loam --slips 0:1:11", "slip"},
+        {"sensitivity --parameter phi_deg --values 20,70", "phi_deg"},
+        {"wheel --bogus", "bogus"},
+    };
+    for (const Case& c : cases) {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\n" << r.err;
+    }
+}
+
+TEST(Cli, NoEquilibriumExitsOneAndSaysWhy) {
+    const CliRun r = run("wheel --soil dry-sand --wheel A --load 5000");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("axle"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BatchModeWritesOneRowPerPoint) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_batch_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream in(dir / "points.csv");
+        in << "slip,slip_angle_deg,load_N\n0.1,5,58.86\n0.3,15,40\n-0.2,0,58.86\n";
+    }
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --input " + (dir / "points.csv").string() +
+                      " --output " + (dir / "out.csv").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream out(dir / "out.csv");
+    std::string header, line;
+    std::getline(out, header);
+    EXPECT_NE(header.find("Fx_N"), std::string::npos);
+    int rows = 0;
+    while (std::getline(out, line)) {
+        ++rows;
+        EXPECT_NE(line.find(",ok,"), std::string::npos) << line;
+    }
+    EXPECT_EQ(rows, 3);
+
+    // A bad row is reported with its line number and nothing is written.
+    {
+        std::ofstream in(dir / "bad.csv");
+        in << "slip,entry_angle_deg\n0.1,20\n0.2,abc\n";
+    }
+    const CliRun bad = run("wheel --soil sandy-loam --wheel A --input " + (dir / "bad.csv").string() +
+                        " --output " + (dir / "bad-out.csv").string());
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("bad.csv:3"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad-out.csv"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, SweepAndSensitivityProduceTables) {
+    const CliRun sweep = run("sweep --soil sandy-loam --wheel A --slips 0:0.9:10 --slip-angles 5,15 --json");
+    ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+    EXPECT_EQ(nlohmann::json::parse(sweep.out)["rows"].size(), 20u);
+    const CliRun sens = run("sensitivity --soil sandy-loam --wheel A --parameter K_m --slips 0.2,0.5");
+    ASSERT_EQ(sens.exit_code, 0) << sens.err;
+    EXPECT_EQ(sens.out.rfind("K_m,", 0), 0u) << sens.out.substr(0, 80);
+    const CliRun sinkage = run("sinkage --soil clayey-soil --wheel A --load 25,58.86,98 --json");
+    ASSERT_EQ(sinkage.exit_code, 0) << sinkage.err;
+    EXPECT_EQ(nlohmann::json::parse(sinkage.out).size(), 3u);
+}
+
+TEST(Cli, PresetsListsTheThesisSoilsAndWheels) {
+    const CliRun r = run("presets --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    std::vector<std::string> soils;
+    for (const auto& s : j["soils"]) soils.push_back(s["preset"]);
+    for (const char* name : {"dry-sand", "sandy-loam", "clayey-soil", "lete-sand"}) {
+        EXPECT_NE(std::find(soils.begin(), soils.end(), name), soils.end()) << name;
+    }
+    EXPECT_EQ(j["wheels"].size(), 2u);
+}
+
+}  // namespace

@@ -1,0 +1,162 @@
+#include "core/contact/sinkage.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/quadrature/tanh_sinh.hpp>
+#include <cmath>
+
+#include "core/contact/quadratic_model.h"
+#include "tests/core/contact/test_soils.h"
+
+namespace terra::contact {
+namespace {
+
+using testing::kDeg;
+constexpr double kSixKilograms = 58.86;  // [N], "W = 6 kg"
+
+// Eq. 2.7 by tanh-sinh (independent of the end-mapped Gauss rule used by staticLoad()).
+double eq27(const ContactParameters<double>& p, double theta_s, double lower) {
+    boost::math::quadrature::tanh_sinh<double> integrator;
+    const double n = p.sinkage_exponent;
+    auto f = [&](double t) {
+        const double base = std::cos(t) - std::cos(theta_s);
+        return base > 0 ? std::pow(base, n) * std::cos(t) : 0.0;
+    };
+    return std::pow(p.radius_m, n + 1) * p.width_m * p.pressure_modulus *
+           integrator.integrate(f, lower, theta_s, 1e-13);
+}
+
+TEST(Sinkage, StaticLoadMatchesEq27) {
+    for (const auto& p : {testing::sandyLoam(), testing::drySand(), testing::clayeySoil()}) {
+        for (double deg : {5.0, 20.0, 45.0}) {
+            const double ts = deg * kDeg;
+            EXPECT_NEAR(staticLoad(p, ts), eq27(p, ts, -ts), 1e-9 * eq27(p, ts, -ts));
+            EXPECT_NEAR(staticLoad(p, ts, StaticContact::kFrontHalf), eq27(p, ts, 0.0),
+                        1e-9 * eq27(p, ts, 0.0));
+        }
+    }
+}
+
+TEST(Sinkage, TowedStaticWheelCarriesEq27Load) {
+    // A towed wheel without shear (c = φ = 0), symmetric contact −θ_s..θ_s and θ_m = 0: the
+    // full model's F_z must be Eq. 2.7's W (θ_e = −θ mirrors the front law, Eq. 2.19).
+    for (double n : {0.5, 0.7, 1.1}) {
+        const auto p = testing::thesisSoil(n, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
+        const double ts = 22.0 * kDeg;
+        const OperatingPoint<double> op{0.0, 0.0, ts, -ts, 0.0};
+        EXPECT_NEAR(computeForces(p, op).fz, eq27(p, ts, -ts), 1e-9 * eq27(p, ts, -ts)) << n;
+    }
+}
+
+TEST(Sinkage, StaticSolveInvertsEq27) {
+    const auto p = testing::sandyLoam();
+    for (double w : {25.0, kSixKilograms, 98.0}) {
+        const SinkageSolution s = solveStaticSinkage(p, w);
+        ASSERT_TRUE(s.ok()) << s.message;
+        EXPECT_NEAR(eq27(p, s.entry_angle_rad, -s.entry_angle_rad), w, 1e-9 * w);
+        EXPECT_NEAR(s.sinkage_m, 0.092 * (1 - std::cos(s.entry_angle_rad)), 1e-15);  // Eq. 2.10
+    }
+}
+
+TEST(Sinkage, BekkerMatchesTheFrontHalfIntegralWithinItsValidity) {
+    // MODEL-NOTES E2: Bekker's formula assumes front-half contact; it agrees with the front-half
+    // integral of Eq. 2.7 within ~6 % for moderate sinkage (h ≤ r/3), and is 35–50 % off the
+    // symmetric one.
+    for (const auto& p : {testing::sandyLoam(), testing::drySand(), testing::clayeySoil()}) {
+        for (double w : {25.0, kSixKilograms, 98.0}) {
+            const double bekker = bekkerStaticSinkage(p, w);
+            if (bekker > p.radius_m / 3) continue;
+            const auto front = solveStaticSinkage(p, w, StaticContact::kFrontHalf);
+            ASSERT_TRUE(front.ok());
+            EXPECT_NEAR(bekker, front.sinkage_m, 0.07 * front.sinkage_m) << "W = " << w;
+            const auto both = solveStaticSinkage(p, w, StaticContact::kSymmetric);
+            EXPECT_GT(bekker / both.sinkage_m, 1.3);
+        }
+    }
+}
+
+TEST(Sinkage, BekkerFormulaByHand) {
+    // Eq. 2.8 corrected (E2): h = [W/(√(2r) b K_s (1 − n/3))]^(1/(n + 1/2)).
+    const auto p = testing::sandyLoam();
+    const double ks = 5.3e3 / 0.107 + 1.515e6;
+    const double h = std::pow(kSixKilograms / (std::sqrt(2 * 0.092) * 0.107 * ks * (1 - 0.7 / 3)),
+                              1 / 1.2);
+    EXPECT_NEAR(bekkerStaticSinkage(p, kSixKilograms), h, 1e-15);
+}
+
+TEST(Sinkage, EntryAngleSolveReproducesTheLoad) {
+    for (const auto& p : {testing::sandyLoam(), testing::drySand(), testing::clayeySoil()}) {
+        for (ContactModel model : {ContactModel::kFull, ContactModel::kQuadratic}) {
+            for (double s : {0.0, 0.3, 0.8, -0.3}) {
+                EntryAngleProblem problem;
+                problem.load_n = kSixKilograms;
+                problem.slip = s;
+                problem.slip_angle_rad = 15.0 * kDeg;
+                problem.model = model;
+                const SinkageSolution sol = solveEntryAngle(p, problem);
+                ASSERT_TRUE(sol.ok()) << sol.message;
+                const OperatingPoint<double> op{s, 15.0 * kDeg, sol.entry_angle_rad, 0.0, std::nullopt};
+                const double fz = model == ContactModel::kFull ? computeForces(p, op).fz
+                                                               : computeQuadraticForces(p, op).fz;
+                EXPECT_NEAR(fz, kSixKilograms, 1e-9 * kSixKilograms);
+                EXPECT_GT(sol.entry_angle_rad, 0.0);
+                EXPECT_LT(sol.entry_angle_rad, std::numbers::pi / 2);
+            }
+        }
+    }
+}
+
+TEST(Sinkage, EntryAngleRisesWithSlipForTheThesisSoils) {
+    // MODEL-NOTES E9: with the printed model θ_f increases with slip (the thesis's text says the
+    // opposite).
+    for (const auto& p : {testing::sandyLoam(), testing::drySand(), testing::clayeySoil()}) {
+        double previous = 0.0;
+        for (double s : {0.0, 0.2, 0.4, 0.6, 0.8}) {
+            EntryAngleProblem problem;
+            problem.slip = s;
+            problem.slip_angle_rad = 15.0 * kDeg;
+            const double theta = solveEntryAngle(p, problem).entry_angle_rad;
+            EXPECT_GT(theta, previous);
+            previous = theta;
+        }
+    }
+}
+
+TEST(Sinkage, RutRatioSetsTheExitAngle) {
+    // Eq. 2.12: θ_r = −acos(1 − λ h_f / r).
+    const auto p = testing::sandyLoam();
+    EntryAngleProblem problem;
+    problem.slip = 0.2;
+    problem.exit = {ExitCondition::Kind::kRutRatio, 0.5};
+    const SinkageSolution sol = solveEntryAngle(p, problem);
+    ASSERT_TRUE(sol.ok());
+    EXPECT_NEAR(sol.exit_angle_rad, -std::acos(1 - 0.5 * sol.sinkage_m / 0.092), 1e-12);
+}
+
+TEST(Sinkage, NoEquilibriumIsReportedNotClamped) {
+    EntryAngleProblem problem;
+    problem.load_n = 5000.0;
+    const SinkageSolution sol = solveEntryAngle(testing::drySand(), problem);
+    EXPECT_FALSE(sol.ok());
+    EXPECT_EQ(sol.status, SinkageSolution::Status::kNoEquilibrium);
+    EXPECT_NE(sol.message.find("axle"), std::string::npos);
+    EXPECT_FALSE(solveStaticSinkage(testing::drySand(), 1e6).ok());
+}
+
+TEST(Sinkage, BadInputThrowsWithTheField) {
+    EntryAngleProblem problem;
+    problem.load_n = -1.0;
+    EXPECT_THROW(solveEntryAngle(testing::sandyLoam(), problem), std::invalid_argument);
+    problem.load_n = 50.0;
+    problem.slip = 1.2;
+    try {
+        solveEntryAngle(testing::sandyLoam(), problem);
+        FAIL() << "slip 1.2 accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("slip"), std::string::npos);
+    }
+    EXPECT_THROW(bekkerStaticSinkage(testing::sandyLoam(), NAN), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace terra::contact

@@ -1,0 +1,33 @@
+#pragma once
+// Contact parameters of the thesis's soils (Table 2.1) on wheel A (Table 2.2), in SI, written out
+// by hand from the thesis (not loaded through the code under test).
+
+#include <cmath>
+#include <numbers>
+
+#include "core/contact/contact_parameters.h"
+
+namespace terra::contact::testing {
+
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+inline constexpr double kRadiusA = 0.092;  // [m]
+inline constexpr double kWidthA = 0.107;   // [m]
+
+// n, c [kPa], φ [deg], k_c [kN/m^(n+1)], k_φ [kN/m^(n+2)], K [m], γ [kN/m³], j_max [m]
+inline ContactParameters<double> thesisSoil(double n, double c_kpa, double phi_deg, double kc,
+                                            double kphi, double K, double gamma, double jmax,
+                                            double r = kRadiusA, double b = kWidthA) {
+    return {r,        b,   n,           0.0,          kc * 1e3 / b + kphi * 1e3,
+            c_kpa * 1e3, phi_deg * kDeg, K, gamma * 1e3, 0.2, 0.3, jmax};
+}
+inline ContactParameters<double> sandyLoam(double jmax = 0.02) {
+    return thesisSoil(0.7, 1.7, 29.0, 5.3, 1515.0, 0.025, 15.2, jmax);
+}
+inline ContactParameters<double> drySand(double jmax = 0.02) {
+    return thesisSoil(1.1, 1.0, 30.0, 0.9, 1523.4, 0.025, 16.18, jmax);
+}
+inline ContactParameters<double> clayeySoil(double jmax = 0.009) {
+    return thesisSoil(0.5, 4.14, 13.0, 13.2, 692.2, 0.01, 13.24, jmax);
+}
+
+}  // namespace terra::contact::testing

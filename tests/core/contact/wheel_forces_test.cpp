@@ -1,0 +1,158 @@
+#include "core/contact/wheel_forces.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/contact/reference_forces.h"
+#include "tests/core/contact/test_soils.h"
+
+namespace terra::contact {
+namespace {
+
+using testing::kDeg;
+
+constexpr double kAgreement = 1e-8;  // relative, fast integrator vs adaptive reference
+
+struct Case {
+    const char* soil;
+    ContactParameters<double> params;
+};
+
+std::vector<Case> thesisSoils() {
+    return {{"sandy loam", testing::sandyLoam()},
+            {"dry sand", testing::drySand()},
+            {"clayey soil", testing::clayeySoil()},
+            {"sandy loam, no j_max", testing::sandyLoam(INFINITY)},
+            {"n = 0.3", testing::thesisSoil(0.3, 4.14, 13.0, 13.2, 692.2, 0.01, 13.24, 0.009)},
+            {"n = 1.6", testing::thesisSoil(1.6, 1.03, 19.7, 4.37, 196.72, 0.03, 2.5, INFINITY)}};
+}
+
+// Largest force/moment error relative to the force and moment scales of the case.
+double relativeError(const WheelForces<double>& a, const WheelForces<double>& b) {
+    const double force_scale = std::abs(b.fz) + std::abs(b.fx);
+    const double moment_scale = std::abs(b.my) + 0.092 * std::abs(b.fz);
+    return std::max({std::abs(a.fx - b.fx) / force_scale, std::abs(a.fy - b.fy) / force_scale,
+                     std::abs(a.fz - b.fz) / force_scale, std::abs(a.mx - b.mx) / moment_scale,
+                     std::abs(a.my - b.my) / moment_scale, std::abs(a.mz - b.mz) / moment_scale});
+}
+
+TEST(WheelForces, AgreesWithAdaptiveTanhSinhAndGaussKronrod) {
+    for (const Case& c : thesisSoils()) {
+        for (double s : {0.0, 0.05, 0.3, 0.9, -0.2, -0.7}) {
+            for (double beta : {0.0, 5.0, 30.0}) {
+                for (double theta_f : {8.0, 30.0, 60.0}) {
+                    for (double theta_r : {0.0, -6.0}) {
+                        const OperatingPoint<double> op{s, beta * kDeg, theta_f * kDeg,
+                                                        theta_r * kDeg, std::nullopt};
+                        const auto fast = computeForces(c.params, op);
+                        const auto ts = computeForcesReference(c.params, op);
+                        const auto gk = computeForcesReference(
+                            c.params, op, BulldozingModel::kBekker, ReferenceMethod::kGaussKronrod);
+                        EXPECT_LT(relativeError(fast, ts), kAgreement)
+                            << c.soil << " s=" << s << " beta=" << beta << " tf=" << theta_f
+                            << " tr=" << theta_r;
+                        EXPECT_LT(relativeError(gk, ts), kAgreement) << c.soil << " (GK vs TS)";
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(WheelForces, NoLateralForceOrMomentsWithoutSlipAngle) {
+    for (const Case& c : thesisSoils()) {
+        for (double s : {0.0, 0.4, -0.3}) {
+            const OperatingPoint<double> op{s, 0.0, 25.0 * kDeg, 0.0, std::nullopt};
+            const auto f = computeForces(c.params, op);
+            EXPECT_EQ(f.fy, 0.0) << c.soil;
+            EXPECT_EQ(f.mx, 0.0);
+            EXPECT_EQ(f.mz, 0.0);
+            EXPECT_EQ(f.fs, 0.0);  // bulldozing only with lateral motion
+            EXPECT_GT(f.fb, 0.0);
+        }
+    }
+}
+
+TEST(WheelForces, MirroredSlipAngleMirrorsLateralQuantities) {
+    const auto p = testing::sandyLoam();
+    const OperatingPoint<double> left{0.3, 15.0 * kDeg, 30.0 * kDeg, 0.0, std::nullopt};
+    OperatingPoint<double> right = left;
+    right.slip_angle_rad = -left.slip_angle_rad;
+    const auto a = computeForces(p, left), b = computeForces(p, right);
+    EXPECT_DOUBLE_EQ(a.fx, b.fx);
+    EXPECT_DOUBLE_EQ(a.fz, b.fz);
+    EXPECT_DOUBLE_EQ(a.my, b.my);
+    EXPECT_DOUBLE_EQ(a.fy, -b.fy);
+    EXPECT_DOUBLE_EQ(a.mx, -b.mx);
+    EXPECT_DOUBLE_EQ(a.mz, -b.mz);
+    EXPECT_DOUBLE_EQ(a.fs, -b.fs);
+    // MODEL-NOTES signs: β > 0 → F_y, M_x, M_z < 0, F_s = F_y − F_b.
+    EXPECT_LT(a.fy, 0.0);
+    EXPECT_LT(a.mx, 0.0);
+    EXPECT_LT(a.mz, 0.0);
+    EXPECT_DOUBLE_EQ(a.fs, a.fy - a.fb);
+}
+
+TEST(WheelForces, FrictionlessContactMatchesClosedForm) {
+    // With c = φ = 0 there is no shear, and with θ_m = θ_r = 0 only the front law of Eq. 2.17
+    // acts: ∫_0^θf (cos θ − cos θ_f)^n sin θ dθ = (1 − cos θ_f)^(n+1)/(n+1) exactly, so
+    // F_x = −r b K_s r^n (1 − cos θ_f)^(n+1)/(n+1). n < 1 has the singular end derivative.
+    for (double n : {0.3, 0.5, 0.7, 1.1, 1.7}) {
+        ContactParameters<double> p = testing::thesisSoil(n, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
+        for (double theta_f : {3.0, 30.0, 80.0}) {
+            const double tf = theta_f * kDeg;
+            const OperatingPoint<double> op{0.2, 0.0, tf, 0.0, 0.0};
+            const auto f = computeForces(p, op);
+            const double scale = 0.092 * 0.107 * p.pressure_modulus * std::pow(0.092, n);
+            const double fx = -scale * std::pow(1.0 - std::cos(tf), n + 1.0) / (n + 1.0);
+            EXPECT_NEAR(f.fx, fx, 1e-9 * std::abs(fx)) << "n = " << n << ", theta_f = " << theta_f;
+            EXPECT_EQ(f.my, 0.0);
+        }
+    }
+}
+
+TEST(WheelForces, LinearSoilVerticalForceClosedForm) {
+    // n = 1, no shear, θ_m = θ_r = 0: F_z = r b K_s r (θ_f/2 − sin 2θ_f / 4).
+    ContactParameters<double> p = testing::thesisSoil(1.0, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
+    const double tf = 40.0 * kDeg;
+    const auto f = computeForces(p, OperatingPoint<double>{0.1, 0.0, tf, 0.0, 0.0});
+    const double fz = 0.092 * 0.107 * p.pressure_modulus * 0.092 * (tf / 2 - std::sin(2 * tf) / 4);
+    EXPECT_NEAR(f.fz, fz, 1e-12 * fz);
+}
+
+TEST(WheelForces, HugeShearLimitEqualsNoLimit) {
+    const OperatingPoint<double> op{0.6, 10.0 * kDeg, 35.0 * kDeg, 0.0, std::nullopt};
+    const auto limited = computeForces(testing::sandyLoam(10.0), op);
+    const auto unlimited = computeForces(testing::sandyLoam(INFINITY), op);
+    EXPECT_NEAR(limited.fx, unlimited.fx, 1e-12 * std::abs(unlimited.fz));
+    EXPECT_NEAR(limited.my, unlimited.my, 1e-12 * std::abs(unlimited.my));
+}
+
+TEST(WheelForces, DrawbarPullGrowsWithSlipAndBrakingPullsBack) {
+    const auto p = testing::sandyLoam();
+    double previous = -1e9;
+    for (double s : {0.0, 0.1, 0.2, 0.4, 0.6}) {
+        const auto f = computeForces(p, OperatingPoint<double>{s, 0.0, 25.0 * kDeg, 0.0, std::nullopt});
+        EXPECT_GT(f.fx, previous) << "s = " << s;
+        EXPECT_GT(f.my, 0.0);
+        previous = f.fx;
+    }
+    const auto braking = computeForces(p, OperatingPoint<double>{-0.5, 0.0, 25.0 * kDeg, 0.0, std::nullopt});
+    EXPECT_LT(braking.fx, 0.0);
+    EXPECT_LT(braking.my, 0.0);  // the soil drives the wheel forward: a braking torque is needed
+}
+
+TEST(WheelForces, TighterToleranceConverges) {
+    const OperatingPoint<double> op{0.3, 15.0 * kDeg, 30.0 * kDeg, -3.0 * kDeg, std::nullopt};
+    const auto p = testing::clayeySoil();
+    const auto reference = computeForcesReference(p, op);
+    const auto loose = computeForces(p, op, BulldozingModel::kBekker, {1e-4, 24, 0});
+    const auto tight = computeForces(p, op, BulldozingModel::kBekker, {1e-13, 64, 0});
+    EXPECT_LT(relativeError(tight, reference), 1e-12);
+    EXPECT_LE(relativeError(tight, reference), relativeError(loose, reference));
+}
+
+}  // namespace
+}  // namespace terra::contact

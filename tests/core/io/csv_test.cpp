@@ -1,0 +1,327 @@
+#include "core/io/csv.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/io/atomic_file.h"
+
+namespace terra::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A fresh directory per test, removed afterwards.
+class TempDir {
+public:
+    TempDir() {
+        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+        path_ = fs::temp_directory_path() / ("terra_csv_" + std::string(info->test_suite_name()) +
+                                             "_" + info->name() + "_" + std::to_string(::getpid()));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::set<std::string> listing(const fs::path& dir) {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
+    return names;
+}
+
+// ---- toCsv -----------------------------------------------------------------------------------
+
+TEST(ToCsv, HeaderThenOneLinePerRow) {
+    const Table table{{"slip", "Fx_N"}, {{0.1, 12.5}, {0.2, -3.25}}};
+    EXPECT_EQ(toCsv(table), "slip,Fx_N\n0.1,12.5\n0.2,-3.25\n");
+}
+
+TEST(ToCsv, NoRowsGivesOnlyTheHeader) { EXPECT_EQ(toCsv(Table{{"a", "b", "c"}, {}}), "a,b,c\n"); }
+
+TEST(ToCsv, NaNIsAnEmptyCell) {
+    const Table table{{"x", "y", "z"}, {{kNaN, 1.0, 2.0}, {3.0, kNaN, 4.0}, {5.0, 6.0, kNaN}}};
+    EXPECT_EQ(toCsv(table), "x,y,z\n,1,2\n3,,4\n5,6,\n");
+}
+
+TEST(ToCsv, NumbersRoundTripExactly) {
+    const std::vector<double> values{0.1,
+                                     1.0 / 3.0,
+                                     2.0 / 3.0,
+                                     0.1 + 0.2,
+                                     std::numbers::pi,
+                                     -1e-300,
+                                     1e300,
+                                     std::numeric_limits<double>::max(),
+                                     std::numeric_limits<double>::min(),
+                                     std::numeric_limits<double>::denorm_min(),
+                                     -0.0,
+                                     123456789.12345679,
+                                     58.86};
+    Table table{{"value"}, {}};
+    for (double v : values) table.rows.push_back({v});
+    const Result<CsvDocument> doc = parseCsv(toCsv(table), "round-trip.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    ASSERT_EQ(doc->rows.size(), values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        double parsed = 0.0;
+        ASSERT_TRUE(parseNumber(doc->rows[i][0], parsed)) << doc->rows[i][0];
+        // Bit-identical (also tells -0.0 from 0.0).
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(parsed), std::bit_cast<std::uint64_t>(values[i]))
+            << "wrote " << doc->rows[i][0];
+    }
+}
+
+// ---- parseCsv --------------------------------------------------------------------------------
+
+TEST(ParseCsv, HeaderAndRowsWithLineNumbers) {
+    const Result<CsvDocument> doc = parseCsv("a,b\n1,2\n3,4\n", "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->header, (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(doc->rows, (std::vector<std::vector<std::string>>{{"1", "2"}, {"3", "4"}}));
+    EXPECT_EQ(doc->line_numbers, (std::vector<int>{2, 3}));
+}
+
+TEST(ParseCsv, LastLineWithoutNewline) {
+    const Result<CsvDocument> doc = parseCsv("a,b\n1,2", "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    ASSERT_EQ(doc->rows.size(), 1u);
+    EXPECT_EQ(doc->rows[0], (std::vector<std::string>{"1", "2"}));
+}
+
+TEST(ParseCsv, HeaderOnlyHasNoRows) {
+    const Result<CsvDocument> doc = parseCsv("a,b\n", "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->header.size(), 2u);
+    EXPECT_TRUE(doc->rows.empty());
+}
+
+TEST(ParseCsv, QuotedCells) {
+    const std::string text =
+        "name,value\n"
+        "\"sand, dry\",1\n"
+        "\"say \"\"hi\"\"\",2\n"
+        "\"\",3\n";
+    const Result<CsvDocument> doc = parseCsv(text, "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    ASSERT_EQ(doc->rows.size(), 3u);
+    EXPECT_EQ(doc->rows[0], (std::vector<std::string>{"sand, dry", "1"}));
+    EXPECT_EQ(doc->rows[1], (std::vector<std::string>{"say \"hi\"", "2"}));
+    EXPECT_EQ(doc->rows[2], (std::vector<std::string>{"", "3"}));
+}
+
+TEST(ParseCsv, CommentsAndBlankLinesAreSkippedButCounted) {
+    const std::string text =
+        "# measured 2024\n"  // 1
+        "\n"                 // 2
+        "x,y\n"              // 3
+        "# mid comment\n"    // 4
+        "1,2\n"              // 5
+        "   \n"              // 6
+        "  # indented\n"     // 7
+        "3,4\n";             // 8
+    const Result<CsvDocument> doc = parseCsv(text, "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->header, (std::vector<std::string>{"x", "y"}));
+    EXPECT_EQ(doc->rows, (std::vector<std::vector<std::string>>{{"1", "2"}, {"3", "4"}}));
+    EXPECT_EQ(doc->line_numbers, (std::vector<int>{5, 8}));
+}
+
+TEST(ParseCsv, ByteOrderMarkIsDropped) {
+    const Result<CsvDocument> doc = parseCsv("\xEF\xBB\xBFx,y\n1,2\n", "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->header, (std::vector<std::string>{"x", "y"}));
+    EXPECT_EQ(doc->line_numbers, (std::vector<int>{2}));
+}
+
+TEST(ParseCsv, WindowsLineEndingsAndSpacesAreTrimmed) {
+    const Result<CsvDocument> doc = parseCsv("x, y\r\n 1 ,2\r\n", "data.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->header, (std::vector<std::string>{"x", "y"}));
+    EXPECT_EQ(doc->rows, (std::vector<std::vector<std::string>>{{"1", "2"}}));
+}
+
+TEST(ParseCsv, RowsWithTheWrongNumberOfCellsAreReportedWithTheirLine) {
+    const std::string text =
+        "x,y\n"     // 1
+        "1,2\n"     // 2
+        "\n"        // 3
+        "# note\n"  // 4
+        "3\n"       // 5: one cell
+        "4,5,6\n"   // 6: three cells
+        "7,8\n";    // 7
+    const Result<CsvDocument> doc = parseCsv(text, "data.csv");
+    ASSERT_FALSE(doc.ok());
+    ASSERT_EQ(doc.issues().size(), 2u) << doc.message();
+    EXPECT_EQ(doc.issues()[0].where, "data.csv:5");
+    EXPECT_EQ(doc.issues()[0].message, "1 cells, the header has 2");
+    EXPECT_EQ(doc.issues()[1].where, "data.csv:6");
+    EXPECT_EQ(doc.issues()[1].message, "3 cells, the header has 2");
+    EXPECT_EQ(doc.message(),
+              "data.csv:5: 1 cells, the header has 2\ndata.csv:6: 3 cells, the header has 2");
+}
+
+TEST(ParseCsv, LineNumbersCountTheByteOrderMarkLine) {
+    const Result<CsvDocument> doc = parseCsv("\xEF\xBB\xBF# c\nx,y\n1\n", "bom.csv");
+    ASSERT_FALSE(doc.ok());
+    ASSERT_EQ(doc.issues().size(), 1u);
+    EXPECT_EQ(doc.issues()[0].where, "bom.csv:3");
+}
+
+TEST(ParseCsv, EmptyFile) {
+    for (const std::string text : {"", "\n\n", "# only a comment\n", "\xEF\xBB\xBF"}) {
+        const Result<CsvDocument> doc = parseCsv(text, "empty.csv");
+        ASSERT_FALSE(doc.ok()) << "'" << text << "'";
+        ASSERT_EQ(doc.issues().size(), 1u);
+        EXPECT_EQ(doc.issues()[0].where, "empty.csv");
+        EXPECT_EQ(doc.issues()[0].message, "empty file: expected a header row");
+    }
+}
+
+TEST(ReadCsv, ReportsTheFilePathAndLine) {
+    TempDir temp;
+    const fs::path file = temp.path() / "points.csv";
+    std::ofstream(file) << "slip,Fx_N\n0.1,1\n0.2\n";
+    const Result<CsvDocument> doc = readCsv(file);
+    ASSERT_FALSE(doc.ok());
+    ASSERT_EQ(doc.issues().size(), 1u);
+    EXPECT_EQ(doc.issues()[0].where, file.string() + ":3");
+}
+
+TEST(ReadCsv, MissingFile) {
+    TempDir temp;
+    const Result<CsvDocument> doc = readCsv(temp.path() / "absent.csv");
+    ASSERT_FALSE(doc.ok());
+    ASSERT_EQ(doc.issues().size(), 1u);
+    EXPECT_EQ(doc.issues()[0].where, (temp.path() / "absent.csv").string());
+}
+
+// ---- parseNumber -----------------------------------------------------------------------------
+
+TEST(ParseNumber, RejectsTextThatIsNotAFiniteNumber) {
+    for (const char* cell : {"", "   ", "abc", "1.5x", "x1.5", "nan", "NaN", "inf", "-inf",
+                             "infinity", "1e400", "1,5", "+", "-", "++2", "1 2"}) {
+        double value = 0.0;
+        EXPECT_FALSE(parseNumber(cell, value)) << "'" << cell << "' gave " << value;
+    }
+}
+
+TEST(ParseNumber, AcceptsSignsExponentsAndSurroundingSpaces) {
+    struct Case {
+        const char* cell;
+        double value;
+    };
+    for (const Case& c :
+         {Case{"+2", 2.0}, Case{"-1e-3", -0.001}, Case{"0", 0.0}, Case{" 3.25 ", 3.25},
+          Case{"1E3", 1000.0}, Case{"58.86", 58.86}, Case{"\t-0.5\r", -0.5}}) {
+        double value = 0.0;
+        ASSERT_TRUE(parseNumber(c.cell, value)) << "'" << c.cell << "'";
+        EXPECT_EQ(value, c.value) << "'" << c.cell << "'";
+    }
+}
+
+// Regression: parseNumber() once accepted "+-2" as -2 (it skipped a leading '+' and then let
+// std::from_chars read a '-').
+TEST(ParseNumber, RejectsPlusFollowedByMinus) {
+    double value = 0.0;
+    EXPECT_FALSE(parseNumber("+-2", value)) << "gave " << value;
+}
+
+// ---- writeFileAtomically / readFile ----------------------------------------------------------
+
+TEST(AtomicFile, WritesTheContent) {
+    TempDir temp;
+    const fs::path file = temp.path() / "out.csv";
+    const std::string content = std::string("a,b\n1,2\n") + '\0' + "\r\nend";
+    EXPECT_EQ(writeFileAtomically(file, content), std::nullopt);
+    EXPECT_EQ(slurp(file), content);
+    std::string read_back;
+    EXPECT_EQ(readFile(file, read_back), std::nullopt);
+    EXPECT_EQ(read_back, content);
+}
+
+TEST(AtomicFile, EmptyContentCreatesAnEmptyFile) {
+    TempDir temp;
+    const fs::path file = temp.path() / "empty.txt";
+    EXPECT_EQ(writeFileAtomically(file, ""), std::nullopt);
+    ASSERT_TRUE(fs::is_regular_file(file));
+    EXPECT_EQ(fs::file_size(file), 0u);
+}
+
+TEST(AtomicFile, ReplacesAnExistingFile) {
+    TempDir temp;
+    const fs::path file = temp.path() / "out.csv";
+    std::ofstream(file) << "old content that is longer than the new one\n";
+    EXPECT_EQ(writeFileAtomically(file, "new\n"), std::nullopt);
+    EXPECT_EQ(slurp(file), "new\n");
+}
+
+TEST(AtomicFile, LeavesNoTemporaryFileBehind) {
+    TempDir temp;
+    const fs::path file = temp.path() / "out.csv";
+    ASSERT_EQ(writeFileAtomically(file, "first"), std::nullopt);
+    ASSERT_EQ(writeFileAtomically(file, "second"), std::nullopt);
+    ASSERT_EQ(writeFileAtomically(temp.path() / "other.json", "{}"), std::nullopt);
+    EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"out.csv", "other.json"}));
+}
+
+TEST(AtomicFile, MissingDirectoryIsAnErrorNotAnException) {
+    TempDir temp;
+    const fs::path file = temp.path() / "no-such-dir" / "out.csv";
+    std::optional<std::string> error;
+    EXPECT_NO_THROW(error = writeFileAtomically(file, "content"));
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find(file.string()), std::string::npos) << *error;
+    EXPECT_FALSE(fs::exists(file));
+    EXPECT_FALSE(fs::exists(temp.path() / "no-such-dir"));
+    EXPECT_TRUE(listing(temp.path()).empty());
+}
+
+TEST(AtomicFile, FailedReplaceKeepsTheTargetAndRemovesTheTemporary) {
+    TempDir temp;
+    const fs::path target = temp.path() / "taken";
+    fs::create_directory(target);  // a directory cannot be replaced by a file
+    std::ofstream(target / "keep.txt") << "kept";
+    std::optional<std::string> error;
+    EXPECT_NO_THROW(error = writeFileAtomically(target, "content"));
+    ASSERT_TRUE(error.has_value());
+    EXPECT_TRUE(fs::is_directory(target));
+    EXPECT_EQ(slurp(target / "keep.txt"), "kept");
+    EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"taken"}));
+}
+
+TEST(AtomicFile, ReadingAMissingFileIsAnError) {
+    TempDir temp;
+    std::string content = "unchanged";
+    const std::optional<std::string> error = readFile(temp.path() / "absent.txt", content);
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find("absent.txt"), std::string::npos) << *error;
+}
+
+}  // namespace
+}  // namespace terra::io
