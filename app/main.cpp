@@ -1,10 +1,12 @@
 // terrastudio: the studio GUI when started plainly, headless subcommands otherwise (docs/cli.md).
 #include <CLI/CLI.hpp>
+#include <QApplication>
 #include <iostream>
 #include <stdexcept>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/main_window.h"
 
 namespace {
 
@@ -19,6 +21,7 @@ int runHeadless(int argc, char** argv) {
     addSinkageCommand(app, locations);
     addSweepCommands(app, locations);
     addPresetsCommand(app, locations);
+    addRenderCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -41,8 +44,20 @@ int runHeadless(int argc, char** argv) {
     return kSuccess;
 }
 
+int runGui(int argc, char** argv) {
+    QApplication application(argc, argv);
+    QApplication::setApplicationName("TerraStudio");
+    QApplication::setOrganizationName("TerraStudio");
+    terra::app::MainWindow window(
+        terra::io::PresetLocations::standard(terra::app::executableDirectory()));
+    window.show();
+    return QApplication::exec();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    // The GUI when started plainly; headless subcommands otherwise (chosen before any Qt object).
+    if (argc == 1) return runGui(argc, argv);
     return runHeadless(argc, argv);
 }

@@ -14,5 +14,6 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations);
 void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations);
 void addSweepCommands(CLI::App& app, const io::PresetLocations& locations);
 void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations);
+void addRenderCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

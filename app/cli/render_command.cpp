@@ -1,0 +1,92 @@
+// `terrastudio render`: the default analysis of the studio (the forces panel), rendered
+// headlessly: a CSV of the sweep and one PNG per quantity, written atomically into --out.
+#include <qcustomplot.h>
+
+#include <QApplication>
+#include <filesystem>
+#include <iostream>
+
+#include "app/cli/cli_support.h"
+#include "app/cli/commands.h"
+#include "core/analysis/sweep.h"
+#include "core/common/units.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+#include "widgets/plots/sweep_plot.h"
+
+namespace terra::app {
+namespace {
+
+struct RenderOptions {
+    ModelOptions model;
+    double load_n = units::kGravity * 6.0;  // Table 2.6
+    std::string out = "out";
+    int width = 1200;
+    int height = 800;
+};
+
+int render(const RenderOptions& o, const io::PresetLocations& locations) {
+    const auto soil = o.model.soilParameters(locations);
+    const auto wheel = o.model.wheelParameters(locations);
+    analysis::SweepSpec spec;
+    spec.slips = analysis::linspace(0.0, 0.99, 100);
+    for (double beta : {5.0, 10.0, 15.0, 20.0, 25.0, 30.0}) spec.slip_angles_rad.push_back(units::degToRad(beta));
+    spec.load_n = o.load_n;
+    spec.exit = o.model.exitCondition();
+    spec.max_stress_angle_rad = o.model.maxStressAngleRad();
+    spec.model = o.model.contactModel();
+    spec.bulldozing = o.model.bulldozingModel();
+    const analysis::SweepResult result =
+        analysis::sweepSlip(contact::makeContactParameters(soil, wheel), spec);
+    for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
+
+    std::error_code ec;
+    std::filesystem::create_directories(o.out, ec);
+    if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());
+    const std::filesystem::path dir(o.out);
+    const std::filesystem::path csv = dir / "forces-vs-slip.csv";
+    if (const auto error = io::writeFileAtomically(csv, io::toCsv(result.table))) {
+        throw std::runtime_error(*error);
+    }
+    std::cout << "wrote " << csv.string() << '\n';
+
+    // QCustomPlot paints with a QPainter: it needs an application object, offscreen here.
+    qputenv("QT_QPA_PLATFORM", "offscreen");
+    int argc = 1;
+    char name[] = "terrastudio";
+    char* argv[] = {name, nullptr};
+    QApplication application(argc, argv);
+    QCustomPlot plot;
+    plot.resize(o.width, o.height);
+    const QString title = QString::fromStdString(soil.name + ", " + wheel.name + ", W = ") +
+                          QString::number(o.load_n) + " N";
+    for (const ui::SweepQuantity& quantity : ui::sweepQuantities()) {
+        ui::plotSweep(plot, result.table, quantity, title);
+        const std::filesystem::path png = dir / (quantity.column + "-vs-slip.png");
+        QString error;
+        if (!ui::exportPng(plot, QString::fromStdString(png.string()), o.width, o.height, &error)) {
+            throw std::runtime_error(error.toStdString());
+        }
+        std::cout << "wrote " << png.string() << '\n';
+    }
+    return kSuccess;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app, const io::PresetLocations& locations) {
+    auto options = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Render the forces-vs-slip analysis headlessly: CSV + PNG plots into --out");
+    options->model.addTo(*cmd);
+    cmd->add_option("--load", options->load_n, "Wheel load W [N]")->capture_default_str();
+    cmd->add_option("--out", options->out, "Output directory")->capture_default_str();
+    cmd->add_option("--width", options->width, "Image width [px]")->check(CLI::Range(200, 8000));
+    cmd->add_option("--height", options->height, "Image height [px]")->check(CLI::Range(200, 8000));
+    cmd->callback([options, &locations] {
+        if (!(options->load_n > 0.0)) throw InputError("--load must be > 0 N");
+        render(*options, locations);
+    });
+}
+
+}  // namespace terra::app

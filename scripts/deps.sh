@@ -1,0 +1,41 @@
+# Sourced by scripts/test and scripts/studio: installs the Debian packages the product needs
+# (the whole set, so that later work does not fight the install), only those that are missing.
+# Uses sudo only when not root.
+
+TERRA_PACKAGES=(
+  build-essential cmake pkg-config git
+  qt6-base-dev libqt6svg6-dev libqcustomplot-dev
+  libeigen3-dev libbullet-dev libceres-dev libboost-dev
+  nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  xvfb xauth
+)
+
+terra_install_dependencies() {
+  local missing=()
+  local package
+  for package in "${TERRA_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$package")
+    fi
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    return 0
+  fi
+  echo "Installing missing packages: ${missing[*]}"
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    sudo=(sudo)
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo[@]}" apt-get update -q
+  "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+# Configures and builds the Release tree in build/ (or $TERRA_BUILD_DIR).
+terra_build() {
+  local root="$1"
+  local build="${TERRA_BUILD_DIR:-$root/build}"
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release
+  cmake --build "$build" -j "$(nproc)"
+}

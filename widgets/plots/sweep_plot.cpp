@@ -1,0 +1,80 @@
+#include "widgets/plots/sweep_plot.h"
+
+#include <qcustomplot.h>
+
+#include <QFileInfo>
+#include <QSaveFile>
+#include <cmath>
+#include <map>
+
+namespace terra::ui {
+
+const std::vector<SweepQuantity>& sweepQuantities() {
+    static const std::vector<SweepQuantity> quantities{
+        {"entry_angle_deg", "Entry angle θ_f [deg]"}, {"Fx_N", "Drawbar pull F_x [N]"},
+        {"Fs_N", "Side force F_s [N]"},               {"Fz_N", "Vertical force F_z [N]"},
+        {"My_Nm", "Resistance torque M_y [N·m]"},    {"Mz_Nm", "Yaw moment M_z [N·m]"}};
+    return quantities;
+}
+
+void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
+               const QString& title) {
+    plot.clearGraphs();
+    plot.clearItems();
+    if (plot.plotLayout()->rowCount() > 1) plot.plotLayout()->removeAt(0);
+    plot.plotLayout()->simplify();
+    const std::size_t beta = table.column("slip_angle_deg");
+    const std::size_t slip = table.column("slip");
+    const std::size_t value = table.column(quantity.column);
+    std::map<double, std::pair<QVector<double>, QVector<double>>> curves;
+    for (const auto& row : table.rows) {
+        if (!std::isfinite(row[slip]) || !std::isfinite(row[value])) continue;
+        auto& curve = curves[row[beta]];
+        curve.first.push_back(row[slip]);
+        curve.second.push_back(row[value]);
+    }
+    int index = 0;
+    for (const auto& [angle, data] : curves) {
+        QCPGraph* graph = plot.addGraph();
+        graph->setData(data.first, data.second, true);
+        graph->setName(QString("β = %1°").arg(angle));
+        QPen pen(QColor::fromHsv((index * 55) % 360, 200, 200));
+        pen.setWidthF(1.8);
+        graph->setPen(pen);
+        ++index;
+    }
+    plot.xAxis->setLabel("Slip ratio s [-]");
+    plot.yAxis->setLabel(quantity.label);
+    plot.legend->setVisible(true);
+    plot.plotLayout()->insertRow(0);
+    plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    plot.rescaleAxes();
+    // A quantity held constant (F_z = W at equilibrium) would otherwise zoom into rounding noise.
+    const QCPRange y = plot.yAxis->range();
+    const double floor = 0.05 * std::max(std::abs(y.center()), 1e-3);
+    if (y.size() < floor) {
+        plot.yAxis->setRange(y.center() - floor, y.center() + floor);
+    } else {
+        plot.yAxis->scaleRange(1.1, y.center());
+    }
+    plot.replot();
+}
+
+bool exportPng(QCustomPlot& plot, const QString& path, int width, int height, QString* error) {
+    // Render to a temporary name, then rename: never a half-written image.
+    const QString temporary = path + ".part.png";
+    if (!plot.savePng(temporary, width, height, 1.0, -1, 96)) {
+        if (error) *error = "cannot write " + temporary;
+        QFile::remove(temporary);
+        return false;
+    }
+    QFile::remove(path);
+    if (!QFile::rename(temporary, path)) {
+        if (error) *error = "cannot rename " + temporary + " to " + path;
+        QFile::remove(temporary);
+        return false;
+    }
+    return true;
+}
+
+}  // namespace terra::ui

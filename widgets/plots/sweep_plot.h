@@ -1,0 +1,32 @@
+#pragma once
+/// @file sweep_plot.h
+/// Draws a force-versus-slip table (core/analysis/sweep.h) on a QCustomPlot: one curve per slip
+/// angle, axes labelled with units, and exports it to PNG at an explicit size.
+
+#include <QString>
+#include <string>
+
+#include "core/common/table.h"
+
+class QCustomPlot;
+
+namespace terra::ui {
+
+/// One quantity of a sweep table to plot against slip.
+struct SweepQuantity {
+    std::string column;  ///< table column ("Fx_N")
+    QString label;       ///< axis label with unit ("Drawbar pull F_x [N]")
+};
+
+/// The quantities of the forces panel (Figs. 2.18–2.26): θ_f, F_x, F_s, F_z, M_y, M_z.
+const std::vector<SweepQuantity>& sweepQuantities();
+
+/// Replaces the plot's graphs by `quantity` against slip, one graph per slip angle, with a legend.
+/// Non-finite values are skipped, never drawn.
+void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
+               const QString& title);
+
+/// Writes the plot as PNG of `width` × `height` pixels; false (and `error`) on failure.
+bool exportPng(QCustomPlot& plot, const QString& path, int width, int height, QString* error);
+
+}  // namespace terra::ui
