@@ -119,7 +119,9 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     const WheelForces<double>& f = r.forces;
     auto line = [&](const char* name, double value, const char* unit, const char* what) {
         char buffer[128];
-        std::snprintf(buffer, sizeof buffer, "  %-3s %12.4f %-4s %s\n", name, value, unit, what);
+        // Pad by display width: "N·m" is three columns but four bytes.
+        const char* padded = std::string(unit) == "N" ? "N  " : unit;
+        std::snprintf(buffer, sizeof buffer, "  %-3s %12.4f %s  %s\n", name, value, padded, what);
         s << buffer;
     };
     line("Fx", f.fx, "N", "drawbar pull (Eq. 2.23)");

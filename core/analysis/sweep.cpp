@@ -51,7 +51,7 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                                           ? contact::computeForces(p, op, spec.bulldozing,
                                                                    spec.integration)
                                           : contact::computeQuadraticForces(p, op, spec.bulldozing);
-        rows.push_back({{units::radToDeg(beta), s, units::radToDeg(theta_f),
+        rows.push_back({{roundSignificant(units::radToDeg(beta)), s, units::radToDeg(theta_f),
                          units::radToDeg(theta_r), p.radius_m * (1.0 - std::cos(theta_f)), f.fx,
                          f.fy, f.fz, f.mx, f.my, f.mz, f.fb, f.fs},
                         {}});

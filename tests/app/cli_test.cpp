@@ -153,4 +153,17 @@ TEST(Cli, PresetsListsTheThesisSoilsAndWheels) {
     EXPECT_EQ(j["wheels"].size(), 2u);
 }
 
+TEST(Cli, RenderWritesTheDefaultAnalysisHeadlessly) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_render_" + std::to_string(::getpid()));
+    const CliRun r = run("render --soil sandy-loam --wheel A --width 400 --height 300 --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "forces-vs-slip.csv"));
+    for (const char* name : {"Fx_N", "Fs_N", "Fz_N", "My_Nm", "Mz_Nm", "entry_angle_deg"}) {
+        const auto png = dir / (std::string(name) + "-vs-slip.png");
+        EXPECT_TRUE(std::filesystem::exists(png)) << png;
+        EXPECT_GT(std::filesystem::file_size(png), 1000u) << png;
+    }
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace

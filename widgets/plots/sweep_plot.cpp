@@ -11,9 +11,9 @@ namespace terra::ui {
 
 const std::vector<SweepQuantity>& sweepQuantities() {
     static const std::vector<SweepQuantity> quantities{
-        {"entry_angle_deg", "Entry angle θ_f [deg]"}, {"Fx_N", "Drawbar pull F_x [N]"},
-        {"Fs_N", "Side force F_s [N]"},               {"Fz_N", "Vertical force F_z [N]"},
-        {"My_Nm", "Resistance torque M_y [N·m]"},    {"Mz_Nm", "Yaw moment M_z [N·m]"}};
+        {"Fx_N", "Drawbar pull F_x [N]"},         {"Fs_N", "Side force F_s [N]"},
+        {"Fz_N", "Vertical force F_z [N]"},       {"My_Nm", "Resistance torque M_y [N·m]"},
+        {"Mz_Nm", "Yaw moment M_z [N·m]"},        {"entry_angle_deg", "Entry angle θ_f [deg]"}};
     return quantities;
 }
 

@@ -18,7 +18,7 @@ struct SweepQuantity {
     QString label;       ///< axis label with unit ("Drawbar pull F_x [N]")
 };
 
-/// The quantities of the forces panel (Figs. 2.18–2.26): θ_f, F_x, F_s, F_z, M_y, M_z.
+/// The quantities of the forces panel (Figs. 2.18–2.26): F_x, F_s, F_z, M_y, M_z, θ_f.
 const std::vector<SweepQuantity>& sweepQuantities();
 
 /// Replaces the plot's graphs by `quantity` against slip, one graph per slip angle, with a legend.
