@@ -4,11 +4,11 @@
 
 TERRA_PACKAGES=(
   build-essential cmake pkg-config git
-  qt6-base-dev libqt6svg6-dev libqcustomplot-dev
+  qt6-base-dev qt6-svg-dev libqcustomplot-dev
   libeigen3-dev libbullet-dev libceres-dev libboost-dev
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  xvfb xauth
+  xvfb xauth fonts-dejavu-core
 )
 
 terra_install_dependencies() {
@@ -29,7 +29,7 @@ terra_install_dependencies() {
   fi
   export DEBIAN_FRONTEND=noninteractive
   "${sudo[@]}" apt-get update -q
-  "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+  "${sudo[@]}" apt-get install -y -q "${missing[@]}"
 }
 
 # Configures and builds the Release tree in build/ (or $TERRA_BUILD_DIR).
