@@ -22,6 +22,7 @@ int runHeadless(int argc, char** argv) {
     addSweepCommands(app, locations);
     addPresetsCommand(app, locations);
     addRenderCommand(app, locations);
+    addStressesCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

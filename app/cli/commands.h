@@ -15,5 +15,6 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations);
 void addSweepCommands(CLI::App& app, const io::PresetLocations& locations);
 void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations);
 void addRenderCommand(CLI::App& app, const io::PresetLocations& locations);
+void addStressesCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

@@ -4,6 +4,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "core/common/range.h"
 #include "core/common/table.h"
 #include "core/common/units.h"
 #include "core/contact/sinkage.h"
@@ -40,9 +41,9 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
         const auto wheel = o.model.wheelParameters(locations);
         const auto p = contact::makeContactParameters(soil, wheel);
         const std::vector<double> loads = parseValues(o.loads, "--load");
-        for (double w : loads) {
-            if (!(w > 0.0)) throw InputError("--load: W = " + std::to_string(w) + " N must be > 0");
-        }
+        std::vector<Issue> issues;
+        for (double w : loads) checkRange(issues, "--load", w, {0.0, 1e7, true, false}, "N");
+        if (!issues.empty()) throw InputError(formatIssues(issues));
         Table table;
         table.columns = {"load_N",
                          "bekker_sinkage_m",
@@ -70,11 +71,13 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
                                   front.ok() ? front.sinkage_m : nan,
                                   dynamic.ok() ? units::radToDeg(dynamic.entry_angle_rad) : nan,
                                   dynamic.ok() ? dynamic.sinkage_m : nan});
-            for (const auto* s : {&exact, &front, &dynamic}) {
-                if (!s->ok()) notes.push_back("W = " + std::to_string(w) + " N: " + s->message);
+            const std::pair<const char*, const contact::SinkageSolution*> solves[] = {
+                {"static (Eq. 2.7)", &exact}, {"static front half", &front}, {"dynamic entry angle", &dynamic}};
+            for (const auto& [what, s] : solves) {
+                if (!s->ok()) notes.push_back("W = " + formatNumber(w) + " N, " + what + ": " + s->message);
             }
             if (bekker > p.radius_m / 3.0) {
-                notes.push_back("W = " + std::to_string(w) +
+                notes.push_back("W = " + formatNumber(w) +
                                 " N: Bekker's formula is outside its validity (h > r/3)");
             }
         }

@@ -171,7 +171,12 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
         for (const std::string& name : io::presetNames(locations, "soils")) {
             const auto soil = io::resolveSoil(locations, name);
             if (!soil) {
-                text << "  " << name << ": INVALID: " << soil.message() << '\n';
+                std::string message = soil.message();
+                for (std::size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at + 1)) {
+                    message.insert(at + 1, "      ");
+                }
+                text << "  " << name << ": INVALID:\n      " << message << '\n';
+                all["soils"].push_back({{"preset", name}, {"error", soil.message()}});
                 continue;
             }
             nlohmann::json j = io::toJson(soil.value());
@@ -187,7 +192,11 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
         text << "Wheels:\n";
         for (const std::string& name : io::presetNames(locations, "wheels")) {
             const auto wheel = io::resolveWheel(locations, name);
-            if (!wheel) continue;
+            if (!wheel) {
+                text << "  " << name << ": INVALID: " << wheel.message() << '\n';
+                all["wheels"].push_back({{"preset", name}, {"error", wheel.message()}});
+                continue;
+            }
             nlohmann::json j = io::toJson(wheel.value());
             j["preset"] = name;
             all["wheels"].push_back(j);

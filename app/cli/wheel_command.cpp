@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -82,14 +83,16 @@ PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& opt
     } else {
         theta_f = units::degToRad(*in.entry_angle_deg);
     }
-    const OperatingPoint<double> op{in.slip, beta, theta_f, in.exit.exitAngle(theta_f),
+    // θ_r kept ≥ −θ_f, as the model does (docs/model.md); reported as used.
+    const OperatingPoint<double> op{in.slip, beta, theta_f,
+                                    std::max(in.exit.exitAngle(theta_f), -theta_f),
                                     in.max_stress_angle_rad};
     contact::requireValid(op);
     out.forces = options.model.contactModel() == contact::ContactModel::kFull
                      ? contact::computeForces(p, op, options.model.bulldozingModel())
                      : contact::computeQuadraticForces(p, op, options.model.bulldozingModel());
-    out.entry_angle_deg = units::radToDeg(theta_f);
-    out.exit_angle_deg = units::radToDeg(op.exit_angle_rad);
+    out.entry_angle_deg = roundSignificant(units::radToDeg(theta_f));
+    out.exit_angle_deg = roundSignificant(units::radToDeg(op.exit_angle_rad));
     out.sinkage_m = p.radius_m * (1.0 - std::cos(theta_f));
     return out;
 }
@@ -140,6 +143,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     Result<io::CsvDocument> read = io::readCsv(o.input);
     if (!read) throw InputError(read.message());
     const io::CsvDocument& doc = read.value();
+    std::vector<Issue> issues = doc.row_issues;  // rows with the wrong number of cells
+    int skipped = static_cast<int>(issues.size());
     auto index = [&](const std::string& name) -> int {
         for (std::size_t i = 0; i < doc.header.size(); ++i) {
             if (doc.header[i] == name) return static_cast<int>(i);
@@ -154,12 +159,11 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         throw InputError(o.input + ": needs a column entry_angle_deg or load_N (or the flag " +
                          "--entry-angle / --load for every row)");
     }
-    std::vector<Issue> issues;
     std::string csv;
     for (std::size_t i = 0; i < doc.header.size(); ++i) csv += (i ? "," : "") + doc.header[i];
     csv += ",status,entry_angle_deg_out,exit_angle_deg_out,sinkage_m,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
            "Mz_Nm,Fb_N,Fs_N\n";
-    int skipped = 0, failed = 0;
+    int failed = 0;
     for (std::size_t row = 0; row < doc.rows.size(); ++row) {
         const auto& cells = doc.rows[row];
         const std::string where = o.input + ":" + std::to_string(doc.line_numbers[row]);
@@ -193,15 +197,24 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         if (!in.entry_angle_deg && !in.load_n) issues.push_back({where, "no entry_angle_deg or load_N"});
         in.exit = o.model.exitCondition();
-        if (auto exit = cell(c_exit, "exit_angle_deg", std::nullopt)) {
-            in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
-        }
-        if (auto rut = cell(c_rut, "rut_ratio", std::nullopt)) {
-            in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
+        const auto exit = cell(c_exit, "exit_angle_deg", std::nullopt);
+        const auto rut = cell(c_rut, "rut_ratio", std::nullopt);
+        if (exit && rut) {
+            issues.push_back({where, "give exit_angle_deg or rut_ratio, not both"});
+        } else if (exit) {
+            if (checkRange(issues, where + ": exit_angle_deg", *exit, {-90.0, 0.0}, "deg")) {
+                in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
+            }
+        } else if (rut) {
+            if (checkRange(issues, where + ": rut_ratio", *rut, {0.0, 1.0})) {
+                in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
+            }
         }
         in.max_stress_angle_rad = o.model.maxStressAngleRad();
         if (auto theta_m = cell(c_theta_m, "max_stress_angle_deg", std::nullopt)) {
-            in.max_stress_angle_rad = units::degToRad(*theta_m);
+            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m, {-90.0, 90.0}, "deg")) {
+                in.max_stress_angle_rad = units::degToRad(*theta_m);
+            }
         }
         PointResult result;
         if (issues.size() == before) {
@@ -239,7 +252,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     }
     writeOutput(o.output, csv);
     if (!o.output.empty() && o.output != "-") {
-        std::cerr << "wrote " << o.output << ": " << doc.rows.size() - skipped << " rows ("
+        std::cerr << "wrote " << o.output << ": " << doc.rows.size() + doc.row_issues.size() - skipped
+                  << " rows ("
                   << failed << " without equilibrium)\n";
     }
     return kSuccess;
@@ -268,9 +282,13 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
         const wheel::WheelParameters wheel = o.model.wheelParameters(locations);
         const ContactParameters<double> p = contact::makeContactParameters(soil, wheel);
         if (!o.input.empty()) {
+            if (o.json) throw InputError("--json: batch mode (--input) writes CSV; drop --json");
             const int code = runBatch(p, o);
             if (code != kSuccess) throw CLI::RuntimeError(code);
             return;
+        }
+        if (!o.output.empty() || o.skip_bad_rows) {
+            throw InputError("--output and --skip-bad-rows belong to batch mode: add --input points.csv");
         }
         if (!o.entry_angle_deg && !o.load_n) {
             throw InputError("wheel: give --entry-angle DEG or --load N (or --input points.csv)");

@@ -37,7 +37,7 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                                                spec.integration, previous};
             const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
             if (!solution.ok()) {
-                rows.push_back({{}, "β = " + formatNumber(units::radToDeg(beta)) + "°, s = " +
+                rows.push_back({{}, "β = " + formatNumber(roundSignificant(units::radToDeg(beta))) + "°, s = " +
                                         formatNumber(s) + ": " + solution.message});
                 previous.reset();
                 continue;
@@ -51,8 +51,9 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                                           ? contact::computeForces(p, op, spec.bulldozing,
                                                                    spec.integration)
                                           : contact::computeQuadraticForces(p, op, spec.bulldozing);
-        rows.push_back({{roundSignificant(units::radToDeg(beta)), s, units::radToDeg(theta_f),
-                         units::radToDeg(theta_r), p.radius_m * (1.0 - std::cos(theta_f)), f.fx,
+        rows.push_back({{roundSignificant(units::radToDeg(beta)), s,
+                         units::radToDeg(theta_f),
+                         roundSignificant(units::radToDeg(theta_r)), p.radius_m * (1.0 - std::cos(theta_f)), f.fx,
                          f.fy, f.fz, f.mx, f.my, f.mz, f.fb, f.fs},
                         {}});
     }

@@ -14,8 +14,11 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
     wheel::requireValid(wheel);
     const double pressure_modulus = soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus;
     if (!(pressure_modulus > 0.0)) {
-        throw std::invalid_argument("K_s = kc/b + kphi = " + formatNumber(pressure_modulus) +
-                                    " must be > 0 (soil kc, kphi with wheel width b)");
+        throw std::invalid_argument(
+            "K_s = kc/b + kphi = " + formatNumber(roundSignificant(pressure_modulus / 1e3, 6)) +
+            " kN/m^(n+2) must be > 0 (kc = " + formatNumber(roundSignificant(soil.cohesive_modulus / 1e3)) +
+            " kN/m^(n+1), kphi = " + formatNumber(roundSignificant(soil.frictional_modulus / 1e3)) +
+            " kN/m^(n+2), wheel width b = " + formatNumber(wheel.width_m) + " m)");
     }
     return {wheel.radius_m,          wheel.width_m,           soil.sinkage_exponent,
             soil.sinkage_exponent_slip, pressure_modulus,     soil.cohesion_pa,
@@ -32,12 +35,12 @@ void requireValid(const OperatingPoint<double>& op) {
                {-90.0, 90.0, true, true}, "deg");
     checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true},
                "deg");
-    const double theta_f_deg = deg(op.entry_angle_rad);
-    checkRange(issues, "exit_angle_deg", deg(op.exit_angle_rad), {-theta_f_deg, 0.0},
-               "deg");
+    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model (clampedExit,
+    // maxStressAngle; docs/model.md), so only their own ranges are checked here.
+    checkRange(issues, "exit_angle_deg", deg(op.exit_angle_rad), {-90.0, 0.0}, "deg");
     if (op.max_stress_angle_rad) {
-        checkRange(issues, "max_stress_angle_deg", deg(*op.max_stress_angle_rad),
-                   {deg(op.exit_angle_rad), theta_f_deg}, "deg");
+        checkRange(issues, "max_stress_angle_deg", deg(*op.max_stress_angle_rad), {-90.0, 90.0},
+                   "deg");
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }

@@ -69,7 +69,8 @@ struct OperatingPoint {
 };
 
 /// Throws std::invalid_argument naming the field and the value when `op` is outside the model's
-/// domain (s ∉ (−1, 1), |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−θ_f, 0], θ_m ∉ [θ_r, θ_f]).
+/// domain (s ∉ (−1, 1), |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−90°, 0], θ_m ∉ [−90°, 90°]). The model
+/// itself keeps θ_r ≥ −θ_f and θ_m inside [θ_r, θ_f].
 void requireValid(const OperatingPoint<double>& op);
 
 /// Exit angle from the rut ratio λ = h_r/h_f (Eq. 2.12): θ_r = −acos(1 − λ (1 − cos θ_f)).

@@ -41,7 +41,8 @@ T maxStressAngle(const ContactParameters<T>& p, const OperatingPoint<T>& op) {
     T theta_m = op.max_stress_angle_rad ? *op.max_stress_angle_rad
                                         : T((p.max_stress_a0 + p.max_stress_a1 * op.slip) *
                                             op.entry_angle_rad);
-    if (theta_m < op.exit_angle_rad) theta_m = op.exit_angle_rad;
+    const T exit = op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad;
+    if (theta_m < exit) theta_m = exit;
     if (theta_m > op.entry_angle_rad) theta_m = op.entry_angle_rad;
     return theta_m;
 }
@@ -54,7 +55,9 @@ public:
     StressField(const ContactParameters<T>& p, const OperatingPoint<T>& op)
         : radius_(p.radius_m),
           entry_(op.entry_angle_rad),
-          exit_(op.exit_angle_rad),
+          // A rut deeper than the entry sinkage (θ_r < −θ_f) is not physical: the contact ends at
+          // the soil surface line, θ_r = −θ_f (Eq. 2.12 with λ ≤ 1).
+          exit_(op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad),
           max_stress_(contact::maxStressAngle(p, op)),
           exponent_(p.sinkage_exponent + p.sinkage_exponent_slip * op.slip),
           modulus_(p.pressure_modulus),

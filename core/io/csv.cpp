@@ -85,7 +85,7 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
             doc.header = std::move(cells);
             have_header = true;
         } else if (cells.size() != doc.header.size()) {
-            issues.push_back({where + ":" + std::to_string(line_number),
+            doc.row_issues.push_back({where + ":" + std::to_string(line_number),
                               std::to_string(cells.size()) + " cells, the header has " +
                                   std::to_string(doc.header.size())});
         } else {

@@ -20,10 +20,14 @@ struct CsvDocument {
     std::vector<std::string> header;
     std::vector<std::vector<std::string>> rows;
     std::vector<int> line_numbers;  ///< 1-based file line of each row
+    /// Rows left out because their cell count differs from the header's ("file:LINE"), so a
+    /// caller can stop or skip them.
+    std::vector<Issue> row_issues;
 };
 
 /// Parses CSV text (comma separated, optional double quotes, blank lines and lines starting with
-/// '#' skipped). Rows with a different number of cells than the header are reported.
+/// '#' skipped). Rows with a different number of cells than the header go to `row_issues`; only a
+/// missing header fails the parse.
 Result<CsvDocument> parseCsv(const std::string& text, const std::string& where);
 
 /// Reads and parses a CSV file.

@@ -78,11 +78,16 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
                   const std::string& name_or_path, Load load) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    if (fs::is_regular_file(name_or_path, ec)) return load(name_or_path);
+    // A bare name ("A", "sandy-loam") is a preset even if a file of that name happens to be in
+    // the working directory; anything with a '/' or a ".json" ending is a path.
+    const bool looks_like_path = name_or_path.find('/') != std::string::npos ||
+                                 fs::path(name_or_path).extension() == ".json";
+    if (looks_like_path && fs::is_regular_file(name_or_path, ec)) return load(name_or_path);
     for (const fs::path& dir : locations.directories) {
         const fs::path candidate = dir / kind / (name_or_path + ".json");
         if (fs::is_regular_file(candidate, ec)) return load(candidate);
     }
+    if (fs::is_regular_file(name_or_path, ec)) return load(name_or_path);
     std::string names;
     for (const std::string& n : presetNames(locations, kind)) names += (names.empty() ? "" : ", ") + n;
     return std::vector<Issue>{{kind == "soils" ? "soil" : "wheel",

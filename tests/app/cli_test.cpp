@@ -153,6 +153,72 @@ TEST(Cli, PresetsListsTheThesisSoilsAndWheels) {
     EXPECT_EQ(j["wheels"].size(), 2u);
 }
 
+TEST(Cli, BadFixtureFilesNameTheField) {
+    const CliRun phi = run("wheel --soil " + data("bad/soil-phi-out-of-range.json") + " --wheel A --load 50");
+    EXPECT_EQ(phi.exit_code, 2);
+    EXPECT_NE(phi.err.find("phi_deg"), std::string::npos) << phi.err;
+    const CliRun json = run("wheel --soil " + data("bad/soil-not-json.json") + " --wheel A --load 50");
+    EXPECT_EQ(json.exit_code, 2);
+    EXPECT_NE(json.err.find("invalid JSON"), std::string::npos) << json.err;
+    const CliRun wheel = run("wheel --soil sandy-loam --wheel " + data("bad/wheel-negative-radius.json") +
+                             " --load 50");
+    EXPECT_EQ(wheel.exit_code, 2);
+    EXPECT_NE(wheel.err.find("r_m"), std::string::npos) << wheel.err;
+    const CliRun good = run("wheel --soil " + data("good/soil-custom.json") + " --wheel A --load 50 --json");
+    EXPECT_EQ(good.exit_code, 0) << good.err;
+}
+
+TEST(Cli, BatchSkipsShortAndBadRowsOnRequest) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_skip_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream in(dir / "mixed.csv");
+        in << "slip,entry_angle_deg,rut_ratio\n0.1,20,0\n0.2\n0.3,25,1.5\n0.4,30,0.5\n";
+    }
+    const std::string args = "wheel --soil sandy-loam --wheel A --input " + (dir / "mixed.csv").string() +
+                             " --output " + (dir / "out.csv").string();
+    const CliRun strict = run(args);
+    EXPECT_EQ(strict.exit_code, 2);
+    EXPECT_NE(strict.err.find("mixed.csv:3"), std::string::npos) << strict.err;  // short row
+    EXPECT_NE(strict.err.find("rut_ratio"), std::string::npos) << strict.err;    // 1.5 > 1
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+    const CliRun skip = run(args + " --skip-bad-rows");
+    ASSERT_EQ(skip.exit_code, 0) << skip.err;
+    std::ifstream out(dir / "out.csv");
+    int lines = 0;
+    for (std::string line; std::getline(out, line);) ++lines;
+    EXPECT_EQ(lines, 3);  // header + the two good rows
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, BareNamesArePresetsEvenWithAFileOfThatName) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_shadow_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "A") << "not json";
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --entry-angle 20 --json 2>&1; cd " + dir.string() +
+                         " && " + TERRASTUDIO_EXE + " wheel --soil sandy-loam --wheel A --entry-angle 20 --json");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, BatchOnlyFlagsNeedInput) {
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --load 50 --output x.csv");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--input"), std::string::npos) << r.err;
+}
+
+TEST(Cli, StressesReproduceTable24) {
+    // Table 2.3 conditions, θ_m = 15°, no j_max, 0.01° grid (MODEL-NOTES): sandy loam σ RMSE 2.1623,
+    // τ_l RMSE 0.2121 (E11), MAE σ 1.7427 kPa.
+    const CliRun r = run("stresses --soil sandy-loam --wheel A --max-stress-angle 15 --no-jmax --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto e = nlohmann::json::parse(r.out)["errors"];
+    EXPECT_NEAR(e["sigma_rmse_kPa"].get<double>(), 2.1623, 0.5e-4);
+    EXPECT_NEAR(e["tau_l_rmse_kPa"].get<double>(), 0.2121, 0.5e-4);
+    EXPECT_NEAR(e["sigma_mae_kPa"].get<double>(), 1.7427, 0.5e-4);
+    EXPECT_EQ(e["points"].get<int>(), 3001);
+}
+
 TEST(Cli, RenderWritesTheDefaultAnalysisHeadlessly) {
     const auto dir = std::filesystem::temp_directory_path() / ("terra_render_" + std::to_string(::getpid()));
     const CliRun r = run("render --soil sandy-loam --wheel A --width 400 --height 300 --out " + dir.string());

@@ -80,7 +80,6 @@ TEST(ToCsv, NumbersRoundTripExactly) {
                                      std::numeric_limits<double>::max(),
                                      std::numeric_limits<double>::min(),
                                      std::numeric_limits<double>::denorm_min(),
-                                     -0.0,
                                      123456789.12345679,
                                      58.86};
     Table table{{"value"}, {}};
@@ -91,10 +90,15 @@ TEST(ToCsv, NumbersRoundTripExactly) {
     for (std::size_t i = 0; i < values.size(); ++i) {
         double parsed = 0.0;
         ASSERT_TRUE(parseNumber(doc->rows[i][0], parsed)) << doc->rows[i][0];
-        // Bit-identical (also tells -0.0 from 0.0).
+        // Bit-identical.
         EXPECT_EQ(std::bit_cast<std::uint64_t>(parsed), std::bit_cast<std::uint64_t>(values[i]))
             << "wrote " << doc->rows[i][0];
     }
+}
+
+TEST(ToCsv, NegativeZeroIsWrittenAsZero) {
+    // −0 is rounding noise (F_y = −r b · 0 at β = 0), never worth a minus sign in a report.
+    EXPECT_EQ(toCsv(Table{{"v"}, {{-0.0}}}), "v\n0\n");
 }
 
 // ---- parseCsv --------------------------------------------------------------------------------
@@ -175,22 +179,26 @@ TEST(ParseCsv, RowsWithTheWrongNumberOfCellsAreReportedWithTheirLine) {
         "3\n"       // 5: one cell
         "4,5,6\n"   // 6: three cells
         "7,8\n";    // 7
+    // The good rows are kept and the bad ones listed, so a caller can stop or skip them.
     const Result<CsvDocument> doc = parseCsv(text, "data.csv");
-    ASSERT_FALSE(doc.ok());
-    ASSERT_EQ(doc.issues().size(), 2u) << doc.message();
-    EXPECT_EQ(doc.issues()[0].where, "data.csv:5");
-    EXPECT_EQ(doc.issues()[0].message, "1 cells, the header has 2");
-    EXPECT_EQ(doc.issues()[1].where, "data.csv:6");
-    EXPECT_EQ(doc.issues()[1].message, "3 cells, the header has 2");
-    EXPECT_EQ(doc.message(),
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    const auto& issues = doc->row_issues;
+    ASSERT_EQ(issues.size(), 2u);
+    EXPECT_EQ(issues[0].where, "data.csv:5");
+    EXPECT_EQ(issues[0].message, "1 cells, the header has 2");
+    EXPECT_EQ(issues[1].where, "data.csv:6");
+    EXPECT_EQ(issues[1].message, "3 cells, the header has 2");
+    EXPECT_EQ(formatIssues(issues),
               "data.csv:5: 1 cells, the header has 2\ndata.csv:6: 3 cells, the header has 2");
+    ASSERT_EQ(doc->rows.size(), 2u);
+    EXPECT_EQ(doc->line_numbers, (std::vector<int>{2, 7}));
 }
 
 TEST(ParseCsv, LineNumbersCountTheByteOrderMarkLine) {
     const Result<CsvDocument> doc = parseCsv("\xEF\xBB\xBF# c\nx,y\n1\n", "bom.csv");
-    ASSERT_FALSE(doc.ok());
-    ASSERT_EQ(doc.issues().size(), 1u);
-    EXPECT_EQ(doc.issues()[0].where, "bom.csv:3");
+    ASSERT_TRUE(doc.ok());
+    ASSERT_EQ(doc->row_issues.size(), 1u);
+    EXPECT_EQ(doc->row_issues[0].where, "bom.csv:3");
 }
 
 TEST(ParseCsv, EmptyFile) {
@@ -208,9 +216,9 @@ TEST(ReadCsv, ReportsTheFilePathAndLine) {
     const fs::path file = temp.path() / "points.csv";
     std::ofstream(file) << "slip,Fx_N\n0.1,1\n0.2\n";
     const Result<CsvDocument> doc = readCsv(file);
-    ASSERT_FALSE(doc.ok());
-    ASSERT_EQ(doc.issues().size(), 1u);
-    EXPECT_EQ(doc.issues()[0].where, file.string() + ":3");
+    ASSERT_TRUE(doc.ok());
+    ASSERT_EQ(doc->row_issues.size(), 1u);
+    EXPECT_EQ(doc->row_issues[0].where, file.string() + ":3");
 }
 
 TEST(ReadCsv, MissingFile) {
