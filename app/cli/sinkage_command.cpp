@@ -9,6 +9,7 @@
 #include "core/common/units.h"
 #include "core/contact/sinkage.h"
 #include "core/io/csv.h"
+#include "core/io/table_json.h"
 
 namespace terra::app {
 namespace {
@@ -84,15 +85,7 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
         for (const std::string& note : notes) std::cerr << "note: " << note << '\n';
         std::string text;
         if (o.json) {
-            nlohmann::json rows = nlohmann::json::array();
-            for (const auto& row : table.rows) {
-                nlohmann::json object;
-                for (std::size_t i = 0; i < row.size(); ++i) {
-                    object[table.columns[i]] = std::isfinite(row[i]) ? nlohmann::json(row[i]) : nlohmann::json();
-                }
-                rows.push_back(object);
-            }
-            text = rows.dump(2) + "\n";
+            text = io::toJson(table).dump(2) + "\n";
         } else if (!o.out.empty()) {
             text = io::toCsv(table);
         } else {

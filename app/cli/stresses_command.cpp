@@ -11,6 +11,7 @@
 #include "core/common/units.h"
 #include "core/contact/quadratic_model.h"
 #include "core/io/csv.h"
+#include "core/io/table_json.h"
 
 namespace terra::app {
 namespace {
@@ -78,13 +79,7 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
             }
             summary["max_stress_angle_deg"] = units::radToDeg(field.maxStressAngle());
             summary["points"] = grid.rows.size();
-            nlohmann::json rows = nlohmann::json::array();
-            for (const auto& row : grid.rows) {
-                nlohmann::json object;
-                for (std::size_t i = 0; i < row.size(); ++i) object[grid.columns[i]] = row[i];
-                rows.push_back(object);
-            }
-            writeOutput(o.out, nlohmann::json{{"errors", summary}, {"grid", rows}}.dump(2) + "\n");
+            writeOutput(o.out, nlohmann::json{{"errors", summary}, {"grid", io::toJson(grid)}}.dump(2) + "\n");
             return;
         }
         if (!o.out.empty()) {

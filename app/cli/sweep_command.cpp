@@ -6,6 +6,7 @@
 #include "core/analysis/sweep.h"
 #include "core/common/units.h"
 #include "core/io/csv.h"
+#include "core/io/table_json.h"
 
 namespace terra::app {
 namespace {
@@ -47,13 +48,7 @@ void emit(const SweepOptions& o, const analysis::SweepResult& result) {
     for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
     std::string text;
     if (o.json) {
-        nlohmann::json rows = nlohmann::json::array();
-        for (const auto& row : result.table.rows) {
-            nlohmann::json object;
-            for (std::size_t i = 0; i < row.size(); ++i) object[result.table.columns[i]] = row[i];
-            rows.push_back(object);
-        }
-        text = nlohmann::json{{"rows", rows}, {"warnings", result.warnings}}.dump(2) + "\n";
+        text = nlohmann::json{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}}.dump(2) + "\n";
     } else {
         text = io::toCsv(result.table);
     }

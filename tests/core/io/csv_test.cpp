@@ -1,6 +1,8 @@
 #include "core/io/csv.h"
 
 #include <gtest/gtest.h>
+
+#include "tests/core/test_temp_dir.h"
 #include <unistd.h>
 
 #include <bit>
@@ -24,25 +26,7 @@ namespace fs = std::filesystem;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A fresh directory per test, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() / ("terra_csv_" + std::string(info->test_suite_name()) +
-                                             "_" + info->name() + "_" + std::to_string(::getpid()));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
+using terra::testing::TempDir;
 
 std::string slurp(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);

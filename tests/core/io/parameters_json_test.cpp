@@ -3,6 +3,8 @@
 #include "core/contact/contact_parameters.h"
 
 #include <gtest/gtest.h>
+
+#include "tests/core/test_temp_dir.h"
 #include <unistd.h>
 
 #include <algorithm>
@@ -55,25 +57,7 @@ json sandyLoamJson() {
                 {"kc", 5.3},           {"kphi", 1515.0}, {"K_m", 0.025}, {"gamma_kN_m3", 15.2}};
 }
 
-// A fresh directory per test, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() /
-                ("terra_json_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
+using terra::testing::TempDir;
 
 void writeText(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());
