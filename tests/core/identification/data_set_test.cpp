@@ -1,0 +1,96 @@
+#include "core/identification/data_set.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace terra::identification {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+TEST(DataSet, ReadsNamedColumnsInAnyOrderAndIgnoresExtras) {
+    const std::string text =
+        "My_Nm,note,slip,Fz_N,entry_angle_deg,Fx_N,W_N\n"
+        "0.55,a,0.3,58.86,16.8,-1.8,58.86\n"
+        "0.60,b,0.4,58.86,17.0,-0.5,\n";
+    const auto read = parseDataSet(text, "d.csv", BadRows::kStop);
+    ASSERT_TRUE(read.ok()) << read.message();
+    const auto& samples = read->data.samples;
+    ASSERT_EQ(samples.size(), 2u);
+    EXPECT_EQ(samples[0].slip, 0.3);
+    EXPECT_NEAR(samples[0].entry_angle_rad, 16.8 * kDeg, 1e-15);
+    EXPECT_EQ(samples[0].fx_n, -1.8);
+    EXPECT_EQ(samples[0].fz_n, 58.86);
+    EXPECT_EQ(samples[0].my_nm, 0.55);
+    EXPECT_EQ(samples[0].load_n, 58.86);
+    EXPECT_FALSE(samples[1].load_n.has_value());  // empty optional cell
+    EXPECT_FALSE(samples[0].fy_n.has_value());
+}
+
+TEST(DataSet, AcceptsRadians) {
+    const auto read = parseDataSet("slip,entry_angle_rad,Fx_N,Fz_N,My_Nm\n0.1,0.3,1,2,3\n", "r.csv",
+                                   BadRows::kStop);
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->data.samples[0].entry_angle_rad, 0.3);
+}
+
+TEST(DataSet, BadRowsAreReportedByLineAndCanBeSkipped) {
+    const std::string text =
+        "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n"  // 1
+        "0.1,20,1,2,3\n"                          // 2 good
+        "abc,20,1,2,3\n"                          // 3 non-numeric
+        "0.2,nan,1,2,3\n"                         // 4 NaN
+        "1.2,20,1,2,3\n"                          // 5 slip outside (−1, 1)
+        "0.3,95,1,2,3\n"                          // 6 θ_f outside (0, 90)
+        "0.4,20,1\n"                              // 7 short row
+        "0.5,25,1,2,3\n";                         // 8 good
+    const auto stop = parseDataSet(text, "d.csv", BadRows::kStop);
+    ASSERT_FALSE(stop.ok());
+    ASSERT_EQ(stop.issues().size(), 5u) << stop.message();
+    std::string all = stop.message();
+    for (const char* line : {"d.csv:3", "d.csv:4", "d.csv:5", "d.csv:6", "d.csv:7"}) {
+        EXPECT_NE(all.find(line), std::string::npos) << line << "\n" << all;
+    }
+    EXPECT_NE(all.find("slip"), std::string::npos);
+    EXPECT_NE(all.find("entry_angle_deg"), std::string::npos);
+
+    const auto skip = parseDataSet(text, "d.csv", BadRows::kSkip);
+    ASSERT_TRUE(skip.ok());
+    EXPECT_EQ(skip->data.samples.size(), 2u);
+    EXPECT_EQ(skip->skipped.size(), 5u);
+    EXPECT_EQ(skip->data.samples[1].slip, 0.5);
+}
+
+TEST(DataSet, MissingColumnsAreNamed) {
+    const auto read = parseDataSet("slip,Fx_N\n0.1,2\n", "m.csv", BadRows::kSkip);
+    ASSERT_FALSE(read.ok());
+    const std::string message = read.message();
+    for (const char* column : {"Fz_N", "My_Nm", "entry_angle_deg"}) {
+        EXPECT_NE(message.find(column), std::string::npos) << column;
+    }
+}
+
+TEST(DataSet, CsvRoundTrip) {
+    DataSet data;
+    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0});
+    data.samples.push_back({0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01});
+    const auto read = parseDataSet(toCsv(data), "rt.csv", BadRows::kStop);
+    ASSERT_TRUE(read.ok()) << read.message();
+    ASSERT_EQ(read->data.samples.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const Sample& a = data.samples[i];
+        const Sample& b = read->data.samples[i];
+        EXPECT_EQ(a.slip, b.slip);
+        EXPECT_NEAR(a.entry_angle_rad, b.entry_angle_rad, 1e-15);  // via degrees
+        EXPECT_EQ(a.fx_n, b.fx_n);
+        EXPECT_EQ(a.load_n, b.load_n);
+        EXPECT_EQ(a.fy_n, b.fy_n);
+        EXPECT_EQ(a.time_s, b.time_s);
+    }
+    EXPECT_NEAR(*read->data.samples[0].slip_angle_rad, 0.1, 1e-15);
+}
+
+}  // namespace
+}  // namespace terra::identification
