@@ -23,6 +23,7 @@ int runHeadless(int argc, char** argv) {
     addPresetsCommand(app, locations);
     addRenderCommand(app, locations);
     addStressesCommand(app, locations);
+    addIdentifyCommands(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

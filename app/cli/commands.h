@@ -16,5 +16,6 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations);
 void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations);
 void addRenderCommand(CLI::App& app, const io::PresetLocations& locations);
 void addStressesCommand(CLI::App& app, const io::PresetLocations& locations);
+void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

@@ -219,6 +219,32 @@ TEST(Cli, StressesReproduceTable24) {
     EXPECT_EQ(e["points"].get<int>(), 3001);
 }
 
+TEST(Cli, SynthThenIdentify) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_ident_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string data = (dir / "data.csv").string();
+    const CliRun synth = run("synth --soil clayey-soil --wheel A --load 40,80 --slips 0:0.9:30 "
+                             "--noise fx=0.05,my=1% --seed 3 --out " + data);
+    ASSERT_EQ(synth.exit_code, 0) << synth.err;
+    const CliRun fit = run("identify --data " + data + " --wheel A --json");
+    ASSERT_EQ(fit.exit_code, 0) << fit.err;
+    const auto j = nlohmann::json::parse(fit.out);
+    for (const char* key : {"a0", "a1", "Ks", "n0", "n1", "c_kPa", "phi_deg", "K_m", "steps"}) {
+        EXPECT_TRUE(j.contains(key)) << key;
+    }
+    EXPECT_EQ(j["samples"].get<int>(), 60);
+    EXPECT_EQ(j["steps"].size(), 3u);
+    // A bad row stops the fit with its line number, unless skipped.
+    std::ofstream(dir / "bad.csv") << "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.1,20,1,50,0.5\n0.2,120,1,50,0.5\n";
+    const CliRun bad = run("identify --data " + (dir / "bad.csv").string());
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("bad.csv:3"), std::string::npos) << bad.err;
+    const CliRun noise = run("synth --soil sandy-loam --noise fx=-1 --out " + data);
+    EXPECT_EQ(noise.exit_code, 2);
+    EXPECT_NE(noise.err.find("--noise fx"), std::string::npos) << noise.err;
+    std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, RenderWritesTheDefaultAnalysisHeadlessly) {
     const auto dir = std::filesystem::temp_directory_path() / ("terra_render_" + std::to_string(::getpid()));
     const CliRun r = run("render --soil sandy-loam --wheel A --width 400 --height 300 --out " + dir.string());

@@ -1,0 +1,161 @@
+// `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`
+// (the decoupled three-step fit, §4.3).
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "app/cli/cli_support.h"
+#include "app/cli/commands.h"
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/identification/decoupled_fit.h"
+#include "core/identification/synthetic.h"
+#include "core/io/csv.h"
+
+namespace terra::app {
+namespace {
+
+struct SynthOptions {
+    ModelOptions model;
+    std::string loads = "58.86";
+    std::string slips = "0:0.9:60";
+    double slip_angle_deg = 0.0;
+    std::vector<std::string> noise;  // channel=sigma or channel=P%
+    std::uint64_t seed = 1;
+    std::string out;
+};
+
+// "fx=0.1" (absolute, N or N·m or deg) or "fx=1%" (of the channel's largest value).
+void parseNoise(const std::vector<std::string>& items, identification::NoiseSpec& noise) {
+    std::map<std::string, identification::ChannelNoise*> channels{
+        {"fx", &noise.fx}, {"fz", &noise.fz}, {"my", &noise.my}, {"theta", &noise.entry_angle}};
+    for (const std::string& item : items) {
+        const auto equals = item.find('=');
+        const std::string key = item.substr(0, equals);
+        const auto it = channels.find(key);
+        if (it == channels.end() || equals == std::string::npos) {
+            throw InputError("--noise '" + item + "': expected fx|fz|my|theta=SIGMA or =PERCENT%");
+        }
+        std::string value = item.substr(equals + 1);
+        const bool percent = !value.empty() && value.back() == '%';
+        if (percent) value.pop_back();
+        double sigma = 0.0;
+        std::vector<Issue> issues;
+        if (!io::parseNumber(value, sigma)) throw InputError("--noise '" + item + "': not a number");
+        checkRange(issues, "--noise " + key, sigma, {0.0, percent ? 1000.0 : 1e6});
+        if (!issues.empty()) throw InputError(formatIssues(issues));
+        if (percent) {
+            it->second->relative = sigma / 100.0;
+        } else {
+            it->second->absolute = key == "theta" ? units::degToRad(sigma) : sigma;
+        }
+    }
+}
+
+struct IdentifyOptions {
+    std::string data;
+    std::string wheel = "A";
+    std::string guess;
+    bool json = false;
+    bool skip_bad_rows = false;
+};
+
+identification::DecoupledParameters guessFrom(const soil::SoilParameters& soil,
+                                              const wheel::WheelParameters& wheel) {
+    return {soil.max_stress_a0, soil.max_stress_a1,
+            soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus,
+            soil.sinkage_exponent, soil.sinkage_exponent_slip, soil.cohesion_pa,
+            soil.friction_angle_rad, soil.shear_modulus_m};
+}
+
+}  // namespace
+
+void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
+    auto synth = std::make_shared<SynthOptions>();
+    CLI::App* s = app.add_subcommand(
+        "synth", "Synthetic identification data: slip sweeps at one or more loads, noise (Eq. 5.1)");
+    synth->model.addTo(*s, false);
+    s->add_option("--load", synth->loads, "W [N]: value, list a,b or range first:last:count")->capture_default_str();
+    s->add_option("--slips", synth->slips, "Slips: range first:last:count or list")->capture_default_str();
+    s->add_option("--slip-angle", synth->slip_angle_deg, "Slip angle [deg] (Table 5.2: 0)")->capture_default_str();
+    s->add_option("--noise", synth->noise, "Noise per channel: fx|fz|my|theta=SIGMA (N, N·m, deg) or =P%")
+        ->delimiter(',');
+    s->add_option("--seed", synth->seed, "Random seed")->capture_default_str();
+    s->add_option("--out", synth->out, "Output CSV (default: stdout)");
+    s->callback([synth, &locations] {
+        const auto soil = synth->model.soilParameters(locations);
+        const auto wheel = synth->model.wheelParameters(locations);
+        identification::SyntheticSpec spec;
+        spec.loads_n = parseValues(synth->loads, "--load");
+        spec.slips = parseValues(synth->slips, "--slips");
+        spec.slip_angle_rad = units::degToRad(synth->slip_angle_deg);
+        spec.seed = synth->seed;
+        parseNoise(synth->noise, spec.noise);
+        const auto out = identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
+        for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
+        writeOutput(synth->out, identification::toCsv(out.data));
+        if (!synth->out.empty() && synth->out != "-") {
+            std::cerr << "wrote " << synth->out << ": " << out.data.samples.size() << " samples\n";
+        }
+    });
+
+    auto identify = std::make_shared<IdentifyOptions>();
+    CLI::App* i = app.add_subcommand(
+        "identify", "Identify soil parameters from wheel data: the decoupled three-step fit (Eqs. 4.12, 4.17, 4.18)");
+    i->add_option("--data", identify->data, "Data set CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm)")->required();
+    i->add_option("--wheel", identify->wheel, "Wheel preset or JSON file")->capture_default_str();
+    i->add_option("--guess", identify->guess, "Initial guess: soil preset or JSON file (default: thesis chapter 5)");
+    i->add_flag("--json", identify->json, "JSON output");
+    i->add_flag("--skip-bad-rows", identify->skip_bad_rows, "Skip invalid rows instead of stopping");
+    i->callback([identify, &locations] {
+        const auto read = identification::readDataSet(
+            identify->data, identify->skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop);
+        if (!read) throw InputError(read.message() + "\n(use --skip-bad-rows to skip bad rows)");
+        for (const Issue& skipped : read->skipped) std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
+        if (read->data.samples.empty()) throw InputError(identify->data + ": no valid samples");
+        ModelOptions names;
+        names.wheel = identify->wheel;
+        const auto wheel = names.wheelParameters(locations);
+        identification::DecoupledParameters guess;
+        if (!identify->guess.empty()) {
+            names.soil = identify->guess;
+            guess = guessFrom(names.soilParameters(locations), wheel);
+        }
+        const auto fit = identification::fitDecoupled(read->data, wheel, guess);
+        const auto& p = fit.parameters;
+        nlohmann::json j{{"a0", p.a0},
+                         {"a1", p.a1},
+                         {"Ks", p.pressure_modulus / 1e3},
+                         {"n0", p.n0},
+                         {"n1", p.n1},
+                         {"c_kPa", p.cohesion_pa / 1e3},
+                         {"phi_deg", units::radToDeg(p.friction_angle_rad)},
+                         {"K_m", p.shear_modulus_m}};
+        nlohmann::json steps = nlohmann::json::array();
+        for (const auto& step : fit.steps) {
+            steps.push_back({{"step", step.name}, {"usable", step.usable}, {"termination", step.termination},
+                             {"iterations", step.iterations}, {"squared_residual_norm", step.squared_residual_norm},
+                             {"time_ms", step.wall_time_ms}});
+        }
+        j["steps"] = steps;
+        j["samples"] = read->data.samples.size();
+        if (identify->json) {
+            std::cout << j.dump(2) << '\n';
+        } else {
+            std::cout << "decoupled identification, " << read->data.samples.size() << " samples, " << wheel.name << "\n"
+                      << "  a0 = " << fixed(p.a0, 4) << "   a1 = " << fixed(p.a1, 4) << "\n"
+                      << "  Ks = " << fixed(p.pressure_modulus / 1e3, 1) << " kPa/m^N   n0 = " << fixed(p.n0, 4)
+                      << "   n1 = " << fixed(p.n1, 4) << "\n"
+                      << "  c = " << fixed(p.cohesion_pa / 1e3, 3) << " kPa   phi = "
+                      << fixed(units::radToDeg(p.friction_angle_rad), 2) << " deg   K = " << fixed(p.shear_modulus_m, 4)
+                      << " m\n";
+            for (const auto& step : fit.steps) {
+                std::cout << "  step " << step.name << ": |r|^2 = " << step.squared_residual_norm << ", "
+                          << fixed(step.wall_time_ms, 2) << " ms, " << step.termination << '\n';
+            }
+        }
+        if (!fit.usable()) throw std::runtime_error("the fit did not converge to a usable solution");
+    });
+}
+
+}  // namespace terra::app
