@@ -1,0 +1,59 @@
+#pragma once
+/// @file full_fit.h
+/// Refinement beyond the thesis: fit c, φ, K, n, K_s, a₀, a₁ together through the full nonlinear
+/// wheel model (core/contact/wheel_forces.h, differentiated by Ceres with ceres::Jet), started from
+/// the decoupled estimate; residuals on F_x, F_z, M_y weighted by their noise levels. Removes the
+/// linearisation bias of the decoupled model. Also the parameters' uncertainty from Ceres'
+/// covariance, with flags for what the data do not determine.
+
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/identification/data_set.h"
+#include "core/identification/decoupled_fit.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::identification {
+
+/// The refined parameters, in this order everywhere (arrays of 7).
+enum FullParameter { kA0, kA1, kKs, kN, kC, kPhi, kK, kFullParameterCount };
+
+/// JSON-style names of the parameters ("a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m").
+const std::array<const char*, kFullParameterCount>& fullParameterNames();
+
+/// Options of the refinement.
+struct RefineOptions {
+    std::array<bool, kFullParameterCount> fixed{};  ///< true: keep the starting value
+    /// Noise standard deviations of the residuals [N, N, N·m]: residuals are divided by them. Zero
+    /// or negative: estimated from the decoupled fit's residuals of that channel.
+    double sigma_fx = 0.0, sigma_fz = 0.0, sigma_my = 0.0;
+    /// j_max of the model [m] (a setting of the forward model, not identified); +inf for none.
+    double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    /// |correlation| above which a pair is flagged as not separable by the data.
+    double correlation_flag = 0.98;
+};
+
+/// Standard deviations and correlations of the identified parameters (from Ceres' covariance at
+/// the solution, scaled by the reduced χ² when the noise levels were estimated).
+struct Uncertainty {
+    bool computed = false;  ///< false: the covariance is rank deficient (see flags)
+    std::array<double, kFullParameterCount> std{};  ///< SI; 0 for fixed parameters
+    std::array<std::array<double, kFullParameterCount>, kFullParameterCount> correlation{};
+    std::vector<std::string> flags;  ///< what the data do not determine, and what would fix it
+};
+
+/// The refinement's result.
+struct RefineResult {
+    DecoupledParameters parameters;  ///< n in n0; n1 = 0 (the forward model's constant n)
+    StepReport report;
+    Uncertainty uncertainty;
+};
+
+/// Refines `start` (typically the decoupled estimate) on the data set. Throws
+/// std::invalid_argument for an empty data set or invalid wheel.
+RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& wheel,
+                             const DecoupledParameters& start, const RefineOptions& options);
+
+}  // namespace terra::identification
