@@ -9,6 +9,7 @@
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/identification/decoupled_fit.h"
+#include "core/identification/full_fit.h"
 #include "core/identification/synthetic.h"
 #include "core/io/csv.h"
 
@@ -58,7 +59,41 @@ struct IdentifyOptions {
     std::string guess;
     bool json = false;
     bool skip_bad_rows = false;
+    bool refine = false;
+    std::vector<std::string> fix;    // name=value
+    std::vector<std::string> noise;  // fx=, fz=, my= noise levels for the refinement weights
+    std::optional<double> jmax_m;
 };
+
+// --fix a0=0.2,a1=0.3 in the output units (Ks kPa/m^n, c kPa, phi deg).
+void applyFixes(const std::vector<std::string>& items, identification::DecoupledParameters& p,
+                identification::RefineOptions& options) {
+    using namespace identification;
+    for (const std::string& item : items) {
+        const auto equals = item.find('=');
+        const std::string key = item.substr(0, equals);
+        double value = 0.0;
+        if (equals == std::string::npos || !io::parseNumber(item.substr(equals + 1), value)) {
+            throw InputError("--fix '" + item + "': expected NAME=VALUE, NAME one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
+        }
+        if (key == "a0") p.a0 = value, options.fixed[kA0] = true;
+        else if (key == "a1") p.a1 = value, options.fixed[kA1] = true;
+        else if (key == "Ks") p.pressure_modulus = value * 1e3, options.fixed[kKs] = true;
+        else if (key == "n") p.n0 = value, options.fixed[kN] = true;
+        else if (key == "c_kPa") p.cohesion_pa = value * 1e3, options.fixed[kC] = true;
+        else if (key == "phi_deg") p.friction_angle_rad = units::degToRad(value), options.fixed[kPhi] = true;
+        else if (key == "K_m") p.shear_modulus_m = value, options.fixed[kK] = true;
+        else throw InputError("--fix '" + key + "': unknown; one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
+    }
+}
+
+// Output units of the identified parameters: Ks in kPa/m^n, c in kPa, phi in deg.
+double outputValue(int k, double si) {
+    using namespace identification;
+    if (k == kKs || k == kC) return si / 1e3;
+    if (k == kPhi) return units::radToDeg(si);
+    return si;
+}
 
 identification::DecoupledParameters guessFrom(const soil::SoilParameters& soil,
                                               const wheel::WheelParameters& wheel) {
@@ -107,6 +142,14 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     i->add_option("--guess", identify->guess, "Initial guess: soil preset or JSON file (default: thesis chapter 5)");
     i->add_flag("--json", identify->json, "JSON output");
     i->add_flag("--skip-bad-rows", identify->skip_bad_rows, "Skip invalid rows instead of stopping");
+    i->add_flag("--refine", identify->refine,
+                "Refine a0, a1, Ks, n, c, phi, K with the full model (removes the linearisation bias)");
+    i->add_option("--fix", identify->fix, "With --refine: keep parameters fixed, e.g. a0=0.2,a1=0.3")
+        ->delimiter(',');
+    i->add_option("--noise", identify->noise,
+                  "With --refine: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
+        ->delimiter(',');
+    i->add_option("--jmax", identify->jmax_m, "With --refine: the model's j_max [m] (default: the guess soil's, else none)");
     i->callback([identify, &locations] {
         const auto read = identification::readDataSet(
             identify->data, identify->skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop);
@@ -122,7 +165,33 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             guess = guessFrom(names.soilParameters(locations), wheel);
         }
         const auto fit = identification::fitDecoupled(read->data, wheel, guess);
-        const auto& p = fit.parameters;
+        identification::DecoupledParameters p = fit.parameters;
+        std::vector<identification::StepReport> reports = fit.steps;
+        std::optional<identification::Uncertainty> uncertainty;
+        if (!identify->refine && (!identify->fix.empty() || !identify->noise.empty() || identify->jmax_m)) {
+            throw InputError("--fix, --noise and --jmax belong to --refine");
+        }
+        if (identify->refine) {
+            identification::RefineOptions options;
+            applyFixes(identify->fix, p, options);
+            identification::NoiseSpec noise;
+            parseNoise(identify->noise, noise);
+            options.sigma_fx = noise.fx.absolute;
+            options.sigma_fz = noise.fz.absolute;
+            options.sigma_my = noise.my.absolute;
+            if (identify->jmax_m) {
+                std::vector<Issue> issues;
+                checkRange(issues, "--jmax", *identify->jmax_m, {0.0, 1.0, true, false}, "m");
+                if (!issues.empty()) throw InputError(formatIssues(issues));
+                options.max_shear_deformation_m = *identify->jmax_m;
+            } else if (!identify->guess.empty()) {
+                options.max_shear_deformation_m = names.soilParameters(locations).max_shear_deformation_m;
+            }
+            const auto refined = identification::refineFullModel(read->data, wheel, p, options);
+            p = refined.parameters;
+            reports.push_back(refined.report);
+            uncertainty = refined.uncertainty;
+        }
         nlohmann::json j{{"a0", p.a0},
                          {"a1", p.a1},
                          {"Ks", p.pressure_modulus / 1e3},
@@ -131,8 +200,18 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                          {"c_kPa", p.cohesion_pa / 1e3},
                          {"phi_deg", units::radToDeg(p.friction_angle_rad)},
                          {"K_m", p.shear_modulus_m}};
+        if (identify->refine) j["n"] = p.n0;
+        if (uncertainty) {
+            nlohmann::json std_json = nlohmann::json::object();
+            for (int k = 0; k < identification::kFullParameterCount; ++k) {
+                std_json[identification::fullParameterNames()[k]] =
+                    uncertainty->computed ? nlohmann::json(outputValue(k, uncertainty->std[k])) : nlohmann::json();
+            }
+            j["std"] = std_json;
+            j["flags"] = uncertainty->flags;
+        }
         nlohmann::json steps = nlohmann::json::array();
-        for (const auto& step : fit.steps) {
+        for (const auto& step : reports) {
             steps.push_back({{"step", step.name}, {"usable", step.usable}, {"termination", step.termination},
                              {"iterations", step.iterations}, {"squared_residual_norm", step.squared_residual_norm},
                              {"time_ms", step.wall_time_ms}});
@@ -142,19 +221,31 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (identify->json) {
             std::cout << j.dump(2) << '\n';
         } else {
-            std::cout << "decoupled identification, " << read->data.samples.size() << " samples, " << wheel.name << "\n"
-                      << "  a0 = " << fixed(p.a0, 4) << "   a1 = " << fixed(p.a1, 4) << "\n"
-                      << "  Ks = " << fixed(p.pressure_modulus / 1e3, 1) << " kPa/m^N   n0 = " << fixed(p.n0, 4)
-                      << "   n1 = " << fixed(p.n1, 4) << "\n"
-                      << "  c = " << fixed(p.cohesion_pa / 1e3, 3) << " kPa   phi = "
-                      << fixed(units::radToDeg(p.friction_angle_rad), 2) << " deg   K = " << fixed(p.shear_modulus_m, 4)
-                      << " m\n";
-            for (const auto& step : fit.steps) {
+            auto pm = [&](int k) {
+                return uncertainty && uncertainty->computed && uncertainty->std[k] > 0
+                           ? " ± " + fixed(outputValue(k, uncertainty->std[k]), 4) : std::string();
+            };
+            using namespace identification;
+            std::cout << (identify->refine ? "full-model identification (decoupled start), " : "decoupled identification, ")
+                      << read->data.samples.size() << " samples, " << wheel.name << "\n"
+                      << "  a0 = " << fixed(p.a0, 4) << pm(kA0) << "   a1 = " << fixed(p.a1, 4) << pm(kA1) << "\n"
+                      << "  Ks = " << fixed(p.pressure_modulus / 1e3, 1) << pm(kKs) << " kPa/m^n   "
+                      << (identify->refine ? "n = " + fixed(p.n0, 4) + pm(kN)
+                                           : "n0 = " + fixed(p.n0, 4) + "   n1 = " + fixed(p.n1, 4)) << "\n"
+                      << "  c = " << fixed(p.cohesion_pa / 1e3, 3) << pm(kC) << " kPa   phi = "
+                      << fixed(units::radToDeg(p.friction_angle_rad), 2) << pm(kPhi) << " deg   K = "
+                      << fixed(p.shear_modulus_m, 4) << pm(kK) << " m\n";
+            for (const auto& step : reports) {
                 std::cout << "  step " << step.name << ": |r|^2 = " << step.squared_residual_norm << ", "
                           << fixed(step.wall_time_ms, 2) << " ms, " << step.termination << '\n';
             }
+            if (uncertainty) {
+                for (const std::string& flag : uncertainty->flags) std::cout << "  note: " << flag << '\n';
+            }
         }
-        if (!fit.usable()) throw std::runtime_error("the fit did not converge to a usable solution");
+        bool usable = fit.usable();
+        for (const auto& step : reports) usable = usable && step.usable;
+        if (!usable) throw std::runtime_error("the fit did not converge to a usable solution");
     });
 }
 

@@ -234,6 +234,16 @@ TEST(Cli, SynthThenIdentify) {
     }
     EXPECT_EQ(j["samples"].get<int>(), 60);
     EXPECT_EQ(j["steps"].size(), 3u);
+    const CliRun refined = run("identify --data " + data + " --wheel A --refine --jmax 0.009 --fix a0=0.2 --json");
+    ASSERT_EQ(refined.exit_code, 0) << refined.err;
+    const auto r = nlohmann::json::parse(refined.out);
+    EXPECT_EQ(r["a0"].get<double>(), 0.2);
+    EXPECT_TRUE(r.contains("n"));
+    EXPECT_TRUE(r["std"].contains("phi_deg"));
+    EXPECT_EQ(r["std"]["a0"].get<double>(), 0.0);  // fixed
+    EXPECT_TRUE(r["flags"].is_array());
+    EXPECT_EQ(r["steps"].size(), 4u);
+    EXPECT_EQ(run("identify --data " + data + " --fix a0=0.2").exit_code, 2);  // --fix needs --refine
     // A bad row stops the fit with its line number, unless skipped.
     std::ofstream(dir / "bad.csv") << "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.1,20,1,50,0.5\n0.2,120,1,50,0.5\n";
     const CliRun bad = run("identify --data " + (dir / "bad.csv").string());
