@@ -24,6 +24,7 @@ int runHeadless(int argc, char** argv) {
     addRenderCommand(app, locations);
     addStressesCommand(app, locations);
     addIdentifyCommands(app, locations);
+    addRunCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -46,20 +47,36 @@ int runHeadless(int argc, char** argv) {
     return kSuccess;
 }
 
+// `terrastudio` or `terrastudio [gui] [FILE.terra] [--panel NAME] [--screenshots DIR]`.
 int runGui(int argc, char** argv) {
     QApplication application(argc, argv);
     QApplication::setApplicationName("TerraStudio");
     QApplication::setOrganizationName("TerraStudio");
     terra::app::MainWindow window(
         terra::io::PresetLocations::standard(terra::app::executableDirectory()));
+    QString panel, screenshots;
+    for (int i = 1; i < argc; ++i) {
+        const QString arg = QString::fromLocal8Bit(argv[i]);
+        if (arg == "--panel" && i + 1 < argc) panel = QString::fromLocal8Bit(argv[++i]);
+        else if (arg == "--screenshots" && i + 1 < argc) screenshots = QString::fromLocal8Bit(argv[++i]);
+        else if (arg.endsWith(".terra") && !window.openProject(arg)) return terra::app::kBadInput;
+    }
+    if (!panel.isEmpty()) window.showPanel(panel);
     window.show();
+    if (!screenshots.isEmpty()) return window.takeScreenshots(screenshots);
     return QApplication::exec();
+}
+
+bool isGuiInvocation(int argc, char** argv) {
+    if (argc == 1) return true;
+    const std::string first = argv[1];
+    return first == "gui" || (first.size() > 6 && first.ends_with(".terra"));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     // The GUI when started plainly; headless subcommands otherwise (chosen before any Qt object).
-    if (argc == 1) return runGui(argc, argv);
+    if (isGuiInvocation(argc, argv)) return runGui(argc, argv);
     return runHeadless(argc, argv);
 }

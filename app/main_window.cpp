@@ -1,29 +1,353 @@
 #include "app/main_window.h"
 
+#include <qcustomplot.h>
+
 #include <QApplication>
+#include <QCloseEvent>
+#include <QDir>
+#include <QDockWidget>
+#include <QEventLoop>
+#include <cstdio>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QListWidget>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QPushButton>
+#include <QSettings>
+#include <QStackedWidget>
+#include <QStandardPaths>
 #include <QStatusBar>
+#include <QTabWidget>
+#include <QTimer>
+#include <QToolBar>
+#include <QUndoStack>
+#include <QVBoxLayout>
 
+#include "widgets/document/project_document.h"
+#include "widgets/editors/project_tree.h"
+#include "widgets/editors/property_editors.h"
 #include "widgets/panels/forces_panel.h"
+#include "widgets/panels/identification_panel.h"
+#include "widgets/panels/rover_panel.h"
+#include "widgets/panels/sensitivity_panel.h"
+#include "widgets/panels/stress_panel.h"
+#include "widgets/plots/export_dialog.h"
 
 namespace terra::app {
+namespace {
 
-MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent) : QMainWindow(parent) {
-    setWindowTitle("TerraStudio");
-    auto* panel = new ui::ForcesPanel(locations, this);
-    setCentralWidget(panel);
+constexpr int kMaxRecent = 8;
+constexpr int kAutosaveIntervalMs = 30000;
+
+QDockWidget* dock(QMainWindow* window, const QString& title, const QString& name, QWidget* content) {
+    auto* d = new QDockWidget(title, window);
+    d->setObjectName(name);  // QSettings restores docks by object name
+    d->setWidget(content);
+    return d;
+}
+
+}  // namespace
+
+MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
+    : QMainWindow(parent), locations_(locations), document_(new ui::ProjectDocument(this)) {
+    document_->reset(ui::ProjectDocument::defaultProject(locations_));
+
+    tabs_ = new QTabWidget(this);
+    tabs_->setDocumentMode(true);
+    auto* identification = new ui::IdentificationPanel(document_, tabs_);
+    panels_ = {new ui::ForcesPanel(document_, tabs_), new ui::StressPanel(document_, tabs_),
+               new ui::SensitivityPanel(document_, tabs_), identification};
+    const QStringList titles{"Forces vs slip", "Stresses", "Sensitivity", "Identification"};
+    for (std::size_t i = 0; i < panels_.size(); ++i) {
+        ui::AnalysisPanel* panel = panels_[i];
+        tabs_->addTab(panel, titles[static_cast<int>(i)]);
+        connect(panel, &ui::AnalysisPanel::resultShown, this, [this, panel, title = titles[static_cast<int>(i)]](double ms) {
+            statusBar()->showMessage(QString("%1 updated in %2 ms").arg(title).arg(ms, 0, 'f', 0), 5000);
+        });
+        connect(panel, &ui::AnalysisPanel::failed, this,
+                [this](const QString& message) { statusBar()->showMessage("Error: " + message, 8000); });
+    }
+    tabs_->addTab(new ui::RoverPanel(tabs_), "Rover scenario");
+    setCentralWidget(tabs_);
+
+    auto* tree = new ui::ProjectTree(document_, this);
+    editors_ = new QStackedWidget(this);
+    editors_->addWidget(new ui::SoilEditor(document_, locations_, editors_));
+    editors_->addWidget(new ui::WheelEditor(document_, locations_, editors_));
+    editors_->addWidget(new ui::ConditionsEditor(document_, editors_));
+    auto* data_page = new QWidget(editors_);
+    auto* data_list = new QListWidget(data_page);
+    auto* load_data = new QPushButton("Load CSV for identification…", data_page);
+    auto* data_layout = new QVBoxLayout(data_page);
+    data_layout->addWidget(data_list);
+    data_layout->addWidget(load_data);
+    editors_->addWidget(data_page);
+    auto* scenarios = new QLabel("Rover scenarios arrive with the rover simulation (issue 4).", editors_);
+    scenarios->setWordWrap(true);
+    editors_->addWidget(scenarios);
+    connect(tree, &ui::ProjectTree::pageRequested, editors_, &QStackedWidget::setCurrentIndex);
+    connect(load_data, &QPushButton::clicked, this, [this, identification] {
+        const QString path = QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
+        if (path.isEmpty()) return;
+        identification->setDataFile(path);
+        showPanel("identification");
+    });
+    connect(document_, &ui::ProjectDocument::dataSetsChanged, data_list, [this, data_list] {
+        data_list->clear();
+        for (const std::string& path : document_->project().data_sets) data_list->addItem(QString::fromStdString(path));
+    });
+    connect(data_list, &QListWidget::itemDoubleClicked, this, [this, identification](QListWidgetItem* item) {
+        identification->setDataFile(item->text());
+        showPanel("identification");
+    });
+
+    auto* left = dock(this, "Project", "project_dock", tree);
+    auto* right = dock(this, "Properties", "properties_dock", editors_);
+    addDockWidget(Qt::LeftDockWidgetArea, left);
+    addDockWidget(Qt::RightDockWidgetArea, right);
+    resizeDocks({left, right}, {230, 330}, Qt::Horizontal);
+    createMenus();
+
+    connect(document_, &ui::ProjectDocument::modifiedChanged, this, &MainWindow::updateTitle);
+    connect(document_, &ui::ProjectDocument::filePathChanged, this, &MainWindow::updateTitle);
+    updateTitle();
+    autosave_timer_ = new QTimer(this);
+    autosave_timer_->setInterval(kAutosaveIntervalMs);
+    connect(autosave_timer_, &QTimer::timeout, this, &MainWindow::autosave);
+    autosave_timer_->start();
+
+    resize(1440, 860);
+    const QSettings settings;
+    restoreGeometry(settings.value("window/geometry").toByteArray());
+    restoreState(settings.value("window/state").toByteArray());
+    QTimer::singleShot(0, this, &MainWindow::offerRecovery);
+}
+
+void MainWindow::createMenus() {
     QMenu* file = menuBar()->addMenu("&File");
-    file->addAction("&Quit", QKeySequence::Quit, qApp, &QApplication::quit);
+    QToolBar* bar = addToolBar("Main");
+    bar->setObjectName("main_toolbar");
+    auto add = [&](QMenu* menu, const QString& text, QKeySequence key, auto slot, bool toolbar = false) {
+        QAction* action = menu->addAction(text, this, slot);
+        action->setShortcut(key);
+        if (toolbar) bar->addAction(action);
+        return action;
+    };
+    add(file, "&New", QKeySequence::New, [this] { newProject(); }, true);
+    add(file, "&Open…", QKeySequence::Open, [this] {
+        if (!maybeSave()) return;
+        const QString path = QFileDialog::getOpenFileName(this, "Open project", {}, "TerraStudio project (*.terra)");
+        if (!path.isEmpty()) openProject(path);
+    }, true);
+    recent_menu_ = file->addMenu("Open &Recent");
+    rebuildRecentMenu();
+    add(file, "&Save", QKeySequence::Save, [this] { save(); }, true);
+    add(file, "Save &As…", QKeySequence::SaveAs, [this] { saveAs(); });
+    file->addSeparator();
+    add(file, "&Export Plot…", QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportCurrentPlot(); }, true);
+    add(file, "Export &Data (CSV)…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_E), [this] { exportCurrentData(); });
+    file->addSeparator();
+    add(file, "&Quit", QKeySequence::Quit, [this] { close(); });
+
+    QMenu* edit = menuBar()->addMenu("&Edit");
+    QAction* undo = document_->undoStack()->createUndoAction(this, "&Undo");
+    undo->setShortcut(QKeySequence::Undo);
+    QAction* redo = document_->undoStack()->createRedoAction(this, "&Redo");
+    redo->setShortcut(QKeySequence::Redo);
+    edit->addActions({undo, redo});
+    bar->addSeparator();
+    bar->addActions({undo, redo});
+
+    QMenu* view = menuBar()->addMenu("&View");
+    for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
+    view->addSeparator();
+    for (int i = 0; i < tabs_->count(); ++i) {
+        add(view, tabs_->tabText(i), QKeySequence(Qt::CTRL | (Qt::Key_1 + i)), [this, i] { tabs_->setCurrentIndex(i); });
+    }
     QMenu* help = menuBar()->addMenu("&Help");
     help->addAction("&About", this, [this] {
         QMessageBox::about(this, "About TerraStudio",
                            "TerraStudio 0.1: wheel–soil interaction for agricultural robots.\n"
-                           "Model: thesis chapter 2 with the errata of MODEL-NOTES.");
+                           "Model: thesis chapter 2 with the errata of MODEL-NOTES.\n"
+                           "User guide: docs/user-guide.md");
     });
-    connect(panel, &ui::ForcesPanel::sweepFinished, this,
-            [this, panel] { statusBar()->showMessage(QString("Sweep: %1 points").arg(panel->result().table.rows.size()), 3000); });
-    resize(1280, 800);
+}
+
+void MainWindow::showPanel(const QString& name) {
+    for (std::size_t i = 0; i < panels_.size(); ++i) {
+        if (panels_[i]->name() == name) tabs_->setCurrentIndex(static_cast<int>(i));
+    }
+    if (name == "rover") tabs_->setCurrentIndex(tabs_->count() - 1);
+}
+
+ui::AnalysisPanel* MainWindow::currentPanel() const {
+    return qobject_cast<ui::AnalysisPanel*>(tabs_->currentWidget());
+}
+
+bool MainWindow::openProject(const QString& path, bool quiet) {
+    auto project = ui::ProjectDocument::load(path);
+    if (!project) {
+        if (!quiet) QMessageBox::warning(this, "Cannot open project", QString::fromStdString(project.message()));
+        return false;
+    }
+    document_->reset(*project, QFileInfo(path).absoluteFilePath());
+    for (ui::AnalysisPanel* panel : panels_) {
+        const std::string name = panel->name().toStdString();
+        if (project->panels.contains(name)) panel->applySettings(project->panels[name]);
+    }
+    addRecent(QFileInfo(path).absoluteFilePath());
+    statusBar()->showMessage("Opened " + path, 4000);
+    return true;
+}
+
+void MainWindow::newProject() {
+    if (!maybeSave()) return;
+    document_->reset(ui::ProjectDocument::defaultProject(locations_));
+}
+
+bool MainWindow::save() { return document_->filePath().isEmpty() ? saveAs() : saveTo(document_->filePath()); }
+
+bool MainWindow::saveTo(const QString& path) {
+    for (ui::AnalysisPanel* panel : panels_) document_->setPanelSettings(panel->name().toStdString(), panel->settings());
+    QString error;
+    if (!document_->save(path, &error)) {
+        QMessageBox::warning(this, "Save failed", error);  // the document stays modified
+        return false;
+    }
+    QFile::remove(autosavePath());
+    addRecent(document_->filePath());
+    statusBar()->showMessage("Saved " + document_->filePath(), 4000);
+    return true;
+}
+
+bool MainWindow::saveAs() {
+    QString path = QFileDialog::getSaveFileName(this, "Save project", document_->filePath(), "TerraStudio project (*.terra)");
+    if (path.isEmpty()) return false;
+    if (!path.endsWith(".terra")) path += ".terra";
+    return saveTo(path);
+}
+
+bool MainWindow::maybeSave() {
+    if (!document_->isModified()) return true;
+    const auto answer = QMessageBox::warning(this, "Unsaved changes", "The project has unsaved changes. Save them?",
+                                             QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
+    if (answer == QMessageBox::Save) return save();
+    return answer == QMessageBox::Discard;
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!maybeSave()) {
+        event->ignore();
+        return;
+    }
+    QFile::remove(autosavePath());
+    QSettings settings;
+    settings.setValue("window/geometry", saveGeometry());
+    settings.setValue("window/state", saveState());
+    event->accept();
+}
+
+void MainWindow::exportCurrentPlot() {
+    ui::AnalysisPanel* panel = currentPanel();
+    if (!panel) return;
+    const QString suggested = QDir::home().filePath(panel->name() + ".png");
+    ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(), suggested);
+}
+
+void MainWindow::exportCurrentData() {
+    ui::AnalysisPanel* panel = currentPanel();
+    if (!panel) return;
+    const QString path = QFileDialog::getSaveFileName(this, "Export data", QDir::home().filePath(panel->name() + ".csv"), "CSV (*.csv)");
+    QString error;
+    if (!path.isEmpty() && !ui::exportTable(panel->currentTable(), path, &error)) {
+        QMessageBox::warning(this, "Export failed", error);
+    }
+}
+
+void MainWindow::addRecent(const QString& path) {
+    QSettings settings;
+    QStringList recent = settings.value("recentFiles").toStringList();
+    recent.removeAll(path);
+    recent.prepend(path);
+    while (recent.size() > kMaxRecent) recent.removeLast();
+    settings.setValue("recentFiles", recent);
+    rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+    recent_menu_->clear();
+    const QStringList recent = QSettings().value("recentFiles").toStringList();
+    for (const QString& path : recent) {
+        recent_menu_->addAction(QFileInfo(path).fileName(), this, [this, path] {
+            if (maybeSave()) openProject(path);
+        })->setToolTip(path);
+    }
+    recent_menu_->setEnabled(!recent.isEmpty());
+}
+
+void MainWindow::updateTitle() {
+    const QString name = document_->filePath().isEmpty() ? "untitled.terra" : QFileInfo(document_->filePath()).fileName();
+    setWindowTitle(name + "[*] — TerraStudio");
+    setWindowModified(document_->isModified());
+}
+
+QString MainWindow::autosavePath() {
+    const QString dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
+    QDir().mkpath(dir);
+    return dir + "/recovery.terra.autosave";
+}
+
+void MainWindow::autosave() {
+    if (!document_->isModified()) return;
+    for (ui::AnalysisPanel* panel : panels_) document_->setPanelSettings(panel->name().toStdString(), panel->settings());
+    QString error;
+    if (!document_->save(autosavePath(), &error)) statusBar()->showMessage("Autosave failed: " + error, 5000);
+}
+
+void MainWindow::offerRecovery() {
+    const QString path = autosavePath();
+    if (!QFileInfo::exists(path)) return;
+    const auto answer = QMessageBox::question(
+        this, "Recover project", "TerraStudio did not close cleanly. Recover the unsaved project from the autosave?");
+    if (answer == QMessageBox::Yes) {
+        auto project = ui::ProjectDocument::load(path);
+        if (project) {
+            document_->reset(*project);
+            document_->undoStack()->resetClean();  // recovered, not yet saved anywhere
+        }
+    }
+    QFile::remove(path);
+}
+
+int MainWindow::takeScreenshots(const QString& dir) {
+    QDir().mkpath(dir);
+    QFile::remove(autosavePath());
+    int failures = 0;
+    for (int i = 0; i < tabs_->count(); ++i) {
+        tabs_->setCurrentIndex(i);
+        auto* panel = qobject_cast<ui::AnalysisPanel*>(tabs_->widget(i));
+        if (panel) {
+            QEventLoop loop;
+            QTimer::singleShot(60000, &loop, &QEventLoop::quit);
+            connect(panel, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+            connect(panel, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+            if (panel->name() == "identification" || panel->isBusy() || panel->lastLatencyMs() == 0.0) {
+                if (panel->name() == "identification") panel->recompute();
+                loop.exec();
+            }
+        }
+        QEventLoop settle;
+        QTimer::singleShot(300, &settle, &QEventLoop::quit);
+        settle.exec();
+        const QString name = panel ? panel->name() : QString("rover");
+        const QString path = dir + "/studio-" + name + ".png";
+        if (!grab().save(path)) ++failures;
+        std::printf("wrote %s\n", qPrintable(path));
+    }
+    document_->undoStack()->setClean();
+    return failures == 0 ? 0 : 1;
 }
 
 }  // namespace terra::app

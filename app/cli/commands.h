@@ -17,5 +17,6 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations);
 void addRenderCommand(CLI::App& app, const io::PresetLocations& locations);
 void addStressesCommand(CLI::App& app, const io::PresetLocations& locations);
 void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations);
+void addRunCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

@@ -1,61 +1,40 @@
 #pragma once
 /// @file forces_panel.h
-/// The forces-versus-slip panel (Figs. 2.18–2.26): soil, wheel, load and model on the left, one
-/// plot per quantity in tabs. Every edit recomputes the sweep off the GUI thread (QtConcurrent);
-/// results of a superseded edit are dropped by revision number.
-
-#include <QFutureWatcher>
-#include <QWidget>
-#include <vector>
+/// The forces-versus-slip panel (Figs. 2.18–2.26): F_x, F_s, F_z, M_y, M_z and θ_f against slip
+/// for the project's slip angles, one plot per quantity in tabs, recomputed live off the GUI
+/// thread whenever the soil, wheel or conditions change (AnalysisPanel).
 
 #include "core/analysis/sweep.h"
-#include "core/io/parameters_json.h"
+#include "widgets/panels/analysis_panel.h"
 
 class QComboBox;
-class QDoubleSpinBox;
 class QLabel;
 class QTabWidget;
-class QTimer;
-class QCustomPlot;
 
 namespace terra::ui {
 
-class ForcesPanel : public QWidget {
+class ForcesPanel : public AnalysisPanel {
     Q_OBJECT
 public:
-    explicit ForcesPanel(io::PresetLocations locations, QWidget* parent = nullptr);
+    explicit ForcesPanel(ProjectDocument* document, QWidget* parent = nullptr);
 
-    /// Selects a soil and wheel preset by name (false when unknown).
-    bool selectPresets(const QString& soil, const QString& wheel);
-
-    /// The last completed sweep (empty before the first one finishes).
+    /// The last sweep on screen (empty before the first one finishes).
     const analysis::SweepResult& result() const { return result_; }
 
-signals:
-    void sweepFinished();  ///< a new result is on screen
+    std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
+    QCustomPlot* currentPlot() const override;
+    Table currentTable() const override { return result_.table; }
+
+protected:
+    Job makeJob() override;
+    void present(const std::any& result) override;
 
 private:
-    struct Computation {
-        int revision = 0;
-        analysis::SweepResult result;
-        QString error;
-    };
-
-    void scheduleUpdate();
-    void startSweep();
-    void showResult(const Computation& computation);
-
-    io::PresetLocations locations_;
-    QComboBox* soil_;
-    QComboBox* wheel_;
-    QDoubleSpinBox* load_;
     QComboBox* model_;
     QLabel* status_;
+    QLabel* readout_;
     QTabWidget* tabs_;
     std::vector<QCustomPlot*> plots_;
-    QTimer* debounce_;
-    QFutureWatcher<Computation> watcher_;
-    int revision_ = 0;
     analysis::SweepResult result_;
 };
 

@@ -1,0 +1,78 @@
+#pragma once
+/// @file project_document.h
+/// The open project: owns a Project and a QUndoStack and changes the project only through undo
+/// commands — one command per setter, none when the value did not change, repeated edits of one
+/// field merged (LabPlot/Tiled pattern). Views listen to the signals; every change bumps
+/// `revision()` so that results computed from an older state can be recognised and dropped.
+
+#include <QObject>
+#include <QString>
+
+#include "core/io/parameters_json.h"
+#include "widgets/document/project.h"
+
+class QUndoStack;
+
+namespace terra::ui {
+
+class ProjectDocument : public QObject {
+    Q_OBJECT
+public:
+    explicit ProjectDocument(QObject* parent = nullptr);
+
+    const Project& project() const { return project_; }
+    QUndoStack* undoStack() const { return undo_; }
+    int revision() const { return revision_; }
+    bool isModified() const;
+    QString filePath() const { return file_path_; }
+
+    /// A soil field (soil_parameters.h field table) in its user unit. Out-of-range or non-finite
+    /// values are refused (false, nothing pushed); an unchanged value pushes nothing (true).
+    bool setSoilValue(const std::string& key, double user_value);
+    /// "r_m" or "b_m" in metres, same rules.
+    bool setWheelValue(const std::string& key, double metres);
+    /// W [N], same rules.
+    bool setLoad(double load_n);
+    bool setSlipAngles(const std::vector<double>& slip_angles_deg);
+    bool setQuadraticModel(bool quadratic);
+    /// Replace the whole soil or wheel (a preset was chosen); refused when invalid.
+    bool setSoil(const soil::SoilParameters& soil, const std::string& preset);
+    bool setWheel(const wheel::WheelParameters& wheel, const std::string& preset);
+    bool addDataSet(const std::string& path);
+    /// Panel settings are session state but not undoable edits of the model.
+    void setPanelSettings(const std::string& panel, const nlohmann::json& settings);
+
+    /// Replaces everything (new/open): clears the undo stack and marks the document clean.
+    void reset(const Project& project, const QString& file_path = {});
+
+    /// Writes the project atomically (QSaveFile); on failure the document stays modified.
+    bool save(const QString& path, QString* error);
+    /// Reads a project file; the open document is untouched (caller calls reset()).
+    static Result<Project> load(const QString& path);
+    /// A new project on presets "sandy-loam" and "A" (the studio's default).
+    static Project defaultProject(const io::PresetLocations& locations);
+
+signals:
+    void soilChanged();
+    void wheelChanged();
+    void conditionsChanged();
+    void dataSetsChanged();
+    void changed();  ///< after any change of the model (revision bumped)
+    void modifiedChanged(bool modified);
+    void filePathChanged(const QString& path);
+
+private:
+    enum class Part { kSoil, kWheel, kConditions, kDataSets };
+    template <typename T>
+    bool push(const QString& text, int merge_id, Part part, T Project::*member, const T& value);
+    template <typename T>
+    bool pushField(const QString& text, int merge_id, Part part, T* field, const T& value);
+    void notify(Part part);
+
+    Project project_;
+    QUndoStack* undo_;
+    int revision_ = 0;
+    QString file_path_;
+};
+
+}  // namespace terra::ui

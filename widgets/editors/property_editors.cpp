@@ -1,0 +1,205 @@
+#include "widgets/editors/property_editors.h"
+
+#include <QComboBox>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <QVBoxLayout>
+#include <cmath>
+#include <limits>
+
+#include "widgets/document/project_document.h"
+#include "widgets/editors/validated_spin_box.h"
+
+namespace terra::ui {
+namespace {
+
+constexpr int kSliderSteps = 1000;
+
+int decimalsFor(const Range& range) {
+    const double span = range.high - range.low;
+    if (span >= 1000.0) return 1;
+    if (span >= 10.0) return 2;
+    return 4;
+}
+
+int toSlider(const QDoubleSpinBox* box, double value) {
+    const double t = (value - box->minimum()) / (box->maximum() - box->minimum());
+    return static_cast<int>(std::lround(std::clamp(t, 0.0, 1.0) * kSliderSteps));
+}
+
+double fromSlider(const QDoubleSpinBox* box, int position) {
+    return box->minimum() + (box->maximum() - box->minimum()) * position / kSliderSteps;
+}
+
+QComboBox* presetBox(const io::PresetLocations& locations, const char* kind, QWidget* parent) {
+    auto* box = new QComboBox(parent);
+    box->addItem("(custom)", QString());
+    for (const std::string& name : io::presetNames(locations, kind)) {
+        box->addItem(QString::fromStdString(name), QString::fromStdString(name));
+    }
+    return box;
+}
+
+void selectPreset(QComboBox* box, const std::string& preset) {
+    const QSignalBlocker block(box);
+    const int i = box->findData(QString::fromStdString(preset));
+    box->setCurrentIndex(i >= 0 ? i : 0);
+}
+
+}  // namespace
+
+SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& locations, QWidget* parent)
+    : QWidget(parent), document_(document), locations_(locations) {
+    preset_ = presetBox(locations_, "soils", this);
+    auto* grid = new QGridLayout;
+    grid->addWidget(new QLabel("<b>Soil preset</b>", this), 0, 0);
+    grid->addWidget(preset_, 0, 1, 1, 2);
+    int row = 1;
+    for (const soil::SoilField& field : soil::soilFields()) {
+        const bool jmax = std::string(field.key) == "jmax_m";
+        auto* box = new ValidatedSpinBox(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit), field.range,
+                                         decimalsFor(field.range), this);
+        box->setObjectName(QString("soil.") + field.key);
+        if (jmax) {
+            // j_max is optional: the lowest value means "no limit" (the field itself excludes 0).
+            box->setMinimum(0.0);
+            box->setSpecialValueText("no limit");
+        }
+        auto* slider = new QSlider(Qt::Horizontal, this);
+        slider->setRange(0, kSliderSteps);
+        slider->setMinimumWidth(90);
+        auto* label = new QLabel(QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)), this);
+        label->setToolTip(QString::fromUtf8(field.key));
+        grid->addWidget(label, row, 0);
+        grid->addWidget(box, row, 1);
+        grid->addWidget(slider, row, 2);
+        ++row;
+        const std::string key = field.key;
+        fields_[key] = {box, slider};
+        connect(box, &QDoubleSpinBox::valueChanged, this, [this, key, box, jmax](double value) {
+            const double user = jmax && value == 0.0 ? std::numeric_limits<double>::infinity() : value;
+            if (jmax && std::isinf(user)) {
+                soil::SoilParameters soil = document_->project().soil;
+                soil.max_shear_deformation_m = user;
+                document_->setSoil(soil, "");
+            } else if (!document_->setSoilValue(key, user)) {
+                refresh();  // refused by the model (e.g. K_s ≤ 0): show the model's value again
+            }
+            (void)box;
+        });
+        connect(slider, &QSlider::valueChanged, this, [box](int position) { box->setValue(fromSlider(box, position)); });
+    }
+    grid->setColumnStretch(2, 1);
+    auto* layout = new QVBoxLayout(this);
+    layout->addLayout(grid);
+    layout->addStretch(1);
+
+    connect(preset_, &QComboBox::currentIndexChanged, this, [this] {
+        const std::string name = preset_->currentData().toString().toStdString();
+        if (name.empty()) return;
+        if (auto soil = io::resolveSoil(locations_, name)) document_->setSoil(*soil, name);
+    });
+    connect(document_, &ProjectDocument::soilChanged, this, &SoilEditor::refresh);
+    refresh();
+}
+
+ValidatedSpinBox* SoilEditor::spinBox(const std::string& key) const {
+    const auto it = fields_.find(key);
+    return it == fields_.end() ? nullptr : it->second.first;
+}
+
+void SoilEditor::refresh() {
+    const Project& project = document_->project();
+    selectPreset(preset_, project.soil_preset);
+    for (const soil::SoilField& field : soil::soilFields()) {
+        auto [box, slider] = fields_.at(field.key);
+        const double value = soil::userValue(project.soil, field);
+        const QSignalBlocker block_slider(slider);
+        box->setCommittedValue(std::isinf(value) ? 0.0 : value);
+        slider->setValue(toSlider(box, box->value()));
+    }
+}
+
+WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& locations, QWidget* parent)
+    : QWidget(parent), document_(document), locations_(locations) {
+    preset_ = presetBox(locations_, "wheels", this);
+    radius_ = new ValidatedSpinBox("r", "m", wheel::kRadiusRange, 4, this);
+    radius_->setObjectName("wheel.r_m");
+    radius_->setSingleStep(0.005);
+    width_ = new ValidatedSpinBox("b", "m", wheel::kWidthRange, 4, this);
+    width_->setObjectName("wheel.b_m");
+    width_->setSingleStep(0.005);
+    auto* form = new QFormLayout(this);
+    form->addRow("<b>Wheel preset</b>", preset_);
+    form->addRow("Radius r [m]", radius_);
+    form->addRow("Width b [m]", width_);
+    connect(preset_, &QComboBox::currentIndexChanged, this, [this] {
+        const std::string name = preset_->currentData().toString().toStdString();
+        if (name.empty()) return;
+        if (auto wheel = io::resolveWheel(locations_, name)) document_->setWheel(*wheel, name);
+    });
+    connect(radius_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (!document_->setWheelValue("r_m", v)) refresh();
+    });
+    connect(width_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (!document_->setWheelValue("b_m", v)) refresh();
+    });
+    connect(document_, &ProjectDocument::wheelChanged, this, &WheelEditor::refresh);
+    refresh();
+}
+
+void WheelEditor::refresh() {
+    const Project& project = document_->project();
+    selectPreset(preset_, project.wheel_preset);
+    radius_->setCommittedValue(project.wheel.radius_m);
+    width_->setCommittedValue(project.wheel.width_m);
+}
+
+ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
+    : QWidget(parent), document_(document) {
+    load_ = new ValidatedSpinBox("W", "N", Range{0.0, 5000.0, true, false}, 2, this);
+    load_->setObjectName("conditions.load_N");
+    load_->setSingleStep(1.0);
+    slip_angles_ = new QLineEdit(this);
+    slip_angles_->setObjectName("conditions.slip_angles_deg");
+    slip_angles_->setToolTip("Slip angles β [deg] of the force sweeps, comma separated, each in (−89, 89)");
+    auto* form = new QFormLayout(this);
+    form->addRow("Load W [N]", load_);
+    form->addRow("Slip angles β [deg]", slip_angles_);
+    connect(load_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+        if (!document_->setLoad(v)) refresh();
+    });
+    connect(slip_angles_, &QLineEdit::editingFinished, this, [this] {
+        std::vector<double> values;
+        bool ok = true;
+        for (const QString& part : slip_angles_->text().split(',', Qt::SkipEmptyParts)) {
+            bool parsed = false;
+            const double v = part.trimmed().toDouble(&parsed);
+            ok = ok && parsed && std::abs(v) < 89.0;
+            values.push_back(v);
+        }
+        if (!ok || values.empty() || !document_->setSlipAngles(values)) {
+            slip_angles_->setStyleSheet("QLineEdit { border: 2px solid #d62728; }");
+            slip_angles_->setToolTip("Not a comma-separated list of angles in (−89, 89) deg: not applied");
+            return;
+        }
+        slip_angles_->setStyleSheet({});
+    });
+    connect(document_, &ProjectDocument::conditionsChanged, this, &ConditionsEditor::refresh);
+    refresh();
+}
+
+void ConditionsEditor::refresh() {
+    const OperatingConditions& c = document_->project().conditions;
+    load_->setCommittedValue(c.load_n);
+    QStringList angles;
+    for (double beta : c.slip_angles_deg) angles << QString::number(beta);
+    slip_angles_->setText(angles.join(", "));
+    slip_angles_->setStyleSheet({});
+}
+
+}  // namespace terra::ui

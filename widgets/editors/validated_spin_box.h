@@ -1,0 +1,46 @@
+#pragma once
+/// @file validated_spin_box.h
+/// A spin box for one range-checked field: typed text outside the allowed range is flagged at the
+/// field (red frame, tooltip naming the value and the range) and never committed — the spin box
+/// reverts to the last valid value when editing ends.
+
+#include <QDoubleSpinBox>
+
+#include "core/common/range.h"
+
+namespace terra::ui {
+
+class ValidatedSpinBox : public QDoubleSpinBox {
+    Q_OBJECT
+public:
+    /// `name` and `unit` are used in the message ("φ = 75 deg is outside [0, 60)").
+    ValidatedSpinBox(const QString& name, const QString& unit, const Range& range, int decimals,
+                     QWidget* parent = nullptr);
+
+    const Range& allowedRange() const { return range_; }
+    /// Whether the text being typed is acceptable (false while flagged).
+    bool textIsValid() const { return valid_; }
+
+    QValidator::State validate(QString& text, int& pos) const override;
+
+    /// Shows a value that came from the model, without emitting valueChanged.
+    void setCommittedValue(double value);
+
+protected:
+    /// Enter or leaving the field with flagged text restores the last committed value: a
+    /// half-typed prefix ("7" of "75") is never committed either.
+    void keyPressEvent(QKeyEvent* event) override;
+    void focusOutEvent(QFocusEvent* event) override;
+
+private:
+    void revertIfInvalid();
+    void flag(bool valid, const QString& message) const;
+
+    QString name_;
+    QString unit_;
+    Range range_;
+    mutable bool valid_ = true;
+    double committed_ = 0.0;
+};
+
+}  // namespace terra::ui

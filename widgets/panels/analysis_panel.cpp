@@ -1,0 +1,100 @@
+#include "widgets/panels/analysis_panel.h"
+
+#include <qcustomplot.h>
+
+#include <QLabel>
+#include <QTimer>
+#include <QtConcurrent/QtConcurrentRun>
+
+#include "widgets/document/project_document.h"
+
+namespace terra::ui {
+
+AnalysisPanel::AnalysisPanel(ProjectDocument* document, const QString& name, QWidget* parent)
+    : QWidget(parent), document_(document), name_(name) {
+    connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, &AnalysisPanel::finished);
+    connect(document_, &ProjectDocument::changed, this, [this] {
+        if (live_) scheduleUpdate();
+    });
+}
+
+AnalysisPanel::~AnalysisPanel() {
+    if (cancel_) cancel_->store(true);
+    watcher_.waitForFinished();
+}
+
+void AnalysisPanel::scheduleUpdate() {
+    ++revision_;
+    since_edit_.start();
+    if (cancel_) cancel_->store(true);  // the running result is stale now
+    if (start_queued_) return;
+    start_queued_ = true;
+    QTimer::singleShot(0, this, [this] {
+        start_queued_ = false;
+        start();
+    });
+}
+
+void AnalysisPanel::start() {
+    if (watcher_.isRunning()) return;  // finished() restarts with the newest state
+    Job job;
+    try {
+        job = makeJob();
+    } catch (const std::exception& e) {
+        emit failed(QString::fromUtf8(e.what()));
+        return;
+    }
+    const int revision = revision_;
+    cancel_ = std::make_shared<std::atomic<bool>>(false);
+    auto cancel = cancel_;
+    emit busyChanged(true);
+    watcher_.setFuture(QtConcurrent::run([job, revision, cancel]() {
+        Outcome out;
+        out.revision = revision;
+        try {
+            out.value = job(*cancel);
+        } catch (const std::exception& e) {
+            out.error = QString::fromUtf8(e.what());
+        }
+        return out;
+    }));
+}
+
+void AnalysisPanel::finished() {
+    const Outcome outcome = watcher_.result();
+    if (outcome.revision != revision_) {  // stale: show nothing, compute the newest state
+        start();
+        return;
+    }
+    emit busyChanged(false);
+    if (!outcome.error.isEmpty()) {
+        emit failed(outcome.error);
+        return;
+    }
+    present(outcome.value);
+    last_latency_ms_ = static_cast<double>(since_edit_.nsecsElapsed()) / 1e6;
+    emit resultShown(last_latency_ms_);
+}
+
+void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
+    plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+    plot->setMouseTracking(true);
+    QObject::connect(plot, &QCustomPlot::mouseMove, readout, [plot, readout](QMouseEvent* event) {
+        const double x = plot->xAxis->pixelToCoord(event->position().x());
+        const double y = plot->yAxis->pixelToCoord(event->position().y());
+        readout->setText(QString("%1 = %2,  %3 = %4")
+                             .arg(plot->xAxis->label().section(" [", 0, 0))
+                             .arg(x, 0, 'g', 4)
+                             .arg(plot->yAxis->label().section(" [", 0, 0))
+                             .arg(y, 0, 'g', 4));
+    });
+    // Double-click: back to the whole data.
+    QObject::connect(plot, &QCustomPlot::mouseDoubleClick, plot, [plot](QMouseEvent*) {
+        plot->rescaleAxes();
+        plot->replot();
+    });
+}
+
+void AnalysisPanel::storeSettings() { document_->setPanelSettings(name_.toStdString(), settings()); }
+
+}  // namespace terra::ui

@@ -1,0 +1,90 @@
+#pragma once
+/// @file analysis_panel.h
+/// Base of the studio's analysis panels: follows the project document, recomputes off the GUI
+/// thread (QtConcurrent) when the project or the panel's settings change, and drops results of a
+/// superseded state (by revision; a running computation is asked to cancel). Reports the time from
+/// the edit to the repainted plot.
+
+#include <QElapsedTimer>
+#include <QFutureWatcher>
+#include <QWidget>
+#include <any>
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "core/common/table.h"
+
+class QCustomPlot;
+class QLabel;
+
+namespace terra::ui {
+
+class ProjectDocument;
+
+class AnalysisPanel : public QWidget {
+    Q_OBJECT
+public:
+    AnalysisPanel(ProjectDocument* document, const QString& name, QWidget* parent = nullptr);
+    ~AnalysisPanel() override;
+
+    QString name() const { return name_; }
+    /// The plots of the panel with a short name each (for export).
+    virtual std::vector<std::pair<QString, QCustomPlot*>> plots() const = 0;
+    /// The plot the user is looking at, and the data behind it.
+    virtual QCustomPlot* currentPlot() const = 0;
+    virtual Table currentTable() const = 0;
+    /// Panel settings (saved in the project's "panels" object).
+    virtual nlohmann::json settings() const { return nlohmann::json::object(); }
+    virtual void applySettings(const nlohmann::json&) {}
+
+    bool isBusy() const { return watcher_.isRunning(); }
+    double lastLatencyMs() const { return last_latency_ms_; }
+    /// Starts a computation now (the identification panel's "Fit"; also for tests).
+    void recompute() { scheduleUpdate(); }
+
+signals:
+    void resultShown(double latency_ms);  ///< a new result is on screen, after the given time [ms]
+    void failed(const QString& message);
+    void busyChanged(bool busy);
+
+protected:
+    /// A computation: inputs captured by value on the GUI thread, run on a worker. `cancel` is set
+    /// when the result will be dropped anyway.
+    using Job = std::function<std::any(const std::atomic<bool>& cancel)>;
+    virtual Job makeJob() = 0;
+    /// Shows a result (GUI thread); replots.
+    virtual void present(const std::any& result) = 0;
+
+    /// Recompute after the current event (coalescing a burst of edits).
+    void scheduleUpdate();
+    /// Whether project edits recompute automatically (false: only recompute()).
+    void setLive(bool live) { live_ = live; }
+    /// Enables drag/zoom and a crosshair read-out shown in `readout`.
+    static void makeInteractive(QCustomPlot* plot, QLabel* readout);
+    void storeSettings();
+
+    ProjectDocument* document_;
+
+private:
+    struct Outcome {
+        int revision = 0;
+        std::any value;
+        QString error;
+    };
+    void start();
+    void finished();
+
+    QString name_;
+    QFutureWatcher<Outcome> watcher_;
+    std::shared_ptr<std::atomic<bool>> cancel_;
+    int revision_ = 0;
+    bool start_queued_ = false;
+    bool live_ = true;
+    QElapsedTimer since_edit_;
+    double last_latency_ms_ = 0.0;
+};
+
+}  // namespace terra::ui

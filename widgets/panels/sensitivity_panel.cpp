@@ -1,0 +1,133 @@
+#include "widgets/panels/sensitivity_panel.h"
+
+#include <qcustomplot.h>
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QTabWidget>
+#include <QVBoxLayout>
+
+#include "core/soil/soil_parameters.h"
+#include "widgets/document/project_document.h"
+#include "widgets/plots/figures.h"
+
+namespace terra::ui {
+
+SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
+    : AnalysisPanel(document, "sensitivity", parent) {
+    parameter_ = new QComboBox(this);
+    for (const auto& p : analysis::thesisSensitivityParameters()) {
+        const soil::SoilField* field = soil::findSoilField(p.key);
+        QStringList values;
+        for (double v : p.values) values << QString::number(v);
+        parameter_->addItem(QString("%1 [%2]: %3").arg(field ? field->symbol : p.key.c_str(),
+                                                       field ? field->unit : "", values.join(", ")),
+                            QString::fromStdString(p.key));
+    }
+    parameter_->setCurrentIndex(parameter_->findData("phi_deg"));
+    slip_angle_ = new QDoubleSpinBox(this);
+    slip_angle_->setRange(-60.0, 60.0);
+    slip_angle_->setSuffix(" °");
+    slip_angle_->setValue(10.0);
+    tornado_slip_ = new QDoubleSpinBox(this);
+    tornado_slip_->setRange(0.0, 0.99);
+    tornado_slip_->setSingleStep(0.05);
+    tornado_slip_->setValue(0.3);
+    status_ = new QLabel(this);
+    readout_ = new QLabel(this);
+    tabs_ = new QTabWidget(this);
+    fx_ = new QCustomPlot(tabs_);
+    fs_ = new QCustomPlot(tabs_);
+    tornado_ = new QCustomPlot(tabs_);
+    for (QCustomPlot* plot : {fx_, fs_, tornado_}) makeInteractive(plot, readout_);
+    tabs_->addTab(fx_, "Drawbar pull F_x");
+    tabs_->addTab(fs_, "Side force F_s");
+    tabs_->addTab(tornado_, "Tornado (all parameters)");
+
+    auto* bar = new QHBoxLayout;
+    bar->addWidget(new QLabel("Parameter:", this));
+    bar->addWidget(parameter_);
+    bar->addWidget(new QLabel("β:", this));
+    bar->addWidget(slip_angle_);
+    bar->addWidget(new QLabel("Tornado at s =", this));
+    bar->addWidget(tornado_slip_);
+    bar->addStretch(1);
+    bar->addWidget(readout_);
+    auto* layout = new QVBoxLayout(this);
+    layout->addLayout(bar);
+    layout->addWidget(tabs_, 1);
+    layout->addWidget(status_);
+
+    auto changed = [this] {
+        storeSettings();
+        scheduleUpdate();
+    };
+    connect(parameter_, &QComboBox::currentIndexChanged, this, changed);
+    connect(slip_angle_, &QDoubleSpinBox::valueChanged, this, changed);
+    connect(tornado_slip_, &QDoubleSpinBox::valueChanged, this, changed);
+    connect(this, &AnalysisPanel::failed, status_,
+            [this](const QString& m) { status_->setText("<b>Error:</b> " + m.toHtmlEscaped()); });
+    connect(this, &AnalysisPanel::busyChanged, status_, [this](bool busy) {
+        if (busy) status_->setText("Computing…");
+    });
+    scheduleUpdate();
+}
+
+std::vector<std::pair<QString, QCustomPlot*>> SensitivityPanel::plots() const {
+    const QString key = QString::fromStdString(shown_.parameter);
+    return {{"sensitivity-" + key + "-Fx", fx_}, {"sensitivity-" + key + "-Fs", fs_}, {"tornado", tornado_}};
+}
+
+QCustomPlot* SensitivityPanel::currentPlot() const {
+    return static_cast<QCustomPlot*>(tabs_->currentWidget());
+}
+
+Table SensitivityPanel::currentTable() const {
+    return tabs_->currentWidget() == tornado_ ? result_.tornado : result_.family.table;
+}
+
+nlohmann::json SensitivityPanel::settings() const {
+    return {{"parameter", parameter_->currentData().toString().toStdString()},
+            {"slip_angle_deg", slip_angle_->value()},
+            {"tornado_slip", tornado_slip_->value()}};
+}
+
+void SensitivityPanel::applySettings(const nlohmann::json& s) {
+    if (s.contains("parameter")) {
+        const int i = parameter_->findData(QString::fromStdString(s["parameter"].get<std::string>()));
+        if (i >= 0) parameter_->setCurrentIndex(i);
+    }
+    if (s.contains("slip_angle_deg")) slip_angle_->setValue(s["slip_angle_deg"].get<double>());
+    if (s.contains("tornado_slip")) tornado_slip_->setValue(s["tornado_slip"].get<double>());
+}
+
+AnalysisPanel::Job SensitivityPanel::makeJob() {
+    const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
+    SensitivitySettings settings;
+    settings.parameter = parameter_->currentData().toString().toStdString();
+    settings.slip_angle_deg = slip_angle_->value();
+    settings.tornado_slip = tornado_slip_->value();
+    shown_ = settings;
+    return [inputs, settings](const std::atomic<bool>& cancel) -> std::any {
+        return computeSensitivity(inputs, settings, &cancel);
+    };
+}
+
+void SensitivityPanel::present(const std::any& value) {
+    result_ = std::any_cast<SensitivityResult>(value);
+    const Project& p = document_->project();
+    const QString title = QString("%1, %2, W = %3 N, β = %4°")
+                              .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
+                              .arg(p.conditions.load_n)
+                              .arg(shown_.slip_angle_deg);
+    plotSensitivityFamily(*fx_, result_, shown_.parameter, "Fx_N", title);
+    plotSensitivityFamily(*fs_, result_, shown_.parameter, "Fs_N", title);
+    plotTornado(*tornado_, result_, shown_.tornado_slip, title);
+    status_->setText(QString("%1 points; %2 without equilibrium")
+                         .arg(result_.family.table.rows.size())
+                         .arg(result_.family.warnings.size()));
+}
+
+}  // namespace terra::ui

@@ -1,0 +1,123 @@
+#include "widgets/panels/stress_panel.h"
+
+#include <qcustomplot.h>
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QVBoxLayout>
+
+#include "widgets/document/project_document.h"
+#include "widgets/plots/figures.h"
+
+namespace terra::ui {
+
+StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
+    : AnalysisPanel(document, "stresses", parent) {
+    slip_ = new QDoubleSpinBox(this);
+    slip_->setRange(-0.9, 0.99);
+    slip_->setSingleStep(0.05);
+    slip_->setDecimals(3);
+    slip_->setValue(0.2);
+    slip_->setToolTip("Slip ratio s [-] (−0.9 … 0.99)");
+    slip_angle_ = new QDoubleSpinBox(this);
+    slip_angle_->setRange(-60.0, 60.0);
+    slip_angle_->setSuffix(" °");
+    slip_angle_->setValue(10.0);
+    slip_angle_->setToolTip("Slip angle β [deg] (−60 … 60)");
+    stress_ = new QComboBox(this);
+    stress_->addItem("All stresses", "all");
+    stress_->addItem("Normal stress σ", "sigma");
+    stress_->addItem("Shear stress τ", "tau");
+    stress_->addItem("Tangential shear τ_t", "tau_t");
+    stress_->addItem("Lateral shear τ_l", "tau_l");
+    info_ = new QLabel(this);
+    info_->setTextFormat(Qt::RichText);
+    readout_ = new QLabel(this);
+    plot_ = new QCustomPlot(this);
+    makeInteractive(plot_, readout_);
+
+    auto* bar = new QHBoxLayout;
+    bar->addWidget(new QLabel("Slip s:", this));
+    bar->addWidget(slip_);
+    bar->addWidget(new QLabel("Slip angle β:", this));
+    bar->addWidget(slip_angle_);
+    bar->addWidget(stress_);
+    bar->addStretch(1);
+    bar->addWidget(readout_);
+    auto* layout = new QVBoxLayout(this);
+    layout->addLayout(bar);
+    layout->addWidget(plot_, 1);
+    layout->addWidget(info_);
+
+    for (QDoubleSpinBox* box : {slip_, slip_angle_}) {
+        connect(box, &QDoubleSpinBox::valueChanged, this, [this] {
+            storeSettings();
+            scheduleUpdate();
+        });
+    }
+    connect(stress_, &QComboBox::currentIndexChanged, this, [this] {
+        storeSettings();
+        redraw();
+    });
+    connect(this, &AnalysisPanel::failed, info_,
+            [this](const QString& m) { info_->setText("<b>Error:</b> " + m.toHtmlEscaped()); });
+    scheduleUpdate();
+}
+
+nlohmann::json StressPanel::settings() const {
+    return {{"slip", slip_->value()},
+            {"slip_angle_deg", slip_angle_->value()},
+            {"stress", stress_->currentData().toString().toStdString()}};
+}
+
+void StressPanel::applySettings(const nlohmann::json& s) {
+    if (s.contains("slip")) slip_->setValue(s["slip"].get<double>());
+    if (s.contains("slip_angle_deg")) slip_angle_->setValue(s["slip_angle_deg"].get<double>());
+    if (s.contains("stress")) {
+        const int i = stress_->findData(QString::fromStdString(s["stress"].get<std::string>()));
+        if (i >= 0) stress_->setCurrentIndex(i);
+    }
+}
+
+AnalysisPanel::Job StressPanel::makeJob() {
+    const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
+    StressSettings settings;
+    settings.slip = slip_->value();
+    settings.slip_angle_deg = slip_angle_->value();
+    return [inputs, settings](const std::atomic<bool>&) -> std::any { return computeStresses(inputs, settings); };
+}
+
+void StressPanel::present(const std::any& value) {
+    result_ = std::any_cast<StressResult>(value);
+    if (!result_.message.empty()) {
+        info_->setText("<b>No equilibrium:</b> " + QString::fromStdString(result_.message).toHtmlEscaped());
+    } else {
+        QString text = QString("θ_f = %1°, θ_m = %2°. Quadratic approximation (0.01° grid): ")
+                           .arg(result_.entry_angle_deg, 0, 'f', 2)
+                           .arg(result_.max_stress_angle_deg, 0, 'f', 2);
+        const char* names[] = {"σ", "τ", "τ_t", "τ_l"};
+        for (int i = 0; i < 4; ++i) {
+            text += QString("%1 RMSE %2 / MAE %3 kPa%4")
+                        .arg(names[i])
+                        .arg(result_.errors[i].rmse / 1e3, 0, 'f', 3)
+                        .arg(result_.errors[i].mae / 1e3, 0, 'f', 3)
+                        .arg(i < 3 ? ";  " : "");
+        }
+        info_->setText(text);
+    }
+    redraw();
+}
+
+void StressPanel::redraw() {
+    const Project& p = document_->project();
+    plotStresses(*plot_, result_, stress_->currentData().toString().toStdString(),
+                 QString("%1, %2, W = %3 N, s = %4, β = %5°")
+                     .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
+                     .arg(p.conditions.load_n)
+                     .arg(slip_->value())
+                     .arg(slip_angle_->value()));
+}
+
+}  // namespace terra::ui

@@ -1,0 +1,79 @@
+#include "widgets/plots/export_dialog.h"
+
+#include <QCheckBox>
+#include <QDialogButtonBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QSpinBox>
+
+namespace terra::ui {
+
+ExportDialog::ExportDialog(const QString& suggested_path, QWidget* parent) : QDialog(parent) {
+    setWindowTitle("Export plot");
+    path_ = new QLineEdit(suggested_path, this);
+    auto* browse = new QPushButton("…", this);
+    width_ = new QSpinBox(this);
+    width_->setRange(16, 20000);
+    width_->setValue(1200);
+    width_->setSuffix(" px");
+    height_ = new QSpinBox(this);
+    height_->setRange(16, 20000);
+    height_->setValue(800);
+    height_->setSuffix(" px");
+    dpi_ = new QSpinBox(this);
+    dpi_->setRange(10, 2400);
+    dpi_->setValue(96);
+    csv_ = new QCheckBox("Also write the data as CSV beside it", this);
+    csv_->setChecked(true);
+    auto* file_row = new QHBoxLayout;
+    file_row->addWidget(path_, 1);
+    file_row->addWidget(browse);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+    auto* form = new QFormLayout(this);
+    form->addRow("File (.png, .svg, .pdf)", file_row);
+    form->addRow("Width", width_);
+    form->addRow("Height", height_);
+    form->addRow("Resolution [dpi]", dpi_);
+    form->addRow(csv_);
+    form->addRow(buttons);
+    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    connect(browse, &QPushButton::clicked, this, [this] {
+        const QString path = QFileDialog::getSaveFileName(this, "Export plot", path_->text(),
+                                                          "PNG image (*.png);;SVG drawing (*.svg);;PDF (*.pdf)");
+        if (!path.isEmpty()) path_->setText(path);
+    });
+}
+
+QString ExportDialog::path() const { return path_->text().trimmed(); }
+
+ExportOptions ExportDialog::options() const {
+    ExportOptions o;
+    o.width = width_->value();
+    o.height = height_->value();
+    o.dpi = dpi_->value();
+    return o;
+}
+
+bool ExportDialog::writeCsv() const { return csv_->isChecked(); }
+
+bool ExportDialog::exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table,
+                                    const QString& suggested_path) {
+    ExportDialog dialog(suggested_path, parent);
+    if (dialog.exec() != QDialog::Accepted) return false;
+    QString error;
+    bool ok = exportPlot(plot, dialog.path(), dialog.options(), &error);
+    if (ok && dialog.writeCsv()) {
+        const QFileInfo info(dialog.path());
+        ok = exportTable(table, info.path() + "/" + info.completeBaseName() + ".csv", &error);
+    }
+    if (!ok) QMessageBox::warning(parent, "Export failed", error);
+    return ok;
+}
+
+}  // namespace terra::ui

@@ -1,0 +1,37 @@
+#pragma once
+/// @file export_dialog.h
+/// The GUI's plot export dialog: it only gathers the file, size and resolution, then calls
+/// exportPlot() and exportTable() — the same writers as the headless runner.
+
+#include <QDialog>
+
+#include "widgets/plots/plot_export.h"
+
+class QCheckBox;
+class QLineEdit;
+class QSpinBox;
+
+namespace terra::ui {
+
+class ExportDialog : public QDialog {
+    Q_OBJECT
+public:
+    ExportDialog(const QString& suggested_path, QWidget* parent = nullptr);
+
+    QString path() const;
+    ExportOptions options() const;
+    bool writeCsv() const;
+
+    /// Asks, then writes the plot (and its data as CSV beside it). Returns false when cancelled or
+    /// failed (the failure is shown to the user).
+    static bool exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table, const QString& suggested_path);
+
+private:
+    QLineEdit* path_;
+    QSpinBox* width_;
+    QSpinBox* height_;
+    QSpinBox* dpi_;
+    QCheckBox* csv_;
+};
+
+}  // namespace terra::ui

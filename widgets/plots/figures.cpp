@@ -1,0 +1,186 @@
+#include "widgets/plots/figures.h"
+
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace terra::ui {
+namespace {
+
+QColor paletteColor(int index) {
+    static const QColor colors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
+                                    QColor(255, 127, 14), QColor(148, 103, 189), QColor(140, 86, 75)};
+    return colors[index % 6];
+}
+
+QVector<double> column(const Table& table, const std::string& name) {
+    const auto values = table.values(name);
+    return QVector<double>(values.begin(), values.end());
+}
+
+QCPGraph* addLine(QCustomPlot& plot, const QVector<double>& x, const QVector<double>& y, const QString& name,
+                  const QColor& color, Qt::PenStyle style = Qt::SolidLine) {
+    QCPGraph* graph = plot.addGraph();
+    graph->setData(x, y, true);
+    graph->setName(name);
+    QPen pen(color);
+    pen.setWidthF(1.8);
+    pen.setStyle(style);
+    graph->setPen(pen);
+    return graph;
+}
+
+void finish(QCustomPlot& plot) {
+    plot.legend->setVisible(plot.graphCount() > 0);
+    plot.rescaleAxes();
+    const QCPRange y = plot.yAxis->range();
+    const double floor = 0.05 * std::max(std::abs(y.center()), 1e-3);
+    if (y.size() < floor) {
+        plot.yAxis->setRange(y.center() - floor, y.center() + floor);
+    } else {
+        plot.yAxis->scaleRange(1.1, y.center());
+    }
+    plot.replot();
+}
+
+const char* stressLabel(const std::string& stress) {
+    if (stress == "sigma") return "σ";
+    if (stress == "tau") return "τ";
+    if (stress == "tau_t") return "τ_t";
+    return "τ_l";
+}
+
+}  // namespace
+
+void resetPlot(QCustomPlot& plot, const QString& title) {
+    plot.clearGraphs();
+    plot.clearItems();
+    plot.clearPlottables();
+    plot.yAxis->setTicker(QSharedPointer<QCPAxisTicker>(new QCPAxisTicker));
+    plot.yAxis->setTickLabelRotation(0);
+    if (plot.plotLayout()->rowCount() > 1) plot.plotLayout()->removeAt(0);
+    plot.plotLayout()->simplify();
+    plot.plotLayout()->insertRow(0);
+    plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    plot.legend->setVisible(false);
+}
+
+void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress, const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("Contact angle θ [deg]");
+    plot.yAxis->setLabel("Stress [kPa]");
+    if (result.table.rows.empty()) {
+        plot.replot();
+        return;
+    }
+    const QVector<double> theta = column(result.table, "theta_deg");
+    const std::vector<std::string> all{"sigma", "tau", "tau_t", "tau_l"};
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (stress != "all" && stress != all[i]) continue;
+        const QString symbol = stressLabel(all[i]);
+        addLine(plot, theta, column(result.table, all[i] + "_kPa"), symbol + " exact", paletteColor(int(i)));
+        addLine(plot, theta, column(result.table, all[i] + "_quad_kPa"),
+                QString("%1 quadratic (RMSE %2, MAE %3 kPa)")
+                    .arg(symbol)
+                    .arg(result.errors[i].rmse / 1e3, 0, 'f', 3)
+                    .arg(result.errors[i].mae / 1e3, 0, 'f', 3),
+                paletteColor(int(i)), Qt::DashLine);
+    }
+    finish(plot);
+}
+
+void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, const std::string& key,
+                           const std::string& column_name, const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("Slip ratio s [-]");
+    plot.yAxis->setLabel(column_name == "Fx_N" ? "Drawbar pull F_x [N]" : "Side force F_s [N]");
+    const Table& table = result.family.table;
+    if (table.rows.empty()) {
+        plot.replot();
+        return;
+    }
+    const std::size_t k = table.column(key), s = table.column("slip"), v = table.column(column_name);
+    std::map<double, std::pair<QVector<double>, QVector<double>>> curves;
+    for (const auto& row : table.rows) {
+        if (!std::isfinite(row[v])) continue;
+        curves[row[k]].first.push_back(row[s]);
+        curves[row[k]].second.push_back(row[v]);
+    }
+    int index = 0;
+    for (const auto& [value, data] : curves) {
+        addLine(plot, data.first, data.second, QString("%1 = %2").arg(QString::fromStdString(key)).arg(value),
+                paletteColor(index++));
+    }
+    finish(plot);
+}
+
+void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip, const QString& title) {
+    resetPlot(plot, title);
+    const Table& t = result.tornado;
+    if (t.rows.empty()) {
+        plot.replot();
+        return;
+    }
+    const std::size_t lo = t.column("Fx_low_N"), hi = t.column("Fx_high_N"), base = t.column("Fx_base_N");
+    std::vector<std::size_t> order(t.rows.size());
+    std::iota(order.begin(), order.end(), 0);
+    auto swing = [&](std::size_t i) { return std::abs(t.rows[i][hi] - t.rows[i][lo]); };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return swing(a) < swing(b); });
+    // Bars run along x (ΔF_x) with the parameters on the y axis: keyAxis = yAxis.
+    auto* low = new QCPBars(plot.yAxis, plot.xAxis);
+    auto* high = new QCPBars(plot.yAxis, plot.xAxis);
+    low->setName("lowest value of Table 4.1");
+    high->setName("highest value of Table 4.1");
+    low->setBrush(QColor(31, 119, 180, 200));
+    high->setBrush(QColor(214, 39, 40, 200));
+    low->setPen(Qt::NoPen);
+    high->setPen(Qt::NoPen);
+    low->setWidth(0.6);
+    high->setWidth(0.6);
+    QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
+    for (std::size_t rank = 0; rank < order.size(); ++rank) {
+        const auto& row = t.rows[order[rank]];
+        const double position = static_cast<double>(rank + 1);
+        low->addData(position, row[lo] - row[base]);
+        high->addData(position, row[hi] - row[base]);
+        ticker->addTick(position, QString::fromStdString(result.tornado_keys[order[rank]]));
+    }
+    plot.yAxis->setTicker(ticker);
+    plot.yAxis->setLabel("Soil parameter");
+    plot.xAxis->setLabel(QString("Change of F_x at s = %1 from the base soil [N]").arg(slip));
+    plot.legend->setVisible(true);
+    plot.rescaleAxes();
+    plot.yAxis->setRange(0.3, static_cast<double>(order.size()) + 0.7);
+    plot.xAxis->scaleRange(1.15, 0.0);
+    const double reach = std::max(std::abs(plot.xAxis->range().lower), std::abs(plot.xAxis->range().upper));
+    plot.xAxis->setRange(-reach, reach);
+    plot.replot();
+}
+
+void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, const std::string& channel,
+                        const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("Slip ratio s [-]");
+    const QString label = channel == "Fx_N"   ? "Drawbar pull F_x [N]"
+                          : channel == "Fz_N" ? "Vertical force F_z [N]"
+                                              : "Resistance torque M_y [N·m]";
+    plot.yAxis->setLabel(label);
+    if (result.curves.rows.empty()) {
+        plot.replot();
+        return;
+    }
+    const QVector<double> slip = column(result.curves, "slip");
+    QCPGraph* data = addLine(plot, slip, column(result.curves, channel), "data", QColor(90, 90, 90));
+    data->setLineStyle(QCPGraph::lsNone);
+    data->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 4));
+    std::string fitted = channel;
+    fitted.insert(channel.rfind('_'), "_fit");
+    addLine(plot, slip, column(result.curves, fitted), result.refined ? "full model, refined fit" : "decoupled fit",
+            QColor(214, 39, 40));
+    finish(plot);
+}
+
+}  // namespace terra::ui

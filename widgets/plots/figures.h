@@ -1,0 +1,34 @@
+#pragma once
+/// @file figures.h
+/// Draws the analyses' results (widgets/analyses/analyses.h) on a QCustomPlot: the same drawing
+/// for the panels and for headless exports. Each function replaces what the plot showed.
+
+#include <QString>
+#include <string>
+
+#include "widgets/analyses/analyses.h"
+
+class QCustomPlot;
+
+namespace terra::ui {
+
+/// Clears graphs, items and the title row, then sets a new title.
+void resetPlot(QCustomPlot& plot, const QString& title);
+
+/// One stress ("sigma", "tau", "tau_t", "tau_l") over θ: exact solid, quadratic dashed, with the
+/// RMSE/MAE in the legend. "all" draws the four exact and approximated pairs together.
+void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress, const QString& title);
+
+/// One curve per value of the varied parameter: `column` (Fx_N or Fs_N) against slip.
+void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, const std::string& key,
+                           const std::string& column, const QString& title);
+
+/// Horizontal bars: the change of F_x from the base soil at the lowest and highest variation of
+/// each parameter, sorted by total swing (the most influential on top).
+void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip, const QString& title);
+
+/// Data (points) and fitted curve (line) of one channel ("Fx_N", "Fz_N", "My_Nm") against slip.
+void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, const std::string& channel,
+                        const QString& title);
+
+}  // namespace terra::ui
