@@ -1,0 +1,66 @@
+#pragma once
+/// @file runner.h
+/// Runs a scenario at its fixed step: progress callback, cancel flag, a time series, a summary,
+/// and (optionally) the streaming identification of one wheel's noisy samples. Cancelled or
+/// diverged runs keep what was computed, marked as such.
+
+#include <array>
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/common/table.h"
+#include "core/dynamics/rover.h"
+#include "core/scenario/scenario.h"
+
+namespace terra::scenario {
+
+struct RunOptions {
+    /// Called about every 1 % of the duration with the fraction done (0..1).
+    std::function<void(double)> progress;
+    /// Polled every step; when it becomes true the run stops and keeps what it has.
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+/// What a run produced, summed up (the summary JSON of docs/dynamics.md).
+struct Summary {
+    double duration_s = 0.0;   ///< simulated time actually run [s]
+    double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  ///< final pose (centre of mass)
+    double distance_m = 0.0;   ///< path length of the centre of mass on the ground [m]
+    std::array<double, dynamics::kWheelCount> mean_slip{};  ///< time average of s per wheel
+    double energy_j = 0.0;     ///< drive motors' work ∫ Σ M_y ω dt (+ spin-up) [J]
+    double dissipated_j = 0.0; ///< work into the soil [J]
+    double kinetic_change_j = 0.0, potential_change_j = 0.0;  ///< [J]
+    double max_sinkage_m = 0.0;
+    int sunk_steps = 0;        ///< wheel-steps with θ_f clamped at 90°
+    long steps = 0;
+};
+
+struct RunResult {
+    enum class Status { kCompleted, kCancelled, kDiverged };
+    Status status = Status::kCompleted;
+    std::string message;
+    Table series;     ///< one row per output interval (columns: docs/dynamics.md)
+    Summary summary;
+    Table streaming;  ///< streaming identification updates (empty without the hook)
+    bool usable() const { return series.rows.size() > 1; }
+};
+
+/// Runs the scenario. Throws std::invalid_argument when the robot cannot be set up (invalid
+/// parameters, no static equilibrium on the starting soil).
+RunResult runScenario(const Scenario& scenario, const RunOptions& options = {});
+
+/// The summary as JSON: duration_s, x_m, y_m, yaw_rad, distance_m, mean_slip {FL, FR, RL, RR},
+/// energy_J and the rest, with "status" and "scenario".
+nlohmann::json toJson(const RunResult& result, const Scenario& scenario);
+
+/// Writes timeseries.csv, summary.json (and streaming.csv) into `directory` (created), each
+/// atomically. An error message, or nothing.
+std::optional<std::string> writeResults(const RunResult& result, const Scenario& scenario,
+                                        const std::filesystem::path& directory);
+
+}  // namespace terra::scenario

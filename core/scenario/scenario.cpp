@@ -1,0 +1,45 @@
+#include "core/scenario/scenario.h"
+
+#include "core/common/range.h"
+#include "core/soil/soil_parameters.h"
+
+namespace terra::scenario {
+
+dynamics::Commands Scenario::commandsAt(double t_s) const {
+    dynamics::Commands commands;
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        commands[i].spin_rate_rad_s = wheels[i].spin_rate_rad_s.at(t_s);
+        commands[i].steer_angle_rad = wheels[i].steer_angle_rad.at(t_s);
+    }
+    return commands;
+}
+
+std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
+    std::vector<Issue> issues = dynamics::validate(s.robot, prefix + "robot.");
+    checkRange(issues, prefix + "duration_s", s.duration_s, {0.0, 86400.0, true, false}, "s");
+    checkRange(issues, prefix + "time_step_s", s.time_step_s, {0.0, 0.05, true, false}, "s");
+    if (s.time_step_s > 0.0) {
+        checkRange(issues, prefix + "output_interval_s", s.output_interval_s,
+                   {s.time_step_s, 3600.0}, "s");
+    }
+    for (Issue& issue : soil::validate(s.terrain.base, prefix + "terrain.soil."))
+        issues.push_back(std::move(issue));
+    for (std::size_t i = 0; i < s.terrain.patches.size(); ++i) {
+        const std::string at = prefix + "terrain.patches[" + std::to_string(i) + "].";
+        for (Issue& issue : soil::validate(s.terrain.patches[i].soil, at + "soil."))
+            issues.push_back(std::move(issue));
+        const dynamics::SoilPatch& p = s.terrain.patches[i];
+        if (!(p.x_min_m < p.x_max_m)) {
+            issues.push_back({at + "x_min_m", "x_min_m = " + formatNumber(p.x_min_m) +
+                                                  " must be < x_max_m = " + formatNumber(p.x_max_m)});
+        }
+        if (!(p.y_min_m < p.y_max_m)) {
+            issues.push_back({at + "y_min_m", "y_min_m = " + formatNumber(p.y_min_m) +
+                                                  " must be < y_max_m = " + formatNumber(p.y_max_m)});
+        }
+    }
+    checkRange(issues, prefix + "initial.speed_m_s", s.initial.speed_m_s, {0.0, 100.0}, "m/s");
+    return issues;
+}
+
+}  // namespace terra::scenario

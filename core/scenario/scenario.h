@@ -1,0 +1,59 @@
+#pragma once
+/// @file scenario.h
+/// A rover scenario (thesis chapter 3): the robot, the terrain, the initial state, each wheel's
+/// angular speed and steering angle as functions of time, the duration and the time step. Files:
+/// resources/scenarios/*.json, format in docs/dynamics.md (scenario_json.h reads them).
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/issue.h"
+#include "core/dynamics/robot.h"
+#include "core/dynamics/rover.h"
+#include "core/dynamics/terrain.h"
+#include "core/scenario/signal.h"
+
+namespace terra::scenario {
+
+/// The inputs of one wheel (SI: rad/s and rad).
+struct WheelInputs {
+    Signal spin_rate_rad_s;  ///< ω(t) [rad/s]
+    Signal steer_angle_rad;  ///< δ(t) [rad], positive to the left
+};
+
+/// Optional: feed one wheel's (s, θ_f, F_x, F_z, M_y) samples, with sensor noise, into the
+/// streaming identifier (core/identification/streaming.h), so the run shows the robot recognising
+/// the soil it drives on (docs/dynamics.md, "Streaming identification").
+struct StreamingHook {
+    int wheel = dynamics::kFrontLeft;  ///< which wheel's sensors
+    double interval_s = 0.05;          ///< sampling period [s] (20 Hz)
+    double slip_noise = 0.005;         ///< standard deviation of s [-]
+    double entry_angle_noise_rad = 0.0035;  ///< of θ_f [rad] (0.2°)
+    double force_noise_n = 0.5;        ///< of F_x and F_z [N]
+    double torque_noise_nm = 0.05;     ///< of M_y [N·m]
+    unsigned seed = 1;                 ///< noise seed (runs repeat bit for bit)
+};
+
+struct Scenario {
+    std::string name;
+    std::string description;
+    dynamics::RobotParameters robot;
+    dynamics::Terrain terrain;
+    dynamics::InitialState initial;
+    dynamics::RoverOptions options;
+    std::array<WheelInputs, dynamics::kWheelCount> wheels;
+    double duration_s = 60.0;        ///< simulated time [s]
+    double time_step_s = 1e-3;       ///< fixed physics step [s]
+    double output_interval_s = 0.01; ///< time-series row spacing [s] (a multiple of the step)
+    std::optional<StreamingHook> streaming;
+
+    /// Every wheel's command at time t [s].
+    dynamics::Commands commandsAt(double t_s) const;
+};
+
+/// Every problem of a scenario built in code (the JSON reader reports the same with file paths).
+std::vector<Issue> validate(const Scenario& scenario, const std::string& prefix = {});
+
+}  // namespace terra::scenario

@@ -1,0 +1,206 @@
+// The rover on soil: physical sense of the coupled dynamics, each checked against something
+// computed independently (the core wheel model on its own, the steering geometry, the energy
+// ledger, symmetry), never against pasted outputs. Short runs keep the suite fast.
+#include "core/dynamics/rover.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/contact/sinkage.h"
+#include "core/io/parameters_json.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
+
+namespace terra::dynamics {
+namespace {
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+// The shipped straight-line scenario, shortened: the transient from rest settles in ~2 s.
+scenario::Scenario straight(double duration_s = 8.0) {
+    Result<scenario::Scenario> s = scenario::resolveScenario(kLocations, "straight");
+    EXPECT_TRUE(s.ok()) << s.message();
+    scenario::Scenario out = s.value();
+    out.duration_s = duration_s;
+    return out;
+}
+
+scenario::Scenario steered(double front_deg, double rear_deg, double duration_s = 12.0) {
+    scenario::Scenario s = straight(duration_s);
+    for (int i = 0; i < kWheelCount; ++i) {
+        s.wheels[i].steer_angle_rad =
+            scenario::Signal::constant((i < 2 ? front_deg : rear_deg) * M_PI / 180.0);
+    }
+    s.initial.speed_m_s = 0.02;
+    return s;
+}
+
+double at(const scenario::RunResult& r, const std::string& column) {
+    return r.series.rows.back()[r.series.column(column)];
+}
+
+TEST(Rover, StraightLineHasNoYawNoDriftAndSpeedFromSlip) {
+    const scenario::Scenario s = straight();
+    const scenario::RunResult r = scenario::runScenario(s);
+    ASSERT_EQ(r.status, scenario::RunResult::Status::kCompleted);
+    EXPECT_EQ(r.summary.y_m, 0.0);
+    EXPECT_EQ(r.summary.yaw_rad, 0.0);
+    EXPECT_EQ(at(r, "lateral_m_s"), 0.0);
+    // Steady speed v = r ω (1 − s) (Eq. 2.1 for driving), within 1 %.
+    const double r_omega = s.robot.wheel.radius_m * 0.4;
+    for (const char* w : kCornerNames) {
+        const double slip = at(r, std::string(w) + "_slip");
+        EXPECT_NEAR(at(r, "forward_m_s"), r_omega * (1.0 - slip), 0.01 * r_omega * (1.0 - slip)) << w;
+    }
+    // The loads carry the weight (no vertical motion left).
+    double loads = 0.0;
+    for (const char* w : kCornerNames) loads += at(r, std::string(w) + "_load_N");
+    EXPECT_NEAR(loads, s.robot.totalMass() * 9.81, 1e-6 * loads);
+}
+
+// The slip at which the core model, wheel by wheel under the loads the dynamics found, gives zero
+// net drawbar pull: the operating point of a robot rolling on flat ground at constant speed.
+TEST(Rover, SteadySlipMatchesTheCoreModelUnderTheSameLoads) {
+    const scenario::Scenario s = straight();
+    const scenario::RunResult r = scenario::runScenario(s);
+    const auto p = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    std::array<double, kWheelCount> loads{};
+    for (int i = 0; i < kWheelCount; ++i) loads[i] = at(r, std::string(kCornerNames[i]) + "_load_N");
+    auto netPull = [&](double slip) {
+        double total = 0.0;
+        for (double load : loads) {
+            contact::EntryAngleProblem problem;
+            problem.load_n = load;
+            problem.slip = slip;
+            const auto solution = contact::solveEntryAngle(p, problem);
+            EXPECT_TRUE(solution.ok());
+            const contact::OperatingPoint<double> op{slip, 0.0, solution.entry_angle_rad, 0.0, {}};
+            total += contact::computeForces(p, op).fx;
+        }
+        return total;
+    };
+    double lo = 0.01, hi = 0.9;  // bisection on the net pull
+    ASSERT_LT(netPull(lo), 0.0);
+    ASSERT_GT(netPull(hi), 0.0);
+    for (int i = 0; i < 50; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (netPull(mid) < 0.0 ? lo : hi) = mid;
+    }
+    const double expected = 0.5 * (lo + hi);
+    for (const char* w : kCornerNames) {
+        EXPECT_NEAR(at(r, std::string(w) + "_slip"), expected, 0.01 * expected) << w;
+    }
+}
+
+TEST(Rover, SteadySinkageAgreesWithTheEntryAngleEstimator) {
+    const scenario::Scenario s = straight();
+    const scenario::RunResult r = scenario::runScenario(s);
+    const auto p = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    for (const char* w : kCornerNames) {
+        const std::string c(w);
+        contact::EntryAngleProblem problem;
+        problem.load_n = at(r, c + "_load_N");
+        problem.slip = at(r, c + "_slip");
+        const auto solution = contact::solveEntryAngle(p, problem);
+        ASSERT_TRUE(solution.ok());
+        EXPECT_NEAR(at(r, c + "_sinkage_m"), solution.sinkage_m, 0.02 * solution.sinkage_m) << w;
+    }
+}
+
+TEST(Rover, MotorWorkBalancesKineticPotentialAndDissipatedEnergy) {
+    for (const scenario::Scenario& s : {straight(6.0), steered(10.0, -10.0, 6.0)}) {
+        const scenario::Summary sum = scenario::runScenario(s).summary;
+        const double balance = sum.kinetic_change_j + sum.potential_change_j + sum.dissipated_j;
+        EXPECT_GT(sum.energy_j, 0.0);
+        EXPECT_NEAR(sum.energy_j, balance, 0.01 * sum.energy_j);
+    }
+}
+
+// Front-wheel steering δ on wheelbase L: kinematically the robot turns about a point on the rear
+// axle line, yaw rate = v tan δ / L. The wheels' slip angles on soil make it turn a little wider
+// (understeer), so the kinematic value is an upper bound reached within 15 %.
+TEST(Rover, TurnsTowardTheSteeredSideAtTheGeometricRate) {
+    const double delta = 10.0 * M_PI / 180.0;
+    const scenario::Scenario s = steered(10.0, 0.0);
+    const scenario::RunResult r = scenario::runScenario(s);
+    const double yaw_rate = at(r, "yaw_rate_deg_s") * M_PI / 180.0;
+    const double speed = at(r, "forward_m_s");
+    EXPECT_GT(r.summary.yaw_rad, 0.0);  // left turn for a left steer
+    EXPECT_GT(r.summary.y_m, 0.0);
+    const double kinematic = speed * std::tan(delta) / s.robot.wheelbase_m;
+    EXPECT_LT(yaw_rate, kinematic);
+    EXPECT_NEAR(yaw_rate, kinematic, 0.15 * kinematic);
+
+    // 4WS counter-steer (front +δ, rear −δ): kinematically twice the yaw rate.
+    const scenario::RunResult counter = scenario::runScenario(steered(10.0, -10.0));
+    const double counter_rate = at(counter, "yaw_rate_deg_s") * M_PI / 180.0;
+    const double counter_kinematic = 2.0 * at(counter, "forward_m_s") * std::tan(delta) /
+                                     s.robot.wheelbase_m;
+    EXPECT_NEAR(counter_rate, counter_kinematic, 0.15 * counter_kinematic);
+}
+
+TEST(Rover, MirroredSteeringGivesAMirroredPath) {
+    const scenario::RunResult left = scenario::runScenario(steered(8.0, 0.0, 6.0));
+    const scenario::RunResult right = scenario::runScenario(steered(-8.0, 0.0, 6.0));
+    ASSERT_GT(left.summary.y_m, 1e-4);
+    EXPECT_NEAR(right.summary.x_m, left.summary.x_m, 1e-12);
+    EXPECT_NEAR(right.summary.y_m, -left.summary.y_m, 1e-12);
+    EXPECT_NEAR(right.summary.yaw_rad, -left.summary.yaw_rad, 1e-12);
+    EXPECT_NEAR(right.summary.mean_slip[kFrontLeft], left.summary.mean_slip[kFrontRight], 1e-12);
+}
+
+TEST(Rover, SameScenarioTwiceIsBitIdentical) {
+    const scenario::Scenario s = steered(5.0, -3.0, 3.0);
+    const scenario::RunResult a = scenario::runScenario(s);
+    const scenario::RunResult b = scenario::runScenario(s);
+    ASSERT_EQ(a.series.rows.size(), b.series.rows.size());
+    for (std::size_t i = 0; i < a.series.rows.size(); ++i) {
+        ASSERT_EQ(a.series.rows[i], b.series.rows[i]) << "row " << i;
+    }
+    EXPECT_EQ(a.summary.energy_j, b.summary.energy_j);
+}
+
+TEST(Rover, CrossesIntoAnotherSoil) {
+    scenario::Scenario s = straight(10.0);
+    s.initial.speed_m_s = 0.02;
+    dynamics::SoilPatch clay;
+    clay.soil = io::resolveSoil(kLocations, "clayey-soil").value();
+    clay.x_min_m = 0.3;  // the front hubs start at x = 0.25 m, the rear ones at −0.25 m
+    s.terrain.patches.push_back(clay);
+    const scenario::RunResult r = scenario::runScenario(s);
+    const auto& first = r.series.rows.front();
+    EXPECT_EQ(first[r.series.column("FL_soil")], 0.0);
+    EXPECT_EQ(at(r, "FL_soil"), 1.0);
+    EXPECT_EQ(at(r, "FR_soil"), 1.0);
+    EXPECT_EQ(at(r, "RL_soil"), 0.0);
+    // Front wheels on the firmer clay sink less than the rear ones still on sandy loam.
+    EXPECT_LT(at(r, "FL_theta_f_deg"), at(r, "RL_theta_f_deg") - 1.0);
+}
+
+TEST(Rover, CancelKeepsWhatWasComputed) {
+    std::atomic<bool> cancel{false};
+    scenario::RunOptions options;
+    options.cancel = &cancel;
+    options.progress = [&](double fraction) {
+        if (fraction >= 0.5) cancel = true;
+    };
+    const scenario::RunResult r = scenario::runScenario(straight(2.0), options);
+    EXPECT_EQ(r.status, scenario::RunResult::Status::kCancelled);
+    EXPECT_TRUE(r.usable());
+    EXPECT_NEAR(r.summary.duration_s, 1.0, 0.05);
+}
+
+TEST(Rover, TooHeavyARobotIsRejectedWithTheReason) {
+    scenario::Scenario s = straight(1.0);
+    s.robot.chassis_mass_kg = 5000.0;
+    try {
+        scenario::runScenario(s);
+        FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("no equilibrium"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace terra::dynamics

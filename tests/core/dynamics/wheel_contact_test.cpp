@@ -1,0 +1,80 @@
+// One wheel's contact from its kinematics: slip and slip angle of Eqs. 2.1–2.2 with the
+// regularisation, θ_f from the sinkage (Eq. 2.12), and the forces of the core model.
+#include "core/dynamics/wheel_contact.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/contact/quadratic_model.h"
+#include "core/soil/soil_parameters.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::dynamics {
+namespace {
+
+contact::ContactParameters<double> sandyLoamWheelA() {
+    soil::SoilParameters soil;  // the defaults are the thesis's sandy loam (Table 2.1)
+    soil.max_shear_deformation_m = 0.02;
+    return contact::makeContactParameters(soil, wheel::WheelParameters{});
+}
+
+TEST(WheelContact, SlipFollowsEquation21ForDrivingAndBraking) {
+    const ContactOptions o;
+    EXPECT_DOUBLE_EQ(slipRatio(0.03, 0.04, o), 1.0 - 0.03 / 0.04);  // driving: 1 − v/(rω)
+    EXPECT_DOUBLE_EQ(slipRatio(0.05, 0.04, o), 0.04 / 0.05 - 1.0);  // braking: rω/v − 1
+    EXPECT_DOUBLE_EQ(slipRatio(0.04, 0.04, o), 0.0);
+    EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.04, o), o.max_slip);  // stalled wheel, clamped
+    EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.0, o), 0.0);          // standing still: regularised, finite
+    // Below v_reg the denominator is v_reg: continuous through zero speed.
+    EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.5e-3, o), 0.5);
+}
+
+TEST(WheelContact, SlipAngleIsPositiveForLeftwardMotion) {
+    const ContactOptions o;
+    EXPECT_DOUBLE_EQ(slipAngle(0.1, 0.1, o), std::atan(1.0));
+    EXPECT_DOUBLE_EQ(slipAngle(0.1, -0.1, o), -std::atan(1.0));
+    EXPECT_DOUBLE_EQ(slipAngle(0.0, 0.0, o), 0.0);
+    EXPECT_LT(std::abs(slipAngle(0.0, 1.0, o)), M_PI / 2);  // stays inside the model's domain
+}
+
+TEST(WheelContact, ForcesAreTheCoreModelsAtTheEntryAngleOfTheSinkage) {
+    const auto p = sandyLoamWheelA();
+    ContactOptions o;
+    const WheelKinematics k{0.03, 0.004, 0.04, 0.005};
+    const WheelContact c = evaluateContact(p, k, o);
+    ASSERT_TRUE(c.in_contact);
+    EXPECT_NEAR(p.radius_m * (1.0 - std::cos(c.entry_angle_rad)), 0.005, 1e-15);  // Eq. 2.12
+    const contact::OperatingPoint<double> op{0.25, std::atan(0.004 / 0.03), c.entry_angle_rad, 0.0,
+                                             std::nullopt};
+    const auto f = contact::computeForces(p, op);
+    EXPECT_DOUBLE_EQ(c.forces.fz, f.fz);
+    EXPECT_DOUBLE_EQ(c.forces.my, f.my);
+    // β ≈ 7.6° ≫ β_reg: the side force is the model's F_y − F_b (MODEL-NOTES).
+    EXPECT_DOUBLE_EQ(c.forces.fs, f.fs);
+    EXPECT_LT(c.forces.fs, 0.0);  // against the leftward slip
+
+    o.model = contact::ContactModel::kQuadratic;
+    EXPECT_DOUBLE_EQ(evaluateContact(p, k, o).forces.fz, contact::computeQuadraticForces(p, op).fz);
+}
+
+TEST(WheelContact, BulldozingSignIsSmoothedThroughZeroSlipAngle) {
+    const auto p = sandyLoamWheelA();
+    const ContactOptions o;
+    // β = β_reg / 2: half the bulldozing force.
+    const double vy = 0.03 * std::tan(0.5 * o.slip_angle_regularisation_rad);
+    const WheelContact c = evaluateContact(p, {0.03, vy, 0.04, 0.005}, o);
+    EXPECT_NEAR(c.forces.fs, c.forces.fy - 0.5 * c.forces.fb, 1e-12 * c.forces.fb);
+    const WheelContact zero = evaluateContact(p, {0.03, 0.0, 0.04, 0.005}, o);
+    EXPECT_EQ(zero.forces.fs, 0.0);
+}
+
+TEST(WheelContact, NoForceOutOfTheSoil) {
+    const WheelContact c = evaluateContact(sandyLoamWheelA(), {0.03, 0.0, 0.04, -0.001}, {});
+    EXPECT_FALSE(c.in_contact);
+    EXPECT_EQ(c.forces.fz, 0.0);
+    EXPECT_EQ(c.forces.my, 0.0);
+}
+
+}  // namespace
+}  // namespace terra::dynamics

@@ -1,0 +1,99 @@
+// Scenario and robot files: the shipped ones load, bad ones are rejected naming the field.
+#include "core/scenario/scenario_json.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace terra::scenario {
+namespace {
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+nlohmann::json minimal() {
+    return nlohmann::json::parse(R"({
+        "duration_s": 1, "time_step_s": 0.001, "terrain": "sandy-loam",
+        "wheels": {"all": {"omega_rad_s": 0.4}}})");
+}
+
+TEST(ScenarioJson, ShippedScenariosLoad) {
+    int count = 0;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::string(TERRA_RESOURCE_DIR) + "/scenarios")) {
+        const Result<Scenario> s = loadScenario(entry.path(), kLocations);
+        EXPECT_TRUE(s.ok()) << entry.path() << ": " << s.message();
+        ++count;
+    }
+    EXPECT_GE(count, 4);
+    const Result<Scenario> pulse = resolveScenario(kLocations, "pulse-steering");
+    ASSERT_TRUE(pulse.ok()) << pulse.message();
+    // Table 2.6: ω = 0.4 rad/s; the front wheels get the pulse, the rear ones stay straight.
+    EXPECT_EQ(pulse->commandsAt(0.0)[dynamics::kRearLeft].spin_rate_rad_s, 0.4);
+    EXPECT_NEAR(pulse->commandsAt(15.0)[dynamics::kFrontLeft].steer_angle_rad, 10 * M_PI / 180, 1e-15);
+    EXPECT_EQ(pulse->commandsAt(15.0)[dynamics::kRearRight].steer_angle_rad, 0.0);
+    EXPECT_EQ(pulse->commandsAt(35.0)[dynamics::kFrontRight].steer_angle_rad, 0.0);
+}
+
+TEST(ScenarioJson, DefaultRobotCarriesSixKilogramsPerWheel) {
+    const auto robot = resolveRobot(kLocations, "default");
+    ASSERT_TRUE(robot.ok()) << robot.message();
+    EXPECT_DOUBLE_EQ(robot->totalMass() / dynamics::kWheelCount, 6.0);  // Table 2.6
+    EXPECT_EQ(robot->wheel.radius_m, 0.092);                             // wheel A
+}
+
+TEST(ScenarioJson, PerWheelInputsOverrideAll) {
+    nlohmann::json j = minimal();
+    j["wheels"]["RR"] = {{"omega_rad_s", 0.2}, {"steer_deg", -5}};
+    const Result<Scenario> s = scenarioFromJson(j, "x.json", kLocations);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(s->commandsAt(0)[dynamics::kFrontLeft].spin_rate_rad_s, 0.4);
+    EXPECT_EQ(s->commandsAt(0)[dynamics::kRearRight].spin_rate_rad_s, 0.2);
+    EXPECT_NEAR(s->commandsAt(0)[dynamics::kRearRight].steer_angle_rad, -5 * M_PI / 180, 1e-15);
+}
+
+struct BadCase {
+    const char* patch;     // JSON merged into the minimal scenario
+    const char* expected;  // must appear in the message
+};
+
+TEST(ScenarioJson, BadFilesNameTheField) {
+    const BadCase cases[] = {
+        {R"({"time_step_s": 0.5})", "x.json: time_step_s"},
+        {R"({"duration_s": -1})", "duration_s"},
+        {R"({"duraton_s": 1})", "duraton_s: unknown key"},
+        {R"({"terrain": "moon-dust"})", "moon-dust"},
+        {R"({"terrain": {"soil": "sandy-loam", "patches": [{"soil": "clayey-soil", "x_min_m": "a"}]}})",
+         "terrain.patches[0].x_min_m"},
+        {R"({"wheels": {"all": null, "FL": {"omega_rad_s": 0.4}}})", "wheels.FR.omega_rad_s: missing"},
+        {R"({"wheels": {"all": {"omega_rad_s": 0.4, "steer_deg": 75}}})", "wheels.all.steer_deg"},
+        {R"({"wheels": {"all": {"omega_rad_s": {"type": "wiggle"}}}})", "wheels.all.omega_rad_s.type"},
+        {R"({"wheels": {"all": {"omega_rad_s": {"type": "step", "value": 0.4}}}})",
+         "wheels.all.omega_rad_s.amplitude: missing"},
+        {R"({"wheels": {"all": {"omega_rad_s": {"type": "table", "t_s": [0, 0], "values": [1, 2]}}}})",
+         "t_s[1]"},
+        {R"({"model": "cubic"})", "model"},
+        {R"({"robot": {"wheel": "A", "chassis_mass_kg": -3, "chassis_inertia_kg_m2": [1, 1, 1],
+                       "wheel_mass_kg": 1, "wheelbase_m": 0.5, "track_m": 0.4}})",
+         "robot.chassis_mass_kg"},
+        {R"({"streaming": {"wheel": "XX"}})", "streaming.wheel"},
+    };
+    for (const BadCase& c : cases) {
+        nlohmann::json j = minimal();
+        j.merge_patch(nlohmann::json::parse(c.patch));
+        const Result<Scenario> s = scenarioFromJson(j, "x.json", kLocations);
+        ASSERT_FALSE(s.ok()) << c.patch;
+        EXPECT_NE(s.message().find(c.expected), std::string::npos)
+            << c.patch << "\n  gave: " << s.message();
+    }
+}
+
+TEST(ScenarioJson, MissingAndBrokenFiles) {
+    EXPECT_NE(resolveScenario(kLocations, "no-such-scenario").message().find("straight"),
+              std::string::npos);  // lists what exists
+    const Result<Scenario> bad = loadScenario(std::string(TERRA_TEST_DATA_DIR) + "/nowhere.json", kLocations);
+    EXPECT_FALSE(bad.ok());
+}
+
+}  // namespace
+}  // namespace terra::scenario
