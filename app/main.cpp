@@ -25,6 +25,7 @@ int runHeadless(int argc, char** argv) {
     addStressesCommand(app, locations);
     addIdentifyCommands(app, locations);
     addRunCommand(app, locations);
+    addSimulateCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -18,5 +18,6 @@ void addRenderCommand(CLI::App& app, const io::PresetLocations& locations);
 void addStressesCommand(CLI::App& app, const io::PresetLocations& locations);
 void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations);
 void addRunCommand(CLI::App& app, const io::PresetLocations& locations);
+void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

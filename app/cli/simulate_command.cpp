@@ -1,0 +1,131 @@
+// terrastudio simulate: run a rover scenario (docs/dynamics.md), write the time series and the
+// summary, with a progress bar on a terminal and Ctrl-C that stops and still writes.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include "app/cli/cli_support.h"
+#include "app/cli/commands.h"
+#include "core/common/range.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
+
+namespace terra::app {
+namespace {
+
+/// Exit code of a run stopped by Ctrl-C (128 + SIGINT, the shell's convention; docs/cli.md).
+constexpr int kCancelled = 130;
+
+std::atomic<bool> g_cancel{false};
+
+extern "C" void onInterrupt(int) { g_cancel.store(true); }
+
+struct SimulateOptions {
+    std::string scenario;
+    std::string out;
+    bool json = false;
+    std::optional<double> duration_s;
+    std::optional<double> time_step_s;
+    std::optional<std::string> model;
+};
+
+void drawProgress(double fraction) {
+    constexpr int kWidth = 40;
+    const int filled = static_cast<int>(fraction * kWidth + 0.5);
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(kWidth, '.');
+    std::fprintf(stderr, "\r[%s] %3d %%", bar.c_str(), static_cast<int>(fraction * 100.0 + 0.5));
+    std::fflush(stderr);
+}
+
+void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const std::string& out) {
+    const scenario::Summary& m = r.summary;
+    std::cout << s.name << ": " << fixed(m.duration_s, 3) << " s simulated in " << m.steps
+              << " steps of " << formatNumber(s.time_step_s) << " s\n"
+              << "  final pose   x = " << fixed(m.x_m, 4) << " m, y = " << fixed(m.y_m, 4)
+              << " m, yaw = " << fixed(m.yaw_rad * 180.0 / M_PI, 3) << " deg\n"
+              << "  distance     " << fixed(m.distance_m, 4) << " m\n"
+              << "  mean slip   ";
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        std::cout << " " << dynamics::kCornerNames[i] << " " << fixed(m.mean_slip[i], 4);
+    }
+    std::cout << "\n  motor energy " << fixed(m.energy_j, 3) << " J (into the soil "
+              << fixed(m.dissipated_j, 3) << " J)\n"
+              << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
+              << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv") << '\n';
+}
+
+}  // namespace
+
+void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
+    auto options = std::make_shared<SimulateOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "simulate", "Drive the 4WD/4WS robot through a scenario on deformable soil (docs/dynamics.md)");
+    cmd->add_option("--scenario", options->scenario,
+                    "Scenario file or name in resources/scenarios (straight, pulse-steering, ...)")
+        ->required();
+    cmd->add_option("--out", options->out, "Output directory (timeseries.csv, summary.json)")->required();
+    cmd->add_flag("--json", options->json, "Print the summary as JSON");
+    cmd->add_option("--duration", options->duration_s, "Override the scenario's duration [s]");
+    cmd->add_option("--step", options->time_step_s, "Override the scenario's time step [s]");
+    cmd->add_option("--model", options->model, "Override the contact model: full or quadratic")
+        ->check(CLI::IsMember({"full", "quadratic"}));
+    cmd->callback([options, &locations] {
+        const SimulateOptions& o = *options;
+        Result<scenario::Scenario> loaded = scenario::resolveScenario(locations, o.scenario);
+        if (!loaded) throw InputError(loaded.message());
+        scenario::Scenario s = loaded.value();
+        std::vector<Issue> issues;
+        if (o.duration_s && checkRange(issues, "--duration", *o.duration_s, {0.0, 86400.0, true, false}, "s")) {
+            s.duration_s = *o.duration_s;
+        }
+        if (o.time_step_s && checkRange(issues, "--step", *o.time_step_s, {1e-6, 0.05}, "s")) {
+            s.time_step_s = *o.time_step_s;
+            s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
+        }
+        if (o.model) {
+            s.options.contact.model = *o.model == "quadratic" ? contact::ContactModel::kQuadratic
+                                                              : contact::ContactModel::kFull;
+        }
+        if (!issues.empty()) throw InputError(formatIssues(issues));
+
+        scenario::RunOptions run;
+        g_cancel.store(false);
+        run.cancel = &g_cancel;
+        const bool tty = ::isatty(STDERR_FILENO) == 1;
+        if (tty) run.progress = drawProgress;
+        struct sigaction action {}, previous{};
+        action.sa_handler = onInterrupt;
+        sigemptyset(&action.sa_mask);
+        ::sigaction(SIGINT, &action, &previous);
+        scenario::RunResult result;
+        try {
+            result = scenario::runScenario(s, run);
+        } catch (const std::invalid_argument& e) {
+            ::sigaction(SIGINT, &previous, nullptr);
+            throw InputError(std::string(o.scenario) + ": " + e.what());
+        }
+        ::sigaction(SIGINT, &previous, nullptr);
+        if (tty) std::fputs("\n", stderr);
+
+        if (const auto error = scenario::writeResults(result, s, o.out)) throw std::runtime_error(*error);
+        if (o.json) {
+            std::cout << scenario::toJson(result, s).dump(2) << '\n';
+        } else {
+            printHuman(result, s, o.out);
+        }
+        if (result.status == scenario::RunResult::Status::kCancelled) {
+            std::cerr << result.message << "; partial results written to " << o.out << '\n';
+            throw CLI::RuntimeError(kCancelled);
+        }
+        if (result.status == scenario::RunResult::Status::kDiverged) {
+            std::cerr << "error: " << result.message << "; partial results written to " << o.out << '\n';
+            throw CLI::RuntimeError(kFailure);
+        }
+    });
+}
+
+}  // namespace terra::app

@@ -1,0 +1,138 @@
+// `terrastudio simulate` as a user runs it: outputs, summary keys, errors, and Ctrl-C.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SimRun {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+SimRun simulate(const std::string& arguments) {
+    const fs::path err_path = fs::temp_directory_path() / ("terra_sim_err_" + std::to_string(::getpid()));
+    const std::string command =
+        std::string(TERRASTUDIO_EXE) + " simulate " + arguments + " 2>" + err_path.string();
+    SimRun r;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
+    const int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream err(err_path);
+    r.err.assign(std::istreambuf_iterator<char>(err), {});
+    fs::remove(err_path);
+    return r;
+}
+
+fs::path outDir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("terra_sim_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    return dir;
+}
+
+int countLines(const fs::path& file) {
+    std::ifstream in(file);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) ++n;
+    return n;
+}
+
+TEST(SimulateCli, WritesTheTimeSeriesAndTheSummary) {
+    const fs::path dir = outDir("straight");
+    const SimRun r = simulate("--scenario straight --duration 2 --out " + dir.string() + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"duration_s", "x_m", "y_m", "yaw_rad", "distance_m", "mean_slip", "energy_J"}) {
+        EXPECT_TRUE(j.contains(key)) << key;
+    }
+    for (const char* wheel : {"FL", "FR", "RL", "RR"}) EXPECT_TRUE(j["mean_slip"].contains(wheel));
+    EXPECT_EQ(j["status"], "completed");
+    EXPECT_DOUBLE_EQ(j["duration_s"].get<double>(), 2.0);
+    EXPECT_EQ(j["y_m"].get<double>(), 0.0);  // straight, symmetric
+    // The file holds the same summary; one row per 10 ms output interval plus the header.
+    std::ifstream summary(dir / "summary.json");
+    EXPECT_EQ(nlohmann::json::parse(summary), j);
+    EXPECT_EQ(countLines(dir / "timeseries.csv"), 1 + 201);
+    fs::remove_all(dir);
+}
+
+TEST(SimulateCli, ScenarioFileByPathAndHumanOutput) {
+    const fs::path dir = outDir("file");
+    const SimRun r = simulate("--scenario " + std::string(TERRA_RESOURCE_DIR) +
+                           "/scenarios/pulse-steering.json --duration 1 --model quadratic --out " +
+                           dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("mean slip"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(dir / "timeseries.csv"));
+    EXPECT_EQ(r.err.find('\r'), std::string::npos);  // no progress bar when stderr is not a terminal
+    fs::remove_all(dir);
+}
+
+TEST(SimulateCli, BadScenarioExitsTwoNamingTheField) {
+    const fs::path dir = outDir("bad");
+    fs::create_directories(dir);
+    const fs::path file = dir / "bad.json";
+    std::ofstream(file) << R"({"duration_s": 10, "time_step_s": 0.2, "terrain": "sandy-loam",
+                              "wheels": {"all": {"omega_rad_s": 0.4}}})";
+    SimRun r = simulate("--scenario " + file.string() + " --out " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("time_step_s"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+
+    r = simulate("--scenario no-such-thing --out " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("pulse-steering"), std::string::npos) << r.err;  // lists the scenarios
+    r = simulate("--scenario straight --duration -1 --out " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--duration"), std::string::npos) << r.err;
+    fs::remove_all(dir);
+}
+
+TEST(SimulateCli, CtrlCStopsAndStillWritesWhatWasComputed) {
+    const fs::path dir = outDir("cancel");
+    const fs::path out_file = dir.string() + ".stdout";
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        const int fd = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        ::dup2(fd, STDOUT_FILENO);
+        ::dup2(fd, STDERR_FILENO);
+        // Long enough (full model, ~10 min of robot time) that it is still running at the signal.
+        ::execl(TERRASTUDIO_EXE, TERRASTUDIO_EXE, "simulate", "--scenario", "straight", "--duration",
+                "600", "--json", "--out", dir.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(pid, SIGINT);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    std::ifstream summary_file(dir / "summary.json");
+    ASSERT_TRUE(summary_file.good());
+    const auto summary = nlohmann::json::parse(summary_file);
+    EXPECT_EQ(summary["status"], "cancelled");
+    EXPECT_GT(summary["duration_s"].get<double>(), 0.0);
+    EXPECT_LT(summary["duration_s"].get<double>(), 600.0);
+    // Rows up to where it stopped: 100 per simulated second, plus the header.
+    EXPECT_NEAR(countLines(dir / "timeseries.csv"), 1 + 100 * summary["duration_s"].get<double>(), 2);
+    fs::remove_all(dir);
+    fs::remove(out_file);
+}
+
+}  // namespace
