@@ -258,6 +258,7 @@ public:
             s.seed = analysis.value("seed", 1);
             s.refine = analysis.value("refine", true);
             s.slip_count = analysis.value("slip_count", s.slip_count);
+            s.loads_n = analysis.value("loads_N", std::vector<double>{});
             const auto result = ui::computeIdentification(in, s);
             if (!result.message.empty()) throw InputError(where + ": " + result.message);
             const char* channels[][2] = {{"Fx_N", "-Fx"}, {"Fz_N", "-Fz"}, {"My_Nm", "-My"}};

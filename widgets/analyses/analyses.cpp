@@ -113,7 +113,7 @@ IdentificationResult computeIdentification(const AnalysisInputs& in, const Ident
         out.data = read->data;
     } else {
         id::SyntheticSpec spec;
-        spec.loads_n = {in.conditions.load_n};
+        spec.loads_n = settings.loads_n.empty() ? std::vector<double>{in.conditions.load_n} : settings.loads_n;
         spec.slips = analysis::linspace(0.0, std::min(in.conditions.slip_max, 0.9), settings.slip_count);
         spec.noise.fx.relative = spec.noise.fz.relative = spec.noise.my.relative = settings.noise_relative;
         spec.seed = settings.seed;
@@ -127,19 +127,23 @@ IdentificationResult computeIdentification(const AnalysisInputs& in, const Ident
     out.fit = id::fitDecoupled(out.data, in.wheel, id::DecoupledParameters{});
     id::DecoupledParameters p = out.fit.parameters;
     if (settings.refine) {
-        out.refined = id::refineFullModel(out.data, in.wheel, p, id::RefineOptions{});
+        id::RefineOptions options;
+        // j_max is a setting of the forward model, not identified: the project soil's.
+        options.max_shear_deformation_m = in.soil.max_shear_deformation_m;
+        out.refined = id::refineFullModel(out.data, in.wheel, p, options);
         p = out.refined->parameters;
     }
     out.fit_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-    out.curves.columns = {"slip", "entry_angle_deg", "Fx_N", "Fz_N", "My_Nm", "Fx_fit_N", "Fz_fit_N", "My_fit_Nm"};
+    out.curves.columns = {"slip", "entry_angle_deg", "Fx_N", "Fz_N", "My_Nm", "Fx_fit_N", "Fz_fit_N", "My_fit_Nm", "W_N"};
     // Fitted curves: the full model with the identified parameters when refined (its forward
     // model), else the decoupled model the fit used.
     std::optional<contact::ContactParameters<double>> full;
     if (out.refined) {
         full = contact::ContactParameters<double>{in.wheel.radius_m, in.wheel.width_m, p.n0, 0.0,
                                                   p.pressure_modulus, p.cohesion_pa, p.friction_angle_rad,
-                                                  p.shear_modulus_m, in.soil.unit_weight_n_m3, p.a0, p.a1};
+                                                  p.shear_modulus_m, in.soil.unit_weight_n_m3, p.a0, p.a1,
+                                                  in.soil.max_shear_deformation_m};
     }
     for (const auto& s : out.data.samples) {
         double fx, fz, my;
@@ -152,7 +156,8 @@ IdentificationResult computeIdentification(const AnalysisInputs& in, const Ident
             const auto f = id::decoupledForward(p, in.wheel, s.slip, s.entry_angle_rad);
             fx = f.fx_n; fz = f.fz_n; my = f.my_nm;
         }
-        out.curves.rows.push_back({s.slip, units::radToDeg(s.entry_angle_rad), s.fx_n, s.fz_n, s.my_nm, fx, fz, my});
+        out.curves.rows.push_back({s.slip, units::radToDeg(s.entry_angle_rad), s.fx_n, s.fz_n, s.my_nm, fx, fz, my,
+                                   s.load_n.value_or(std::nan(""))});
     }
     out.parameters.columns = {"a0", "a1", "Ks_kPa", "n0", "n1", "c_kPa", "phi_deg", "K_m"};
     out.parameters.rows.push_back({p.a0, p.a1, p.pressure_modulus / 1e3, p.n0, p.n1, p.cohesion_pa / 1e3,

@@ -69,6 +69,9 @@ SensitivityResult computeSensitivity(const AnalysisInputs& in, const Sensitivity
 struct IdentificationSettings {
     std::string csv;               ///< data file; empty: synthesise
     double noise_relative = 0.02;  ///< σ as fraction of each channel's max (synthetic)
+    /// W [N] of the synthetic sweeps; empty: the project's load. Several loads let the fit
+    /// separate c and φ (one load cannot, with noise: core/identification/full_fit.h).
+    std::vector<double> loads_n;
     std::uint64_t seed = 1;
     int slip_count = 50;
     bool refine = true;            ///< also refine through the full model (std deviations)
@@ -77,7 +80,8 @@ struct IdentificationResult {
     identification::DataSet data;
     identification::DecoupledFit fit;
     std::optional<identification::RefineResult> refined;
-    /// slip, entry_angle_deg, Fx_N, Fz_N, My_Nm (data) and Fx_fit_N, Fz_fit_N, My_fit_Nm.
+    /// slip, entry_angle_deg, Fx_N, Fz_N, My_Nm (data), Fx_fit_N, Fz_fit_N, My_fit_Nm and W_N
+    /// (the sample's load, NaN when the data do not say).
     Table curves;
     /// One row: the identified parameters in user units (a0, a1, Ks_kPa, n0, n1, c_kPa, phi_deg,
     /// K_m) and, when refined, *_std columns.

@@ -47,6 +47,9 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     noise_->setToolTip("Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     refine_ = new QCheckBox("Refine (full model, std deviations)", this);
     refine_->setChecked(true);
+    three_loads_ = new QCheckBox("Synthesise at ½W, W, 1½W", this);
+    three_loads_->setChecked(true);
+    three_loads_->setToolTip("One load cannot separate c and φ when the data are noisy (full_fit.h)");
     fit_ = new QPushButton("Fit", this);
     fit_->setDefault(true);
     status_ = new QLabel(this);
@@ -70,6 +73,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     bar->addWidget(browse);
     bar->addWidget(new QLabel("Noise:", this));
     bar->addWidget(noise_);
+    bar->addWidget(three_loads_);
     bar->addWidget(refine_);
     bar->addWidget(fit_);
     auto* splitter = new QSplitter(this);
@@ -115,13 +119,17 @@ std::vector<std::pair<QString, QCustomPlot*>> IdentificationPanel::plots() const
 QCustomPlot* IdentificationPanel::currentPlot() const { return plots_[static_cast<std::size_t>(tabs_->currentIndex())]; }
 
 nlohmann::json IdentificationPanel::settings() const {
-    return {{"csv", file_->text().toStdString()}, {"noise_percent", noise_->value()}, {"refine", refine_->isChecked()}};
+    return {{"csv", file_->text().toStdString()},
+            {"noise_percent", noise_->value()},
+            {"refine", refine_->isChecked()},
+            {"three_loads", three_loads_->isChecked()}};
 }
 
 void IdentificationPanel::applySettings(const nlohmann::json& s) {
     if (s.contains("csv")) file_->setText(QString::fromStdString(s["csv"].get<std::string>()));
     if (s.contains("noise_percent")) noise_->setValue(s["noise_percent"].get<double>());
     if (s.contains("refine")) refine_->setChecked(s["refine"].get<bool>());
+    if (s.contains("three_loads")) three_loads_->setChecked(s["three_loads"].get<bool>());
 }
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
@@ -130,6 +138,10 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
     settings.csv = file_->text().trimmed().toStdString();
     settings.noise_relative = noise_->value() / 100.0;
     settings.refine = refine_->isChecked();
+    if (three_loads_->isChecked()) {
+        const double w = inputs.conditions.load_n;
+        settings.loads_n = {0.5 * w, w, 1.5 * w};
+    }
     return [inputs, settings](const std::atomic<bool>&) -> std::any { return computeIdentification(inputs, settings); };
 }
 

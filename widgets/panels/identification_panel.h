@@ -40,6 +40,7 @@ private:
     QLineEdit* file_;
     QDoubleSpinBox* noise_;
     QCheckBox* refine_;
+    QCheckBox* three_loads_;
     QPushButton* fit_;
     QLabel* status_;
     QLabel* readout_;

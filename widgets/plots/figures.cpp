@@ -173,13 +173,33 @@ void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, c
         return;
     }
     const QVector<double> slip = column(result.curves, "slip");
-    QCPGraph* data = addLine(plot, slip, column(result.curves, channel), "data", QColor(90, 90, 90));
+    QCPGraph* data = plot.addGraph();
+    data->setData(slip, column(result.curves, channel));  // unsorted: several sweeps
+    data->setName("data");
+    data->setPen(QPen(QColor(90, 90, 90)));
     data->setLineStyle(QCPGraph::lsNone);
     data->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 4));
     std::string fitted = channel;
     fitted.insert(channel.rfind('_'), "_fit");
-    addLine(plot, slip, column(result.curves, fitted), result.refined ? "full model, refined fit" : "decoupled fit",
-            QColor(214, 39, 40));
+    // One fitted line per sweep (per load), so that sweeps are not joined.
+    const QVector<double> fit = column(result.curves, fitted);
+    const QVector<double> load = column(result.curves, "W_N");
+    std::map<double, std::pair<QVector<double>, QVector<double>>> sweeps;
+    for (int i = 0; i < slip.size(); ++i) {
+        auto& sweep = sweeps[std::isnan(load[i]) ? 0.0 : load[i]];
+        sweep.first.push_back(slip[i]);
+        sweep.second.push_back(fit[i]);
+    }
+    bool first = true;
+    for (const auto& [w, curve] : sweeps) {
+        QCPGraph* line = plot.addGraph();
+        line->setData(curve.first, curve.second);
+        line->setPen(QPen(QColor(214, 39, 40), 1.8));
+        line->setName(result.refined ? "full model, refined fit" : "decoupled fit");
+        if (!first) line->removeFromLegend();
+        first = false;
+        (void)w;
+    }
     finish(plot);
 }
 
