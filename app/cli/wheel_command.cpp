@@ -48,7 +48,8 @@ struct PointResult {
     double exit_angle_deg = 0.0;
     double sinkage_m = 0.0;
     bool solved_from_load = false;
-    std::string failure;  ///< non-empty: no equilibrium
+    std::string failure;  ///< non-empty: no equilibrium, or F_z = W not reproducible
+    std::string status = "ok";  ///< batch status column: ok, no-equilibrium, load-not-matched
 };
 
 PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& options,
@@ -76,6 +77,9 @@ PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& opt
         const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
         if (!solution.ok()) {
             out.failure = solution.message;
+            out.status = solution.status == contact::SinkageSolution::Status::kLoadNotMatched
+                             ? "load-not-matched"
+                             : "no-equilibrium";
             return out;
         }
         theta_f = solution.entry_angle_rad;
@@ -231,7 +235,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
         if (!result.failure.empty()) {
             ++failed;
-            csv += ",no-equilibrium,,,,,,,,,,,\n";
+            csv += "," + result.status + ",,,,,,,,,,,\n";
             continue;
         }
         const WheelForces<double>& f = result.forces;
@@ -254,7 +258,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     if (!o.output.empty() && o.output != "-") {
         std::cerr << "wrote " << o.output << ": " << doc.rows.size() + doc.row_issues.size() - skipped
                   << " rows ("
-                  << failed << " without equilibrium)\n";
+                  << failed << " without a solution)\n";
     }
     return kSuccess;
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -23,36 +24,65 @@ void requirePositiveLoad(double load_n) {
     }
 }
 
-// Root of f(θ) − target on [lo, hi] (f increasing), starting from a guess, with TOMS 748.
+// F_z = W is accepted when |F_z − W| ≤ kLoadTolerance · W. The root finder normally stops at
+// ~1e-12; a residual above this bound means F_z jumps across the final bracket (a very small
+// sinkage exponent with θ_m fixed near θ_f makes F_z rise like (θ_f − θ_m)^N, N = 0.13: a step at
+// double resolution) and no representable θ_f carries W.
+constexpr double kLoadTolerance = 1e-9;
+// The root finder stops early once the bracket is 42 bits narrow and F_z is this close to W.
+constexpr double kEarlyStopTolerance = 1e-10;
+// When F_z(90°) < W, F_z(θ_f) is scanned at this many equal steps before "no equilibrium" is
+// declared: under strong braking F_z can peak inside (0°, 90°) (heavy clay, s = −0.95: a maximum
+// of 5.4 kN at 62° but 4.6 kN at 90°).
+constexpr int kScanSteps = 45;
+
+std::string degrees(double rad) { return formatNumber(roundSignificant(units::radToDeg(rad), 10)); }
+
+// Root of f(θ) − target on (0, 90°] with TOMS 748, starting from a guess. F_z usually rises with
+// θ_f; when it does not reach the target at 90° the range is scanned for the first crossing.
 template <typename F>
 SinkageSolution bracketAndSolve(F force, double target, double guess, int& evaluations) {
     SinkageSolution out;
+    // Every evaluation is remembered: the answer is the evaluated angle with the smallest
+    // residual, whose F_z is then known without another evaluation.
+    double best_theta = std::nan(""), best_residual = INFINITY;
     auto residual = [&](double theta) {
         ++evaluations;
-        return force(theta) - target;
+        const double r = force(theta) - target;
+        if (std::abs(r) < std::abs(best_residual)) best_theta = theta, best_residual = r;
+        return r;
     };
     const double f_max = residual(kRightAngle);
-    if (f_max < 0.0) {
-        out.status = SinkageSolution::Status::kNoEquilibrium;
-        out.entry_angle_rad = kRightAngle;
-        out.vertical_force_n = f_max + target;
-        out.message = "no equilibrium: at 90° (sunk to the axle) the soil carries only " +
-                      formatNumber(f_max + target) + " N of the load " + formatNumber(target) +
-                      " N; the wheel would sink to its axle";
-        return out;
-    }
-    // Bracket around the guess, widening by 1.3× per step; fall back to the whole range.
     double lo = kSmallestAngle, hi = kRightAngle;
     double f_lo = std::nan(""), f_hi = f_max;
-    if (guess > kSmallestAngle && guess < kRightAngle) {
-        const double f_guess = residual(guess);
-        if (f_guess == 0.0) {
-            out.entry_angle_rad = guess;
-            out.vertical_force_n = target;
+    if (f_max < 0.0) {
+        // Scan upward for the first sign change (the wheel sinks until F_z first reaches W).
+        double a = kSmallestAngle, fa = residual(a), peak = f_max, peak_theta = kRightAngle;
+        for (int k = 1; k <= kScanSteps && std::isnan(f_lo); ++k) {
+            const double b = k == kScanSteps ? kRightAngle : kRightAngle * k / kScanSteps;
+            const double fb = k == kScanSteps ? f_max : residual(b);
+            if (fb > peak) peak = fb, peak_theta = b;
+            if (fa <= 0.0 && fb >= 0.0) lo = a, hi = b, f_lo = fa, f_hi = fb;
+            a = b, fa = fb;
+        }
+        if (std::isnan(f_lo)) {
+            out.status = SinkageSolution::Status::kNoEquilibrium;
+            out.entry_angle_rad = kRightAngle;
+            out.vertical_force_n = f_max + target;
+            out.message = "no equilibrium: at 90° (sunk to the axle) the soil carries only " +
+                          formatNumber(f_max + target) + " N of the load " + formatNumber(target) +
+                          " N; the wheel would sink to its axle";
+            if (peak_theta < kRightAngle) {
+                out.message += " (the largest F_z found, scanning θ_f in 2° steps, is " +
+                               formatNumber(peak + target) + " N at " + degrees(peak_theta) + "°)";
+            }
             return out;
         }
+    } else if (guess > kSmallestAngle && guess < kRightAngle) {
+        // Bracket around the guess, widening by 1.3× per step; fall back to the whole range.
+        const double f_guess = residual(guess);
         double a = guess, fa = f_guess;
-        for (int step = 0; step < 12; ++step) {
+        for (int step = 0; step < 12 && f_guess != 0.0; ++step) {
             const double b = f_guess < 0.0 ? std::min(a * 1.3, kRightAngle)
                                            : std::max(a / 1.3, kSmallestAngle);
             const double fb = b == kRightAngle ? f_max : residual(b);
@@ -65,6 +95,11 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
             if (b == kRightAngle || b == kSmallestAngle) break;
         }
     }
+    if (best_residual == 0.0) {
+        out.entry_angle_rad = best_theta;
+        out.vertical_force_n = target;
+        return out;
+    }
     if (std::isnan(f_lo)) {
         lo = kSmallestAngle, hi = kRightAngle;
         f_lo = residual(lo), f_hi = f_max;
@@ -75,13 +110,41 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
                       " N on (0°, 90°]: no unique equilibrium";
         return out;
     }
-    std::uintmax_t iterations = 60;
-    const auto [a, b] = boost::math::tools::toms748_solve(
-        residual, lo, hi, f_lo, f_hi, boost::math::tools::eps_tolerance<double>(kToleranceBits),
-        iterations);
-    out.entry_angle_rad = 0.5 * (a + b);
-    out.vertical_force_n = force(out.entry_angle_rad);
-    ++evaluations;
+    boost::math::tools::eps_tolerance<double> narrow(kToleranceBits), exhausted(53);
+    auto done = [&](double a, double b) -> bool {
+        return exhausted(a, b) ||
+               (narrow(a, b) && std::abs(best_residual) <= kEarlyStopTolerance * target);
+    };
+    std::uintmax_t iterations = 100;
+    auto [a, b] = boost::math::tools::toms748_solve(residual, lo, hi, f_lo, f_hi, done, iterations);
+    if (!(std::abs(best_residual) <= kLoadTolerance * target)) {
+        // A jump (or TOMS 748 out of iterations): bisect down to adjacent doubles, so that a
+        // failure below really means that no angle between them carries W.
+        double fa = residual(a), fb = residual(b);
+        while (!exhausted(a, b) && fa != 0.0 && fb != 0.0 && best_residual != 0.0) {
+            const double m = a + 0.5 * (b - a);
+            if (m <= a || m >= b) break;
+            const double fm = residual(m);
+            if ((fm < 0.0) == (fa < 0.0)) {
+                a = m, fa = fm;
+            } else {
+                b = m, fb = fm;
+            }
+        }
+        if (!(std::abs(best_residual) <= kLoadTolerance * target)) {
+            out.status = SinkageSolution::Status::kLoadNotMatched;
+            // Full digits: the two angles differ in the last places.
+            out.message = "no entry angle carries W = " + formatNumber(target) +
+                          " N: F_z jumps from " + formatNumber(fa + target) + " N to " +
+                          formatNumber(fb + target) + " N between the adjacent angles θ_f = " +
+                          formatNumber(units::radToDeg(a)) + "° and " +
+                          formatNumber(units::radToDeg(b)) +
+                          "° (a small sinkage exponent N with θ_m fixed near θ_f makes F_z rise "
+                          "like (θ_f − θ_m)^N: a step at double precision)";
+        }
+    }
+    out.entry_angle_rad = best_theta;
+    out.vertical_force_n = best_residual + target;
     return out;
 }
 
@@ -89,13 +152,14 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
 double staticIntegral(double n, double theta_s) {
     const GaussRule& rule = gaussRule(15);
     const int q = endExponent(n, 0);
-    const double cos_s = std::cos(theta_s);
     double sum = 0.0;
     for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
         const double u = rule.nodes[i];
         const double uq1 = std::pow(u, q - 1);
-        const double theta = theta_s * (1.0 - uq1 * u);
-        const double base = std::cos(theta) - cos_s;
+        const double gap = theta_s * (uq1 * u);  // θ_s − θ, exact
+        const double theta = theta_s - gap;
+        // cos θ − cos θ_s = 2 sin((θ_s + θ)/2) sin((θ_s − θ)/2): no cancellation at small θ_s.
+        const double base = 2.0 * std::sin(theta_s - 0.5 * gap) * std::sin(0.5 * gap);
         if (base > 0.0) sum += rule.weights[i] * q * uq1 * theta_s * std::pow(base, n) * std::cos(theta);
     }
     return sum;

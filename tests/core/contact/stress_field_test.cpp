@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
 #include <cmath>
 #include <limits>
 
@@ -108,6 +110,28 @@ TEST(StressField, StagnationPointTakesTheDrivingDirection) {
     EXPECT_GT(st.tau, 0.0);
     EXPECT_DOUBLE_EQ(st.tau_t, st.tau);
     EXPECT_EQ(st.tau_l, 0.0);
+}
+
+TEST(StressField, NormalStressKeepsFullPrecisionAtTinyEntryAngles) {
+    // Regression: cos θ − cos θ_f lost ~eps/θ_f² relative (2e-8 at θ_f = 1e-4 rad). Reference:
+    // Eqs. 2.17 and 2.19 evaluated in 50-digit arithmetic.
+    using Big = boost::multiprecision::cpp_bin_float_50;
+    const ContactParameters<double> p = testing::clayeySoil();
+    for (double tf : {1e-3, 1e-4, 1e-6}) {
+        OperatingPoint<double> op{0.3, 0.0, tf, -0.5 * tf, std::nullopt};
+        const StressField<double> field(p, op);
+        const double tm = field.maxStressAngle(), tr = field.exitAngle();
+        const Big slope = (Big(tf) - Big(tm)) / (Big(tm) - Big(tr));
+        for (double fraction : {0.999, 0.9, 0.5, 0.1, -0.2, -0.45}) {
+            const double theta = fraction * tf;
+            const Big equivalent = theta >= tm ? Big(theta) : Big(tf) - (Big(theta) - Big(tr)) * slope;
+            const Big base = boost::multiprecision::cos(equivalent) - boost::multiprecision::cos(Big(tf));
+            const double expected = static_cast<double>(
+                Big(p.pressure_modulus) * boost::multiprecision::pow(Big(p.radius_m) * base, Big(0.5)));
+            EXPECT_NEAR(field.at(theta).sigma, expected, 1e-13 * expected)
+                << "theta_f = " << tf << ", theta = " << fraction << " theta_f";
+        }
+    }
 }
 
 }  // namespace

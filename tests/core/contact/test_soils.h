@@ -30,4 +30,10 @@ inline ContactParameters<double> clayeySoil(double jmax = 0.009) {
     return thesisSoil(0.5, 4.14, 13.0, 13.2, 692.2, 0.01, 13.24, jmax);
 }
 
+// Heavy clay (WES, 25 % moisture), Wong's Table 2.3 (K, γ assumed as in
+// resources/soils/heavy-clay.json): N = 0.13 makes σ rise almost like a step from the contact ends.
+inline ContactParameters<double> heavyClay(double jmax = INFINITY) {
+    return thesisSoil(0.13, 68.95, 34.0, 12.7, 1555.95, 0.006, 17.0, jmax);
+}
+
 }  // namespace terra::contact::testing

@@ -101,12 +101,14 @@ TEST(WheelForces, FrictionlessContactMatchesClosedForm) {
     // F_x = −r b K_s r^n (1 − cos θ_f)^(n+1)/(n+1). n < 1 has the singular end derivative.
     for (double n : {0.3, 0.5, 0.7, 1.1, 1.7}) {
         ContactParameters<double> p = testing::thesisSoil(n, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
-        for (double theta_f : {3.0, 30.0, 80.0}) {
+        // Down to 1e-4°: the cosine difference must not cancel (regression, item 3 of the review).
+        for (double theta_f : {1e-4, 0.01, 3.0, 30.0, 80.0}) {
             const double tf = theta_f * kDeg;
             const OperatingPoint<double> op{0.2, 0.0, tf, 0.0, 0.0};
             const auto f = computeForces(p, op);
             const double scale = 0.092 * 0.107 * p.pressure_modulus * std::pow(0.092, n);
-            const double fx = -scale * std::pow(1.0 - std::cos(tf), n + 1.0) / (n + 1.0);
+            const double versine = 2.0 * std::pow(std::sin(tf / 2), 2);  // 1 − cos θ_f, exact
+            const double fx = -scale * std::pow(versine, n + 1.0) / (n + 1.0);
             EXPECT_NEAR(f.fx, fx, 1e-9 * std::abs(fx)) << "n = " << n << ", theta_f = " << theta_f;
             EXPECT_EQ(f.my, 0.0);
         }
