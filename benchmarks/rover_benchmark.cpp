@@ -1,0 +1,84 @@
+// Rover dynamics cost (docs/performance.md, "Rover"): the thesis's 60 s steering scenario at 1 ms
+// with both contact models, a single step split into its parts, and the cost against the step.
+#include <benchmark/benchmark.h>
+
+#include <stdexcept>
+
+#include "core/contact/quadratic_model.h"
+#include "core/dynamics/rover.h"
+#include "core/dynamics/wheel_contact.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
+
+namespace {
+
+using namespace terra;
+
+scenario::Scenario pulseSteering(contact::ContactModel model, double duration_s, double dt_s) {
+    auto loaded = scenario::resolveScenario(io::PresetLocations::standard({}), "pulse-steering");
+    if (!loaded) throw std::runtime_error(loaded.message());
+    scenario::Scenario s = loaded.value();
+    s.options.contact.model = model;
+    s.duration_s = duration_s;
+    s.time_step_s = dt_s;
+    s.output_interval_s = std::max(0.01, dt_s);
+    return s;
+}
+
+// The figure: 60 s of the pulse-steering scenario at 1 ms, ≤ 0.5 s wall.
+void BM_PulseSteering60s(benchmark::State& state) {
+    const auto model = state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
+    const scenario::Scenario s = pulseSteering(model, 60.0, 1e-3);
+    for (auto _ : state) {
+        scenario::RunResult r = scenario::runScenario(s);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+}
+// Arg: contact model, 0 full, 1 quadratic. (A looser integration tolerance, 1e-4 instead of
+// 1e-7, changes nothing here: at these operating points no piece is ever bisected.)
+BENCHMARK(BM_PulseSteering60s)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// Cost against the step: 10 s of the same scenario (quadratic model) at 0.5, 1, 2, 5 ms.
+void BM_PulseSteeringStep(benchmark::State& state) {
+    const double dt = static_cast<double>(state.range(0)) * 1e-4;
+    const scenario::Scenario s = pulseSteering(contact::ContactModel::kQuadratic, 10.0, dt);
+    for (auto _ : state) {
+        scenario::RunResult r = scenario::runScenario(s);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+}
+BENCHMARK(BM_PulseSteeringStep)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond);
+
+// One rover step (4 wheel contacts + the Bullet step), steady straight driving.
+void BM_RoverStep(benchmark::State& state) {
+    const auto model = state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
+    const scenario::Scenario s = pulseSteering(model, 1.0, 1e-3);
+    dynamics::Rover rover(s.robot, s.terrain, s.options, s.initial, s.commandsAt(0.0));
+    const dynamics::Commands commands = s.commandsAt(0.0);
+    for (int i = 0; i < 3000; ++i) rover.step(1e-3, commands);  // settle
+    for (auto _ : state) rover.step(1e-3, commands);
+}
+BENCHMARK(BM_RoverStep)->Arg(0)->Arg(1);
+
+// Advancing the chassis alone (Bullet step and bookkeeping, forces held from one evaluation):
+// the part of a step that does not grow with the number of wheels.
+void BM_ChassisAdvance(benchmark::State& state) {
+    const scenario::Scenario s = pulseSteering(contact::ContactModel::kQuadratic, 1.0, 1e-3);
+    dynamics::Rover rover(s.robot, s.terrain, s.options, s.initial, s.commandsAt(0.0));
+    rover.evaluate(s.commandsAt(0.0));
+    for (auto _ : state) rover.advance(1e-3);
+}
+BENCHMARK(BM_ChassisAdvance);
+
+// One wheel's contact evaluation at the straight-line operating point.
+void BM_WheelContact(benchmark::State& state) {
+    const auto model = state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
+    const scenario::Scenario s = pulseSteering(model, 1.0, 1e-3);
+    const auto p = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    dynamics::ContactOptions o = s.options.contact;
+    const dynamics::WheelKinematics k{0.0216, 0.0, 0.0368, 0.0038};
+    for (auto _ : state) benchmark::DoNotOptimize(dynamics::evaluateContact(p, k, o).forces.fx);
+}
+BENCHMARK(BM_WheelContact)->Arg(0)->Arg(1);
+
+}  // namespace
