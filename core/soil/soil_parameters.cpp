@@ -70,12 +70,19 @@ std::vector<Issue> validate(const SoilParameters& soil, const std::string& prefi
         ok = checkRange(issues, prefix + field.key, value, field.range,
                         std::string(field.unit) == "-" ? "" : field.unit) && ok;
     }
-    // N = n0 + n1 s stays in range over s ∈ [0, 1) when it does at s = 1 (checked only when n0
-    // and n1 themselves are valid, so one mistake gives one message).
-    const double n_at_full_slip = soil.sinkage_exponent + soil.sinkage_exponent_slip;
-    if (ok && (n_at_full_slip < 0.1 || n_at_full_slip > 2.0)) {
-        issues.push_back({prefix + "n1", "n + n1 = " + formatNumber(n_at_full_slip) +
-                                             " leaves the allowed range [0.1, 2] of N = n0 + n1 s"});
+    // N = n0 + n1 s is linear in s, so it stays in n's range over the whole slip range s ∈ (−1, 1)
+    // (braking included) when it does at both ends, n0 − n1 and n0 + n1. Checked only when n0 and
+    // n1 themselves are valid, so one mistake gives one message.
+    // Rounded like the user's numbers: n = 0.6, n1 = 0.5 gives N = 0.1, not 0.09999999999999998.
+    const double n_braking = roundSignificant(soil.sinkage_exponent - soil.sinkage_exponent_slip);
+    const double n_driving = roundSignificant(soil.sinkage_exponent + soil.sinkage_exponent_slip);
+    const Range& n_range = kFields[0].range;
+    if (ok && (!n_range.contains(n_braking) || !n_range.contains(n_driving))) {
+        issues.push_back({prefix + "n1", "N = n + n1·s must stay in the allowed range " +
+                                             n_range.describe() +
+                                             " for every slip s in (-1, 1), but n - n1 = " +
+                                             formatNumber(n_braking) + " (s → -1) and n + n1 = " +
+                                             formatNumber(n_driving) + " (s → 1)"});
     }
     return issues;
 }

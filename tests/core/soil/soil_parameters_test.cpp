@@ -210,7 +210,31 @@ TEST(SoilValidate, SlipDependentExponentMustStayInRangeAtFullSlip) {
     EXPECT_THROW(requireValid(soil), std::invalid_argument);
 
     soil.sinkage_exponent = 1.5;
-    soil.sinkage_exponent_slip = 0.5;  // N(s = 1) = 2 exactly: allowed
+    soil.sinkage_exponent_slip = 0.5;  // N(s = 1) = 2 exactly, N(s = −1) = 1: allowed
+    EXPECT_TRUE(validate(soil).empty()) << formatIssues(validate(soil));
+}
+
+// Regression: only n + n1 (s → 1) was checked, but braking slips reach s → −1, where
+// N = n − n1: n = 0.3, n1 = 0.5 gave N = −0.2 < 0.1 at strong braking, accepted.
+TEST(SoilValidate, SlipDependentExponentMustStayInRangeWhenBraking) {
+    SoilParameters soil;
+    soil.sinkage_exponent = 0.3;
+    soil.sinkage_exponent_slip = 0.5;  // N(s = 1) = 0.8 fine, N(s = −1) = −0.2 < 0.1
+    std::vector<Issue> issues = validate(soil);
+    ASSERT_EQ(issues.size(), 1u) << formatIssues(issues);
+    EXPECT_EQ(issues[0].where, "n1");
+    EXPECT_NE(issues[0].message.find("n - n1 = -0.2"), std::string::npos) << issues[0].message;
+    EXPECT_NE(issues[0].message.find("[0.1, 2]"), std::string::npos) << issues[0].message;
+    EXPECT_NE(issues[0].message.find("(-1, 1)"), std::string::npos) << issues[0].message;
+
+    soil.sinkage_exponent = 1.75;
+    soil.sinkage_exponent_slip = -0.5;  // N(s = −1) = 2.25 > 2
+    issues = validate(soil);
+    ASSERT_EQ(issues.size(), 1u) << formatIssues(issues);
+    EXPECT_NE(issues[0].message.find("2.25"), std::string::npos) << issues[0].message;
+
+    soil.sinkage_exponent = 0.6;
+    soil.sinkage_exponent_slip = 0.5;  // N from 0.1 (0.6 − 0.5 in binary: 0.0999…98) to 1.1: allowed
     EXPECT_TRUE(validate(soil).empty()) << formatIssues(validate(soil));
 }
 
