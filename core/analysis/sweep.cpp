@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <stdexcept>
 #include <thread>
 
@@ -60,19 +61,31 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
     return rows;
 }
 
+// Degrees as the user typed them (90° typed is 90° checked), as contact::requireValid does.
+double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
+
 void validateSpec(const SweepSpec& spec) {
     std::vector<Issue> issues;
     if (spec.slips.empty()) issues.push_back({"slips", "no slip values to sweep"});
     if (spec.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles to sweep"});
     for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
     for (double b : spec.slip_angles_rad) {
-        checkRange(issues, "slip_angle_deg", units::radToDeg(b), {-90.0, 90.0, true, true}, "deg");
+        checkRange(issues, "slip_angle_deg", deg(b), {-90.0, 90.0, true, true}, "deg");
     }
     if (spec.load_n) {
         checkRange(issues, "load_N", *spec.load_n, {0.0, 1e7, true, false}, "N");
     } else {
-        checkRange(issues, "entry_angle_deg", units::radToDeg(spec.entry_angle_rad),
-                   {0.0, 90.0, true, false}, "deg");
+        checkRange(issues, "entry_angle_deg", deg(spec.entry_angle_rad), {0.0, 90.0, true, false},
+                   "deg");
+    }
+    if (spec.exit.kind == contact::ExitCondition::Kind::kRutRatio) {
+        checkRange(issues, "rut_ratio", spec.exit.value, {0.0, 1.0});
+    } else {
+        checkRange(issues, "exit_angle_deg", deg(spec.exit.value), {-90.0, 0.0}, "deg");
+    }
+    if (spec.max_stress_angle_rad) {
+        checkRange(issues, "max_stress_angle_deg", deg(*spec.max_stress_angle_rad), {-90.0, 90.0},
+                   "deg");
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }
@@ -115,15 +128,27 @@ SweepResult sweepSlip(const ContactParameters<double>& p, const SweepSpec& spec)
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t workers =
         std::min<std::size_t>(angles, spec.threads > 0 ? spec.threads : hardware);
+    // An exception escaping a std::jthread calls std::terminate: each worker catches what it
+    // throws, the others stop at their next slip angle, and the failure is rethrown here.
+    std::vector<std::exception_ptr> failures(workers);
+    std::atomic<bool> failed{false};
     {
         std::vector<std::jthread> pool;
         for (std::size_t w = 0; w < workers; ++w) {
             pool.emplace_back([&, w] {
-                for (std::size_t i = w; i < angles; i += workers) {
-                    per_angle[i] = sweepOneAngle(p, spec, spec.slip_angles_rad[i]);
+                try {
+                    for (std::size_t i = w; i < angles && !failed.load(); i += workers) {
+                        per_angle[i] = sweepOneAngle(p, spec, spec.slip_angles_rad[i]);
+                    }
+                } catch (...) {
+                    failures[w] = std::current_exception();
+                    failed.store(true);
                 }
             });
         }
+    }
+    for (const std::exception_ptr& failure : failures) {
+        if (failure) std::rethrow_exception(failure);
     }
     SweepResult result;
     result.table.columns = sweepColumns();

@@ -51,7 +51,10 @@ struct SweepResult {
 const std::vector<std::string>& sweepColumns();
 
 /// Runs the sweep, slip angles in parallel; each slip angle warm-starts the entry-angle solve
-/// from the previous slip. Throws std::invalid_argument for invalid inputs.
+/// from the previous slip. Throws std::invalid_argument naming the field, value and range for an
+/// invalid spec (slips, slip angles, load or entry angle, exit angle or rut ratio, θ_m), checked
+/// before any thread starts; an exception thrown while computing, in any worker thread, is
+/// rethrown to the caller (never std::terminate).
 SweepResult sweepSlip(const contact::ContactParameters<double>& params, const SweepSpec& spec);
 
 /// One parameter of the sensitivity study: a soil field key ("phi_deg") and its values in the

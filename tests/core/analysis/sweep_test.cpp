@@ -66,6 +66,51 @@ TEST(Sweep, BadSpecIsRejectedWithTheField) {
     }
 }
 
+// Regression: the exit condition and θ_m were not validated, and solveEntryAngle's exception for
+// a rut ratio of 1.5 escaped a std::jthread worker: std::terminate killed the process.
+TEST(Sweep, BadExitConditionAndMaxStressAngleAreRejectedUpFront) {
+    struct Bad {
+        contact::ExitCondition exit;
+        std::optional<double> theta_m;
+        const char* field;
+        const char* range;
+    };
+    const Bad cases[] = {
+        {{contact::ExitCondition::Kind::kRutRatio, 1.5}, std::nullopt, "rut_ratio: 1.5", "[0, 1]"},
+        {{contact::ExitCondition::Kind::kRutRatio, -0.1}, std::nullopt, "rut_ratio: -0.1", "[0, 1]"},
+        {{contact::ExitCondition::Kind::kAngle, 5 * kDeg}, std::nullopt, "exit_angle_deg: 5", "[-90, 0]"},
+        {{}, 120 * kDeg, "max_stress_angle_deg: 120", "[-90, 90]"},
+    };
+    for (const Bad& bad : cases) {
+        for (bool with_load : {true, false}) {
+            SweepSpec spec = thesisSpec();
+            spec.exit = bad.exit;
+            spec.max_stress_angle_rad = bad.theta_m;
+            if (!with_load) spec.load_n.reset();
+            try {
+                sweepSlip(contact::testing::sandyLoam(), spec);
+                FAIL() << bad.field << " accepted";
+            } catch (const std::invalid_argument& e) {
+                EXPECT_NE(std::string(e.what()).find(bad.field), std::string::npos) << e.what();
+                EXPECT_NE(std::string(e.what()).find(bad.range), std::string::npos) << e.what();
+            }
+        }
+    }
+}
+
+TEST(Sweep, ExceptionInAWorkerReachesTheCaller) {
+    // A NaN modulus passes the spec checks but makes the root finder throw inside the workers
+    // (Boost: "do not bracket the root"); it must arrive here as an exception, with any number
+    // of threads, instead of terminating the process.
+    auto p = contact::testing::sandyLoam();
+    p.pressure_modulus = std::nan("");
+    for (int threads : {1, 2, 3}) {
+        SweepSpec spec = thesisSpec();
+        spec.threads = threads;
+        EXPECT_THROW(sweepSlip(p, spec), std::exception) << threads << " threads";
+    }
+}
+
 TEST(Sweep, CancelKeepsWhatWasComputed) {
     std::atomic<bool> cancel{true};
     SweepSpec spec = thesisSpec();
