@@ -27,7 +27,8 @@ scenario::Scenario pulseSteering(contact::ContactModel model, double duration_s,
 
 // The figure: 60 s of the pulse-steering scenario at 1 ms, ≤ 0.5 s wall.
 void BM_PulseSteering60s(benchmark::State& state) {
-    const auto model = state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
+    const auto model =
+        state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
     const scenario::Scenario s = pulseSteering(model, 60.0, 1e-3);
     for (auto _ : state) {
         scenario::RunResult r = scenario::runScenario(s);
@@ -51,7 +52,8 @@ BENCHMARK(BM_PulseSteeringStep)->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchma
 
 // One rover step (4 wheel contacts + the Bullet step), steady straight driving.
 void BM_RoverStep(benchmark::State& state) {
-    const auto model = state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
+    const auto model =
+        state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
     const scenario::Scenario s = pulseSteering(model, 1.0, 1e-3);
     dynamics::Rover rover(s.robot, s.terrain, s.options, s.initial, s.commandsAt(0.0));
     const dynamics::Commands commands = s.commandsAt(0.0);
@@ -72,7 +74,8 @@ BENCHMARK(BM_ChassisAdvance);
 
 // One wheel's contact evaluation at the straight-line operating point.
 void BM_WheelContact(benchmark::State& state) {
-    const auto model = state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
+    const auto model =
+        state.range(0) == 0 ? contact::ContactModel::kFull : contact::ContactModel::kQuadratic;
     const scenario::Scenario s = pulseSteering(model, 1.0, 1e-3);
     const auto p = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
     dynamics::ContactOptions o = s.options.contact;

@@ -63,11 +63,13 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
 void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
     auto options = std::make_shared<SimulateOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "simulate", "Drive the 4WD/4WS robot through a scenario on deformable soil (docs/dynamics.md)");
+        "simulate",
+        "Drive the 4WD/4WS robot through a scenario on deformable soil (docs/dynamics.md)");
     cmd->add_option("--scenario", options->scenario,
                     "Scenario file or name in resources/scenarios (straight, pulse-steering, ...)")
         ->required();
-    cmd->add_option("--out", options->out, "Output directory (timeseries.csv, summary.json)")->required();
+    cmd->add_option("--out", options->out, "Output directory (timeseries.csv, summary.json)")
+        ->required();
     cmd->add_flag("--json", options->json, "Print the summary as JSON");
     cmd->add_option("--duration", options->duration_s, "Override the scenario's duration [s]");
     cmd->add_option("--step", options->time_step_s, "Override the scenario's time step [s]");
@@ -79,7 +81,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         if (!loaded) throw InputError(loaded.message());
         scenario::Scenario s = loaded.value();
         std::vector<Issue> issues;
-        if (o.duration_s && checkRange(issues, "--duration", *o.duration_s, {0.0, 86400.0, true, false}, "s")) {
+        if (o.duration_s &&
+            checkRange(issues, "--duration", *o.duration_s, {0.0, 86400.0, true, false}, "s")) {
             s.duration_s = *o.duration_s;
         }
         if (o.time_step_s && checkRange(issues, "--step", *o.time_step_s, {1e-6, 0.05}, "s")) {
@@ -97,7 +100,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         run.cancel = &g_cancel;
         const bool tty = ::isatty(STDERR_FILENO) == 1;
         if (tty) run.progress = drawProgress;
-        struct sigaction action {}, previous{};
+        struct sigaction action {
+        }, previous{};
         action.sa_handler = onInterrupt;
         sigemptyset(&action.sa_mask);
         ::sigaction(SIGINT, &action, &previous);
@@ -111,7 +115,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         ::sigaction(SIGINT, &previous, nullptr);
         if (tty) std::fputs("\n", stderr);
 
-        if (const auto error = scenario::writeResults(result, s, o.out)) throw std::runtime_error(*error);
+        if (const auto error = scenario::writeResults(result, s, o.out))
+            throw std::runtime_error(*error);
         if (o.json) {
             std::cout << scenario::toJson(result, s).dump(2) << '\n';
         } else {
@@ -122,7 +127,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
             throw CLI::RuntimeError(kCancelled);
         }
         if (result.status == scenario::RunResult::Status::kDiverged) {
-            std::cerr << "error: " << result.message << "; partial results written to " << o.out << '\n';
+            std::cerr << "error: " << result.message << "; partial results written to " << o.out
+                      << '\n';
             throw CLI::RuntimeError(kFailure);
         }
     });

@@ -24,20 +24,21 @@ inline constexpr std::array<const char*, kWheelCount> kCornerNames{"FL", "FR", "
 struct RobotParameters {
     std::string name = "4WD/4WS robot";
     std::string source;
-    wheel::WheelParameters wheel;            ///< r, b of all four wheels
-    double chassis_mass_kg = 20.0;           ///< chassis without wheels [kg]
+    wheel::WheelParameters wheel;   ///< r, b of all four wheels
+    double chassis_mass_kg = 20.0;  ///< chassis without wheels [kg]
     /// Principal moments of the chassis about its centre of mass, body axes x forward, y left,
     /// z up [kg·m²].
     std::array<double, 3> chassis_inertia_kg_m2{0.4, 0.6, 0.8};
-    double wheel_mass_kg = 1.0;              ///< one wheel with its motors [kg]
-    double wheel_spin_inertia_kg_m2 = 0.005; ///< one wheel about its axle [kg·m²]
-    double wheelbase_m = 0.5;                ///< front axle to rear axle [m]
-    double track_m = 0.4;                    ///< left to right wheel centre [m]
+    double wheel_mass_kg = 1.0;               ///< one wheel with its motors [kg]
+    double wheel_spin_inertia_kg_m2 = 0.005;  ///< one wheel about its axle [kg·m²]
+    double wheelbase_m = 0.5;                 ///< front axle to rear axle [m]
+    double track_m = 0.4;                     ///< left to right wheel centre [m]
     /// Height of the chassis centre of mass above the plane of the wheel centres [m].
     double com_height_m = 0.1;
     /// Forward offset of the chassis centre of mass from the middle of the wheelbase [m].
     double com_forward_m = 0.0;
-    /// Ratio ζ of the vertical soil damping to its critical value for one corner (docs/dynamics.md).
+    /// Ratio ζ of the vertical soil damping to its critical value for one corner
+    /// (docs/dynamics.md).
     double vertical_damping_ratio = 1.0;
 
     double totalMass() const { return chassis_mass_kg + kWheelCount * wheel_mass_kg; }

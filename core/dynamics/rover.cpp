@@ -33,7 +33,7 @@ struct Rover::Impl {
     std::unique_ptr<btRigidBody> body;
 
     double mass = 0.0;
-    std::array<btVector3, kWheelCount> hubs;  // wheel centres in the body frame (origin: COM)
+    std::array<btVector3, kWheelCount> hubs;    // wheel centres in the body frame (origin: COM)
     std::array<double, kWheelCount> damping{};  // N·s/m per corner
     std::array<double, kWheelCount> previous_spin{};
     bool have_previous_spin = false;
@@ -42,8 +42,8 @@ struct Rover::Impl {
     // Forces and moments of the last evaluate(), world frame, about the COM.
     btVector3 force{0, 0, 0};
     btVector3 torque{0, 0, 0};
-    double motor_power = 0.0;     // W
-    double soil_power = 0.0;      // W into the soil
+    double motor_power = 0.0;         // W
+    double soil_power = 0.0;          // W into the soil
     double spin_inertial_work = 0.0;  // J, ½ I (ω₁² − ω₀²) of this evaluate
 
     RoverState state;
@@ -145,8 +145,8 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
         // like h^(n + 1/2) (Bekker, Eq. 2.8), so k ≈ (n + 1/2) W / h.
         const double stiffness =
             (terrain.soil(soil).sinkage_exponent + 0.5) * load / solution.sinkage_m;
-        m.damping[i] = 2.0 * robot.vertical_damping_ratio *
-                       std::sqrt(stiffness * load / options.gravity_m_s2);
+        m.damping[i] =
+            2.0 * robot.vertical_damping_ratio * std::sqrt(stiffness * load / options.gravity_m_s2);
     }
 
     // The body: a box only for Bullet's bookkeeping (nothing collides with it).
@@ -236,24 +236,24 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         const double spin_rate_change = cmd.spin_rate_rad_s - m.previous_spin[i];
         const double angular_acceleration = m.last_dt > 0.0 ? spin_rate_change / m.last_dt : 0.0;
         ws.motor_torque_nm = f.my + inertia * angular_acceleration;
-        m.spin_inertial_work += 0.5 * inertia *
-                                (cmd.spin_rate_rad_s * cmd.spin_rate_rad_s -
-                                 m.previous_spin[i] * m.previous_spin[i]);
+        m.spin_inertial_work +=
+            0.5 * inertia *
+            (cmd.spin_rate_rad_s * cmd.spin_rate_rad_s - m.previous_spin[i] * m.previous_spin[i]);
         m.previous_spin[i] = cmd.spin_rate_rad_s;
         ws.spin_rate_rad_s = cmd.spin_rate_rad_s;
 
         const btVector3 hub_force = f.fx * x_w + f.fs * y_w + ws.load_n * up;
         // Soil moments M_x, M_z reach the chassis through the wheel bearings; about the axle the
         // chassis feels the motor's reaction −(M_y + I ω̇).
-        const btVector3 moment = f.mx * x_w - (f.my + inertia * angular_acceleration) * y_w +
-                                 f.mz * up;
+        const btVector3 moment =
+            f.mx * x_w - (f.my + inertia * angular_acceleration) * y_w + f.mz * up;
         m.force += hub_force;
         m.torque += arm.cross(hub_force) + moment;
 
         const double axle_rate = cmd.spin_rate_rad_s + w.dot(y_w);  // absolute spin about y_w
         m.motor_power += f.my * cmd.spin_rate_rad_s;
-        m.soil_power += f.my * axle_rate - hub_force.dot(hub_velocity) - f.mx * w.dot(x_w) -
-                        f.mz * w.dot(up);
+        m.soil_power +=
+            f.my * axle_rate - hub_force.dot(hub_velocity) - f.mx * w.dot(x_w) - f.mz * w.dot(up);
     }
     m.readBodyState();
     return m.state;

@@ -53,21 +53,21 @@ struct WheelState {
 /// The whole robot at one instant. World frame: x, y on the surface, z up.
 struct RoverState {
     double time_s = 0.0;
-    std::array<double, 3> position_m{};          ///< centre of mass [m]
+    std::array<double, 3> position_m{};                     ///< centre of mass [m]
     double roll_rad = 0.0, pitch_rad = 0.0, yaw_rad = 0.0;  ///< Z-Y-X Euler angles
-    std::array<double, 3> velocity_m_s{};        ///< of the centre of mass, world [m/s]
-    std::array<double, 3> angular_velocity_rad_s{};  ///< world [rad/s]
-    double forward_speed_m_s = 0.0;  ///< velocity along the heading [m/s]
+    std::array<double, 3> velocity_m_s{};                   ///< of the centre of mass, world [m/s]
+    std::array<double, 3> angular_velocity_rad_s{};         ///< world [rad/s]
+    double forward_speed_m_s = 0.0;                         ///< velocity along the heading [m/s]
     double lateral_speed_m_s = 0.0;  ///< velocity to the left of the heading [m/s]
     std::array<WheelState, kWheelCount> wheels;
 };
 
 /// Energy bookkeeping since the start [J].
 struct EnergyLedger {
-    double motor_work_j = 0.0;     ///< ∫ Σ (M_y + I_w ω̇) ω dt: what the drive motors delivered
-    double dissipated_j = 0.0;     ///< ∫ power into the soil (shear, compaction, bulldozing, damping)
-    double kinetic_j = 0.0;        ///< current kinetic energy (chassis, wheels' spin)
-    double potential_j = 0.0;      ///< current m g z
+    double motor_work_j = 0.0;  ///< ∫ Σ (M_y + I_w ω̇) ω dt: what the drive motors delivered
+    double dissipated_j = 0.0;  ///< ∫ power into the soil (shear, compaction, bulldozing, damping)
+    double kinetic_j = 0.0;     ///< current kinetic energy (chassis, wheels' spin)
+    double potential_j = 0.0;   ///< current m g z
     double initial_kinetic_j = 0.0;
     double initial_potential_j = 0.0;
 };

@@ -15,11 +15,12 @@ double slipRatio(double forward_speed_m_s, double rim_speed_m_s, const ContactOp
     return std::clamp(s, -options.max_slip, options.max_slip);
 }
 
-double slipAngle(double forward_speed_m_s, double lateral_speed_m_s, const ContactOptions& options) {
+double slipAngle(double forward_speed_m_s, double lateral_speed_m_s,
+                 const ContactOptions& options) {
     // 89°: the model's domain is |β| < 90°.
     constexpr double kMaxSlipAngle = 89.0 * std::numbers::pi / 180.0;
-    const double beta = std::atan(
-        lateral_speed_m_s / std::max(std::abs(forward_speed_m_s), options.regularisation_speed_m_s));
+    const double beta = std::atan(lateral_speed_m_s / std::max(std::abs(forward_speed_m_s),
+                                                               options.regularisation_speed_m_s));
     return std::clamp(beta, -kMaxSlipAngle, kMaxSlipAngle);
 }
 

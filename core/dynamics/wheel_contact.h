@@ -17,7 +17,7 @@ struct ContactOptions {
     contact::ContactModel model = contact::ContactModel::kFull;  ///< full or quadratic closed form
     contact::BulldozingModel bulldozing = contact::BulldozingModel::kBekker;
     contact::IntegrationOptions integration;  ///< full model only
-    double exit_angle_rad = 0.0;  ///< θ_r [rad] ≤ 0 (Table 2.6: 0); kept ≥ −θ_f
+    double exit_angle_rad = 0.0;              ///< θ_r [rad] ≤ 0 (Table 2.6: 0); kept ≥ −θ_f
     /// v_reg [m/s]: the slip and slip-angle denominators never drop below it, so both stay finite
     /// and continuous when the wheel stands still.
     double regularisation_speed_m_s = 1e-3;
@@ -37,13 +37,13 @@ struct WheelKinematics {
 
 /// The contact of one wheel at one instant.
 struct WheelContact {
-    bool in_contact = false;      ///< h > 0
-    bool sunk = false;            ///< h ≥ r: θ_f clamped to 90° (axle in the soil)
-    double slip = 0.0;            ///< s [-] (Eq. 2.1, regularised, clamped to ±max_slip)
-    double slip_angle_rad = 0.0;  ///< β [rad] (Eq. 2.2, regularised)
-    double entry_angle_rad = 0.0; ///< θ_f = acos(1 − h/r) [rad] (Eq. 2.12)
-    double exit_angle_rad = 0.0;  ///< θ_r [rad]
-    double sinkage_m = 0.0;       ///< h [m]
+    bool in_contact = false;              ///< h > 0
+    bool sunk = false;                    ///< h ≥ r: θ_f clamped to 90° (axle in the soil)
+    double slip = 0.0;                    ///< s [-] (Eq. 2.1, regularised, clamped to ±max_slip)
+    double slip_angle_rad = 0.0;          ///< β [rad] (Eq. 2.2, regularised)
+    double entry_angle_rad = 0.0;         ///< θ_f = acos(1 − h/r) [rad] (Eq. 2.12)
+    double exit_angle_rad = 0.0;          ///< θ_r [rad]
+    double sinkage_m = 0.0;               ///< h [m]
     contact::WheelForces<double> forces;  ///< soil on wheel, wheel frame; fs with smoothed sign
 };
 

@@ -13,10 +13,9 @@ namespace terra::scenario {
 namespace {
 
 std::vector<std::string> seriesColumns() {
-    std::vector<std::string> c{"t_s",       "x_m",          "y_m",           "z_m",
-                               "roll_deg",  "pitch_deg",    "yaw_deg",       "vx_m_s",
-                               "vy_m_s",    "vz_m_s",       "forward_m_s",   "lateral_m_s",
-                               "yaw_rate_deg_s"};
+    std::vector<std::string> c{"t_s",         "x_m",         "y_m",           "z_m",    "roll_deg",
+                               "pitch_deg",   "yaw_deg",     "vx_m_s",        "vy_m_s", "vz_m_s",
+                               "forward_m_s", "lateral_m_s", "yaw_rate_deg_s"};
     for (const char* w : dynamics::kCornerNames) {
         const std::string p = std::string(w) + "_";
         for (const char* name : {"omega_rad_s", "steer_deg", "vx_m_s", "vy_m_s", "slip",
@@ -56,9 +55,12 @@ std::vector<double> seriesRow(const dynamics::RoverState& s) {
 }
 
 bool finite(const dynamics::RoverState& s) {
-    for (double v : s.position_m) if (!std::isfinite(v)) return false;
-    for (double v : s.velocity_m_s) if (!std::isfinite(v)) return false;
-    for (double v : s.angular_velocity_rad_s) if (!std::isfinite(v)) return false;
+    for (double v : s.position_m)
+        if (!std::isfinite(v)) return false;
+    for (double v : s.velocity_m_s)
+        if (!std::isfinite(v)) return false;
+    for (double v : s.angular_velocity_rad_s)
+        if (!std::isfinite(v)) return false;
     return true;
 }
 
@@ -70,10 +72,11 @@ public:
           identifier_(wheel),
           random_(hook.seed),
           every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
-        table_.columns = {"t_s",        "slip",        "theta_f_deg", "Fx_N",   "Fz_N",
-                          "My_Nm",      "estimated",   "Ks_Pa_mN",    "n0",     "c_Pa",
-                          "phi_deg",    "K_m",         "a0",          "a1",     "residual_score",
-                          "change_detected", "soil"};
+        table_.columns = {"t_s",  "slip",  "theta_f_deg",    "Fx_N",
+                          "Fz_N", "My_Nm", "estimated",      "Ks_Pa_mN",
+                          "n0",   "c_Pa",  "phi_deg",        "K_m",
+                          "a0",   "a1",    "residual_score", "change_detected",
+                          "soil"};
     }
 
     void observe(long step, const dynamics::RoverState& state) {
@@ -82,20 +85,19 @@ public:
         if (!w.contact.in_contact || w.contact.sunk) return;
         identification::Sample sample;
         sample.slip = std::clamp(w.contact.slip + noise(hook_.slip_noise), -0.98, 0.98);
-        sample.entry_angle_rad = std::clamp(w.contact.entry_angle_rad +
-                                            noise(hook_.entry_angle_noise_rad), 1e-3, 1.5);
+        sample.entry_angle_rad =
+            std::clamp(w.contact.entry_angle_rad + noise(hook_.entry_angle_noise_rad), 1e-3, 1.5);
         sample.fx_n = w.contact.forces.fx + noise(hook_.force_noise_n);
         sample.fz_n = w.contact.forces.fz + noise(hook_.force_noise_n);
         sample.my_nm = w.contact.forces.my + noise(hook_.torque_noise_nm);
         sample.time_s = state.time_s;
         const identification::StreamUpdate u = identifier_.push(sample);
         const auto& p = u.parameters;
-        table_.rows.push_back({state.time_s, sample.slip, units::radToDeg(sample.entry_angle_rad),
-                               sample.fx_n, sample.fz_n, sample.my_nm, u.estimated ? 1.0 : 0.0,
-                               p.pressure_modulus, p.n0, p.cohesion_pa,
-                               units::radToDeg(p.friction_angle_rad), p.shear_modulus_m, p.a0, p.a1,
-                               u.residual_score, u.change_detected ? 1.0 : 0.0,
-                               static_cast<double>(w.soil_index)});
+        table_.rows.push_back(
+            {state.time_s, sample.slip, units::radToDeg(sample.entry_angle_rad), sample.fx_n,
+             sample.fz_n, sample.my_nm, u.estimated ? 1.0 : 0.0, p.pressure_modulus, p.n0,
+             p.cohesion_pa, units::radToDeg(p.friction_angle_rad), p.shear_modulus_m, p.a0, p.a1,
+             u.residual_score, u.change_detected ? 1.0 : 0.0, static_cast<double>(w.soil_index)});
     }
 
     Table take() { return std::move(table_); }
@@ -139,7 +141,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             result.message = "the simulation diverged at t = " + formatNumber(t) + " s";
             break;
         }
-        if (step % output_every == 0 || step == steps) result.series.rows.push_back(seriesRow(state));
+        if (step % output_every == 0 || step == steps)
+            result.series.rows.push_back(seriesRow(state));
         if (feed) feed->observe(step, state);
         if (step == steps) break;
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
@@ -180,29 +183,30 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
 nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
     const Summary& s = result.summary;
     nlohmann::json slip;
-    for (int i = 0; i < dynamics::kWheelCount; ++i) slip[dynamics::kCornerNames[i]] = s.mean_slip[i];
+    for (int i = 0; i < dynamics::kWheelCount; ++i)
+        slip[dynamics::kCornerNames[i]] = s.mean_slip[i];
     const char* status = result.status == RunResult::Status::kCompleted   ? "completed"
                          : result.status == RunResult::Status::kCancelled ? "cancelled"
                                                                           : "diverged";
-    nlohmann::json j{{"scenario", scenario.name},
-                     {"status", status},
-                     {"duration_s", s.duration_s},
-                     {"x_m", s.x_m},
-                     {"y_m", s.y_m},
-                     {"yaw_rad", s.yaw_rad},
-                     {"distance_m", s.distance_m},
-                     {"mean_slip", slip},
-                     {"energy_J", s.energy_j},
-                     {"dissipated_J", s.dissipated_j},
-                     {"kinetic_change_J", s.kinetic_change_j},
-                     {"potential_change_J", s.potential_change_j},
-                     {"max_sinkage_m", s.max_sinkage_m},
-                     {"sunk_wheel_steps", s.sunk_steps},
-                     {"steps", s.steps},
-                     {"time_step_s", scenario.time_step_s},
-                     {"model", scenario.options.contact.model == contact::ContactModel::kFull
-                                   ? "full"
-                                   : "quadratic"}};
+    nlohmann::json j{
+        {"scenario", scenario.name},
+        {"status", status},
+        {"duration_s", s.duration_s},
+        {"x_m", s.x_m},
+        {"y_m", s.y_m},
+        {"yaw_rad", s.yaw_rad},
+        {"distance_m", s.distance_m},
+        {"mean_slip", slip},
+        {"energy_J", s.energy_j},
+        {"dissipated_J", s.dissipated_j},
+        {"kinetic_change_J", s.kinetic_change_j},
+        {"potential_change_J", s.potential_change_j},
+        {"max_sinkage_m", s.max_sinkage_m},
+        {"sunk_wheel_steps", s.sunk_steps},
+        {"steps", s.steps},
+        {"time_step_s", scenario.time_step_s},
+        {"model",
+         scenario.options.contact.model == contact::ContactModel::kFull ? "full" : "quadratic"}};
     if (!result.message.empty()) j["message"] = result.message;
     return j;
 }
@@ -212,12 +216,13 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
     if (ec) return "cannot create " + directory.string() + ": " + ec.message();
-    if (auto error = io::writeFileAtomically(directory / "timeseries.csv", io::toCsv(result.series))) {
+    if (auto error =
+            io::writeFileAtomically(directory / "timeseries.csv", io::toCsv(result.series))) {
         return error;
     }
     if (!result.streaming.columns.empty()) {
-        if (auto error = io::writeFileAtomically(directory / "streaming.csv",
-                                                 io::toCsv(result.streaming))) {
+        if (auto error =
+                io::writeFileAtomically(directory / "streaming.csv", io::toCsv(result.streaming))) {
             return error;
         }
     }

@@ -8,10 +8,9 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "core/common/table.h"
 #include "core/dynamics/rover.h"
@@ -28,15 +27,15 @@ struct RunOptions {
 
 /// What a run produced, summed up (the summary JSON of docs/dynamics.md).
 struct Summary {
-    double duration_s = 0.0;   ///< simulated time actually run [s]
+    double duration_s = 0.0;                     ///< simulated time actually run [s]
     double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  ///< final pose (centre of mass)
-    double distance_m = 0.0;   ///< path length of the centre of mass on the ground [m]
+    double distance_m = 0.0;  ///< path length of the centre of mass on the ground [m]
     std::array<double, dynamics::kWheelCount> mean_slip{};  ///< time average of s per wheel
-    double energy_j = 0.0;     ///< drive motors' work ∫ Σ M_y ω dt (+ spin-up) [J]
-    double dissipated_j = 0.0; ///< work into the soil [J]
+    double energy_j = 0.0;      ///< drive motors' work ∫ Σ M_y ω dt (+ spin-up) [J]
+    double dissipated_j = 0.0;  ///< work into the soil [J]
     double kinetic_change_j = 0.0, potential_change_j = 0.0;  ///< [J]
     double max_sinkage_m = 0.0;
-    int sunk_steps = 0;        ///< wheel-steps with θ_f clamped at 90°
+    int sunk_steps = 0;  ///< wheel-steps with θ_f clamped at 90°
     long steps = 0;
 };
 
@@ -44,7 +43,7 @@ struct RunResult {
     enum class Status { kCompleted, kCancelled, kDiverged };
     Status status = Status::kCompleted;
     std::string message;
-    Table series;     ///< one row per output interval (columns: docs/dynamics.md)
+    Table series;  ///< one row per output interval (columns: docs/dynamics.md)
     Summary summary;
     Table streaming;  ///< streaming identification updates (empty without the hook)
     bool usable() const { return series.rows.size() > 1; }

@@ -30,12 +30,14 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
             issues.push_back(std::move(issue));
         const dynamics::SoilPatch& p = s.terrain.patches[i];
         if (!(p.x_min_m < p.x_max_m)) {
-            issues.push_back({at + "x_min_m", "x_min_m = " + formatNumber(p.x_min_m) +
-                                                  " must be < x_max_m = " + formatNumber(p.x_max_m)});
+            issues.push_back(
+                {at + "x_min_m", "x_min_m = " + formatNumber(p.x_min_m) +
+                                     " must be < x_max_m = " + formatNumber(p.x_max_m)});
         }
         if (!(p.y_min_m < p.y_max_m)) {
-            issues.push_back({at + "y_min_m", "y_min_m = " + formatNumber(p.y_min_m) +
-                                                  " must be < y_max_m = " + formatNumber(p.y_max_m)});
+            issues.push_back(
+                {at + "y_min_m", "y_min_m = " + formatNumber(p.y_min_m) +
+                                     " must be < y_max_m = " + formatNumber(p.y_max_m)});
         }
     }
     checkRange(issues, prefix + "initial.speed_m_s", s.initial.speed_m_s, {0.0, 100.0}, "m/s");

@@ -27,13 +27,13 @@ struct WheelInputs {
 /// streaming identifier (core/identification/streaming.h), so the run shows the robot recognising
 /// the soil it drives on (docs/dynamics.md, "Streaming identification").
 struct StreamingHook {
-    int wheel = dynamics::kFrontLeft;  ///< which wheel's sensors
-    double interval_s = 0.05;          ///< sampling period [s] (20 Hz)
-    double slip_noise = 0.005;         ///< standard deviation of s [-]
+    int wheel = dynamics::kFrontLeft;       ///< which wheel's sensors
+    double interval_s = 0.05;               ///< sampling period [s] (20 Hz)
+    double slip_noise = 0.005;              ///< standard deviation of s [-]
     double entry_angle_noise_rad = 0.0035;  ///< of θ_f [rad] (0.2°)
-    double force_noise_n = 0.5;        ///< of F_x and F_z [N]
-    double torque_noise_nm = 0.05;     ///< of M_y [N·m]
-    unsigned seed = 1;                 ///< noise seed (runs repeat bit for bit)
+    double force_noise_n = 0.5;             ///< of F_x and F_z [N]
+    double torque_noise_nm = 0.05;          ///< of M_y [N·m]
+    unsigned seed = 1;                      ///< noise seed (runs repeat bit for bit)
 };
 
 struct Scenario {
@@ -44,9 +44,9 @@ struct Scenario {
     dynamics::InitialState initial;
     dynamics::RoverOptions options;
     std::array<WheelInputs, dynamics::kWheelCount> wheels;
-    double duration_s = 60.0;        ///< simulated time [s]
-    double time_step_s = 1e-3;       ///< fixed physics step [s]
-    double output_interval_s = 0.01; ///< time-series row spacing [s] (a multiple of the step)
+    double duration_s = 60.0;         ///< simulated time [s]
+    double time_step_s = 1e-3;        ///< fixed physics step [s]
+    double output_interval_s = 0.01;  ///< time-series row spacing [s] (a multiple of the step)
     std::optional<StreamingHook> streaming;
 
     /// Every wheel's command at time t [s].

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -27,7 +28,9 @@ struct Reader {
         const auto it = object.find(key);
         const std::string u = unit.empty() ? "" : " " + unit;
         if (it == object.end()) {
-            if (required) issues.push_back({at + key, "missing; expected a number in " + range.describe() + u});
+            if (required)
+                issues.push_back(
+                    {at + key, "missing; expected a number in " + range.describe() + u});
             return false;
         }
         if (!it->is_number()) {
@@ -64,7 +67,8 @@ struct Reader {
 
 Result<json> readJson(const fs::path& path) {
     std::string content;
-    if (const auto error = io::readFile(path, content)) return std::vector<Issue>{{path.string(), *error}};
+    if (const auto error = io::readFile(path, content))
+        return std::vector<Issue>{{path.string(), *error}};
     try {
         return json::parse(content);
     } catch (const json::parse_error& e) {
@@ -99,8 +103,10 @@ Signal readSignal(const json& value, const std::string& at, const Range& range,
         return signal;
     }
     if (!value.is_object()) {
-        issues.push_back({at, "expected a number or an object {\"type\": constant|step|pulse|ramp|"
-                              "table, ...}, got " + std::string(value.type_name())});
+        issues.push_back({at,
+                          "expected a number or an object {\"type\": constant|step|pulse|ramp|"
+                          "table, ...}, got " +
+                              std::string(value.type_name())});
         return signal;
     }
     const std::size_t before = issues.size();
@@ -113,7 +119,7 @@ Signal readSignal(const json& value, const std::string& at, const Range& range,
         r.rejectUnknown({"type", "value"});
         r.number("value", range, unit, signal.value, true);
     } else if (type == "step" || type == "pulse" || type == "ramp") {
-        signal.kind = type == "step" ? Signal::Kind::kStep
+        signal.kind = type == "step"    ? Signal::Kind::kStep
                       : type == "pulse" ? Signal::Kind::kPulse
                                         : Signal::Kind::kRamp;
         std::vector<std::string> known{"type", "value", "amplitude", "start_s"};
@@ -123,8 +129,9 @@ Signal readSignal(const json& value, const std::string& at, const Range& range,
         r.number("amplitude", any, unit, signal.amplitude, true);
         r.number("start_s", time, "s", signal.start_s, true);
         if (type != "step") r.number("duration_s", time, "s", signal.duration_s, true);
-        if (issues.size() == before) checkRange(issues, at + " (value + amplitude)",
-                                                signal.value + signal.amplitude, range, unit);
+        if (issues.size() == before)
+            checkRange(issues, at + " (value + amplitude)", signal.value + signal.amplitude, range,
+                       unit);
         signal.amplitude *= scale;
     } else if (type == "table") {
         signal.kind = Signal::Kind::kTable;
@@ -133,7 +140,8 @@ Signal readSignal(const json& value, const std::string& at, const Range& range,
         const auto v = value.find("values");
         if (t == value.end() || v == value.end() || !t->is_array() || !v->is_array() ||
             t->size() != v->size() || t->empty()) {
-            issues.push_back({at, "a table needs arrays t_s and values of the same, non-zero length"});
+            issues.push_back(
+                {at, "a table needs arrays t_s and values of the same, non-zero length"});
             return signal;
         }
         for (std::size_t i = 0; i < t->size(); ++i) {
@@ -153,8 +161,9 @@ Signal readSignal(const json& value, const std::string& at, const Range& range,
             signal.values.push_back(vi);
         }
     } else {
-        issues.push_back({at + ".type", "'" + type + "' is not a signal type; allowed: constant, "
-                                        "step, pulse, ramp, table"});
+        issues.push_back({at + ".type", "'" + type +
+                                            "' is not a signal type; allowed: constant, "
+                                            "step, pulse, ramp, table"});
     }
     signal.value *= scale;
     for (double& v : signal.values) v *= scale;
@@ -167,7 +176,7 @@ dynamics::Terrain readTerrain(const json& value, const std::string& at,
     dynamics::Terrain terrain;
     auto soil = [&](const json& v, const std::string& where, soil::SoilParameters& out) {
         Result<soil::SoilParameters> resolved =
-            v.is_string() ? io::resolveSoil(locations, locate(v.get<std::string>(), base_dir))
+            v.is_string()   ? io::resolveSoil(locations, locate(v.get<std::string>(), base_dir))
             : v.is_object() ? io::soilFromJson(v, where)
                             : Result<soil::SoilParameters>(std::vector<Issue>{
                                   {where, "expected a soil preset name, a file or an object"}});
@@ -241,8 +250,9 @@ Result<dynamics::RobotParameters> robotFromJson(const json& object, const std::s
     r.text("source", robot.source);
     const auto wheel = object.find("wheel");
     if (wheel == object.end()) {
-        issues.push_back({at + "wheel", "missing; expected a wheel preset (\"A\", \"B\"), a file or "
-                                        "an object {\"r_m\", \"b_m\"}"});
+        issues.push_back({at + "wheel",
+                          "missing; expected a wheel preset (\"A\", \"B\"), a file or "
+                          "an object {\"r_m\", \"b_m\"}"});
     } else {
         Result<wheel::WheelParameters> w =
             wheel->is_string() ? io::resolveWheel(locations, wheel->get<std::string>())
@@ -269,7 +279,8 @@ Result<dynamics::RobotParameters> robotFromJson(const json& object, const std::s
             }
         }
     } else {
-        issues.push_back({at + "chassis_inertia_kg_m2", "missing; expected [Ixx, Iyy, Izz] in kg·m²"});
+        issues.push_back(
+            {at + "chassis_inertia_kg_m2", "missing; expected [Ixx, Iyy, Izz] in kg·m²"});
     }
     r.number("wheel_mass_kg", {0.0, 1e6}, "kg", robot.wheel_mass_kg, true);
     r.number("wheel_spin_inertia_kg_m2", {0.0, 1e6}, "kg·m²", robot.wheel_spin_inertia_kg_m2);
@@ -279,7 +290,8 @@ Result<dynamics::RobotParameters> robotFromJson(const json& object, const std::s
     r.number("com_forward_m", {-50.0, 50.0}, "m", robot.com_forward_m);
     r.number("vertical_damping_ratio", {0.0, 10.0}, "", robot.vertical_damping_ratio);
     if (issues.empty()) {
-        for (Issue& issue : dynamics::validate(robot)) issues.push_back({at + issue.where, issue.message});
+        for (Issue& issue : dynamics::validate(robot))
+            issues.push_back({at + issue.where, issue.message});
     }
     if (!issues.empty()) return issues;
     return robot;
@@ -300,8 +312,10 @@ Result<dynamics::RobotParameters> resolveRobot(const io::PresetLocations& locati
     }
     if (file.empty()) {
         std::string names;
-        for (const std::string& n : io::presetNames(locations, "robots")) names += (names.empty() ? "" : ", ") + n;
-        return std::vector<Issue>{{"robot", "'" + name_or_path + "' is neither a file nor a preset; presets: " +
+        for (const std::string& n : io::presetNames(locations, "robots"))
+            names += (names.empty() ? "" : ", ") + n;
+        return std::vector<Issue>{{"robot", "'" + name_or_path +
+                                                "' is neither a file nor a preset; presets: " +
                                                 (names.empty() ? "(none found)" : names)}};
     }
     Result<json> document = readJson(file);
@@ -325,11 +339,12 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
     // Robot: preset, file or inline object; default: the shipped robot.
     const json robot_value = object.contains("robot") ? object["robot"] : json("default");
     Result<dynamics::RobotParameters> robot =
-        robot_value.is_string() ? resolveRobot(locations, locate(robot_value.get<std::string>(), base_dir))
+        robot_value.is_string()
+            ? resolveRobot(locations, locate(robot_value.get<std::string>(), base_dir))
         : robot_value.is_object()
             ? robotFromJson(robot_value, "", locations)
-            : Result<dynamics::RobotParameters>(
-                  std::vector<Issue>{{at + "robot", "expected a robot preset name, a file or an object"}});
+            : Result<dynamics::RobotParameters>(std::vector<Issue>{
+                  {at + "robot", "expected a robot preset name, a file or an object"}});
     if (robot) {
         s.robot = robot.value();
     } else {
@@ -343,13 +358,15 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
 
     std::string model = "full";
     if (r.text("model", model) && model != "full" && model != "quadratic") {
-        issues.push_back({at + "model", "'" + model + "' is not a contact model; allowed: full, quadratic"});
+        issues.push_back(
+            {at + "model", "'" + model + "' is not a contact model; allowed: full, quadratic"});
     }
     s.options.contact.model =
         model == "quadratic" ? contact::ContactModel::kQuadratic : contact::ContactModel::kFull;
     std::string bulldozing = "bekker";
     if (r.text("bulldozing", bulldozing) && bulldozing != "bekker" && bulldozing != "hegedus") {
-        issues.push_back({at + "bulldozing", "'" + bulldozing + "' is not allowed; allowed: bekker, hegedus"});
+        issues.push_back(
+            {at + "bulldozing", "'" + bulldozing + "' is not allowed; allowed: bekker, hegedus"});
     }
     s.options.contact.bulldozing = bulldozing == "hegedus" ? contact::BulldozingModel::kHegedus
                                                            : contact::BulldozingModel::kBekker;
@@ -367,13 +384,15 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
             i.number("x_m", {-1e6, 1e6}, "m", s.initial.x_m);
             i.number("y_m", {-1e6, 1e6}, "m", s.initial.y_m);
             double yaw_deg = 0.0;
-            if (i.number("yaw_deg", {-360.0, 360.0}, "deg", yaw_deg)) s.initial.yaw_rad = units::degToRad(yaw_deg);
+            if (i.number("yaw_deg", {-360.0, 360.0}, "deg", yaw_deg))
+                s.initial.yaw_rad = units::degToRad(yaw_deg);
             i.number("speed_m_s", {0.0, 100.0}, "m/s", s.initial.speed_m_s);
         }
     }
 
     if (!object.contains("terrain")) {
-        issues.push_back({at + "terrain", "missing; expected a soil name or {\"soil\", \"patches\"}"});
+        issues.push_back(
+            {at + "terrain", "missing; expected a soil name or {\"soil\", \"patches\"}"});
     } else {
         s.terrain = readTerrain(object["terrain"], at + "terrain", locations, base_dir, issues);
     }
@@ -382,8 +401,9 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
     const Range spin_range{0.0, 1000.0};
     const Range steer_range{-60.0, 60.0};
     if (const auto it = object.find("wheels"); it == object.end() || !it->is_object()) {
-        issues.push_back({at + "wheels", "missing; expected {\"all\": {\"omega_rad_s\": ..., "
-                                         "\"steer_deg\": ...}, \"FL\": {...}, ...}"});
+        issues.push_back({at + "wheels",
+                          "missing; expected {\"all\": {\"omega_rad_s\": ..., "
+                          "\"steer_deg\": ...}, \"FL\": {...}, ...}"});
     } else {
         Reader w{*it, at + "wheels.", issues};
         w.rejectUnknown({"all", "FL", "FR", "RL", "RR"});
@@ -398,17 +418,23 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
             }
             Reader e{*entry, where + ".", issues};
             e.rejectUnknown({"omega_rad_s", "steer_deg"});
+            // Read once (one message per problem), then give to the wheel(s) it is for.
+            std::optional<Signal> spin, steer;
+            if (entry->contains("omega_rad_s")) {
+                spin = readSignal((*entry)["omega_rad_s"], where + ".omega_rad_s", spin_range,
+                                  "rad/s", 1.0, issues);
+            }
+            if (entry->contains("steer_deg")) {
+                steer = readSignal((*entry)["steer_deg"], where + ".steer_deg", steer_range, "deg",
+                                   units::degToRad(1.0), issues);
+            }
             for (int i = 0; i < dynamics::kWheelCount; ++i) {
                 if (only >= 0 && i != only) continue;
-                if (entry->contains("omega_rad_s")) {
-                    s.wheels[i].spin_rate_rad_s = readSignal((*entry)["omega_rad_s"], where + ".omega_rad_s",
-                                                             spin_range, "rad/s", 1.0, issues);
+                if (spin) {
+                    s.wheels[i].spin_rate_rad_s = *spin;
                     has_spin[i] = true;
                 }
-                if (entry->contains("steer_deg")) {
-                    s.wheels[i].steer_angle_rad = readSignal((*entry)["steer_deg"], where + ".steer_deg",
-                                                             steer_range, "deg", units::degToRad(1.0), issues);
-                }
+                if (steer) s.wheels[i].steer_angle_rad = *steer;
             }
         };
         readWheel("all", -1);
@@ -423,7 +449,8 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
 
     if (const auto it = object.find("streaming"); it != object.end()) {
         if (!it->is_object()) {
-            issues.push_back({at + "streaming", "expected an object {\"wheel\", \"interval_s\", ...}"});
+            issues.push_back(
+                {at + "streaming", "expected an object {\"wheel\", \"interval_s\", ...}"});
         } else {
             Reader h{*it, at + "streaming.", issues};
             h.rejectUnknown({"wheel", "interval_s", "slip_noise", "entry_angle_noise_deg",
@@ -431,9 +458,11 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
             StreamingHook hook;
             std::string wheel_name = "FL";
             h.text("wheel", wheel_name);
-            const auto found = std::find(dynamics::kCornerNames.begin(), dynamics::kCornerNames.end(), wheel_name);
+            const auto found =
+                std::find(dynamics::kCornerNames.begin(), dynamics::kCornerNames.end(), wheel_name);
             if (found == dynamics::kCornerNames.end()) {
-                issues.push_back({at + "streaming.wheel", "'" + wheel_name + "' is not a wheel; allowed: FL, FR, RL, RR"});
+                issues.push_back({at + "streaming.wheel",
+                                  "'" + wheel_name + "' is not a wheel; allowed: FL, FR, RL, RR"});
             } else {
                 hook.wheel = static_cast<int>(found - dynamics::kCornerNames.begin());
             }
@@ -446,7 +475,8 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
             h.number("force_noise_N", {0.0, 1e4}, "N", hook.force_noise_n);
             h.number("torque_noise_Nm", {0.0, 1e4}, "N·m", hook.torque_noise_nm);
             double seed = hook.seed;
-            if (h.number("seed", {0.0, 4294967295.0}, "", seed)) hook.seed = static_cast<unsigned>(seed);
+            if (h.number("seed", {0.0, 4294967295.0}, "", seed))
+                hook.seed = static_cast<unsigned>(seed);
             s.streaming = hook;
         }
     }
@@ -461,26 +491,31 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
 Result<Scenario> loadScenario(const fs::path& path, const io::PresetLocations& locations) {
     Result<json> document = readJson(path);
     if (!document) return document.issues();
-    Result<Scenario> s = scenarioFromJson(document.value(), path.string(), locations, path.parent_path());
+    Result<Scenario> s =
+        scenarioFromJson(document.value(), path.string(), locations, path.parent_path());
     if (!s) return s;
     Scenario out = s.value();
     if (out.name.empty()) out.name = path.stem().string();
     return out;
 }
 
-Result<Scenario> resolveScenario(const io::PresetLocations& locations, const std::string& name_or_path) {
+Result<Scenario> resolveScenario(const io::PresetLocations& locations,
+                                 const std::string& name_or_path) {
     std::error_code ec;
     const bool looks_like_path = name_or_path.find('/') != std::string::npos ||
                                  fs::path(name_or_path).extension() == ".json";
-    if (looks_like_path && fs::is_regular_file(name_or_path, ec)) return loadScenario(name_or_path, locations);
+    if (looks_like_path && fs::is_regular_file(name_or_path, ec))
+        return loadScenario(name_or_path, locations);
     for (const fs::path& dir : locations.directories) {
         const fs::path candidate = dir / "scenarios" / (name_or_path + ".json");
         if (fs::is_regular_file(candidate, ec)) return loadScenario(candidate, locations);
     }
     if (fs::is_regular_file(name_or_path, ec)) return loadScenario(name_or_path, locations);
     std::string names;
-    for (const std::string& n : io::presetNames(locations, "scenarios")) names += (names.empty() ? "" : ", ") + n;
-    return std::vector<Issue>{{"scenario", "'" + name_or_path + "' is neither a file nor a scenario; scenarios: " +
+    for (const std::string& n : io::presetNames(locations, "scenarios"))
+        names += (names.empty() ? "" : ", ") + n;
+    return std::vector<Issue>{{"scenario", "'" + name_or_path +
+                                               "' is neither a file nor a scenario; scenarios: " +
                                                (names.empty() ? "(none found)" : names)}};
 }
 

@@ -4,9 +4,8 @@
 /// file, the field path, the value and what is allowed; nothing throws.
 
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/common/issue.h"
 #include "core/dynamics/robot.h"
@@ -16,7 +15,8 @@
 namespace terra::scenario {
 
 /// A robot from a JSON object; the wheel is a preset name, a file or an inline object.
-Result<dynamics::RobotParameters> robotFromJson(const nlohmann::json& json, const std::string& where,
+Result<dynamics::RobotParameters> robotFromJson(const nlohmann::json& json,
+                                                const std::string& where,
                                                 const io::PresetLocations& locations);
 /// A robot preset name (resources/robots/NAME.json) or a path.
 Result<dynamics::RobotParameters> resolveRobot(const io::PresetLocations& locations,
@@ -28,8 +28,10 @@ Result<Scenario> scenarioFromJson(const nlohmann::json& json, const std::string&
                                   const io::PresetLocations& locations,
                                   const std::filesystem::path& base_dir = {});
 /// A scenario file.
-Result<Scenario> loadScenario(const std::filesystem::path& path, const io::PresetLocations& locations);
+Result<Scenario> loadScenario(const std::filesystem::path& path,
+                              const io::PresetLocations& locations);
 /// A scenario preset name (resources/scenarios/NAME.json, e.g. "straight") or a path.
-Result<Scenario> resolveScenario(const io::PresetLocations& locations, const std::string& name_or_path);
+Result<Scenario> resolveScenario(const io::PresetLocations& locations,
+                                 const std::string& name_or_path);
 
 }  // namespace terra::scenario

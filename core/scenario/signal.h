@@ -10,10 +10,10 @@ namespace terra::scenario {
 struct Signal {
     enum class Kind { kConstant, kStep, kPulse, kRamp, kTable };
     Kind kind = Kind::kConstant;
-    double value = 0.0;      ///< constant; the value before the step/pulse/ramp
-    double amplitude = 0.0;  ///< step, pulse, ramp: the change added to `value`
-    double start_s = 0.0;    ///< step, pulse, ramp: when the change starts [s]
-    double duration_s = 0.0; ///< pulse: how long it lasts; ramp: how long it takes [s]
+    double value = 0.0;           ///< constant; the value before the step/pulse/ramp
+    double amplitude = 0.0;       ///< step, pulse, ramp: the change added to `value`
+    double start_s = 0.0;         ///< step, pulse, ramp: when the change starts [s]
+    double duration_s = 0.0;      ///< pulse: how long it lasts; ramp: how long it takes [s]
     std::vector<double> times_s;  ///< table: strictly increasing times [s]
     std::vector<double> values;   ///< table: values at those times
 

@@ -1,6 +1,6 @@
 // `terrastudio simulate` as a user runs it: outputs, summary keys, errors, and Ctrl-C.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,13 +24,15 @@ struct SimRun {
 };
 
 SimRun simulate(const std::string& arguments) {
-    const fs::path err_path = fs::temp_directory_path() / ("terra_sim_err_" + std::to_string(::getpid()));
+    const fs::path err_path =
+        fs::temp_directory_path() / ("terra_sim_err_" + std::to_string(::getpid()));
     const std::string command =
         std::string(TERRASTUDIO_EXE) + " simulate " + arguments + " 2>" + err_path.string();
     SimRun r;
     FILE* pipe = ::popen(command.c_str(), "r");
     std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        r.out.append(buffer.data(), n);
     const int status = ::pclose(pipe);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::ifstream err(err_path);
@@ -40,7 +42,8 @@ SimRun simulate(const std::string& arguments) {
 }
 
 fs::path outDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("terra_sim_" + name + "_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("terra_sim_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     return dir;
 }
@@ -57,7 +60,8 @@ TEST(SimulateCli, WritesTheTimeSeriesAndTheSummary) {
     const SimRun r = simulate("--scenario straight --duration 2 --out " + dir.string() + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    for (const char* key : {"duration_s", "x_m", "y_m", "yaw_rad", "distance_m", "mean_slip", "energy_J"}) {
+    for (const char* key :
+         {"duration_s", "x_m", "y_m", "yaw_rad", "distance_m", "mean_slip", "energy_J"}) {
         EXPECT_TRUE(j.contains(key)) << key;
     }
     for (const char* wheel : {"FL", "FR", "RL", "RR"}) EXPECT_TRUE(j["mean_slip"].contains(wheel));
@@ -73,13 +77,14 @@ TEST(SimulateCli, WritesTheTimeSeriesAndTheSummary) {
 
 TEST(SimulateCli, ScenarioFileByPathAndHumanOutput) {
     const fs::path dir = outDir("file");
-    const SimRun r = simulate("--scenario " + std::string(TERRA_RESOURCE_DIR) +
-                           "/scenarios/pulse-steering.json --duration 1 --model quadratic --out " +
-                           dir.string());
+    const SimRun r = simulate(
+        "--scenario " + std::string(TERRA_RESOURCE_DIR) +
+        "/scenarios/pulse-steering.json --duration 1 --model quadratic --out " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("mean slip"), std::string::npos) << r.out;
     EXPECT_TRUE(fs::exists(dir / "timeseries.csv"));
-    EXPECT_EQ(r.err.find('\r'), std::string::npos);  // no progress bar when stderr is not a terminal
+    EXPECT_EQ(r.err.find('\r'),
+              std::string::npos);  // no progress bar when stderr is not a terminal
     fs::remove_all(dir);
 }
 
@@ -113,8 +118,8 @@ TEST(SimulateCli, CtrlCStopsAndStillWritesWhatWasComputed) {
         ::dup2(fd, STDOUT_FILENO);
         ::dup2(fd, STDERR_FILENO);
         // Long enough (full model, ~10 min of robot time) that it is still running at the signal.
-        ::execl(TERRASTUDIO_EXE, TERRASTUDIO_EXE, "simulate", "--scenario", "straight", "--duration",
-                "600", "--json", "--out", dir.c_str(), static_cast<char*>(nullptr));
+        ::execl(TERRASTUDIO_EXE, TERRASTUDIO_EXE, "simulate", "--scenario", "straight",
+                "--duration", "600", "--json", "--out", dir.c_str(), static_cast<char*>(nullptr));
         ::_exit(127);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
@@ -130,7 +135,8 @@ TEST(SimulateCli, CtrlCStopsAndStillWritesWhatWasComputed) {
     EXPECT_GT(summary["duration_s"].get<double>(), 0.0);
     EXPECT_LT(summary["duration_s"].get<double>(), 600.0);
     // Rows up to where it stopped: 100 per simulated second, plus the header.
-    EXPECT_NEAR(countLines(dir / "timeseries.csv"), 1 + 100 * summary["duration_s"].get<double>(), 2);
+    EXPECT_NEAR(countLines(dir / "timeseries.csv"), 1 + 100 * summary["duration_s"].get<double>(),
+                2);
     fs::remove_all(dir);
     fs::remove(out_file);
 }

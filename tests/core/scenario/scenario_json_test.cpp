@@ -30,7 +30,8 @@ TEST(ScenarioJson, ShippedScenariosLoad) {
     ASSERT_TRUE(pulse.ok()) << pulse.message();
     // Table 2.6: ω = 0.4 rad/s; the front wheels get the pulse, the rear ones stay straight.
     EXPECT_EQ(pulse->commandsAt(0.0)[dynamics::kRearLeft].spin_rate_rad_s, 0.4);
-    EXPECT_NEAR(pulse->commandsAt(15.0)[dynamics::kFrontLeft].steer_angle_rad, 10 * M_PI / 180, 1e-15);
+    EXPECT_NEAR(pulse->commandsAt(15.0)[dynamics::kFrontLeft].steer_angle_rad, 10 * M_PI / 180,
+                1e-15);
     EXPECT_EQ(pulse->commandsAt(15.0)[dynamics::kRearRight].steer_angle_rad, 0.0);
     EXPECT_EQ(pulse->commandsAt(35.0)[dynamics::kFrontRight].steer_angle_rad, 0.0);
 }
@@ -39,7 +40,7 @@ TEST(ScenarioJson, DefaultRobotCarriesSixKilogramsPerWheel) {
     const auto robot = resolveRobot(kLocations, "default");
     ASSERT_TRUE(robot.ok()) << robot.message();
     EXPECT_DOUBLE_EQ(robot->totalMass() / dynamics::kWheelCount, 6.0);  // Table 2.6
-    EXPECT_EQ(robot->wheel.radius_m, 0.092);                             // wheel A
+    EXPECT_EQ(robot->wheel.radius_m, 0.092);                            // wheel A
 }
 
 TEST(ScenarioJson, PerWheelInputsOverrideAll) {
@@ -65,14 +66,16 @@ TEST(ScenarioJson, BadFilesNameTheField) {
         {R"({"terrain": "moon-dust"})", "moon-dust"},
         {R"({"terrain": {"soil": "sandy-loam", "patches": [{"soil": "clayey-soil", "x_min_m": "a"}]}})",
          "terrain.patches[0].x_min_m"},
-        {R"({"wheels": {"all": null, "FL": {"omega_rad_s": 0.4}}})", "wheels.FR.omega_rad_s: missing"},
+        {R"({"wheels": {"all": null, "FL": {"omega_rad_s": 0.4}}})",
+         "wheels.FR.omega_rad_s: missing"},
         {R"({"wheels": {"all": {"omega_rad_s": 0.4, "steer_deg": 75}}})", "wheels.all.steer_deg"},
-        {R"({"wheels": {"all": {"omega_rad_s": {"type": "wiggle"}}}})", "wheels.all.omega_rad_s.type"},
+        {R"({"wheels": {"all": {"omega_rad_s": {"type": "wiggle"}}}})",
+         "wheels.all.omega_rad_s.type"},
         {R"({"wheels": {"all": {"omega_rad_s": {"type": "step", "value": 0.4}}}})",
          "wheels.all.omega_rad_s.amplitude: missing"},
         {R"({"wheels": {"all": {"omega_rad_s": {"type": "table", "t_s": [0, 0], "values": [1, 2]}}}})",
          "t_s[1]"},
-        {R"({"model": "cubic"})", "model"},
+        {R"({"model": "cubic"})", "x.json: model"},
         {R"({"robot": {"wheel": "A", "chassis_mass_kg": -3, "chassis_inertia_kg_m2": [1, 1, 1],
                        "wheel_mass_kg": 1, "wheelbase_m": 0.5, "track_m": 0.4}})",
          "robot.chassis_mass_kg"},
@@ -85,13 +88,16 @@ TEST(ScenarioJson, BadFilesNameTheField) {
         ASSERT_FALSE(s.ok()) << c.patch;
         EXPECT_NE(s.message().find(c.expected), std::string::npos)
             << c.patch << "\n  gave: " << s.message();
+        // Each problem once, even when it sits under "all" and applies to four wheels.
+        EXPECT_EQ(s.message().find(c.expected), s.message().rfind(c.expected)) << s.message();
     }
 }
 
 TEST(ScenarioJson, MissingAndBrokenFiles) {
     EXPECT_NE(resolveScenario(kLocations, "no-such-scenario").message().find("straight"),
               std::string::npos);  // lists what exists
-    const Result<Scenario> bad = loadScenario(std::string(TERRA_TEST_DATA_DIR) + "/nowhere.json", kLocations);
+    const Result<Scenario> bad =
+        loadScenario(std::string(TERRA_TEST_DATA_DIR) + "/nowhere.json", kLocations);
     EXPECT_FALSE(bad.ok());
 }
 
