@@ -194,6 +194,17 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
         const double span = kUpper[k] - kLower[k];
         if (x[k] - kLower[k] < 1e-6 * span || kUpper[k] - x[k] < 1e-6 * span) {
             u.flags.push_back(std::string(fullParameterNames()[k]) + " ended at its bound: not determined by the data");
+            // The covariance is conditional on k held at its bound: a parameter that trades off
+            // with k has compensated for it, and its standard deviation understates its error.
+            if (!u.computed) continue;
+            for (int j = 0; j < kFullParameterCount; ++j) {
+                if (j == k || options.fixed[j] || std::abs(u.correlation[k][j]) < options.bound_correlation_flag) {
+                    continue;
+                }
+                u.flags.push_back(std::string(fullParameterNames()[j]) + " is uncertain beyond its std: it trades off with " +
+                                  fullParameterNames()[k] + " (correlation " +
+                                  formatNumber(roundSignificant(u.correlation[k][j], 3)) + "), which ended at its bound");
+            }
         }
     }
     return result;

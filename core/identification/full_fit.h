@@ -33,6 +33,9 @@ struct RefineOptions {
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
     /// |correlation| above which a pair is flagged as not separable by the data.
     double correlation_flag = 0.98;
+    /// |correlation| with a parameter that ended at its bound above which a parameter is flagged
+    /// (its standard deviation is conditional on that bound and understates its error).
+    double bound_correlation_flag = 0.5;
 };
 
 /// Standard deviations and correlations of the identified parameters (from Ceres' covariance at
