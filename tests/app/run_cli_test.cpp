@@ -14,15 +14,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
+struct CliResult {
     int exit_code = -1;
     std::string out, err;
 };
 
-Run terrastudio(const std::string& arguments) {
+CliResult terrastudio(const std::string& arguments) {
     const fs::path err_path = fs::temp_directory_path() / ("terra_run_err_" + std::to_string(::getpid()));
     const std::string command = std::string(TERRASTUDIO_EXE) + " " + arguments + " 2>" + err_path.string();
-    Run r;
+    CliResult r;
     FILE* pipe = ::popen(command.c_str(), "r");
     std::array<char, 4096> buffer{};
     while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
@@ -58,7 +58,7 @@ protected:
 
 // F_x at s = 0.3, β = 5° from the single-point `wheel` command: an independent path through the CLI.
 double singlePointFx() {
-    const Run r = terrastudio("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 5 --load 58.86 --json");
+    const CliResult r = terrastudio("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 5 --load 58.86 --json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out)["Fx_N"].get<double>();
 }
@@ -79,7 +79,7 @@ nlohmann::json forcesScript(double low, double high) {
 TEST_F(RunCommand, MetExpectationsExitZeroAndWritePlotsDataReport) {
     const double fx = singlePointFx();
     const fs::path script = writeScript(forcesScript(fx - 1e-6, fx + 1e-6));
-    const Run r = terrastudio("run " + script.string() + " --out " + (dir_ / "out").string());
+    const CliResult r = terrastudio("run " + script.string() + " --out " + (dir_ / "out").string());
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     for (const char* file : {"fx-Fx_N.png", "fx-Fx_N.svg", "fx.csv", "report.md", "manifest.json"}) {
         EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
@@ -94,7 +94,7 @@ TEST_F(RunCommand, MetExpectationsExitZeroAndWritePlotsDataReport) {
 
 TEST_F(RunCommand, FailedExpectationExitsOneAndIsListedInTheReport) {
     const fs::path script = writeScript(forcesScript(1000.0, 2000.0));
-    const Run r = terrastudio("run " + script.string() + " --out " + (dir_ / "out").string());
+    const CliResult r = terrastudio("run " + script.string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_NE(r.out.find("FAIL: fx: Fx_N at slip = 0.3"), std::string::npos) << r.out;
     const std::string report = readText(dir_ / "out" / "report.md");
@@ -106,18 +106,18 @@ TEST_F(RunCommand, FailedExpectationExitsOneAndIsListedInTheReport) {
 TEST_F(RunCommand, BrokenScriptExitsTwoNamingTheField) {
     nlohmann::json script = forcesScript(0, 1);
     script["analyses"][0]["type"] = "forcez";
-    const Run bad_type = terrastudio("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    const CliResult bad_type = terrastudio("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(bad_type.exit_code, 2);
     EXPECT_NE(bad_type.err.find("analyses[0].type"), std::string::npos) << bad_type.err;
 
     script = forcesScript(0, 1);
     script["set"] = {{"phi_deg", 75}};
-    const Run bad_value = terrastudio("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    const CliResult bad_value = terrastudio("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(bad_value.exit_code, 2);
     EXPECT_NE(bad_value.err.find("phi_deg"), std::string::npos) << bad_value.err;
     EXPECT_NE(bad_value.err.find("[0, 60)"), std::string::npos) << bad_value.err;
 
-    const Run missing = terrastudio("run " + (dir_ / "nope.json").string() + " --out " + (dir_ / "out").string());
+    const CliResult missing = terrastudio("run " + (dir_ / "nope.json").string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(missing.exit_code, 2);
 }
 
@@ -125,7 +125,7 @@ TEST_F(RunCommand, ShippedExampleScriptsRunAndMeetTheirExpectations) {
     for (const auto& entry : fs::directory_iterator(TERRA_RESOURCE_DIR "/scripts")) {
         if (entry.path().extension() != ".json") continue;
         const fs::path out = dir_ / entry.path().stem();
-        const Run r = terrastudio("run " + entry.path().string() + " --out " + out.string());
+        const CliResult r = terrastudio("run " + entry.path().string() + " --out " + out.string());
         EXPECT_EQ(r.exit_code, 0) << entry.path() << "\n" << r.err << r.out;
         EXPECT_TRUE(fs::exists(out / "report.md")) << entry.path();
     }

@@ -112,16 +112,20 @@ TEST(ForcesPanel, ReportsEditToRepaintLatency) {
     panel.resize(1000, 600);
     panel.show();
     ASSERT_TRUE(test::waitForResult(panel));
-    std::vector<double> latencies;
+    std::vector<double> latencies, drawing;
     for (int i = 0; i < 15; ++i) {
         ASSERT_TRUE(document.setSoilValue("phi_deg", 29.0 + 0.25 * (i + 1)));
         ASSERT_TRUE(test::waitForResult(panel));
         latencies.push_back(panel.lastLatencyMs());
+        drawing.push_back(panel.lastPresentMs());
     }
+    std::sort(drawing.begin(), drawing.end());
     std::sort(latencies.begin(), latencies.end());
     std::printf("[ latency  ] forces panel edit -> repaint (600 points, full model): median %.1f ms, "
                 "min %.1f ms, max %.1f ms over %zu edits\n",
                 latencies[latencies.size() / 2], latencies.front(), latencies.back(), latencies.size());
+    std::printf("[ latency  ] of which on the GUI thread (drawing six plots): median %.1f ms, max %.1f ms\n",
+                drawing[drawing.size() / 2], drawing.back());
     RecordProperty("median_latency_ms", std::to_string(latencies[latencies.size() / 2]));
     EXPECT_EQ(panel.result().table.rows.size(), 600u);
 }

@@ -3,6 +3,7 @@
 #include <qcustomplot.h>
 
 #include <QLabel>
+#include <QShowEvent>
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
@@ -35,7 +36,18 @@ void AnalysisPanel::scheduleUpdate() {
     });
 }
 
+void AnalysisPanel::showEvent(QShowEvent* event) {
+    QWidget::showEvent(event);
+    if (deferred_) scheduleUpdate();
+}
+
 void AnalysisPanel::start() {
+    // A hidden tab of a shown window waits until it is shown: the visible panel gets the cores.
+    if (!isVisible() && window()->isVisible()) {
+        deferred_ = true;
+        return;
+    }
+    deferred_ = false;
     if (watcher_.isRunning()) return;  // finished() restarts with the newest state
     Job job;
     try {
@@ -71,7 +83,10 @@ void AnalysisPanel::finished() {
         emit failed(outcome.error);
         return;
     }
+    QElapsedTimer drawing;
+    drawing.start();
     present(outcome.value);
+    last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
     last_latency_ms_ = static_cast<double>(since_edit_.nsecsElapsed()) / 1e6;
     emit resultShown(last_latency_ms_);
 }

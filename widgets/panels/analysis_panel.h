@@ -42,6 +42,9 @@ public:
 
     bool isBusy() const { return watcher_.isRunning(); }
     double lastLatencyMs() const { return last_latency_ms_; }
+    /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
+    /// work per update, the rest runs on workers.
+    double lastPresentMs() const { return last_present_ms_; }
     /// Starts a computation now (the identification panel's "Fit"; also for tests).
     void recompute() { scheduleUpdate(); }
 
@@ -51,6 +54,8 @@ signals:
     void busyChanged(bool busy);
 
 protected:
+    void showEvent(QShowEvent* event) override;
+
     /// A computation: inputs captured by value on the GUI thread, run on a worker. `cancel` is set
     /// when the result will be dropped anyway.
     using Job = std::function<std::any(const std::atomic<bool>& cancel)>;
@@ -82,9 +87,11 @@ private:
     std::shared_ptr<std::atomic<bool>> cancel_;
     int revision_ = 0;
     bool start_queued_ = false;
+    bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
     QElapsedTimer since_edit_;
     double last_latency_ms_ = 0.0;
+    double last_present_ms_ = 0.0;
 };
 
 }  // namespace terra::ui

@@ -39,6 +39,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     setLive(false);
     file_ = new QLineEdit(this);
     file_->setPlaceholderText("synthesise from the project's soil (or choose a CSV)");
+    file_->setMinimumWidth(220);
     auto* browse = new QPushButton("Load CSV…", this);
     noise_ = new QDoubleSpinBox(this);
     noise_->setRange(0.0, 20.0);
@@ -80,7 +81,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     splitter->addWidget(tabs_);
     splitter->addWidget(parameters_);
     splitter->setStretchFactor(0, 3);
-    splitter->setStretchFactor(1, 2);
+    splitter->setStretchFactor(1, 1);
+    parameters_->setMaximumWidth(460);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
     layout->addWidget(splitter, 1);

@@ -34,6 +34,7 @@ StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
     stress_->addItem("Lateral shear τ_l", "tau_l");
     info_ = new QLabel(this);
     info_->setTextFormat(Qt::RichText);
+    info_->setWordWrap(true);
     readout_ = new QLabel(this);
     plot_ = new QCustomPlot(this);
     makeInteractive(plot_, readout_);

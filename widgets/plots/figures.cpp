@@ -1,5 +1,7 @@
 #include "widgets/plots/figures.h"
 
+#include "widgets/plots/sweep_plot.h"
+
 #include <qcustomplot.h>
 
 #include <algorithm>
@@ -43,6 +45,7 @@ void finish(QCustomPlot& plot) {
     } else {
         plot.yAxis->scaleRange(1.1, y.center());
     }
+    placeLegend(plot);
     plot.replot();
 }
 

@@ -26,6 +26,9 @@ const std::vector<SweepQuantity>& sweepQuantities();
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
                const QString& title);
 
+/// Puts the legend in the corner of the axis rect that covers the fewest data points.
+void placeLegend(QCustomPlot& plot);
+
 /// Writes the plot as PNG of `width` × `height` pixels; false (and `error`) on failure.
 bool exportPng(QCustomPlot& plot, const QString& path, int width, int height, QString* error);
 
