@@ -117,8 +117,12 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
 
         if (const auto error = scenario::writeResults(result, s, o.out))
             throw std::runtime_error(*error);
+        const nlohmann::json summary = scenario::toJson(result, s);
+        if (summary.contains("warning")) {
+            std::cerr << "warning: " << summary["warning"].get<std::string>() << '\n';
+        }
         if (o.json) {
-            std::cout << scenario::toJson(result, s).dump(2) << '\n';
+            std::cout << summary.dump(2) << '\n';
         } else {
             printHuman(result, s, o.out);
         }

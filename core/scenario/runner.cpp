@@ -1,5 +1,6 @@
 #include "core/scenario/runner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -176,6 +177,11 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     sum.dissipated_j = e.dissipated_j;
     sum.kinetic_change_j = e.kinetic_j - e.initial_kinetic_j;
     sum.potential_change_j = e.potential_j - e.initial_potential_j;
+    if (sum.energy_j > 0.0) {
+        sum.energy_balance_error =
+            (sum.energy_j - sum.dissipated_j - sum.kinetic_change_j - sum.potential_change_j) /
+            sum.energy_j;
+    }
     if (feed) result.streaming = feed->take();
     return result;
 }
@@ -207,6 +213,12 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
         {"time_step_s", scenario.time_step_s},
         {"model",
          scenario.options.contact.model == contact::ContactModel::kFull ? "full" : "quadratic"}};
+    j["energy_balance_error"] = s.energy_balance_error;
+    if (std::abs(s.energy_balance_error) > kEnergyBalanceTolerance) {
+        j["warning"] = "the energy balance is off by " +
+                       formatNumber(roundSignificant(100.0 * s.energy_balance_error, 3)) +
+                       " %: the time step is too large for this scenario (docs/dynamics.md)";
+    }
     if (!result.message.empty()) j["message"] = result.message;
     return j;
 }

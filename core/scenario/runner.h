@@ -18,6 +18,9 @@
 
 namespace terra::scenario {
 
+/// Relative energy-balance error above which a run is flagged (summary "warning").
+inline constexpr double kEnergyBalanceTolerance = 0.01;
+
 struct RunOptions {
     /// Called about every 1 % of the duration with the fraction done (0..1).
     std::function<void(double)> progress;
@@ -34,6 +37,10 @@ struct Summary {
     double energy_j = 0.0;      ///< drive motors' work ∫ Σ M_y ω dt (+ spin-up) [J]
     double dissipated_j = 0.0;  ///< work into the soil [J]
     double kinetic_change_j = 0.0, potential_change_j = 0.0;  ///< [J]
+    /// (energy − dissipated − ΔE_kinetic − ΔE_potential) / energy: ~1e-5 at a good step; above
+    /// kEnergyBalanceTolerance the step is too large for the contact's stiffness
+    /// (docs/dynamics.md).
+    double energy_balance_error = 0.0;
     double max_sinkage_m = 0.0;
     int sunk_steps = 0;  ///< wheel-steps with θ_f clamped at 90°
     long steps = 0;

@@ -125,6 +125,21 @@ TEST(Rover, MotorWorkBalancesKineticPotentialAndDissipatedEnergy) {
 // Front-wheel steering δ on wheelbase L: kinematically the robot turns about a point on the rear
 // axle line, yaw rate = v tan δ / L. The wheels' slip angles on soil make it turn a little wider
 // (understeer), so the kinematic value is an upper bound reached within 15 %.
+// The explicit coupling has a stability limit from the lateral stiffness at low speed: a 10 ms step
+// chatters, and the energy balance (computed from the contact powers, not from the state) shows it.
+TEST(Rover, TooLargeAStepIsFlaggedByTheEnergyBalance) {
+    scenario::Scenario fine = steered(10.0, 0.0, 10.0);
+    fine.options.contact.model = contact::ContactModel::kQuadratic;
+    scenario::Scenario coarse = fine;
+    coarse.time_step_s = 0.01;
+    const scenario::RunResult good = scenario::runScenario(fine);
+    const scenario::RunResult bad = scenario::runScenario(coarse);
+    EXPECT_LT(std::abs(good.summary.energy_balance_error), 1e-3);
+    EXPECT_GT(std::abs(bad.summary.energy_balance_error), scenario::kEnergyBalanceTolerance);
+    EXPECT_TRUE(scenario::toJson(bad, coarse).contains("warning"));
+    EXPECT_FALSE(scenario::toJson(good, fine).contains("warning"));
+}
+
 TEST(Rover, TurnsTowardTheSteeredSideAtTheGeometricRate) {
     const double delta = 10.0 * M_PI / 180.0;
     const scenario::Scenario s = steered(10.0, 0.0);
