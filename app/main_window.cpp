@@ -58,8 +58,9 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     tabs_->setDocumentMode(true);
     auto* identification = new ui::IdentificationPanel(document_, tabs_);
     panels_ = {new ui::ForcesPanel(document_, tabs_), new ui::StressPanel(document_, tabs_),
-               new ui::SensitivityPanel(document_, tabs_), identification};
-    const QStringList titles{"Forces vs slip", "Stresses", "Sensitivity", "Identification"};
+               new ui::SensitivityPanel(document_, tabs_), identification,
+               new ui::RoverPanel(document_, locations_, tabs_)};
+    const QStringList titles{"Forces vs slip", "Stresses", "Sensitivity", "Identification", "Rover scenario"};
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
         tabs_->addTab(panel, titles[static_cast<int>(i)]);
@@ -69,10 +70,10 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         connect(panel, &ui::AnalysisPanel::failed, this,
                 [this](const QString& message) { statusBar()->showMessage("Error: " + message, 8000); });
     }
-    tabs_->addTab(new ui::RoverPanel(tabs_), "Rover scenario");
     setCentralWidget(tabs_);
 
     auto* tree = new ui::ProjectTree(document_, this);
+    tree->setMinimumWidth(210);
     editors_ = new QStackedWidget(this);
     editors_->addWidget(new ui::SoilEditor(document_, locations_, editors_));
     editors_->addWidget(new ui::WheelEditor(document_, locations_, editors_));
@@ -84,7 +85,7 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     data_layout->addWidget(data_list);
     data_layout->addWidget(load_data);
     editors_->addWidget(data_page);
-    auto* scenarios = new QLabel("Rover scenarios arrive with the rover simulation (issue 4).", editors_);
+    auto* scenarios = new QLabel("Scenarios: resources/scenarios/*.json (docs/dynamics.md). Pick and run one in the Rover scenario panel.", editors_);
     scenarios->setWordWrap(true);
     editors_->addWidget(scenarios);
     connect(tree, &ui::ProjectTree::pageRequested, editors_, &QStackedWidget::setCurrentIndex);
@@ -179,7 +180,6 @@ void MainWindow::showPanel(const QString& name) {
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         if (panels_[i]->name() == name) tabs_->setCurrentIndex(static_cast<int>(i));
     }
-    if (name == "rover") tabs_->setCurrentIndex(tabs_->count() - 1);
 }
 
 ui::AnalysisPanel* MainWindow::currentPanel() const {
@@ -333,15 +333,16 @@ int MainWindow::takeScreenshots(const QString& dir) {
             QTimer::singleShot(60000, &loop, &QEventLoop::quit);
             connect(panel, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
             connect(panel, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
-            if (panel->name() == "identification" || panel->isBusy() || panel->lastLatencyMs() == 0.0) {
-                if (panel->name() == "identification") panel->recompute();
+            const bool on_request = panel->name() == "identification" || panel->name() == "rover";
+            if (on_request || panel->isBusy() || panel->lastLatencyMs() == 0.0) {
+                if (on_request) panel->recompute();
                 loop.exec();
             }
         }
         QEventLoop settle;
         QTimer::singleShot(300, &settle, &QEventLoop::quit);
         settle.exec();
-        const QString name = panel ? panel->name() : QString("rover");
+        const QString name = panel ? panel->name() : QString("panel%1").arg(i);
         const QString path = dir + "/studio-" + name + ".png";
         if (!grab().save(path)) ++failures;
         std::printf("wrote %s\n", qPrintable(path));

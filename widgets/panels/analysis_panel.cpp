@@ -36,6 +36,10 @@ void AnalysisPanel::scheduleUpdate() {
     });
 }
 
+void AnalysisPanel::cancelRunning() {
+    if (cancel_) cancel_->store(true);
+}
+
 void AnalysisPanel::showEvent(QShowEvent* event) {
     QWidget::showEvent(event);
     if (deferred_) scheduleUpdate();

@@ -47,6 +47,8 @@ public:
     double lastPresentMs() const { return last_present_ms_; }
     /// Starts a computation now (the identification panel's "Fit"; also for tests).
     void recompute() { scheduleUpdate(); }
+    /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
+    void cancelRunning();
 
 signals:
     void resultShown(double latency_ms);  ///< a new result is on screen, after the given time [ms]
