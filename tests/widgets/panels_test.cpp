@@ -7,6 +7,7 @@
 
 #include "core/common/units.h"
 #include "widgets/panels/identification_panel.h"
+#include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
 #include "widgets_test_support.h"
@@ -72,6 +73,38 @@ TEST(IdentificationPanel, RecoversTheProjectSoilFromSyntheticData) {
     EXPECT_NEAR(p.rows[0][p.column("K_m")], 0.025, 0.003);
     EXPECT_GT(p.rows[0][p.column("phi_deg_std")], 0.0);
     for (const auto& [name, plot] : panel.plots()) EXPECT_GE(plot->graphCount(), 2) << name.toStdString();
+}
+
+TEST(RoverPanel, RunsAScenarioAndPlotsThePathFromItsSeries) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "straight"}});
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const auto& r = panel.result();
+    ASSERT_TRUE(r.usable());
+    EXPECT_EQ(r.status, scenario::RunResult::Status::kCompleted);
+    // The path plot holds the series' centre of mass, end point included.
+    auto* curve = qobject_cast<QCPCurve*>(panel.plots()[0].second->plottable(0));
+    ASSERT_NE(curve, nullptr);
+    ASSERT_EQ(curve->dataCount(), static_cast<int>(r.series.rows.size()));
+    EXPECT_DOUBLE_EQ((curve->data()->constEnd() - 1)->key, r.series.values("x_m").back());
+    EXPECT_NEAR(r.series.values("x_m").back(), r.summary.x_m, 0.05);
+    EXPECT_GT(r.summary.x_m, 0.0);  // driving forward
+}
+
+TEST(RoverPanel, CancelKeepsThePartialRunMarkedAsSuch) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "pulse-steering"}});
+    QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
+    panel.recompute();
+    ASSERT_TRUE(busy.wait(10000));
+    panel.cancelRunning();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    EXPECT_EQ(panel.result().status, scenario::RunResult::Status::kCancelled);
 }
 
 }  // namespace
