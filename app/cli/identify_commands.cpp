@@ -1,5 +1,6 @@
 // `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`
 // (the decoupled three-step fit, §4.3).
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include "core/common/units.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
+#include "core/identification/streaming.h"
 #include "core/identification/synthetic.h"
 #include "core/io/csv.h"
 
@@ -63,7 +65,60 @@ struct IdentifyOptions {
     std::vector<std::string> fix;    // name=value
     std::vector<std::string> noise;  // fx=, fz=, my= noise levels for the refinement weights
     std::optional<double> jmax_m;
+    std::string stream;           // --stream FILE: one estimate per sample
+    std::size_t window = 60;
 };
+
+// `identify --stream FILE`: feeds the samples one at a time to the streaming identifier and
+// prints one line per sample (JSON Lines with --json), then the detected soil changes.
+void runStream(const IdentifyOptions& o, const identification::DataSet& data, const wheel::WheelParameters& wheel,
+               const identification::DecoupledParameters& guess) {
+    identification::StreamingOptions options;
+    options.initial = guess;
+    options.window = o.window;
+    identification::StreamingIdentifier identifier(wheel, options);
+    std::vector<std::size_t> changes;
+    if (!o.json) {
+        std::cout << "sample  time_s      a0      a1   Ks_kPa      n0      n1   c_kPa  phi_deg     K_m   score  window\n";
+    }
+    for (const identification::Sample& sample : data.samples) {
+        const identification::StreamUpdate u = identifier.push(sample);
+        if (u.change_detected && u.change_at) changes.push_back(*u.change_at);
+        const identification::DecoupledParameters& p = u.parameters;
+        if (o.json) {
+            nlohmann::json j{{"sample", u.index}, {"estimated", u.estimated}, {"window", u.window_size},
+                             {"score", roundSignificant(u.residual_score, 4)}};
+            if (sample.time_s) j["time_s"] = *sample.time_s;
+            if (u.estimated) {
+                j.update({{"a0", p.a0}, {"a1", p.a1}, {"Ks", p.pressure_modulus / 1e3}, {"n0", p.n0}, {"n1", p.n1},
+                          {"c_kPa", p.cohesion_pa / 1e3}, {"phi_deg", units::radToDeg(p.friction_angle_rad)},
+                          {"K_m", p.shear_modulus_m}});
+            }
+            if (u.change_at) j["change_at"] = *u.change_at;
+            std::cout << j.dump() << '\n';
+            continue;
+        }
+        std::cout << std::setw(6) << u.index << ' ' << std::setw(7) << (sample.time_s ? fixed(*sample.time_s, 2) : "-");
+        if (u.estimated) {
+            std::cout << ' ' << std::setw(7) << fixed(p.a0, 4) << ' ' << std::setw(7) << fixed(p.a1, 4) << ' '
+                      << std::setw(8) << fixed(p.pressure_modulus / 1e3, 1) << ' ' << std::setw(7) << fixed(p.n0, 4)
+                      << ' ' << std::setw(7) << fixed(p.n1, 4) << ' ' << std::setw(7) << fixed(p.cohesion_pa / 1e3, 3)
+                      << ' ' << std::setw(8) << fixed(units::radToDeg(p.friction_angle_rad), 2) << ' ' << std::setw(7)
+                      << fixed(p.shear_modulus_m, 4);
+        } else {
+            std::cout << "   (collecting samples)                                                  ";
+        }
+        std::cout << ' ' << std::setw(7) << fixed(u.residual_score, 2) << ' ' << std::setw(7) << u.window_size;
+        if (u.change_at) std::cout << "  soil change since sample " << *u.change_at;
+        std::cout << '\n';
+    }
+    if (!o.json) {
+        std::cout << (changes.empty() ? std::string("no soil change detected")
+                                      : "soil changes detected at samples:");
+        for (std::size_t c : changes) std::cout << ' ' << c;
+        std::cout << '\n';
+    }
+}
 
 // --fix a0=0.2,a1=0.3 in the output units (Ks kPa/m^n, c kPa, phi deg).
 void applyFixes(const std::vector<std::string>& items, identification::DecoupledParameters& p,
@@ -137,7 +192,15 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     auto identify = std::make_shared<IdentifyOptions>();
     CLI::App* i = app.add_subcommand(
         "identify", "Identify soil parameters from wheel data: the decoupled three-step fit (Eqs. 4.12, 4.17, 4.18)");
-    i->add_option("--data", identify->data, "Data set CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm)")->required();
+    CLI::Option* data_option =
+        i->add_option("--data", identify->data, "Data set CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm)");
+    CLI::Option* stream_option = i->add_option(
+        "--stream", identify->stream,
+        "Streaming identification: feed the samples of this CSV one at a time, one line of estimates per sample");
+    data_option->excludes(stream_option);
+    i->add_option("--window", identify->window, "With --stream: samples in the sliding window")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t{12}, std::size_t{100000}));
     i->add_option("--wheel", identify->wheel, "Wheel preset or JSON file")->capture_default_str();
     i->add_option("--guess", identify->guess, "Initial guess: soil preset or JSON file (default: thesis chapter 5)");
     i->add_flag("--json", identify->json, "JSON output");
@@ -151,11 +214,14 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         ->delimiter(',');
     i->add_option("--jmax", identify->jmax_m, "With --refine: the model's j_max [m] (default: the guess soil's, else none)");
     i->callback([identify, &locations] {
+        if (identify->data.empty() == identify->stream.empty()) throw InputError("give --data FILE or --stream FILE");
+        const bool streaming = !identify->stream.empty();
+        if (streaming && identify->refine) throw InputError("--refine does not apply to --stream");
         const auto read = identification::readDataSet(
-            identify->data, identify->skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop);
+            streaming ? identify->stream : identify->data, identify->skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop);
         if (!read) throw InputError(read.message() + "\n(use --skip-bad-rows to skip bad rows)");
         for (const Issue& skipped : read->skipped) std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
-        if (read->data.samples.empty()) throw InputError(identify->data + ": no valid samples");
+        if (read->data.samples.empty()) throw InputError((streaming ? identify->stream : identify->data) + ": no valid samples");
         ModelOptions names;
         names.wheel = identify->wheel;
         const auto wheel = names.wheelParameters(locations);
@@ -163,6 +229,10 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (!identify->guess.empty()) {
             names.soil = identify->guess;
             guess = guessFrom(names.soilParameters(locations), wheel);
+        }
+        if (streaming) {
+            runStream(*identify, read->data, wheel, guess);
+            return;
         }
         const auto fit = identification::fitDecoupled(read->data, wheel, guess);
         identification::DecoupledParameters p = fit.parameters;

@@ -65,10 +65,10 @@ ceres::CostFunction* batchCost(std::vector<Residual> rows) {
         new Batch<Residual>{std::move(rows)}, n);
 }
 
-StepReport solve(ceres::Problem& problem, const std::string& name) {
+StepReport solve(ceres::Problem& problem, const std::string& name, int max_iterations) {
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_QR;
-    options.max_num_iterations = 200;
+    options.max_num_iterations = max_iterations;
     // Relative cost change 1e-10 is far below any data's noise; tighter only crawls along the flat
     // valleys of full-model data (K_s at its bound, c–φ) for 100+ iterations without changing
     // the fit (docs/identification.md).
@@ -103,7 +103,8 @@ bool DecoupledFit::usable() const {
 }
 
 DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& wheel,
-                          const DecoupledParameters& guess, const DecoupledBounds& bounds) {
+                          const DecoupledParameters& guess, const DecoupledBounds& bounds,
+                          int max_iterations_per_step) {
     wheel::requireValid(wheel);
     if (data.samples.empty()) throw std::invalid_argument("data set: no samples to fit");
     const double r = wheel.radius_m, b = wheel.width_m;
@@ -121,7 +122,7 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         problem.SetParameterUpperBound(a, 0, 1.0);
         problem.SetParameterLowerBound(a, 1, -1.0);
         problem.SetParameterUpperBound(a, 1, 1.0);
-        fit.steps.push_back(solve(problem, "I: a0, a1 (Fx, Eq. 4.12)"));
+        fit.steps.push_back(solve(problem, "I: a0, a1 (Fx, Eq. 4.12)", max_iterations_per_step));
         p.a0 = a[0];
         p.a1 = a[1];
     }
@@ -139,7 +140,7 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         problem.SetParameterUpperBound(x, 1, bounds.n0_max);
         problem.SetParameterLowerBound(x, 2, bounds.n1_min);
         problem.SetParameterUpperBound(x, 2, bounds.n1_max);
-        fit.steps.push_back(solve(problem, "II: Ks, n0, n1 (Fz, Eq. 4.17)"));
+        fit.steps.push_back(solve(problem, "II: Ks, n0, n1 (Fz, Eq. 4.17)", max_iterations_per_step));
         p.pressure_modulus = x[0] * kKsScale;
         p.n0 = x[1];
         p.n1 = x[2];
@@ -158,7 +159,7 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         problem.SetParameterUpperBound(x, 1, bounds.phi_max);
         problem.SetParameterLowerBound(x, 2, bounds.k_min);
         problem.SetParameterUpperBound(x, 2, bounds.k_max);
-        fit.steps.push_back(solve(problem, "III: c, phi, K (My, Eq. 4.18)"));
+        fit.steps.push_back(solve(problem, "III: c, phi, K (My, Eq. 4.18)", max_iterations_per_step));
         p.cohesion_pa = x[0] * kCohesionScale;
         p.friction_angle_rad = x[1];
         p.shear_modulus_m = x[2];

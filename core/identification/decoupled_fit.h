@@ -53,9 +53,11 @@ struct DecoupledFit {
 };
 
 /// Runs steps I–III on the data set (driving samples, θ_r = 0 as in Table 5.2) for the wheel,
-/// starting from `guess`. Throws std::invalid_argument for an empty data set or a bad wheel.
+/// starting from `guess`. On full-model data steps II and III crawl along flat valleys toward a
+/// bound (K_s, c) for 100+ iterations; a warm-started caller (streaming) can cap them. Throws std::invalid_argument for an empty data set or a bad wheel.
 DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& wheel,
-                          const DecoupledParameters& guess, const DecoupledBounds& bounds = {});
+                          const DecoupledParameters& guess, const DecoupledBounds& bounds = {},
+                          int max_iterations_per_step = 200);
 
 /// Forces and torque of the decoupled (linearised) model itself for given parameters at (s, θ_f):
 /// the forward form Eq. 4.4 with σ_m (Eq. 4.1) and τ_m (Eq. 4.2). Used to make data that the

@@ -42,7 +42,9 @@ double StreamingIdentifier::score(const Sample& sample) const {
 void StreamingIdentifier::refit(StreamUpdate& update) {
     DataSet data{{window_.begin(), window_.end()}};
     const auto begin = std::chrono::steady_clock::now();
-    const DecoupledFit fit = fitDecoupled(data, wheel_, estimate_);
+    // Warm started: the first fit may need the full 200 iterations per step, later ones start
+    // next to the optimum and only follow it (StreamingOptions::max_iterations).
+    const DecoupledFit fit = fitDecoupled(data, wheel_, estimate_, {}, estimated_ ? options_.max_iterations : 200);
     update.fit_time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     if (!fit.usable()) return;

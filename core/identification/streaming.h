@@ -21,6 +21,7 @@ struct StreamingOptions {
     std::size_t min_samples = 12;   ///< no estimate before this many samples
     double threshold = 8.0;         ///< residual / noise scale that counts as "far off"
     std::size_t persistence = 3;    ///< far-off samples in a row that make a change
+    int max_iterations = 10;        ///< per step of each warm-started refit
     DecoupledParameters initial;    ///< start of the first fit (thesis guesses by default)
 };
 

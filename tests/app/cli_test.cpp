@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -252,6 +254,38 @@ TEST(Cli, SynthThenIdentify) {
     const CliRun noise = run("synth --soil sandy-loam --noise fx=-1 --out " + data);
     EXPECT_EQ(noise.exit_code, 2);
     EXPECT_NE(noise.err.find("--noise fx"), std::string::npos) << noise.err;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, IdentifyStreamReportsTheSoilBorder) {
+    // Sandy loam then clayey soil, one sample per line: the change is found at the first clay sample.
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_stream_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string a = (dir / "a.csv").string(), b = (dir / "b.csv").string();
+    ASSERT_EQ(run("synth --soil sandy-loam --slips 0.05:0.9:80 --noise fx=1%,fz=1%,my=1% --seed 1 --out " + a).exit_code, 0);
+    ASSERT_EQ(run("synth --soil clayey-soil --slips 0.05:0.9:80 --noise fx=1%,fz=1%,my=1% --seed 2 --out " + b).exit_code, 0);
+    std::ifstream in_a(a), in_b(b);
+    std::ofstream both(dir / "ab.csv");
+    std::string line;
+    while (std::getline(in_a, line)) both << line << '\n';
+    std::getline(in_b, line);  // header
+    while (std::getline(in_b, line)) both << line << '\n';
+    both.close();
+    const CliRun r = run("identify --stream " + (dir / "ab.csv").string() + " --wheel A --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream lines(r.out);
+    int count = 0;
+    std::vector<int> changes;
+    while (std::getline(lines, line)) {
+        const auto j = nlohmann::json::parse(line);
+        EXPECT_EQ(j["sample"].get<int>(), count);
+        if (j.contains("change_at")) changes.push_back(j["change_at"].get<int>());
+        ++count;
+    }
+    EXPECT_EQ(count, 160);
+    EXPECT_EQ(changes, std::vector<int>{80});
+    EXPECT_EQ(run("identify --stream " + a + " --data " + a).exit_code, 2);  // one or the other
+    EXPECT_EQ(run("identify --stream " + a + " --refine").exit_code, 2);
     std::filesystem::remove_all(dir);
 }
 
