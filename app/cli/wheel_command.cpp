@@ -50,6 +50,7 @@ struct PointResult {
     bool solved_from_load = false;
     std::string failure;  ///< non-empty: no equilibrium, or F_z = W not reproducible
     std::string status = "ok";  ///< batch status column: ok, no-equilibrium, load-not-matched
+    std::string warning;        ///< non-empty: the integration hit its piece cap
 };
 
 PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& options,
@@ -92,9 +93,18 @@ PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& opt
                                     std::max(in.exit.exitAngle(theta_f), -theta_f),
                                     in.max_stress_angle_rad};
     contact::requireValid(op);
-    out.forces = options.model.contactModel() == contact::ContactModel::kFull
-                     ? contact::computeForces(p, op, options.model.bulldozingModel())
-                     : contact::computeQuadraticForces(p, op, options.model.bulldozingModel());
+    if (options.model.contactModel() == contact::ContactModel::kFull) {
+        contact::IntegrationReport report;
+        out.forces = contact::computeForces(p, op, options.model.bulldozingModel(), {}, &report);
+        if (!report.converged) {
+            out.warning = "the force integration stopped at its cap of " +
+                          std::to_string(report.pieces) +
+                          " pieces before reaching its tolerance (estimated relative error " +
+                          formatNumber(roundSignificant(report.error_estimate, 2)) + ")";
+        }
+    } else {
+        out.forces = contact::computeQuadraticForces(p, op, options.model.bulldozingModel());
+    }
     out.entry_angle_deg = roundSignificant(units::radToDeg(theta_f));
     out.exit_angle_deg = roundSignificant(units::radToDeg(op.exit_angle_rad));
     out.sinkage_m = p.radius_m * (1.0 - std::cos(theta_f));
@@ -232,6 +242,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             ++skipped;
             continue;
         }
+        if (!result.warning.empty()) std::cerr << where << ": warning: " << result.warning << '\n';
         for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
         if (!result.failure.empty()) {
             ++failed;
@@ -301,6 +312,7 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
                       o.model.exitCondition(), o.model.maxStressAngleRad()};
         const PointResult result = evaluate(p, o, in);
         if (!result.failure.empty()) throw std::runtime_error(result.failure);
+        if (!result.warning.empty()) std::cerr << "warning: " << result.warning << '\n';
         if (o.json) {
             std::cout << toJson(result).dump(2) << '\n';
         } else {

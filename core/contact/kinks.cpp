@@ -105,4 +105,50 @@ Kinks findKinks(const ShearGeometry& geometry) {
     return kinks;
 }
 
+namespace {
+
+// c, and c − 8^k w (below) and/or c + 8^k w (above) for k = 0…5, when w is small against the
+// contact. Factor 8: each piece then holds a tail that varies by a bounded ratio, which the
+// 15-point rule integrates to ~1e-6 before any bisection.
+void addGraded(Kinks& kinks, const ShearGeometry& g, double centre, double width, bool below,
+               bool above, bool with_centre, double narrow_below) {
+    const double span = g.entry_angle_rad - g.exit_angle_rad;
+    if (!(width > 0.0) || !(width < narrow_below * span)) return;
+    if (with_centre) add(kinks, centre, g);
+    double offset = width;
+    for (int k = 0; k <= 5 && offset < span; ++k, offset *= 8.0) {
+        if (below) add(kinks, centre - offset, g);
+        if (above) add(kinks, centre + offset, g);
+    }
+}
+
+}  // namespace
+
+Kinks findScaleSplits(const ShearGeometry& g) {
+    Kinks splits;
+    if (!(g.entry_angle_rad > g.exit_angle_rad)) return splits;
+    const double kappa = g.velocity_ratio;
+    const double lateral = std::abs(g.lateral_velocity);
+    if (lateral > 0.0) {
+        if (kappa <= 1.0) {
+            addGraded(splits, g, 0.0, std::sqrt(2.0 * std::hypot(1.0 - kappa, lateral)), true, true,
+                      true, 0.25);
+        } else {
+            const double star = std::acos(1.0 / kappa);
+            const double width = lateral / (kappa * std::sin(star) + std::sqrt(2.0 * kappa * lateral));
+            // ±θ* are kinks already (findKinks); only the graded points are added here.
+            addGraded(splits, g, star, width, true, true, false, 0.25);
+            addGraded(splits, g, -star, width, true, true, false, 0.25);
+        }
+    }
+    const double depth = std::min(g.shear_modulus_m, g.max_shear_m);
+    const double rate = g.radius_m * std::hypot(1.0 - kappa * std::cos(g.entry_angle_rad), lateral);
+    // Only a thin layer: a wider one is resolved by the end mapping of the front region.
+    if (depth > 0.0 && rate > 0.0) {
+        addGraded(splits, g, g.entry_angle_rad, depth / rate, true, false, false, 1.0 / 16.0);
+    }
+    std::sort(splits.angles.begin(), splits.angles.begin() + splits.count);
+    return splits;
+}
+
 }  // namespace terra::contact

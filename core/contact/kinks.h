@@ -18,11 +18,12 @@ struct ShearGeometry {
     double velocity_ratio;       ///< κ = v_x/(rω)
     double lateral_velocity;     ///< κ tan β
     double max_shear_m;          ///< j_max, +inf for none
+    double shear_modulus_m = 0;  ///< K [m] of 1 − exp(−j/K) (Eq. 2.20); 0: no rise-layer splits
 };
 
-inline constexpr int kMaxKinks = 16;
+inline constexpr int kMaxKinks = 32;
 
-/// Sorted kinks strictly inside (θ_r, θ_f).
+/// Sorted break points strictly inside (θ_r, θ_f).
 struct Kinks {
     std::array<double, kMaxKinks> angles{};
     int count = 0;
@@ -31,5 +32,17 @@ struct Kinks {
 /// Finds the kinks of the integrands on (θ_r, θ_f). For driving (κ ≤ 1) j(θ) is monotone, so
 /// there is at most one j_max crossing; braking is searched piece by piece (see kinks.cpp).
 Kinks findKinks(const ShearGeometry& geometry);
+
+/// Break points at the length scales of smooth but narrow features, so that each gets pieces of
+/// its own size (the integrator's error estimate cannot see a feature that falls between the
+/// nodes of a long piece). Around each feature centre c with width w the points c and c ± 8^k w
+/// (k = 0…5) that lie inside (θ_r, θ_f) are returned, only when w is small against the contact
+/// (w < (θ_f − θ_r)/4; /16 for the rise layer, which the end mapping resolves otherwise):
+/// - the turn of the shear direction (1 − κ cos θ, κ tan β) (Eq. 2.22) at small κ tan β: driving,
+///   centre θ = 0, w = √(2 |(1 − κ, κ tan β)|); braking, centres ±θ* = ±acos(1/κ),
+///   w = κ tan β / (κ sin θ* + √(2κ · κ tan β));
+/// - the rise of 1 − exp(−j/K) behind θ_f (Eq. 2.20): one-sided below θ_f, w = min(K, j_max) /
+///   (r |(1 − κ cos θ_f, κ tan β)|), the angle over which j grows by K (or reaches j_max).
+Kinks findScaleSplits(const ShearGeometry& geometry);
 
 }  // namespace terra::contact

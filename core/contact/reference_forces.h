@@ -1,9 +1,12 @@
 #pragma once
 /// @file reference_forces.h
 /// An independent, slow, high-accuracy evaluation of the contact integrals (Eqs. 2.23–2.35) with
-/// Boost's adaptive tanh-sinh or Gauss–Kronrod quadrature directly in θ, split at θ_m and at every
-/// kink. Double exponential (tanh-sinh) quadrature copes with the endpoint singularities of σ on
-/// its own, so this shares no numerical idea with computeForces(); the tests use it as the truth.
+/// Boost's adaptive tanh-sinh or Gauss–Kronrod quadrature directly in θ, split at θ_m, at every
+/// kink, at θ = 0 (where the shear direction turns at small β), and into sub-pieces of at most
+/// 0.1 rad (at least four per segment). Double exponential (tanh-sinh) quadrature copes with the
+/// endpoint singularities of σ on its own and clusters its nodes at the split points, so this
+/// shares no numerical idea with computeForces() (no end mapping, no scale splits); the tests use
+/// it as the truth. Safe in Debug builds (no Boost assertion fires on narrow pieces).
 
 #include "core/contact/bulldozing.h"
 #include "core/contact/contact_parameters.h"

@@ -71,6 +71,7 @@ public:
         tan_phi_ = tan(p.friction_angle_rad);
         cos_entry_ = cos(entry_);
         sin_entry_ = sin(entry_);
+        versine_entry_ = sin_entry_ * sin_entry_ / (1.0 + cos_entry_);
         kappa_ = contact::velocityRatio(op.slip);
         // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0).
         one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
@@ -101,11 +102,24 @@ public:
     /// same with the equivalent front angle θ_e = θ_f − (θ − θ_r)(θ_f − θ_m)/(θ_m − θ_r) behind it.
     /// Zero outside the contact and exactly at its ends.
     T normalStress(const T& theta) const {
+        using std::cos;
+        using std::sin;
+        if (theta >= max_stress_) {
+            const T sin_theta = sin(theta);
+            return normalStress(theta, sin_theta * sin_theta / (1.0 + cos(theta)));
+        }
+        return normalStress(theta, T(0.0));
+    }
+
+    /// σ(θ) given the versine 1 − cos θ = sin²θ/(1 + cos θ) (only used in front of θ_m).
+    T normalStress(const T& theta, const T& versine) const {
         using std::pow;
-        // d = (θ_f − θ)/2 in front, (θ_f − θ_e)/2 behind, each without a cancelling subtraction.
-        const T half_gap = theta >= max_stress_ ? T(0.5 * (entry_ - theta))
-                                                : T(0.5 * ((theta - exit_) * rear_slope_));
-        const T base = cosineGap(half_gap);
+        // Front: cos θ − cos θ_f = (1 − cos θ_f) − (1 − cos θ), both versines exact: its error is
+        // eps (1 − cos θ_f), as small as the rounding of θ itself allows (the integrator's nodes
+        // carry eps θ_f), instead of eps of the plain cosines' difference (~eps/θ_f² relative).
+        // Behind θ_m: the half gap (θ_f − θ_e)/2 = (θ − θ_r)(θ_f − θ_m)/(θ_m − θ_r)/2 is exact.
+        const T base = theta >= max_stress_ ? T(versine_entry_ - versine)
+                                            : cosineGap(T(0.5 * ((theta - exit_) * rear_slope_)));
         // Guard the ends: pow(0, N) has an infinite derivative, and the value is 0 there anyway.
         if (!(base > 0.0)) return T(0.0);
         return modulus_ * pow(radius_ * base, exponent_);
@@ -124,7 +138,8 @@ public:
         using std::expm1;
         using std::sqrt;
         StressSample<T> out;
-        out.sigma = normalStress(theta);
+        const T versine = sin_theta * sin_theta / (1.0 + cos_theta);  // 1 − cos θ, exact
+        out.sigma = normalStress(theta, versine);
 
         // Shear deformation, Eq. 2.14 in the κ form of MODEL-NOTES.
         const T arc = entry_ - theta;
@@ -141,7 +156,7 @@ public:
 
         // Shear velocity direction, Eq. 2.13 divided by rω: (1 − κ cos θ, κ tan β), with
         // 1 − κ cos θ = (1 − cos θ) + (1 − κ) cos θ and 1 − cos θ = sin²θ / (1 + cos θ).
-        const T tangential = sin_theta * sin_theta / (1.0 + cos_theta) + one_minus_kappa_ * cos_theta;
+        const T tangential = versine + one_minus_kappa_ * cos_theta;
         const T speed_squared = tangential * tangential + lateral_velocity_ * lateral_velocity_;
         if (speed_squared > 0.0) {
             const T inverse_speed = 1.0 / sqrt(speed_squared);
@@ -188,6 +203,7 @@ private:
     T tan_phi_;
     T cos_entry_;
     T sin_entry_;
+    T versine_entry_;  // 1 − cos θ_f
     T kappa_;
     T one_minus_kappa_;
     T lateral_velocity_;

@@ -124,12 +124,27 @@ TEST(WheelForces, LinearSoilVerticalForceClosedForm) {
     EXPECT_NEAR(f.fz, fz, 1e-12 * fz);
 }
 
-TEST(WheelForces, HugeShearLimitEqualsNoLimit) {
-    const OperatingPoint<double> op{0.6, 10.0 * kDeg, 35.0 * kDeg, 0.0, std::nullopt};
-    const auto limited = computeForces(testing::sandyLoam(10.0), op);
+TEST(WheelForces, ShearLimitActsExactlyBelowTheLargestDeformation) {
+    // Driving, θ_r = 0: j(θ) grows monotonically from θ_f to θ_r (Eq. 2.14), so the largest
+    // deformation on the contact is j(θ_r), written out here by hand. A limit just above it
+    // changes nothing (no kink, no clipped node: identical to no limit); half of it clips the rear
+    // part of the contact, lowers F_x and M_y (smaller τ), and must still agree with the
+    // independent reference integration.
+    const double s = 0.6, beta = 10.0 * kDeg, tf = 35.0 * kDeg, r = 0.092;
+    const OperatingPoint<double> op{s, beta, tf, 0.0, std::nullopt};
+    const double jt = r * (tf - (1 - s) * std::sin(tf));
+    const double jl = r * (1 - s) * std::tan(beta) * tf;
+    const double j_rear = std::hypot(jt, jl);
     const auto unlimited = computeForces(testing::sandyLoam(INFINITY), op);
-    EXPECT_NEAR(limited.fx, unlimited.fx, 1e-12 * std::abs(unlimited.fz));
-    EXPECT_NEAR(limited.my, unlimited.my, 1e-12 * std::abs(unlimited.my));
+    const auto above = computeForces(testing::sandyLoam(j_rear * (1 + 1e-9)), op);
+    EXPECT_EQ(above.fx, unlimited.fx);
+    EXPECT_EQ(above.fy, unlimited.fy);
+    EXPECT_EQ(above.my, unlimited.my);
+    const auto clipped_params = testing::sandyLoam(0.5 * j_rear);
+    const auto clipped = computeForces(clipped_params, op);
+    EXPECT_LT(clipped.fx, unlimited.fx - 1e-3 * std::abs(unlimited.fz));
+    EXPECT_LT(clipped.my, unlimited.my * (1 - 1e-3));
+    EXPECT_LT(relativeError(clipped, computeForcesReference(clipped_params, op)), kAgreement);
 }
 
 TEST(WheelForces, DrawbarPullGrowsWithSlipAndBrakingPullsBack) {
@@ -154,6 +169,86 @@ TEST(WheelForces, TighterToleranceConverges) {
     const auto tight = computeForces(p, op, BulldozingModel::kBekker, {1e-13, 64, 0});
     EXPECT_LT(relativeError(tight, reference), 1e-12);
     EXPECT_LE(relativeError(tight, reference), relativeError(loose, reference));
+}
+
+// Errors relative to each group's own size, each with a floor of 1e-6 of the other group: the
+// in-plane forces (F_x, F_z, M_y) and the lateral ones (F_y, M_x, M_z), so that a tiny F_y at a
+// tiny slip angle must be right too (relativeError measures F_y against |F_z| + |F_x|).
+double inPlaneError(const WheelForces<double>& a, const WheelForces<double>& b) {
+    const double force_scale = std::abs(b.fz) + std::abs(b.fx) + 1e-6 * std::abs(b.fy);
+    const double moment_scale =
+        std::abs(b.my) + 0.092 * std::abs(b.fz) + 1e-6 * (std::abs(b.mx) + std::abs(b.mz));
+    return std::max({std::abs(a.fx - b.fx) / force_scale, std::abs(a.fz - b.fz) / force_scale,
+                     std::abs(a.my - b.my) / moment_scale});
+}
+double lateralError(const WheelForces<double>& a, const WheelForces<double>& b) {
+    const double force_scale = std::abs(b.fy) + 1e-6 * (std::abs(b.fz) + std::abs(b.fx));
+    const double moment_scale =
+        std::abs(b.mx) + std::abs(b.mz) + 1e-6 * (std::abs(b.my) + 0.092 * std::abs(b.fz));
+    return std::max({std::abs(a.fy - b.fy) / force_scale, std::abs(a.mx - b.mx) / moment_scale,
+                     std::abs(a.mz - b.mz) / moment_scale});
+}
+
+// The cases the first agreement grid avoided (review item 9): strong braking, β near 0 and near
+// 90°, tiny and near-right entry angles, θ_m fixed at θ_f (no front region), a full-depth rut,
+// N = 0.5 and 0.13, and j_max down to 1e-7 m. Regressions: F_y was 24–73 % off for heavy clay
+// with j_max = 1e-7, s = 0, β = 0.01° (the shear direction turns within ~0.02 rad of θ = 0, in
+// the middle of a long piece), and braking with β = 0.01° at θ_f = 80° missed 1e-8 (a feature
+// 2e-4 rad wide at θ* = acos(1/κ)).
+TEST(WheelForces, AgreesWithTheReferenceInHardCases) {
+    const std::pair<const char*, ContactParameters<double>> soils[] = {
+        {"clayey soil (N = 0.5)", testing::clayeySoil()},
+        {"heavy clay, j_max = 1e-7", testing::heavyClay(1e-7)},
+        {"sandy loam, j_max = 1e-7", testing::sandyLoam(1e-7)}};
+    int cases = 0;
+    for (const auto& [name, p] : soils) {
+        for (double s : {-0.99, -0.5, 0.0, 1e-3, 0.5}) {
+            for (double beta : {0.01, 89.0}) {
+                for (double theta_f : {0.05, 30.0, 80.0, 89.9}) {
+                    for (double rear : {0.0, -0.3, -1.0}) {
+                        for (bool theta_m_at_front : {false, true}) {
+                            const double tf = theta_f * kDeg;
+                            const OperatingPoint<double> op{
+                                s, beta * kDeg, tf, rear * tf,
+                                theta_m_at_front ? std::optional<double>(tf) : std::nullopt};
+                            IntegrationReport report;
+                            const auto fast =
+                                computeForces(p, op, BulldozingModel::kBekker, {}, &report);
+                            const auto reference = computeForcesReference(p, op);
+                            EXPECT_LT(inPlaneError(fast, reference), kAgreement)
+                                << name << " s=" << s << " beta=" << beta << " tf=" << theta_f
+                                << " tr=" << rear << " tf, theta_m fixed=" << theta_m_at_front;
+                            EXPECT_LT(lateralError(fast, reference), kAgreement)
+                                << name << " s=" << s << " beta=" << beta << " tf=" << theta_f
+                                << " tr=" << rear << " tf, theta_m fixed=" << theta_m_at_front
+                                << ": Fy " << fast.fy << " vs " << reference.fy;
+                            EXPECT_TRUE(report.converged) << name << " " << report.pieces;
+                            ++cases;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    EXPECT_EQ(cases, 720);
+}
+
+TEST(WheelForces, ReportsWhenThePieceCapIsHit) {
+    // Braking with a tiny slip angle on a long contact needs many pieces; with a cap of 4 the
+    // tolerance cannot be met, and the report says so (it used to stop silently at 24).
+    const auto p = testing::sandyLoam();
+    const OperatingPoint<double> op{-0.5, 0.01 * kDeg, 80.0 * kDeg, -5.0 * kDeg, std::nullopt};
+    IntegrationReport capped, full;
+    computeForces(p, op, BulldozingModel::kBekker, {1e-7, 4, 0}, &capped);
+    EXPECT_FALSE(capped.converged);
+    EXPECT_GT(capped.error_estimate, 1e-7);
+    const auto f = computeForces(p, op, BulldozingModel::kBekker, {}, &full);
+    EXPECT_TRUE(full.converged);
+    EXPECT_GT(full.pieces, capped.pieces);
+    EXPECT_LE(full.pieces, IntegrationOptions{}.max_pieces);
+    const auto reference = computeForcesReference(p, op);
+    EXPECT_LT(inPlaneError(f, reference), kAgreement);
+    EXPECT_LT(lateralError(f, reference), kAgreement);
 }
 
 }  // namespace
