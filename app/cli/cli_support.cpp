@@ -151,7 +151,9 @@ std::string fixed(double value, int decimals) {
     if (!std::isfinite(value)) return "-";
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    return buffer;
+    std::string text = buffer;
+    if (text[0] == '-' && text.find_first_not_of("0.", 1) == std::string::npos) text.erase(0, 1);
+    return text;
 }
 
 }  // namespace terra::app

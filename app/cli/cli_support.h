@@ -60,7 +60,11 @@ void writeOutput(const std::string& path, const std::string& content);
 /// Directory of the running executable (for finding resources/).
 std::filesystem::path executableDirectory();
 
-/// Fixed-width number for human tables.
+/// Fixed-width number for human tables; never "-0.000" (a negative zero or a tiny negative value
+/// that rounds to zero prints as "0.000").
 std::string fixed(double value, int decimals);
+
+/// `value` with a negative zero made +0, for JSON output (nlohmann writes −0.0 as "-0.0").
+inline double plainZero(double value) { return value == 0.0 ? 0.0 : value; }
 
 }  // namespace terra::app

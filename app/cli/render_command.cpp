@@ -9,6 +9,7 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "core/analysis/sweep.h"
+#include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
@@ -84,7 +85,10 @@ void addRenderCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--width", options->width, "Image width [px]")->check(CLI::Range(200, 8000));
     cmd->add_option("--height", options->height, "Image height [px]")->check(CLI::Range(200, 8000));
     cmd->callback([options, &locations] {
-        if (!(options->load_n > 0.0)) throw InputError("--load must be > 0 N");
+        std::vector<Issue> issues;
+        if (!checkRange(issues, "--load", options->load_n, {0.0, 1e7, true, false}, "N")) {
+            throw InputError(formatIssues(issues));
+        }
         render(*options, locations);
     });
 }

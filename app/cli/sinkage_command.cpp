@@ -89,8 +89,9 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
         } else if (!o.out.empty()) {
             text = io::toCsv(table);
         } else {
-            std::cout << soil.name << ", " << wheel.name << "; dynamic entry angle at s = " << o.slip
-                      << ", beta = " << o.slip_angle_deg << " deg (" << o.model.model << " model)\n";
+            std::cout << soil.name << ", " << wheel.name << "; dynamic entry angle at s = "
+                      << formatNumber(o.slip) << ", beta = " << formatNumber(o.slip_angle_deg)
+                      << " deg (" << o.model.model << " model)\n";
             std::cout << "  load [N]  Bekker h [mm]  Eq.2.7 h [mm]  theta_s [deg]  front-half h [mm]"
                          "  theta_f [deg]  h_f [mm]\n";
             for (const auto& row : table.rows) {

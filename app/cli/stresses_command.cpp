@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "core/common/range.h"
 #include "core/common/table.h"
 #include "core/common/units.h"
 #include "core/contact/quadratic_model.h"
@@ -42,7 +43,9 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         ->check(CLI::Range(1e-4, 10.0))
         ->capture_default_str();
     cmd->add_flag("--json", options->json, "JSON: the error summary and the grid");
-    cmd->add_option("--out", options->out, "Write the grid as CSV (or JSON with --json) to this file");
+    cmd->add_option("--out", options->out,
+                    "Write the grid as CSV (or JSON with --json) to this file; '-': the CSV alone "
+                    "to stdout");
     cmd->callback([options, &locations] {
         const StressOptions& o = *options;
         const auto soil = o.model.soilParameters(locations);
@@ -61,36 +64,45 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         Table grid;
         grid.columns = {"theta_deg", "sigma_kPa", "tau_kPa", "tau_t_kPa", "tau_l_kPa", "j_m",
                         "sigma_quad_kPa", "tau_quad_kPa", "tau_t_quad_kPa", "tau_l_quad_kPa"};
-        const auto steps = static_cast<long>(std::floor((theta_f - op.exit_angle_rad) / step + 1e-9));
+        // The grid of quadraticApproximationErrors: from the θ_r the model uses (≥ −θ_f).
+        const double theta_r = field.exitAngle();
+        const auto steps = static_cast<long>(std::floor((theta_f - theta_r) / step + 1e-9));
         for (long i = 0; i <= steps; ++i) {
-            const double theta = op.exit_angle_rad + static_cast<double>(i) * step;
+            const double theta = theta_r + static_cast<double>(i) * step;
             const auto e = field.at(theta);
             const auto q = quadratic.at(theta);
-            grid.rows.push_back({roundSignificant(units::radToDeg(theta)), e.sigma / 1e3, e.tau / 1e3,
-                                 e.tau_t / 1e3, e.tau_l / 1e3, e.shear, q.sigma / 1e3, q.tau / 1e3,
-                                 q.tau_t / 1e3, q.tau_l / 1e3});
+            grid.rows.push_back({plainZero(roundSignificant(units::radToDeg(theta))), e.sigma / 1e3,
+                                 e.tau / 1e3, e.tau_t / 1e3, e.tau_l / 1e3, e.shear, q.sigma / 1e3,
+                                 q.tau / 1e3, q.tau_t / 1e3, q.tau_l / 1e3});
         }
         const char* names[] = {"sigma", "tau", "tau_t", "tau_l"};
+        const bool to_file = !o.out.empty() && o.out != "-";
+        // θ_m as the user typed it (15, not 15.000000000000002), or Eq. 2.18's value.
+        const double theta_m_deg = plainZero(roundSignificant(units::radToDeg(field.maxStressAngle())));
         if (o.json) {
             nlohmann::json summary;
             for (int k = 0; k < 4; ++k) {
                 summary[std::string(names[k]) + "_rmse_kPa"] = errors[k].rmse / 1e3;
                 summary[std::string(names[k]) + "_mae_kPa"] = errors[k].mae / 1e3;
             }
-            summary["max_stress_angle_deg"] = units::radToDeg(field.maxStressAngle());
+            summary["max_stress_angle_deg"] = theta_m_deg;
             summary["points"] = grid.rows.size();
             writeOutput(o.out, nlohmann::json{{"errors", summary}, {"grid", io::toJson(grid)}}.dump(2) + "\n");
+            if (to_file) std::cerr << "wrote " << o.out << ": " << grid.rows.size() << " angles\n";
             return;
         }
         if (!o.out.empty()) {
             writeOutput(o.out, io::toCsv(grid));
+            // `--out -`: stdout carries the CSV alone, so the summary below is left out.
+            if (!to_file) return;
             std::cerr << "wrote " << o.out << ": " << grid.rows.size() << " angles\n";
         }
-        std::cout << soil.name << ", " << wheel.name << ": s = " << o.slip << ", beta = "
-                  << o.slip_angle_deg << " deg, theta_f = " << o.entry_angle_deg
-                  << " deg, theta_m = " << fixed(units::radToDeg(field.maxStressAngle()), 4)
+        std::cout << soil.name << ", " << wheel.name << ": s = " << formatNumber(o.slip)
+                  << ", beta = " << formatNumber(o.slip_angle_deg)
+                  << " deg, theta_f = " << formatNumber(o.entry_angle_deg)
+                  << " deg, theta_m = " << fixed(theta_m_deg, 4)
                   << " deg\nquadratic approximation vs exact over " << grid.rows.size()
-                  << " angles (step " << o.step_deg << " deg):\n"
+                  << " angles (step " << formatNumber(o.step_deg) << " deg):\n"
                   << "            sigma      tau    tau_t    tau_l\n";
         std::cout << "  RMSE kPa";
         for (int k = 0; k < 4; ++k) std::cout << ' ' << std::setw(8) << fixed(errors[k].rmse / 1e3, 4);

@@ -188,7 +188,11 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
         for (const std::string& name : io::presetNames(locations, "wheels")) {
             const auto wheel = io::resolveWheel(locations, name);
             if (!wheel) {
-                text << "  " << name << ": INVALID: " << wheel.message() << '\n';
+                std::string message = wheel.message();
+                for (std::size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at + 1)) {
+                    message.insert(at + 1, "      ");
+                }
+                text << "  " << name << ": INVALID:\n      " << message << '\n';
                 all["wheels"].push_back({{"preset", name}, {"error", wheel.message()}});
                 continue;
             }

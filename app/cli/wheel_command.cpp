@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -113,10 +114,11 @@ PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& opt
 
 nlohmann::json toJson(const PointResult& r) {
     const WheelForces<double>& f = r.forces;
-    return {{"Fx_N", f.fx},   {"Fy_N", f.fy},   {"Fz_N", f.fz},
-            {"Mx_Nm", f.mx},  {"My_Nm", f.my},  {"Mz_Nm", f.mz},
-            {"Fb_N", f.fb},   {"Fs_N", f.fs},   {"entry_angle_deg", r.entry_angle_deg},
-            {"exit_angle_deg", r.exit_angle_deg}, {"sinkage_m", r.sinkage_m}};
+    const auto z = plainZero;
+    return {{"Fx_N", z(f.fx)},   {"Fy_N", z(f.fy)},   {"Fz_N", z(f.fz)},
+            {"Mx_Nm", z(f.mx)},  {"My_Nm", z(f.my)},  {"Mz_Nm", z(f.mz)},
+            {"Fb_N", z(f.fb)},   {"Fs_N", z(f.fs)},   {"entry_angle_deg", z(r.entry_angle_deg)},
+            {"exit_angle_deg", z(r.exit_angle_deg)}, {"sinkage_m", z(r.sinkage_m)}};
 }
 
 void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
@@ -124,9 +126,9 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     std::ostringstream s;
     s << soil.name << ", " << wheel.name << " (r = " << wheel.radius_m << " m, b = " << wheel.width_m
       << " m), " << o.model.model << " model\n";
-    s << "s = " << in.slip << ", beta = " << in.slip_angle_deg << " deg, ";
+    s << "s = " << formatNumber(in.slip) << ", beta = " << formatNumber(in.slip_angle_deg) << " deg, ";
     if (r.solved_from_load) {
-        s << "W = " << *in.load_n << " N -> theta_f = " << fixed(r.entry_angle_deg, 4)
+        s << "W = " << formatNumber(*in.load_n) << " N -> theta_f = " << fixed(r.entry_angle_deg, 4)
           << " deg, sinkage = " << fixed(r.sinkage_m * 1e3, 3) << " mm\n";
     } else {
         s << "theta_f = " << fixed(r.entry_angle_deg, 4) << " deg (given), sinkage = "
@@ -138,7 +140,8 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
         char buffer[128];
         // Pad by display width: "N·m" is three columns but four bytes.
         const char* padded = std::string(unit) == "N" ? "N  " : unit;
-        std::snprintf(buffer, sizeof buffer, "  %-3s %12.4f %s  %s\n", name, value, padded, what);
+        std::snprintf(buffer, sizeof buffer, "  %-3s %12s %s  %s\n", name, fixed(value, 4).c_str(),
+                      padded, what);
         s << buffer;
     };
     line("Fx", f.fx, "N", "drawbar pull (Eq. 2.23)");
@@ -258,6 +261,14 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         csv += '\n';
     }
     if (!issues.empty()) {
+        // In line order: rows with the wrong cell count come from the reader, the rest from here.
+        const std::string prefix = o.input + ":";
+        auto line = [&](const Issue& issue) {
+            return issue.where.rfind(prefix, 0) == 0 ? std::atol(issue.where.c_str() + prefix.size())
+                                                     : 0L;
+        };
+        std::stable_sort(issues.begin(), issues.end(),
+                         [&](const Issue& a, const Issue& b) { return line(a) < line(b); });
         std::cerr << formatIssues(issues) << '\n';
         if (!o.skip_bad_rows) {
             std::cerr << skipped << " bad row(s); nothing written (use --skip-bad-rows to skip them)\n";

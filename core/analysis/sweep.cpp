@@ -24,6 +24,9 @@ struct Row {
     std::string warning;
 };
 
+// Degrees as the user typed them (90° typed is 90° checked), as contact::requireValid does.
+double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
+
 // One slip angle over all slips, warm-starting each solve from the previous one.
 std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSpec& spec,
                                double beta) {
@@ -38,8 +41,8 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                                                spec.integration, previous};
             const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
             if (!solution.ok()) {
-                rows.push_back({{}, "β = " + formatNumber(roundSignificant(units::radToDeg(beta))) + "°, s = " +
-                                        formatNumber(s) + ": " + solution.message});
+                rows.push_back({{}, "β = " + formatNumber(deg(beta)) + "°, s = " + formatNumber(s) +
+                                        ": " + solution.message});
                 previous.reset();
                 continue;
             }
@@ -52,17 +55,16 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                                           ? contact::computeForces(p, op, spec.bulldozing,
                                                                    spec.integration)
                                           : contact::computeQuadraticForces(p, op, spec.bulldozing);
-        rows.push_back({{roundSignificant(units::radToDeg(beta)), s,
-                         units::radToDeg(theta_f),
-                         roundSignificant(units::radToDeg(theta_r)), p.radius_m * (1.0 - std::cos(theta_f)), f.fx,
-                         f.fy, f.fz, f.mx, f.my, f.mz, f.fb, f.fs},
-                        {}});
+        // Angles as typed (25, not 25.000000000000004; 12 digits also keep a solved θ_f exact far
+        // beyond any use), and no negative zeros anywhere in the row.
+        std::vector<double> values{deg(beta), s, deg(theta_f), deg(theta_r),
+                                   p.radius_m * (1.0 - std::cos(theta_f)), f.fx, f.fy, f.fz, f.mx,
+                                   f.my, f.mz, f.fb, f.fs};
+        for (double& v : values) v = v == 0.0 ? 0.0 : v;
+        rows.push_back({std::move(values), {}});
     }
     return rows;
 }
-
-// Degrees as the user typed them (90° typed is 90° checked), as contact::requireValid does.
-double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
 
 void validateSpec(const SweepSpec& spec) {
     std::vector<Issue> issues;

@@ -118,8 +118,8 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
     std::uintmax_t iterations = 100;
     auto [a, b] = boost::math::tools::toms748_solve(residual, lo, hi, f_lo, f_hi, done, iterations);
     if (!(std::abs(best_residual) <= kLoadTolerance * target)) {
-        // A jump (or TOMS 748 out of iterations): bisect down to adjacent doubles, so that a
-        // failure below really means that no angle between them carries W.
+        // A jump (or TOMS 748 out of iterations): bisect until the bracket is a few ulps wide
+        // (eps_tolerance(53): 4 eps), so that a failure below means no angle carries W.
         double fa = residual(a), fb = residual(b);
         while (!exhausted(a, b) && fa != 0.0 && fb != 0.0 && best_residual != 0.0) {
             const double m = a + 0.5 * (b - a);
@@ -136,11 +136,12 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
             // Full digits: the two angles differ in the last places.
             out.message = "no entry angle carries W = " + formatNumber(target) +
                           " N: F_z jumps from " + formatNumber(fa + target) + " N to " +
-                          formatNumber(fb + target) + " N between the adjacent angles θ_f = " +
+                          formatNumber(fb + target) + " N between θ_f = " +
                           formatNumber(units::radToDeg(a)) + "° and " +
                           formatNumber(units::radToDeg(b)) +
-                          "° (a small sinkage exponent N with θ_m fixed near θ_f makes F_z rise "
-                          "like (θ_f − θ_m)^N: a step at double precision)";
+                          "°, a few units in the last place apart (a small sinkage exponent N with "
+                          "θ_m fixed near θ_f makes F_z rise like (θ_f − θ_m)^N: a step at double "
+                          "precision)";
         }
     }
     out.entry_angle_rad = best_theta;

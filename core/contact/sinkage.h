@@ -38,8 +38,8 @@ struct SinkageSolution {
     enum class Status {
         kConverged,      ///< F_z = W to the solver tolerance
         kNoEquilibrium,  ///< even θ_f = 90° (sunk to the axle) does not carry W
-        /// The bracket shrank to adjacent angles but |F_z − W| > 1e-9 W there: F_z jumps (a
-        /// tiny sinkage exponent N with θ_m fixed near θ_f); the message gives both values.
+        /// The bracket shrank to a few ulps but |F_z − W| > 1e-9 W there: F_z jumps (a tiny
+        /// sinkage exponent N with θ_m fixed near θ_f); the message gives both values.
         kLoadNotMatched,
     };
     Status status = Status::kConverged;
@@ -90,7 +90,7 @@ double verticalForce(const ContactParameters<double>& p, const EntryAngleProblem
 /// around the guess (Bekker's static angle or `initial_guess_rad`). Where F_z(90°) < W, θ_f is
 /// scanned in 2° steps for the first crossing (F_z can peak below 90° under strong braking);
 /// without one there is no equilibrium and the result says so (no clamp). When F_z jumps over W
-/// between adjacent angles the status is kLoadNotMatched. Throws std::invalid_argument for a
+/// between angles a few ulps apart the status is kLoadNotMatched. Throws std::invalid_argument for a
 /// non-positive load or an operating point outside the domain.
 SinkageSolution solveEntryAngle(const ContactParameters<double>& p,
                                 const EntryAngleProblem& problem);

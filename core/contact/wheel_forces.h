@@ -274,12 +274,13 @@ WheelForces<T> assembleForces(const ContactParameters<T>& p, const OperatingPoin
     const T rb = p.radius_m * p.width_m;
     const T r2b = rb * p.radius_m;
     WheelForces<T> f;
+    // 0 − x rather than −x: no lateral motion gives F_y = M_x = M_z = +0, never "-0" on output.
     f.fx = rb * sums.fx;
-    f.fy = -rb * sums.fy;
+    f.fy = 0.0 - rb * sums.fy;
     f.fz = rb * sums.fz;
-    f.mx = -r2b * sums.mx;
+    f.mx = 0.0 - r2b * sums.mx;
     f.my = r2b * sums.my;
-    f.mz = -r2b * sums.mz;
+    f.mz = 0.0 - r2b * sums.mz;
     f.fb = bulldozingForce(p, op.entry_angle_rad, bulldozing);
     if (op.slip_angle_rad > 0.0) {
         f.fs = f.fy - f.fb;

@@ -88,9 +88,16 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
         if (fs::is_regular_file(candidate, ec)) return load(candidate);
     }
     if (fs::is_regular_file(name_or_path, ec)) return load(name_or_path);
+    const std::string field = kind == "soils" ? "soil" : "wheel";
+    if (looks_like_path) {
+        // A path is never a preset name: say what is wrong with the path.
+        return std::vector<Issue>{{field, fs::exists(name_or_path, ec)
+                                              ? "'" + name_or_path + "' is not a regular file"
+                                              : "file '" + name_or_path + "' does not exist"}};
+    }
     std::string names;
     for (const std::string& n : presetNames(locations, kind)) names += (names.empty() ? "" : ", ") + n;
-    return std::vector<Issue>{{kind == "soils" ? "soil" : "wheel",
+    return std::vector<Issue>{{field,
                                "'" + name_or_path + "' is neither a file nor a preset; presets: " +
                                    (names.empty() ? "(none found)" : names)}};
 }

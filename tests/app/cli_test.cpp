@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -287,6 +288,116 @@ TEST(Cli, IdentifyStreamReportsTheSoilBorder) {
     EXPECT_EQ(run("identify --stream " + a + " --data " + a).exit_code, 2);  // one or the other
     EXPECT_EQ(run("identify --stream " + a + " --refine").exit_code, 2);
     std::filesystem::remove_all(dir);
+}
+
+// Review item 10: output nits, each checked on the real executable.
+TEST(Cli, StressesOutDashWritesTheCsvAloneAndStartsAtTheClampedExitAngle) {
+    // θ_r = −30° with θ_f = 10°: the model uses θ_r = −θ_f = −10°, so the grid starts there
+    // (it started at −30°, with 20 rows of zeros outside the contact).
+    const CliRun r = run("stresses --soil sandy-loam --wheel A --entry-angle 10 --exit-angle -30 "
+                         "--step 1 --out -");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("theta_deg,", 0), 0u) << r.out.substr(0, 80);
+    EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << "the summary table was mixed into the CSV";
+    std::istringstream lines(r.out);
+    std::string header, first;
+    std::getline(lines, header);
+    std::getline(lines, first);
+    EXPECT_EQ(first.substr(0, first.find(',')), "-10");
+    int rows = 1;
+    for (std::string line; std::getline(lines, line);) ++rows;
+    EXPECT_EQ(rows, 21);  // −10°, −9°, …, 10°
+}
+
+TEST(Cli, StressesJsonToAFileSaysSoAndEchoesTypedAngles) {
+    const auto path = std::filesystem::temp_directory_path() / ("terra_stress_" + std::to_string(::getpid()) + ".json");
+    const CliRun r = run("stresses --soil sandy-loam --wheel A --max-stress-angle 15 --json --out " + path.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("wrote " + path.string()), std::string::npos) << r.err;
+    std::ifstream in(path);
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["errors"]["max_stress_angle_deg"].get<double>(), 15.0);  // not 15.000000000000002
+    std::filesystem::remove(path);
+    const CliRun sweep = run("sweep --soil sandy-loam --wheel A --entry-angle 25 --slips 0.1,0.5 "
+                             "--slip-angles 5 --json");
+    ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+    for (const auto& row : nlohmann::json::parse(sweep.out)["rows"]) {
+        EXPECT_EQ(row["entry_angle_deg"].get<double>(), 25.0);  // not 25.000000000000004
+    }
+}
+
+TEST(Cli, NoNegativeZeroInAnyOutput) {
+    // β = 0: F_y = M_x = M_z = 0 exactly, which used to print as -0.0 / -0.0000.
+    const CliRun json = run("wheel --soil sandy-loam --wheel A --slip -0 --slip-angle 0 --entry-angle 20 --json");
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    EXPECT_EQ(json.out.find("-0.0"), std::string::npos) << json.out;
+    const auto j = nlohmann::json::parse(json.out);
+    EXPECT_FALSE(std::signbit(j["Fy_N"].get<double>()));
+    const CliRun human = run("wheel --soil sandy-loam --wheel A --slip -0 --slip-angle 0 --entry-angle 20");
+    ASSERT_EQ(human.exit_code, 0) << human.err;
+    EXPECT_EQ(human.out.find("-0.0000"), std::string::npos) << human.out;
+    EXPECT_EQ(human.out.find("s = -0"), std::string::npos) << human.out;
+    const CliRun sweep = run("sweep --soil sandy-loam --wheel A --slips -0,0.5 --slip-angles 0 --json");
+    ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+    EXPECT_EQ(sweep.out.find("-0.0"), std::string::npos) << sweep.out;
+    const CliRun csv = run("sweep --soil sandy-loam --wheel A --slips -0,0.5 --slip-angles 0");
+    ASSERT_EQ(csv.exit_code, 0) << csv.err;
+    EXPECT_EQ(csv.out.find(",-0,"), std::string::npos) << csv.out;
+}
+
+TEST(Cli, BatchBadRowsAreListedInLineOrder) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_order_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream in(dir / "rows.csv");
+        in << "slip,entry_angle_deg\n0.1,20\n1.5,20\n0.2\n0.2,abc\n";  // lines 3, 4 (short), 5
+    }
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --input " + (dir / "rows.csv").string());
+    EXPECT_EQ(r.exit_code, 2);
+    const auto at3 = r.err.find("rows.csv:3"), at4 = r.err.find("rows.csv:4"), at5 = r.err.find("rows.csv:5");
+    ASSERT_NE(at3, std::string::npos) << r.err;
+    ASSERT_NE(at4, std::string::npos) << r.err;
+    ASSERT_NE(at5, std::string::npos) << r.err;
+    EXPECT_LT(at3, at4) << r.err;
+    EXPECT_LT(at4, at5) << r.err;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, PathsThatDoNotExistAreNamedAsFiles) {
+    const CliRun r = run("wheel --soil no/such/soil.json --wheel A --load 50");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("file 'no/such/soil.json' does not exist"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("neither a file nor a preset"), std::string::npos) << r.err;
+    const CliRun wheel = run("wheel --soil sandy-loam --wheel missing-wheel.json --load 50");
+    EXPECT_EQ(wheel.exit_code, 2);
+    EXPECT_NE(wheel.err.find("file 'missing-wheel.json' does not exist"), std::string::npos) << wheel.err;
+    const CliRun name = run("wheel --soil sandy --wheel A --load 50");  // a bare name: presets listed
+    EXPECT_NE(name.err.find("neither a file nor a preset"), std::string::npos) << name.err;
+}
+
+TEST(Cli, PresetsIndentsEveryLineOfAnInvalidWheel) {
+    const auto dir = std::filesystem::temp_directory_path() / ("terra_presets_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir / "wheels");
+    std::ofstream(dir / "wheels" / "broken.json") << R"({"name": "broken", "r_m": -1, "b_m": -2})";
+    const CliRun r = run("presets > /dev/null; TERRASTUDIO_RESOURCES=" + dir.string() + " " +
+                         TERRASTUDIO_EXE + " presets");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto at = r.out.find("  broken: INVALID:\n");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    std::istringstream rest(r.out.substr(at));
+    std::string line;
+    std::getline(rest, line);  // "  broken: INVALID:"
+    int problems = 0;
+    while (std::getline(rest, line) && line.rfind("      ", 0) == 0) ++problems;
+    EXPECT_EQ(problems, 2) << r.out.substr(at);  // r_m and b_m, each on its own indented line
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, RenderRejectsAZeroLoadWithTheRange) {
+    const CliRun r = run("render --soil sandy-loam --wheel A --load 0 --out /tmp/terra_render_never");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--load: 0 is outside the allowed range (0, 1e+07] N"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists("/tmp/terra_render_never"));
 }
 
 TEST(Cli, RenderWritesTheDefaultAnalysisHeadlessly) {

@@ -168,7 +168,7 @@ TEST(Sinkage, NoEquilibriumIsReportedNotClamped) {
 TEST(Sinkage, ReportsSuccessOnlyWhenTheLoadIsReproduced) {
     // Regression: heavy clay (N = 0.13) with θ_m fixed at 15°. For θ_f ≤ 15° the clamp θ_m ≤ θ_f
     // leaves σ ≡ 0 (θ_e = θ_f, Eq. 2.19) and only shear carries load, ~0.3 N; just above 15° σ
-    // grows like (θ_f − 15°)^0.13, i.e. by tens of newtons within one ulp of θ_f. The solver
+    // grows like (θ_f − 15°)^0.13, i.e. by ~20 N within a few ulps of θ_f. The solver
     // reported success with F_z = 0.30 N for W = 5 N; it must either reproduce W (checked by an
     // independent evaluation) or say that it cannot.
     const auto p = testing::heavyClay();
