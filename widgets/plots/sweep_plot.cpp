@@ -1,5 +1,7 @@
 #include "widgets/plots/sweep_plot.h"
 
+#include "widgets/plots/plot_export.h"
+
 #include <qcustomplot.h>
 
 #include <QFileInfo>
@@ -84,20 +86,10 @@ void placeLegend(QCustomPlot& plot) {
 }
 
 bool exportPng(QCustomPlot& plot, const QString& path, int width, int height, QString* error) {
-    // Render to a temporary name, then rename: never a half-written image.
-    const QString temporary = path + ".part.png";
-    if (!plot.savePng(temporary, width, height, 1.0, -1, 96)) {
-        if (error) *error = "cannot write " + temporary;
-        QFile::remove(temporary);
-        return false;
-    }
-    QFile::remove(path);
-    if (!QFile::rename(temporary, path)) {
-        if (error) *error = "cannot rename " + temporary + " to " + path;
-        QFile::remove(temporary);
-        return false;
-    }
-    return true;
+    ExportOptions options;  // atomic: temporary file, then rename (plot_export.cpp)
+    options.width = width;
+    options.height = height;
+    return exportPlot(plot, path, options, error);
 }
 
 }  // namespace terra::ui
