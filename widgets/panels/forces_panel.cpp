@@ -10,9 +10,19 @@
 
 #include "widgets/analyses/analyses.h"
 #include "widgets/document/project_document.h"
+#include "widgets/plots/figures.h"
 #include "widgets/plots/sweep_plot.h"
 
 namespace terra::ui {
+namespace {
+
+/// What one computation of the panel produces.
+struct ForcesOutcome {
+    analysis::SweepResult sweep;
+    SoilCurves soil;
+};
+
+}  // namespace
 
 ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     : AnalysisPanel(document, "forces", parent) {
@@ -29,6 +39,14 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
         plots_.push_back(plot);
         tabs_->addTab(plot, quantity.label.left(quantity.label.indexOf(" [")));
     }
+    bulldozing_ = new QCustomPlot(tabs_);
+    static_sinkage_ = new QCustomPlot(tabs_);
+    makeInteractive(bulldozing_, readout_);
+    makeInteractive(static_sinkage_, readout_);
+    plots_.push_back(bulldozing_);
+    plots_.push_back(static_sinkage_);
+    tabs_->addTab(bulldozing_, "Bulldozing F_b(h)");
+    tabs_->addTab(static_sinkage_, "Static sinkage h(W)");
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Model:", this));
     bar->addWidget(model_);
@@ -51,29 +69,50 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
 
 std::vector<std::pair<QString, QCustomPlot*>> ForcesPanel::plots() const {
     std::vector<std::pair<QString, QCustomPlot*>> out;
-    for (std::size_t i = 0; i < plots_.size(); ++i) {
+    for (std::size_t i = 0; i < sweepQuantities().size(); ++i) {
         out.emplace_back(QString::fromStdString(sweepQuantities()[i].column) + "-vs-slip", plots_[i]);
     }
+    out.emplace_back("Fb-vs-sinkage", bulldozing_);
+    out.emplace_back("static-sinkage-vs-load", static_sinkage_);
     return out;
+}
+
+Table ForcesPanel::currentTable() const {
+    if (currentPlot() == bulldozing_) return soil_curves_.bulldozing;
+    if (currentPlot() == static_sinkage_) return soil_curves_.static_sinkage;
+    return result_.table;
 }
 
 QCustomPlot* ForcesPanel::currentPlot() const { return plots_[static_cast<std::size_t>(tabs_->currentIndex())]; }
 
 AnalysisPanel::Job ForcesPanel::makeJob() {
     const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
-    return [inputs](const std::atomic<bool>& cancel) -> std::any { return computeForceSweep(inputs, &cancel); };
+    return [inputs](const std::atomic<bool>& cancel) -> std::any {
+        ForcesOutcome out;
+        out.soil = computeSoilCurves(inputs, {}, &cancel);  // ~1 % of the sweep's time
+        out.sweep = computeForceSweep(inputs, &cancel);
+        return out;
+    };
 }
 
 void ForcesPanel::present(const std::any& value) {
-    result_ = std::any_cast<analysis::SweepResult>(value);
+    auto outcome = std::any_cast<ForcesOutcome>(value);
+    result_ = std::move(outcome.sweep);
+    soil_curves_ = std::move(outcome.soil);
     const Project& p = document_->project();
     const QString title = QString("%1, %2, W = %3 N%4")
                               .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
                               .arg(p.conditions.load_n)
                               .arg(p.conditions.quadratic ? " (quadratic model)" : "");
-    for (std::size_t i = 0; i < plots_.size(); ++i) {
+    for (std::size_t i = 0; i < sweepQuantities().size(); ++i) {
         plotSweep(*plots_[i], result_.table, sweepQuantities()[i], title);
     }
+    const QString soil_title = QString("%1, %2 (r = %3 mm, b = %4 mm)")
+                                   .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
+                                   .arg(p.wheel.radius_m * 1e3)
+                                   .arg(p.wheel.width_m * 1e3);
+    plotBulldozing(*bulldozing_, soil_curves_, soil_title);
+    plotStaticSinkage(*static_sinkage_, soil_curves_, soil_title);
     status_->setText(result_.warnings.empty()
                          ? QString("%1 points").arg(result_.table.rows.size())
                          : QString("%1 points; %2 without equilibrium (the wheel would sink to its axle)")

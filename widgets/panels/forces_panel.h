@@ -1,10 +1,12 @@
 #pragma once
 /// @file forces_panel.h
 /// The forces-versus-slip panel (Figs. 2.18–2.26): F_x, F_s, F_z, M_y, M_z and θ_f against slip
-/// for the project's slip angles, one plot per quantity in tabs, recomputed live off the GUI
-/// thread whenever the soil, wheel or conditions change (AnalysisPanel).
+/// for the project's slip angles, one plot per quantity in tabs, plus bulldozing resistance
+/// against sinkage (Fig. 2.15) and static sinkage against load (Fig. 2.6); all recomputed live off
+/// the GUI thread whenever the soil, wheel or conditions change (AnalysisPanel).
 
 #include "core/analysis/sweep.h"
+#include "widgets/analyses/soil_curves.h"
 #include "widgets/panels/analysis_panel.h"
 
 class QComboBox;
@@ -20,10 +22,12 @@ public:
 
     /// The last sweep on screen (empty before the first one finishes).
     const analysis::SweepResult& result() const { return result_; }
+    /// The last bulldozing and static-sinkage curves on screen.
+    const SoilCurves& soilCurves() const { return soil_curves_; }
 
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
-    Table currentTable() const override { return result_.table; }
+    Table currentTable() const override;
 
 protected:
     Job makeJob() override;
@@ -34,8 +38,11 @@ private:
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;
-    std::vector<QCustomPlot*> plots_;
+    std::vector<QCustomPlot*> plots_;  ///< one per sweep quantity, then bulldozing_, static_sinkage_
+    QCustomPlot* bulldozing_;
+    QCustomPlot* static_sinkage_;
     analysis::SweepResult result_;
+    SoilCurves soil_curves_;
 };
 
 }  // namespace terra::ui

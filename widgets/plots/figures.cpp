@@ -163,6 +163,71 @@ void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip
     plot.replot();
 }
 
+void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("Sinkage h [mm]");
+    plot.yAxis->setLabel("Bulldozing resistance F_b [N]");
+    const Table& t = curves.bulldozing;
+    if (t.rows.empty()) {
+        plot.replot();
+        return;
+    }
+    const QVector<double> h = column(t, "sinkage_mm");
+    addLine(plot, h, column(t, "Fb_bekker_N"), "Bekker coefficients (used in F_s)", paletteColor(0));
+    addLine(plot, h, column(t, "Fb_hegedus_N"), "Hegedus coefficients", paletteColor(1), Qt::DashLine);
+    finish(plot);
+    // F_b starts at 0: keep the origin in view rather than the symmetric margin of finish().
+    plot.yAxis->setRangeLower(0.0);
+    plot.xAxis->setRangeLower(0.0);
+    placeLegend(plot);
+    plot.replot();
+}
+
+void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("Vertical load W [N]");
+    plot.yAxis->setLabel("Static sinkage h_s [mm]");
+    const Table& t = curves.static_sinkage;
+    if (t.rows.empty()) {
+        plot.replot();
+        return;
+    }
+    const QVector<double> w = column(t, "load_N");
+    auto finite = [&](const std::string& name, QVector<double>& x, QVector<double>& y) {
+        const QVector<double> values = column(t, name);
+        for (int i = 0; i < values.size(); ++i) {
+            if (std::isfinite(values[i])) x.push_back(w[i]), y.push_back(values[i]);
+        }
+    };
+    QVector<double> x, y;
+    finite("h_bekker_mm", x, y);
+    addLine(plot, x, y, "Bekker, Eq. 2.8 (front half, corrected √(2r))", paletteColor(0));
+    x.clear(), y.clear();
+    finite("h_eq27_front_mm", x, y);
+    addLine(plot, x, y, "Eq. 2.7 over the front half 0..θ_s", paletteColor(2), Qt::DashLine);
+    x.clear(), y.clear();
+    finite("h_eq27_mm", x, y);
+    addLine(plot, x, y, "Eq. 2.7 over −θ_s..θ_s (as printed)", paletteColor(1), Qt::DashDotLine);
+    finish(plot);
+    plot.yAxis->setRangeLower(0.0);
+    plot.xAxis->setRangeLower(0.0);
+    if (curves.load_n > 0.0) {
+        auto* marker = new QCPItemStraightLine(&plot);
+        marker->point1->setCoords(curves.load_n, 0.0);
+        marker->point2->setCoords(curves.load_n, 1.0);
+        marker->setPen(QPen(QColor(128, 128, 128), 1.0, Qt::DotLine));
+        auto* label = new QCPItemText(&plot);
+        label->position->setType(QCPItemPosition::ptPlotCoords);
+        label->position->setCoords(curves.load_n, plot.yAxis->range().upper);
+        label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+        label->setPadding(QMargins(4, 2, 4, 2));
+        label->setText(QString("W = %1 N").arg(curves.load_n));
+        label->setColor(QColor(128, 128, 128));
+    }
+    placeLegend(plot);
+    plot.replot();
+}
+
 void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, const std::string& channel,
                         const QString& title) {
     resetPlot(plot, title);

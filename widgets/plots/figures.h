@@ -7,6 +7,7 @@
 #include <string>
 
 #include "widgets/analyses/analyses.h"
+#include "widgets/analyses/soil_curves.h"
 
 class QCustomPlot;
 
@@ -26,6 +27,14 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, c
 /// Horizontal bars: the change of F_x from the base soil at the lowest and highest variation of
 /// each parameter, sorted by total swing (the most influential on top).
 void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip, const QString& title);
+
+/// Bulldozing resistance F_b of one side wall against sinkage h (Fig. 2.15): Bekker's coefficients
+/// solid (the ones the forces use), Hegedus's dashed.
+void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& title);
+
+/// Static sinkage h against load W (Fig. 2.6): Bekker's Eq. 2.8 (E2), Eq. 2.7 over the whole
+/// contact and over its front half; a vertical line marks the project's load.
+void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QString& title);
 
 /// Data (points) and fitted curve (line) of one channel ("Fx_N", "Fz_N", "My_Nm") against slip.
 void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, const std::string& channel,
