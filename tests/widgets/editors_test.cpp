@@ -6,6 +6,7 @@
 #include <QLineEdit>
 #include <QTest>
 #include <QUndoStack>
+#include <cmath>
 
 #include "core/common/units.h"
 #include "widgets/editors/property_editors.h"
@@ -47,6 +48,70 @@ TEST(SoilEditor, OutOfRangeTextIsFlaggedAndNeverCommitted) {
     EXPECT_EQ(document.undoStack()->count(), 1);
     document.undoStack()->undo();
     EXPECT_DOUBLE_EQ(phi->value(), 29.0);  // the editor follows the document back
+}
+
+// Typing is live but debounced: a settled, valid text reaches the model without Enter, as one
+// undo command; the keystrokes before it ("3" of "33") do not.
+TEST(SoilEditor, TypedValueReachesTheModelAfterTheDebounceWithoutEnter) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    editor.show();
+    ValidatedSpinBox* phi = editor.spinBox("phi_deg");
+    ASSERT_NE(phi, nullptr);
+    const double before = document.project().soil.friction_angle_rad;
+    phi->selectAll();
+    QTest::keyClicks(phi, "33");  // no Enter, no focus change
+    EXPECT_DOUBLE_EQ(document.project().soil.friction_angle_rad, before);  // not per keystroke
+    EXPECT_TRUE(QTest::qWaitFor(
+        [&] { return std::abs(document.project().soil.friction_angle_rad - units::degToRad(33.0)) < 1e-12; },
+        10 * phi->debounceMs()));
+    EXPECT_EQ(document.undoStack()->count(), 1);  // one undo command for the settled edit
+    document.undoStack()->undo();
+    EXPECT_DOUBLE_EQ(document.project().soil.friction_angle_rad, before);
+    EXPECT_DOUBLE_EQ(phi->value(), 29.0);
+
+    // Two settled edits of one field merge into one undo step (the document's merge id).
+    phi->selectAll();
+    QTest::keyClicks(phi, "31");
+    ASSERT_TRUE(QTest::qWaitFor([&] { return document.project().soil.friction_angle_rad != before; }, 3000));
+    phi->selectAll();
+    QTest::keyClicks(phi, "32");
+    ASSERT_TRUE(QTest::qWaitFor(
+        [&] { return std::abs(document.project().soil.friction_angle_rad - units::degToRad(32.0)) < 1e-12; },
+        3000));
+    EXPECT_EQ(document.undoStack()->count(), 1);
+}
+
+TEST(SoilEditor, InvalidOrIncompleteTypedTextNeverReachesTheModel) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    editor.show();
+    ValidatedSpinBox* phi = editor.spinBox("phi_deg");
+    const double before = document.project().soil.friction_angle_rad;
+    phi->selectAll();
+    QTest::keyClicks(phi, "75");  // outside [0, 60)
+    QTest::qWait(3 * phi->debounceMs());
+    EXPECT_FALSE(phi->textIsValid());
+    EXPECT_DOUBLE_EQ(document.project().soil.friction_angle_rad, before);
+    EXPECT_EQ(document.undoStack()->count(), 0);
+
+    phi->selectAll();
+    QTest::keyClick(phi, Qt::Key_Backspace);  // empty: intermediate, not a value
+    QTest::qWait(3 * phi->debounceMs());
+    EXPECT_DOUBLE_EQ(document.project().soil.friction_angle_rad, before);
+    EXPECT_EQ(document.undoStack()->count(), 0);
+
+    ValidatedSpinBox* load = nullptr;
+    ConditionsEditor conditions(&document);
+    conditions.show();
+    load = conditions.loadBox();
+    load->selectAll();
+    QTest::keyClicks(load, "6000");  // W ≤ 5000 N (a typed "-" is refused outright: W > 0)
+    QTest::qWait(3 * load->debounceMs());
+    EXPECT_DOUBLE_EQ(document.project().conditions.load_n, 58.86);
+    EXPECT_EQ(document.undoStack()->count(), 0);
 }
 
 TEST(SoilEditor, EveryFieldOfTheCoreTableHasAnEditorWithItsRange) {

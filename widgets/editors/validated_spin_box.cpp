@@ -3,6 +3,7 @@
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QSignalBlocker>
+#include <QTimer>
 #include <cmath>
 
 namespace terra::ui {
@@ -14,7 +15,15 @@ ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, con
     const double step = std::pow(10.0, -decimals);
     // Open ends: the nearest value the box can show inside the range.
     setRange(range.low_open ? range.low + step : range.low, range.high_open ? range.high - step : range.high);
-    setKeyboardTracking(false);  // commit typed text on Enter or focus-out, not per keystroke
+    // Keystrokes do not emit valueChanged themselves: a settled, acceptable text is committed by
+    // the debounce timer (or at once by Enter / focus-out), so "3" of "35" never reaches the model
+    // while the user is still typing, and a settled edit is one (merged) undo command.
+    setKeyboardTracking(false);
+    debounce_ = new QTimer(this);
+    debounce_->setSingleShot(true);
+    debounce_->setInterval(kDebounceMs);
+    connect(debounce_, &QTimer::timeout, this, &ValidatedSpinBox::commitTyped);
+    connect(lineEdit(), &QLineEdit::textEdited, debounce_, qOverload<>(&QTimer::start));
     setAccelerated(true);
     setToolTip(QString("%1 [%2], allowed %3").arg(name, unit, QString::fromStdString(range.describe())));
     setCorrectionMode(QAbstractSpinBox::CorrectToPreviousValue);
@@ -28,12 +37,18 @@ void ValidatedSpinBox::setCommittedValue(double value) {
     flag(true, {});
 }
 
+void ValidatedSpinBox::commitTyped() {
+    if (!valid_ || !hasAcceptableInput()) return;  // flagged or intermediate ("", "-", "1e"): wait
+    interpretText();  // emits valueChanged when the value differs from the shown one
+}
+
 void ValidatedSpinBox::revertIfInvalid() {
     if (valid_) return;
     setCommittedValue(committed_);
 }
 
 void ValidatedSpinBox::keyPressEvent(QKeyEvent* event) {
+    if (event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) debounce_->stop();
     if ((event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) && !valid_) {
         revertIfInvalid();
         event->accept();
@@ -43,6 +58,7 @@ void ValidatedSpinBox::keyPressEvent(QKeyEvent* event) {
 }
 
 void ValidatedSpinBox::focusOutEvent(QFocusEvent* event) {
+    debounce_->stop();  // QAbstractSpinBox commits acceptable text on focus-out itself
     revertIfInvalid();
     QDoubleSpinBox::focusOutEvent(event);
 }

@@ -2,9 +2,13 @@
 /// @file validated_spin_box.h
 /// A spin box for one range-checked field: typed text outside the allowed range is flagged at the
 /// field (red frame, tooltip naming the value and the range) and never committed — the spin box
-/// reverts to the last valid value when editing ends.
+/// reverts to the last valid value when editing ends. Typing is live but debounced: once the
+/// text has been acceptable and unchanged for debounceMs(), it is committed (valueChanged) as if
+/// Enter had been pressed; arrows, wheel, Enter and focus-out commit at once.
 
 #include <QDoubleSpinBox>
+
+class QTimer;
 
 #include "core/common/range.h"
 
@@ -26,6 +30,10 @@ public:
     /// Shows a value that came from the model, without emitting valueChanged.
     void setCommittedValue(double value);
 
+    /// Quiet time after the last keystroke before typed text is committed [ms].
+    static constexpr int kDebounceMs = 300;
+    int debounceMs() const { return kDebounceMs; }
+
 protected:
     /// Enter or leaving the field with flagged text restores the last committed value: a
     /// half-typed prefix ("7" of "75") is never committed either.
@@ -34,6 +42,7 @@ protected:
 
 private:
     void revertIfInvalid();
+    void commitTyped();
     void flag(bool valid, const QString& message) const;
 
     QString name_;
@@ -41,6 +50,7 @@ private:
     Range range_;
     mutable bool valid_ = true;
     double committed_ = 0.0;
+    QTimer* debounce_;
 };
 
 }  // namespace terra::ui
