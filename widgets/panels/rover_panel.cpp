@@ -3,56 +3,120 @@
 #include <qcustomplot.h>
 
 #include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFontDatabase>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QPlainTextEdit>
 #include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSlider>
 #include <QTabWidget>
+#include <QTimer>
 #include <QVBoxLayout>
+#include <filesystem>
 
+#include "core/io/atomic_file.h"
 #include "core/scenario/scenario_json.h"
-#include "widgets/plots/figures.h"
-#include "widgets/plots/sweep_plot.h"
+#include "widgets/plots/rover_figures.h"
 
 namespace terra::ui {
 namespace {
 
-const char* kWheels[] = {"FL", "FR", "RL", "RR"};
-const QColor kWheelColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(255, 127, 14)};
+namespace fs = std::filesystem;
 
-QVector<double> column(const Table& t, const std::string& name) {
-    const auto v = t.values(name);
-    return QVector<double>(v.begin(), v.end());
-}
-
-void lines(QCustomPlot& plot, const Table& t, const std::vector<std::pair<std::string, QString>>& series,
-           const QString& y_label, const QString& title) {
-    resetPlot(plot, title);
-    plot.xAxis->setLabel("Time t [s]");
-    plot.yAxis->setLabel(y_label);
-    const QVector<double> time = column(t, "t_s");
-    int i = 0;
-    for (const auto& [name, label] : series) {
-        QCPGraph* g = plot.addGraph();
-        g->setData(time, column(t, name), true);
-        g->setName(label);
-        g->setPen(QPen(kWheelColors[i++ % 4], 1.6));
+/// The file of a scenario preset, or empty.
+fs::path presetFile(const io::PresetLocations& locations, const std::string& name) {
+    std::error_code ec;
+    for (const fs::path& dir : locations.directories) {
+        const fs::path candidate = dir / "scenarios" / (name + ".json");
+        if (fs::is_regular_file(candidate, ec)) return candidate;
     }
-    plot.legend->setVisible(series.size() > 1);
-    plot.rescaleAxes();
-    plot.yAxis->scaleRange(1.1, plot.yAxis->range().center());
-    placeLegend(plot);
-    plot.replot();
+    return {};
 }
 
 }  // namespace
+
+Result<scenario::Scenario> parseScenarioText(const QString& text, const std::string& name,
+                                             const io::PresetLocations& locations) {
+    const std::string where = "edited " + name;
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(text.toStdString());
+    } catch (const nlohmann::json::parse_error& e) {
+        // nlohmann's message holds the line and column ("parse error at line 3, column 7: ...").
+        return std::vector<Issue>{{where, std::string("not valid JSON: ") + e.what()}};
+    }
+    // Relative files (soils, robots) resolve against the preset's directory, as for the file.
+    return scenario::scenarioFromJson(json, where, locations, presetFile(locations, name).parent_path());
+}
+
+// ---------------------------------------------------------------------------------------------
+
+ScenarioDialog::ScenarioDialog(const QString& name, const QString& text, io::PresetLocations locations,
+                               QWidget* parent)
+    : QDialog(parent), name_(name.toStdString()), locations_(std::move(locations)) {
+    setWindowTitle("Edit scenario " + name);
+    edit_ = new QPlainTextEdit(this);
+    edit_->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+    edit_->setLineWrapMode(QPlainTextEdit::NoWrap);
+    error_ = new QLabel(this);
+    error_->setWordWrap(true);
+    error_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    buttons_ = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
+    auto* layout = new QVBoxLayout(this);
+    layout->addWidget(new QLabel("Scenario as JSON (format: docs/dynamics.md, \"Scenario\"):", this));
+    layout->addWidget(edit_, 1);
+    layout->addWidget(error_);
+    layout->addWidget(buttons_);
+    resize(720, 600);
+    connect(buttons_, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons_, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    connect(edit_, &QPlainTextEdit::textChanged, this, &ScenarioDialog::validate);
+    setText(text);
+}
+
+QString ScenarioDialog::text() const { return edit_->toPlainText(); }
+void ScenarioDialog::setText(const QString& text) { edit_->setPlainText(text); }  // validates
+QString ScenarioDialog::errorText() const { return valid_ ? QString() : error_->text(); }
+bool ScenarioDialog::okEnabled() const { return buttons_->button(QDialogButtonBox::Ok)->isEnabled(); }
+
+void ScenarioDialog::validate() {
+    const auto parsed = parseScenarioText(edit_->toPlainText(), name_, locations_);
+    valid_ = parsed.ok();
+    buttons_->button(QDialogButtonBox::Ok)->setEnabled(valid_);
+    if (valid_) {
+        error_->setStyleSheet("color: palette(text);");
+        error_->setText(QString("Valid: %1 s at %2 s steps on %3.")
+                            .arg(parsed->duration_s)
+                            .arg(parsed->time_step_s)
+                            .arg(QString::fromStdString(parsed->terrain.base.name)));
+    } else {
+        error_->setStyleSheet("color: #c0392b;");
+        error_->setText(QString::fromStdString(parsed.message()));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 
 RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations, QWidget* parent)
     : AnalysisPanel(document, "rover", parent), locations_(std::move(locations)) {
     setLive(false);  // scenarios use their own soils and robot; they run on request
     scenario_ = new QComboBox(this);
     for (const std::string& name : io::presetNames(locations_, "scenarios")) scenario_->addItem(QString::fromStdString(name));
+    edit_ = new QPushButton("Edit…", this);
+    edit_->setToolTip("Edit the scenario as JSON (kept in the project)");
+    revert_ = new QPushButton("Revert", this);
+    revert_->setToolTip("Drop the edit: back to the scenario file");
+    edited_label_ = new QLabel(this);
+    duration_ = new QDoubleSpinBox(this);
+    duration_->setRange(0.01, 86400.0);
+    duration_->setDecimals(2);
+    duration_->setSuffix(" s");
+    duration_->setToolTip("Simulated time (edits the scenario's duration_s)");
+    duration_->setKeyboardTracking(false);
     run_ = new QPushButton("Run", this);
     cancel_ = new QPushButton("Cancel", this);
     cancel_->setEnabled(false);
@@ -62,15 +126,47 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
     tabs_ = new QTabWidget(this);
-    for (const char* name : {"Path", "Yaw", "Velocities", "Slip", "Drawbar pull", "Sinkage"}) {
+
+    // Top view with its scrubber first: where the robot is, on which soil.
+    auto* view_page = new QWidget(tabs_);
+    top_view_ = new QCustomPlot(view_page);
+    makeInteractive(top_view_, readout_);
+    scrubber_ = new QSlider(Qt::Horizontal, view_page);
+    scrubber_->setRange(0, 0);
+    scrubber_->setEnabled(false);
+    scrubber_->setToolTip("Time: drag, or use the arrow keys to step through the run");
+    time_ = new QLabel("t = – s", view_page);
+    time_->setMinimumWidth(150);
+    play_ = new QPushButton("Play", view_page);
+    play_->setCheckable(true);
+    play_->setEnabled(false);
+    player_ = new QTimer(this);
+    player_->setInterval(40);
+    auto* scrub_bar = new QHBoxLayout;
+    scrub_bar->addWidget(play_);
+    scrub_bar->addWidget(scrubber_, 1);
+    scrub_bar->addWidget(time_);
+    auto* view_layout = new QVBoxLayout(view_page);
+    view_layout->setContentsMargins(0, 0, 0, 0);
+    view_layout->addWidget(top_view_, 1);
+    view_layout->addLayout(scrub_bar);
+    tabs_->addTab(view_page, "Top view");
+    for (const RoverFigure& figure : roverFigures()) {
         auto* plot = new QCustomPlot(tabs_);
         makeInteractive(plot, readout_);
         plots_.push_back(plot);
-        tabs_->addTab(plot, name);
+        tabs_->addTab(plot, figure.tab);
+        if (!figure.thesis.isEmpty()) tabs_->setTabToolTip(tabs_->count() - 1, "Thesis " + figure.thesis);
     }
+
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Scenario:", this));
     bar->addWidget(scenario_);
+    bar->addWidget(edit_);
+    bar->addWidget(revert_);
+    bar->addWidget(edited_label_);
+    bar->addWidget(new QLabel("Duration:", this));
+    bar->addWidget(duration_);
     bar->addWidget(run_);
     bar->addWidget(cancel_);
     bar->addWidget(progress_, 1);
@@ -80,6 +176,33 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
 
+    connect(scenario_, &QComboBox::currentIndexChanged, this, [this] {
+        showScenarioState();
+        storeSettings();
+    });
+    connect(edit_, &QPushButton::clicked, this, &RoverPanel::editScenario);
+    connect(revert_, &QPushButton::clicked, this, &RoverPanel::revertScenario);
+    connect(duration_, &QDoubleSpinBox::valueChanged, this, [this](double seconds) {
+        nlohmann::json json = currentJson();
+        if (!json.is_object() || json.value("duration_s", -1.0) == seconds) return;
+        json["duration_s"] = seconds;
+        QString error;
+        if (!setScenarioText(QString::fromStdString(json.dump(2)), &error)) status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
+    });
+    connect(scrubber_, &QSlider::valueChanged, this, &RoverPanel::scrubTo);
+    connect(play_, &QPushButton::toggled, this, [this](bool on) {
+        if (on && scrubber_->value() >= scrubber_->maximum()) scrubber_->setValue(0);
+        on ? player_->start() : player_->stop();
+    });
+    connect(player_, &QTimer::timeout, this, [this] {
+        // About 10 s of simulated time per second of playback, at least one row per tick.
+        const int step = std::max(1, (scrubber_->maximum() + 1) / 150);
+        if (scrubber_->value() >= scrubber_->maximum()) {
+            play_->setChecked(false);
+            return;
+        }
+        scrubber_->setValue(std::min(scrubber_->maximum(), scrubber_->value() + step));
+    });
     connect(run_, &QPushButton::clicked, this, [this] {
         storeSettings();
         recompute();
@@ -88,6 +211,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         run_->setEnabled(!busy);
         cancel_->setEnabled(busy);
+        edit_->setEnabled(!busy);
         if (busy) {
             progress_->setValue(0);
             status_->setText("Running…");
@@ -96,31 +220,107 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     connect(this, &AnalysisPanel::failed, this, [this](const QString& m) {
         run_->setEnabled(true);
         cancel_->setEnabled(false);
+        edit_->setEnabled(true);
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
     });
+    showScenarioState();
 }
 
 std::vector<std::pair<QString, QCustomPlot*>> RoverPanel::plots() const {
     std::vector<std::pair<QString, QCustomPlot*>> out;
-    for (int i = 0; i < tabs_->count(); ++i) {
-        out.emplace_back("rover-" + tabs_->tabText(i).toLower().replace(' ', '-'), plots_[static_cast<std::size_t>(i)]);
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+        out.emplace_back(QString::fromStdString("rover-" + roverFigures()[i].key), plots_[i]);
     }
+    out.emplace_back("rover-top-view", top_view_);
     return out;
 }
 
-QCustomPlot* RoverPanel::currentPlot() const { return plots_[static_cast<std::size_t>(tabs_->currentIndex())]; }
+QCustomPlot* RoverPanel::currentPlot() const {
+    const int i = tabs_->currentIndex();
+    return i <= 0 ? top_view_ : plots_[static_cast<std::size_t>(i - 1)];
+}
 
-nlohmann::json RoverPanel::settings() const { return {{"scenario", scenario_->currentText().toStdString()}}; }
+std::string RoverPanel::currentName() const { return scenario_->currentText().toStdString(); }
+
+nlohmann::json RoverPanel::settings() const {
+    return {{"scenario", currentName()}, {"edited", edits_}};
+}
 
 void RoverPanel::applySettings(const nlohmann::json& s) {
-    if (s.contains("scenario")) {
+    if (s.contains("edited") && s["edited"].is_object()) edits_ = s["edited"];
+    if (s.contains("scenario") && s["scenario"].is_string()) {
         const int i = scenario_->findText(QString::fromStdString(s["scenario"].get<std::string>()));
         if (i >= 0) scenario_->setCurrentIndex(i);
     }
+    showScenarioState();
+}
+
+nlohmann::json RoverPanel::currentJson() const {
+    const std::string name = currentName();
+    if (edits_.contains(name)) return edits_[name];
+    std::string text;
+    const fs::path file = presetFile(locations_, name);
+    if (file.empty() || io::readFile(file, text)) return nullptr;
+    return nlohmann::json::parse(text, nullptr, false);
+}
+
+QString RoverPanel::scenarioText() const {
+    const std::string name = currentName();
+    if (!edits_.contains(name)) {
+        std::string text;
+        const fs::path file = presetFile(locations_, name);
+        if (!file.empty() && !io::readFile(file, text)) return QString::fromStdString(text);  // as written
+    }
+    const nlohmann::json json = currentJson();
+    return json.is_discarded() || json.is_null() ? QString() : QString::fromStdString(json.dump(2));
+}
+
+bool RoverPanel::isEdited() const { return edits_.contains(currentName()); }
+
+bool RoverPanel::setScenarioText(const QString& text, QString* error) {
+    const auto parsed = parseScenarioText(text, currentName(), locations_);
+    if (!parsed) {
+        if (error) *error = QString::fromStdString(parsed.message());
+        return false;
+    }
+    storeEdit(nlohmann::json::parse(text.toStdString()));
+    return true;
+}
+
+void RoverPanel::storeEdit(const nlohmann::json& json) {
+    edits_[currentName()] = json;
+    storeSettings();  // into the project: saved with it
+    showScenarioState();
+}
+
+void RoverPanel::revertScenario() {
+    edits_.erase(currentName());
+    storeSettings();
+    showScenarioState();
+}
+
+void RoverPanel::showScenarioState() {
+    const bool edited = isEdited();
+    edited_label_->setText(edited ? "<i>edited</i>" : QString());
+    revert_->setEnabled(edited);
+    const nlohmann::json json = currentJson();
+    const QSignalBlocker block(duration_);
+    if (json.is_object() && json.contains("duration_s") && json["duration_s"].is_number()) {
+        duration_->setValue(json["duration_s"].get<double>());
+    }
+}
+
+void RoverPanel::editScenario() {
+    ScenarioDialog dialog(scenario_->currentText(), scenarioText(), locations_, this);
+    if (dialog.exec() != QDialog::Accepted) return;
+    QString error;
+    if (!setScenarioText(dialog.text(), &error)) status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
 }
 
 AnalysisPanel::Job RoverPanel::makeJob() {
-    auto loaded = scenario::resolveScenario(locations_, scenario_->currentText().toStdString());
+    const std::string name = currentName();
+    auto loaded = isEdited() ? parseScenarioText(QString::fromStdString(edits_[name].dump()), name, locations_)
+                             : scenario::resolveScenario(locations_, name);
     if (!loaded) throw std::invalid_argument(loaded.message());
     const scenario::Scenario scenario = *loaded;
     QPointer<QProgressBar> bar = progress_;
@@ -132,46 +332,36 @@ AnalysisPanel::Job RoverPanel::makeJob() {
                 if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
             }, Qt::QueuedConnection);
         };
-        return scenario::runScenario(scenario, options);
+        // The scenario travels with its result: the top view needs its robot and soils.
+        return std::make_pair(scenario, scenario::runScenario(scenario, options));
     };
 }
 
 void RoverPanel::present(const std::any& value) {
-    result_ = std::any_cast<scenario::RunResult>(value);
+    auto [scenario, result] = std::any_cast<std::pair<scenario::Scenario, scenario::RunResult>>(value);
+    shown_ = std::move(scenario);
+    result_ = std::move(result);
+    shown_name_ = currentName() + (isEdited() ? " (edited)" : "");
     progress_->setValue(100);
-    const QString name = scenario_->currentText();
-    const char* status[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
-    const QString title = QString("%1 — %2").arg(name, status[static_cast<int>(result_.status)]);
+    const QString title = roverTitle(shown_name_, result_.status);
     const Table& t = result_.series;
+    for (std::size_t i = 0; i < plots_.size(); ++i) plotRoverFigure(*plots_[i], t, roverFigures()[i].key, title);
+    const int last = static_cast<int>(t.rows.size()) - 1;
+    plotRoverTopView(*top_view_, shown_, t, static_cast<std::size_t>(std::max(last, 0)), title);
+    {
+        const QSignalBlocker block(scrubber_);
+        scrubber_->setRange(0, std::max(last, 0));
+        scrubber_->setValue(std::max(last, 0));
+    }
+    scrubber_->setEnabled(last > 0);
+    play_->setEnabled(last > 0);
+    time_->setText(timeLabel());
     if (t.rows.size() < 2) {
         status_->setText("No output: " + QString::fromStdString(result_.message));
         return;
     }
-    // Path: top-down view of the centre of mass (x forward, y left), equal scales.
-    QCustomPlot& path = *plots_[0];
-    resetPlot(path, title);
-    auto* curve = new QCPCurve(path.xAxis, path.yAxis);
-    curve->setData(column(t, "x_m"), column(t, "y_m"));
-    curve->setPen(QPen(kWheelColors[0], 2.0));
-    curve->setName("centre of mass");
-    path.xAxis->setLabel("x [m]");
-    path.yAxis->setLabel("y [m]");
-    path.rescaleAxes();
-    path.xAxis->scaleRange(1.1, path.xAxis->range().center());
-    path.yAxis->setScaleRatio(path.xAxis, 1.0);
-    path.replot();
-    lines(*plots_[1], t, {{"yaw_deg", "yaw"}}, "Yaw ψ [deg]", title);
-    lines(*plots_[2], t, {{"forward_m_s", "forward"}, {"lateral_m_s", "lateral"}}, "Velocity [m/s]", title);
-    std::vector<std::pair<std::string, QString>> slip, fx, sinkage;
-    for (const char* w : kWheels) {
-        slip.emplace_back(std::string(w) + "_slip", w);
-        fx.emplace_back(std::string(w) + "_Fx_N", w);
-        sinkage.emplace_back(std::string(w) + "_sinkage_m", w);
-    }
-    lines(*plots_[3], t, slip, "Slip ratio s [-]", title);
-    lines(*plots_[4], t, fx, "Drawbar pull F_x [N]", title);
-    lines(*plots_[5], t, sinkage, "Sinkage h [m]", title);
     const auto& s = result_.summary;
+    const char* status[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
     status_->setText(QString("%1: %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance %6 m, "
                              "motor energy %7 J%8")
                          .arg(status[static_cast<int>(result_.status)])
@@ -182,6 +372,24 @@ void RoverPanel::present(const std::any& value) {
                          .arg(s.distance_m, 0, 'f', 3)
                          .arg(s.energy_j, 0, 'f', 1)
                          .arg(result_.message.empty() ? QString() : ". " + QString::fromStdString(result_.message)));
+}
+
+QString RoverPanel::timeLabel() const {
+    const Table& t = result_.series;
+    const auto row = static_cast<std::size_t>(scrubber_->value());
+    if (row >= t.rows.size()) return "t = – s";
+    const RoverPose pose = roverPoseAt(t, row);
+    return QString("t = %1 s, ψ = %2°").arg(pose.t_s, 0, 'f', 2).arg(pose.yaw_rad * 180.0 / 3.14159265358979, 0, 'f', 2);
+}
+
+void RoverPanel::scrubTo(int row) {
+    if (row < 0 || static_cast<std::size_t>(row) >= result_.series.rows.size()) return;
+    if (scrubber_->value() != row) {
+        scrubber_->setValue(row);  // comes back here through valueChanged
+        return;
+    }
+    setRoverTopViewPose(*top_view_, shown_.robot, result_.series, static_cast<std::size_t>(row));
+    time_->setText(timeLabel());
 }
 
 }  // namespace terra::ui

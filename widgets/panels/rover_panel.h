@@ -1,20 +1,59 @@
 #pragma once
 /// @file rover_panel.h
-/// Rover scenario panel (Figs. 3.7–3.15): pick a scenario (resources/scenarios), run it off the GUI
-/// thread with a progress bar and cancel, and see the path, yaw, velocities, per-wheel slip and
-/// drawbar pull. A cancelled run keeps and shows what it computed, marked as such.
+/// Rover scenario panel (Figs. 3.7–3.15): pick a scenario (resources/scenarios), edit it as JSON
+/// (checked by the core scenario parser) or just its duration, run it off the GUI thread with a
+/// progress bar and cancel, and see the path, yaw, velocities, per-wheel slip, steering and forces
+/// (widgets/plots/rover_figures.h), and a top-down view of the robot on its soil patches with a
+/// time scrubber that only redraws. A cancelled run keeps and shows what it computed, marked as
+/// such. Edited scenarios are kept in the project (the panel's settings, "edited": {name: JSON}).
+
+#include <QDialog>
+#include <optional>
 
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "widgets/panels/analysis_panel.h"
 
 class QComboBox;
+class QDialogButtonBox;
+class QDoubleSpinBox;
 class QLabel;
+class QPlainTextEdit;
 class QProgressBar;
 class QPushButton;
+class QSlider;
 class QTabWidget;
+class QTimer;
 
 namespace terra::ui {
+
+/// A scenario as JSON text, parsed by the core reader (scenario_json.h): the scenario, or every
+/// problem with its field path ("edited straight: duration_s: -1 is outside ...").
+Result<scenario::Scenario> parseScenarioText(const QString& text, const std::string& name,
+                                             const io::PresetLocations& locations);
+
+/// Edits a scenario's JSON; OK stays disabled and the error (naming the field) is shown until the
+/// text parses as a valid scenario.
+class ScenarioDialog : public QDialog {
+    Q_OBJECT
+public:
+    ScenarioDialog(const QString& name, const QString& text, io::PresetLocations locations,
+                   QWidget* parent = nullptr);
+    QString text() const;
+    void setText(const QString& text);
+    bool isValid() const { return valid_; }
+    QString errorText() const;
+    bool okEnabled() const;
+
+private:
+    void validate();
+    std::string name_;
+    io::PresetLocations locations_;
+    QPlainTextEdit* edit_;
+    QLabel* error_;
+    QDialogButtonBox* buttons_;
+    bool valid_ = false;
+};
 
 class RoverPanel : public AnalysisPanel {
     Q_OBJECT
@@ -22,27 +61,65 @@ public:
     RoverPanel(ProjectDocument* document, io::PresetLocations locations, QWidget* parent = nullptr);
 
     const scenario::RunResult& result() const { return result_; }
+    /// The scenario of the shown result (robot geometry and soils of the top view).
+    const scenario::Scenario& shownScenario() const { return shown_; }
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
     Table currentTable() const override { return result_.series; }
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
 
+    /// The current scenario's JSON text: the edited one when there is one, else the file's.
+    QString scenarioText() const;
+    /// Replaces the current scenario by `text` when it parses (stored in the project); false and
+    /// the problems (naming the fields) in `error` otherwise, nothing changed.
+    bool setScenarioText(const QString& text, QString* error);
+    /// Drops the current scenario's edit (back to the file).
+    void revertScenario();
+    bool isEdited() const;
+
+    /// The top view and its scrubber: row of the series shown, time label.
+    QCustomPlot* topView() const { return top_view_; }
+    QSlider* scrubber() const { return scrubber_; }
+    QString timeLabel() const;
+    /// Shows row `row` of the series in the top view (redraw only).
+    void scrubTo(int row);
+
 protected:
     Job makeJob() override;
     void present(const std::any& result) override;
 
+private slots:
+    void editScenario();
+
 private:
+    std::string currentName() const;
+    nlohmann::json currentJson() const;  // edited or file JSON (null when unreadable)
+    void showScenarioState();
+    void storeEdit(const nlohmann::json& json);
+
     io::PresetLocations locations_;
     QComboBox* scenario_;
+    QPushButton* edit_;
+    QPushButton* revert_;
+    QLabel* edited_label_;
+    QDoubleSpinBox* duration_;
     QPushButton* run_;
     QPushButton* cancel_;
     QProgressBar* progress_;
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;
-    std::vector<QCustomPlot*> plots_;
+    std::vector<QCustomPlot*> plots_;  // figures of roverFigures(), then the top view
+    QCustomPlot* top_view_;
+    QSlider* scrubber_;
+    QLabel* time_;
+    QPushButton* play_;
+    QTimer* player_;
+    nlohmann::json edits_ = nlohmann::json::object();  // scenario name → edited JSON
     scenario::RunResult result_;
+    scenario::Scenario shown_;
+    std::string shown_name_;
 };
 
 }  // namespace terra::ui

@@ -1,0 +1,309 @@
+#include "widgets/plots/rover_figures.h"
+
+#include <qcustomplot.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "widgets/plots/figures.h"
+#include "widgets/plots/sweep_plot.h"
+
+namespace terra::ui {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+const QColor kWheelColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(255, 127, 14)};
+// Four wheels often coincide (straight line, symmetric loads): distinct dashes keep each visible.
+const Qt::PenStyle kWheelDashes[] = {Qt::SolidLine, Qt::DashLine, Qt::DotLine, Qt::DashDotLine};
+
+QVector<double> column(const Table& t, const std::string& name, double factor = 1.0) {
+    const auto v = t.values(name);
+    QVector<double> out(static_cast<qsizetype>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) out[static_cast<qsizetype>(i)] = v[i] * factor;
+    return out;
+}
+
+/// Rescales to the data, keeping at least `min_span` on y so that a constant (e.g. a zero yaw or
+/// steering angle) is drawn as a flat line in the middle rather than magnified noise.
+void finish(QCustomPlot& plot, double min_span) {
+    plot.rescaleAxes();
+    const QCPRange y = plot.yAxis->range();
+    if (y.size() < min_span) {
+        plot.yAxis->setRange(y.center() - 0.5 * min_span, y.center() + 0.5 * min_span);
+    } else {
+        plot.yAxis->scaleRange(1.1, y.center());
+    }
+    placeLegend(plot);
+    plot.replot();
+}
+
+struct Line {
+    std::string column;
+    QString label;
+};
+
+void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines, const QString& y_label,
+               const QString& title, double min_span, double factor = 1.0) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("Time t [s]");
+    plot.yAxis->setLabel(y_label);
+    if (t.rows.size() < 2) {
+        plot.replot();
+        return;
+    }
+    const QVector<double> time = column(t, "t_s");
+    int i = 0;
+    for (const Line& line : lines) {
+        QCPGraph* g = plot.addGraph();
+        g->setData(time, column(t, line.column, factor), true);
+        g->setName(line.label);
+        QPen pen(kWheelColors[i % 4], 1.8);
+        pen.setStyle(lines.size() == 4 ? kWheelDashes[i] : Qt::SolidLine);
+        g->setPen(pen);
+        ++i;
+    }
+    plot.legend->setVisible(lines.size() > 1);
+    finish(plot, min_span);
+}
+
+std::vector<Line> perWheel(const std::string& suffix) {
+    std::vector<Line> out;
+    for (const char* w : dynamics::kCornerNames) out.push_back({std::string(w) + "_" + suffix, w});
+    return out;
+}
+
+void plotPath(QCustomPlot& plot, const Table& t, const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("x [m] (initial heading)");
+    plot.yAxis->setLabel("y [m] (left)");
+    if (t.rows.size() < 2) {
+        plot.replot();
+        return;
+    }
+    auto* curve = new QCPCurve(plot.xAxis, plot.yAxis);
+    curve->setData(column(t, "x_m"), column(t, "y_m"));
+    curve->setPen(QPen(kWheelColors[0], 2.0));
+    curve->setName("centre of mass");
+    auto* ends = plot.addGraph();
+    ends->setData(QVector<double>{t.rows.front()[t.column("x_m")], t.rows.back()[t.column("x_m")]},
+                  QVector<double>{t.rows.front()[t.column("y_m")], t.rows.back()[t.column("y_m")]});
+    ends->setLineStyle(QCPGraph::lsNone);
+    ends->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, Qt::black, Qt::white, 7));
+    ends->setName("start, end");
+    plot.legend->setVisible(true);
+    plot.rescaleAxes();
+    plot.xAxis->scaleRange(1.1, plot.xAxis->range().center());
+    // Equal scales: a straight run shows as a straight line, a turn with its true radius.
+    plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
+    placeLegend(plot);
+    plot.replot();
+}
+
+QColor soilColor(int index) {
+    // Earthy, light enough for black labels and the robot drawn on top.
+    static const QColor colors[] = {QColor(237, 214, 170), QColor(190, 160, 130), QColor(205, 190, 150),
+                                    QColor(170, 150, 140), QColor(220, 200, 120), QColor(180, 185, 160)};
+    return colors[index % 6];
+}
+
+/// A closed polygon: the rectangle of half-length `a` (along `heading_rad`) and half-width `b`
+/// centred at `c`.
+void rectangle(QCPCurve& curve, QPointF c, double heading_rad, double a, double b) {
+    const double ca = std::cos(heading_rad), sa = std::sin(heading_rad);
+    const double corners[5][2] = {{a, b}, {-a, b}, {-a, -b}, {a, -b}, {a, b}};
+    QVector<double> xs, ys;
+    for (const auto& p : corners) {
+        xs.push_back(c.x() + ca * p[0] - sa * p[1]);
+        ys.push_back(c.y() + sa * p[0] + ca * p[1]);
+    }
+    curve.setData(xs, ys);
+}
+
+QCPCurve* findCurve(QCustomPlot& plot, const QString& name) {
+    for (int i = 0; i < plot.plottableCount(); ++i) {
+        auto* curve = qobject_cast<QCPCurve*>(plot.plottable(i));
+        if (curve && curve->name() == name) return curve;
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+const std::vector<RoverFigure>& roverFigures() {
+    static const std::vector<RoverFigure> figures{
+        {"path", "Path", "Figs. 3.7, 3.11a"},
+        {"yaw", "Yaw", "Fig. 3.11b"},
+        {"velocities", "Velocities", "Figs. 3.8, 3.15"},
+        {"slip", "Slip", "Figs. 3.9, 3.14"},
+        {"steering", "Steering", "Fig. 3.10"},
+        {"wheel-vx", "Wheel v_x", "Fig. 3.12"},
+        {"wheel-vy", "Wheel v_y", "Fig. 3.13"},
+        {"drawbar-pull", "Drawbar pull", ""},
+        {"load", "Load", ""},
+        {"sinkage", "Sinkage", ""},
+    };
+    return figures;
+}
+
+void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key, const QString& title) {
+    if (key == "path") {
+        plotPath(plot, t, title);
+    } else if (key == "yaw") {
+        timeLines(plot, t, {{"yaw_deg", "yaw ψ"}}, "Yaw ψ [deg] (positive: left)", title, 1.0);
+    } else if (key == "velocities") {
+        timeLines(plot, t, {{"forward_m_s", "longitudinal"}, {"lateral_m_s", "lateral (left)"}},
+                  "Chassis velocity [mm/s]", title, 1.0, 1e3);
+    } else if (key == "slip") {
+        timeLines(plot, t, perWheel("slip"), "Slip ratio s [-]", title, 0.02);
+    } else if (key == "steering") {
+        timeLines(plot, t, perWheel("steer_deg"), "Steering angle δ [deg] (positive: left)", title, 2.0);
+    } else if (key == "wheel-vx") {
+        timeLines(plot, t, perWheel("vx_m_s"), "Wheel longitudinal velocity v_x [mm/s]", title, 1.0, 1e3);
+    } else if (key == "wheel-vy") {
+        timeLines(plot, t, perWheel("vy_m_s"), "Wheel lateral velocity v_y [mm/s]", title, 1.0, 1e3);
+    } else if (key == "drawbar-pull") {
+        timeLines(plot, t, perWheel("Fx_N"), "Drawbar pull F_x [N]", title, 1.0);
+    } else if (key == "load") {
+        timeLines(plot, t, perWheel("load_N"), "Wheel load [N]", title, 1.0);
+    } else if (key == "sinkage") {
+        timeLines(plot, t, perWheel("sinkage_m"), "Sinkage h [mm]", title, 0.5, 1e3);
+    } else {
+        throw std::invalid_argument("unknown rover figure \"" + key + "\"");
+    }
+}
+
+QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status) {
+    const char* text[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
+    return QString("%1 — %2").arg(QString::fromStdString(scenario_name), text[static_cast<int>(status)]);
+}
+
+RoverPose roverPoseAt(const Table& t, std::size_t row) {
+    const std::vector<double>& r = t.rows.at(row);
+    RoverPose pose;
+    pose.t_s = r[t.column("t_s")];
+    pose.x_m = r[t.column("x_m")];
+    pose.y_m = r[t.column("y_m")];
+    pose.yaw_rad = r[t.column("yaw_deg")] * kPi / 180.0;
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        pose.steer_rad[i] = r[t.column(std::string(dynamics::kCornerNames[i]) + "_steer_deg")] * kPi / 180.0;
+    }
+    return pose;
+}
+
+std::array<QPointF, dynamics::kWheelCount> hubPositions(const dynamics::RobotParameters& robot,
+                                                        const RoverPose& pose) {
+    const double com_forward = robot.com_forward_m * robot.chassis_mass_kg / robot.totalMass();
+    const double half_l = 0.5 * robot.wheelbase_m, half_t = 0.5 * robot.track_m;
+    const double body[4][2] = {{half_l, half_t}, {half_l, -half_t}, {-half_l, half_t}, {-half_l, -half_t}};
+    const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+    std::array<QPointF, dynamics::kWheelCount> hubs;
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        const double bx = body[i][0] - com_forward, by = body[i][1];
+        hubs[i] = QPointF(pose.x_m + c * bx - s * by, pose.y_m + s * bx + c * by);
+    }
+    return hubs;
+}
+
+QString wheelCurveName(int corner) { return QString("wheel ") + dynamics::kCornerNames[corner]; }
+
+void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, const Table& t, std::size_t row,
+                      const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->setLabel("x [m]");
+    plot.yAxis->setLabel("y [m]");
+    const dynamics::RobotParameters& robot = scenario.robot;
+    // The view: the path (or the start) with a margin of the robot's size.
+    double x0 = scenario.initial.x_m, x1 = x0, y0 = scenario.initial.y_m, y1 = y0;
+    if (!t.rows.empty()) {
+        for (double x : t.values("x_m")) x0 = std::min(x0, x), x1 = std::max(x1, x);
+        for (double y : t.values("y_m")) y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    const double margin = 0.6 * (robot.wheelbase_m + robot.track_m) + 2.0 * robot.wheel.radius_m;
+    x0 -= margin, x1 += margin, y0 -= margin, y1 += margin;
+
+    // Soils: the base soil fills the axis rect, patches are rectangles (clipped to a large box).
+    const double far = 1e3 + std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
+    auto clip = [far](double v) { return std::clamp(v, -far, far); };
+    plot.axisRect()->setBackground(QBrush(soilColor(0)));
+    auto* base_label = new QCPItemText(&plot);
+    base_label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    base_label->position->setType(QCPItemPosition::ptAxisRectRatio);
+    base_label->position->setCoords(0.01, 0.01);
+    base_label->setText(QString::fromStdString(scenario.terrain.base.name));
+    base_label->setFont(QFont("sans", 10, QFont::Bold));
+    base_label->setClipToAxisRect(true);
+    for (std::size_t i = 0; i < scenario.terrain.patches.size(); ++i) {
+        const dynamics::SoilPatch& p = scenario.terrain.patches[i];
+        auto* rect = new QCPItemRect(&plot);
+        rect->topLeft->setCoords(clip(p.x_min_m), clip(p.y_max_m));
+        rect->bottomRight->setCoords(clip(p.x_max_m), clip(p.y_min_m));
+        rect->setBrush(QBrush(soilColor(static_cast<int>(i) + 1)));
+        rect->setPen(QPen(QColor(90, 70, 50), 1.0, Qt::DashLine));
+        rect->setLayer("background");
+        auto* label = new QCPItemText(&plot);
+        label->setText(QString::fromStdString(p.soil.name));
+        label->setFont(QFont("sans", 10, QFont::Bold));
+        // At the patch's visible top-left corner.
+        label->position->setCoords(std::clamp(p.x_min_m, x0, x1), std::clamp(p.y_max_m, y0, y1));
+        label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+        label->setPadding(QMargins(4, 4, 4, 4));
+    }
+    plot.xAxis->grid()->setLayer("background");
+    plot.yAxis->grid()->setLayer("background");
+
+    if (!t.rows.empty()) {
+        auto* path = new QCPCurve(plot.xAxis, plot.yAxis);
+        path->setData(column(t, "x_m"), column(t, "y_m"));
+        path->setPen(QPen(QColor(40, 40, 40), 1.5, Qt::DashLine));
+        path->setName("path of the centre of mass");
+        auto* chassis = new QCPCurve(plot.xAxis, plot.yAxis);
+        chassis->setName(kChassisCurveName);
+        chassis->setPen(QPen(QColor(50, 50, 60), 2.0));
+        chassis->setBrush(QBrush(QColor(120, 130, 150, 120)));
+        for (int i = 0; i < dynamics::kWheelCount; ++i) {
+            auto* wheel = new QCPCurve(plot.xAxis, plot.yAxis);
+            wheel->setName(wheelCurveName(i));
+            wheel->setPen(QPen(kWheelColors[i], 2.0));
+            wheel->setBrush(QBrush(kWheelColors[i].lighter(130)));
+            wheel->removeFromLegend();
+        }
+        chassis->removeFromLegend();
+        plot.legend->setVisible(true);
+    }
+    plot.xAxis->setRange(x0, x1);
+    plot.yAxis->setRange(y0, y1);
+    if ((x1 - x0) >= (y1 - y0)) {
+        plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
+    } else {
+        plot.xAxis->setScaleRatio(plot.yAxis, 1.0);
+    }
+    placeLegend(plot);
+    if (!t.rows.empty()) {
+        setRoverTopViewPose(plot, robot, t, std::min(row, t.rows.size() - 1));
+    } else {
+        plot.replot();
+    }
+}
+
+void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& robot, const Table& t, std::size_t row) {
+    QCPCurve* chassis = findCurve(plot, kChassisCurveName);
+    if (!chassis || row >= t.rows.size()) return;
+    const RoverPose pose = roverPoseAt(t, row);
+    const auto hubs = hubPositions(robot, pose);
+    // Chassis: the rectangle between the hubs, inset by half a wheel width on each side, its
+    // centre the middle of the four hubs.
+    const QPointF middle = (hubs[0] + hubs[1] + hubs[2] + hubs[3]) / 4.0;
+    const double half_width = std::max(0.5 * robot.track_m - 0.5 * robot.wheel.width_m - 0.01, 0.25 * robot.track_m);
+    rectangle(*chassis, middle, pose.yaw_rad, 0.5 * robot.wheelbase_m, half_width);
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        if (QCPCurve* wheel = findCurve(plot, wheelCurveName(i))) {
+            rectangle(*wheel, hubs[i], pose.yaw_rad + pose.steer_rad[i], robot.wheel.radius_m, 0.5 * robot.wheel.width_m);
+        }
+    }
+    plot.replot();
+}
+
+}  // namespace terra::ui
