@@ -4,6 +4,7 @@
 
 #include <QComboBox>
 #include <QLineEdit>
+#include <QSlider>
 #include <QTest>
 #include <QUndoStack>
 #include <cmath>
@@ -112,6 +113,78 @@ TEST(SoilEditor, InvalidOrIncompleteTypedTextNeverReachesTheModel) {
     QTest::qWait(3 * load->debounceMs());
     EXPECT_DOUBLE_EQ(document.project().conditions.load_n, 58.86);
     EXPECT_EQ(document.undoStack()->count(), 0);
+}
+
+// k_φ spans 0–100000 kN/m^(n+2): its slider maps log10(1 + k_φ / 1) linearly over 10000 steps
+// (the box shows 0.1, the knee is 10 × that), so 1515 sits at 10000 · log10(1516) / log10(100001).
+TEST(SoilEditor, WideRangeSliderIsLogarithmicSmallValuesReachable) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    QSlider* slider = editor.slider("kphi");
+    ValidatedSpinBox* box = editor.spinBox("kphi");
+    ASSERT_NE(slider, nullptr);
+    ASSERT_EQ(slider->maximum(), 10000);
+    const int expected = static_cast<int>(std::lround(10000.0 * std::log10(1516.0) / std::log10(100001.0)));
+    EXPECT_EQ(slider->value(), expected);  // 6361, not 15 of a linear 1000-step slider
+
+    // One step up from sandy loam moves k_φ by ln(10) · 1516 · 5/10000 ≈ 1.7, not 100.
+    slider->setValue(expected + 1);
+    const double moved = document.project().soil.frictional_modulus / 1e3 - 1515.0;
+    EXPECT_GT(moved, 0.5);
+    EXPECT_LT(moved, 3.0);
+    EXPECT_EQ(document.undoStack()->count(), 1);
+
+    // Small values are reachable: some position gives 0 < k_φ < 1 kN/m^(n+2) in the model.
+    bool small = false;
+    for (int p = 1; p < 1000 && !small; p += 10) {
+        slider->setValue(p);
+        const double kphi = document.project().soil.frictional_modulus / 1e3;
+        small = kphi > 0.0 && kphi < 1.0;
+    }
+    EXPECT_TRUE(small);
+    slider->setValue(0);
+    EXPECT_DOUBLE_EQ(box->value(), 0.0);
+    slider->setValue(10000);
+    EXPECT_DOUBLE_EQ(box->value(), 1e5);
+
+    // k_c spans −500..5000: negative values stay reachable through the signed log.
+    QSlider* kc = editor.slider("kc");
+    kc->setValue(100);
+    EXPECT_LT(document.project().soil.cohesive_modulus, 0.0);
+}
+
+// Slider → spin box → slider settles: the position the editor shows back maps to the same value,
+// and a value typed in the box lands within one step of its slider position.
+TEST(SoilEditor, SliderAndSpinBoxRoundTrip) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    for (const char* key : {"kphi", "kc", "c_kPa", "phi_deg", "n"}) {
+        QSlider* slider = editor.slider(key);
+        ValidatedSpinBox* box = editor.spinBox(key);
+        const SliderScale scale = SliderScale::forBox(*box);
+        const double resolution = std::pow(10.0, -box->decimals());
+        for (int p = 0; p <= slider->maximum(); p += slider->maximum() / 20) {
+            slider->setValue(p);
+            const double value = box->value();
+            const int shown = slider->value();  // after the document's refresh
+            const int commands = document.undoStack()->count();
+            slider->setValue(shown);            // the user lets go where it is shown
+            EXPECT_DOUBLE_EQ(box->value(), value) << key << " " << p;
+            EXPECT_EQ(document.undoStack()->count(), commands) << key << " " << p;  // no new edit
+            EXPECT_NEAR(scale.fromSlider(shown), value, resolution) << key << " " << p;
+        }
+        for (int p = 1; p < scale.steps; p += 37) {  // the mapping itself is invertible
+            EXPECT_EQ(scale.toSlider(scale.fromSlider(p)), p) << key << " " << p;
+        }
+        // A typed value: the slider moves to it, and its position maps back within one step.
+        const double typed = std::round((box->minimum() + 0.123 * (box->maximum() - box->minimum())) / resolution) * resolution;
+        box->setValue(typed);
+        const int at = slider->value();
+        EXPECT_LE(scale.fromSlider(at - 1), typed) << key;
+        EXPECT_GE(scale.fromSlider(at + 1), typed) << key;
+    }
 }
 
 TEST(SoilEditor, EveryFieldOfTheCoreTableHasAnEditorWithItsRange) {

@@ -8,6 +8,7 @@
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QVBoxLayout>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -17,8 +18,6 @@
 namespace terra::ui {
 namespace {
 
-constexpr int kSliderSteps = 1000;
-
 int decimalsFor(const Range& range) {
     const double span = range.high - range.low;
     if (span >= 1000.0) return 1;
@@ -26,14 +25,47 @@ int decimalsFor(const Range& range) {
     return 4;
 }
 
-int toSlider(const QDoubleSpinBox* box, double value) {
-    const double t = (value - box->minimum()) / (box->maximum() - box->minimum());
-    return static_cast<int>(std::lround(std::clamp(t, 0.0, 1.0) * kSliderSteps));
+}  // namespace
+
+SliderScale SliderScale::forBox(const QDoubleSpinBox& box) {
+    SliderScale scale;
+    scale.minimum = box.minimum();
+    scale.maximum = box.maximum();
+    const double resolution = std::pow(10.0, -box.decimals());
+    // Wide ranges (c, k_c, k_φ: spans of hundreds or more and 4–6 decades above the box's
+    // resolution) get the signed-log mapping; a linear slider of 1000 steps would move k_φ by
+    // 100 kN/m^(n+2) a step. Narrow ones (n, φ, a₀, a₁, K, γ, j_max) stay linear.
+    const double span = scale.maximum - scale.minimum;
+    scale.logarithmic = span >= 100.0 && span / resolution >= 1e4;
+    scale.steps = scale.logarithmic ? 10000 : 1000;
+    scale.knee = 10.0 * resolution;
+    return scale;
 }
 
-double fromSlider(const QDoubleSpinBox* box, int position) {
-    return box->minimum() + (box->maximum() - box->minimum()) * position / kSliderSteps;
+double SliderScale::warp(double value) const {
+    if (!logarithmic) return value;
+    return std::copysign(std::log10(1.0 + std::abs(value) / knee), value);
 }
+
+double SliderScale::unwarp(double u) const {
+    if (!logarithmic) return u;
+    return std::copysign(knee * (std::pow(10.0, std::abs(u)) - 1.0), u);
+}
+
+int SliderScale::toSlider(double value) const {
+    const double lo = warp(minimum), hi = warp(maximum);
+    const double t = (warp(std::clamp(value, minimum, maximum)) - lo) / (hi - lo);
+    return static_cast<int>(std::lround(std::clamp(t, 0.0, 1.0) * steps));
+}
+
+double SliderScale::fromSlider(int position) const {
+    if (position <= 0) return minimum;  // exact ends: no rounding drift through log/pow
+    if (position >= steps) return maximum;
+    const double lo = warp(minimum), hi = warp(maximum);
+    return std::clamp(unwarp(lo + (hi - lo) * position / steps), minimum, maximum);
+}
+
+namespace {
 
 QComboBox* presetBox(const io::PresetLocations& locations, const char* kind, QWidget* parent) {
     auto* box = new QComboBox(parent);
@@ -70,7 +102,8 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
             box->setSpecialValueText("no limit");
         }
         auto* slider = new QSlider(Qt::Horizontal, this);
-        slider->setRange(0, kSliderSteps);
+        slider->setObjectName(QString("soil.") + field.key + ".slider");
+        slider->setRange(0, SliderScale::forBox(*box).steps);
         slider->setMinimumWidth(90);
         auto* label = new QLabel(QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)), this);
         label->setToolTip(QString::fromUtf8(field.key));
@@ -91,7 +124,8 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
             }
             (void)box;
         });
-        connect(slider, &QSlider::valueChanged, this, [box](int position) { box->setValue(fromSlider(box, position)); });
+        connect(slider, &QSlider::valueChanged, this,
+                [box](int position) { box->setValue(SliderScale::forBox(*box).fromSlider(position)); });
     }
     grid->setColumnStretch(2, 1);
     auto* layout = new QVBoxLayout(this);
@@ -112,6 +146,11 @@ ValidatedSpinBox* SoilEditor::spinBox(const std::string& key) const {
     return it == fields_.end() ? nullptr : it->second.first;
 }
 
+QSlider* SoilEditor::slider(const std::string& key) const {
+    const auto it = fields_.find(key);
+    return it == fields_.end() ? nullptr : it->second.second;
+}
+
 void SoilEditor::refresh() {
     const Project& project = document_->project();
     selectPreset(preset_, project.soil_preset);
@@ -120,7 +159,7 @@ void SoilEditor::refresh() {
         const double value = soil::userValue(project.soil, field);
         const QSignalBlocker block_slider(slider);
         box->setCommittedValue(std::isinf(value) ? 0.0 : value);
-        slider->setValue(toSlider(box, box->value()));
+        slider->setValue(SliderScale::forBox(*box).toSlider(box->value()));
     }
 }
 
