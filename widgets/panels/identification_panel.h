@@ -4,15 +4,25 @@
 /// load a CSV, run the three-step decoupled fit (and the full-model refinement with standard
 /// deviations), and see data against fitted curves for F_x, F_z and M_y with the parameters,
 /// residual norms and timing. Runs on "Fit", not on every edit (a fit takes seconds).
+///
+/// Its second page plays a data set back through the streaming identifier
+/// (widgets/analyses/streaming_playback.h): a CSV, or a synthetic drive from the project's soil onto
+/// a second soil, fed sample by sample on a worker at 0.1×, 1×, 10× or full speed, with pause and
+/// stop; the estimates, the residual score and the detected change points grow as it plays.
 
 #include "widgets/analyses/analyses.h"
+#include "widgets/analyses/streaming_playback.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/plots/identification_figures.h"
 
 class QCheckBox;
+class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QLineEdit;
+class QProgressBar;
 class QPushButton;
+class QTimer;
 class QTabWidget;
 class QTableWidget;
 
@@ -22,21 +32,54 @@ class IdentificationPanel : public AnalysisPanel {
     Q_OBJECT
 public:
     explicit IdentificationPanel(ProjectDocument* document, QWidget* parent = nullptr);
+    ~IdentificationPanel() override;  ///< stops the playback and waits for its worker
 
     const IdentificationResult& result() const { return result_; }
     /// Uses this CSV as data (empty: synthesise from the project's soil).
     void setDataFile(const QString& path);
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
-    Table currentTable() const override { return result_.curves; }
+    /// The fit's data and curves, or on the streaming page one row per played sample.
+    Table currentTable() const override;
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
+
+    // Streaming playback (the "Streaming playback" page).
+    /// Shows the batch-fit page (0) or the streaming page (1).
+    void showPage(int page);
+    /// Plays the chosen source at the chosen speed (a running playback starts over; a paused
+    /// one resumes).
+    void play();
+    void pausePlayback();
+    void stopPlayback();
+    /// The stream source: empty path = synthetic border from the project's soil onto `second_soil`.
+    void setStreamSource(const QString& csv_path, const QString& second_soil = "clayey-soil");
+    /// 0.1, 1, 10 or 0 (as fast as possible).
+    void setStreamSpeed(double speed);
+    const StreamingPlayback& playback() const { return *playback_; }
+    /// What the streaming figures hold (frames shown so far, change points found).
+    const StreamingFigures& streamingFigures() const { return *stream_figures_; }
+    /// The true border of the synthetic source being played (none for a CSV).
+    std::optional<std::size_t> streamTrueBorder() const { return stream_border_; }
+    std::size_t streamSampleCount() const { return stream_count_; }
+    QString streamStatus() const;
 
 protected:
     Job makeJob() override;
     void present(const std::any& result) override;
 
+signals:
+    /// The streaming playback ended: finished, stopped or failed (StreamingPlayback::State).
+    void playbackEnded(terra::ui::StreamingPlayback::State state);
+
 private:
+    void buildStreamingPage(QWidget* page);
+    void showFrames(const std::vector<StreamFrame>& frames);
+    void playbackStateChanged(StreamingPlayback::State state);
+    void updateStreamControls();
+    void updatePosition();
+
+    QTabWidget* pages_;
     QLineEdit* file_;
     QDoubleSpinBox* noise_;
     QCheckBox* refine_;
@@ -48,6 +91,30 @@ private:
     std::vector<QCustomPlot*> plots_;
     QTableWidget* parameters_;
     IdentificationResult result_;
+
+    // Streaming page.
+    QComboBox* stream_source_;
+    QComboBox* second_soil_;
+    QDoubleSpinBox* stream_noise_;
+    QLineEdit* stream_file_;
+    QPushButton* stream_browse_;
+    QCheckBox* skip_bad_rows_;
+    QComboBox* speed_;
+    QPushButton* play_;
+    QPushButton* pause_;
+    QPushButton* stop_;
+    QProgressBar* position_;
+    QLabel* position_text_;
+    QLabel* stream_status_;
+    std::vector<QCustomPlot*> stream_plots_;
+    std::unique_ptr<StreamingFigures> stream_figures_;
+    StreamingPlayback* playback_;
+    QTimer* replot_timer_;  // coalesces replots while frames arrive (at most ~25 per second)
+    std::optional<std::size_t> stream_border_;
+    std::size_t stream_count_ = 0;
+    std::vector<StreamFrame> stream_frames_;  // of the run on screen
+    QString stream_description_;
+    QStringList stream_warnings_;
 };
 
 }  // namespace terra::ui

@@ -1,0 +1,296 @@
+#include "widgets/plots/identification_figures.h"
+
+#include <qcustomplot.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/common/units.h"
+
+namespace terra::ui {
+namespace {
+
+const QColor kBlue(31, 119, 180), kOrange(255, 127, 14), kGreen(44, 160, 44), kPurple(148, 103, 189),
+    kBrown(140, 86, 75), kRed(214, 39, 40), kGrey(110, 110, 110);
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void styleAxisLabel(QCPAxis* axis, const QString& label, const QColor& color) {
+    axis->setLabel(label);
+    axis->setLabelColor(color);
+    axis->setTickLabelColor(color);
+    axis->setBasePen(QPen(color));
+    axis->setTickPen(QPen(color));
+    axis->setSubTickPen(QPen(color));
+}
+
+QCPGraph* lineGraph(QCPAxis* key, QCPAxis* value, const QColor& color, const QString& name) {
+    auto* g = key->parentPlot()->addGraph(key, value);
+    g->setPen(QPen(color, 1.6));
+    g->setName(name);
+    return g;
+}
+
+QCPGraph* dotGraph(QCPAxis* key, QCPAxis* value, const QColor& color, QCPScatterStyle::ScatterShape shape,
+                   double size, const QString& name) {
+    auto* g = key->parentPlot()->addGraph(key, value);
+    g->setLineStyle(QCPGraph::lsNone);
+    g->setScatterStyle(QCPScatterStyle(shape, color, size));
+    g->setPen(QPen(color));
+    g->setName(name);
+    return g;
+}
+
+// Both value axes of a rect fitted to their graphs' finite values, with a margin.
+void rescaleValues(QCPAxisRect* rect) {
+    for (QCPAxis* axis : {rect->axis(QCPAxis::atLeft), rect->axis(QCPAxis::atRight)}) {
+        bool found = false;
+        QCPRange range;
+        for (QCPGraph* g : axis->graphs()) {
+            if (!g->visible() || g->dataCount() == 0) continue;
+            bool ok = false;
+            const QCPRange r = g->getValueRange(ok, QCP::sdBoth);
+            if (!ok || !std::isfinite(r.lower) || !std::isfinite(r.upper)) continue;
+            if (!found) range = r;
+            else range.expand(r);
+            found = true;
+        }
+        if (!found) continue;
+        if (axis->scaleType() == QCPAxis::stLogarithmic) {
+            axis->setRange(std::min(range.lower, 1.0) / 2.0, std::max(range.upper, 10.0) * 2.0);
+        } else {
+            const double pad = range.size() > 0.0 ? 0.08 * range.size() : std::max(1e-6, 0.05 * std::abs(range.lower));
+            axis->setRange(range.lower - pad, range.upper + pad);
+        }
+    }
+}
+
+}  // namespace
+
+StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detection)
+    : estimates_(estimates), detection_(detection) {
+    for (QCustomPlot* plot : {estimates_, detection_}) {
+        plot->clearPlottables();
+        plot->clearItems();
+        plot->plotLayout()->clear();  // also drops the default axis rect (xAxis/yAxis become null)
+        plot->plotLayout()->setRowSpacing(0);
+    }
+    auto* est_margins = new QCPMarginGroup(estimates_);
+    auto* det_margins = new QCPMarginGroup(detection_);
+    // Estimates: φ | c, K_s | n₀, K.
+    QCPAxisRect* r0 = addRect(estimates_, 1, "φ [deg]", "c [kPa]", false);
+    QCPAxisRect* r1 = addRect(estimates_, 2, "K_s [kPa/m^N]", "n₀ [-]", false);
+    QCPAxisRect* r2 = addRect(estimates_, 3, "K [mm]", "", false);
+    // Detection: score, F_x.
+    QCPAxisRect* r3 = addRect(detection_, 1, "Residual score [-]", "", true);
+    QCPAxisRect* r4 = addRect(detection_, 2, "F_x [N]", "", false);
+    for (QCPAxisRect* r : {r0, r1, r2}) r->setMarginGroup(QCP::msLeft | QCP::msRight, est_margins);
+    for (QCPAxisRect* r : {r3, r4}) r->setMarginGroup(QCP::msLeft | QCP::msRight, det_margins);
+    r2->axis(QCPAxis::atBottom)->setLabel("Sample");
+    r4->axis(QCPAxis::atBottom)->setLabel("Sample");
+
+    auto left = [](QCPAxisRect* r) { return r->axis(QCPAxis::atLeft); };
+    auto right = [](QCPAxisRect* r) { return r->axis(QCPAxis::atRight); };
+    auto bottom = [](QCPAxisRect* r) { return r->axis(QCPAxis::atBottom); };
+    graphs_ = {
+        {"phi", lineGraph(bottom(r0), left(r0), kBlue, "φ")},
+        {"c", lineGraph(bottom(r0), right(r0), kOrange, "c")},
+        {"Ks", lineGraph(bottom(r1), left(r1), kGreen, "K_s")},
+        {"n0", lineGraph(bottom(r1), right(r1), kPurple, "n₀")},
+        {"K", lineGraph(bottom(r2), left(r2), kBrown, "K")},
+        {"score", dotGraph(bottom(r3), left(r3), kBlue, QCPScatterStyle::ssDisc, 3.5, "score")},
+        {"far_off", dotGraph(bottom(r3), left(r3), kRed, QCPScatterStyle::ssDisc, 5.0, "above threshold")},
+        {"fx_measured", dotGraph(bottom(r4), left(r4), QColor(40, 40, 40), QCPScatterStyle::ssDisc, 3.5, "measured")},
+        {"fx_predicted", dotGraph(bottom(r4), left(r4), kOrange, QCPScatterStyle::ssCross, 5.0, "predicted")},
+    };
+    styleAxisLabel(left(r0), "φ [deg]", kBlue);
+    styleAxisLabel(right(r0), "c [kPa]", kOrange);
+    styleAxisLabel(left(r1), "K_s [kPa/m^N]", kGreen);
+    styleAxisLabel(right(r1), "n₀ [-]", kPurple);
+    styleAxisLabel(left(r2), "K [mm]", kBrown);
+    current_ = dotGraph(bottom(r4), left(r4), kRed, QCPScatterStyle::ssCircle, 12.0, "current sample");
+    current_->setPen(QPen(kRed, 2.0));
+
+    // Legend of the F_x rect: measured, predicted, current.
+    detection_->legend = new QCPLegend;
+    r4->insetLayout()->addElement(detection_->legend, Qt::AlignTop | Qt::AlignRight);
+    detection_->legend->setLayer("legend");
+    detection_->legend->setFont(QFont("sans", 8));
+    detection_->legend->setBrush(QColor(255, 255, 255, 210));
+    detection_->legend->setVisible(true);
+    for (auto& [name, g] : graphs_) g->removeFromLegend();
+    graph("fx_measured")->addToLegend();
+    graph("fx_predicted")->addToLegend();
+    current_->addToLegend();
+
+    // Titles.
+    estimates_->plotLayout()->addElement(0, 0, new QCPTextElement(estimates_, "Estimates", QFont("sans", 10, QFont::Bold)));
+    detection_->plotLayout()->addElement(0, 0, new QCPTextElement(detection_, "Change detection", QFont("sans", 10, QFont::Bold)));
+
+    // One sample axis: dragging or zooming one rect moves all of a figure's rects.
+    for (QCustomPlot* plot : {estimates_, detection_}) {
+        const auto rects = plot->axisRects();
+        for (QCPAxisRect* a : rects) {
+            a->setRangeDrag(Qt::Horizontal);
+            a->setRangeZoom(Qt::Horizontal);
+            for (QCPAxisRect* b : rects) {
+                if (a == b) continue;
+                QObject::connect(a->axis(QCPAxis::atBottom), qOverload<const QCPRange&>(&QCPAxis::rangeChanged),
+                                 b->axis(QCPAxis::atBottom), qOverload<const QCPRange&>(&QCPAxis::setRange));
+            }
+        }
+        plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+    }
+    reset("Streaming identification", 0, std::nullopt, 8.0);
+}
+
+QCPAxisRect* StreamingFigures::addRect(QCustomPlot* plot, int row, const QString& left, const QString& right,
+                                       bool log) {
+    auto* rect = new QCPAxisRect(plot);
+    plot->plotLayout()->addElement(row, 0, rect);
+    rect->setupFullAxesBox(false);
+    rect->axis(QCPAxis::atTop)->setVisible(false);
+    rect->axis(QCPAxis::atLeft)->setLabel(left);
+    QCPAxis* r = rect->axis(QCPAxis::atRight);
+    r->setVisible(!right.isEmpty());
+    r->setTickLabels(!right.isEmpty());
+    r->setLabel(right);
+    if (log) {
+        QCPAxis* l = rect->axis(QCPAxis::atLeft);
+        l->setScaleType(QCPAxis::stLogarithmic);
+        l->setTicker(QSharedPointer<QCPAxisTickerLog>(new QCPAxisTickerLog));
+    }
+    rect->setMinimumSize(100, 70);
+    rects_.push_back(rect);
+    return rect;
+}
+
+QCPGraph* StreamingFigures::graph(const QString& name) const {
+    for (const auto& [n, g] : graphs_) {
+        if (n == name) return g;
+    }
+    return name == "current" ? current_ : nullptr;
+}
+
+void StreamingFigures::reset(const QString& title, std::size_t sample_count, std::optional<std::size_t> true_border,
+                             double threshold) {
+    for (auto& [name, g] : graphs_) g->data()->clear();
+    current_->data()->clear();
+    estimates_->clearItems();
+    detection_->clearItems();
+    frames_ = 0;
+    sample_count_ = sample_count;
+    threshold_ = threshold;
+    changes_.clear();
+    if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0))) t->setText(title);
+    const double upper = std::max<double>(10.0, static_cast<double>(sample_count));
+    for (QCPAxisRect* r : rects_) r->axis(QCPAxis::atBottom)->setRange(-0.5, upper - 0.5);
+    // The threshold the score is compared with (streaming.h): above it for `persistence` samples
+    // in a row is a change.
+    QCPAxisRect* score = rects_[3];
+    auto* line = new QCPItemStraightLine(detection_);
+    line->setClipAxisRect(score);
+    for (auto* p : {line->point1, line->point2}) p->setAxes(score->axis(QCPAxis::atBottom), score->axis(QCPAxis::atLeft));
+    line->point1->setCoords(0.0, threshold);
+    line->point2->setCoords(1.0, threshold);
+    line->setPen(QPen(kRed, 1.0, Qt::DashLine));
+    auto* label = new QCPItemText(detection_);
+    label->setClipAxisRect(score);
+    label->setClipToAxisRect(true);
+    label->position->setAxes(score->axis(QCPAxis::atBottom), score->axis(QCPAxis::atLeft));
+    label->position->setTypeX(QCPItemPosition::ptAxisRectRatio);
+    label->position->setAxisRect(score);
+    label->position->setCoords(0.01, threshold);
+    label->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
+    label->setText(QString("threshold %1").arg(threshold));
+    label->setColor(kRed);
+    label->setFont(QFont("sans", 8));
+    if (true_border) markVertical(*true_border, kGrey, Qt::DashLine, "true border");
+    current_label_ = new QCPItemText(detection_);
+    current_label_->setClipAxisRect(rects_[4]);
+    current_label_->position->setAxisRect(rects_[4]);
+    current_label_->position->setType(QCPItemPosition::ptAxisRectRatio);
+    current_label_->position->setCoords(0.01, 0.02);
+    current_label_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
+    current_label_->setFont(QFont("sans", 8));
+    current_label_->setBrush(QColor(255, 255, 255, 210));
+    current_label_->setText("");
+}
+
+void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::PenStyle style, const QString& label) {
+    const double x = static_cast<double>(index) - 0.5;  // between the last old and the first new sample
+    for (std::size_t i = 0; i < rects_.size(); ++i) {
+        QCPAxisRect* r = rects_[i];
+        QCustomPlot* plot = r->parentPlot();
+        auto* line = new QCPItemStraightLine(plot);
+        line->setClipAxisRect(r);
+        for (auto* p : {line->point1, line->point2}) p->setAxes(r->axis(QCPAxis::atBottom), r->axis(QCPAxis::atLeft));
+        line->point1->setCoords(x, 1.0);
+        line->point2->setCoords(x, 2.0);
+        line->setPen(QPen(color, 1.5, style));
+        if (i == 0 || i == 3) {  // label once per figure, at the top
+            auto* text = new QCPItemText(plot);
+            text->setClipAxisRect(r);
+            text->position->setAxes(r->axis(QCPAxis::atBottom), r->axis(QCPAxis::atLeft));
+            text->position->setTypeY(QCPItemPosition::ptAxisRectRatio);
+            text->position->setAxisRect(r);
+            text->position->setCoords(x, 0.02);
+            text->setPositionAlignment(style == Qt::SolidLine ? (Qt::AlignLeft | Qt::AlignTop)
+                                                               : (Qt::AlignRight | Qt::AlignTop));
+            text->setPadding(QMargins(3, 0, 3, 0));
+            text->setText(label);
+            text->setColor(color);
+            text->setFont(QFont("sans", 8));
+        }
+    }
+}
+
+void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
+    auto g = [this](const char* name) { return graph(name); };
+    for (const StreamFrame& f : frames) {
+        const auto& u = f.update;
+        const double k = static_cast<double>(u.index);
+        const auto& p = u.parameters;
+        const bool e = u.estimated;
+        g("phi")->addData(k, e ? units::radToDeg(p.friction_angle_rad) : kNaN);
+        g("c")->addData(k, e ? p.cohesion_pa / 1e3 : kNaN);
+        g("Ks")->addData(k, e ? p.pressure_modulus / 1e3 : kNaN);
+        g("n0")->addData(k, e ? p.n0 : kNaN);
+        g("K")->addData(k, e ? p.shear_modulus_m * 1e3 : kNaN);
+        const bool scored = u.residual_score > 0.0;
+        g("score")->addData(k, scored ? u.residual_score : kNaN);
+        if (scored && u.residual_score > threshold_) g("far_off")->addData(k, u.residual_score);
+        g("fx_measured")->addData(k, f.fx_measured_n);
+        g("fx_predicted")->addData(k, f.fx_predicted_n);
+        if (u.change_detected && u.change_at) {
+            changes_.push_back(*u.change_at);
+            markVertical(*u.change_at, kRed, Qt::SolidLine,
+                         QString("change at %1 (confirmed at %2)").arg(*u.change_at).arg(u.index));
+        }
+        ++frames_;
+    }
+    if (!frames.empty()) {
+        const StreamFrame& f = frames.back();
+        current_->data()->clear();
+        current_->addData(static_cast<double>(f.update.index), f.fx_measured_n);
+        current_label_->setText(
+            std::isfinite(f.fx_predicted_n)
+                ? QString("sample %1 (t = %2 s): F_x measured %3 N, predicted %4 N")
+                      .arg(f.update.index)
+                      .arg(f.time_s, 0, 'f', 2)
+                      .arg(f.fx_measured_n, 0, 'f', 2)
+                      .arg(f.fx_predicted_n, 0, 'f', 2)
+                : QString("sample %1 (t = %2 s): F_x measured %3 N, no estimate yet")
+                      .arg(f.update.index)
+                      .arg(f.time_s, 0, 'f', 2)
+                      .arg(f.fx_measured_n, 0, 'f', 2));
+    }
+}
+
+void StreamingFigures::replot() {
+    for (QCPAxisRect* r : rects_) rescaleValues(r);
+    estimates_->replot(QCustomPlot::rpQueuedReplot);
+    detection_->replot(QCustomPlot::rpQueuedReplot);
+}
+
+}  // namespace terra::ui

@@ -1,0 +1,56 @@
+#pragma once
+/// @file identification_figures.h
+/// The streaming-identification figures (widgets/analyses/streaming_playback.h), drawn as the
+/// samples arrive: the estimated parameters over sample index (φ and c, K_s and n₀, K), the
+/// prediction-residual score with its threshold, and measured against predicted F_x, with the
+/// detected change points (and the true border of synthetic data) as vertical lines.
+
+#include <QString>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "widgets/analyses/streaming_playback.h"
+
+class QCustomPlot;
+class QCPAxisRect;
+class QCPGraph;
+class QCPItemText;
+
+namespace terra::ui {
+
+class StreamingFigures {
+public:
+    /// Draws into two plots that it owns the content of (their layouts are replaced).
+    StreamingFigures(QCustomPlot* estimates, QCustomPlot* detection);
+
+    /// Empties both figures for a run of `sample_count` samples.
+    void reset(const QString& title, std::size_t sample_count, std::optional<std::size_t> true_border,
+               double threshold);
+    /// Adds frames (in order). Does not replot.
+    void append(const std::vector<StreamFrame>& frames);
+    /// Rescales the value axes to the data and replots both figures.
+    void replot();
+
+    std::size_t frameCount() const { return frames_; }
+    const std::vector<std::size_t>& changePoints() const { return changes_; }
+    /// Graphs by name, for tests: "phi", "c", "Ks", "n0", "K", "score", "fx_measured", "fx_predicted".
+    QCPGraph* graph(const QString& name) const;
+
+private:
+    QCPAxisRect* addRect(QCustomPlot* plot, int row, const QString& left, const QString& right, bool log);
+    void markVertical(std::size_t index, const QColor& color, Qt::PenStyle style, const QString& label);
+
+    QCustomPlot* estimates_;
+    QCustomPlot* detection_;
+    std::vector<QCPAxisRect*> rects_;
+    std::vector<std::pair<QString, QCPGraph*>> graphs_;
+    QCPGraph* current_ = nullptr;  // the latest sample, highlighted
+    QCPItemText* current_label_ = nullptr;
+    std::size_t frames_ = 0;
+    std::size_t sample_count_ = 0;
+    double threshold_ = 8.0;
+    std::vector<std::size_t> changes_;
+};
+
+}  // namespace terra::ui
