@@ -1,5 +1,6 @@
 #include "widgets/plots/figures.h"
 
+#include "widgets/plots/plot_theme.h"
 #include "widgets/plots/sweep_plot.h"
 
 #include <qcustomplot.h>
@@ -69,6 +70,7 @@ void resetPlot(QCustomPlot& plot, const QString& title) {
     plot.plotLayout()->insertRow(0);
     plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
     plot.legend->setVisible(false);
+    followPalette(plot);  // frame colours of the palette on screen; exports stay light
 }
 
 void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress, const QString& title) {

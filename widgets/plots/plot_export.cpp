@@ -8,6 +8,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
+#include "widgets/plots/plot_theme.h"
 
 namespace terra::ui {
 namespace {
@@ -37,6 +38,17 @@ bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& opt
     const QString suffix = QFileInfo(path).suffix().toLower();
     const QString temporary = path + ".part." + suffix;
     bool ok = false;
+    // Light colours for the file unless asked otherwise; the screen gets its palette back after.
+    struct ScreenColours {
+        QCustomPlot& plot;
+        bool restore;
+        ~ScreenColours() {
+            if (!restore) return;
+            applyPlotTheme(plot, PlotTheme::fromPalette(plot.palette()));
+            plot.replot(QCustomPlot::rpQueuedReplot);
+        }
+    } screen{plot, !options.screen_colours && followsPalette(plot)};
+    if (!options.screen_colours) applyPlotTheme(plot, PlotTheme::light());
     if (suffix == "png") {
         ok = plot.savePng(temporary, options.width, options.height, options.scale, -1, options.dpi);
     } else if (suffix == "svg") {

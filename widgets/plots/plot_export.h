@@ -17,6 +17,9 @@ struct ExportOptions {
     int height = 800;
     int dpi = 96;       ///< resolution recorded in PNG/SVG
     double scale = 1.0; ///< PNG pixel multiplier (2: a 2400 × 1600 image of the same layout)
+    /// Keep the on-screen colours (a dark palette gives a dark image); by default exports are
+    /// light (white background, plot_theme.h) whatever the desktop, for reports.
+    bool screen_colours = false;
 };
 
 /// Format from the suffix (.png, .svg, .pdf); false and `error` when unknown or not written.

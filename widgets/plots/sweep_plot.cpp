@@ -1,6 +1,7 @@
 #include "widgets/plots/sweep_plot.h"
 
 #include "widgets/plots/plot_export.h"
+#include "widgets/plots/plot_theme.h"
 
 #include <qcustomplot.h>
 
@@ -51,6 +52,7 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
     plot.legend->setVisible(true);
     plot.plotLayout()->insertRow(0);
     plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    followPalette(plot);  // frame colours of the palette on screen; exports stay light
     plot.rescaleAxes();
     // A quantity held constant (F_z = W at equilibrium) would otherwise zoom into rounding noise.
     const QCPRange y = plot.yAxis->range();
