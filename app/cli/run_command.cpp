@@ -15,9 +15,12 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "core/io/atomic_file.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
 #include "widgets/analyses/analyses.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/plot_export.h"
+#include "widgets/plots/rover_figures.h"
 #include "widgets/plots/sweep_plot.h"
 
 namespace terra::app {
@@ -131,6 +134,77 @@ std::vector<Expectation> parseExpectations(const json& analysis, const std::stri
     return out;
 }
 
+/// A rover run's summary as a one-row table for expectations: every number of the summary JSON
+/// (nested objects flattened: mean_slip_FL …), plus yaw_deg, and the largest |y| and |yaw| over
+/// the run (max_abs_y_m, max_abs_yaw_deg: a straight line stays on its line all along).
+Table roverSummaryTable(const json& summary, const Table& series) {
+    Table t;
+    t.rows.emplace_back();
+    auto add = [&](const std::string& key, double value) {
+        t.columns.push_back(key);
+        t.rows[0].push_back(value);
+    };
+    for (const auto& [key, value] : summary.items()) {
+        if (value.is_number()) add(key, value.get<double>());
+        if (value.is_object()) {
+            for (const auto& [sub, v] : value.items()) {
+                if (v.is_number()) add(key + "_" + sub, v.get<double>());
+            }
+        }
+    }
+    add("yaw_deg", summary.value("yaw_rad", 0.0) * 180.0 / M_PI);
+    double max_y = 0.0, max_yaw = 0.0;
+    if (!series.rows.empty()) {
+        for (double y : series.values("y_m")) max_y = std::max(max_y, std::abs(y));
+        for (double yaw : series.values("yaw_deg")) max_yaw = std::max(max_yaw, std::abs(yaw));
+    }
+    add("max_abs_y_m", max_y);
+    add("max_abs_yaw_deg", max_yaw);
+    return t;
+}
+
+/// The scenario of a `rover` analysis: "scenario" (a name of resources/scenarios or a file,
+/// relative to the script), with the optional overrides duration_s, time_step_s and model.
+scenario::Scenario roverScenario(const json& analysis, const io::PresetLocations& locations, const fs::path& base,
+                                 const std::string& where) {
+    if (!analysis.contains("scenario") || !analysis["scenario"].is_string()) {
+        throw InputError(where + ".scenario: needs a scenario name (e.g. \"straight\") or file");
+    }
+    std::string name = analysis["scenario"];
+    if (name.ends_with(".json") && fs::path(name).is_relative()) name = (base / name).string();
+    auto loaded = scenario::resolveScenario(locations, name);
+    if (!loaded) throw InputError(where + ".scenario: " + loaded.message());
+    scenario::Scenario s = *loaded;
+    std::vector<Issue> issues;
+    auto number = [&](const char* key, double& value) {
+        if (!analysis.contains(key)) return false;
+        if (!analysis[key].is_number()) {
+            issues.push_back({where + "." + key, "must be a number"});
+            return false;
+        }
+        value = analysis[key].get<double>();
+        return true;
+    };
+    double value = 0.0;
+    if (number("duration_s", value) && checkRange(issues, where + ".duration_s", value, {0.0, 86400.0, true, false}, "s")) {
+        s.duration_s = value;
+    }
+    if (number("time_step_s", value) && checkRange(issues, where + ".time_step_s", value, {1e-6, 0.05}, "s")) {
+        s.time_step_s = value;
+        s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
+    }
+    if (analysis.contains("model")) {
+        const json& m = analysis["model"];
+        if (m != "full" && m != "quadratic") {
+            issues.push_back({where + ".model", "= " + m.dump() + " is not one of full, quadratic"});
+        } else {
+            s.options.contact.model = m == "quadratic" ? contact::ContactModel::kQuadratic : contact::ContactModel::kFull;
+        }
+    }
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    return s;
+}
+
 /// The inputs of one analysis: the script's, with the analysis's own soil/wheel/conditions.
 ui::AnalysisInputs inputsFor(const json& script, const json& analysis, const io::PresetLocations& locations,
                              const fs::path& base, const std::string& where) {
@@ -196,6 +270,12 @@ public:
         std::vector<Issue> issues;
         const auto expectations = parseExpectations(analysis, where, issues);
         if (!issues.empty()) throw InputError(formatIssues(issues));
+        if (r.type == "rover") {
+            const auto start = std::chrono::steady_clock::now();
+            runRover(r, analysis, expectations, where);
+            r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            return r;
+        }
         const ui::AnalysisInputs in = inputsFor(script_, analysis, locations_, base_, where);
         const QString title = QString::fromStdString(analysis.value("title", in.soil.name + ", " + in.wheel.name)) +
                               QString(", W = %1 N").arg(in.conditions.load_n);
@@ -275,13 +355,67 @@ public:
             tables["curves"] = &result.curves;
             evaluate(r, expectations, tables);
         } else {
-            throw InputError(where + ".type: \"" + r.type + "\" is not one of forces, stresses, sensitivity, identification");
+            throw InputError(where + ".type: \"" + r.type + "\" is not one of forces, stresses, sensitivity, identification, rover");
         }
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return r;
     }
 
 private:
+    /// A rover scenario (docs/dynamics.md): its figures (rover_figures.h), the time series, the
+    /// summary; expectations on the summary (default table) or the time series ("timeseries").
+    void runRover(AnalysisRun& r, const json& analysis, const std::vector<Expectation>& expectations,
+                  const std::string& where) {
+        const scenario::Scenario s = roverScenario(analysis, locations_, base_, where);
+        std::vector<std::string> keys = analysis.value("plots", std::vector<std::string>{});
+        for (const std::string& key : keys) {
+            const bool known = key == "top-view" || std::any_of(ui::roverFigures().begin(), ui::roverFigures().end(),
+                                                                [&](const ui::RoverFigure& f) { return f.key == key; });
+            if (!known) {
+                std::string names = "top-view";
+                for (const auto& f : ui::roverFigures()) names += ", " + f.key;
+                throw InputError(where + ".plots: \"" + key + "\" is not one of " + names);
+            }
+        }
+        if (keys.empty()) {
+            for (const auto& f : ui::roverFigures()) keys.push_back(f.key);
+            keys.push_back("top-view");
+        }
+        const scenario::RunResult result = scenario::runScenario(s, {});
+        const QString title = analysis.contains("title")
+                                  ? QString::fromStdString(analysis["title"].get<std::string>())
+                                  : ui::roverTitle(s.name, result.status);
+        for (const std::string& key : keys) {
+            if (key == "top-view") {
+                const std::size_t last = result.series.rows.empty() ? 0 : result.series.rows.size() - 1;
+                ui::plotRoverTopView(plot_, s, result.series, last, title);
+            } else {
+                ui::plotRoverFigure(plot_, result.series, key, title);
+            }
+            write(r, r.name + "-" + key);
+        }
+        writeData(r, r.name + "-timeseries", result.series);
+        if (!result.streaming.columns.empty()) writeData(r, r.name + "-streaming", result.streaming);
+        const json summary = scenario::toJson(result, s);
+        const fs::path summary_path = out_ / (r.name + "-summary.json");
+        if (const auto error = io::writeFileAtomically(summary_path, summary.dump(2) + "\n")) throw std::runtime_error(*error);
+        std::cout << "wrote " << summary_path.string() << '\n';
+        r.data.push_back(summary_path.filename().string());
+        if (result.status != scenario::RunResult::Status::kCompleted) {
+            r.notes.push_back("run " + summary.value("status", std::string()) + ": " + result.message);
+        }
+        if (summary.contains("warning")) r.notes.push_back(summary["warning"].get<std::string>());
+        r.notes.push_back("final pose x = " + formatNumber(result.summary.x_m) + " m, y = " + formatNumber(result.summary.y_m) +
+                          " m, yaw = " + formatNumber(result.summary.yaw_rad * 180.0 / M_PI) + " deg; motor energy " +
+                          formatNumber(result.summary.energy_j) + " J");
+        const Table summary_table = roverSummaryTable(summary, result.series);
+        std::map<std::string, const Table*> tables{{"", &summary_table}, {"timeseries", &result.series}};
+        evaluate(r, expectations, tables);
+        if (result.status == scenario::RunResult::Status::kDiverged) {
+            r.outcomes.push_back({"the run diverged: " + result.message, false});
+        }
+    }
+
     void write(AnalysisRun& r, const std::string& stem) {
         for (const std::string& format : formats_) {
             const fs::path path = out_ / (stem + "." + format);

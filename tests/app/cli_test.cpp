@@ -12,29 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
+
 namespace {
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out;  // stdout
-    std::string err;  // stderr
-};
-
-CliRun run(const std::string& arguments) {
-    const auto dir = std::filesystem::temp_directory_path();
-    const std::string err_path = (dir / ("terra_cli_err_" + std::to_string(::getpid()))).string();
-    const std::string command = std::string(TERRASTUDIO_EXE) + " " + arguments + " 2>" + err_path;
-    CliRun r;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream err(err_path);
-    r.err.assign(std::istreambuf_iterator<char>(err), {});
-    std::filesystem::remove(err_path);
-    return r;
-}
+using terra::test::CliRun;
+using terra::test::run;
 
 std::string data(const std::string& name) { return std::string(TERRA_TEST_DATA_DIR) + "/" + name; }
 

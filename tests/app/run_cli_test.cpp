@@ -10,29 +10,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-CliResult terrastudio(const std::string& arguments) {
-    const fs::path err_path = fs::temp_directory_path() / ("terra_run_err_" + std::to_string(::getpid()));
-    const std::string command = std::string(TERRASTUDIO_EXE) + " " + arguments + " 2>" + err_path.string();
-    CliResult r;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream err(err_path);
-    r.err.assign(std::istreambuf_iterator<char>(err), {});
-    fs::remove(err_path);
-    return r;
-}
+using terra::test::CliRun;
+using terra::test::run;
 
 std::string readText(const fs::path& path) {
     std::ifstream in(path);
@@ -58,7 +43,7 @@ protected:
 
 // F_x at s = 0.3, β = 5° from the single-point `wheel` command: an independent path through the CLI.
 double singlePointFx() {
-    const CliResult r = terrastudio("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 5 --load 58.86 --json");
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 5 --load 58.86 --json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out)["Fx_N"].get<double>();
 }
@@ -79,7 +64,7 @@ nlohmann::json forcesScript(double low, double high) {
 TEST_F(RunCommand, MetExpectationsExitZeroAndWritePlotsDataReport) {
     const double fx = singlePointFx();
     const fs::path script = writeScript(forcesScript(fx - 1e-6, fx + 1e-6));
-    const CliResult r = terrastudio("run " + script.string() + " --out " + (dir_ / "out").string());
+    const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
     for (const char* file : {"fx-Fx_N.png", "fx-Fx_N.svg", "fx.csv", "report.md", "manifest.json"}) {
         EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
@@ -94,7 +79,7 @@ TEST_F(RunCommand, MetExpectationsExitZeroAndWritePlotsDataReport) {
 
 TEST_F(RunCommand, FailedExpectationExitsOneAndIsListedInTheReport) {
     const fs::path script = writeScript(forcesScript(1000.0, 2000.0));
-    const CliResult r = terrastudio("run " + script.string() + " --out " + (dir_ / "out").string());
+    const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_NE(r.out.find("FAIL: fx: Fx_N at slip = 0.3"), std::string::npos) << r.out;
     const std::string report = readText(dir_ / "out" / "report.md");
@@ -106,26 +91,93 @@ TEST_F(RunCommand, FailedExpectationExitsOneAndIsListedInTheReport) {
 TEST_F(RunCommand, BrokenScriptExitsTwoNamingTheField) {
     nlohmann::json script = forcesScript(0, 1);
     script["analyses"][0]["type"] = "forcez";
-    const CliResult bad_type = terrastudio("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    const CliRun bad_type = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(bad_type.exit_code, 2);
     EXPECT_NE(bad_type.err.find("analyses[0].type"), std::string::npos) << bad_type.err;
 
     script = forcesScript(0, 1);
     script["set"] = {{"phi_deg", 75}};
-    const CliResult bad_value = terrastudio("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    const CliRun bad_value = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(bad_value.exit_code, 2);
     EXPECT_NE(bad_value.err.find("phi_deg"), std::string::npos) << bad_value.err;
     EXPECT_NE(bad_value.err.find("[0, 60)"), std::string::npos) << bad_value.err;
 
-    const CliResult missing = terrastudio("run " + (dir_ / "nope.json").string() + " --out " + (dir_ / "out").string());
+    const CliRun missing = run("run " + (dir_ / "nope.json").string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(missing.exit_code, 2);
+}
+
+// A short straight-line rover run (3 s of the thesis scenario): physical bounds only.
+nlohmann::json roverScript(double yaw_min_deg, double yaw_max_deg) {
+    const double no_slip_m = 0.092 * 0.4 * 3.0;  // r ω T: wheel A at Table 2.6's 0.4 rad/s
+    return {{"export", {{"width", 640}, {"height", 480}, {"formats", {"png", "svg"}}}},
+            {"analyses",
+             {{{"name", "straight"},
+               {"type", "rover"},
+               {"scenario", "straight"},
+               {"duration_s", 3.0},
+               {"plots", {"path", "slip", "top-view"}},
+               {"expect",
+                {{{"column", "yaw_deg"}, {"min", yaw_min_deg}, {"max", yaw_max_deg}},
+                 {{"column", "x_m"}, {"min", 0.0}, {"max", no_slip_m}},
+                 {{"column", "y_m"}, {"min", -1e-9}, {"max", 1e-9}},
+                 {{"column", "mean_slip_FL"}, {"min", 0.0}, {"max", 1.0}},
+                 {{"column", "lateral_m_s"}, {"table", "timeseries"}, {"at", {{"t_s", 2.0}}}, {"min", -1e-9}, {"max", 1e-9}}}}}}}};
+}
+
+TEST_F(RunCommand, RoverAnalysisWritesFiguresSeriesAndTheSameSummaryAsSimulate) {
+    const fs::path script = writeScript(roverScript(-1e-9, 1e-9));
+    const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    for (const char* file : {"straight-path.png", "straight-path.svg", "straight-slip.png", "straight-top-view.png",
+                             "straight-timeseries.csv", "straight-summary.json", "report.md"}) {
+        EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "straight-yaw.png"));  // only the plots asked for
+    // The same scenario through `simulate`: an independent path to the same (deterministic) run.
+    const CliRun sim = run("simulate --scenario straight --duration 3 --out " + (dir_ / "sim").string() + " --json");
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    const auto expected = nlohmann::json::parse(sim.out);
+    const auto summary = nlohmann::json::parse(readText(dir_ / "out" / "straight-summary.json"));
+    for (const char* key : {"x_m", "y_m", "yaw_rad", "energy_J", "duration_s"}) {
+        EXPECT_EQ(summary[key].get<double>(), expected[key].get<double>()) << key;
+    }
+    EXPECT_EQ(readText(dir_ / "out" / "straight-timeseries.csv"), readText(dir_ / "sim" / "timeseries.csv"));
+}
+
+TEST_F(RunCommand, FailedRoverExpectationExitsOne) {
+    // A straight run does not turn 5–10°: the expectation fails, the outputs are still written.
+    const fs::path script = writeScript(roverScript(5.0, 10.0));
+    const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.out.find("FAIL: straight: yaw_deg"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("pass: straight: x_m"), std::string::npos) << r.out;
+    EXPECT_NE(readText(dir_ / "out" / "report.md").find("NOT in [5, 10]"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "straight-path.png"));
+}
+
+TEST_F(RunCommand, BrokenRoverAnalysisExitsTwoNamingTheField) {
+    nlohmann::json script = roverScript(0, 1);
+    script["analyses"][0]["scenario"] = "no-such-scenario";
+    CliRun r = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("analyses[0].scenario"), std::string::npos) << r.err;
+    script = roverScript(0, 1);
+    script["analyses"][0]["time_step_s"] = 0.5;
+    r = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("analyses[0].time_step_s"), std::string::npos) << r.err;
+    script = roverScript(0, 1);
+    script["analyses"][0]["plots"] = {"pathh"};
+    r = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("\"pathh\" is not one of"), std::string::npos) << r.err;
 }
 
 TEST_F(RunCommand, ShippedExampleScriptsRunAndMeetTheirExpectations) {
     for (const auto& entry : fs::directory_iterator(TERRA_RESOURCE_DIR "/scripts")) {
         if (entry.path().extension() != ".json") continue;
         const fs::path out = dir_ / entry.path().stem();
-        const CliResult r = terrastudio("run " + entry.path().string() + " --out " + out.string());
+        const CliRun r = run("run " + entry.path().string() + " --out " + out.string());
         EXPECT_EQ(r.exit_code, 0) << entry.path() << "\n" << r.err << r.out;
         EXPECT_TRUE(fs::exists(out / "report.md")) << entry.path();
     }

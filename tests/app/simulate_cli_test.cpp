@@ -14,32 +14,15 @@
 #include <string>
 #include <thread>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct SimRun {
-    int exit_code = -1;
-    std::string out, err;
-};
+using SimRun = terra::test::CliRun;
 
-SimRun simulate(const std::string& arguments) {
-    const fs::path err_path =
-        fs::temp_directory_path() / ("terra_sim_err_" + std::to_string(::getpid()));
-    const std::string command =
-        std::string(TERRASTUDIO_EXE) + " simulate " + arguments + " 2>" + err_path.string();
-    SimRun r;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
-        r.out.append(buffer.data(), n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream err(err_path);
-    r.err.assign(std::istreambuf_iterator<char>(err), {});
-    fs::remove(err_path);
-    return r;
-}
+SimRun simulate(const std::string& arguments) { return terra::test::run("simulate " + arguments); }
 
 fs::path outDir(const std::string& name) {
     const fs::path dir =
