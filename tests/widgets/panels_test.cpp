@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QImage>
 #include <cmath>
 
 #include "core/common/units.h"
@@ -10,6 +11,7 @@
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
+#include "widgets/plots/figures.h"
 #include "widgets_test_support.h"
 
 namespace terra::ui {
@@ -40,6 +42,57 @@ TEST(StressPanel, PlottedNormalStressFollowsBekkersLawInFrontOfTheMaximum) {
     // The quadratic interpolates the exact σ at θ_m (Eq. 2.38): same value there.
     EXPECT_GT(r.errors[0].rmse, 0.0);
     EXPECT_LT(r.errors[0].mae, r.errors[0].rmse + 1e-12);  // MAE ≤ RMSE always
+}
+
+// A tornado where both extremes of a parameter move F_x the same way (k_c: +2 and +6 N) must
+// show both bars: side by side in the parameter's row, not one over the other.
+TEST(Tornado, LowAndHighBarsSitSideBySideAndKeepTheirLengths) {
+    SensitivityResult result;
+    result.tornado.columns = {"parameter_index", "Fx_low_N", "Fx_high_N", "Fx_base_N"};
+    result.tornado.rows = {{0, 8.0, 15.0, 10.0},   // n: −2, +5
+                           {1, 12.0, 16.0, 10.0},  // kc: +2, +6 (same direction)
+                           {2, 9.0, 10.5, 10.0}};  // phi: −1, +0.5
+    result.tornado_keys = {"n", "kc", "phi_deg"};
+    QCustomPlot plot;
+    plot.resize(800, 500);
+    plotTornado(plot, result, 0.3, "test");
+    ASSERT_EQ(plot.plottableCount(), 2);
+    auto* low = qobject_cast<QCPBars*>(plot.plottable(0));
+    auto* high = qobject_cast<QCPBars*>(plot.plottable(1));
+    ASSERT_NE(low, nullptr);
+    ASSERT_NE(high, nullptr);
+    EXPECT_NE(low->brush().color(), high->brush().color());
+    EXPECT_TRUE(plot.legend->visible());
+    EXPECT_TRUE(plot.legend->hasItemWithPlottable(low));
+    EXPECT_TRUE(plot.legend->hasItemWithPlottable(high));
+    ASSERT_EQ(low->dataCount(), 3);
+    ASSERT_EQ(high->dataCount(), 3);
+    // Rows sorted by the largest change either extreme makes: phi (1), n (5), kc (6) on top.
+    const std::vector<std::string> order{"phi_deg", "n", "kc"};
+    const std::vector<std::pair<double, double>> changes{{-1.0, 0.5}, {-2.0, 5.0}, {2.0, 6.0}};
+    for (int i = 0; i < 3; ++i) {
+        const double row = i + 1;
+        const double lo_key = low->data()->at(i)->key, hi_key = high->data()->at(i)->key;
+        const double w_lo = low->width(), w_hi = high->width();
+        // Both bars inside the row [row − 0.5, row + 0.5] and disjoint along the key axis.
+        EXPECT_GE(lo_key - w_lo / 2, row - 0.5) << i;
+        EXPECT_LE(hi_key + w_hi / 2, row + 0.5) << i;
+        EXPECT_LE(lo_key + w_lo / 2, hi_key - w_hi / 2) << i;
+        EXPECT_GT(w_lo, 0.2);
+        // Lengths: the change of F_x from the base soil [N].
+        EXPECT_DOUBLE_EQ(low->data()->at(i)->value, changes[i].first) << i;
+        EXPECT_DOUBLE_EQ(high->data()->at(i)->value, changes[i].second) << i;
+    }
+    auto* ticker = dynamic_cast<QCPAxisTickerText*>(plot.yAxis->ticker().data());
+    ASSERT_NE(ticker, nullptr);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(ticker->ticks().value(i + 1).toStdString(), order[i]);
+    // Both bars of the same-direction row are on screen: the shorter low bar is not covered.
+    const QImage image = plot.toPixmap(800, 500).toImage();
+    const int y_low = static_cast<int>(plot.yAxis->coordToPixel(low->data()->at(2)->key));
+    const int y_high = static_cast<int>(plot.yAxis->coordToPixel(high->data()->at(2)->key));
+    const int x = static_cast<int>(plot.xAxis->coordToPixel(1.0));  // inside both (0..2 and 0..6)
+    EXPECT_EQ(QColor(image.pixel(x, y_low)), low->brush().color());
+    EXPECT_EQ(QColor(image.pixel(x, y_high)), high->brush().color());
 }
 
 TEST(SensitivityPanel, OneCurvePerTable41ValueAndATornadoOfSixParameters) {

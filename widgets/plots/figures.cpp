@@ -132,27 +132,38 @@ void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip
     const std::size_t lo = t.column("Fx_low_N"), hi = t.column("Fx_high_N"), base = t.column("Fx_base_N");
     std::vector<std::size_t> order(t.rows.size());
     std::iota(order.begin(), order.end(), 0);
-    auto swing = [&](std::size_t i) { return std::abs(t.rows[i][hi] - t.rows[i][lo]); };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return swing(a) < swing(b); });
-    // Bars run along x (ΔF_x) with the parameters on the y axis: keyAxis = yAxis.
+    // Influence: the largest change either extreme makes (|high − low| would rank a parameter
+    // whose two extremes both raise F_x below one that moves it less but in opposite directions).
+    auto reach = [&](std::size_t i) {
+        return std::max(std::abs(t.rows[i][lo] - t.rows[i][base]), std::abs(t.rows[i][hi] - t.rows[i][base]));
+    };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return reach(a) < reach(b); });
+    // Bars run along x (ΔF_x) with the parameters on the y axis: keyAxis = yAxis. The low and high
+    // variations sit side by side in each parameter's row (high above, low below), so both stay
+    // visible when they move F_x the same way and one is shorter.
     auto* low = new QCPBars(plot.yAxis, plot.xAxis);
     auto* high = new QCPBars(plot.yAxis, plot.xAxis);
     low->setName("lowest value of Table 4.1");
     high->setName("highest value of Table 4.1");
-    low->setBrush(QColor(31, 119, 180, 200));
-    high->setBrush(QColor(214, 39, 40, 200));
+    low->setBrush(QColor(31, 119, 180));
+    high->setBrush(QColor(214, 39, 40));
     low->setPen(Qt::NoPen);
     high->setPen(Qt::NoPen);
-    low->setWidth(0.6);
-    high->setWidth(0.6);
+    low->setWidth(kTornadoBarWidth);
+    high->setWidth(kTornadoBarWidth);
     QSharedPointer<QCPAxisTickerText> ticker(new QCPAxisTickerText);
     for (std::size_t rank = 0; rank < order.size(); ++rank) {
         const auto& row = t.rows[order[rank]];
         const double position = static_cast<double>(rank + 1);
-        low->addData(position, row[lo] - row[base]);
-        high->addData(position, row[hi] - row[base]);
+        low->addData(position - kTornadoBarOffset, row[lo] - row[base]);
+        high->addData(position + kTornadoBarOffset, row[hi] - row[base]);
         ticker->addTick(position, QString::fromStdString(result.tornado_keys[order[rank]]));
     }
+    // The base soil's F_x: a line at zero change.
+    auto* zero = new QCPItemStraightLine(&plot);
+    zero->point1->setCoords(0.0, 0.0);
+    zero->point2->setCoords(0.0, 1.0);
+    zero->setPen(QPen(QColor(128, 128, 128), 1.0));  // readable on light and dark frames
     plot.yAxis->setTicker(ticker);
     plot.yAxis->setLabel("Soil parameter");
     plot.xAxis->setLabel(QString("Change of F_x at s = %1 from the base soil [N]").arg(slip));
@@ -160,8 +171,8 @@ void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip
     plot.rescaleAxes();
     plot.yAxis->setRange(0.3, static_cast<double>(order.size()) + 0.7);
     plot.xAxis->scaleRange(1.15, 0.0);
-    const double reach = std::max(std::abs(plot.xAxis->range().lower), std::abs(plot.xAxis->range().upper));
-    plot.xAxis->setRange(-reach, reach);
+    const double extent = std::max(std::abs(plot.xAxis->range().lower), std::abs(plot.xAxis->range().upper));
+    plot.xAxis->setRange(-extent, extent);
     plot.replot();
 }
 

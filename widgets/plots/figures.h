@@ -25,7 +25,11 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, c
                            const std::string& column, const QString& title);
 
 /// Horizontal bars: the change of F_x from the base soil at the lowest and highest variation of
-/// each parameter, sorted by total swing (the most influential on top).
+/// each parameter, sorted by the largest change either makes (the most influential on top). In
+/// the row of parameter k (y = k, 1-based) the low bar is centred at k − kTornadoBarOffset and the
+/// high bar at k + kTornadoBarOffset, each kTornadoBarWidth tall: side by side, never overlapping.
+constexpr double kTornadoBarOffset = 0.19;
+constexpr double kTornadoBarWidth = 0.36;
 void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip, const QString& title);
 
 /// Bulldozing resistance F_b of one side wall against sinkage h (Fig. 2.15): Bekker's coefficients
