@@ -58,6 +58,19 @@ std::vector<double> sampleTimes(const id::DataSet& data) {
     return t;
 }
 
+id::DecoupledParameters truthOf(const soil::SoilParameters& s, const wheel::WheelParameters& w) {
+    id::DecoupledParameters p;
+    p.a0 = s.max_stress_a0;
+    p.a1 = s.max_stress_a1;
+    p.pressure_modulus = s.cohesive_modulus / w.width_m + s.frictional_modulus;
+    p.n0 = s.sinkage_exponent;
+    p.n1 = s.sinkage_exponent_slip;
+    p.cohesion_pa = s.cohesion_pa;
+    p.friction_angle_rad = s.friction_angle_rad;
+    p.shear_modulus_m = s.shear_modulus_m;
+    return p;
+}
+
 }  // namespace
 
 StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec) {
@@ -72,6 +85,7 @@ StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec) {
     samples.insert(samples.end(), second.begin(), second.end());
     for (std::size_t i = 0; i < samples.size(); ++i) samples[i].time_s = static_cast<double>(i) * spec.sample_period_s;
     out.data.samples = std::move(samples);
+    out.truth = {{0, truthOf(spec.first, spec.wheel)}, {*out.true_border, truthOf(spec.second, spec.wheel)}};
     const auto percent = static_cast<int>(std::lround(spec.noise_relative * 100.0));
     out.description = spec.first.name + " → " + spec.second.name + ", " + std::to_string(percent) + " % noise";
     return out;

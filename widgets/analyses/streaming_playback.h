@@ -22,6 +22,7 @@
 
 #include "core/common/issue.h"
 #include "core/identification/data_set.h"
+#include "core/identification/decoupled_fit.h"
 #include "core/identification/streaming.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
@@ -34,6 +35,9 @@ struct StreamSource {
     std::optional<std::size_t> true_border;  ///< index of the first sample of the second soil
     std::string description;                 ///< "sandy loam → clayey soil, 1 % noise", "log.csv"
     std::vector<std::string> warnings;       ///< rows skipped, points the soil could not carry
+    /// Synthetic data: the parameters each stretch was made with, from its first sample on (for
+    /// drawing the truth beside the estimates; K_s = k_c/b + k_φ).
+    std::vector<std::pair<std::size_t, identification::DecoupledParameters>> truth;
 };
 
 /// A synthetic drive over a soil border: the slip sweep of the first soil, then of the second,

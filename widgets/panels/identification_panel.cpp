@@ -298,7 +298,7 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     position_ = new QProgressBar(page);
     position_->setRange(0, 1);
     position_->setValue(0);
-    position_->setFormat("%v / %m");
+    position_->setFormat("no run yet");
     position_text_ = new QLabel(page);
     position_text_->setMinimumWidth(260);
     stream_status_ = new QLabel(page);
@@ -319,6 +319,7 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     source_row->addWidget(stream_file_, 1);
     source_row->addWidget(stream_browse_);
     source_row->addWidget(skip_bad_rows_);
+    source_row->addStretch(1);
     auto* play_row = new QHBoxLayout;
     play_row->addWidget(new QLabel("Speed:", page));
     play_row->addWidget(speed_);
@@ -363,10 +364,13 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
         for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
         stream_frames_.clear();
         stream_frames_.reserve(count);
-        stream_figures_->reset(QString("Streaming estimates: %1").arg(stream_description_), count, stream_border_,
+        stream_figures_->reset(source.truth.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"),
+                               count, stream_border_,
                                identification::StreamingOptions{}.threshold);
+        stream_figures_->setTruth(source.truth);
         position_->setRange(0, static_cast<int>(count));
         position_->setValue(0);
+        position_->setFormat("%v / %m samples");
         stream_figures_->replot();
         updatePosition();
     });
@@ -432,11 +436,12 @@ void IdentificationPanel::play() {
     stream_frames_.clear();
     stream_count_ = 0;
     stream_border_.reset();
-    stream_figures_->reset("Streaming estimates: preparing the data…", 0, std::nullopt,
+    stream_figures_->reset("Estimates: preparing the data…", 0, std::nullopt,
                            identification::StreamingOptions{}.threshold);
     stream_figures_->replot();
     position_->setRange(0, 1);
     position_->setValue(0);
+    position_->setFormat("preparing…");
     stream_status_->setText("Playing…");
     playback_->start(std::move(factory), project.wheel, identification::StreamingOptions{},
                      speed_->currentData().toDouble());

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "core/common/units.h"
 
@@ -103,6 +104,16 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         {"fx_measured", dotGraph(bottom(r4), left(r4), QColor(40, 40, 40), QCPScatterStyle::ssDisc, 3.5, "measured")},
         {"fx_predicted", dotGraph(bottom(r4), left(r4), kOrange, QCPScatterStyle::ssCross, 5.0, "predicted")},
     };
+    // The truth of synthetic data: dotted, same colours, same axes.
+    const std::vector<std::tuple<QString, QCPAxis*, QCPAxis*, QColor>> truth{
+        {"phi_true", bottom(r0), left(r0), kBlue}, {"c_true", bottom(r0), right(r0), kOrange},
+        {"Ks_true", bottom(r1), left(r1), kGreen}, {"n0_true", bottom(r1), right(r1), kPurple},
+        {"K_true", bottom(r2), left(r2), kBrown}};
+    for (const auto& [name, key, value, color] : truth) {
+        QCPGraph* g = lineGraph(key, value, color, name);
+        g->setPen(QPen(color, 1.2, Qt::DotLine));
+        graphs_.emplace_back(name, g);
+    }
     styleAxisLabel(left(r0), "φ [deg]", kBlue);
     styleAxisLabel(right(r0), "c [kPa]", kOrange);
     styleAxisLabel(left(r1), "K_s [kPa/m^N]", kGreen);
@@ -111,21 +122,16 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
     current_ = dotGraph(bottom(r4), left(r4), kRed, QCPScatterStyle::ssCircle, 12.0, "current sample");
     current_->setPen(QPen(kRed, 2.0));
 
-    // Legend of the F_x rect: measured, predicted, current.
-    detection_->legend = new QCPLegend;
-    r4->insetLayout()->addElement(detection_->legend, Qt::AlignTop | Qt::AlignRight);
-    detection_->legend->setLayer("legend");
-    detection_->legend->setFont(QFont("sans", 8));
-    detection_->legend->setBrush(QColor(255, 255, 255, 210));
-    detection_->legend->setVisible(true);
     for (auto& [name, g] : graphs_) g->removeFromLegend();
-    graph("fx_measured")->addToLegend();
-    graph("fx_predicted")->addToLegend();
-    current_->addToLegend();
+    current_->removeFromLegend();
 
     // Titles.
     estimates_->plotLayout()->addElement(0, 0, new QCPTextElement(estimates_, "Estimates", QFont("sans", 10, QFont::Bold)));
     detection_->plotLayout()->addElement(0, 0, new QCPTextElement(detection_, "Change detection", QFont("sans", 10, QFont::Bold)));
+    // The current sample's F_x, above its rect (inside it would cover data).
+    detection_->plotLayout()->insertRow(2);
+    current_label_ = new QCPTextElement(detection_, "", QFont("sans", 9));
+    detection_->plotLayout()->addElement(2, 0, current_label_);
 
     // One sample axis: dragging or zooming one rect moves all of a figure's rects.
     for (QCustomPlot* plot : {estimates_, detection_}) {
@@ -141,7 +147,7 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         }
         plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
     }
-    reset("Streaming identification", 0, std::nullopt, 8.0);
+    reset("Estimates", 0, std::nullopt, 8.0);
 }
 
 QCPAxisRect* StreamingFigures::addRect(QCustomPlot* plot, int row, const QString& left, const QString& right,
@@ -150,6 +156,7 @@ QCPAxisRect* StreamingFigures::addRect(QCustomPlot* plot, int row, const QString
     plot->plotLayout()->addElement(row, 0, rect);
     rect->setupFullAxesBox(false);
     rect->axis(QCPAxis::atTop)->setVisible(false);
+    rect->axis(QCPAxis::atBottom)->grid()->setZeroLinePen(Qt::NoPen);
     rect->axis(QCPAxis::atLeft)->setLabel(left);
     QCPAxis* r = rect->axis(QCPAxis::atRight);
     r->setVisible(!right.isEmpty());
@@ -184,7 +191,7 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count, std
     changes_.clear();
     if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0))) t->setText(title);
     const double upper = std::max<double>(10.0, static_cast<double>(sample_count));
-    for (QCPAxisRect* r : rects_) r->axis(QCPAxis::atBottom)->setRange(-0.5, upper - 0.5);
+    for (QCPAxisRect* r : rects_) r->axis(QCPAxis::atBottom)->setRange(-0.02 * upper - 0.5, 1.02 * upper + 0.5);
     // The threshold the score is compared with (streaming.h): above it for `persistence` samples
     // in a row is a change.
     QCPAxisRect* score = rects_[3];
@@ -206,18 +213,32 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count, std
     label->setColor(kRed);
     label->setFont(QFont("sans", 8));
     if (true_border) markVertical(*true_border, kGrey, Qt::DashLine, "true border");
-    current_label_ = new QCPItemText(detection_);
-    current_label_->setClipAxisRect(rects_[4]);
-    current_label_->position->setAxisRect(rects_[4]);
-    current_label_->position->setType(QCPItemPosition::ptAxisRectRatio);
-    current_label_->position->setCoords(0.01, 0.02);
-    current_label_->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
-    current_label_->setFont(QFont("sans", 8));
-    current_label_->setBrush(QColor(255, 255, 255, 210));
-    current_label_->setText("");
+    current_label_->setText("F_x at the current sample (○): measured (●) and predicted by the estimate before it (×)");
 }
 
-void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::PenStyle style, const QString& label) {
+void StreamingFigures::setTruth(const std::vector<std::pair<std::size_t, identification::DecoupledParameters>>& truth) {
+    for (const char* name : {"phi_true", "c_true", "Ks_true", "n0_true", "K_true"}) graph(name)->data()->clear();
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        const double from = static_cast<double>(truth[i].first) - 0.5;
+        const double to = (i + 1 < truth.size() ? static_cast<double>(truth[i + 1].first)
+                                                : static_cast<double>(sample_count_)) - 0.5;
+        const auto& p = truth[i].second;
+        const std::pair<const char*, double> values[] = {{"phi_true", units::radToDeg(p.friction_angle_rad)},
+                                                          {"c_true", p.cohesion_pa / 1e3},
+                                                          {"Ks_true", p.pressure_modulus / 1e3},
+                                                          {"n0_true", p.n0},
+                                                          {"K_true", p.shear_modulus_m * 1e3}};
+        for (const auto& [name, v] : values) {
+            QCPGraph* g = graph(name);
+            if (i > 0) g->addData(from, kNaN);  // a step, not a slope, at the border
+            g->addData(from + 1e-9, v);
+            g->addData(to - 1e-9, v);
+        }
+    }
+}
+
+void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::PenStyle style, const QString& label,
+                                    const QString& long_label) {
     const double x = static_cast<double>(index) - 0.5;  // between the last old and the first new sample
     for (std::size_t i = 0; i < rects_.size(); ++i) {
         QCPAxisRect* r = rects_[i];
@@ -238,7 +259,7 @@ void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::
             text->setPositionAlignment(style == Qt::SolidLine ? (Qt::AlignLeft | Qt::AlignTop)
                                                                : (Qt::AlignRight | Qt::AlignTop));
             text->setPadding(QMargins(3, 0, 3, 0));
-            text->setText(label);
+            text->setText(i == 3 && !long_label.isEmpty() ? long_label : label);
             text->setColor(color);
             text->setFont(QFont("sans", 8));
         }
@@ -264,7 +285,7 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
         g("fx_predicted")->addData(k, f.fx_predicted_n);
         if (u.change_detected && u.change_at) {
             changes_.push_back(*u.change_at);
-            markVertical(*u.change_at, kRed, Qt::SolidLine,
+            markVertical(*u.change_at, kRed, Qt::SolidLine, QString("change at %1").arg(*u.change_at),
                          QString("change at %1 (confirmed at %2)").arg(*u.change_at).arg(u.index));
         }
         ++frames_;
@@ -275,12 +296,12 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
         current_->addData(static_cast<double>(f.update.index), f.fx_measured_n);
         current_label_->setText(
             std::isfinite(f.fx_predicted_n)
-                ? QString("sample %1 (t = %2 s): F_x measured %3 N, predicted %4 N")
+                ? QString("F_x at sample %1 (t = %2 s, ○): measured %3 N (●), predicted %4 N (×)")
                       .arg(f.update.index)
                       .arg(f.time_s, 0, 'f', 2)
                       .arg(f.fx_measured_n, 0, 'f', 2)
                       .arg(f.fx_predicted_n, 0, 'f', 2)
-                : QString("sample %1 (t = %2 s): F_x measured %3 N, no estimate yet")
+                : QString("F_x at sample %1 (t = %2 s, ○): measured %3 N (●), no estimate yet")
                       .arg(f.update.index)
                       .arg(f.time_s, 0, 'f', 2)
                       .arg(f.fx_measured_n, 0, 'f', 2));
