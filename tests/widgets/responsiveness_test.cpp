@@ -102,6 +102,18 @@ QPushButton* buttonWithText(QWidget& parent, const QString& text) {
     return nullptr;
 }
 
+// The baseline: nothing to do but beat. What this shows above the 5 ms period is the machine's
+// scheduling (other processes), not the studio.
+TEST(Responsiveness, IdleBaseline) {
+    Heartbeat beat;
+    beat.start();
+    QTest::qWait(2000);
+    beat.stop();
+    const auto s = beat.stats();
+    report("idle (baseline)", s, "");
+    EXPECT_LT(s.max_ms, kFreezeGuardMs);
+}
+
 // (a) A user drags the friction-angle slider back and forth (60 position updates per second,
 // the slider held down as in a drag) for 3 s while the forces panel recomputes live.
 TEST(Responsiveness, DraggingASoilSliderOnTheForcesPanel) {

@@ -331,6 +331,9 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     auto* splitter = new QSplitter(page);
     splitter->addWidget(stream_plots_[0]);
     splitter->addWidget(stream_plots_[1]);
+    splitter->setStretchFactor(0, 1);
+    splitter->setStretchFactor(1, 1);
+    splitter->setSizes({600, 600});  // half and half (a QCustomPlot has no size hint to share by)
     auto* layout = new QVBoxLayout(page);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addLayout(source_row);
