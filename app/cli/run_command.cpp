@@ -261,6 +261,9 @@ public:
         options_.dpi = e.value("dpi", 96);
         if (formats_.empty()) formats_ = e.value("formats", std::vector<std::string>{"png"});
         plot_.resize(options_.width, options_.height);
+        // A hidden widget gets no resize event: lay out at the export size now, so that figures
+        // with equal axis scales (rover path, top view) compute their ratio for the exported image.
+        plot_.setViewport(QRect(0, 0, options_.width, options_.height));
     }
 
     AnalysisRun run(const json& analysis, const std::string& where) {

@@ -351,6 +351,7 @@ void RoverPanel::present(const std::any& value) {
     {
         const QSignalBlocker block(scrubber_);
         scrubber_->setRange(0, std::max(last, 0));
+        scrubber_->setPageStep(std::max(1, last / 60));  // Page Up/Down: 1/60 of the run
         scrubber_->setValue(std::max(last, 0));
     }
     scrubber_->setEnabled(last > 0);

@@ -28,9 +28,13 @@ QVector<double> column(const Table& t, const std::string& name, double factor = 
 
 /// Rescales to the data, keeping at least `min_span` on y so that a constant (e.g. a zero yaw or
 /// steering angle) is drawn as a flat line in the middle rather than magnified noise.
-void finish(QCustomPlot& plot, double min_span) {
+void finish(QCustomPlot& plot, double min_span, bool include_zero = false) {
     plot.rescaleAxes();
-    const QCPRange y = plot.yAxis->range();
+    QCPRange y = plot.yAxis->range();
+    if (include_zero) {
+        y.expand(0.0);
+        plot.yAxis->setRange(y);
+    }
     if (y.size() < min_span) {
         plot.yAxis->setRange(y.center() - 0.5 * min_span, y.center() + 0.5 * min_span);
     } else {
@@ -40,14 +44,22 @@ void finish(QCustomPlot& plot, double min_span) {
     plot.replot();
 }
 
+/// resetPlot, and undoes what the top view changes beyond it (a plot is reused for every figure
+/// in headless runs): the grid's layer.
+void resetRoverPlot(QCustomPlot& plot, const QString& title) {
+    resetPlot(plot, title);
+    plot.xAxis->grid()->setLayer("grid");
+    plot.yAxis->grid()->setLayer("grid");
+}
+
 struct Line {
     std::string column;
     QString label;
 };
 
 void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines, const QString& y_label,
-               const QString& title, double min_span, double factor = 1.0) {
-    resetPlot(plot, title);
+               const QString& title, double min_span, double factor = 1.0, bool include_zero = false) {
+    resetRoverPlot(plot, title);
     plot.xAxis->setLabel("Time t [s]");
     plot.yAxis->setLabel(y_label);
     if (t.rows.size() < 2) {
@@ -66,7 +78,7 @@ void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines
         ++i;
     }
     plot.legend->setVisible(lines.size() > 1);
-    finish(plot, min_span);
+    finish(plot, min_span, include_zero);
 }
 
 std::vector<Line> perWheel(const std::string& suffix) {
@@ -76,7 +88,7 @@ std::vector<Line> perWheel(const std::string& suffix) {
 }
 
 void plotPath(QCustomPlot& plot, const Table& t, const QString& title) {
-    resetPlot(plot, title);
+    resetRoverPlot(plot, title);
     plot.xAxis->setLabel("x [m] (initial heading)");
     plot.yAxis->setLabel("y [m] (left)");
     if (t.rows.size() < 2) {
@@ -96,9 +108,11 @@ void plotPath(QCustomPlot& plot, const Table& t, const QString& title) {
     plot.legend->setVisible(true);
     plot.rescaleAxes();
     plot.xAxis->scaleRange(1.1, plot.xAxis->range().center());
-    // Equal scales: a straight run shows as a straight line, a turn with its true radius.
-    plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
+    // Equal scales: a straight run shows as a straight line, a turn with its true radius. The
+    // ratio needs the laid-out axis rect (its size in pixels), hence the first replot.
     placeLegend(plot);
+    plot.replot();
+    plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
     plot.replot();
 }
 
@@ -157,7 +171,7 @@ void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key, 
         timeLines(plot, t, {{"forward_m_s", "longitudinal"}, {"lateral_m_s", "lateral (left)"}},
                   "Chassis velocity [mm/s]", title, 1.0, 1e3);
     } else if (key == "slip") {
-        timeLines(plot, t, perWheel("slip"), "Slip ratio s [-]", title, 0.02);
+        timeLines(plot, t, perWheel("slip"), "Slip ratio s [-]", title, 0.02, 1.0, true);
     } else if (key == "steering") {
         timeLines(plot, t, perWheel("steer_deg"), "Steering angle δ [deg] (positive: left)", title, 2.0);
     } else if (key == "wheel-vx") {
@@ -169,7 +183,7 @@ void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key, 
     } else if (key == "load") {
         timeLines(plot, t, perWheel("load_N"), "Wheel load [N]", title, 1.0);
     } else if (key == "sinkage") {
-        timeLines(plot, t, perWheel("sinkage_m"), "Sinkage h [mm]", title, 0.5, 1e3);
+        timeLines(plot, t, perWheel("sinkage_m"), "Sinkage h [mm]", title, 0.5, 1e3, true);
     } else {
         throw std::invalid_argument("unknown rover figure \"" + key + "\"");
     }
@@ -211,7 +225,7 @@ QString wheelCurveName(int corner) { return QString("wheel ") + dynamics::kCorne
 
 void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, const Table& t, std::size_t row,
                       const QString& title) {
-    resetPlot(plot, title);
+    resetRoverPlot(plot, title);
     plot.xAxis->setLabel("x [m]");
     plot.yAxis->setLabel("y [m]");
     const dynamics::RobotParameters& robot = scenario.robot;
@@ -224,10 +238,16 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     const double margin = 0.6 * (robot.wheelbase_m + robot.track_m) + 2.0 * robot.wheel.radius_m;
     x0 -= margin, x1 += margin, y0 -= margin, y1 += margin;
 
-    // Soils: the base soil fills the axis rect, patches are rectangles (clipped to a large box).
+    // Soils: the base soil is a rectangle under everything (not the axis rect's background, which
+    // the plot theme owns), patches are rectangles on it; infinite sides are clipped to a large box.
     const double far = 1e3 + std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
     auto clip = [far](double v) { return std::clamp(v, -far, far); };
-    plot.axisRect()->setBackground(QBrush(soilColor(0)));
+    auto* base = new QCPItemRect(&plot);
+    base->topLeft->setCoords(-far, far);
+    base->bottomRight->setCoords(far, -far);
+    base->setBrush(QBrush(soilColor(0)));
+    base->setPen(Qt::NoPen);
+    base->setLayer("background");
     auto* base_label = new QCPItemText(&plot);
     base_label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
     base_label->position->setType(QCPItemPosition::ptAxisRectRatio);
@@ -275,7 +295,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     }
     plot.xAxis->setRange(x0, x1);
     plot.yAxis->setRange(y0, y1);
-    if ((x1 - x0) >= (y1 - y0)) {
+    plot.replot();  // lays out the axis rect: the scale ratio needs its size in pixels
+    if ((x1 - x0) / std::max(plot.axisRect()->width(), 1) >= (y1 - y0) / std::max(plot.axisRect()->height(), 1)) {
         plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
     } else {
         plot.xAxis->setScaleRatio(plot.yAxis, 1.0);

@@ -1,0 +1,181 @@
+// The rover panel's top view, time scrubber and scenario editing, offscreen: the drawn robot sits
+// at the time series' pose (geometry of resources/robots/default.json, computed here by hand), an
+// invalid edit is refused naming its field, a valid edit changes the run and is kept in the project.
+#include <gtest/gtest.h>
+#include <qcustomplot.h>
+
+#include <QSignalSpy>
+#include <QSlider>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "widgets/panels/rover_panel.h"
+#include "widgets/plots/rover_figures.h"
+#include "widgets_test_support.h"
+
+namespace terra::ui {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+QCPCurve* curveNamed(QCustomPlot& plot, const QString& name) {
+    for (int i = 0; i < plot.plottableCount(); ++i) {
+        auto* curve = qobject_cast<QCPCurve*>(plot.plottable(i));
+        if (curve && curve->name() == name) return curve;
+    }
+    return nullptr;
+}
+
+/// Centre and heading of a drawn rectangle (closed: 5 points, the first edge runs backwards
+/// along the long side).
+struct Drawn {
+    double x = 0, y = 0, heading_rad = 0;
+};
+Drawn drawnRectangle(const QCPCurve& curve) {
+    Drawn d;
+    const auto& data = *curve.data();
+    EXPECT_EQ(data.size(), 5);
+    for (int i = 0; i < 4; ++i) {
+        d.x += data.at(i)->key / 4.0;
+        d.y += data.at(i)->value / 4.0;
+    }
+    d.heading_rad = std::atan2(data.at(0)->value - data.at(1)->value, data.at(0)->key - data.at(1)->key);
+    return d;
+}
+
+double angleDifference(double a, double b) { return std::remainder(a - b, 2.0 * kPi); }
+
+/// The shipped pulse-steering scenario cut to `duration_s` (the pulse starts at 10 s).
+QString pulseText(RoverPanel& panel, double duration_s) {
+    auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
+    json["duration_s"] = duration_s;
+    return QString::fromStdString(json.dump(2));
+}
+
+TEST(RoverPanelTopView, ScrubbingMovesTheRobotToTheSeriesPoseWithoutRecomputing) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "pulse-steering"}});
+    QString error;
+    ASSERT_TRUE(panel.setScenarioText(pulseText(panel, 16.0), &error)) << error.toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const Table& t = panel.result().series;
+    ASSERT_GT(t.rows.size(), 1500u);
+    QCustomPlot& view = *panel.topView();
+    QCPCurve* chassis = curveNamed(view, "chassis");
+    ASSERT_NE(chassis, nullptr);
+
+    QSignalSpy shown(&panel, &AnalysisPanel::resultShown);
+    QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
+    // Default robot: wheelbase 0.5 m, track 0.4 m, centre of mass at mid-wheelbase.
+    const double half_l = 0.25, half_t = 0.2;
+    const double corner[4][2] = {{half_l, half_t}, {half_l, -half_t}, {-half_l, half_t}, {-half_l, -half_t}};
+    const char* names[] = {"FL", "FR", "RL", "RR"};
+    for (const std::size_t row : {std::size_t{0}, std::size_t{500}, std::size_t{1450}, t.rows.size() - 1}) {
+        panel.scrubber()->setValue(static_cast<int>(row));  // as the user drags it
+        const auto& r = t.rows[row];
+        const double x = r[t.column("x_m")], y = r[t.column("y_m")];
+        const double yaw = r[t.column("yaw_deg")] * kPi / 180.0;
+        EXPECT_TRUE(panel.timeLabel().startsWith(QString("t = %1 s").arg(r[t.column("t_s")], 0, 'f', 2)))
+            << panel.timeLabel().toStdString();
+        const Drawn body = drawnRectangle(*chassis);
+        EXPECT_NEAR(body.x, x, 1e-9) << row;  // the chassis centre is the centre of mass here
+        EXPECT_NEAR(body.y, y, 1e-9) << row;
+        EXPECT_NEAR(angleDifference(body.heading_rad, yaw), 0.0, 1e-9) << row;
+        for (int i = 0; i < 4; ++i) {
+            QCPCurve* wheel = curveNamed(view, QString("wheel ") + names[i]);
+            ASSERT_NE(wheel, nullptr) << names[i];
+            const Drawn w = drawnRectangle(*wheel);
+            const double hx = x + std::cos(yaw) * corner[i][0] - std::sin(yaw) * corner[i][1];
+            const double hy = y + std::sin(yaw) * corner[i][0] + std::cos(yaw) * corner[i][1];
+            EXPECT_NEAR(w.x, hx, 1e-9) << names[i] << " row " << row;
+            EXPECT_NEAR(w.y, hy, 1e-9) << names[i] << " row " << row;
+            const double steer = r[t.column(std::string(names[i]) + "_steer_deg")] * kPi / 180.0;
+            EXPECT_NEAR(angleDifference(w.heading_rad, yaw + steer), 0.0, 1e-9) << names[i] << " row " << row;
+        }
+    }
+    // Row 1450 (t = 14.5 s) is inside the pulse: the front wheels are drawn steered 10° from the rear.
+    panel.scrubber()->setValue(1450);
+    const double front = drawnRectangle(*curveNamed(view, "wheel FL")).heading_rad;
+    const double rear = drawnRectangle(*curveNamed(view, "wheel RL")).heading_rad;
+    EXPECT_NEAR(angleDifference(front, rear), 10.0 * kPi / 180.0, 1e-9);
+    EXPECT_EQ(shown.count(), 0);  // scrubbing only redraws
+    EXPECT_EQ(busy.count(), 0);
+}
+
+TEST(RoverPanelEditing, InvalidScenarioIsRefusedNamingTheField) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "straight"}});
+    const QString original = panel.scenarioText();
+    auto json = nlohmann::json::parse(original.toStdString());
+
+    ScenarioDialog dialog("straight", original, test::resources());
+    EXPECT_TRUE(dialog.okEnabled());
+    json["duration_s"] = -5;
+    dialog.setText(QString::fromStdString(json.dump(2)));
+    EXPECT_FALSE(dialog.okEnabled());
+    EXPECT_TRUE(dialog.errorText().contains("duration_s")) << dialog.errorText().toStdString();
+    dialog.setText("{\"name\": \"straight\",");  // broken JSON
+    EXPECT_FALSE(dialog.okEnabled());
+    EXPECT_TRUE(dialog.errorText().contains("not valid JSON")) << dialog.errorText().toStdString();
+    dialog.setText(original);
+    EXPECT_TRUE(dialog.okEnabled());
+
+    // The panel refuses it too, names the field, and keeps the file's scenario.
+    json = nlohmann::json::parse(original.toStdString());
+    json["wheels"]["all"]["steer_deg"] = 75;
+    QString error;
+    EXPECT_FALSE(panel.setScenarioText(QString::fromStdString(json.dump()), &error));
+    EXPECT_TRUE(error.contains("wheels.all.steer_deg")) << error.toStdString();
+    json = nlohmann::json::parse(original.toStdString());
+    json["durration_s"] = 3;  // a typo is an unknown key, never silently ignored
+    EXPECT_FALSE(panel.setScenarioText(QString::fromStdString(json.dump()), &error));
+    EXPECT_TRUE(error.contains("durration_s")) << error.toStdString();
+    EXPECT_FALSE(panel.isEdited());
+    EXPECT_EQ(panel.scenarioText(), original);
+}
+
+TEST(RoverPanelEditing, ValidEditChangesTheRunAndIsKeptInTheProject) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "straight"}});
+    auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
+    QString error;
+    json["duration_s"] = 2.0;
+    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error)) << error.toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const Table longer = panel.result().series;
+    EXPECT_NEAR(panel.result().summary.duration_s, 2.0, 1e-9);
+
+    json["duration_s"] = 1.0;
+    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error)) << error.toStdString();
+    EXPECT_TRUE(panel.isEdited());
+    // Kept in the project (the panel's settings): a new panel on the same settings runs the edit.
+    const nlohmann::json stored = document.project().panels.at("rover");
+    EXPECT_EQ(stored["edited"]["straight"]["duration_s"], 1.0);
+    RoverPanel reopened(&document, test::resources());
+    reopened.applySettings(stored);
+    EXPECT_TRUE(reopened.isEdited());
+    reopened.recompute();
+    ASSERT_TRUE(test::waitForResult(reopened, 120000));
+    const Table& shorter = reopened.result().series;
+    EXPECT_NEAR(reopened.result().summary.duration_s, 1.0, 1e-9);
+    // A shorter run of the same deterministic scenario: a prefix of the longer one, half as long.
+    ASSERT_LT(shorter.rows.size(), longer.rows.size());
+    EXPECT_NEAR(static_cast<double>(shorter.rows.size() - 1), 0.5 * static_cast<double>(longer.rows.size() - 1), 1.0);
+    for (std::size_t i = 0; i < shorter.rows.size(); ++i) ASSERT_EQ(shorter.rows[i], longer.rows[i]) << i;
+
+    // Revert: back to the 60 s file.
+    reopened.revertScenario();
+    EXPECT_FALSE(reopened.isEdited());
+    EXPECT_EQ(nlohmann::json::parse(reopened.scenarioText().toStdString())["duration_s"], 60);
+}
+
+}  // namespace
+}  // namespace terra::ui
