@@ -14,6 +14,7 @@ namespace terra::ui {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+const char* const kHeadingItemName = "heading";
 
 const QColor kWheelColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(255, 127, 14)};
 // Four wheels often coincide (straight line, symmetric loads): distinct dashes keep each visible.
@@ -291,6 +292,10 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
             wheel->removeFromLegend();
         }
         chassis->removeFromLegend();
+        auto* heading = new QCPItemLine(&plot);  // from the chassis centre to its front edge
+        heading->setObjectName(kHeadingItemName);
+        heading->setHead(QCPLineEnding(QCPLineEnding::esSpikeArrow, 10, 12));
+        heading->setPen(QPen(QColor(30, 30, 30), 1.6));
         plot.legend->setVisible(true);
     }
     plot.xAxis->setRange(x0, x1);
@@ -301,7 +306,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     } else {
         plot.xAxis->setScaleRatio(plot.yAxis, 1.0);
     }
-    placeLegend(plot);
+    // Bottom right: the labels of the soils sit at the top-left corners of their areas.
+    plot.axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
     if (!t.rows.empty()) {
         setRoverTopViewPose(plot, robot, t, std::min(row, t.rows.size() - 1));
     } else {
@@ -319,6 +325,13 @@ void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& rob
     const QPointF middle = (hubs[0] + hubs[1] + hubs[2] + hubs[3]) / 4.0;
     const double half_width = std::max(0.5 * robot.track_m - 0.5 * robot.wheel.width_m - 0.01, 0.25 * robot.track_m);
     rectangle(*chassis, middle, pose.yaw_rad, 0.5 * robot.wheelbase_m, half_width);
+    for (int i = 0; i < plot.itemCount(); ++i) {
+        if (auto* heading = qobject_cast<QCPItemLine*>(plot.item(i)); heading && heading->objectName() == kHeadingItemName) {
+            const double reach = 0.5 * robot.wheelbase_m;
+            heading->start->setCoords(middle);
+            heading->end->setCoords(middle.x() + reach * std::cos(pose.yaw_rad), middle.y() + reach * std::sin(pose.yaw_rad));
+        }
+    }
     for (int i = 0; i < dynamics::kWheelCount; ++i) {
         if (QCPCurve* wheel = findCurve(plot, wheelCurveName(i))) {
             rectangle(*wheel, hubs[i], pose.yaw_rad + pose.steer_rad[i], robot.wheel.radius_m, 0.5 * robot.wheel.width_m);
