@@ -27,7 +27,11 @@ AnalysisPanel::~AnalysisPanel() {
 void AnalysisPanel::scheduleUpdate() {
     ++revision_;
     since_edit_.start();
-    if (cancel_) cancel_->store(true);  // the running result is stale now
+    // The running result is stale now: cancel it, unless the screen has not changed for
+    // kMaxFrameGapMs. Then it finishes and is shown as an intermediate frame, so a continuous drag
+    // (edits faster than one computation) still moves the plot instead of starving it.
+    const bool starving = !since_shown_.isValid() || since_shown_.elapsed() >= kMaxFrameGapMs;
+    if (cancel_ && !(starving && watcher_.isRunning())) cancel_->store(true);
     if (start_queued_) return;
     start_queued_ = true;
     QTimer::singleShot(0, this, [this] {
@@ -72,13 +76,17 @@ void AnalysisPanel::start() {
         } catch (const std::exception& e) {
             out.error = QString::fromUtf8(e.what());
         }
+        out.cancelled = cancel->load();
         return out;
     }));
 }
 
 void AnalysisPanel::finished() {
     const Outcome outcome = watcher_.result();
-    if (outcome.revision != revision_) {  // stale: show nothing, compute the newest state
+    if (outcome.revision != revision_) {
+        // Stale. A computation that was let run to the end (see scheduleUpdate) is shown as an
+        // intermediate frame; a cancelled one is dropped. Either way the newest state follows.
+        if (!outcome.cancelled && outcome.error.isEmpty()) presentOutcome(outcome);
         start();
         return;
     }
@@ -87,12 +95,18 @@ void AnalysisPanel::finished() {
         emit failed(outcome.error);
         return;
     }
+    presentOutcome(outcome);
+    last_latency_ms_ = static_cast<double>(since_edit_.nsecsElapsed()) / 1e6;
+    emit resultShown(last_latency_ms_);
+}
+
+void AnalysisPanel::presentOutcome(const Outcome& outcome) {
     QElapsedTimer drawing;
     drawing.start();
     present(outcome.value);
     last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
-    last_latency_ms_ = static_cast<double>(since_edit_.nsecsElapsed()) / 1e6;
-    emit resultShown(last_latency_ms_);
+    since_shown_.start();
+    ++shown_count_;
 }
 
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {

@@ -45,6 +45,8 @@ public:
     /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
     /// work per update, the rest runs on workers.
     double lastPresentMs() const { return last_present_ms_; }
+    /// How many results (final or intermediate frames) have been drawn.
+    int shownCount() const { return shown_count_; }
     /// Starts a computation now (the identification panel's "Fit"; also for tests).
     void recompute() { scheduleUpdate(); }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
@@ -80,9 +82,13 @@ private:
         int revision = 0;
         std::any value;
         QString error;
+        bool cancelled = false;  ///< the job saw its cancel flag set (its value may be partial)
     };
+    /// Longest time the screen may go without a new result while edits keep arriving [ms].
+    static constexpr qint64 kMaxFrameGapMs = 150;
     void start();
     void finished();
+    void presentOutcome(const Outcome& outcome);
 
     QString name_;
     QFutureWatcher<Outcome> watcher_;
@@ -92,6 +98,8 @@ private:
     bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
     QElapsedTimer since_edit_;
+    QElapsedTimer since_shown_;  // since the last present()
+    int shown_count_ = 0;
     double last_latency_ms_ = 0.0;
     double last_present_ms_ = 0.0;
 };
