@@ -1,11 +1,6 @@
 #include "core/dynamics/rover.h"
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
-#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
-#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
-#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
-#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
-#include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,20 +18,6 @@ namespace {
 int steerLink(int wheel) { return 2 * wheel; }
 int spinLink(int wheel) { return 2 * wheel + 1; }
 
-// Motor impulse bound [N·s·m]: large enough never to bind (the motors are ideal servos; a
-// 10° steering step in one 1 ms step takes ~0.4 N·m·s).
-constexpr double kMaxMotorImpulse = 1e6;
-
-// A joint motor that reports the island of the multibody's base collider. Bullet 3.24's motor
-// looks only at its own link's collider, finds none (the links have no shapes) and answers -1;
-// the island callback then never hands it to the solver.
-class JointMotor : public btMultiBodyJointMotor {
-public:
-    using btMultiBodyJointMotor::btMultiBodyJointMotor;
-    int getIslandIdA() const override { return m_bodyA->getBaseCollider()->getIslandTag(); }
-    int getIslandIdB() const override { return m_bodyB->getBaseCollider()->getIslandTag(); }
-};
-
 }  // namespace
 
 struct Rover::Impl {
@@ -45,21 +26,11 @@ struct Rover::Impl {
     RoverOptions options;
     std::vector<contact::ContactParameters<double>> soils;  // per terrain soil index
 
-    // Bullet: one Featherstone multibody (chassis base + 8 revolute links) in a world without
-    // collisions; its joint motors are solved by the multibody constraint solver.
-    btDefaultCollisionConfiguration collision_config;
-    btCollisionDispatcher dispatcher{&collision_config};
-    btDbvtBroadphase broadphase;
-    btMultiBodyConstraintSolver solver;
-    btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &collision_config};
+    // Bullet: one Featherstone multibody, chassis base + 8 revolute links (docs/dynamics.md).
     std::unique_ptr<btMultiBody> body;
-    // A collision object only so that Bullet's island bookkeeping hands the joint motors to the
-    // solver (with no collision object, or with islands not split, Bullet 3.24 drops every
-    // multibody constraint; see JointMotor). It collides with nothing (empty filter mask).
-    btSphereShape base_shape{0.05};
-    std::unique_ptr<btMultiBodyLinkCollider> base_collider;
-    std::array<std::unique_ptr<JointMotor>, kWheelCount> spin_motors;
-    std::array<std::unique_ptr<JointMotor>, kWheelCount> steer_motors;
+    btAlignedObjectArray<btScalar> scratch_r;
+    btAlignedObjectArray<btVector3> scratch_v;
+    btAlignedObjectArray<btMatrix3x3> scratch_m;
 
     double total_mass = 0.0;
     double wheel_transverse_inertia = 0.0;  // about the wheel's diameters [kg·m²]
@@ -74,7 +45,10 @@ struct Rover::Impl {
     double soil_power = 0.0;                          // W into the soil
 
     RoverState state;
-    EnergyLedger energy;
+    // The ledger's kinetic and potential energy are computed when asked for (energy()), not at
+    // every step: the runner reads them once.
+    mutable EnergyLedger energy;
+    mutable bool energy_current = false;
 
     btMatrix3x3 basis() const { return btMatrix3x3(body->getWorldToBaseRot().inverse()); }
 
@@ -228,7 +202,6 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
     m.body->setHasSelfCollision(false);
     m.body->setUseGyroTerm(true);
     m.body->setMaxCoordinateVelocity(1e6);  // no clamp of joint rates (default 100 rad/s)
-    m.body->setMaxAppliedImpulse(kMaxMotorImpulse);
 
     const btQuaternion heading(btVector3(0, 0, 1), initial.yaw_rad);
     const btMatrix3x3 start_basis(heading);
@@ -248,35 +221,6 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
     btAlignedObjectArray<btVector3> scratch_origins;
     m.body->forwardKinematics(scratch_rotations, scratch_origins);
 
-    m.world.setGravity(btVector3(0, 0, -options.gravity_m_s2));
-    m.world.addMultiBody(m.body.get());
-    m.base_collider = std::make_unique<btMultiBodyLinkCollider>(m.body.get(), -1);
-    m.base_collider->setCollisionShape(&m.base_shape);
-    m.base_collider->setWorldTransform(m.body->getBaseWorldTransform());
-    m.base_collider->setActivationState(DISABLE_DEACTIVATION);
-    m.body->setBaseCollider(m.base_collider.get());
-    m.world.addCollisionObject(m.base_collider.get(), btBroadphaseProxy::DefaultFilter, 0);
-    // Motors: spin is a velocity servo (kd = 1: the joint rate reaches the target in one step),
-    // steering a position servo (kp = 1, erp = 1: the angle reaches the target in one step).
-    for (int i = 0; i < kWheelCount; ++i) {
-        auto spin = std::make_unique<JointMotor>(
-            m.body.get(), spinLink(i), 0, initial_commands[i].spin_rate_rad_s, kMaxMotorImpulse);
-        spin->setVelocityTarget(initial_commands[i].spin_rate_rad_s, 1.0);
-        spin->setPositionTarget(0.0, 0.0);
-        auto steer =
-            std::make_unique<JointMotor>(m.body.get(), steerLink(i), 0, 0.0, kMaxMotorImpulse);
-        steer->setVelocityTarget(0.0, 1.0);
-        steer->setPositionTarget(initial_commands[i].steer_angle_rad, 1.0);
-        for (JointMotor* motor : {spin.get(), steer.get()}) {
-            motor->setErp(1.0);
-            motor->setRhsClamp(SIMD_INFINITY);
-            motor->finalizeMultiDof();
-            m.world.addMultiBodyConstraint(motor);
-        }
-        m.spin_motors[i] = std::move(spin);
-        m.steer_motors[i] = std::move(steer);
-    }
-
     m.commands = initial_commands;
     for (int i = 0; i < kWheelCount; ++i) {
         m.state.wheels[i].spin_rate_rad_s = initial_commands[i].spin_rate_rad_s;
@@ -286,17 +230,10 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
     m.computeEnergy(m.energy.kinetic_j, m.energy.potential_j);
     m.energy.initial_kinetic_j = m.energy.kinetic_j;
     m.energy.initial_potential_j = m.energy.potential_j;
+    m.energy_current = true;
 }
 
-Rover::~Rover() {
-    if (!impl_ || !impl_->body) return;
-    for (auto& motor : impl_->spin_motors)
-        if (motor) impl_->world.removeMultiBodyConstraint(motor.get());
-    for (auto& motor : impl_->steer_motors)
-        if (motor) impl_->world.removeMultiBodyConstraint(motor.get());
-    if (impl_->base_collider) impl_->world.removeCollisionObject(impl_->base_collider.get());
-    impl_->world.removeMultiBody(impl_->body.get());
-}
+Rover::~Rover() = default;
 
 const RoverState& Rover::evaluate(const Commands& commands) {
     Impl& m = *impl_;
@@ -312,13 +249,17 @@ const RoverState& Rover::evaluate(const Commands& commands) {
     for (int i = 0; i < kWheelCount; ++i) {
         WheelState& ws = m.state.wheels[i];
         const double steer = m.body->getJointPos(steerLink(i));
+        const double cos_steer = std::cos(steer), sin_steer = std::sin(steer);
         const btVector3 arm = basis * m.hubs[i];
         const btVector3 hub = base + arm;
         const btVector3 hub_velocity = v + w.cross(arm);
-        const btVector3 omega = m.wheelAngularVelocity(basis, i);
+        // The wheel body's angular velocity: chassis + steering rate + spin rate about the axle.
+        const btVector3 omega = w + m.body->getJointVel(steerLink(i)) * basis.getColumn(2) +
+                                m.body->getJointVel(spinLink(i)) *
+                                    (basis * btVector3(-sin_steer, cos_steer, 0.0));
         // Wheel frame of section 2.2.1 on the flat surface: x the steered wheel's heading
         // projected on the ground, z up, y = z × x.
-        const btVector3 heading = basis * btVector3(std::cos(steer), std::sin(steer), 0.0);
+        const btVector3 heading = basis * btVector3(cos_steer, sin_steer, 0.0);
         btVector3 x_w(heading.x(), heading.y(), 0.0);
         x_w.normalize();
         const btVector3 y_w = up.cross(x_w);
@@ -356,35 +297,103 @@ void Rover::advance(double dt_s) {
         throw std::invalid_argument("Rover::advance: dt_s = " + formatNumber(dt_s) +
                                     " must be > 0");
     }
+    btMultiBody& body = *m.body;
+    const btVector3 gravity(0, 0, -m.options.gravity_m_s2);
+    const double mw = m.robot.wheel_mass_kg;
+    const double iw = m.robot.wheel_spin_inertia_kg_m2;
+    const double it = m.wheel_transverse_inertia;
     std::array<double, kWheelCount> spin_before{}, steer_before{};
     for (int i = 0; i < kWheelCount; ++i) {
-        m.body->addLinkForce(spinLink(i), m.wheel_force[i]);
-        m.body->addLinkTorque(spinLink(i), m.wheel_moment[i]);
-        m.spin_motors[i]->setVelocityTarget(m.commands[i].spin_rate_rad_s, 1.0);
-        m.steer_motors[i]->setPositionTarget(m.commands[i].steer_angle_rad, 1.0);
-        spin_before[i] = m.body->getJointVel(spinLink(i));
-        steer_before[i] = m.body->getJointVel(steerLink(i));
+        spin_before[i] = body.getJointVel(spinLink(i));
+        steer_before[i] = body.getJointVel(steerLink(i));
     }
-    m.world.stepSimulation(dt_s, 0, dt_s);
-    // Motor work: each motor's impulse times the joint rate over the step (the mean of its rates
-    // before and after, which is what the semi-implicit step integrates).
+
+    // 1. Free step of the articulated body (Featherstone's algorithm, Bullet): gravity and the
+    //    soil's forces and moments on the wheel links, joints unactuated; v += a dt.
+    body.addBaseForce(body.getBaseMass() * gravity);
+    for (int i = 0; i < kWheelCount; ++i) {
+        body.addLinkForce(spinLink(i), m.wheel_force[i] + mw * gravity);
+        body.addLinkTorque(spinLink(i), m.wheel_moment[i]);
+    }
+    body.computeAccelerationsArticulatedBodyAlgorithmMultiDof(dt_s, m.scratch_r, m.scratch_v,
+                                                              m.scratch_m, false, false, false);
+    body.clearForcesAndTorques();
+
+    // 2. The joint servos: impulses about the eight joint axes that bring every joint rate to its
+    //    target at the end of the step (spin: ω(t); steering: (δ(t) − δ)/dt, so the angle reaches
+    //    δ(t)). Solved exactly, not iterated: the impulses are internal, so the composite centre
+    //    of mass keeps its velocity and the total angular momentum about it is unchanged:
+    //      I_C ΔΩ + Σ_i (I_t Δδ̇_i ẑ + I_w Δω_i â_i) = 0,   ΔV_base = −ΔΩ × (c − p_base),
+    //    and each servo's impulse is the change of the wheel's angular momentum about its axis:
+    //      λ_spin = I_w (â·ΔΩ + Δω),   λ_steer = I_t (ẑ·ΔΩ + Δδ̇)
+    //    (the steering links are massless; a wheel's inertia is I_w about â, I_t about ẑ).
+    const btMatrix3x3 b = m.basis();
+    const btVector3 z = b.getColumn(2);
+    const btVector3 base = body.getBasePos();
+    const btVector3 com = base + b * m.com_in_base;
+    auto parallelAxis = [](double mass, const btVector3& d) {
+        const double d2 = d.length2();
+        return btMatrix3x3(mass * (d2 - d.x() * d.x()), -mass * d.x() * d.y(),
+                           -mass * d.x() * d.z(), -mass * d.y() * d.x(),
+                           mass * (d2 - d.y() * d.y()), -mass * d.y() * d.z(),
+                           -mass * d.z() * d.x(), -mass * d.z() * d.y(),
+                           mass * (d2 - d.z() * d.z()));
+    };
+    const btVector3& ic = body.getBaseInertia();
+    btMatrix3x3 composite = b.scaled(ic) * b.transpose() + parallelAxis(body.getBaseMass(), base - com);
+    btVector3 momentum(0, 0, 0);
+    std::array<btVector3, kWheelCount> axles;
+    std::array<double, kWheelCount> spin_change{}, steer_change{};
+    for (int i = 0; i < kWheelCount; ++i) {
+        const double steer = body.getJointPos(steerLink(i));
+        const btVector3 a = Impl::axle(b, steer);
+        axles[i] = a;
+        const btMatrix3x3 wheel(it + (iw - it) * a.x() * a.x(), (iw - it) * a.x() * a.y(),
+                                (iw - it) * a.x() * a.z(), (iw - it) * a.y() * a.x(),
+                                it + (iw - it) * a.y() * a.y(), (iw - it) * a.y() * a.z(),
+                                (iw - it) * a.z() * a.x(), (iw - it) * a.z() * a.y(),
+                                it + (iw - it) * a.z() * a.z());
+        composite = composite + wheel + parallelAxis(mw, base + b * m.hubs[i] - com);
+        spin_change[i] = m.commands[i].spin_rate_rad_s - body.getJointVel(spinLink(i));
+        steer_change[i] = (m.commands[i].steer_angle_rad - steer) / dt_s -
+                          body.getJointVel(steerLink(i));
+        momentum += (it * steer_change[i]) * z + (iw * spin_change[i]) * a;
+    }
+    const btVector3 omega_change = -(composite.inverse() * momentum);
+    body.setBaseOmega(body.getBaseOmega() + omega_change);
+    body.setBaseVel(body.getBaseVel() - omega_change.cross(com - base));
     double motor_work = 0.0;
     for (int i = 0; i < kWheelCount; ++i) {
-        const double spin_impulse = m.spin_motors[i]->getAppliedImpulse(0);
-        const double steer_impulse = m.steer_motors[i]->getAppliedImpulse(0);
-        motor_work += spin_impulse * 0.5 * (spin_before[i] + m.body->getJointVel(spinLink(i)));
-        motor_work += steer_impulse * 0.5 * (steer_before[i] + m.body->getJointVel(steerLink(i)));
+        const double spin_impulse = iw * (axles[i].dot(omega_change) + spin_change[i]);
+        const double steer_impulse = it * (z.dot(omega_change) + steer_change[i]);
+        body.setJointVel(spinLink(i), body.getJointVel(spinLink(i)) + spin_change[i]);
+        body.setJointVel(steerLink(i), body.getJointVel(steerLink(i)) + steer_change[i]);
+        // Work: impulse × the joint rate over the step (the mean of the rates before and after,
+        // which is what the semi-implicit step integrates).
+        motor_work += spin_impulse * 0.5 * (spin_before[i] + body.getJointVel(spinLink(i)));
+        motor_work += steer_impulse * 0.5 * (steer_before[i] + body.getJointVel(steerLink(i)));
         m.state.wheels[i].motor_torque_nm = spin_impulse / dt_s;
     }
+
+    // 3. Positions from the new velocities (semi-implicit Euler; Bullet's quaternion update).
+    body.stepPositionsMultiDof(dt_s);
+
     m.energy.motor_work_j += motor_work;
     m.energy.dissipated_j += m.soil_power * dt_s;
     m.state.time_s += dt_s;
     m.readBodyState();
-    m.computeEnergy(m.energy.kinetic_j, m.energy.potential_j);
+    m.energy_current = false;
 }
 
 const RoverState& Rover::state() const { return impl_->state; }
-const EnergyLedger& Rover::energy() const { return impl_->energy; }
+const EnergyLedger& Rover::energy() const {
+    const Impl& m = *impl_;
+    if (!m.energy_current) {
+        m.computeEnergy(m.energy.kinetic_j, m.energy.potential_j);
+        m.energy_current = true;
+    }
+    return m.energy;
+}
 double Rover::verticalDamping() const { return impl_->damping[0]; }
 
 }  // namespace terra::dynamics
