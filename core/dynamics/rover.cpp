@@ -362,7 +362,7 @@ void Rover::advance(double dt_s) {
     const btVector3 omega_change = -(composite.inverse() * momentum);
     body.setBaseOmega(body.getBaseOmega() + omega_change);
     body.setBaseVel(body.getBaseVel() - omega_change.cross(com - base));
-    double motor_work = 0.0;
+    double motor_work = 0.0, steering_work = 0.0;
     for (int i = 0; i < kWheelCount; ++i) {
         const double spin_impulse = iw * (axles[i].dot(omega_change) + spin_change[i]);
         const double steer_impulse = it * (z.dot(omega_change) + steer_change[i]);
@@ -371,14 +371,15 @@ void Rover::advance(double dt_s) {
         // Work: impulse × the joint rate over the step (the mean of the rates before and after,
         // which is what the semi-implicit step integrates).
         motor_work += spin_impulse * 0.5 * (spin_before[i] + body.getJointVel(spinLink(i)));
-        motor_work += steer_impulse * 0.5 * (steer_before[i] + body.getJointVel(steerLink(i)));
+        steering_work += steer_impulse * 0.5 * (steer_before[i] + body.getJointVel(steerLink(i)));
         m.state.wheels[i].motor_torque_nm = spin_impulse / dt_s;
     }
 
     // 3. Positions from the new velocities (semi-implicit Euler; Bullet's quaternion update).
     body.stepPositionsMultiDof(dt_s);
 
-    m.energy.motor_work_j += motor_work;
+    m.energy.motor_work_j += motor_work + steering_work;
+    m.energy.steering_work_j += steering_work;
     m.energy.dissipated_j += m.soil_power * dt_s;
     m.state.time_s += dt_s;
     m.readBodyState();
