@@ -33,8 +33,8 @@ struct Rover::Impl {
     btAlignedObjectArray<btMatrix3x3> scratch_m;
 
     double total_mass = 0.0;
-    double wheel_transverse_inertia = 0.0;  // about the wheel's diameters [kg·m²]
-    btVector3 com_in_base{0, 0, 0};         // composite centre of mass, chassis frame
+    double wheel_transverse_inertia = 0.0;      // about the wheel's diameters [kg·m²]
+    btVector3 com_in_base{0, 0, 0};             // composite centre of mass, chassis frame
     std::array<btVector3, kWheelCount> hubs;    // wheel centres, chassis frame (origin: its COM)
     std::array<double, kWheelCount> damping{};  // N·s/m per corner
 
@@ -181,8 +181,7 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
     // The multibody: floating base = chassis; per wheel a steering link (revolute about the
     // chassis z through the hub, massless) and a spin link (revolute about the steered axle y,
     // the wheel's mass and inertia, centre at the hub).
-    const btVector3 chassis_inertia(robot.chassis_inertia_kg_m2[0],
-                                    robot.chassis_inertia_kg_m2[1],
+    const btVector3 chassis_inertia(robot.chassis_inertia_kg_m2[0], robot.chassis_inertia_kg_m2[1],
                                     robot.chassis_inertia_kg_m2[2]);
     m.body = std::make_unique<btMultiBody>(2 * kWheelCount, mc, chassis_inertia, false, false);
     const btVector3 wheel_inertia(m.wheel_transverse_inertia, robot.wheel_spin_inertia_kg_m2,
@@ -222,6 +221,8 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
     m.body->forwardKinematics(scratch_rotations, scratch_origins);
 
     m.commands = initial_commands;
+    m.wheel_force.fill(btVector3(0, 0, 0));
+    m.wheel_moment.fill(btVector3(0, 0, 0));
     for (int i = 0; i < kWheelCount; ++i) {
         m.state.wheels[i].spin_rate_rad_s = initial_commands[i].spin_rate_rad_s;
         m.state.wheels[i].steer_angle_rad = initial_commands[i].steer_angle_rad;
@@ -254,9 +255,9 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         const btVector3 hub = base + arm;
         const btVector3 hub_velocity = v + w.cross(arm);
         // The wheel body's angular velocity: chassis + steering rate + spin rate about the axle.
-        const btVector3 omega = w + m.body->getJointVel(steerLink(i)) * basis.getColumn(2) +
-                                m.body->getJointVel(spinLink(i)) *
-                                    (basis * btVector3(-sin_steer, cos_steer, 0.0));
+        const btVector3 omega =
+            w + m.body->getJointVel(steerLink(i)) * basis.getColumn(2) +
+            m.body->getJointVel(spinLink(i)) * (basis * btVector3(-sin_steer, cos_steer, 0.0));
         // Wheel frame of section 2.2.1 on the flat surface: x the steered wheel's heading
         // projected on the ground, z up, y = z × x.
         const btVector3 heading = basis * btVector3(cos_steer, sin_steer, 0.0);
@@ -279,8 +280,8 @@ const RoverState& Rover::evaluate(const Commands& commands) {
 
         const contact::WheelForces<double>& f = ws.contact.forces;
         // Damping only while in contact, and the soil can only push (F ≥ 0).
-        ws.load_n = ws.contact.in_contact ? std::max(0.0, f.fz - m.damping[i] * hub_velocity.z())
-                                          : 0.0;
+        ws.load_n =
+            ws.contact.in_contact ? std::max(0.0, f.fz - m.damping[i] * hub_velocity.z()) : 0.0;
         // Soil on the wheel body: forces at the hub, the resistance torque −M_y about the axle
         // (Eq. 2.34), and M_x, M_z, which the joints pass on to the chassis.
         m.wheel_force[i] = f.fx * x_w + f.fs * y_w + ws.load_n * up;
@@ -333,14 +334,14 @@ void Rover::advance(double dt_s) {
     const btVector3 com = base + b * m.com_in_base;
     auto parallelAxis = [](double mass, const btVector3& d) {
         const double d2 = d.length2();
-        return btMatrix3x3(mass * (d2 - d.x() * d.x()), -mass * d.x() * d.y(),
-                           -mass * d.x() * d.z(), -mass * d.y() * d.x(),
-                           mass * (d2 - d.y() * d.y()), -mass * d.y() * d.z(),
-                           -mass * d.z() * d.x(), -mass * d.z() * d.y(),
-                           mass * (d2 - d.z() * d.z()));
+        return btMatrix3x3(
+            mass * (d2 - d.x() * d.x()), -mass * d.x() * d.y(), -mass * d.x() * d.z(),
+            -mass * d.y() * d.x(), mass * (d2 - d.y() * d.y()), -mass * d.y() * d.z(),
+            -mass * d.z() * d.x(), -mass * d.z() * d.y(), mass * (d2 - d.z() * d.z()));
     };
     const btVector3& ic = body.getBaseInertia();
-    btMatrix3x3 composite = b.scaled(ic) * b.transpose() + parallelAxis(body.getBaseMass(), base - com);
+    btMatrix3x3 composite =
+        b.scaled(ic) * b.transpose() + parallelAxis(body.getBaseMass(), base - com);
     btVector3 momentum(0, 0, 0);
     std::array<btVector3, kWheelCount> axles;
     std::array<double, kWheelCount> spin_change{}, steer_change{};
@@ -348,15 +349,14 @@ void Rover::advance(double dt_s) {
         const double steer = body.getJointPos(steerLink(i));
         const btVector3 a = Impl::axle(b, steer);
         axles[i] = a;
-        const btMatrix3x3 wheel(it + (iw - it) * a.x() * a.x(), (iw - it) * a.x() * a.y(),
-                                (iw - it) * a.x() * a.z(), (iw - it) * a.y() * a.x(),
-                                it + (iw - it) * a.y() * a.y(), (iw - it) * a.y() * a.z(),
-                                (iw - it) * a.z() * a.x(), (iw - it) * a.z() * a.y(),
-                                it + (iw - it) * a.z() * a.z());
+        const btMatrix3x3 wheel(
+            it + (iw - it) * a.x() * a.x(), (iw - it) * a.x() * a.y(), (iw - it) * a.x() * a.z(),
+            (iw - it) * a.y() * a.x(), it + (iw - it) * a.y() * a.y(), (iw - it) * a.y() * a.z(),
+            (iw - it) * a.z() * a.x(), (iw - it) * a.z() * a.y(), it + (iw - it) * a.z() * a.z());
         composite = composite + wheel + parallelAxis(mw, base + b * m.hubs[i] - com);
         spin_change[i] = m.commands[i].spin_rate_rad_s - body.getJointVel(spinLink(i));
-        steer_change[i] = (m.commands[i].steer_angle_rad - steer) / dt_s -
-                          body.getJointVel(steerLink(i));
+        steer_change[i] =
+            (m.commands[i].steer_angle_rad - steer) / dt_s - body.getJointVel(steerLink(i));
         momentum += (it * steer_change[i]) * z + (iw * spin_change[i]) * a;
     }
     const btVector3 omega_change = -(composite.inverse() * momentum);

@@ -41,11 +41,11 @@ struct RoverOptions {
 
 /// One wheel at one instant (the quantities the forces of the coming step were computed from).
 struct WheelState {
-    WheelContact contact;            ///< s, β, θ_f, h and the model's forces (wheel frame)
-    int soil_index = 0;              ///< Terrain::soilIndexAt of the hub
-    double load_n = 0.0;             ///< vertical force applied: F_z plus damping, ≥ 0 [N]
-    double spin_rate_rad_s = 0.0;    ///< ω [rad/s]: the spin joint's rate (wheel vs. chassis)
-    double steer_angle_rad = 0.0;    ///< δ [rad]: the steering joint's angle
+    WheelContact contact;          ///< s, β, θ_f, h and the model's forces (wheel frame)
+    int soil_index = 0;            ///< Terrain::soilIndexAt of the hub
+    double load_n = 0.0;           ///< vertical force applied: F_z plus damping, ≥ 0 [N]
+    double spin_rate_rad_s = 0.0;  ///< ω [rad/s]: the spin joint's rate (wheel vs. chassis)
+    double steer_angle_rad = 0.0;  ///< δ [rad]: the steering joint's angle
     /// The spin servo's torque over the last step, impulse / dt [N·m] (≈ M_y + I_w dω/dt; 0 before
     /// the first step). evaluate() leaves it alone, so after advance() it belongs with the forces.
     double motor_torque_nm = 0.0;
