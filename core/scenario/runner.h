@@ -38,7 +38,7 @@ struct Summary {
     double energy_j = 0.0;
     double dissipated_j = 0.0;                                ///< work into the soil [J]
     double kinetic_change_j = 0.0, potential_change_j = 0.0;  ///< [J]
-    /// (energy − dissipated − ΔE_kinetic − ΔE_potential) / energy: ~1e-5 at a good step; above
+    /// (energy − dissipated − ΔE_kinetic − ΔE_potential) / energy: 1e-5…4e-4 at a good step; above
     /// kEnergyBalanceTolerance the step is too large for the contact's stiffness
     /// (docs/dynamics.md).
     double energy_balance_error = 0.0;
