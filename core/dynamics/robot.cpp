@@ -13,8 +13,9 @@ std::vector<Issue> validate(const RobotParameters& robot, const std::string& pre
                    robot.chassis_inertia_kg_m2[i], positive, "kg·m²");
     }
     checkRange(issues, prefix + "wheel_mass_kg", robot.wheel_mass_kg, {0.0, 1e6}, "kg");
+    // > 0: the wheel is a body on a spin joint (a massless, inertia-free wheel has no dynamics).
     checkRange(issues, prefix + "wheel_spin_inertia_kg_m2", robot.wheel_spin_inertia_kg_m2,
-               {0.0, 1e6}, "kg·m²");
+               positive, "kg·m²");
     checkRange(issues, prefix + "wheelbase_m", robot.wheelbase_m, {0.0, 100.0, true, false}, "m");
     checkRange(issues, prefix + "track_m", robot.track_m, {0.0, 100.0, true, false}, "m");
     checkRange(issues, prefix + "com_height_m", robot.com_height_m, {-10.0, 10.0}, "m");

@@ -29,10 +29,12 @@ struct RobotParameters {
     /// Principal moments of the chassis about its centre of mass, body axes x forward, y left,
     /// z up [kg·m²].
     std::array<double, 3> chassis_inertia_kg_m2{0.4, 0.6, 0.8};
-    double wheel_mass_kg = 1.0;               ///< one wheel with its motors [kg]
-    double wheel_spin_inertia_kg_m2 = 0.005;  ///< one wheel about its axle [kg·m²]
-    double wheelbase_m = 0.5;                 ///< front axle to rear axle [m]
-    double track_m = 0.4;                     ///< left to right wheel centre [m]
+    double wheel_mass_kg = 1.0;  ///< one wheel with its motors [kg]
+    /// One wheel about its axle [kg·m²], > 0; about its diameters the rover takes half of it
+    /// (a disc).
+    double wheel_spin_inertia_kg_m2 = 0.005;
+    double wheelbase_m = 0.5;  ///< front axle to rear axle [m]
+    double track_m = 0.4;      ///< left to right wheel centre [m]
     /// Height of the chassis centre of mass above the plane of the wheel centres [m].
     double com_height_m = 0.1;
     /// Forward offset of the chassis centre of mass from the middle of the wheelbase [m].

@@ -1,6 +1,6 @@
 #include "core/dynamics/rover.h"
 
-#include <btBulletDynamicsCommon.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,10 @@
 namespace terra::dynamics {
 namespace {
 
-btVector3 toBt(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+// Link indices of the multibody: wheel i has its steering link (parent: the chassis, the base)
+// and its spin link (parent: the steering link).
+int steerLink(int wheel) { return 2 * wheel; }
+int spinLink(int wheel) { return 2 * wheel + 1; }
 
 }  // namespace
 
@@ -23,55 +26,86 @@ struct Rover::Impl {
     RoverOptions options;
     std::vector<contact::ContactParameters<double>> soils;  // per terrain soil index
 
-    // Bullet: one rigid body (the chassis with the wheels' masses) in a world without collisions.
-    btDefaultCollisionConfiguration collision_config;
-    btCollisionDispatcher dispatcher{&collision_config};
-    btDbvtBroadphase broadphase;
-    btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &collision_config};
-    std::unique_ptr<btBoxShape> shape;
-    std::unique_ptr<btRigidBody> body;
+    // Bullet: one Featherstone multibody, chassis base + 8 revolute links (docs/dynamics.md).
+    std::unique_ptr<btMultiBody> body;
+    btAlignedObjectArray<btScalar> scratch_r;
+    btAlignedObjectArray<btVector3> scratch_v;
+    btAlignedObjectArray<btMatrix3x3> scratch_m;
 
-    double mass = 0.0;
-    std::array<btVector3, kWheelCount> hubs;    // wheel centres in the body frame (origin: COM)
+    double total_mass = 0.0;
+    double wheel_transverse_inertia = 0.0;      // about the wheel's diameters [kg·m²]
+    btVector3 com_in_base{0, 0, 0};             // composite centre of mass, chassis frame
+    std::array<btVector3, kWheelCount> hubs;    // wheel centres, chassis frame (origin: its COM)
     std::array<double, kWheelCount> damping{};  // N·s/m per corner
-    std::array<double, kWheelCount> previous_spin{};
-    bool have_previous_spin = false;
-    double last_dt = 0.0;
 
-    // Forces and moments of the last evaluate(), world frame, about the COM.
-    btVector3 force{0, 0, 0};
-    btVector3 torque{0, 0, 0};
-    double motor_power = 0.0;         // W
-    double soil_power = 0.0;          // W into the soil
-    double spin_inertial_work = 0.0;  // J, ½ I (ω₁² − ω₀²) of this evaluate
+    // What the last evaluate() found, applied by advance().
+    Commands commands{};
+    std::array<btVector3, kWheelCount> wheel_force;   // on the spin link, world frame [N]
+    std::array<btVector3, kWheelCount> wheel_moment;  // on the spin link, world frame [N·m]
+    double soil_power = 0.0;                          // W into the soil
 
     RoverState state;
-    EnergyLedger energy;
+    // The ledger's kinetic and potential energy are computed when asked for (energy()), not at
+    // every step: the runner reads them once.
+    mutable EnergyLedger energy;
+    mutable bool energy_current = false;
 
+    btMatrix3x3 basis() const { return btMatrix3x3(body->getWorldToBaseRot().inverse()); }
+
+    // The steered wheel's axle (spin axis) in the world.
+    static btVector3 axle(const btMatrix3x3& basis, double steer_rad) {
+        return basis * btVector3(-std::sin(steer_rad), std::cos(steer_rad), 0.0);
+    }
+
+    // Absolute angular velocity of wheel i's spin link [rad/s], world frame.
+    btVector3 wheelAngularVelocity(const btMatrix3x3& basis, int i) const {
+        const btVector3 w = body->getBaseOmega();
+        const double steer_rate = body->getJointVel(steerLink(i));
+        const double spin_rate = body->getJointVel(spinLink(i));
+        return w + steer_rate * basis.getColumn(2) +
+               spin_rate * axle(basis, body->getJointPos(steerLink(i)));
+    }
+
+    // Kinetic energy of every body (chassis, the wheels' translation, spin and steering; the
+    // steering links carry no mass) and potential energy m g z of every body.
     void computeEnergy(double& kinetic, double& potential) const {
-        const btVector3 v = body->getLinearVelocity();
-        const btVector3 w = body->getAngularVelocity();
-        const btMatrix3x3 inv = body->getInvInertiaTensorWorld();
-        const btVector3 l = inv.inverse() * w;
-        double spin = 0.0;
+        const btMatrix3x3 b = basis();
+        const btVector3 v = body->getBaseVel();
+        const btVector3 w = body->getBaseOmega();
+        const btVector3 w_body = b.transpose() * w;
+        const btVector3& ic = body->getBaseInertia();
+        const double mw = robot.wheel_mass_kg;
+        const double iw = robot.wheel_spin_inertia_kg_m2;
+        const double it = wheel_transverse_inertia;
+        kinetic = 0.5 * body->getBaseMass() * v.length2() +
+                  0.5 * (ic.x() * w_body.x() * w_body.x() + ic.y() * w_body.y() * w_body.y() +
+                         ic.z() * w_body.z() * w_body.z());
+        double mz = body->getBaseMass() * body->getBasePos().z();
         for (int i = 0; i < kWheelCount; ++i) {
-            const double omega = state.wheels[i].spin_rate_rad_s;
-            spin += 0.5 * robot.wheel_spin_inertia_kg_m2 * omega * omega;
+            const btVector3 arm = b * hubs[i];
+            const btVector3 hub_velocity = v + w.cross(arm);
+            const btVector3 omega = wheelAngularVelocity(b, i);
+            const double about_axle = omega.dot(axle(b, body->getJointPos(steerLink(i))));
+            // Inertia of a wheel symmetric about its axle: I_t (1 − a aᵀ) + I_w a aᵀ.
+            kinetic += 0.5 * mw * hub_velocity.length2() +
+                       0.5 * (it * omega.length2() + (iw - it) * about_axle * about_axle);
+            mz += mw * (body->getBasePos().z() + arm.z());
         }
-        kinetic = 0.5 * mass * v.length2() + 0.5 * w.dot(l) + spin;
-        potential = mass * options.gravity_m_s2 * body->getCenterOfMassPosition().z();
+        potential = mz * options.gravity_m_s2;
     }
 
     void readBodyState() {
-        const btTransform& t = body->getCenterOfMassTransform();
-        const btVector3 p = t.getOrigin();
+        const btMatrix3x3 b = basis();
+        const btVector3 com_arm = b * com_in_base;
+        const btVector3 p = body->getBasePos() + com_arm;
         state.position_m = {p.x(), p.y(), p.z()};
         btScalar yaw, pitch, roll;
-        t.getBasis().getEulerYPR(yaw, pitch, roll);
+        b.getEulerYPR(yaw, pitch, roll);
         state.yaw_rad = yaw, state.pitch_rad = pitch, state.roll_rad = roll;
-        const btVector3 v = body->getLinearVelocity();
-        const btVector3 w = body->getAngularVelocity();
+        const btVector3 w = body->getBaseOmega();
+        // Every mass sits at a point fixed to the chassis (the joints only turn the wheels about
+        // their own centres), so the composite centre of mass moves with the chassis.
+        const btVector3 v = body->getBaseVel() + w.cross(com_arm);
         state.velocity_m_s = {v.x(), v.y(), v.z()};
         state.angular_velocity_rad_s = {w.x(), w.y(), w.z()};
         const double c = std::cos(yaw), s = std::sin(yaw);
@@ -94,33 +128,28 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
         m.soils.push_back(contact::makeContactParameters(terrain.soil(i), robot.wheel));
     }
 
-    // Composite centre of mass and inertia (wheels as point masses at the hubs; the diagonal of
-    // the composite tensor about the COM, products of inertia dropped: docs/dynamics.md).
+    // Geometry in the chassis frame (origin: the chassis centre of mass, x forward, z up).
     const double mc = robot.chassis_mass_kg, mw = robot.wheel_mass_kg;
-    m.mass = robot.totalMass();
+    m.total_mass = robot.totalMass();
     const btVector3 chassis_com(robot.com_forward_m, 0.0, robot.com_height_m);
-    const btVector3 com = chassis_com * (mc / m.mass);
     const double half_l = 0.5 * robot.wheelbase_m, half_t = 0.5 * robot.track_m;
     const std::array<btVector3, kWheelCount> hub_geometric{
         btVector3(half_l, half_t, 0), btVector3(half_l, -half_t, 0), btVector3(-half_l, half_t, 0),
         btVector3(-half_l, -half_t, 0)};
-    btVector3 inertia = toBt(robot.chassis_inertia_kg_m2);
-    auto addPoint = [&](double mass, const btVector3& at) {
-        const btVector3 d = at - com;
-        inertia += mass * btVector3(d.y() * d.y() + d.z() * d.z(), d.x() * d.x() + d.z() * d.z(),
-                                    d.x() * d.x() + d.y() * d.y());
-    };
-    addPoint(mc, chassis_com);
+    btVector3 hub_sum(0, 0, 0);
     for (int i = 0; i < kWheelCount; ++i) {
-        m.hubs[i] = hub_geometric[i] - com;
-        addPoint(mw, hub_geometric[i]);
+        m.hubs[i] = hub_geometric[i] - chassis_com;
+        hub_sum += m.hubs[i];
     }
-    inertia.setY(inertia.y() + 2.0 * robot.wheel_spin_inertia_kg_m2);  // wheel discs, roughly
+    m.com_in_base = hub_sum * (mw / m.total_mass);
+    // A wheel is a disc about its diameters: I_t = I_w / 2 (docs/dynamics.md).
+    m.wheel_transverse_inertia = 0.5 * robot.wheel_spin_inertia_kg_m2;
 
     // Static corner loads and sinkages (entry-angle estimator at s = 0, β = 0).
     const double r = robot.wheel.radius_m;
-    const double weight = m.mass * options.gravity_m_s2;
-    const double front_share = (half_l + com.x()) / robot.wheelbase_m;
+    const double weight = m.total_mass * options.gravity_m_s2;
+    const double com_x = chassis_com.x() * (mc / m.total_mass);  // composite, from mid-wheelbase
+    const double front_share = (half_l + com_x) / robot.wheelbase_m;
     double mean_sinkage = 0.0;
     const double c0 = std::cos(initial.yaw_rad), s0 = std::sin(initial.yaw_rad);
     for (int i = 0; i < kWheelCount; ++i) {
@@ -149,68 +178,89 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
             2.0 * robot.vertical_damping_ratio * std::sqrt(stiffness * load / options.gravity_m_s2);
     }
 
-    // The body: a box only for Bullet's bookkeeping (nothing collides with it).
-    m.shape = std::make_unique<btBoxShape>(btVector3(half_l, half_t, 0.05));
-    btTransform start;
-    start.setIdentity();
-    start.setRotation(btQuaternion(btVector3(0, 0, 1), initial.yaw_rad));
-    const double hub_z = r - mean_sinkage;
-    start.setOrigin(btVector3(initial.x_m, initial.y_m, hub_z) +
-                    start.getBasis() * btVector3(com.x(), com.y(), com.z()));
-    // Hub positions are relative to the COM, so the start origin is the COM in the world.
-    btRigidBody::btRigidBodyConstructionInfo info(m.mass, nullptr, m.shape.get(), inertia);
-    info.m_startWorldTransform = start;
-    info.m_linearDamping = 0.0;
-    info.m_angularDamping = 0.0;
-    info.m_friction = 0.0;
-    m.body = std::make_unique<btRigidBody>(info);
-    m.body->setActivationState(DISABLE_DEACTIVATION);
-    m.body->setSleepingThresholds(0.0, 0.0);
-    m.body->setLinearVelocity(start.getBasis() * btVector3(initial.speed_m_s, 0, 0));
-    m.world.setGravity(btVector3(0, 0, -options.gravity_m_s2));
-    m.world.addRigidBody(m.body.get());
+    // The multibody: floating base = chassis; per wheel a steering link (revolute about the
+    // chassis z through the hub, massless) and a spin link (revolute about the steered axle y,
+    // the wheel's mass and inertia, centre at the hub).
+    const btVector3 chassis_inertia(robot.chassis_inertia_kg_m2[0], robot.chassis_inertia_kg_m2[1],
+                                    robot.chassis_inertia_kg_m2[2]);
+    m.body = std::make_unique<btMultiBody>(2 * kWheelCount, mc, chassis_inertia, false, false);
+    const btVector3 wheel_inertia(m.wheel_transverse_inertia, robot.wheel_spin_inertia_kg_m2,
+                                  m.wheel_transverse_inertia);
+    const btQuaternion same(0, 0, 0, 1);
+    const btVector3 zero(0, 0, 0);
+    for (int i = 0; i < kWheelCount; ++i) {
+        m.body->setupRevolute(steerLink(i), 0.0, zero, -1, same, btVector3(0, 0, 1), m.hubs[i],
+                              zero, true);
+        m.body->setupRevolute(spinLink(i), mw, wheel_inertia, steerLink(i), same,
+                              btVector3(0, 1, 0), zero, zero, true);
+    }
+    m.body->finalizeMultiDof();
+    m.body->setLinearDamping(0.0);  // Bullet's default 0.04 would be hidden dissipation
+    m.body->setAngularDamping(0.0);
+    m.body->setCanSleep(false);
+    m.body->setHasSelfCollision(false);
+    m.body->setUseGyroTerm(true);
+    m.body->setMaxCoordinateVelocity(1e6);  // no clamp of joint rates (default 100 rad/s)
 
+    const btQuaternion heading(btVector3(0, 0, 1), initial.yaw_rad);
+    const btMatrix3x3 start_basis(heading);
+    const double hub_z = r - mean_sinkage;
+    // The hubs' plane sits at hub_z; the base origin is the chassis centre of mass.
+    m.body->setBasePos(btVector3(initial.x_m, initial.y_m, hub_z) + start_basis * chassis_com);
+    m.body->setWorldToBaseRot(heading.inverse());
+    m.body->setBaseVel(start_basis * btVector3(initial.speed_m_s, 0, 0));
+    m.body->setBaseOmega(zero);
+    for (int i = 0; i < kWheelCount; ++i) {
+        m.body->setJointPos(steerLink(i), initial_commands[i].steer_angle_rad);
+        m.body->setJointVel(steerLink(i), 0.0);
+        m.body->setJointPos(spinLink(i), 0.0);
+        m.body->setJointVel(spinLink(i), initial_commands[i].spin_rate_rad_s);
+    }
+    btAlignedObjectArray<btQuaternion> scratch_rotations;
+    btAlignedObjectArray<btVector3> scratch_origins;
+    m.body->forwardKinematics(scratch_rotations, scratch_origins);
+
+    m.commands = initial_commands;
+    m.wheel_force.fill(btVector3(0, 0, 0));
+    m.wheel_moment.fill(btVector3(0, 0, 0));
     for (int i = 0; i < kWheelCount; ++i) {
         m.state.wheels[i].spin_rate_rad_s = initial_commands[i].spin_rate_rad_s;
-        m.previous_spin[i] = initial_commands[i].spin_rate_rad_s;
+        m.state.wheels[i].steer_angle_rad = initial_commands[i].steer_angle_rad;
     }
-    m.have_previous_spin = true;
     m.readBodyState();
     m.computeEnergy(m.energy.kinetic_j, m.energy.potential_j);
     m.energy.initial_kinetic_j = m.energy.kinetic_j;
     m.energy.initial_potential_j = m.energy.potential_j;
+    m.energy_current = true;
 }
 
-Rover::~Rover() {
-    if (impl_ && impl_->body) impl_->world.removeRigidBody(impl_->body.get());
-}
+Rover::~Rover() = default;
 
 const RoverState& Rover::evaluate(const Commands& commands) {
     Impl& m = *impl_;
-    const btTransform& t = m.body->getCenterOfMassTransform();
-    const btMatrix3x3& basis = t.getBasis();
-    const btVector3 com = t.getOrigin();
-    const btVector3 v = m.body->getLinearVelocity();
-    const btVector3 w = m.body->getAngularVelocity();
+    const btMatrix3x3 basis = m.basis();
+    const btVector3 base = m.body->getBasePos();
+    const btVector3 v = m.body->getBaseVel();
+    const btVector3 w = m.body->getBaseOmega();
     const btVector3 up(0, 0, 1);
     const double r = m.robot.wheel.radius_m;
-    const double inertia = m.robot.wheel_spin_inertia_kg_m2;
 
-    m.force.setZero();
-    m.torque.setZero();
-    m.motor_power = 0.0;
+    m.commands = commands;
     m.soil_power = 0.0;
-    m.spin_inertial_work = 0.0;
     for (int i = 0; i < kWheelCount; ++i) {
         WheelState& ws = m.state.wheels[i];
-        const WheelCommand& cmd = commands[i];
+        const double steer = m.body->getJointPos(steerLink(i));
+        const double cos_steer = std::cos(steer), sin_steer = std::sin(steer);
         const btVector3 arm = basis * m.hubs[i];
-        const btVector3 hub = com + arm;
+        const btVector3 hub = base + arm;
         const btVector3 hub_velocity = v + w.cross(arm);
-        // Wheel frame of section 2.2.1 on the flat surface: x the steered heading projected on the
-        // ground, z up, y = z × x.
-        const btVector3 heading =
-            basis * btVector3(std::cos(cmd.steer_angle_rad), std::sin(cmd.steer_angle_rad), 0.0);
+        // The wheel body's angular velocity: chassis + steering rate + spin rate about the axle.
+        const btVector3 omega =
+            w + m.body->getJointVel(steerLink(i)) * basis.getColumn(2) +
+            m.body->getJointVel(spinLink(i)) * (basis * btVector3(-sin_steer, cos_steer, 0.0));
+        // Wheel frame of section 2.2.1 on the flat surface: x the steered wheel's heading
+        // projected on the ground, z up, y = z × x.
+        const btVector3 heading = basis * btVector3(cos_steer, sin_steer, 0.0);
         btVector3 x_w(heading.x(), heading.y(), 0.0);
         x_w.normalize();
         const btVector3 y_w = up.cross(x_w);
@@ -218,42 +268,25 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         WheelKinematics k;
         k.forward_speed_m_s = hub_velocity.dot(x_w);
         k.lateral_speed_m_s = hub_velocity.dot(y_w);
-        k.rim_speed_m_s = r * cmd.spin_rate_rad_s;
+        // The rim speed from the wheel body's own spin (joint rate plus the chassis' pitch).
+        k.rim_speed_m_s = r * omega.dot(y_w);
         k.sinkage_m = r - hub.z();
         ws.soil_index = m.terrain.soilIndexAt(hub.x(), hub.y());
         ws.contact = evaluateContact(m.soils[ws.soil_index], k, m.options.contact);
         ws.forward_speed_m_s = k.forward_speed_m_s;
         ws.lateral_speed_m_s = k.lateral_speed_m_s;
-        ws.steer_angle_rad = cmd.steer_angle_rad;
+        ws.steer_angle_rad = steer;
+        ws.spin_rate_rad_s = m.body->getJointVel(spinLink(i));
 
         const contact::WheelForces<double>& f = ws.contact.forces;
-        const double vz = hub_velocity.z();
         // Damping only while in contact, and the soil can only push (F ≥ 0).
-        ws.load_n = ws.contact.in_contact ? std::max(0.0, f.fz - m.damping[i] * vz) : 0.0;
-
-        // Motor: holds ω; its torque balances the soil's resistance torque M_y and spins the
-        // wheel up. Work of the spin-up counted exactly as ½ I (ω₁² − ω₀²).
-        const double spin_rate_change = cmd.spin_rate_rad_s - m.previous_spin[i];
-        const double angular_acceleration = m.last_dt > 0.0 ? spin_rate_change / m.last_dt : 0.0;
-        ws.motor_torque_nm = f.my + inertia * angular_acceleration;
-        m.spin_inertial_work +=
-            0.5 * inertia *
-            (cmd.spin_rate_rad_s * cmd.spin_rate_rad_s - m.previous_spin[i] * m.previous_spin[i]);
-        m.previous_spin[i] = cmd.spin_rate_rad_s;
-        ws.spin_rate_rad_s = cmd.spin_rate_rad_s;
-
-        const btVector3 hub_force = f.fx * x_w + f.fs * y_w + ws.load_n * up;
-        // Soil moments M_x, M_z reach the chassis through the wheel bearings; about the axle the
-        // chassis feels the motor's reaction −(M_y + I ω̇).
-        const btVector3 moment =
-            f.mx * x_w - (f.my + inertia * angular_acceleration) * y_w + f.mz * up;
-        m.force += hub_force;
-        m.torque += arm.cross(hub_force) + moment;
-
-        const double axle_rate = cmd.spin_rate_rad_s + w.dot(y_w);  // absolute spin about y_w
-        m.motor_power += f.my * cmd.spin_rate_rad_s;
-        m.soil_power +=
-            f.my * axle_rate - hub_force.dot(hub_velocity) - f.mx * w.dot(x_w) - f.mz * w.dot(up);
+        ws.load_n =
+            ws.contact.in_contact ? std::max(0.0, f.fz - m.damping[i] * hub_velocity.z()) : 0.0;
+        // Soil on the wheel body: forces at the hub, the resistance torque −M_y about the axle
+        // (Eq. 2.34), and M_x, M_z, which the joints pass on to the chassis.
+        m.wheel_force[i] = f.fx * x_w + f.fs * y_w + ws.load_n * up;
+        m.wheel_moment[i] = f.mx * x_w - f.my * y_w + f.mz * up;
+        m.soil_power -= m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega);
     }
     m.readBodyState();
     return m.state;
@@ -265,20 +298,103 @@ void Rover::advance(double dt_s) {
         throw std::invalid_argument("Rover::advance: dt_s = " + formatNumber(dt_s) +
                                     " must be > 0");
     }
-    m.body->applyCentralForce(m.force);
-    m.body->applyTorque(m.torque);
-    m.world.stepSimulation(dt_s, 0, dt_s);
-    m.energy.motor_work_j += m.motor_power * dt_s + m.spin_inertial_work;
+    btMultiBody& body = *m.body;
+    const btVector3 gravity(0, 0, -m.options.gravity_m_s2);
+    const double mw = m.robot.wheel_mass_kg;
+    const double iw = m.robot.wheel_spin_inertia_kg_m2;
+    const double it = m.wheel_transverse_inertia;
+    std::array<double, kWheelCount> spin_before{}, steer_before{};
+    for (int i = 0; i < kWheelCount; ++i) {
+        spin_before[i] = body.getJointVel(spinLink(i));
+        steer_before[i] = body.getJointVel(steerLink(i));
+    }
+
+    // 1. Free step of the articulated body (Featherstone's algorithm, Bullet): gravity and the
+    //    soil's forces and moments on the wheel links, joints unactuated; v += a dt.
+    body.addBaseForce(body.getBaseMass() * gravity);
+    for (int i = 0; i < kWheelCount; ++i) {
+        body.addLinkForce(spinLink(i), m.wheel_force[i] + mw * gravity);
+        body.addLinkTorque(spinLink(i), m.wheel_moment[i]);
+    }
+    body.computeAccelerationsArticulatedBodyAlgorithmMultiDof(dt_s, m.scratch_r, m.scratch_v,
+                                                              m.scratch_m, false, false, false);
+    body.clearForcesAndTorques();
+
+    // 2. The joint servos: impulses about the eight joint axes that bring every joint rate to its
+    //    target at the end of the step (spin: ω(t); steering: (δ(t) − δ)/dt, so the angle reaches
+    //    δ(t)). Solved exactly, not iterated: the impulses are internal, so the composite centre
+    //    of mass keeps its velocity and the total angular momentum about it is unchanged:
+    //      I_C ΔΩ + Σ_i (I_t Δδ̇_i ẑ + I_w Δω_i â_i) = 0,   ΔV_base = −ΔΩ × (c − p_base),
+    //    and each servo's impulse is the change of the wheel's angular momentum about its axis:
+    //      λ_spin = I_w (â·ΔΩ + Δω),   λ_steer = I_t (ẑ·ΔΩ + Δδ̇)
+    //    (the steering links are massless; a wheel's inertia is I_w about â, I_t about ẑ).
+    const btMatrix3x3 b = m.basis();
+    const btVector3 z = b.getColumn(2);
+    const btVector3 base = body.getBasePos();
+    const btVector3 com = base + b * m.com_in_base;
+    auto parallelAxis = [](double mass, const btVector3& d) {
+        const double d2 = d.length2();
+        return btMatrix3x3(
+            mass * (d2 - d.x() * d.x()), -mass * d.x() * d.y(), -mass * d.x() * d.z(),
+            -mass * d.y() * d.x(), mass * (d2 - d.y() * d.y()), -mass * d.y() * d.z(),
+            -mass * d.z() * d.x(), -mass * d.z() * d.y(), mass * (d2 - d.z() * d.z()));
+    };
+    const btVector3& ic = body.getBaseInertia();
+    btMatrix3x3 composite =
+        b.scaled(ic) * b.transpose() + parallelAxis(body.getBaseMass(), base - com);
+    btVector3 momentum(0, 0, 0);
+    std::array<btVector3, kWheelCount> axles;
+    std::array<double, kWheelCount> spin_change{}, steer_change{};
+    for (int i = 0; i < kWheelCount; ++i) {
+        const double steer = body.getJointPos(steerLink(i));
+        const btVector3 a = Impl::axle(b, steer);
+        axles[i] = a;
+        const btMatrix3x3 wheel(
+            it + (iw - it) * a.x() * a.x(), (iw - it) * a.x() * a.y(), (iw - it) * a.x() * a.z(),
+            (iw - it) * a.y() * a.x(), it + (iw - it) * a.y() * a.y(), (iw - it) * a.y() * a.z(),
+            (iw - it) * a.z() * a.x(), (iw - it) * a.z() * a.y(), it + (iw - it) * a.z() * a.z());
+        composite = composite + wheel + parallelAxis(mw, base + b * m.hubs[i] - com);
+        spin_change[i] = m.commands[i].spin_rate_rad_s - body.getJointVel(spinLink(i));
+        steer_change[i] =
+            (m.commands[i].steer_angle_rad - steer) / dt_s - body.getJointVel(steerLink(i));
+        momentum += (it * steer_change[i]) * z + (iw * spin_change[i]) * a;
+    }
+    const btVector3 omega_change = -(composite.inverse() * momentum);
+    body.setBaseOmega(body.getBaseOmega() + omega_change);
+    body.setBaseVel(body.getBaseVel() - omega_change.cross(com - base));
+    double motor_work = 0.0, steering_work = 0.0;
+    for (int i = 0; i < kWheelCount; ++i) {
+        const double spin_impulse = iw * (axles[i].dot(omega_change) + spin_change[i]);
+        const double steer_impulse = it * (z.dot(omega_change) + steer_change[i]);
+        body.setJointVel(spinLink(i), body.getJointVel(spinLink(i)) + spin_change[i]);
+        body.setJointVel(steerLink(i), body.getJointVel(steerLink(i)) + steer_change[i]);
+        // Work: impulse × the joint rate over the step (the mean of the rates before and after,
+        // which is what the semi-implicit step integrates).
+        motor_work += spin_impulse * 0.5 * (spin_before[i] + body.getJointVel(spinLink(i)));
+        steering_work += steer_impulse * 0.5 * (steer_before[i] + body.getJointVel(steerLink(i)));
+        m.state.wheels[i].motor_torque_nm = spin_impulse / dt_s;
+    }
+
+    // 3. Positions from the new velocities (semi-implicit Euler; Bullet's quaternion update).
+    body.stepPositionsMultiDof(dt_s);
+
+    m.energy.motor_work_j += motor_work + steering_work;
+    m.energy.steering_work_j += steering_work;
     m.energy.dissipated_j += m.soil_power * dt_s;
-    m.spin_inertial_work = 0.0;
-    m.last_dt = dt_s;
     m.state.time_s += dt_s;
     m.readBodyState();
-    m.computeEnergy(m.energy.kinetic_j, m.energy.potential_j);
+    m.energy_current = false;
 }
 
 const RoverState& Rover::state() const { return impl_->state; }
-const EnergyLedger& Rover::energy() const { return impl_->energy; }
+const EnergyLedger& Rover::energy() const {
+    const Impl& m = *impl_;
+    if (!m.energy_current) {
+        m.computeEnergy(m.energy.kinetic_j, m.energy.potential_j);
+        m.energy_current = true;
+    }
+    return m.energy;
+}
 double Rover::verticalDamping() const { return impl_->damping[0]; }
 
 }  // namespace terra::dynamics

@@ -1,12 +1,13 @@
 #pragma once
 /// @file rover.h
-/// The 4WD/4WS robot driving on deformable soil (thesis chapter 3, Eq. 3.1), on Bullet. The chassis
-/// is a Bullet rigid body (6 DOF, gravity, semi-implicit Euler at a fixed step); each wheel's
-/// steering and spin joints are ideal actuators that follow the commanded angle and angular speed
-/// (the thesis prescribes both), so the wheels add no stiff joint dynamics; at every step each
-/// wheel's soil forces and moments come from the core wheel model at the hub's kinematic state and
-/// act on the chassis at the wheel centre. Design and its reasons: docs/dynamics.md. Bullet types
-/// stay in rover.cpp.
+/// The 4WD/4WS robot driving on deformable soil (thesis chapter 3, Eq. 3.1), on Bullet's
+/// Featherstone btMultiBody: a floating chassis (6 DOF, gravity) and per wheel a massless steering
+/// link (revolute about the chassis z through the hub) carrying the wheel body (revolute about its
+/// axle; the wheel's mass and inertia). Each joint is driven by an ideal servo, spin to the
+/// commanded angular speed, steering to the commanded angle, whose impulses are solved exactly at
+/// every fixed step (semi-implicit Euler). At every step each wheel's soil forces and moments come
+/// from the core wheel model at the wheel body's kinematic state and act on the wheel body. Design
+/// and its reasons: docs/dynamics.md. Bullet types stay in rover.cpp.
 
 #include <array>
 #include <memory>
@@ -40,12 +41,14 @@ struct RoverOptions {
 
 /// One wheel at one instant (the quantities the forces of the coming step were computed from).
 struct WheelState {
-    WheelContact contact;            ///< s, β, θ_f, h and the model's forces (wheel frame)
-    int soil_index = 0;              ///< Terrain::soilIndexAt of the hub
-    double load_n = 0.0;             ///< vertical force applied: F_z plus damping, ≥ 0 [N]
-    double spin_rate_rad_s = 0.0;    ///< ω [rad/s]
-    double steer_angle_rad = 0.0;    ///< δ [rad]
-    double motor_torque_nm = 0.0;    ///< M_y + I_w dω/dt [N·m]
+    WheelContact contact;          ///< s, β, θ_f, h and the model's forces (wheel frame)
+    int soil_index = 0;            ///< Terrain::soilIndexAt of the hub
+    double load_n = 0.0;           ///< vertical force applied: F_z plus damping, ≥ 0 [N]
+    double spin_rate_rad_s = 0.0;  ///< ω [rad/s]: the spin joint's rate (wheel vs. chassis)
+    double steer_angle_rad = 0.0;  ///< δ [rad]: the steering joint's angle
+    /// The spin servo's torque over the last step, impulse / dt [N·m] (≈ M_y + I_w dω/dt; 0 before
+    /// the first step). evaluate() leaves it alone, so after advance() it belongs with the forces.
+    double motor_torque_nm = 0.0;
     double forward_speed_m_s = 0.0;  ///< v_x of the hub [m/s]
     double lateral_speed_m_s = 0.0;  ///< v_y of the hub [m/s]
 };
@@ -64,10 +67,14 @@ struct RoverState {
 
 /// Energy bookkeeping since the start [J].
 struct EnergyLedger {
-    double motor_work_j = 0.0;  ///< ∫ Σ (M_y + I_w ω̇) ω dt: what the drive motors delivered
+    /// Σ over the eight joint servos of impulse × joint rate: what the drive motors (∫ τ ω dt) and
+    /// the steering motors (∫ τ δ̇ dt, small) delivered.
+    double motor_work_j = 0.0;
+    double steering_work_j = 0.0;  ///< the steering motors' share of motor_work_j
     double dissipated_j = 0.0;  ///< ∫ power into the soil (shear, compaction, bulldozing, damping)
-    double kinetic_j = 0.0;     ///< current kinetic energy (chassis, wheels' spin)
-    double potential_j = 0.0;   ///< current m g z
+    /// Current kinetic energy of every body: chassis, the wheels' translation, spin and steering.
+    double kinetic_j = 0.0;
+    double potential_j = 0.0;  ///< current Σ m g z of every body
     double initial_kinetic_j = 0.0;
     double initial_potential_j = 0.0;
 };
@@ -85,7 +92,8 @@ public:
 
     /// Computes every wheel's contact at the current state for these commands (no time passes).
     const RoverState& evaluate(const Commands& commands);
-    /// Applies the forces of the last evaluate() and advances the chassis by dt [s].
+    /// Applies the forces of the last evaluate(), drives the joints toward its commands and
+    /// advances the robot by dt [s].
     void advance(double dt_s);
     /// evaluate() then advance().
     void step(double dt_s, const Commands& commands) {

@@ -34,10 +34,11 @@ struct Summary {
     double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;  ///< final pose (centre of mass)
     double distance_m = 0.0;  ///< path length of the centre of mass on the ground [m]
     std::array<double, dynamics::kWheelCount> mean_slip{};  ///< time average of s per wheel
-    double energy_j = 0.0;      ///< drive motors' work ∫ Σ M_y ω dt (+ spin-up) [J]
-    double dissipated_j = 0.0;  ///< work into the soil [J]
+    /// The joint motors' work: drive ∫ Σ τ ω dt plus steering ∫ Σ τ δ̇ dt [J].
+    double energy_j = 0.0;
+    double dissipated_j = 0.0;                                ///< work into the soil [J]
     double kinetic_change_j = 0.0, potential_change_j = 0.0;  ///< [J]
-    /// (energy − dissipated − ΔE_kinetic − ΔE_potential) / energy: ~1e-5 at a good step; above
+    /// (energy − dissipated − ΔE_kinetic − ΔE_potential) / energy: 1e-5…4e-4 at a good step; above
     /// kEnergyBalanceTolerance the step is too large for the contact's stiffness
     /// (docs/dynamics.md).
     double energy_balance_error = 0.0;

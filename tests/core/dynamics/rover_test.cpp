@@ -181,6 +181,44 @@ TEST(Rover, SameScenarioTwiceIsBitIdentical) {
     EXPECT_EQ(a.summary.energy_j, b.summary.energy_j);
 }
 
+// The wheels are bodies on joints, not prescribed speeds: while the spin motors ramp the wheels
+// up, each motor's torque (its impulse over the step) exceeds the soil's resistance torque M_y by
+// the wheel's own I_w dω/dt (Euler's equation about the axle), and doubling I_w doubles the excess.
+TEST(Rover, SpinMotorTorqueCarriesTheWheelInertiaDuringASpeedRamp) {
+    constexpr double kRate = 4.0;  // rad/s², 0.4 → 0.8 rad/s in 0.1 s
+    auto meanExcess = [&](double spin_inertia) {
+        scenario::Scenario s = straight(3.0);
+        s.robot.wheel_spin_inertia_kg_m2 = spin_inertia;
+        const double dt = s.time_step_s;
+        Commands c = s.commandsAt(0.0);
+        Rover rover(s.robot, s.terrain, s.options, s.initial, c);
+        for (int k = 0; k < 2000; ++k) rover.step(dt, c);  // settle at 0.4 rad/s
+        std::array<double, kWheelCount> excess{};
+        int samples = 0;
+        for (int k = 0; k < 100; ++k) {
+            // The velocity servo reaches its target at the end of the step.
+            for (WheelCommand& w : c) w.spin_rate_rad_s = 0.4 + kRate * (k + 1) * dt;
+            const RoverState& before = rover.evaluate(c);
+            std::array<double, kWheelCount> my{};
+            for (int i = 0; i < kWheelCount; ++i) my[i] = before.wheels[i].contact.forces.my;
+            rover.advance(dt);
+            if (k < 25 || k >= 75) continue;  // the middle of the ramp
+            for (int i = 0; i < kWheelCount; ++i)
+                excess[i] += rover.state().wheels[i].motor_torque_nm - my[i];
+            ++samples;
+        }
+        for (double& e : excess) e /= samples;
+        return excess;
+    };
+    const double iw = straight().robot.wheel_spin_inertia_kg_m2;
+    const auto single = meanExcess(iw);
+    const auto doubled = meanExcess(2.0 * iw);
+    for (int i = 0; i < kWheelCount; ++i) {
+        EXPECT_NEAR(single[i], iw * kRate, 0.03 * iw * kRate) << kCornerNames[i];
+        EXPECT_NEAR(doubled[i], 2.0 * iw * kRate, 0.03 * 2.0 * iw * kRate) << kCornerNames[i];
+    }
+}
+
 TEST(Rover, CrossesIntoAnotherSoil) {
     scenario::Scenario s = straight(10.0);
     s.initial.speed_m_s = 0.02;
