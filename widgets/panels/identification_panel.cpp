@@ -435,6 +435,9 @@ void IdentificationPanel::play() {
             return synthesiseSoilBorder(spec);
         };
     }
+    // A running playback ends first (its "stopped" state is handled now, not after the new run's
+    // figures were cleared).
+    if (playback_->isActive()) playback_->stop();
     storeSettings();
     stream_frames_.clear();
     stream_count_ = 0;
