@@ -213,6 +213,18 @@ TEST(ForcesPanel, SoilCurvesExportAsImagesAndCsv) {
     EXPECT_EQ(panel.currentTable().columns.front(), "sinkage_mm");
 }
 
+TEST(ForcesPanel, TheShownPlotIsAPanelSetting) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ForcesPanel panel(&document);
+    EXPECT_EQ(panel.settings()["plot"], "Fx_N-vs-slip");
+    panel.applySettings({{"plot", "static-sinkage-vs-load"}});
+    EXPECT_EQ(panel.currentPlot(), namedPlot(panel, "static-sinkage-vs-load"));
+    EXPECT_EQ(panel.settings()["plot"], "static-sinkage-vs-load");
+    panel.applySettings({{"plot", "no-such-plot"}});  // unknown: stays
+    EXPECT_EQ(panel.settings()["plot"], "static-sinkage-vs-load");
+}
+
 TEST(ForcesPanel, EditingTheLoadRecomputesEquilibrium) {
     ProjectDocument document;
     test::resetToDefault(document);

@@ -68,7 +68,7 @@ TEST(Tornado, LowAndHighBarsSitSideBySideAndKeepTheirLengths) {
     ASSERT_EQ(low->dataCount(), 3);
     ASSERT_EQ(high->dataCount(), 3);
     // Rows sorted by the largest change either extreme makes: phi (1), n (5), kc (6) on top.
-    const std::vector<std::string> order{"phi_deg", "n", "kc"};
+    const std::vector<std::string> order{"φ [deg]", "n [-]", "k_c [kN/m^(n+1)]"};  // field symbols
     const std::vector<std::pair<double, double>> changes{{-1.0, 0.5}, {-2.0, 5.0}, {2.0, 6.0}};
     for (int i = 0; i < 3; ++i) {
         const double row = i + 1;

@@ -40,9 +40,10 @@ SoilCurves computeSoilCurves(const AnalysisInputs& in, const SoilCurvesSettings&
     }
 
     const double w_max = settings.max_load_factor * in.conditions.load_n;
-    for (int i = 1; i <= n; ++i) {  // W > 0: no sinkage at no load needs no row
+    out.static_sinkage.rows.push_back({0.0, 0.0, 0.0, 0.0});  // no load, no sinkage (every model)
+    for (int i = 1; i < n; ++i) {
         if (cancelled(cancel)) return out;
-        const double w = w_max * i / n;
+        const double w = w_max * i / (n - 1);
         out.static_sinkage.rows.push_back({w, contact::bekkerStaticSinkage(p, w) * 1e3,
                                            staticSinkageMm(p, w, contact::StaticContact::kSymmetric),
                                            staticSinkageMm(p, w, contact::StaticContact::kFrontHalf)});

@@ -3,6 +3,7 @@
 #include <qcustomplot.h>
 
 #include <QComboBox>
+#include <algorithm>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QTabWidget>
@@ -37,7 +38,10 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
         auto* plot = new QCustomPlot(tabs_);
         makeInteractive(plot, readout_);
         plots_.push_back(plot);
-        tabs_->addTab(plot, quantity.label.left(quantity.label.indexOf(" [")));
+        // Short tab names (eight tabs fit the panel); the full label is the tooltip.
+        const QString label = quantity.label.left(quantity.label.indexOf(" ["));
+        tabs_->addTab(plot, label.section(' ', 0, -2));
+        tabs_->setTabToolTip(tabs_->count() - 1, label);
     }
     bulldozing_ = new QCustomPlot(tabs_);
     static_sinkage_ = new QCustomPlot(tabs_);
@@ -45,8 +49,10 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     makeInteractive(static_sinkage_, readout_);
     plots_.push_back(bulldozing_);
     plots_.push_back(static_sinkage_);
-    tabs_->addTab(bulldozing_, "Bulldozing F_b(h)");
-    tabs_->addTab(static_sinkage_, "Static sinkage h(W)");
+    tabs_->addTab(bulldozing_, "Bulldozing");
+    tabs_->setTabToolTip(tabs_->count() - 1, "Bulldozing resistance F_b against sinkage h (Fig. 2.15)");
+    tabs_->addTab(static_sinkage_, "Static sinkage");
+    tabs_->setTabToolTip(tabs_->count() - 1, "Static sinkage h_s against load W (Fig. 2.6)");
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Model:", this));
     bar->addWidget(model_);
@@ -75,6 +81,20 @@ std::vector<std::pair<QString, QCustomPlot*>> ForcesPanel::plots() const {
     out.emplace_back("Fb-vs-sinkage", bulldozing_);
     out.emplace_back("static-sinkage-vs-load", static_sinkage_);
     return out;
+}
+
+nlohmann::json ForcesPanel::settings() const {
+    const auto all = plots();
+    return {{"plot", all[static_cast<std::size_t>(std::max(tabs_->currentIndex(), 0))].first.toStdString()}};
+}
+
+void ForcesPanel::applySettings(const nlohmann::json& settings) {
+    if (!settings.contains("plot") || !settings["plot"].is_string()) return;
+    const QString wanted = QString::fromStdString(settings["plot"].get<std::string>());
+    const auto all = plots();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (all[i].first == wanted) tabs_->setCurrentIndex(static_cast<int>(i));
+    }
 }
 
 Table ForcesPanel::currentTable() const {

@@ -28,6 +28,9 @@ public:
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
     Table currentTable() const override;
+    /// {"plot": name of the shown plot (plots())}: a project reopens on the same tab.
+    nlohmann::json settings() const override;
+    void applySettings(const nlohmann::json& settings) override;
 
 protected:
     Job makeJob() override;

@@ -8,6 +8,7 @@
 #include <QLabel>
 #include <QTabWidget>
 #include <QVBoxLayout>
+#include <algorithm>
 
 #include "core/soil/soil_parameters.h"
 #include "widgets/document/project_document.h"
@@ -89,9 +90,11 @@ Table SensitivityPanel::currentTable() const {
 }
 
 nlohmann::json SensitivityPanel::settings() const {
+    static const char* const kPlots[] = {"Fx", "Fs", "tornado"};
     return {{"parameter", parameter_->currentData().toString().toStdString()},
             {"slip_angle_deg", slip_angle_->value()},
-            {"tornado_slip", tornado_slip_->value()}};
+            {"tornado_slip", tornado_slip_->value()},
+            {"plot", kPlots[std::clamp(tabs_->currentIndex(), 0, 2)]}};
 }
 
 void SensitivityPanel::applySettings(const nlohmann::json& s) {
@@ -101,6 +104,10 @@ void SensitivityPanel::applySettings(const nlohmann::json& s) {
     }
     if (s.contains("slip_angle_deg")) slip_angle_->setValue(s["slip_angle_deg"].get<double>());
     if (s.contains("tornado_slip")) tornado_slip_->setValue(s["tornado_slip"].get<double>());
+    if (s.contains("plot") && s["plot"].is_string()) {  // the shown tab: "Fx", "Fs" or "tornado"
+        const std::string plot = s["plot"].get<std::string>();
+        tabs_->setCurrentWidget(plot == "tornado" ? tornado_ : plot == "Fs" ? fs_ : fx_);
+    }
 }
 
 AnalysisPanel::Job SensitivityPanel::makeJob() {

@@ -1,5 +1,6 @@
 #include "widgets/plots/figures.h"
 
+#include "core/soil/soil_parameters.h"
 #include "widgets/plots/plot_theme.h"
 #include "widgets/plots/sweep_plot.h"
 
@@ -48,6 +49,13 @@ void finish(QCustomPlot& plot) {
     }
     placeLegend(plot);
     plot.replot();
+}
+
+/// "φ" and "deg" of a soil field key ("phi_deg"); the key itself when unknown.
+std::pair<QString, QString> fieldSymbol(const std::string& key) {
+    const soil::SoilField* field = soil::findSoilField(key);
+    if (!field) return {QString::fromStdString(key), QString()};
+    return {QString::fromUtf8(field->symbol), QString::fromUtf8(field->unit)};
 }
 
 const char* stressLabel(const std::string& stress) {
@@ -116,7 +124,9 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, c
     }
     int index = 0;
     for (const auto& [value, data] : curves) {
-        addLine(plot, data.first, data.second, QString("%1 = %2").arg(QString::fromStdString(key)).arg(value),
+        const auto [symbol, unit] = fieldSymbol(key);
+        addLine(plot, data.first, data.second,
+                QString("%1 = %2 %3").arg(symbol).arg(value).arg(unit == "-" ? QString() : unit).trimmed(),
                 paletteColor(index++));
     }
     finish(plot);
@@ -157,7 +167,8 @@ void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip
         const double position = static_cast<double>(rank + 1);
         low->addData(position - kTornadoBarOffset, row[lo] - row[base]);
         high->addData(position + kTornadoBarOffset, row[hi] - row[base]);
-        ticker->addTick(position, QString::fromStdString(result.tornado_keys[order[rank]]));
+        const auto [symbol, unit] = fieldSymbol(result.tornado_keys[order[rank]]);
+        ticker->addTick(position, unit.isEmpty() ? symbol : QString("%1 [%2]").arg(symbol, unit));
     }
     // The base soil's F_x: a line at zero change.
     auto* zero = new QCPItemStraightLine(&plot);

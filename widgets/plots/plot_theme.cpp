@@ -33,7 +33,8 @@ public:
 }  // namespace
 
 PlotTheme PlotTheme::light() {
-    return {Qt::white, Qt::black, QColor(200, 200, 200), QColor(220, 220, 220), QColor(255, 255, 255, 230)};
+    return {Qt::white, Qt::black, QColor(200, 200, 200), QColor(220, 220, 220), QColor(200, 200, 200),
+            QColor(255, 255, 255, 230)};
 }
 
 PlotTheme PlotTheme::fromPalette(const QPalette& palette) {
@@ -41,7 +42,8 @@ PlotTheme PlotTheme::fromPalette(const QPalette& palette) {
     const QColor foreground = palette.color(QPalette::Active, QPalette::Text);
     QColor legend = background;
     legend.setAlpha(230);
-    return {background, foreground, mix(background, foreground, 0.25), mix(background, foreground, 0.13), legend};
+    return {background, foreground, mix(background, foreground, 0.25), mix(background, foreground, 0.13),
+            mix(background, foreground, 0.35), legend};
 }
 
 void applyPlotTheme(QCustomPlot& plot, const PlotTheme& theme) {
@@ -58,6 +60,7 @@ void applyPlotTheme(QCustomPlot& plot, const PlotTheme& theme) {
             axis->setSelectedTickLabelColor(theme.foreground);
             axis->grid()->setPen(QPen(theme.grid, 0, Qt::DotLine));
             axis->grid()->setSubGridPen(QPen(theme.sub_grid, 0, Qt::DotLine));
+            axis->grid()->setZeroLinePen(QPen(theme.zero_line, 0, Qt::SolidLine));
         }
     }
     plot.legend->setBrush(QBrush(theme.legend_background));

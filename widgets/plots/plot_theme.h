@@ -16,6 +16,7 @@ struct PlotTheme {
     QColor foreground;         ///< axes, ticks, tick labels, axis labels, title, legend text
     QColor grid;               ///< major grid lines
     QColor sub_grid;           ///< minor grid lines
+    QColor zero_line;          ///< the grid line at 0
     QColor legend_background;  ///< legend box (slightly translucent)
 
     /// White background, black text: QCustomPlot's own look, used for exports.
