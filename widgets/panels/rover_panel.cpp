@@ -158,6 +158,10 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         tabs_->addTab(plot, figure.tab);
         if (!figure.thesis.isEmpty()) tabs_->setTabToolTip(tabs_->count() - 1, "Thesis " + figure.thesis);
     }
+    drawn_.assign(plots_.size(), true);  // nothing to draw yet
+    connect(tabs_, &QTabWidget::currentChanged, this, [this](int index) {
+        if (index > 0) drawFigure(static_cast<std::size_t>(index - 1));
+    });
 
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Scenario:", this));
@@ -226,9 +230,16 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     showScenarioState();
 }
 
+void RoverPanel::drawFigure(std::size_t i) const {
+    if (i >= plots_.size() || drawn_[i]) return;
+    plotRoverFigure(*plots_[i], result_.series, roverFigures()[i].key, title_);
+    drawn_[i] = true;
+}
+
 std::vector<std::pair<QString, QCustomPlot*>> RoverPanel::plots() const {
     std::vector<std::pair<QString, QCustomPlot*>> out;
     for (std::size_t i = 0; i < plots_.size(); ++i) {
+        drawFigure(i);  // exports and tests see every figure of the current run
         out.emplace_back(QString::fromStdString("rover-" + roverFigures()[i].key), plots_[i]);
     }
     out.emplace_back("rover-top-view", top_view_);
@@ -237,7 +248,9 @@ std::vector<std::pair<QString, QCustomPlot*>> RoverPanel::plots() const {
 
 QCustomPlot* RoverPanel::currentPlot() const {
     const int i = tabs_->currentIndex();
-    return i <= 0 ? top_view_ : plots_[static_cast<std::size_t>(i - 1)];
+    if (i <= 0) return top_view_;
+    drawFigure(static_cast<std::size_t>(i - 1));
+    return plots_[static_cast<std::size_t>(i - 1)];
 }
 
 std::string RoverPanel::currentName() const { return scenario_->currentText().toStdString(); }
@@ -343,11 +356,12 @@ void RoverPanel::present(const std::any& value) {
     result_ = std::move(result);
     shown_name_ = currentName() + (isEdited() ? " (edited)" : "");
     progress_->setValue(100);
-    const QString title = roverTitle(shown_name_, result_.status);
+    title_ = roverTitle(shown_name_, result_.status);
     const Table& t = result_.series;
-    for (std::size_t i = 0; i < plots_.size(); ++i) plotRoverFigure(*plots_[i], t, roverFigures()[i].key, title);
+    drawn_.assign(plots_.size(), false);
+    if (tabs_->currentIndex() > 0) drawFigure(static_cast<std::size_t>(tabs_->currentIndex() - 1));
     const int last = static_cast<int>(t.rows.size()) - 1;
-    plotRoverTopView(*top_view_, shown_, t, static_cast<std::size_t>(std::max(last, 0)), title);
+    plotRoverTopView(*top_view_, shown_, t, static_cast<std::size_t>(std::max(last, 0)), title_);
     {
         const QSignalBlocker block(scrubber_);
         scrubber_->setRange(0, std::max(last, 0));

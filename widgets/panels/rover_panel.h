@@ -97,6 +97,10 @@ private:
     nlohmann::json currentJson() const;  // edited or file JSON (null when unreadable)
     void showScenarioState();
     void storeEdit(const nlohmann::json& json);
+    /// Draws figure i of roverFigures() if the shown run has not been drawn on it yet. Figures are
+    /// drawn when their tab is first shown (or exported), not all in present(): drawing the eleven
+    /// plots of a 6001-row run at once held the GUI thread 63–203 ms (docs/performance.md).
+    void drawFigure(std::size_t i) const;
 
     io::PresetLocations locations_;
     QComboBox* scenario_;
@@ -110,7 +114,9 @@ private:
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;
-    std::vector<QCustomPlot*> plots_;  // figures of roverFigures(), then the top view
+    std::vector<QCustomPlot*> plots_;  // figures of roverFigures()
+    mutable std::vector<bool> drawn_;  // plots_[i] shows the current result
+    QString title_;
     QCustomPlot* top_view_;
     QSlider* scrubber_;
     QLabel* time_;
