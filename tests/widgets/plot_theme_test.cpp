@@ -91,6 +91,20 @@ TEST_F(DarkDesktop, ExportsStayLightUnlessAsked) {
     EXPECT_LT(lightness(QColor(QImage(dark).pixel(0, 0))), 0.3);
 }
 
+// A plot drawn with its own frame colours (not through resetPlot/plotSweep) keeps them on screen
+// and in the file: the export only re-colours plots that follow the palette.
+TEST_F(DarkDesktop, PlotsWithTheirOwnColoursAreLeftAlone) {
+    QCustomPlot plot;
+    plot.resize(400, 300);
+    plot.yAxis->setTickLabelColor(QColor(214, 39, 40));
+    plot.yAxis->setBasePen(QPen(QColor(214, 39, 40)));
+    QString error;
+    ASSERT_TRUE(exportPlot(plot, dir_.filePath("own.png"), {400, 300, 96, 1.0}, &error)) << error.toStdString();
+    EXPECT_FALSE(followsPalette(plot));
+    EXPECT_EQ(plot.yAxis->tickLabelColor(), QColor(214, 39, 40));
+    EXPECT_EQ(plot.yAxis->basePen().color(), QColor(214, 39, 40));
+}
+
 TEST_F(DarkDesktop, ChangingThePaletteRethemesDrawnPlots) {
     QApplication::setPalette(saved_);  // start light
     QCustomPlot plot;

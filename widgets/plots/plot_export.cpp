@@ -39,16 +39,18 @@ bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& opt
     const QString temporary = path + ".part." + suffix;
     bool ok = false;
     // Light colours for the file unless asked otherwise; the screen gets its palette back after.
+    // Only plots whose frame follows the palette (plot_theme.h) are re-coloured: others keep the
+    // colours their drawing code chose (e.g. axes tinted like their curves).
     struct ScreenColours {
         QCustomPlot& plot;
-        bool restore;
+        bool relight;
         ~ScreenColours() {
-            if (!restore) return;
+            if (!relight) return;
             applyPlotTheme(plot, PlotTheme::fromPalette(plot.palette()));
             plot.replot(QCustomPlot::rpQueuedReplot);
         }
     } screen{plot, !options.screen_colours && followsPalette(plot)};
-    if (!options.screen_colours) applyPlotTheme(plot, PlotTheme::light());
+    if (screen.relight) applyPlotTheme(plot, PlotTheme::light());
     if (suffix == "png") {
         ok = plot.savePng(temporary, options.width, options.height, options.scale, -1, options.dpi);
     } else if (suffix == "svg") {

@@ -17,8 +17,8 @@ struct ExportOptions {
     int height = 800;
     int dpi = 96;       ///< resolution recorded in PNG/SVG
     double scale = 1.0; ///< PNG pixel multiplier (2: a 2400 × 1600 image of the same layout)
-    /// Keep the on-screen colours (a dark palette gives a dark image); by default exports are
-    /// light (white background, plot_theme.h) whatever the desktop, for reports.
+    /// Keep the on-screen colours (a dark palette gives a dark image); by default plots that
+    /// follow the palette (plot_theme.h) export light (white background) whatever the desktop.
     bool screen_colours = false;
 };
 
