@@ -109,7 +109,7 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
     const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
     return [inputs](const std::atomic<bool>& cancel) -> std::any {
         ForcesOutcome out;
-        out.soil = computeSoilCurves(inputs, {}, &cancel);  // ~1 % of the sweep's time
+        out.soil = computeSoilCurves(inputs, {}, &cancel);  // ~1 ms, ~6 % of the sweep (sandy loam)
         out.sweep = computeForceSweep(inputs, &cancel);
         return out;
     };
