@@ -278,7 +278,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     if (!t.rows.empty()) {
         auto* path = new QCPCurve(plot.xAxis, plot.yAxis);
         path->setData(column(t, "x_m"), column(t, "y_m"));
-        path->setPen(QPen(QColor(40, 40, 40), 1.5, Qt::DashLine));
+        // Solid: a dashed pen over thousands of points is slow to paint (GUI-thread time).
+        path->setPen(QPen(QColor(40, 40, 40), 1.5));
         path->setName("path of the centre of mass");
         auto* chassis = new QCPCurve(plot.xAxis, plot.yAxis);
         chassis->setName(kChassisCurveName);
