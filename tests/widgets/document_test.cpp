@@ -124,5 +124,31 @@ TEST(ProjectDocument, FailedSaveKeepsTheDocumentModifiedAndBadFilesAreReported) 
     EXPECT_NE(loaded.message().find("magic"), std::string::npos) << loaded.message();
 }
 
+// An edited scenario lives in the panel settings: changing them must make a close ask and the
+// autosave run, and a save must clear it.
+TEST(ProjectDocument, PanelSettingsChangeMarksTheProjectModifiedUntilSaved) {
+    QTemporaryDir dir;
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ASSERT_FALSE(document.isModified());
+    QSignalSpy modified(&document, &ProjectDocument::modifiedChanged);
+    const nlohmann::json edited = {{"scenario", "straight"}, {"edited", {{"straight", {{"duration_s", 5.0}}}}}};
+    document.setPanelSettings("rover", edited);
+    EXPECT_TRUE(document.isModified());
+    ASSERT_EQ(modified.count(), 1);
+    EXPECT_TRUE(modified.at(0).at(0).toBool());
+    document.setPanelSettings("rover", edited);  // unchanged: nothing new
+    EXPECT_EQ(modified.count(), 1);
+
+    QString error;
+    ASSERT_TRUE(document.save(dir.filePath("p.terra"), &error)) << error.toStdString();
+    EXPECT_FALSE(document.isModified());
+    ASSERT_EQ(modified.count(), 2);
+    EXPECT_FALSE(modified.at(1).at(0).toBool());
+    const auto loaded = ProjectDocument::load(dir.filePath("p.terra"));
+    ASSERT_TRUE(loaded.ok()) << loaded.message();
+    EXPECT_EQ(loaded->panels["rover"], edited);
+}
+
 }  // namespace
 }  // namespace terra::ui

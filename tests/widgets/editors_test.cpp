@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "core/common/units.h"
+#include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/editors/validated_spin_box.h"
 #include "widgets_test_support.h"
@@ -231,6 +232,22 @@ TEST(ConditionsEditor, BadSlipAngleListIsFlaggedNotApplied) {
     angles->setText("0, 15");
     emit angles->editingFinished();
     EXPECT_EQ(document.project().conditions.slip_angles_deg, (std::vector<double>{0.0, 15.0}));
+}
+
+// The tree lists the scenarios edited in the rover panel (kept in its settings) as they appear.
+TEST(ProjectTree, ListsEditedScenarios) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ProjectTree tree(&document);
+    QTreeWidgetItem* scenarios = tree.topLevelItem(ProjectTree::kScenarios);
+    ASSERT_NE(scenarios, nullptr);
+    EXPECT_EQ(scenarios->childCount(), 0);
+    document.setPanelSettings("rover", {{"scenario", "straight"},
+                                        {"edited", {{"straight", {{"duration_s", 5.0}}},
+                                                    {"soil-border", {{"duration_s", 9.0}}}}}});
+    ASSERT_EQ(scenarios->childCount(), 2);
+    EXPECT_EQ(scenarios->text(1), "2");
+    EXPECT_EQ(scenarios->child(0)->text(1), "edited");
 }
 
 }  // namespace

@@ -42,7 +42,9 @@ TEST(ForcesPanel, ShowsOneCurvePerSlipAngleFromTheModel) {
     EXPECT_EQ(table.rows.size(), 600u);  // 6 slip angles × 100 slips, all in equilibrium
     ASSERT_EQ(panel.plots().size(), 8u);  // six quantities vs slip, F_b(h), h_s(W)
     for (const auto& [name, plot] : panel.plots()) {
-        if (name.endsWith("-vs-slip")) EXPECT_EQ(plot->graphCount(), 6) << name.toStdString();
+        if (name.endsWith("-vs-slip")) {
+            EXPECT_EQ(plot->graphCount(), 6) << name.toStdString();
+        }
     }
     // The plotted drawbar pull at β = 5°, s = 0.5 is the model's value at the solved entry angle,
     // with the parameters typed from Table 2.1 (not read from the preset file).

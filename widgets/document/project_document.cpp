@@ -6,6 +6,7 @@
 #include <cmath>
 #include <algorithm>
 #include <functional>
+#include <utility>
 
 #include "core/common/range.h"
 
@@ -43,10 +44,10 @@ constexpr int kWheelRadiusId = 200, kWheelWidthId = 201, kLoadId = 300, kSlipAng
 }  // namespace
 
 ProjectDocument::ProjectDocument(QObject* parent) : QObject(parent), undo_(new QUndoStack(this)) {
-    connect(undo_, &QUndoStack::cleanChanged, this, [this](bool clean) { emit modifiedChanged(!clean); });
+    connect(undo_, &QUndoStack::cleanChanged, this, [this](bool) { emit modifiedChanged(isModified()); });
 }
 
-bool ProjectDocument::isModified() const { return !undo_->isClean(); }
+bool ProjectDocument::isModified() const { return !undo_->isClean() || settings_modified_; }
 
 void ProjectDocument::notify(Part part) {
     ++revision_;
@@ -157,11 +158,19 @@ bool ProjectDocument::addDataSet(const std::string& path) {
 }
 
 void ProjectDocument::setPanelSettings(const std::string& panel, const nlohmann::json& settings) {
+    if (project_.panels.contains(panel) && project_.panels[panel] == settings) return;
     project_.panels[panel] = settings;
+    // Not undoable, but saved with the project (an edited scenario lives here): unsaved, it must
+    // make the close ask and the autosave run like any other change.
+    const bool was_modified = isModified();
+    settings_modified_ = true;
+    if (!was_modified) emit modifiedChanged(true);
+    emit panelSettingsChanged();
 }
 
 void ProjectDocument::reset(const Project& project, const QString& file_path) {
     project_ = project;
+    settings_modified_ = false;
     undo_->clear();
     undo_->setClean();
     file_path_ = file_path;
@@ -180,7 +189,9 @@ bool ProjectDocument::save(const QString& path, QString* error) {
         return false;
     }
     if (!path.endsWith(".autosave")) {
+        const bool settings_were_modified = std::exchange(settings_modified_, false);
         undo_->setClean();
+        if (settings_were_modified && !isModified()) emit modifiedChanged(false);
         file_path_ = path;
         emit filePathChanged(path);
     }

@@ -39,7 +39,8 @@ public:
     bool setSoil(const soil::SoilParameters& soil, const std::string& preset);
     bool setWheel(const wheel::WheelParameters& wheel, const std::string& preset);
     bool addDataSet(const std::string& path);
-    /// Panel settings are session state but not undoable edits of the model.
+    /// Panel settings are session state but not undoable edits of the model; a change marks the
+    /// project modified (they are saved with it) until the next save or reset.
     void setPanelSettings(const std::string& panel, const nlohmann::json& settings);
 
     /// Replaces everything (new/open): clears the undo stack and marks the document clean.
@@ -58,6 +59,7 @@ signals:
     void conditionsChanged();
     void dataSetsChanged();
     void changed();  ///< after any change of the model (revision bumped)
+    void panelSettingsChanged();  ///< a panel's settings changed (not a model change)
     void modifiedChanged(bool modified);
     void filePathChanged(const QString& path);
 
@@ -72,6 +74,7 @@ private:
     Project project_;
     QUndoStack* undo_;
     int revision_ = 0;
+    bool settings_modified_ = false;  // panel settings changed since the last save/reset
     QString file_path_;
 };
 

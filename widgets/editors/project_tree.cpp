@@ -19,6 +19,8 @@ ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent) : QTreeWidg
         if (item) emit pageRequested(item->data(0, Qt::UserRole).toInt());
     });
     connect(document_, &ProjectDocument::changed, this, &ProjectTree::refresh);
+    // Panel settings (the rover panel's edited scenarios) change without changed().
+    connect(document_, &ProjectDocument::panelSettingsChanged, this, &ProjectTree::refresh);
     refresh();
     setCurrentItem(items_[kSoil]);
 }
@@ -33,7 +35,22 @@ void ProjectTree::refresh() {
         new QTreeWidgetItem(items_[kDataSets], {QFileInfo(QString::fromStdString(path)).fileName()});
     }
     items_[kDataSets]->setText(1, QString::number(p.data_sets.size()));
-    items_[kScenarios]->setText(1, p.scenarios.empty() ? "none" : QString::number(p.scenarios.size()));
+    // Scenario files of the project plus the scenarios edited in the rover panel (kept in its
+    // settings, "edited": {name: scenario}).
+    qDeleteAll(items_[kScenarios]->takeChildren());
+    int scenario_count = 0;
+    for (const std::string& path : p.scenarios) {
+        new QTreeWidgetItem(items_[kScenarios], {QFileInfo(QString::fromStdString(path)).fileName()});
+        ++scenario_count;
+    }
+    const auto rover = p.panels.find("rover");
+    if (rover != p.panels.end() && rover->is_object() && rover->contains("edited") && (*rover)["edited"].is_object()) {
+        for (const auto& edited : (*rover)["edited"].items()) {
+            new QTreeWidgetItem(items_[kScenarios], {QString::fromStdString(edited.key()), "edited"});
+            ++scenario_count;
+        }
+    }
+    items_[kScenarios]->setText(1, scenario_count == 0 ? "shipped only" : QString::number(scenario_count));
     expandAll();
     resizeColumnToContents(0);
 }
