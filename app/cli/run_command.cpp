@@ -18,6 +18,7 @@
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/analyses/analyses.h"
+#include "widgets/analyses/soil_curves.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/plot_export.h"
 #include "widgets/plots/rover_figures.h"
@@ -296,6 +297,32 @@ public:
             r.notes = result.warnings;
             tables[""] = &result.table;
             evaluate(r, expectations, tables);
+        } else if (r.type == "soil-curves") {
+            // The forces panel's curves of the soil alone: bulldozing vs sinkage (Fig. 2.15),
+            // static sinkage vs load (Fig. 2.6).
+            ui::SoilCurvesSettings s;
+            s.points = analysis.value("points", s.points);
+            s.max_load_factor = analysis.value("max_load_factor", s.max_load_factor);
+            s.max_sinkage_fraction_of_radius =
+                analysis.value("max_sinkage_fraction_of_radius", s.max_sinkage_fraction_of_radius);
+            if (s.points < 2 || s.points > 10000) throw InputError(where + ".points: must be in [2, 10000]");
+            if (!(s.max_load_factor > 0.0 && s.max_load_factor <= 100.0)) {
+                throw InputError(where + ".max_load_factor: must be in (0, 100]");
+            }
+            if (!(s.max_sinkage_fraction_of_radius > 0.0 && s.max_sinkage_fraction_of_radius <= 1.0)) {
+                throw InputError(where + ".max_sinkage_fraction_of_radius: must be in (0, 1]");
+            }
+            const ui::SoilCurves curves = ui::computeSoilCurves(in, s);
+            ui::plotBulldozing(plot_, curves, title);
+            write(r, r.name + "-bulldozing");
+            ui::plotStaticSinkage(plot_, curves, title);
+            write(r, r.name + "-static-sinkage");
+            writeData(r, r.name + "-bulldozing", curves.bulldozing);
+            writeData(r, r.name + "-static-sinkage", curves.static_sinkage);
+            tables[""] = &curves.static_sinkage;
+            tables["static_sinkage"] = &curves.static_sinkage;
+            tables["bulldozing"] = &curves.bulldozing;
+            evaluate(r, expectations, tables);
         } else if (r.type == "stresses") {
             ui::StressSettings s;
             s.slip = analysis.value("slip", s.slip);
@@ -358,7 +385,7 @@ public:
             tables["curves"] = &result.curves;
             evaluate(r, expectations, tables);
         } else {
-            throw InputError(where + ".type: \"" + r.type + "\" is not one of forces, stresses, sensitivity, identification, rover");
+            throw InputError(where + ".type: \"" + r.type + "\" is not one of forces, soil-curves, stresses, sensitivity, identification, rover");
         }
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return r;
