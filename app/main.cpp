@@ -58,9 +58,12 @@ int runGui(int argc, char** argv) {
     QString panel, screenshots;
     for (int i = 1; i < argc; ++i) {
         const QString arg = QString::fromLocal8Bit(argv[i]);
-        if (arg == "--panel" && i + 1 < argc) panel = QString::fromLocal8Bit(argv[++i]);
-        else if (arg == "--screenshots" && i + 1 < argc) screenshots = QString::fromLocal8Bit(argv[++i]);
-        else if (arg.endsWith(".terra") && !window.openProject(arg)) return terra::app::kBadInput;
+        if (arg == "--panel" && i + 1 < argc)
+            panel = QString::fromLocal8Bit(argv[++i]);
+        else if (arg == "--screenshots" && i + 1 < argc)
+            screenshots = QString::fromLocal8Bit(argv[++i]);
+        else if (arg.endsWith(".terra") && !window.openProject(arg))
+            return terra::app::kBadInput;
     }
     if (!panel.isEmpty()) window.showPanel(panel);
     window.show();

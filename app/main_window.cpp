@@ -7,7 +7,6 @@
 #include <QDir>
 #include <QDockWidget>
 #include <QEventLoop>
-#include <cstdio>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
@@ -24,6 +23,7 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <cstdio>
 
 #include "widgets/document/project_document.h"
 #include "widgets/editors/project_tree.h"
@@ -41,7 +41,8 @@ namespace {
 constexpr int kMaxRecent = 8;
 constexpr int kAutosaveIntervalMs = 30000;
 
-QDockWidget* dock(QMainWindow* window, const QString& title, const QString& name, QWidget* content) {
+QDockWidget* dock(QMainWindow* window, const QString& title, const QString& name,
+                  QWidget* content) {
     auto* d = new QDockWidget(title, window);
     d->setObjectName(name);  // QSettings restores docks by object name
     d->setWidget(content);
@@ -60,15 +61,19 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     panels_ = {new ui::ForcesPanel(document_, tabs_), new ui::StressPanel(document_, tabs_),
                new ui::SensitivityPanel(document_, tabs_), identification,
                new ui::RoverPanel(document_, locations_, tabs_)};
-    const QStringList titles{"Forces vs slip", "Stresses", "Sensitivity", "Identification", "Rover scenario"};
+    const QStringList titles{"Forces vs slip", "Stresses", "Sensitivity", "Identification",
+                             "Rover scenario"};
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
         tabs_->addTab(panel, titles[static_cast<int>(i)]);
-        connect(panel, &ui::AnalysisPanel::resultShown, this, [this, panel, title = titles[static_cast<int>(i)]](double ms) {
-            statusBar()->showMessage(QString("%1 updated in %2 ms").arg(title).arg(ms, 0, 'f', 0), 5000);
+        connect(panel, &ui::AnalysisPanel::resultShown, this,
+                [this, panel, title = titles[static_cast<int>(i)]](double ms) {
+                    statusBar()->showMessage(
+                        QString("%1 updated in %2 ms").arg(title).arg(ms, 0, 'f', 0), 5000);
+                });
+        connect(panel, &ui::AnalysisPanel::failed, this, [this](const QString& message) {
+            statusBar()->showMessage("Error: " + message, 8000);
         });
-        connect(panel, &ui::AnalysisPanel::failed, this,
-                [this](const QString& message) { statusBar()->showMessage("Error: " + message, 8000); });
     }
     setCentralWidget(tabs_);
 
@@ -85,24 +90,30 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     data_layout->addWidget(data_list);
     data_layout->addWidget(load_data);
     editors_->addWidget(data_page);
-    auto* scenarios = new QLabel("Scenarios: resources/scenarios/*.json (docs/dynamics.md). Pick and run one in the Rover scenario panel.", editors_);
+    auto* scenarios = new QLabel(
+        "Scenarios: resources/scenarios/*.json (docs/dynamics.md). Pick and run one in the Rover "
+        "scenario panel.",
+        editors_);
     scenarios->setWordWrap(true);
     editors_->addWidget(scenarios);
     connect(tree, &ui::ProjectTree::pageRequested, editors_, &QStackedWidget::setCurrentIndex);
     connect(load_data, &QPushButton::clicked, this, [this, identification] {
-        const QString path = QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
+        const QString path =
+            QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
         if (path.isEmpty()) return;
         identification->setDataFile(path);
         showPanel("identification");
     });
     connect(document_, &ui::ProjectDocument::dataSetsChanged, data_list, [this, data_list] {
         data_list->clear();
-        for (const std::string& path : document_->project().data_sets) data_list->addItem(QString::fromStdString(path));
+        for (const std::string& path : document_->project().data_sets)
+            data_list->addItem(QString::fromStdString(path));
     });
-    connect(data_list, &QListWidget::itemDoubleClicked, this, [this, identification](QListWidgetItem* item) {
-        identification->setDataFile(item->text());
-        showPanel("identification");
-    });
+    connect(data_list, &QListWidget::itemDoubleClicked, this,
+            [this, identification](QListWidgetItem* item) {
+                identification->setDataFile(item->text());
+                showPanel("identification");
+            });
 
     auto* left = dock(this, "Project", "project_dock", tree);
     auto* right = dock(this, "Properties", "properties_dock", editors_);
@@ -130,25 +141,35 @@ void MainWindow::createMenus() {
     QMenu* file = menuBar()->addMenu("&File");
     QToolBar* bar = addToolBar("Main");
     bar->setObjectName("main_toolbar");
-    auto add = [&](QMenu* menu, const QString& text, QKeySequence key, auto slot, bool toolbar = false) {
+    auto add = [&](QMenu* menu, const QString& text, QKeySequence key, auto slot,
+                   bool toolbar = false) {
         QAction* action = menu->addAction(text, this, slot);
         action->setShortcut(key);
         if (toolbar) bar->addAction(action);
         return action;
     };
-    add(file, "&New", QKeySequence::New, [this] { newProject(); }, true);
-    add(file, "&Open…", QKeySequence::Open, [this] {
-        if (!maybeSave()) return;
-        const QString path = QFileDialog::getOpenFileName(this, "Open project", {}, "TerraStudio project (*.terra)");
-        if (!path.isEmpty()) openProject(path);
-    }, true);
+    add(
+        file, "&New", QKeySequence::New, [this] { newProject(); }, true);
+    add(
+        file, "&Open…", QKeySequence::Open,
+        [this] {
+            if (!maybeSave()) return;
+            const QString path = QFileDialog::getOpenFileName(this, "Open project", {},
+                                                              "TerraStudio project (*.terra)");
+            if (!path.isEmpty()) openProject(path);
+        },
+        true);
     recent_menu_ = file->addMenu("Open &Recent");
     rebuildRecentMenu();
-    add(file, "&Save", QKeySequence::Save, [this] { save(); }, true);
+    add(
+        file, "&Save", QKeySequence::Save, [this] { save(); }, true);
     add(file, "Save &As…", QKeySequence::SaveAs, [this] { saveAs(); });
     file->addSeparator();
-    add(file, "&Export Plot…", QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportCurrentPlot(); }, true);
-    add(file, "Export &Data (CSV)…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_E), [this] { exportCurrentData(); });
+    add(
+        file, "&Export Plot…", QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportCurrentPlot(); },
+        true);
+    add(file, "Export &Data (CSV)…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_E),
+        [this] { exportCurrentData(); });
     file->addSeparator();
     add(file, "&Quit", QKeySequence::Quit, [this] { close(); });
 
@@ -165,7 +186,8 @@ void MainWindow::createMenus() {
     for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
     view->addSeparator();
     for (int i = 0; i < tabs_->count(); ++i) {
-        add(view, tabs_->tabText(i), QKeySequence(Qt::CTRL | (Qt::Key_1 + i)), [this, i] { tabs_->setCurrentIndex(i); });
+        add(view, tabs_->tabText(i), QKeySequence(Qt::CTRL | (Qt::Key_1 + i)),
+            [this, i] { tabs_->setCurrentIndex(i); });
     }
     QMenu* help = menuBar()->addMenu("&Help");
     help->addAction("&About", this, [this] {
@@ -189,7 +211,9 @@ ui::AnalysisPanel* MainWindow::currentPanel() const {
 bool MainWindow::openProject(const QString& path, bool quiet) {
     auto project = ui::ProjectDocument::load(path);
     if (!project) {
-        if (!quiet) QMessageBox::warning(this, "Cannot open project", QString::fromStdString(project.message()));
+        if (!quiet)
+            QMessageBox::warning(this, "Cannot open project",
+                                 QString::fromStdString(project.message()));
         return false;
     }
     document_->reset(*project, QFileInfo(path).absoluteFilePath());
@@ -207,10 +231,13 @@ void MainWindow::newProject() {
     document_->reset(ui::ProjectDocument::defaultProject(locations_));
 }
 
-bool MainWindow::save() { return document_->filePath().isEmpty() ? saveAs() : saveTo(document_->filePath()); }
+bool MainWindow::save() {
+    return document_->filePath().isEmpty() ? saveAs() : saveTo(document_->filePath());
+}
 
 bool MainWindow::saveTo(const QString& path) {
-    for (ui::AnalysisPanel* panel : panels_) document_->setPanelSettings(panel->name().toStdString(), panel->settings());
+    for (ui::AnalysisPanel* panel : panels_)
+        document_->setPanelSettings(panel->name().toStdString(), panel->settings());
     QString error;
     if (!document_->save(path, &error)) {
         QMessageBox::warning(this, "Save failed", error);  // the document stays modified
@@ -223,7 +250,8 @@ bool MainWindow::saveTo(const QString& path) {
 }
 
 bool MainWindow::saveAs() {
-    QString path = QFileDialog::getSaveFileName(this, "Save project", document_->filePath(), "TerraStudio project (*.terra)");
+    QString path = QFileDialog::getSaveFileName(this, "Save project", document_->filePath(),
+                                                "TerraStudio project (*.terra)");
     if (path.isEmpty()) return false;
     if (!path.endsWith(".terra")) path += ".terra";
     return saveTo(path);
@@ -231,8 +259,9 @@ bool MainWindow::saveAs() {
 
 bool MainWindow::maybeSave() {
     if (!document_->isModified()) return true;
-    const auto answer = QMessageBox::warning(this, "Unsaved changes", "The project has unsaved changes. Save them?",
-                                             QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
+    const auto answer =
+        QMessageBox::warning(this, "Unsaved changes", "The project has unsaved changes. Save them?",
+                             QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
     if (answer == QMessageBox::Save) return save();
     return answer == QMessageBox::Discard;
 }
@@ -253,13 +282,15 @@ void MainWindow::exportCurrentPlot() {
     ui::AnalysisPanel* panel = currentPanel();
     if (!panel) return;
     const QString suggested = QDir::home().filePath(panel->name() + ".png");
-    ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(), suggested);
+    ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(),
+                                       suggested);
 }
 
 void MainWindow::exportCurrentData() {
     ui::AnalysisPanel* panel = currentPanel();
     if (!panel) return;
-    const QString path = QFileDialog::getSaveFileName(this, "Export data", QDir::home().filePath(panel->name() + ".csv"), "CSV (*.csv)");
+    const QString path = QFileDialog::getSaveFileName(
+        this, "Export data", QDir::home().filePath(panel->name() + ".csv"), "CSV (*.csv)");
     QString error;
     if (!path.isEmpty() && !ui::exportTable(panel->currentTable(), path, &error)) {
         QMessageBox::warning(this, "Export failed", error);
@@ -280,15 +311,20 @@ void MainWindow::rebuildRecentMenu() {
     recent_menu_->clear();
     const QStringList recent = QSettings().value("recentFiles").toStringList();
     for (const QString& path : recent) {
-        recent_menu_->addAction(QFileInfo(path).fileName(), this, [this, path] {
-            if (maybeSave()) openProject(path);
-        })->setToolTip(path);
+        recent_menu_
+            ->addAction(QFileInfo(path).fileName(), this,
+                        [this, path] {
+                            if (maybeSave()) openProject(path);
+                        })
+            ->setToolTip(path);
     }
     recent_menu_->setEnabled(!recent.isEmpty());
 }
 
 void MainWindow::updateTitle() {
-    const QString name = document_->filePath().isEmpty() ? "untitled.terra" : QFileInfo(document_->filePath()).fileName();
+    const QString name = document_->filePath().isEmpty()
+                             ? "untitled.terra"
+                             : QFileInfo(document_->filePath()).fileName();
     setWindowTitle(name + "[*] — TerraStudio");
     setWindowModified(document_->isModified());
 }
@@ -301,16 +337,19 @@ QString MainWindow::autosavePath() {
 
 void MainWindow::autosave() {
     if (!document_->isModified()) return;
-    for (ui::AnalysisPanel* panel : panels_) document_->setPanelSettings(panel->name().toStdString(), panel->settings());
+    for (ui::AnalysisPanel* panel : panels_)
+        document_->setPanelSettings(panel->name().toStdString(), panel->settings());
     QString error;
-    if (!document_->save(autosavePath(), &error)) statusBar()->showMessage("Autosave failed: " + error, 5000);
+    if (!document_->save(autosavePath(), &error))
+        statusBar()->showMessage("Autosave failed: " + error, 5000);
 }
 
 void MainWindow::offerRecovery() {
     const QString path = autosavePath();
     if (!QFileInfo::exists(path)) return;
     const auto answer = QMessageBox::question(
-        this, "Recover project", "TerraStudio did not close cleanly. Recover the unsaved project from the autosave?");
+        this, "Recover project",
+        "TerraStudio did not close cleanly. Recover the unsaved project from the autosave?");
     if (answer == QMessageBox::Yes) {
         auto project = ui::ProjectDocument::load(path);
         if (project) {

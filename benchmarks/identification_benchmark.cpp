@@ -17,8 +17,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
 
 contact::ContactParameters<double> sandyLoam() {
-    return {0.092, 0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * kDeg, 0.025, 15.2e3,
-            0.2,   0.3,   0.02};
+    return {0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * kDeg, 0.025,
+            15.2e3, 0.2,   0.3, 0.02};
 }
 
 // 91 samples in all: one load, or three loads (30 + 30 + 31 slips).
@@ -59,7 +59,8 @@ void streamingUpdate(benchmark::State& state) {
     DataSet d = data(1, 0.01);
     // A robot's slip wanders: visit the sweep in a scrambled order.
     std::vector<Sample> order;
-    for (std::size_t i = 0; i < d.samples.size(); ++i) order.push_back(d.samples[(i * 37) % d.samples.size()]);
+    for (std::size_t i = 0; i < d.samples.size(); ++i)
+        order.push_back(d.samples[(i * 37) % d.samples.size()]);
     StreamingIdentifier id(kWheelA);
     std::size_t i = 0;
     for (; i < 60; ++i) id.push(order[i % order.size()]);

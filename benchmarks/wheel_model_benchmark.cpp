@@ -16,12 +16,12 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Table 2.1 sandy loam / clayey soil on wheel A (Table 2.2), Table 2.6 j_max.
 ContactParameters<double> sandyLoam() {
-    return {0.092, 0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * kDeg, 0.025, 15.2e3,
-            0.2,   0.3,   0.02};
+    return {0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * kDeg, 0.025,
+            15.2e3, 0.2,   0.3, 0.02};
 }
 ContactParameters<double> clayeySoil() {
-    return {0.092, 0.107, 0.5, 0.0, 13.2e3 / 0.107 + 692.2e3, 4.14e3, 13.0 * kDeg, 0.01, 13.24e3,
-            0.2,   0.3,   0.009};
+    return {0.092,   0.107, 0.5, 0.0,  13.2e3 / 0.107 + 692.2e3, 4.14e3, 13.0 * kDeg, 0.01,
+            13.24e3, 0.2,   0.3, 0.009};
 }
 
 // A spread of operating points so that the branch predictor and caches see realistic variety.
@@ -81,7 +81,8 @@ BENCHMARK_CAPTURE(entryAngle, quadratic, ContactModel::kQuadratic);
 void thesisSweep(benchmark::State& state) {
     terra::analysis::SweepSpec spec;
     spec.slips = terra::analysis::linspace(0.0, 0.99, 101);
-    for (double beta : {5.0, 10.0, 15.0, 20.0, 25.0, 30.0}) spec.slip_angles_rad.push_back(beta * kDeg);
+    for (double beta : {5.0, 10.0, 15.0, 20.0, 25.0, 30.0})
+        spec.slip_angles_rad.push_back(beta * kDeg);
     spec.threads = static_cast<int>(state.range(0));
     const ContactParameters<double> p = sandyLoam();
     for (auto _ : state) {

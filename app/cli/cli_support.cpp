@@ -19,7 +19,8 @@ void ModelOptions::addTo(CLI::App& command, bool with_geometry) {
     command.add_option("--set", set, "Override a soil field in file units, e.g. --set phi_deg=30");
     command.add_option("--a0", a0, "a0 of theta_m = (a0 + a1 s) theta_f (Eq. 2.18)");
     command.add_option("--a1", a1, "a1 of Eq. 2.18");
-    auto* jmax = command.add_option("--jmax", jmax_m, "Shear deformation limit j_max [m] (Eq. 2.16)");
+    auto* jmax =
+        command.add_option("--jmax", jmax_m, "Shear deformation limit j_max [m] (Eq. 2.16)");
     command.add_flag("--no-jmax", no_jmax, "No shear deformation limit")->excludes(jmax);
     command.add_option("--bulldozing", bulldozing, "Side-wall pressure coefficients (Eq. 2.27)")
         ->check(CLI::IsMember({"bekker", "hegedus"}))
@@ -32,7 +33,8 @@ void ModelOptions::addTo(CLI::App& command, bool with_geometry) {
                            "Fix theta_m [deg] instead of Eq. 2.18");
         auto* exit = command.add_option("--exit-angle", exit_angle_deg,
                                         "Exit angle theta_r [deg], <= 0 (default 0)");
-        command.add_option("--rut-ratio", rut_ratio, "Rut ratio lambda = h_r/h_f in [0, 1] (Eq. 2.12)")
+        command
+            .add_option("--rut-ratio", rut_ratio, "Rut ratio lambda = h_r/h_f in [0, 1] (Eq. 2.12)")
             ->excludes(exit);
     }
 }
@@ -49,7 +51,8 @@ soil::SoilParameters ModelOptions::soilParameters(const io::PresetLocations& loc
         double value = 0.0;
         if (!field) {
             std::string keys;
-            for (const auto& f : soil::soilFields()) keys += (keys.empty() ? "" : ", ") + std::string(f.key);
+            for (const auto& f : soil::soilFields())
+                keys += (keys.empty() ? "" : ", ") + std::string(f.key);
             issues.push_back({"--set " + key, "unknown soil field; fields: " + keys});
         } else if (equals == std::string::npos ||
                    !io::parseNumber(assignment.substr(equals + 1), value)) {
@@ -120,10 +123,12 @@ std::vector<double> parseValues(const std::string& text, const std::string& what
     for (std::string part; std::getline(stream, part, separator);) parts.push_back(part);
     if (parts.empty()) throw InputError(what + ": empty value");
     if (separator == ':') {
-        if (parts.size() != 3) throw InputError(what + ": a range is first:last:count, got '" + text + "'");
+        if (parts.size() != 3)
+            throw InputError(what + ": a range is first:last:count, got '" + text + "'");
         const double count = number(parts[2]);
         if (count < 1 || count > 100000 || count != std::floor(count)) {
-            throw InputError(what + ": count " + parts[2] + " must be a whole number in [1, 100000]");
+            throw InputError(what + ": count " + parts[2] +
+                             " must be a whole number in [1, 100000]");
         }
         return analysis::linspace(number(parts[0]), number(parts[1]), static_cast<int>(count));
     }

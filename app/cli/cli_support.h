@@ -30,7 +30,7 @@ struct InputError : std::runtime_error {
 struct ModelOptions {
     std::string soil = "sandy-loam";
     std::string wheel = "A";
-    std::vector<std::string> set;          ///< KEY=VALUE soil overrides in file units
+    std::vector<std::string> set;  ///< KEY=VALUE soil overrides in file units
     std::optional<double> a0, a1, jmax_m;
     bool no_jmax = false;
     std::optional<double> max_stress_angle_deg;

@@ -44,7 +44,8 @@ void parseNoise(const std::vector<std::string>& items, identification::NoiseSpec
         if (percent) value.pop_back();
         double sigma = 0.0;
         std::vector<Issue> issues;
-        if (!io::parseNumber(value, sigma)) throw InputError("--noise '" + item + "': not a number");
+        if (!io::parseNumber(value, sigma))
+            throw InputError("--noise '" + item + "': not a number");
         checkRange(issues, "--noise " + key, sigma, {0.0, percent ? 1000.0 : 1e6});
         if (!issues.empty()) throw InputError(formatIssues(issues));
         if (percent) {
@@ -65,13 +66,14 @@ struct IdentifyOptions {
     std::vector<std::string> fix;    // name=value
     std::vector<std::string> noise;  // fx=, fz=, my= noise levels for the refinement weights
     std::optional<double> jmax_m;
-    std::string stream;           // --stream FILE: one estimate per sample
+    std::string stream;  // --stream FILE: one estimate per sample
     std::size_t window = 60;
 };
 
 // `identify --stream FILE`: feeds the samples one at a time to the streaming identifier and
 // prints one line per sample (JSON Lines with --json), then the detected soil changes.
-void runStream(const IdentifyOptions& o, const identification::DataSet& data, const wheel::WheelParameters& wheel,
+void runStream(const IdentifyOptions& o, const identification::DataSet& data,
+               const wheel::WheelParameters& wheel,
                const identification::DecoupledParameters& guess) {
     identification::StreamingOptions options;
     options.initial = guess;
@@ -79,36 +81,48 @@ void runStream(const IdentifyOptions& o, const identification::DataSet& data, co
     identification::StreamingIdentifier identifier(wheel, options);
     std::vector<std::size_t> changes;
     if (!o.json) {
-        std::cout << "sample  time_s      a0      a1   Ks_kPa      n0      n1   c_kPa  phi_deg     K_m   score  window\n";
+        std::cout << "sample  time_s      a0      a1   Ks_kPa      n0      n1   c_kPa  phi_deg     "
+                     "K_m   score  window\n";
     }
     for (const identification::Sample& sample : data.samples) {
         const identification::StreamUpdate u = identifier.push(sample);
         if (u.change_detected && u.change_at) changes.push_back(*u.change_at);
         const identification::DecoupledParameters& p = u.parameters;
         if (o.json) {
-            nlohmann::json j{{"sample", u.index}, {"estimated", u.estimated}, {"window", u.window_size},
+            nlohmann::json j{{"sample", u.index},
+                             {"estimated", u.estimated},
+                             {"window", u.window_size},
                              {"score", roundSignificant(u.residual_score, 4)}};
             if (sample.time_s) j["time_s"] = *sample.time_s;
             if (u.estimated) {
-                j.update({{"a0", p.a0}, {"a1", p.a1}, {"Ks", p.pressure_modulus / 1e3}, {"n0", p.n0}, {"n1", p.n1},
-                          {"c_kPa", p.cohesion_pa / 1e3}, {"phi_deg", units::radToDeg(p.friction_angle_rad)},
+                j.update({{"a0", p.a0},
+                          {"a1", p.a1},
+                          {"Ks", p.pressure_modulus / 1e3},
+                          {"n0", p.n0},
+                          {"n1", p.n1},
+                          {"c_kPa", p.cohesion_pa / 1e3},
+                          {"phi_deg", units::radToDeg(p.friction_angle_rad)},
                           {"K_m", p.shear_modulus_m}});
             }
             if (u.change_at) j["change_at"] = *u.change_at;
             std::cout << j.dump() << '\n';
             continue;
         }
-        std::cout << std::setw(6) << u.index << ' ' << std::setw(7) << (sample.time_s ? fixed(*sample.time_s, 2) : "-");
+        std::cout << std::setw(6) << u.index << ' ' << std::setw(7)
+                  << (sample.time_s ? fixed(*sample.time_s, 2) : "-");
         if (u.estimated) {
-            std::cout << ' ' << std::setw(7) << fixed(p.a0, 4) << ' ' << std::setw(7) << fixed(p.a1, 4) << ' '
-                      << std::setw(8) << fixed(p.pressure_modulus / 1e3, 1) << ' ' << std::setw(7) << fixed(p.n0, 4)
-                      << ' ' << std::setw(7) << fixed(p.n1, 4) << ' ' << std::setw(7) << fixed(p.cohesion_pa / 1e3, 3)
-                      << ' ' << std::setw(8) << fixed(units::radToDeg(p.friction_angle_rad), 2) << ' ' << std::setw(7)
-                      << fixed(p.shear_modulus_m, 4);
+            std::cout << ' ' << std::setw(7) << fixed(p.a0, 4) << ' ' << std::setw(7)
+                      << fixed(p.a1, 4) << ' ' << std::setw(8) << fixed(p.pressure_modulus / 1e3, 1)
+                      << ' ' << std::setw(7) << fixed(p.n0, 4) << ' ' << std::setw(7)
+                      << fixed(p.n1, 4) << ' ' << std::setw(7) << fixed(p.cohesion_pa / 1e3, 3)
+                      << ' ' << std::setw(8) << fixed(units::radToDeg(p.friction_angle_rad), 2)
+                      << ' ' << std::setw(7) << fixed(p.shear_modulus_m, 4);
         } else {
-            std::cout << "   (collecting samples)                                                  ";
+            std::cout
+                << "   (collecting samples)                                                  ";
         }
-        std::cout << ' ' << std::setw(7) << fixed(u.residual_score, 2) << ' ' << std::setw(7) << u.window_size;
+        std::cout << ' ' << std::setw(7) << fixed(u.residual_score, 2) << ' ' << std::setw(7)
+                  << u.window_size;
         if (u.change_at) std::cout << "  soil change since sample " << *u.change_at;
         std::cout << '\n';
     }
@@ -129,16 +143,27 @@ void applyFixes(const std::vector<std::string>& items, identification::Decoupled
         const std::string key = item.substr(0, equals);
         double value = 0.0;
         if (equals == std::string::npos || !io::parseNumber(item.substr(equals + 1), value)) {
-            throw InputError("--fix '" + item + "': expected NAME=VALUE, NAME one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
+            throw InputError(
+                "--fix '" + item +
+                "': expected NAME=VALUE, NAME one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
         }
-        if (key == "a0") p.a0 = value, options.fixed[kA0] = true;
-        else if (key == "a1") p.a1 = value, options.fixed[kA1] = true;
-        else if (key == "Ks") p.pressure_modulus = value * 1e3, options.fixed[kKs] = true;
-        else if (key == "n") p.n0 = value, options.fixed[kN] = true;
-        else if (key == "c_kPa") p.cohesion_pa = value * 1e3, options.fixed[kC] = true;
-        else if (key == "phi_deg") p.friction_angle_rad = units::degToRad(value), options.fixed[kPhi] = true;
-        else if (key == "K_m") p.shear_modulus_m = value, options.fixed[kK] = true;
-        else throw InputError("--fix '" + key + "': unknown; one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
+        if (key == "a0")
+            p.a0 = value, options.fixed[kA0] = true;
+        else if (key == "a1")
+            p.a1 = value, options.fixed[kA1] = true;
+        else if (key == "Ks")
+            p.pressure_modulus = value * 1e3, options.fixed[kKs] = true;
+        else if (key == "n")
+            p.n0 = value, options.fixed[kN] = true;
+        else if (key == "c_kPa")
+            p.cohesion_pa = value * 1e3, options.fixed[kC] = true;
+        else if (key == "phi_deg")
+            p.friction_angle_rad = units::degToRad(value), options.fixed[kPhi] = true;
+        else if (key == "K_m")
+            p.shear_modulus_m = value, options.fixed[kK] = true;
+        else
+            throw InputError("--fix '" + key +
+                             "': unknown; one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
     }
 }
 
@@ -152,10 +177,14 @@ double outputValue(int k, double si) {
 
 identification::DecoupledParameters guessFrom(const soil::SoilParameters& soil,
                                               const wheel::WheelParameters& wheel) {
-    return {soil.max_stress_a0, soil.max_stress_a1,
+    return {soil.max_stress_a0,
+            soil.max_stress_a1,
             soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus,
-            soil.sinkage_exponent, soil.sinkage_exponent_slip, soil.cohesion_pa,
-            soil.friction_angle_rad, soil.shear_modulus_m};
+            soil.sinkage_exponent,
+            soil.sinkage_exponent_slip,
+            soil.cohesion_pa,
+            soil.friction_angle_rad,
+            soil.shear_modulus_m};
 }
 
 }  // namespace
@@ -163,12 +192,17 @@ identification::DecoupledParameters guessFrom(const soil::SoilParameters& soil,
 void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     auto synth = std::make_shared<SynthOptions>();
     CLI::App* s = app.add_subcommand(
-        "synth", "Synthetic identification data: slip sweeps at one or more loads, noise (Eq. 5.1)");
+        "synth",
+        "Synthetic identification data: slip sweeps at one or more loads, noise (Eq. 5.1)");
     synth->model.addTo(*s, false);
-    s->add_option("--load", synth->loads, "W [N]: value, list a,b or range first:last:count")->capture_default_str();
-    s->add_option("--slips", synth->slips, "Slips: range first:last:count or list")->capture_default_str();
-    s->add_option("--slip-angle", synth->slip_angle_deg, "Slip angle [deg] (Table 5.2: 0)")->capture_default_str();
-    s->add_option("--noise", synth->noise, "Noise per channel: fx|fz|my|theta=SIGMA (N, N·m, deg) or =P%")
+    s->add_option("--load", synth->loads, "W [N]: value, list a,b or range first:last:count")
+        ->capture_default_str();
+    s->add_option("--slips", synth->slips, "Slips: range first:last:count or list")
+        ->capture_default_str();
+    s->add_option("--slip-angle", synth->slip_angle_deg, "Slip angle [deg] (Table 5.2: 0)")
+        ->capture_default_str();
+    s->add_option("--noise", synth->noise,
+                  "Noise per channel: fx|fz|my|theta=SIGMA (N, N·m, deg) or =P%")
         ->delimiter(',');
     s->add_option("--seed", synth->seed, "Random seed")->capture_default_str();
     s->add_option("--out", synth->out, "Output CSV (default: stdout)");
@@ -181,7 +215,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         spec.slip_angle_rad = units::degToRad(synth->slip_angle_deg);
         spec.seed = synth->seed;
         parseNoise(synth->noise, spec.noise);
-        const auto out = identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
+        const auto out =
+            identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
         for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
         writeOutput(synth->out, identification::toCsv(out.data));
         if (!synth->out.empty() && synth->out != "-") {
@@ -190,38 +225,52 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     });
 
     auto identify = std::make_shared<IdentifyOptions>();
-    CLI::App* i = app.add_subcommand(
-        "identify", "Identify soil parameters from wheel data: the decoupled three-step fit (Eqs. 4.12, 4.17, 4.18)");
-    CLI::Option* data_option =
-        i->add_option("--data", identify->data, "Data set CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm)");
-    CLI::Option* stream_option = i->add_option(
-        "--stream", identify->stream,
-        "Streaming identification: feed the samples of this CSV one at a time, one line of estimates per sample");
+    CLI::App* i = app.add_subcommand("identify",
+                                     "Identify soil parameters from wheel data: the decoupled "
+                                     "three-step fit (Eqs. 4.12, 4.17, 4.18)");
+    CLI::Option* data_option = i->add_option(
+        "--data", identify->data, "Data set CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm)");
+    CLI::Option* stream_option =
+        i->add_option("--stream", identify->stream,
+                      "Streaming identification: feed the samples of this CSV one at a time, one "
+                      "line of estimates per sample");
     data_option->excludes(stream_option);
     i->add_option("--window", identify->window, "With --stream: samples in the sliding window")
         ->capture_default_str()
         ->check(CLI::Range(std::size_t{12}, std::size_t{100000}));
     i->add_option("--wheel", identify->wheel, "Wheel preset or JSON file")->capture_default_str();
-    i->add_option("--guess", identify->guess, "Initial guess: soil preset or JSON file (default: thesis chapter 5)");
+    i->add_option("--guess", identify->guess,
+                  "Initial guess: soil preset or JSON file (default: thesis chapter 5)");
     i->add_flag("--json", identify->json, "JSON output");
-    i->add_flag("--skip-bad-rows", identify->skip_bad_rows, "Skip invalid rows instead of stopping");
-    i->add_flag("--refine", identify->refine,
-                "Refine a0, a1, Ks, n, c, phi, K with the full model (removes the linearisation bias)");
-    i->add_option("--fix", identify->fix, "With --refine: keep parameters fixed, e.g. a0=0.2,a1=0.3")
+    i->add_flag("--skip-bad-rows", identify->skip_bad_rows,
+                "Skip invalid rows instead of stopping");
+    i->add_flag(
+        "--refine", identify->refine,
+        "Refine a0, a1, Ks, n, c, phi, K with the full model (removes the linearisation bias)");
+    i->add_option("--fix", identify->fix,
+                  "With --refine: keep parameters fixed, e.g. a0=0.2,a1=0.3")
         ->delimiter(',');
-    i->add_option("--noise", identify->noise,
-                  "With --refine: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
+    i->add_option(
+         "--noise", identify->noise,
+         "With --refine: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
         ->delimiter(',');
-    i->add_option("--jmax", identify->jmax_m, "With --refine: the model's j_max [m] (default: the guess soil's, else none)");
+    i->add_option("--jmax", identify->jmax_m,
+                  "With --refine: the model's j_max [m] (default: the guess soil's, else none)");
     i->callback([identify, &locations] {
-        if (identify->data.empty() == identify->stream.empty()) throw InputError("give --data FILE or --stream FILE");
+        if (identify->data.empty() == identify->stream.empty())
+            throw InputError("give --data FILE or --stream FILE");
         const bool streaming = !identify->stream.empty();
         if (streaming && identify->refine) throw InputError("--refine does not apply to --stream");
-        const auto read = identification::readDataSet(
-            streaming ? identify->stream : identify->data, identify->skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop);
+        const auto read =
+            identification::readDataSet(streaming ? identify->stream : identify->data,
+                                        identify->skip_bad_rows ? identification::BadRows::kSkip
+                                                                : identification::BadRows::kStop);
         if (!read) throw InputError(read.message() + "\n(use --skip-bad-rows to skip bad rows)");
-        for (const Issue& skipped : read->skipped) std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
-        if (read->data.samples.empty()) throw InputError((streaming ? identify->stream : identify->data) + ": no valid samples");
+        for (const Issue& skipped : read->skipped)
+            std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
+        if (read->data.samples.empty())
+            throw InputError((streaming ? identify->stream : identify->data) +
+                             ": no valid samples");
         ModelOptions names;
         names.wheel = identify->wheel;
         const auto wheel = names.wheelParameters(locations);
@@ -238,7 +287,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         identification::DecoupledParameters p = fit.parameters;
         std::vector<identification::StepReport> reports = fit.steps;
         std::optional<identification::Uncertainty> uncertainty;
-        if (!identify->refine && (!identify->fix.empty() || !identify->noise.empty() || identify->jmax_m)) {
+        if (!identify->refine &&
+            (!identify->fix.empty() || !identify->noise.empty() || identify->jmax_m)) {
             throw InputError("--fix, --noise and --jmax belong to --refine");
         }
         if (identify->refine) {
@@ -255,7 +305,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                 if (!issues.empty()) throw InputError(formatIssues(issues));
                 options.max_shear_deformation_m = *identify->jmax_m;
             } else if (!identify->guess.empty()) {
-                options.max_shear_deformation_m = names.soilParameters(locations).max_shear_deformation_m;
+                options.max_shear_deformation_m =
+                    names.soilParameters(locations).max_shear_deformation_m;
             }
             const auto refined = identification::refineFullModel(read->data, wheel, p, options);
             p = refined.parameters;
@@ -275,15 +326,19 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             nlohmann::json std_json = nlohmann::json::object();
             for (int k = 0; k < identification::kFullParameterCount; ++k) {
                 std_json[identification::fullParameterNames()[k]] =
-                    uncertainty->computed ? nlohmann::json(outputValue(k, uncertainty->std[k])) : nlohmann::json();
+                    uncertainty->computed ? nlohmann::json(outputValue(k, uncertainty->std[k]))
+                                          : nlohmann::json();
             }
             j["std"] = std_json;
             j["flags"] = uncertainty->flags;
         }
         nlohmann::json steps = nlohmann::json::array();
         for (const auto& step : reports) {
-            steps.push_back({{"step", step.name}, {"usable", step.usable}, {"termination", step.termination},
-                             {"iterations", step.iterations}, {"squared_residual_norm", step.squared_residual_norm},
+            steps.push_back({{"step", step.name},
+                             {"usable", step.usable},
+                             {"termination", step.termination},
+                             {"iterations", step.iterations},
+                             {"squared_residual_norm", step.squared_residual_norm},
                              {"time_ms", step.wall_time_ms}});
         }
         j["steps"] = steps;
@@ -293,24 +348,31 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         } else {
             auto pm = [&](int k) {
                 return uncertainty && uncertainty->computed && uncertainty->std[k] > 0
-                           ? " ± " + fixed(outputValue(k, uncertainty->std[k]), 4) : std::string();
+                           ? " ± " + fixed(outputValue(k, uncertainty->std[k]), 4)
+                           : std::string();
             };
             using namespace identification;
-            std::cout << (identify->refine ? "full-model identification (decoupled start), " : "decoupled identification, ")
+            std::cout << (identify->refine ? "full-model identification (decoupled start), "
+                                           : "decoupled identification, ")
                       << read->data.samples.size() << " samples, " << wheel.name << "\n"
-                      << "  a0 = " << fixed(p.a0, 4) << pm(kA0) << "   a1 = " << fixed(p.a1, 4) << pm(kA1) << "\n"
+                      << "  a0 = " << fixed(p.a0, 4) << pm(kA0) << "   a1 = " << fixed(p.a1, 4)
+                      << pm(kA1) << "\n"
                       << "  Ks = " << fixed(p.pressure_modulus / 1e3, 1) << pm(kKs) << " kPa/m^n   "
                       << (identify->refine ? "n = " + fixed(p.n0, 4) + pm(kN)
-                                           : "n0 = " + fixed(p.n0, 4) + "   n1 = " + fixed(p.n1, 4)) << "\n"
-                      << "  c = " << fixed(p.cohesion_pa / 1e3, 3) << pm(kC) << " kPa   phi = "
-                      << fixed(units::radToDeg(p.friction_angle_rad), 2) << pm(kPhi) << " deg   K = "
-                      << fixed(p.shear_modulus_m, 4) << pm(kK) << " m\n";
+                                           : "n0 = " + fixed(p.n0, 4) + "   n1 = " + fixed(p.n1, 4))
+                      << "\n"
+                      << "  c = " << fixed(p.cohesion_pa / 1e3, 3) << pm(kC)
+                      << " kPa   phi = " << fixed(units::radToDeg(p.friction_angle_rad), 2)
+                      << pm(kPhi) << " deg   K = " << fixed(p.shear_modulus_m, 4) << pm(kK)
+                      << " m\n";
             for (const auto& step : reports) {
-                std::cout << "  step " << step.name << ": |r|^2 = " << step.squared_residual_norm << ", "
-                          << fixed(step.wall_time_ms, 2) << " ms, " << step.termination << '\n';
+                std::cout << "  step " << step.name << ": |r|^2 = " << step.squared_residual_norm
+                          << ", " << fixed(step.wall_time_ms, 2) << " ms, " << step.termination
+                          << '\n';
             }
             if (uncertainty) {
-                for (const std::string& flag : uncertainty->flags) std::cout << "  note: " << flag << '\n';
+                for (const std::string& flag : uncertainty->flags)
+                    std::cout << "  note: " << flag << '\n';
             }
         }
         bool usable = fit.usable();

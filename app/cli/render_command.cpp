@@ -31,7 +31,8 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     const auto wheel = o.model.wheelParameters(locations);
     analysis::SweepSpec spec;
     spec.slips = analysis::linspace(0.0, 0.99, 100);
-    for (double beta : {5.0, 10.0, 15.0, 20.0, 25.0, 30.0}) spec.slip_angles_rad.push_back(units::degToRad(beta));
+    for (double beta : {5.0, 10.0, 15.0, 20.0, 25.0, 30.0})
+        spec.slip_angles_rad.push_back(units::degToRad(beta));
     spec.load_n = o.load_n;
     spec.exit = o.model.exitCondition();
     spec.max_stress_angle_rad = o.model.maxStressAngleRad();

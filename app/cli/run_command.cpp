@@ -95,11 +95,13 @@ Outcome check(const Expectation& e, const Table& table) {
     const std::vector<double>& row = *rows.front();
     const double value = row[table.column(e.column)];
     out.passed = std::isfinite(value) && value >= e.min && value <= e.max;
-    out.text = e.column + describeAt(e.at, table, row) + ": " + formatNumber(value) + (out.passed ? " in " : " NOT in ") + range;
+    out.text = e.column + describeAt(e.at, table, row) + ": " + formatNumber(value) +
+               (out.passed ? " in " : " NOT in ") + range;
     return out;
 }
 
-std::vector<Expectation> parseExpectations(const json& analysis, const std::string& where, std::vector<Issue>& issues) {
+std::vector<Expectation> parseExpectations(const json& analysis, const std::string& where,
+                                           std::vector<Issue>& issues) {
     std::vector<Expectation> out;
     if (!analysis.contains("expect")) return out;
     const json& list = analysis["expect"];
@@ -112,7 +114,8 @@ std::vector<Expectation> parseExpectations(const json& analysis, const std::stri
         const std::string at = where + ".expect[" + std::to_string(i) + "]";
         Expectation e;
         if (!item.is_object() || !item.contains("column") || !item["column"].is_string()) {
-            issues.push_back({at, "needs \"column\" (a result column such as \"Fx_N\" or \"phi_deg\")"});
+            issues.push_back(
+                {at, "needs \"column\" (a result column such as \"Fx_N\" or \"phi_deg\")"});
             continue;
         }
         e.column = item["column"];
@@ -128,7 +131,8 @@ std::vector<Expectation> parseExpectations(const json& analysis, const std::stri
             continue;
         }
         if (item.contains("at")) {
-            for (const auto& [key, value] : item["at"].items()) e.at.emplace_back(key, value.get<double>());
+            for (const auto& [key, value] : item["at"].items())
+                e.at.emplace_back(key, value.get<double>());
         }
         out.push_back(e);
     }
@@ -166,8 +170,8 @@ Table roverSummaryTable(const json& summary, const Table& series) {
 
 /// The scenario of a `rover` analysis: "scenario" (a name of resources/scenarios or a file,
 /// relative to the script), with the optional overrides duration_s, time_step_s and model.
-scenario::Scenario roverScenario(const json& analysis, const io::PresetLocations& locations, const fs::path& base,
-                                 const std::string& where) {
+scenario::Scenario roverScenario(const json& analysis, const io::PresetLocations& locations,
+                                 const fs::path& base, const std::string& where) {
     if (!analysis.contains("scenario") || !analysis["scenario"].is_string()) {
         throw InputError(where + ".scenario: needs a scenario name (e.g. \"straight\") or file");
     }
@@ -187,19 +191,23 @@ scenario::Scenario roverScenario(const json& analysis, const io::PresetLocations
         return true;
     };
     double value = 0.0;
-    if (number("duration_s", value) && checkRange(issues, where + ".duration_s", value, {0.0, 86400.0, true, false}, "s")) {
+    if (number("duration_s", value) &&
+        checkRange(issues, where + ".duration_s", value, {0.0, 86400.0, true, false}, "s")) {
         s.duration_s = value;
     }
-    if (number("time_step_s", value) && checkRange(issues, where + ".time_step_s", value, {1e-6, 0.05}, "s")) {
+    if (number("time_step_s", value) &&
+        checkRange(issues, where + ".time_step_s", value, {1e-6, 0.05}, "s")) {
         s.time_step_s = value;
         s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
     }
     if (analysis.contains("model")) {
         const json& m = analysis["model"];
         if (m != "full" && m != "quadratic") {
-            issues.push_back({where + ".model", "= " + m.dump() + " is not one of full, quadratic"});
+            issues.push_back(
+                {where + ".model", "= " + m.dump() + " is not one of full, quadratic"});
         } else {
-            s.options.contact.model = m == "quadratic" ? contact::ContactModel::kQuadratic : contact::ContactModel::kFull;
+            s.options.contact.model =
+                m == "quadratic" ? contact::ContactModel::kQuadratic : contact::ContactModel::kFull;
         }
     }
     if (!issues.empty()) throw InputError(formatIssues(issues));
@@ -207,9 +215,12 @@ scenario::Scenario roverScenario(const json& analysis, const io::PresetLocations
 }
 
 /// The inputs of one analysis: the script's, with the analysis's own soil/wheel/conditions.
-ui::AnalysisInputs inputsFor(const json& script, const json& analysis, const io::PresetLocations& locations,
-                             const fs::path& base, const std::string& where) {
-    auto pick = [&](const char* key) { return analysis.contains(key) ? analysis[key] : script.value(key, json()); };
+ui::AnalysisInputs inputsFor(const json& script, const json& analysis,
+                             const io::PresetLocations& locations, const fs::path& base,
+                             const std::string& where) {
+    auto pick = [&](const char* key) {
+        return analysis.contains(key) ? analysis[key] : script.value(key, json());
+    };
     auto resolveName = [&](const json& spec, const char* fallback) {
         std::string name = spec.is_string() ? spec.get<std::string>() : fallback;
         if (name.ends_with(".json") && fs::path(name).is_relative()) name = (base / name).string();
@@ -229,7 +240,8 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis, const io:
                 issues.push_back({where + ".set." + key, "unknown soil field"});
             } else if (!value.is_number()) {
                 issues.push_back({where + ".set." + key, "must be a number"});
-            } else if (checkRange(issues, where + ".set." + key, value.get<double>(), field->range, field->unit)) {
+            } else if (checkRange(issues, where + ".set." + key, value.get<double>(), field->range,
+                                  field->unit)) {
                 soil::setUserValue(in.soil, *field, value.get<double>());
             }
         }
@@ -241,7 +253,8 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis, const io:
     if (analysis.contains("conditions")) conditions.update(analysis["conditions"]);
     // The project file's conditions parser checks ranges and types, with field paths.
     ui::Project probe;
-    auto parsed = ui::projectFromJson({{"format", "terrastudio-project"}, {"conditions", conditions}}, where);
+    auto parsed =
+        ui::projectFromJson({{"format", "terrastudio-project"}, {"conditions", conditions}}, where);
     if (!parsed) {
         issues.insert(issues.end(), parsed.issues().begin(), parsed.issues().end());
     } else {
@@ -253,9 +266,13 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis, const io:
 
 class Runner {
 public:
-    Runner(const json& script, const fs::path& base, const fs::path& out, const io::PresetLocations& locations,
-           std::vector<std::string> formats)
-        : script_(script), base_(base), out_(out), locations_(locations), formats_(std::move(formats)) {
+    Runner(const json& script, const fs::path& base, const fs::path& out,
+           const io::PresetLocations& locations, std::vector<std::string> formats)
+        : script_(script),
+          base_(base),
+          out_(out),
+          locations_(locations),
+          formats_(std::move(formats)) {
         const json e = script.value("export", json::object());
         options_.width = e.value("width", 1200);
         options_.height = e.value("height", 800);
@@ -277,19 +294,23 @@ public:
         if (r.type == "rover") {
             const auto start = std::chrono::steady_clock::now();
             runRover(r, analysis, expectations, where);
-            r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            r.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             return r;
         }
         const ui::AnalysisInputs in = inputsFor(script_, analysis, locations_, base_, where);
-        const QString title = QString::fromStdString(analysis.value("title", in.soil.name + ", " + in.wheel.name)) +
-                              QString(", W = %1 N").arg(in.conditions.load_n);
+        const QString title =
+            QString::fromStdString(analysis.value("title", in.soil.name + ", " + in.wheel.name)) +
+            QString(", W = %1 N").arg(in.conditions.load_n);
         std::map<std::string, const Table*> tables;
         const auto start = std::chrono::steady_clock::now();
         if (r.type == "forces") {
             const auto result = ui::computeForceSweep(in);
             std::vector<std::string> columns = analysis.value("plots", std::vector<std::string>{});
             for (const ui::SweepQuantity& q : ui::sweepQuantities()) {
-                if (!columns.empty() && std::find(columns.begin(), columns.end(), q.column) == columns.end()) continue;
+                if (!columns.empty() &&
+                    std::find(columns.begin(), columns.end(), q.column) == columns.end())
+                    continue;
                 ui::plotSweep(plot_, result.table, q, title);
                 write(r, r.name + "-" + q.column);
             }
@@ -305,11 +326,13 @@ public:
             s.max_load_factor = analysis.value("max_load_factor", s.max_load_factor);
             s.max_sinkage_fraction_of_radius =
                 analysis.value("max_sinkage_fraction_of_radius", s.max_sinkage_fraction_of_radius);
-            if (s.points < 2 || s.points > 10000) throw InputError(where + ".points: must be in [2, 10000]");
+            if (s.points < 2 || s.points > 10000)
+                throw InputError(where + ".points: must be in [2, 10000]");
             if (!(s.max_load_factor > 0.0 && s.max_load_factor <= 100.0)) {
                 throw InputError(where + ".max_load_factor: must be in (0, 100]");
             }
-            if (!(s.max_sinkage_fraction_of_radius > 0.0 && s.max_sinkage_fraction_of_radius <= 1.0)) {
+            if (!(s.max_sinkage_fraction_of_radius > 0.0 &&
+                  s.max_sinkage_fraction_of_radius <= 1.0)) {
                 throw InputError(where + ".max_sinkage_fraction_of_radius: must be in (0, 1]");
             }
             const ui::SoilCurves curves = ui::computeSoilCurves(in, s);
@@ -329,13 +352,15 @@ public:
             s.slip_angle_deg = analysis.value("slip_angle_deg", s.slip_angle_deg);
             const auto result = ui::computeStresses(in, s);
             if (!result.message.empty()) r.notes.push_back(result.message);
-            ui::plotStresses(plot_, result, analysis.value("stress", "all"),
-                             title + QString(", s = %1, β = %2°").arg(s.slip).arg(s.slip_angle_deg));
+            ui::plotStresses(
+                plot_, result, analysis.value("stress", "all"),
+                title + QString(", s = %1, β = %2°").arg(s.slip).arg(s.slip_angle_deg));
             write(r, r.name);
             writeData(r, r.name, result.table);
             Table errors{{"stress_index", "rmse_kPa", "mae_kPa"}, {}};
             for (int i = 0; i < 4; ++i) {
-                errors.rows.push_back({double(i), result.errors[i].rmse / 1e3, result.errors[i].mae / 1e3});
+                errors.rows.push_back(
+                    {double(i), result.errors[i].rmse / 1e3, result.errors[i].mae / 1e3});
             }
             writeData(r, r.name + "-errors", errors);
             tables[""] = &result.table;
@@ -379,13 +404,16 @@ public:
             writeData(r, r.name, result.curves);
             writeData(r, r.name + "-parameters", result.parameters);
             for (const auto& step : result.fit.steps) {
-                r.notes.push_back(step.name + ": " + step.termination + ", Σr² = " + formatNumber(step.squared_residual_norm));
+                r.notes.push_back(step.name + ": " + step.termination +
+                                  ", Σr² = " + formatNumber(step.squared_residual_norm));
             }
             tables[""] = &result.parameters;
             tables["curves"] = &result.curves;
             evaluate(r, expectations, tables);
         } else {
-            throw InputError(where + ".type: \"" + r.type + "\" is not one of forces, soil-curves, stresses, sensitivity, identification, rover");
+            throw InputError(where + ".type: \"" + r.type +
+                             "\" is not one of forces, soil-curves, stresses, sensitivity, "
+                             "identification, rover");
         }
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return r;
@@ -394,13 +422,14 @@ public:
 private:
     /// A rover scenario (docs/dynamics.md): its figures (rover_figures.h), the time series, the
     /// summary; expectations on the summary (default table) or the time series ("timeseries").
-    void runRover(AnalysisRun& r, const json& analysis, const std::vector<Expectation>& expectations,
-                  const std::string& where) {
+    void runRover(AnalysisRun& r, const json& analysis,
+                  const std::vector<Expectation>& expectations, const std::string& where) {
         const scenario::Scenario s = roverScenario(analysis, locations_, base_, where);
         std::vector<std::string> keys = analysis.value("plots", std::vector<std::string>{});
         for (const std::string& key : keys) {
-            const bool known = key == "top-view" || std::any_of(ui::roverFigures().begin(), ui::roverFigures().end(),
-                                                                [&](const ui::RoverFigure& f) { return f.key == key; });
+            const bool known = key == "top-view" ||
+                               std::any_of(ui::roverFigures().begin(), ui::roverFigures().end(),
+                                           [&](const ui::RoverFigure& f) { return f.key == key; });
             if (!known) {
                 std::string names = "top-view";
                 for (const auto& f : ui::roverFigures()) names += ", " + f.key;
@@ -417,7 +446,8 @@ private:
                                   : ui::roverTitle(s.name, result.status);
         for (const std::string& key : keys) {
             if (key == "top-view") {
-                const std::size_t last = result.series.rows.empty() ? 0 : result.series.rows.size() - 1;
+                const std::size_t last =
+                    result.series.rows.empty() ? 0 : result.series.rows.size() - 1;
                 ui::plotRoverTopView(plot_, s, result.series, last, title);
             } else {
                 ui::plotRoverFigure(plot_, result.series, key, title);
@@ -425,21 +455,26 @@ private:
             write(r, r.name + "-" + key);
         }
         writeData(r, r.name + "-timeseries", result.series);
-        if (!result.streaming.columns.empty()) writeData(r, r.name + "-streaming", result.streaming);
+        if (!result.streaming.columns.empty())
+            writeData(r, r.name + "-streaming", result.streaming);
         const json summary = scenario::toJson(result, s);
         const fs::path summary_path = out_ / (r.name + "-summary.json");
-        if (const auto error = io::writeFileAtomically(summary_path, summary.dump(2) + "\n")) throw std::runtime_error(*error);
+        if (const auto error = io::writeFileAtomically(summary_path, summary.dump(2) + "\n"))
+            throw std::runtime_error(*error);
         std::cout << "wrote " << summary_path.string() << '\n';
         r.data.push_back(summary_path.filename().string());
         if (result.status != scenario::RunResult::Status::kCompleted) {
-            r.notes.push_back("run " + summary.value("status", std::string()) + ": " + result.message);
+            r.notes.push_back("run " + summary.value("status", std::string()) + ": " +
+                              result.message);
         }
         if (summary.contains("warning")) r.notes.push_back(summary["warning"].get<std::string>());
-        r.notes.push_back("final pose x = " + formatNumber(result.summary.x_m) + " m, y = " + formatNumber(result.summary.y_m) +
-                          " m, yaw = " + formatNumber(result.summary.yaw_rad * 180.0 / M_PI) + " deg; motor energy " +
-                          formatNumber(result.summary.energy_j) + " J");
+        r.notes.push_back("final pose x = " + formatNumber(result.summary.x_m) +
+                          " m, y = " + formatNumber(result.summary.y_m) +
+                          " m, yaw = " + formatNumber(result.summary.yaw_rad * 180.0 / M_PI) +
+                          " deg; motor energy " + formatNumber(result.summary.energy_j) + " J");
         const Table summary_table = roverSummaryTable(summary, result.series);
-        std::map<std::string, const Table*> tables{{"", &summary_table}, {"timeseries", &result.series}};
+        std::map<std::string, const Table*> tables{{"", &summary_table},
+                                                   {"timeseries", &result.series}};
         evaluate(r, expectations, tables);
         if (result.status == scenario::RunResult::Status::kDiverged) {
             r.outcomes.push_back({"the run diverged: " + result.message, false});
@@ -460,7 +495,8 @@ private:
     void writeData(AnalysisRun& r, const std::string& stem, const Table& table) {
         const fs::path path = out_ / (stem + ".csv");
         QString error;
-        if (!ui::exportTable(table, QString::fromStdString(path.string()), &error)) throw std::runtime_error(error.toStdString());
+        if (!ui::exportTable(table, QString::fromStdString(path.string()), &error))
+            throw std::runtime_error(error.toStdString());
         std::cout << "wrote " << path.string() << '\n';
         r.data.push_back(path.filename().string());
     }
@@ -469,7 +505,8 @@ private:
         for (const Expectation& e : expectations) {
             const auto it = tables.find(e.table);
             if (it == tables.end()) {
-                r.outcomes.push_back({"table \"" + e.table + "\" does not exist for " + r.type, false});
+                r.outcomes.push_back(
+                    {"table \"" + e.table + "\" does not exist for " + r.type, false});
             } else {
                 r.outcomes.push_back(check(e, *it->second));
             }
@@ -484,12 +521,13 @@ private:
     QCustomPlot plot_;
 };
 
-std::string report(const json& script, const std::string& script_path, const std::vector<AnalysisRun>& runs,
-                   int failed) {
+std::string report(const json& script, const std::string& script_path,
+                   const std::vector<AnalysisRun>& runs, int failed) {
     std::ostringstream md;
     md << "# " << script.value("title", "TerraStudio run") << "\n\n";
     md << "Script: `" << script_path << "`  \n";
-    md << (failed == 0 ? "**All expectations met.**" : "**" + std::to_string(failed) + " expectation(s) or analyses FAILED.**")
+    md << (failed == 0 ? "**All expectations met.**"
+                       : "**" + std::to_string(failed) + " expectation(s) or analyses FAILED.**")
        << "\n\n";
     if (failed > 0) {
         md << "## Failures\n\n";
@@ -506,11 +544,13 @@ std::string report(const json& script, const std::string& script_path, const std
         if (!r.error.empty()) md << "**Error:** " << r.error << "\n\n";
         if (!r.outcomes.empty()) {
             md << "| Expectation | Result |\n|---|---|\n";
-            for (const auto& o : r.outcomes) md << "| " << o.text << " | " << (o.passed ? "pass" : "**FAIL**") << " |\n";
+            for (const auto& o : r.outcomes)
+                md << "| " << o.text << " | " << (o.passed ? "pass" : "**FAIL**") << " |\n";
             md << "\n";
         }
         for (const auto& image : r.images) {
-            if (image.ends_with(".png") || image.ends_with(".svg")) md << "![" << image << "](" << image << ")\n\n";
+            if (image.ends_with(".png") || image.ends_with(".svg"))
+                md << "![" << image << "](" << image << ")\n\n";
         }
         if (!r.data.empty()) {
             md << "Data:";
@@ -533,7 +573,8 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw InputError(o.script + ": needs an \"analyses\" list");
     }
     for (const std::string& f : o.formats) {
-        if (f != "png" && f != "svg" && f != "pdf") throw InputError("--format " + f + ": not one of png, svg, pdf");
+        if (f != "png" && f != "svg" && f != "pdf")
+            throw InputError("--format " + f + ": not one of png, svg, pdf");
     }
     std::error_code ec;
     fs::create_directories(o.out, ec);
@@ -564,29 +605,42 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
             ++failed;
         }
         for (const auto& outcome : r.outcomes) {
-            std::cout << (outcome.passed ? "pass: " : "FAIL: ") << r.name << ": " << outcome.text << '\n';
+            std::cout << (outcome.passed ? "pass: " : "FAIL: ") << r.name << ": " << outcome.text
+                      << '\n';
             if (!outcome.passed) ++failed;
         }
         runs.push_back(std::move(r));
     }
     const fs::path out(o.out);
-    if (const auto error = io::writeFileAtomically(out / "report.md", report(script, o.script, runs, failed))) {
+    if (const auto error =
+            io::writeFileAtomically(out / "report.md", report(script, o.script, runs, failed))) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
-    json manifest{{"tool", "terrastudio 0.1.0"}, {"script", o.script}, {"inputs", script}, {"failed", failed}};
+    json manifest{{"tool", "terrastudio 0.1.0"},
+                  {"script", o.script},
+                  {"inputs", script},
+                  {"failed", failed}};
     for (const auto& r : runs) {
         json outcomes = json::array();
-        for (const auto& oc : r.outcomes) outcomes.push_back({{"text", oc.text}, {"passed", oc.passed}});
-        manifest["analyses"].push_back({{"name", r.name}, {"type", r.type}, {"images", r.images}, {"data", r.data},
-                                        {"error", r.error}, {"expectations", outcomes}, {"notes", r.notes}});
+        for (const auto& oc : r.outcomes)
+            outcomes.push_back({{"text", oc.text}, {"passed", oc.passed}});
+        manifest["analyses"].push_back({{"name", r.name},
+                                        {"type", r.type},
+                                        {"images", r.images},
+                                        {"data", r.data},
+                                        {"error", r.error},
+                                        {"expectations", outcomes},
+                                        {"notes", r.notes}});
     }
-    if (const auto error = io::writeFileAtomically(out / "manifest.json", manifest.dump(2) + "\n")) {
+    if (const auto error =
+            io::writeFileAtomically(out / "manifest.json", manifest.dump(2) + "\n")) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "manifest.json").string() << '\n';
     if (failed > 0) {
-        std::cerr << failed << " expectation(s) or analyses failed (see " << (out / "report.md").string() << ")\n";
+        std::cerr << failed << " expectation(s) or analyses failed (see "
+                  << (out / "report.md").string() << ")\n";
         return kFailure;
     }
     return kSuccess;
@@ -596,11 +650,14 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
 
 void addRunCommand(CLI::App& app, const io::PresetLocations& locations) {
     auto options = std::make_shared<RunOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "run", "Run a script of analyses headlessly: plots, data, report.md; exit 1 when an expectation fails");
+    CLI::App* cmd = app.add_subcommand("run",
+                                       "Run a script of analyses headlessly: plots, data, "
+                                       "report.md; exit 1 when an expectation fails");
     cmd->add_option("script", options->script, "Script (JSON), see docs/user-guide.md")->required();
     cmd->add_option("--out", options->out, "Output directory")->capture_default_str();
-    cmd->add_option("--format", options->formats, "Image formats (png, svg, pdf), overriding the script")->delimiter(',');
+    cmd->add_option("--format", options->formats,
+                    "Image formats (png, svg, pdf), overriding the script")
+        ->delimiter(',');
     cmd->callback([options, &locations] {
         const int code = run(*options, locations);
         if (code != kSuccess) throw CLI::RuntimeError(code);

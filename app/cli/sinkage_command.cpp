@@ -30,10 +30,13 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
     CLI::App* cmd = app.add_subcommand(
         "sinkage", "Static sinkage (Bekker Eq. 2.8, exact Eq. 2.7) and the dynamic entry angle");
     options->model.addTo(*cmd);
-    cmd->add_option("--load", options->loads, "W [N]: a value, a list a,b or a range first:last:count")
+    cmd->add_option("--load", options->loads,
+                    "W [N]: a value, a list a,b or a range first:last:count")
         ->capture_default_str();
-    cmd->add_option("--slip", options->slip, "Slip s for the dynamic entry angle")->capture_default_str();
-    cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle [deg]")->capture_default_str();
+    cmd->add_option("--slip", options->slip, "Slip s for the dynamic entry angle")
+        ->capture_default_str();
+    cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle [deg]")
+        ->capture_default_str();
     cmd->add_flag("--json", options->json, "JSON output");
     cmd->add_option("--out", options->out, "Write CSV (or JSON with --json) to this file");
     cmd->callback([options, &locations] {
@@ -56,8 +59,10 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
         std::vector<std::string> notes;
         for (double w : loads) {
             const double bekker = contact::bekkerStaticSinkage(p, w);
-            const auto exact = contact::solveStaticSinkage(p, w, contact::StaticContact::kSymmetric);
-            const auto front = contact::solveStaticSinkage(p, w, contact::StaticContact::kFrontHalf);
+            const auto exact =
+                contact::solveStaticSinkage(p, w, contact::StaticContact::kSymmetric);
+            const auto front =
+                contact::solveStaticSinkage(p, w, contact::StaticContact::kFrontHalf);
             contact::EntryAngleProblem problem;
             problem.load_n = w;
             problem.slip = o.slip;
@@ -73,9 +78,12 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
                                   dynamic.ok() ? units::radToDeg(dynamic.entry_angle_rad) : nan,
                                   dynamic.ok() ? dynamic.sinkage_m : nan});
             const std::pair<const char*, const contact::SinkageSolution*> solves[] = {
-                {"static (Eq. 2.7)", &exact}, {"static front half", &front}, {"dynamic entry angle", &dynamic}};
+                {"static (Eq. 2.7)", &exact},
+                {"static front half", &front},
+                {"dynamic entry angle", &dynamic}};
             for (const auto& [what, s] : solves) {
-                if (!s->ok()) notes.push_back("W = " + formatNumber(w) + " N, " + what + ": " + s->message);
+                if (!s->ok())
+                    notes.push_back("W = " + formatNumber(w) + " N, " + what + ": " + s->message);
             }
             if (bekker > p.radius_m / 3.0) {
                 notes.push_back("W = " + formatNumber(w) +
@@ -89,11 +97,13 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
         } else if (!o.out.empty()) {
             text = io::toCsv(table);
         } else {
-            std::cout << soil.name << ", " << wheel.name << "; dynamic entry angle at s = "
-                      << formatNumber(o.slip) << ", beta = " << formatNumber(o.slip_angle_deg)
-                      << " deg (" << o.model.model << " model)\n";
-            std::cout << "  load [N]  Bekker h [mm]  Eq.2.7 h [mm]  theta_s [deg]  front-half h [mm]"
-                         "  theta_f [deg]  h_f [mm]\n";
+            std::cout << soil.name << ", " << wheel.name
+                      << "; dynamic entry angle at s = " << formatNumber(o.slip)
+                      << ", beta = " << formatNumber(o.slip_angle_deg) << " deg (" << o.model.model
+                      << " model)\n";
+            std::cout
+                << "  load [N]  Bekker h [mm]  Eq.2.7 h [mm]  theta_s [deg]  front-half h [mm]"
+                   "  theta_f [deg]  h_f [mm]\n";
             for (const auto& row : table.rows) {
                 char line[256];
                 std::snprintf(line, sizeof line, "  %8s  %13s  %13s  %13s  %17s  %13s  %8s\n",

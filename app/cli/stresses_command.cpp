@@ -1,5 +1,5 @@
-// `terrastudio stresses`: σ, τ, τ_t, τ_l and j over the contact (Eqs. 2.13–2.22), exact and from the
-// quadratic approximation (Eqs. 2.36–2.38), with RMSE and MAE (Eqs. 2.39–2.40, Tables 2.4–2.5).
+// `terrastudio stresses`: σ, τ, τ_t, τ_l and j over the contact (Eqs. 2.13–2.22), exact and from
+// the quadratic approximation (Eqs. 2.36–2.38), with RMSE and MAE (Eqs. 2.39–2.40, Tables 2.4–2.5).
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -19,10 +19,10 @@ namespace {
 
 struct StressOptions {
     ModelOptions model;
-    double slip = 0.3;            // Table 2.3
+    double slip = 0.3;  // Table 2.3
     double slip_angle_deg = 12.0;
     double entry_angle_deg = 30.0;
-    double step_deg = 0.01;       // MODEL-NOTES: the grid of Tables 2.4–2.5
+    double step_deg = 0.01;  // MODEL-NOTES: the grid of Tables 2.4–2.5
     bool json = false;
     std::string out;
 };
@@ -32,11 +32,13 @@ struct StressOptions {
 void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
     auto options = std::make_shared<StressOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "stresses", "Stress distributions over the contact, exact and quadratic, with RMSE/MAE "
-                    "(Figs. 2.11, 2.16; Tables 2.4-2.5)");
+        "stresses",
+        "Stress distributions over the contact, exact and quadratic, with RMSE/MAE "
+        "(Figs. 2.11, 2.16; Tables 2.4-2.5)");
     options->model.addTo(*cmd);
     cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1)")->capture_default_str();
-    cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle [deg]")->capture_default_str();
+    cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle [deg]")
+        ->capture_default_str();
     cmd->add_option("--entry-angle", options->entry_angle_deg, "Entry angle theta_f [deg]")
         ->capture_default_str();
     cmd->add_option("--step", options->step_deg, "Grid step [deg]")
@@ -62,8 +64,9 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         const auto errors = contact::quadraticApproximationErrors(p, op, step);
 
         Table grid;
-        grid.columns = {"theta_deg", "sigma_kPa", "tau_kPa", "tau_t_kPa", "tau_l_kPa", "j_m",
-                        "sigma_quad_kPa", "tau_quad_kPa", "tau_t_quad_kPa", "tau_l_quad_kPa"};
+        grid.columns = {"theta_deg",      "sigma_kPa",     "tau_kPa",        "tau_t_kPa",
+                        "tau_l_kPa",      "j_m",           "sigma_quad_kPa", "tau_quad_kPa",
+                        "tau_t_quad_kPa", "tau_l_quad_kPa"};
         // The grid of quadraticApproximationErrors: from the θ_r the model uses (≥ −θ_f).
         const double theta_r = field.exitAngle();
         const auto steps = static_cast<long>(std::floor((theta_f - theta_r) / step + 1e-9));
@@ -78,7 +81,8 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         const char* names[] = {"sigma", "tau", "tau_t", "tau_l"};
         const bool to_file = !o.out.empty() && o.out != "-";
         // θ_m as the user typed it (15, not 15.000000000000002), or Eq. 2.18's value.
-        const double theta_m_deg = plainZero(roundSignificant(units::radToDeg(field.maxStressAngle())));
+        const double theta_m_deg =
+            plainZero(roundSignificant(units::radToDeg(field.maxStressAngle())));
         if (o.json) {
             nlohmann::json summary;
             for (int k = 0; k < 4; ++k) {
@@ -87,7 +91,9 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
             }
             summary["max_stress_angle_deg"] = theta_m_deg;
             summary["points"] = grid.rows.size();
-            writeOutput(o.out, nlohmann::json{{"errors", summary}, {"grid", io::toJson(grid)}}.dump(2) + "\n");
+            writeOutput(
+                o.out,
+                nlohmann::json{{"errors", summary}, {"grid", io::toJson(grid)}}.dump(2) + "\n");
             if (to_file) std::cerr << "wrote " << o.out << ": " << grid.rows.size() << " angles\n";
             return;
         }
@@ -105,9 +111,11 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
                   << " angles (step " << formatNumber(o.step_deg) << " deg):\n"
                   << "            sigma      tau    tau_t    tau_l\n";
         std::cout << "  RMSE kPa";
-        for (int k = 0; k < 4; ++k) std::cout << ' ' << std::setw(8) << fixed(errors[k].rmse / 1e3, 4);
+        for (int k = 0; k < 4; ++k)
+            std::cout << ' ' << std::setw(8) << fixed(errors[k].rmse / 1e3, 4);
         std::cout << "\n  MAE  kPa";
-        for (int k = 0; k < 4; ++k) std::cout << ' ' << std::setw(8) << fixed(errors[k].mae / 1e3, 4);
+        for (int k = 0; k < 4; ++k)
+            std::cout << ' ' << std::setw(8) << fixed(errors[k].mae / 1e3, 4);
         std::cout << '\n';
     });
 }

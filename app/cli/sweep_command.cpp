@@ -48,7 +48,10 @@ void emit(const SweepOptions& o, const analysis::SweepResult& result) {
     for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
     std::string text;
     if (o.json) {
-        text = nlohmann::json{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}}.dump(2) + "\n";
+        text =
+            nlohmann::json{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}}.dump(
+                2) +
+            "\n";
     } else {
         text = io::toCsv(result.table);
     }
@@ -60,7 +63,8 @@ void emit(const SweepOptions& o, const analysis::SweepResult& result) {
 
 void addCommonOptions(CLI::App& cmd, SweepOptions& o) {
     o.model.addTo(cmd);
-    cmd.add_option("--slips", o.slips, "Slips: range first:last:count or list")->capture_default_str();
+    cmd.add_option("--slips", o.slips, "Slips: range first:last:count or list")
+        ->capture_default_str();
     auto* load = cmd.add_option("--load", o.load_n, "Wheel load W [N] (default 58.86 = 6 kg)");
     cmd.add_option("--entry-angle", o.entry_angle_deg, "Fixed entry angle [deg] instead of a load")
         ->excludes(load);
@@ -75,11 +79,13 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     CLI::App* cmd = app.add_subcommand(
         "sweep", "Forces vs slip for a set of slip angles (Figs. 2.18-2.26), CSV or JSON");
     addCommonOptions(*cmd, *sweep);
-    cmd->add_option("--slip-angles", sweep->slip_angles, "Slip angles [deg]")->capture_default_str();
+    cmd->add_option("--slip-angles", sweep->slip_angles, "Slip angles [deg]")
+        ->capture_default_str();
     cmd->callback([sweep, &locations] {
         const auto soil = sweep->model.soilParameters(locations);
         const auto wheel = sweep->model.wheelParameters(locations);
-        emit(*sweep, analysis::sweepSlip(contact::makeContactParameters(soil, wheel), makeSpec(*sweep)));
+        emit(*sweep,
+             analysis::sweepSlip(contact::makeContactParameters(soil, wheel), makeSpec(*sweep)));
     });
 
     auto sens = std::make_shared<SweepOptions>();
@@ -111,8 +117,8 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
                     if (p.key == sens->parameter) parameter.values = p.values;
                 }
                 if (parameter.values.empty()) {
-                    throw InputError("--values: Table 4.1 has no variations of '" + sens->parameter +
-                                     "'; give --values");
+                    throw InputError("--values: Table 4.1 has no variations of '" +
+                                     sens->parameter + "'; give --values");
                 }
             }
             parameters.push_back(parameter);
@@ -167,7 +173,8 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
             const auto soil = io::resolveSoil(locations, name);
             if (!soil) {
                 std::string message = soil.message();
-                for (std::size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at + 1)) {
+                for (std::size_t at = message.find('\n'); at != std::string::npos;
+                     at = message.find('\n', at + 1)) {
                     message.insert(at + 1, "      ");
                 }
                 text << "  " << name << ": INVALID:\n      " << message << '\n';
@@ -178,10 +185,12 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
             j["preset"] = name;
             all["soils"].push_back(j);
             char line[256];
-            std::snprintf(line, sizeof line, "  %-24s n=%-5g c=%-6g phi=%-5g kc=%-7g kphi=%-7g K=%-6g gamma=%g\n",
+            std::snprintf(line, sizeof line,
+                          "  %-24s n=%-5g c=%-6g phi=%-5g kc=%-7g kphi=%-7g K=%-6g gamma=%g\n",
                           name.c_str(), j["n"].get<double>(), j["c_kPa"].get<double>(),
-                          j["phi_deg"].get<double>(), j["kc"].get<double>(), j["kphi"].get<double>(),
-                          j["K_m"].get<double>(), j["gamma_kN_m3"].get<double>());
+                          j["phi_deg"].get<double>(), j["kc"].get<double>(),
+                          j["kphi"].get<double>(), j["K_m"].get<double>(),
+                          j["gamma_kN_m3"].get<double>());
             text << line;
         }
         text << "Wheels:\n";
@@ -189,7 +198,8 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
             const auto wheel = io::resolveWheel(locations, name);
             if (!wheel) {
                 std::string message = wheel.message();
-                for (std::size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at + 1)) {
+                for (std::size_t at = message.find('\n'); at != std::string::npos;
+                     at = message.find('\n', at + 1)) {
                     message.insert(at + 1, "      ");
                 }
                 text << "  " << name << ": INVALID:\n      " << message << '\n';

@@ -49,7 +49,7 @@ struct PointResult {
     double exit_angle_deg = 0.0;
     double sinkage_m = 0.0;
     bool solved_from_load = false;
-    std::string failure;  ///< non-empty: no equilibrium, or F_z = W not reproducible
+    std::string failure;        ///< non-empty: no equilibrium, or F_z = W not reproducible
     std::string status = "ok";  ///< batch status column: ok, no-equilibrium, load-not-matched
     std::string warning;        ///< non-empty: the integration hit its piece cap
 };
@@ -115,24 +115,32 @@ PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& opt
 nlohmann::json toJson(const PointResult& r) {
     const WheelForces<double>& f = r.forces;
     const auto z = plainZero;
-    return {{"Fx_N", z(f.fx)},   {"Fy_N", z(f.fy)},   {"Fz_N", z(f.fz)},
-            {"Mx_Nm", z(f.mx)},  {"My_Nm", z(f.my)},  {"Mz_Nm", z(f.mz)},
-            {"Fb_N", z(f.fb)},   {"Fs_N", z(f.fs)},   {"entry_angle_deg", z(r.entry_angle_deg)},
-            {"exit_angle_deg", z(r.exit_angle_deg)}, {"sinkage_m", z(r.sinkage_m)}};
+    return {{"Fx_N", z(f.fx)},
+            {"Fy_N", z(f.fy)},
+            {"Fz_N", z(f.fz)},
+            {"Mx_Nm", z(f.mx)},
+            {"My_Nm", z(f.my)},
+            {"Mz_Nm", z(f.mz)},
+            {"Fb_N", z(f.fb)},
+            {"Fs_N", z(f.fs)},
+            {"entry_angle_deg", z(r.entry_angle_deg)},
+            {"exit_angle_deg", z(r.exit_angle_deg)},
+            {"sinkage_m", z(r.sinkage_m)}};
 }
 
 void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
                 const WheelOptions& o, const PointInput& in, const PointResult& r) {
     std::ostringstream s;
-    s << soil.name << ", " << wheel.name << " (r = " << wheel.radius_m << " m, b = " << wheel.width_m
-      << " m), " << o.model.model << " model\n";
-    s << "s = " << formatNumber(in.slip) << ", beta = " << formatNumber(in.slip_angle_deg) << " deg, ";
+    s << soil.name << ", " << wheel.name << " (r = " << wheel.radius_m
+      << " m, b = " << wheel.width_m << " m), " << o.model.model << " model\n";
+    s << "s = " << formatNumber(in.slip) << ", beta = " << formatNumber(in.slip_angle_deg)
+      << " deg, ";
     if (r.solved_from_load) {
         s << "W = " << formatNumber(*in.load_n) << " N -> theta_f = " << fixed(r.entry_angle_deg, 4)
           << " deg, sinkage = " << fixed(r.sinkage_m * 1e3, 3) << " mm\n";
     } else {
-        s << "theta_f = " << fixed(r.entry_angle_deg, 4) << " deg (given), sinkage = "
-          << fixed(r.sinkage_m * 1e3, 3) << " mm\n";
+        s << "theta_f = " << fixed(r.entry_angle_deg, 4)
+          << " deg (given), sinkage = " << fixed(r.sinkage_m * 1e3, 3) << " mm\n";
     }
     s << "theta_r = " << fixed(r.exit_angle_deg, 4) << " deg\n\n";
     const WheelForces<double>& f = r.forces;
@@ -150,7 +158,8 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     line("Mx", f.mx, "N·m", "roll moment (Eq. 2.32)");
     line("My", f.my, "N·m", "resistance torque (Eq. 2.34)");
     line("Mz", f.mz, "N·m", "yaw moment (Eq. 2.35)");
-    line("Fb", f.fb, "N", ("bulldozing, one side wall (Eq. 2.30, " + o.model.bulldozing + ")").c_str());
+    line("Fb", f.fb, "N",
+         ("bulldozing, one side wall (Eq. 2.30, " + o.model.bulldozing + ")").c_str());
     line("Fs", f.fs, "N", "side force Fy - sign(beta) Fb (Eq. 2.24)");
     std::cout << s.str();
 }
@@ -178,8 +187,9 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     }
     std::string csv;
     for (std::size_t i = 0; i < doc.header.size(); ++i) csv += (i ? "," : "") + doc.header[i];
-    csv += ",status,entry_angle_deg_out,exit_angle_deg_out,sinkage_m,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
-           "Mz_Nm,Fb_N,Fs_N\n";
+    csv +=
+        ",status,entry_angle_deg_out,exit_angle_deg_out,sinkage_m,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
+        "Mz_Nm,Fb_N,Fs_N\n";
     int failed = 0;
     for (std::size_t row = 0; row < doc.rows.size(); ++row) {
         const auto& cells = doc.rows[row];
@@ -212,7 +222,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
                 in.load_n.reset();
             }
         }
-        if (!in.entry_angle_deg && !in.load_n) issues.push_back({where, "no entry_angle_deg or load_N"});
+        if (!in.entry_angle_deg && !in.load_n)
+            issues.push_back({where, "no entry_angle_deg or load_N"});
         in.exit = o.model.exitCondition();
         const auto exit = cell(c_exit, "exit_angle_deg", std::nullopt);
         const auto rut = cell(c_rut, "rut_ratio", std::nullopt);
@@ -229,7 +240,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         in.max_stress_angle_rad = o.model.maxStressAngleRad();
         if (auto theta_m = cell(c_theta_m, "max_stress_angle_deg", std::nullopt)) {
-            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m, {-90.0, 90.0}, "deg")) {
+            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m, {-90.0, 90.0},
+                           "deg")) {
                 in.max_stress_angle_rad = units::degToRad(*theta_m);
             }
         }
@@ -254,8 +266,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         const WheelForces<double>& f = result.forces;
         csv += ",ok";
-        for (double v : {result.entry_angle_deg, result.exit_angle_deg, result.sinkage_m, f.fx, f.fy,
-                         f.fz, f.mx, f.my, f.mz, f.fb, f.fs}) {
+        for (double v : {result.entry_angle_deg, result.exit_angle_deg, result.sinkage_m, f.fx,
+                         f.fy, f.fz, f.mx, f.my, f.mz, f.fb, f.fs}) {
             csv += "," + formatNumber(v);
         }
         csv += '\n';
@@ -264,23 +276,25 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         // In line order: rows with the wrong cell count come from the reader, the rest from here.
         const std::string prefix = o.input + ":";
         auto line = [&](const Issue& issue) {
-            return issue.where.rfind(prefix, 0) == 0 ? std::atol(issue.where.c_str() + prefix.size())
-                                                     : 0L;
+            return issue.where.rfind(prefix, 0) == 0
+                       ? std::atol(issue.where.c_str() + prefix.size())
+                       : 0L;
         };
         std::stable_sort(issues.begin(), issues.end(),
                          [&](const Issue& a, const Issue& b) { return line(a) < line(b); });
         std::cerr << formatIssues(issues) << '\n';
         if (!o.skip_bad_rows) {
-            std::cerr << skipped << " bad row(s); nothing written (use --skip-bad-rows to skip them)\n";
+            std::cerr << skipped
+                      << " bad row(s); nothing written (use --skip-bad-rows to skip them)\n";
             return kBadInput;
         }
         std::cerr << "skipped " << skipped << " bad row(s)\n";
     }
     writeOutput(o.output, csv);
     if (!o.output.empty() && o.output != "-") {
-        std::cerr << "wrote " << o.output << ": " << doc.rows.size() + doc.row_issues.size() - skipped
-                  << " rows ("
-                  << failed << " without a solution)\n";
+        std::cerr << "wrote " << o.output << ": "
+                  << doc.rows.size() + doc.row_issues.size() - skipped << " rows (" << failed
+                  << " without a solution)\n";
     }
     return kSuccess;
 }
@@ -292,10 +306,12 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
     CLI::App* cmd = app.add_subcommand(
         "wheel", "Forces and moments of one wheel at one operating point (or a CSV of points)");
     options->model.addTo(*cmd);
-    cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1) (Eq. 2.1)")->capture_default_str();
+    cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1) (Eq. 2.1)")
+        ->capture_default_str();
     cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle beta [deg] (Eq. 2.2)")
         ->capture_default_str();
-    auto* entry = cmd->add_option("--entry-angle", options->entry_angle_deg, "Entry angle theta_f [deg]");
+    auto* entry =
+        cmd->add_option("--entry-angle", options->entry_angle_deg, "Entry angle theta_f [deg]");
     cmd->add_option("--load", options->load_n, "Wheel load W [N]: solve theta_f from F_z = W")
         ->excludes(entry);
     cmd->add_flag("--json", options->json, "Machine-readable JSON output");
@@ -314,13 +330,14 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
             return;
         }
         if (!o.output.empty() || o.skip_bad_rows) {
-            throw InputError("--output and --skip-bad-rows belong to batch mode: add --input points.csv");
+            throw InputError(
+                "--output and --skip-bad-rows belong to batch mode: add --input points.csv");
         }
         if (!o.entry_angle_deg && !o.load_n) {
             throw InputError("wheel: give --entry-angle DEG or --load N (or --input points.csv)");
         }
-        PointInput in{o.slip, o.slip_angle_deg, o.entry_angle_deg, o.load_n,
-                      o.model.exitCondition(), o.model.maxStressAngleRad()};
+        PointInput in{o.slip,   o.slip_angle_deg,        o.entry_angle_deg,
+                      o.load_n, o.model.exitCondition(), o.model.maxStressAngleRad()};
         const PointResult result = evaluate(p, o, in);
         if (!result.failure.empty()) throw std::runtime_error(result.failure);
         if (!result.warning.empty()) std::cerr << "warning: " << result.warning << '\n';

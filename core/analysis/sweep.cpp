@@ -36,13 +36,14 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
         if (spec.cancel && spec.cancel->load(std::memory_order_relaxed)) break;
         double theta_f = spec.entry_angle_rad;
         if (spec.load_n) {
-            contact::EntryAngleProblem problem{*spec.load_n, s,     beta,   spec.exit,
-                                               spec.max_stress_angle_rad, spec.model,
-                                               spec.integration, previous};
+            contact::EntryAngleProblem problem{
+                *spec.load_n,     s,       beta, spec.exit, spec.max_stress_angle_rad, spec.model,
+                spec.integration, previous};
             const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
             if (!solution.ok()) {
-                rows.push_back({{}, "β = " + formatNumber(deg(beta)) + "°, s = " + formatNumber(s) +
-                                        ": " + solution.message});
+                rows.push_back({{},
+                                "β = " + formatNumber(deg(beta)) + "°, s = " + formatNumber(s) +
+                                    ": " + solution.message});
                 previous.reset();
                 continue;
             }
@@ -51,16 +52,17 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
         }
         const double theta_r = std::max(spec.exit.exitAngle(theta_f), -theta_f);
         const OperatingPoint<double> op{s, beta, theta_f, theta_r, spec.max_stress_angle_rad};
-        const WheelForces<double> f = spec.model == contact::ContactModel::kFull
-                                          ? contact::computeForces(p, op, spec.bulldozing,
-                                                                   spec.integration)
-                                          : contact::computeQuadraticForces(p, op, spec.bulldozing);
+        const WheelForces<double> f =
+            spec.model == contact::ContactModel::kFull
+                ? contact::computeForces(p, op, spec.bulldozing, spec.integration)
+                : contact::computeQuadraticForces(p, op, spec.bulldozing);
         // Given angles as typed (25, not 25.000000000000004); a solved θ_f keeps every digit, so
         // that the row reproduces its forces exactly. No negative zeros anywhere in the row.
         const double theta_f_deg = spec.load_n ? units::radToDeg(theta_f) : deg(theta_f);
-        std::vector<double> values{deg(beta), s, theta_f_deg, deg(theta_r),
-                                   p.radius_m * (1.0 - std::cos(theta_f)), f.fx, f.fy, f.fz, f.mx,
-                                   f.my, f.mz, f.fb, f.fs};
+        std::vector<double> values{
+            deg(beta), s,    theta_f_deg, deg(theta_r), p.radius_m * (1.0 - std::cos(theta_f)),
+            f.fx,      f.fy, f.fz,        f.mx,         f.my,
+            f.mz,      f.fb, f.fs};
         for (double& v : values) v = v == 0.0 ? 0.0 : v;
         rows.push_back({std::move(values), {}});
     }
@@ -118,9 +120,8 @@ std::vector<double> thesisSlips(int count) {
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns{
-        "slip_angle_deg", "slip",  "entry_angle_deg", "exit_angle_deg", "sinkage_m",
-        "Fx_N",           "Fy_N",  "Fz_N",            "Mx_Nm",          "My_Nm",
-        "Mz_Nm",          "Fb_N",  "Fs_N"};
+        "slip_angle_deg", "slip",  "entry_angle_deg", "exit_angle_deg", "sinkage_m", "Fx_N", "Fy_N",
+        "Fz_N",           "Mx_Nm", "My_Nm",           "Mz_Nm",          "Fb_N",      "Fs_N"};
     return columns;
 }
 
@@ -169,9 +170,12 @@ SweepResult sweepSlip(const ContactParameters<double>& p, const SweepSpec& spec)
 }
 
 std::vector<SensitivityParameter> thesisSensitivityParameters() {
-    return {{"n", {0.6, 0.8, 1.0, 1.2}},          {"c_kPa", {0.0, 1.5, 3.0, 4.5}},
-            {"phi_deg", {25.0, 30.0, 35.0, 40.0}}, {"kc", {0.0, 5.0, 10.0, 20.0}},
-            {"kphi", {900.0, 1200.0, 1600.0, 2000.0}}, {"K_m", {0.01, 0.02, 0.03, 0.04}}};
+    return {{"n", {0.6, 0.8, 1.0, 1.2}},
+            {"c_kPa", {0.0, 1.5, 3.0, 4.5}},
+            {"phi_deg", {25.0, 30.0, 35.0, 40.0}},
+            {"kc", {0.0, 5.0, 10.0, 20.0}},
+            {"kphi", {900.0, 1200.0, 1600.0, 2000.0}},
+            {"K_m", {0.01, 0.02, 0.03, 0.04}}};
 }
 
 SweepResult sensitivity(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,

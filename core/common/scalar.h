@@ -14,10 +14,8 @@ inline double scalarValue(double x) { return x; }
 
 /// The plain value of an automatic-differentiation scalar (the `a` part of a ceres::Jet).
 template <typename J>
-    requires requires(const J& j) { j.a; }
-double scalarValue(const J& j) {
-    return scalarValue(j.a);
-}
+requires requires(const J& j) { j.a; }
+double scalarValue(const J& j) { return scalarValue(j.a); }
 
 /// Converts between scalar types: a plain value becomes a constant (zero derivative).
 template <typename T, typename U>

@@ -16,14 +16,17 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
     if (!(pressure_modulus > 0.0)) {
         throw std::invalid_argument(
             "K_s = kc/b + kphi = " + formatNumber(roundSignificant(pressure_modulus / 1e3, 6)) +
-            " kN/m^(n+2) must be > 0 (kc = " + formatNumber(roundSignificant(soil.cohesive_modulus / 1e3)) +
+            " kN/m^(n+2) must be > 0 (kc = " +
+            formatNumber(roundSignificant(soil.cohesive_modulus / 1e3)) +
             " kN/m^(n+1), kphi = " + formatNumber(roundSignificant(soil.frictional_modulus / 1e3)) +
             " kN/m^(n+2), wheel width b = " + formatNumber(wheel.width_m) + " m)");
     }
-    return {wheel.radius_m,          wheel.width_m,           soil.sinkage_exponent,
-            soil.sinkage_exponent_slip, pressure_modulus,     soil.cohesion_pa,
-            soil.friction_angle_rad, soil.shear_modulus_m,    soil.unit_weight_n_m3,
-            soil.max_stress_a0,      soil.max_stress_a1,      soil.max_shear_deformation_m};
+    return {wheel.radius_m,          wheel.width_m,
+            soil.sinkage_exponent,   soil.sinkage_exponent_slip,
+            pressure_modulus,        soil.cohesion_pa,
+            soil.friction_angle_rad, soil.shear_modulus_m,
+            soil.unit_weight_n_m3,   soil.max_stress_a0,
+            soil.max_stress_a1,      soil.max_shear_deformation_m};
 }
 
 void requireValid(const OperatingPoint<double>& op) {
@@ -31,10 +34,8 @@ void requireValid(const OperatingPoint<double>& op) {
     auto deg = [](double rad) { return roundSignificant(units::radToDeg(rad)); };
     std::vector<Issue> issues;
     checkRange(issues, "slip", op.slip, {-1.0, 1.0, true, true});
-    checkRange(issues, "slip_angle_deg", deg(op.slip_angle_rad),
-               {-90.0, 90.0, true, true}, "deg");
-    checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true},
-               "deg");
+    checkRange(issues, "slip_angle_deg", deg(op.slip_angle_rad), {-90.0, 90.0, true, true}, "deg");
+    checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true}, "deg");
     // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model (clampedExit,
     // maxStressAngle; docs/model.md), so only their own ranges are checked here.
     checkRange(issues, "exit_angle_deg", deg(op.exit_angle_rad), {-90.0, 0.0}, "deg");

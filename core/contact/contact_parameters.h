@@ -17,17 +17,17 @@ namespace terra::contact {
 /// Soil and wheel parameters of the contact model, SI.
 template <typename T>
 struct ContactParameters {
-    T radius_m;                 ///< r [m]
-    T width_m;                  ///< b [m]
-    T sinkage_exponent;         ///< n (n₀) [-] (Eq. 2.17)
-    T sinkage_exponent_slip;    ///< n₁ [-]: N = n₀ + n₁ s; 0 for the thesis's constant n
-    T pressure_modulus;         ///< K_s = k_c/b + k_φ [Pa/m^n] (Eq. 2.9)
-    T cohesion_pa;              ///< c [Pa]
-    T friction_angle_rad;       ///< φ [rad]
-    T shear_modulus_m;          ///< K [m]
-    T unit_weight_n_m3;         ///< γ [N/m³] (bulldozing only)
-    T max_stress_a0;            ///< a₀ [-] (Eq. 2.18)
-    T max_stress_a1;            ///< a₁ [-] (Eq. 2.18)
+    T radius_m;               ///< r [m]
+    T width_m;                ///< b [m]
+    T sinkage_exponent;       ///< n (n₀) [-] (Eq. 2.17)
+    T sinkage_exponent_slip;  ///< n₁ [-]: N = n₀ + n₁ s; 0 for the thesis's constant n
+    T pressure_modulus;       ///< K_s = k_c/b + k_φ [Pa/m^n] (Eq. 2.9)
+    T cohesion_pa;            ///< c [Pa]
+    T friction_angle_rad;     ///< φ [rad]
+    T shear_modulus_m;        ///< K [m]
+    T unit_weight_n_m3;       ///< γ [N/m³] (bulldozing only)
+    T max_stress_a0;          ///< a₀ [-] (Eq. 2.18)
+    T max_stress_a1;          ///< a₁ [-] (Eq. 2.18)
     /// j_max [m] (Eq. 2.16), +inf for no limit. A plain double: it moves where the integrand has a
     /// kink, and is never identified.
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
@@ -35,12 +35,12 @@ struct ContactParameters {
     /// The same parameters in another scalar type (derivatives dropped or started at zero).
     template <typename U>
     ContactParameters<U> cast() const {
-        return {scalarCast<U>(radius_m),          scalarCast<U>(width_m),
-                scalarCast<U>(sinkage_exponent),  scalarCast<U>(sinkage_exponent_slip),
-                scalarCast<U>(pressure_modulus),  scalarCast<U>(cohesion_pa),
+        return {scalarCast<U>(radius_m),           scalarCast<U>(width_m),
+                scalarCast<U>(sinkage_exponent),   scalarCast<U>(sinkage_exponent_slip),
+                scalarCast<U>(pressure_modulus),   scalarCast<U>(cohesion_pa),
                 scalarCast<U>(friction_angle_rad), scalarCast<U>(shear_modulus_m),
-                scalarCast<U>(unit_weight_n_m3),  scalarCast<U>(max_stress_a0),
-                scalarCast<U>(max_stress_a1),     max_shear_deformation_m};
+                scalarCast<U>(unit_weight_n_m3),   scalarCast<U>(max_stress_a0),
+                scalarCast<U>(max_stress_a1),      max_shear_deformation_m};
     }
 };
 
@@ -52,10 +52,10 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
 /// The operating point of the wheel: kinematics and contact geometry (section 2.2).
 template <typename T>
 struct OperatingPoint {
-    T slip;                ///< s [-] (Eq. 2.1): driving 0 ≤ s < 1, braking −1 < s < 0
-    T slip_angle_rad;      ///< β [rad] (Eq. 2.2), |β| < π/2
-    T entry_angle_rad;     ///< θ_f [rad], 0 < θ_f ≤ π/2
-    T exit_angle_rad;      ///< θ_r [rad], −θ_f ≤ θ_r ≤ 0 (MODEL-NOTES sign convention)
+    T slip;             ///< s [-] (Eq. 2.1): driving 0 ≤ s < 1, braking −1 < s < 0
+    T slip_angle_rad;   ///< β [rad] (Eq. 2.2), |β| < π/2
+    T entry_angle_rad;  ///< θ_f [rad], 0 < θ_f ≤ π/2
+    T exit_angle_rad;   ///< θ_r [rad], −θ_f ≤ θ_r ≤ 0 (MODEL-NOTES sign convention)
     /// θ_m [rad] fixed by the user (the thesis's Table 2.3 uses 15°); empty: Eq. 2.18.
     std::optional<T> max_stress_angle_rad;
 

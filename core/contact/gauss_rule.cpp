@@ -82,12 +82,18 @@ const GaussRule& gaussRule(int points) {
     static const StoredRule r25 = makeRule<25>();
     static const StoredRule r30 = makeRule<30>();
     switch (points) {
-        case 7: return r7.rule;
-        case 10: return r10.rule;
-        case 15: return r15.rule;
-        case 20: return r20.rule;
-        case 25: return r25.rule;
-        case 30: return r30.rule;
+        case 7:
+            return r7.rule;
+        case 10:
+            return r10.rule;
+        case 15:
+            return r15.rule;
+        case 20:
+            return r20.rule;
+        case 25:
+            return r25.rule;
+        case 30:
+            return r30.rule;
         default:
             throw std::invalid_argument("Gauss rule with " + std::to_string(points) +
                                         " points is not tabulated (7, 10, 15, 20, 25, 30)");

@@ -135,7 +135,8 @@ Kinks findScaleSplits(const ShearGeometry& g) {
                       true, 0.25);
         } else {
             const double star = std::acos(1.0 / kappa);
-            const double width = lateral / (kappa * std::sin(star) + std::sqrt(2.0 * kappa * lateral));
+            const double width =
+                lateral / (kappa * std::sin(star) + std::sqrt(2.0 * kappa * lateral));
             // ±θ* are kinks already (findKinks); only the graded points are added here.
             addGraded(splits, g, star, width, true, true, false, 0.25);
             addGraded(splits, g, -star, width, true, true, false, 0.25);

@@ -35,7 +35,7 @@ struct QuadraticRegion {
 /// The quadratic approximation of the whole contact.
 template <typename T>
 struct QuadraticStress {
-    T max_stress_angle;    ///< θ_m [rad], the origin of x
+    T max_stress_angle;  ///< θ_m [rad], the origin of x
     QuadraticRegion<T> front;
     QuadraticRegion<T> rear;
 
@@ -167,8 +167,12 @@ void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums
     }
     const T s0 = sin(q.lower), c0 = cos(q.lower);
     const T s1 = sin(q.upper), c1 = cos(q.upper);
-    auto cosInt = [&](const Parabola<T>& p) { return integralCos(p, x1, s1, c1) - integralCos(p, x0, s0, c0); };
-    auto sinInt = [&](const Parabola<T>& p) { return integralSin(p, x1, s1, c1) - integralSin(p, x0, s0, c0); };
+    auto cosInt = [&](const Parabola<T>& p) {
+        return integralCos(p, x1, s1, c1) - integralCos(p, x0, s0, c0);
+    };
+    auto sinInt = [&](const Parabola<T>& p) {
+        return integralSin(p, x1, s1, c1) - integralSin(p, x0, s0, c0);
+    };
     sums.fx += cosInt(q.tau_t) - sinInt(q.sigma);  // Eq. 2.41 (E3)
     sums.fz += cosInt(q.sigma) + sinInt(q.tau_t);  // Eq. 2.43 (E3)
     sums.mx += cosInt(q.tau_l);                    // Eq. 2.44 (E3)

@@ -20,7 +20,8 @@ constexpr int kToleranceBits = 42;       // θ_f to ~2e-13 relative: F_z = W to 
 
 void requirePositiveLoad(double load_n) {
     if (!(load_n > 0.0) || !std::isfinite(load_n)) {
-        throw std::invalid_argument("load W = " + formatNumber(load_n) + " N must be > 0 and finite");
+        throw std::invalid_argument("load W = " + formatNumber(load_n) +
+                                    " N must be > 0 and finite");
     }
 }
 
@@ -83,8 +84,8 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
         const double f_guess = residual(guess);
         double a = guess, fa = f_guess;
         for (int step = 0; step < 12 && f_guess != 0.0; ++step) {
-            const double b = f_guess < 0.0 ? std::min(a * 1.3, kRightAngle)
-                                           : std::max(a / 1.3, kSmallestAngle);
+            const double b =
+                f_guess < 0.0 ? std::min(a * 1.3, kRightAngle) : std::max(a / 1.3, kSmallestAngle);
             const double fb = b == kRightAngle ? f_max : residual(b);
             if ((fa < 0.0) != (fb < 0.0) || fb == 0.0) {
                 lo = std::min(a, b), hi = std::max(a, b);
@@ -136,8 +137,8 @@ SinkageSolution bracketAndSolve(F force, double target, double guess, int& evalu
             // Full digits: the two angles differ in the last places.
             out.message = "no entry angle carries W = " + formatNumber(target) +
                           " N: F_z jumps from " + formatNumber(fa + target) + " N to " +
-                          formatNumber(fb + target) + " N between θ_f = " +
-                          formatNumber(units::radToDeg(a)) + "° and " +
+                          formatNumber(fb + target) +
+                          " N between θ_f = " + formatNumber(units::radToDeg(a)) + "° and " +
                           formatNumber(units::radToDeg(b)) +
                           "°, a few units in the last place apart (a small sinkage exponent N with "
                           "θ_m fixed near θ_f makes F_z rise like (θ_f − θ_m)^N: a step at double "
@@ -161,7 +162,8 @@ double staticIntegral(double n, double theta_s) {
         const double theta = theta_s - gap;
         // cos θ − cos θ_s = 2 sin((θ_s + θ)/2) sin((θ_s − θ)/2): no cancellation at small θ_s.
         const double base = 2.0 * std::sin(theta_s - 0.5 * gap) * std::sin(0.5 * gap);
-        if (base > 0.0) sum += rule.weights[i] * q * uq1 * theta_s * std::pow(base, n) * std::cos(theta);
+        if (base > 0.0)
+            sum += rule.weights[i] * q * uq1 * theta_s * std::pow(base, n) * std::cos(theta);
     }
     return sum;
 }
@@ -237,9 +239,9 @@ SinkageSolution solveEntryAngle(const ContactParameters<double>& p,
         guess = h < p.radius_m ? std::acos(1.0 - h / p.radius_m) : 1.2;
     }
     int evaluations = 0;
-    SinkageSolution out = bracketAndSolve(
-        [&](double theta) { return verticalForce(p, problem, theta); }, problem.load_n, guess,
-        evaluations);
+    SinkageSolution out =
+        bracketAndSolve([&](double theta) { return verticalForce(p, problem, theta); },
+                        problem.load_n, guess, evaluations);
     out.evaluations = evaluations;
     out.exit_angle_rad = operatingPoint(problem, out.entry_angle_rad).exit_angle_rad;
     out.sinkage_m = p.radius_m * (1.0 - std::cos(out.entry_angle_rad));

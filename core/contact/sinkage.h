@@ -43,12 +43,12 @@ struct SinkageSolution {
         kLoadNotMatched,
     };
     Status status = Status::kConverged;
-    double entry_angle_rad = 0.0;  ///< θ_f (or θ_s for static sinkage) [rad]
-    double exit_angle_rad = 0.0;   ///< θ_r [rad]
-    double sinkage_m = 0.0;        ///< h = r (1 − cos θ_f) [m] (Eq. 2.12)
-    double vertical_force_n = 0.0; ///< F_z at the solution [N]
-    int evaluations = 0;           ///< model evaluations spent
-    std::string message;           ///< why it failed, for the user
+    double entry_angle_rad = 0.0;   ///< θ_f (or θ_s for static sinkage) [rad]
+    double exit_angle_rad = 0.0;    ///< θ_r [rad]
+    double sinkage_m = 0.0;         ///< h = r (1 − cos θ_f) [m] (Eq. 2.12)
+    double vertical_force_n = 0.0;  ///< F_z at the solution [N]
+    int evaluations = 0;            ///< model evaluations spent
+    std::string message;            ///< why it failed, for the user
 
     bool ok() const { return status == Status::kConverged; }
 };
@@ -68,13 +68,13 @@ struct ExitCondition {
 
 /// The entry-angle problem of section 2.6.1.
 struct EntryAngleProblem {
-    double load_n = 58.86;                 ///< W [N]
-    double slip = 0.0;                     ///< s [-]
-    double slip_angle_rad = 0.0;           ///< β [rad]
-    ExitCondition exit;                    ///< θ_r or λ
+    double load_n = 58.86;                       ///< W [N]
+    double slip = 0.0;                           ///< s [-]
+    double slip_angle_rad = 0.0;                 ///< β [rad]
+    ExitCondition exit;                          ///< θ_r or λ
     std::optional<double> max_stress_angle_rad;  ///< fixed θ_m; empty: Eq. 2.18
     ContactModel model = ContactModel::kFull;
-    IntegrationOptions integration;        ///< for the full model
+    IntegrationOptions integration;  ///< for the full model
     /// A nearby solution (the previous point of a sweep): the bracket starts around it.
     std::optional<double> initial_guess_rad;
 };
@@ -90,8 +90,8 @@ double verticalForce(const ContactParameters<double>& p, const EntryAngleProblem
 /// around the guess (Bekker's static angle or `initial_guess_rad`). Where F_z(90°) < W, θ_f is
 /// scanned in 2° steps for the first crossing (F_z can peak below 90° under strong braking);
 /// without one there is no equilibrium and the result says so (no clamp). When F_z jumps over W
-/// between angles a few ulps apart the status is kLoadNotMatched. Throws std::invalid_argument for a
-/// non-positive load or an operating point outside the domain.
+/// between angles a few ulps apart the status is kLoadNotMatched. Throws std::invalid_argument for
+/// a non-positive load or an operating point outside the domain.
 SinkageSolution solveEntryAngle(const ContactParameters<double>& p,
                                 const EntryAngleProblem& problem);
 

@@ -19,13 +19,13 @@ namespace terra::contact {
 /// The stresses and shear deformation at one contact angle θ.
 template <typename T>
 struct StressSample {
-    T sigma;          ///< σ [Pa]: normal stress (Eq. 2.17)
-    T tau;            ///< τ [Pa]: shear stress magnitude (Eq. 2.20)
-    T tau_t;          ///< τ_t [Pa]: tangential (longitudinal) shear stress (Eq. 2.22)
-    T tau_l;          ///< τ_l [Pa]: lateral shear stress (Eq. 2.22)
-    T shear_t;        ///< j_t [m]: tangential shear deformation (Eq. 2.14)
-    T shear_l;        ///< j_l [m]: lateral shear deformation (Eq. 2.14)
-    T shear;          ///< j [m]: √(j_t² + j_l²) limited to j_max (Eqs. 2.15, 2.16)
+    T sigma;    ///< σ [Pa]: normal stress (Eq. 2.17)
+    T tau;      ///< τ [Pa]: shear stress magnitude (Eq. 2.20)
+    T tau_t;    ///< τ_t [Pa]: tangential (longitudinal) shear stress (Eq. 2.22)
+    T tau_l;    ///< τ_l [Pa]: lateral shear stress (Eq. 2.22)
+    T shear_t;  ///< j_t [m]: tangential shear deformation (Eq. 2.14)
+    T shear_l;  ///< j_l [m]: lateral shear deformation (Eq. 2.14)
+    T shear;    ///< j [m]: √(j_t² + j_l²) limited to j_max (Eqs. 2.15, 2.16)
 };
 
 /// κ = v_x/(rω) from the slip (MODEL-NOTES, Eq. 2.1): 1 − s when driving, 1/(1 + s) when braking.
@@ -38,10 +38,11 @@ T velocityRatio(const T& slip) {
 /// a₀ + a₁ s < 0 happens for strong braking).
 template <typename T>
 T maxStressAngle(const ContactParameters<T>& p, const OperatingPoint<T>& op) {
-    T theta_m = op.max_stress_angle_rad ? *op.max_stress_angle_rad
-                                        : T((p.max_stress_a0 + p.max_stress_a1 * op.slip) *
-                                            op.entry_angle_rad);
-    const T exit = op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad;
+    T theta_m = op.max_stress_angle_rad
+                    ? *op.max_stress_angle_rad
+                    : T((p.max_stress_a0 + p.max_stress_a1 * op.slip) * op.entry_angle_rad);
+    const T exit =
+        op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad;
     if (theta_m < exit) theta_m = exit;
     if (theta_m > op.entry_angle_rad) theta_m = op.entry_angle_rad;
     return theta_m;
@@ -57,7 +58,8 @@ public:
           entry_(op.entry_angle_rad),
           // A rut deeper than the entry sinkage (θ_r < −θ_f) is not physical: the contact ends at
           // the soil surface line, θ_r = −θ_f (Eq. 2.12 with λ ≤ 1).
-          exit_(op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad),
+          exit_(op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad)
+                                                        : op.exit_angle_rad),
           max_stress_(contact::maxStressAngle(p, op)),
           exponent_(p.sinkage_exponent + p.sinkage_exponent_slip * op.slip),
           modulus_(p.pressure_modulus),
@@ -76,14 +78,15 @@ public:
         // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0).
         one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
         lateral_velocity_ = kappa_ * tan(op.slip_angle_rad);
-        rear_slope_ = max_stress_ > exit_ ? T((entry_ - max_stress_) / (max_stress_ - exit_)) : T(0.0);
+        rear_slope_ =
+            max_stress_ > exit_ ? T((entry_ - max_stress_) / (max_stress_ - exit_)) : T(0.0);
     }
 
-    const T& entryAngle() const { return entry_; }      ///< θ_f [rad]
-    const T& exitAngle() const { return exit_; }        ///< θ_r [rad]
+    const T& entryAngle() const { return entry_; }           ///< θ_f [rad]
+    const T& exitAngle() const { return exit_; }             ///< θ_r [rad]
     const T& maxStressAngle() const { return max_stress_; }  ///< θ_m [rad]
-    const T& velocityRatio() const { return kappa_; }  ///< κ = v_x/(rω)
-    const T& sinkageExponent() const { return exponent_; }  ///< N = n₀ + n₁ s
+    const T& velocityRatio() const { return kappa_; }        ///< κ = v_x/(rω)
+    const T& sinkageExponent() const { return exponent_; }   ///< N = n₀ + n₁ s
     bool driving() const { return driving_; }
     double maxShearDeformation() const { return max_shear_; }
 
@@ -174,8 +177,9 @@ public:
     /// The tangential shear deformation j_t(θ) [m] alone, in double (used to find where the
     /// integrand has kinks; cheap: one sin).
     double shearTangential(double theta) const {
-        return scalarValue(radius_) * ((scalarValue(entry_) - theta) -
-                                       scalarValue(kappa_) * (scalarValue(sin_entry_) - std::sin(theta)));
+        return scalarValue(radius_) *
+               ((scalarValue(entry_) - theta) -
+                scalarValue(kappa_) * (scalarValue(sin_entry_) - std::sin(theta)));
     }
 
     /// j(θ) before the j_max limit [m], in double.

@@ -63,8 +63,8 @@ struct IntegrationOptions {
 
 /// How one evaluation of the contact integrals went.
 struct IntegrationReport {
-    int pieces = 0;          ///< Gauss–Kronrod pieces used
-    bool converged = true;   ///< false: the piece cap was hit before the tolerance was met
+    int pieces = 0;         ///< Gauss–Kronrod pieces used
+    bool converged = true;  ///< false: the piece cap was hit before the tolerance was met
     /// The pieces' |Kronrod − Gauss| differences relative to the scales of
     /// IntegrationOptions::tolerance, summed: a pessimistic bound on the relative error.
     double error_estimate = 0.0;
@@ -157,9 +157,12 @@ void evaluatePiece(const StressField<T>& field, const Region<T>& region, const K
 
 template <typename T>
 ShearGeometry shearGeometry(const ContactParameters<T>& p, const StressField<T>& field) {
-    return {scalarValue(p.radius_m),       scalarValue(field.entryAngle()),
-            scalarValue(field.exitAngle()), scalarValue(field.velocityRatio()),
-            scalarValue(field.lateralVelocity()), p.max_shear_deformation_m,
+    return {scalarValue(p.radius_m),
+            scalarValue(field.entryAngle()),
+            scalarValue(field.exitAngle()),
+            scalarValue(field.velocityRatio()),
+            scalarValue(field.lateralVelocity()),
+            p.max_shear_deformation_m,
             scalarValue(p.shear_modulus_m)};
 }
 
@@ -180,17 +183,18 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
     const Kinks splits = findScaleSplits(geometry);
     const KronrodRule& rule = kronrodRule();
     const int q = endExponent(scalarValue(field.sinkageExponent()), options.end_exponent);
-    const Region<T> regions[2] = {
-        {field.maxStressAngle(), field.entryAngle(), field.entryAngle() - field.maxStressAngle(),
-         true, q},
-        {field.exitAngle(), field.maxStressAngle(), field.maxStressAngle() - field.exitAngle(),
-         false, q}};
+    const Region<T> regions[2] = {{field.maxStressAngle(), field.entryAngle(),
+                                   field.entryAngle() - field.maxStressAngle(), true, q},
+                                  {field.exitAngle(), field.maxStressAngle(),
+                                   field.maxStressAngle() - field.exitAngle(), false, q}};
     // Uninitialised storage: value-initialising 96 pieces (8 kB for double) on every call cost
     // ~5 % of a whole evaluation. Pieces are created in order and destroyed on return.
     struct Storage {
         alignas(Piece<T>) unsigned char bytes[sizeof(Piece<T>) * kCapacity];
         int count = 0;
-        Piece<T>& operator[](int i) { return *std::launder(reinterpret_cast<Piece<T>*>(bytes) + i); }
+        Piece<T>& operator[](int i) {
+            return *std::launder(reinterpret_cast<Piece<T>*>(bytes) + i);
+        }
         Piece<T>& add() { return *::new (bytes + sizeof(Piece<T>) * count++) Piece<T>(); }
         ~Storage() { std::destroy_n(&(*this)[0], count); }
     } pieces;

@@ -20,7 +20,8 @@ int find(const std::vector<std::string>& header, const std::string& name) {
 
 }  // namespace
 
-Result<DataSetRead> parseDataSet(const std::string& text, const std::string& where, BadRows policy) {
+Result<DataSetRead> parseDataSet(const std::string& text, const std::string& where,
+                                 BadRows policy) {
     Result<io::CsvDocument> parsed = io::parseCsv(text, where);
     if (!parsed) return parsed.issues();
     const io::CsvDocument& doc = parsed.value();
@@ -49,7 +50,8 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
         auto number = [&](int column, const char* name) {
             double value = std::nan("");
             if (!io::parseNumber(cells[column], value)) {
-                bad.push_back({at, std::string(name) + " = '" + cells[column] + "' is not a finite number"});
+                bad.push_back(
+                    {at, std::string(name) + " = '" + cells[column] + "' is not a finite number"});
             }
             return value;
         };
@@ -59,12 +61,14 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
         };
         Sample s;
         s.slip = number(c_slip, "slip");
-        const double theta = c_deg >= 0 ? number(c_deg, "entry_angle_deg") : number(c_rad, "entry_angle_rad");
+        const double theta =
+            c_deg >= 0 ? number(c_deg, "entry_angle_deg") : number(c_rad, "entry_angle_rad");
         s.entry_angle_rad = c_deg >= 0 ? units::degToRad(theta) : theta;
         s.fx_n = number(c_fx, "Fx_N");
         s.fz_n = number(c_fz, "Fz_N");
         s.my_nm = number(c_my, "My_Nm");
-        if (auto beta = optional(c_beta, "slip_angle_deg")) s.slip_angle_rad = units::degToRad(*beta);
+        if (auto beta = optional(c_beta, "slip_angle_deg"))
+            s.slip_angle_rad = units::degToRad(*beta);
         s.fy_n = optional(c_fy, "Fy_N");
         s.load_n = optional(c_load, "W_N");
         s.time_s = optional(c_time, "time_s");
@@ -73,7 +77,8 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
             if (c_deg >= 0) {
                 checkRange(bad, at + ": entry_angle_deg", theta, {0.0, 90.0, true, true}, "deg");
             } else {
-                checkRange(bad, at + ": entry_angle_rad", theta, {0.0, units::kPi / 2, true, true}, "rad");
+                checkRange(bad, at + ": entry_angle_rad", theta, {0.0, units::kPi / 2, true, true},
+                           "rad");
             }
         }
         if (bad.size() == before) out.data.samples.push_back(s);
@@ -85,7 +90,8 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
 
 Result<DataSetRead> readDataSet(const std::filesystem::path& path, BadRows policy) {
     std::string text;
-    if (const auto error = io::readFile(path, text)) return std::vector<Issue>{{path.string(), *error}};
+    if (const auto error = io::readFile(path, text))
+        return std::vector<Issue>{{path.string(), *error}};
     return parseDataSet(text, path.string(), policy);
 }
 
@@ -103,7 +109,9 @@ std::string toCsv(const DataSet& data) {
     if (load) out += ",W_N";
     if (time) out += ",time_s";
     out += '\n';
-    auto cell = [](const std::optional<double>& v) { return v ? "," + formatNumber(*v) : std::string(","); };
+    auto cell = [](const std::optional<double>& v) {
+        return v ? "," + formatNumber(*v) : std::string(",");
+    };
     for (const Sample& s : data.samples) {
         out += formatNumber(s.slip) + "," + formatNumber(units::radToDeg(s.entry_angle_rad)) + "," +
                formatNumber(s.fx_n) + "," + formatNumber(s.fz_n) + "," + formatNumber(s.my_nm);

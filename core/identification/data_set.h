@@ -17,11 +17,11 @@ namespace terra::identification {
 
 /// One sample, SI.
 struct Sample {
-    double slip = 0.0;             ///< s [-], in (−1, 1)
-    double entry_angle_rad = 0.0;  ///< θ_f [rad], in (0, π/2)
-    double fx_n = 0.0;             ///< F_x [N], drawbar pull
-    double fz_n = 0.0;             ///< F_z [N], vertical force
-    double my_nm = 0.0;            ///< M_y [N·m], wheel torque
+    double slip = 0.0;                     ///< s [-], in (−1, 1)
+    double entry_angle_rad = 0.0;          ///< θ_f [rad], in (0, π/2)
+    double fx_n = 0.0;                     ///< F_x [N], drawbar pull
+    double fz_n = 0.0;                     ///< F_z [N], vertical force
+    double my_nm = 0.0;                    ///< M_y [N·m], wheel torque
     std::optional<double> slip_angle_rad;  ///< β [rad]
     std::optional<double> fy_n;            ///< F_y [N]
     std::optional<double> load_n;          ///< W [N]

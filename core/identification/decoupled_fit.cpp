@@ -31,7 +31,8 @@ struct StepIIResidual {
     template <typename T>
     bool operator()(const T* const x, T* residual) const {
         const HatCoefficients<T> h = hatCoefficients(T(a0), T(a1), slip, theta_f);
-        residual[0] = decoupledVerticalForce(h, r, b, T(x[0] * kKsScale), x[1], x[2], slip, theta_f, my) - fz;
+        residual[0] =
+            decoupledVerticalForce(h, r, b, T(x[0] * kKsScale), x[1], x[2], slip, theta_f, my) - fz;
         return true;
     }
 };
@@ -41,7 +42,8 @@ struct StepIIIResidual {
     template <typename T>
     bool operator()(const T* const x, T* residual) const {
         const HatCoefficients<T> h = hatCoefficients(T(a0), T(a1), slip, theta_f);
-        residual[0] = decoupledTorque(h, r, b, T(x[0] * kCohesionScale), x[1], x[2], slip, theta_f, fz) - my;
+        residual[0] =
+            decoupledTorque(h, r, b, T(x[0] * kCohesionScale), x[1], x[2], slip, theta_f, fz) - my;
         return true;
     }
 };
@@ -116,7 +118,8 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         double a[2] = {p.a0, p.a1};
         ceres::Problem problem;
         std::vector<StepIResidual> rows;
-        for (const Sample& s : data.samples) rows.push_back({r, s.slip, s.entry_angle_rad, s.fx_n, s.fz_n, s.my_nm});
+        for (const Sample& s : data.samples)
+            rows.push_back({r, s.slip, s.entry_angle_rad, s.fx_n, s.fz_n, s.my_nm});
         problem.AddResidualBlock(batchCost<2>(std::move(rows)), nullptr, a);
         problem.SetParameterLowerBound(a, 0, 0.0);
         problem.SetParameterUpperBound(a, 0, 1.0);
@@ -140,7 +143,8 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         problem.SetParameterUpperBound(x, 1, bounds.n0_max);
         problem.SetParameterLowerBound(x, 2, bounds.n1_min);
         problem.SetParameterUpperBound(x, 2, bounds.n1_max);
-        fit.steps.push_back(solve(problem, "II: Ks, n0, n1 (Fz, Eq. 4.17)", max_iterations_per_step));
+        fit.steps.push_back(
+            solve(problem, "II: Ks, n0, n1 (Fz, Eq. 4.17)", max_iterations_per_step));
         p.pressure_modulus = x[0] * kKsScale;
         p.n0 = x[1];
         p.n1 = x[2];
@@ -159,7 +163,8 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         problem.SetParameterUpperBound(x, 1, bounds.phi_max);
         problem.SetParameterLowerBound(x, 2, bounds.k_min);
         problem.SetParameterUpperBound(x, 2, bounds.k_max);
-        fit.steps.push_back(solve(problem, "III: c, phi, K (My, Eq. 4.18)", max_iterations_per_step));
+        fit.steps.push_back(
+            solve(problem, "III: c, phi, K (My, Eq. 4.18)", max_iterations_per_step));
         p.cohesion_pa = x[0] * kCohesionScale;
         p.friction_angle_rad = x[1];
         p.shear_modulus_m = x[2];
@@ -176,8 +181,8 @@ DecoupledForces decoupledForward(const DecoupledParameters& p, const wheel::Whee
         p.pressure_modulus * std::pow(r * (std::cos(h.theta_m) - std::cos(theta_f)), n);  // Eq. 4.1
     const double tau_m = (p.cohesion_pa + sigma_m * std::tan(p.friction_angle_rad)) *
                          (1.0 - std::exp(-shearAtMaxStress(h.theta_m, r, slip, theta_f) /
-                                         p.shear_modulus_m));  // Eq. 4.2
-    const double x = r * b * sigma_m, y = r * b * tau_m;  // Eqs. 4.8, 4.9
+                                         p.shear_modulus_m));     // Eq. 4.2
+    const double x = r * b * sigma_m, y = r * b * tau_m;          // Eqs. 4.8, 4.9
     return {-h.b * x + h.a * y, h.a * x + h.b * y, r * h.c * y};  // Eq. 4.4
 }
 

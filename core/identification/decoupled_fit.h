@@ -14,35 +14,35 @@ namespace terra::identification {
 
 /// Decoupled-model parameters, SI.
 struct DecoupledParameters {
-    double a0 = 0.01;                  ///< [-] (Eq. 2.18); thesis initial guess 0.01
-    double a1 = 0.03;                  ///< [-]; thesis initial guess 0.03
-    double pressure_modulus = 1.4e6;   ///< K_s [Pa/m^N] (thesis guess 1400 kPa/m^N, sandy loam)
-    double n0 = 0.1;                   ///< [-]
-    double n1 = 0.0;                   ///< [-]
-    double cohesion_pa = 3.5e3;        ///< c [Pa]
+    double a0 = 0.01;                    ///< [-] (Eq. 2.18); thesis initial guess 0.01
+    double a1 = 0.03;                    ///< [-]; thesis initial guess 0.03
+    double pressure_modulus = 1.4e6;     ///< K_s [Pa/m^N] (thesis guess 1400 kPa/m^N, sandy loam)
+    double n0 = 0.1;                     ///< [-]
+    double n1 = 0.0;                     ///< [-]
+    double cohesion_pa = 3.5e3;          ///< c [Pa]
     double friction_angle_rad = 0.4014;  ///< φ [rad] (23°)
-    double shear_modulus_m = 0.2;      ///< K [m]
+    double shear_modulus_m = 0.2;        ///< K [m]
 };
 
 /// Bounds of steps II and III (chapter 5; step I is unbounded in the thesis, here a₀ ∈ [0, 1],
 /// a₁ ∈ [−1, 1] so that θ_m stays a plausible fraction of θ_f).
 struct DecoupledBounds {
-    double ks_min = 300e3, ks_max = 5000e3;          ///< [Pa/m^N]
+    double ks_min = 300e3, ks_max = 5000e3;  ///< [Pa/m^N]
     double n0_min = 0.01, n0_max = 1.5;
     double n1_min = -0.5, n1_max = 1.0;
-    double c_min = 0.0, c_max = 50e3;                ///< [Pa]
-    double phi_min = 0.0873, phi_max = 1.0123;       ///< [rad] 5°..58°
-    double k_min = 0.001, k_max = 0.5;               ///< [m]
+    double c_min = 0.0, c_max = 50e3;           ///< [Pa]
+    double phi_min = 0.0873, phi_max = 1.0123;  ///< [rad] 5°..58°
+    double k_min = 0.001, k_max = 0.5;          ///< [m]
 };
 
 /// The outcome of one step.
 struct StepReport {
-    std::string name;               ///< "I: a0, a1"
-    bool usable = false;            ///< Ceres' solution is usable
-    std::string termination;        ///< Ceres' termination type and message
+    std::string name;         ///< "I: a0, a1"
+    bool usable = false;      ///< Ceres' solution is usable
+    std::string termination;  ///< Ceres' termination type and message
     int iterations = 0;
     double squared_residual_norm = 0.0;  ///< Σ rᵢ² [N² or (N·m)²] (thesis Tables 5.5–5.6)
-    double wall_time_ms = 0.0;      ///< measured, for the report only
+    double wall_time_ms = 0.0;           ///< measured, for the report only
 };
 
 /// The identified parameters and one report per step.
@@ -54,7 +54,8 @@ struct DecoupledFit {
 
 /// Runs steps I–III on the data set (driving samples, θ_r = 0 as in Table 5.2) for the wheel,
 /// starting from `guess`. On full-model data steps II and III crawl along flat valleys toward a
-/// bound (K_s, c) for 100+ iterations; a warm-started caller (streaming) can cap them. Throws std::invalid_argument for an empty data set or a bad wheel.
+/// bound (K_s, c) for 100+ iterations; a warm-started caller (streaming) can cap them. Throws
+/// std::invalid_argument for an empty data set or a bad wheel.
 DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& wheel,
                           const DecoupledParameters& guess, const DecoupledBounds& bounds = {},
                           int max_iterations_per_step = 200);

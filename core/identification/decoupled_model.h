@@ -5,8 +5,10 @@
 /// θ_r and θ_f and peaks at θ_m (Eq. 4.3), which gives
 ///   [F_z, F_x, M_y]ᵀ = [[A, B], [−B, A], [0, r C]] [X, Y]ᵀ,  X = r b σ_m,  Y = r b τ_m  (Eq. 4.4)
 /// and, eliminating X and Y, three equations that each involve one parameter group:
-///   F_x(P_I; F_z, M_y)  Eq. 4.12,   F_z(P_I, P_II; M_y)  Eq. 4.17,   M_y(P_I, P_III; F_z)  Eq. 4.18.
-/// Templated on the scalar for Ceres' automatic differentiation. Derivation: docs/identification.md.
+///   F_x(P_I; F_z, M_y)  Eq. 4.12,   F_z(P_I, P_II; M_y)  Eq. 4.17,   M_y(P_I, P_III; F_z)
+///   Eq. 4.18.
+/// Templated on the scalar for Ceres' automatic differentiation. Derivation:
+/// docs/identification.md.
 
 #include <cmath>
 
@@ -39,8 +41,10 @@ T sineSlope(const T& x, const T& y) {
 template <typename T>
 struct HatCoefficients {
     T theta_m;
-    T a;  ///< A = ∫ hat cos θ dθ = (cos θ_m − cos θ_r)/(θ_m − θ_r) + (cos θ_m − cos θ_f)/(θ_f − θ_m)
-    T b;  ///< B = ∫ hat sin θ dθ = (sin θ_m − sin θ_r)/(θ_m − θ_r) + (sin θ_m − sin θ_f)/(θ_f − θ_m) (E5)
+    T a;  ///< A = ∫ hat cos θ dθ = (cos θ_m − cos θ_r)/(θ_m − θ_r) + (cos θ_m − cos θ_f)/(θ_f −
+          ///< θ_m)
+    T b;  ///< B = ∫ hat sin θ dθ = (sin θ_m − sin θ_r)/(θ_m − θ_r) + (sin θ_m − sin θ_f)/(θ_f −
+          ///< θ_m) (E5)
     T c;  ///< C = ∫ hat dθ = (θ_f − θ_r)/2
 };
 
@@ -59,7 +63,8 @@ template <typename T>
 T shearAtMaxStress(const T& theta_m, double radius_m, double slip, double theta_f) {
     using std::abs;
     using std::sin;
-    return abs(radius_m * ((theta_f - theta_m) - (1.0 - slip) * (std::sin(theta_f) - sin(theta_m))));
+    return abs(radius_m *
+               ((theta_f - theta_m) - (1.0 - slip) * (std::sin(theta_f) - sin(theta_m))));
 }
 
 /// F_x from F_z and M_y (Eq. 4.12): (A² + B²)/(r A C) M_y − (B/A) F_z. Depends on P_I only.
@@ -78,21 +83,23 @@ T decoupledVerticalForce(const HatCoefficients<T>& h, double radius_m, double wi
     using std::pow;
     const T exponent = n0 + n1 * slip;
     const T base = cos(h.theta_m) - std::cos(theta_f);
-    const T sigma_m = base > 0.0 ? T(pressure_modulus * pow(radius_m * base, exponent)) : T(0.0);  // Eq. 4.1
+    const T sigma_m =
+        base > 0.0 ? T(pressure_modulus * pow(radius_m * base, exponent)) : T(0.0);  // Eq. 4.1
     return radius_m * width_m * h.a * sigma_m + h.b * my_nm / (radius_m * h.c);
 }
 
 /// M_y from F_z (Eq. 4.18): r² C D (b c + F_z tan φ/(r A)) / (1 + B D tan φ/A),
 /// D = 1 − exp(−|j(θ_m)|/K) (Eq. 4.15). Depends on P_I and P_III = {c, φ, K}.
 template <typename T>
-T decoupledTorque(const HatCoefficients<T>& h, double radius_m, double width_m, const T& cohesion_pa,
-                  const T& friction_angle_rad, const T& shear_modulus_m, double slip, double theta_f,
-                  double fz_n) {
+T decoupledTorque(const HatCoefficients<T>& h, double radius_m, double width_m,
+                  const T& cohesion_pa, const T& friction_angle_rad, const T& shear_modulus_m,
+                  double slip, double theta_f, double fz_n) {
     using std::exp;
     using std::tan;
     const T d = 1.0 - exp(-shearAtMaxStress(h.theta_m, radius_m, slip, theta_f) / shear_modulus_m);
     const T tan_phi = tan(friction_angle_rad);
-    return radius_m * radius_m * h.c * d * (width_m * cohesion_pa + fz_n * tan_phi / (radius_m * h.a)) /
+    return radius_m * radius_m * h.c * d *
+           (width_m * cohesion_pa + fz_n * tan_phi / (radius_m * h.a)) /
            (1.0 + h.b * d * tan_phi / h.a);
 }
 

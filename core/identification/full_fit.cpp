@@ -24,9 +24,8 @@ struct FullResidual {
     double r, b, slip, beta, theta_f, fx, fz, my, w_fx, w_fz, w_my, jmax;
     template <typename T>
     bool operator()(const T* const x, T* residual) const {
-        contact::ContactParameters<T> p{T(r),          T(b),          x[kN],        T(0.0),
-                                        x[kKs] * 1e6,  x[kC] * 1e3,   x[kPhi],      x[kK],
-                                        T(0.0),        x[kA0],        x[kA1],       jmax};
+        contact::ContactParameters<T> p{T(r),    T(b),  x[kN],  T(0.0), x[kKs] * 1e6, x[kC] * 1e3,
+                                        x[kPhi], x[kK], T(0.0), x[kA0], x[kA1],       jmax};
         const contact::OperatingPoint<T> op{T(slip), T(beta), T(theta_f), T(0.0), std::nullopt};
         const contact::WheelForces<T> f = contact::computeForces(p, op);
         residual[0] = (f.fx - fx) * w_fx;
@@ -37,8 +36,13 @@ struct FullResidual {
 };
 
 std::array<double, kFullParameterCount> toVector(const DecoupledParameters& p) {
-    return {p.a0, p.a1, p.pressure_modulus / kScale[kKs], p.n0, p.cohesion_pa / kScale[kC],
-            p.friction_angle_rad, p.shear_modulus_m};
+    return {p.a0,
+            p.a1,
+            p.pressure_modulus / kScale[kKs],
+            p.n0,
+            p.cohesion_pa / kScale[kC],
+            p.friction_angle_rad,
+            p.shear_modulus_m};
 }
 
 // RMS of each channel's decoupled-model residual: a noise estimate when none is given.
@@ -50,8 +54,9 @@ std::array<double, 3> decoupledResidualRms(const DataSet& data, const wheel::Whe
         const double fx = decoupledDrawbarPull(h, w.radius_m, s.fz_n, s.my_nm);
         const double fz = decoupledVerticalForce(h, w.radius_m, w.width_m, p.pressure_modulus, p.n0,
                                                  p.n1, s.slip, s.entry_angle_rad, s.my_nm);
-        const double my = decoupledTorque(h, w.radius_m, w.width_m, p.cohesion_pa, p.friction_angle_rad,
-                                          p.shear_modulus_m, s.slip, s.entry_angle_rad, s.fz_n);
+        const double my =
+            decoupledTorque(h, w.radius_m, w.width_m, p.cohesion_pa, p.friction_angle_rad,
+                            p.shear_modulus_m, s.slip, s.entry_angle_rad, s.fz_n);
         sum[0] += std::pow(fx - s.fx_n, 2);
         sum[1] += std::pow(fz - s.fz_n, 2);
         sum[2] += std::pow(my - s.my_nm, 2);
@@ -77,7 +82,7 @@ std::string pairAdvice(int i, int j) {
 }  // namespace
 
 const std::array<const char*, kFullParameterCount>& fullParameterNames() {
-    static const std::array<const char*, kFullParameterCount> names{"a0", "a1",    "Ks", "n",
+    static const std::array<const char*, kFullParameterCount> names{"a0",    "a1",      "Ks", "n",
                                                                     "c_kPa", "phi_deg", "K_m"};
     return names;
 }
@@ -88,12 +93,13 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     if (data.samples.empty()) throw std::invalid_argument("data set: no samples to fit");
     const std::array<double, 3> rms = decoupledResidualRms(data, wheel, start);
     const bool estimated = !(options.sigma_fx > 0 && options.sigma_fz > 0 && options.sigma_my > 0);
-    // Noise levels: given, or the decoupled residual RMS, with a floor so a perfect channel does not
-    // get an infinite weight.
+    // Noise levels: given, or the decoupled residual RMS, with a floor so a perfect channel does
+    // not get an infinite weight.
     auto level = [](double given, double fallback, double floor) {
         return given > 0 ? given : std::max(fallback, floor);
     };
-    const double s_fx = level(options.sigma_fx, rms[0], 1e-6), s_fz = level(options.sigma_fz, rms[1], 1e-6),
+    const double s_fx = level(options.sigma_fx, rms[0], 1e-6),
+                 s_fz = level(options.sigma_fz, rms[1], 1e-6),
                  s_my = level(options.sigma_my, rms[2], 1e-8);
 
     std::array<double, kFullParameterCount> x = toVector(start);
@@ -102,8 +108,9 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     for (const Sample& s : data.samples) {
         problem.AddResidualBlock(
             new ceres::AutoDiffCostFunction<FullResidual, 3, kFullParameterCount>(new FullResidual{
-                wheel.radius_m, wheel.width_m, s.slip, s.slip_angle_rad.value_or(0.0), s.entry_angle_rad,
-                s.fx_n, s.fz_n, s.my_nm, 1.0 / s_fx, 1.0 / s_fz, 1.0 / s_my, options.max_shear_deformation_m}),
+                wheel.radius_m, wheel.width_m, s.slip, s.slip_angle_rad.value_or(0.0),
+                s.entry_angle_rad, s.fx_n, s.fz_n, s.my_nm, 1.0 / s_fx, 1.0 / s_fz, 1.0 / s_my,
+                options.max_shear_deformation_m}),
             nullptr, x.data());
     }
     std::vector<int> fixed;
@@ -168,12 +175,17 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
         const double chi2 = estimated ? 2.0 * summary.final_cost / (residuals - free) : 1.0;
         u.computed = true;
         for (int i = 0; i < kFullParameterCount; ++i) {
-            u.std[i] = options.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, c[i * kFullParameterCount + i] * chi2)) * kScale[i];
+            u.std[i] =
+                options.fixed[i]
+                    ? 0.0
+                    : std::sqrt(std::max(0.0, c[i * kFullParameterCount + i] * chi2)) * kScale[i];
         }
         for (int i = 0; i < kFullParameterCount; ++i) {
             for (int j = 0; j < kFullParameterCount; ++j) {
-                const double d = std::sqrt(c[i * kFullParameterCount + i] * c[j * kFullParameterCount + j]);
-                u.correlation[i][j] = d > 0 ? c[i * kFullParameterCount + j] / d : (i == j ? 1.0 : 0.0);
+                const double d =
+                    std::sqrt(c[i * kFullParameterCount + i] * c[j * kFullParameterCount + j]);
+                u.correlation[i][j] =
+                    d > 0 ? c[i * kFullParameterCount + j] / d : (i == j ? 1.0 : 0.0);
             }
         }
         for (int i = 0; i < kFullParameterCount; ++i) {
@@ -186,24 +198,29 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
             }
         }
     } else {
-        u.flags.push_back("the data do not determine all free parameters (rank-deficient covariance): "
-                          "fix some (--fix) or add data at several loads");
+        u.flags.push_back(
+            "the data do not determine all free parameters (rank-deficient covariance): "
+            "fix some (--fix) or add data at several loads");
     }
     for (int k = 0; k < kFullParameterCount; ++k) {
         if (options.fixed[k]) continue;
         const double span = kUpper[k] - kLower[k];
         if (x[k] - kLower[k] < 1e-6 * span || kUpper[k] - x[k] < 1e-6 * span) {
-            u.flags.push_back(std::string(fullParameterNames()[k]) + " ended at its bound: not determined by the data");
+            u.flags.push_back(std::string(fullParameterNames()[k]) +
+                              " ended at its bound: not determined by the data");
             // The covariance is conditional on k held at its bound: a parameter that trades off
             // with k has compensated for it, and its standard deviation understates its error.
             if (!u.computed) continue;
             for (int j = 0; j < kFullParameterCount; ++j) {
-                if (j == k || options.fixed[j] || std::abs(u.correlation[k][j]) < options.bound_correlation_flag) {
+                if (j == k || options.fixed[j] ||
+                    std::abs(u.correlation[k][j]) < options.bound_correlation_flag) {
                     continue;
                 }
-                u.flags.push_back(std::string(fullParameterNames()[j]) + " is uncertain beyond its std: it trades off with " +
+                u.flags.push_back(std::string(fullParameterNames()[j]) +
+                                  " is uncertain beyond its std: it trades off with " +
                                   fullParameterNames()[k] + " (correlation " +
-                                  formatNumber(roundSignificant(u.correlation[k][j], 3)) + "), which ended at its bound");
+                                  formatNumber(roundSignificant(u.correlation[k][j], 3)) +
+                                  "), which ended at its bound");
             }
         }
     }

@@ -16,9 +16,11 @@ std::array<double, 3> residuals(const DecoupledParameters& p, const wheel::Wheel
     const HatCoefficients<double> h = hatCoefficients(p.a0, p.a1, s.slip, s.entry_angle_rad);
     return {decoupledDrawbarPull(h, w.radius_m, s.fz_n, s.my_nm) - s.fx_n,
             decoupledVerticalForce(h, w.radius_m, w.width_m, p.pressure_modulus, p.n0, p.n1, s.slip,
-                                   s.entry_angle_rad, s.my_nm) - s.fz_n,
+                                   s.entry_angle_rad, s.my_nm) -
+                s.fz_n,
             decoupledTorque(h, w.radius_m, w.width_m, p.cohesion_pa, p.friction_angle_rad,
-                            p.shear_modulus_m, s.slip, s.entry_angle_rad, s.fz_n) - s.my_nm};
+                            p.shear_modulus_m, s.slip, s.entry_angle_rad, s.fz_n) -
+                s.my_nm};
 }
 
 }  // namespace
@@ -35,7 +37,8 @@ double StreamingIdentifier::score(const Sample& sample) const {
     const double floors[3] = {0.01 * std::abs(sample.fz_n) * 0.1, 0.01 * std::abs(sample.fz_n),
                               0.01 * std::abs(sample.my_nm) + 1e-6};
     double worst = 0.0;
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(r[c]) / std::max(noise_[c], floors[c]));
+    for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(r[c]) / std::max(noise_[c], floors[c]));
     return worst;
 }
 
@@ -44,7 +47,8 @@ void StreamingIdentifier::refit(StreamUpdate& update) {
     const auto begin = std::chrono::steady_clock::now();
     // Warm started: the first fit may need the full 200 iterations per step, later ones start
     // next to the optimum and only follow it (StreamingOptions::max_iterations).
-    const DecoupledFit fit = fitDecoupled(data, wheel_, estimate_, {}, estimated_ ? options_.max_iterations : 200);
+    const DecoupledFit fit =
+        fitDecoupled(data, wheel_, estimate_, {}, estimated_ ? options_.max_iterations : 200);
     update.fit_time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
     if (!fit.usable()) return;

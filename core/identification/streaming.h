@@ -17,24 +17,24 @@
 namespace terra::identification {
 
 struct StreamingOptions {
-    std::size_t window = 60;        ///< samples in the sliding window
-    std::size_t min_samples = 12;   ///< no estimate before this many samples
-    double threshold = 8.0;         ///< residual / noise scale that counts as "far off"
-    std::size_t persistence = 3;    ///< far-off samples in a row that make a change
-    int max_iterations = 10;        ///< per step of each warm-started refit
-    DecoupledParameters initial;    ///< start of the first fit (thesis guesses by default)
+    std::size_t window = 60;       ///< samples in the sliding window
+    std::size_t min_samples = 12;  ///< no estimate before this many samples
+    double threshold = 8.0;        ///< residual / noise scale that counts as "far off"
+    std::size_t persistence = 3;   ///< far-off samples in a row that make a change
+    int max_iterations = 10;       ///< per step of each warm-started refit
+    DecoupledParameters initial;   ///< start of the first fit (thesis guesses by default)
 };
 
 /// The state after one sample.
 struct StreamUpdate {
-    std::size_t index = 0;               ///< 0-based sample number
-    bool estimated = false;              ///< an estimate exists (≥ min_samples in the window)
-    DecoupledParameters parameters;      ///< current estimate
-    double residual_score = 0.0;         ///< largest |prediction residual| / noise scale of this sample
-    bool change_detected = false;        ///< a change of soil was confirmed at this sample
+    std::size_t index = 0;           ///< 0-based sample number
+    bool estimated = false;          ///< an estimate exists (≥ min_samples in the window)
+    DecoupledParameters parameters;  ///< current estimate
+    double residual_score = 0.0;     ///< largest |prediction residual| / noise scale of this sample
+    bool change_detected = false;    ///< a change of soil was confirmed at this sample
     std::optional<std::size_t> change_at;  ///< the sample where that change began
     std::size_t window_size = 0;
-    double fit_time_ms = 0.0;            ///< wall time of this update's fit (report only)
+    double fit_time_ms = 0.0;  ///< wall time of this update's fit (report only)
 };
 
 class StreamingIdentifier {

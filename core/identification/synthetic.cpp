@@ -18,8 +18,10 @@ void validate(const SyntheticSpec& spec) {
     if (spec.slips.empty()) issues.push_back({"slips", "no slip given"});
     for (double w : spec.loads_n) checkRange(issues, "load_N", w, {0.0, 1e7, true, false}, "N");
     for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
-    for (const auto& [name, noise] : {std::pair{"noise.Fx", spec.noise.fx}, {"noise.Fz", spec.noise.fz},
-                                      {"noise.My", spec.noise.my}, {"noise.entry_angle", spec.noise.entry_angle}}) {
+    for (const auto& [name, noise] : {std::pair{"noise.Fx", spec.noise.fx},
+                                      {"noise.Fz", spec.noise.fz},
+                                      {"noise.My", spec.noise.my},
+                                      {"noise.entry_angle", spec.noise.entry_angle}}) {
         checkRange(issues, std::string(name) + ".absolute", noise.absolute, {0.0, 1e6});
         checkRange(issues, std::string(name) + ".relative", noise.relative, {0.0, 10.0});
     }
@@ -50,8 +52,8 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
                 continue;
             }
             previous = solution.entry_angle_rad;
-            const contact::WheelForces<double> f =
-                contact::computeForces(p, contact::operatingPoint(problem, solution.entry_angle_rad));
+            const contact::WheelForces<double> f = contact::computeForces(
+                p, contact::operatingPoint(problem, solution.entry_angle_rad));
             Sample sample;
             sample.slip = s;
             sample.entry_angle_rad = solution.entry_angle_rad;

@@ -30,13 +30,13 @@ struct NoiseSpec {
 
 /// What to synthesise.
 struct SyntheticSpec {
-    std::vector<double> loads_n{58.86};    ///< W [N], one sweep per load (Table 5.2: 6 kg)
-    std::vector<double> slips;             ///< s values of each sweep
-    double slip_angle_rad = 0.0;           ///< β (Table 5.2: 0)
-    contact::ExitCondition exit;           ///< θ_r = 0 (Table 5.2)
+    std::vector<double> loads_n{58.86};  ///< W [N], one sweep per load (Table 5.2: 6 kg)
+    std::vector<double> slips;           ///< s values of each sweep
+    double slip_angle_rad = 0.0;         ///< β (Table 5.2: 0)
+    contact::ExitCondition exit;         ///< θ_r = 0 (Table 5.2)
     NoiseSpec noise;
     std::uint64_t seed = 1;
-    double sample_period_s = 0.01;         ///< time between samples (100 Hz)
+    double sample_period_s = 0.01;  ///< time between samples (100 Hz)
 };
 
 /// The data set and the points left out because the soil cannot carry the load there.
@@ -48,6 +48,7 @@ struct SyntheticData {
 /// Generates the data set. Samples carry `time_s`, and `load_n` when more than one load is given.
 /// The noise is drawn from Boost.Random's mt19937_64 and normal distribution, so a seed gives the
 /// same data on every platform. Throws std::invalid_argument for invalid loads, slips or noise.
-SyntheticData synthesize(const contact::ContactParameters<double>& params, const SyntheticSpec& spec);
+SyntheticData synthesize(const contact::ContactParameters<double>& params,
+                         const SyntheticSpec& spec);
 
 }  // namespace terra::identification

@@ -86,8 +86,8 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
             have_header = true;
         } else if (cells.size() != doc.header.size()) {
             doc.row_issues.push_back({where + ":" + std::to_string(line_number),
-                              std::to_string(cells.size()) + " cells, the header has " +
-                                  std::to_string(doc.header.size())});
+                                      std::to_string(cells.size()) + " cells, the header has " +
+                                          std::to_string(doc.header.size())});
         } else {
             doc.rows.push_back(std::move(cells));
             doc.line_numbers.push_back(line_number);

@@ -96,10 +96,11 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
                                               : "file '" + name_or_path + "' does not exist"}};
     }
     std::string names;
-    for (const std::string& n : presetNames(locations, kind)) names += (names.empty() ? "" : ", ") + n;
-    return std::vector<Issue>{{field,
-                               "'" + name_or_path + "' is neither a file nor a preset; presets: " +
-                                   (names.empty() ? "(none found)" : names)}};
+    for (const std::string& n : presetNames(locations, kind))
+        names += (names.empty() ? "" : ", ") + n;
+    return std::vector<Issue>{{field, "'" + name_or_path +
+                                          "' is neither a file nor a preset; presets: " +
+                                          (names.empty() ? "(none found)" : names)}};
 }
 
 }  // namespace
@@ -148,8 +149,9 @@ json toJson(const soil::SoilParameters& soil) {
     for (const soil::SoilField& field : soil::soilFields()) {
         const double value = soil::userValue(soil, field);
         if (!field.required) {
-            const bool unset = std::isinf(value) || (field.member ==
-                &soil::SoilParameters::sinkage_exponent_slip && value == 0.0);
+            const bool unset =
+                std::isinf(value) ||
+                (field.member == &soil::SoilParameters::sinkage_exponent_slip && value == 0.0);
             if (unset) continue;
         }
         out[field.key] = value;
@@ -201,14 +203,16 @@ std::vector<std::string> presetNames(const PresetLocations& locations, const std
 
 Result<soil::SoilParameters> resolveSoil(const PresetLocations& locations,
                                          const std::string& name_or_path) {
-    return resolve<soil::SoilParameters>(locations, "soils", name_or_path,
-                                         [](const std::filesystem::path& p) { return loadSoil(p); });
+    return resolve<soil::SoilParameters>(
+        locations, "soils", name_or_path,
+        [](const std::filesystem::path& p) { return loadSoil(p); });
 }
 
 Result<wheel::WheelParameters> resolveWheel(const PresetLocations& locations,
                                             const std::string& name_or_path) {
     return resolve<wheel::WheelParameters>(
-        locations, "wheels", name_or_path, [](const std::filesystem::path& p) { return loadWheel(p); });
+        locations, "wheels", name_or_path,
+        [](const std::filesystem::path& p) { return loadWheel(p); });
 }
 
 }  // namespace terra::io

@@ -5,10 +5,9 @@
 /// and the allowed range; nothing throws.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/common/issue.h"
 #include "core/soil/soil_parameters.h"

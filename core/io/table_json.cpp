@@ -9,7 +9,8 @@ nlohmann::json toJson(const Table& table) {
     for (const auto& row : table.rows) {
         nlohmann::json object = nlohmann::json::object();
         for (std::size_t i = 0; i < row.size() && i < table.columns.size(); ++i) {
-            object[table.columns[i]] = std::isfinite(row[i]) ? nlohmann::json(row[i]) : nlohmann::json();
+            object[table.columns[i]] =
+                std::isfinite(row[i]) ? nlohmann::json(row[i]) : nlohmann::json();
         }
         rows.push_back(std::move(object));
     }

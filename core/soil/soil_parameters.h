@@ -22,29 +22,31 @@ struct SoilParameters {
     double sinkage_exponent = 0.7;
     double sinkage_exponent_slip = 0.0;  ///< n₁ [-] of N = n₀ + n₁ s (Ding [5]); 0: constant n
     double cohesion_pa = 1.7e3;          ///< c [Pa]: cohesion (Eqs. 2.20, 2.21)
-    double friction_angle_rad = 0.5061;  ///< φ [rad]: internal friction angle (Eq. 2.21)
-    double cohesive_modulus = 5.3e3;     ///< k_c [N/m^(n+1)] (Eq. 2.3)
-    double frictional_modulus = 1.515e6; ///< k_φ [N/m^(n+2)] (Eq. 2.3)
-    double shear_modulus_m = 0.025;      ///< K [m]: shear deformation modulus (Eq. 2.20)
-    double unit_weight_n_m3 = 15.2e3;    ///< γ [N/m³]: specific weight (Eq. 2.27)
-    double max_stress_a0 = 0.2;          ///< a₀ [-] of θ_m = (a₀ + a₁ s) θ_f (Eq. 2.18)
-    double max_stress_a1 = 0.3;          ///< a₁ [-] of Eq. 2.18
+    double friction_angle_rad = 0.5061;   ///< φ [rad]: internal friction angle (Eq. 2.21)
+    double cohesive_modulus = 5.3e3;      ///< k_c [N/m^(n+1)] (Eq. 2.3)
+    double frictional_modulus = 1.515e6;  ///< k_φ [N/m^(n+2)] (Eq. 2.3)
+    double shear_modulus_m = 0.025;       ///< K [m]: shear deformation modulus (Eq. 2.20)
+    double unit_weight_n_m3 = 15.2e3;     ///< γ [N/m³]: specific weight (Eq. 2.27)
+    double max_stress_a0 = 0.2;           ///< a₀ [-] of θ_m = (a₀ + a₁ s) θ_f (Eq. 2.18)
+    double max_stress_a1 = 0.3;           ///< a₁ [-] of Eq. 2.18
     /// j_max [m]: shear deformation limit of a smooth wheel (Eq. 2.16); +inf = no limit.
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
 
-    bool hasShearLimit() const { return max_shear_deformation_m < std::numeric_limits<double>::infinity(); }
+    bool hasShearLimit() const {
+        return max_shear_deformation_m < std::numeric_limits<double>::infinity();
+    }
 };
 
 /// One user-facing field of the soil: its file key, unit, allowed range and SI conversion.
 /// This table drives the JSON reader, the writer, validation and the command-line overrides.
 struct SoilField {
-    const char* key;        ///< JSON key, unit-suffixed ("phi_deg")
-    const char* unit;       ///< unit shown to the user ("deg")
-    const char* symbol;     ///< literature symbol ("φ")
-    Range range;            ///< allowed values, in the user's unit
-    double to_si;           ///< SI value = file value × to_si
+    const char* key;     ///< JSON key, unit-suffixed ("phi_deg")
+    const char* unit;    ///< unit shown to the user ("deg")
+    const char* symbol;  ///< literature symbol ("φ")
+    Range range;         ///< allowed values, in the user's unit
+    double to_si;        ///< SI value = file value × to_si
     double SoilParameters::*member;
-    bool required;          ///< false: optional key, default kept when absent
+    bool required;  ///< false: optional key, default kept when absent
 };
 
 /// The field table (n, c, φ, k_c, k_φ, K, γ, a₀, a₁, j_max, n₁).

@@ -12,10 +12,10 @@ namespace terra::wheel {
 
 /// A rigid cylindrical wheel.
 struct WheelParameters {
-    std::string name;        ///< "wheel A"
-    std::string source;      ///< where the values come from
-    double radius_m = 0.092; ///< r [m]
-    double width_m = 0.107;  ///< b [m]
+    std::string name;         ///< "wheel A"
+    std::string source;       ///< where the values come from
+    double radius_m = 0.092;  ///< r [m]
+    double width_m = 0.107;   ///< b [m]
 };
 
 inline const Range kRadiusRange{0.0, 5.0, true, false};  ///< r_m, [m]

@@ -24,12 +24,14 @@ inline CliRun run(const std::string& arguments) {
     // One stderr file per process: ctest runs the tests of these files in parallel processes.
     const std::filesystem::path err_path =
         std::filesystem::temp_directory_path() / ("terra_cli_err_" + std::to_string(::getpid()));
-    const std::string command = std::string(TERRASTUDIO_EXE) + " " + arguments + " 2>" + err_path.string();
+    const std::string command =
+        std::string(TERRASTUDIO_EXE) + " " + arguments + " 2>" + err_path.string();
     CliRun r;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (pipe == nullptr) return r;
     std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        r.out.append(buffer.data(), n);
     const int status = ::pclose(pipe);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::ifstream err(err_path);

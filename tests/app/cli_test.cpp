@@ -22,7 +22,8 @@ using terra::test::run;
 std::string data(const std::string& name) { return std::string(TERRA_TEST_DATA_DIR) + "/" + name; }
 
 TEST(Cli, WheelJsonHasTheDocumentedKeys) {
-    const CliRun r = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 15 --load 58.86 --json");
+    const CliRun r =
+        run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 15 --load 58.86 --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"Fx_N", "Fy_N", "Fz_N", "Mx_Nm", "My_Nm", "Mz_Nm", "Fb_N", "Fs_N",
@@ -36,9 +37,11 @@ TEST(Cli, WheelJsonHasTheDocumentedKeys) {
 
 TEST(Cli, Table23FlagsOverrideTheSoilFile) {
     // θ_m fixed at 15° and no j_max: the vertical force differs from the default soil file's.
-    const CliRun table = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 12 --entry-angle 30 "
-                          "--max-stress-angle 15 --no-jmax --json");
-    const CliRun plain = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 12 --entry-angle 30 --json");
+    const CliRun table =
+        run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 12 --entry-angle 30 "
+            "--max-stress-angle 15 --no-jmax --json");
+    const CliRun plain =
+        run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 12 --entry-angle 30 --json");
     ASSERT_EQ(table.exit_code, 0) << table.err;
     ASSERT_EQ(plain.exit_code, 0) << plain.err;
     EXPECT_NE(nlohmann::json::parse(table.out)["Fz_N"], nlohmann::json::parse(plain.out)["Fz_N"]);
@@ -82,14 +85,15 @@ TEST(Cli, NoEquilibriumExitsOneAndSaysWhy) {
 }
 
 TEST(Cli, BatchModeWritesOneRowPerPoint) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_batch_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_batch_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     {
         std::ofstream in(dir / "points.csv");
         in << "slip,slip_angle_deg,load_N\n0.1,5,58.86\n0.3,15,40\n-0.2,0,58.86\n";
     }
-    const CliRun r = run("wheel --soil sandy-loam --wheel A --input " + (dir / "points.csv").string() +
-                      " --output " + (dir / "out.csv").string());
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --input " +
+                         (dir / "points.csv").string() + " --output " + (dir / "out.csv").string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::ifstream out(dir / "out.csv");
     std::string header, line;
@@ -107,8 +111,9 @@ TEST(Cli, BatchModeWritesOneRowPerPoint) {
         std::ofstream in(dir / "bad.csv");
         in << "slip,entry_angle_deg\n0.1,20\n0.2,abc\n";
     }
-    const CliRun bad = run("wheel --soil sandy-loam --wheel A --input " + (dir / "bad.csv").string() +
-                        " --output " + (dir / "bad-out.csv").string());
+    const CliRun bad =
+        run("wheel --soil sandy-loam --wheel A --input " + (dir / "bad.csv").string() +
+            " --output " + (dir / "bad-out.csv").string());
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("bad.csv:3"), std::string::npos) << bad.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad-out.csv"));
@@ -116,10 +121,12 @@ TEST(Cli, BatchModeWritesOneRowPerPoint) {
 }
 
 TEST(Cli, SweepAndSensitivityProduceTables) {
-    const CliRun sweep = run("sweep --soil sandy-loam --wheel A --slips 0:0.9:10 --slip-angles 5,15 --json");
+    const CliRun sweep =
+        run("sweep --soil sandy-loam --wheel A --slips 0:0.9:10 --slip-angles 5,15 --json");
     ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
     EXPECT_EQ(nlohmann::json::parse(sweep.out)["rows"].size(), 20u);
-    const CliRun sens = run("sensitivity --soil sandy-loam --wheel A --parameter K_m --slips 0.2,0.5");
+    const CliRun sens =
+        run("sensitivity --soil sandy-loam --wheel A --parameter K_m --slips 0.2,0.5");
     ASSERT_EQ(sens.exit_code, 0) << sens.err;
     EXPECT_EQ(sens.out.rfind("K_m,", 0), 0u) << sens.out.substr(0, 80);
     const CliRun sinkage = run("sinkage --soil clayey-soil --wheel A --load 25,58.86,98 --json");
@@ -140,29 +147,34 @@ TEST(Cli, PresetsListsTheThesisSoilsAndWheels) {
 }
 
 TEST(Cli, BadFixtureFilesNameTheField) {
-    const CliRun phi = run("wheel --soil " + data("bad/soil-phi-out-of-range.json") + " --wheel A --load 50");
+    const CliRun phi =
+        run("wheel --soil " + data("bad/soil-phi-out-of-range.json") + " --wheel A --load 50");
     EXPECT_EQ(phi.exit_code, 2);
     EXPECT_NE(phi.err.find("phi_deg"), std::string::npos) << phi.err;
-    const CliRun json = run("wheel --soil " + data("bad/soil-not-json.json") + " --wheel A --load 50");
+    const CliRun json =
+        run("wheel --soil " + data("bad/soil-not-json.json") + " --wheel A --load 50");
     EXPECT_EQ(json.exit_code, 2);
     EXPECT_NE(json.err.find("invalid JSON"), std::string::npos) << json.err;
-    const CliRun wheel = run("wheel --soil sandy-loam --wheel " + data("bad/wheel-negative-radius.json") +
-                             " --load 50");
+    const CliRun wheel = run("wheel --soil sandy-loam --wheel " +
+                             data("bad/wheel-negative-radius.json") + " --load 50");
     EXPECT_EQ(wheel.exit_code, 2);
     EXPECT_NE(wheel.err.find("r_m"), std::string::npos) << wheel.err;
-    const CliRun good = run("wheel --soil " + data("good/soil-custom.json") + " --wheel A --load 50 --json");
+    const CliRun good =
+        run("wheel --soil " + data("good/soil-custom.json") + " --wheel A --load 50 --json");
     EXPECT_EQ(good.exit_code, 0) << good.err;
 }
 
 TEST(Cli, BatchSkipsShortAndBadRowsOnRequest) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_skip_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_skip_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     {
         std::ofstream in(dir / "mixed.csv");
         in << "slip,entry_angle_deg,rut_ratio\n0.1,20,0\n0.2\n0.3,25,1.5\n0.4,30,0.5\n";
     }
-    const std::string args = "wheel --soil sandy-loam --wheel A --input " + (dir / "mixed.csv").string() +
-                             " --output " + (dir / "out.csv").string();
+    const std::string args = "wheel --soil sandy-loam --wheel A --input " +
+                             (dir / "mixed.csv").string() + " --output " +
+                             (dir / "out.csv").string();
     const CliRun strict = run(args);
     EXPECT_EQ(strict.exit_code, 2);
     EXPECT_NE(strict.err.find("mixed.csv:3"), std::string::npos) << strict.err;  // short row
@@ -178,11 +190,13 @@ TEST(Cli, BatchSkipsShortAndBadRowsOnRequest) {
 }
 
 TEST(Cli, BareNamesArePresetsEvenWithAFileOfThatName) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_shadow_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_shadow_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "A") << "not json";
-    const CliRun r = run("wheel --soil sandy-loam --wheel A --entry-angle 20 --json 2>&1; cd " + dir.string() +
-                         " && " + TERRASTUDIO_EXE + " wheel --soil sandy-loam --wheel A --entry-angle 20 --json");
+    const CliRun r = run("wheel --soil sandy-loam --wheel A --entry-angle 20 --json 2>&1; cd " +
+                         dir.string() + " && " + TERRASTUDIO_EXE +
+                         " wheel --soil sandy-loam --wheel A --entry-angle 20 --json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::filesystem::remove_all(dir);
 }
@@ -194,9 +208,10 @@ TEST(Cli, BatchOnlyFlagsNeedInput) {
 }
 
 TEST(Cli, StressesReproduceTable24) {
-    // Table 2.3 conditions, θ_m = 15°, no j_max, 0.01° grid (MODEL-NOTES): sandy loam σ RMSE 2.1623,
-    // τ_l RMSE 0.2121 (E11), MAE σ 1.7427 kPa.
-    const CliRun r = run("stresses --soil sandy-loam --wheel A --max-stress-angle 15 --no-jmax --json");
+    // Table 2.3 conditions, θ_m = 15°, no j_max, 0.01° grid (MODEL-NOTES): sandy loam σ
+    // RMSE 2.1623, τ_l RMSE 0.2121 (E11), MAE σ 1.7427 kPa.
+    const CliRun r =
+        run("stresses --soil sandy-loam --wheel A --max-stress-angle 15 --no-jmax --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto e = nlohmann::json::parse(r.out)["errors"];
     EXPECT_NEAR(e["sigma_rmse_kPa"].get<double>(), 2.1623, 0.5e-4);
@@ -206,11 +221,14 @@ TEST(Cli, StressesReproduceTable24) {
 }
 
 TEST(Cli, SynthThenIdentify) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_ident_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_ident_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string data = (dir / "data.csv").string();
-    const CliRun synth = run("synth --soil clayey-soil --wheel A --load 40,80 --slips 0:0.9:30 "
-                             "--noise fx=0.05,my=1% --seed 3 --out " + data);
+    const CliRun synth =
+        run("synth --soil clayey-soil --wheel A --load 40,80 --slips 0:0.9:30 "
+            "--noise fx=0.05,my=1% --seed 3 --out " +
+            data);
     ASSERT_EQ(synth.exit_code, 0) << synth.err;
     const CliRun fit = run("identify --data " + data + " --wheel A --json");
     ASSERT_EQ(fit.exit_code, 0) << fit.err;
@@ -220,7 +238,8 @@ TEST(Cli, SynthThenIdentify) {
     }
     EXPECT_EQ(j["samples"].get<int>(), 60);
     EXPECT_EQ(j["steps"].size(), 3u);
-    const CliRun refined = run("identify --data " + data + " --wheel A --refine --jmax 0.009 --fix a0=0.2 --json");
+    const CliRun refined =
+        run("identify --data " + data + " --wheel A --refine --jmax 0.009 --fix a0=0.2 --json");
     ASSERT_EQ(refined.exit_code, 0) << refined.err;
     const auto r = nlohmann::json::parse(refined.out);
     EXPECT_EQ(r["a0"].get<double>(), 0.2);
@@ -229,9 +248,11 @@ TEST(Cli, SynthThenIdentify) {
     EXPECT_EQ(r["std"]["a0"].get<double>(), 0.0);  // fixed
     EXPECT_TRUE(r["flags"].is_array());
     EXPECT_EQ(r["steps"].size(), 4u);
-    EXPECT_EQ(run("identify --data " + data + " --fix a0=0.2").exit_code, 2);  // --fix needs --refine
+    EXPECT_EQ(run("identify --data " + data + " --fix a0=0.2").exit_code,
+              2);  // --fix needs --refine
     // A bad row stops the fit with its line number, unless skipped.
-    std::ofstream(dir / "bad.csv") << "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.1,20,1,50,0.5\n0.2,120,1,50,0.5\n";
+    std::ofstream(dir / "bad.csv")
+        << "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.1,20,1,50,0.5\n0.2,120,1,50,0.5\n";
     const CliRun bad = run("identify --data " + (dir / "bad.csv").string());
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("bad.csv:3"), std::string::npos) << bad.err;
@@ -242,12 +263,22 @@ TEST(Cli, SynthThenIdentify) {
 }
 
 TEST(Cli, IdentifyStreamReportsTheSoilBorder) {
-    // Sandy loam then clayey soil, one sample per line: the change is found at the first clay sample.
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_stream_" + std::to_string(::getpid()));
+    // Sandy loam then clayey soil, one sample per line: the change is found at the first clay
+    // sample.
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_stream_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string a = (dir / "a.csv").string(), b = (dir / "b.csv").string();
-    ASSERT_EQ(run("synth --soil sandy-loam --slips 0.05:0.9:80 --noise fx=1%,fz=1%,my=1% --seed 1 --out " + a).exit_code, 0);
-    ASSERT_EQ(run("synth --soil clayey-soil --slips 0.05:0.9:80 --noise fx=1%,fz=1%,my=1% --seed 2 --out " + b).exit_code, 0);
+    ASSERT_EQ(run("synth --soil sandy-loam --slips 0.05:0.9:80 --noise fx=1%,fz=1%,my=1% --seed 1 "
+                  "--out " +
+                  a)
+                  .exit_code,
+              0);
+    ASSERT_EQ(run("synth --soil clayey-soil --slips 0.05:0.9:80 --noise fx=1%,fz=1%,my=1% --seed 2 "
+                  "--out " +
+                  b)
+                  .exit_code,
+              0);
     std::ifstream in_a(a), in_b(b);
     std::ofstream both(dir / "ab.csv");
     std::string line;
@@ -277,8 +308,9 @@ TEST(Cli, IdentifyStreamReportsTheSoilBorder) {
 TEST(Cli, StressesOutDashWritesTheCsvAloneAndStartsAtTheClampedExitAngle) {
     // θ_r = −30° with θ_f = 10°: the model uses θ_r = −θ_f = −10°, so the grid starts there
     // (it started at −30°, with 20 rows of zeros outside the contact).
-    const CliRun r = run("stresses --soil sandy-loam --wheel A --entry-angle 10 --exit-angle -30 "
-                         "--step 1 --out -");
+    const CliRun r =
+        run("stresses --soil sandy-loam --wheel A --entry-angle 10 --exit-angle -30 "
+            "--step 1 --out -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out.rfind("theta_deg,", 0), 0u) << r.out.substr(0, 80);
     EXPECT_EQ(r.out.find("RMSE"), std::string::npos) << "the summary table was mixed into the CSV";
@@ -293,16 +325,19 @@ TEST(Cli, StressesOutDashWritesTheCsvAloneAndStartsAtTheClampedExitAngle) {
 }
 
 TEST(Cli, StressesJsonToAFileSaysSoAndEchoesTypedAngles) {
-    const auto path = std::filesystem::temp_directory_path() / ("terra_stress_" + std::to_string(::getpid()) + ".json");
-    const CliRun r = run("stresses --soil sandy-loam --wheel A --max-stress-angle 15 --json --out " + path.string());
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("terra_stress_" + std::to_string(::getpid()) + ".json");
+    const CliRun r = run(
+        "stresses --soil sandy-loam --wheel A --max-stress-angle 15 --json --out " + path.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("wrote " + path.string()), std::string::npos) << r.err;
     std::ifstream in(path);
     const auto j = nlohmann::json::parse(in);
     EXPECT_EQ(j["errors"]["max_stress_angle_deg"].get<double>(), 15.0);  // not 15.000000000000002
     std::filesystem::remove(path);
-    const CliRun sweep = run("sweep --soil sandy-loam --wheel A --entry-angle 25 --slips 0.1,0.5 "
-                             "--slip-angles 5 --json");
+    const CliRun sweep =
+        run("sweep --soil sandy-loam --wheel A --entry-angle 25 --slips 0.1,0.5 "
+            "--slip-angles 5 --json");
     ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
     for (const auto& row : nlohmann::json::parse(sweep.out)["rows"]) {
         EXPECT_EQ(row["entry_angle_deg"].get<double>(), 25.0);  // not 25.000000000000004
@@ -311,16 +346,19 @@ TEST(Cli, StressesJsonToAFileSaysSoAndEchoesTypedAngles) {
 
 TEST(Cli, NoNegativeZeroInAnyOutput) {
     // β = 0: F_y = M_x = M_z = 0 exactly, which used to print as -0.0 / -0.0000.
-    const CliRun json = run("wheel --soil sandy-loam --wheel A --slip -0 --slip-angle 0 --entry-angle 20 --json");
+    const CliRun json =
+        run("wheel --soil sandy-loam --wheel A --slip -0 --slip-angle 0 --entry-angle 20 --json");
     ASSERT_EQ(json.exit_code, 0) << json.err;
     EXPECT_EQ(json.out.find("-0.0"), std::string::npos) << json.out;
     const auto j = nlohmann::json::parse(json.out);
     EXPECT_FALSE(std::signbit(j["Fy_N"].get<double>()));
-    const CliRun human = run("wheel --soil sandy-loam --wheel A --slip -0 --slip-angle 0 --entry-angle 20");
+    const CliRun human =
+        run("wheel --soil sandy-loam --wheel A --slip -0 --slip-angle 0 --entry-angle 20");
     ASSERT_EQ(human.exit_code, 0) << human.err;
     EXPECT_EQ(human.out.find("-0.0000"), std::string::npos) << human.out;
     EXPECT_EQ(human.out.find("s = -0"), std::string::npos) << human.out;
-    const CliRun sweep = run("sweep --soil sandy-loam --wheel A --slips -0,0.5 --slip-angles 0 --json");
+    const CliRun sweep =
+        run("sweep --soil sandy-loam --wheel A --slips -0,0.5 --slip-angles 0 --json");
     ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
     EXPECT_EQ(sweep.out.find("-0.0"), std::string::npos) << sweep.out;
     const CliRun csv = run("sweep --soil sandy-loam --wheel A --slips -0,0.5 --slip-angles 0");
@@ -329,15 +367,18 @@ TEST(Cli, NoNegativeZeroInAnyOutput) {
 }
 
 TEST(Cli, BatchBadRowsAreListedInLineOrder) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_order_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_order_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     {
         std::ofstream in(dir / "rows.csv");
         in << "slip,entry_angle_deg\n0.1,20\n1.5,20\n0.2\n0.2,abc\n";  // lines 3, 4 (short), 5
     }
-    const CliRun r = run("wheel --soil sandy-loam --wheel A --input " + (dir / "rows.csv").string());
+    const CliRun r =
+        run("wheel --soil sandy-loam --wheel A --input " + (dir / "rows.csv").string());
     EXPECT_EQ(r.exit_code, 2);
-    const auto at3 = r.err.find("rows.csv:3"), at4 = r.err.find("rows.csv:4"), at5 = r.err.find("rows.csv:5");
+    const auto at3 = r.err.find("rows.csv:3"), at4 = r.err.find("rows.csv:4"),
+               at5 = r.err.find("rows.csv:5");
     ASSERT_NE(at3, std::string::npos) << r.err;
     ASSERT_NE(at4, std::string::npos) << r.err;
     ASSERT_NE(at5, std::string::npos) << r.err;
@@ -353,13 +394,16 @@ TEST(Cli, PathsThatDoNotExistAreNamedAsFiles) {
     EXPECT_EQ(r.err.find("neither a file nor a preset"), std::string::npos) << r.err;
     const CliRun wheel = run("wheel --soil sandy-loam --wheel missing-wheel.json --load 50");
     EXPECT_EQ(wheel.exit_code, 2);
-    EXPECT_NE(wheel.err.find("file 'missing-wheel.json' does not exist"), std::string::npos) << wheel.err;
-    const CliRun name = run("wheel --soil sandy --wheel A --load 50");  // a bare name: presets listed
+    EXPECT_NE(wheel.err.find("file 'missing-wheel.json' does not exist"), std::string::npos)
+        << wheel.err;
+    const CliRun name =
+        run("wheel --soil sandy --wheel A --load 50");  // a bare name: presets listed
     EXPECT_NE(name.err.find("neither a file nor a preset"), std::string::npos) << name.err;
 }
 
 TEST(Cli, PresetsIndentsEveryLineOfAnInvalidWheel) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_presets_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_presets_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir / "wheels");
     std::ofstream(dir / "wheels" / "broken.json") << R"({"name": "broken", "r_m": -1, "b_m": -2})";
     const CliRun r = run("presets > /dev/null; TERRASTUDIO_RESOURCES=" + dir.string() + " " +
@@ -377,15 +421,19 @@ TEST(Cli, PresetsIndentsEveryLineOfAnInvalidWheel) {
 }
 
 TEST(Cli, RenderRejectsAZeroLoadWithTheRange) {
-    const CliRun r = run("render --soil sandy-loam --wheel A --load 0 --out /tmp/terra_render_never");
+    const CliRun r =
+        run("render --soil sandy-loam --wheel A --load 0 --out /tmp/terra_render_never");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("--load: 0 is outside the allowed range (0, 1e+07] N"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--load: 0 is outside the allowed range (0, 1e+07] N"), std::string::npos)
+        << r.err;
     EXPECT_FALSE(std::filesystem::exists("/tmp/terra_render_never"));
 }
 
 TEST(Cli, RenderWritesTheDefaultAnalysisHeadlessly) {
-    const auto dir = std::filesystem::temp_directory_path() / ("terra_render_" + std::to_string(::getpid()));
-    const CliRun r = run("render --soil sandy-loam --wheel A --width 400 --height 300 --out " + dir.string());
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terra_render_" + std::to_string(::getpid()));
+    const CliRun r =
+        run("render --soil sandy-loam --wheel A --width 400 --height 300 --out " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "forces-vs-slip.csv"));
     for (const char* name : {"Fx_N", "Fs_N", "Fz_N", "My_Nm", "Mz_Nm", "entry_angle_deg"}) {

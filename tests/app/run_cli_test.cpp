@@ -27,8 +27,9 @@ std::string readText(const fs::path& path) {
 class RunCommand : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("terra_run_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ = fs::temp_directory_path() /
+               ("terra_run_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -41,9 +42,11 @@ protected:
     fs::path dir_;
 };
 
-// F_x at s = 0.3, β = 5° from the single-point `wheel` command: an independent path through the CLI.
+// F_x at s = 0.3, β = 5° from the single-point `wheel` command: an independent path through the
+// CLI.
 double singlePointFx() {
-    const CliRun r = run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 5 --load 58.86 --json");
+    const CliRun r =
+        run("wheel --soil sandy-loam --wheel A --slip 0.3 --slip-angle 5 --load 58.86 --json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out)["Fx_N"].get<double>();
 }
@@ -52,13 +55,21 @@ nlohmann::json forcesScript(double low, double high) {
     return {{"title", "test"},
             {"soil", "sandy-loam"},
             {"wheel", "A"},
-            {"conditions", {{"load_N", 58.86}, {"slip_angles_deg", {5, 15}}, {"slip_count", 100}, {"slip_max", 0.99}}},
+            {"conditions",
+             {{"load_N", 58.86},
+              {"slip_angles_deg", {5, 15}},
+              {"slip_count", 100},
+              {"slip_max", 0.99}}},
             {"export", {{"width", 640}, {"height", 480}, {"formats", {"png", "svg"}}}},
             {"analyses",
              {{{"name", "fx"},
                {"type", "forces"},
                {"plots", {"Fx_N"}},
-               {"expect", {{{"column", "Fx_N"}, {"at", {{"slip", 0.3}, {"slip_angle_deg", 5}}}, {"min", low}, {"max", high}}}}}}}};
+               {"expect",
+                {{{"column", "Fx_N"},
+                  {"at", {{"slip", 0.3}, {"slip_angle_deg", 5}}},
+                  {"min", low},
+                  {"max", high}}}}}}}};
 }
 
 TEST_F(RunCommand, MetExpectationsExitZeroAndWritePlotsDataReport) {
@@ -66,7 +77,8 @@ TEST_F(RunCommand, MetExpectationsExitZeroAndWritePlotsDataReport) {
     const fs::path script = writeScript(forcesScript(fx - 1e-6, fx + 1e-6));
     const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-    for (const char* file : {"fx-Fx_N.png", "fx-Fx_N.svg", "fx.csv", "report.md", "manifest.json"}) {
+    for (const char* file :
+         {"fx-Fx_N.png", "fx-Fx_N.svg", "fx.csv", "report.md", "manifest.json"}) {
         EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
     }
     const std::string report = readText(dir_ / "out" / "report.md");
@@ -91,18 +103,21 @@ TEST_F(RunCommand, FailedExpectationExitsOneAndIsListedInTheReport) {
 TEST_F(RunCommand, BrokenScriptExitsTwoNamingTheField) {
     nlohmann::json script = forcesScript(0, 1);
     script["analyses"][0]["type"] = "forcez";
-    const CliRun bad_type = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    const CliRun bad_type =
+        run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(bad_type.exit_code, 2);
     EXPECT_NE(bad_type.err.find("analyses[0].type"), std::string::npos) << bad_type.err;
 
     script = forcesScript(0, 1);
     script["set"] = {{"phi_deg", 75}};
-    const CliRun bad_value = run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
+    const CliRun bad_value =
+        run("run " + writeScript(script).string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(bad_value.exit_code, 2);
     EXPECT_NE(bad_value.err.find("phi_deg"), std::string::npos) << bad_value.err;
     EXPECT_NE(bad_value.err.find("[0, 60)"), std::string::npos) << bad_value.err;
 
-    const CliRun missing = run("run " + (dir_ / "nope.json").string() + " --out " + (dir_ / "out").string());
+    const CliRun missing =
+        run("run " + (dir_ / "nope.json").string() + " --out " + (dir_ / "out").string());
     EXPECT_EQ(missing.exit_code, 2);
 }
 
@@ -121,27 +136,34 @@ nlohmann::json roverScript(double yaw_min_deg, double yaw_max_deg) {
                  {{"column", "x_m"}, {"min", 0.0}, {"max", no_slip_m}},
                  {{"column", "y_m"}, {"min", -1e-9}, {"max", 1e-9}},
                  {{"column", "mean_slip_FL"}, {"min", 0.0}, {"max", 1.0}},
-                 {{"column", "lateral_m_s"}, {"table", "timeseries"}, {"at", {{"t_s", 2.0}}}, {"min", -1e-9}, {"max", 1e-9}}}}}}}};
+                 {{"column", "lateral_m_s"},
+                  {"table", "timeseries"},
+                  {"at", {{"t_s", 2.0}}},
+                  {"min", -1e-9},
+                  {"max", 1e-9}}}}}}}};
 }
 
 TEST_F(RunCommand, RoverAnalysisWritesFiguresSeriesAndTheSameSummaryAsSimulate) {
     const fs::path script = writeScript(roverScript(-1e-9, 1e-9));
     const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
     ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-    for (const char* file : {"straight-path.png", "straight-path.svg", "straight-slip.png", "straight-top-view.png",
-                             "straight-timeseries.csv", "straight-summary.json", "report.md"}) {
+    for (const char* file :
+         {"straight-path.png", "straight-path.svg", "straight-slip.png", "straight-top-view.png",
+          "straight-timeseries.csv", "straight-summary.json", "report.md"}) {
         EXPECT_TRUE(fs::exists(dir_ / "out" / file)) << file;
     }
     EXPECT_FALSE(fs::exists(dir_ / "out" / "straight-yaw.png"));  // only the plots asked for
     // The same scenario through `simulate`: an independent path to the same (deterministic) run.
-    const CliRun sim = run("simulate --scenario straight --duration 3 --out " + (dir_ / "sim").string() + " --json");
+    const CliRun sim = run("simulate --scenario straight --duration 3 --out " +
+                           (dir_ / "sim").string() + " --json");
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
     const auto expected = nlohmann::json::parse(sim.out);
     const auto summary = nlohmann::json::parse(readText(dir_ / "out" / "straight-summary.json"));
     for (const char* key : {"x_m", "y_m", "yaw_rad", "energy_J", "duration_s"}) {
         EXPECT_EQ(summary[key].get<double>(), expected[key].get<double>()) << key;
     }
-    EXPECT_EQ(readText(dir_ / "out" / "straight-timeseries.csv"), readText(dir_ / "sim" / "timeseries.csv"));
+    EXPECT_EQ(readText(dir_ / "out" / "straight-timeseries.csv"),
+              readText(dir_ / "sim" / "timeseries.csv"));
 }
 
 TEST_F(RunCommand, FailedRoverExpectationExitsOne) {

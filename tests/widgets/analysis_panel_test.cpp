@@ -18,7 +18,8 @@ namespace {
 // returns the document revision it was started from.
 class SlowPanel : public AnalysisPanel {
 public:
-    SlowPanel(ProjectDocument* document, int work_ms) : AnalysisPanel(document, "slow"), work_ms_(work_ms) {}
+    SlowPanel(ProjectDocument* document, int work_ms)
+        : AnalysisPanel(document, "slow"), work_ms_(work_ms) {}
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override { return {}; }
     QCustomPlot* currentPlot() const override { return nullptr; }
     Table currentTable() const override { return {}; }
@@ -62,11 +63,13 @@ TEST(AnalysisPanel, ContinuousEditsStillDrawIntermediateFrames) {
     // 1.2 s at one frame per ≤ 150 ms + a 60 ms computation: ≥ 5 frames even with slack for a
     // loaded machine (starvation gave 0).
     EXPECT_GE(during_drag, 3u) << "frames drawn while edits kept arriving";
-    for (const int revision : panel.shown) EXPECT_GT(revision, 0) << "a cancelled (partial) result was drawn";
+    for (const int revision : panel.shown)
+        EXPECT_GT(revision, 0) << "a cancelled (partial) result was drawn";
 
     ASSERT_TRUE(test::waitForResult(panel, 10000));
     ASSERT_FALSE(panel.shown.empty());
-    EXPECT_EQ(panel.shown.back(), document.revision()) << "the final state of the burst is on screen";
+    EXPECT_EQ(panel.shown.back(), document.revision())
+        << "the final state of the burst is on screen";
 }
 
 // A burst shorter than the frame gap cancels the running computation: only the last state is drawn.

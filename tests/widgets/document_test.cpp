@@ -57,9 +57,9 @@ TEST(ProjectDocument, InvalidValuesNeverReachTheModel) {
     ProjectDocument document;
     test::resetToDefault(document);
     const Project before = document.project();
-    EXPECT_FALSE(document.setSoilValue("phi_deg", 75.0));       // range [0, 60)
-    EXPECT_FALSE(document.setSoilValue("phi_deg", 60.0));       // open upper end
-    EXPECT_FALSE(document.setSoilValue("K_m", 0.0));            // (0, 0.5]
+    EXPECT_FALSE(document.setSoilValue("phi_deg", 75.0));  // range [0, 60)
+    EXPECT_FALSE(document.setSoilValue("phi_deg", 60.0));  // open upper end
+    EXPECT_FALSE(document.setSoilValue("K_m", 0.0));       // (0, 0.5]
     EXPECT_FALSE(document.setSoilValue("n", std::nan("")));
     EXPECT_FALSE(document.setSoilValue("no_such_field", 1.0));
     EXPECT_FALSE(document.setWheelValue("r_m", -0.1));
@@ -116,7 +116,8 @@ TEST(ProjectDocument, FailedSaveKeepsTheDocumentModifiedAndBadFilesAreReported) 
     const QString bad = dir.filePath("bad.terra");
     QFile file(bad);
     ASSERT_TRUE(file.open(QIODevice::WriteOnly));
-    file.write(R"({"format": "terrastudio-project", "conditions": {"load_N": -5, "model": "magic"}})");
+    file.write(
+        R"({"format": "terrastudio-project", "conditions": {"load_N": -5, "model": "magic"}})");
     file.close();
     const auto loaded = ProjectDocument::load(bad);
     ASSERT_FALSE(loaded.ok());
@@ -132,7 +133,8 @@ TEST(ProjectDocument, PanelSettingsChangeMarksTheProjectModifiedUntilSaved) {
     test::resetToDefault(document);
     ASSERT_FALSE(document.isModified());
     QSignalSpy modified(&document, &ProjectDocument::modifiedChanged);
-    const nlohmann::json edited = {{"scenario", "straight"}, {"edited", {{"straight", {{"duration_s", 5.0}}}}}};
+    const nlohmann::json edited = {{"scenario", "straight"},
+                                   {"edited", {{"straight", {{"duration_s", 5.0}}}}}};
     document.setPanelSettings("rover", edited);
     EXPECT_TRUE(document.isModified());
     ASSERT_EQ(modified.count(), 1);

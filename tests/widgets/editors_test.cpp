@@ -66,7 +66,10 @@ TEST(SoilEditor, TypedValueReachesTheModelAfterTheDebounceWithoutEnter) {
     QTest::keyClicks(phi, "33");  // no Enter, no focus change
     EXPECT_DOUBLE_EQ(document.project().soil.friction_angle_rad, before);  // not per keystroke
     EXPECT_TRUE(QTest::qWaitFor(
-        [&] { return std::abs(document.project().soil.friction_angle_rad - units::degToRad(33.0)) < 1e-12; },
+        [&] {
+            return std::abs(document.project().soil.friction_angle_rad - units::degToRad(33.0)) <
+                   1e-12;
+        },
         10 * phi->debounceMs()));
     EXPECT_EQ(document.undoStack()->count(), 1);  // one undo command for the settled edit
     document.undoStack()->undo();
@@ -76,11 +79,15 @@ TEST(SoilEditor, TypedValueReachesTheModelAfterTheDebounceWithoutEnter) {
     // Two settled edits of one field merge into one undo step (the document's merge id).
     phi->selectAll();
     QTest::keyClicks(phi, "31");
-    ASSERT_TRUE(QTest::qWaitFor([&] { return document.project().soil.friction_angle_rad != before; }, 3000));
+    ASSERT_TRUE(QTest::qWaitFor(
+        [&] { return document.project().soil.friction_angle_rad != before; }, 3000));
     phi->selectAll();
     QTest::keyClicks(phi, "32");
     ASSERT_TRUE(QTest::qWaitFor(
-        [&] { return std::abs(document.project().soil.friction_angle_rad - units::degToRad(32.0)) < 1e-12; },
+        [&] {
+            return std::abs(document.project().soil.friction_angle_rad - units::degToRad(32.0)) <
+                   1e-12;
+        },
         3000));
     EXPECT_EQ(document.undoStack()->count(), 1);
 }
@@ -126,7 +133,8 @@ TEST(SoilEditor, WideRangeSliderIsLogarithmicSmallValuesReachable) {
     ValidatedSpinBox* box = editor.spinBox("kphi");
     ASSERT_NE(slider, nullptr);
     ASSERT_EQ(slider->maximum(), 10000);
-    const int expected = static_cast<int>(std::lround(10000.0 * std::log10(1516.0) / std::log10(100001.0)));
+    const int expected =
+        static_cast<int>(std::lround(10000.0 * std::log10(1516.0) / std::log10(100001.0)));
     EXPECT_EQ(slider->value(), expected);  // 6361, not 15 of a linear 1000-step slider
 
     // One step up from sandy loam moves k_φ by ln(10) · 1516 · 5/10000 ≈ 1.7, not 100.
@@ -171,7 +179,7 @@ TEST(SoilEditor, SliderAndSpinBoxRoundTrip) {
             const double value = box->value();
             const int shown = slider->value();  // after the document's refresh
             const int commands = document.undoStack()->count();
-            slider->setValue(shown);            // the user lets go where it is shown
+            slider->setValue(shown);  // the user lets go where it is shown
             EXPECT_DOUBLE_EQ(box->value(), value) << key << " " << p;
             EXPECT_EQ(document.undoStack()->count(), commands) << key << " " << p;  // no new edit
             EXPECT_NEAR(scale.fromSlider(shown), value, resolution) << key << " " << p;
@@ -180,7 +188,9 @@ TEST(SoilEditor, SliderAndSpinBoxRoundTrip) {
             EXPECT_EQ(scale.toSlider(scale.fromSlider(p)), p) << key << " " << p;
         }
         // A typed value: the slider moves to it, and its position maps back within one step.
-        const double typed = std::round((box->minimum() + 0.123 * (box->maximum() - box->minimum())) / resolution) * resolution;
+        const double typed =
+            std::round((box->minimum() + 0.123 * (box->maximum() - box->minimum())) / resolution) *
+            resolution;
         box->setValue(typed);
         const int at = slider->value();
         EXPECT_LE(scale.fromSlider(at - 1), typed) << key;
@@ -242,9 +252,10 @@ TEST(ProjectTree, ListsEditedScenarios) {
     QTreeWidgetItem* scenarios = tree.topLevelItem(ProjectTree::kScenarios);
     ASSERT_NE(scenarios, nullptr);
     EXPECT_EQ(scenarios->childCount(), 0);
-    document.setPanelSettings("rover", {{"scenario", "straight"},
-                                        {"edited", {{"straight", {{"duration_s", 5.0}}},
-                                                    {"soil-border", {{"duration_s", 9.0}}}}}});
+    document.setPanelSettings(
+        "rover", {{"scenario", "straight"},
+                  {"edited",
+                   {{"straight", {{"duration_s", 5.0}}}, {"soil-border", {{"duration_s", 9.0}}}}}});
     ASSERT_EQ(scenarios->childCount(), 2);
     EXPECT_EQ(scenarios->text(1), "2");
     EXPECT_EQ(scenarios->child(0)->text(1), "edited");

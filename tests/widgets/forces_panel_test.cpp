@@ -1,5 +1,7 @@
 // The forces panel as a person uses it, on real widgets under QT_QPA_PLATFORM=offscreen: edits
 // of the document recompute the plots, undo restores them, and the edit→repaint time is reported.
+#include "widgets/panels/forces_panel.h"
+
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
@@ -17,7 +19,6 @@
 #include "core/contact/wheel_forces.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/editors/validated_spin_box.h"
-#include "widgets/panels/forces_panel.h"
 #include "widgets/plots/plot_export.h"
 #include "widgets_test_support.h"
 
@@ -39,7 +40,7 @@ TEST(ForcesPanel, ShowsOneCurvePerSlipAngleFromTheModel) {
     panel.show();
     ASSERT_TRUE(test::waitForResult(panel));
     const Table& table = panel.result().table;
-    EXPECT_EQ(table.rows.size(), 600u);  // 6 slip angles × 100 slips, all in equilibrium
+    EXPECT_EQ(table.rows.size(), 600u);   // 6 slip angles × 100 slips, all in equilibrium
     ASSERT_EQ(panel.plots().size(), 8u);  // six quantities vs slip, F_b(h), h_s(W)
     for (const auto& [name, plot] : panel.plots()) {
         if (name.endsWith("-vs-slip")) {
@@ -55,10 +56,11 @@ TEST(ForcesPanel, ShowsOneCurvePerSlipAngleFromTheModel) {
     ASSERT_NE(fx, nullptr);
     const double plotted = fx->graph(0)->data()->at(50)->value;
     const double deg = units::kPi / 180.0;
-    const contact::ContactParameters<double> p{0.092, 0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3,
-                                               29.0 * deg, 0.025, 15.2e3, 0.2, 0.3, 0.02};
-    const contact::OperatingPoint<double> op{0.5, 5.0 * deg, row[table.column("entry_angle_deg")] * deg, 0.0,
-                                             std::nullopt};
+    const contact::ContactParameters<double> p{
+        0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * deg, 0.025,
+        15.2e3, 0.2,   0.3, 0.02};
+    const contact::OperatingPoint<double> op{
+        0.5, 5.0 * deg, row[table.column("entry_angle_deg")] * deg, 0.0, std::nullopt};
     EXPECT_NEAR(plotted, contact::computeForces(p, op).fx, 1e-9);
 }
 
@@ -122,7 +124,8 @@ TEST(ForcesPanel, BulldozingCurveFollowsTheThesisFormulaAndTheSoilEdits) {
     // Two sinkages, ~15 mm and ~40 mm, as the plot shows them (mm, N).
     for (int i : {bekker->dataCount() / 3, bekker->dataCount() - 8}) {
         const double h_mm = bekker->data()->at(i)->key;
-        EXPECT_NEAR(bekker->data()->at(i)->value, thesisBulldozing(h_mm / 1e3, kCohesion), 1e-9) << h_mm;
+        EXPECT_NEAR(bekker->data()->at(i)->value, thesisBulldozing(h_mm / 1e3, kCohesion), 1e-9)
+            << h_mm;
     }
     // Hegedus's a_s is larger (2γ c_s (c_s + c_s² tan φ) > γ c_s²): the dashed curve lies above.
     const int last = bekker->dataCount() - 1;
@@ -132,7 +135,8 @@ TEST(ForcesPanel, BulldozingCurveFollowsTheThesisFormulaAndTheSoilEdits) {
     ASSERT_TRUE(document.setSoilValue("c_kPa", 2.0 * kCohesion / 1e3));
     ASSERT_TRUE(test::waitForResult(panel));
     const double h_mm = plot->graph(0)->data()->at(30)->key;
-    EXPECT_NEAR(plot->graph(0)->data()->at(30)->value, thesisBulldozing(h_mm / 1e3, 2.0 * kCohesion), 1e-9);
+    EXPECT_NEAR(plot->graph(0)->data()->at(30)->value,
+                thesisBulldozing(h_mm / 1e3, 2.0 * kCohesion), 1e-9);
 }
 
 // W(θ_s) of Eq. 2.7 by composite Simpson over −θ_s..θ_s (or 0..θ_s): a second method for the
@@ -164,7 +168,8 @@ TEST(ForcesPanel, StaticSinkageCurveIsBekkersClosedFormAndSolvesEq27) {
     ASSERT_GT(bekker->dataCount(), 40);
     for (int i = 0; i < bekker->dataCount(); i += 7) {
         const double w = bekker->data()->at(i)->key;
-        const double h = std::pow(w / (std::sqrt(2.0 * kRadius) * kWidth * ks * (1.0 - kN / 3.0)), 1.0 / (kN + 0.5));
+        const double h = std::pow(w / (std::sqrt(2.0 * kRadius) * kWidth * ks * (1.0 - kN / 3.0)),
+                                  1.0 / (kN + 0.5));
         EXPECT_NEAR(bekker->data()->at(i)->value, h * 1e3, 1e-9) << w;
     }
     // The loads span 0..2 W of the project (58.86 N), as Fig. 2.6's 25–98 N.
@@ -175,7 +180,8 @@ TEST(ForcesPanel, StaticSinkageCurveIsBekkersClosedFormAndSolvesEq27) {
         ASSERT_GT(graph->dataCount(), 40);
         for (int i : {10, graph->dataCount() - 1}) {
             const double w = graph->data()->at(i)->key, h = graph->data()->at(i)->value / 1e3;
-            EXPECT_NEAR(eq27Load(std::acos(1.0 - h / kRadius), g == 1), w, 1e-6 * w) << g << " " << w;
+            EXPECT_NEAR(eq27Load(std::acos(1.0 - h / kRadius), g == 1), w, 1e-6 * w)
+                << g << " " << w;
         }
     }
     // MODEL-NOTES E2: Bekker's formula is close to the front-half integral (within ~6 %).
@@ -208,7 +214,8 @@ TEST(ForcesPanel, SoilCurvesExportAsImagesAndCsv) {
     ASSERT_NE(tabs, nullptr);
     tabs->setCurrentWidget(namedPlot(panel, "static-sinkage-vs-load"));
     const Table table = panel.currentTable();
-    EXPECT_EQ(table.columns, (std::vector<std::string>{"load_N", "h_bekker_mm", "h_eq27_mm", "h_eq27_front_mm"}));
+    EXPECT_EQ(table.columns,
+              (std::vector<std::string>{"load_N", "h_bekker_mm", "h_eq27_mm", "h_eq27_front_mm"}));
     QString error;
     ASSERT_TRUE(exportTable(table, dir.filePath("static.csv"), &error)) << error.toStdString();
     tabs->setCurrentWidget(namedPlot(panel, "Fb-vs-sinkage"));
@@ -270,11 +277,14 @@ TEST(ForcesPanel, ReportsEditToRepaintLatency) {
     }
     std::sort(drawing.begin(), drawing.end());
     std::sort(latencies.begin(), latencies.end());
-    std::printf("[ latency  ] forces panel edit -> repaint (600 points, full model): median %.1f ms, "
-                "min %.1f ms, max %.1f ms over %zu edits\n",
-                latencies[latencies.size() / 2], latencies.front(), latencies.back(), latencies.size());
-    std::printf("[ latency  ] of which on the GUI thread (drawing six plots): median %.1f ms, max %.1f ms\n",
-                drawing[drawing.size() / 2], drawing.back());
+    std::printf(
+        "[ latency  ] forces panel edit -> repaint (600 points, full model): median %.1f ms, "
+        "min %.1f ms, max %.1f ms over %zu edits\n",
+        latencies[latencies.size() / 2], latencies.front(), latencies.back(), latencies.size());
+    std::printf(
+        "[ latency  ] of which on the GUI thread (drawing six plots): median %.1f ms, max %.1f "
+        "ms\n",
+        drawing[drawing.size() / 2], drawing.back());
     RecordProperty("median_latency_ms", std::to_string(latencies[latencies.size() / 2]));
     EXPECT_EQ(panel.result().table.rows.size(), 600u);
 }

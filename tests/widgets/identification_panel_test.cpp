@@ -2,6 +2,8 @@
 // from sandy loam onto clay played at full speed shows a change point at the border it was built
 // with; stopping mid-run leaves a consistent panel and no stale frame ever reaches a newer run;
 // a bad CSV row is reported with its line number.
+#include "widgets/panels/identification_panel.h"
+
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
@@ -16,7 +18,6 @@
 #include "core/common/units.h"
 #include "core/identification/synthetic.h"
 #include "core/io/parameters_json.h"
-#include "widgets/panels/identification_panel.h"
 #include "widgets_test_support.h"
 
 namespace terra::ui {
@@ -44,10 +45,12 @@ void expectOneRunInOrder(IdentificationPanel& panel, std::size_t expected_count)
     const Table t = panel.currentTable();
     ASSERT_EQ(t.rows.size(), expected_count);
     const std::size_t col = t.column("sample");
-    for (std::size_t i = 0; i < t.rows.size(); ++i) ASSERT_EQ(t.rows[i][col], static_cast<double>(i)) << i;
+    for (std::size_t i = 0; i < t.rows.size(); ++i)
+        ASSERT_EQ(t.rows[i][col], static_cast<double>(i)) << i;
     EXPECT_EQ(panel.streamingFigures().frameCount(), expected_count);
     EXPECT_EQ(panel.streamingFigures().graph("phi")->dataCount(), static_cast<int>(expected_count));
-    EXPECT_EQ(panel.streamingFigures().graph("fx_measured")->dataCount(), static_cast<int>(expected_count));
+    EXPECT_EQ(panel.streamingFigures().graph("fx_measured")->dataCount(),
+              static_cast<int>(expected_count));
 }
 
 TEST(IdentificationStreaming, SandyLoamThenClayAtFullSpeedShowsTheBorder) {
@@ -73,7 +76,8 @@ TEST(IdentificationStreaming, SandyLoamThenClayAtFullSpeedShowsTheBorder) {
     const auto& changes = panel.streamingFigures().changePoints();
     ASSERT_EQ(changes.size(), 1u) << panel.streamStatus().toStdString();
     EXPECT_LE(std::abs(static_cast<long>(changes[0]) - static_cast<long>(border)), 3) << changes[0];
-    EXPECT_TRUE(panel.streamStatus().contains(QString("change of soil at sample %1").arg(changes[0])))
+    EXPECT_TRUE(
+        panel.streamStatus().contains(QString("change of soil at sample %1").arg(changes[0])))
         << panel.streamStatus().toStdString();
 
     // The estimates follow the soils where the decoupled model's bias leaves them able to: the
@@ -121,7 +125,8 @@ TEST(IdentificationStreaming, StopMidRunLeavesAConsistentPanelAndNothingStaleArr
     EXPECT_EQ(panel.streamingFigures().frameCount(), paused_at);
     panel.play();  // = resume
     EXPECT_EQ(panel.playback().state(), State::kPlaying);
-    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.streamingFigures().frameCount() > paused_at; }, 30000));
+    ASSERT_TRUE(
+        QTest::qWaitFor([&] { return panel.streamingFigures().frameCount() > paused_at; }, 30000));
 
     panel.stopPlayback();
     EXPECT_EQ(panel.playback().state(), State::kStopped);
@@ -151,7 +156,8 @@ TEST(IdentificationStreaming, RestartingWhilePlayingNeverMixesTheRuns) {
     panel.setStreamSource("", "clayey-soil");
     panel.setStreamSpeed(1.0);
     panel.play();
-    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.streamingFigures().frameCount() >= 20; }, 30000));
+    ASSERT_TRUE(
+        QTest::qWaitFor([&] { return panel.streamingFigures().frameCount() >= 20; }, 30000));
     // Restart on another soil at full speed while the first run is still producing frames.
     panel.setStreamSource("", "dry-sand");
     panel.setStreamSpeed(0.0);
@@ -164,7 +170,8 @@ TEST(IdentificationStreaming, RestartingWhilePlayingNeverMixesTheRuns) {
     QTest::qWait(300);
     ASSERT_TRUE(panel.streamTrueBorder().has_value());
     expectOneRunInOrder(panel, panel.streamSampleCount());
-    EXPECT_TRUE(panel.streamStatus().contains("dry sand") || panel.streamStatus().contains("dry-sand"))
+    EXPECT_TRUE(panel.streamStatus().contains("dry sand") ||
+                panel.streamStatus().contains("dry-sand"))
         << panel.streamStatus().toStdString();
 }
 
@@ -175,7 +182,8 @@ TEST(IdentificationStreaming, ABadCsvRowIsReportedWithItsLineNumber) {
     auto soil = io::resolveSoil(test::resources(), "sandy-loam");
     auto wheel = io::resolveWheel(test::resources(), "A");
     ASSERT_TRUE(soil && wheel);
-    const auto data = identification::synthesize(contact::makeContactParameters(*soil, *wheel), spec).data;
+    const auto data =
+        identification::synthesize(contact::makeContactParameters(*soil, *wheel), spec).data;
     ASSERT_EQ(data.samples.size(), 20u);
     std::istringstream in(identification::toCsv(data));
     std::vector<std::string> lines;
@@ -197,7 +205,8 @@ TEST(IdentificationStreaming, ABadCsvRowIsReportedWithItsLineNumber) {
     panel.play();
     ASSERT_TRUE(waitForEnd(panel));
     EXPECT_EQ(panel.playback().state(), State::kFailed);
-    EXPECT_TRUE(panel.streamStatus().contains("broken.csv:6")) << panel.streamStatus().toStdString();
+    EXPECT_TRUE(panel.streamStatus().contains("broken.csv:6"))
+        << panel.streamStatus().toStdString();
     EXPECT_EQ(panel.streamingFigures().frameCount(), 0u);
     EXPECT_TRUE(button(panel, "Play")->isEnabled());
 
@@ -207,14 +216,17 @@ TEST(IdentificationStreaming, ABadCsvRowIsReportedWithItsLineNumber) {
     ASSERT_TRUE(waitForEnd(panel));
     EXPECT_EQ(panel.playback().state(), State::kFinished) << panel.streamStatus().toStdString();
     expectOneRunInOrder(panel, 19);
-    EXPECT_TRUE(panel.streamStatus().contains("broken.csv:6")) << panel.streamStatus().toStdString();
+    EXPECT_TRUE(panel.streamStatus().contains("broken.csv:6"))
+        << panel.streamStatus().toStdString();
 }
 
 TEST(IdentificationStreaming, SettingsRoundTrip) {
     ProjectDocument document;
     test::resetToDefault(document);
     IdentificationPanel panel(&document);
-    panel.applySettings({{"page", "streaming"}, {"stream_second_soil", "dry-sand"}, {"stream_speed", 10.0},
+    panel.applySettings({{"page", "streaming"},
+                         {"stream_second_soil", "dry-sand"},
+                         {"stream_speed", 10.0},
                          {"stream_noise_percent", 2.5}});
     const nlohmann::json s = panel.settings();
     EXPECT_EQ(s["page"], "streaming");

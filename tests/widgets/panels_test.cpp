@@ -35,7 +35,8 @@ TEST(StressPanel, PlottedNormalStressFollowsBekkersLawInFrontOfTheMaximum) {
         if (theta_deg < r.max_stress_angle_deg) continue;
         const double theta = units::degToRad(theta_deg);
         const double expected = ks * std::pow(r_m * (std::cos(theta) - std::cos(theta_f)), n) / 1e3;
-        EXPECT_NEAR(sigma->data()->at(i)->value, expected, 1e-9 * std::max(1.0, expected)) << theta_deg;
+        EXPECT_NEAR(sigma->data()->at(i)->value, expected, 1e-9 * std::max(1.0, expected))
+            << theta_deg;
         ++checked;
     }
     EXPECT_GT(checked, 100);
@@ -108,8 +109,10 @@ TEST(SensitivityPanel, OneCurvePerTable41ValueAndATornadoOfSixParameters) {
     // φ: more friction, more drawbar pull (Fig. 4.3) — the highest value moves F_x up.
     for (std::size_t i = 0; i < tornado.rows.size(); ++i) {
         if (panel.result().tornado_keys[i] != "phi_deg") continue;
-        EXPECT_GT(tornado.rows[i][tornado.column("Fx_high_N")], tornado.rows[i][tornado.column("Fx_base_N")]);
-        EXPECT_LT(tornado.rows[i][tornado.column("Fx_low_N")], tornado.rows[i][tornado.column("Fx_base_N")]);
+        EXPECT_GT(tornado.rows[i][tornado.column("Fx_high_N")],
+                  tornado.rows[i][tornado.column("Fx_base_N")]);
+        EXPECT_LT(tornado.rows[i][tornado.column("Fx_low_N")],
+                  tornado.rows[i][tornado.column("Fx_base_N")]);
     }
 }
 
@@ -125,7 +128,8 @@ TEST(IdentificationPanel, RecoversTheProjectSoilFromSyntheticData) {
     EXPECT_NEAR(p.rows[0][p.column("phi_deg")], 29.0, 1.0);  // the soil the data came from
     EXPECT_NEAR(p.rows[0][p.column("K_m")], 0.025, 0.003);
     EXPECT_GT(p.rows[0][p.column("phi_deg_std")], 0.0);
-    for (const auto& [name, plot] : panel.plots()) EXPECT_GE(plot->graphCount(), 2) << name.toStdString();
+    for (const auto& [name, plot] : panel.plots())
+        EXPECT_GE(plot->graphCount(), 2) << name.toStdString();
 }
 
 TEST(RoverPanel, RunsAScenarioAndPlotsThePathFromItsSeries) {

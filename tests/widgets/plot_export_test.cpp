@@ -1,4 +1,6 @@
 // Exported plots: PNG, SVG and PDF exist, have the asked size and are not blank; CSV beside them.
+#include "widgets/plots/plot_export.h"
+
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
@@ -9,7 +11,6 @@
 #include <QTemporaryDir>
 
 #include "widgets/analyses/analyses.h"
-#include "widgets/plots/plot_export.h"
 #include "widgets/plots/sweep_plot.h"
 #include "widgets_test_support.h"
 
@@ -30,7 +31,8 @@ int colouredPixels(const QImage& image) {
 class PlotExport : public ::testing::Test {
 protected:
     void SetUp() override {
-        AnalysisInputs in = AnalysisInputs::from(ProjectDocument::defaultProject(test::resources()));
+        AnalysisInputs in =
+            AnalysisInputs::from(ProjectDocument::defaultProject(test::resources()));
         in.conditions.slip_angles_deg = {5, 20};
         in.conditions.slip_count = 40;
         table_ = computeForceSweep(in).table;

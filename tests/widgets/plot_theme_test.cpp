@@ -1,5 +1,7 @@
 // Plots follow the application's palette on screen (a dark desktop gets dark plots) and export
 // light for reports unless asked to keep the screen colours.
+#include "widgets/plots/plot_theme.h"
+
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
@@ -11,7 +13,6 @@
 #include "widgets/analyses/analyses.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/plot_export.h"
-#include "widgets/plots/plot_theme.h"
 #include "widgets/plots/sweep_plot.h"
 #include "widgets_test_support.h"
 
@@ -37,7 +38,8 @@ protected:
     void SetUp() override {
         saved_ = QApplication::palette();
         QApplication::setPalette(darkPalette());
-        AnalysisInputs in = AnalysisInputs::from(ProjectDocument::defaultProject(test::resources()));
+        AnalysisInputs in =
+            AnalysisInputs::from(ProjectDocument::defaultProject(test::resources()));
         in.conditions.slip_angles_deg = {5, 20};
         in.conditions.slip_count = 30;
         table_ = computeForceSweep(in).table;
@@ -99,7 +101,8 @@ TEST_F(DarkDesktop, PlotsWithTheirOwnColoursAreLeftAlone) {
     plot.yAxis->setTickLabelColor(QColor(214, 39, 40));
     plot.yAxis->setBasePen(QPen(QColor(214, 39, 40)));
     QString error;
-    ASSERT_TRUE(exportPlot(plot, dir_.filePath("own.png"), {400, 300, 96, 1.0}, &error)) << error.toStdString();
+    ASSERT_TRUE(exportPlot(plot, dir_.filePath("own.png"), {400, 300, 96, 1.0}, &error))
+        << error.toStdString();
     EXPECT_FALSE(followsPalette(plot));
     EXPECT_EQ(plot.yAxis->tickLabelColor(), QColor(214, 39, 40));
     EXPECT_EQ(plot.yAxis->basePen().color(), QColor(214, 39, 40));

@@ -64,8 +64,10 @@ public:
         s.beats = g.size();
         s.max_ms = g.back();
         s.median_ms = g[g.size() / 2];
-        s.p99_ms = g[std::min(g.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(g.size())))];
-        s.over_50ms = static_cast<std::size_t>(std::count_if(g.begin(), g.end(), [](double x) { return x > 50.0; }));
+        s.p99_ms = g[std::min(g.size() - 1,
+                              static_cast<std::size_t>(0.99 * static_cast<double>(g.size())))];
+        s.over_50ms = static_cast<std::size_t>(
+            std::count_if(g.begin(), g.end(), [](double x) { return x > 50.0; }));
         return s;
     }
 
@@ -87,9 +89,11 @@ std::string loadAverage() {
 }
 
 void report(const char* name, const Heartbeat::Stats& s, const std::string& extra) {
-    std::printf("[ gui gap  ] %-34s max %6.1f ms  p99 %5.1f ms  median %4.1f ms  >50 ms: %zu of %zu beats%s"
-                "  (load %s)\n",
-                name, s.max_ms, s.p99_ms, s.median_ms, s.over_50ms, s.beats, extra.c_str(), loadAverage().c_str());
+    std::printf(
+        "[ gui gap  ] %-34s max %6.1f ms  p99 %5.1f ms  median %4.1f ms  >50 ms: %zu of %zu beats%s"
+        "  (load %s)\n",
+        name, s.max_ms, s.p99_ms, s.median_ms, s.over_50ms, s.beats, extra.c_str(),
+        loadAverage().c_str());
     std::fflush(stdout);
     ::testing::Test::RecordProperty(std::string(name) + "_max_gap_ms", std::to_string(s.max_ms));
     ::testing::Test::RecordProperty(std::string(name) + "_p99_gap_ms", std::to_string(s.p99_ms));
@@ -134,7 +138,8 @@ TEST(Responsiveness, DraggingASoilSliderOnTheForcesPanel) {
     const int swing = std::max(10, (slider->maximum() - slider->minimum()) / 20);
 
     std::vector<double> present_ms;
-    QObject::connect(panel, &AnalysisPanel::resultShown, [&] { present_ms.push_back(panel->lastPresentMs()); });
+    QObject::connect(panel, &AnalysisPanel::resultShown,
+                     [&] { present_ms.push_back(panel->lastPresentMs()); });
     std::vector<double> edit_ms;
     int edits = 0;
     QObject::connect(&document, &ProjectDocument::changed, [&] { ++edits; });
@@ -144,7 +149,8 @@ TEST(Responsiveness, DraggingASoilSliderOnTheForcesPanel) {
     QObject::connect(&drag, &QTimer::timeout, [&] {
         // A triangle wave over ±swing: repeated drags across the value.
         const int phase = step++ % 60;
-        const int offset = phase < 30 ? -swing + 2 * swing * phase / 30 : swing - 2 * swing * (phase - 30) / 30;
+        const int offset =
+            phase < 30 ? -swing + 2 * swing * phase / 30 : swing - 2 * swing * (phase - 30) / 30;
         QElapsedTimer edit;
         edit.start();
         slider->setSliderPosition(centre + offset);  // slider → spin box → undo command → document
@@ -164,11 +170,12 @@ TEST(Responsiveness, DraggingASoilSliderOnTheForcesPanel) {
     std::sort(edit_ms.begin(), edit_ms.end());
     char extra[240];
     std::snprintf(extra, sizeof extra,
-                  "; %zu redraws for %d edits, drawing max %.1f ms, median %.1f ms; %zu slider moves, handling "
+                  "; %zu redraws for %d edits, drawing max %.1f ms, median %.1f ms; %zu slider "
+                  "moves, handling "
                   "max %.1f ms, median %.1f ms",
                   present_ms.size(), edits, present_ms.empty() ? 0.0 : present_ms.back(),
-                  present_ms.empty() ? 0.0 : present_ms[present_ms.size() / 2], edit_ms.size(), edit_ms.back(),
-                  edit_ms[edit_ms.size() / 2]);
+                  present_ms.empty() ? 0.0 : present_ms[present_ms.size() / 2], edit_ms.size(),
+                  edit_ms.back(), edit_ms[edit_ms.size() / 2]);
     report("forces panel, slider drag", s, extra);
     EXPECT_GT(step, 100);
     // At least the final state reaches the screen. How many intermediate states do depends on
@@ -198,9 +205,11 @@ TEST(Responsiveness, RoverScenarioRun) {
     beat.stop();
     const auto s = beat.stats();
     QStringList replots;
-    for (const auto& [name, plot] : panel.plots()) replots << QString::number(plot->replotTime(), 'f', 1);
+    for (const auto& [name, plot] : panel.plots())
+        replots << QString::number(plot->replotTime(), 'f', 1);
     char extra[240];
-    std::snprintf(extra, sizeof extra, "; run %.0f ms, drawing the result %.1f ms (replots %s ms), %zu series rows",
+    std::snprintf(extra, sizeof extra,
+                  "; run %.0f ms, drawing the result %.1f ms (replots %s ms), %zu series rows",
                   panel.lastLatencyMs(), panel.lastPresentMs(), qPrintable(replots.join("/")),
                   panel.result().series.rows.size());
     report("rover panel, pulse-steering run", s, extra);
@@ -226,8 +235,8 @@ TEST(Responsiveness, IdentificationFitAndStreamingPlayback) {
         beat.stop();
         const auto s = beat.stats();
         char extra[128];
-        std::snprintf(extra, sizeof extra, "; fit %.0f ms, drawing %.1f ms", panel.result().fit_time_ms,
-                      panel.lastPresentMs());
+        std::snprintf(extra, sizeof extra, "; fit %.0f ms, drawing %.1f ms",
+                      panel.result().fit_time_ms, panel.lastPresentMs());
         report("identification fit", s, extra);
         EXPECT_LT(s.max_ms, kFreezeGuardMs);
     }
@@ -248,11 +257,14 @@ TEST(Responsiveness, IdentificationFitAndStreamingPlayback) {
         const auto s = beat.stats();
         EXPECT_EQ(panel.playback().state(), StreamingPlayback::State::kFinished);
         double replot_ms = 0.0;
-        for (int i : {3, 4}) replot_ms = std::max(replot_ms, panel.plots()[static_cast<std::size_t>(i)].second->replotTime());
+        for (int i : {3, 4})
+            replot_ms = std::max(replot_ms,
+                                 panel.plots()[static_cast<std::size_t>(i)].second->replotTime());
         char extra[160];
-        std::snprintf(extra, sizeof extra, "; %zu samples in %.0f ms, last replot %.1f ms", panel.streamSampleCount(),
-                      wall_ms, replot_ms);
-        report(speed == 0.0 ? "streaming playback, max speed" : "streaming playback, 10x", s, extra);
+        std::snprintf(extra, sizeof extra, "; %zu samples in %.0f ms, last replot %.1f ms",
+                      panel.streamSampleCount(), wall_ms, replot_ms);
+        report(speed == 0.0 ? "streaming playback, max speed" : "streaming playback, 10x", s,
+               extra);
         EXPECT_LT(s.max_ms, kFreezeGuardMs);
     }
 }

@@ -1,6 +1,9 @@
 // The rover panel's top view, time scrubber and scenario editing, offscreen: the drawn robot sits
 // at the time series' pose (geometry of resources/robots/default.json, computed here by hand), an
-// invalid edit is refused naming its field, a valid edit changes the run and is kept in the project.
+// invalid edit is refused naming its field, a valid edit changes the run and is kept in the
+// project.
+#include "widgets/panels/rover_panel.h"
+
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
@@ -9,7 +12,6 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "widgets/panels/rover_panel.h"
 #include "widgets/plots/rover_figures.h"
 #include "widgets_test_support.h"
 
@@ -39,7 +41,8 @@ Drawn drawnRectangle(const QCPCurve& curve) {
         d.x += data.at(i)->key / 4.0;
         d.y += data.at(i)->value / 4.0;
     }
-    d.heading_rad = std::atan2(data.at(0)->value - data.at(1)->value, data.at(0)->key - data.at(1)->key);
+    d.heading_rad =
+        std::atan2(data.at(0)->value - data.at(1)->value, data.at(0)->key - data.at(1)->key);
     return d;
 }
 
@@ -71,14 +74,17 @@ TEST(RoverPanelTopView, ScrubbingMovesTheRobotToTheSeriesPoseWithoutRecomputing)
     QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
     // Default robot: wheelbase 0.5 m, track 0.4 m, centre of mass at mid-wheelbase.
     const double half_l = 0.25, half_t = 0.2;
-    const double corner[4][2] = {{half_l, half_t}, {half_l, -half_t}, {-half_l, half_t}, {-half_l, -half_t}};
+    const double corner[4][2] = {
+        {half_l, half_t}, {half_l, -half_t}, {-half_l, half_t}, {-half_l, -half_t}};
     const char* names[] = {"FL", "FR", "RL", "RR"};
-    for (const std::size_t row : {std::size_t{0}, std::size_t{500}, std::size_t{1450}, t.rows.size() - 1}) {
+    for (const std::size_t row :
+         {std::size_t{0}, std::size_t{500}, std::size_t{1450}, t.rows.size() - 1}) {
         panel.scrubber()->setValue(static_cast<int>(row));  // as the user drags it
         const auto& r = t.rows[row];
         const double x = r[t.column("x_m")], y = r[t.column("y_m")];
         const double yaw = r[t.column("yaw_deg")] * kPi / 180.0;
-        EXPECT_TRUE(panel.timeLabel().startsWith(QString("t = %1 s").arg(r[t.column("t_s")], 0, 'f', 2)))
+        EXPECT_TRUE(
+            panel.timeLabel().startsWith(QString("t = %1 s").arg(r[t.column("t_s")], 0, 'f', 2)))
             << panel.timeLabel().toStdString();
         const Drawn body = drawnRectangle(*chassis);
         EXPECT_NEAR(body.x, x, 1e-9) << row;  // the chassis centre is the centre of mass here
@@ -93,10 +99,12 @@ TEST(RoverPanelTopView, ScrubbingMovesTheRobotToTheSeriesPoseWithoutRecomputing)
             EXPECT_NEAR(w.x, hx, 1e-9) << names[i] << " row " << row;
             EXPECT_NEAR(w.y, hy, 1e-9) << names[i] << " row " << row;
             const double steer = r[t.column(std::string(names[i]) + "_steer_deg")] * kPi / 180.0;
-            EXPECT_NEAR(angleDifference(w.heading_rad, yaw + steer), 0.0, 1e-9) << names[i] << " row " << row;
+            EXPECT_NEAR(angleDifference(w.heading_rad, yaw + steer), 0.0, 1e-9)
+                << names[i] << " row " << row;
         }
     }
-    // Row 1450 (t = 14.5 s) is inside the pulse: the front wheels are drawn steered 10° from the rear.
+    // Row 1450 (t = 14.5 s) is inside the pulse: the front wheels are drawn steered 10° from the
+    // rear.
     panel.scrubber()->setValue(1450);
     const double front = drawnRectangle(*curveNamed(view, "wheel FL")).heading_rad;
     const double rear = drawnRectangle(*curveNamed(view, "wheel RL")).heading_rad;
@@ -147,14 +155,16 @@ TEST(RoverPanelEditing, ValidEditChangesTheRunAndIsKeptInTheProject) {
     auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
     QString error;
     json["duration_s"] = 2.0;
-    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error)) << error.toStdString();
+    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error))
+        << error.toStdString();
     panel.recompute();
     ASSERT_TRUE(test::waitForResult(panel, 120000));
     const Table longer = panel.result().series;
     EXPECT_NEAR(panel.result().summary.duration_s, 2.0, 1e-9);
 
     json["duration_s"] = 1.0;
-    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error)) << error.toStdString();
+    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error))
+        << error.toStdString();
     EXPECT_TRUE(panel.isEdited());
     // Kept in the project (the panel's settings): a new panel on the same settings runs the edit.
     const nlohmann::json stored = document.project().panels.at("rover");
@@ -168,8 +178,10 @@ TEST(RoverPanelEditing, ValidEditChangesTheRunAndIsKeptInTheProject) {
     EXPECT_NEAR(reopened.result().summary.duration_s, 1.0, 1e-9);
     // A shorter run of the same deterministic scenario: a prefix of the longer one, half as long.
     ASSERT_LT(shorter.rows.size(), longer.rows.size());
-    EXPECT_NEAR(static_cast<double>(shorter.rows.size() - 1), 0.5 * static_cast<double>(longer.rows.size() - 1), 1.0);
-    for (std::size_t i = 0; i < shorter.rows.size(); ++i) ASSERT_EQ(shorter.rows[i], longer.rows[i]) << i;
+    EXPECT_NEAR(static_cast<double>(shorter.rows.size() - 1),
+                0.5 * static_cast<double>(longer.rows.size() - 1), 1.0);
+    for (std::size_t i = 0; i < shorter.rows.size(); ++i)
+        ASSERT_EQ(shorter.rows[i], longer.rows[i]) << i;
 
     // Revert: back to the 60 s file.
     reopened.revertScenario();

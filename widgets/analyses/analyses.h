@@ -30,13 +30,14 @@ struct AnalysisInputs {
 };
 
 /// Forces vs slip for every slip angle of the conditions (Figs. 2.18–2.26).
-analysis::SweepResult computeForceSweep(const AnalysisInputs& in, const std::atomic<bool>* cancel = nullptr);
+analysis::SweepResult computeForceSweep(const AnalysisInputs& in,
+                                        const std::atomic<bool>* cancel = nullptr);
 
 /// Stress distribution at one operating point (Figs. 2.11, 2.16; Tables 2.4–2.5).
 struct StressSettings {
-    double slip = 0.2;            ///< s [-]
-    double slip_angle_deg = 10.0; ///< β [deg]
-    int points = 361;             ///< θ grid size
+    double slip = 0.2;             ///< s [-]
+    double slip_angle_deg = 10.0;  ///< β [deg]
+    int points = 361;              ///< θ grid size
 };
 struct StressResult {
     /// theta_deg, sigma_kPa, tau_kPa, tau_t_kPa, tau_l_kPa and the quadratic *_quad_kPa columns.
@@ -74,7 +75,7 @@ struct IdentificationSettings {
     std::vector<double> loads_n;
     std::uint64_t seed = 1;
     int slip_count = 50;
-    bool refine = true;            ///< also refine through the full model (std deviations)
+    bool refine = true;  ///< also refine through the full model (std deviations)
 };
 struct IdentificationResult {
     identification::DataSet data;
@@ -89,6 +90,7 @@ struct IdentificationResult {
     double fit_time_ms = 0.0;
     std::string message;  ///< non-empty: the data could not be read
 };
-IdentificationResult computeIdentification(const AnalysisInputs& in, const IdentificationSettings& settings);
+IdentificationResult computeIdentification(const AnalysisInputs& in,
+                                           const IdentificationSettings& settings);
 
 }  // namespace terra::ui

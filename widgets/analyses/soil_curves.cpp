@@ -14,7 +14,8 @@ namespace {
 
 bool cancelled(const std::atomic<bool>* cancel) { return cancel && cancel->load(); }
 
-double staticSinkageMm(const contact::ContactParameters<double>& p, double load_n, contact::StaticContact contact) {
+double staticSinkageMm(const contact::ContactParameters<double>& p, double load_n,
+                       contact::StaticContact contact) {
     const contact::SinkageSolution s = contact::solveStaticSinkage(p, load_n, contact);
     return s.ok() ? s.sinkage_m * 1e3 : std::numeric_limits<double>::quiet_NaN();
 }
@@ -34,9 +35,10 @@ SoilCurves computeSoilCurves(const AnalysisInputs& in, const SoilCurvesSettings&
     for (int i = 0; i < n; ++i) {
         const double h = h_max * i / (n - 1);
         const double theta = std::acos(std::clamp(1.0 - h / p.radius_m, -1.0, 1.0));  // Eq. 2.12
-        out.bulldozing.rows.push_back({h * 1e3, units::radToDeg(theta),
-                                       contact::bulldozingForce(p, theta, contact::BulldozingModel::kBekker),
-                                       contact::bulldozingForce(p, theta, contact::BulldozingModel::kHegedus)});
+        out.bulldozing.rows.push_back(
+            {h * 1e3, units::radToDeg(theta),
+             contact::bulldozingForce(p, theta, contact::BulldozingModel::kBekker),
+             contact::bulldozingForce(p, theta, contact::BulldozingModel::kHegedus)});
     }
 
     const double w_max = settings.max_load_factor * in.conditions.load_n;
@@ -44,9 +46,10 @@ SoilCurves computeSoilCurves(const AnalysisInputs& in, const SoilCurvesSettings&
     for (int i = 1; i < n; ++i) {
         if (cancelled(cancel)) return out;
         const double w = w_max * i / (n - 1);
-        out.static_sinkage.rows.push_back({w, contact::bekkerStaticSinkage(p, w) * 1e3,
-                                           staticSinkageMm(p, w, contact::StaticContact::kSymmetric),
-                                           staticSinkageMm(p, w, contact::StaticContact::kFrontHalf)});
+        out.static_sinkage.rows.push_back(
+            {w, contact::bekkerStaticSinkage(p, w) * 1e3,
+             staticSinkageMm(p, w, contact::StaticContact::kSymmetric),
+             staticSinkageMm(p, w, contact::StaticContact::kFrontHalf)});
     }
     return out;
 }

@@ -32,7 +32,8 @@ struct SoilCurves {
     double load_n = 0.0;  ///< the project's W [N], marked on the static-sinkage plot
 };
 
-/// Both curves for the project's soil and wheel. Returns early (partial tables) when `cancel` is set.
+/// Both curves for the project's soil and wheel. Returns early (partial tables) when `cancel` is
+/// set.
 SoilCurves computeSoilCurves(const AnalysisInputs& in, const SoilCurvesSettings& settings = {},
                              const std::atomic<bool>* cancel = nullptr);
 

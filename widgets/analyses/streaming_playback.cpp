@@ -75,19 +75,24 @@ id::DecoupledParameters truthOf(const soil::SoilParameters& s, const wheel::Whee
 
 StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec) {
     if (spec.samples_per_soil < 1) {
-        throw std::invalid_argument("samples_per_soil = " + std::to_string(spec.samples_per_soil) + " must be ≥ 1");
+        throw std::invalid_argument("samples_per_soil = " + std::to_string(spec.samples_per_soil) +
+                                    " must be ≥ 1");
     }
     if (!(spec.sample_period_s > 0.0)) throw std::invalid_argument("sample_period_s must be > 0");
     StreamSource out;
     std::vector<id::Sample> samples = scrambledSweep(spec.first, spec, spec.seed, out.warnings);
     out.true_border = samples.size();
-    const std::vector<id::Sample> second = scrambledSweep(spec.second, spec, spec.seed + 1, out.warnings);
+    const std::vector<id::Sample> second =
+        scrambledSweep(spec.second, spec, spec.seed + 1, out.warnings);
     samples.insert(samples.end(), second.begin(), second.end());
-    for (std::size_t i = 0; i < samples.size(); ++i) samples[i].time_s = static_cast<double>(i) * spec.sample_period_s;
+    for (std::size_t i = 0; i < samples.size(); ++i)
+        samples[i].time_s = static_cast<double>(i) * spec.sample_period_s;
     out.data.samples = std::move(samples);
-    out.truth = {{0, truthOf(spec.first, spec.wheel)}, {*out.true_border, truthOf(spec.second, spec.wheel)}};
+    out.truth = {{0, truthOf(spec.first, spec.wheel)},
+                 {*out.true_border, truthOf(spec.second, spec.wheel)}};
     const auto percent = static_cast<int>(std::lround(spec.noise_relative * 100.0));
-    out.description = spec.first.name + " → " + spec.second.name + ", " + std::to_string(percent) + " % noise";
+    out.description =
+        spec.first.name + " → " + spec.second.name + ", " + std::to_string(percent) + " % noise";
     return out;
 }
 
@@ -97,7 +102,8 @@ Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_row
     StreamSource out;
     out.data = read->data;
     out.description = std::filesystem::path(path).filename().string();
-    for (const Issue& issue : read->skipped) out.warnings.push_back("skipped " + issue.where + ": " + issue.message);
+    for (const Issue& issue : read->skipped)
+        out.warnings.push_back("skipped " + issue.where + ": " + issue.message);
     if (out.data.samples.empty()) return std::vector<Issue>{{path, "no valid samples"}};
     return out;
 }
@@ -157,9 +163,9 @@ void StreamingPlayback::start(SourceFactory source, wheel::WheelParameters wheel
     current_ = run;
     ++run_number_;
     setState(State::kPlaying);
-    workers_.emplace_back(run, std::thread([this, run, source = std::move(source), wheel = std::move(wheel), options] {
-        work(run, source, wheel, options);
-    }));
+    workers_.emplace_back(
+        run, std::thread([this, run, source = std::move(source), wheel = std::move(wheel),
+                          options] { work(run, source, wheel, options); }));
 }
 
 void StreamingPlayback::pause() {
@@ -214,7 +220,8 @@ void StreamingPlayback::post(const std::shared_ptr<Run>& run) {
     // everything that accumulated when it gets to it.
     if (run->notify_pending) return;
     run->notify_pending = true;
-    QMetaObject::invokeMethod(this, [this, run] { deliver(run); }, Qt::QueuedConnection);
+    QMetaObject::invokeMethod(
+        this, [this, run] { deliver(run); }, Qt::QueuedConnection);
 }
 
 void StreamingPlayback::deliver(const std::shared_ptr<Run>& run) {
@@ -239,7 +246,8 @@ void StreamingPlayback::deliver(const std::shared_ptr<Run>& run) {
     if (done && run == current_) {
         current_.reset();
         if (!error.empty()) {
-            emit failed(QString::fromStdString(error));  // before the state: listeners read the message
+            emit failed(
+                QString::fromStdString(error));  // before the state: listeners read the message
             setState(State::kFailed);
         } else {
             setState(completed ? State::kFinished : State::kStopped);
@@ -247,7 +255,8 @@ void StreamingPlayback::deliver(const std::shared_ptr<Run>& run) {
     }
 }
 
-void StreamingPlayback::work(std::shared_ptr<Run> run, SourceFactory make_source, wheel::WheelParameters wheel,
+void StreamingPlayback::work(std::shared_ptr<Run> run, SourceFactory make_source,
+                             wheel::WheelParameters wheel,
                              identification::StreamingOptions options) {
     auto finish = [&](bool completed, std::string error) {
         std::lock_guard lock(run->mutex);
@@ -295,8 +304,10 @@ void StreamingPlayback::work(std::shared_ptr<Run> run, SourceFactory make_source
                     continue;
                 }
                 if (!(run->speed > 0.0) || !std::isfinite(run->speed)) break;
-                const auto due = anchor_wall + std::chrono::duration_cast<Clock::duration>(
-                                                   std::chrono::duration<double>((times[i] - anchor_t) / run->speed));
+                const auto due =
+                    anchor_wall +
+                    std::chrono::duration_cast<Clock::duration>(
+                        std::chrono::duration<double>((times[i] - anchor_t) / run->speed));
                 if (Clock::now() >= due) break;
                 run->wake.wait_until(lock, due);
             }
@@ -310,8 +321,9 @@ void StreamingPlayback::work(std::shared_ptr<Run> run, SourceFactory make_source
         StreamFrame frame;
         frame.time_s = times[i];
         frame.fx_measured_n = s.fx_n;
-        frame.fx_predicted_n = estimate ? id::decoupledForward(*estimate, wheel, s.slip, s.entry_angle_rad).fx_n
-                                        : std::numeric_limits<double>::quiet_NaN();
+        frame.fx_predicted_n =
+            estimate ? id::decoupledForward(*estimate, wheel, s.slip, s.entry_angle_rad).fx_n
+                     : std::numeric_limits<double>::quiet_NaN();
         try {
             frame.update = identifier->push(s);
         } catch (const std::exception& e) {

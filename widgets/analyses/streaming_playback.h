@@ -86,8 +86,8 @@ public:
 
     /// Starts a new run; a running one is stopped first and nothing of it is delivered again.
     /// `speed`: sample time per wall time (1 = real time); ≤ 0 plays as fast as possible.
-    void start(SourceFactory source, wheel::WheelParameters wheel, identification::StreamingOptions options,
-               double speed);
+    void start(SourceFactory source, wheel::WheelParameters wheel,
+               identification::StreamingOptions options, double speed);
     void pause();
     void resume();
     /// Stops the current run now; the frames delivered so far stay valid (a partial run).
@@ -103,7 +103,8 @@ public:
 
 signals:
     /// The current run's data are ready: sample count, true border (synthetic), description.
-    void sourceReady(const terra::ui::StreamSource& source_without_samples, std::size_t sample_count);
+    void sourceReady(const terra::ui::StreamSource& source_without_samples,
+                     std::size_t sample_count);
     /// Frames of the current run, in order, since the last delivery.
     void framesReady(const std::vector<terra::ui::StreamFrame>& frames);
     void stateChanged(terra::ui::StreamingPlayback::State state);
@@ -113,7 +114,8 @@ private:
     struct Run;
     void work(std::shared_ptr<Run> run, SourceFactory source, wheel::WheelParameters wheel,
               identification::StreamingOptions options);
-    void post(const std::shared_ptr<Run>& run);     // worker: ask the GUI thread to deliver (coalesced)
+    void post(
+        const std::shared_ptr<Run>& run);  // worker: ask the GUI thread to deliver (coalesced)
     void deliver(const std::shared_ptr<Run>& run);  // GUI thread
     void setState(State state);
     void reapFinishedWorkers();

@@ -45,7 +45,8 @@ bool read(const nlohmann::json& object, const char* key, T& value, std::vector<I
 Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where) {
     std::vector<Issue> issues;
     if (!json.is_object() || json.value("format", "") != "terrastudio-project") {
-        return std::vector<Issue>{{where, "not a TerraStudio project (\"format\": \"terrastudio-project\")"}};
+        return std::vector<Issue>{
+            {where, "not a TerraStudio project (\"format\": \"terrastudio-project\")"}};
     }
     Project project;
     const std::string at = where + ": ";
@@ -53,11 +54,17 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
     read(json, "wheel_preset", project.wheel_preset, issues, at);
     if (json.contains("soil")) {
         auto soil = io::soilFromJson(json["soil"], where + ": soil");
-        if (soil) project.soil = *soil; else issues.insert(issues.end(), soil.issues().begin(), soil.issues().end());
+        if (soil)
+            project.soil = *soil;
+        else
+            issues.insert(issues.end(), soil.issues().begin(), soil.issues().end());
     }
     if (json.contains("wheel")) {
         auto wheel = io::wheelFromJson(json["wheel"], where + ": wheel");
-        if (wheel) project.wheel = *wheel; else issues.insert(issues.end(), wheel.issues().begin(), wheel.issues().end());
+        if (wheel)
+            project.wheel = *wheel;
+        else
+            issues.insert(issues.end(), wheel.issues().begin(), wheel.issues().end());
     }
     if (json.contains("conditions")) {
         const auto& c = json["conditions"];
@@ -71,7 +78,8 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
         }
         read(c, "slip_count", out.slip_count, issues, cw);
         if (out.slip_count < 2 || out.slip_count > 10000) {
-            issues.push_back({cw + "slip_count", "= " + std::to_string(out.slip_count) + " is outside [2, 10000]"});
+            issues.push_back({cw + "slip_count",
+                              "= " + std::to_string(out.slip_count) + " is outside [2, 10000]"});
         }
         read(c, "slip_max", out.slip_max, issues, cw);
         checkRange(issues, cw + "slip_max", out.slip_max, Range{0.0, 1.0, true, true});

@@ -3,8 +3,8 @@
 #include <QFile>
 #include <QSaveFile>
 #include <QUndoStack>
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <utility>
 
@@ -19,8 +19,11 @@ class SetValueCommand : public QUndoCommand {
 public:
     SetValueCommand(const QString& text, int merge_id, T before, T after,
                     std::function<void(const T&)> apply)
-        : QUndoCommand(text), merge_id_(merge_id), before_(std::move(before)),
-          after_(std::move(after)), apply_(std::move(apply)) {}
+        : QUndoCommand(text),
+          merge_id_(merge_id),
+          before_(std::move(before)),
+          after_(std::move(after)),
+          apply_(std::move(apply)) {}
     void undo() override { apply_(before_); }
     void redo() override { apply_(after_); }
     int id() const override { return merge_id_; }
@@ -44,7 +47,8 @@ constexpr int kWheelRadiusId = 200, kWheelWidthId = 201, kLoadId = 300, kSlipAng
 }  // namespace
 
 ProjectDocument::ProjectDocument(QObject* parent) : QObject(parent), undo_(new QUndoStack(this)) {
-    connect(undo_, &QUndoStack::cleanChanged, this, [this](bool) { emit modifiedChanged(isModified()); });
+    connect(undo_, &QUndoStack::cleanChanged, this,
+            [this](bool) { emit modifiedChanged(isModified()); });
 }
 
 bool ProjectDocument::isModified() const { return !undo_->isClean() || settings_modified_; }
@@ -52,26 +56,37 @@ bool ProjectDocument::isModified() const { return !undo_->isClean() || settings_
 void ProjectDocument::notify(Part part) {
     ++revision_;
     switch (part) {
-        case Part::kSoil: emit soilChanged(); break;
-        case Part::kWheel: emit wheelChanged(); break;
-        case Part::kConditions: emit conditionsChanged(); break;
-        case Part::kDataSets: emit dataSetsChanged(); break;
+        case Part::kSoil:
+            emit soilChanged();
+            break;
+        case Part::kWheel:
+            emit wheelChanged();
+            break;
+        case Part::kConditions:
+            emit conditionsChanged();
+            break;
+        case Part::kDataSets:
+            emit dataSetsChanged();
+            break;
     }
     emit changed();
 }
 
 template <typename T>
-bool ProjectDocument::pushField(const QString& text, int merge_id, Part part, T* field, const T& value) {
+bool ProjectDocument::pushField(const QString& text, int merge_id, Part part, T* field,
+                                const T& value) {
     if (*field == value) return true;
-    undo_->push(new SetValueCommand<T>(text, merge_id, *field, value, [this, field, part](const T& v) {
-        *field = v;
-        notify(part);
-    }));
+    undo_->push(
+        new SetValueCommand<T>(text, merge_id, *field, value, [this, field, part](const T& v) {
+            *field = v;
+            notify(part);
+        }));
     return true;
 }
 
 template <typename T>
-bool ProjectDocument::push(const QString& text, int merge_id, Part part, T Project::*member, const T& value) {
+bool ProjectDocument::push(const QString& text, int merge_id, Part part, T Project::*member,
+                           const T& value) {
     return pushField(text, merge_id, part, &(project_.*member), value);
 }
 
@@ -82,13 +97,15 @@ bool ProjectDocument::setSoilValue(const std::string& key, double user_value) {
         if (key != field.key) continue;
         if (!field.range.contains(user_value)) return false;
         double& member = project_.soil.*(field.member);
-        if (roundSignificant(soil::userValue(project_.soil, field)) == roundSignificant(user_value)) return true;
+        if (roundSignificant(soil::userValue(project_.soil, field)) == roundSignificant(user_value))
+            return true;
         soil::SoilParameters candidate = project_.soil;
         soil::setUserValue(candidate, field, user_value);
         if (!soil::validate(candidate).empty()) return false;
-        return pushField(QString("Set %1 = %2 %3").arg(field.symbol).arg(user_value).arg(field.unit),
-                         kSoilFieldIdBase + static_cast<int>(i), Part::kSoil, &member,
-                         candidate.*(field.member));
+        return pushField(
+            QString("Set %1 = %2 %3").arg(field.symbol).arg(user_value).arg(field.unit),
+            kSoilFieldIdBase + static_cast<int>(i), Part::kSoil, &member,
+            candidate.*(field.member));
     }
     return false;
 }
@@ -126,13 +143,15 @@ bool ProjectDocument::setSoil(const soil::SoilParameters& soil, const std::strin
     if (!soil::validate(soil).empty()) return false;
     using Pair = std::pair<soil::SoilParameters, std::string>;
     const Pair before{project_.soil, project_.soil_preset}, after{soil, preset};
-    if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second) return true;
-    undo_->push(new SetValueCommand<Pair>(QString("Soil preset %1").arg(QString::fromStdString(preset)), -1,
-                                          before, after, [this](const Pair& v) {
-                                              project_.soil = v.first;
-                                              project_.soil_preset = v.second;
-                                              notify(Part::kSoil);
-                                          }));
+    if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second)
+        return true;
+    undo_->push(
+        new SetValueCommand<Pair>(QString("Soil preset %1").arg(QString::fromStdString(preset)), -1,
+                                  before, after, [this](const Pair& v) {
+                                      project_.soil = v.first;
+                                      project_.soil_preset = v.second;
+                                      notify(Part::kSoil);
+                                  }));
     return true;
 }
 
@@ -140,13 +159,15 @@ bool ProjectDocument::setWheel(const wheel::WheelParameters& wheel, const std::s
     if (!wheel::validate(wheel).empty()) return false;
     using Pair = std::pair<wheel::WheelParameters, std::string>;
     const Pair before{project_.wheel, project_.wheel_preset}, after{wheel, preset};
-    if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second) return true;
-    undo_->push(new SetValueCommand<Pair>(QString("Wheel preset %1").arg(QString::fromStdString(preset)), -1,
-                                          before, after, [this](const Pair& v) {
-                                              project_.wheel = v.first;
-                                              project_.wheel_preset = v.second;
-                                              notify(Part::kWheel);
-                                          }));
+    if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second)
+        return true;
+    undo_->push(
+        new SetValueCommand<Pair>(QString("Wheel preset %1").arg(QString::fromStdString(preset)),
+                                  -1, before, after, [this](const Pair& v) {
+                                      project_.wheel = v.first;
+                                      project_.wheel_preset = v.second;
+                                      notify(Part::kWheel);
+                                  }));
     return true;
 }
 
@@ -183,7 +204,8 @@ bool ProjectDocument::save(const QString& path, QString* error) {
     QSaveFile file(path);
     const std::string text = toJson(project_).dump(2) + "\n";
     if (!file.open(QIODevice::WriteOnly) ||
-        file.write(text.data(), static_cast<qint64>(text.size())) != static_cast<qint64>(text.size()) ||
+        file.write(text.data(), static_cast<qint64>(text.size())) !=
+            static_cast<qint64>(text.size()) ||
         !file.commit()) {
         if (error) *error = QString("cannot save %1: %2").arg(path, file.errorString());
         return false;
@@ -201,10 +223,12 @@ bool ProjectDocument::save(const QString& path, QString* error) {
 Result<Project> ProjectDocument::load(const QString& path) {
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly)) {
-        return std::vector<Issue>{{path.toStdString(), "cannot open: " + file.errorString().toStdString()}};
+        return std::vector<Issue>{
+            {path.toStdString(), "cannot open: " + file.errorString().toStdString()}};
     }
     const QByteArray bytes = file.readAll();
-    const auto json = nlohmann::json::parse(bytes.constData(), bytes.constData() + bytes.size(), nullptr, false);
+    const auto json =
+        nlohmann::json::parse(bytes.constData(), bytes.constData() + bytes.size(), nullptr, false);
     if (json.is_discarded()) return std::vector<Issue>{{path.toStdString(), "is not valid JSON"}};
     return projectFromJson(json, path.toStdString());
 }

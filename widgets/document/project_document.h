@@ -58,7 +58,7 @@ signals:
     void wheelChanged();
     void conditionsChanged();
     void dataSetsChanged();
-    void changed();  ///< after any change of the model (revision bumped)
+    void changed();               ///< after any change of the model (revision bumped)
     void panelSettingsChanged();  ///< a panel's settings changed (not a model change)
     void modifiedChanged(bool modified);
     void filePathChanged(const QString& path);

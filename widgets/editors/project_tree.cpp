@@ -6,7 +6,8 @@
 
 namespace terra::ui {
 
-ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent) : QTreeWidget(parent), document_(document) {
+ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent)
+    : QTreeWidget(parent), document_(document) {
     setHeaderLabels({"Project", "Value"});
     setColumnCount(2);
     const char* names[] = {"Soil", "Wheel", "Operating conditions", "Data sets", "Scenarios"};
@@ -27,12 +28,17 @@ ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent) : QTreeWidg
 
 void ProjectTree::refresh() {
     const Project& p = document_->project();
-    items_[kSoil]->setText(1, QString::fromStdString(p.soil_preset.empty() ? p.soil.name + " (edited)" : p.soil_preset));
-    items_[kWheel]->setText(1, QString::fromStdString(p.wheel_preset.empty() ? p.wheel.name + " (edited)" : p.wheel_preset));
+    items_[kSoil]->setText(
+        1,
+        QString::fromStdString(p.soil_preset.empty() ? p.soil.name + " (edited)" : p.soil_preset));
+    items_[kWheel]->setText(
+        1, QString::fromStdString(p.wheel_preset.empty() ? p.wheel.name + " (edited)"
+                                                         : p.wheel_preset));
     items_[kConditions]->setText(1, QString("W = %1 N").arg(p.conditions.load_n));
     qDeleteAll(items_[kDataSets]->takeChildren());
     for (const std::string& path : p.data_sets) {
-        new QTreeWidgetItem(items_[kDataSets], {QFileInfo(QString::fromStdString(path)).fileName()});
+        new QTreeWidgetItem(items_[kDataSets],
+                            {QFileInfo(QString::fromStdString(path)).fileName()});
     }
     items_[kDataSets]->setText(1, QString::number(p.data_sets.size()));
     // Scenario files of the project plus the scenarios edited in the rover panel (kept in its
@@ -40,17 +46,21 @@ void ProjectTree::refresh() {
     qDeleteAll(items_[kScenarios]->takeChildren());
     int scenario_count = 0;
     for (const std::string& path : p.scenarios) {
-        new QTreeWidgetItem(items_[kScenarios], {QFileInfo(QString::fromStdString(path)).fileName()});
+        new QTreeWidgetItem(items_[kScenarios],
+                            {QFileInfo(QString::fromStdString(path)).fileName()});
         ++scenario_count;
     }
     const auto rover = p.panels.find("rover");
-    if (rover != p.panels.end() && rover->is_object() && rover->contains("edited") && (*rover)["edited"].is_object()) {
+    if (rover != p.panels.end() && rover->is_object() && rover->contains("edited") &&
+        (*rover)["edited"].is_object()) {
         for (const auto& edited : (*rover)["edited"].items()) {
-            new QTreeWidgetItem(items_[kScenarios], {QString::fromStdString(edited.key()), "edited"});
+            new QTreeWidgetItem(items_[kScenarios],
+                                {QString::fromStdString(edited.key()), "edited"});
             ++scenario_count;
         }
     }
-    items_[kScenarios]->setText(1, scenario_count == 0 ? "shipped only" : QString::number(scenario_count));
+    items_[kScenarios]->setText(
+        1, scenario_count == 0 ? "shipped only" : QString::number(scenario_count));
     expandAll();
     resizeColumnToContents(0);
 }

@@ -84,7 +84,8 @@ void selectPreset(QComboBox* box, const std::string& preset) {
 
 }  // namespace
 
-SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& locations, QWidget* parent)
+SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& locations,
+                       QWidget* parent)
     : QWidget(parent), document_(document), locations_(locations) {
     preset_ = presetBox(locations_, "soils", this);
     auto* grid = new QGridLayout;
@@ -93,8 +94,9 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
     int row = 1;
     for (const soil::SoilField& field : soil::soilFields()) {
         const bool jmax = std::string(field.key) == "jmax_m";
-        auto* box = new ValidatedSpinBox(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit), field.range,
-                                         decimalsFor(field.range), this);
+        auto* box =
+            new ValidatedSpinBox(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit),
+                                 field.range, decimalsFor(field.range), this);
         box->setObjectName(QString("soil.") + field.key);
         if (jmax) {
             // j_max is optional: the lowest value means "no limit" (the field itself excludes 0).
@@ -105,7 +107,9 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         slider->setObjectName(QString("soil.") + field.key + ".slider");
         slider->setRange(0, SliderScale::forBox(*box).steps);
         slider->setMinimumWidth(90);
-        auto* label = new QLabel(QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)), this);
+        auto* label = new QLabel(
+            QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)),
+            this);
         label->setToolTip(QString::fromUtf8(field.key));
         grid->addWidget(label, row, 0);
         grid->addWidget(box, row, 1);
@@ -114,7 +118,8 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         const std::string key = field.key;
         fields_[key] = {box, slider};
         connect(box, &QDoubleSpinBox::valueChanged, this, [this, key, box, jmax](double value) {
-            const double user = jmax && value == 0.0 ? std::numeric_limits<double>::infinity() : value;
+            const double user =
+                jmax && value == 0.0 ? std::numeric_limits<double>::infinity() : value;
             if (jmax && std::isinf(user)) {
                 soil::SoilParameters soil = document_->project().soil;
                 soil.max_shear_deformation_m = user;
@@ -124,8 +129,9 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
             }
             (void)box;
         });
-        connect(slider, &QSlider::valueChanged, this,
-                [box](int position) { box->setValue(SliderScale::forBox(*box).fromSlider(position)); });
+        connect(slider, &QSlider::valueChanged, this, [box](int position) {
+            box->setValue(SliderScale::forBox(*box).fromSlider(position));
+        });
     }
     grid->setColumnStretch(2, 1);
     auto* layout = new QVBoxLayout(this);
@@ -163,7 +169,8 @@ void SoilEditor::refresh() {
     }
 }
 
-WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& locations, QWidget* parent)
+WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& locations,
+                         QWidget* parent)
     : QWidget(parent), document_(document), locations_(locations) {
     preset_ = presetBox(locations_, "wheels", this);
     radius_ = new ValidatedSpinBox("r", "m", wheel::kRadiusRange, 4, this);
@@ -205,7 +212,8 @@ ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
     load_->setSingleStep(1.0);
     slip_angles_ = new QLineEdit(this);
     slip_angles_->setObjectName("conditions.slip_angles_deg");
-    slip_angles_->setToolTip("Slip angles β [deg] of the force sweeps, comma separated, each in (−89, 89)");
+    slip_angles_->setToolTip(
+        "Slip angles β [deg] of the force sweeps, comma separated, each in (−89, 89)");
     auto* form = new QFormLayout(this);
     form->addRow("Load W [N]", load_);
     form->addRow("Slip angles β [deg]", slip_angles_);
@@ -223,7 +231,8 @@ ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
         }
         if (!ok || values.empty() || !document_->setSlipAngles(values)) {
             slip_angles_->setStyleSheet("QLineEdit { border: 2px solid #d62728; }");
-            slip_angles_->setToolTip("Not a comma-separated list of angles in (−89, 89) deg: not applied");
+            slip_angles_->setToolTip(
+                "Not a comma-separated list of angles in (−89, 89) deg: not applied");
             return;
         }
         slip_angles_->setStyleSheet({});

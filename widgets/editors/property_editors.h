@@ -22,9 +22,9 @@ class ProjectDocument;
 class ValidatedSpinBox;
 
 /// The mapping between a field's slider position and its value. Narrow ranges are linear (1000
-/// steps); spans ≥ 100 that are also ≥ 10⁴ × the box's resolution (c, k_c, k_φ) use a signed-log mapping
-/// u = sign(v) log10(1 + |v| / knee) over 10000 steps, so small values stay reachable and a step
-/// near a typical value is fine (k_φ = 1515 kN/m^(n+2): ~1.7 per step instead of 100).
+/// steps); spans ≥ 100 that are also ≥ 10⁴ × the box's resolution (c, k_c, k_φ) use a signed-log
+/// mapping u = sign(v) log10(1 + |v| / knee) over 10000 steps, so small values stay reachable and a
+/// step near a typical value is fine (k_φ = 1515 kN/m^(n+2): ~1.7 per step instead of 100).
 struct SliderScale {
     double minimum = 0.0, maximum = 1.0;
     bool logarithmic = false;
@@ -43,7 +43,8 @@ private:
 class SoilEditor : public QWidget {
     Q_OBJECT
 public:
-    SoilEditor(ProjectDocument* document, const io::PresetLocations& locations, QWidget* parent = nullptr);
+    SoilEditor(ProjectDocument* document, const io::PresetLocations& locations,
+               QWidget* parent = nullptr);
     /// The spin box of a field key ("phi_deg"), for tests and for focusing from the tree.
     ValidatedSpinBox* spinBox(const std::string& key) const;
     QSlider* slider(const std::string& key) const;
@@ -59,7 +60,8 @@ private:
 class WheelEditor : public QWidget {
     Q_OBJECT
 public:
-    WheelEditor(ProjectDocument* document, const io::PresetLocations& locations, QWidget* parent = nullptr);
+    WheelEditor(ProjectDocument* document, const io::PresetLocations& locations,
+                QWidget* parent = nullptr);
 
 private:
     void refresh();

@@ -8,13 +8,14 @@
 
 namespace terra::ui {
 
-ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, const Range& range, int decimals,
-                                   QWidget* parent)
+ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, const Range& range,
+                                   int decimals, QWidget* parent)
     : QDoubleSpinBox(parent), name_(name), unit_(unit), range_(range) {
     setDecimals(decimals);
     const double step = std::pow(10.0, -decimals);
     // Open ends: the nearest value the box can show inside the range.
-    setRange(range.low_open ? range.low + step : range.low, range.high_open ? range.high - step : range.high);
+    setRange(range.low_open ? range.low + step : range.low,
+             range.high_open ? range.high - step : range.high);
     // Keystrokes do not emit valueChanged themselves: a settled, acceptable text is committed by
     // the debounce timer (or at once by Enter / focus-out), so "3" of "35" never reaches the model
     // while the user is still typing, and a settled edit is one (merged) undo command.
@@ -25,7 +26,8 @@ ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, con
     connect(debounce_, &QTimer::timeout, this, &ValidatedSpinBox::commitTyped);
     connect(lineEdit(), &QLineEdit::textEdited, debounce_, qOverload<>(&QTimer::start));
     setAccelerated(true);
-    setToolTip(QString("%1 [%2], allowed %3").arg(name, unit, QString::fromStdString(range.describe())));
+    setToolTip(
+        QString("%1 [%2], allowed %3").arg(name, unit, QString::fromStdString(range.describe())));
     setCorrectionMode(QAbstractSpinBox::CorrectToPreviousValue);
     connect(this, &QDoubleSpinBox::valueChanged, this, [this](double v) { committed_ = v; });
 }
@@ -69,11 +71,13 @@ QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
     if (!suffix().isEmpty()) number.chop(suffix().size());
     bool parsed = false;
     const double value = locale().toDouble(number.trimmed(), &parsed);
-    if (state == QValidator::Acceptable || (!specialValueText().isEmpty() && text == specialValueText())) {
+    if (state == QValidator::Acceptable ||
+        (!specialValueText().isEmpty() && text == specialValueText())) {
         flag(true, {});
     } else if (parsed) {
         flag(false, QString("%1 = %2 %3 is outside the allowed range %4")
-                        .arg(name_, QString::number(value), unit_, QString::fromStdString(range_.describe())));
+                        .arg(name_, QString::number(value), unit_,
+                             QString::fromStdString(range_.describe())));
     } else {
         flag(false, QString("%1: \"%2\" is not a number").arg(name_, number));
     }
@@ -84,7 +88,8 @@ void ValidatedSpinBox::flag(bool valid, const QString& message) const {
     if (valid == valid_) return;
     valid_ = valid;
     auto* self = const_cast<ValidatedSpinBox*>(this);
-    self->setStyleSheet(valid ? QString() : QString("QDoubleSpinBox { border: 2px solid #d62728; }"));
+    self->setStyleSheet(valid ? QString()
+                              : QString("QDoubleSpinBox { border: 2px solid #d62728; }"));
     self->lineEdit()->setToolTip(valid ? QString() : message);
     self->setProperty("invalidMessage", valid ? QString() : message);
 }

@@ -128,6 +128,8 @@ void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     });
 }
 
-void AnalysisPanel::storeSettings() { document_->setPanelSettings(name_.toStdString(), settings()); }
+void AnalysisPanel::storeSettings() {
+    document_->setPanelSettings(name_.toStdString(), settings());
+}
 
 }  // namespace terra::ui

@@ -3,11 +3,11 @@
 #include <qcustomplot.h>
 
 #include <QComboBox>
-#include <algorithm>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QTabWidget>
 #include <QVBoxLayout>
+#include <algorithm>
 
 #include "widgets/analyses/analyses.h"
 #include "widgets/document/project_document.h"
@@ -50,7 +50,8 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     plots_.push_back(bulldozing_);
     plots_.push_back(static_sinkage_);
     tabs_->addTab(bulldozing_, "Bulldozing");
-    tabs_->setTabToolTip(tabs_->count() - 1, "Bulldozing resistance F_b against sinkage h (Fig. 2.15)");
+    tabs_->setTabToolTip(tabs_->count() - 1,
+                         "Bulldozing resistance F_b against sinkage h (Fig. 2.15)");
     tabs_->addTab(static_sinkage_, "Static sinkage");
     tabs_->setTabToolTip(tabs_->count() - 1, "Static sinkage h_s against load W (Fig. 2.6)");
     auto* bar = new QHBoxLayout;
@@ -76,7 +77,8 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
 std::vector<std::pair<QString, QCustomPlot*>> ForcesPanel::plots() const {
     std::vector<std::pair<QString, QCustomPlot*>> out;
     for (std::size_t i = 0; i < sweepQuantities().size(); ++i) {
-        out.emplace_back(QString::fromStdString(sweepQuantities()[i].column) + "-vs-slip", plots_[i]);
+        out.emplace_back(QString::fromStdString(sweepQuantities()[i].column) + "-vs-slip",
+                         plots_[i]);
     }
     out.emplace_back("Fb-vs-sinkage", bulldozing_);
     out.emplace_back("static-sinkage-vs-load", static_sinkage_);
@@ -85,7 +87,9 @@ std::vector<std::pair<QString, QCustomPlot*>> ForcesPanel::plots() const {
 
 nlohmann::json ForcesPanel::settings() const {
     const auto all = plots();
-    return {{"plot", all[static_cast<std::size_t>(std::max(tabs_->currentIndex(), 0))].first.toStdString()}};
+    return {
+        {"plot",
+         all[static_cast<std::size_t>(std::max(tabs_->currentIndex(), 0))].first.toStdString()}};
 }
 
 void ForcesPanel::applySettings(const nlohmann::json& settings) {
@@ -103,7 +107,9 @@ Table ForcesPanel::currentTable() const {
     return result_.table;
 }
 
-QCustomPlot* ForcesPanel::currentPlot() const { return plots_[static_cast<std::size_t>(tabs_->currentIndex())]; }
+QCustomPlot* ForcesPanel::currentPlot() const {
+    return plots_[static_cast<std::size_t>(tabs_->currentIndex())];
+}
 
 AnalysisPanel::Job ForcesPanel::makeJob() {
     const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
@@ -120,24 +126,27 @@ void ForcesPanel::present(const std::any& value) {
     result_ = std::move(outcome.sweep);
     soil_curves_ = std::move(outcome.soil);
     const Project& p = document_->project();
-    const QString title = QString("%1, %2, W = %3 N%4")
-                              .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
-                              .arg(p.conditions.load_n)
-                              .arg(p.conditions.quadratic ? " (quadratic model)" : "");
+    const QString title =
+        QString("%1, %2, W = %3 N%4")
+            .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
+            .arg(p.conditions.load_n)
+            .arg(p.conditions.quadratic ? " (quadratic model)" : "");
     for (std::size_t i = 0; i < sweepQuantities().size(); ++i) {
         plotSweep(*plots_[i], result_.table, sweepQuantities()[i], title);
     }
-    const QString soil_title = QString("%1, %2 (r = %3 mm, b = %4 mm)")
-                                   .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
-                                   .arg(p.wheel.radius_m * 1e3)
-                                   .arg(p.wheel.width_m * 1e3);
+    const QString soil_title =
+        QString("%1, %2 (r = %3 mm, b = %4 mm)")
+            .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
+            .arg(p.wheel.radius_m * 1e3)
+            .arg(p.wheel.width_m * 1e3);
     plotBulldozing(*bulldozing_, soil_curves_, soil_title);
     plotStaticSinkage(*static_sinkage_, soil_curves_, soil_title);
-    status_->setText(result_.warnings.empty()
-                         ? QString("%1 points").arg(result_.table.rows.size())
-                         : QString("%1 points; %2 without equilibrium (the wheel would sink to its axle)")
-                               .arg(result_.table.rows.size())
-                               .arg(result_.warnings.size()));
+    status_->setText(
+        result_.warnings.empty()
+            ? QString("%1 points").arg(result_.table.rows.size())
+            : QString("%1 points; %2 without equilibrium (the wheel would sink to its axle)")
+                  .arg(result_.table.rows.size())
+                  .arg(result_.warnings.size()));
 }
 
 }  // namespace terra::ui

@@ -41,7 +41,8 @@ private:
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;
-    std::vector<QCustomPlot*> plots_;  ///< one per sweep quantity, then bulldozing_, static_sinkage_
+    std::vector<QCustomPlot*>
+        plots_;  ///< one per sweep quantity, then bulldozing_, static_sinkage_
     QCustomPlot* bulldozing_;
     QCustomPlot* static_sinkage_;
     analysis::SweepResult result_;

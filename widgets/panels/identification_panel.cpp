@@ -15,11 +15,10 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSplitter>
-#include <QTimer>
 #include <QTabWidget>
 #include <QTableWidget>
+#include <QTimer>
 #include <QVBoxLayout>
-
 #include <cmath>
 
 #include "core/common/units.h"
@@ -36,8 +35,14 @@ const char* kChannels[] = {"Fx_N", "Fz_N", "My_Nm"};
 std::vector<double> trueValues(const Project& p) {
     const auto& s = p.soil;
     const double ks = s.cohesive_modulus / p.wheel.width_m + s.frictional_modulus;
-    return {s.max_stress_a0, s.max_stress_a1, ks / 1e3, s.sinkage_exponent, s.sinkage_exponent_slip,
-            s.cohesion_pa / 1e3, units::radToDeg(s.friction_angle_rad), s.shear_modulus_m};
+    return {s.max_stress_a0,
+            s.max_stress_a1,
+            ks / 1e3,
+            s.sinkage_exponent,
+            s.sinkage_exponent_slip,
+            s.cohesion_pa / 1e3,
+            units::radToDeg(s.friction_angle_rad),
+            s.shear_modulus_m};
 }
 
 }  // namespace
@@ -53,12 +58,14 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     noise_->setRange(0.0, 20.0);
     noise_->setSuffix(" %");
     noise_->setValue(2.0);
-    noise_->setToolTip("Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
+    noise_->setToolTip(
+        "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     refine_ = new QCheckBox("Refine (full model, std deviations)", this);
     refine_->setChecked(true);
     three_loads_ = new QCheckBox("Synthesise at ½W, W, 1½W", this);
     three_loads_->setChecked(true);
-    three_loads_->setToolTip("One load cannot separate c and φ when the data are noisy (full_fit.h)");
+    three_loads_->setToolTip(
+        "One load cannot separate c and φ when the data are noisy (full_fit.h)");
     fit_ = new QPushButton("Fit", this);
     fit_->setDefault(true);
     status_ = new QLabel(this);
@@ -112,7 +119,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     layout->addWidget(pages_, 1);
 
     connect(browse, &QPushButton::clicked, this, [this] {
-        const QString path = QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
+        const QString path =
+            QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
         if (!path.isEmpty()) setDataFile(path);
     });
     connect(fit_, &QPushButton::clicked, this, [this] {
@@ -150,19 +158,21 @@ QCustomPlot* IdentificationPanel::currentPlot() const {
 Table IdentificationPanel::currentTable() const {
     if (pages_->currentIndex() == 0) return result_.curves;
     Table t;
-    t.columns = {"sample", "time_s", "estimated", "a0", "a1", "Ks_kPa", "n0", "n1", "c_kPa", "phi_deg", "K_m",
-                 "score", "change_at", "window", "Fx_N", "Fx_predicted_N"};
+    t.columns = {"sample", "time_s",        "estimated", "a0",  "a1",    "Ks_kPa",    "n0",
+                 "n1",     "c_kPa",         "phi_deg",   "K_m", "score", "change_at", "window",
+                 "Fx_N",   "Fx_predicted_N"};
     for (const StreamFrame& f : stream_frames_) {
         const auto& u = f.update;
         const auto& p = u.parameters;
         const double nan = std::nan("");
         const bool e = u.estimated;
-        t.rows.push_back({static_cast<double>(u.index), f.time_s, e ? 1.0 : 0.0, e ? p.a0 : nan, e ? p.a1 : nan,
-                          e ? p.pressure_modulus / 1e3 : nan, e ? p.n0 : nan, e ? p.n1 : nan,
-                          e ? p.cohesion_pa / 1e3 : nan, e ? units::radToDeg(p.friction_angle_rad) : nan,
+        t.rows.push_back({static_cast<double>(u.index), f.time_s, e ? 1.0 : 0.0, e ? p.a0 : nan,
+                          e ? p.a1 : nan, e ? p.pressure_modulus / 1e3 : nan, e ? p.n0 : nan,
+                          e ? p.n1 : nan, e ? p.cohesion_pa / 1e3 : nan,
+                          e ? units::radToDeg(p.friction_angle_rad) : nan,
                           e ? p.shear_modulus_m : nan, u.residual_score,
-                          u.change_at ? static_cast<double>(*u.change_at) : nan, static_cast<double>(u.window_size),
-                          f.fx_measured_n, f.fx_predicted_n});
+                          u.change_at ? static_cast<double>(*u.change_at) : nan,
+                          static_cast<double>(u.window_size), f.fx_measured_n, f.fx_predicted_n});
     }
     return t;
 }
@@ -173,7 +183,8 @@ nlohmann::json IdentificationPanel::settings() const {
             {"refine", refine_->isChecked()},
             {"three_loads", three_loads_->isChecked()},
             {"page", pages_->currentIndex() == 1 ? "streaming" : "fit"},
-            {"stream_csv", stream_source_->currentIndex() == 1 ? stream_file_->text().toStdString() : std::string()},
+            {"stream_csv", stream_source_->currentIndex() == 1 ? stream_file_->text().toStdString()
+                                                               : std::string()},
             {"stream_second_soil", second_soil_->currentText().toStdString()},
             {"stream_noise_percent", stream_noise_->value()},
             {"stream_speed", speed_->currentData().toDouble()},
@@ -188,11 +199,14 @@ void IdentificationPanel::applySettings(const nlohmann::json& s) {
     if (s.contains("page")) showPage(s["page"].get<std::string>() == "streaming" ? 1 : 0);
     if (s.contains("stream_csv") || s.contains("stream_second_soil")) {
         setStreamSource(QString::fromStdString(s.value("stream_csv", std::string())),
-                        QString::fromStdString(s.value("stream_second_soil", second_soil_->currentText().toStdString())));
+                        QString::fromStdString(s.value("stream_second_soil",
+                                                       second_soil_->currentText().toStdString())));
     }
-    if (s.contains("stream_noise_percent")) stream_noise_->setValue(s["stream_noise_percent"].get<double>());
+    if (s.contains("stream_noise_percent"))
+        stream_noise_->setValue(s["stream_noise_percent"].get<double>());
     if (s.contains("stream_speed")) setStreamSpeed(s["stream_speed"].get<double>());
-    if (s.contains("stream_skip_bad_rows")) skip_bad_rows_->setChecked(s["stream_skip_bad_rows"].get<bool>());
+    if (s.contains("stream_skip_bad_rows"))
+        skip_bad_rows_->setChecked(s["stream_skip_bad_rows"].get<bool>());
 }
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
@@ -205,20 +219,26 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
         const double w = inputs.conditions.load_n;
         settings.loads_n = {0.5 * w, w, 1.5 * w};
     }
-    return [inputs, settings](const std::atomic<bool>&) -> std::any { return computeIdentification(inputs, settings); };
+    return [inputs, settings](const std::atomic<bool>&) -> std::any {
+        return computeIdentification(inputs, settings);
+    };
 }
 
 void IdentificationPanel::present(const std::any& value) {
     result_ = std::any_cast<IdentificationResult>(value);
     if (!result_.message.empty()) {
-        status_->setText("<b>Error:</b> " + QString::fromStdString(result_.message).toHtmlEscaped());
+        status_->setText("<b>Error:</b> " +
+                         QString::fromStdString(result_.message).toHtmlEscaped());
         return;
     }
-    const QString source = file_->text().isEmpty() ? QString("synthetic, %1 % noise").arg(noise_->value())
-                                                   : QFileInfo(file_->text()).fileName();
+    const QString source = file_->text().isEmpty()
+                               ? QString("synthetic, %1 % noise").arg(noise_->value())
+                               : QFileInfo(file_->text()).fileName();
     for (std::size_t i = 0; i < plots_.size(); ++i) {
         plotIdentification(*plots_[i], result_, kChannels[i],
-                           QString("Identification: %1 samples (%2)").arg(result_.data.samples.size()).arg(source));
+                           QString("Identification: %1 samples (%2)")
+                               .arg(result_.data.samples.size())
+                               .arg(source));
     }
     const Table& t = result_.parameters;
     const std::vector<double> truth = trueValues(document_->project());
@@ -227,25 +247,34 @@ void IdentificationPanel::present(const std::any& value) {
     for (int i = 0; i < 8; ++i) {
         const std::string name = t.columns[static_cast<std::size_t>(i)];
         parameters_->setItem(i, 0, new QTableWidgetItem(QString::fromStdString(name)));
-        parameters_->setItem(i, 1, new QTableWidgetItem(QString::number(t.rows[0][static_cast<std::size_t>(i)], 'g', 5)));
+        parameters_->setItem(
+            i, 1,
+            new QTableWidgetItem(QString::number(t.rows[0][static_cast<std::size_t>(i)], 'g', 5)));
         QString std_text = "–";
         for (std::size_t c = 8; c < t.columns.size(); ++c) {
             if (t.columns[c] == name + "_std") std_text = QString::number(t.rows[0][c], 'g', 3);
         }
         parameters_->setItem(i, 2, new QTableWidgetItem(std_text));
-        parameters_->setItem(i, 3, new QTableWidgetItem(synthetic ? QString::number(truth[static_cast<std::size_t>(i)], 'g', 5) : "–"));
+        parameters_->setItem(
+            i, 3,
+            new QTableWidgetItem(
+                synthetic ? QString::number(truth[static_cast<std::size_t>(i)], 'g', 5) : "–"));
     }
     QStringList steps;
     for (const auto& step : result_.fit.steps) {
-        steps << QString("%1: Σr² = %2").arg(QString::fromStdString(step.name)).arg(step.squared_residual_norm, 0, 'g', 4);
+        steps << QString("%1: Σr² = %2")
+                     .arg(QString::fromStdString(step.name))
+                     .arg(step.squared_residual_norm, 0, 'g', 4);
     }
     if (result_.refined) {
         steps << QString("refined: Σr² = %1 (%2)")
                      .arg(result_.refined->report.squared_residual_norm, 0, 'g', 4)
                      .arg(QString::fromStdString(result_.refined->report.termination).left(40));
-        for (const auto& flag : result_.refined->uncertainty.flags) steps << QString::fromStdString(flag);
+        for (const auto& flag : result_.refined->uncertainty.flags)
+            steps << QString::fromStdString(flag);
     }
-    status_->setText(QString("Fit in %1 ms. ").arg(result_.fit_time_ms, 0, 'f', 0) + steps.join(";  "));
+    status_->setText(QString("Fit in %1 ms. ").arg(result_.fit_time_ms, 0, 'f', 0) +
+                     steps.join(";  "));
 }
 
 // --- Streaming playback -------------------------------------------------------------------------
@@ -267,31 +296,37 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     stream_source_ = new QComboBox(page);
     stream_source_->addItem("Synthetic: project soil, then");
     stream_source_->addItem("CSV file");
-    stream_source_->setToolTip("A synthetic drive over a soil border (the true border is drawn as a grey dashed line), "
-                               "or a recorded CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm; time_s for pacing)");
+    stream_source_->setToolTip(
+        "A synthetic drive over a soil border (the true border is drawn as a grey dashed line), "
+        "or a recorded CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm; time_s for pacing)");
     second_soil_ = new QComboBox(page);
     for (const std::string& name : io::presetNames(presetLocations(), "soils")) {
         second_soil_->addItem(QString::fromStdString(name));
     }
-    if (const int i = second_soil_->findText("clayey-soil"); i >= 0) second_soil_->setCurrentIndex(i);
+    if (const int i = second_soil_->findText("clayey-soil"); i >= 0)
+        second_soil_->setCurrentIndex(i);
     second_soil_->setToolTip("The soil the synthetic drive crosses into");
     stream_noise_ = new QDoubleSpinBox(page);
     stream_noise_->setRange(0.0, 20.0);
     stream_noise_->setSuffix(" % noise");
     stream_noise_->setValue(1.0);
-    stream_noise_->setToolTip("Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
+    stream_noise_->setToolTip(
+        "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     stream_file_ = new QLineEdit(page);
     stream_file_->setPlaceholderText("CSV to play");
     stream_browse_ = new QPushButton("Choose CSV…", page);
     skip_bad_rows_ = new QCheckBox("Skip bad rows", page);
-    skip_bad_rows_->setToolTip("Off: a bad row stops the playback before it starts, with its line number");
+    skip_bad_rows_->setToolTip(
+        "Off: a bad row stops the playback before it starts, with its line number");
     speed_ = new QComboBox(page);
     speed_->addItem("0.1×", 0.1);
     speed_->addItem("1× (real time)", 1.0);
     speed_->addItem("10×", 10.0);
     speed_->addItem("max", 0.0);
     speed_->setCurrentIndex(1);
-    speed_->setToolTip("Sample time per wall time (samples' time_s, else 100 Hz); max: as fast as the identifier runs");
+    speed_->setToolTip(
+        "Sample time per wall time (samples' time_s, else 100 Hz); max: as fast as the identifier "
+        "runs");
     play_ = new QPushButton("▶ Play", page);
     pause_ = new QPushButton("❚❚ Pause", page);
     stop_ = new QPushButton("■ Stop", page);
@@ -340,12 +375,15 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     layout->addLayout(play_row);
     layout->addWidget(splitter, 1);
     layout->addWidget(stream_status_);
-    stream_status_->setText("Press Play: the samples are fed one at a time through the streaming identifier "
-                            "(sliding window of 60, change of soil when the residual score stays above 8).");
+    stream_status_->setText(
+        "Press Play: the samples are fed one at a time through the streaming identifier "
+        "(sliding window of 60, change of soil when the residual score stays above 8).");
 
-    connect(stream_source_, &QComboBox::currentIndexChanged, this, [this] { updateStreamControls(); });
+    connect(stream_source_, &QComboBox::currentIndexChanged, this,
+            [this] { updateStreamControls(); });
     connect(stream_browse_, &QPushButton::clicked, this, [this] {
-        const QString path = QFileDialog::getOpenFileName(this, "Play identification data", {}, "CSV (*.csv)");
+        const QString path =
+            QFileDialog::getOpenFileName(this, "Play identification data", {}, "CSV (*.csv)");
         if (!path.isEmpty()) setStreamSource(path);
     });
     connect(speed_, &QComboBox::currentIndexChanged, this, [this] {
@@ -359,26 +397,29 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
         updatePosition();
         stream_figures_->replot();
     });
-    connect(playback_, &StreamingPlayback::sourceReady, this, [this](const StreamSource& source, std::size_t count) {
-        stream_count_ = count;
-        stream_border_ = source.true_border;
-        stream_description_ = QString::fromStdString(source.description);
-        stream_warnings_.clear();
-        for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
-        stream_frames_.clear();
-        stream_frames_.reserve(count);
-        stream_figures_->reset(source.truth.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"),
-                               count, stream_border_,
-                               identification::StreamingOptions{}.threshold);
-        stream_figures_->setTruth(source.truth);
-        position_->setRange(0, static_cast<int>(count));
-        position_->setValue(0);
-        position_->setFormat("%v / %m samples");
-        stream_figures_->replot();
-        updatePosition();
-    });
+    connect(playback_, &StreamingPlayback::sourceReady, this,
+            [this](const StreamSource& source, std::size_t count) {
+                stream_count_ = count;
+                stream_border_ = source.true_border;
+                stream_description_ = QString::fromStdString(source.description);
+                stream_warnings_.clear();
+                for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
+                stream_frames_.clear();
+                stream_frames_.reserve(count);
+                stream_figures_->reset(source.truth.empty() ? QString("Estimates")
+                                                            : QString("Estimates (dotted: truth)"),
+                                       count, stream_border_,
+                                       identification::StreamingOptions{}.threshold);
+                stream_figures_->setTruth(source.truth);
+                position_->setRange(0, static_cast<int>(count));
+                position_->setValue(0);
+                position_->setFormat("%v / %m samples");
+                stream_figures_->replot();
+                updatePosition();
+            });
     connect(playback_, &StreamingPlayback::framesReady, this, &IdentificationPanel::showFrames);
-    connect(playback_, &StreamingPlayback::stateChanged, this, &IdentificationPanel::playbackStateChanged);
+    connect(playback_, &StreamingPlayback::stateChanged, this,
+            &IdentificationPanel::playbackStateChanged);
     connect(playback_, &StreamingPlayback::failed, this, [this](const QString& message) {
         stream_status_->setText("<b>Error:</b> " + message.toHtmlEscaped().replace("\n", "<br>"));
     });
@@ -397,7 +438,9 @@ void IdentificationPanel::setStreamSource(const QString& csv_path, const QString
 void IdentificationPanel::setStreamSpeed(double speed) {
     int best = 0;
     for (int i = 0; i < speed_->count(); ++i) {
-        if (std::abs(speed_->itemData(i).toDouble() - speed) < std::abs(speed_->itemData(best).toDouble() - speed)) best = i;
+        if (std::abs(speed_->itemData(i).toDouble() - speed) <
+            std::abs(speed_->itemData(best).toDouble() - speed))
+            best = i;
     }
     speed_->setCurrentIndex(best);
 }
@@ -470,7 +513,8 @@ QString IdentificationPanel::streamStatus() const { return stream_status_->text(
 void IdentificationPanel::updatePosition() {
     position_->setValue(static_cast<int>(stream_frames_.size()));
     if (stream_frames_.empty()) {
-        position_text_->setText(stream_count_ > 0 ? QString("%1 samples").arg(stream_count_) : QString());
+        position_text_->setText(stream_count_ > 0 ? QString("%1 samples").arg(stream_count_)
+                                                  : QString());
         return;
     }
     const StreamFrame& f = stream_frames_.back();
@@ -506,8 +550,10 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
     using State = StreamingPlayback::State;
     updateStreamControls();
     if (state == State::kPlaying || state == State::kPaused) {
-        if (state == State::kPaused) stream_status_->setText("Paused: Resume goes on from the next sample.");
-        else if (!stream_frames_.empty()) stream_status_->setText("Playing…");
+        if (state == State::kPaused)
+            stream_status_->setText("Paused: Resume goes on from the next sample.");
+        else if (!stream_frames_.empty())
+            stream_status_->setText("Playing…");
         return;
     }
     replot_timer_->stop();
@@ -521,20 +567,28 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
     for (std::size_t c : stream_figures_->changePoints()) changes << QString::number(c);
     QString text = state == State::kFinished
                        ? QString("Finished: %1 samples").arg(stream_frames_.size())
-                       : QString("Stopped after %1 of %2 samples").arg(stream_frames_.size()).arg(stream_count_);
-    if (!stream_description_.isEmpty()) text += QString(" (%1)").arg(stream_description_.toHtmlEscaped());
-    text += changes.isEmpty() ? QString("; no change of soil detected") : QString("; change of soil at sample %1").arg(changes.join(", "));
+                       : QString("Stopped after %1 of %2 samples")
+                             .arg(stream_frames_.size())
+                             .arg(stream_count_);
+    if (!stream_description_.isEmpty())
+        text += QString(" (%1)").arg(stream_description_.toHtmlEscaped());
+    text += changes.isEmpty() ? QString("; no change of soil detected")
+                              : QString("; change of soil at sample %1").arg(changes.join(", "));
     if (stream_border_) text += QString(" (true border: %1)").arg(*stream_border_);
     if (!stream_frames_.empty() && stream_frames_.back().update.estimated) {
         const auto& p = stream_frames_.back().update.parameters;
-        text += QString(". Last estimate (decoupled model, biased; refine a settled window for numbers to report): "
-                        "φ = %1°, c = %2 kPa, K = %3 mm")
+        text += QString(
+                    ". Last estimate (decoupled model, biased; refine a settled window for numbers "
+                    "to report): "
+                    "φ = %1°, c = %2 kPa, K = %3 mm")
                     .arg(units::radToDeg(p.friction_angle_rad), 0, 'f', 1)
                     .arg(p.cohesion_pa / 1e3, 0, 'f', 2)
                     .arg(p.shear_modulus_m * 1e3, 0, 'f', 1);
     }
     if (!stream_warnings_.isEmpty()) {
-        text += QString(". %1 warning(s): %2").arg(stream_warnings_.size()).arg(stream_warnings_.mid(0, 3).join("; ").toHtmlEscaped());
+        text += QString(". %1 warning(s): %2")
+                    .arg(stream_warnings_.size())
+                    .arg(stream_warnings_.mid(0, 3).join("; ").toHtmlEscaped());
     }
     stream_status_->setText(text);
     emit playbackEnded(state);

@@ -6,9 +6,9 @@
 /// residual norms and timing. Runs on "Fit", not on every edit (a fit takes seconds).
 ///
 /// Its second page plays a data set back through the streaming identifier
-/// (widgets/analyses/streaming_playback.h): a CSV, or a synthetic drive from the project's soil onto
-/// a second soil, fed sample by sample on a worker at 0.1×, 1×, 10× or full speed, with pause and
-/// stop; the estimates, the residual score and the detected change points grow as it plays.
+/// (widgets/analyses/streaming_playback.h): a CSV, or a synthetic drive from the project's soil
+/// onto a second soil, fed sample by sample on a worker at 0.1×, 1×, 10× or full speed, with pause
+/// and stop; the estimates, the residual score and the detected change points grow as it plays.
 
 #include "widgets/analyses/analyses.h"
 #include "widgets/analyses/streaming_playback.h"

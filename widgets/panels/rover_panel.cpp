@@ -50,13 +50,14 @@ Result<scenario::Scenario> parseScenarioText(const QString& text, const std::str
         return std::vector<Issue>{{where, std::string("not valid JSON: ") + e.what()}};
     }
     // Relative files (soils, robots) resolve against the preset's directory, as for the file.
-    return scenario::scenarioFromJson(json, where, locations, presetFile(locations, name).parent_path());
+    return scenario::scenarioFromJson(json, where, locations,
+                                      presetFile(locations, name).parent_path());
 }
 
 // ---------------------------------------------------------------------------------------------
 
-ScenarioDialog::ScenarioDialog(const QString& name, const QString& text, io::PresetLocations locations,
-                               QWidget* parent)
+ScenarioDialog::ScenarioDialog(const QString& name, const QString& text,
+                               io::PresetLocations locations, QWidget* parent)
     : QDialog(parent), name_(name.toStdString()), locations_(std::move(locations)) {
     setWindowTitle("Edit scenario " + name);
     edit_ = new QPlainTextEdit(this);
@@ -67,7 +68,8 @@ ScenarioDialog::ScenarioDialog(const QString& name, const QString& text, io::Pre
     error_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     buttons_ = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
     auto* layout = new QVBoxLayout(this);
-    layout->addWidget(new QLabel("Scenario as JSON (format: docs/dynamics.md, \"Scenario\"):", this));
+    layout->addWidget(
+        new QLabel("Scenario as JSON (format: docs/dynamics.md, \"Scenario\"):", this));
     layout->addWidget(edit_, 1);
     layout->addWidget(error_);
     layout->addWidget(buttons_);
@@ -81,7 +83,9 @@ ScenarioDialog::ScenarioDialog(const QString& name, const QString& text, io::Pre
 QString ScenarioDialog::text() const { return edit_->toPlainText(); }
 void ScenarioDialog::setText(const QString& text) { edit_->setPlainText(text); }  // validates
 QString ScenarioDialog::errorText() const { return valid_ ? QString() : error_->text(); }
-bool ScenarioDialog::okEnabled() const { return buttons_->button(QDialogButtonBox::Ok)->isEnabled(); }
+bool ScenarioDialog::okEnabled() const {
+    return buttons_->button(QDialogButtonBox::Ok)->isEnabled();
+}
 
 void ScenarioDialog::validate() {
     const auto parsed = parseScenarioText(edit_->toPlainText(), name_, locations_);
@@ -105,7 +109,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     : AnalysisPanel(document, "rover", parent), locations_(std::move(locations)) {
     setLive(false);  // scenarios use their own soils and robot; they run on request
     scenario_ = new QComboBox(this);
-    for (const std::string& name : io::presetNames(locations_, "scenarios")) scenario_->addItem(QString::fromStdString(name));
+    for (const std::string& name : io::presetNames(locations_, "scenarios"))
+        scenario_->addItem(QString::fromStdString(name));
     edit_ = new QPushButton("Edit…", this);
     edit_->setToolTip("Edit the scenario as JSON (kept in the project)");
     revert_ = new QPushButton("Revert", this);
@@ -156,7 +161,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         makeInteractive(plot, readout_);
         plots_.push_back(plot);
         tabs_->addTab(plot, figure.tab);
-        if (!figure.thesis.isEmpty()) tabs_->setTabToolTip(tabs_->count() - 1, "Thesis " + figure.thesis);
+        if (!figure.thesis.isEmpty())
+            tabs_->setTabToolTip(tabs_->count() - 1, "Thesis " + figure.thesis);
     }
     drawn_.assign(plots_.size(), true);  // nothing to draw yet
     connect(tabs_, &QTabWidget::currentChanged, this, [this](int index) {
@@ -191,7 +197,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         if (!json.is_object() || json.value("duration_s", -1.0) == seconds) return;
         json["duration_s"] = seconds;
         QString error;
-        if (!setScenarioText(QString::fromStdString(json.dump(2)), &error)) status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
+        if (!setScenarioText(QString::fromStdString(json.dump(2)), &error))
+            status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
     });
     connect(scrubber_, &QSlider::valueChanged, this, &RoverPanel::scrubTo);
     connect(play_, &QPushButton::toggled, this, [this](bool on) {
@@ -282,7 +289,8 @@ QString RoverPanel::scenarioText() const {
     if (!edits_.contains(name)) {
         std::string text;
         const fs::path file = presetFile(locations_, name);
-        if (!file.empty() && !io::readFile(file, text)) return QString::fromStdString(text);  // as written
+        if (!file.empty() && !io::readFile(file, text))
+            return QString::fromStdString(text);  // as written
     }
     const nlohmann::json json = currentJson();
     return json.is_discarded() || json.is_null() ? QString() : QString::fromStdString(json.dump(2));
@@ -327,12 +335,14 @@ void RoverPanel::editScenario() {
     ScenarioDialog dialog(scenario_->currentText(), scenarioText(), locations_, this);
     if (dialog.exec() != QDialog::Accepted) return;
     QString error;
-    if (!setScenarioText(dialog.text(), &error)) status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
+    if (!setScenarioText(dialog.text(), &error))
+        status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
 }
 
 AnalysisPanel::Job RoverPanel::makeJob() {
     const std::string name = currentName();
-    auto loaded = isEdited() ? parseScenarioText(QString::fromStdString(edits_[name].dump()), name, locations_)
+    auto loaded = isEdited() ? parseScenarioText(QString::fromStdString(edits_[name].dump()), name,
+                                                 locations_)
                              : scenario::resolveScenario(locations_, name);
     if (!loaded) throw std::invalid_argument(loaded.message());
     const scenario::Scenario scenario = *loaded;
@@ -341,9 +351,12 @@ AnalysisPanel::Job RoverPanel::makeJob() {
         scenario::RunOptions options;
         options.cancel = &cancel;
         options.progress = [bar](double fraction) {
-            QMetaObject::invokeMethod(bar, [bar, fraction] {
-                if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
-            }, Qt::QueuedConnection);
+            QMetaObject::invokeMethod(
+                bar,
+                [bar, fraction] {
+                    if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
+                },
+                Qt::QueuedConnection);
         };
         // The scenario travels with its result: the top view needs its robot and soils.
         return std::make_pair(scenario, scenario::runScenario(scenario, options));
@@ -351,7 +364,8 @@ AnalysisPanel::Job RoverPanel::makeJob() {
 }
 
 void RoverPanel::present(const std::any& value) {
-    auto [scenario, result] = std::any_cast<std::pair<scenario::Scenario, scenario::RunResult>>(value);
+    auto [scenario, result] =
+        std::any_cast<std::pair<scenario::Scenario, scenario::RunResult>>(value);
     shown_ = std::move(scenario);
     result_ = std::move(result);
     shown_name_ = currentName() + (isEdited() ? " (edited)" : "");
@@ -377,16 +391,18 @@ void RoverPanel::present(const std::any& value) {
     }
     const auto& s = result_.summary;
     const char* status[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
-    status_->setText(QString("%1: %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance %6 m, "
-                             "motor energy %7 J%8")
-                         .arg(status[static_cast<int>(result_.status)])
-                         .arg(s.duration_s, 0, 'f', 2)
-                         .arg(s.x_m, 0, 'f', 3)
-                         .arg(s.y_m, 0, 'f', 3)
-                         .arg(s.yaw_rad * 180.0 / 3.14159265358979, 0, 'f', 2)
-                         .arg(s.distance_m, 0, 'f', 3)
-                         .arg(s.energy_j, 0, 'f', 1)
-                         .arg(result_.message.empty() ? QString() : ". " + QString::fromStdString(result_.message)));
+    status_->setText(
+        QString("%1: %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance %6 m, "
+                "motor energy %7 J%8")
+            .arg(status[static_cast<int>(result_.status)])
+            .arg(s.duration_s, 0, 'f', 2)
+            .arg(s.x_m, 0, 'f', 3)
+            .arg(s.y_m, 0, 'f', 3)
+            .arg(s.yaw_rad * 180.0 / 3.14159265358979, 0, 'f', 2)
+            .arg(s.distance_m, 0, 'f', 3)
+            .arg(s.energy_j, 0, 'f', 1)
+            .arg(result_.message.empty() ? QString()
+                                         : ". " + QString::fromStdString(result_.message)));
 }
 
 QString RoverPanel::timeLabel() const {
@@ -394,7 +410,9 @@ QString RoverPanel::timeLabel() const {
     const auto row = static_cast<std::size_t>(scrubber_->value());
     if (row >= t.rows.size()) return "t = – s";
     const RoverPose pose = roverPoseAt(t, row);
-    return QString("t = %1 s, ψ = %2°").arg(pose.t_s, 0, 'f', 2).arg(pose.yaw_rad * 180.0 / 3.14159265358979, 0, 'f', 2);
+    return QString("t = %1 s, ψ = %2°")
+        .arg(pose.t_s, 0, 'f', 2)
+        .arg(pose.yaw_rad * 180.0 / 3.14159265358979, 0, 'f', 2);
 }
 
 void RoverPanel::scrubTo(int row) {

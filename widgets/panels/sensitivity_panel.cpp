@@ -23,8 +23,9 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
         const soil::SoilField* field = soil::findSoilField(p.key);
         QStringList values;
         for (double v : p.values) values << QString::number(v);
-        parameter_->addItem(QString("%1 [%2]: %3").arg(field ? field->symbol : p.key.c_str(),
-                                                       field ? field->unit : "", values.join(", ")),
+        parameter_->addItem(QString("%1 [%2]: %3")
+                                .arg(field ? field->symbol : p.key.c_str(),
+                                     field ? field->unit : "", values.join(", ")),
                             QString::fromStdString(p.key));
     }
     parameter_->setCurrentIndex(parameter_->findData("phi_deg"));
@@ -78,7 +79,9 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
 
 std::vector<std::pair<QString, QCustomPlot*>> SensitivityPanel::plots() const {
     const QString key = QString::fromStdString(shown_.parameter);
-    return {{"sensitivity-" + key + "-Fx", fx_}, {"sensitivity-" + key + "-Fs", fs_}, {"tornado", tornado_}};
+    return {{"sensitivity-" + key + "-Fx", fx_},
+            {"sensitivity-" + key + "-Fs", fs_},
+            {"tornado", tornado_}};
 }
 
 QCustomPlot* SensitivityPanel::currentPlot() const {
@@ -99,7 +102,8 @@ nlohmann::json SensitivityPanel::settings() const {
 
 void SensitivityPanel::applySettings(const nlohmann::json& s) {
     if (s.contains("parameter")) {
-        const int i = parameter_->findData(QString::fromStdString(s["parameter"].get<std::string>()));
+        const int i =
+            parameter_->findData(QString::fromStdString(s["parameter"].get<std::string>()));
         if (i >= 0) parameter_->setCurrentIndex(i);
     }
     if (s.contains("slip_angle_deg")) slip_angle_->setValue(s["slip_angle_deg"].get<double>());
@@ -125,10 +129,11 @@ AnalysisPanel::Job SensitivityPanel::makeJob() {
 void SensitivityPanel::present(const std::any& value) {
     result_ = std::any_cast<SensitivityResult>(value);
     const Project& p = document_->project();
-    const QString title = QString("%1, %2, W = %3 N, β = %4°")
-                              .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
-                              .arg(p.conditions.load_n)
-                              .arg(shown_.slip_angle_deg);
+    const QString title =
+        QString("%1, %2, W = %3 N, β = %4°")
+            .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
+            .arg(p.conditions.load_n)
+            .arg(shown_.slip_angle_deg);
     plotSensitivityFamily(*fx_, result_, shown_.parameter, "Fx_N", title);
     plotSensitivityFamily(*fs_, result_, shown_.parameter, "Fs_N", title);
     plotTornado(*tornado_, result_, shown_.tornado_slip, title);

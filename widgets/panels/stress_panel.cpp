@@ -87,13 +87,16 @@ AnalysisPanel::Job StressPanel::makeJob() {
     StressSettings settings;
     settings.slip = slip_->value();
     settings.slip_angle_deg = slip_angle_->value();
-    return [inputs, settings](const std::atomic<bool>&) -> std::any { return computeStresses(inputs, settings); };
+    return [inputs, settings](const std::atomic<bool>&) -> std::any {
+        return computeStresses(inputs, settings);
+    };
 }
 
 void StressPanel::present(const std::any& value) {
     result_ = std::any_cast<StressResult>(value);
     if (!result_.message.empty()) {
-        info_->setText("<b>No equilibrium:</b> " + QString::fromStdString(result_.message).toHtmlEscaped());
+        info_->setText("<b>No equilibrium:</b> " +
+                       QString::fromStdString(result_.message).toHtmlEscaped());
     } else {
         QString text = QString("θ_f = %1°, θ_m = %2°. Quadratic approximation (0.01° grid): ")
                            .arg(result_.entry_angle_deg, 0, 'f', 2)

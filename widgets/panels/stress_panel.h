@@ -19,7 +19,9 @@ public:
     explicit StressPanel(ProjectDocument* document, QWidget* parent = nullptr);
 
     const StressResult& result() const { return result_; }
-    std::vector<std::pair<QString, QCustomPlot*>> plots() const override { return {{"stresses", plot_}}; }
+    std::vector<std::pair<QString, QCustomPlot*>> plots() const override {
+        return {{"stresses", plot_}};
+    }
     QCustomPlot* currentPlot() const override { return plot_; }
     Table currentTable() const override { return result_.table; }
     nlohmann::json settings() const override;

@@ -44,8 +44,9 @@ ExportDialog::ExportDialog(const QString& suggested_path, QWidget* parent) : QDi
     connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
     connect(browse, &QPushButton::clicked, this, [this] {
-        const QString path = QFileDialog::getSaveFileName(this, "Export plot", path_->text(),
-                                                          "PNG image (*.png);;SVG drawing (*.svg);;PDF (*.pdf)");
+        const QString path =
+            QFileDialog::getSaveFileName(this, "Export plot", path_->text(),
+                                         "PNG image (*.png);;SVG drawing (*.svg);;PDF (*.pdf)");
         if (!path.isEmpty()) path_->setText(path);
     });
 }

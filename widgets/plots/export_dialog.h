@@ -24,7 +24,8 @@ public:
 
     /// Asks, then writes the plot (and its data as CSV beside it). Returns false when cancelled or
     /// failed (the failure is shown to the user).
-    static bool exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table, const QString& suggested_path);
+    static bool exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table,
+                                 const QString& suggested_path);
 
 private:
     QLineEdit* path_;

@@ -1,9 +1,5 @@
 #include "widgets/plots/figures.h"
 
-#include "core/soil/soil_parameters.h"
-#include "widgets/plots/plot_theme.h"
-#include "widgets/plots/sweep_plot.h"
-
 #include <qcustomplot.h>
 
 #include <algorithm>
@@ -11,12 +7,17 @@
 #include <map>
 #include <numeric>
 
+#include "core/soil/soil_parameters.h"
+#include "widgets/plots/plot_theme.h"
+#include "widgets/plots/sweep_plot.h"
+
 namespace terra::ui {
 namespace {
 
 QColor paletteColor(int index) {
-    static const QColor colors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
-                                    QColor(255, 127, 14), QColor(148, 103, 189), QColor(140, 86, 75)};
+    static const QColor colors[] = {QColor(31, 119, 180),  QColor(214, 39, 40),
+                                    QColor(44, 160, 44),   QColor(255, 127, 14),
+                                    QColor(148, 103, 189), QColor(140, 86, 75)};
     return colors[index % 6];
 }
 
@@ -25,8 +26,8 @@ QVector<double> column(const Table& table, const std::string& name) {
     return QVector<double>(values.begin(), values.end());
 }
 
-QCPGraph* addLine(QCustomPlot& plot, const QVector<double>& x, const QVector<double>& y, const QString& name,
-                  const QColor& color, Qt::PenStyle style = Qt::SolidLine) {
+QCPGraph* addLine(QCustomPlot& plot, const QVector<double>& x, const QVector<double>& y,
+                  const QString& name, const QColor& color, Qt::PenStyle style = Qt::SolidLine) {
     QCPGraph* graph = plot.addGraph();
     graph->setData(x, y, true);
     graph->setName(name);
@@ -76,12 +77,14 @@ void resetPlot(QCustomPlot& plot, const QString& title) {
     if (plot.plotLayout()->rowCount() > 1) plot.plotLayout()->removeAt(0);
     plot.plotLayout()->simplify();
     plot.plotLayout()->insertRow(0);
-    plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    plot.plotLayout()->addElement(0, 0,
+                                  new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
     plot.legend->setVisible(false);
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
 }
 
-void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress, const QString& title) {
+void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress,
+                  const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Contact angle θ [deg]");
     plot.yAxis->setLabel("Stress [kPa]");
@@ -94,7 +97,8 @@ void plotStresses(QCustomPlot& plot, const StressResult& result, const std::stri
     for (std::size_t i = 0; i < all.size(); ++i) {
         if (stress != "all" && stress != all[i]) continue;
         const QString symbol = stressLabel(all[i]);
-        addLine(plot, theta, column(result.table, all[i] + "_kPa"), symbol + " exact", paletteColor(int(i)));
+        addLine(plot, theta, column(result.table, all[i] + "_kPa"), symbol + " exact",
+                paletteColor(int(i)));
         addLine(plot, theta, column(result.table, all[i] + "_quad_kPa"),
                 QString("%1 quadratic (RMSE %2, MAE %3 kPa)")
                     .arg(symbol)
@@ -105,8 +109,9 @@ void plotStresses(QCustomPlot& plot, const StressResult& result, const std::stri
     finish(plot);
 }
 
-void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, const std::string& key,
-                           const std::string& column_name, const QString& title) {
+void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result,
+                           const std::string& key, const std::string& column_name,
+                           const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Slip ratio s [-]");
     plot.yAxis->setLabel(column_name == "Fx_N" ? "Drawbar pull F_x [N]" : "Side force F_s [N]");
@@ -115,7 +120,8 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, c
         plot.replot();
         return;
     }
-    const std::size_t k = table.column(key), s = table.column("slip"), v = table.column(column_name);
+    const std::size_t k = table.column(key), s = table.column("slip"),
+                      v = table.column(column_name);
     std::map<double, std::pair<QVector<double>, QVector<double>>> curves;
     for (const auto& row : table.rows) {
         if (!std::isfinite(row[v])) continue;
@@ -126,28 +132,36 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, c
     for (const auto& [value, data] : curves) {
         const auto [symbol, unit] = fieldSymbol(key);
         addLine(plot, data.first, data.second,
-                QString("%1 = %2 %3").arg(symbol).arg(value).arg(unit == "-" ? QString() : unit).trimmed(),
+                QString("%1 = %2 %3")
+                    .arg(symbol)
+                    .arg(value)
+                    .arg(unit == "-" ? QString() : unit)
+                    .trimmed(),
                 paletteColor(index++));
     }
     finish(plot);
 }
 
-void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip, const QString& title) {
+void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip,
+                 const QString& title) {
     resetPlot(plot, title);
     const Table& t = result.tornado;
     if (t.rows.empty()) {
         plot.replot();
         return;
     }
-    const std::size_t lo = t.column("Fx_low_N"), hi = t.column("Fx_high_N"), base = t.column("Fx_base_N");
+    const std::size_t lo = t.column("Fx_low_N"), hi = t.column("Fx_high_N"),
+                      base = t.column("Fx_base_N");
     std::vector<std::size_t> order(t.rows.size());
     std::iota(order.begin(), order.end(), 0);
     // Influence: the largest change either extreme makes (|high − low| would rank a parameter
     // whose two extremes both raise F_x below one that moves it less but in opposite directions).
     auto reach = [&](std::size_t i) {
-        return std::max(std::abs(t.rows[i][lo] - t.rows[i][base]), std::abs(t.rows[i][hi] - t.rows[i][base]));
+        return std::max(std::abs(t.rows[i][lo] - t.rows[i][base]),
+                        std::abs(t.rows[i][hi] - t.rows[i][base]));
     };
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return reach(a) < reach(b); });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return reach(a) < reach(b); });
     // Bars run along x (ΔF_x) with the parameters on the y axis: keyAxis = yAxis. The low and high
     // variations sit side by side in each parameter's row (high above, low below), so both stay
     // visible when they move F_x the same way and one is shorter.
@@ -182,7 +196,8 @@ void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip
     plot.rescaleAxes();
     plot.yAxis->setRange(0.3, static_cast<double>(order.size()) + 0.7);
     plot.xAxis->scaleRange(1.15, 0.0);
-    const double extent = std::max(std::abs(plot.xAxis->range().lower), std::abs(plot.xAxis->range().upper));
+    const double extent =
+        std::max(std::abs(plot.xAxis->range().lower), std::abs(plot.xAxis->range().upper));
     plot.xAxis->setRange(-extent, extent);
     plot.replot();
 }
@@ -197,8 +212,10 @@ void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& 
         return;
     }
     const QVector<double> h = column(t, "sinkage_mm");
-    addLine(plot, h, column(t, "Fb_bekker_N"), "Bekker coefficients (used in F_s)", paletteColor(0));
-    addLine(plot, h, column(t, "Fb_hegedus_N"), "Hegedus coefficients", paletteColor(1), Qt::DashLine);
+    addLine(plot, h, column(t, "Fb_bekker_N"), "Bekker coefficients (used in F_s)",
+            paletteColor(0));
+    addLine(plot, h, column(t, "Fb_hegedus_N"), "Hegedus coefficients", paletteColor(1),
+            Qt::DashLine);
     finish(plot);
     // F_b starts at 0: keep the origin in view rather than the symmetric margin of finish().
     plot.yAxis->setRangeLower(0.0);
@@ -252,8 +269,8 @@ void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QStrin
     plot.replot();
 }
 
-void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, const std::string& channel,
-                        const QString& title) {
+void plotIdentification(QCustomPlot& plot, const IdentificationResult& result,
+                        const std::string& channel, const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Slip ratio s [-]");
     const QString label = channel == "Fx_N"   ? "Drawbar pull F_x [N]"

@@ -18,11 +18,12 @@ void resetPlot(QCustomPlot& plot, const QString& title);
 
 /// One stress ("sigma", "tau", "tau_t", "tau_l") over θ: exact solid, quadratic dashed, with the
 /// RMSE/MAE in the legend. "all" draws the four exact and approximated pairs together.
-void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress, const QString& title);
+void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress,
+                  const QString& title);
 
 /// One curve per value of the varied parameter: `column` (Fx_N or Fs_N) against slip.
-void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, const std::string& key,
-                           const std::string& column, const QString& title);
+void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result,
+                           const std::string& key, const std::string& column, const QString& title);
 
 /// Horizontal bars: the change of F_x from the base soil at the lowest and highest variation of
 /// each parameter, sorted by the largest change either makes (the most influential on top). In
@@ -30,7 +31,8 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result, c
 /// high bar at k + kTornadoBarOffset, each kTornadoBarWidth tall: side by side, never overlapping.
 constexpr double kTornadoBarOffset = 0.19;
 constexpr double kTornadoBarWidth = 0.36;
-void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip, const QString& title);
+void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip,
+                 const QString& title);
 
 /// Bulldozing resistance F_b of one side wall against sinkage h (Fig. 2.15): Bekker's coefficients
 /// solid (the ones the forces use), Hegedus's dashed.
@@ -41,7 +43,7 @@ void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& 
 void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QString& title);
 
 /// Data (points) and fitted curve (line) of one channel ("Fx_N", "Fz_N", "My_Nm") against slip.
-void plotIdentification(QCustomPlot& plot, const IdentificationResult& result, const std::string& channel,
-                        const QString& title);
+void plotIdentification(QCustomPlot& plot, const IdentificationResult& result,
+                        const std::string& channel, const QString& title);
 
 }  // namespace terra::ui

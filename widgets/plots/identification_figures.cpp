@@ -11,8 +11,8 @@
 namespace terra::ui {
 namespace {
 
-const QColor kBlue(31, 119, 180), kOrange(255, 127, 14), kGreen(44, 160, 44), kPurple(148, 103, 189),
-    kBrown(140, 86, 75), kRed(214, 39, 40), kGrey(110, 110, 110);
+const QColor kBlue(31, 119, 180), kOrange(255, 127, 14), kGreen(44, 160, 44),
+    kPurple(148, 103, 189), kBrown(140, 86, 75), kRed(214, 39, 40), kGrey(110, 110, 110);
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -32,8 +32,8 @@ QCPGraph* lineGraph(QCPAxis* key, QCPAxis* value, const QColor& color, const QSt
     return g;
 }
 
-QCPGraph* dotGraph(QCPAxis* key, QCPAxis* value, const QColor& color, QCPScatterStyle::ScatterShape shape,
-                   double size, const QString& name) {
+QCPGraph* dotGraph(QCPAxis* key, QCPAxis* value, const QColor& color,
+                   QCPScatterStyle::ScatterShape shape, double size, const QString& name) {
     auto* g = key->parentPlot()->addGraph(key, value);
     g->setLineStyle(QCPGraph::lsNone);
     g->setScatterStyle(QCPScatterStyle(shape, color, size));
@@ -52,15 +52,18 @@ void rescaleValues(QCPAxisRect* rect) {
             bool ok = false;
             const QCPRange r = g->getValueRange(ok, QCP::sdBoth);
             if (!ok || !std::isfinite(r.lower) || !std::isfinite(r.upper)) continue;
-            if (!found) range = r;
-            else range.expand(r);
+            if (!found)
+                range = r;
+            else
+                range.expand(r);
             found = true;
         }
         if (!found) continue;
         if (axis->scaleType() == QCPAxis::stLogarithmic) {
             axis->setRange(std::min(range.lower, 1.0) / 2.0, std::max(range.upper, 10.0) * 2.0);
         } else {
-            const double pad = range.size() > 0.0 ? 0.08 * range.size() : std::max(1e-6, 0.05 * std::abs(range.lower));
+            const double pad = range.size() > 0.0 ? 0.08 * range.size()
+                                                  : std::max(1e-6, 0.05 * std::abs(range.lower));
             axis->setRange(range.lower - pad, range.upper + pad);
         }
     }
@@ -100,14 +103,19 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         {"n0", lineGraph(bottom(r1), right(r1), kPurple, "n₀")},
         {"K", lineGraph(bottom(r2), left(r2), kBrown, "K")},
         {"score", dotGraph(bottom(r3), left(r3), kBlue, QCPScatterStyle::ssDisc, 3.5, "score")},
-        {"far_off", dotGraph(bottom(r3), left(r3), kRed, QCPScatterStyle::ssDisc, 5.0, "above threshold")},
-        {"fx_measured", dotGraph(bottom(r4), left(r4), QColor(40, 40, 40), QCPScatterStyle::ssDisc, 3.5, "measured")},
-        {"fx_predicted", dotGraph(bottom(r4), left(r4), kOrange, QCPScatterStyle::ssCross, 5.0, "predicted")},
+        {"far_off",
+         dotGraph(bottom(r3), left(r3), kRed, QCPScatterStyle::ssDisc, 5.0, "above threshold")},
+        {"fx_measured", dotGraph(bottom(r4), left(r4), QColor(40, 40, 40), QCPScatterStyle::ssDisc,
+                                 3.5, "measured")},
+        {"fx_predicted",
+         dotGraph(bottom(r4), left(r4), kOrange, QCPScatterStyle::ssCross, 5.0, "predicted")},
     };
     // The truth of synthetic data: dotted, same colours, same axes.
     const std::vector<std::tuple<QString, QCPAxis*, QCPAxis*, QColor>> truth{
-        {"phi_true", bottom(r0), left(r0), kBlue}, {"c_true", bottom(r0), right(r0), kOrange},
-        {"Ks_true", bottom(r1), left(r1), kGreen}, {"n0_true", bottom(r1), right(r1), kPurple},
+        {"phi_true", bottom(r0), left(r0), kBlue},
+        {"c_true", bottom(r0), right(r0), kOrange},
+        {"Ks_true", bottom(r1), left(r1), kGreen},
+        {"n0_true", bottom(r1), right(r1), kPurple},
         {"K_true", bottom(r2), left(r2), kBrown}};
     for (const auto& [name, key, value, color] : truth) {
         QCPGraph* g = lineGraph(key, value, color, name);
@@ -119,15 +127,18 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
     styleAxisLabel(left(r1), "K_s [kPa/m^N]", kGreen);
     styleAxisLabel(right(r1), "n₀ [-]", kPurple);
     styleAxisLabel(left(r2), "K [mm]", kBrown);
-    current_ = dotGraph(bottom(r4), left(r4), kRed, QCPScatterStyle::ssCircle, 12.0, "current sample");
+    current_ =
+        dotGraph(bottom(r4), left(r4), kRed, QCPScatterStyle::ssCircle, 12.0, "current sample");
     current_->setPen(QPen(kRed, 2.0));
 
     for (auto& [name, g] : graphs_) g->removeFromLegend();
     current_->removeFromLegend();
 
     // Titles.
-    estimates_->plotLayout()->addElement(0, 0, new QCPTextElement(estimates_, "Estimates", QFont("sans", 10, QFont::Bold)));
-    detection_->plotLayout()->addElement(0, 0, new QCPTextElement(detection_, "Change detection", QFont("sans", 10, QFont::Bold)));
+    estimates_->plotLayout()->addElement(
+        0, 0, new QCPTextElement(estimates_, "Estimates", QFont("sans", 10, QFont::Bold)));
+    detection_->plotLayout()->addElement(
+        0, 0, new QCPTextElement(detection_, "Change detection", QFont("sans", 10, QFont::Bold)));
     // The current sample's F_x, above its rect (inside it would cover data).
     detection_->plotLayout()->insertRow(2);
     current_label_ = new QCPTextElement(detection_, "", QFont("sans", 9));
@@ -141,8 +152,9 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
             a->setRangeZoom(Qt::Horizontal);
             for (QCPAxisRect* b : rects) {
                 if (a == b) continue;
-                QObject::connect(a->axis(QCPAxis::atBottom), qOverload<const QCPRange&>(&QCPAxis::rangeChanged),
-                                 b->axis(QCPAxis::atBottom), qOverload<const QCPRange&>(&QCPAxis::setRange));
+                QObject::connect(
+                    a->axis(QCPAxis::atBottom), qOverload<const QCPRange&>(&QCPAxis::rangeChanged),
+                    b->axis(QCPAxis::atBottom), qOverload<const QCPRange&>(&QCPAxis::setRange));
             }
         }
         plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
@@ -150,8 +162,8 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
     reset("Estimates", 0, std::nullopt, 8.0);
 }
 
-QCPAxisRect* StreamingFigures::addRect(QCustomPlot* plot, int row, const QString& left, const QString& right,
-                                       bool log) {
+QCPAxisRect* StreamingFigures::addRect(QCustomPlot* plot, int row, const QString& left,
+                                       const QString& right, bool log) {
     auto* rect = new QCPAxisRect(plot);
     plot->plotLayout()->addElement(row, 0, rect);
     rect->setupFullAxesBox(false);
@@ -179,8 +191,8 @@ QCPGraph* StreamingFigures::graph(const QString& name) const {
     return name == "current" ? current_ : nullptr;
 }
 
-void StreamingFigures::reset(const QString& title, std::size_t sample_count, std::optional<std::size_t> true_border,
-                             double threshold) {
+void StreamingFigures::reset(const QString& title, std::size_t sample_count,
+                             std::optional<std::size_t> true_border, double threshold) {
     for (auto& [name, g] : graphs_) g->data()->clear();
     current_->data()->clear();
     estimates_->clearItems();
@@ -189,15 +201,18 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count, std
     sample_count_ = sample_count;
     threshold_ = threshold;
     changes_.clear();
-    if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0))) t->setText(title);
+    if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0)))
+        t->setText(title);
     const double upper = std::max<double>(10.0, static_cast<double>(sample_count));
-    for (QCPAxisRect* r : rects_) r->axis(QCPAxis::atBottom)->setRange(-0.02 * upper - 0.5, 1.02 * upper + 0.5);
+    for (QCPAxisRect* r : rects_)
+        r->axis(QCPAxis::atBottom)->setRange(-0.02 * upper - 0.5, 1.02 * upper + 0.5);
     // The threshold the score is compared with (streaming.h): above it for `persistence` samples
     // in a row is a change.
     QCPAxisRect* score = rects_[3];
     auto* line = new QCPItemStraightLine(detection_);
     line->setClipAxisRect(score);
-    for (auto* p : {line->point1, line->point2}) p->setAxes(score->axis(QCPAxis::atBottom), score->axis(QCPAxis::atLeft));
+    for (auto* p : {line->point1, line->point2})
+        p->setAxes(score->axis(QCPAxis::atBottom), score->axis(QCPAxis::atLeft));
     line->point1->setCoords(0.0, threshold);
     line->point2->setCoords(1.0, threshold);
     line->setPen(QPen(kRed, 1.0, Qt::DashLine));
@@ -213,21 +228,26 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count, std
     label->setColor(kRed);
     label->setFont(QFont("sans", 8));
     if (true_border) markVertical(*true_border, kGrey, Qt::DashLine, "true border");
-    current_label_->setText("F_x at the current sample (○): measured (●) and predicted by the estimate before it (×)");
+    current_label_->setText(
+        "F_x at the current sample (○): measured (●) and predicted by the estimate before it (×)");
 }
 
-void StreamingFigures::setTruth(const std::vector<std::pair<std::size_t, identification::DecoupledParameters>>& truth) {
-    for (const char* name : {"phi_true", "c_true", "Ks_true", "n0_true", "K_true"}) graph(name)->data()->clear();
+void StreamingFigures::setTruth(
+    const std::vector<std::pair<std::size_t, identification::DecoupledParameters>>& truth) {
+    for (const char* name : {"phi_true", "c_true", "Ks_true", "n0_true", "K_true"})
+        graph(name)->data()->clear();
     for (std::size_t i = 0; i < truth.size(); ++i) {
         const double from = static_cast<double>(truth[i].first) - 0.5;
         const double to = (i + 1 < truth.size() ? static_cast<double>(truth[i + 1].first)
-                                                : static_cast<double>(sample_count_)) - 0.5;
+                                                : static_cast<double>(sample_count_)) -
+                          0.5;
         const auto& p = truth[i].second;
-        const std::pair<const char*, double> values[] = {{"phi_true", units::radToDeg(p.friction_angle_rad)},
-                                                          {"c_true", p.cohesion_pa / 1e3},
-                                                          {"Ks_true", p.pressure_modulus / 1e3},
-                                                          {"n0_true", p.n0},
-                                                          {"K_true", p.shear_modulus_m * 1e3}};
+        const std::pair<const char*, double> values[] = {
+            {"phi_true", units::radToDeg(p.friction_angle_rad)},
+            {"c_true", p.cohesion_pa / 1e3},
+            {"Ks_true", p.pressure_modulus / 1e3},
+            {"n0_true", p.n0},
+            {"K_true", p.shear_modulus_m * 1e3}};
         for (const auto& [name, v] : values) {
             QCPGraph* g = graph(name);
             if (i > 0) g->addData(from, kNaN);  // a step, not a slope, at the border
@@ -237,15 +257,17 @@ void StreamingFigures::setTruth(const std::vector<std::pair<std::size_t, identif
     }
 }
 
-void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::PenStyle style, const QString& label,
-                                    const QString& long_label) {
-    const double x = static_cast<double>(index) - 0.5;  // between the last old and the first new sample
+void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::PenStyle style,
+                                    const QString& label, const QString& long_label) {
+    const double x =
+        static_cast<double>(index) - 0.5;  // between the last old and the first new sample
     for (std::size_t i = 0; i < rects_.size(); ++i) {
         QCPAxisRect* r = rects_[i];
         QCustomPlot* plot = r->parentPlot();
         auto* line = new QCPItemStraightLine(plot);
         line->setClipAxisRect(r);
-        for (auto* p : {line->point1, line->point2}) p->setAxes(r->axis(QCPAxis::atBottom), r->axis(QCPAxis::atLeft));
+        for (auto* p : {line->point1, line->point2})
+            p->setAxes(r->axis(QCPAxis::atBottom), r->axis(QCPAxis::atLeft));
         line->point1->setCoords(x, 1.0);
         line->point2->setCoords(x, 2.0);
         line->setPen(QPen(color, 1.5, style));
@@ -257,7 +279,7 @@ void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::
             text->position->setAxisRect(r);
             text->position->setCoords(x, 0.02);
             text->setPositionAlignment(style == Qt::SolidLine ? (Qt::AlignLeft | Qt::AlignTop)
-                                                               : (Qt::AlignRight | Qt::AlignTop));
+                                                              : (Qt::AlignRight | Qt::AlignTop));
             text->setPadding(QMargins(3, 0, 3, 0));
             text->setText(i == 3 && !long_label.isEmpty() ? long_label : label);
             text->setColor(color);
@@ -285,7 +307,8 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
         g("fx_predicted")->addData(k, f.fx_predicted_n);
         if (u.change_detected && u.change_at) {
             changes_.push_back(*u.change_at);
-            markVertical(*u.change_at, kRed, Qt::SolidLine, QString("change at %1").arg(*u.change_at),
+            markVertical(*u.change_at, kRed, Qt::SolidLine,
+                         QString("change at %1").arg(*u.change_at),
                          QString("change at %1 (confirmed at %2)").arg(*u.change_at).arg(u.index));
         }
         ++frames_;

@@ -25,10 +25,11 @@ public:
     StreamingFigures(QCustomPlot* estimates, QCustomPlot* detection);
 
     /// Empties both figures for a run of `sample_count` samples.
-    void reset(const QString& title, std::size_t sample_count, std::optional<std::size_t> true_border,
-               double threshold);
+    void reset(const QString& title, std::size_t sample_count,
+               std::optional<std::size_t> true_border, double threshold);
     /// Draws the parameters the data were made with (synthetic sources) as dotted steps.
-    void setTruth(const std::vector<std::pair<std::size_t, identification::DecoupledParameters>>& truth);
+    void setTruth(
+        const std::vector<std::pair<std::size_t, identification::DecoupledParameters>>& truth);
     /// Adds frames (in order). Does not replot.
     void append(const std::vector<StreamFrame>& frames);
     /// Rescales the value axes to the data and replots both figures.
@@ -36,14 +37,15 @@ public:
 
     std::size_t frameCount() const { return frames_; }
     const std::vector<std::size_t>& changePoints() const { return changes_; }
-    /// Graphs by name, for tests: "phi", "c", "Ks", "n0", "K", "score", "fx_measured", "fx_predicted",
-    /// and the truth "phi_true", "c_true", "Ks_true", "n0_true", "K_true".
+    /// Graphs by name, for tests: "phi", "c", "Ks", "n0", "K", "score", "fx_measured",
+    /// "fx_predicted", and the truth "phi_true", "c_true", "Ks_true", "n0_true", "K_true".
     QCPGraph* graph(const QString& name) const;
 
 private:
-    QCPAxisRect* addRect(QCustomPlot* plot, int row, const QString& left, const QString& right, bool log);
-    void markVertical(std::size_t index, const QColor& color, Qt::PenStyle style, const QString& label,
-                      const QString& long_label = {});
+    QCPAxisRect* addRect(QCustomPlot* plot, int row, const QString& left, const QString& right,
+                         bool log);
+    void markVertical(std::size_t index, const QColor& color, Qt::PenStyle style,
+                      const QString& label, const QString& long_label = {});
 
     QCustomPlot* estimates_;
     QCustomPlot* detection_;

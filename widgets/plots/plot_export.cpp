@@ -28,11 +28,15 @@ bool writeSvg(QCustomPlot& plot, const QString& path, const ExportOptions& o) {
 
 }  // namespace
 
-bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& options, QString* error) {
-    if (options.width < 16 || options.height < 16 || options.width > 20000 || options.height > 20000 ||
-        options.dpi < 10 || options.dpi > 2400) {
-        if (error) *error = QString("export size %1 × %2 at %3 dpi is outside 16–20000 px, 10–2400 dpi")
-                                .arg(options.width).arg(options.height).arg(options.dpi);
+bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& options,
+                QString* error) {
+    if (options.width < 16 || options.height < 16 || options.width > 20000 ||
+        options.height > 20000 || options.dpi < 10 || options.dpi > 2400) {
+        if (error)
+            *error = QString("export size %1 × %2 at %3 dpi is outside 16–20000 px, 10–2400 dpi")
+                         .arg(options.width)
+                         .arg(options.height)
+                         .arg(options.dpi);
         return false;
     }
     const QString suffix = QFileInfo(path).suffix().toLower();
@@ -56,9 +60,11 @@ bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& opt
     } else if (suffix == "svg") {
         ok = writeSvg(plot, temporary, options);
     } else if (suffix == "pdf") {
-        ok = plot.savePdf(temporary, options.width, options.height, QCP::epNoCosmetic, "TerraStudio", "plot");
+        ok = plot.savePdf(temporary, options.width, options.height, QCP::epNoCosmetic,
+                          "TerraStudio", "plot");
     } else {
-        if (error) *error = "unknown image format \"" + suffix + "\" of " + path + " (png, svg, pdf)";
+        if (error)
+            *error = "unknown image format \"" + suffix + "\" of " + path + " (png, svg, pdf)";
         return false;
     }
     if (!ok || !QFileInfo(temporary).exists()) {

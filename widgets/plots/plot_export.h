@@ -13,17 +13,18 @@ class QCustomPlot;
 namespace terra::ui {
 
 struct ExportOptions {
-    int width = 1200;   ///< [px] (PNG, SVG) or [pt] (PDF)
+    int width = 1200;  ///< [px] (PNG, SVG) or [pt] (PDF)
     int height = 800;
-    int dpi = 96;       ///< resolution recorded in PNG/SVG
-    double scale = 1.0; ///< PNG pixel multiplier (2: a 2400 × 1600 image of the same layout)
+    int dpi = 96;        ///< resolution recorded in PNG/SVG
+    double scale = 1.0;  ///< PNG pixel multiplier (2: a 2400 × 1600 image of the same layout)
     /// Keep the on-screen colours (a dark palette gives a dark image); by default plots that
     /// follow the palette (plot_theme.h) export light (white background) whatever the desktop.
     bool screen_colours = false;
 };
 
 /// Format from the suffix (.png, .svg, .pdf); false and `error` when unknown or not written.
-bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& options, QString* error);
+bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& options,
+                QString* error);
 
 /// Table as CSV (core/io/csv.h), atomically.
 bool exportTable(const Table& table, const QString& path, QString* error);

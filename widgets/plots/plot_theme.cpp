@@ -21,7 +21,8 @@ class PaletteFollower : public QObject {
 public:
     using QObject::QObject;
     bool eventFilter(QObject* watched, QEvent* event) override {
-        if (event->type() == QEvent::PaletteChange || event->type() == QEvent::ApplicationPaletteChange) {
+        if (event->type() == QEvent::PaletteChange ||
+            event->type() == QEvent::ApplicationPaletteChange) {
             auto* plot = static_cast<QCustomPlot*>(watched);
             applyPlotTheme(*plot, PlotTheme::fromPalette(plot->palette()));
             plot->replot(QCustomPlot::rpQueuedReplot);
@@ -33,7 +34,11 @@ public:
 }  // namespace
 
 PlotTheme PlotTheme::light() {
-    return {Qt::white, Qt::black, QColor(200, 200, 200), QColor(220, 220, 220), QColor(200, 200, 200),
+    return {Qt::white,
+            Qt::black,
+            QColor(200, 200, 200),
+            QColor(220, 220, 220),
+            QColor(200, 200, 200),
             QColor(255, 255, 255, 230)};
 }
 
@@ -42,8 +47,12 @@ PlotTheme PlotTheme::fromPalette(const QPalette& palette) {
     const QColor foreground = palette.color(QPalette::Active, QPalette::Text);
     QColor legend = background;
     legend.setAlpha(230);
-    return {background, foreground, mix(background, foreground, 0.25), mix(background, foreground, 0.13),
-            mix(background, foreground, 0.35), legend};
+    return {background,
+            foreground,
+            mix(background, foreground, 0.25),
+            mix(background, foreground, 0.13),
+            mix(background, foreground, 0.35),
+            legend};
 }
 
 void applyPlotTheme(QCustomPlot& plot, const PlotTheme& theme) {

@@ -16,7 +16,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 const char* const kHeadingItemName = "heading";
 
-const QColor kWheelColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44), QColor(255, 127, 14)};
+const QColor kWheelColors[] = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
+                               QColor(255, 127, 14)};
 // Four wheels often coincide (straight line, symmetric loads): distinct dashes keep each visible.
 const Qt::PenStyle kWheelDashes[] = {Qt::SolidLine, Qt::DashLine, Qt::DotLine, Qt::DashDotLine};
 
@@ -58,8 +59,9 @@ struct Line {
     QString label;
 };
 
-void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines, const QString& y_label,
-               const QString& title, double min_span, double factor = 1.0, bool include_zero = false) {
+void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines,
+               const QString& y_label, const QString& title, double min_span, double factor = 1.0,
+               bool include_zero = false) {
     resetRoverPlot(plot, title);
     plot.xAxis->setLabel("Time t [s]");
     plot.yAxis->setLabel(y_label);
@@ -119,8 +121,9 @@ void plotPath(QCustomPlot& plot, const Table& t, const QString& title) {
 
 QColor soilColor(int index) {
     // Earthy, light enough for black labels and the robot drawn on top.
-    static const QColor colors[] = {QColor(237, 214, 170), QColor(190, 160, 130), QColor(205, 190, 150),
-                                    QColor(170, 150, 140), QColor(220, 200, 120), QColor(180, 185, 160)};
+    static const QColor colors[] = {QColor(237, 214, 170), QColor(190, 160, 130),
+                                    QColor(205, 190, 150), QColor(170, 150, 140),
+                                    QColor(220, 200, 120), QColor(180, 185, 160)};
     return colors[index % 6];
 }
 
@@ -163,7 +166,8 @@ const std::vector<RoverFigure>& roverFigures() {
     return figures;
 }
 
-void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key, const QString& title) {
+void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key,
+                     const QString& title) {
     if (key == "path") {
         plotPath(plot, t, title);
     } else if (key == "yaw") {
@@ -174,11 +178,14 @@ void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key, 
     } else if (key == "slip") {
         timeLines(plot, t, perWheel("slip"), "Slip ratio s [-]", title, 0.02, 1.0, true);
     } else if (key == "steering") {
-        timeLines(plot, t, perWheel("steer_deg"), "Steering angle δ [deg] (positive: left)", title, 2.0);
+        timeLines(plot, t, perWheel("steer_deg"), "Steering angle δ [deg] (positive: left)", title,
+                  2.0);
     } else if (key == "wheel-vx") {
-        timeLines(plot, t, perWheel("vx_m_s"), "Wheel longitudinal velocity v_x [mm/s]", title, 1.0, 1e3);
+        timeLines(plot, t, perWheel("vx_m_s"), "Wheel longitudinal velocity v_x [mm/s]", title, 1.0,
+                  1e3);
     } else if (key == "wheel-vy") {
-        timeLines(plot, t, perWheel("vy_m_s"), "Wheel lateral velocity v_y [mm/s]", title, 1.0, 1e3);
+        timeLines(plot, t, perWheel("vy_m_s"), "Wheel lateral velocity v_y [mm/s]", title, 1.0,
+                  1e3);
     } else if (key == "drawbar-pull") {
         timeLines(plot, t, perWheel("Fx_N"), "Drawbar pull F_x [N]", title, 1.0);
     } else if (key == "load") {
@@ -192,7 +199,8 @@ void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key, 
 
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status) {
     const char* text[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
-    return QString("%1 — %2").arg(QString::fromStdString(scenario_name), text[static_cast<int>(status)]);
+    return QString("%1 — %2").arg(QString::fromStdString(scenario_name),
+                                  text[static_cast<int>(status)]);
 }
 
 RoverPose roverPoseAt(const Table& t, std::size_t row) {
@@ -203,7 +211,8 @@ RoverPose roverPoseAt(const Table& t, std::size_t row) {
     pose.y_m = r[t.column("y_m")];
     pose.yaw_rad = r[t.column("yaw_deg")] * kPi / 180.0;
     for (int i = 0; i < dynamics::kWheelCount; ++i) {
-        pose.steer_rad[i] = r[t.column(std::string(dynamics::kCornerNames[i]) + "_steer_deg")] * kPi / 180.0;
+        pose.steer_rad[i] =
+            r[t.column(std::string(dynamics::kCornerNames[i]) + "_steer_deg")] * kPi / 180.0;
     }
     return pose;
 }
@@ -212,7 +221,8 @@ std::array<QPointF, dynamics::kWheelCount> hubPositions(const dynamics::RobotPar
                                                         const RoverPose& pose) {
     const double com_forward = robot.com_forward_m * robot.chassis_mass_kg / robot.totalMass();
     const double half_l = 0.5 * robot.wheelbase_m, half_t = 0.5 * robot.track_m;
-    const double body[4][2] = {{half_l, half_t}, {half_l, -half_t}, {-half_l, half_t}, {-half_l, -half_t}};
+    const double body[4][2] = {
+        {half_l, half_t}, {half_l, -half_t}, {-half_l, half_t}, {-half_l, -half_t}};
     const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
     std::array<QPointF, dynamics::kWheelCount> hubs;
     for (int i = 0; i < dynamics::kWheelCount; ++i) {
@@ -224,8 +234,8 @@ std::array<QPointF, dynamics::kWheelCount> hubPositions(const dynamics::RobotPar
 
 QString wheelCurveName(int corner) { return QString("wheel ") + dynamics::kCornerNames[corner]; }
 
-void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, const Table& t, std::size_t row,
-                      const QString& title) {
+void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, const Table& t,
+                      std::size_t row, const QString& title) {
     resetRoverPlot(plot, title);
     plot.xAxis->setLabel("x [m]");
     plot.yAxis->setLabel("y [m]");
@@ -240,7 +250,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     x0 -= margin, x1 += margin, y0 -= margin, y1 += margin;
 
     // Soils: the base soil is a rectangle under everything (not the axis rect's background, which
-    // the plot theme owns), patches are rectangles on it; infinite sides are clipped to a large box.
+    // the plot theme owns), patches are rectangles on it; infinite sides are clipped to a large
+    // box.
     const double far = 1e3 + std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
     auto clip = [far](double v) { return std::clamp(v, -far, far); };
     auto* base = new QCPItemRect(&plot);
@@ -302,7 +313,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     plot.xAxis->setRange(x0, x1);
     plot.yAxis->setRange(y0, y1);
     plot.replot();  // lays out the axis rect: the scale ratio needs its size in pixels
-    if ((x1 - x0) / std::max(plot.axisRect()->width(), 1) >= (y1 - y0) / std::max(plot.axisRect()->height(), 1)) {
+    if ((x1 - x0) / std::max(plot.axisRect()->width(), 1) >=
+        (y1 - y0) / std::max(plot.axisRect()->height(), 1)) {
         plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
     } else {
         plot.xAxis->setScaleRatio(plot.yAxis, 1.0);
@@ -316,7 +328,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     }
 }
 
-void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& robot, const Table& t, std::size_t row) {
+void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& robot, const Table& t,
+                         std::size_t row) {
     QCPCurve* chassis = findCurve(plot, kChassisCurveName);
     if (!chassis || row >= t.rows.size()) return;
     const RoverPose pose = roverPoseAt(t, row);
@@ -324,18 +337,22 @@ void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& rob
     // Chassis: the rectangle between the hubs, inset by half a wheel width on each side, its
     // centre the middle of the four hubs.
     const QPointF middle = (hubs[0] + hubs[1] + hubs[2] + hubs[3]) / 4.0;
-    const double half_width = std::max(0.5 * robot.track_m - 0.5 * robot.wheel.width_m - 0.01, 0.25 * robot.track_m);
+    const double half_width =
+        std::max(0.5 * robot.track_m - 0.5 * robot.wheel.width_m - 0.01, 0.25 * robot.track_m);
     rectangle(*chassis, middle, pose.yaw_rad, 0.5 * robot.wheelbase_m, half_width);
     for (int i = 0; i < plot.itemCount(); ++i) {
-        if (auto* heading = qobject_cast<QCPItemLine*>(plot.item(i)); heading && heading->objectName() == kHeadingItemName) {
+        if (auto* heading = qobject_cast<QCPItemLine*>(plot.item(i));
+            heading && heading->objectName() == kHeadingItemName) {
             const double reach = 0.5 * robot.wheelbase_m;
             heading->start->setCoords(middle);
-            heading->end->setCoords(middle.x() + reach * std::cos(pose.yaw_rad), middle.y() + reach * std::sin(pose.yaw_rad));
+            heading->end->setCoords(middle.x() + reach * std::cos(pose.yaw_rad),
+                                    middle.y() + reach * std::sin(pose.yaw_rad));
         }
     }
     for (int i = 0; i < dynamics::kWheelCount; ++i) {
         if (QCPCurve* wheel = findCurve(plot, wheelCurveName(i))) {
-            rectangle(*wheel, hubs[i], pose.yaw_rad + pose.steer_rad[i], robot.wheel.radius_m, 0.5 * robot.wheel.width_m);
+            rectangle(*wheel, hubs[i], pose.yaw_rad + pose.steer_rad[i], robot.wheel.radius_m,
+                      0.5 * robot.wheel.width_m);
         }
     }
     plot.replot();

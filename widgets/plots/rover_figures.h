@@ -23,18 +23,20 @@ namespace terra::ui {
 
 /// One time-series figure of a rover run.
 struct RoverFigure {
-    std::string key;     ///< file-name part and identifier ("path", "slip")
-    QString tab;         ///< short label ("Path", "Slip")
-    QString thesis;      ///< the thesis figures it corresponds to ("Figs. 3.9, 3.14")
+    std::string key;  ///< file-name part and identifier ("path", "slip")
+    QString tab;      ///< short label ("Path", "Slip")
+    QString thesis;   ///< the thesis figures it corresponds to ("Figs. 3.9, 3.14")
 };
 
 /// The figures, in the panel's tab order: path (3.7, 3.11a), yaw (3.11b), velocities (3.8, 3.15),
-/// slip (3.9, 3.14), steering (3.10), wheel-vx (3.12), wheel-vy (3.13), drawbar-pull, load, sinkage.
+/// slip (3.9, 3.14), steering (3.10), wheel-vx (3.12), wheel-vy (3.13), drawbar-pull, load,
+/// sinkage.
 const std::vector<RoverFigure>& roverFigures();
 
 /// Draws figure `key` of roverFigures() from a run's time series. Throws std::invalid_argument
 /// for an unknown key; a series with fewer than two rows draws empty axes.
-void plotRoverFigure(QCustomPlot& plot, const Table& series, const std::string& key, const QString& title);
+void plotRoverFigure(QCustomPlot& plot, const Table& series, const std::string& key,
+                     const QString& title);
 
 /// "pulse-steering — completed" (or "CANCELLED (partial)", "DIVERGED (partial)").
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status);
@@ -62,8 +64,8 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
 
 /// Moves the robot of a plot drawn by plotRoverTopView to row `row` and replots; nothing is
 /// recomputed. No-op when the plot holds no robot or the row is out of range.
-void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& robot, const Table& series,
-                         std::size_t row);
+void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& robot,
+                         const Table& series, std::size_t row);
 
 /// Names of the top view's robot curves: "chassis" and "wheel FL" … "wheel RR".
 inline const char* kChassisCurveName = "chassis";

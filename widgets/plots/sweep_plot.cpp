@@ -1,23 +1,23 @@
 #include "widgets/plots/sweep_plot.h"
 
-#include "widgets/plots/plot_export.h"
-#include "widgets/plots/plot_theme.h"
-
 #include <qcustomplot.h>
 
 #include <QFileInfo>
 #include <QSaveFile>
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <map>
+
+#include "widgets/plots/plot_export.h"
+#include "widgets/plots/plot_theme.h"
 
 namespace terra::ui {
 
 const std::vector<SweepQuantity>& sweepQuantities() {
     static const std::vector<SweepQuantity> quantities{
-        {"Fx_N", "Drawbar pull F_x [N]"},         {"Fs_N", "Side force F_s [N]"},
-        {"Fz_N", "Vertical force F_z [N]"},       {"My_Nm", "Resistance torque M_y [N·m]"},
-        {"Mz_Nm", "Yaw moment M_z [N·m]"},        {"entry_angle_deg", "Entry angle θ_f [deg]"}};
+        {"Fx_N", "Drawbar pull F_x [N]"},   {"Fs_N", "Side force F_s [N]"},
+        {"Fz_N", "Vertical force F_z [N]"}, {"My_Nm", "Resistance torque M_y [N·m]"},
+        {"Mz_Nm", "Yaw moment M_z [N·m]"},  {"entry_angle_deg", "Entry angle θ_f [deg]"}};
     return quantities;
 }
 
@@ -43,8 +43,9 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
         graph->setData(data.first, data.second, true);
         graph->setName(QString("β = %1°").arg(angle));
         // Distinct on white and on a dark frame (no yellow on white).
-        static const QColor colors[] = {QColor(31, 119, 180), QColor(255, 127, 14), QColor(44, 160, 44),
-                                        QColor(214, 39, 40),  QColor(148, 103, 189), QColor(140, 86, 75),
+        static const QColor colors[] = {QColor(31, 119, 180),  QColor(255, 127, 14),
+                                        QColor(44, 160, 44),   QColor(214, 39, 40),
+                                        QColor(148, 103, 189), QColor(140, 86, 75),
                                         QColor(227, 119, 194), QColor(127, 127, 127)};
         QPen pen(colors[index % 8]);
         pen.setWidthF(1.8);
@@ -55,7 +56,8 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
     plot.yAxis->setLabel(quantity.label);
     plot.legend->setVisible(true);
     plot.plotLayout()->insertRow(0);
-    plot.plotLayout()->addElement(0, 0, new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    plot.plotLayout()->addElement(0, 0,
+                                  new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
     plot.rescaleAxes();
     // A quantity held constant (F_z = W at equilibrium) would otherwise zoom into rounding noise.
@@ -75,12 +77,14 @@ void placeLegend(QCustomPlot& plot) {
     // Corners: (right, top), (left, top), (right, bottom), (left, bottom); the legend covers
     // roughly 30 % × 35 % of the axes.
     const Qt::Alignment corners[] = {Qt::AlignRight | Qt::AlignTop, Qt::AlignLeft | Qt::AlignTop,
-                                     Qt::AlignRight | Qt::AlignBottom, Qt::AlignLeft | Qt::AlignBottom};
+                                     Qt::AlignRight | Qt::AlignBottom,
+                                     Qt::AlignLeft | Qt::AlignBottom};
     int counts[4] = {0, 0, 0, 0};
     for (int g = 0; g < plot.graphCount(); ++g) {
-        for (auto it = plot.graph(g)->data()->constBegin(); it != plot.graph(g)->data()->constEnd(); ++it) {
+        for (auto it = plot.graph(g)->data()->constBegin(); it != plot.graph(g)->data()->constEnd();
+             ++it) {
             const double u = (it->key - x.lower) / x.size(), v = (it->value - y.lower) / y.size();
-            const bool right = u > 0.7, left = u < 0.3, top = v > 0.65, bottom = v < 0.35;
+            const bool right = u > 0.7, left = u<0.3, top = v> 0.65, bottom = v < 0.35;
             if (right && top) ++counts[0];
             if (left && top) ++counts[1];
             if (right && bottom) ++counts[2];

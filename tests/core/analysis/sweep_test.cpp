@@ -31,7 +31,8 @@ TEST(Sweep, RowsAreTheModelAtEachPoint) {
         const double s = row[t.column("slip")];
         const double tf = row[t.column("entry_angle_deg")] * kDeg;
         EXPECT_NEAR(row[t.column("Fz_N")], 58.86, 1e-8);  // solved: F_z = W
-        const auto f = contact::computeForces(p, contact::OperatingPoint<double>{s, beta, tf, 0.0, std::nullopt});
+        const auto f = contact::computeForces(
+            p, contact::OperatingPoint<double>{s, beta, tf, 0.0, std::nullopt});
         EXPECT_NEAR(row[t.column("Fx_N")], f.fx, 1e-9);
         EXPECT_NEAR(row[t.column("Fs_N")], f.fs, 1e-9);
         EXPECT_NEAR(row[t.column("sinkage_m")], 0.092 * (1 - std::cos(tf)), 1e-15);
@@ -77,8 +78,14 @@ TEST(Sweep, BadExitConditionAndMaxStressAngleAreRejectedUpFront) {
     };
     const Bad cases[] = {
         {{contact::ExitCondition::Kind::kRutRatio, 1.5}, std::nullopt, "rut_ratio: 1.5", "[0, 1]"},
-        {{contact::ExitCondition::Kind::kRutRatio, -0.1}, std::nullopt, "rut_ratio: -0.1", "[0, 1]"},
-        {{contact::ExitCondition::Kind::kAngle, 5 * kDeg}, std::nullopt, "exit_angle_deg: 5", "[-90, 0]"},
+        {{contact::ExitCondition::Kind::kRutRatio, -0.1},
+         std::nullopt,
+         "rut_ratio: -0.1",
+         "[0, 1]"},
+        {{contact::ExitCondition::Kind::kAngle, 5 * kDeg},
+         std::nullopt,
+         "exit_angle_deg: 5",
+         "[-90, 0]"},
         {{}, 120 * kDeg, "max_stress_angle_deg: 120", "[-90, 90]"},
     };
     for (const Bad& bad : cases) {
@@ -169,8 +176,9 @@ TEST(Sensitivity, Table41HasSixParametersOfFourValues) {
         EXPECT_EQ(p.values.size(), 4u);
         EXPECT_NE(soil::findSoilField(p.key), nullptr) << p.key;
     }
-    EXPECT_THROW(sensitivity(sandyLoamSoil(), {"A", "", 0.092, 0.107}, {"nope", {1.0}}, thesisSpec()),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        sensitivity(sandyLoamSoil(), {"A", "", 0.092, 0.107}, {"nope", {1.0}}, thesisSpec()),
+        std::invalid_argument);
 }
 
 }  // namespace

@@ -47,7 +47,8 @@ void checkDerivatives(const ContactParameters<double>& p, const OperatingPoint<d
         const double dfx = (plus.fx - minus.fx) / (2 * h), dfz = (plus.fz - minus.fz) / (2 * h),
                      dmy = (plus.my - minus.my) / (2 * h);
         const double tol = 1e-5;
-        EXPECT_NEAR(jet.fx.v[k], dfx, tol * (std::abs(dfx) + std::abs(dfz) + 1e-3)) << "d Fx/d p" << k;
+        EXPECT_NEAR(jet.fx.v[k], dfx, tol * (std::abs(dfx) + std::abs(dfz) + 1e-3))
+            << "d Fx/d p" << k;
         EXPECT_NEAR(jet.fz.v[k], dfz, tol * (std::abs(dfz) + 1e-3)) << "d Fz/d p" << k;
         EXPECT_NEAR(jet.my.v[k], dmy, tol * (std::abs(dmy) + 1e-3)) << "d My/d p" << k;
     }
@@ -56,20 +57,17 @@ void checkDerivatives(const ContactParameters<double>& p, const OperatingPoint<d
 TEST(Autodiff, FullModelDerivativesMatchFiniteDifferences) {
     for (double s : {0.1, 0.5, -0.3}) {
         const OperatingPoint<double> op{s, 10.0 * kDeg, 28.0 * kDeg, 0.0, std::nullopt};
-        checkDerivatives(testing::sandyLoam(), op, [](const auto& p, const auto& o) {
-            return computeForces(p, o);
-        });
-        checkDerivatives(testing::clayeySoil(), op, [](const auto& p, const auto& o) {
-            return computeForces(p, o);
-        });
+        checkDerivatives(testing::sandyLoam(), op,
+                         [](const auto& p, const auto& o) { return computeForces(p, o); });
+        checkDerivatives(testing::clayeySoil(), op,
+                         [](const auto& p, const auto& o) { return computeForces(p, o); });
     }
 }
 
 TEST(Autodiff, QuadraticModelDerivativesMatchFiniteDifferences) {
     const OperatingPoint<double> op{0.3, 10.0 * kDeg, 28.0 * kDeg, -2.0 * kDeg, std::nullopt};
-    checkDerivatives(testing::sandyLoam(INFINITY), op, [](const auto& p, const auto& o) {
-        return computeQuadraticForces(p, o);
-    });
+    checkDerivatives(testing::sandyLoam(INFINITY), op,
+                     [](const auto& p, const auto& o) { return computeQuadraticForces(p, o); });
 }
 
 }  // namespace

@@ -16,7 +16,8 @@ using testing::kDeg;
 // the wheel centre: for each θ in ±θ_f the radius t runs from the soil surface d / cos θ
 // (d = r cos θ_f) to the rim r; the depth is h = t cos θ − d (Eq. 2.28), the pressure
 // σ = a_s h + b_s (Eq. 2.26) and the area element t dt dθ.
-double bulldozingByQuadrature(const ContactParameters<double>& p, double theta_f, BulldozingModel m) {
+double bulldozingByQuadrature(const ContactParameters<double>& p, double theta_f,
+                              BulldozingModel m) {
     double a_s = 0, b_s = 0;
     bulldozingCoefficients(p, m, a_s, b_s);
     const double r = p.radius_m, d = r * std::cos(theta_f);
@@ -67,8 +68,9 @@ TEST(Bulldozing, PrintedEq230OverestimatesAsMODELNOTESSays) {
     double a_s = 0, b_s = 0;
     bulldozingCoefficients(p, BulldozingModel::kBekker, a_s, b_s);
     const double r = p.radius_m, tf = 30.0 * kDeg, d = r * std::cos(tf);
-    const double printed = 2 * a_s * r * std::sqrt(1 - d * d / r / r) * (r * r - d * d) / 3 +
-                           (a_s * d + b_s) * (r * r * std::acos(d / r) - r * d * std::sqrt(1 - d * d / r / r));
+    const double printed =
+        2 * a_s * r * std::sqrt(1 - d * d / r / r) * (r * r - d * d) / 3 +
+        (a_s * d + b_s) * (r * r * std::acos(d / r) - r * d * std::sqrt(1 - d * d / r / r));
     const double ratio = printed / bulldozingForce(p, tf, BulldozingModel::kBekker);
     EXPECT_GT(ratio, 1.2);
     EXPECT_LT(ratio, 11.0);

@@ -26,11 +26,17 @@ struct Printed {
 
 TEST(QuadraticModel, ReproducesTables24And25ToFourDecimals) {
     const Printed tables[] = {
-        {"sandy loam", testing::sandyLoam(INFINITY), {2.1623, 0.4808, 0.4315, 0.2121},
+        {"sandy loam",
+         testing::sandyLoam(INFINITY),
+         {2.1623, 0.4808, 0.4315, 0.2121},
          {1.7427, 0.3558, 0.3214, 0.1524}},
-        {"dry sand", testing::drySand(INFINITY), {0.0680, 0.0235, 0.0220, 0.0086},
+        {"dry sand",
+         testing::drySand(INFINITY),
+         {0.0680, 0.0235, 0.0220, 0.0086},
          {0.0582, 0.0203, 0.0190, 0.0074}},
-        {"clayey soil", testing::clayeySoil(INFINITY), {6.3563, 0.8712, 0.7798, 0.3883},
+        {"clayey soil",
+         testing::clayeySoil(INFINITY),
+         {6.3563, 0.8712, 0.7798, 0.3883},
          {4.9637, 0.5657, 0.5072, 0.2511}},
     };
     for (const Printed& t : tables) {
@@ -77,13 +83,13 @@ void expectClosedFormsEqualQuadrature(const ContactParameters<double>& p,
     };
     const double rb = p.radius_m * p.width_m, r2b = rb * p.radius_m;
     const double fx = rb * integrate([&](double t) {
-        const auto st = q.at(t);
-        return st.tau_t * std::cos(t) - st.sigma * std::sin(t);
-    });
+                          const auto st = q.at(t);
+                          return st.tau_t * std::cos(t) - st.sigma * std::sin(t);
+                      });
     const double fz = rb * integrate([&](double t) {
-        const auto st = q.at(t);
-        return st.sigma * std::cos(t) + st.tau_t * std::sin(t);
-    });
+                          const auto st = q.at(t);
+                          return st.sigma * std::cos(t) + st.tau_t * std::sin(t);
+                      });
     const double fy = -rb * integrate([&](double t) { return q.at(t).tau_l; });
     const double mx = -r2b * integrate([&](double t) { return q.at(t).tau_l * std::cos(t); });
     const double my = r2b * integrate([&](double t) { return q.at(t).tau_t; });
@@ -102,9 +108,9 @@ TEST(QuadraticModel, ClosedFormsEqualQuadratureOfTheSamePolynomials) {
     for (double s : {0.0, 0.3, -0.4}) {
         for (double beta : {0.0, 20.0}) {
             const OperatingPoint<double> op{s, beta * kDeg, 32.0 * kDeg, -5.0 * kDeg, std::nullopt};
-            expectClosedFormsEqualQuadrature(testing::sandyLoam(), op,
-                                             "s = " + std::to_string(s) + ", beta = " +
-                                                 std::to_string(beta));
+            expectClosedFormsEqualQuadrature(
+                testing::sandyLoam(), op,
+                "s = " + std::to_string(s) + ", beta = " + std::to_string(beta));
         }
     }
 }

@@ -43,16 +43,19 @@ TEST(Sinkage, StaticLoadKeepsFullPrecisionAtTinyAngles) {
     // Regression: cos θ − cos θ_s cancelled at small θ_s. For n = 1 and n = 2 the front-half
     // integral of Eq. 2.7 has closed forms, evaluated here in 50-digit arithmetic:
     //   n = 1: ∫₀^θs (cos θ − c_s) cos θ dθ = θ_s/2 + sin 2θ_s/4 − c_s sin θ_s
-    //   n = 2: ∫₀^θs (cos θ − c_s)² cos θ dθ = sin θ_s − sin³θ_s/3 − 2c_s(θ_s/2 + sin 2θ_s/4) + c_s² sin θ_s
+    //   n = 2: ∫₀^θs (cos θ − c_s)² cos θ dθ = sin θ_s − sin³θ_s/3 − 2c_s(θ_s/2 + sin 2θ_s/4) +
+    //   c_s² sin θ_s
     using Big = boost::multiprecision::cpp_bin_float_50;
     for (double n : {1.0, 2.0}) {
         auto p = testing::thesisSoil(n, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
         for (double ts : {1e-2, 1e-4, 1e-6}) {
             const Big t(ts), c = cos(t), s = sin(t);
             const Big half = t / 2 + sin(2 * t) / 4;
-            const Big integral = n == 1.0 ? half - c * s : s - s * s * s / 3 - 2 * c * half + c * c * s;
-            const double expected = static_cast<double>(Big(p.radius_m * p.width_m * p.pressure_modulus) *
-                                                        pow(Big(p.radius_m), Big(n)) * integral);
+            const Big integral =
+                n == 1.0 ? half - c * s : s - s * s * s / 3 - 2 * c * half + c * c * s;
+            const double expected =
+                static_cast<double>(Big(p.radius_m * p.width_m * p.pressure_modulus) *
+                                    pow(Big(p.radius_m), Big(n)) * integral);
             EXPECT_NEAR(staticLoad(p, ts, StaticContact::kFrontHalf), expected, 1e-12 * expected)
                 << "n = " << n << ", theta_s = " << ts;
         }
@@ -101,8 +104,8 @@ TEST(Sinkage, BekkerFormulaByHand) {
     // Eq. 2.8 corrected (E2): h = [W/(√(2r) b K_s (1 − n/3))]^(1/(n + 1/2)).
     const auto p = testing::sandyLoam();
     const double ks = 5.3e3 / 0.107 + 1.515e6;
-    const double h = std::pow(kSixKilograms / (std::sqrt(2 * 0.092) * 0.107 * ks * (1 - 0.7 / 3)),
-                              1 / 1.2);
+    const double h =
+        std::pow(kSixKilograms / (std::sqrt(2 * 0.092) * 0.107 * ks * (1 - 0.7 / 3)), 1 / 1.2);
     EXPECT_NEAR(bekkerStaticSinkage(p, kSixKilograms), h, 1e-15);
 }
 
@@ -117,7 +120,8 @@ TEST(Sinkage, EntryAngleSolveReproducesTheLoad) {
                 problem.model = model;
                 const SinkageSolution sol = solveEntryAngle(p, problem);
                 ASSERT_TRUE(sol.ok()) << sol.message;
-                const OperatingPoint<double> op{s, 15.0 * kDeg, sol.entry_angle_rad, 0.0, std::nullopt};
+                const OperatingPoint<double> op{s, 15.0 * kDeg, sol.entry_angle_rad, 0.0,
+                                                std::nullopt};
                 const double fz = model == ContactModel::kFull ? computeForces(p, op).fz
                                                                : computeQuadraticForces(p, op).fz;
                 EXPECT_NEAR(fz, kSixKilograms, 1e-9 * kSixKilograms);

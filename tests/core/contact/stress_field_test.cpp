@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
-
 #include <cmath>
 #include <limits>
 
@@ -74,7 +73,8 @@ TEST(StressField, ShearDeformationMatchesEq214) {
     EXPECT_NEAR(st.shear_t, jt, 1e-15);
     EXPECT_NEAR(st.shear_l, jl, 1e-15);
     EXPECT_NEAR(st.shear, std::hypot(jt, jl), 1e-15);
-    const double tau = (1.7e3 + st.sigma * std::tan(29.0 * kDeg)) * (1 - std::exp(-st.shear / 0.025));
+    const double tau =
+        (1.7e3 + st.sigma * std::tan(29.0 * kDeg)) * (1 - std::exp(-st.shear / 0.025));
     EXPECT_NEAR(st.tau, tau, 1e-12 * tau);
 }
 
@@ -124,10 +124,13 @@ TEST(StressField, NormalStressKeepsFullPrecisionAtTinyEntryAngles) {
         const Big slope = (Big(tf) - Big(tm)) / (Big(tm) - Big(tr));
         for (double fraction : {0.999, 0.9, 0.5, 0.1, -0.2, -0.45}) {
             const double theta = fraction * tf;
-            const Big equivalent = theta >= tm ? Big(theta) : Big(tf) - (Big(theta) - Big(tr)) * slope;
-            const Big base = boost::multiprecision::cos(equivalent) - boost::multiprecision::cos(Big(tf));
-            const double expected = static_cast<double>(
-                Big(p.pressure_modulus) * boost::multiprecision::pow(Big(p.radius_m) * base, Big(0.5)));
+            const Big equivalent =
+                theta >= tm ? Big(theta) : Big(tf) - (Big(theta) - Big(tr)) * slope;
+            const Big base =
+                boost::multiprecision::cos(equivalent) - boost::multiprecision::cos(Big(tf));
+            const double expected =
+                static_cast<double>(Big(p.pressure_modulus) *
+                                    boost::multiprecision::pow(Big(p.radius_m) * base, Big(0.5)));
             EXPECT_NEAR(field.at(theta).sigma, expected, 1e-13 * expected)
                 << "theta_f = " << tf << ", theta = " << fraction << " theta_f";
         }

@@ -100,7 +100,8 @@ TEST(WheelForces, FrictionlessContactMatchesClosedForm) {
     // acts: ∫_0^θf (cos θ − cos θ_f)^n sin θ dθ = (1 − cos θ_f)^(n+1)/(n+1) exactly, so
     // F_x = −r b K_s r^n (1 − cos θ_f)^(n+1)/(n+1). n < 1 has the singular end derivative.
     for (double n : {0.3, 0.5, 0.7, 1.1, 1.7}) {
-        ContactParameters<double> p = testing::thesisSoil(n, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
+        ContactParameters<double> p =
+            testing::thesisSoil(n, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
         // Down to 1e-4°: the cosine difference must not cancel (regression, item 3 of the review).
         for (double theta_f : {1e-4, 0.01, 3.0, 30.0, 80.0}) {
             const double tf = theta_f * kDeg;
@@ -117,7 +118,8 @@ TEST(WheelForces, FrictionlessContactMatchesClosedForm) {
 
 TEST(WheelForces, LinearSoilVerticalForceClosedForm) {
     // n = 1, no shear, θ_m = θ_r = 0: F_z = r b K_s r (θ_f/2 − sin 2θ_f / 4).
-    ContactParameters<double> p = testing::thesisSoil(1.0, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
+    ContactParameters<double> p =
+        testing::thesisSoil(1.0, 0.0, 0.0, 5.3, 1515.0, 0.025, 15.2, INFINITY);
     const double tf = 40.0 * kDeg;
     const auto f = computeForces(p, OperatingPoint<double>{0.1, 0.0, tf, 0.0, 0.0});
     const double fz = 0.092 * 0.107 * p.pressure_modulus * 0.092 * (tf / 2 - std::sin(2 * tf) / 4);
@@ -151,12 +153,14 @@ TEST(WheelForces, DrawbarPullGrowsWithSlipAndBrakingPullsBack) {
     const auto p = testing::sandyLoam();
     double previous = -1e9;
     for (double s : {0.0, 0.1, 0.2, 0.4, 0.6}) {
-        const auto f = computeForces(p, OperatingPoint<double>{s, 0.0, 25.0 * kDeg, 0.0, std::nullopt});
+        const auto f =
+            computeForces(p, OperatingPoint<double>{s, 0.0, 25.0 * kDeg, 0.0, std::nullopt});
         EXPECT_GT(f.fx, previous) << "s = " << s;
         EXPECT_GT(f.my, 0.0);
         previous = f.fx;
     }
-    const auto braking = computeForces(p, OperatingPoint<double>{-0.5, 0.0, 25.0 * kDeg, 0.0, std::nullopt});
+    const auto braking =
+        computeForces(p, OperatingPoint<double>{-0.5, 0.0, 25.0 * kDeg, 0.0, std::nullopt});
     EXPECT_LT(braking.fx, 0.0);
     EXPECT_LT(braking.my, 0.0);  // the soil drives the wheel forward: a braking torque is needed
 }

@@ -34,7 +34,8 @@ TEST(DecoupledModel, HatCoefficientsAreTheIntegralsOfTheHat) {
     EXPECT_NEAR(h.b, b, 1e-9);
     EXPECT_NEAR(h.c, c, 1e-9);
     // The printed Eq. 4.6 (cos θ_r in the first numerator) is not the integral (E5).
-    const double printed = (std::sin(tm) - std::cos(0.0)) / tm + (std::sin(tm) - std::sin(tf)) / (tf - tm);
+    const double printed =
+        (std::sin(tm) - std::cos(0.0)) / tm + (std::sin(tm) - std::sin(tf)) / (tf - tm);
     EXPECT_GT(std::abs(printed - b), 0.1);
 }
 
@@ -46,8 +47,9 @@ TEST(DecoupledModel, EliminationIsConsistentWithTheForwardForm) {
         const DecoupledForces f = decoupledForward(p, kWheelA, s, tf);
         const HatCoefficients<double> h = hatCoefficients(p.a0, p.a1, s, tf);
         EXPECT_NEAR(decoupledDrawbarPull(h, 0.092, f.fz_n, f.my_nm), f.fx_n, 1e-10);
-        EXPECT_NEAR(decoupledVerticalForce(h, 0.092, 0.107, p.pressure_modulus, p.n0, p.n1, s, tf, f.my_nm),
-                    f.fz_n, 1e-9);
+        EXPECT_NEAR(
+            decoupledVerticalForce(h, 0.092, 0.107, p.pressure_modulus, p.n0, p.n1, s, tf, f.my_nm),
+            f.fz_n, 1e-9);
         EXPECT_NEAR(decoupledTorque(h, 0.092, 0.107, p.cohesion_pa, p.friction_angle_rad,
                                     p.shear_modulus_m, s, tf, f.fz_n),
                     f.my_nm, 1e-12);
@@ -75,12 +77,14 @@ TEST(DecoupledFit, RecoversTheTruthOnDataOfTheDecoupledModel) {
     EXPECT_NEAR(p.cohesion_pa, truth.cohesion_pa, 1e-4);
     EXPECT_NEAR(p.friction_angle_rad, truth.friction_angle_rad, 1e-8);
     EXPECT_NEAR(p.shear_modulus_m, truth.shear_modulus_m, 1e-8);
-    for (const StepReport& step : fit.steps) EXPECT_LT(step.squared_residual_norm, 1e-16) << step.name;
+    for (const StepReport& step : fit.steps)
+        EXPECT_LT(step.squared_residual_norm, 1e-16) << step.name;
 }
 
 TEST(DecoupledFit, FullModelDataShowsTheLinearisationBias) {
     // Issue #3 (measured with an independent implementation): on full-model data a0, a1 land near
-    // 0.23–0.35 / 0.15–0.26, K_s runs to a bound, and sandy loam's φ comes out near 56° (truth 29°).
+    // 0.23–0.35 / 0.15–0.26, K_s runs to a bound, and sandy loam's φ comes out near 56° (truth
+    // 29°).
     SyntheticSpec spec;
     for (int i = 0; i < 60; ++i) spec.slips.push_back(0.9 * i / 59);
     const SyntheticData sandy = synthesize(contact::testing::sandyLoam(), spec);

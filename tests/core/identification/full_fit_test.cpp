@@ -14,11 +14,17 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
 // Sandy loam of Table 2.1 on wheel A: K_s = 5.3e3/0.107 + 1.515e6 Pa/m^n.
-const std::array<double, kFullParameterCount> kTruth{0.2, 0.3, 5.3e3 / 0.107 + 1.515e6, 0.7, 1700.0,
-                                                     29.0 * kDeg, 0.025};
+const std::array<double, kFullParameterCount> kTruth{
+    0.2, 0.3, 5.3e3 / 0.107 + 1.515e6, 0.7, 1700.0, 29.0 * kDeg, 0.025};
 
 std::array<double, kFullParameterCount> values(const DecoupledParameters& p) {
-    return {p.a0, p.a1, p.pressure_modulus, p.n0, p.cohesion_pa, p.friction_angle_rad, p.shear_modulus_m};
+    return {p.a0,
+            p.a1,
+            p.pressure_modulus,
+            p.n0,
+            p.cohesion_pa,
+            p.friction_angle_rad,
+            p.shear_modulus_m};
 }
 
 DataSet sandyLoamData(std::vector<double> loads, double noise, std::uint64_t seed) {
@@ -44,7 +50,8 @@ RefineOptions optionsFor(double noise) {
 }
 
 TEST(RefineFullModel, RecoversEveryParameterOnNoiseFreeSingleLoadData) {
-    // Issue #3: started from the (biased) decoupled estimate, the full-model fit recovers the truth.
+    // Issue #3: started from the (biased) decoupled estimate, the full-model fit recovers the
+    // truth.
     const DataSet data = sandyLoamData({58.86}, 0.0, 1);
     const DecoupledFit start = fitDecoupled(data, kWheelA, DecoupledParameters{});
     const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(0.0));
@@ -65,7 +72,8 @@ TEST(RefineFullModel, NoisyMultiLoadEstimatesLieWithinTheirStandardDeviations) {
     const auto got = values(result.parameters);
     for (int k = 0; k < kFullParameterCount; ++k) {
         EXPECT_GT(result.uncertainty.std[k], 0.0) << fullParameterNames()[k];
-        EXPECT_LT(std::abs(got[k] - kTruth[k]), 5.0 * result.uncertainty.std[k]) << fullParameterNames()[k];
+        EXPECT_LT(std::abs(got[k] - kTruth[k]), 5.0 * result.uncertainty.std[k])
+            << fullParameterNames()[k];
     }
     // χ² of a right model with the right noise levels is about the number of residuals (540 − 7).
     EXPECT_NEAR(result.report.squared_residual_norm, 533.0, 4 * std::sqrt(2 * 533.0));
@@ -81,7 +89,8 @@ TEST(RefineFullModel, SingleLoadNoiseCannotSeparateCohesionAndFriction) {
     const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(0.02));
     bool flagged = false;
     for (const std::string& flag : result.uncertainty.flags) {
-        flagged |= flag.find("c and phi") != std::string::npos && flag.find("several loads") != std::string::npos;
+        flagged |= flag.find("c and phi") != std::string::npos &&
+                   flag.find("several loads") != std::string::npos;
     }
     EXPECT_TRUE(flagged);
 }

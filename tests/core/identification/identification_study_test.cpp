@@ -28,18 +28,26 @@ struct Case {
 
 ContactParameters<double> soilFor(const std::string& name, double r, double b) {
     // Table 2.1 in thesis units, j_max from Table 2.6, written out independently of the presets.
-    if (name == "sandy-loam") return soils::thesisSoil(0.7, 1.7, 29.0, 5.3, 1515.0, 0.025, 15.2, 0.02, r, b);
-    if (name == "dry-sand") return soils::thesisSoil(1.1, 1.0, 30.0, 0.9, 1523.4, 0.025, 16.18, 0.02, r, b);
+    if (name == "sandy-loam")
+        return soils::thesisSoil(0.7, 1.7, 29.0, 5.3, 1515.0, 0.025, 15.2, 0.02, r, b);
+    if (name == "dry-sand")
+        return soils::thesisSoil(1.1, 1.0, 30.0, 0.9, 1523.4, 0.025, 16.18, 0.02, r, b);
     return soils::thesisSoil(0.5, 4.14, 13.0, 13.2, 692.2, 0.01, 13.24, 0.009, r, b);
 }
 
 std::array<double, kFullParameterCount> truthOf(const ContactParameters<double>& p) {
-    return {p.max_stress_a0, p.max_stress_a1, p.pressure_modulus, p.sinkage_exponent, p.cohesion_pa,
-            p.friction_angle_rad, p.shear_modulus_m};
+    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
+            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
 }
 
 std::array<double, kFullParameterCount> values(const DecoupledParameters& p) {
-    return {p.a0, p.a1, p.pressure_modulus, p.n0, p.cohesion_pa, p.friction_angle_rad, p.shear_modulus_m};
+    return {p.a0,
+            p.a1,
+            p.pressure_modulus,
+            p.n0,
+            p.cohesion_pa,
+            p.friction_angle_rad,
+            p.shear_modulus_m};
 }
 
 SyntheticSpec sweep(std::vector<double> loads, double relative_noise, std::uint64_t seed) {
@@ -78,18 +86,17 @@ TEST_P(NoiseFreeRecovery, RefinementReturnsEveryParameterToOneMillionth) {
     std::printf(" %.1f ms |\n", result.report.wall_time_ms);
 }
 
-INSTANTIATE_TEST_SUITE_P(ThesisSoilsAndWheels, NoiseFreeRecovery,
-                         ::testing::Values(Case{"sandy-loam", "A", 0.092, 0.107},
-                                           Case{"sandy-loam", "B", 0.135, 0.165},
-                                           Case{"dry-sand", "A", 0.092, 0.107},
-                                           Case{"dry-sand", "B", 0.135, 0.165},
-                                           Case{"clayey-soil", "A", 0.092, 0.107},
-                                           Case{"clayey-soil", "B", 0.135, 0.165}),
-                         [](const auto& info) {
-                             std::string name = std::string(info.param.soil) + "_" + info.param.wheel;
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    ThesisSoilsAndWheels, NoiseFreeRecovery,
+    ::testing::Values(Case{"sandy-loam", "A", 0.092, 0.107}, Case{"sandy-loam", "B", 0.135, 0.165},
+                      Case{"dry-sand", "A", 0.092, 0.107}, Case{"dry-sand", "B", 0.135, 0.165},
+                      Case{"clayey-soil", "A", 0.092, 0.107},
+                      Case{"clayey-soil", "B", 0.135, 0.165}),
+    [](const auto& info) {
+        std::string name = std::string(info.param.soil) + "_" + info.param.wheel;
+        std::replace(name.begin(), name.end(), '-', '_');
+        return name;
+    });
 
 struct Coverage {
     int runs = 0;
@@ -114,10 +121,12 @@ Coverage coverageStudy(const std::vector<double>& loads) {
         ++cov.runs;
         bool cphi = false, flagged[kFullParameterCount] = {};
         for (const std::string& flag : r.uncertainty.flags) {
-            if (flag.find("c and phi") != std::string::npos) cphi = flagged[kC] = flagged[kPhi] = true;
+            if (flag.find("c and phi") != std::string::npos)
+                cphi = flagged[kC] = flagged[kPhi] = true;
             for (int k = 0; k < kFullParameterCount; ++k) {  // "X and Y ...", "X ended at ..."
                 const std::string name = fullParameterNames()[k];
-                if (flag.rfind(name + " ", 0) == 0 || flag.find(" and " + name + " ") != std::string::npos) {
+                if (flag.rfind(name + " ", 0) == 0 ||
+                    flag.find(" and " + name + " ") != std::string::npos) {
                     flagged[k] = true;
                 }
             }
@@ -138,14 +147,16 @@ Coverage coverageStudy(const std::vector<double>& loads) {
 }
 
 void print(const char* label, const Coverage& cov) {
-    std::printf("%s (%d runs, c–phi flagged in %d)\n| parameter | mean error | rms error | mean reported std "
-                "| truth within 3 std |\n",
-                label, cov.runs, cov.cphi_flagged);
+    std::printf(
+        "%s (%d runs, c–phi flagged in %d)\n| parameter | mean error | rms error | mean reported "
+        "std "
+        "| truth within 3 std |\n",
+        label, cov.runs, cov.cphi_flagged);
     for (int k = 0; k < kFullParameterCount; ++k) {
         const double mean = cov.sum[k] / cov.runs;
-        std::printf("| %s | %+.2f %% | %.2f %% | %.2f %% | %d / %d |\n", fullParameterNames()[k], 100 * mean,
-                    100 * std::sqrt(cov.sum2[k] / cov.runs), 100 * cov.sum_std[k] / cov.runs, cov.covered[k],
-                    cov.judged[k]);
+        std::printf("| %s | %+.2f %% | %.2f %% | %.2f %% | %d / %d |\n", fullParameterNames()[k],
+                    100 * mean, 100 * std::sqrt(cov.sum2[k] / cov.runs),
+                    100 * cov.sum_std[k] / cov.runs, cov.covered[k], cov.judged[k]);
     }
 }
 

@@ -21,7 +21,8 @@ std::vector<Sample> stream(const contact::ContactParameters<double>& soil, std::
     spec.seed = seed;
     const DataSet d = synthesize(soil, spec).data;
     std::vector<Sample> out;
-    for (std::size_t i = 0; i < d.samples.size(); ++i) out.push_back(d.samples[(i * 37) % d.samples.size()]);
+    for (std::size_t i = 0; i < d.samples.size(); ++i)
+        out.push_back(d.samples[(i * 37) % d.samples.size()]);
     return out;
 }
 
@@ -65,7 +66,8 @@ TEST(StreamingIdentifier, DetectsTheBorderFromSandyLoamToClayAndSettles) {
         EXPECT_LT(updates[i].residual_score, options.threshold) << i;
     }
     // The two soils' estimates differ where the soils do: clay's friction angle (13°) is lower.
-    EXPECT_LT(updates.back().parameters.friction_angle_rad, updates[border - 1].parameters.friction_angle_rad);
+    EXPECT_LT(updates.back().parameters.friction_angle_rad,
+              updates[border - 1].parameters.friction_angle_rad);
 }
 
 TEST(StreamingIdentifier, ALoneOutlierIsNotAChange) {
@@ -82,7 +84,8 @@ TEST(StreamingIdentifier, ALoneOutlierIsNotAChange) {
 }
 
 TEST(StreamingIdentifier, RejectsAnInvalidWheel) {
-    EXPECT_THROW(StreamingIdentifier(wheel::WheelParameters{"bad", "", -1.0, 0.1}), std::invalid_argument);
+    EXPECT_THROW(StreamingIdentifier(wheel::WheelParameters{"bad", "", -1.0, 0.1}),
+                 std::invalid_argument);
 }
 
 }  // namespace

@@ -51,9 +51,11 @@ TEST(Synthetic, NoiseHasTheAskedSpreadAndTheSeedRepeats) {
     const SyntheticData a = synthesize(p, spec);
     const SyntheticData b = synthesize(p, spec);
     double mean_fz = 0, var_fx = 0, var_fz = 0;
-    const double fx0 = contact::computeForces(p, contact::OperatingPoint<double>{
-                                                     0.3, 0.0, a.data.samples[0].entry_angle_rad, 0.0,
-                                                     std::nullopt}).fx;
+    const double fx0 =
+        contact::computeForces(
+            p, contact::OperatingPoint<double>{0.3, 0.0, a.data.samples[0].entry_angle_rad, 0.0,
+                                               std::nullopt})
+            .fx;
     for (std::size_t i = 0; i < a.data.samples.size(); ++i) {
         EXPECT_EQ(a.data.samples[i].fx_n, b.data.samples[i].fx_n);  // same seed, same data
         var_fx += std::pow(a.data.samples[i].fx_n - fx0, 2);

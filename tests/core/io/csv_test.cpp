@@ -1,8 +1,6 @@
 #include "core/io/csv.h"
 
 #include <gtest/gtest.h>
-
-#include "tests/core/test_temp_dir.h"
 #include <unistd.h>
 
 #include <bit>
@@ -18,6 +16,7 @@
 #include <vector>
 
 #include "core/io/atomic_file.h"
+#include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
 namespace {

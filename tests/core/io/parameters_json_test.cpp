@@ -1,10 +1,6 @@
 #include "core/io/parameters_json.h"
 
-#include "core/contact/contact_parameters.h"
-
 #include <gtest/gtest.h>
-
-#include "tests/core/test_temp_dir.h"
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +10,9 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "core/contact/contact_parameters.h"
+#include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
 namespace {

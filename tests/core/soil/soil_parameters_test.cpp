@@ -234,7 +234,8 @@ TEST(SoilValidate, SlipDependentExponentMustStayInRangeWhenBraking) {
     EXPECT_NE(issues[0].message.find("2.25"), std::string::npos) << issues[0].message;
 
     soil.sinkage_exponent = 0.6;
-    soil.sinkage_exponent_slip = 0.5;  // N from 0.1 (0.6 − 0.5 in binary: 0.0999…98) to 1.1: allowed
+    soil.sinkage_exponent_slip =
+        0.5;  // N from 0.1 (0.6 − 0.5 in binary: 0.0999…98) to 1.1: allowed
     EXPECT_TRUE(validate(soil).empty()) << formatIssues(validate(soil));
 }
 
