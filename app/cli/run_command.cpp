@@ -4,7 +4,6 @@
 // (docs/user-guide.md, "Scripted runs").
 #include <qcustomplot.h>
 
-#include <QApplication>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -14,6 +13,8 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/headless_application.h"
+#include "core/common/build_info.h"
 #include "core/io/atomic_file.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
@@ -86,7 +87,9 @@ Outcome check(const Expectation& e, const Table& table) {
         const std::size_t k = table.column(key);
         double best = INFINITY;
         for (const auto* row : rows) best = std::min(best, std::abs((*row)[k] - value));
-        std::erase_if(rows, [&](const auto* row) { return std::abs((*row)[k] - value) > best; });
+        std::erase_if(rows, [&, target = value](const auto* row) {
+            return std::abs((*row)[k] - target) > best;
+        });
     }
     if (rows.empty()) {
         out.text = e.column + ": the results have no rows (no equilibrium?)";
@@ -580,12 +583,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
     fs::create_directories(o.out, ec);
     if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());
 
-    // QCustomPlot paints with a QPainter: it needs an application object, offscreen here.
-    qputenv("QT_QPA_PLATFORM", "offscreen");
-    int argc = 1;
-    char name[] = "terrastudio";
-    char* argv[] = {name, nullptr};
-    QApplication application(argc, argv);
+    const HeadlessApplication application;  // QCustomPlot paints with a QPainter: it needs one
 
     Runner runner(script, fs::path(o.script).parent_path(), o.out, locations, o.formats);
     std::vector<AnalysisRun> runs;
@@ -617,7 +615,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
-    json manifest{{"tool", "terrastudio 0.1.0"},
+    json manifest{{"tool", std::string("terrastudio ") + build_info::kVersion},
                   {"script", o.script},
                   {"inputs", script},
                   {"failed", failed}};

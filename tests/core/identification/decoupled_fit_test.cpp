@@ -63,7 +63,8 @@ TEST(DecoupledFit, RecoversTheTruthOnDataOfTheDecoupledModel) {
     for (int i = 0; i < 20; ++i) {
         const double s = 0.045 * i, tf = 0.3 + 0.1 * s;
         const DecoupledForces f = decoupledForward(truth, kWheelA, s, tf);
-        data.samples.push_back({s, tf, f.fx_n, f.fz_n, f.my_nm});
+        data.samples.push_back({s, tf, f.fx_n, f.fz_n, f.my_nm, std::nullopt, std::nullopt,
+                                std::nullopt, std::nullopt});
     }
     const DecoupledFit fit = fitDecoupled(data, kWheelA, DecoupledParameters{});  // thesis guesses
     ASSERT_TRUE(fit.usable());
