@@ -82,7 +82,7 @@ bool contactOf(const Prepared& prep, std::size_t i, ContactParameters<double>& p
     }
     if (!ok) return false;
     if (prep.exponent_varied && s.sinkage_exponent_slip != 0.0) {
-        const Range& n_range = soil::findSoilField("n")->range;
+        static const Range n_range = soil::findSoilField("n")->range;
         const double braking = roundSignificant(s.sinkage_exponent - s.sinkage_exponent_slip);
         const double driving = roundSignificant(s.sinkage_exponent + s.sinkage_exponent_slip);
         if (!n_range.contains(braking) || !n_range.contains(driving)) {

@@ -2,7 +2,6 @@
 
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -10,17 +9,6 @@
 #include "core/gsa/resample.h"
 
 namespace terra::gsa {
-namespace {
-
-// SplitMix64's finaliser: decorrelates the seeds of neighbouring trajectories.
-std::uint64_t mix(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
-
-}  // namespace
 
 MorrisDesign::MorrisDesign(ParameterSpace space, std::size_t trajectories, int levels,
                            std::uint64_t seed)
@@ -50,7 +38,8 @@ MorrisTrajectory MorrisDesign::trajectory(std::size_t t) const {
                                 std::to_string(trajectories_));
     }
     const std::size_t d = parameters();
-    Resampler draw(mix(seed_ ^ mix(t)));
+    // Each trajectory's own stream: its index mixed into the seed.
+    Resampler draw(splitMix(seed_ ^ splitMix(t + 1)));
     MorrisTrajectory out{std::vector<double>(d), std::vector<std::size_t>(d), std::vector<int>(d)};
     const double step = 1.0 / (levels_ - 1);
     for (std::size_t i = 0; i < d; ++i) {

@@ -37,7 +37,7 @@ public:
     std::size_t rowsPerTrajectory() const { return parameters() + 1; }
     std::size_t rows() const { return trajectories_ * rowsPerTrajectory(); }
 
-    /// Trajectory t, from its own generator (std::mt19937_64 seeded by a mix of seed and t).
+    /// Trajectory t, from its own generator (SplitMix64 seeded by a mix of seed and t).
     MorrisTrajectory trajectory(std::size_t t) const;
     /// Parameter values of rows [begin, end): (end − begin) × d.
     Eigen::MatrixXd rows(std::size_t begin, std::size_t end) const;

@@ -6,26 +6,33 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <random>
 #include <vector>
 
 namespace terra::gsa {
 
-/// Indices drawn uniformly from [0, n), n ≤ 2³², reproducibly everywhere: std::mt19937_64's
-/// sequence is fixed by the standard, and the mapping is a multiply-shift of its upper 32 bits
-/// (bias below n / 2³², far under any bootstrap's own noise), not an implementation-defined
-/// std::uniform_int_distribution.
+/// SplitMix64's output function (Steele, Lea & Flood 2014): a bijective 64-bit mix.
+inline std::uint64_t splitMix(std::uint64_t x) {
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+/// Indices drawn uniformly from [0, n), n ≤ 2³², reproducibly everywhere: the SplitMix64
+/// generator (state += 0x9E3779B97F4A7C15, output splitMix(state)) is fully specified, and the
+/// mapping is a multiply-shift of its upper 32 bits (bias below n / 2³², far under any bootstrap's
+/// own noise), not an implementation-defined std::uniform_int_distribution.
 class Resampler {
 public:
-    explicit Resampler(std::uint64_t seed) : engine_(seed) {}
+    explicit Resampler(std::uint64_t seed) : state_(seed) {}
 
+    std::uint64_t next() { return splitMix(state_ += 0x9E3779B97F4A7C15ull); }
     std::size_t index(std::size_t n) {
         assert(n <= (std::uint64_t{1} << 32));
-        return static_cast<std::size_t>(((engine_() >> 32) * n) >> 32);
+        return static_cast<std::size_t>(((next() >> 32) * n) >> 32);
     }
 
 private:
-    std::mt19937_64 engine_;
+    std::uint64_t state_;
 };
 
 /// Sample standard deviation (n − 1) of values[offset + k·stride], k = 0 … count − 1; 0 for

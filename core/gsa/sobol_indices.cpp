@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -36,38 +35,28 @@ void requireShape(const SaltelliDesign& design, const Eigen::MatrixXd& values, c
 
 // Per-sample terms of the estimators for one column, centred on the mean of the A and B outputs
 // (which leaves every estimator unchanged in expectation and removes the cancellation of a large
-// mean): a = f_A − m, b = f_B − m, p_i = b (f_ABi − f_A), q_i = (f_A − f_ABi)².
+// mean): a = f_A − m, b = f_B − m, p_i = b (f_ABi − f_A), q_i = (f_A − f_ABi)². One contiguous row
+// of w = 4 + 2d values per sample, [a, a², b, b², p_1…p_d, q_1…q_d], so that a bootstrap
+// replicate is a sum of gathered rows.
 struct Terms {
-    std::size_t d;
-    std::vector<double> a, b, p, q;  // p, q: sample-major, d per sample
+    std::size_t d = 0, w = 0;
+    std::vector<double> rows;
 
-    std::size_t size() const { return a.size(); }
+    const double* row(std::size_t k) const { return &rows[k * w]; }
 };
 
-struct Sums {
-    double a = 0, aa = 0, b = 0, bb = 0;
-    std::vector<double> p, q;
-
-    explicit Sums(std::size_t d) : p(d), q(d) {}
-    void clear() {
-        a = aa = b = bb = 0.0;
-        std::fill(p.begin(), p.end(), 0.0), std::fill(q.begin(), q.end(), 0.0);
-    }
-};
-
-void accumulate(const Terms& t, std::size_t k, Sums& s) {
-    s.a += t.a[k], s.aa += t.a[k] * t.a[k], s.b += t.b[k], s.bb += t.b[k] * t.b[k];
-    for (std::size_t i = 0; i < t.d; ++i) s.p[i] += t.p[k * t.d + i], s.q[i] += t.q[k * t.d + i];
+void accumulate(const double* row, std::size_t w, double* sums) {
+    for (std::size_t x = 0; x < w; ++x) sums[x] += row[x];
 }
 
-// S_i and S_Ti from sums over M samples; the variance is that of the 2M A and B outputs.
-void indices(const Sums& s, double m, double* first, double* total) {
+// S_i and S_Ti from the sums over M samples; the variance is that of the 2M A and B outputs.
+void indices(const double* sums, std::size_t d, double m, double* first, double* total) {
     const double n = 2.0 * m;
-    const double mean = (s.a + s.b) / n;
-    const double variance = (s.aa + s.bb) / n - mean * mean;
-    for (std::size_t i = 0; i < s.p.size(); ++i) {
-        first[i] = variance > 0.0 ? s.p[i] / m / variance : 0.0;
-        total[i] = variance > 0.0 ? s.q[i] / (2.0 * m) / variance : 0.0;
+    const double mean = (sums[0] + sums[2]) / n;
+    const double variance = (sums[1] + sums[3]) / n - mean * mean;
+    for (std::size_t i = 0; i < d; ++i) {
+        first[i] = variance > 0.0 ? sums[4 + i] / m / variance : 0.0;
+        total[i] = variance > 0.0 ? sums[4 + d + i] / (2.0 * m) / variance : 0.0;
     }
 }
 
@@ -98,7 +87,7 @@ SobolIndices estimateSobol(const SaltelliDesign& design, const Eigen::MatrixXd& 
     const double z = options.resamples > 0 ? quantile(boost::math::normal(0.0, 1.0),
                                                       0.5 + 0.5 * options.confidence_level)
                                            : 0.0;
-    Terms t{d, {}, {}, {}, {}};
+    Terms t{d, 4 + 2 * d, {}};
     std::vector<double> first(d), total(d), boot_first, boot_total;
     for (Eigen::Index c = 0; c < columns; ++c) {
         auto y = [&](std::size_t j, std::size_t kind) {
@@ -127,27 +116,29 @@ SobolIndices estimateSobol(const SaltelliDesign& design, const Eigen::MatrixXd& 
         double mean = 0.0;
         for (std::size_t j : kept) mean += y(j, 0) + y(j, 1);
         mean /= 2.0 * m;
-        t.a.resize(m), t.b.resize(m), t.p.resize(m * d), t.q.resize(m * d);
+        t.rows.resize(m * t.w);
         for (std::size_t k = 0; k < m; ++k) {
             const std::size_t j = kept[k];
-            t.a[k] = y(j, 0) - mean, t.b[k] = y(j, 1) - mean;
+            double* row = &t.rows[k * t.w];
+            const double a = y(j, 0) - mean, b = y(j, 1) - mean;
+            row[0] = a, row[1] = a * a, row[2] = b, row[3] = b * b;
             for (std::size_t i = 0; i < d; ++i) {
                 const double step = y(j, 2 + i) - y(j, 0);
-                t.p[k * d + i] = t.b[k] * step;
-                t.q[k * d + i] = step * step;
+                row[4 + i] = b * step;
+                row[4 + d + i] = step * step;
             }
         }
-        Sums all(d);
-        for (std::size_t k = 0; k < m; ++k) accumulate(t, k, all);
+        std::vector<double> all(t.w, 0.0), sums(t.w);
+        for (std::size_t k = 0; k < m; ++k) accumulate(t.row(k), t.w, all.data());
         const double variance =
-            (all.aa + all.bb) / (2.0 * m) - std::pow((all.a + all.b) / (2.0 * m), 2);
-        out.mean[c] = mean + (all.a + all.b) / (2.0 * m);
+            (all[1] + all[3]) / (2.0 * m) - std::pow((all[0] + all[2]) / (2.0 * m), 2);
+        out.mean[c] = mean + (all[0] + all[2]) / (2.0 * m);
         out.variance[c] = variance;
         if (!(std::sqrt(std::max(variance, 0.0)) > kConstantOutput * std::abs(out.mean[c]))) {
             out.constant[c] = true;
             continue;
         }
-        indices(all, static_cast<double>(m), first.data(), total.data());
+        indices(all.data(), d, static_cast<double>(m), first.data(), total.data());
         for (std::size_t i = 0; i < d; ++i) {
             out.first_order(static_cast<Eigen::Index>(i), c) = first[i];
             out.total(static_cast<Eigen::Index>(i), c) = total[i];
@@ -158,11 +149,12 @@ SobolIndices estimateSobol(const SaltelliDesign& design, const Eigen::MatrixXd& 
         Resampler resampler(options.seed);
         const auto b_count = static_cast<std::size_t>(options.resamples);
         boot_first.assign(b_count * d, 0.0), boot_total.assign(b_count * d, 0.0);
-        Sums s(d);
         for (std::size_t b = 0; b < b_count; ++b) {
-            s.clear();
-            for (std::size_t k = 0; k < m; ++k) accumulate(t, resampler.index(m), s);
-            indices(s, static_cast<double>(m), &boot_first[b * d], &boot_total[b * d]);
+            std::fill(sums.begin(), sums.end(), 0.0);
+            for (std::size_t k = 0; k < m; ++k) {
+                accumulate(t.row(resampler.index(m)), t.w, sums.data());
+            }
+            indices(sums.data(), d, static_cast<double>(m), &boot_first[b * d], &boot_total[b * d]);
         }
         for (std::size_t i = 0; i < d; ++i) {
             out.first_order_conf(static_cast<Eigen::Index>(i), c) =

@@ -20,7 +20,7 @@ using Mask = Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>;
 struct BootstrapOptions {
     int resamples = 1000;            ///< B ∈ [0, 10⁶]; 0: no intervals (conf = 0)
     double confidence_level = 0.95;  ///< in (0, 1)
-    std::uint64_t seed = 1;          ///< the resamples' std::mt19937_64 seed
+    std::uint64_t seed = 1;          ///< seed of the resamples' generator (SplitMix64)
 };
 
 /// Throws std::invalid_argument naming the field, the value and the range.

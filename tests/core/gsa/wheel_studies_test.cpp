@@ -93,14 +93,17 @@ TEST(WheelSobol, MatchesADoubleLoopEstimateWithTheEntryAngleGiven) {
     ASSERT_EQ(r.status, StudyStatus::kCompleted) << r.message;
     const Eigen::MatrixXd s1 = r.firstOrder(0), st = r.total(0);
     const Eigen::MatrixXd c1 = r.firstOrderConf(0), ct = r.totalConf(0);
-    // Within the 95 % interval and 0.01 of the double loop.
+    // Within the 95 % interval and 0.005 of the double loop (docs/sensitivity.md).
     EXPECT_LE(std::abs(s1(0, 0) - s_phi), std::max(c1(0, 0), 1e-3)) << s1(0, 0) << " " << s_phi;
     EXPECT_LE(std::abs(s1(1, 0) - s_k), std::max(c1(1, 0), 1e-3)) << s1(1, 0) << " " << s_k;
     EXPECT_LE(std::abs(st(0, 0) - (1 - s_k)), std::max(ct(0, 0), 1e-3));
     EXPECT_LE(std::abs(st(1, 0) - (1 - s_phi)), std::max(ct(1, 0), 1e-3));
+    RecordProperty("S1_phi",
+                   std::to_string(s1(0, 0)) + " (double loop " + std::to_string(s_phi) + ")");
+    RecordProperty("S1_K", std::to_string(s1(1, 0)) + " (double loop " + std::to_string(s_k) + ")");
     for (int i = 0; i < 2; ++i) {
-        EXPECT_NEAR(s1(i, 0), i == 0 ? s_phi : s_k, 0.01);
-        EXPECT_NEAR(st(i, 0), i == 0 ? 1 - s_k : 1 - s_phi, 0.01);
+        EXPECT_NEAR(s1(i, 0), i == 0 ? s_phi : s_k, 0.005);
+        EXPECT_NEAR(st(i, 0), i == 0 ? 1 - s_k : 1 - s_phi, 0.005);
     }
     EXPECT_NEAR(r.indices.variance[0], v, 0.02 * v);
     EXPECT_EQ(r.evaluations, 2048u * 4u);
@@ -108,7 +111,7 @@ TEST(WheelSobol, MatchesADoubleLoopEstimateWithTheEntryAngleGiven) {
 
 TEST(WheelSobol, MatchesADoubleLoopEstimateWithEntryAngleSolves) {
     // Three parameters, θ_f solved for W = 58.86 N at s = 0.2: S_i from Var(E[Y | X_i]) and S_Ti
-    // from 1 − Var(E[Y | X_~i]) / V on an 8 × 8 × 8 Gauss–Legendre grid of cold solves.
+    // from 1 − Var(E[Y | X_~i]) / V on a 7 × 7 × 7 Gauss–Legendre grid of cold solves.
     const auto phis = gaussNodes<7>(22.0, 34.0), cs = gaussNodes<7>(0.0, 4.0),
                ks = gaussNodes<7>(0.01, 0.035);
     const std::size_t n = phis.size();
@@ -171,13 +174,17 @@ TEST(WheelSobol, MatchesADoubleLoopEstimateWithEntryAngleSolves) {
     ASSERT_EQ(r.status, StudyStatus::kCompleted) << r.message;
     for (int i = 0; i < 3; ++i) {
         SCOPED_TRACE(r.parameters[i]);
+        RecordProperty("S1_" + r.parameters[i], std::to_string(r.indices.first_order(i, 0)) +
+                                                    " (double loop " + std::to_string(s1[i]) + ")");
+        RecordProperty("ST_" + r.parameters[i], std::to_string(r.indices.total(i, 0)) +
+                                                    " (double loop " + std::to_string(st[i]) + ")");
         const double c1 = r.indices.first_order_conf(i, 0), ct = r.indices.total_conf(i, 0);
         EXPECT_LE(std::abs(r.indices.first_order(i, 0) - s1[i]), std::max(c1, 1e-3))
             << r.indices.first_order(i, 0) << " vs " << s1[i];
         EXPECT_LE(std::abs(r.indices.total(i, 0) - st[i]), std::max(ct, 1e-3))
             << r.indices.total(i, 0) << " vs " << st[i];
-        EXPECT_NEAR(r.indices.first_order(i, 0), s1[i], 0.02);
-        EXPECT_NEAR(r.indices.total(i, 0), st[i], 0.02);
+        EXPECT_NEAR(r.indices.first_order(i, 0), s1[i], 0.005);
+        EXPECT_NEAR(r.indices.total(i, 0), st[i], 0.005);
     }
 }
 
