@@ -20,11 +20,11 @@ std::string unitSuffix(const soil::SoilField& field) {
     return std::string(field.unit) == "-" ? "" : std::string(" ") + field.unit;
 }
 
-// A bound of a parameter's distribution must be a value the field allows.
+// The finite bounds of a parameter's distribution must be values the field allows.
 void checkBound(std::vector<Issue>& issues, const std::string& name, const soil::SoilField& field,
                 const char* what, double low, double high) {
     for (double v : {low, high}) {
-        if (field.range.contains(v)) continue;
+        if (std::isinf(v) || field.range.contains(v)) continue;
         issues.push_back({"parameters." + name,
                           std::string(what) + " [" + formatNumber(low) + ", " + formatNumber(high) +
                               "] reaches " + formatNumber(v) + ", outside the allowed range " +
@@ -90,9 +90,7 @@ void requireValid(const WheelStudy& study) {
             checkBound(issues, name, *field, "the range", u->low, u->high);
         } else {
             const Normal& n = std::get<Normal>(*marginal);
-            if (std::isfinite(n.low) && std::isfinite(n.high)) {
-                checkBound(issues, name, *field, "the truncation", n.low, n.high);
-            }
+            checkBound(issues, name, *field, "the truncation", n.low, n.high);
         }
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));

@@ -66,9 +66,10 @@ struct WheelStudy {
 };
 
 /// Throws std::invalid_argument listing every problem, each naming the field, the value and the
-/// allowed range: a parameter that is not a soil field, a uniform range or truncation reaching
-/// outside the field's allowed range, an invalid base soil or wheel, slips or slip angles, load or
-/// entry angle, no outputs or a repeated one.
+/// allowed range: a parameter that is not a soil field, a uniform range or a finite truncation
+/// bound outside the field's allowed range (an unbounded normal or a correlated group may sample
+/// outside it: those samples are flagged kInvalidSoil), an invalid base soil or wheel, slips or
+/// slip angles, load or entry angle, no outputs or a repeated one.
 void requireValid(const WheelStudy& study);
 
 /// What a status matrix records per row and point (values of SampleStatus).

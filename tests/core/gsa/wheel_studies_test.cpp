@@ -313,6 +313,13 @@ TEST(WheelSobol, BadSettingsNameTheFieldTheValueAndTheRange) {
                   sobolStudy(twoParameterStudy(), {1, 1, {}, 0.05, 0});
               }).find("samples: 1 is outside the allowed range [2, 1e+12]"),
               std::string::npos);
+    WheelStudy truncated = twoParameterStudy();
+    truncated.parameters = {};
+    truncated.parameters.add("c_kPa", Normal{1.0, 1.0, -1.0, INFINITY});
+    EXPECT_NE(messageOf([&] { WheelTarget{truncated}; })
+                  .find("parameters.c_kPa: the truncation [-1, inf] reaches -1, outside the "
+                        "allowed range [0, 200] kPa"),
+              std::string::npos);
     WheelStudy twice = twoParameterStudy();
     twice.outputs = {Output::kFx, Output::kFx};
     EXPECT_NE(messageOf([&] { WheelTarget{twice}; }).find("outputs: Fx_N is given twice"),
