@@ -48,8 +48,6 @@ public:
     /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
     /// work per update, the rest runs on workers.
     double lastPresentMs() const { return last_present_ms_; }
-    /// How many results (final or intermediate frames) have been drawn.
-    int shownCount() const { return shown_count_; }
     /// Starts a computation now (the identification panel's "Fit"; also for tests).
     void recompute() { scheduleUpdate(); }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
@@ -103,7 +101,6 @@ private:
     bool live_ = true;
     QElapsedTimer since_edit_;
     QElapsedTimer since_shown_;  // since the last present()
-    int shown_count_ = 0;
     double last_latency_ms_ = 0.0;
     double last_present_ms_ = 0.0;
 };
