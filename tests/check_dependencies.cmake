@@ -1,7 +1,8 @@
 # Fails when an include crosses the dependency rules of STYLE.md:
 #   core/ includes no Qt and nothing from widgets/ or app/; widgets/ includes nothing from app/;
 #   inside core, the lower modules do not include the higher ones (docs/architecture.md):
-#   common ← soil, wheel ← contact, io ← identification, dynamics ← scenario ← analysis ← project.
+#   common ← soil, wheel ← contact, io ← identification, dynamics, gsa ← scenario ← analysis ←
+#   project.
 function(check_dir dir pattern message)
   file(GLOB_RECURSE files "${SOURCE_DIR}/${dir}/*.h" "${SOURCE_DIR}/${dir}/*.cpp")
   foreach(file IN LISTS files)
@@ -23,6 +24,8 @@ check_dir(core/wheel "#include *\"core/(soil|contact|analysis|identification|dyn
           "core/wheel depends only on common")
 check_dir(core/contact "#include *\"core/(analysis|identification|dynamics|scenario|io|project)/"
           "core/contact must not include higher modules")
+check_dir(core/gsa "#include *\"core/(analysis|identification|dynamics|scenario|io|project)/"
+          "core/gsa depends on contact, soil, wheel and common only")
 check_dir(core/identification "#include *\"core/(analysis|dynamics|scenario|project)/"
           "core/identification depends on contact, io and common only")
 check_dir(core/io "#include *\"core/(contact|analysis|identification|dynamics|scenario|project)/"
