@@ -46,8 +46,9 @@ void requireValid(const OperatingPoint<double>& op) {
     check(slipField(), op.slip);
     check(slipAngleField(), deg(op.slip_angle_rad));
     check(entryAngleField(), deg(op.entry_angle_rad));
-    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model (clampedExit,
-    // maxStressAngle; docs/model.md), so only their own ranges are checked here.
+    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model
+    // (clampedExitAngle, clampedMaxStressAngle in contact_angles.h; docs/model.md), so only their
+    // own ranges are checked here.
     check(exitAngleField(), deg(op.exit_angle_rad));
     if (op.max_stress_angle_rad) check(maxStressAngleField(), deg(*op.max_stress_angle_rad));
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
