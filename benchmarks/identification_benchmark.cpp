@@ -6,6 +6,7 @@
 
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
+#include "core/identification/identify.h"
 #include "core/identification/streaming.h"
 #include "core/identification/synthetic.h"
 
@@ -53,6 +54,41 @@ void refinedFit(benchmark::State& state) {
 // (loads, noise %): noise-free single load is the thesis setting; 1 % noise on three loads is
 // the setting in which every parameter is determined.
 BENCHMARK(refinedFit)->Args({1, 0})->Args({3, 0})->Args({3, 1})->Unit(benchmark::kMillisecond);
+
+// The global identification (identify.h) with refinement and covariance, started from the thesis's
+// far initial guesses (§5.2) and the space-filling design; (loads, noise %, from the load).
+void globalIdentification(benchmark::State& state) {
+    DataSet d = data(static_cast<int>(state.range(0)), state.range(1) * 0.01);
+    IdentifyOptions options;
+    options.max_shear_deformation_m = 0.02;
+    const DecoupledParameters thesis;
+    options.starts.push_back({"thesis guess",
+                              {thesis.a0, thesis.a1, thesis.pressure_modulus, thesis.n0,
+                               thesis.cohesion_pa, thesis.friction_angle_rad,
+                               thesis.shear_modulus_m}});
+    if (state.range(2) == 1) {
+        d.columns.entry_angle = false;
+        d.columns.fz = false;
+        for (Sample& s : d.samples) s.load_n = s.load_n.value_or(58.86);
+    }
+    IdentificationReport r;
+    for (auto _ : state) {
+        r = identify(d, kWheelA, options);
+        benchmark::DoNotOptimize(r);
+    }
+    state.counters["samples"] = static_cast<double>(d.samples.size());
+    state.counters["usable"] = r.usable();
+    state.counters["screen_ms"] = r.timing.screening_ms;
+    state.counters["descent_ms"] = r.timing.descent_ms;
+    state.counters["refine_ms"] = r.timing.refinement_ms;
+}
+BENCHMARK(globalIdentification)
+    ->Args({1, 0, 0})
+    ->Args({3, 0, 0})
+    ->Args({3, 1, 0})
+    ->Args({3, 0, 1})
+    ->Args({3, 1, 1})
+    ->Unit(benchmark::kMillisecond);
 
 // One streaming update (window of 60 samples, warm start) in steady state.
 void streamingUpdate(benchmark::State& state) {

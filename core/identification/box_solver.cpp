@@ -176,7 +176,10 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         }
         const bool budget_left =
             summary.iterations < options.max_iterations && summary.passes < options.max_passes;
-        if ((!changed && converged) || !budget_left) break;
+        if ((!changed && converged) || !budget_left) {
+            summary.converged = converged && !changed;
+            break;
+        }
     }
     summary.at_bound = held_on_bound;
     return summary;

@@ -36,6 +36,7 @@ struct BoxOptions {
 /// The outcome.
 struct BoxSummary {
     bool usable = false;
+    bool converged = false;   ///< the last pass met a tolerance (not the iteration budget)
     std::string termination;  ///< Ceres' termination type and message of the last pass
     int iterations = 0;       ///< over all passes
     int passes = 0;

@@ -74,8 +74,9 @@ TEST(DataSet, MissingColumnsAreNamed) {
 
 TEST(DataSet, CsvRoundTrip) {
     DataSet data;
-    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0});
-    data.samples.push_back({0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01});
+    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0, 0.012});
+    data.samples.push_back(
+        {0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01, std::nullopt});
     const auto read = parseDataSet(toCsv(data), "rt.csv", BadRows::kStop);
     ASSERT_TRUE(read.ok()) << read.message();
     ASSERT_EQ(read->data.samples.size(), 2u);
@@ -88,6 +89,7 @@ TEST(DataSet, CsvRoundTrip) {
         EXPECT_EQ(a.load_n, b.load_n);
         EXPECT_EQ(a.fy_n, b.fy_n);
         EXPECT_EQ(a.time_s, b.time_s);
+        EXPECT_EQ(a.sinkage_m, b.sinkage_m);
     }
     EXPECT_NEAR(*read->data.samples[0].slip_angle_rad, 0.1, 1e-15);
 }
