@@ -8,6 +8,7 @@
 #include "core/identification/full_fit.h"
 #include "core/identification/identify.h"
 #include "core/identification/streaming.h"
+#include "core/identification/streaming_estimator.h"
 #include "core/identification/synthetic.h"
 
 namespace {
@@ -62,10 +63,10 @@ void globalIdentification(benchmark::State& state) {
     IdentifyOptions options;
     options.max_shear_deformation_m = 0.02;
     const DecoupledParameters thesis;
-    options.starts.push_back({"thesis guess",
-                              {thesis.a0, thesis.a1, thesis.pressure_modulus, thesis.n0,
-                               thesis.cohesion_pa, thesis.friction_angle_rad,
-                               thesis.shear_modulus_m}});
+    options.starts.push_back(
+        {"thesis guess",
+         {thesis.a0, thesis.a1, thesis.pressure_modulus, thesis.n0, thesis.cohesion_pa,
+          thesis.friction_angle_rad, thesis.shear_modulus_m}});
     if (state.range(2) == 1) {
         d.columns.entry_angle = false;
         d.columns.fz = false;
@@ -103,5 +104,49 @@ void streamingUpdate(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(id.push(order[i++ % order.size()]));
 }
 BENCHMARK(streamingUpdate)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+namespace {
+
+// The streaming estimator (streaming_estimator.h) in steady state: slip sweeps of 50 samples at
+// loads cycling 30, 58.86, 90 N, 1 % noise. Each iteration is one push; `refits` counts the
+// batch refits of the arrival cost among them (every 300 samples), which the mean includes.
+void streamingEstimatorUpdate(benchmark::State& state) {
+    std::vector<Sample> samples;
+    const double loads[3] = {30.0, 58.86, 90.0};
+    for (int b = 0; b < 30; ++b) {
+        SyntheticSpec spec;
+        spec.loads_n = {loads[b % 3]};
+        for (int i = 0; i < 50; ++i) spec.slips.push_back(0.05 + 0.8 * (b % 2 ? 49 - i : i) / 49.0);
+        spec.noise.fx.absolute = 0.136;
+        spec.noise.fz.absolute = 0.9;
+        spec.noise.my.absolute = 0.0195;
+        spec.seed = static_cast<std::uint64_t>(b + 1);
+        for (Sample s : synthesize(sandyLoam(), spec).data.samples) {
+            s.load_n = loads[b % 3];
+            samples.push_back(s);
+        }
+    }
+    StreamingEstimatorOptions options;
+    options.fit.max_shear_deformation_m = 0.02;
+    StreamingEstimator estimator(kWheelA, options);
+    std::size_t i = 0;
+    for (; i < 700; ++i) estimator.push(samples[i]);  // past the doubling refits (30 … 480)
+    int refits = 0, pushes = 0;
+    double update_ms = 0.0, refit_ms = 0.0;  // wall time of each kind (the push reports it)
+    for (auto _ : state) {
+        const StreamEstimate e = estimator.push(samples[i++ % samples.size()]);
+        refits += e.refitted;
+        ++pushes;
+        (e.refitted ? refit_ms : update_ms) += e.update_ms;
+        benchmark::DoNotOptimize(e);
+    }
+    state.counters["refits"] = refits;
+    state.counters["pushes"] = pushes;
+    state.counters["update_wall_ms"] = update_ms / std::max(1, pushes - refits);
+    state.counters["refit_wall_ms"] = refits > 0 ? refit_ms / refits : 0.0;
+}
+BENCHMARK(streamingEstimatorUpdate)->Unit(benchmark::kMillisecond);
 
 }  // namespace

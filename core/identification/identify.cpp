@@ -251,22 +251,27 @@ private:
         locals_ = std::move(distinct);
     }
 
-    // Refines the best subset minimum on all samples, and those others whose subset χ², in the
-    // noise level the best one's residuals show and scaled to all samples, is within three times
-    // the ambiguity threshold (they might be ambiguous on all data).
+    // Refines on all samples the subset minimum that fits all samples best, and the others
+    // within three times the ambiguity threshold of it (they might be ambiguous on all data); χ²
+    // in the noise levels that the best subset minimum's residuals show. All samples, not the
+    // subset, rank them: a subset may hold few samples of a load that decides.
     void refine() {
         Objective scaled = objective_;
         scaled.sigma =
             estimatedNoise(*model_, physicalOf(locals_[0].u), subset_, free_, options_.noise,
                            provisional_, options_.loss != Loss::kSquared);
-        const FitProblem subset_problem(scaled, subset_);
-        const double best = detail::chiSquare(subset_problem, locals_[0].u);
-        const double to_all = static_cast<double>(all_.size()) / subset_.size();
+        const FitProblem all_problem(scaled, all_);
+        std::vector<std::pair<double, std::size_t>> ranked;
+        for (std::size_t j = 0; j < locals_.size(); ++j)
+            ranked.push_back({detail::chiSquare(all_problem, locals_[j].u), j});
+        std::sort(ranked.begin(), ranked.end());
         std::vector<Local> refined;
-        for (std::size_t j = 0; j < locals_.size() && refined.size() < 3; ++j) {
-            const double delta = (detail::chiSquare(subset_problem, locals_[j].u) - best) * to_all;
-            if (j == 0 || delta <= 3.0 * threshold_) refined.push_back(locals_[j]);
+        for (const auto& [chi2, j] : ranked) {
+            if (refined.size() >= 3 || !std::isfinite(chi2)) break;
+            if (refined.empty() || chi2 - ranked[0].first <= 3.0 * threshold_)
+                refined.push_back(locals_[j]);
         }
+        if (refined.empty()) refined.push_back(locals_[0]);
         // With estimated noise: fit with the levels the subset's best minimum shows, estimate them
         // again from the best fit on all samples, and fit again while they still move by more
         // than 10 % (once or twice).
@@ -304,6 +309,14 @@ private:
         std::sort(refined.begin(), refined.end(), [](const Local& a, const Local& b) {
             return a.summary.usable && (!b.summary.usable || a.summary.cost < b.summary.cost);
         });
+        // Starts that met on all samples are one minimum.
+        std::vector<Local> distinct;
+        for (const Local& l : refined) {
+            bool same = false;
+            for (const Local& d : distinct) same |= distance(l.u, d.u, width_) < 1e-3;
+            if (!same) distinct.push_back(l);
+        }
+        refined = std::move(distinct);
         report_.noise_estimated = estimate;
         for (Local& l : refined) {
             StartReport& r = report_.starts[l.start];

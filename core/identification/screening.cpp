@@ -47,9 +47,11 @@ struct SmallQp {
         };
         for (std::size_t k = 0; k < eq_rows.size(); ++k) add(eq_rows[k], eq_values[k]);
         for (int k : active) add(in_rows[k], in_values[k]);
-        const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
-        if (!lu.isInvertible()) return false;
-        x = lu.solve(rhs).head<3>();
+        // Complete orthogonal decomposition: with collinear columns (a tiny n makes K_s and
+        // K_s tan φ nearly so) the KKT matrix is singular, and its minimum-norm solution is one
+        // of the equally good minimisers.
+        x = kkt.completeOrthogonalDecomposition().solve(rhs).head<3>();
+        if (!x.allFinite()) return false;
         for (std::size_t k = 0; k < in_rows.size(); ++k) {
             if (in_rows[k].dot(x) > in_values[k] + 1e-9 * (1.0 + std::abs(in_values[k])))
                 return false;
@@ -174,7 +176,11 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
         qp.g += out.rows[r].transpose() * out.rows[r];
         qp.b += out.rows[r].transpose() * out.y[r];
     }
-    qp.g += Eigen::Matrix3d::Identity() * (1e-12 * qp.g.trace() + 1e-300);
+    // Scaled to a unit trace (the minimiser is the same): the KKT matrix then mixes the normal
+    // equations and the constraint rows at one scale, so the active constraints hold to rounding.
+    const double scale = qp.g.trace() > 0 ? 1.0 / qp.g.trace() : 1.0;
+    qp.g = qp.g * scale + Eigen::Matrix3d::Identity() * 1e-12;
+    qp.b *= scale;
     const ParameterBounds& bounds = objective_.bounds;
     const auto bound = [&](const Eigen::RowVector3d& row, double value) {
         qp.in_rows.push_back(row);
