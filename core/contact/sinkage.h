@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/contact/contact_parameters.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
 
 namespace terra::contact {
@@ -68,7 +69,7 @@ struct ExitCondition {
 
 /// The entry-angle problem of section 2.6.1.
 struct EntryAngleProblem {
-    double load_n = 58.86;                       ///< W [N]
+    double load_n = kDefaultLoadN;               ///< W [N]
     double slip = 0.0;                           ///< s [-]
     double slip_angle_rad = 0.0;                 ///< β [rad]
     ExitCondition exit;                          ///< θ_r or λ

@@ -56,9 +56,18 @@ TEST(ForcesPanel, ShowsOneCurvePerSlipAngleFromTheModel) {
     ASSERT_NE(fx, nullptr);
     const double plotted = fx->graph(0)->data()->at(50)->value;
     const double deg = units::kPi / 180.0;
-    const contact::ContactParameters<double> p{
-        0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * deg, 0.025,
-        15.2e3, 0.2,   0.3, 0.02};
+    const contact::ContactParameters<double> p{.radius_m = 0.092,
+                                               .width_m = 0.107,
+                                               .sinkage_exponent = 0.7,
+                                               .sinkage_exponent_slip = 0.0,
+                                               .pressure_modulus = 5.3e3 / 0.107 + 1.515e6,
+                                               .cohesion_pa = 1.7e3,
+                                               .friction_angle_rad = 29.0 * deg,
+                                               .shear_modulus_m = 0.025,
+                                               .unit_weight_n_m3 = 15.2e3,
+                                               .max_stress_a0 = 0.2,
+                                               .max_stress_a1 = 0.3,
+                                               .max_shear_deformation_m = 0.02};
     const contact::OperatingPoint<double> op{
         0.5, 5.0 * deg, row[table.column("entry_angle_deg")] * deg, 0.0, std::nullopt};
     EXPECT_NEAR(plotted, contact::computeForces(p, op).fx, 1e-9);
