@@ -7,15 +7,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <numbers>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "core/io/atomic_file.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
@@ -26,17 +23,6 @@ namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 using terra::testing::TempDir;
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::set<std::string> listing(const fs::path& dir) {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
-    return names;
-}
 
 // ---- toCsv -----------------------------------------------------------------------------------
 
@@ -241,77 +227,6 @@ TEST(ParseNumber, AcceptsSignsExponentsAndSurroundingSpaces) {
 TEST(ParseNumber, RejectsPlusFollowedByMinus) {
     double value = 0.0;
     EXPECT_FALSE(parseNumber("+-2", value)) << "gave " << value;
-}
-
-// ---- writeFileAtomically / readFile ----------------------------------------------------------
-
-TEST(AtomicFile, WritesTheContent) {
-    TempDir temp;
-    const fs::path file = temp.path() / "out.csv";
-    const std::string content = std::string("a,b\n1,2\n") + '\0' + "\r\nend";
-    EXPECT_EQ(writeFileAtomically(file, content), std::nullopt);
-    EXPECT_EQ(slurp(file), content);
-    std::string read_back;
-    EXPECT_EQ(readFile(file, read_back), std::nullopt);
-    EXPECT_EQ(read_back, content);
-}
-
-TEST(AtomicFile, EmptyContentCreatesAnEmptyFile) {
-    TempDir temp;
-    const fs::path file = temp.path() / "empty.txt";
-    EXPECT_EQ(writeFileAtomically(file, ""), std::nullopt);
-    ASSERT_TRUE(fs::is_regular_file(file));
-    EXPECT_EQ(fs::file_size(file), 0u);
-}
-
-TEST(AtomicFile, ReplacesAnExistingFile) {
-    TempDir temp;
-    const fs::path file = temp.path() / "out.csv";
-    std::ofstream(file) << "old content that is longer than the new one\n";
-    EXPECT_EQ(writeFileAtomically(file, "new\n"), std::nullopt);
-    EXPECT_EQ(slurp(file), "new\n");
-}
-
-TEST(AtomicFile, LeavesNoTemporaryFileBehind) {
-    TempDir temp;
-    const fs::path file = temp.path() / "out.csv";
-    ASSERT_EQ(writeFileAtomically(file, "first"), std::nullopt);
-    ASSERT_EQ(writeFileAtomically(file, "second"), std::nullopt);
-    ASSERT_EQ(writeFileAtomically(temp.path() / "other.json", "{}"), std::nullopt);
-    EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"out.csv", "other.json"}));
-}
-
-TEST(AtomicFile, MissingDirectoryIsAnErrorNotAnException) {
-    TempDir temp;
-    const fs::path file = temp.path() / "no-such-dir" / "out.csv";
-    std::optional<std::string> error;
-    EXPECT_NO_THROW(error = writeFileAtomically(file, "content"));
-    ASSERT_TRUE(error.has_value());
-    EXPECT_NE(error->find(file.string()), std::string::npos) << *error;
-    EXPECT_FALSE(fs::exists(file));
-    EXPECT_FALSE(fs::exists(temp.path() / "no-such-dir"));
-    EXPECT_TRUE(listing(temp.path()).empty());
-}
-
-TEST(AtomicFile, FailedReplaceKeepsTheTargetAndRemovesTheTemporary) {
-    TempDir temp;
-    const fs::path target = temp.path() / "taken";
-    fs::create_directory(target);  // a directory cannot be replaced by a file
-    std::ofstream(target / "keep.txt") << "kept";
-    std::optional<std::string> error;
-    EXPECT_NO_THROW(error = writeFileAtomically(target, "content"));
-    ASSERT_TRUE(error.has_value());
-    EXPECT_TRUE(fs::is_directory(target));
-    EXPECT_EQ(slurp(target / "keep.txt"), "kept");
-    EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"taken"}));
-}
-
-TEST(AtomicFile, ReadingAMissingFileIsAnError) {
-    TempDir temp;
-    std::string content = "unchanged";
-    const std::optional<std::string> error = readFile(temp.path() / "absent.txt", content);
-    ASSERT_TRUE(error.has_value());
-    EXPECT_NE(error->find("absent.txt"), std::string::npos) << *error;
 }
 
 }  // namespace
