@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/quadratic_model.h"
@@ -191,8 +192,17 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         ",status,entry_angle_deg_out,exit_angle_deg_out,sinkage_m,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
         "Mz_Nm,Fb_N,Fs_N\n";
     int failed = 0;
+    std::size_t cancelled = 0;
+    const SignalCancellation cancellation;
     for (std::size_t row = 0; row < doc.rows.size(); ++row) {
         const auto& cells = doc.rows[row];
+        if (cancellation.requested()) {
+            // The rows not computed are written too, marked, so the output lines up with the input.
+            for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
+            csv += ",cancelled,,,,,,,,,,,\n";
+            ++cancelled;
+            continue;
+        }
         const std::string where = o.input + ":" + std::to_string(doc.line_numbers[row]);
         const std::size_t before = issues.size();
         auto cell = [&](int column, const char* name, std::optional<double> fallback) {
@@ -295,6 +305,11 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         std::cerr << "wrote " << o.output << ": "
                   << doc.rows.size() + doc.row_issues.size() - skipped << " rows (" << failed
                   << " without a solution)\n";
+    }
+    if (cancelled > 0) {
+        exitCancelled(cancellation, "cancelled by " + cancellation.signalName() + ": " +
+                                        std::to_string(cancelled) +
+                                        " row(s) not computed, marked 'cancelled'");
     }
     return kSuccess;
 }
