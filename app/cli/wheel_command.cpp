@@ -165,6 +165,18 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     std::cout << s.str();
 }
 
+// The batch CSV's columns and their ranges (those of the single-point flags; docs/cli.md).
+const io::NumericColumn kSlip{"slip", {-1.0, 1.0, true, true}, ""};
+const io::NumericColumn kSlipAngle{
+    "slip_angle_deg", {-90.0, 90.0, true, true}, "deg", units::degToRad};
+const io::NumericColumn kEntryAngle{
+    "entry_angle_deg", {0.0, 90.0, true, false}, "deg", units::degToRad};
+const io::NumericColumn kLoad{"load_N", {0.0, 1e7, true, false}, "N"};
+const io::NumericColumn kExitAngle{"exit_angle_deg", {-90.0, 0.0}, "deg", units::degToRad};
+const io::NumericColumn kRutRatio{"rut_ratio", {0.0, 1.0}, ""};
+const io::NumericColumn kMaxStressAngle{
+    "max_stress_angle_deg", {-90.0, 90.0}, "deg", units::degToRad};
+
 // Batch mode: one operating point per CSV row.
 int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     Result<io::CsvDocument> read = io::readCsv(o.input);
@@ -205,24 +217,17 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         const std::string where = o.input + ":" + std::to_string(doc.line_numbers[row]);
         const std::size_t before = issues.size();
-        auto cell = [&](int column, const char* name, std::optional<double> fallback) {
-            std::optional<double> value = fallback;
-            if (column >= 0 && !cells[column].empty()) {
-                double parsed = 0.0;
-                if (io::parseNumber(cells[column], parsed)) {
-                    value = parsed;
-                } else {
-                    issues.push_back({where, std::string(name) + " = '" + cells[column] +
-                                                 "' is not a finite number"});
-                }
-            }
-            return value;
+        // A cell of a column (its range checked, docs/cli.md "Batch mode"), else the flag's value.
+        auto cell = [&](int column, const io::NumericColumn& spec,
+                        std::optional<double> fallback) -> std::optional<double> {
+            if (column < 0 || cells[column].empty()) return fallback;
+            return io::readCell(cells[column], spec, where, issues);
         };
         PointInput in;
-        in.slip = cell(c_slip, "slip", o.slip).value_or(0.0);
-        in.slip_angle_deg = cell(c_beta, "slip_angle_deg", o.slip_angle_deg).value_or(0.0);
-        in.entry_angle_deg = cell(c_theta, "entry_angle_deg", o.entry_angle_deg);
-        in.load_n = cell(c_load, "load_N", o.load_n);
+        in.slip = cell(c_slip, kSlip, o.slip).value_or(0.0);
+        in.slip_angle_deg = cell(c_beta, kSlipAngle, o.slip_angle_deg).value_or(0.0);
+        in.entry_angle_deg = cell(c_theta, kEntryAngle, o.entry_angle_deg);
+        in.load_n = cell(c_load, kLoad, o.load_n);
         if (in.entry_angle_deg && in.load_n) {
             if (c_theta >= 0 && c_load >= 0 && !cells[c_theta].empty() && !cells[c_load].empty()) {
                 issues.push_back({where, "give entry_angle_deg or load_N, not both"});
@@ -232,28 +237,21 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
                 in.load_n.reset();
             }
         }
-        if (!in.entry_angle_deg && !in.load_n)
+        if (!in.entry_angle_deg && !in.load_n && issues.size() == before)
             issues.push_back({where, "no entry_angle_deg or load_N"});
         in.exit = o.model.exitCondition();
-        const auto exit = cell(c_exit, "exit_angle_deg", std::nullopt);
-        const auto rut = cell(c_rut, "rut_ratio", std::nullopt);
+        const auto exit = cell(c_exit, kExitAngle, std::nullopt);
+        const auto rut = cell(c_rut, kRutRatio, std::nullopt);
         if (exit && rut) {
             issues.push_back({where, "give exit_angle_deg or rut_ratio, not both"});
         } else if (exit) {
-            if (checkRange(issues, where + ": exit_angle_deg", *exit, {-90.0, 0.0}, "deg")) {
-                in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
-            }
+            in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
         } else if (rut) {
-            if (checkRange(issues, where + ": rut_ratio", *rut, {0.0, 1.0})) {
-                in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
-            }
+            in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
         }
         in.max_stress_angle_rad = o.model.maxStressAngleRad();
-        if (auto theta_m = cell(c_theta_m, "max_stress_angle_deg", std::nullopt)) {
-            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m, {-90.0, 90.0},
-                           "deg")) {
-                in.max_stress_angle_rad = units::degToRad(*theta_m);
-            }
+        if (auto theta_m = cell(c_theta_m, kMaxStressAngle, std::nullopt)) {
+            in.max_stress_angle_rad = units::degToRad(*theta_m);
         }
         PointResult result;
         if (issues.size() == before) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -227,6 +228,111 @@ TEST(ParseNumber, AcceptsSignsExponentsAndSurroundingSpaces) {
 TEST(ParseNumber, RejectsPlusFollowedByMinus) {
     double value = 0.0;
     EXPECT_FALSE(parseNumber("+-2", value)) << "gave " << value;
+}
+
+// ---- duplicated columns ----------------------------------------------------------------------
+
+TEST(ParseCsv, ADuplicatedColumnFailsTheParseNamingBothPositions) {
+    const Result<CsvDocument> doc = parseCsv("# comment\nslip,Fx_N,slip\n0.1,2,0.3\n", "d.csv");
+    ASSERT_FALSE(doc.ok());
+    ASSERT_EQ(doc.issues().size(), 1u);
+    EXPECT_EQ(doc.issues()[0].where, "d.csv:2");
+    EXPECT_EQ(doc.issues()[0].message,
+              "column 'slip' appears twice (columns 1 and 3); each column may be given once");
+}
+
+TEST(ParseCsv, UnnamedColumnsMayRepeat) {
+    // Trailing commas from a spreadsheet: columns without a name are never read.
+    const Result<CsvDocument> doc = parseCsv("a,b,,\n1,2,,\n", "t.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->rows.size(), 1u);
+}
+
+// ---- quoteCell -------------------------------------------------------------------------------
+
+TEST(QuoteCell, ShortTextIsQuotedWhole) {
+    EXPECT_EQ(quoteCell("abc"), "'abc'");
+    EXPECT_EQ(quoteCell(std::string(80, 'x')), "'" + std::string(80, 'x') + "'");
+}
+
+TEST(QuoteCell, LongTextIsCutWithItsLength) {
+    const std::string quoted = quoteCell(std::string(200000, '9'));
+    EXPECT_EQ(quoted, "'" + std::string(80, '9') + "\u2026' (200000 characters)");
+}
+
+TEST(QuoteCell, NeverCutsInsideAUtf8Character) {
+    // 79 ASCII bytes, then "°" (2 bytes) straddling the 80-byte cut, then more.
+    const std::string text = std::string(79, 'a') + "\u00b0" + std::string(10, 'b');
+    EXPECT_EQ(quoteCell(text), "'" + std::string(79, 'a') + "\u2026' (91 characters)");
+}
+
+// ---- readCell --------------------------------------------------------------------------------
+
+double degToRad(double deg) { return deg * std::numbers::pi / 180.0; }
+
+const NumericColumn kAngle{"entry_angle_deg", {0.0, 90.0, true, true}, "deg", degToRad};
+
+std::string readError(const std::string& cell, const NumericColumn& column = kAngle) {
+    std::vector<Issue> issues;
+    const std::optional<double> value = readCell(cell, column, "d.csv:7", issues);
+    EXPECT_FALSE(value.has_value()) << "'" << cell << "' gave " << *value;
+    if (issues.size() != 1u) return "expected one issue, got " + std::to_string(issues.size());
+    EXPECT_EQ(issues[0].where, "d.csv:7");
+    return issues[0].message;
+}
+
+TEST(ReadCell, GoodCellsGiveTheirValueInTheFileUnit) {
+    std::vector<Issue> issues;
+    EXPECT_EQ(readCell(" 16.8 ", kAngle, "d.csv:2", issues), 16.8);
+    EXPECT_EQ(readCell("+45", kAngle, "d.csv:2", issues), 45.0);
+    const NumericColumn force{"Fx_N", {-1e7, 1e7}, "N"};
+    EXPECT_EQ(readCell("0", force, "d.csv:2", issues), 0.0);  // zero is not subnormal
+    EXPECT_EQ(readCell("-2.5e3", force, "d.csv:2", issues), -2500.0);
+    EXPECT_TRUE(issues.empty()) << formatIssues(issues);
+}
+
+TEST(ReadCell, EveryBadCellIsNamedWithItsValueAndRange) {
+    EXPECT_EQ(readError("abc"),
+              "entry_angle_deg = 'abc' is not a number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("+-2"),
+              "entry_angle_deg = '+-2' is not a number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError(""), "entry_angle_deg = '' is not a number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("nan"),
+              "entry_angle_deg = 'nan' is not a finite number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("-inf"),
+              "entry_angle_deg = '-inf' is not a finite number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("1e999"),
+              "entry_angle_deg = '1e999' overflows a double; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("1e-400"),
+              "entry_angle_deg = '1e-400' underflows a double; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("95"), "entry_angle_deg = 95 is outside the allowed range (0, 90) deg");
+    EXPECT_EQ(readError("0"), "entry_angle_deg = 0 is outside the allowed range (0, 90) deg");
+}
+
+// The issue's case: 1e-320 passed the (0, 90) check and became 0 rad.
+TEST(ReadCell, SubnormalsAreRejected) {
+    EXPECT_EQ(readError("1e-320"),
+              "entry_angle_deg = '1e-320' is subnormal (magnitude below 2.2e-308), too small to "
+              "compute with; allowed range (0, 90) deg");
+    const NumericColumn force{"Fx_N", {-1e7, 1e7}, "N"};
+    EXPECT_NE(readError("-4.9e-324", force).find("is subnormal"), std::string::npos);
+}
+
+// 1e-307 deg is a normal double, but 1.7e-309 rad is not: the SI value is checked too.
+TEST(ReadCell, AnSiValueThatUnderflowsOrOverflowsIsRejected) {
+    EXPECT_EQ(readError("1e-307"),
+              "entry_angle_deg = 1e-307 deg underflows when converted to SI units "
+              "(1.74532925199433e-309); allowed range (0, 90) deg");
+    const NumericColumn huge{"x_km", {0.0, 1e308}, "km", [](double km) { return km * 1e3; }};
+    EXPECT_EQ(readError("1e306", huge),
+              "x_km = 1e+306 km overflows when converted to SI units (inf); allowed range [0, "
+              "1e+308] km");
+}
+
+TEST(ReadCell, AHugeCellIsQuotedShort) {
+    const std::string message = readError(std::string(200000, '7'));
+    EXPECT_LT(message.size(), 200u) << message.size();
+    EXPECT_NE(message.find("(200000 characters) overflows a double"), std::string::npos) << message;
 }
 
 }  // namespace
