@@ -22,5 +22,7 @@ check_dir(core/wheel "#include *\"core/(soil|contact|analysis|identification|dyn
           "core/wheel depends only on common")
 check_dir(core/contact "#include *\"core/(analysis|identification|dynamics|scenario|io)/"
           "core/contact must not include higher modules")
+check_dir(core/gsa "#include *\"core/(analysis|identification|dynamics|scenario|io)/"
+          "core/gsa depends on contact, soil, wheel and common only")
 check_dir(core/identification "#include *\"core/(analysis|dynamics|scenario)/"
           "core/identification depends on contact, io and common only")

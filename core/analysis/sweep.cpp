@@ -10,6 +10,7 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/contact_angles.h"
 #include "core/contact/quadratic_model.h"
 
 namespace terra::analysis {
@@ -50,7 +51,7 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
             theta_f = solution.entry_angle_rad;
             previous = theta_f;
         }
-        const double theta_r = std::max(spec.exit.exitAngle(theta_f), -theta_f);
+        const double theta_r = contact::clampedExitAngle(spec.exit.exitAngle(theta_f), theta_f);
         const OperatingPoint<double> op{s, beta, theta_f, theta_r, spec.max_stress_angle_rad};
         const WheelForces<double> f =
             spec.model == contact::ContactModel::kFull

@@ -36,8 +36,9 @@ void requireValid(const OperatingPoint<double>& op) {
     checkRange(issues, "slip", op.slip, {-1.0, 1.0, true, true});
     checkRange(issues, "slip_angle_deg", deg(op.slip_angle_rad), {-90.0, 90.0, true, true}, "deg");
     checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true}, "deg");
-    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model (clampedExit,
-    // maxStressAngle; docs/model.md), so only their own ranges are checked here.
+    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model
+    // (clampedExitAngle, clampedMaxStressAngle in contact_angles.h; docs/model.md), so only their
+    // own ranges are checked here.
     checkRange(issues, "exit_angle_deg", deg(op.exit_angle_rad), {-90.0, 0.0}, "deg");
     if (op.max_stress_angle_rad) {
         checkRange(issues, "max_stress_angle_deg", deg(*op.max_stress_angle_rad), {-90.0, 90.0},

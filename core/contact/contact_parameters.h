@@ -55,7 +55,7 @@ struct OperatingPoint {
     T slip;             ///< s [-] (Eq. 2.1): driving 0 ≤ s < 1, braking −1 < s < 0
     T slip_angle_rad;   ///< β [rad] (Eq. 2.2), |β| < π/2
     T entry_angle_rad;  ///< θ_f [rad], 0 < θ_f ≤ π/2
-    T exit_angle_rad;   ///< θ_r [rad], −θ_f ≤ θ_r ≤ 0 (MODEL-NOTES sign convention)
+    T exit_angle_rad;  ///< θ_r [rad] ≤ 0 (docs/model.md, "Angles"); below −θ_f taken as −θ_f
     /// θ_m [rad] fixed by the user (the thesis's Table 2.3 uses 15°); empty: Eq. 2.18.
     std::optional<T> max_stress_angle_rad;
 
@@ -70,7 +70,7 @@ struct OperatingPoint {
 
 /// Throws std::invalid_argument naming the field and the value when `op` is outside the model's
 /// domain (s ∉ (−1, 1), |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−90°, 0], θ_m ∉ [−90°, 90°]). The model
-/// itself keeps θ_r ≥ −θ_f and θ_m inside [θ_r, θ_f].
+/// itself keeps θ_r ≥ −θ_f and θ_m inside [θ_r, θ_f] (contact_angles.h).
 void requireValid(const OperatingPoint<double>& op);
 
 /// Exit angle from the rut ratio λ = h_r/h_f (Eq. 2.12): θ_r = −acos(1 − λ (1 − cos θ_f)).

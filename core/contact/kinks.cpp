@@ -5,20 +5,24 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/contact/shear_deformation.h"
+
 namespace terra::contact {
 namespace {
 
+// j_t and j before the j_max limit, by the stress field's formula (shear_deformation.h).
 struct Shear {
     const ShearGeometry& g;
     double sin_entry = std::sin(g.entry_angle_rad);
 
-    double tangential(double theta) const {
-        return g.radius_m *
-               ((g.entry_angle_rad - theta) - g.velocity_ratio * (sin_entry - std::sin(theta)));
+    ShearDeformation<double> at(double theta) const {
+        return shearDeformation(g.radius_m, g.entry_angle_rad, sin_entry, g.velocity_ratio,
+                                g.lateral_velocity, theta, std::sin(theta));
     }
+    double tangential(double theta) const { return at(theta).tangential; }
     double magnitude(double theta) const {
-        return std::hypot(tangential(theta),
-                          g.radius_m * g.lateral_velocity * (g.entry_angle_rad - theta));
+        const ShearDeformation<double> j = at(theta);
+        return std::hypot(j.tangential, j.lateral);
     }
 };
 

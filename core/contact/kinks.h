@@ -10,7 +10,8 @@
 
 namespace terra::contact {
 
-/// The θ-independent quantities of the shear deformation (Eq. 2.14, MODEL-NOTES κ form).
+/// The θ-independent quantities of the shear deformation (Eq. 2.14 in the κ form of
+/// docs/model.md, "Slip"; shear_deformation.h).
 struct ShearGeometry {
     double radius_m;
     double entry_angle_rad;

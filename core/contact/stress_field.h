@@ -1,18 +1,18 @@
 #pragma once
 /// @file stress_field.h
 /// Normal and shear stresses along the wheel–soil contact (thesis section 2.3, Eqs. 2.13–2.22,
-/// with the kinematics of MODEL-NOTES for braking). Header-only and templated on the scalar, so
-/// that Ceres can differentiate it.
+/// with the braking kinematics of docs/model.md, "Slip"). Header-only and templated on the scalar,
+/// so that Ceres can differentiate it.
 ///
 /// Angles are measured from the vertical through the wheel centre, positive toward the direction
 /// of travel: the contact runs from the exit angle θ_r ≤ 0 to the entry angle θ_f > 0, with the
 /// maximum normal stress at θ_m in between.
 
-#include <algorithm>
 #include <cmath>
 
-#include "core/common/scalar.h"
+#include "core/contact/contact_angles.h"
 #include "core/contact/contact_parameters.h"
+#include "core/contact/shear_deformation.h"
 
 namespace terra::contact {
 
@@ -28,24 +28,11 @@ struct StressSample {
     T shear;    ///< j [m]: √(j_t² + j_l²) limited to j_max (Eqs. 2.15, 2.16)
 };
 
-/// κ = v_x/(rω) from the slip (MODEL-NOTES, Eq. 2.1): 1 − s when driving, 1/(1 + s) when braking.
+/// κ = v_x/(rω) from the slip (Eq. 2.1; docs/model.md, "Slip"): 1 − s when driving, 1/(1 + s)
+/// when braking.
 template <typename T>
 T velocityRatio(const T& slip) {
     return slip >= 0.0 ? T(1.0 - slip) : T(1.0 / (1.0 + slip));
-}
-
-/// θ_m: the user's fixed angle, or (a₀ + a₁ s) θ_f (Eq. 2.18), kept inside [θ_r, θ_f] (MODEL-NOTES;
-/// a₀ + a₁ s < 0 happens for strong braking).
-template <typename T>
-T maxStressAngle(const ContactParameters<T>& p, const OperatingPoint<T>& op) {
-    T theta_m = op.max_stress_angle_rad
-                    ? *op.max_stress_angle_rad
-                    : T((p.max_stress_a0 + p.max_stress_a1 * op.slip) * op.entry_angle_rad);
-    const T exit =
-        op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad;
-    if (theta_m < exit) theta_m = exit;
-    if (theta_m > op.entry_angle_rad) theta_m = op.entry_angle_rad;
-    return theta_m;
 }
 
 /// The stress distribution of one wheel at one operating point. Construction precomputes
@@ -56,11 +43,8 @@ public:
     StressField(const ContactParameters<T>& p, const OperatingPoint<T>& op)
         : radius_(p.radius_m),
           entry_(op.entry_angle_rad),
-          // A rut deeper than the entry sinkage (θ_r < −θ_f) is not physical: the contact ends at
-          // the soil surface line, θ_r = −θ_f (Eq. 2.12 with λ ≤ 1).
-          exit_(op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad)
-                                                        : op.exit_angle_rad),
-          max_stress_(contact::maxStressAngle(p, op)),
+          exit_(clampedExitAngle(op.exit_angle_rad, op.entry_angle_rad)),
+          max_stress_(clampedMaxStressAngle(p, op)),
           exponent_(p.sinkage_exponent + p.sinkage_exponent_slip * op.slip),
           modulus_(p.pressure_modulus),
           cohesion_(p.cohesion_pa),
@@ -144,10 +128,10 @@ public:
         const T versine = sin_theta * sin_theta / (1.0 + cos_theta);  // 1 − cos θ, exact
         out.sigma = normalStress(theta, versine);
 
-        // Shear deformation, Eq. 2.14 in the κ form of MODEL-NOTES.
-        const T arc = entry_ - theta;
-        out.shear_t = radius_ * (arc - kappa_ * (sin_entry_ - sin_theta));
-        out.shear_l = radius_ * lateral_velocity_ * arc;
+        const ShearDeformation<T> j = shearDeformation(radius_, entry_, sin_entry_, kappa_,
+                                                       lateral_velocity_, theta, sin_theta);
+        out.shear_t = j.tangential;
+        out.shear_l = j.lateral;
         const T squared = out.shear_t * out.shear_t + out.shear_l * out.shear_l;
         // sqrt(0) has an infinite derivative; j is identically 0 at θ_f whatever the parameters.
         T shear = squared > 0.0 ? T(sqrt(squared)) : T(0.0);
@@ -167,27 +151,11 @@ public:
             out.tau_l = out.tau * lateral_velocity_ * inverse_speed;
         } else {
             // Stagnation point (s = 0, β = 0, θ = 0): the one-sided limit, along +x when driving
-            // (MODEL-NOTES) and −x when braking.
+            // and −x when braking (docs/model.md, "Stagnation point").
             out.tau_t = driving_ ? out.tau : T(-out.tau);
             out.tau_l = T(0.0);
         }
         return out;
-    }
-
-    /// The tangential shear deformation j_t(θ) [m] alone, in double (used to find where the
-    /// integrand has kinks; cheap: one sin).
-    double shearTangential(double theta) const {
-        return scalarValue(radius_) *
-               ((scalarValue(entry_) - theta) -
-                scalarValue(kappa_) * (scalarValue(sin_entry_) - std::sin(theta)));
-    }
-
-    /// j(θ) before the j_max limit [m], in double.
-    double shearUnlimited(double theta) const {
-        const double jt = shearTangential(theta);
-        const double jl =
-            scalarValue(radius_) * scalarValue(lateral_velocity_) * (scalarValue(entry_) - theta);
-        return std::hypot(jt, jl);
     }
 
     /// Lateral shear velocity κ tan β [-] (per unit rω).

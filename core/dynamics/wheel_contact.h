@@ -17,7 +17,7 @@ struct ContactOptions {
     contact::ContactModel model = contact::ContactModel::kFull;  ///< full or quadratic closed form
     contact::BulldozingModel bulldozing = contact::BulldozingModel::kBekker;
     contact::IntegrationOptions integration;  ///< full model only
-    double exit_angle_rad = 0.0;              ///< θ_r [rad] ≤ 0 (Table 2.6: 0); kept ≥ −θ_f
+    double exit_angle_rad = 0.0;  ///< θ_r [rad] ≤ 0 (Table 2.6: 0); kept ≥ −θ_f (θ_r clamp)
     /// v_reg [m/s]: the slip and slip-angle denominators never drop below it, so both stay finite
     /// and continuous when the wheel stands still.
     double regularisation_speed_m_s = 1e-3;
@@ -48,10 +48,11 @@ struct WheelContact {
 };
 
 /// s of Eq. 2.1 in one expression: s = (rω − v_x) / max(rω, v_x, v_reg). Driving (rω > v_x) gives
-/// 1 − v_x/(rω), braking gives rω/v_x − 1 (MODEL-NOTES); clamped to ±max_slip.
+/// 1 − v_x/(rω), braking gives rω/v_x − 1 (docs/model.md, "Slip"); clamped to ±max_slip.
 double slipRatio(double forward_speed_m_s, double rim_speed_m_s, const ContactOptions& options);
 
-/// β of Eq. 2.2: atan(v_y / max(|v_x|, v_reg)), positive for v_y > 0 (MODEL-NOTES).
+/// β of Eq. 2.2: atan(v_y / max(|v_x|, v_reg)), positive for v_y > 0 (docs/model.md, "Lateral
+/// signs").
 double slipAngle(double forward_speed_m_s, double lateral_speed_m_s, const ContactOptions& options);
 
 /// The contact of a wheel with kinematics `k` on soil `p`. Out of contact: all forces zero.
