@@ -58,7 +58,7 @@ struct PointResult {
 PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& options,
                      const PointInput& in) {
     std::vector<Issue> issues;
-    checkRange(issues, "slip", in.slip, {-1.0, 1.0, true, true});
+    checkRange(issues, "slip", in.slip, {-1.0, 1.0});
     checkRange(issues, "slip_angle_deg", in.slip_angle_deg, {-90.0, 90.0, true, true}, "deg");
     if (in.load_n) checkRange(issues, "load_N", *in.load_n, {0.0, 1e7, true, false}, "N");
     if (in.entry_angle_deg) {
@@ -166,7 +166,7 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
 }
 
 // The batch CSV's columns and their ranges (those of the single-point flags; docs/cli.md).
-const io::NumericColumn kSlip{"slip", {-1.0, 1.0, true, true}, ""};
+const io::NumericColumn kSlip{"slip", {-1.0, 1.0}, ""};
 const io::NumericColumn kSlipAngle{
     "slip_angle_deg", {-90.0, 90.0, true, true}, "deg", units::degToRad};
 const io::NumericColumn kEntryAngle{
@@ -319,7 +319,8 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
     CLI::App* cmd = app.add_subcommand(
         "wheel", "Forces and moments of one wheel at one operating point (or a CSV of points)");
     options->model.addTo(*cmd);
-    cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1) (Eq. 2.1)")
+    cmd->add_option("--slip", options->slip,
+                    "Slip ratio s in [-1, 1] (Eq. 2.1; 1: spinning in place, -1: locked)")
         ->capture_default_str();
     cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle beta [deg] (Eq. 2.2)")
         ->capture_default_str();

@@ -74,7 +74,7 @@ void validateSpec(const SweepSpec& spec) {
     std::vector<Issue> issues;
     if (spec.slips.empty()) issues.push_back({"slips", "no slip values to sweep"});
     if (spec.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles to sweep"});
-    for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
+    for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0});
     for (double b : spec.slip_angles_rad) {
         checkRange(issues, "slip_angle_deg", deg(b), {-90.0, 90.0, true, true}, "deg");
     }

@@ -33,7 +33,7 @@ void requireValid(const OperatingPoint<double>& op) {
     // Compare in the user's degrees, rounded so that 90° typed is 90° checked.
     auto deg = [](double rad) { return roundSignificant(units::radToDeg(rad)); };
     std::vector<Issue> issues;
-    checkRange(issues, "slip", op.slip, {-1.0, 1.0, true, true});
+    checkRange(issues, "slip", op.slip, {-1.0, 1.0});
     checkRange(issues, "slip_angle_deg", deg(op.slip_angle_rad), {-90.0, 90.0, true, true}, "deg");
     checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true}, "deg");
     // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model

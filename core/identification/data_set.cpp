@@ -15,7 +15,7 @@ namespace {
 // time stamps (1.7e9 s) fit.
 constexpr double kMaxForce = 1e7;
 constexpr double kMaxTime = 1e12;
-const io::NumericColumn kSlip{"slip", {-1.0, 1.0, true, true}, ""};
+const io::NumericColumn kSlip{"slip", {-1.0, 1.0}, ""};
 const io::NumericColumn kEntryAngleDeg{
     "entry_angle_deg", {0.0, 90.0, true, true}, "deg", units::degToRad};
 const io::NumericColumn kEntryAngleRad{"entry_angle_rad", {0.0, units::kPi / 2, true, true}, "rad"};

@@ -62,7 +62,7 @@ std::vector<BadCell> dataSetCases() {
          "Fz_N = 'nan' is not a finite number; allowed range [-1e+07, 1e+07] N"},
         {"0.2,17,-1,58.86,x,0,58.86,0",
          "My_Nm = 'x' is not a number; allowed range [-1e+07, 1e+07] N·m"},
-        {"1.5,17,-1,58.86,0.5,0,58.86,0", "slip = 1.5 is outside the allowed range (-1, 1)"},
+        {"1.5,17,-1,58.86,0.5,0,58.86,0", "slip = 1.5 is outside the allowed range [-1, 1]"},
         {"0.2,17,-1,58.86,0.5,0,-5,0", "W_N = -5 is outside the allowed range (0, 1e+07] N"},
         {"0.2,17,-1,58.86,0.5,0,58.86,1e300",
          "time_s = 1e+300 is outside the allowed range [-1e+12, 1e+12] s"},
@@ -123,7 +123,7 @@ TEST_F(CsvInput, WheelBatchRejectsEveryBadCellWithFileLineColumnValueAndRange) {
         "slip,slip_angle_deg,entry_angle_deg,load_N,exit_angle_deg,rut_ratio,"
         "max_stress_angle_deg\n";
     const std::vector<BadCell> cases{
-        {"1.5,0,20,,,,", "slip = 1.5 is outside the allowed range (-1, 1)"},
+        {"1.5,0,20,,,,", "slip = 1.5 is outside the allowed range [-1, 1]"},
         {"0.2,1e308,20,,,,", "slip_angle_deg = 1e+308 is outside the allowed range (-90, 90) deg"},
         {"0.2,0,1e-320,,,,",
          "entry_angle_deg = '1e-320' is subnormal (magnitude below 2.2e-308), too small to "

@@ -82,7 +82,7 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
                               "= " + std::to_string(out.slip_count) + " is outside [2, 10000]"});
         }
         read(c, "slip_max", out.slip_max, issues, cw);
-        checkRange(issues, cw + "slip_max", out.slip_max, Range{0.0, 1.0, true, true});
+        checkRange(issues, cw + "slip_max", out.slip_max, Range{0.0, 1.0, true, false});
         std::string model = "full";
         read(c, "model", model, issues, cw);
         if (model != "full" && model != "quadratic") {

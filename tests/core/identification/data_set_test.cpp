@@ -42,7 +42,7 @@ TEST(DataSet, BadRowsAreReportedByLineAndCanBeSkipped) {
         "0.1,20,1,2,3\n"                          // 2 good
         "abc,20,1,2,3\n"                          // 3 non-numeric
         "0.2,nan,1,2,3\n"                         // 4 NaN
-        "1.2,20,1,2,3\n"                          // 5 slip outside (−1, 1)
+        "1.2,20,1,2,3\n"                          // 5 slip outside [−1, 1]
         "0.3,95,1,2,3\n"                          // 6 θ_f outside (0, 90)
         "0.4,20,1\n"                              // 7 short row
         "0.5,25,1,2,3\n";                         // 8 good
