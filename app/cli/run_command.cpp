@@ -16,6 +16,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
 #include "core/io/atomic_file.h"
+#include "core/io/json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/analyses/analyses.h"
@@ -252,15 +253,9 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis,
     in.wheel = *wheel;
     json conditions = script.value("conditions", json::object());
     if (analysis.contains("conditions")) conditions.update(analysis["conditions"]);
-    // The project file's conditions parser checks ranges and types, with field paths.
-    ui::Project probe;
-    auto parsed =
-        ui::projectFromJson({{"format", "terrastudio-project"}, {"conditions", conditions}}, where);
-    if (!parsed) {
-        issues.insert(issues.end(), parsed.issues().begin(), parsed.issues().end());
-    } else {
-        in.conditions = parsed->conditions;
-    }
+    io::ObjectReader reader(conditions, issues, where, "conditions");
+    analysis::readConditions(reader, in.conditions);
+    reader.finish();
     if (!issues.empty()) throw InputError(formatIssues(issues));
     return in;
 }
@@ -574,10 +569,9 @@ std::string report(const json& script, const std::string& script_path,
 }
 
 int run(const RunOptions& o, const io::PresetLocations& locations) {
-    std::string text;
-    if (const auto error = io::readFile(o.script, text)) throw InputError(*error);
-    const json script = json::parse(text, nullptr, false);
-    if (script.is_discarded()) throw InputError(o.script + ": not valid JSON");
+    const Result<json> parsed = io::readJsonFile(o.script);
+    if (!parsed) throw InputError(parsed.message());
+    const json& script = parsed.value();
     if (!script.is_object() || !script.contains("analyses") || !script["analyses"].is_array()) {
         throw InputError(o.script + ": needs an \"analyses\" list");
     }

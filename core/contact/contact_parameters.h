@@ -35,12 +35,18 @@ struct ContactParameters {
     /// The same parameters in another scalar type (derivatives dropped or started at zero).
     template <typename U>
     ContactParameters<U> cast() const {
-        return {scalarCast<U>(radius_m),           scalarCast<U>(width_m),
-                scalarCast<U>(sinkage_exponent),   scalarCast<U>(sinkage_exponent_slip),
-                scalarCast<U>(pressure_modulus),   scalarCast<U>(cohesion_pa),
-                scalarCast<U>(friction_angle_rad), scalarCast<U>(shear_modulus_m),
-                scalarCast<U>(unit_weight_n_m3),   scalarCast<U>(max_stress_a0),
-                scalarCast<U>(max_stress_a1),      max_shear_deformation_m};
+        return {.radius_m = scalarCast<U>(radius_m),
+                .width_m = scalarCast<U>(width_m),
+                .sinkage_exponent = scalarCast<U>(sinkage_exponent),
+                .sinkage_exponent_slip = scalarCast<U>(sinkage_exponent_slip),
+                .pressure_modulus = scalarCast<U>(pressure_modulus),
+                .cohesion_pa = scalarCast<U>(cohesion_pa),
+                .friction_angle_rad = scalarCast<U>(friction_angle_rad),
+                .shear_modulus_m = scalarCast<U>(shear_modulus_m),
+                .unit_weight_n_m3 = scalarCast<U>(unit_weight_n_m3),
+                .max_stress_a0 = scalarCast<U>(max_stress_a0),
+                .max_stress_a1 = scalarCast<U>(max_stress_a1),
+                .max_shear_deformation_m = max_shear_deformation_m};
     }
 };
 

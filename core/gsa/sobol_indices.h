@@ -21,6 +21,7 @@ struct BootstrapOptions {
     int resamples = 1000;            ///< B ∈ [0, 10⁶]; 0: no intervals (conf = 0)
     double confidence_level = 0.95;  ///< in (0, 1)
     std::uint64_t seed = 1;          ///< seed of the resamples' generator (SplitMix64)
+    int threads = 0;  ///< columns estimated in parallel; 0: one per hardware thread (same result)
 };
 
 /// Throws std::invalid_argument naming the field, the value and the range.

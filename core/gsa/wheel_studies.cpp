@@ -147,7 +147,9 @@ SobolStudyResult sobolStudy(const WheelStudy& study, const SobolOptions& options
     const TargetValues values = evaluateInChunks(
         target, design.rows(), chunk, design.rowsPerSample(),
         [&](std::size_t begin, std::size_t end) { return design.rows(begin, end); }, control);
-    return sobolResult(target, design, values, options);
+    SobolOptions estimation = options;
+    if (estimation.bootstrap.threads == 0) estimation.bootstrap.threads = control.threads;
+    return sobolResult(target, design, values, estimation);
 }
 
 SobolStudyResult sobolResult(const WheelTarget& target, const SaltelliDesign& design,

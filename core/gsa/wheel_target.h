@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/contact/operating_fields.h"
 #include "core/gsa/batch.h"
 #include "core/gsa/parameter_space.h"
 #include "core/gsa/sobol_indices.h"
@@ -45,10 +46,10 @@ const std::vector<std::string>& outputNames();
 
 /// The operating points: every slip angle × every slip (slip-angle-major, as a sweep).
 struct OperatingGrid {
-    std::vector<double> slips;                 ///< s values, each in [−1, 1]
-    std::vector<double> slip_angles_rad{0.0};  ///< β values [rad]
-    std::optional<double> load_n = 58.86;      ///< W [N]; set: θ_f solved per sample
-    double entry_angle_rad = 0.5236;           ///< θ_f [rad] when no load is given
+    std::vector<double> slips;                              ///< s values, each in [−1, 1]
+    std::vector<double> slip_angles_rad{0.0};               ///< β values [rad]
+    std::optional<double> load_n = contact::kDefaultLoadN;  ///< W [N]; set: θ_f solved per sample
+    double entry_angle_rad = 0.5236;                        ///< θ_f [rad] when no load is given
 
     std::size_t size() const { return slips.size() * slip_angles_rad.size(); }
     double slip(std::size_t point) const { return slips[point % slips.size()]; }

@@ -24,8 +24,19 @@ struct FullResidual {
     double r, b, slip, beta, theta_f, fx, fz, my, w_fx, w_fz, w_my, jmax;
     template <typename T>
     bool operator()(const T* const x, T* residual) const {
-        contact::ContactParameters<T> p{T(r),    T(b),  x[kN],  T(0.0), x[kKs] * 1e6, x[kC] * 1e3,
-                                        x[kPhi], x[kK], T(0.0), x[kA0], x[kA1],       jmax};
+        // γ only enters the bulldozing force, which the identification leaves out.
+        const contact::ContactParameters<T> p{.radius_m = T(r),
+                                              .width_m = T(b),
+                                              .sinkage_exponent = x[kN],
+                                              .sinkage_exponent_slip = T(0.0),
+                                              .pressure_modulus = x[kKs] * 1e6,
+                                              .cohesion_pa = x[kC] * 1e3,
+                                              .friction_angle_rad = x[kPhi],
+                                              .shear_modulus_m = x[kK],
+                                              .unit_weight_n_m3 = T(0.0),
+                                              .max_stress_a0 = x[kA0],
+                                              .max_stress_a1 = x[kA1],
+                                              .max_shear_deformation_m = jmax};
         const contact::OperatingPoint<T> op{T(slip), T(beta), T(theta_f), T(0.0), std::nullopt};
         const contact::WheelForces<T> f = contact::computeForces(p, op);
         residual[0] = (f.fx - fx) * w_fx;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/common/range.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
 
 namespace terra::identification {
@@ -16,8 +17,10 @@ void validate(const SyntheticSpec& spec) {
     std::vector<Issue> issues;
     if (spec.loads_n.empty()) issues.push_back({"loads", "no load given"});
     if (spec.slips.empty()) issues.push_back({"slips", "no slip given"});
-    for (double w : spec.loads_n) checkRange(issues, "load_N", w, {0.0, 1e7, true, false}, "N");
-    for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0});
+    const FieldInfo& load = contact::loadField();
+    for (double w : spec.loads_n) checkRange(issues, load.key, w, load.range, load.displayUnit());
+    const FieldInfo& slip = contact::slipField();
+    for (double s : spec.slips) checkRange(issues, slip.key, s, slip.range);
     for (const auto& [name, noise] : {std::pair{"noise.Fx", spec.noise.fx},
                                       {"noise.Fz", spec.noise.fz},
                                       {"noise.My", spec.noise.my},

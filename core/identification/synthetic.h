@@ -31,10 +31,10 @@ struct NoiseSpec {
 
 /// What to synthesise.
 struct SyntheticSpec {
-    std::vector<double> loads_n{58.86};  ///< W [N], one sweep per load (Table 5.2: 6 kg)
-    std::vector<double> slips;           ///< s values of each sweep
-    double slip_angle_rad = 0.0;         ///< β (Table 5.2: 0)
-    contact::ExitCondition exit;         ///< θ_r = 0 (Table 5.2)
+    std::vector<double> loads_n{contact::kDefaultLoadN};  ///< W [N], one sweep per load (Table 5.2)
+    std::vector<double> slips;                            ///< s values of each sweep
+    double slip_angle_rad = 0.0;                          ///< β (Table 5.2: 0)
+    contact::ExitCondition exit;                          ///< θ_r = 0 (Table 5.2)
     NoiseSpec noise;
     std::uint64_t seed = 1;
     double sample_period_s = 0.01;              ///< time between samples (100 Hz)

@@ -53,7 +53,7 @@ TEST(WheelContact, ForcesAreTheCoreModelsAtTheEntryAngleOfTheSinkage) {
     const auto f = contact::computeForces(p, op);
     EXPECT_DOUBLE_EQ(c.forces.fz, f.fz);
     EXPECT_DOUBLE_EQ(c.forces.my, f.my);
-    // β ≈ 7.6° ≫ β_reg: the side force is the model's F_y − F_b (MODEL-NOTES).
+    // β ≈ 7.6° ≫ β_reg: the side force is the model's F_y − F_b (docs/model.md, Side force).
     EXPECT_DOUBLE_EQ(c.forces.fs, f.fs);
     EXPECT_LT(c.forces.fs, 0.0);  // against the leftward slip
 

@@ -276,6 +276,34 @@ TEST(WheelSobol, FailedSamplesAreCountedDroppedAndRefusedAboveTheThreshold) {
     EXPECT_TRUE(kept.indices.total_conf.allFinite());
 }
 
+TEST(WheelSobol, SamplesWithoutEquilibriumAreCountedAsTheContactApiFindsThem) {
+    // W = 600 N on wheel A: at s = 0.3 the soil carries that load before θ_f = 90° only when
+    // k_φ is above about 335 kN/m^(n+2), so part of k_φ ∈ [50, 1550] has no equilibrium.
+    WheelStudy study;
+    study.soil = sandyLoam();
+    study.wheel = wheelA();
+    study.grid.slips = {0.3};
+    study.grid.load_n = 600.0;
+    study.parameters.add("phi_deg", Uniform{25.0, 32.0});
+    study.parameters.add("kphi", Uniform{50.0, 1550.0});
+    const SaltelliDesign design(study.parameters, 32, 6);
+    const Eigen::MatrixXd rows = design.rows(0, design.rows());
+    std::size_t failed = 0;
+    for (Eigen::Index r = 0; r < rows.rows(); ++r) {
+        soil::SoilParameters s = sandyLoam();
+        s.friction_angle_rad = rows(r, 0) * kDeg;
+        s.frictional_modulus = rows(r, 1) * 1e3;
+        failed += !reference(s, wheelA(), 0.3, 0.0, 600.0).ok;
+    }
+    ASSERT_GT(failed, 0u);
+    const SobolStudyResult r =
+        sobolStudy(study, {32, 6, {50, 0.95, 1}, 0.05, 0}, testing::onThreads(2));
+    EXPECT_EQ(r.failures[0].no_equilibrium, failed);
+    EXPECT_EQ(r.status, StudyStatus::kTooManyFailures);
+    EXPECT_NE(r.message.find(std::to_string(failed) + " without equilibrium"), std::string::npos)
+        << r.message;
+}
+
 TEST(WheelSobol, CancelKeepsWhatWasEvaluated) {
     WheelStudy study = twoParameterStudy();
     std::atomic<bool> cancel{false};
