@@ -14,7 +14,9 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/io/atomic_file.h"
+#include "core/io/json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/analyses/analyses.h"
@@ -251,15 +253,9 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis,
     in.wheel = *wheel;
     json conditions = script.value("conditions", json::object());
     if (analysis.contains("conditions")) conditions.update(analysis["conditions"]);
-    // The project file's conditions parser checks ranges and types, with field paths.
-    ui::Project probe;
-    auto parsed =
-        ui::projectFromJson({{"format", "terrastudio-project"}, {"conditions", conditions}}, where);
-    if (!parsed) {
-        issues.insert(issues.end(), parsed.issues().begin(), parsed.issues().end());
-    } else {
-        in.conditions = parsed->conditions;
-    }
+    io::ObjectReader reader(conditions, issues, where, "conditions");
+    analysis::readConditions(reader, in.conditions);
+    reader.finish();
     if (!issues.empty()) throw InputError(formatIssues(issues));
     return in;
 }
@@ -267,12 +263,14 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis,
 class Runner {
 public:
     Runner(const json& script, const fs::path& base, const fs::path& out,
-           const io::PresetLocations& locations, std::vector<std::string> formats)
+           const io::PresetLocations& locations, std::vector<std::string> formats,
+           const std::atomic<bool>* cancel)
         : script_(script),
           base_(base),
           out_(out),
           locations_(locations),
-          formats_(std::move(formats)) {
+          formats_(std::move(formats)),
+          cancel_(cancel) {
         const json e = script.value("export", json::object());
         options_.width = e.value("width", 1200);
         options_.height = e.value("height", 800);
@@ -305,7 +303,7 @@ public:
         std::map<std::string, const Table*> tables;
         const auto start = std::chrono::steady_clock::now();
         if (r.type == "forces") {
-            const auto result = ui::computeForceSweep(in);
+            const auto result = ui::computeForceSweep(in, cancel_);
             std::vector<std::string> columns = analysis.value("plots", std::vector<std::string>{});
             for (const ui::SweepQuantity& q : ui::sweepQuantities()) {
                 if (!columns.empty() &&
@@ -316,6 +314,7 @@ public:
             }
             writeData(r, r.name, result.table);
             r.notes = result.warnings;
+            if (result.cancelled) r.notes.push_back("cancelled: the rows computed so far");
             tables[""] = &result.table;
             evaluate(r, expectations, tables);
         } else if (r.type == "soil-curves") {
@@ -372,7 +371,8 @@ public:
             s.slip_angle_deg = analysis.value("slip_angle_deg", s.slip_angle_deg);
             s.tornado_slip = analysis.value("tornado_slip", s.tornado_slip);
             s.slip_count = analysis.value("slip_count", s.slip_count);
-            const auto result = ui::computeSensitivity(in, s);
+            const auto result = ui::computeSensitivity(in, s, cancel_);
+            if (result.family.cancelled) r.notes.push_back("cancelled: the rows computed so far");
             const QString t = title + QString(", β = %1°").arg(s.slip_angle_deg);
             ui::plotSensitivityFamily(plot_, result, s.parameter, "Fx_N", t);
             write(r, r.name + "-Fx");
@@ -440,7 +440,9 @@ private:
             for (const auto& f : ui::roverFigures()) keys.push_back(f.key);
             keys.push_back("top-view");
         }
-        const scenario::RunResult result = scenario::runScenario(s, {});
+        scenario::RunOptions options;
+        options.cancel = cancel_;
+        const scenario::RunResult result = scenario::runScenario(s, options);
         const QString title = analysis.contains("title")
                                   ? QString::fromStdString(analysis["title"].get<std::string>())
                                   : ui::roverTitle(s.name, result.status);
@@ -518,14 +520,16 @@ private:
     const io::PresetLocations& locations_;
     std::vector<std::string> formats_;
     ui::ExportOptions options_;
+    const std::atomic<bool>* cancel_;  // a sweep or rover run stops early and keeps its rows
     QCustomPlot plot_;
 };
 
 std::string report(const json& script, const std::string& script_path,
-                   const std::vector<AnalysisRun>& runs, int failed) {
+                   const std::vector<AnalysisRun>& runs, int failed, const std::string& cancelled) {
     std::ostringstream md;
     md << "# " << script.value("title", "TerraStudio run") << "\n\n";
     md << "Script: `" << script_path << "`  \n";
+    if (!cancelled.empty()) md << "**" << cancelled << ".**  \n";
     md << (failed == 0 ? "**All expectations met.**"
                        : "**" + std::to_string(failed) + " expectation(s) or analyses FAILED.**")
        << "\n\n";
@@ -565,10 +569,9 @@ std::string report(const json& script, const std::string& script_path,
 }
 
 int run(const RunOptions& o, const io::PresetLocations& locations) {
-    std::string text;
-    if (const auto error = io::readFile(o.script, text)) throw InputError(*error);
-    const json script = json::parse(text, nullptr, false);
-    if (script.is_discarded()) throw InputError(o.script + ": not valid JSON");
+    const Result<json> parsed = io::readJsonFile(o.script);
+    if (!parsed) throw InputError(parsed.message());
+    const json& script = parsed.value();
     if (!script.is_object() || !script.contains("analyses") || !script["analyses"].is_array()) {
         throw InputError(o.script + ": needs an \"analyses\" list");
     }
@@ -587,11 +590,13 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
     char* argv[] = {name, nullptr};
     QApplication application(argc, argv);
 
-    Runner runner(script, fs::path(o.script).parent_path(), o.out, locations, o.formats);
+    const SignalCancellation cancellation;
+    Runner runner(script, fs::path(o.script).parent_path(), o.out, locations, o.formats,
+                  cancellation.flag());
     std::vector<AnalysisRun> runs;
     int failed = 0;
     const json& analyses = script["analyses"];
-    for (std::size_t i = 0; i < analyses.size(); ++i) {
+    for (std::size_t i = 0; i < analyses.size() && !cancellation.requested(); ++i) {
         const std::string where = o.script + ": analyses[" + std::to_string(i) + "]";
         AnalysisRun r;
         try {
@@ -611,9 +616,17 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         }
         runs.push_back(std::move(r));
     }
+    // Cancelled: what was computed is written and reported; the analysis running at the signal
+    // keeps its rows so far (its notes say so), the ones after it are not run.
+    std::string cancelled;
+    if (cancellation.requested()) {
+        cancelled = "Cancelled by " + cancellation.signalName() + ": " +
+                    std::to_string(runs.size()) + " of " + std::to_string(analyses.size()) +
+                    " analyses started, the last one possibly incomplete";
+    }
     const fs::path out(o.out);
-    if (const auto error =
-            io::writeFileAtomically(out / "report.md", report(script, o.script, runs, failed))) {
+    if (const auto error = io::writeFileAtomically(
+            out / "report.md", report(script, o.script, runs, failed, cancelled))) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
@@ -621,6 +634,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
                   {"script", o.script},
                   {"inputs", script},
                   {"failed", failed}};
+    if (!cancelled.empty()) manifest.update({{"cancelled", true}, {"note", cancelled}});
     for (const auto& r : runs) {
         json outcomes = json::array();
         for (const auto& oc : r.outcomes)
@@ -638,6 +652,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "manifest.json").string() << '\n';
+    if (!cancelled.empty()) exitCancelled(cancellation, cancelled);
     if (failed > 0) {
         std::cerr << failed << " expectation(s) or analyses failed (see "
                   << (out / "report.md").string() << ")\n";

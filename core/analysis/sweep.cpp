@@ -10,6 +10,8 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/contact_angles.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/quadratic_model.h"
 
 namespace terra::analysis {
@@ -50,7 +52,7 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
             theta_f = solution.entry_angle_rad;
             previous = theta_f;
         }
-        const double theta_r = std::max(spec.exit.exitAngle(theta_f), -theta_f);
+        const double theta_r = contact::clampedExitAngle(spec.exit.exitAngle(theta_f), theta_f);
         const OperatingPoint<double> op{s, beta, theta_f, theta_r, spec.max_stress_angle_rad};
         const WheelForces<double> f =
             spec.model == contact::ContactModel::kFull
@@ -71,27 +73,25 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
 
 void validateSpec(const SweepSpec& spec) {
     std::vector<Issue> issues;
+    auto check = [&](const FieldInfo& field, double value) {
+        checkRange(issues, field.key, value, field.range, field.displayUnit());
+    };
     if (spec.slips.empty()) issues.push_back({"slips", "no slip values to sweep"});
     if (spec.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles to sweep"});
-    for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
-    for (double b : spec.slip_angles_rad) {
-        checkRange(issues, "slip_angle_deg", deg(b), {-90.0, 90.0, true, true}, "deg");
-    }
+    for (double s : spec.slips) check(contact::slipField(), s);
+    for (double b : spec.slip_angles_rad) check(contact::slipAngleField(), deg(b));
     if (spec.load_n) {
-        checkRange(issues, "load_N", *spec.load_n, {0.0, 1e7, true, false}, "N");
+        check(contact::loadField(), *spec.load_n);
     } else {
-        checkRange(issues, "entry_angle_deg", deg(spec.entry_angle_rad), {0.0, 90.0, true, false},
-                   "deg");
+        check(contact::entryAngleField(), deg(spec.entry_angle_rad));
     }
     if (spec.exit.kind == contact::ExitCondition::Kind::kRutRatio) {
-        checkRange(issues, "rut_ratio", spec.exit.value, {0.0, 1.0});
+        check(contact::rutRatioField(), spec.exit.value);
     } else {
-        checkRange(issues, "exit_angle_deg", deg(spec.exit.value), {-90.0, 0.0}, "deg");
+        check(contact::exitAngleField(), deg(spec.exit.value));
     }
-    if (spec.max_stress_angle_rad) {
-        checkRange(issues, "max_stress_angle_deg", deg(*spec.max_stress_angle_rad), {-90.0, 90.0},
-                   "deg");
-    }
+    if (spec.max_stress_angle_rad)
+        check(contact::maxStressAngleField(), deg(*spec.max_stress_angle_rad));
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }
 

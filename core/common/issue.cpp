@@ -1,5 +1,8 @@
 #include "core/common/issue.h"
 
+#include <algorithm>
+#include <cctype>
+
 namespace terra {
 
 std::string formatIssues(const std::vector<Issue>& issues) {
@@ -9,6 +12,51 @@ std::string formatIssues(const std::vector<Issue>& issues) {
         text += issue.where.empty() ? issue.message : issue.where + ": " + issue.message;
     }
     return text;
+}
+
+namespace {
+
+char lower(char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); }
+
+// Optimal string alignment distance (Levenshtein with swaps of neighbours), case ignored.
+std::size_t editDistance(std::string_view a, std::string_view b) {
+    const std::size_t n = a.size(), m = b.size();
+    std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+    for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= n; ++i) {
+        for (std::size_t j = 1; j <= m; ++j) {
+            const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+                lower(a[i - 2]) == lower(b[j - 1])) {
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    return d[n][m];
+}
+
+}  // namespace
+
+std::string nearestName(std::string_view name, const std::vector<std::string>& candidates) {
+    if (name.empty() || name.size() > 64) return {};
+    const std::size_t allowed = std::max<std::size_t>(1, name.size() / 3);
+    std::string best;
+    std::size_t best_distance = allowed + 1;
+    for (const std::string& candidate : candidates) {
+        // "phi" for "phi_deg": the key without its unit suffix.
+        const bool unit_left_out = candidate.size() > name.size() &&
+                                   candidate.compare(0, name.size(), name) == 0 &&
+                                   candidate[name.size()] == '_' &&
+                                   candidate.find('_', name.size() + 1) == std::string::npos;
+        const std::size_t distance = unit_left_out ? 0 : editDistance(name, candidate);
+        if (distance < best_distance) {
+            best = candidate;
+            best_distance = distance;
+        }
+    }
+    return best;
 }
 
 }  // namespace terra

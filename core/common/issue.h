@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -19,6 +20,12 @@ struct Issue {
 
 /// Joins issues into one human-readable message, one line each ("where: message").
 std::string formatIssues(const std::vector<Issue>& issues);
+
+/// The candidate a misspelt name most likely meant ("condtions" → "conditions", "phi" →
+/// "phi_deg"), or "" when none is close: at most one edit (insertion, deletion, substitution or
+/// swap of neighbours) per three characters, case ignored, or the name with its unit suffix left
+/// out.
+std::string nearestName(std::string_view name, const std::vector<std::string>& candidates);
 
 /// The value parsed from user input, or the list of every problem found.
 template <typename T>

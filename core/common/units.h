@@ -1,8 +1,9 @@
 #pragma once
 /// @file units.h
-/// Unit conversions used at the edges of core (files, command line, screen). Everything inside
-/// core is SI: Pa, m, rad, N, N·m. The thesis's units (kPa, deg, kN/m^(n+1), kN/m³) are converted
-/// here and nowhere else.
+/// Constants and angle conversions for the edges of core (files, command line, screen). Everything
+/// inside core is SI: Pa, m, rad, N, N·m. The thesis's other units (kPa, kN/m^(n+1), kN/m³) are
+/// converted by the factors of the field tables that read them (SoilField in
+/// core/soil/soil_parameters.cpp; docs/model.md, "Units").
 
 #include <numbers>
 
@@ -13,7 +14,5 @@ inline constexpr double kGravity = 9.81;  ///< [m/s²] the thesis's value ("W = 
 
 constexpr double degToRad(double deg) { return deg * kPi / 180.0; }
 constexpr double radToDeg(double rad) { return rad * 180.0 / kPi; }
-constexpr double kiloToUnit(double kilo) { return kilo * 1e3; }  ///< kPa→Pa, kN→N, kN/m³→N/m³
-constexpr double unitToKilo(double unit) { return unit * 1e-3; }
 
 }  // namespace terra::units

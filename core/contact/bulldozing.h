@@ -1,7 +1,7 @@
 #pragma once
 /// @file bulldozing.h
 /// Bulldozing resistance on the wheel's side wall (thesis Eqs. 2.26–2.30, as corrected in
-/// MODEL-NOTES E1), in closed form. The derivation is in docs/model.md, section "Bulldozing".
+/// docs/model.md, E1), in closed form. The derivation is in docs/model.md, section "Bulldozing".
 
 #include <cmath>
 #include <numbers>
@@ -30,7 +30,7 @@ void bulldozingCoefficients(const ContactParameters<T>& p, BulldozingModel model
 }
 
 /// F_b [N]: the bulldozing resistance of one side wall over the submerged circular segment
-/// (−θ_f..θ_f), Eq. 2.29 integrated in closed form (Eq. 2.30 corrected, MODEL-NOTES E1):
+/// (−θ_f..θ_f), Eq. 2.29 integrated in closed form (Eq. 2.30 corrected, E1):
 ///   F_b = a_s r³ G(θ_f) + b_s r² H(θ_f),
 ///   H(θ) = θ − sin θ cos θ          (segment area / r²),
 ///   G(θ) = ⅔ sin³θ − cos θ · H(θ)   (first moment of the depth / r³).

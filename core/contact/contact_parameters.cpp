@@ -5,6 +5,7 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 
 namespace terra::contact {
 
@@ -21,28 +22,35 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
             " kN/m^(n+1), kphi = " + formatNumber(roundSignificant(soil.frictional_modulus / 1e3)) +
             " kN/m^(n+2), wheel width b = " + formatNumber(wheel.width_m) + " m)");
     }
-    return {wheel.radius_m,          wheel.width_m,
-            soil.sinkage_exponent,   soil.sinkage_exponent_slip,
-            pressure_modulus,        soil.cohesion_pa,
-            soil.friction_angle_rad, soil.shear_modulus_m,
-            soil.unit_weight_n_m3,   soil.max_stress_a0,
-            soil.max_stress_a1,      soil.max_shear_deformation_m};
+    return {.radius_m = wheel.radius_m,
+            .width_m = wheel.width_m,
+            .sinkage_exponent = soil.sinkage_exponent,
+            .sinkage_exponent_slip = soil.sinkage_exponent_slip,
+            .pressure_modulus = pressure_modulus,
+            .cohesion_pa = soil.cohesion_pa,
+            .friction_angle_rad = soil.friction_angle_rad,
+            .shear_modulus_m = soil.shear_modulus_m,
+            .unit_weight_n_m3 = soil.unit_weight_n_m3,
+            .max_stress_a0 = soil.max_stress_a0,
+            .max_stress_a1 = soil.max_stress_a1,
+            .max_shear_deformation_m = soil.max_shear_deformation_m};
 }
 
 void requireValid(const OperatingPoint<double>& op) {
     // Compare in the user's degrees, rounded so that 90° typed is 90° checked.
     auto deg = [](double rad) { return roundSignificant(units::radToDeg(rad)); };
     std::vector<Issue> issues;
-    checkRange(issues, "slip", op.slip, {-1.0, 1.0, true, true});
-    checkRange(issues, "slip_angle_deg", deg(op.slip_angle_rad), {-90.0, 90.0, true, true}, "deg");
-    checkRange(issues, "entry_angle_deg", deg(op.entry_angle_rad), {0.0, 90.0, true}, "deg");
-    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model (clampedExit,
-    // maxStressAngle; docs/model.md), so only their own ranges are checked here.
-    checkRange(issues, "exit_angle_deg", deg(op.exit_angle_rad), {-90.0, 0.0}, "deg");
-    if (op.max_stress_angle_rad) {
-        checkRange(issues, "max_stress_angle_deg", deg(*op.max_stress_angle_rad), {-90.0, 90.0},
-                   "deg");
-    }
+    auto check = [&](const FieldInfo& field, double value) {
+        checkRange(issues, field.key, value, field.range, field.displayUnit());
+    };
+    check(slipField(), op.slip);
+    check(slipAngleField(), deg(op.slip_angle_rad));
+    check(entryAngleField(), deg(op.entry_angle_rad));
+    // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model
+    // (clampedExitAngle, clampedMaxStressAngle in contact_angles.h; docs/model.md), so only their
+    // own ranges are checked here.
+    check(exitAngleField(), deg(op.exit_angle_rad));
+    if (op.max_stress_angle_rad) check(maxStressAngleField(), deg(*op.max_stress_angle_rad));
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }
 

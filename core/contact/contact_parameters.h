@@ -35,12 +35,18 @@ struct ContactParameters {
     /// The same parameters in another scalar type (derivatives dropped or started at zero).
     template <typename U>
     ContactParameters<U> cast() const {
-        return {scalarCast<U>(radius_m),           scalarCast<U>(width_m),
-                scalarCast<U>(sinkage_exponent),   scalarCast<U>(sinkage_exponent_slip),
-                scalarCast<U>(pressure_modulus),   scalarCast<U>(cohesion_pa),
-                scalarCast<U>(friction_angle_rad), scalarCast<U>(shear_modulus_m),
-                scalarCast<U>(unit_weight_n_m3),   scalarCast<U>(max_stress_a0),
-                scalarCast<U>(max_stress_a1),      max_shear_deformation_m};
+        return {.radius_m = scalarCast<U>(radius_m),
+                .width_m = scalarCast<U>(width_m),
+                .sinkage_exponent = scalarCast<U>(sinkage_exponent),
+                .sinkage_exponent_slip = scalarCast<U>(sinkage_exponent_slip),
+                .pressure_modulus = scalarCast<U>(pressure_modulus),
+                .cohesion_pa = scalarCast<U>(cohesion_pa),
+                .friction_angle_rad = scalarCast<U>(friction_angle_rad),
+                .shear_modulus_m = scalarCast<U>(shear_modulus_m),
+                .unit_weight_n_m3 = scalarCast<U>(unit_weight_n_m3),
+                .max_stress_a0 = scalarCast<U>(max_stress_a0),
+                .max_stress_a1 = scalarCast<U>(max_stress_a1),
+                .max_shear_deformation_m = max_shear_deformation_m};
     }
 };
 
@@ -52,10 +58,11 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
 /// The operating point of the wheel: kinematics and contact geometry (section 2.2).
 template <typename T>
 struct OperatingPoint {
-    T slip;             ///< s [-] (Eq. 2.1): driving 0 ≤ s < 1, braking −1 < s < 0
+    /// s [-] (Eq. 2.1): driving 0 ≤ s ≤ 1 (1: spinning in place), braking −1 ≤ s < 0 (−1: locked)
+    T slip;
     T slip_angle_rad;   ///< β [rad] (Eq. 2.2), |β| < π/2
     T entry_angle_rad;  ///< θ_f [rad], 0 < θ_f ≤ π/2
-    T exit_angle_rad;   ///< θ_r [rad], −θ_f ≤ θ_r ≤ 0 (MODEL-NOTES sign convention)
+    T exit_angle_rad;  ///< θ_r [rad] ≤ 0 (docs/model.md, "Angles"); below −θ_f taken as −θ_f
     /// θ_m [rad] fixed by the user (the thesis's Table 2.3 uses 15°); empty: Eq. 2.18.
     std::optional<T> max_stress_angle_rad;
 
@@ -69,8 +76,8 @@ struct OperatingPoint {
 };
 
 /// Throws std::invalid_argument naming the field and the value when `op` is outside the model's
-/// domain (s ∉ (−1, 1), |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−90°, 0], θ_m ∉ [−90°, 90°]). The model
-/// itself keeps θ_r ≥ −θ_f and θ_m inside [θ_r, θ_f].
+/// domain (s ∉ [−1, 1], |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−90°, 0], θ_m ∉ [−90°, 90°]). The model
+/// itself keeps θ_r ≥ −θ_f and θ_m inside [θ_r, θ_f] (contact_angles.h).
 void requireValid(const OperatingPoint<double>& op);
 
 /// Exit angle from the rut ratio λ = h_r/h_f (Eq. 2.12): θ_r = −acos(1 − λ (1 − cos θ_f)).

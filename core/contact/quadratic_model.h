@@ -1,7 +1,7 @@
 #pragma once
 /// @file quadratic_model.h
 /// The quadratic stress approximation and its closed-form forces (thesis section 2.5,
-/// Eqs. 2.36–2.46, with the corrections E3, E3b, E3c, E4 of MODEL-NOTES). Each stress p ∈
+/// Eqs. 2.36–2.46, with the corrections E3, E3b, E3c, E4 of docs/model.md). Each stress p ∈
 /// {σ, τ, τ_t, τ_l} is replaced on each region by the parabola through its values at θ_m, at the
 /// region's mid angle (Eq. 2.36) and at the region's end (θ_f or θ_r): an exact 3-point
 /// interpolation (E4). The polynomials are written in x = θ − θ_m, which is better conditioned than
@@ -127,7 +127,7 @@ TrigMoments<T> trigMoments(const T& t) {
     return m;
 }
 
-// Adds ∫ over [x0, x1] of one region (upper minus lower: MODEL-NOTES E3).
+// Adds ∫ over [x0, x1] of one region (upper minus lower: E3).
 template <typename T>
 void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums) {
     using std::cos;
@@ -210,7 +210,7 @@ struct ApproximationError {
 };
 
 /// Errors of σ, τ, τ_t, τ_l (in this order), over a uniform grid θ_r, θ_r + step, …, ≤ θ_f.
-/// MODEL-NOTES: Tables 2.4–2.5 use a 0.01° step.
+/// Tables 2.4–2.5 are reproduced with a 0.01° step (docs/model.md, "Tables 2.4–2.5").
 std::array<ApproximationError, 4> quadraticApproximationErrors(const ContactParameters<double>& p,
                                                                const OperatingPoint<double>& op,
                                                                double step_rad);

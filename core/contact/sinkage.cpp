@@ -9,6 +9,7 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/contact_angles.h"
 #include "core/contact/quadratic_model.h"
 
 namespace terra::contact {
@@ -206,16 +207,13 @@ double ExitCondition::exitAngle(double entry_angle_rad) const {
 
 OperatingPoint<double> operatingPoint(const EntryAngleProblem& problem, double entry_angle_rad) {
     return {problem.slip, problem.slip_angle_rad, entry_angle_rad,
-            std::max(problem.exit.exitAngle(entry_angle_rad), -entry_angle_rad),
+            clampedExitAngle(problem.exit.exitAngle(entry_angle_rad), entry_angle_rad),
             problem.max_stress_angle_rad};
 }
 
 double verticalForce(const ContactParameters<double>& p, const EntryAngleProblem& problem,
                      double entry_angle_rad) {
-    OperatingPoint<double> op = operatingPoint(problem, entry_angle_rad);
-    if (op.max_stress_angle_rad) {
-        op.max_stress_angle_rad = std::min(*op.max_stress_angle_rad, entry_angle_rad);
-    }
+    const OperatingPoint<double> op = operatingPoint(problem, entry_angle_rad);
     return problem.model == ContactModel::kFull
                ? computeForces(p, op, BulldozingModel::kBekker, problem.integration).fz
                : computeQuadraticForces(p, op).fz;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file sinkage.h
-/// Wheel sinkage: static sinkage from the load (Eqs. 2.7, 2.8 with MODEL-NOTES E2) and the
+/// Wheel sinkage: static sinkage from the load (Eqs. 2.7, 2.8 with E2 of docs/model.md) and the
 /// entry-angle estimator of section 2.6.1 — the θ_f at which F_z(θ_f) = W — solved with a
 /// bracketing root finder (Boost's TOMS 748) instead of the thesis's step-until-equal loop.
 
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/contact/contact_parameters.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
 
 namespace terra::contact {
@@ -21,7 +22,7 @@ enum class ContactModel {
 /// Which part of the static contact Eq. 2.7 integrates over.
 enum class StaticContact {
     kSymmetric,  ///< −θ_s..θ_s, as printed in Eq. 2.7
-    kFrontHalf,  ///< 0..θ_s, the assumption behind Bekker's formula 2.8 (MODEL-NOTES E2)
+    kFrontHalf,  ///< 0..θ_s, the assumption behind Bekker's formula 2.8 (E2)
 };
 
 /// h [m] by Bekker's approximation, Eq. 2.8 corrected (E2):
@@ -68,7 +69,7 @@ struct ExitCondition {
 
 /// The entry-angle problem of section 2.6.1.
 struct EntryAngleProblem {
-    double load_n = 58.86;                       ///< W [N]
+    double load_n = kDefaultLoadN;               ///< W [N]
     double slip = 0.0;                           ///< s [-]
     double slip_angle_rad = 0.0;                 ///< β [rad]
     ExitCondition exit;                          ///< θ_r or λ

@@ -1,18 +1,19 @@
 #pragma once
 /// @file stress_field.h
 /// Normal and shear stresses along the wheel–soil contact (thesis section 2.3, Eqs. 2.13–2.22,
-/// with the kinematics of MODEL-NOTES for braking). Header-only and templated on the scalar, so
-/// that Ceres can differentiate it.
+/// with the braking kinematics of docs/model.md, "Slip"). Header-only and templated on the scalar,
+/// so that Ceres can differentiate it.
 ///
 /// Angles are measured from the vertical through the wheel centre, positive toward the direction
 /// of travel: the contact runs from the exit angle θ_r ≤ 0 to the entry angle θ_f > 0, with the
 /// maximum normal stress at θ_m in between.
 
-#include <algorithm>
 #include <cmath>
+#include <limits>
 
-#include "core/common/scalar.h"
+#include "core/contact/contact_angles.h"
 #include "core/contact/contact_parameters.h"
+#include "core/contact/shear_deformation.h"
 
 namespace terra::contact {
 
@@ -28,24 +29,11 @@ struct StressSample {
     T shear;    ///< j [m]: √(j_t² + j_l²) limited to j_max (Eqs. 2.15, 2.16)
 };
 
-/// κ = v_x/(rω) from the slip (MODEL-NOTES, Eq. 2.1): 1 − s when driving, 1/(1 + s) when braking.
+/// κ = v_x/(rω) from the slip (Eq. 2.1; docs/model.md, "Slip"): 1 − s when driving, 1/(1 + s)
+/// when braking; +inf for the locked wheel (s = −1, ω = 0).
 template <typename T>
 T velocityRatio(const T& slip) {
     return slip >= 0.0 ? T(1.0 - slip) : T(1.0 / (1.0 + slip));
-}
-
-/// θ_m: the user's fixed angle, or (a₀ + a₁ s) θ_f (Eq. 2.18), kept inside [θ_r, θ_f] (MODEL-NOTES;
-/// a₀ + a₁ s < 0 happens for strong braking).
-template <typename T>
-T maxStressAngle(const ContactParameters<T>& p, const OperatingPoint<T>& op) {
-    T theta_m = op.max_stress_angle_rad
-                    ? *op.max_stress_angle_rad
-                    : T((p.max_stress_a0 + p.max_stress_a1 * op.slip) * op.entry_angle_rad);
-    const T exit =
-        op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad) : op.exit_angle_rad;
-    if (theta_m < exit) theta_m = exit;
-    if (theta_m > op.entry_angle_rad) theta_m = op.entry_angle_rad;
-    return theta_m;
 }
 
 /// The stress distribution of one wheel at one operating point. Construction precomputes
@@ -56,17 +44,16 @@ public:
     StressField(const ContactParameters<T>& p, const OperatingPoint<T>& op)
         : radius_(p.radius_m),
           entry_(op.entry_angle_rad),
-          // A rut deeper than the entry sinkage (θ_r < −θ_f) is not physical: the contact ends at
-          // the soil surface line, θ_r = −θ_f (Eq. 2.12 with λ ≤ 1).
-          exit_(op.exit_angle_rad < -op.entry_angle_rad ? T(-op.entry_angle_rad)
-                                                        : op.exit_angle_rad),
-          max_stress_(contact::maxStressAngle(p, op)),
+          exit_(clampedExitAngle(op.exit_angle_rad, op.entry_angle_rad)),
+          max_stress_(clampedMaxStressAngle(p, op)),
           exponent_(p.sinkage_exponent + p.sinkage_exponent_slip * op.slip),
           modulus_(p.pressure_modulus),
           cohesion_(p.cohesion_pa),
           shear_modulus_(p.shear_modulus_m),
           max_shear_(p.max_shear_deformation_m),
-          driving_(op.slip >= 0.0) {
+          driving_(op.slip >= 0.0),
+          // s = −1 (requireValid keeps s ≥ −1): κ is infinite, at() takes the limit.
+          locked_(!(op.slip > -1.0)) {
         using std::cos;
         using std::sin;
         using std::tan;
@@ -74,10 +61,22 @@ public:
         cos_entry_ = cos(entry_);
         sin_entry_ = sin(entry_);
         versine_entry_ = sin_entry_ * sin_entry_ / (1.0 + cos_entry_);
-        kappa_ = contact::velocityRatio(op.slip);
-        // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0).
-        one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
-        lateral_velocity_ = kappa_ * tan(op.slip_angle_rad);
+        slip_angle_tan_ = tan(op.slip_angle_rad);
+        if (locked_) {
+            // Plain constants, never used in arithmetic on T (a Jet's zero derivatives times
+            // infinity would be NaN): only the kink search reads them, as doubles.
+            constexpr double kInfinity = std::numeric_limits<double>::infinity();
+            kappa_ = T(kInfinity);
+            one_minus_kappa_ = T(-kInfinity);
+            const double beta_tan = scalarValue(slip_angle_tan_);
+            lateral_velocity_ = T(beta_tan == 0.0 ? 0.0 : std::copysign(kInfinity, beta_tan));
+        } else {
+            kappa_ = contact::velocityRatio(op.slip);
+            // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0;
+            // at s = 1, κ = 0 and 1 − κ = 1: the wheel spins in place).
+            one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
+            lateral_velocity_ = kappa_ * slip_angle_tan_;
+        }
         rear_slope_ =
             max_stress_ > exit_ ? T((entry_ - max_stress_) / (max_stress_ - exit_)) : T(0.0);
     }
@@ -88,6 +87,7 @@ public:
     const T& velocityRatio() const { return kappa_; }        ///< κ = v_x/(rω)
     const T& sinkageExponent() const { return exponent_; }   ///< N = n₀ + n₁ s
     bool driving() const { return driving_; }
+    bool locked() const { return locked_; }  ///< s = −1: the wheel does not turn (ω = 0)
     double maxShearDeformation() const { return max_shear_; }
 
     /// cos θ_a − cos θ_f for θ_a = θ_f − 2d, as 2 sin((θ_f + θ_a)/2) sin((θ_f − θ_a)/2) =
@@ -143,11 +143,12 @@ public:
         StressSample<T> out;
         const T versine = sin_theta * sin_theta / (1.0 + cos_theta);  // 1 − cos θ, exact
         out.sigma = normalStress(theta, versine);
+        if (locked_) return lockedShear(out, theta, cos_theta);
 
-        // Shear deformation, Eq. 2.14 in the κ form of MODEL-NOTES.
-        const T arc = entry_ - theta;
-        out.shear_t = radius_ * (arc - kappa_ * (sin_entry_ - sin_theta));
-        out.shear_l = radius_ * lateral_velocity_ * arc;
+        const ShearDeformation<T> j = shearDeformation(radius_, entry_, sin_entry_, kappa_,
+                                                       lateral_velocity_, theta, sin_theta);
+        out.shear_t = j.tangential;
+        out.shear_l = j.lateral;
         const T squared = out.shear_t * out.shear_t + out.shear_l * out.shear_l;
         // sqrt(0) has an infinite derivative; j is identically 0 at θ_f whatever the parameters.
         T shear = squared > 0.0 ? T(sqrt(squared)) : T(0.0);
@@ -167,33 +168,54 @@ public:
             out.tau_l = out.tau * lateral_velocity_ * inverse_speed;
         } else {
             // Stagnation point (s = 0, β = 0, θ = 0): the one-sided limit, along +x when driving
-            // (MODEL-NOTES) and −x when braking.
+            // and −x when braking (docs/model.md, "Stagnation point").
             out.tau_t = driving_ ? out.tau : T(-out.tau);
             out.tau_l = T(0.0);
         }
         return out;
     }
 
-    /// The tangential shear deformation j_t(θ) [m] alone, in double (used to find where the
-    /// integrand has kinks; cheap: one sin).
-    double shearTangential(double theta) const {
-        return scalarValue(radius_) *
-               ((scalarValue(entry_) - theta) -
-                scalarValue(kappa_) * (scalarValue(sin_entry_) - std::sin(theta)));
-    }
-
-    /// j(θ) before the j_max limit [m], in double.
-    double shearUnlimited(double theta) const {
-        const double jt = shearTangential(theta);
-        const double jl =
-            scalarValue(radius_) * scalarValue(lateral_velocity_) * (scalarValue(entry_) - theta);
-        return std::hypot(jt, jl);
-    }
-
-    /// Lateral shear velocity κ tan β [-] (per unit rω).
+    /// Lateral shear velocity κ tan β [-] (per unit rω); ±inf for the locked wheel with β ≠ 0.
     const T& lateralVelocity() const { return lateral_velocity_; }
+    /// tan β [-].
+    const T& slipAngleTangent() const { return slip_angle_tan_; }
 
 private:
+    /// The shear of the locked wheel (s = −1), the limit κ → ∞ of Eqs. 2.14–2.22 (docs/model.md,
+    /// "Full slip"). j = κ r |(sin θ_f − sin θ, tan β (θ_f − θ))| + O(1) grows without bound at
+    /// every θ < θ_f, so the shear is fully developed: τ = c + σ tan φ, or (c + σ tan φ)(1 −
+    /// exp(−j_max/K)) with j_max; the shear velocity direction (1 − κ cos θ, κ tan β)/|…| tends
+    /// to (−cos θ, tan β)/|…|, the sliding of the rim over the soil. At θ_f itself j = 0 for every
+    /// κ, so τ = 0 there: the limit jumps at the contact's front end.
+    StressSample<T>& lockedShear(StressSample<T>& out, const T& theta, const T& cos_theta) const {
+        using std::expm1;
+        using std::sqrt;
+        constexpr double kInfinity = std::numeric_limits<double>::infinity();
+        if (!(theta < entry_)) {
+            out.tau = out.tau_t = out.tau_l = T(0.0);
+            out.shear_t = out.shear_l = out.shear = T(0.0);
+            return out;
+        }
+        const double beta_tan = scalarValue(slip_angle_tan_);
+        out.shear_t = T(-kInfinity);  // −κ r (sin θ_f − sin θ), sin θ < sin θ_f inside
+        out.shear_l = T(beta_tan == 0.0 ? 0.0 : std::copysign(kInfinity, beta_tan));
+        const bool limited = max_shear_ < kInfinity;
+        out.shear = T(max_shear_);  // Eq. 2.16 with j → ∞
+        const T developed = limited ? T(-expm1(-max_shear_ / shear_modulus_)) : T(1.0);
+        out.tau = (cohesion_ + out.sigma * tan_phi_) * developed;
+        const T speed_squared = cos_theta * cos_theta + slip_angle_tan_ * slip_angle_tan_;
+        if (speed_squared > 0.0) {
+            const T inverse_speed = 1.0 / sqrt(speed_squared);
+            out.tau_t = -out.tau * cos_theta * inverse_speed;
+            out.tau_l = out.tau * slip_angle_tan_ * inverse_speed;
+        } else {
+            // θ = −90° with β = 0: the limit from inside the contact, against the travel.
+            out.tau_t = -out.tau;
+            out.tau_l = T(0.0);
+        }
+        return out;
+    }
+
     T radius_;
     T entry_;
     T exit_;
@@ -204,6 +226,7 @@ private:
     T shear_modulus_;
     double max_shear_;
     bool driving_;
+    bool locked_;
     T tan_phi_;
     T cos_entry_;
     T sin_entry_;
@@ -211,6 +234,7 @@ private:
     T kappa_;
     T one_minus_kappa_;
     T lateral_velocity_;
+    T slip_angle_tan_;
     T rear_slope_;  // (θ_f − θ_m)/(θ_m − θ_r) of Eq. 2.19
 };
 

@@ -42,7 +42,7 @@ struct WheelForces {
     T my{};  ///< M_y [N·m]: resistance torque (Eq. 2.34)
     T mz{};  ///< M_z [N·m]: yaw moment (Eq. 2.35)
     T fb{};  ///< F_b [N]: bulldozing resistance of one side wall, a magnitude (Eq. 2.30, E1)
-    T fs{};  ///< F_s [N]: side force F_y − sign(β) F_b (Eq. 2.24 with MODEL-NOTES signs)
+    T fs{};  ///< F_s [N]: side force F_y − sign(β) F_b (Eq. 2.24; docs/model.md, "Side force")
 };
 
 /// How the contact integrals are evaluated.
@@ -163,7 +163,8 @@ ShearGeometry shearGeometry(const ContactParameters<T>& p, const StressField<T>&
             scalarValue(field.velocityRatio()),
             scalarValue(field.lateralVelocity()),
             p.max_shear_deformation_m,
-            scalarValue(p.shear_modulus_m)};
+            scalarValue(p.shear_modulus_m),
+            scalarValue(field.slipAngleTangent())};
 }
 
 // The contact integrals ∫(τ_t cos θ − σ sin θ), ∫(σ cos θ + τ_t sin θ), ∫τ_l, ∫τ_l cos θ,
@@ -291,7 +292,7 @@ WheelForces<T> assembleForces(const ContactParameters<T>& p, const OperatingPoin
     } else if (op.slip_angle_rad < 0.0) {
         f.fs = f.fy + f.fb;
     } else {
-        f.fs = f.fy;  // no lateral motion, no bulldozing (MODEL-NOTES)
+        f.fs = f.fy;  // no lateral motion, no bulldozing (docs/model.md, "Side force")
     }
     return f;
 }
@@ -309,13 +310,6 @@ WheelForces<T> computeForces(const ContactParameters<T>& p, const OperatingPoint
     const StressField<T> field(p, op);
     const detail::ForceSums<T> sums = detail::integrateContact(p, field, options, report);
     return assembleForces(p, op, sums, bulldozing);
-}
-
-/// F_z alone (what the entry-angle solver needs); same integration as computeForces.
-template <typename T>
-T computeVerticalForce(const ContactParameters<T>& p, const OperatingPoint<T>& op,
-                       const IntegrationOptions& options = {}) {
-    return computeForces(p, op, BulldozingModel::kBekker, options).fz;
 }
 
 }  // namespace terra::contact

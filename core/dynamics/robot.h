@@ -5,9 +5,11 @@
 /// (resources/robots/*.json, docs/dynamics.md) uses the same units with suffixed keys.
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/wheel/wheel_parameters.h"
 
@@ -45,6 +47,16 @@ struct RobotParameters {
 
     double totalMass() const { return chassis_mass_kg + kWheelCount * wheel_mass_kg; }
 };
+
+/// One number of the robot file (core/common/field.h); SI in the file as in memory.
+using RobotField = Field<RobotParameters>;
+
+/// The field table of the scalar numbers: chassis_mass_kg, wheel_mass_kg,
+/// wheel_spin_inertia_kg_m2, wheelbase_m, track_m, com_height_m, com_forward_m,
+/// vertical_damping_ratio. (The wheel is a wheel file; the inertia is chassisInertiaField().)
+std::span<const RobotField> robotFields();
+/// Each principal moment of chassis_inertia_kg_m2 [Ixx, Iyy, Izz].
+const FieldInfo& chassisInertiaField();
 
 /// Every out-of-range field, named with `prefix` ("robot.wheelbase_m = -1 ...").
 std::vector<Issue> validate(const RobotParameters& robot, const std::string& prefix = {});

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/contact/contact_angles.h"
 #include "core/contact/quadratic_model.h"
 
 namespace terra::dynamics {
@@ -12,7 +13,7 @@ double slipRatio(double forward_speed_m_s, double rim_speed_m_s, const ContactOp
     const double denominator =
         std::max({rim_speed_m_s, forward_speed_m_s, options.regularisation_speed_m_s});
     const double s = (rim_speed_m_s - forward_speed_m_s) / denominator;
-    return std::clamp(s, -options.max_slip, options.max_slip);
+    return std::clamp(s, -1.0, 1.0);
 }
 
 double slipAngle(double forward_speed_m_s, double lateral_speed_m_s,
@@ -35,7 +36,8 @@ WheelContact evaluateContact(const contact::ContactParameters<double>& p, const 
     const double r = p.radius_m;
     c.sunk = k.sinkage_m >= r;
     c.entry_angle_rad = c.sunk ? std::numbers::pi / 2 : std::acos(1.0 - k.sinkage_m / r);
-    c.exit_angle_rad = std::clamp(options.exit_angle_rad, -c.entry_angle_rad, 0.0);
+    c.exit_angle_rad =
+        std::min(contact::clampedExitAngle(options.exit_angle_rad, c.entry_angle_rad), 0.0);
     const contact::OperatingPoint<double> op{c.slip, c.slip_angle_rad, c.entry_angle_rad,
                                              c.exit_angle_rad, std::nullopt};
     c.forces = options.model == contact::ContactModel::kFull

@@ -17,14 +17,13 @@ struct ContactOptions {
     contact::ContactModel model = contact::ContactModel::kFull;  ///< full or quadratic closed form
     contact::BulldozingModel bulldozing = contact::BulldozingModel::kBekker;
     contact::IntegrationOptions integration;  ///< full model only
-    double exit_angle_rad = 0.0;              ///< θ_r [rad] ≤ 0 (Table 2.6: 0); kept ≥ −θ_f
+    double exit_angle_rad = 0.0;  ///< θ_r [rad] ≤ 0 (Table 2.6: 0); kept ≥ −θ_f (θ_r clamp)
     /// v_reg [m/s]: the slip and slip-angle denominators never drop below it, so both stay finite
     /// and continuous when the wheel stands still.
     double regularisation_speed_m_s = 1e-3;
     /// β_reg [rad]: sign(β) in F_s = F_y − sign(β) F_b is replaced by clamp(β/β_reg, −1, 1), so the
     /// bulldozing force does not chatter between ±F_b while β crosses zero.
     double slip_angle_regularisation_rad = 0.00872664626;  // 0.5°
-    double max_slip = 0.99;  ///< |s| is clamped to this (the model's domain is −1 < s < 1)
 };
 
 /// The kinematic state of one wheel, in its (steered, non-spinning) frame of section 2.2.1.
@@ -39,7 +38,7 @@ struct WheelKinematics {
 struct WheelContact {
     bool in_contact = false;              ///< h > 0
     bool sunk = false;                    ///< h ≥ r: θ_f clamped to 90° (axle in the soil)
-    double slip = 0.0;                    ///< s [-] (Eq. 2.1, regularised, clamped to ±max_slip)
+    double slip = 0.0;                    ///< s [-] (Eq. 2.1, regularised, in [−1, 1])
     double slip_angle_rad = 0.0;          ///< β [rad] (Eq. 2.2, regularised)
     double entry_angle_rad = 0.0;         ///< θ_f = acos(1 − h/r) [rad] (Eq. 2.12)
     double exit_angle_rad = 0.0;          ///< θ_r [rad]
@@ -48,10 +47,14 @@ struct WheelContact {
 };
 
 /// s of Eq. 2.1 in one expression: s = (rω − v_x) / max(rω, v_x, v_reg). Driving (rω > v_x) gives
-/// 1 − v_x/(rω), braking gives rω/v_x − 1 (MODEL-NOTES); clamped to ±max_slip.
+/// 1 − v_x/(rω), braking gives rω/v_x − 1 (docs/model.md, "Slip"). A stalled wheel (v_x = 0,
+/// rω > v_reg) gives s = 1, a locked one (ω = 0, v_x > v_reg) s = −1, both inside the model's
+/// domain [−1, 1]; s is clamped to it, which only acts when v_x < 0 or ω < 0 (rolling backwards),
+/// outside the forward-only model (docs/dynamics.md).
 double slipRatio(double forward_speed_m_s, double rim_speed_m_s, const ContactOptions& options);
 
-/// β of Eq. 2.2: atan(v_y / max(|v_x|, v_reg)), positive for v_y > 0 (MODEL-NOTES).
+/// β of Eq. 2.2: atan(v_y / max(|v_x|, v_reg)), positive for v_y > 0 (docs/model.md, "Lateral
+/// signs").
 double slipAngle(double forward_speed_m_s, double lateral_speed_m_s, const ContactOptions& options);
 
 /// The contact of a wheel with kinematics `k` on soil `p`. Out of contact: all forces zero.

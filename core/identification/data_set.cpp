@@ -1,6 +1,5 @@
 #include "core/identification/data_set.h"
 
-#include <array>
 #include <cmath>
 
 #include "core/common/range.h"
@@ -10,6 +9,22 @@
 
 namespace terra::identification {
 namespace {
+
+// The columns' ranges (docs/identification.md, "Data sets"). Forces and torques up to 1e7 N
+// (N·m), a thousand tonnes on one wheel, as the CLI's loads; times up to 1e12 s, so that Unix
+// time stamps (1.7e9 s) fit.
+constexpr double kMaxForce = 1e7;
+constexpr double kMaxTime = 1e12;
+const io::NumericColumn kSlip{"slip", {-1.0, 1.0}, ""};
+const io::NumericColumn kEntryAngleDeg{
+    "entry_angle_deg", {0.0, 90.0, true, true}, "deg", units::degToRad};
+const io::NumericColumn kEntryAngleRad{"entry_angle_rad", {0.0, units::kPi / 2, true, true}, "rad"};
+// Sinkage up to the largest wheel radius anyone puts in a file (10 m).
+const io::NumericColumn kSinkage{"sinkage_m", {0.0, 10.0}, "m"};
+const io::NumericColumn kSlipAngleDeg{
+    "slip_angle_deg", {-90.0, 90.0, true, true}, "deg", units::degToRad};
+
+io::NumericColumn forceColumn(const char* name) { return {name, {-kMaxForce, kMaxForce}, "N"}; }
 
 int find(const std::vector<std::string>& header, const std::string& name) {
     for (std::size_t i = 0; i < header.size(); ++i) {
@@ -50,6 +65,11 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
                                "'Fz_N', 'My_Nm', 'sinkage_m'"});
         }
     }
+    if (c_deg >= 0 && c_rad >= 0) {
+        missing.push_back({where,
+                           "columns 'entry_angle_deg' and 'entry_angle_rad' both given; "
+                           "give the entry angle once"});
+    }
     if (!missing.empty()) return missing;
 
     DataSetRead out;
@@ -59,49 +79,30 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
         const auto& cells = doc.rows[r];
         const std::string at = where + ":" + std::to_string(doc.line_numbers[r]);
         const std::size_t before = bad.size();
-        auto number = [&](int column, const char* name) {
-            double value = std::nan("");
-            if (!io::parseNumber(cells[column], value)) {
-                bad.push_back(
-                    {at, std::string(name) + " = '" + cells[column] + "' is not a finite number"});
-            }
-            return value;
+        auto number = [&](int column, const io::NumericColumn& spec) {
+            return io::readCell(cells[column], spec, at, bad).value_or(0.0);
         };
-        auto optional = [&](int column, const char* name) -> std::optional<double> {
+        auto optional = [&](int column, const io::NumericColumn& spec) -> std::optional<double> {
             if (column < 0 || cells[column].empty()) return std::nullopt;
-            return number(column, name);
+            return io::readCell(cells[column], spec, at, bad);
         };
         // A measured column: every row needs a number in it (0 when the file lacks the column).
-        auto measured = [&](int column, const char* name) {
-            return column < 0 ? 0.0 : number(column, name);
+        auto measured = [&](int column, const io::NumericColumn& spec) {
+            return column < 0 ? 0.0 : number(column, spec);
         };
         Sample s;
-        s.slip = number(c_slip, "slip");
-        const double theta = c_deg >= 0   ? number(c_deg, "entry_angle_deg")
-                             : c_rad >= 0 ? number(c_rad, "entry_angle_rad")
-                                          : 0.0;
-        s.entry_angle_rad = c_deg >= 0 ? units::degToRad(theta) : theta;
-        s.fx_n = measured(c_fx, "Fx_N");
-        s.fz_n = measured(c_fz, "Fz_N");
-        s.my_nm = measured(c_my, "My_Nm");
-        if (auto beta = optional(c_beta, "slip_angle_deg"))
-            s.slip_angle_rad = units::degToRad(*beta);
-        s.fy_n = optional(c_fy, "Fy_N");
-        s.load_n = optional(c_load, "W_N");
-        s.time_s = optional(c_time, "time_s");
-        s.sinkage_m = optional(c_sinkage, "sinkage_m");
-        if (bad.size() == before) {
-            checkRange(bad, at + ": slip", s.slip, {-1.0, 1.0, true, true});
-            if (s.sinkage_m) {
-                checkRange(bad, at + ": sinkage_m", *s.sinkage_m, {0.0, 1e3, false, false}, "m");
-            }
-            if (c_deg >= 0) {
-                checkRange(bad, at + ": entry_angle_deg", theta, {0.0, 90.0, true, true}, "deg");
-            } else if (c_rad >= 0) {
-                checkRange(bad, at + ": entry_angle_rad", theta, {0.0, units::kPi / 2, true, true},
-                           "rad");
-            }
-        }
+        s.slip = number(c_slip, kSlip);
+        s.entry_angle_rad = c_deg >= 0   ? units::degToRad(number(c_deg, kEntryAngleDeg))
+                            : c_rad >= 0 ? number(c_rad, kEntryAngleRad)
+                                         : 0.0;
+        s.fx_n = measured(c_fx, forceColumn("Fx_N"));
+        s.fz_n = measured(c_fz, forceColumn("Fz_N"));
+        s.my_nm = measured(c_my, {"My_Nm", {-kMaxForce, kMaxForce}, "N·m"});
+        if (auto beta = optional(c_beta, kSlipAngleDeg)) s.slip_angle_rad = units::degToRad(*beta);
+        s.fy_n = optional(c_fy, forceColumn("Fy_N"));
+        s.load_n = optional(c_load, {"W_N", {0.0, kMaxForce, true, false}, "N"});
+        s.time_s = optional(c_time, {"time_s", {-kMaxTime, kMaxTime}, "s"});
+        s.sinkage_m = optional(c_sinkage, kSinkage);
         if (bad.size() == before) out.data.samples.push_back(s);
     }
     if (!bad.empty() && policy == BadRows::kStop) return bad;

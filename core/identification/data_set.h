@@ -20,7 +20,7 @@ namespace terra::identification {
 
 /// One sample, SI.
 struct Sample {
-    double slip = 0.0;                     ///< s [-], in (−1, 1)
+    double slip = 0.0;                     ///< s [-], in [−1, 1]
     double entry_angle_rad = 0.0;          ///< θ_f [rad], in (0, π/2)
     double fx_n = 0.0;                     ///< F_x [N], drawbar pull
     double fz_n = 0.0;                     ///< F_z [N], vertical force
@@ -59,7 +59,7 @@ enum class ColumnNeeds {
     kFullModel,
 };
 
-/// What to do with a bad row (non-numeric cell, NaN, s ∉ (−1, 1), θ_f ∉ (0°, 90°)).
+/// What to do with a bad row (non-numeric cell, NaN, s ∉ [−1, 1], θ_f ∉ (0°, 90°)).
 enum class BadRows {
     kStop,  ///< the read fails, listing every bad row
     kSkip,  ///< the read succeeds without them; they are listed in `skipped`

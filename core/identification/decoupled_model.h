@@ -1,8 +1,8 @@
 #pragma once
 /// @file decoupled_model.h
 /// The linearised, decoupled wheel–soil model of the identification (thesis §4.3, Eqs. 4.1–4.18,
-/// with MODEL-NOTES E5 for B and E6 for F_z). Each stress is replaced by a "hat" that is zero at
-/// θ_r and θ_f and peaks at θ_m (Eq. 4.3), which gives
+/// with the corrections E5 for B and E6 for F_z of docs/model.md). Each stress is replaced by a
+/// "hat" that is zero at θ_r and θ_f and peaks at θ_m (Eq. 4.3), which gives
 ///   [F_z, F_x, M_y]ᵀ = [[A, B], [−B, A], [0, r C]] [X, Y]ᵀ,  X = r b σ_m,  Y = r b τ_m  (Eq. 4.4)
 /// and, eliminating X and Y, three equations that each involve one parameter group:
 ///   F_x(P_I; F_z, M_y)  Eq. 4.12,   F_z(P_I, P_II; M_y)  Eq. 4.17,   M_y(P_I, P_III; F_z)

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/common/range.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
 
 namespace terra::identification {
@@ -16,8 +17,10 @@ void validate(const SyntheticSpec& spec) {
     std::vector<Issue> issues;
     if (spec.loads_n.empty()) issues.push_back({"loads", "no load given"});
     if (spec.slips.empty()) issues.push_back({"slips", "no slip given"});
-    for (double w : spec.loads_n) checkRange(issues, "load_N", w, {0.0, 1e7, true, false}, "N");
-    for (double s : spec.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
+    const FieldInfo& load = contact::loadField();
+    for (double w : spec.loads_n) checkRange(issues, load.key, w, load.range, load.displayUnit());
+    const FieldInfo& slip = contact::slipField();
+    for (double s : spec.slips) checkRange(issues, slip.key, s, slip.range);
     for (const auto& [name, noise] : {std::pair{"noise.Fx", spec.noise.fx},
                                       {"noise.Fz", spec.noise.fz},
                                       {"noise.My", spec.noise.my},
@@ -38,6 +41,10 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
     for (double load : spec.loads_n) {
         std::optional<double> previous;
         for (double s : spec.slips) {
+            if (spec.cancel && spec.cancel->load(std::memory_order_relaxed)) {
+                out.cancelled = true;
+                break;
+            }
             contact::EntryAngleProblem problem;
             problem.load_n = load;
             problem.slip = s;
@@ -66,6 +73,7 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
             if (several_loads) sample.load_n = load;
             out.data.samples.push_back(sample);
         }
+        if (out.cancelled) break;
     }
     // Eq. 5.1: ỹ = y + e, e ~ N(0, σ²) per channel, in a fixed order so a seed is reproducible.
     double max_fx = 0, max_fz = 0, max_my = 0, max_theta = 0;

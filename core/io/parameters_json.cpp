@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "core/io/atomic_file.h"
+#include "core/io/json.h"
 
 #ifndef TERRA_SOURCE_RESOURCE_DIR
 #define TERRA_SOURCE_RESOURCE_DIR ""
@@ -15,62 +16,11 @@ namespace {
 
 using nlohmann::json;
 
-std::string typeName(const json& value) { return value.type_name(); }
-
-// Reads one numeric field into `out`; reports a missing key, a wrong type or a non-finite value.
-bool readNumber(const json& object, const std::string& key, const std::string& where,
-                const Range& range, const std::string& unit, bool required, double& out,
-                std::vector<Issue>& issues) {
-    const auto it = object.find(key);
-    if (it == object.end()) {
-        if (required) {
-            issues.push_back({where + key, "missing; expected a number in " + range.describe() +
-                                               (unit.empty() || unit == "-" ? "" : " " + unit)});
-        }
-        return false;
-    }
-    if (!it->is_number()) {
-        issues.push_back({where + key, "expected a number in " + range.describe() + ", got " +
-                                           typeName(*it) + " " + it->dump()});
-        return false;
-    }
-    out = it->get<double>();
-    return checkRange(issues, where + key, out, range, unit == "-" ? "" : unit);
-}
-
-void readText(const json& object, const char* key, const std::string& where, std::string& out,
-              std::vector<Issue>& issues) {
-    const auto it = object.find(key);
-    if (it == object.end()) return;
-    if (!it->is_string()) {
-        issues.push_back({where + key, std::string("expected a string, got ") + typeName(*it)});
-        return;
-    }
-    out = it->get<std::string>();
-}
-
-void rejectUnknownKeys(const json& object, const std::string& where,
-                       const std::vector<std::string>& known, std::vector<Issue>& issues) {
-    for (const auto& [key, value] : object.items()) {
-        if (std::find(known.begin(), known.end(), key) == known.end()) {
-            std::string list;
-            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-            issues.push_back({where + key, "unknown key; allowed keys: " + list});
-        }
-    }
-}
-
 template <typename T, typename Parse>
 Result<T> loadJsonFile(const std::filesystem::path& path, Parse parse) {
-    std::string text;
-    if (const auto error = readFile(path, text)) return std::vector<Issue>{{path.string(), *error}};
-    json document;
-    try {
-        document = json::parse(text);
-    } catch (const json::parse_error& e) {
-        return std::vector<Issue>{{path.string(), std::string("invalid JSON: ") + e.what()}};
-    }
-    return parse(document, path.string());
+    Result<json> document = readJsonFile(path);
+    if (!document) return document.issues();
+    return parse(document.value(), path.string());
 }
 
 template <typename T, typename Load>
@@ -105,40 +55,45 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
 
 }  // namespace
 
-Result<soil::SoilParameters> soilFromJson(const json& object, const std::string& where) {
-    const std::string at = where.empty() ? "" : where + ": ";
-    if (!object.is_object()) return std::vector<Issue>{{where, "expected a JSON object"}};
-    std::vector<Issue> issues;
+soil::SoilParameters readSoil(ObjectReader& r) {
     soil::SoilParameters soil;
-    readText(object, "name", at, soil.name, issues);
-    readText(object, "source", at, soil.source, issues);
-    std::vector<std::string> known{"name", "source"};
+    const std::size_t before = r.issues().size();
+    r.text("name", soil.name);
+    r.text("source", soil.source);
     for (const soil::SoilField& field : soil::soilFields()) {
-        known.emplace_back(field.key);
-        double value = 0.0;
-        if (readNumber(object, field.key, at, field.range, field.unit, field.required, value,
-                       issues)) {
-            soil::setUserValue(soil, field, value);
-        }
+        r.field(field, soil.*field.member,
+                field.required ? Presence::kRequired : Presence::kOptional);
     }
-    rejectUnknownKeys(object, at, known, issues);
-    if (issues.empty()) {
-        for (Issue& issue : soil::validate(soil, at)) issues.push_back(std::move(issue));
+    // The rules across fields (N = n + n1 s in range) once every field is valid on its own.
+    if (r.isObject() && r.issues().size() == before) {
+        for (Issue& issue : soil::validate(soil)) r.report(issue.where, std::move(issue.message));
     }
+    return soil;
+}
+
+wheel::WheelParameters readWheel(ObjectReader& r) {
+    wheel::WheelParameters wheel;
+    r.text("name", wheel.name);
+    r.text("source", wheel.source);
+    for (const wheel::WheelField& field : wheel::wheelFields())
+        r.field(field, wheel.*field.member, Presence::kRequired);
+    return wheel;
+}
+
+Result<soil::SoilParameters> soilFromJson(const json& object, const std::string& where) {
+    std::vector<Issue> issues;
+    ObjectReader r(object, issues, where);
+    soil::SoilParameters soil = readSoil(r);
+    r.finish();
     if (!issues.empty()) return issues;
     return soil;
 }
 
 Result<wheel::WheelParameters> wheelFromJson(const json& object, const std::string& where) {
-    const std::string at = where.empty() ? "" : where + ": ";
-    if (!object.is_object()) return std::vector<Issue>{{where, "expected a JSON object"}};
     std::vector<Issue> issues;
-    wheel::WheelParameters wheel;
-    readText(object, "name", at, wheel.name, issues);
-    readText(object, "source", at, wheel.source, issues);
-    readNumber(object, "r_m", at, wheel::kRadiusRange, "m", true, wheel.radius_m, issues);
-    readNumber(object, "b_m", at, wheel::kWidthRange, "m", true, wheel.width_m, issues);
-    rejectUnknownKeys(object, at, {"name", "source", "r_m", "b_m"}, issues);
+    ObjectReader r(object, issues, where);
+    wheel::WheelParameters wheel = readWheel(r);
+    r.finish();
     if (!issues.empty()) return issues;
     return wheel;
 }

@@ -10,10 +10,17 @@
 #include <vector>
 
 #include "core/common/issue.h"
+#include "core/io/json_reader.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
 namespace terra::io {
+
+/// The soil of the object `r` reads: every field of the table (soil_parameters.h) and the rule
+/// across them; problems go to the reader's issues. The caller calls r.finish().
+soil::SoilParameters readSoil(ObjectReader& r);
+/// The wheel of the object `r` reads ({"name", "source", "r_m", "b_m"}).
+wheel::WheelParameters readWheel(ObjectReader& r);
 
 /// Soil from a JSON object; `where` prefixes every issue ("soils/x.json").
 Result<soil::SoilParameters> soilFromJson(const nlohmann::json& json, const std::string& where);
@@ -24,7 +31,7 @@ Result<wheel::WheelParameters> wheelFromJson(const nlohmann::json& json, const s
 nlohmann::json toJson(const soil::SoilParameters& soil);
 nlohmann::json toJson(const wheel::WheelParameters& wheel);
 
-/// Loads a file; a parse error is reported with its byte position.
+/// Loads a file (core/io/json.h: strict JSON, problems with line and column).
 Result<soil::SoilParameters> loadSoil(const std::filesystem::path& path);
 Result<wheel::WheelParameters> loadWheel(const std::filesystem::path& path);
 

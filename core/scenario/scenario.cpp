@@ -16,8 +16,8 @@ dynamics::Commands Scenario::commandsAt(double t_s) const {
 
 std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     std::vector<Issue> issues = dynamics::validate(s.robot, prefix + "robot.");
-    checkRange(issues, prefix + "duration_s", s.duration_s, {0.0, 86400.0, true, false}, "s");
-    checkRange(issues, prefix + "time_step_s", s.time_step_s, {0.0, 0.05, true, false}, "s");
+    checkRange(issues, prefix + "duration_s", s.duration_s, kDurationRange, "s");
+    checkRange(issues, prefix + "time_step_s", s.time_step_s, kTimeStepRange, "s");
     if (s.time_step_s > 0.0) {
         checkRange(issues, prefix + "output_interval_s", s.output_interval_s,
                    {s.time_step_s, 3600.0}, "s");

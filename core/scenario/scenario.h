@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/common/issue.h"
+#include "core/common/range.h"
 #include "core/dynamics/robot.h"
 #include "core/dynamics/rover.h"
 #include "core/dynamics/terrain.h"
@@ -35,6 +36,11 @@ struct StreamingHook {
     double torque_noise_nm = 0.05;          ///< of M_y [N·m]
     unsigned seed = 1;                      ///< noise seed (runs repeat bit for bit)
 };
+
+/// Allowed simulated time [s]: up to a day.
+inline const Range kDurationRange{0.0, 86400.0, true, false};
+/// Allowed fixed step [s]: the contact's stiffness needs ≤ 50 ms (docs/dynamics.md).
+inline const Range kTimeStepRange{1e-6, 0.05};
 
 struct Scenario {
     std::string name;

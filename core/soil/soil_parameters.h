@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/common/range.h"
 
@@ -37,17 +38,10 @@ struct SoilParameters {
     }
 };
 
-/// One user-facing field of the soil: its file key, unit, allowed range and SI conversion.
-/// This table drives the JSON reader, the writer, validation and the command-line overrides.
-struct SoilField {
-    const char* key;     ///< JSON key, unit-suffixed ("phi_deg")
-    const char* unit;    ///< unit shown to the user ("deg")
-    const char* symbol;  ///< literature symbol ("φ")
-    Range range;         ///< allowed values, in the user's unit
-    double to_si;        ///< SI value = file value × to_si
-    double SoilParameters::*member;
-    bool required;  ///< false: optional key, default kept when absent
-};
+/// One user-facing field of the soil (core/common/field.h): file key, unit, symbol, label,
+/// tooltip, allowed range, SI conversion. This table drives the JSON reader and writer, the
+/// validation, the command-line overrides (--set) and the studio's soil editor.
+using SoilField = Field<SoilParameters>;
 
 /// The field table (n, c, φ, k_c, k_φ, K, γ, a₀, a₁, j_max, n₁).
 std::span<const SoilField> soilFields();

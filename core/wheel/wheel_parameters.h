@@ -2,9 +2,12 @@
 /// @file wheel_parameters.h
 /// Geometry of a rigid smooth wheel (thesis Tables 2.2 and 5.1), in metres.
 
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/common/range.h"
 
@@ -18,8 +21,15 @@ struct WheelParameters {
     double width_m = 0.107;   ///< b [m]
 };
 
-inline const Range kRadiusRange{0.0, 5.0, true, false};  ///< r_m, [m]
-inline const Range kWidthRange{0.0, 5.0, true, false};   ///< b_m, [m]
+/// One user-facing field of the wheel (core/common/field.h).
+using WheelField = Field<WheelParameters>;
+
+/// The field table: r_m, b_m (metres in files and on screen as in SI).
+std::span<const WheelField> wheelFields();
+const WheelField& radiusField();
+const WheelField& widthField();
+/// The field of the table with this key, or nullptr.
+const WheelField* findWheelField(std::string_view key);
 
 /// Every out-of-range or non-finite field ("r_m", "b_m").
 std::vector<Issue> validate(const WheelParameters& wheel, const std::string& prefix = {});

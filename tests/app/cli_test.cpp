@@ -67,7 +67,8 @@ TEST(Cli, BadInputExitsTwoAndNamesTheProblem) {
         {"wheel --soil sandy-loam --wheel A --entry-angle 120", "entry_angle_deg"},
         {"wheel --soil sandy-loam --wheel A --entry-angle 30 --load 50", "excludes"},
         {"wheel --soil sandy-loam --wheel A --entry-angle 30 --model cubic", "model"},
-        {"sweep --soil sandy-loam --slips 0:1:11", "slip"},
+        {"sweep --soil sandy-loam --slips 0:1.1:12",
+         "slip: 1.1 is outside the allowed range [-1, 1]"},
         {"sensitivity --parameter phi_deg --values 20,70", "phi_deg"},
         {"wheel --bogus", "bogus"},
     };
@@ -208,8 +209,8 @@ TEST(Cli, BatchOnlyFlagsNeedInput) {
 }
 
 TEST(Cli, StressesReproduceTable24) {
-    // Table 2.3 conditions, θ_m = 15°, no j_max, 0.01° grid (MODEL-NOTES): sandy loam σ
-    // RMSE 2.1623, τ_l RMSE 0.2121 (E11), MAE σ 1.7427 kPa.
+    // Table 2.3 conditions, θ_m = 15°, no j_max, 0.01° grid (docs/model.md, Tables 2.4–2.5): sandy
+    // loam σ RMSE 2.1623, τ_l RMSE 0.2121 (E11), MAE σ 1.7427 kPa.
     const CliRun r =
         run("stresses --soil sandy-loam --wheel A --max-stress-angle 15 --no-jmax --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -117,7 +117,8 @@ TEST(SoilEditor, InvalidOrIncompleteTypedTextNeverReachesTheModel) {
     conditions.show();
     load = conditions.loadBox();
     load->selectAll();
-    QTest::keyClicks(load, "6000");  // W ≤ 5000 N (a typed "-" is refused outright: W > 0)
+    // W ≤ 100 kN, contact::loadField()'s range as everywhere (a typed "-" is refused outright).
+    QTest::keyClicks(load, "200000");
     QTest::qWait(3 * load->debounceMs());
     EXPECT_DOUBLE_EQ(document.project().conditions.load_n, 58.86);
     EXPECT_EQ(document.undoStack()->count(), 0);
@@ -206,7 +207,9 @@ TEST(SoilEditor, EveryFieldOfTheCoreTableHasAnEditorWithItsRange) {
         ValidatedSpinBox* box = editor.spinBox(field.key);
         ASSERT_NE(box, nullptr) << field.key;
         EXPECT_EQ(box->allowedRange().describe(), field.range.describe()) << field.key;
-        EXPECT_TRUE(box->toolTip().contains(QString::fromUtf8(field.unit))) << field.key;
+        EXPECT_TRUE(box->toolTip().contains(QString::fromStdString(field.displayUnit())))
+            << field.key;
+        EXPECT_TRUE(box->toolTip().contains(QString::fromUtf8(field.label))) << field.key;
     }
 }
 

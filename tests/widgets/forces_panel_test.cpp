@@ -56,9 +56,18 @@ TEST(ForcesPanel, ShowsOneCurvePerSlipAngleFromTheModel) {
     ASSERT_NE(fx, nullptr);
     const double plotted = fx->graph(0)->data()->at(50)->value;
     const double deg = units::kPi / 180.0;
-    const contact::ContactParameters<double> p{
-        0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * deg, 0.025,
-        15.2e3, 0.2,   0.3, 0.02};
+    const contact::ContactParameters<double> p{.radius_m = 0.092,
+                                               .width_m = 0.107,
+                                               .sinkage_exponent = 0.7,
+                                               .sinkage_exponent_slip = 0.0,
+                                               .pressure_modulus = 5.3e3 / 0.107 + 1.515e6,
+                                               .cohesion_pa = 1.7e3,
+                                               .friction_angle_rad = 29.0 * deg,
+                                               .shear_modulus_m = 0.025,
+                                               .unit_weight_n_m3 = 15.2e3,
+                                               .max_stress_a0 = 0.2,
+                                               .max_stress_a1 = 0.3,
+                                               .max_shear_deformation_m = 0.02};
     const contact::OperatingPoint<double> op{
         0.5, 5.0 * deg, row[table.column("entry_angle_deg")] * deg, 0.0, std::nullopt};
     EXPECT_NEAR(plotted, contact::computeForces(p, op).fx, 1e-9);
@@ -99,7 +108,7 @@ QCustomPlot* namedPlot(ForcesPanel& panel, const QString& name) {
 constexpr double kRadius = 0.092, kWidth = 0.107, kN = 0.7, kKc = 5.3e3, kKphi = 1.515e6;
 constexpr double kCohesion = 1.7e3, kPhiDeg = 29.0, kGamma = 15.2e3;
 
-// F_b of one side wall, MODEL-NOTES E1 (Eq. 2.30 corrected), Bekker's a_s = γ c_s², b_s = 2 c c_s:
+// F_b of one side wall (Eq. 2.30 corrected, E1), Bekker's a_s = γ c_s², b_s = 2 c c_s:
 // F_b = 2 a_s (r² − d²)^{3/2} / 3 + (b_s − a_s d)(r² acos(d/r) − d √(r² − d²)), d = r − h.
 double thesisBulldozing(double h, double cohesion) {
     const double c_s = std::tan(units::kPi / 4.0 + units::degToRad(kPhiDeg) / 2.0);
@@ -162,7 +171,7 @@ TEST(ForcesPanel, StaticSinkageCurveIsBekkersClosedFormAndSolvesEq27) {
     QCustomPlot* plot = namedPlot(panel, "static-sinkage-vs-load");
     ASSERT_NE(plot, nullptr);
     ASSERT_EQ(plot->graphCount(), 3);  // Bekker 2.8, Eq. 2.7 front half, Eq. 2.7 symmetric
-    // Eq. 2.8 with MODEL-NOTES E2: h = [W / (√(2r) b K_s (1 − n/3))]^(1/(n + 1/2)).
+    // Eq. 2.8 with E2 (docs/model.md): h = [W / (√(2r) b K_s (1 − n/3))]^(1/(n + 1/2)).
     const double ks = kKc / kWidth + kKphi;
     const QCPGraph* bekker = plot->graph(0);
     ASSERT_GT(bekker->dataCount(), 40);
@@ -184,7 +193,7 @@ TEST(ForcesPanel, StaticSinkageCurveIsBekkersClosedFormAndSolvesEq27) {
                 << g << " " << w;
         }
     }
-    // MODEL-NOTES E2: Bekker's formula is close to the front-half integral (within ~6 %).
+    // E2 (docs/model.md): Bekker's formula is close to the front-half integral (within ~6 %).
     const int i = 40;
     EXPECT_NEAR(bekker->data()->at(i)->value / plot->graph(1)->data()->at(i)->value, 1.0, 0.08);
     // Changing the load rescales the curve's load axis.

@@ -15,7 +15,7 @@
 #include "core/contact/quadratic_model.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
-#include "widgets/document/project.h"
+#include "core/project/project.h"
 
 namespace terra::ui {
 
@@ -23,8 +23,8 @@ namespace terra::ui {
 struct AnalysisInputs {
     soil::SoilParameters soil;
     wheel::WheelParameters wheel;
-    OperatingConditions conditions;
-    static AnalysisInputs from(const Project& project) {
+    analysis::OperatingConditions conditions;
+    static AnalysisInputs from(const project::Project& project) {
         return {project.soil, project.wheel, project.conditions};
     }
 };

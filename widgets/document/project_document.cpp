@@ -1,6 +1,5 @@
 #include "widgets/document/project_document.h"
 
-#include <QFile>
 #include <QSaveFile>
 #include <QUndoStack>
 #include <algorithm>
@@ -102,33 +101,42 @@ bool ProjectDocument::setSoilValue(const std::string& key, double user_value) {
         soil::SoilParameters candidate = project_.soil;
         soil::setUserValue(candidate, field, user_value);
         if (!soil::validate(candidate).empty()) return false;
-        return pushField(
-            QString("Set %1 = %2 %3").arg(field.symbol).arg(user_value).arg(field.unit),
-            kSoilFieldIdBase + static_cast<int>(i), Part::kSoil, &member,
-            candidate.*(field.member));
+        return pushField(QString("Set %1 = %2 %3")
+                             .arg(QString::fromUtf8(field.symbol))
+                             .arg(user_value)
+                             .arg(QString::fromStdString(field.displayUnit())),
+                         kSoilFieldIdBase + static_cast<int>(i), Part::kSoil, &member,
+                         candidate.*(field.member));
     }
     return false;
 }
 
 bool ProjectDocument::setWheelValue(const std::string& key, double metres) {
-    const bool radius = key == "r_m";
-    if (!radius && key != "b_m") return false;
-    if (!(radius ? wheel::kRadiusRange : wheel::kWidthRange).contains(metres)) return false;
-    double& field = radius ? project_.wheel.radius_m : project_.wheel.width_m;
-    return pushField(QString("Set wheel %1 = %2 m").arg(radius ? "r" : "b").arg(metres),
-                     radius ? kWheelRadiusId : kWheelWidthId, Part::kWheel, &field, metres);
+    const wheel::WheelField* field = wheel::findWheelField(key);
+    if (!field || !field->range.contains(metres)) return false;
+    const bool radius = field == &wheel::radiusField();
+    return pushField(QString("Set wheel %1 = %2 %3")
+                         .arg(QString::fromUtf8(field->symbol))
+                         .arg(metres)
+                         .arg(QString::fromUtf8(field->unit)),
+                     radius ? kWheelRadiusId : kWheelWidthId, Part::kWheel,
+                     &(project_.wheel.*field->member), field->toSi(metres));
 }
 
 bool ProjectDocument::setLoad(double load_n) {
-    if (!kLoadRange.contains(load_n)) return false;
-    return pushField(QString("Set load W = %1 N").arg(load_n), kLoadId, Part::kConditions,
-                     &project_.conditions.load_n, load_n);
+    const FieldInfo& field = contact::loadField();
+    if (!field.range.contains(load_n)) return false;
+    return pushField(QString("Set load %1 = %2 %3")
+                         .arg(QString::fromUtf8(field.symbol))
+                         .arg(load_n)
+                         .arg(QString::fromUtf8(field.unit)),
+                     kLoadId, Part::kConditions, &project_.conditions.load_n, load_n);
 }
 
 bool ProjectDocument::setSlipAngles(const std::vector<double>& slip_angles_deg) {
     if (slip_angles_deg.empty()) return false;
     for (double beta : slip_angles_deg) {
-        if (!(std::abs(beta) < 89.0)) return false;
+        if (!analysis::slipAnglesField().range.contains(beta)) return false;
     }
     return pushField(QString("Set slip angles"), kSlipAnglesId, Part::kConditions,
                      &project_.conditions.slip_angles_deg, slip_angles_deg);
@@ -221,16 +229,7 @@ bool ProjectDocument::save(const QString& path, QString* error) {
 }
 
 Result<Project> ProjectDocument::load(const QString& path) {
-    QFile file(path);
-    if (!file.open(QIODevice::ReadOnly)) {
-        return std::vector<Issue>{
-            {path.toStdString(), "cannot open: " + file.errorString().toStdString()}};
-    }
-    const QByteArray bytes = file.readAll();
-    const auto json =
-        nlohmann::json::parse(bytes.constData(), bytes.constData() + bytes.size(), nullptr, false);
-    if (json.is_discarded()) return std::vector<Issue>{{path.toStdString(), "is not valid JSON"}};
-    return projectFromJson(json, path.toStdString());
+    return project::loadProject(path.toStdString());
 }
 
 Project ProjectDocument::defaultProject(const io::PresetLocations& locations) {

@@ -9,11 +9,13 @@
 #include <QString>
 
 #include "core/io/parameters_json.h"
-#include "widgets/document/project.h"
+#include "core/project/project.h"
 
 class QUndoStack;
 
 namespace terra::ui {
+
+using project::Project;
 
 class ProjectDocument : public QObject {
     Q_OBJECT

@@ -94,9 +94,7 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
     int row = 1;
     for (const soil::SoilField& field : soil::soilFields()) {
         const bool jmax = std::string(field.key) == "jmax_m";
-        auto* box =
-            new ValidatedSpinBox(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit),
-                                 field.range, decimalsFor(field.range), this);
+        auto* box = new ValidatedSpinBox(field, decimalsFor(field.range), this);
         box->setObjectName(QString("soil.") + field.key);
         if (jmax) {
             // j_max is optional: the lowest value means "no limit" (the field itself excludes 0).
@@ -110,7 +108,9 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         auto* label = new QLabel(
             QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)),
             this);
-        label->setToolTip(QString::fromUtf8(field.key));
+        label->setToolTip(QString("%1 (%2): %3")
+                              .arg(QString::fromUtf8(field.label), QString::fromUtf8(field.key),
+                                   QString::fromUtf8(field.description)));
         grid->addWidget(label, row, 0);
         grid->addWidget(box, row, 1);
         grid->addWidget(slider, row, 2);
@@ -173,26 +173,33 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
                          QWidget* parent)
     : QWidget(parent), document_(document), locations_(locations) {
     preset_ = presetBox(locations_, "wheels", this);
-    radius_ = new ValidatedSpinBox("r", "m", wheel::kRadiusRange, 4, this);
-    radius_->setObjectName("wheel.r_m");
+    const wheel::WheelField& r = wheel::radiusField();
+    const wheel::WheelField& b = wheel::widthField();
+    radius_ = new ValidatedSpinBox(r, 4, this);
+    radius_->setObjectName(QString("wheel.") + r.key);
     radius_->setSingleStep(0.005);
-    width_ = new ValidatedSpinBox("b", "m", wheel::kWidthRange, 4, this);
-    width_->setObjectName("wheel.b_m");
+    width_ = new ValidatedSpinBox(b, 4, this);
+    width_->setObjectName(QString("wheel.") + b.key);
     width_->setSingleStep(0.005);
     auto* form = new QFormLayout(this);
     form->addRow("<b>Wheel preset</b>", preset_);
-    form->addRow("Radius r [m]", radius_);
-    form->addRow("Width b [m]", width_);
+    auto label = [](const FieldInfo& f) {
+        const QString text = QString::fromUtf8(f.label);
+        return text.left(1).toUpper() + text.mid(1) + " " +
+               QString::fromStdString(f.symbolWithUnit());
+    };
+    form->addRow(label(r), radius_);
+    form->addRow(label(b), width_);
     connect(preset_, &QComboBox::currentIndexChanged, this, [this] {
         const std::string name = preset_->currentData().toString().toStdString();
         if (name.empty()) return;
         if (auto wheel = io::resolveWheel(locations_, name)) document_->setWheel(*wheel, name);
     });
     connect(radius_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
-        if (!document_->setWheelValue("r_m", v)) refresh();
+        if (!document_->setWheelValue(wheel::radiusField().key, v)) refresh();
     });
     connect(width_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
-        if (!document_->setWheelValue("b_m", v)) refresh();
+        if (!document_->setWheelValue(wheel::widthField().key, v)) refresh();
     });
     connect(document_, &ProjectDocument::wheelChanged, this, &WheelEditor::refresh);
     refresh();
@@ -207,16 +214,20 @@ void WheelEditor::refresh() {
 
 ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
     : QWidget(parent), document_(document) {
-    load_ = new ValidatedSpinBox("W", "N", Range{0.0, 5000.0, true, false}, 2, this);
-    load_->setObjectName("conditions.load_N");
+    const FieldInfo& load = contact::loadField();
+    const FieldInfo& angles = analysis::slipAnglesField();
+    load_ = new ValidatedSpinBox(load, 2, this);
+    load_->setObjectName(QString("conditions.") + load.key);
     load_->setSingleStep(1.0);
     slip_angles_ = new QLineEdit(this);
-    slip_angles_->setObjectName("conditions.slip_angles_deg");
-    slip_angles_->setToolTip(
-        "Slip angles β [deg] of the force sweeps, comma separated, each in (−89, 89)");
+    slip_angles_->setObjectName(QString("conditions.") + angles.key);
+    slip_angles_->setToolTip(QString("%1, comma separated, each in %2")
+                                 .arg(QString::fromUtf8(angles.description),
+                                      QString::fromStdString(angles.range.describe())));
     auto* form = new QFormLayout(this);
-    form->addRow("Load W [N]", load_);
-    form->addRow("Slip angles β [deg]", slip_angles_);
+    form->addRow(QString("Load %1").arg(QString::fromStdString(load.symbolWithUnit())), load_);
+    form->addRow(QString("Slip angles %1").arg(QString::fromStdString(angles.symbolWithUnit())),
+                 slip_angles_);
     connect(load_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         if (!document_->setLoad(v)) refresh();
     });
@@ -226,13 +237,14 @@ ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
         for (const QString& part : slip_angles_->text().split(',', Qt::SkipEmptyParts)) {
             bool parsed = false;
             const double v = part.trimmed().toDouble(&parsed);
-            ok = ok && parsed && std::abs(v) < 89.0;
+            ok = ok && parsed && analysis::slipAnglesField().range.contains(v);
             values.push_back(v);
         }
         if (!ok || values.empty() || !document_->setSlipAngles(values)) {
             slip_angles_->setStyleSheet("QLineEdit { border: 2px solid #d62728; }");
             slip_angles_->setToolTip(
-                "Not a comma-separated list of angles in (−89, 89) deg: not applied");
+                QString("Not a comma-separated list of angles in %1 deg: not applied")
+                    .arg(QString::fromStdString(analysis::slipAnglesField().range.describe())));
             return;
         }
         slip_angles_->setStyleSheet({});
@@ -242,7 +254,7 @@ ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
 }
 
 void ConditionsEditor::refresh() {
-    const OperatingConditions& c = document_->project().conditions;
+    const analysis::OperatingConditions& c = document_->project().conditions;
     load_->setCommittedValue(c.load_n);
     QStringList angles;
     for (double beta : c.slip_angles_deg) angles << QString::number(beta);

@@ -32,6 +32,14 @@ ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, con
     connect(this, &QDoubleSpinBox::valueChanged, this, [this](double v) { committed_ = v; });
 }
 
+ValidatedSpinBox::ValidatedSpinBox(const FieldInfo& field, int decimals, QWidget* parent)
+    : ValidatedSpinBox(QString::fromUtf8(field.symbol), QString::fromStdString(field.displayUnit()),
+                       field.range, decimals, parent) {
+    setToolTip(QString("%1 — %2 Allowed: %3")
+                   .arg(QString::fromUtf8(field.label), QString::fromUtf8(field.description),
+                        QString::fromStdString(field.range.describe())));
+}
+
 void ValidatedSpinBox::setCommittedValue(double value) {
     const QSignalBlocker block(this);
     setValue(value);

@@ -10,6 +10,7 @@
 
 class QTimer;
 
+#include "core/common/field.h"
 #include "core/common/range.h"
 
 namespace terra::ui {
@@ -20,6 +21,8 @@ public:
     /// `name` and `unit` are used in the message ("φ = 75 deg is outside [0, 60)").
     ValidatedSpinBox(const QString& name, const QString& unit, const Range& range, int decimals,
                      QWidget* parent = nullptr);
+    /// For a field of a field table: its symbol, unit and range, its description as the tooltip.
+    ValidatedSpinBox(const FieldInfo& field, int decimals, QWidget* parent = nullptr);
 
     const Range& allowedRange() const { return range_; }
     /// Whether the text being typed is acceptable (false while flagged).

@@ -106,7 +106,6 @@ void AnalysisPanel::presentOutcome(const Outcome& outcome) {
     present(outcome.value);
     last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
     since_shown_.start();
-    ++shown_count_;
 }
 
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {

@@ -1,9 +1,12 @@
 #pragma once
 /// @file analysis_panel.h
 /// Base of the studio's analysis panels: follows the project document, recomputes off the GUI
-/// thread (QtConcurrent) when the project or the panel's settings change, and drops results of a
-/// superseded state (by revision; a running computation is asked to cancel). Reports the time from
-/// the edit to the repainted plot.
+/// thread (QtConcurrent) when the project or the panel's settings change, and always ends on the
+/// result of the newest state (by revision). An edit asks the running computation to cancel and
+/// drops its result, unless nothing new has been drawn for kMaxFrameGapMs: then it runs to the end
+/// and is shown as an intermediate frame before the newest state is computed, so that a continuous
+/// drag keeps the plot moving. A run the user cancels shows what it computed. Reports the time
+/// from the edit to the repainted plot.
 
 #include <QElapsedTimer>
 #include <QFutureWatcher>
@@ -45,8 +48,6 @@ public:
     /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
     /// work per update, the rest runs on workers.
     double lastPresentMs() const { return last_present_ms_; }
-    /// How many results (final or intermediate frames) have been drawn.
-    int shownCount() const { return shown_count_; }
     /// Starts a computation now (the identification panel's "Fit"; also for tests).
     void recompute() { scheduleUpdate(); }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
@@ -61,7 +62,8 @@ protected:
     void showEvent(QShowEvent* event) override;
 
     /// A computation: inputs captured by value on the GUI thread, run on a worker. `cancel` is set
-    /// when the result will be dropped anyway.
+    /// when the result is superseded (it will be dropped) or the user cancels (cancelRunning(): the
+    /// partial result is shown); the job should then stop soon and return what it has.
     using Job = std::function<std::any(const std::atomic<bool>& cancel)>;
     virtual Job makeJob() = 0;
     /// Shows a result (GUI thread); replots.
@@ -99,7 +101,6 @@ private:
     bool live_ = true;
     QElapsedTimer since_edit_;
     QElapsedTimer since_shown_;  // since the last present()
-    int shown_count_ = 0;
     double last_latency_ms_ = 0.0;
     double last_present_ms_ = 0.0;
 };

@@ -40,7 +40,7 @@ TEST(QuadraticModel, ReproducesTables24And25ToFourDecimals) {
          {4.9637, 0.5657, 0.5072, 0.2511}},
     };
     for (const Printed& t : tables) {
-        // MODEL-NOTES: a uniform grid of θ from 0 to 30° in 0.01° steps.
+        // docs/model.md, Tables 2.4–2.5: a uniform grid of θ from 0 to 30° in 0.01° steps.
         const auto errors = quadraticApproximationErrors(t.params, table23(), 0.01 * kDeg);
         for (int k = 0; k < 4; ++k) {
             EXPECT_NEAR(errors[k].rmse / 1e3, t.rmse[k], 0.5e-4) << t.soil << " RMSE " << k;
@@ -146,7 +146,7 @@ TEST(QuadraticModel, IsCloseToTheFullModel) {
         const auto quad = computeQuadraticForces(p, op);
         EXPECT_NEAR(quad.fz, full.fz, 0.06 * full.fz);
         EXPECT_NEAR(quad.my, full.my, 0.06 * std::abs(full.my));
-        // F_b does not depend on the stress model: both must give MODEL-NOTES' corrected Eq. 2.30,
+        // F_b does not depend on the stress model: both must give the corrected Eq. 2.30 (E1),
         // written here in the depth d = r cos θ_f (bulldozing.h uses the θ_f form and series):
         // F_b = 2 a_s (r² − d²)^{3/2}/3 + (b_s − a_s d)(r² acos(d/r) − d √(r² − d²)), Bekker's
         // a_s = γ c_s², b_s = 2 c c_s, c_s = tan(45° + φ/2).

@@ -84,9 +84,9 @@ TEST(Sinkage, StaticSolveInvertsEq27) {
 }
 
 TEST(Sinkage, BekkerMatchesTheFrontHalfIntegralWithinItsValidity) {
-    // MODEL-NOTES E2: Bekker's formula assumes front-half contact; it agrees with the front-half
-    // integral of Eq. 2.7 within ~6 % for moderate sinkage (h ≤ r/3), and is 35–50 % off the
-    // symmetric one.
+    // E2 (docs/model.md): Bekker's formula assumes front-half contact; it agrees with the
+    // front-half integral of Eq. 2.7 within ~6 % for moderate sinkage (h ≤ r/3), and is 35–50 % off
+    // the symmetric one.
     for (const auto& p : {testing::sandyLoam(), testing::drySand(), testing::clayeySoil()}) {
         for (double w : {25.0, kSixKilograms, 98.0}) {
             const double bekker = bekkerStaticSinkage(p, w);
@@ -133,8 +133,8 @@ TEST(Sinkage, EntryAngleSolveReproducesTheLoad) {
 }
 
 TEST(Sinkage, EntryAngleRisesWithSlipForTheThesisSoils) {
-    // MODEL-NOTES E9: with the printed model θ_f increases with slip (the thesis's text says the
-    // opposite).
+    // E9 (docs/model.md): with the printed model θ_f increases with slip (the thesis's text says
+    // the opposite).
     for (const auto& p : {testing::sandyLoam(), testing::drySand(), testing::clayeySoil()}) {
         double previous = 0.0;
         for (double s : {0.0, 0.2, 0.4, 0.6, 0.8}) {

@@ -87,8 +87,8 @@ TEST(StressField, ShearLimitCapsDeformation) {
 }
 
 TEST(StressField, BrakingUsesTheSkidKinematics) {
-    // MODEL-NOTES: κ = 1/(1 + s) for −1 < s < 0; near θ_f the soil moves faster than the rim, so
-    // the tangential shear stress opposes rotation (negative).
+    // docs/model.md, Slip: κ = 1/(1 + s) for −1 < s < 0; near θ_f the soil moves faster than the
+    // rim, so the tangential shear stress opposes rotation (negative).
     const double s = -0.5;
     const StressField<double> field(testing::sandyLoam(kNoLimit), point(s, 0.0));
     EXPECT_DOUBLE_EQ(field.velocityRatio(), 2.0);
@@ -102,7 +102,8 @@ TEST(StressField, BrakingUsesTheSkidKinematics) {
 }
 
 TEST(StressField, StagnationPointTakesTheDrivingDirection) {
-    // s = 0, β = 0: the shear velocity vanishes at θ = 0; MODEL-NOTES: direction (+1, 0).
+    // s = 0, β = 0: the shear velocity vanishes at θ = 0; the one-sided limit (+1, 0)
+    // (docs/model.md, Stagnation point).
     OperatingPoint<double> op = point(0.0, 0.0);
     op.exit_angle_rad = -5.0 * kDeg;
     const StressField<double> field(testing::sandyLoam(), op);

@@ -17,8 +17,18 @@ inline constexpr double kWidthA = 0.107;   // [m]
 inline ContactParameters<double> thesisSoil(double n, double c_kpa, double phi_deg, double kc,
                                             double kphi, double K, double gamma, double jmax,
                                             double r = kRadiusA, double b = kWidthA) {
-    return {r,           b,   n,   0.0, kc * 1e3 / b + kphi * 1e3, c_kpa * 1e3, phi_deg * kDeg, K,
-            gamma * 1e3, 0.2, 0.3, jmax};
+    return {.radius_m = r,
+            .width_m = b,
+            .sinkage_exponent = n,
+            .sinkage_exponent_slip = 0.0,
+            .pressure_modulus = kc * 1e3 / b + kphi * 1e3,
+            .cohesion_pa = c_kpa * 1e3,
+            .friction_angle_rad = phi_deg * kDeg,
+            .shear_modulus_m = K,
+            .unit_weight_n_m3 = gamma * 1e3,
+            .max_stress_a0 = 0.2,
+            .max_stress_a1 = 0.3,
+            .max_shear_deformation_m = jmax};
 }
 inline ContactParameters<double> sandyLoam(double jmax = 0.02) {
     return thesisSoil(0.7, 1.7, 29.0, 5.3, 1515.0, 0.025, 15.2, jmax);

@@ -88,7 +88,7 @@ TEST(WheelForces, MirroredSlipAngleMirrorsLateralQuantities) {
     EXPECT_DOUBLE_EQ(a.mx, -b.mx);
     EXPECT_DOUBLE_EQ(a.mz, -b.mz);
     EXPECT_DOUBLE_EQ(a.fs, -b.fs);
-    // MODEL-NOTES signs: β > 0 → F_y, M_x, M_z < 0, F_s = F_y − F_b.
+    // docs/model.md, Lateral signs: β > 0 → F_y, M_x, M_z < 0, F_s = F_y − F_b.
     EXPECT_LT(a.fy, 0.0);
     EXPECT_LT(a.mx, 0.0);
     EXPECT_LT(a.mz, 0.0);

@@ -57,7 +57,7 @@ TEST(DecoupledModel, EliminationIsConsistentWithTheForwardForm) {
 }
 
 TEST(DecoupledFit, RecoversTheTruthOnDataOfTheDecoupledModel) {
-    // MODEL-NOTES: with the errata corrected the three steps are exact on their own model.
+    // With E5 and E6 corrected (docs/model.md) the three steps are exact on their own model.
     const DecoupledParameters truth{0.2, 0.3, 1.5e6, 0.7, 0.05, 1700.0, 29 * kDeg, 0.025};
     DataSet data;
     for (int i = 0; i < 20; ++i) {

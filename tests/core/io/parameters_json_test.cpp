@@ -315,7 +315,8 @@ TEST(SoilFiles, UnknownKeyAndTheMissingKeyItReplaced) {
     ASSERT_FALSE(soil.ok());
     ASSERT_EQ(soil.issues().size(), 2u) << soil.message();
     const std::string message = soil.message();
-    EXPECT_TRUE(contains(message, "phi: unknown key; allowed keys: ")) << message;
+    EXPECT_TRUE(contains(message, "phi: unknown key; did you mean \"phi_deg\"? Allowed keys: "))
+        << message;
     EXPECT_TRUE(contains(message, "phi_deg: missing; expected a number in [0, 60) deg")) << message;
 }
 
@@ -325,9 +326,9 @@ TEST(SoilFiles, InvalidJsonIsReportedWithItsPositionWithoutThrowing) {
     EXPECT_NO_THROW(soil = loadSoil(file));
     ASSERT_FALSE(soil.ok());
     ASSERT_EQ(soil.issues().size(), 1u);
-    EXPECT_EQ(soil.issues()[0].where, file.string());
+    // The second ',' of ",," on line 3 (core/io/json.h: positions as FILE:LINE:COLUMN).
+    EXPECT_EQ(soil.issues()[0].where.rfind(file.string() + ":3:", 0), 0u) << soil.message();
     EXPECT_TRUE(contains(soil.issues()[0].message, "invalid JSON")) << soil.message();
-    EXPECT_TRUE(contains(soil.issues()[0].message, "line 3")) << soil.message();  // the ",,"
 }
 
 TEST(SoilFiles, MissingFile) {
@@ -437,7 +438,8 @@ TEST(SoilJson, NotAnObject) {
         ASSERT_FALSE(soil.ok()) << j.dump();
         ASSERT_EQ(soil.issues().size(), 1u);
         EXPECT_EQ(soil.issues()[0].where, "f.json");
-        EXPECT_EQ(soil.issues()[0].message, "expected a JSON object");
+        EXPECT_EQ(soil.issues()[0].message.rfind("expected a JSON object, got ", 0), 0u)
+            << soil.message();
     }
     EXPECT_FALSE(wheelFromJson(json::array(), "w.json").ok());
 }

@@ -1,0 +1,294 @@
+#include "core/gsa/wheel_target.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/common/range.h"
+#include "core/common/units.h"
+
+namespace terra::gsa {
+namespace {
+
+constexpr const char* kOutputNames[] = {
+    "Fx_N", "Fy_N", "Fz_N",      "Mx_Nm",           "My_Nm",         "Mz_Nm",
+    "Fb_N", "Fs_N", "sinkage_m", "entry_angle_deg", "exit_angle_deg"};
+
+double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
+
+std::string unitSuffix(const soil::SoilField& field) {
+    return std::string(field.unit) == "-" ? "" : std::string(" ") + field.unit;
+}
+
+// The finite bounds of a parameter's distribution must be values the field allows.
+void checkBound(std::vector<Issue>& issues, const std::string& name, const soil::SoilField& field,
+                const char* what, double low, double high) {
+    for (double v : {low, high}) {
+        if (std::isinf(v) || field.range.contains(v)) continue;
+        issues.push_back({"parameters." + name,
+                          std::string(what) + " [" + formatNumber(low) + ", " + formatNumber(high) +
+                              "] reaches " + formatNumber(v) + ", outside the allowed range " +
+                              field.range.describe() + unitSuffix(field)});
+        return;
+    }
+}
+
+}  // namespace
+
+const char* outputName(Output output) { return kOutputNames[static_cast<int>(output)]; }
+
+std::optional<Output> findOutput(std::string_view name) {
+    for (int i = 0; i < static_cast<int>(std::size(kOutputNames)); ++i) {
+        if (name == kOutputNames[i]) return static_cast<Output>(i);
+    }
+    return std::nullopt;
+}
+
+const std::vector<std::string>& outputNames() {
+    static const std::vector<std::string> names(std::begin(kOutputNames), std::end(kOutputNames));
+    return names;
+}
+
+void requireValid(const WheelStudy& study) {
+    std::vector<Issue> issues = soil::validate(study.soil, "soil.");
+    for (Issue& issue : wheel::validate(study.wheel, "wheel.")) issues.push_back(std::move(issue));
+    const OperatingGrid& grid = study.grid;
+    if (grid.slips.empty()) issues.push_back({"slips", "no slip values"});
+    if (grid.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles"});
+    for (double s : grid.slips) checkRange(issues, "slip", s, {-1.0, 1.0});
+    for (double b : grid.slip_angles_rad) {
+        checkRange(issues, "slip_angle_deg", deg(b), {-90.0, 90.0, true, true}, "deg");
+    }
+    if (grid.load_n) {
+        checkRange(issues, "load_N", *grid.load_n, {0.0, 1e7, true, false}, "N");
+    } else {
+        checkRange(issues, "entry_angle_deg", deg(grid.entry_angle_rad), {0.0, 90.0, true, false},
+                   "deg");
+    }
+    if (study.outputs.empty()) issues.push_back({"outputs", "no output to study"});
+    for (std::size_t i = 0; i < study.outputs.size(); ++i) {
+        if (std::find(study.outputs.begin(), study.outputs.begin() + i, study.outputs[i]) !=
+            study.outputs.begin() + i) {
+            issues.push_back(
+                {"outputs", std::string(outputName(study.outputs[i])) + " is given twice"});
+        }
+    }
+    const ParameterSpace& space = study.parameters;
+    if (space.dimension() == 0) issues.push_back({"parameters", "no parameter to vary"});
+    for (std::size_t i = 0; i < space.dimension(); ++i) {
+        const std::string& name = space.names()[i];
+        const soil::SoilField* field = soil::findSoilField(name);
+        if (!field) {
+            std::string keys;
+            for (const soil::SoilField& f : soil::soilFields()) keys += std::string(" ") + f.key;
+            issues.push_back({"parameters." + name, "is not a soil field (fields:" + keys + ")"});
+            continue;
+        }
+        const Marginal* marginal = space.marginal(i);
+        if (!marginal) continue;  // correlated normal: out-of-range samples are flagged
+        if (const auto* u = std::get_if<Uniform>(marginal)) {
+            checkBound(issues, name, *field, "the range", u->low, u->high);
+        } else {
+            const Normal& n = std::get<Normal>(*marginal);
+            checkBound(issues, name, *field, "the truncation", n.low, n.high);
+        }
+    }
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    requireValid(study.model);
+    (void)contact::makeContactParameters(study.soil, study.wheel);  // K_s > 0
+}
+
+TargetValues concatenate(const std::vector<TargetValues>& chunks) {
+    TargetValues out;
+    Eigen::Index rows = 0, columns = 0, points = 0;
+    for (const TargetValues& c : chunks) {
+        if (c.values.rows() == 0) continue;
+        if (rows > 0 && (c.values.cols() != columns || c.status.cols() != points)) {
+            throw std::invalid_argument("concatenate: chunks of different widths");
+        }
+        rows += c.values.rows(), columns = c.values.cols(), points = c.status.cols();
+    }
+    out.values.resize(rows, columns);
+    out.status.resize(rows, points);
+    Eigen::Index at = 0;
+    for (const TargetValues& c : chunks) {
+        if (c.values.rows() == 0) continue;
+        out.values.middleRows(at, c.values.rows()) = c.values;
+        out.status.middleRows(at, c.status.rows()) = c.status;
+        at += c.values.rows();
+        out.cancelled = out.cancelled || c.cancelled;
+    }
+    return out;
+}
+
+WheelTarget::WheelTarget(WheelStudy study) : study_(std::move(study)) { requireValid(study_); }
+
+TargetValues WheelTarget::evaluate(const Eigen::MatrixXd& rows, const RunControl& control) const {
+    const std::size_t d = parameters(), points = this->points();
+    if (static_cast<std::size_t>(rows.cols()) != d) {
+        throw std::invalid_argument("WheelTarget::evaluate: rows have " +
+                                    std::to_string(rows.cols()) + " columns, the study " +
+                                    std::to_string(d) + " parameters");
+    }
+    const auto r_count = static_cast<std::size_t>(rows.rows());
+    const std::size_t n = r_count * points;
+    // Sample r · points + p is row r at grid point p.
+    std::vector<double> slip(n), beta(n);
+    std::vector<std::vector<double>> soil(d, std::vector<double>(n));
+    for (std::size_t r = 0; r < r_count; ++r) {
+        for (std::size_t p = 0; p < points; ++p) {
+            const std::size_t i = r * points + p;
+            slip[i] = study_.grid.slip(p), beta[i] = study_.grid.slipAngle(p);
+            for (std::size_t k = 0; k < d; ++k) {
+                soil[k][i] = rows(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k));
+            }
+        }
+    }
+    const double load = study_.grid.load_n.value_or(0.0);
+    const double entry = study_.grid.entry_angle_rad;
+    BatchInput input{n, slip, beta, {}, {}, {}};
+    if (study_.grid.load_n) {
+        input.load_n = std::span<const double>(&load, 1);
+    } else {
+        input.entry_angle_rad = std::span<const double>(&entry, 1);
+    }
+    for (std::size_t k = 0; k < d; ++k)
+        input.soil.push_back({study_.parameters.names()[k], soil[k]});
+    // Only the studied outputs are written.
+    std::vector<std::vector<double>> buffers(study_.outputs.size(), std::vector<double>(n));
+    std::vector<SampleStatus> status(n, SampleStatus::kNotEvaluated);
+    BatchOutputView view;
+    view.status = status;
+    for (std::size_t o = 0; o < study_.outputs.size(); ++o) {
+        std::span<double> b = buffers[o];
+        switch (study_.outputs[o]) {
+            case Output::kFx:
+                view.fx_n = b;
+                break;
+            case Output::kFy:
+                view.fy_n = b;
+                break;
+            case Output::kFz:
+                view.fz_n = b;
+                break;
+            case Output::kMx:
+                view.mx_nm = b;
+                break;
+            case Output::kMy:
+                view.my_nm = b;
+                break;
+            case Output::kMz:
+                view.mz_nm = b;
+                break;
+            case Output::kFb:
+                view.fb_n = b;
+                break;
+            case Output::kFs:
+                view.fs_n = b;
+                break;
+            case Output::kSinkage:
+                view.sinkage_m = b;
+                break;
+            case Output::kEntryAngle:
+                view.entry_angle_rad = b;
+                break;
+            case Output::kExitAngle:
+                view.exit_angle_rad = b;
+                break;
+        }
+    }
+    const BatchSummary summary = evaluateBatch(study_.soil, study_.wheel, input, study_.model, view,
+                                               control, InvalidSoil::kFlag);
+    TargetValues out;
+    out.values.resize(static_cast<Eigen::Index>(r_count), static_cast<Eigen::Index>(columns()));
+    out.status.resize(static_cast<Eigen::Index>(r_count), static_cast<Eigen::Index>(points));
+    out.cancelled = summary.cancelled;
+    for (std::size_t o = 0; o < study_.outputs.size(); ++o) {
+        const Output output = study_.outputs[o];
+        const bool angle = output == Output::kEntryAngle || output == Output::kExitAngle;
+        for (std::size_t r = 0; r < r_count; ++r) {
+            for (std::size_t p = 0; p < points; ++p) {
+                const double v = buffers[o][r * points + p];
+                out.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(column(o, p))) =
+                    angle ? units::radToDeg(v) : v;
+            }
+        }
+    }
+    for (std::size_t r = 0; r < r_count; ++r) {
+        for (std::size_t p = 0; p < points; ++p) {
+            out.status(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(p)) =
+                static_cast<std::uint8_t>(status[r * points + p]);
+        }
+    }
+    return out;
+}
+
+TargetValues evaluateInChunks(
+    const WheelTarget& target, std::size_t rows, std::size_t chunk_rows, std::size_t row_multiple,
+    const std::function<Eigen::MatrixXd(std::size_t, std::size_t)>& rows_of,
+    const RunControl& control) {
+    const std::size_t multiple = std::max<std::size_t>(1, row_multiple);
+    const std::size_t chunk = std::max(multiple, chunk_rows / multiple * multiple);
+    std::vector<TargetValues> chunks;
+    for (std::size_t begin = 0; begin < rows; begin += chunk) {
+        const std::size_t end = std::min(rows, begin + chunk);
+        if (control.cancel && control.cancel->load()) {
+            TargetValues skipped;
+            skipped.values = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows - begin),
+                                                   static_cast<Eigen::Index>(target.columns()));
+            skipped.status = StatusMatrix::Constant(
+                static_cast<Eigen::Index>(rows - begin), static_cast<Eigen::Index>(target.points()),
+                static_cast<std::uint8_t>(SampleStatus::kNotEvaluated));
+            skipped.cancelled = true;
+            chunks.push_back(std::move(skipped));
+            break;
+        }
+        RunControl chunk_control = control;
+        if (control.progress) {
+            chunk_control.progress = [&, begin, end](double fraction) {
+                control.progress((begin + fraction * (end - begin)) / rows);
+            };
+        }
+        chunks.push_back(target.evaluate(rows_of(begin, end), chunk_control));
+    }
+    return concatenate(chunks);
+}
+
+Mask WheelTarget::successMask(const TargetValues& values) const {
+    const Eigen::Index rows = values.status.rows();
+    const auto points = static_cast<Eigen::Index>(this->points());
+    Mask ok(rows, static_cast<Eigen::Index>(columns()));
+    for (Eigen::Index o = 0; o < static_cast<Eigen::Index>(study_.outputs.size()); ++o) {
+        ok.middleCols(o * points, points) =
+            values.status.array() == static_cast<std::uint8_t>(SampleStatus::kOk);
+    }
+    return ok;
+}
+
+std::vector<FailureCounts> WheelTarget::failures(const TargetValues& values) const {
+    std::vector<FailureCounts> out(points());
+    for (Eigen::Index r = 0; r < values.status.rows(); ++r) {
+        for (std::size_t p = 0; p < points(); ++p) {
+            switch (static_cast<SampleStatus>(values.status(r, static_cast<Eigen::Index>(p)))) {
+                case SampleStatus::kNoEquilibrium:
+                    ++out[p].no_equilibrium;
+                    break;
+                case SampleStatus::kLoadNotMatched:
+                    ++out[p].load_not_matched;
+                    break;
+                case SampleStatus::kInvalidSoil:
+                    ++out[p].invalid_soil;
+                    break;
+                case SampleStatus::kNonFinite:
+                    ++out[p].non_finite;
+                    break;
+                case SampleStatus::kOk:
+                case SampleStatus::kNotEvaluated:
+                    break;
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace terra::gsa

@@ -1,0 +1,68 @@
+#include "core/project/project.h"
+
+#include "core/io/json.h"
+#include "core/io/parameters_json.h"
+
+namespace terra::project {
+
+using io::ObjectReader;
+using io::Presence;
+
+bool Project::operator==(const Project& other) const { return toJson(*this) == toJson(other); }
+
+nlohmann::json toJson(const Project& project) {
+    return {{"format", kFormat},
+            {"version", kVersion},
+            {"soil_preset", project.soil_preset},
+            {"soil", io::toJson(project.soil)},
+            {"wheel_preset", project.wheel_preset},
+            {"wheel", io::toJson(project.wheel)},
+            {"conditions", analysis::toJson(project.conditions)},
+            {"data_sets", project.data_sets},
+            {"scenarios", project.scenarios},
+            {"panels", project.panels}};
+}
+
+Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where) {
+    std::vector<Issue> issues;
+    ObjectReader r(json, issues, where);
+    if (!r.isObject()) return issues;
+    std::string format;
+    if (!r.text("format", format) || format != kFormat) {
+        return std::vector<Issue>{
+            {where, "not a TerraStudio project (\"format\": \"terrastudio-project\")"}};
+    }
+    int version = kVersion;
+    r.integer("version", version, kVersion, kVersion);
+    Project project;
+    r.text("soil_preset", project.soil_preset);
+    r.text("wheel_preset", project.wheel_preset);
+    if (r.has("soil")) {
+        ObjectReader soil = r.object("soil");
+        project.soil = io::readSoil(soil);
+        soil.finish();
+    }
+    if (r.has("wheel")) {
+        ObjectReader wheel = r.object("wheel");
+        project.wheel = io::readWheel(wheel);
+        wheel.finish();
+    }
+    ObjectReader conditions = r.object("conditions");
+    analysis::readConditions(conditions, project.conditions);
+    conditions.finish();
+    r.texts("data_sets", project.data_sets);
+    r.texts("scenarios", project.scenarios);
+    ObjectReader panels = r.object("panels");
+    if (panels.isObject() && r.has("panels")) project.panels = json["panels"];
+    r.finish();
+    if (!issues.empty()) return issues;
+    return project;
+}
+
+Result<Project> loadProject(const std::filesystem::path& path) {
+    Result<nlohmann::json> document = io::readJsonFile(path);
+    if (!document) return document.issues();
+    return projectFromJson(document.value(), path.string());
+}
+
+}  // namespace terra::project

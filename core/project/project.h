@@ -1,0 +1,48 @@
+#pragma once
+/// @file project.h
+/// The studio's session as plain data — soil, wheel, operating conditions, data set and scenario
+/// references, panel settings — and its readable JSON form, the `.terra` file (format
+/// "terrastudio-project", version 1; docs/user-guide.md). The studio (widgets/document) and the
+/// scripts share it; reading is strict (core/io/json_reader.h): every problem is reported with
+/// its field path, unknown and duplicated keys included.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/analysis/conditions.h"
+#include "core/common/issue.h"
+#include "core/io/json_reader.h"
+#include "core/soil/soil_parameters.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::project {
+
+/// The "format" of a .terra file and the version this program writes and reads.
+inline constexpr const char* kFormat = "terrastudio-project";
+inline constexpr int kVersion = 1;
+
+struct Project {
+    std::string soil_preset = "sandy-loam";  ///< preset the soil started from ("" = custom)
+    soil::SoilParameters soil;
+    std::string wheel_preset = "A";
+    wheel::WheelParameters wheel;
+    analysis::OperatingConditions conditions;
+    std::vector<std::string> data_sets;                ///< CSV paths (identification)
+    std::vector<std::string> scenarios;                ///< scenario file paths (rover)
+    nlohmann::json panels = nlohmann::json::object();  ///< per-panel settings, by panel name
+
+    bool operator==(const Project& other) const;
+};
+
+/// The project as JSON.
+nlohmann::json toJson(const Project& project);
+
+/// A project from JSON; every problem is listed with its field path under `where` (the file).
+Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where);
+
+/// Reads a .terra file (strict JSON, then projectFromJson).
+Result<Project> loadProject(const std::filesystem::path& path);
+
+}  // namespace terra::project
