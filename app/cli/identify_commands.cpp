@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/identification/decoupled_fit.h"
@@ -80,11 +81,15 @@ void runStream(const IdentifyOptions& o, const identification::DataSet& data,
     options.window = o.window;
     identification::StreamingIdentifier identifier(wheel, options);
     std::vector<std::size_t> changes;
+    const SignalCancellation cancellation;
+    std::size_t fed = 0;
     if (!o.json) {
         std::cout << "sample  time_s      a0      a1   Ks_kPa      n0      n1   c_kPa  phi_deg     "
                      "K_m   score  window\n";
     }
     for (const identification::Sample& sample : data.samples) {
+        if (cancellation.requested()) break;
+        ++fed;
         const identification::StreamUpdate u = identifier.push(sample);
         if (u.change_detected && u.change_at) changes.push_back(*u.change_at);
         const identification::DecoupledParameters& p = u.parameters;
@@ -126,12 +131,22 @@ void runStream(const IdentifyOptions& o, const identification::DataSet& data,
         if (u.change_at) std::cout << "  soil change since sample " << *u.change_at;
         std::cout << '\n';
     }
-    if (!o.json) {
+    const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                             std::to_string(fed) + " of " + std::to_string(data.samples.size()) +
+                             " samples";
+    const bool cancelled = fed < data.samples.size();
+    if (o.json) {
+        if (cancelled)
+            std::cout << nlohmann::json{{"cancelled", true}, {"note", note}}.dump() << '\n';
+    } else {
         std::cout << (changes.empty() ? std::string("no soil change detected")
                                       : "soil changes detected at samples:");
         for (std::size_t c : changes) std::cout << ' ' << c;
         std::cout << '\n';
+        if (cancelled) std::cout << note << '\n';
     }
+    std::cout.flush();
+    if (cancelled) exitCancelled(cancellation, note);
 }
 
 // --fix a0=0.2,a1=0.3 in the output units (Ks kPa/m^n, c kPa, phi deg).
@@ -215,13 +230,21 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         spec.slip_angle_rad = units::degToRad(synth->slip_angle_deg);
         spec.seed = synth->seed;
         parseNoise(synth->noise, spec.noise);
+        const SignalCancellation cancellation;
+        spec.cancel = cancellation.flag();
         const auto out =
             identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
         for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
-        writeOutput(synth->out, identification::toCsv(out.data));
+        // A cancelled run is written too, marked by a last comment line (the data set reader
+        // skips it, so `identify` reads the partial file).
+        const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                                 std::to_string(out.data.samples.size()) + " samples";
+        writeOutput(synth->out, identification::toCsv(out.data) +
+                                    (out.cancelled ? "# " + note + "\n" : std::string()));
         if (!synth->out.empty() && synth->out != "-") {
             std::cerr << "wrote " << synth->out << ": " << out.data.samples.size() << " samples\n";
         }
+        if (out.cancelled) exitCancelled(cancellation, "synth " + note);
     });
 
     auto identify = std::make_shared<IdentifyOptions>();

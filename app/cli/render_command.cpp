@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "app/headless_application.h"
 #include "core/analysis/sweep.h"
 #include "core/common/range.h"
@@ -38,6 +39,8 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     spec.max_stress_angle_rad = o.model.maxStressAngleRad();
     spec.model = o.model.contactModel();
     spec.bulldozing = o.model.bulldozingModel();
+    const SignalCancellation cancellation;
+    spec.cancel = cancellation.flag();
     const analysis::SweepResult result =
         analysis::sweepSlip(contact::makeContactParameters(soil, wheel), spec);
     for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
@@ -47,7 +50,11 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());
     const std::filesystem::path dir(o.out);
     const std::filesystem::path csv = dir / "forces-vs-slip.csv";
-    if (const auto error = io::writeFileAtomically(csv, io::toCsv(result.table))) {
+    // A cancelled sweep is written and drawn as far as it got; the CSV says so in a last comment.
+    const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                             std::to_string(result.table.rows.size()) + " rows";
+    if (const auto error = io::writeFileAtomically(
+            csv, io::toCsv(result.table) + (result.cancelled ? "# " + note + "\n" : ""))) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << csv.string() << '\n';
@@ -66,6 +73,7 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
         }
         std::cout << "wrote " << png.string() << '\n';
     }
+    if (result.cancelled) exitCancelled(cancellation, "render: sweep " + note);
     return kSuccess;
 }
 

@@ -13,6 +13,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "app/headless_application.h"
 #include "core/common/build_info.h"
 #include "core/io/atomic_file.h"
@@ -265,12 +266,14 @@ ui::AnalysisInputs inputsFor(const json& script, const json& analysis,
 class Runner {
 public:
     Runner(const json& script, const fs::path& base, const fs::path& out,
-           const io::PresetLocations& locations, std::vector<std::string> formats)
+           const io::PresetLocations& locations, std::vector<std::string> formats,
+           const std::atomic<bool>* cancel)
         : script_(script),
           base_(base),
           out_(out),
           locations_(locations),
-          formats_(std::move(formats)) {
+          formats_(std::move(formats)),
+          cancel_(cancel) {
         const json e = script.value("export", json::object());
         options_.width = e.value("width", 1200);
         options_.height = e.value("height", 800);
@@ -303,7 +306,7 @@ public:
         std::map<std::string, const Table*> tables;
         const auto start = std::chrono::steady_clock::now();
         if (r.type == "forces") {
-            const auto result = ui::computeForceSweep(in);
+            const auto result = ui::computeForceSweep(in, cancel_);
             std::vector<std::string> columns = analysis.value("plots", std::vector<std::string>{});
             for (const ui::SweepQuantity& q : ui::sweepQuantities()) {
                 if (!columns.empty() &&
@@ -314,6 +317,7 @@ public:
             }
             writeData(r, r.name, result.table);
             r.notes = result.warnings;
+            if (result.cancelled) r.notes.push_back("cancelled: the rows computed so far");
             tables[""] = &result.table;
             evaluate(r, expectations, tables);
         } else if (r.type == "soil-curves") {
@@ -370,7 +374,8 @@ public:
             s.slip_angle_deg = analysis.value("slip_angle_deg", s.slip_angle_deg);
             s.tornado_slip = analysis.value("tornado_slip", s.tornado_slip);
             s.slip_count = analysis.value("slip_count", s.slip_count);
-            const auto result = ui::computeSensitivity(in, s);
+            const auto result = ui::computeSensitivity(in, s, cancel_);
+            if (result.family.cancelled) r.notes.push_back("cancelled: the rows computed so far");
             const QString t = title + QString(", β = %1°").arg(s.slip_angle_deg);
             ui::plotSensitivityFamily(plot_, result, s.parameter, "Fx_N", t);
             write(r, r.name + "-Fx");
@@ -438,7 +443,9 @@ private:
             for (const auto& f : ui::roverFigures()) keys.push_back(f.key);
             keys.push_back("top-view");
         }
-        const scenario::RunResult result = scenario::runScenario(s, {});
+        scenario::RunOptions options;
+        options.cancel = cancel_;
+        const scenario::RunResult result = scenario::runScenario(s, options);
         const QString title = analysis.contains("title")
                                   ? QString::fromStdString(analysis["title"].get<std::string>())
                                   : ui::roverTitle(s.name, result.status);
@@ -516,14 +523,16 @@ private:
     const io::PresetLocations& locations_;
     std::vector<std::string> formats_;
     ui::ExportOptions options_;
+    const std::atomic<bool>* cancel_;  // a sweep or rover run stops early and keeps its rows
     QCustomPlot plot_;
 };
 
 std::string report(const json& script, const std::string& script_path,
-                   const std::vector<AnalysisRun>& runs, int failed) {
+                   const std::vector<AnalysisRun>& runs, int failed, const std::string& cancelled) {
     std::ostringstream md;
     md << "# " << script.value("title", "TerraStudio run") << "\n\n";
     md << "Script: `" << script_path << "`  \n";
+    if (!cancelled.empty()) md << "**" << cancelled << ".**  \n";
     md << (failed == 0 ? "**All expectations met.**"
                        : "**" + std::to_string(failed) + " expectation(s) or analyses FAILED.**")
        << "\n\n";
@@ -579,11 +588,13 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
 
     const HeadlessApplication application;  // QCustomPlot paints with a QPainter: it needs one
 
-    Runner runner(script, fs::path(o.script).parent_path(), o.out, locations, o.formats);
+    const SignalCancellation cancellation;
+    Runner runner(script, fs::path(o.script).parent_path(), o.out, locations, o.formats,
+                  cancellation.flag());
     std::vector<AnalysisRun> runs;
     int failed = 0;
     const json& analyses = script["analyses"];
-    for (std::size_t i = 0; i < analyses.size(); ++i) {
+    for (std::size_t i = 0; i < analyses.size() && !cancellation.requested(); ++i) {
         const std::string where = o.script + ": analyses[" + std::to_string(i) + "]";
         AnalysisRun r;
         try {
@@ -603,9 +614,17 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         }
         runs.push_back(std::move(r));
     }
+    // Cancelled: what was computed is written and reported; the analysis running at the signal
+    // keeps its rows so far (its notes say so), the ones after it are not run.
+    std::string cancelled;
+    if (cancellation.requested()) {
+        cancelled = "Cancelled by " + cancellation.signalName() + ": " +
+                    std::to_string(runs.size()) + " of " + std::to_string(analyses.size()) +
+                    " analyses started, the last one possibly incomplete";
+    }
     const fs::path out(o.out);
-    if (const auto error =
-            io::writeFileAtomically(out / "report.md", report(script, o.script, runs, failed))) {
+    if (const auto error = io::writeFileAtomically(
+            out / "report.md", report(script, o.script, runs, failed, cancelled))) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
@@ -613,6 +632,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
                   {"script", o.script},
                   {"inputs", script},
                   {"failed", failed}};
+    if (!cancelled.empty()) manifest.update({{"cancelled", true}, {"note", cancelled}});
     for (const auto& r : runs) {
         json outcomes = json::array();
         for (const auto& oc : r.outcomes)
@@ -630,6 +650,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "manifest.json").string() << '\n';
+    if (!cancelled.empty()) exitCancelled(cancellation, cancelled);
     if (failed > 0) {
         std::cerr << failed << " expectation(s) or analyses failed (see "
                   << (out / "report.md").string() << ")\n";

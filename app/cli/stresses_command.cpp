@@ -36,7 +36,7 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         "Stress distributions over the contact, exact and quadratic, with RMSE/MAE "
         "(Figs. 2.11, 2.16; Tables 2.4-2.5)");
     options->model.addTo(*cmd);
-    cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1)")->capture_default_str();
+    cmd->add_option("--slip", options->slip, "Slip ratio s in [-1, 1]")->capture_default_str();
     cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle [deg]")
         ->capture_default_str();
     cmd->add_option("--entry-angle", options->entry_angle_deg, "Entry angle theta_f [deg]")

@@ -3,6 +3,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/analysis/sweep.h"
 #include "core/common/units.h"
 #include "core/io/csv.h"
@@ -44,20 +45,30 @@ analysis::SweepSpec makeSpec(const SweepOptions& o) {
     return spec;
 }
 
-void emit(const SweepOptions& o, const analysis::SweepResult& result) {
+// Writes the table; a cancelled sweep is written too, marked: "cancelled": true in JSON, a last
+// comment line in CSV (which the CSV readers skip), then the cancellation's exit code.
+void emit(const SweepOptions& o, const analysis::SweepResult& result,
+          const SignalCancellation& cancellation) {
     for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
+    const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                             std::to_string(result.table.rows.size()) + " rows";
     std::string text;
     if (o.json) {
-        text =
-            nlohmann::json{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}}.dump(
-                2) +
-            "\n";
+        nlohmann::json j{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}};
+        if (result.cancelled) j.update({{"cancelled", true}, {"note", note}});
+        text = j.dump(2) + "\n";
     } else {
         text = io::toCsv(result.table);
+        if (result.cancelled) text += "# " + note + "\n";
     }
     writeOutput(o.out, text);
     if (!o.out.empty() && o.out != "-") {
         std::cerr << "wrote " << o.out << ": " << result.table.rows.size() << " rows\n";
+    }
+    if (result.cancelled) {
+        exitCancelled(
+            cancellation,
+            "sweep " + note + (o.out.empty() || o.out == "-" ? "" : "; written to " + o.out));
     }
 }
 
@@ -84,8 +95,11 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     cmd->callback([sweep, &locations] {
         const auto soil = sweep->model.soilParameters(locations);
         const auto wheel = sweep->model.wheelParameters(locations);
-        emit(*sweep,
-             analysis::sweepSlip(contact::makeContactParameters(soil, wheel), makeSpec(*sweep)));
+        analysis::SweepSpec spec = makeSpec(*sweep);
+        const SignalCancellation cancellation;
+        spec.cancel = cancellation.flag();
+        emit(*sweep, analysis::sweepSlip(contact::makeContactParameters(soil, wheel), spec),
+             cancellation);
     });
 
     auto sens = std::make_shared<SweepOptions>();
@@ -135,9 +149,12 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
         analysis::SweepResult all;
         all.table.columns = {"parameter", "value"};
         for (const std::string& c : analysis::sweepColumns()) all.table.columns.push_back(c);
-        const analysis::SweepSpec spec = makeSpec(*sens);
-        for (std::size_t k = 0; k < parameters.size(); ++k) {
+        analysis::SweepSpec spec = makeSpec(*sens);
+        const SignalCancellation cancellation;
+        spec.cancel = cancellation.flag();
+        for (std::size_t k = 0; k < parameters.size() && !all.cancelled; ++k) {
             const auto one = analysis::sensitivity(soil, wheel, parameters[k], spec);
+            all.cancelled = one.cancelled;
             for (const auto& row : one.table.rows) {
                 std::vector<double> values{static_cast<double>(k)};
                 values.insert(values.end(), row.begin(), row.end());
@@ -157,7 +174,7 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
             }
             std::cerr << "parameter column: " << legend << '\n';
         }
-        emit(*sens, all);
+        emit(*sens, all, cancellation);
     });
 }
 

@@ -117,8 +117,8 @@ void checkPoint(std::vector<Issue>& issues, const Prepared& prep, std::size_t i)
     // A broadcast value is checked once, at sample 0.
     auto due = [i](const Column& c) { return c.stride != 0 || i == 0; };
     const double s = prep.slip.at(i);
-    if (due(prep.slip) && !(std::abs(s) < 1.0)) {
-        checkRange(issues, indexed("slip", prep.slip, i), s, {-1.0, 1.0, true, true});
+    if (due(prep.slip) && !(std::abs(s) <= 1.0)) {
+        checkRange(issues, indexed("slip", prep.slip, i), s, {-1.0, 1.0});
     }
     if (prep.has_slip_angle && due(prep.slip_angle)) {
         const double b = prep.slip_angle.at(i);

@@ -55,7 +55,7 @@ void requireValid(const WheelStudy& study) {
     const OperatingGrid& grid = study.grid;
     if (grid.slips.empty()) issues.push_back({"slips", "no slip values"});
     if (grid.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles"});
-    for (double s : grid.slips) checkRange(issues, "slip", s, {-1.0, 1.0, true, true});
+    for (double s : grid.slips) checkRange(issues, "slip", s, {-1.0, 1.0});
     for (double b : grid.slip_angles_rad) {
         checkRange(issues, "slip_angle_deg", deg(b), {-90.0, 90.0, true, true}, "deg");
     }

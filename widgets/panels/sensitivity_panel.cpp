@@ -34,7 +34,7 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
     slip_angle_->setSuffix(" °");
     slip_angle_->setValue(10.0);
     tornado_slip_ = new QDoubleSpinBox(this);
-    tornado_slip_->setRange(0.0, 0.99);
+    tornado_slip_->setRange(0.0, 1.0);
     tornado_slip_->setSingleStep(0.05);
     tornado_slip_->setValue(0.3);
     status_ = new QLabel(this);

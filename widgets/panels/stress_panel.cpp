@@ -16,11 +16,11 @@ namespace terra::ui {
 StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
     : AnalysisPanel(document, "stresses", parent) {
     slip_ = new QDoubleSpinBox(this);
-    slip_->setRange(-0.9, 0.99);
+    slip_->setRange(-1.0, 1.0);
     slip_->setSingleStep(0.05);
     slip_->setDecimals(3);
     slip_->setValue(0.2);
-    slip_->setToolTip("Slip ratio s [-] (−0.9 … 0.99)");
+    slip_->setToolTip("Slip ratio s [-] (−1 locked … 1 spinning in place)");
     slip_angle_ = new QDoubleSpinBox(this);
     slip_angle_->setRange(-60.0, 60.0);
     slip_angle_->setSuffix(" °");
