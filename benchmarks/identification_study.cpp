@@ -18,6 +18,7 @@
 #include "core/identification/identify.h"
 #include "core/identification/streaming_estimator.h"
 #include "core/identification/synthetic.h"
+#include "core/io/parameters_json.h"
 
 namespace {
 
@@ -140,33 +141,34 @@ void thesis() {
 void starts() {
     std::printf("\n## Start dependence: 1 %% noise (seed 7), three loads, 31 slips per load\n");
     std::printf(
-        "| case | start | local (decoupled from the start, then refined): phi_deg, c_kPa "
-        "| global: phi_deg, c_kPa, K_m |\n|---|---|---|---|\n");
+        "| case | start (preset) | local: decoupled from the start, then refined: phi_deg, "
+        "c_kPa | global: phi_deg, c_kPa, K_m |\n|---|---|---|---|\n");
     struct Case {
         const Soil* soil;
         const Wheel* wheel;
         std::vector<double> loads;
     };
     const Case cases[] = {{&kSandyLoam, &kA, {30, 58.86, 90}}, {&kClayeySoil, &kB, {60, 98, 140}}};
-    // The starting soils as the thesis's step guesses would take them (Table 2.1 values).
-    const Soil* starts[] = {&kSandyLoam, &kDrySand, &kClayeySoil};
+    const io::PresetLocations presets = io::PresetLocations::standard(".");
     for (const Case& c : cases) {
         const ContactParameters<double> p = contactOf(*c.soil, *c.wheel, c.soil->jmax);
         const DataSet d = sweeps(p, c.loads, 0.01, 7, 31);
-        for (const Soil* s : starts) {
-            const ContactParameters<double> g = contactOf(*s, *c.wheel, s->jmax);
-            DecoupledParameters guess{0.2, 0.3,           g.pressure_modulus,   g.sinkage_exponent,
-                                      0.0, g.cohesion_pa, g.friction_angle_rad, g.shear_modulus_m};
+        for (const char* name :
+             {"sandy-loam", "dry-sand", "lete-sand", "heavy-clay", "clayey-soil", "snow"}) {
+            const soil::SoilParameters preset = io::resolveSoil(presets, name).value();
+            const ParameterVector g = fromSoil(preset, wheelOf(*c.wheel));
+            const DecoupledParameters guess{g[kA0], g[kA1], g[kKs],  g[kN],
+                                            0.0,    g[kC],  g[kPhi], g[kK]};
             const DecoupledFit dec = fitDecoupled(d, wheelOf(*c.wheel), guess);
             RefineOptions ro;
             ro.max_shear_deformation_m = c.soil->jmax;
             const RefineResult local = refineFullModel(d, wheelOf(*c.wheel), dec.parameters, ro);
             IdentifyOptions o;
             o.max_shear_deformation_m = c.soil->jmax;
-            o.starts = startsFromSoils({soilOf(*s)}, wheelOf(*c.wheel));
+            o.starts = startsFromSoils({preset}, wheelOf(*c.wheel));
             const IdentificationReport r = identify(d, wheelOf(*c.wheel), o);
             std::printf("| %s on %s | %s | %.2f, %.3f | %.3f ± %.3f, %.4f ± %.4f, %.5f |\n",
-                        c.soil->name, c.wheel->name, s->name,
+                        c.soil->name, c.wheel->name, name,
                         local.parameters.friction_angle_rad / kDeg,
                         local.parameters.cohesion_pa / 1e3, r.parameters[kPhi] / kDeg,
                         r.uncertainty.std[kPhi] / kDeg, r.parameters[kC] / 1e3,
