@@ -568,6 +568,14 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
                 {std::string("design.") + info[k].name, "the lower bound must be > 0"});
         }
     }
+    for (const Start& start : o.starts) {
+        for (int k = 0; k < kP; ++k) {
+            if (!std::isfinite(start.parameters[k])) {
+                issues.push_back({"starts." + start.label + "." + info[k].name,
+                                  "= " + formatNumber(start.parameters[k]) + " is not finite"});
+            }
+        }
+    }
     checkRange(issues, "design_points", o.design_points, {0, 100000});
     checkRange(issues, "descents", o.descents, {1, 1000});
     checkRange(issues, "subset_samples", o.subset_samples, {0, 1e9});
