@@ -7,8 +7,10 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "core/analysis/operating_point.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/quadratic_model.h"
 #include "core/contact/sinkage.h"
 #include "core/contact/wheel_forces.h"
@@ -33,83 +35,19 @@ struct WheelOptions {
     bool skip_bad_rows = false;
 };
 
-// One operating point: either θ_f or W given.
-struct PointInput {
-    double slip = 0.0;
-    double slip_angle_deg = 0.0;
-    std::optional<double> entry_angle_deg;
-    std::optional<double> load_n;
-    contact::ExitCondition exit;
-    std::optional<double> max_stress_angle_rad;
-};
+using analysis::PointResult;
+using analysis::PointSpec;
 
-struct PointResult {
-    WheelForces<double> forces;
-    double entry_angle_deg = 0.0;
-    double exit_angle_deg = 0.0;
-    double sinkage_m = 0.0;
-    bool solved_from_load = false;
-    std::string failure;        ///< non-empty: no equilibrium, or F_z = W not reproducible
-    std::string status = "ok";  ///< batch status column: ok, no-equilibrium, load-not-matched
-    std::string warning;        ///< non-empty: the integration hit its piece cap
-};
-
+// One operating point of the command line: the model flags' choices and contact model.
 PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& options,
-                     const PointInput& in) {
-    std::vector<Issue> issues;
-    checkRange(issues, "slip", in.slip, {-1.0, 1.0, true, true});
-    checkRange(issues, "slip_angle_deg", in.slip_angle_deg, {-90.0, 90.0, true, true}, "deg");
-    if (in.load_n) checkRange(issues, "load_N", *in.load_n, {0.0, 1e7, true, false}, "N");
-    if (in.entry_angle_deg) {
-        checkRange(issues, "entry_angle_deg", *in.entry_angle_deg, {0.0, 90.0, true, false}, "deg");
+                     PointSpec in) {
+    in.contact_model = options.model.contactModel();
+    in.model.bulldozing = options.model.bulldozingModel();
+    try {
+        return analysis::evaluatePoint(p, in);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
     }
-    if (!issues.empty()) throw InputError(formatIssues(issues));
-
-    PointResult out;
-    double theta_f = 0.0;
-    const double beta = units::degToRad(in.slip_angle_deg);
-    if (in.load_n) {
-        contact::EntryAngleProblem problem;
-        problem.load_n = *in.load_n;
-        problem.slip = in.slip;
-        problem.slip_angle_rad = beta;
-        problem.exit = in.exit;
-        problem.max_stress_angle_rad = in.max_stress_angle_rad;
-        problem.model = options.model.contactModel();
-        const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
-        if (!solution.ok()) {
-            out.failure = solution.message;
-            out.status = solution.status == contact::SinkageSolution::Status::kLoadNotMatched
-                             ? "load-not-matched"
-                             : "no-equilibrium";
-            return out;
-        }
-        theta_f = solution.entry_angle_rad;
-        out.solved_from_load = true;
-    } else {
-        theta_f = units::degToRad(*in.entry_angle_deg);
-    }
-    // θ_r kept ≥ −θ_f, as the model does (docs/model.md); reported as used.
-    const OperatingPoint<double> op{in.slip, beta, theta_f,
-                                    std::max(in.exit.exitAngle(theta_f), -theta_f),
-                                    in.max_stress_angle_rad};
-    contact::requireValid(op);
-    if (options.model.contactModel() == contact::ContactModel::kFull) {
-        contact::IntegrationReport report;
-        out.forces = contact::computeForces(p, op, options.model.bulldozingModel(), {}, &report);
-        if (!report.converged) {
-            out.warning = "the force integration stopped at its cap of " +
-                          std::to_string(report.pieces) +
-                          " pieces before reaching its tolerance (estimated relative error " +
-                          formatNumber(roundSignificant(report.error_estimate, 2)) + ")";
-        }
-    } else {
-        out.forces = contact::computeQuadraticForces(p, op, options.model.bulldozingModel());
-    }
-    out.entry_angle_deg = roundSignificant(units::radToDeg(theta_f));
-    out.exit_angle_deg = roundSignificant(units::radToDeg(op.exit_angle_rad));
-    out.sinkage_m = p.radius_m * (1.0 - std::cos(theta_f));
-    return out;
 }
 
 nlohmann::json toJson(const PointResult& r) {
@@ -129,7 +67,7 @@ nlohmann::json toJson(const PointResult& r) {
 }
 
 void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
-                const WheelOptions& o, const PointInput& in, const PointResult& r) {
+                const WheelOptions& o, const PointSpec& in, const PointResult& r) {
     std::ostringstream s;
     s << soil.name << ", " << wheel.name << " (r = " << wheel.radius_m
       << " m, b = " << wheel.width_m << " m), " << o.model.model << " model\n";
@@ -208,7 +146,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             }
             return value;
         };
-        PointInput in;
+        PointSpec in;
         in.slip = cell(c_slip, "slip", o.slip).value_or(0.0);
         in.slip_angle_deg = cell(c_beta, "slip_angle_deg", o.slip_angle_deg).value_or(0.0);
         in.entry_angle_deg = cell(c_theta, "entry_angle_deg", o.entry_angle_deg);
@@ -224,25 +162,26 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         if (!in.entry_angle_deg && !in.load_n)
             issues.push_back({where, "no entry_angle_deg or load_N"});
-        in.exit = o.model.exitCondition();
+        in.model.exit = o.model.exitCondition();
         const auto exit = cell(c_exit, "exit_angle_deg", std::nullopt);
         const auto rut = cell(c_rut, "rut_ratio", std::nullopt);
         if (exit && rut) {
             issues.push_back({where, "give exit_angle_deg or rut_ratio, not both"});
         } else if (exit) {
-            if (checkRange(issues, where + ": exit_angle_deg", *exit, {-90.0, 0.0}, "deg")) {
-                in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
+            if (checkRange(issues, where + ": exit_angle_deg", *exit,
+                           contact::exitAngleField().range, "deg")) {
+                in.model.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
             }
         } else if (rut) {
-            if (checkRange(issues, where + ": rut_ratio", *rut, {0.0, 1.0})) {
-                in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
+            if (checkRange(issues, where + ": rut_ratio", *rut, contact::rutRatioField().range)) {
+                in.model.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
             }
         }
-        in.max_stress_angle_rad = o.model.maxStressAngleRad();
+        in.model.max_stress_angle_rad = o.model.maxStressAngleRad();
         if (auto theta_m = cell(c_theta_m, "max_stress_angle_deg", std::nullopt)) {
-            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m, {-90.0, 90.0},
-                           "deg")) {
-                in.max_stress_angle_rad = units::degToRad(*theta_m);
+            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m,
+                           contact::maxStressAngleField().range, "deg")) {
+                in.model.max_stress_angle_rad = units::degToRad(*theta_m);
             }
         }
         PointResult result;
@@ -336,8 +275,12 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
         if (!o.entry_angle_deg && !o.load_n) {
             throw InputError("wheel: give --entry-angle DEG or --load N (or --input points.csv)");
         }
-        PointInput in{o.slip,   o.slip_angle_deg,        o.entry_angle_deg,
-                      o.load_n, o.model.exitCondition(), o.model.maxStressAngleRad()};
+        PointSpec in;
+        in.slip = o.slip;
+        in.slip_angle_deg = o.slip_angle_deg;
+        in.entry_angle_deg = o.entry_angle_deg;
+        in.load_n = o.load_n;
+        in.model = o.model.choices();
         const PointResult result = evaluate(p, o, in);
         if (!result.failure.empty()) throw std::runtime_error(result.failure);
         if (!result.warning.empty()) std::cerr << "warning: " << result.warning << '\n';
