@@ -6,7 +6,9 @@
 
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
+#include "core/identification/identify.h"
 #include "core/identification/streaming.h"
+#include "core/identification/streaming_estimator.h"
 #include "core/identification/synthetic.h"
 
 namespace {
@@ -54,6 +56,41 @@ void refinedFit(benchmark::State& state) {
 // the setting in which every parameter is determined.
 BENCHMARK(refinedFit)->Args({1, 0})->Args({3, 0})->Args({3, 1})->Unit(benchmark::kMillisecond);
 
+// The global identification (identify.h) with refinement and covariance, started from the thesis's
+// far initial guesses (§5.2) and the space-filling design; (loads, noise %, from the load).
+void globalIdentification(benchmark::State& state) {
+    DataSet d = data(static_cast<int>(state.range(0)), state.range(1) * 0.01);
+    IdentifyOptions options;
+    options.max_shear_deformation_m = 0.02;
+    const DecoupledParameters thesis;
+    options.starts.push_back(
+        {"thesis guess",
+         {thesis.a0, thesis.a1, thesis.pressure_modulus, thesis.n0, thesis.cohesion_pa,
+          thesis.friction_angle_rad, thesis.shear_modulus_m}});
+    if (state.range(2) == 1) {
+        d.columns.entry_angle = false;
+        d.columns.fz = false;
+        for (Sample& s : d.samples) s.load_n = s.load_n.value_or(58.86);
+    }
+    IdentificationReport r;
+    for (auto _ : state) {
+        r = identify(d, kWheelA, options);
+        benchmark::DoNotOptimize(r);
+    }
+    state.counters["samples"] = static_cast<double>(d.samples.size());
+    state.counters["usable"] = r.usable();
+    state.counters["screen_ms"] = r.timing.screening_ms;
+    state.counters["descent_ms"] = r.timing.descent_ms;
+    state.counters["refine_ms"] = r.timing.refinement_ms;
+}
+BENCHMARK(globalIdentification)
+    ->Args({1, 0, 0})
+    ->Args({3, 0, 0})
+    ->Args({3, 1, 0})
+    ->Args({3, 0, 1})
+    ->Args({3, 1, 1})
+    ->Unit(benchmark::kMillisecond);
+
 // One streaming update (window of 60 samples, warm start) in steady state.
 void streamingUpdate(benchmark::State& state) {
     DataSet d = data(1, 0.01);
@@ -67,5 +104,49 @@ void streamingUpdate(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(id.push(order[i++ % order.size()]));
 }
 BENCHMARK(streamingUpdate)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+namespace {
+
+// The streaming estimator (streaming_estimator.h) in steady state: slip sweeps of 50 samples at
+// loads cycling 30, 58.86, 90 N, 1 % noise. Each iteration is one push; `refits` counts the
+// batch refits of the arrival cost among them (every 300 samples), which the mean includes.
+void streamingEstimatorUpdate(benchmark::State& state) {
+    std::vector<Sample> samples;
+    const double loads[3] = {30.0, 58.86, 90.0};
+    for (int b = 0; b < 30; ++b) {
+        SyntheticSpec spec;
+        spec.loads_n = {loads[b % 3]};
+        for (int i = 0; i < 50; ++i) spec.slips.push_back(0.05 + 0.8 * (b % 2 ? 49 - i : i) / 49.0);
+        spec.noise.fx.absolute = 0.136;
+        spec.noise.fz.absolute = 0.9;
+        spec.noise.my.absolute = 0.0195;
+        spec.seed = static_cast<std::uint64_t>(b + 1);
+        for (Sample s : synthesize(sandyLoam(), spec).data.samples) {
+            s.load_n = loads[b % 3];
+            samples.push_back(s);
+        }
+    }
+    StreamingEstimatorOptions options;
+    options.fit.max_shear_deformation_m = 0.02;
+    StreamingEstimator estimator(kWheelA, options);
+    std::size_t i = 0;
+    for (; i < 700; ++i) estimator.push(samples[i]);  // past the doubling refits (30 … 480)
+    int refits = 0, pushes = 0;
+    double update_ms = 0.0, refit_ms = 0.0;  // wall time of each kind (the push reports it)
+    for (auto _ : state) {
+        const StreamEstimate e = estimator.push(samples[i++ % samples.size()]);
+        refits += e.refitted;
+        ++pushes;
+        (e.refitted ? refit_ms : update_ms) += e.update_ms;
+        benchmark::DoNotOptimize(e);
+    }
+    state.counters["refits"] = refits;
+    state.counters["pushes"] = pushes;
+    state.counters["update_wall_ms"] = update_ms / std::max(1, pushes - refits);
+    state.counters["refit_wall_ms"] = refits > 0 ? refit_ms / refits : 0.0;
+}
+BENCHMARK(streamingEstimatorUpdate)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -57,7 +57,8 @@ soil::SoilParameters ModelOptions::soilParameters(const io::PresetLocations& loc
             issues.push_back({"--set " + key, "unknown soil field; fields: " + keys});
         } else if (equals == std::string::npos ||
                    !io::parseNumber(assignment.substr(equals + 1), value)) {
-            issues.push_back({"--set " + key, "expected KEY=NUMBER, got '" + assignment + "'"});
+            issues.push_back(
+                {"--set " + key, "expected KEY=NUMBER, got " + io::quoteCell(assignment)});
         } else if (checkRange(issues, "--set " + key, value, field->range, field->displayUnit())) {
             soil::setUserValue(out, *field, value);
         }
@@ -128,8 +129,9 @@ std::vector<double> parseValues(const std::string& text, const std::string& what
     auto number = [&](const std::string& cell) {
         double value = 0.0;
         if (!io::parseNumber(cell, value)) {
-            throw InputError(what + ": '" + cell + "' is not a number (expected a value, a list " +
-                             "a,b,c or a range first:last:count)");
+            throw InputError(what + ": " + io::quoteCell(cell) +
+                             " is not a number (expected a value, a list a,b,c or a range " +
+                             "first:last:count)");
         }
         return value;
     };
@@ -140,7 +142,7 @@ std::vector<double> parseValues(const std::string& text, const std::string& what
     if (parts.empty()) throw InputError(what + ": empty value");
     if (separator == ':') {
         if (parts.size() != 3)
-            throw InputError(what + ": a range is first:last:count, got '" + text + "'");
+            throw InputError(what + ": a range is first:last:count, got " + io::quoteCell(text));
         const double count = number(parts[2]);
         if (count < 1 || count > 100000 || count != std::floor(count)) {
             throw InputError(what + ": count " + parts[2] +

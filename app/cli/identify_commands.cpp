@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/analysis/identification.h"
 #include "core/analysis/identified_parameters.h"
 #include "core/analysis/streaming_identification.h"
@@ -104,12 +105,16 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     settings.skip_bad_rows = o.skip_bad_rows;
     settings.options.initial = guess;
     settings.options.window = o.window;
-    analysis::StreamingResult result;
+    analysis::StreamSource source;
     try {
-        result = analysis::computeStreaming(inputs, settings);
+        source = analysis::streamSource(inputs, settings);
     } catch (const std::invalid_argument& e) {
         throw InputError(std::string(e.what()) + "\n(use --skip-bad-rows to skip bad rows)");
     }
+    // The data are read: a signal from now on stops the identifier after the sample in hand.
+    const SignalCancellation cancellation;
+    const analysis::StreamingResult result = analysis::playStreaming(
+        std::move(source), inputs.wheel, settings.options, cancellation.flag());
     for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
     if (!o.json) {
         std::cout << "sample  time_s";
@@ -144,12 +149,21 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         if (u.change_at) std::cout << "  soil change since sample " << *u.change_at;
         std::cout << '\n';
     }
-    if (!o.json) {
-        std::cout << (result.changes.empty() ? std::string("no change of soil detected")
+    const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                             std::to_string(result.frames.size()) + " of " +
+                             std::to_string(result.sample_count) + " samples";
+    if (o.json) {
+        if (result.cancelled)
+            std::cout << nlohmann::json{{"cancelled", true}, {"note", note}}.dump() << '\n';
+    } else {
+        std::cout << (result.changes.empty() ? std::string("no soil change detected")
                                              : "soil changes detected at samples:");
         for (std::size_t c : result.changes) std::cout << ' ' << c;
         std::cout << '\n';
+        if (result.cancelled) std::cout << note << '\n';
     }
+    std::cout.flush();
+    if (result.cancelled) exitCancelled(cancellation, note);
 }
 
 // --fix a0=0.2,a1=0.3: identified_parameters.h keys, values in their units.
@@ -211,13 +225,21 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         spec.slip_angle_rad = units::degToRad(synth->slip_angle_deg);
         spec.seed = synth->seed;
         parseNoise(synth->noise, spec.noise);
+        const SignalCancellation cancellation;
+        spec.cancel = cancellation.flag();
         const auto out =
             identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
         for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
-        writeOutput(synth->out, identification::toCsv(out.data));
+        // A cancelled run is written too, marked by a last comment line (the data set reader
+        // skips it, so `identify` reads the partial file).
+        const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                                 std::to_string(out.data.samples.size()) + " samples";
+        writeOutput(synth->out, identification::toCsv(out.data) +
+                                    (out.cancelled ? "# " + note + "\n" : std::string()));
         if (!synth->out.empty() && synth->out != "-") {
             std::cerr << "wrote " << synth->out << ": " << out.data.samples.size() << " samples\n";
         }
+        if (out.cancelled) exitCancelled(cancellation, "synth " + note);
     });
 
     auto identify = std::make_shared<IdentifyOptions>();

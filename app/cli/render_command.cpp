@@ -8,6 +8,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/analysis/forces.h"
 #include "core/common/range.h"
 #include "core/contact/operating_fields.h"
@@ -31,7 +32,9 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     inputs.conditions.load_n = o.load_n;
     analysis::ForcesSettings settings;
     settings.model = o.model.choices();
-    const analysis::ForcesResult result = analysis::computeForceSweep(inputs, settings);
+    const SignalCancellation cancellation;
+    const analysis::ForcesResult result =
+        analysis::computeForceSweep(inputs, settings, cancellation.flag());
     const soil::SoilParameters& soil = inputs.soil;
     const wheel::WheelParameters& wheel = inputs.wheel;
     for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
@@ -41,7 +44,11 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());
     const std::filesystem::path dir(o.out);
     const std::filesystem::path csv = dir / "forces-vs-slip.csv";
-    if (const auto error = io::writeFileAtomically(csv, io::toCsv(result.table))) {
+    // A cancelled sweep is written and drawn as far as it got; the CSV says so in a last comment.
+    const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                             std::to_string(result.table.rows.size()) + " rows";
+    if (const auto error = io::writeFileAtomically(
+            csv, io::toCsv(result.table) + (result.cancelled ? "# " + note + "\n" : ""))) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << csv.string() << '\n';
@@ -65,6 +72,7 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
         }
         std::cout << "wrote " << png.string() << '\n';
     }
+    if (result.cancelled) exitCancelled(cancellation, "render: sweep " + note);
     return kSuccess;
 }
 

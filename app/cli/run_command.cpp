@@ -14,6 +14,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/io/atomic_file.h"
 #include "core/project/script.h"
 #include "widgets/plots/analysis_figures.h"
@@ -81,13 +82,14 @@ private:
     std::vector<std::string> formats_;
 };
 
-project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer) {
+project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer,
+                          const std::atomic<bool>* cancel) {
     project::RunRecord record;
     record.name = a.name;
     record.type = a.type->name;
     const auto start = std::chrono::steady_clock::now();
     try {
-        const analysis::Outcome outcome = a.type->run(a.settings, a.inputs, {});
+        const analysis::Outcome outcome = a.type->run(a.settings, a.inputs, cancel);
         const QString title =
             ui::analysisTitle(a.type->name, a.title, a.inputs, a.settings, outcome);
         // A failed or cancelled run keeps its partial results: they are written all the same.
@@ -99,7 +101,11 @@ project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer) {
         for (const auto& [suffix, json] : outcome.documents)
             writer.document(record, a.name + suffix, json);
         record.notes = outcome.notes;
-        if (outcome.status != analysis::Outcome::Status::kCompleted) record.error = outcome.message;
+        if (outcome.status == analysis::Outcome::Status::kCancelled) {
+            record.notes.push_back("cancelled: the rows computed so far");
+        } else if (outcome.status == analysis::Outcome::Status::kFailed) {
+            record.error = outcome.message.empty() ? "failed" : outcome.message;
+        }
         record.outcomes = project::evaluate(a.expectations, outcome);
     } catch (const std::exception& e) {
         record.error = e.what();
@@ -135,8 +141,10 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
 
     Writer writer(o.out, script.export_settings);
     std::vector<project::RunRecord> records;
+    const SignalCancellation cancellation;
     for (const project::ScriptAnalysis& a : script.analyses) {
-        project::RunRecord record = runOne(a, writer);
+        if (cancellation.requested()) break;
+        project::RunRecord record = runOne(a, writer, cancellation.flag());
         if (!record.error.empty())
             std::cout << "FAIL: " << record.name << ": " << record.error << '\n';
         for (const auto& outcome : record.outcomes) {
@@ -145,19 +153,29 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         }
         records.push_back(std::move(record));
     }
+    // Cancelled: what was computed is written and reported; the analysis running at the signal
+    // keeps its rows so far (its notes say so), the ones after it are not run.
+    std::string cancelled;
+    if (cancellation.requested()) {
+        cancelled = "Cancelled by " + cancellation.signalName() + ": " +
+                    std::to_string(records.size()) + " of " +
+                    std::to_string(script.analyses.size()) +
+                    " analyses started, the last one possibly incomplete";
+    }
     const fs::path out(o.out);
     if (const auto error = io::writeFileAtomically(
-            out / "report.md", project::reportMarkdown(script, o.script, records))) {
+            out / "report.md", project::reportMarkdown(script, o.script, records, cancelled))) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
     const nlohmann::json manifest =
-        project::manifest(script, o.script, records, "terrastudio 0.1.0");
+        project::manifest(script, o.script, records, "terrastudio 0.1.0", cancelled);
     if (const auto error =
             io::writeFileAtomically(out / "manifest.json", manifest.dump(2) + "\n")) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "manifest.json").string() << '\n';
+    if (!cancelled.empty()) exitCancelled(cancellation, cancelled);
     const int failed = project::failureCount(records);
     if (failed > 0) {
         std::cerr << failed << " expectation(s) or analyses failed (see "

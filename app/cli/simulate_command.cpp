@@ -1,14 +1,14 @@
 // terrastudio simulate: run a rover scenario (docs/dynamics.md), write the time series and the
-// summary, with a progress bar on a terminal and Ctrl-C that stops and still writes.
+// summary, with a progress bar on a terminal; Ctrl-C, SIGTERM and SIGHUP stop it and it still
+// writes.
 #include <unistd.h>
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <iostream>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/analysis/rover.h"
 #include "core/common/range.h"
 #include "core/scenario/runner.h"
@@ -16,13 +16,6 @@
 
 namespace terra::app {
 namespace {
-
-/// Exit code of a run stopped by Ctrl-C (128 + SIGINT, the shell's convention; docs/cli.md).
-constexpr int kCancelled = 130;
-
-std::atomic<bool> g_cancel{false};
-
-extern "C" void onInterrupt(int) { g_cancel.store(true); }
 
 struct SimulateOptions {
     std::string scenario;
@@ -97,16 +90,11 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
             checkRange(issues, "--step", *o.time_step_s, scenario::kTimeStepRange, "s");
         if (!issues.empty()) throw InputError(formatIssues(issues));
 
+        const SignalCancellation cancellation;
         analysis::Control run;
-        g_cancel.store(false);
-        run.cancel = &g_cancel;
+        run.cancel = cancellation.flag();
         const bool tty = ::isatty(STDERR_FILENO) == 1;
         if (tty) run.progress = drawProgress;
-        struct sigaction action {
-        }, previous{};
-        action.sa_handler = onInterrupt;
-        sigemptyset(&action.sa_mask);
-        ::sigaction(SIGINT, &action, &previous);
         scenario::RunResult result;
         scenario::Scenario s;
         try {
@@ -114,10 +102,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
             result = std::move(rover.run);
             s = std::move(rover.scenario);
         } catch (const std::invalid_argument& e) {
-            ::sigaction(SIGINT, &previous, nullptr);
             throw InputError(std::string(o.scenario) + ": " + e.what());
         }
-        ::sigaction(SIGINT, &previous, nullptr);
         if (tty) std::fputs("\n", stderr);
 
         if (const auto error = scenario::writeResults(result, s, o.out))
@@ -132,8 +118,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
             printHuman(result, s, o.out);
         }
         if (result.status == scenario::RunResult::Status::kCancelled) {
-            std::cerr << result.message << "; partial results written to " << o.out << '\n';
-            throw CLI::RuntimeError(kCancelled);
+            exitCancelled(cancellation, result.message + " by " + cancellation.signalName() +
+                                            "; partial results written to " + o.out);
         }
         if (result.status == scenario::RunResult::Status::kDiverged) {
             std::cerr << "error: " << result.message << "; partial results written to " << o.out

@@ -9,6 +9,7 @@
 #include "app/cli/commands.h"
 #include "core/analysis/stresses.h"
 #include "core/common/range.h"
+#include "core/contact/operating_fields.h"
 #include "core/io/csv.h"
 #include "core/io/table_json.h"
 
@@ -33,7 +34,8 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         "Stress distributions over the contact, exact and quadratic, with RMSE/MAE "
         "(Figs. 2.11, 2.16; Tables 2.4-2.5)");
     options->model.addTo(*cmd);
-    cmd->add_option("--slip", s.slip, "Slip ratio s in (-1, 1)")->capture_default_str();
+    cmd->add_option("--slip", s.slip, "Slip ratio s in " + contact::slipField().range.describe())
+        ->capture_default_str();
     cmd->add_option("--slip-angle", s.slip_angle_deg, "Slip angle [deg]")->capture_default_str();
     auto* load = cmd->add_option("--load", options->load_n,
                                  "Wheel load W [N]: theta_f solved from F_z = W (default " +

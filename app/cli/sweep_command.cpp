@@ -3,6 +3,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/analysis/forces.h"
 #include "core/analysis/sensitivity.h"
 #include "core/common/units.h"
@@ -52,20 +53,30 @@ struct SweepOptions {
     }
 };
 
-void emit(const SweepOptions& o, const analysis::SweepResult& result) {
+// Writes the table; a cancelled sweep is written too, marked: "cancelled": true in JSON, a last
+// comment line in CSV (which the CSV readers skip), then the cancellation's exit code.
+void emit(const SweepOptions& o, const analysis::SweepResult& result,
+          const SignalCancellation& cancellation) {
     for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
+    const std::string note = "cancelled by " + cancellation.signalName() + " after " +
+                             std::to_string(result.table.rows.size()) + " rows";
     std::string text;
     if (o.json) {
-        text =
-            nlohmann::json{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}}.dump(
-                2) +
-            "\n";
+        nlohmann::json j{{"rows", io::toJson(result.table)}, {"warnings", result.warnings}};
+        if (result.cancelled) j.update({{"cancelled", true}, {"note", note}});
+        text = j.dump(2) + "\n";
     } else {
         text = io::toCsv(result.table);
+        if (result.cancelled) text += "# " + note + "\n";
     }
     writeOutput(o.out, text);
     if (!o.out.empty() && o.out != "-") {
         std::cerr << "wrote " << o.out << ": " << result.table.rows.size() << " rows\n";
+    }
+    if (result.cancelled) {
+        exitCancelled(
+            cancellation,
+            "sweep " + note + (o.out.empty() || o.out == "-" ? "" : "; written to " + o.out));
     }
 }
 
@@ -92,7 +103,11 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--slip-angles", sweep->slip_angles, "Slip angles [deg]")
         ->capture_default_str();
     cmd->callback([sweep, &locations] {
-        emit(*sweep, analysis::computeForceSweep(sweep->inputs(locations), sweep->forces()));
+        const SignalCancellation cancellation;
+        emit(*sweep,
+             analysis::computeForceSweep(sweep->inputs(locations), sweep->forces(),
+                                         cancellation.flag()),
+             cancellation);
     });
 
     auto sens = std::make_shared<SweepOptions>();
@@ -115,7 +130,9 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
         settings.slip_angles_deg = inputs.conditions.slip_angles_deg;
         settings.sweep = sens->forces();
         if (!sens->values.empty()) settings.values = parseValues(sens->values, "--values");
-        const analysis::SensitivityResult result = analysis::computeSensitivity(inputs, settings);
+        const SignalCancellation cancellation;
+        const analysis::SensitivityResult result =
+            analysis::computeSensitivity(inputs, settings, cancellation.flag());
         if (result.parameter_keys.size() > 1) {
             std::string legend;
             for (std::size_t k = 0; k < result.parameter_keys.size(); ++k) {
@@ -123,7 +140,7 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
             }
             std::cerr << "parameter column: " << legend << '\n';
         }
-        emit(*sens, result.family);
+        emit(*sens, result.family, cancellation);
     });
 }
 

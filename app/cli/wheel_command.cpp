@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/signals.h"
 #include "core/analysis/operating_point.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -102,6 +103,20 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     std::cout << s.str();
 }
 
+// The batch CSV's columns: the operating point's field table (contact/operating_fields.h), as
+// the single-point flags (docs/cli.md).
+io::NumericColumn columnOf(const FieldInfo& field) {
+    const bool degrees = field.displayUnit() == "deg";
+    return {field.key, field.range, field.displayUnit(), degrees ? units::degToRad : nullptr};
+}
+const io::NumericColumn kSlip = columnOf(contact::slipField());
+const io::NumericColumn kSlipAngle = columnOf(contact::slipAngleField());
+const io::NumericColumn kEntryAngle = columnOf(contact::entryAngleField());
+const io::NumericColumn kLoad = columnOf(contact::loadField());
+const io::NumericColumn kExitAngle = columnOf(contact::exitAngleField());
+const io::NumericColumn kRutRatio = columnOf(contact::rutRatioField());
+const io::NumericColumn kMaxStressAngle = columnOf(contact::maxStressAngleField());
+
 // Batch mode: one operating point per CSV row.
 int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     Result<io::CsvDocument> read = io::readCsv(o.input);
@@ -129,28 +144,30 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         ",status,entry_angle_deg_out,exit_angle_deg_out,sinkage_m,Fx_N,Fy_N,Fz_N,Mx_Nm,My_Nm,"
         "Mz_Nm,Fb_N,Fs_N\n";
     int failed = 0;
+    std::size_t cancelled = 0;
+    const SignalCancellation cancellation;
     for (std::size_t row = 0; row < doc.rows.size(); ++row) {
         const auto& cells = doc.rows[row];
+        if (cancellation.requested()) {
+            // The rows not computed are written too, marked, so the output lines up with the input.
+            for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
+            csv += ",cancelled,,,,,,,,,,,\n";
+            ++cancelled;
+            continue;
+        }
         const std::string where = o.input + ":" + std::to_string(doc.line_numbers[row]);
         const std::size_t before = issues.size();
-        auto cell = [&](int column, const char* name, std::optional<double> fallback) {
-            std::optional<double> value = fallback;
-            if (column >= 0 && !cells[column].empty()) {
-                double parsed = 0.0;
-                if (io::parseNumber(cells[column], parsed)) {
-                    value = parsed;
-                } else {
-                    issues.push_back({where, std::string(name) + " = '" + cells[column] +
-                                                 "' is not a finite number"});
-                }
-            }
-            return value;
+        // A cell of a column (its range checked, docs/cli.md "Batch mode"), else the flag's value.
+        auto cell = [&](int column, const io::NumericColumn& spec,
+                        std::optional<double> fallback) -> std::optional<double> {
+            if (column < 0 || cells[column].empty()) return fallback;
+            return io::readCell(cells[column], spec, where, issues);
         };
         PointSpec in;
-        in.slip = cell(c_slip, "slip", o.slip).value_or(0.0);
-        in.slip_angle_deg = cell(c_beta, "slip_angle_deg", o.slip_angle_deg).value_or(0.0);
-        in.entry_angle_deg = cell(c_theta, "entry_angle_deg", o.entry_angle_deg);
-        in.load_n = cell(c_load, "load_N", o.load_n);
+        in.slip = cell(c_slip, kSlip, o.slip).value_or(0.0);
+        in.slip_angle_deg = cell(c_beta, kSlipAngle, o.slip_angle_deg).value_or(0.0);
+        in.entry_angle_deg = cell(c_theta, kEntryAngle, o.entry_angle_deg);
+        in.load_n = cell(c_load, kLoad, o.load_n);
         if (in.entry_angle_deg && in.load_n) {
             if (c_theta >= 0 && c_load >= 0 && !cells[c_theta].empty() && !cells[c_load].empty()) {
                 issues.push_back({where, "give entry_angle_deg or load_N, not both"});
@@ -160,29 +177,21 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
                 in.load_n.reset();
             }
         }
-        if (!in.entry_angle_deg && !in.load_n)
+        if (!in.entry_angle_deg && !in.load_n && issues.size() == before)
             issues.push_back({where, "no entry_angle_deg or load_N"});
         in.model.exit = o.model.exitCondition();
-        const auto exit = cell(c_exit, "exit_angle_deg", std::nullopt);
-        const auto rut = cell(c_rut, "rut_ratio", std::nullopt);
+        const auto exit = cell(c_exit, kExitAngle, std::nullopt);
+        const auto rut = cell(c_rut, kRutRatio, std::nullopt);
         if (exit && rut) {
             issues.push_back({where, "give exit_angle_deg or rut_ratio, not both"});
         } else if (exit) {
-            if (checkRange(issues, where + ": exit_angle_deg", *exit,
-                           contact::exitAngleField().range, "deg")) {
-                in.model.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
-            }
+            in.model.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
         } else if (rut) {
-            if (checkRange(issues, where + ": rut_ratio", *rut, contact::rutRatioField().range)) {
-                in.model.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
-            }
+            in.model.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
         }
         in.model.max_stress_angle_rad = o.model.maxStressAngleRad();
-        if (auto theta_m = cell(c_theta_m, "max_stress_angle_deg", std::nullopt)) {
-            if (checkRange(issues, where + ": max_stress_angle_deg", *theta_m,
-                           contact::maxStressAngleField().range, "deg")) {
-                in.model.max_stress_angle_rad = units::degToRad(*theta_m);
-            }
+        if (auto theta_m = cell(c_theta_m, kMaxStressAngle, std::nullopt)) {
+            in.model.max_stress_angle_rad = units::degToRad(*theta_m);
         }
         PointResult result;
         if (issues.size() == before) {
@@ -235,6 +244,11 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
                   << doc.rows.size() + doc.row_issues.size() - skipped << " rows (" << failed
                   << " without a solution)\n";
     }
+    if (cancelled > 0) {
+        exitCancelled(cancellation, "cancelled by " + cancellation.signalName() + ": " +
+                                        std::to_string(cancelled) +
+                                        " row(s) not computed, marked 'cancelled'");
+    }
     return kSuccess;
 }
 
@@ -245,7 +259,9 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
     CLI::App* cmd = app.add_subcommand(
         "wheel", "Forces and moments of one wheel at one operating point (or a CSV of points)");
     options->model.addTo(*cmd);
-    cmd->add_option("--slip", options->slip, "Slip ratio s in (-1, 1) (Eq. 2.1)")
+    cmd->add_option("--slip", options->slip,
+                    "Slip ratio s in " + contact::slipField().range.describe() +
+                        " (Eq. 2.1; 1: spinning in place, -1: locked)")
         ->capture_default_str();
     cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle beta [deg] (Eq. 2.2)")
         ->capture_default_str();

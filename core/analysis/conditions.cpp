@@ -28,7 +28,7 @@ const FieldInfo& slipMaxField() {
                                  "largest slip",
                                  "Largest slip of the force sweeps; the grid runs from 0 to it "
                                  "in slip_count points. Dimensionless.",
-                                 {0.0, 1.0, true, true}};
+                                 {0.0, 1.0, true, false}};
     return field;
 }
 

@@ -186,13 +186,19 @@ Table framesTable(const std::vector<StreamFrame>& frames) {
 
 StreamingResult computeStreaming(const Inputs& in, const StreamingSettings& s,
                                  const Control& control) {
+    return playStreaming(streamSource(in, s), in.wheel, s.options, control);
+}
+
+StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters& wheel,
+                              const id::StreamingOptions& options, const Control& control) {
     StreamingResult out;
-    out.source = streamSource(in, s);
+    out.source = std::move(source);
     const std::vector<id::Sample> samples = std::move(out.source.data.samples);
     out.source.data.samples.clear();
     if (samples.empty()) throw std::invalid_argument("the data set has no samples");
+    out.sample_count = samples.size();
     const std::vector<double> times = sampleTimes(id::DataSet{samples});
-    StreamingRun run(in.wheel, s.options);
+    StreamingRun run(wheel, options);
     out.frames.reserve(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) {
         if (control.cancelled()) {

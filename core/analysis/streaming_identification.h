@@ -108,10 +108,16 @@ struct StreamingResult {
     StreamSource source;  ///< without its samples (they are the frames')
     std::vector<StreamFrame> frames;
     std::vector<std::size_t> changes;  ///< samples where a change of soil began
+    std::size_t sample_count = 0;      ///< of the source (more than the frames when cancelled)
     bool cancelled = false;
 };
 
-/// Plays the whole data set as fast as it computes. Throws std::invalid_argument when the data
+/// Plays a source's samples as fast as they compute, on `wheel`. Throws std::invalid_argument
+/// for a source without samples.
+StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters& wheel,
+                              const identification::StreamingOptions& options,
+                              const Control& control = {});
+/// The settings' source (streamSource), played. Throws std::invalid_argument when the data
 /// cannot be read or made.
 StreamingResult computeStreaming(const Inputs& inputs, const StreamingSettings& settings = {},
                                  const Control& control = {});

@@ -20,7 +20,7 @@ namespace terra::analysis {
 /// What to sweep. With `load_n` set, θ_f is solved at every point (section 2.6.1); otherwise the
 /// fixed `entry_angle_rad` is used.
 struct SweepSpec {
-    std::vector<double> slips;                              ///< s values, each in (−1, 1)
+    std::vector<double> slips;                              ///< s values, each in [−1, 1]
     std::vector<double> slip_angles_rad;                    ///< β values
     std::optional<double> load_n = contact::kDefaultLoadN;  ///< W [N] (Table 2.6: 6 kg)
     double entry_angle_rad = 0.5236;                        ///< θ_f when no load is given

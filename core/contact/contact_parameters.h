@@ -58,7 +58,8 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
 /// The operating point of the wheel: kinematics and contact geometry (section 2.2).
 template <typename T>
 struct OperatingPoint {
-    T slip;             ///< s [-] (Eq. 2.1): driving 0 ≤ s < 1, braking −1 < s < 0
+    /// s [-] (Eq. 2.1): driving 0 ≤ s ≤ 1 (1: spinning in place), braking −1 ≤ s < 0 (−1: locked)
+    T slip;
     T slip_angle_rad;   ///< β [rad] (Eq. 2.2), |β| < π/2
     T entry_angle_rad;  ///< θ_f [rad], 0 < θ_f ≤ π/2
     T exit_angle_rad;  ///< θ_r [rad] ≤ 0 (docs/model.md, "Angles"); below −θ_f taken as −θ_f
@@ -75,7 +76,7 @@ struct OperatingPoint {
 };
 
 /// Throws std::invalid_argument naming the field and the value when `op` is outside the model's
-/// domain (s ∉ (−1, 1), |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−90°, 0], θ_m ∉ [−90°, 90°]). The model
+/// domain (s ∉ [−1, 1], |β| ≥ 90°, θ_f ∉ (0, 90°], θ_r ∉ [−90°, 0], θ_m ∉ [−90°, 90°]). The model
 /// itself keeps θ_r ≥ −θ_f and θ_m inside [θ_r, θ_f] (contact_angles.h).
 void requireValid(const OperatingPoint<double>& op);
 

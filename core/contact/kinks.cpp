@@ -10,6 +10,8 @@
 namespace terra::contact {
 namespace {
 
+constexpr double kHalfPi = 1.5707963267948966;
+
 // j_t and j before the j_max limit, by the stress field's formula (shear_deformation.h).
 struct Shear {
     const ShearGeometry& g;
@@ -64,7 +66,7 @@ Kinks findKinks(const ShearGeometry& geometry) {
     const Shear shear{geometry};
     const double lo = geometry.exit_angle_rad;
     const double hi = geometry.entry_angle_rad;
-    if (!(hi > lo)) return kinks;
+    if (!(hi > lo) || std::isinf(geometry.velocity_ratio)) return kinks;
     const bool limited = std::isfinite(geometry.max_shear_m);
 
     if (geometry.velocity_ratio <= 1.0) {
@@ -137,6 +139,12 @@ Kinks findScaleSplits(const ShearGeometry& g) {
         if (kappa <= 1.0) {
             addGraded(splits, g, 0.0, std::sqrt(2.0 * std::hypot(1.0 - kappa, lateral)), true, true,
                       true, 0.25);
+        } else if (std::isinf(kappa)) {
+            // The locked wheel: the limit of the braking width below, at ±θ* = ±90°.
+            const double t = std::abs(g.slip_angle_tan);
+            const double width = t / (1.0 + std::sqrt(2.0 * t));
+            addGraded(splits, g, kHalfPi, width, true, true, false, 0.25);
+            addGraded(splits, g, -kHalfPi, width, true, true, false, 0.25);
         } else {
             const double star = std::acos(1.0 / kappa);
             const double width =

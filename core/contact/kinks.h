@@ -16,10 +16,11 @@ struct ShearGeometry {
     double radius_m;
     double entry_angle_rad;
     double exit_angle_rad;
-    double velocity_ratio;       ///< κ = v_x/(rω)
+    double velocity_ratio;       ///< κ = v_x/(rω); +inf for the locked wheel (s = −1)
     double lateral_velocity;     ///< κ tan β
     double max_shear_m;          ///< j_max, +inf for none
     double shear_modulus_m = 0;  ///< K [m] of 1 − exp(−j/K) (Eq. 2.20); 0: no rise-layer splits
+    double slip_angle_tan = 0;   ///< tan β (the locked wheel's shear direction)
 };
 
 inline constexpr int kMaxKinks = 32;
@@ -31,7 +32,9 @@ struct Kinks {
 };
 
 /// Finds the kinks of the integrands on (θ_r, θ_f). For driving (κ ≤ 1) j(θ) is monotone, so
-/// there is at most one j_max crossing; braking is searched piece by piece (see kinks.cpp).
+/// there is at most one j_max crossing; braking is searched piece by piece (see kinks.cpp). The
+/// locked wheel (κ = ∞) has none: j is infinite all over the contact and the shear direction
+/// (−cos θ, tan β) keeps its sign.
 Kinks findKinks(const ShearGeometry& geometry);
 
 /// Break points at the length scales of smooth but narrow features, so that each gets pieces of
@@ -41,7 +44,8 @@ Kinks findKinks(const ShearGeometry& geometry);
 /// (w < (θ_f − θ_r)/4; /16 for the rise layer, which the end mapping resolves otherwise):
 /// - the turn of the shear direction (1 − κ cos θ, κ tan β) (Eq. 2.22) at small κ tan β: driving,
 ///   centre θ = 0, w = √(2 |(1 − κ, κ tan β)|); braking, centres ±θ* = ±acos(1/κ),
-///   w = κ tan β / (κ sin θ* + √(2κ · κ tan β));
+///   w = κ tan β / (κ sin θ* + √(2κ · κ tan β)), which for the locked wheel (κ = ∞) is
+///   tan β / (1 + √(2 tan β)) at ±90°;
 /// - the rise of 1 − exp(−j/K) behind θ_f (Eq. 2.20): one-sided below θ_f, w = min(K, j_max) /
 ///   (r |(1 − κ cos θ_f, κ tan β)|), the angle over which j grows by K (or reaches j_max).
 Kinks findScaleSplits(const ShearGeometry& geometry);

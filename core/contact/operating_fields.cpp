@@ -14,9 +14,10 @@ const FieldInfo& slipField() {
                                  "-",
                                  "s",
                                  "slip ratio",
-                                 "Slip ratio s = 1 − v/(rω) (Eq. 2.1): 0 ≤ s < 1 driving, "
-                                 "−1 < s < 0 braking. Dimensionless.",
-                                 {-1.0, 1.0, true, true}};
+                                 "Slip ratio s = 1 − v/(rω) (Eq. 2.1): 0 ≤ s ≤ 1 driving (1: "
+                                 "spinning in place), −1 ≤ s < 0 braking (−1: locked). "
+                                 "Dimensionless.",
+                                 {-1.0, 1.0}};
     return field;
 }
 

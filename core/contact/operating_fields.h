@@ -13,7 +13,7 @@ namespace terra::contact {
 /// a load is not given.
 inline constexpr double kDefaultLoadN = 58.86;
 
-const FieldInfo& slipField();            ///< "slip": s ∈ (−1, 1) (Eq. 2.1)
+const FieldInfo& slipField();            ///< "slip": s ∈ [−1, 1] (Eq. 2.1)
 const FieldInfo& slipAngleField();       ///< "slip_angle_deg": β ∈ (−90°, 90°) (Eq. 2.2)
 const FieldInfo& entryAngleField();      ///< "entry_angle_deg": θ_f ∈ (0°, 90°]
 const FieldInfo& exitAngleField();       ///< "exit_angle_deg": θ_r ∈ [−90°, 0°]

@@ -9,6 +9,7 @@
 /// maximum normal stress at θ_m in between.
 
 #include <cmath>
+#include <limits>
 
 #include "core/contact/contact_angles.h"
 #include "core/contact/contact_parameters.h"
@@ -29,7 +30,7 @@ struct StressSample {
 };
 
 /// κ = v_x/(rω) from the slip (Eq. 2.1; docs/model.md, "Slip"): 1 − s when driving, 1/(1 + s)
-/// when braking.
+/// when braking; +inf for the locked wheel (s = −1, ω = 0).
 template <typename T>
 T velocityRatio(const T& slip) {
     return slip >= 0.0 ? T(1.0 - slip) : T(1.0 / (1.0 + slip));
@@ -50,7 +51,9 @@ public:
           cohesion_(p.cohesion_pa),
           shear_modulus_(p.shear_modulus_m),
           max_shear_(p.max_shear_deformation_m),
-          driving_(op.slip >= 0.0) {
+          driving_(op.slip >= 0.0),
+          // s = −1 (requireValid keeps s ≥ −1): κ is infinite, at() takes the limit.
+          locked_(!(op.slip > -1.0)) {
         using std::cos;
         using std::sin;
         using std::tan;
@@ -58,10 +61,22 @@ public:
         cos_entry_ = cos(entry_);
         sin_entry_ = sin(entry_);
         versine_entry_ = sin_entry_ * sin_entry_ / (1.0 + cos_entry_);
-        kappa_ = contact::velocityRatio(op.slip);
-        // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0).
-        one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
-        lateral_velocity_ = kappa_ * tan(op.slip_angle_rad);
+        slip_angle_tan_ = tan(op.slip_angle_rad);
+        if (locked_) {
+            // Plain constants, never used in arithmetic on T (a Jet's zero derivatives times
+            // infinity would be NaN): only the kink search reads them, as doubles.
+            constexpr double kInfinity = std::numeric_limits<double>::infinity();
+            kappa_ = T(kInfinity);
+            one_minus_kappa_ = T(-kInfinity);
+            const double beta_tan = scalarValue(slip_angle_tan_);
+            lateral_velocity_ = T(beta_tan == 0.0 ? 0.0 : std::copysign(kInfinity, beta_tan));
+        } else {
+            kappa_ = contact::velocityRatio(op.slip);
+            // 1 − κ, exactly s for driving and s/(1 + s) for braking (no cancellation near s = 0;
+            // at s = 1, κ = 0 and 1 − κ = 1: the wheel spins in place).
+            one_minus_kappa_ = driving_ ? op.slip : T(op.slip / (1.0 + op.slip));
+            lateral_velocity_ = kappa_ * slip_angle_tan_;
+        }
         rear_slope_ =
             max_stress_ > exit_ ? T((entry_ - max_stress_) / (max_stress_ - exit_)) : T(0.0);
     }
@@ -72,6 +87,7 @@ public:
     const T& velocityRatio() const { return kappa_; }        ///< κ = v_x/(rω)
     const T& sinkageExponent() const { return exponent_; }   ///< N = n₀ + n₁ s
     bool driving() const { return driving_; }
+    bool locked() const { return locked_; }  ///< s = −1: the wheel does not turn (ω = 0)
     double maxShearDeformation() const { return max_shear_; }
 
     /// cos θ_a − cos θ_f for θ_a = θ_f − 2d, as 2 sin((θ_f + θ_a)/2) sin((θ_f − θ_a)/2) =
@@ -127,6 +143,7 @@ public:
         StressSample<T> out;
         const T versine = sin_theta * sin_theta / (1.0 + cos_theta);  // 1 − cos θ, exact
         out.sigma = normalStress(theta, versine);
+        if (locked_) return lockedShear(out, theta, cos_theta);
 
         const ShearDeformation<T> j = shearDeformation(radius_, entry_, sin_entry_, kappa_,
                                                        lateral_velocity_, theta, sin_theta);
@@ -158,10 +175,47 @@ public:
         return out;
     }
 
-    /// Lateral shear velocity κ tan β [-] (per unit rω).
+    /// Lateral shear velocity κ tan β [-] (per unit rω); ±inf for the locked wheel with β ≠ 0.
     const T& lateralVelocity() const { return lateral_velocity_; }
+    /// tan β [-].
+    const T& slipAngleTangent() const { return slip_angle_tan_; }
 
 private:
+    /// The shear of the locked wheel (s = −1), the limit κ → ∞ of Eqs. 2.14–2.22 (docs/model.md,
+    /// "Full slip"). j = κ r |(sin θ_f − sin θ, tan β (θ_f − θ))| + O(1) grows without bound at
+    /// every θ < θ_f, so the shear is fully developed: τ = c + σ tan φ, or (c + σ tan φ)(1 −
+    /// exp(−j_max/K)) with j_max; the shear velocity direction (1 − κ cos θ, κ tan β)/|…| tends
+    /// to (−cos θ, tan β)/|…|, the sliding of the rim over the soil. At θ_f itself j = 0 for every
+    /// κ, so τ = 0 there: the limit jumps at the contact's front end.
+    StressSample<T>& lockedShear(StressSample<T>& out, const T& theta, const T& cos_theta) const {
+        using std::expm1;
+        using std::sqrt;
+        constexpr double kInfinity = std::numeric_limits<double>::infinity();
+        if (!(theta < entry_)) {
+            out.tau = out.tau_t = out.tau_l = T(0.0);
+            out.shear_t = out.shear_l = out.shear = T(0.0);
+            return out;
+        }
+        const double beta_tan = scalarValue(slip_angle_tan_);
+        out.shear_t = T(-kInfinity);  // −κ r (sin θ_f − sin θ), sin θ < sin θ_f inside
+        out.shear_l = T(beta_tan == 0.0 ? 0.0 : std::copysign(kInfinity, beta_tan));
+        const bool limited = max_shear_ < kInfinity;
+        out.shear = T(max_shear_);  // Eq. 2.16 with j → ∞
+        const T developed = limited ? T(-expm1(-max_shear_ / shear_modulus_)) : T(1.0);
+        out.tau = (cohesion_ + out.sigma * tan_phi_) * developed;
+        const T speed_squared = cos_theta * cos_theta + slip_angle_tan_ * slip_angle_tan_;
+        if (speed_squared > 0.0) {
+            const T inverse_speed = 1.0 / sqrt(speed_squared);
+            out.tau_t = -out.tau * cos_theta * inverse_speed;
+            out.tau_l = out.tau * slip_angle_tan_ * inverse_speed;
+        } else {
+            // θ = −90° with β = 0: the limit from inside the contact, against the travel.
+            out.tau_t = -out.tau;
+            out.tau_l = T(0.0);
+        }
+        return out;
+    }
+
     T radius_;
     T entry_;
     T exit_;
@@ -172,6 +226,7 @@ private:
     T shear_modulus_;
     double max_shear_;
     bool driving_;
+    bool locked_;
     T tan_phi_;
     T cos_entry_;
     T sin_entry_;
@@ -179,6 +234,7 @@ private:
     T kappa_;
     T one_minus_kappa_;
     T lateral_velocity_;
+    T slip_angle_tan_;
     T rear_slope_;  // (θ_f − θ_m)/(θ_m − θ_r) of Eq. 2.19
 };
 

@@ -163,7 +163,8 @@ ShearGeometry shearGeometry(const ContactParameters<T>& p, const StressField<T>&
             scalarValue(field.velocityRatio()),
             scalarValue(field.lateralVelocity()),
             p.max_shear_deformation_m,
-            scalarValue(p.shear_modulus_m)};
+            scalarValue(p.shear_modulus_m),
+            scalarValue(field.slipAngleTangent())};
 }
 
 // The contact integrals ∫(τ_t cos θ − σ sin θ), ∫(σ cos θ + τ_t sin θ), ∫τ_l, ∫τ_l cos θ,

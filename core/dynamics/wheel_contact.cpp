@@ -13,7 +13,7 @@ double slipRatio(double forward_speed_m_s, double rim_speed_m_s, const ContactOp
     const double denominator =
         std::max({rim_speed_m_s, forward_speed_m_s, options.regularisation_speed_m_s});
     const double s = (rim_speed_m_s - forward_speed_m_s) / denominator;
-    return std::clamp(s, -options.max_slip, options.max_slip);
+    return std::clamp(s, -1.0, 1.0);
 }
 
 double slipAngle(double forward_speed_m_s, double lateral_speed_m_s,

@@ -24,7 +24,6 @@ struct ContactOptions {
     /// β_reg [rad]: sign(β) in F_s = F_y − sign(β) F_b is replaced by clamp(β/β_reg, −1, 1), so the
     /// bulldozing force does not chatter between ±F_b while β crosses zero.
     double slip_angle_regularisation_rad = 0.00872664626;  // 0.5°
-    double max_slip = 0.99;  ///< |s| is clamped to this (the model's domain is −1 < s < 1)
 };
 
 /// The kinematic state of one wheel, in its (steered, non-spinning) frame of section 2.2.1.
@@ -39,7 +38,7 @@ struct WheelKinematics {
 struct WheelContact {
     bool in_contact = false;              ///< h > 0
     bool sunk = false;                    ///< h ≥ r: θ_f clamped to 90° (axle in the soil)
-    double slip = 0.0;                    ///< s [-] (Eq. 2.1, regularised, clamped to ±max_slip)
+    double slip = 0.0;                    ///< s [-] (Eq. 2.1, regularised, in [−1, 1])
     double slip_angle_rad = 0.0;          ///< β [rad] (Eq. 2.2, regularised)
     double entry_angle_rad = 0.0;         ///< θ_f = acos(1 − h/r) [rad] (Eq. 2.12)
     double exit_angle_rad = 0.0;          ///< θ_r [rad]
@@ -48,7 +47,10 @@ struct WheelContact {
 };
 
 /// s of Eq. 2.1 in one expression: s = (rω − v_x) / max(rω, v_x, v_reg). Driving (rω > v_x) gives
-/// 1 − v_x/(rω), braking gives rω/v_x − 1 (docs/model.md, "Slip"); clamped to ±max_slip.
+/// 1 − v_x/(rω), braking gives rω/v_x − 1 (docs/model.md, "Slip"). A stalled wheel (v_x = 0,
+/// rω > v_reg) gives s = 1, a locked one (ω = 0, v_x > v_reg) s = −1, both inside the model's
+/// domain [−1, 1]; s is clamped to it, which only acts when v_x < 0 or ω < 0 (rolling backwards),
+/// outside the forward-only model (docs/dynamics.md).
 double slipRatio(double forward_speed_m_s, double rim_speed_m_s, const ContactOptions& options);
 
 /// β of Eq. 2.2: atan(v_y / max(|v_x|, v_reg)), positive for v_y > 0 (docs/model.md, "Lateral

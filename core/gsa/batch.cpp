@@ -127,7 +127,7 @@ void checkPoint(std::vector<Issue>& issues, const Prepared& prep, std::size_t i)
     // A broadcast value is checked once, at sample 0.
     auto due = [i](const Column& c) { return c.stride != 0 || i == 0; };
     const double s = prep.slip.at(i);
-    if (due(prep.slip) && !(std::abs(s) < 1.0)) {
+    if (due(prep.slip) && !(std::abs(s) <= 1.0)) {
         checkRange(issues, indexed("slip", prep.slip, i), s, contact::slipField().range);
     }
     if (prep.has_slip_angle && due(prep.slip_angle)) {

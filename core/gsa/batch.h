@@ -52,7 +52,7 @@ struct SoilOverride {
 /// The samples of a batch. Every array holds `count` values, or one value used for all samples.
 struct BatchInput {
     std::size_t count = 0;
-    std::span<const double> slip;            ///< s [-], in (−1, 1)
+    std::span<const double> slip;            ///< s [-], in [−1, 1]
     std::span<const double> slip_angle_rad;  ///< β [rad], |β| < π/2; empty: 0
     /// W [N] > 0: θ_f solved so that F_z = W (section 2.6.1). Empty: θ_f given below.
     std::span<const double> load_n;

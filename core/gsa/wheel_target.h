@@ -46,7 +46,7 @@ const std::vector<std::string>& outputNames();
 
 /// The operating points: every slip angle × every slip (slip-angle-major, as a sweep).
 struct OperatingGrid {
-    std::vector<double> slips;                              ///< s values, each in (−1, 1)
+    std::vector<double> slips;                              ///< s values, each in [−1, 1]
     std::vector<double> slip_angles_rad{0.0};               ///< β values [rad]
     std::optional<double> load_n = contact::kDefaultLoadN;  ///< W [N]; set: θ_f solved per sample
     double entry_angle_rad = 0.5236;                        ///< θ_f [rad] when no load is given

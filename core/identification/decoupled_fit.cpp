@@ -2,19 +2,19 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "core/identification/box_solver.h"
 #include "core/identification/decoupled_model.h"
 
 namespace terra::identification {
 namespace {
-
-// Parameters are scaled to order one for the solver: K_s in MPa/m^N, c in kPa.
-constexpr double kKsScale = 1e6;
-constexpr double kCohesionScale = 1e3;
 
 struct StepIResidual {
     double r, slip, theta_f, fx, fz, my;
@@ -26,24 +26,84 @@ struct StepIResidual {
     }
 };
 
-struct StepIIResidual {
-    double r, b, a0, a1, slip, theta_f, fz, my;
+// Steps II and III each have one parameter that enters linearly: F_z − B M_y/(r C) = K_s g(n₀, n₁)
+// (Eq. 4.17) and M_y = h(φ, K) c + q(φ, K) (Eq. 4.18). It is projected out (variable projection):
+// for given values of the other two it takes its least-squares value in closed form, and the solver
+// walks only those two. When that value leaves its bounds, the step is solved again with it held
+// at the bound (an active set of one); clamping inside the residual instead would put a kink in
+// the residual's Jacobian, along which Levenberg–Marquardt crawls for hundreds of iterations.
+// Σ rᵢ² is the same function of the parameters as the thesis's; docs/identification.md, "Speed".
+template <typename T>
+T linearFit(const std::vector<T>& basis, const std::vector<T>& target,
+            const std::optional<double>& held) {
+    if (held) return T(*held);
+    T gg(0.0), gy(0.0);
+    for (std::size_t i = 0; i < basis.size(); ++i) {
+        gg += basis[i] * basis[i];
+        gy += basis[i] * target[i];
+    }
+    return gg > 0.0 ? T(gy / gg) : T(0.0);
+}
+
+// A sample of steps II and III with its hat coefficients (P_I is fixed in both).
+struct ProjectedRow {
+    double slip, theta_f, fz, my;
+    HatCoefficients<double> h;
+};
+
+// Step II: x = (n₀, n₁); residual K_s g − (F_z − B M_y/(r C)) with K_s projected (or held).
+struct StepIIProjected {
+    double r, b;
+    std::vector<ProjectedRow> rows;
+    std::optional<double> held;  // K_s [Pa/m^N] held at a bound
+
+    template <typename T>
+    T linear(const T* const x, std::vector<T>& g, std::vector<T>& z) const {
+        g.resize(rows.size());
+        z.resize(rows.size());
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const ProjectedRow& s = rows[i];
+            g[i] = decoupledPressureTerm(s.h, r, b, x[0], x[1], s.slip, s.theta_f);
+            z[i] = T(s.fz - s.h.b * s.my / (r * s.h.c));
+        }
+        return linearFit(g, z, held);
+    }
     template <typename T>
     bool operator()(const T* const x, T* residual) const {
-        const HatCoefficients<T> h = hatCoefficients(T(a0), T(a1), slip, theta_f);
-        residual[0] =
-            decoupledVerticalForce(h, r, b, T(x[0] * kKsScale), x[1], x[2], slip, theta_f, my) - fz;
+        std::vector<T> g, z;
+        const T ks = linear(x, g, z);
+        for (std::size_t i = 0; i < rows.size(); ++i) residual[i] = ks * g[i] - z[i];
         return true;
     }
 };
 
-struct StepIIIResidual {
-    double r, b, a0, a1, slip, theta_f, fz, my;
+// Step III: x = (φ, ln K); residual h c + q − M_y with c projected (or held). K enters through
+// exp(−j/K): in ln K the valley toward small K is straight.
+struct StepIIIProjected {
+    double r, b;
+    std::vector<ProjectedRow> rows;
+    std::optional<double> held;  // c [Pa] held at a bound
+
+    template <typename T>
+    T linear(const T* const x, std::vector<T>& g, std::vector<T>& z) const {
+        using std::exp;
+        g.resize(rows.size());
+        z.resize(rows.size());
+        const T shear_modulus = exp(x[1]);
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const ProjectedRow& s = rows[i];
+            const TorqueTerms<T> t =
+                decoupledTorqueTerms(s.h, r, b, x[0], shear_modulus, s.slip, s.theta_f, s.fz);
+            g[i] = t.per_cohesion;
+            z[i] = s.my - t.offset;
+        }
+        return linearFit(g, z, held);
+    }
     template <typename T>
     bool operator()(const T* const x, T* residual) const {
-        const HatCoefficients<T> h = hatCoefficients(T(a0), T(a1), slip, theta_f);
-        residual[0] =
-            decoupledTorque(h, r, b, T(x[0] * kCohesionScale), x[1], x[2], slip, theta_f, fz) - my;
+        std::vector<T> g, z;
+        const T c = linear(x, g, z);
+        for (std::size_t i = 0; i < rows.size(); ++i) residual[i] = c * g[i] - z[i];
         return true;
     }
 };
@@ -60,38 +120,50 @@ struct Batch {
     }
 };
 
-template <int kParameters, typename Residual>
-ceres::CostFunction* batchCost(std::vector<Residual> rows) {
-    const int n = static_cast<int>(rows.size());
-    return new ceres::AutoDiffCostFunction<Batch<Residual>, ceres::DYNAMIC, kParameters>(
-        new Batch<Residual>{std::move(rows)}, n);
-}
-
-StepReport solve(ceres::Problem& problem, const std::string& name, int max_iterations) {
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_QR;
-    options.max_num_iterations = max_iterations;
-    // Relative cost change 1e-10 is far below any data's noise; tighter only crawls along the flat
-    // valleys of full-model data (K_s at its bound, c–φ) for 100+ iterations without changing
-    // the fit (docs/identification.md).
+// Relative cost change 1e-10 is far below any data's noise; tighter only walks the flat valleys
+// of full-model data without changing the fit (docs/identification.md).
+detail::BoxOptions stepOptions(int max_iterations) {
+    detail::BoxOptions options;
+    options.max_iterations = max_iterations;
     options.function_tolerance = 1e-10;
     options.parameter_tolerance = 1e-10;
     options.gradient_tolerance = 1e-12;
-    options.logging_type = ceres::SILENT;
-    options.num_threads = 1;
-    ceres::Solver::Summary summary;
+    return options;
+}
+
+// Solves one step on x within [lower, upper] and accumulates its report.
+void solveStep(ceres::CostFunction* cost, std::vector<double>& x, std::vector<double> lower,
+               std::vector<double> upper, int max_iterations, StepReport& report) {
+    const std::unique_ptr<ceres::CostFunction> owned(cost);
+    detail::BoxProblem problem{
+        {cost}, {nullptr}, std::move(lower), std::move(upper), std::vector<bool>(x.size(), false)};
     const auto start = std::chrono::steady_clock::now();
-    ceres::Solve(options, &problem, &summary);
+    const detail::BoxSummary summary =
+        detail::solveInBox(problem, x, stepOptions(max_iterations - report.iterations));
     const auto stop = std::chrono::steady_clock::now();
-    StepReport report;
-    report.name = name;
-    report.usable = summary.IsSolutionUsable();
-    report.termination = ceres::TerminationTypeToString(summary.termination_type) +
-                         std::string(": ") + summary.message;
-    report.iterations = static_cast<int>(summary.iterations.size());
-    report.squared_residual_norm = 2.0 * summary.final_cost;  // Ceres' cost is ½ Σ rᵢ²
-    report.wall_time_ms = std::chrono::duration<double, std::milli>(stop - start).count();
-    return report;
+    report.usable = summary.usable;
+    report.termination = summary.termination;
+    report.iterations += summary.iterations;
+    report.squared_residual_norm = 2.0 * summary.cost;  // Ceres' cost is ½ Σ rᵢ²
+    report.wall_time_ms += std::chrono::duration<double, std::milli>(stop - start).count();
+}
+
+// A projected step (two nonlinear parameters x, one linear parameter within [lo, hi]): free
+// first; when the linear parameter's value leaves its bounds, again with it held at the nearer
+// bound. Returns the linear parameter.
+template <typename Step>
+double solveProjected(Step& step, std::vector<double>& x, const std::vector<double>& lower,
+                      const std::vector<double>& upper, double lo, double hi, int max_iterations,
+                      StepReport& report) {
+    const int n = static_cast<int>(step.rows.size());
+    std::vector<double> g, z;
+    for (;;) {
+        solveStep(new ceres::AutoDiffCostFunction<Step, ceres::DYNAMIC, 2>(new Step(step), n), x,
+                  lower, upper, max_iterations, report);
+        const double value = step.linear(x.data(), g, z);
+        if (step.held || (value >= lo && value <= hi) || !report.usable) return value;
+        step.held = value < lo ? lo : hi;
+    }
 }
 
 }  // namespace
@@ -115,59 +187,49 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
     p = guess;
 
     {  // Step I: a0, a1 from F_x (Eq. 4.12).
-        double a[2] = {p.a0, p.a1};
-        ceres::Problem problem;
+        std::vector<double> a{p.a0, p.a1};
         std::vector<StepIResidual> rows;
         for (const Sample& s : data.samples)
             rows.push_back({r, s.slip, s.entry_angle_rad, s.fx_n, s.fz_n, s.my_nm});
-        problem.AddResidualBlock(batchCost<2>(std::move(rows)), nullptr, a);
-        problem.SetParameterLowerBound(a, 0, 0.0);
-        problem.SetParameterUpperBound(a, 0, 1.0);
-        problem.SetParameterLowerBound(a, 1, -1.0);
-        problem.SetParameterUpperBound(a, 1, 1.0);
-        fit.steps.push_back(solve(problem, "I: a0, a1 (Fx, Eq. 4.12)", max_iterations_per_step));
+        const int n = static_cast<int>(rows.size());
+        StepReport report;
+        report.name = "I: a0, a1 (Fx, Eq. 4.12)";
+        solveStep(new ceres::AutoDiffCostFunction<Batch<StepIResidual>, ceres::DYNAMIC, 2>(
+                      new Batch<StepIResidual>{std::move(rows)}, n),
+                  a, {0.0, -1.0}, {1.0, 1.0}, max_iterations_per_step, report);
+        fit.steps.push_back(report);
         p.a0 = a[0];
         p.a1 = a[1];
     }
-    {  // Step II: K_s, n0, n1 from F_z (Eq. 4.17), P_I fixed.
-        double x[3] = {p.pressure_modulus / kKsScale, p.n0, p.n1};
-        ceres::Problem problem;
-        std::vector<StepIIResidual> rows;
-        for (const Sample& s : data.samples) {
-            rows.push_back({r, b, p.a0, p.a1, s.slip, s.entry_angle_rad, s.fz_n, s.my_nm});
-        }
-        problem.AddResidualBlock(batchCost<3>(std::move(rows)), nullptr, x);
-        problem.SetParameterLowerBound(x, 0, bounds.ks_min / kKsScale);
-        problem.SetParameterUpperBound(x, 0, bounds.ks_max / kKsScale);
-        problem.SetParameterLowerBound(x, 1, bounds.n0_min);
-        problem.SetParameterUpperBound(x, 1, bounds.n0_max);
-        problem.SetParameterLowerBound(x, 2, bounds.n1_min);
-        problem.SetParameterUpperBound(x, 2, bounds.n1_max);
-        fit.steps.push_back(
-            solve(problem, "II: Ks, n0, n1 (Fz, Eq. 4.17)", max_iterations_per_step));
-        p.pressure_modulus = x[0] * kKsScale;
-        p.n0 = x[1];
-        p.n1 = x[2];
+    std::vector<ProjectedRow> rows;
+    for (const Sample& s : data.samples) {
+        rows.push_back({s.slip, s.entry_angle_rad, s.fz_n, s.my_nm,
+                        hatCoefficients(p.a0, p.a1, s.slip, s.entry_angle_rad)});
     }
-    {  // Step III: c, φ, K from M_y (Eq. 4.18), P_I fixed.
-        double x[3] = {p.cohesion_pa / kCohesionScale, p.friction_angle_rad, p.shear_modulus_m};
-        ceres::Problem problem;
-        std::vector<StepIIIResidual> rows;
-        for (const Sample& s : data.samples) {
-            rows.push_back({r, b, p.a0, p.a1, s.slip, s.entry_angle_rad, s.fz_n, s.my_nm});
-        }
-        problem.AddResidualBlock(batchCost<3>(std::move(rows)), nullptr, x);
-        problem.SetParameterLowerBound(x, 0, bounds.c_min / kCohesionScale);
-        problem.SetParameterUpperBound(x, 0, bounds.c_max / kCohesionScale);
-        problem.SetParameterLowerBound(x, 1, bounds.phi_min);
-        problem.SetParameterUpperBound(x, 1, bounds.phi_max);
-        problem.SetParameterLowerBound(x, 2, bounds.k_min);
-        problem.SetParameterUpperBound(x, 2, bounds.k_max);
-        fit.steps.push_back(
-            solve(problem, "III: c, phi, K (My, Eq. 4.18)", max_iterations_per_step));
-        p.cohesion_pa = x[0] * kCohesionScale;
-        p.friction_angle_rad = x[1];
-        p.shear_modulus_m = x[2];
+    {  // Step II: n0, n1 from F_z (Eq. 4.17) with K_s projected, P_I fixed.
+        std::vector<double> x{p.n0, p.n1};
+        StepIIProjected step{r, b, rows, std::nullopt};
+        StepReport report;
+        report.name = "II: Ks, n0, n1 (Fz, Eq. 4.17)";
+        p.pressure_modulus =
+            solveProjected(step, x, {bounds.n0_min, bounds.n1_min}, {bounds.n0_max, bounds.n1_max},
+                           bounds.ks_min, bounds.ks_max, max_iterations_per_step, report);
+        fit.steps.push_back(report);
+        p.n0 = x[0];
+        p.n1 = x[1];
+    }
+    {  // Step III: phi, K from M_y (Eq. 4.18) with c projected, P_I fixed.
+        std::vector<double> x{p.friction_angle_rad,
+                              std::log(std::clamp(p.shear_modulus_m, bounds.k_min, bounds.k_max))};
+        StepIIIProjected step{r, b, rows, std::nullopt};
+        StepReport report;
+        report.name = "III: c, phi, K (My, Eq. 4.18)";
+        p.cohesion_pa = solveProjected(step, x, {bounds.phi_min, std::log(bounds.k_min)},
+                                       {bounds.phi_max, std::log(bounds.k_max)}, bounds.c_min,
+                                       bounds.c_max, max_iterations_per_step, report);
+        fit.steps.push_back(report);
+        p.friction_angle_rad = x[0];
+        p.shear_modulus_m = std::exp(x[1]);
     }
     return fit;
 }

@@ -73,19 +73,51 @@ T decoupledDrawbarPull(const HatCoefficients<T>& h, double radius_m, double fz_n
     return (h.a * h.a + h.b * h.b) / (radius_m * h.a * h.c) * my_nm - h.b / h.a * fz_n;
 }
 
+/// F_z per unit K_s (Eq. 4.17 with E6): r b A r^N (cos θ_m − cos θ_f)^N, N = n₀ + n₁ s, so that
+/// F_z = K_s · this + B M_y/(r C). F_z is linear in K_s, which the fit projects out.
+/// The hat coefficients may be plain numbers (H = double) when only n₀, n₁ are differentiated.
+template <typename T, typename H>
+T decoupledPressureTerm(const HatCoefficients<H>& h, double radius_m, double width_m, const T& n0,
+                        const T& n1, double slip, double theta_f) {
+    using std::cos;
+    using std::pow;
+    const T exponent = n0 + n1 * slip;
+    const H base = cos(h.theta_m) - std::cos(theta_f);
+    return base > 0.0 ? T(radius_m * width_m * h.a * pow(radius_m * base, exponent))
+                      : T(0.0);  // Eq. 4.1 per unit K_s
+}
+
 /// F_z from M_y (Eq. 4.17 with E6): r b A K_s r^N (cos θ_m − cos θ_f)^N + B M_y/(r C),
 /// N = n₀ + n₁ s. Depends on P_I and P_II = {K_s, n₀, n₁}.
 template <typename T>
 T decoupledVerticalForce(const HatCoefficients<T>& h, double radius_m, double width_m,
                          const T& pressure_modulus, const T& n0, const T& n1, double slip,
                          double theta_f, double my_nm) {
-    using std::cos;
-    using std::pow;
-    const T exponent = n0 + n1 * slip;
-    const T base = cos(h.theta_m) - std::cos(theta_f);
-    const T sigma_m =
-        base > 0.0 ? T(pressure_modulus * pow(radius_m * base, exponent)) : T(0.0);  // Eq. 4.1
-    return radius_m * width_m * h.a * sigma_m + h.b * my_nm / (radius_m * h.c);
+    return pressure_modulus * decoupledPressureTerm(h, radius_m, width_m, n0, n1, slip, theta_f) +
+           h.b * my_nm / (radius_m * h.c);
+}
+
+/// M_y of Eq. 4.18 split as per_cohesion · c + offset: M_y is linear in c for given φ, K (the fit
+/// projects c out).
+template <typename T>
+struct TorqueTerms {
+    T per_cohesion;  ///< ∂M_y/∂c [m³]
+    T offset;        ///< M_y at c = 0 [N·m]
+};
+
+/// The two terms of Eq. 4.18: with D = 1 − exp(−|j(θ_m)|/K) (Eq. 4.15) and
+/// den = 1 + B D tan φ/A, M_y = (r² C D b/den) c + r² C D F_z tan φ/(r A den). The hat
+/// coefficients may be plain numbers (H = double) when only φ, K are differentiated.
+template <typename T, typename H>
+TorqueTerms<T> decoupledTorqueTerms(const HatCoefficients<H>& h, double radius_m, double width_m,
+                                    const T& friction_angle_rad, const T& shear_modulus_m,
+                                    double slip, double theta_f, double fz_n) {
+    using std::exp;
+    using std::tan;
+    const T d = 1.0 - exp(-shearAtMaxStress(h.theta_m, radius_m, slip, theta_f) / shear_modulus_m);
+    const T tan_phi = tan(friction_angle_rad);
+    const T scale = radius_m * radius_m * h.c * d / (1.0 + h.b * d * tan_phi / h.a);
+    return {scale * width_m, T(scale * fz_n * tan_phi / (radius_m * h.a))};
 }
 
 /// M_y from F_z (Eq. 4.18): r² C D (b c + F_z tan φ/(r A)) / (1 + B D tan φ/A),
@@ -94,13 +126,9 @@ template <typename T>
 T decoupledTorque(const HatCoefficients<T>& h, double radius_m, double width_m,
                   const T& cohesion_pa, const T& friction_angle_rad, const T& shear_modulus_m,
                   double slip, double theta_f, double fz_n) {
-    using std::exp;
-    using std::tan;
-    const T d = 1.0 - exp(-shearAtMaxStress(h.theta_m, radius_m, slip, theta_f) / shear_modulus_m);
-    const T tan_phi = tan(friction_angle_rad);
-    return radius_m * radius_m * h.c * d *
-           (width_m * cohesion_pa + fz_n * tan_phi / (radius_m * h.a)) /
-           (1.0 + h.b * d * tan_phi / h.a);
+    const TorqueTerms<T> t = decoupledTorqueTerms(h, radius_m, width_m, friction_angle_rad,
+                                                  shear_modulus_m, slip, theta_f, fz_n);
+    return t.per_cohesion * cohesion_pa + t.offset;
 }
 
 }  // namespace terra::identification

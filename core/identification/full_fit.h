@@ -2,9 +2,11 @@
 /// @file full_fit.h
 /// Refinement beyond the thesis: fit c, φ, K, n, K_s, a₀, a₁ together through the full nonlinear
 /// wheel model (core/contact/wheel_forces.h, differentiated by Ceres with ceres::Jet), started from
-/// the decoupled estimate; residuals on F_x, F_z, M_y weighted by their noise levels. Removes the
-/// linearisation bias of the decoupled model. Also the parameters' uncertainty from Ceres'
-/// covariance, with flags for what the data do not determine.
+/// one point (typically the decoupled estimate); residuals on F_x, F_z, M_y at the measured θ_f
+/// weighted by their noise levels. Removes the linearisation bias of the decoupled model. Also the
+/// parameters' uncertainty (Gauss–Newton covariance), with flags for what the data do not
+/// determine. This is one local refinement; identify.h is the global, start-independent
+/// identification built on the same model.
 
 #include <array>
 #include <limits>
@@ -13,12 +15,10 @@
 
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
+#include "core/identification/parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
 namespace terra::identification {
-
-/// The refined parameters, in this order everywhere (arrays of 7).
-enum FullParameter { kA0, kA1, kKs, kN, kC, kPhi, kK, kFullParameterCount };
 
 /// JSON-style names of the parameters ("a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m").
 const std::array<const char*, kFullParameterCount>& fullParameterNames();
@@ -38,8 +38,8 @@ struct RefineOptions {
     double bound_correlation_flag = 0.5;
 };
 
-/// Standard deviations and correlations of the identified parameters (from Ceres' covariance at
-/// the solution, scaled by the reduced χ² when the noise levels were estimated).
+/// Standard deviations and correlations of the identified parameters (the Gauss–Newton covariance
+/// (JᵀJ)⁻¹ at the solution, scaled by the reduced χ² when the noise levels were estimated).
 struct Uncertainty {
     bool computed = false;  ///< false: the covariance is rank deficient (see flags)
     std::array<double, kFullParameterCount> std{};  ///< SI; 0 for fixed parameters

@@ -43,7 +43,8 @@ double StreamingIdentifier::score(const Sample& sample) const {
 }
 
 void StreamingIdentifier::refit(StreamUpdate& update) {
-    DataSet data{{window_.begin(), window_.end()}};
+    DataSet data;
+    data.samples.assign(window_.begin(), window_.end());
     const auto begin = std::chrono::steady_clock::now();
     // Warm started: the first fit may need the full 200 iterations per step, later ones start
     // next to the optimum and only follow it (StreamingOptions::max_iterations).

@@ -41,6 +41,10 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
     for (double load : spec.loads_n) {
         std::optional<double> previous;
         for (double s : spec.slips) {
+            if (spec.cancel && spec.cancel->load(std::memory_order_relaxed)) {
+                out.cancelled = true;
+                break;
+            }
             contact::EntryAngleProblem problem;
             problem.load_n = load;
             problem.slip = s;
@@ -69,6 +73,7 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
             if (several_loads) sample.load_n = load;
             out.data.samples.push_back(sample);
         }
+        if (out.cancelled) break;
     }
     // Eq. 5.1: ỹ = y + e, e ~ N(0, σ²) per channel, in a fixed order so a seed is reproducible.
     double max_fx = 0, max_fz = 0, max_my = 0, max_theta = 0;

@@ -4,6 +4,7 @@
 /// a slip sweep at one or several loads, θ_f from the entry-angle estimator (§2.6.1), forces from
 /// the full model, plus Gaussian measurement noise ỹ = y + e (Eq. 5.1) with a fixed seed.
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -36,18 +37,22 @@ struct SyntheticSpec {
     contact::ExitCondition exit;                          ///< θ_r = 0 (Table 5.2)
     NoiseSpec noise;
     std::uint64_t seed = 1;
-    double sample_period_s = 0.01;  ///< time between samples (100 Hz)
+    double sample_period_s = 0.01;              ///< time between samples (100 Hz)
+    const std::atomic<bool>* cancel = nullptr;  ///< set to stop early (the samples so far are kept)
 };
 
 /// The data set and the points left out because the soil cannot carry the load there.
 struct SyntheticData {
     DataSet data;
     std::vector<std::string> warnings;
+    bool cancelled = false;  ///< stopped by `cancel` before every point was computed
 };
 
 /// Generates the data set. Samples carry `time_s`, and `load_n` when more than one load is given.
 /// The noise is drawn from Boost.Random's mt19937_64 and normal distribution, so a seed gives the
-/// same data on every platform. Throws std::invalid_argument for invalid loads, slips or noise.
+/// same data on every platform; a cancelled run adds the noise to the samples it has (its relative
+/// noise levels then come from those samples' largest values). Throws std::invalid_argument for
+/// invalid loads, slips or noise.
 SyntheticData synthesize(const contact::ContactParameters<double>& params,
                          const SyntheticSpec& spec);
 

@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 
 #include "core/common/range.h"
 #include "core/io/atomic_file.h"
@@ -84,6 +86,18 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
         if (!have_header) {
             doc.header = std::move(cells);
             have_header = true;
+            for (std::size_t i = 0; i < doc.header.size(); ++i) {
+                if (doc.header[i].empty()) continue;  // an unnamed column is never read
+                for (std::size_t k = 0; k < i; ++k) {
+                    if (doc.header[k] != doc.header[i]) continue;
+                    issues.push_back({where + ":" + std::to_string(line_number),
+                                      "column " + quoteCell(doc.header[i]) +
+                                          " appears twice (columns " + std::to_string(k + 1) +
+                                          " and " + std::to_string(i + 1) +
+                                          "); each column may be given once"});
+                    break;
+                }
+            }
         } else if (cells.size() != doc.header.size()) {
             doc.row_issues.push_back({where + ":" + std::to_string(line_number),
                                       std::to_string(cells.size()) + " cells, the header has " +
@@ -115,6 +129,55 @@ bool parseNumber(const std::string& cell, double& value) {
     }
     const auto [end, error] = std::from_chars(first, s.data() + s.size(), value);
     return error == std::errc{} && end == s.data() + s.size() && std::isfinite(value);
+}
+
+std::string quoteCell(const std::string& cell, std::size_t max_chars) {
+    if (cell.size() <= max_chars) return "'" + cell + "'";
+    // Cut at a UTF-8 character boundary (never inside a multi-byte sequence).
+    std::size_t cut = max_chars;
+    while (cut > 0 && (static_cast<unsigned char>(cell[cut]) & 0xC0) == 0x80) --cut;
+    return "'" + cell.substr(0, cut) + "…' (" + std::to_string(cell.size()) + " characters)";
+}
+
+std::optional<double> readCell(const std::string& cell, const NumericColumn& column,
+                               const std::string& where, std::vector<Issue>& issues) {
+    const std::string unit = column.unit.empty() ? "" : " " + column.unit;
+    const std::string allowed = "allowed range " + column.range.describe() + unit;
+    auto fail = [&](const std::string& what) {
+        issues.push_back({where, column.name + " = " + what});
+        return std::nullopt;
+    };
+    const std::string text = trim(cell);
+    double value = 0.0;
+    if (!parseNumber(text, value)) {
+        // Tell an overflow or underflow (from_chars: out of range) from text that is no number.
+        const char* first = text.c_str() + (!text.empty() && text[0] == '+' ? 1 : 0);
+        const auto [end, error] = std::from_chars(first, text.c_str() + text.size(), value);
+        if (error == std::errc::result_out_of_range && end == text.c_str() + text.size()) {
+            const bool tiny = std::abs(std::strtod(first, nullptr)) < 1.0;
+            return fail(quoteCell(text) + (tiny ? " underflows" : " overflows") + " a double; " +
+                        allowed);
+        }
+        if (error == std::errc{} && end == text.c_str() + text.size() && !std::isfinite(value)) {
+            return fail(quoteCell(text) + " is not a finite number; " + allowed);
+        }
+        return fail(quoteCell(text) + " is not a number; " + allowed);
+    }
+    if (value != 0.0 && std::abs(value) < std::numeric_limits<double>::min()) {
+        return fail(quoteCell(text) + " is subnormal (magnitude below 2.2e-308), too small to " +
+                    "compute with; " + allowed);
+    }
+    if (!column.range.contains(value)) {
+        return fail(formatNumber(value) + " is outside the " + allowed);
+    }
+    const double si = column.to_si ? column.to_si(value) : value;
+    if (!std::isfinite(si) ||
+        (value != 0.0 && !(std::abs(si) >= std::numeric_limits<double>::min()))) {
+        return fail(formatNumber(value) + unit +
+                    (std::isfinite(si) ? " underflows" : " overflows") +
+                    " when converted to SI units (" + formatNumber(si) + "); " + allowed);
+    }
+    return value;
 }
 
 }  // namespace terra::io

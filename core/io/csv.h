@@ -4,10 +4,12 @@
 /// a header row plus numeric rows with file:line diagnostics.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/common/issue.h"
+#include "core/common/range.h"
 #include "core/common/table.h"
 
 namespace terra::io {
@@ -26,8 +28,9 @@ struct CsvDocument {
 };
 
 /// Parses CSV text (comma separated, optional double quotes, blank lines and lines starting with
-/// '#' skipped). Rows with a different number of cells than the header go to `row_issues`; only a
-/// missing header fails the parse.
+/// '#' skipped). Rows with a different number of cells than the header go to `row_issues`; a
+/// missing header, or a header naming one column twice (which of the two would count?), fails the
+/// parse.
 Result<CsvDocument> parseCsv(const std::string& text, const std::string& where);
 
 /// Reads and parses a CSV file.
@@ -35,5 +38,28 @@ Result<CsvDocument> readCsv(const std::filesystem::path& path);
 
 /// A cell as a number; false when it is not a finite number.
 bool parseNumber(const std::string& cell, double& value);
+
+/// A cell (or any user text) for a message, in single quotes: at most `max_chars` characters, a
+/// longer one cut with its length given ("'12345…' (200000 characters)"), so that a huge bad cell
+/// does not flood the terminal.
+std::string quoteCell(const std::string& cell, std::size_t max_chars = 80);
+
+/// A numeric column that a reader uses: its name, the allowed range in the file's unit, that unit
+/// (for messages; empty for none) and the conversion from it to SI (none: already SI).
+struct NumericColumn {
+    std::string name;
+    Range range;
+    std::string unit;
+    double (*to_si)(double) = nullptr;
+};
+
+/// Reads one cell of `column` and returns its value in the file's unit, or appends an issue at
+/// `where` ("data.csv:12") naming the column, the value (quoted, at most ~80 characters) and the
+/// allowed range, and returns nothing, when the cell is not a number, is NaN or infinite,
+/// overflows or underflows a double, is subnormal (smaller than 2.2e-308 in magnitude: not a
+/// measurement, and arithmetic on it loses precision), lies outside the range, or would turn
+/// subnormal, zero or infinite when converted to SI.
+std::optional<double> readCell(const std::string& cell, const NumericColumn& column,
+                               const std::string& where, std::vector<Issue>& issues);
 
 }  // namespace terra::io

@@ -357,11 +357,12 @@ int failureCount(const std::vector<RunRecord>& records) {
 }
 
 std::string reportMarkdown(const Script& script, const std::string& script_path,
-                           const std::vector<RunRecord>& records) {
+                           const std::vector<RunRecord>& records, const std::string& cancelled) {
     const int failed = failureCount(records);
     std::ostringstream md;
     md << "# " << script.title << "\n\n";
     md << "Script: `" << script_path << "`  \n";
+    if (!cancelled.empty()) md << "**" << cancelled << ".**  \n";
     md << (failed == 0 ? "**All expectations met.**"
                        : "**" + std::to_string(failed) + " expectation(s) or analyses FAILED.**")
        << "\n\n";
@@ -401,12 +402,14 @@ std::string reportMarkdown(const Script& script, const std::string& script_path,
 }
 
 json manifest(const Script& script, const std::string& script_path,
-              const std::vector<RunRecord>& records, const std::string& tool) {
+              const std::vector<RunRecord>& records, const std::string& tool,
+              const std::string& cancelled) {
     json out{{"tool", tool},
              {"script", script_path},
              {"inputs", script.source},
              {"failed", failureCount(records)},
              {"analyses", json::array()}};
+    if (!cancelled.empty()) out.update({{"cancelled", true}, {"note", cancelled}});
     for (const auto& r : records) {
         json outcomes = json::array();
         for (const auto& o : r.outcomes)

@@ -99,11 +99,15 @@ struct RunRecord {
 /// Failed expectations plus failed analyses.
 int failureCount(const std::vector<RunRecord>& records);
 
-/// report.md: the failures first, then per analysis its expectations, images, data and notes.
+/// report.md: the failures first, then per analysis its expectations, images, data and notes;
+/// `cancelled` (non-empty: the run was stopped by a signal) is said at the top.
 std::string reportMarkdown(const Script& script, const std::string& script_path,
-                           const std::vector<RunRecord>& records);
-/// manifest.json: the tool, the script and its inputs, every output and outcome.
+                           const std::vector<RunRecord>& records,
+                           const std::string& cancelled = {});
+/// manifest.json: the tool, the script and its inputs, every output and outcome (and
+/// "cancelled": true with the note when the run was stopped).
 nlohmann::json manifest(const Script& script, const std::string& script_path,
-                        const std::vector<RunRecord>& records, const std::string& tool);
+                        const std::vector<RunRecord>& records, const std::string& tool,
+                        const std::string& cancelled = {});
 
 }  // namespace terra::project

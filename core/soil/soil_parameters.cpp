@@ -140,7 +140,7 @@ std::vector<Issue> validate(const SoilParameters& soil, const std::string& prefi
         }
         ok = checkRange(issues, prefix + field.key, value, field.range, field.displayUnit()) && ok;
     }
-    // N = n0 + n1 s is linear in s, so it stays in n's range over the whole slip range s ∈ (−1, 1)
+    // N = n0 + n1 s is linear in s, so it stays in n's range over the whole slip range s ∈ [−1, 1]
     // (braking included) when it does at both ends, n0 − n1 and n0 + n1. Checked only when n0 and
     // n1 themselves are valid, so one mistake gives one message.
     // Rounded like the user's numbers: n = 0.6, n1 = 0.5 gives N = 0.1, not 0.09999999999999998.
@@ -151,7 +151,7 @@ std::vector<Issue> validate(const SoilParameters& soil, const std::string& prefi
         issues.push_back(
             {prefix + "n1",
              "N = n + n1·s must stay in the allowed range " + n_range.describe() +
-                 " for every slip s in (-1, 1), but n - n1 = " + formatNumber(n_braking) +
+                 " for every slip s in [-1, 1], but n - n1 = " + formatNumber(n_braking) +
                  " (s → -1) and n + n1 = " + formatNumber(n_driving) + " (s → 1)"});
     }
     return issues;

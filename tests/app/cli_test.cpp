@@ -67,7 +67,8 @@ TEST(Cli, BadInputExitsTwoAndNamesTheProblem) {
         {"wheel --soil sandy-loam --wheel A --entry-angle 120", "entry_angle_deg"},
         {"wheel --soil sandy-loam --wheel A --entry-angle 30 --load 50", "excludes"},
         {"wheel --soil sandy-loam --wheel A --entry-angle 30 --model cubic", "model"},
-        {"sweep --soil sandy-loam --slips 0:1:11", "slip"},
+        {"sweep --soil sandy-loam --slips 0:1.1:12",
+         "slip: 1.1 is outside the allowed range [-1, 1]"},
         {"sensitivity --parameter phi_deg --values 20,70", "phi_deg"},
         {"wheel --bogus", "bogus"},
     };

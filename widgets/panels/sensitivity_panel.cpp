@@ -36,7 +36,7 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
     slip_angle_->setSuffix(" °");
     slip_angle_->setValue(defaults.slip_angles_deg.front());
     tornado_slip_ = new QDoubleSpinBox(this);
-    tornado_slip_->setRange(0.0, 0.99);
+    tornado_slip_->setRange(0.0, 1.0);
     tornado_slip_->setSingleStep(0.05);
     tornado_slip_->setValue(defaults.tornado_slip);
     status_ = new QLabel(this);

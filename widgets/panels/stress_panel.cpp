@@ -19,7 +19,7 @@ StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
     : AnalysisPanel(document, "stresses", parent) {
     const analysis::StressSettings defaults;
     slip_ = new QDoubleSpinBox(this);
-    slip_->setRange(-0.9, 0.99);
+    slip_->setRange(-1.0, 1.0);
     slip_->setSingleStep(0.05);
     slip_->setDecimals(3);
     slip_->setValue(defaults.slip);

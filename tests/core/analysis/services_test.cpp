@@ -218,7 +218,7 @@ TEST(Registry, SettingsReadersNameTheFieldAndTheRange) {
     r.finish();
     ASSERT_EQ(issues.size(), 3u) << formatIssues(issues);
     EXPECT_EQ(issues[0].where, "s.json: analyses[0].slip");
-    EXPECT_EQ(issues[0].message, "1.5 is outside the allowed range (-1, 1)");
+    EXPECT_EQ(issues[0].message, "1.5 is outside the allowed range [-1, 1]");
     EXPECT_EQ(issues[1].where, "s.json: analyses[0].step_deg");
     EXPECT_EQ(issues[2].where, "s.json: analyses[0].stress");
     EXPECT_NE(issues[2].message.find("did you mean \"sigma\""), std::string::npos);

@@ -55,7 +55,9 @@ void checkDerivatives(const ContactParameters<double>& p, const OperatingPoint<d
 }
 
 TEST(Autodiff, FullModelDerivativesMatchFiniteDifferences) {
-    for (double s : {0.1, 0.5, -0.3}) {
+    // s = ±1: the spinning and the locked wheel (docs/model.md, "Full slip"); the locked wheel's
+    // limit takes no arithmetic on an infinite κ, so its derivatives stay finite.
+    for (double s : {0.1, 0.5, -0.3, 1.0, -1.0}) {
         const OperatingPoint<double> op{s, 10.0 * kDeg, 28.0 * kDeg, 0.0, std::nullopt};
         checkDerivatives(testing::sandyLoam(), op,
                          [](const auto& p, const auto& o) { return computeForces(p, o); });
@@ -65,9 +67,11 @@ TEST(Autodiff, FullModelDerivativesMatchFiniteDifferences) {
 }
 
 TEST(Autodiff, QuadraticModelDerivativesMatchFiniteDifferences) {
-    const OperatingPoint<double> op{0.3, 10.0 * kDeg, 28.0 * kDeg, -2.0 * kDeg, std::nullopt};
-    checkDerivatives(testing::sandyLoam(INFINITY), op,
-                     [](const auto& p, const auto& o) { return computeQuadraticForces(p, o); });
+    for (double s : {0.3, 1.0, -1.0}) {
+        const OperatingPoint<double> op{s, 10.0 * kDeg, 28.0 * kDeg, -2.0 * kDeg, std::nullopt};
+        checkDerivatives(testing::sandyLoam(INFINITY), op,
+                         [](const auto& p, const auto& o) { return computeQuadraticForces(p, o); });
+    }
 }
 
 }  // namespace

@@ -24,8 +24,11 @@ TEST(WheelContact, SlipFollowsEquation21ForDrivingAndBraking) {
     EXPECT_DOUBLE_EQ(slipRatio(0.03, 0.04, o), 1.0 - 0.03 / 0.04);  // driving: 1 − v/(rω)
     EXPECT_DOUBLE_EQ(slipRatio(0.05, 0.04, o), 0.04 / 0.05 - 1.0);  // braking: rω/v − 1
     EXPECT_DOUBLE_EQ(slipRatio(0.04, 0.04, o), 0.0);
-    EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.04, o), o.max_slip);  // stalled wheel, clamped
-    EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.0, o), 0.0);          // standing still: regularised, finite
+    EXPECT_EQ(slipRatio(0.0, 0.04, o), 1.0);    // stalled wheel: spinning in place
+    EXPECT_EQ(slipRatio(0.04, 0.0, o), -1.0);   // locked wheel: sliding
+    EXPECT_EQ(slipRatio(-0.01, 0.04, o), 1.0);  // rolling backwards: kept in the domain
+    EXPECT_EQ(slipRatio(0.04, -0.01, o), -1.0);
+    EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.0, o), 0.0);  // standing still: regularised, finite
     // Below v_reg the denominator is v_reg: continuous through zero speed.
     EXPECT_DOUBLE_EQ(slipRatio(0.0, 0.5e-3, o), 0.5);
 }
@@ -74,6 +77,32 @@ TEST(WheelContact, NoForceOutOfTheSoil) {
     EXPECT_FALSE(c.in_contact);
     EXPECT_EQ(c.forces.fz, 0.0);
     EXPECT_EQ(c.forces.my, 0.0);
+}
+
+// A stuck robot: the wheel spins in place (v_x = 0) or is locked and dragged (ω = 0). The contact
+// is the core model's at s = ±1, finite (no longer clamped to ±0.99).
+TEST(WheelContact, StalledAndLockedWheelsUseTheModelAtFullSlip) {
+    const auto p = sandyLoamWheelA();
+    const ContactOptions o;
+    for (const auto& [k, slip] : {std::pair{WheelKinematics{0.0, 0.0, 0.04, 0.005}, 1.0},
+                                  std::pair{WheelKinematics{0.04, 0.0, 0.0, 0.005}, -1.0}}) {
+        const WheelContact c = evaluateContact(p, k, o);
+        ASSERT_TRUE(c.in_contact);
+        EXPECT_EQ(c.slip, slip);
+        const contact::OperatingPoint<double> op{slip, 0.0, c.entry_angle_rad, 0.0, std::nullopt};
+        const auto f = contact::computeForces(p, op);
+        EXPECT_DOUBLE_EQ(c.forces.fx, f.fx) << slip;
+        EXPECT_DOUBLE_EQ(c.forces.my, f.my) << slip;
+        EXPECT_TRUE(std::isfinite(c.forces.fx) && std::isfinite(c.forces.fz)) << slip;
+        // Spinning: the soil resists the spin (M_y > 0 against ω > 0); locked and dragged: the
+        // shear opposes the travel (F_x < 0) and M_y < 0 tries to turn the wheel forward.
+        if (slip > 0) {
+            EXPECT_GT(c.forces.my, 0.0);
+        } else {
+            EXPECT_LT(c.forces.fx, 0.0);
+            EXPECT_LT(c.forces.my, 0.0);
+        }
+    }
 }
 
 }  // namespace

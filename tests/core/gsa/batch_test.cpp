@@ -109,9 +109,9 @@ TEST(Batch, BadInputNamesTheArrayTheIndexTheValueAndTheRange) {
     EXPECT_NE(messageOf(sandyLoam(), {3, slip, {}, {&load, 1}, {}, {{"phi_deg", phi}}})
                   .find("phi_deg[2]: 75 is outside the allowed range [0, 60) deg"),
               std::string::npos);
-    const std::vector<double> bad_slip{0.1, 1.0, 0.3};
+    const std::vector<double> bad_slip{0.1, 1.5, 0.3};
     EXPECT_NE(messageOf(sandyLoam(), {3, bad_slip, {}, {&load, 1}, {}, {}})
-                  .find("slip[1]: 1 is outside the allowed range (-1, 1)"),
+                  .find("slip[1]: 1.5 is outside the allowed range [-1, 1]"),
               std::string::npos);
     EXPECT_NE(messageOf(sandyLoam(), {3, slip, {}, {&load, 1}, {}, {{"phi", phi}}})
                   .find("phi: is not a soil field"),

@@ -332,7 +332,7 @@ TEST(WheelSobol, BadSettingsNameTheFieldTheValueAndTheRange) {
               std::string::npos)
         << m;
     EXPECT_NE(m.find("parameters.friction: is not a soil field"), std::string::npos);
-    EXPECT_NE(m.find("slip: 1.5 is outside the allowed range (-1, 1)"), std::string::npos);
+    EXPECT_NE(m.find("slip: 1.5 is outside the allowed range [-1, 1]"), std::string::npos);
     EXPECT_NE(messageOf([&] {
                   sobolStudy(twoParameterStudy(), {64, 1, {}, 2.0, 0});
               }).find("max_failed_fraction: 2 is outside the allowed range [0, 1]"),

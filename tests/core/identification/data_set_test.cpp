@@ -42,7 +42,7 @@ TEST(DataSet, BadRowsAreReportedByLineAndCanBeSkipped) {
         "0.1,20,1,2,3\n"                          // 2 good
         "abc,20,1,2,3\n"                          // 3 non-numeric
         "0.2,nan,1,2,3\n"                         // 4 NaN
-        "1.2,20,1,2,3\n"                          // 5 slip outside (−1, 1)
+        "1.2,20,1,2,3\n"                          // 5 slip outside [−1, 1]
         "0.3,95,1,2,3\n"                          // 6 θ_f outside (0, 90)
         "0.4,20,1\n"                              // 7 short row
         "0.5,25,1,2,3\n";                         // 8 good
@@ -74,8 +74,9 @@ TEST(DataSet, MissingColumnsAreNamed) {
 
 TEST(DataSet, CsvRoundTrip) {
     DataSet data;
-    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0});
-    data.samples.push_back({0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01});
+    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0, 0.012});
+    data.samples.push_back(
+        {0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01, std::nullopt});
     const auto read = parseDataSet(toCsv(data), "rt.csv", BadRows::kStop);
     ASSERT_TRUE(read.ok()) << read.message();
     ASSERT_EQ(read->data.samples.size(), 2u);
@@ -88,8 +89,60 @@ TEST(DataSet, CsvRoundTrip) {
         EXPECT_EQ(a.load_n, b.load_n);
         EXPECT_EQ(a.fy_n, b.fy_n);
         EXPECT_EQ(a.time_s, b.time_s);
+        EXPECT_EQ(a.sinkage_m, b.sinkage_m);
     }
     EXPECT_NEAR(*read->data.samples[0].slip_angle_rad, 0.1, 1e-15);
+}
+
+// Every column read has a range; the issue's cases: slip_angle_deg = 1e308 used to become +inf
+// rad, entry_angle_deg = 1e-320 passed (0, 90) as 0 rad.
+TEST(DataSet, EveryColumnHasARange) {
+    const std::string header =
+        "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm,slip_angle_deg,Fy_N,W_N,time_s\n";
+    struct Case {
+        const char* row;
+        const char* message;
+    };
+    for (const Case& c : {
+             Case{"0.1,20,1,2,3,1e308,0,50,0",
+                  "slip_angle_deg = 1e+308 is outside the allowed range (-90, 90) deg"},
+             Case{"0.1,1e-320,1,2,3,0,0,50,0",
+                  "entry_angle_deg = '1e-320' is subnormal (magnitude below 2.2e-308), too small "
+                  "to compute with; allowed range (0, 90) deg"},
+             Case{"0.1,20,2e7,2,3,0,0,50,0",
+                  "Fx_N = 2e+07 is outside the allowed range [-1e+07, 1e+07] N"},
+             Case{"0.1,20,1,1e999,3,0,0,50,0",
+                  "Fz_N = '1e999' overflows a double; allowed range [-1e+07, 1e+07] N"},
+             Case{"0.1,20,1,2,-2e7,0,0,50,0",
+                  "My_Nm = -2e+07 is outside the allowed range [-1e+07, 1e+07] N·m"},
+             Case{"0.1,20,1,2,3,0,inf,50,0",
+                  "Fy_N = 'inf' is not a finite number; allowed range [-1e+07, 1e+07] N"},
+             Case{"0.1,20,1,2,3,0,0,0,0", "W_N = 0 is outside the allowed range (0, 1e+07] N"},
+             Case{"0.1,20,1,2,3,0,0,50,2e12",
+                  "time_s = 2e+12 is outside the allowed range [-1e+12, 1e+12] s"},
+         }) {
+        const auto read = parseDataSet(header + c.row + "\n", "d.csv", BadRows::kStop);
+        ASSERT_FALSE(read.ok()) << c.row;
+        ASSERT_EQ(read.issues().size(), 1u) << read.message();
+        EXPECT_EQ(read.issues()[0].where, "d.csv:2") << c.row;
+        EXPECT_EQ(read.issues()[0].message, c.message) << c.row;
+    }
+}
+
+TEST(DataSet, DuplicatedColumnsAndBothEntryAngleUnitsAreErrors) {
+    const auto twice = parseDataSet("slip,entry_angle_deg,Fx_N,Fz_N,My_Nm,Fx_N\n0.1,20,1,2,3,4\n",
+                                    "d.csv", BadRows::kSkip);
+    ASSERT_FALSE(twice.ok());
+    EXPECT_EQ(twice.message(),
+              "d.csv:1: column 'Fx_N' appears twice (columns 3 and 6); each column may be given "
+              "once");
+    const auto both =
+        parseDataSet("slip,entry_angle_deg,entry_angle_rad,Fx_N,Fz_N,My_Nm\n0.1,20,0.3,1,2,3\n",
+                     "d.csv", BadRows::kSkip);
+    ASSERT_FALSE(both.ok());
+    EXPECT_NE(both.message().find("'entry_angle_deg' and 'entry_angle_rad' both given"),
+              std::string::npos)
+        << both.message();
 }
 
 }  // namespace

@@ -63,7 +63,13 @@ TEST(DecoupledFit, RecoversTheTruthOnDataOfTheDecoupledModel) {
     for (int i = 0; i < 20; ++i) {
         const double s = 0.045 * i, tf = 0.3 + 0.1 * s;
         const DecoupledForces f = decoupledForward(truth, kWheelA, s, tf);
-        data.samples.push_back({s, tf, f.fx_n, f.fz_n, f.my_nm});
+        Sample sample;
+        sample.slip = s;
+        sample.entry_angle_rad = tf;
+        sample.fx_n = f.fx_n;
+        sample.fz_n = f.fz_n;
+        sample.my_nm = f.my_nm;
+        data.samples.push_back(sample);
     }
     const DecoupledFit fit = fitDecoupled(data, kWheelA, DecoupledParameters{});  // thesis guesses
     ASSERT_TRUE(fit.usable());

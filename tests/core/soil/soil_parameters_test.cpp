@@ -225,7 +225,7 @@ TEST(SoilValidate, SlipDependentExponentMustStayInRangeWhenBraking) {
     EXPECT_EQ(issues[0].where, "n1");
     EXPECT_NE(issues[0].message.find("n - n1 = -0.2"), std::string::npos) << issues[0].message;
     EXPECT_NE(issues[0].message.find("[0.1, 2]"), std::string::npos) << issues[0].message;
-    EXPECT_NE(issues[0].message.find("(-1, 1)"), std::string::npos) << issues[0].message;
+    EXPECT_NE(issues[0].message.find("[-1, 1]"), std::string::npos) << issues[0].message;
 
     soil.sinkage_exponent = 1.75;
     soil.sinkage_exponent_slip = -0.5;  // N(s = −1) = 2.25 > 2

@@ -1,0 +1,330 @@
+#include "core/identification/fit_problem.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <cmath>
+#include <set>
+
+#include "core/common/range.h"
+
+namespace terra::identification::detail {
+namespace {
+
+constexpr int kP = kFullParameterCount;
+
+// The data residuals of some samples in one cost function of the 7 solver coordinates.
+class DataCost final : public ceres::CostFunction {
+public:
+    DataCost(const ObservationModel& model, std::vector<std::size_t> samples,
+             const ChannelValues& sigma)
+        : model_(model), samples_(std::move(samples)), sigma_(sigma) {
+        int n = 0;
+        for (std::size_t i : samples_) n += model_.residualCount(i);
+        set_num_residuals(n);
+        mutable_parameter_block_sizes()->push_back(kP);
+    }
+
+    bool Evaluate(double const* const* parameters, double* residuals,
+                  double** jacobians) const override {
+        double* jacobian = jacobians ? jacobians[0] : nullptr;
+        int row = 0;
+        for (std::size_t i : samples_) {
+            if (!model_.residuals(i, parameters[0], sigma_, residuals + row,
+                                  jacobian ? jacobian + row * kP : nullptr)) {
+                return false;
+            }
+            row += model_.residualCount(i);
+        }
+        return true;
+    }
+
+private:
+    const ObservationModel& model_;
+    std::vector<std::size_t> samples_;
+    ChannelValues sigma_;
+};
+
+// (θ_k(u) − mean)/std for each active prior of a free parameter.
+class PriorCost final : public ceres::CostFunction {
+public:
+    PriorCost(const Priors& priors, const std::array<bool, kP>& fixed) {
+        for (int k = 0; k < kP; ++k) {
+            if (priors[k] && !fixed[k]) terms_.push_back({k, *priors[k]});
+        }
+        set_num_residuals(static_cast<int>(terms_.size()));
+        mutable_parameter_block_sizes()->push_back(kP);
+    }
+    bool empty() const { return terms_.empty(); }
+
+    bool Evaluate(double const* const* parameters, double* residuals,
+                  double** jacobians) const override {
+        const std::array<double, kP> p = toPhysical(parameters[0]);
+        ParameterVector pv;
+        std::copy(p.begin(), p.end(), pv.begin());
+        const ParameterVector slope = physicalPerSolver(pv);
+        for (std::size_t t = 0; t < terms_.size(); ++t) {
+            const auto& [k, prior] = terms_[t];
+            residuals[t] = (p[k] - prior.mean) / prior.std;
+            if (jacobians && jacobians[0]) {
+                double* row = jacobians[0] + t * kP;
+                std::fill(row, row + kP, 0.0);
+                row[k] = slope[k] / prior.std;
+            }
+        }
+        return true;
+    }
+
+private:
+    std::vector<std::pair<int, GaussianPrior>> terms_;
+};
+
+double defaultLossScale(int channels) {
+    return std::sqrt(boost::math::quantile(boost::math::chi_squared(channels), 0.95));
+}
+
+ceres::LossFunction* makeLoss(Loss loss, double scale) {
+    switch (loss) {
+        case Loss::kHuber:
+            return new ceres::HuberLoss(scale);
+        case Loss::kCauchy:
+            return new ceres::CauchyLoss(scale);
+        default:
+            return nullptr;
+    }
+}
+
+std::string pairAdvice(int i, int j) {
+    const std::set<int> pair{i, j};
+    const auto& info = parameterInfo();
+    if (pair == std::set<int>{kC, kPhi}) {
+        return "c and phi trade off (only c + sigma tan(phi) is seen at one load): add data at "
+               "several loads";
+    }
+    if (pair == std::set<int>{kKs, kN}) {
+        return "Ks and n trade off along a flat valley: add data over a wider range of sinkage "
+               "(several loads)";
+    }
+    return std::string(info[i].name) + " and " + info[j].name + " are not separable by these data";
+}
+
+}  // namespace
+
+std::vector<std::size_t> allSamples(std::size_t n) {
+    std::vector<std::size_t> all(n);
+    for (std::size_t i = 0; i < n; ++i) all[i] = i;
+    return all;
+}
+
+FitProblem::FitProblem(const Objective& objective, const std::vector<std::size_t>& samples) {
+    const ObservationModel& model = *objective.model;
+    for (std::size_t i : samples) data_residuals_ += model.residualCount(i);
+    if (objective.loss == Loss::kSquared) {
+        costs_.push_back(std::make_unique<DataCost>(model, samples, objective.sigma));
+        losses_.push_back(nullptr);
+    } else {
+        for (std::size_t i : samples) {
+            const int channels = model.residualCount(i);
+            const double scale =
+                objective.loss_scale > 0 ? objective.loss_scale : defaultLossScale(channels);
+            costs_.push_back(
+                std::make_unique<DataCost>(model, std::vector<std::size_t>{i}, objective.sigma));
+            losses_.emplace_back(makeLoss(objective.loss, scale));
+        }
+    }
+    auto prior = std::make_unique<PriorCost>(objective.priors, objective.fixed);
+    if (!prior->empty()) {
+        costs_.push_back(std::move(prior));
+        losses_.push_back(nullptr);
+    }
+    for (std::size_t b = 0; b < costs_.size(); ++b) {
+        box_.costs.push_back(costs_[b].get());
+        box_.losses.push_back(losses_[b].get());
+    }
+    const ParameterVector lower = toSolver(objective.bounds.lower),
+                          upper = toSolver(objective.bounds.upper);
+    box_.lower.assign(lower.begin(), lower.end());
+    box_.upper.assign(upper.begin(), upper.end());
+    box_.fixed.assign(objective.fixed.begin(), objective.fixed.end());
+}
+
+BoxOptions descentOptions() {
+    BoxOptions o;
+    o.max_iterations = 40;
+    o.iterations_per_pass = 20;
+    o.function_tolerance = 1e-8;
+    o.parameter_tolerance = 1e-8;
+    o.gradient_tolerance = 1e-12;
+    return o;
+}
+
+BoxOptions refinementOptions() {
+    BoxOptions o;
+    o.max_iterations = 100;
+    o.iterations_per_pass = 40;
+    // Tight: noise-free data must give the truth to 1e-6 (docs/identification.md); near the
+    // minimum Levenberg–Marquardt converges fast, so this costs a few iterations at most.
+    o.function_tolerance = 1e-15;
+    o.parameter_tolerance = 1e-14;
+    o.gradient_tolerance = 1e-16;
+    // The K_s–n and c–φ valleys are long and flat: let the trust region walk along them.
+    o.nonmonotonic_steps = true;
+    return o;
+}
+
+double chiSquare(const FitProblem& problem, const std::vector<double>& u) {
+    double cost = 0.0;
+    if (!evaluateCost(problem.box(), u, cost)) return INFINITY;
+    return 2.0 * cost;
+}
+
+ChannelResiduals channelResiduals(const ObservationModel& model, const ParameterVector& p,
+                                  const std::vector<std::size_t>& samples) {
+    ChannelResiduals out;
+    std::array<std::vector<double>, kChannelCount> absolute;
+    ChannelValues sum{};
+    for (std::size_t i : samples) {
+        const Prediction prediction = model.predict(i, p);
+        if (!prediction.ok) continue;
+        const auto active = model.channels(i);
+        for (int c = 0; c < kChannelCount; ++c) {
+            if (!active[c]) continue;
+            const double r = prediction.values[c] - model.measured(i, static_cast<Channel>(c));
+            sum[c] += r * r;
+            ++out.count[c];
+            absolute[c].push_back(std::abs(r));
+        }
+    }
+    for (int c = 0; c < kChannelCount; ++c) {
+        if (out.count[c] == 0) continue;
+        out.rms[c] = std::sqrt(sum[c] / out.count[c]);
+        auto middle = absolute[c].begin() + absolute[c].size() / 2;
+        std::nth_element(absolute[c].begin(), middle, absolute[c].end());
+        out.robust_std[c] = 1.4826 * *middle;
+    }
+    return out;
+}
+
+AtSolution analyseSolution(const Objective& objective, const std::vector<std::size_t>& samples,
+                           const std::vector<double>& u, const std::vector<double>& gradient,
+                           const std::vector<bool>& at_bound, double covariance_scale,
+                           double correlation_flag, double bound_correlation_flag) {
+    AtSolution out;
+    Uncertainty& unc = out.uncertainty;
+    const ObservationModel& model = *objective.model;
+    // JᵀJ of the data, each sample's rows weighted by the loss's ρ'(s), plus the priors.
+    Eigen::Matrix<double, kP, kP> h = Eigen::Matrix<double, kP, kP>::Zero();
+    std::vector<double> r(kChannelCount), j(kChannelCount * kP);
+    for (std::size_t i : samples) {
+        const int m = model.residualCount(i);
+        if (!model.residuals(i, u.data(), objective.sigma, r.data(), j.data())) continue;
+        double weight = 1.0;
+        if (objective.loss != Loss::kSquared) {
+            double s = 0.0;
+            for (int a = 0; a < m; ++a) s += r[a] * r[a];
+            const double scale =
+                objective.loss_scale > 0 ? objective.loss_scale : defaultLossScale(m);
+            const std::unique_ptr<ceres::LossFunction> loss(makeLoss(objective.loss, scale));
+            double rho[3];
+            loss->Evaluate(s, rho);
+            weight = rho[1];
+        }
+        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kP, Eigen::RowMajor>> jm(
+            j.data(), m, kP);
+        h += weight * jm.transpose() * jm;
+    }
+    const std::array<double, kP> physical = toPhysical(u.data());
+    ParameterVector p;
+    std::copy(physical.begin(), physical.end(), p.begin());
+    const ParameterVector slope = physicalPerSolver(p);
+    for (int k = 0; k < kP; ++k) {
+        if (objective.priors[k] && !objective.fixed[k]) {
+            const double d = slope[k] / objective.priors[k]->std;
+            h(k, k) += d * d;
+        }
+    }
+    std::vector<int> free;
+    for (int k = 0; k < kP; ++k) {
+        if (!objective.fixed[k]) free.push_back(k);
+    }
+    const int nf = static_cast<int>(free.size());
+    unc.correlation = {};
+    for (int k = 0; k < kP; ++k) unc.correlation[k][k] = 1.0;
+    if (nf > 0) {
+        Eigen::MatrixXd hf(nf, nf);
+        for (int a = 0; a < nf; ++a) {
+            for (int b = 0; b < nf; ++b) hf(a, b) = h(free[a], free[b]);
+        }
+        // Rank test on the scale-free (unit-diagonal) matrix.
+        Eigen::VectorXd d = hf.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+        const Eigen::MatrixXd normalised = d.asDiagonal() * hf * d.asDiagonal();
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(normalised);
+        const double largest = eigen.eigenvalues().maxCoeff();
+        if (eigen.eigenvalues().minCoeff() > 1e-12 * largest && largest > 0.0) {
+            const Eigen::MatrixXd cov =
+                d.asDiagonal() *
+                (eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal() *
+                 eigen.eigenvectors().transpose()) *
+                d.asDiagonal() * covariance_scale;
+            unc.computed = true;
+            for (int a = 0; a < nf; ++a) {
+                unc.std[free[a]] = std::sqrt(std::max(0.0, cov(a, a))) * slope[free[a]];
+                for (int b = 0; b < nf; ++b) {
+                    const double denom = std::sqrt(cov(a, a) * cov(b, b));
+                    unc.correlation[free[a]][free[b]] = denom > 0 ? cov(a, b) / denom : 0.0;
+                }
+            }
+            // Newton decrement over the parameters not held on a bound.
+            std::vector<int> moving;
+            for (int a = 0; a < nf; ++a) {
+                if (!at_bound[free[a]]) moving.push_back(free[a]);
+            }
+            if (!moving.empty()) {
+                const int nm = static_cast<int>(moving.size());
+                Eigen::MatrixXd hm(nm, nm);
+                Eigen::VectorXd g(nm);
+                for (int a = 0; a < nm; ++a) {
+                    g(a) = gradient[moving[a]];
+                    for (int b = 0; b < nm; ++b) hm(a, b) = h(moving[a], moving[b]);
+                }
+                out.newton_decrement = g.dot(hm.ldlt().solve(g));
+            }
+        }
+    }
+    const auto& info = parameterInfo();
+    if (!unc.computed && nf > 0) {
+        unc.flags.push_back(
+            "the data do not determine all free parameters (rank-deficient covariance): fix some, "
+            "give priors, or add data at several loads");
+    }
+    if (unc.computed) {
+        for (int a = 0; a < nf; ++a) {
+            for (int b = a + 1; b < nf; ++b) {
+                const double c = unc.correlation[free[a]][free[b]];
+                if (std::abs(c) > correlation_flag) {
+                    unc.flags.push_back(pairAdvice(free[a], free[b]) + " (correlation " +
+                                        formatNumber(roundSignificant(c, 4)) + ")");
+                }
+            }
+        }
+    }
+    for (int k : free) {
+        if (!at_bound[k]) continue;
+        unc.flags.push_back(std::string(info[k].name) +
+                            " ended at its bound: not determined by the data");
+        // The covariance is conditional on k held at its bound: a parameter that trades off with
+        // k has compensated for it, and its standard deviation understates its error.
+        if (!unc.computed) continue;
+        for (int j2 : free) {
+            if (j2 == k || std::abs(unc.correlation[k][j2]) < bound_correlation_flag) continue;
+            unc.flags.push_back(std::string(info[j2].name) +
+                                " is uncertain beyond its std: it trades off with " + info[k].name +
+                                " (correlation " +
+                                formatNumber(roundSignificant(unc.correlation[k][j2], 3)) +
+                                "), which ended at its bound");
+        }
+    }
+    return out;
+}
+
+}  // namespace terra::identification::detail

@@ -1,0 +1,78 @@
+#pragma once
+/// @file fit_problem.h
+/// Internal (identification .cpp files only; Ceres types stay out of the public headers): the
+/// least-squares problem of the full-model identification — data residuals of an
+/// ObservationModel, prior residuals, loss, bounds, held parameters — as Ceres cost functions for
+/// box_solver.h, and what is computed at a solution (Gauss–Newton covariance, flags, gradient).
+
+#include <ceres/ceres.h>
+
+#include <memory>
+#include <vector>
+
+#include "core/identification/box_solver.h"
+#include "core/identification/full_fit.h"
+#include "core/identification/identify.h"
+#include "core/identification/observation_model.h"
+
+namespace terra::identification::detail {
+
+/// Everything that defines the objective (besides the samples used).
+struct Objective {
+    const ObservationModel* model = nullptr;
+    ChannelValues sigma{};  ///< noise std per channel
+    Priors priors{};
+    Loss loss = Loss::kSquared;
+    double loss_scale = 0.0;  ///< 0: √(χ²₀.₉₅) of each sample's channel count
+    std::array<bool, kFullParameterCount> fixed{};
+    ParameterBounds bounds;
+};
+
+/// The objective on a set of samples as a BoxProblem (solver coordinates u, parameters.h). With the
+/// squared loss all samples share one cost function (Ceres' per-block overhead is then paid once);
+/// a robust loss needs one block per sample.
+class FitProblem {
+public:
+    FitProblem(const Objective& objective, const std::vector<std::size_t>& samples);
+    const BoxProblem& box() const { return box_; }
+    int dataResiduals() const { return data_residuals_; }
+
+private:
+    std::vector<std::unique_ptr<ceres::CostFunction>> costs_;
+    std::vector<std::unique_ptr<ceres::LossFunction>> losses_;
+    BoxProblem box_;
+    int data_residuals_ = 0;
+};
+
+/// Solver settings of the phases (descent on a subset, refinement on all samples).
+BoxOptions descentOptions();
+BoxOptions refinementOptions();
+
+/// χ² = Σ ρ + prior terms at u (2 × the box cost); +inf when the model fails.
+double chiSquare(const FitProblem& problem, const std::vector<double>& u);
+
+/// Unweighted residual RMS per channel at u over the given samples, and the residual counts.
+struct ChannelResiduals {
+    ChannelValues rms{};
+    std::array<int, kChannelCount> count{};
+    ChannelValues robust_std{};  ///< 1.4826 × median |r| (for robust losses)
+};
+ChannelResiduals channelResiduals(const ObservationModel& model, const ParameterVector& p,
+                                  const std::vector<std::size_t>& samples);
+
+/// What is computed at a solution: covariance of the free parameters (Gauss–Newton JᵀJ of the
+/// data with the loss's weights, plus the priors' information), std in SI, correlations, flags,
+/// and the Newton decrement of `gradient`.
+struct AtSolution {
+    Uncertainty uncertainty;
+    double newton_decrement = 0.0;
+};
+AtSolution analyseSolution(const Objective& objective, const std::vector<std::size_t>& samples,
+                           const std::vector<double>& u, const std::vector<double>& gradient,
+                           const std::vector<bool>& at_bound, double covariance_scale,
+                           double correlation_flag, double bound_correlation_flag);
+
+/// Indices 0..n−1.
+std::vector<std::size_t> allSamples(std::size_t n);
+
+}  // namespace terra::identification::detail

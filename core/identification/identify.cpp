@@ -1,0 +1,634 @@
+#include "core/identification/identify.h"
+
+#include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/random/mersenne_twister.hpp>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "core/common/range.h"
+#include "core/identification/fit_problem.h"
+#include "core/identification/screening.h"
+
+namespace terra::identification {
+namespace {
+
+using detail::BoxSummary;
+using detail::FitProblem;
+using detail::Objective;
+using Clock = std::chrono::steady_clock;
+constexpr int kP = kFullParameterCount;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+ParameterVector physicalOf(const std::vector<double>& u) {
+    const std::array<double, kP> p = toPhysical(u.data());
+    ParameterVector out;
+    std::copy(p.begin(), p.end(), out.begin());
+    return out;
+}
+
+std::vector<double> solverOf(const ParameterVector& p) {
+    const ParameterVector u = toSolver(p);
+    return {u.begin(), u.end()};
+}
+
+// `count` indices spread evenly over 0..n−1 (all of them when n ≤ count).
+std::vector<std::size_t> spreadSubset(std::size_t n, int count) {
+    if (count <= 0 || n <= static_cast<std::size_t>(count)) return detail::allSamples(n);
+    std::vector<std::size_t> subset;
+    for (int k = 0; k < count; ++k)
+        subset.push_back(static_cast<std::size_t>(std::llround((n - 1.0) * k / (count - 1.0))));
+    subset.erase(std::unique(subset.begin(), subset.end()), subset.end());
+    return subset;
+}
+
+// A provisional noise level per channel before any fit: the given one, else 1 % of the channel's
+// largest |value| (only the ratios between channels matter until the levels are estimated).
+ChannelValues provisionalNoise(const ObservationModel& model, const ChannelValues& given) {
+    ChannelValues sigma{};
+    for (int c = 0; c < kChannelCount; ++c) {
+        double largest = 0.0;
+        for (std::size_t i = 0; i < model.size(); ++i) {
+            if (model.channels(i)[c])
+                largest = std::max(largest, std::abs(model.measured(i, static_cast<Channel>(c))));
+        }
+        sigma[c] = given[c] > 0 ? given[c] : std::max(0.01 * largest, 1e-12);
+    }
+    return sigma;
+}
+
+// Noise per channel from the residuals at p: RSS_c / (N_c − p N_c/N) (the free parameters' share
+// of the degrees of freedom), or the robust 1.4826 median |r| for robust losses; floored at 1e-9
+// of the channel's scale so that noise-free data keep finite weights.
+ChannelValues estimatedNoise(const ObservationModel& model, const ParameterVector& p,
+                             const std::vector<std::size_t>& samples, int free_parameters,
+                             const ChannelValues& given, const ChannelValues& provisional,
+                             bool robust) {
+    const detail::ChannelResiduals res = detail::channelResiduals(model, p, samples);
+    const int total = std::accumulate(res.count.begin(), res.count.end(), 0);
+    ChannelValues sigma = provisional;
+    for (int c = 0; c < kChannelCount; ++c) {
+        if (given[c] > 0 || res.count[c] == 0) continue;
+        const double share = static_cast<double>(free_parameters) * res.count[c] / total;
+        const double dof = std::max(1.0, res.count[c] - share);
+        const double level =
+            robust ? res.robust_std[c] : res.rms[c] * std::sqrt(res.count[c] / dof);
+        sigma[c] = std::max(level, 1e-7 * provisional[c]);
+    }
+    return sigma;
+}
+
+// Normalised distance of two estimates in solver coordinates (per design-box width).
+double distance(const std::vector<double>& a, const std::vector<double>& b,
+                const ParameterVector& width) {
+    double d = 0.0;
+    for (int k = 0; k < kP; ++k) d = std::max(d, std::abs(a[k] - b[k]) / width[k]);
+    return d;
+}
+
+struct Local {
+    std::size_t start = 0;  // index into the report's starts
+    std::vector<double> u;
+    double subset_chi2 = 0.0;
+    BoxSummary summary;
+};
+
+class Search {
+public:
+    Search(const DataSet& data, const wheel::WheelParameters& wheel, const IdentifyOptions& o,
+           IdentificationReport& report)
+        : options_(o), report_(report), wheel_(wheel) {
+        report_.setup = setupModel(data, o.source, o.load_n, o.max_shear_deformation_m).value();
+        model_.emplace(data, wheel, report_.setup);
+        objective_.model = &*model_;
+        provisional_ = provisionalNoise(*model_, o.noise);
+        objective_.sigma = provisional_;
+        objective_.priors = o.priors;
+        objective_.loss = o.loss;
+        objective_.loss_scale = o.loss_scale;
+        objective_.bounds = o.bounds;
+        for (int k = 0; k < kP; ++k) {
+            objective_.fixed[k] = o.fixed[k].has_value();
+            if (!objective_.fixed[k]) ++free_;
+        }
+        all_ = detail::allSamples(model_->size());
+        subset_ = spreadSubset(model_->size(), o.subset_samples);
+        screening_ = spreadSubset(model_->size(), o.screening_samples);
+        const ParameterVector lo = toSolver(o.design.lower), hi = toSolver(o.design.upper);
+        for (int k = 0; k < kP; ++k) width_[k] = hi[k] - lo[k];
+        threshold_ =
+            o.ambiguity_delta_chi2 > 0
+                ? o.ambiguity_delta_chi2
+                : boost::math::quantile(boost::math::chi_squared(std::max(free_, 1)), 0.99);
+        report_.ambiguity_delta_chi2 = threshold_;
+        report_.free_parameters = free_;
+    }
+
+    void run() {
+        const auto begin = Clock::now();
+        screen();
+        report_.timing.screening_ms = millisecondsSince(begin);
+        if (cancelled_) return finish();
+        const auto descent = Clock::now();
+        descend();
+        report_.timing.descent_ms = millisecondsSince(descent);
+        if (cancelled_ || locals_.empty()) return finish();
+        const auto refinement = Clock::now();
+        refine();
+        report_.timing.refinement_ms = millisecondsSince(refinement);
+        finish();
+    }
+
+private:
+    bool progress(double fraction) {
+        if (options_.progress && !options_.progress(fraction)) cancelled_ = true;
+        return !cancelled_;
+    }
+
+    // Applies held values and the bounds to a start.
+    ParameterVector admissible(ParameterVector p) const {
+        for (int k = 0; k < kP; ++k) {
+            p[k] = options_.fixed[k]
+                       ? *options_.fixed[k]
+                       : std::clamp(p[k], options_.bounds.lower[k], options_.bounds.upper[k]);
+        }
+        return p;
+    }
+
+    void screen() {
+        const bool projected = report_.setup.source == DataSource::kEntryAngle;
+        std::array<bool, kP> vary{};
+        for (int k = 0; k < kP; ++k) {
+            const bool linear = k == kKs || k == kC || k == kPhi;
+            vary[k] = !objective_.fixed[k] && !(projected && linear);
+        }
+        ParameterVector middle{};
+        const ParameterVector lo = toSolver(options_.design.lower),
+                              hi = toSolver(options_.design.upper);
+        for (int k = 0; k < kP; ++k) middle[k] = 0.5 * (lo[k] + hi[k]);
+        const ParameterVector base = admissible(physicalOf({middle.begin(), middle.end()}));
+        std::vector<Start> starts = options_.starts;
+        const std::vector<ParameterVector> design = detail::haltonDesign(
+            options_.design_points, vary, options_.design, base, options_.seed);
+        for (std::size_t d = 0; d < design.size(); ++d)
+            starts.push_back({"design " + std::to_string(d + 1), design[d]});
+        const detail::LinearProjection projection(objective_, screening_, wheel_);
+        const FitProblem screening_problem(objective_, screening_);
+        for (std::size_t s = 0; s < starts.size(); ++s) {
+            StartReport r;
+            r.label = starts[s].label;
+            r.start = admissible(starts[s].parameters);
+            ParameterVector p = r.start;
+            r.screening_cost = projected ? projection.project(p)
+                                         : detail::chiSquare(screening_problem, solverOf(p));
+            r.end = p;
+            report_.starts.push_back(r);
+            if (s % 8 == 7 && !progress(0.3 * (s + 1.0) / starts.size())) return;
+        }
+    }
+
+    void descend() {
+        std::vector<std::size_t> order(report_.starts.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return report_.starts[a].screening_cost < report_.starts[b].screening_cost;
+        });
+        // The best screened starts, skipping near-duplicates of one already taken.
+        std::vector<std::size_t> chosen;
+        for (std::size_t s : order) {
+            if (static_cast<int>(chosen.size()) >= options_.descents) break;
+            if (!std::isfinite(report_.starts[s].screening_cost)) break;
+            const std::vector<double> u = solverOf(report_.starts[s].end);
+            bool near = false;
+            for (std::size_t c : chosen)
+                near |= distance(u, solverOf(report_.starts[c].end), width_) < 0.05;
+            if (!near) chosen.push_back(s);
+        }
+        // With θ_f measured the descent walks (a₀, a₁, n, K) of the projected problem (the linear
+        // parameters follow in closed form); from the load it walks all seven.
+        const FitProblem subset_problem(objective_, subset_);
+        const detail::LinearProjection projection(objective_, subset_, wheel_);
+        const std::unique_ptr<ceres::CostFunction> projected_cost(projection.costFunction());
+        detail::BoxProblem projected_box = subset_problem.box();
+        projected_box.costs = {projected_cost.get()};
+        projected_box.losses = {nullptr};
+        for (int k : {kKs, kC, kPhi}) projected_box.fixed[k] = true;
+        for (std::size_t c = 0; c < chosen.size(); ++c) {
+            StartReport& r = report_.starts[chosen[c]];
+            Local local;
+            local.start = chosen[c];
+            local.u = solverOf(r.end);
+            local.summary = detail::solveInBox(projectable() ? projected_box : subset_problem.box(),
+                                               local.u, detail::descentOptions());
+            if (projectable()) {
+                ParameterVector p = physicalOf(local.u);
+                projection.project(p);
+                local.u = solverOf(p);
+                local.summary.cost = 0.5 * detail::chiSquare(subset_problem, local.u);
+            }
+            r.descended = true;
+            r.end = physicalOf(local.u);
+            r.iterations = local.summary.iterations;
+            r.termination = local.summary.termination;
+            local.subset_chi2 = 2.0 * local.summary.cost;
+            r.chi2 = local.subset_chi2;
+            if (local.summary.usable) locals_.push_back(local);
+            if (!progress(0.3 + 0.3 * (c + 1.0) / chosen.size())) return;
+        }
+        std::sort(locals_.begin(), locals_.end(),
+                  [](const Local& a, const Local& b) { return a.subset_chi2 < b.subset_chi2; });
+        // One per distinct minimum.
+        std::vector<Local> distinct;
+        for (const Local& l : locals_) {
+            bool same = false;
+            for (const Local& d : distinct) same |= distance(l.u, d.u, width_) < 0.01;
+            if (!same) distinct.push_back(l);
+        }
+        locals_ = std::move(distinct);
+    }
+
+    // Refines on all samples the subset minimum that fits all samples best, and the others
+    // within three times the ambiguity threshold of it (they might be ambiguous on all data); χ²
+    // in the noise levels that the best subset minimum's residuals show. All samples, not the
+    // subset, rank them: a subset may hold few samples of a load that decides.
+    void refine() {
+        Objective scaled = objective_;
+        scaled.sigma =
+            estimatedNoise(*model_, physicalOf(locals_[0].u), subset_, free_, options_.noise,
+                           provisional_, options_.loss != Loss::kSquared);
+        const FitProblem all_problem(scaled, all_);
+        std::vector<std::pair<double, std::size_t>> ranked;
+        for (std::size_t j = 0; j < locals_.size(); ++j)
+            ranked.push_back({detail::chiSquare(all_problem, locals_[j].u), j});
+        std::sort(ranked.begin(), ranked.end());
+        std::vector<Local> refined;
+        for (const auto& [chi2, j] : ranked) {
+            if (refined.size() >= 3 || !std::isfinite(chi2)) break;
+            if (refined.empty() || chi2 - ranked[0].first <= 3.0 * threshold_)
+                refined.push_back(locals_[j]);
+        }
+        if (refined.empty()) refined.push_back(locals_[0]);
+        // With estimated noise: fit with the levels the subset's best minimum shows, estimate them
+        // again from the best fit on all samples, and fit again while they still move by more
+        // than 10 % (once or twice).
+        const bool estimate = std::any_of(options_.noise.begin(), options_.noise.end(),
+                                          [](double s) { return !(s > 0); });
+        if (estimate) objective_.sigma = scaled.sigma;
+        constexpr int kRounds = 3;
+        for (int round = 0; round < kRounds; ++round) {
+            for (Local& l : refined) {
+                solveAll(l);
+                if (cancelled_) return;
+            }
+            std::sort(refined.begin(), refined.end(), [](const Local& a, const Local& b) {
+                return a.summary.usable && (!b.summary.usable || a.summary.cost < b.summary.cost);
+            });
+            if (!progress(0.6 + 0.35 * (round + 1.0) / kRounds) || !estimate) break;
+            const ChannelValues sigma =
+                estimatedNoise(*model_, physicalOf(refined[0].u), all_, free_, options_.noise,
+                               provisional_, options_.loss != Loss::kSquared);
+            double change = 0.0;
+            for (int c = 0; c < kChannelCount; ++c)
+                change = std::max(change, std::abs(sigma[c] / objective_.sigma[c] - 1.0));
+            objective_.sigma = sigma;
+            if (change < 0.1 || round + 1 == kRounds) break;
+        }
+        // χ² and gradient of the full seven-parameter objective at each minimum, with the final
+        // noise levels.
+        const FitProblem problem(objective_, all_);
+        for (Local& l : refined) {
+            double cost = 0.0;
+            l.summary.usable = l.summary.usable &&
+                               detail::evaluateCost(problem.box(), l.u, cost, &l.summary.gradient);
+            l.summary.cost = cost;
+        }
+        std::sort(refined.begin(), refined.end(), [](const Local& a, const Local& b) {
+            return a.summary.usable && (!b.summary.usable || a.summary.cost < b.summary.cost);
+        });
+        // Starts that met on all samples are one minimum.
+        std::vector<Local> distinct;
+        for (const Local& l : refined) {
+            bool same = false;
+            for (const Local& d : distinct) same |= distance(l.u, d.u, width_) < 1e-3;
+            if (!same) distinct.push_back(l);
+        }
+        refined = std::move(distinct);
+        report_.noise_estimated = estimate;
+        for (Local& l : refined) {
+            StartReport& r = report_.starts[l.start];
+            r.refined = true;
+            r.end = physicalOf(l.u);
+            r.chi2 = 2.0 * l.summary.cost;
+            r.iterations += l.summary.iterations;
+            r.termination = l.summary.termination;
+        }
+        locals_ = std::move(refined);
+    }
+
+    // Whether the projected problem is the same objective as the full one: θ_f measured, squares,
+    // no prior on φ (priors on K_s and c are rows of the projection).
+    bool projectable() const {
+        return report_.setup.source == DataSource::kEntryAngle && options_.loss == Loss::kSquared &&
+               !(options_.priors[kPhi] && !objective_.fixed[kPhi]);
+    }
+
+    // Refines one minimum on all samples: on the projected problem (four parameters walked, the
+    // valleys of K_s–n and c–φ gone) when it is the same objective, else on all seven.
+    void solveAll(Local& l) {
+        if (!projectable()) {
+            const FitProblem problem(objective_, all_);
+            l.summary = detail::solveInBox(problem.box(), l.u, detail::refinementOptions());
+            return;
+        }
+        const FitProblem problem(objective_, all_);
+        const detail::LinearProjection projection(objective_, all_, wheel_);
+        const std::unique_ptr<ceres::CostFunction> cost(projection.costFunction());
+        detail::BoxProblem box = problem.box();
+        box.costs = {cost.get()};
+        box.losses = {nullptr};
+        for (int k : {kKs, kC, kPhi}) box.fixed[k] = true;
+        l.summary = detail::solveInBox(box, l.u, detail::refinementOptions());
+        ParameterVector p = physicalOf(l.u);
+        projection.project(p);
+        l.u = solverOf(p);
+    }
+
+    void finish() {
+        if (cancelled_) {
+            report_.status = IdentifyStatus::kCancelled;
+            report_.message = "cancelled";
+        }
+        if (locals_.empty() || !locals_[0].summary.usable) {
+            if (!cancelled_) {
+                report_.status = IdentifyStatus::kFailed;
+                report_.message = "no start gave a usable fit";
+            }
+            return;
+        }
+        const Local& best = locals_[0];
+        const auto covariance = Clock::now();
+        const FitProblem problem(objective_, all_);
+        BoxSummary summary = best.summary;
+        if (summary.gradient.empty()) {
+            double cost = 0.0;
+            detail::evaluateCost(problem.box(), best.u, cost, &summary.gradient);
+            summary.cost = cost;
+        }
+        report_.parameters = physicalOf(best.u);
+        report_.chi2 = 2.0 * summary.cost;
+        report_.residuals = problem.dataResiduals();
+        report_.noise = objective_.sigma;
+        report_.iterations = summary.iterations;
+        report_.termination = summary.termination;
+        const ParameterVector lower = toSolver(options_.bounds.lower),
+                              upper = toSolver(options_.bounds.upper);
+        for (int k = 0; k < kP; ++k) {
+            const double margin = 1e-9 * (upper[k] - lower[k]);
+            report_.at_bound[k] = !objective_.fixed[k] && (best.u[k] <= lower[k] + margin ||
+                                                           best.u[k] >= upper[k] - margin);
+        }
+        report_.gradient_norm =
+            detail::projectedGradientNorm(problem.box(), best.u, summary.gradient);
+        const int dof = std::max(1, report_.residuals - free_);
+        const double scale = report_.noise_estimated ? report_.chi2 / dof : 1.0;
+        std::vector<bool> at_bound(report_.at_bound.begin(), report_.at_bound.end());
+        const detail::AtSolution at =
+            detail::analyseSolution(objective_, all_, best.u, summary.gradient, at_bound, scale,
+                                    options_.correlation_flag, 0.5);
+        report_.uncertainty = at.uncertainty;
+        report_.newton_decrement = at.newton_decrement;
+        report_.rms = detail::channelResiduals(*model_, report_.parameters, all_).rms;
+        report_.timing.covariance_ms = millisecondsSince(covariance);
+        // Every refined minimum, and the ambiguous ones: within the threshold and distinct (some
+        // parameter more than three std away, or 1 % when the std is unknown).
+        for (const Local& l : locals_) {
+            Minimum m;
+            m.parameters = physicalOf(l.u);
+            m.chi2 = 2.0 * l.summary.cost;
+            m.delta_chi2 = m.chi2 - report_.chi2;
+            m.label = report_.starts[l.start].label;
+            if (&l == &best) m.std = report_.uncertainty.std;
+            report_.minima.push_back(m);
+            if (&l == &best || !l.summary.usable || m.delta_chi2 > threshold_) continue;
+            bool distinct = false;
+            for (int k = 0; k < kP; ++k) {
+                const double d = std::abs(m.parameters[k] - report_.parameters[k]);
+                const double scale_k =
+                    report_.uncertainty.computed && report_.uncertainty.std[k] > 0
+                        ? 3.0 * report_.uncertainty.std[k]
+                        : 0.01 * std::max(std::abs(report_.parameters[k]), 1e-9);
+                distinct |= d > scale_k;
+            }
+            if (distinct) report_.ambiguity.push_back(m);
+        }
+        for (int k = 0; k < kP; ++k) {
+            if (!options_.priors[k] || objective_.fixed[k]) continue;
+            PriorComparison& c = report_.prior[k];
+            c.active = true;
+            c.prior_mean = options_.priors[k]->mean;
+            c.prior_std = options_.priors[k]->std;
+            c.posterior_mean = report_.parameters[k];
+            c.posterior_std = report_.uncertainty.computed ? report_.uncertainty.std[k] : 0.0;
+            c.shift_in_prior_std = (c.posterior_mean - c.prior_mean) / c.prior_std;
+            c.std_ratio = c.posterior_std / c.prior_std;
+        }
+        if (!cancelled_) {
+            report_.status =
+                summary.converged ? IdentifyStatus::kConverged : IdentifyStatus::kNotConverged;
+            report_.message = summary.termination;
+        }
+    }
+
+    const IdentifyOptions& options_;
+    IdentificationReport& report_;
+    wheel::WheelParameters wheel_;
+    std::optional<ObservationModel> model_;
+    Objective objective_;
+    ChannelValues provisional_{};
+    int free_ = 0;
+    std::vector<std::size_t> all_, subset_, screening_;
+    ParameterVector width_{};
+    double threshold_ = 0.0;
+    std::vector<Local> locals_;
+    bool cancelled_ = false;
+};
+
+DataSet pick(const DataSet& data, const std::vector<std::size_t>& indices) {
+    DataSet out;
+    out.columns = data.columns;
+    for (std::size_t i : indices) out.samples.push_back(data.samples[i]);
+    return out;
+}
+
+void holdout(const DataSet& data, const wheel::WheelParameters& wheel,
+             const IdentifyOptions& options, IdentificationReport& report) {
+    const std::size_t n = data.samples.size();
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    boost::random::mt19937_64 engine(options.seed);
+    for (std::size_t i = n - 1; i > 0; --i) std::swap(order[i], order[engine() % (i + 1)]);
+    const int folds = options.folds >= 2 ? options.folds : 1;
+    const std::size_t held_count =
+        folds == 1
+            ? std::clamp<std::size_t>(
+                  static_cast<std::size_t>(std::llround(options.holdout_fraction * n)), 1, n - 1)
+            : 0;
+    IdentifyOptions inner = options;
+    inner.holdout_fraction = 0.0;
+    inner.folds = 0;
+    inner.progress = nullptr;
+    HoldoutReport& h = report.holdout;
+    h.folds = folds;
+    h.channels = report.setup.channels;
+    ChannelValues sum{};
+    std::array<int, kChannelCount> count{};
+    for (int f = 0; f < folds; ++f) {
+        std::vector<std::size_t> train, test;
+        for (std::size_t r = 0; r < n; ++r) {
+            const bool held = folds == 1 ? r < held_count : static_cast<int>(r % folds) == f;
+            (held ? test : train).push_back(order[r]);
+        }
+        std::sort(train.begin(), train.end());
+        std::sort(test.begin(), test.end());
+        const IdentificationReport fit = identify(pick(data, train), wheel, inner);
+        if (!fit.usable()) {
+            h.failed += test.size();
+            continue;
+        }
+        const DataSet held = pick(data, test);
+        const std::vector<Prediction> predictions = predictAll(held, wheel, fit.parameters, inner);
+        const ObservationModel model(
+            held, wheel,
+            setupModel(held, report.setup.source, options.load_n, options.max_shear_deformation_m)
+                .value());
+        for (std::size_t i = 0; i < held.samples.size(); ++i) {
+            if (!predictions[i].ok) {
+                ++h.failed;
+                continue;
+            }
+            ++h.samples;
+            const auto active = model.channels(i);
+            for (int c = 0; c < kChannelCount; ++c) {
+                if (!active[c] || !h.channels[c]) continue;
+                const double e =
+                    predictions[i].values[c] - model.measured(i, static_cast<Channel>(c));
+                sum[c] += e * e;
+                ++count[c];
+            }
+        }
+        if (options.progress && !options.progress(0.95 + 0.05 * (f + 1.0) / folds)) break;
+    }
+    for (int c = 0; c < kChannelCount; ++c) {
+        if (count[c] == 0) continue;
+        h.rms[c] = std::sqrt(sum[c] / count[c]);
+        h.rms_in_fit[c] = report.rms[c];
+        h.rms_over_noise[c] = h.rms[c] / report.noise[c];
+    }
+    h.computed = h.samples > 0;
+}
+
+}  // namespace
+
+std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& wheel,
+                            const IdentifyOptions& o) {
+    std::vector<Issue> issues = wheel::validate(wheel);
+    const auto& info = parameterInfo();
+    for (int c = 0; c < kChannelCount; ++c) {
+        checkRange(issues, std::string("noise.") + channelNames()[c], o.noise[c], {0.0, 1e9});
+    }
+    for (int k = 0; k < kP; ++k) {
+        const std::string name = info[k].name;
+        const double to_user = info[k].to_user;
+        if (!(o.bounds.lower[k] < o.bounds.upper[k])) {
+            issues.push_back({"bounds." + name, "lower " +
+                                                    formatNumber(o.bounds.lower[k] * to_user) +
+                                                    " must be below upper " +
+                                                    formatNumber(o.bounds.upper[k] * to_user)});
+        }
+        if (o.fixed[k]) {
+            checkRange(issues, "fix." + name, *o.fixed[k] * to_user,
+                       {o.bounds.lower[k] * to_user, o.bounds.upper[k] * to_user}, info[k].unit);
+        }
+        if (o.priors[k]) {
+            checkRange(issues, "prior." + name + ".mean", o.priors[k]->mean * to_user,
+                       {-1e12, 1e12}, info[k].unit);
+            checkRange(issues, "prior." + name + ".std", o.priors[k]->std * to_user,
+                       {0.0, 1e12, true, false}, info[k].unit);
+        }
+    }
+    for (int k : {kKs, kK}) {
+        if (!(o.bounds.lower[k] > 0)) {
+            issues.push_back(
+                {std::string("bounds.") + info[k].name, "the lower bound must be > 0"});
+        }
+        if (!(o.design.lower[k] > 0)) {
+            issues.push_back(
+                {std::string("design.") + info[k].name, "the lower bound must be > 0"});
+        }
+    }
+    checkRange(issues, "design_points", o.design_points, {0, 100000});
+    checkRange(issues, "descents", o.descents, {1, 1000});
+    checkRange(issues, "subset_samples", o.subset_samples, {0, 1e9});
+    checkRange(issues, "screening_samples", o.screening_samples, {0, 1e9});
+    checkRange(issues, "loss_scale", o.loss_scale, {0.0, 1e6});
+    checkRange(issues, "ambiguity_delta_chi2", o.ambiguity_delta_chi2, {0.0, 1e12});
+    checkRange(issues, "holdout_fraction", o.holdout_fraction, {0.0, 1.0, false, true});
+    if (o.folds != 0) {
+        checkRange(issues, "folds", o.folds, {2, std::max(2.0, data.samples.size() / 2.0)});
+    }
+    if (o.folds != 0 && o.holdout_fraction > 0) {
+        issues.push_back({"holdout", "give a holdout fraction or a number of folds, not both"});
+    }
+    const Result<ModelSetup> setup =
+        setupModel(data, o.source, o.load_n, o.max_shear_deformation_m);
+    if (!setup) {
+        const std::vector<Issue>& more = setup.issues();
+        issues.insert(issues.end(), more.begin(), more.end());
+    }
+    return issues;
+}
+
+IdentificationReport identify(const DataSet& data, const wheel::WheelParameters& wheel,
+                              const IdentifyOptions& options) {
+    const auto begin = Clock::now();
+    wheel::requireValid(wheel);
+    IdentificationReport report;
+    report.issues = validate(data, wheel, options);
+    if (!report.issues.empty()) {
+        report.status = IdentifyStatus::kInvalidInput;
+        report.message = formatIssues(report.issues);
+        return report;
+    }
+    Search(data, wheel, options, report).run();
+    if (report.usable() && (options.holdout_fraction > 0 || options.folds >= 2)) {
+        const auto start = Clock::now();
+        holdout(data, wheel, options, report);
+        report.timing.holdout_ms = millisecondsSince(start);
+    }
+    report.timing.total_ms = millisecondsSince(begin);
+    return report;
+}
+
+std::vector<Prediction> predictAll(const DataSet& data, const wheel::WheelParameters& wheel,
+                                   const ParameterVector& p, const IdentifyOptions& options) {
+    const Result<ModelSetup> setup =
+        setupModel(data, options.source, options.load_n, options.max_shear_deformation_m);
+    if (!setup) throw std::invalid_argument(setup.message());
+    const ObservationModel model(data, wheel, setup.value());
+    std::vector<Prediction> out;
+    for (std::size_t i = 0; i < model.size(); ++i) out.push_back(model.predict(i, p));
+    return out;
+}
+
+std::vector<Start> startsFromSoils(const std::vector<soil::SoilParameters>& soils,
+                                   const wheel::WheelParameters& wheel) {
+    std::vector<Start> starts;
+    for (const soil::SoilParameters& s : soils) starts.push_back({s.name, fromSoil(s, wheel)});
+    return starts;
+}
+
+}  // namespace terra::identification

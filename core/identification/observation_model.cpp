@@ -1,0 +1,278 @@
+#include "core/identification/observation_model.h"
+
+#include <ceres/jet.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/common/range.h"
+#include "core/contact/sinkage.h"
+#include "core/contact/wheel_forces.h"
+
+namespace terra::identification {
+namespace {
+
+constexpr double kRightAngle = 1.5707963267948966;
+// F_z = W to this fraction of W: θ_f to ~1e-12 relative, far below any residual's noise.
+constexpr double kLoadTolerance = 1e-12;
+constexpr int kNewtonSteps = 8;
+
+template <typename T>
+contact::ContactParameters<T> contactParameters(const std::array<T, kFullParameterCount>& p,
+                                                const wheel::WheelParameters& wheel,
+                                                double max_shear_deformation_m) {
+    return {T(wheel.radius_m),
+            T(wheel.width_m),
+            p[kN],
+            T(0.0),
+            p[kKs],
+            p[kC],
+            p[kPhi],
+            p[kK],
+            T(0.0),
+            p[kA0],
+            p[kA1],
+            max_shear_deformation_m};
+}
+
+template <typename T>
+contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
+                                 const T& entry_angle_rad) {
+    const contact::OperatingPoint<T> op{T(s.slip), T(s.slip_angle_rad.value_or(0.0)),
+                                        entry_angle_rad, T(0.0), std::nullopt};
+    return contact::computeForces(p, op);
+}
+
+// θ_f with F_z(θ_f) = W: Newton from the last root of this sample (F_z and dF_z/dθ_f from one
+// Jet evaluation), which converges in 2–3 steps as the parameters move; the bracketing solver of
+// sinkage.h when Newton leaves (0, 90°] or stalls. nullopt: no equilibrium.
+std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& p, const Sample& s,
+                                      double load_n, double start) {
+    using J = ceres::Jet<double, 1>;
+    if (start > 0.0 && start < kRightAngle) {
+        const contact::ContactParameters<J> pj = p.cast<J>();
+        double theta = start;
+        for (int step = 0; step < kNewtonSteps; ++step) {
+            const J fz = forcesAt(pj, s, J(theta, 0)).fz;
+            const double error = fz.a - load_n;
+            if (std::abs(error) <= kLoadTolerance * load_n) return theta;
+            if (!(fz.v[0] > 0.0)) break;
+            const double next = theta - error / fz.v[0];
+            if (!(next > 0.0 && next < kRightAngle)) break;
+            theta = next;
+        }
+    }
+    contact::EntryAngleProblem problem;
+    problem.load_n = load_n;
+    problem.slip = s.slip;
+    problem.slip_angle_rad = s.slip_angle_rad.value_or(0.0);
+    if (start > 0.0 && start < kRightAngle) problem.initial_guess_rad = start;
+    const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
+    if (!solution.ok()) return std::nullopt;
+    return solution.entry_angle_rad;
+}
+
+}  // namespace
+
+const std::array<const char*, kChannelCount>& channelNames() {
+    static const std::array<const char*, kChannelCount> names{"Fx_N", "Fz_N", "My_Nm", "sinkage_m"};
+    return names;
+}
+
+Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
+                              double max_shear_deformation_m) {
+    std::vector<Issue> issues;
+    if (data.samples.empty()) return std::vector<Issue>{{"data", "no samples"}};
+    if (load_n) checkRange(issues, "load_N", *load_n, {0.0, 1e7, true, false}, "N");
+    const DataColumns& columns = data.columns;
+    if (source == DataSource::kEntryAngle && !columns.entry_angle) {
+        issues.push_back({"data",
+                          "no entry angle column ('entry_angle_deg' or 'entry_angle_rad'): "
+                          "identify from the load (W_N) instead"});
+    }
+    if (!issues.empty()) return issues;
+    ModelSetup setup;
+    setup.max_shear_deformation_m = max_shear_deformation_m;
+    setup.source = source == DataSource::kAuto
+                       ? (columns.entry_angle ? DataSource::kEntryAngle : DataSource::kLoad)
+                       : source;
+    const bool by_angle = setup.source == DataSource::kEntryAngle;
+    // W per sample: the row's W_N, else the one value given, else (from the load) the measured F_z.
+    // With θ_f measured, the F_z channel is the measured F_z when there is one.
+    bool every_load = true;
+    std::size_t without_load = 0, first_without = 0;
+    for (std::size_t i = 0; i < data.samples.size(); ++i) {
+        const Sample& s = data.samples[i];
+        std::optional<double> w = s.load_n ? s.load_n : load_n;
+        if (columns.fz && (by_angle || !w)) w = s.fz_n;
+        if (!w) {
+            every_load = false;
+            if (without_load++ == 0) first_without = i;
+            setup.loads_n.push_back(0.0);
+            continue;
+        }
+        if (!by_angle) {
+            checkRange(issues, "data: sample " + std::to_string(i) + ": W_N", *w,
+                       {0.0, 1e7, true, false}, "N");
+        }
+        setup.loads_n.push_back(*w);
+    }
+    if (!by_angle && without_load > 0) {
+        issues.push_back({"data", std::to_string(without_load) + " samples (the first: sample " +
+                                      std::to_string(first_without) +
+                                      ") have no load: without an entry angle θ_f is solved from "
+                                      "the load; give a W_N column, one load value, or Fz_N"});
+    }
+    bool any_sinkage = false;
+    for (const Sample& s : data.samples) any_sinkage |= s.sinkage_m.has_value();
+    setup.channels[kFxChannel] = columns.fx;
+    setup.channels[kMyChannel] = columns.my;
+    setup.channels[kFzChannel] = by_angle && (columns.fz || every_load);
+    // With θ_f measured the sinkage r (1 − cos θ_f) is known and carries nothing more.
+    setup.channels[kSinkageChannel] = !by_angle && any_sinkage;
+    bool any = false;
+    for (bool c : setup.channels) any |= c;
+    if (!any) {
+        issues.push_back({"data", by_angle ? "no measured channel (Fx_N, Fz_N or My_Nm)"
+                                           : "no measured channel besides the load (Fx_N, My_Nm "
+                                             "or sinkage_m)"});
+    }
+    if (!issues.empty()) return issues;
+    setup.description = by_angle ? "entry angle measured" : "entry angle solved from the load";
+    setup.description += "; channels";
+    for (int c = 0; c < kChannelCount; ++c) {
+        if (setup.channels[c]) setup.description += std::string(" ") + channelNames()[c];
+    }
+    return setup;
+}
+
+ObservationModel::ObservationModel(const DataSet& data, const wheel::WheelParameters& wheel,
+                                   ModelSetup setup)
+    : samples_(data.samples),
+      wheel_(wheel),
+      setup_(std::move(setup)),
+      last_entry_angle_(data.samples.size(), 0.0) {
+    wheel::requireValid(wheel_);
+    if (setup_.loads_n.size() != samples_.size()) {
+        throw std::invalid_argument("model setup: " + std::to_string(setup_.loads_n.size()) +
+                                    " loads for " + std::to_string(samples_.size()) + " samples");
+    }
+}
+
+std::array<bool, kChannelCount> ObservationModel::channels(std::size_t i) const {
+    std::array<bool, kChannelCount> c = setup_.channels;
+    c[kSinkageChannel] = c[kSinkageChannel] && samples_[i].sinkage_m.has_value();
+    return c;
+}
+
+int ObservationModel::residualCount(std::size_t i) const {
+    int n = 0;
+    for (bool c : channels(i)) n += c;
+    return n;
+}
+
+double ObservationModel::measured(std::size_t i, Channel c) const {
+    const Sample& s = samples_[i];
+    switch (c) {
+        case kFxChannel:
+            return s.fx_n;
+        case kFzChannel:
+            return setup_.loads_n[i];
+        case kMyChannel:
+            return s.my_nm;
+        default:
+            return s.sinkage_m.value_or(0.0);
+    }
+}
+
+Prediction ObservationModel::predict(std::size_t i, const ParameterVector& p) const {
+    Prediction out;
+    const Sample& s = samples_[i];
+    const contact::ContactParameters<double> cp =
+        contactParameters(p, wheel_, setup_.max_shear_deformation_m);
+    double theta = s.entry_angle_rad;
+    if (setup_.source == DataSource::kLoad) {
+        const std::optional<double> root =
+            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i]);
+        if (!root) return out;
+        theta = last_entry_angle_[i] = *root;
+    }
+    const contact::WheelForces<double> f = forcesAt(cp, s, theta);
+    out.ok = true;
+    out.entry_angle_rad = theta;
+    out.values = {f.fx, f.fz, f.my, wheel_.radius_m * (1.0 - std::cos(theta))};
+    return out;
+}
+
+bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelValues& sigma,
+                                 double* r, double* jacobian) const {
+    constexpr int n = kFullParameterCount;
+    const std::array<bool, kChannelCount> active = channels(i);
+    const Sample& s = samples_[i];
+    ChannelValues value{};
+    std::array<std::array<double, n>, kChannelCount> derivative{};
+    if (!jacobian) {
+        ParameterVector p{};
+        const auto physical = toPhysical(u);
+        std::copy(physical.begin(), physical.end(), p.begin());
+        const Prediction prediction = predict(i, p);
+        if (!prediction.ok) return false;
+        value = prediction.values;
+    } else if (setup_.source == DataSource::kEntryAngle) {
+        using J = ceres::Jet<double, n>;
+        std::array<J, n> uj;
+        for (int k = 0; k < n; ++k) uj[k] = J(u[k], k);
+        const contact::WheelForces<J> f = forcesAt(
+            contactParameters(toPhysical(uj.data()), wheel_, setup_.max_shear_deformation_m), s,
+            J(s.entry_angle_rad));
+        const J* channel[3] = {&f.fx, &f.fz, &f.my};
+        for (int c = 0; c < 3; ++c) {
+            value[c] = channel[c]->a;
+            for (int k = 0; k < n; ++k) derivative[c][k] = channel[c]->v[k];
+        }
+    } else {
+        // θ_f(u) from F_z(θ_f, u) = W, then one Jet over (u, θ_f): the total derivative of a
+        // channel y is ∂y/∂u + ∂y/∂θ_f · dθ_f/du, dθ_f/du = −(∂F_z/∂u)/(∂F_z/∂θ_f).
+        ParameterVector p{};
+        const auto physical = toPhysical(u);
+        std::copy(physical.begin(), physical.end(), p.begin());
+        const std::optional<double> root =
+            solveEntryAngle(contactParameters(p, wheel_, setup_.max_shear_deformation_m), s,
+                            setup_.loads_n[i], last_entry_angle_[i]);
+        if (!root) return false;
+        last_entry_angle_[i] = *root;
+        using J = ceres::Jet<double, n + 1>;
+        std::array<J, n> uj;
+        for (int k = 0; k < n; ++k) uj[k] = J(u[k], k);
+        const contact::WheelForces<J> f = forcesAt(
+            contactParameters(toPhysical(uj.data()), wheel_, setup_.max_shear_deformation_m), s,
+            J(*root, n));
+        const double dfz_dtheta = f.fz.v[n];
+        if (!(dfz_dtheta > 0.0)) return false;
+        std::array<double, n> dtheta{};
+        for (int k = 0; k < n; ++k) dtheta[k] = -f.fz.v[k] / dfz_dtheta;
+        const J* channel[3] = {&f.fx, &f.fz, &f.my};
+        for (int c = 0; c < 3; ++c) {
+            value[c] = channel[c]->a;
+            for (int k = 0; k < n; ++k)
+                derivative[c][k] = channel[c]->v[k] + channel[c]->v[n] * dtheta[k];
+        }
+        const double r_m = wheel_.radius_m;
+        value[kSinkageChannel] = r_m * (1.0 - std::cos(*root));
+        for (int k = 0; k < n; ++k)
+            derivative[kSinkageChannel][k] = r_m * std::sin(*root) * dtheta[k];
+    }
+    int row = 0;
+    for (int c = 0; c < kChannelCount; ++c) {
+        if (!active[c]) continue;
+        const double w = 1.0 / sigma[c];
+        r[row] = (value[c] - measured(i, static_cast<Channel>(c))) * w;
+        if (jacobian) {
+            for (int k = 0; k < n; ++k) jacobian[row * n + k] = derivative[c][k] * w;
+        }
+        ++row;
+    }
+    return true;
+}
+
+}  // namespace terra::identification

@@ -1,0 +1,98 @@
+#pragma once
+/// @file observation_model.h
+/// What the full wheel model (core/contact/wheel_forces.h) predicts for each sample of a data set,
+/// and the weighted residuals and their exact derivatives that the identification minimises.
+///
+/// Two ways to know the contact:
+/// - **entry angle** θ_f measured per sample: F_x, F_z, M_y follow from (s, β, θ_f) directly;
+/// - **load** W known per sample (a `W_N` column, one value for all, or the measured F_z): θ_f is
+///   the root of F_z(θ_f, θ) = W (section 2.6.1) inside every residual, differentiated exactly by
+///   the implicit function theorem, dθ_f/dθ = −(∂F_z/∂θ)/(∂F_z/∂θ_f), with ∂F_z/∂θ and
+///   ∂F_z/∂θ_f from one ceres::Jet evaluation at the root. F_z = W there by construction, so the
+///   channels are F_x, M_y and the sinkage h = r (1 − cos θ_f) (Eq. 2.12) when measured.
+/// θ_r = 0 as in Table 5.2.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/issue.h"
+#include "core/identification/data_set.h"
+#include "core/identification/parameters.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::identification {
+
+/// The measured quantities a residual can compare.
+enum Channel { kFxChannel, kFzChannel, kMyChannel, kSinkageChannel, kChannelCount };
+
+/// Column names of the channels: "Fx_N", "Fz_N", "My_Nm", "sinkage_m".
+const std::array<const char*, kChannelCount>& channelNames();
+
+/// Per-channel values (noise levels, errors) [N, N, N·m, m].
+using ChannelValues = std::array<double, kChannelCount>;
+
+/// Where θ_f comes from.
+enum class DataSource {
+    kAuto,        ///< the entry angle when the data have it, else the load
+    kEntryAngle,  ///< measured θ_f (entry_angle_deg or entry_angle_rad)
+    kLoad,        ///< θ_f solved from the load W
+};
+
+/// How a data set is read by the model.
+struct ModelSetup {
+    DataSource source = DataSource::kEntryAngle;  ///< resolved: kEntryAngle or kLoad
+    std::array<bool, kChannelCount> channels{};   ///< the residual channels
+    std::vector<double> loads_n;  ///< W per sample: the F_z measurement (entry angle) or the load
+    double max_shear_deformation_m = 0.0;  ///< j_max of the model [m] (+inf for none)
+    std::string description;               ///< "entry angle; channels Fx_N, Fz_N, My_Nm"
+};
+
+/// Resolves the setup. W per sample is the `W_N` cell, else `load_n`, else the measured F_z. With
+/// the entry angle, F_z is a channel when measured or when a load is known (F_z = W); with the
+/// load, F_x, M_y and the sinkage are. Issues name what is missing (no θ_f and no load, no
+/// channel).
+Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
+                              double max_shear_deformation_m);
+
+/// The model's prediction for one sample.
+struct Prediction {
+    bool ok = false;  ///< false: the soil cannot carry the load (no entry angle solves F_z = W)
+    double entry_angle_rad = 0.0;
+    ChannelValues values{};  ///< F_x, F_z, M_y, sinkage
+};
+
+/// The model of one data set; samples are referred to by index.
+class ObservationModel {
+public:
+    /// Throws std::invalid_argument for an invalid wheel or a setup that does not match the data.
+    ObservationModel(const DataSet& data, const wheel::WheelParameters& wheel, ModelSetup setup);
+
+    const ModelSetup& setup() const { return setup_; }
+    std::size_t size() const { return samples_.size(); }
+    const Sample& sample(std::size_t i) const { return samples_[i]; }
+    /// The channels compared for sample i (the setup's, less a sinkage the row does not have).
+    std::array<bool, kChannelCount> channels(std::size_t i) const;
+    int residualCount(std::size_t i) const;
+    /// The measured value of a channel of sample i.
+    double measured(std::size_t i, Channel c) const;
+
+    /// The prediction at SI parameters p.
+    Prediction predict(std::size_t i, const ParameterVector& p) const;
+
+    /// Residuals (predicted − measured)/σ of sample i's channels at solver coordinates u
+    /// (parameters.h), and, when `jacobian` is not null, their derivatives ∂r/∂u (row-major,
+    /// residualCount(i) × kFullParameterCount). False when the load cannot be carried. Keeps the
+    /// last θ_f of each sample as the next solve's start (not thread-safe).
+    bool residuals(std::size_t i, const double* u, const ChannelValues& sigma, double* r,
+                   double* jacobian) const;
+
+private:
+    std::vector<Sample> samples_;
+    wheel::WheelParameters wheel_;
+    ModelSetup setup_;
+    mutable std::vector<double> last_entry_angle_;  // warm starts of the θ_f solves
+};
+
+}  // namespace terra::identification

@@ -1,0 +1,94 @@
+#pragma once
+/// @file parameters.h
+/// The seven parameters that the full-model identification estimates, θ = (a₀, a₁, K_s, n, c, φ,
+/// K) (thesis Eqs. 2.9, 2.17, 2.18, 2.20, 2.21), their names and user units, bounds, the solver's
+/// coordinates, and Gaussian priors.
+
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "core/common/issue.h"
+#include "core/soil/soil_parameters.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::identification {
+
+/// The parameters, in this order everywhere (arrays of kFullParameterCount).
+enum FullParameter { kA0, kA1, kKs, kN, kC, kPhi, kK, kFullParameterCount };
+
+/// Parameter values in SI: a₀ [-], a₁ [-], K_s [Pa/m^n], n [-], c [Pa], φ [rad], K [m].
+using ParameterVector = std::array<double, kFullParameterCount>;
+
+/// How a parameter is shown and entered (files, flags, screen).
+struct ParameterInfo {
+    const char* name;    ///< JSON/flag key: "a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m"
+    const char* unit;    ///< user unit: "-", "-", "kPa/m^n", "-", "kPa", "deg", "m"
+    const char* symbol;  ///< "a₀", "a₁", "K_s", "n", "c", "φ", "K"
+    double to_user;      ///< user value = SI value × to_user
+};
+
+/// The table of the seven parameters, in FullParameter order.
+const std::array<ParameterInfo, kFullParameterCount>& parameterInfo();
+
+/// The index of the parameter with this name ("phi_deg"), or nullopt.
+std::optional<FullParameter> findParameter(const std::string& name);
+
+/// Box bounds of the estimate, SI. The defaults are wide enough for every preset in resources/soils
+/// (K_s 0.10–6.2 MPa/m^n, n 0.11–1.6, c 1–69 kPa, φ 6–34°, K 6–30 mm) and keep the model inside
+/// its domain (n > 0, K > 0, θ_m = (a₀ + a₁ s) θ_f inside the contact).
+struct ParameterBounds {
+    ParameterVector lower{0.0, -1.0, 1e4, 0.05, 0.0, 0.0, 1e-4};
+    ParameterVector upper{1.0, 1.0, 5e7, 2.0, 2e5, 1.047, 0.5};
+};
+
+/// The solver's coordinates u: K_s and K are fitted as ln K_s, ln K (they span decades, and σ ∝
+/// K_s, τ depends on j/K: their valleys are straight in the logarithms), c in kPa, the rest as they
+/// are.
+template <typename T>
+std::array<T, kFullParameterCount> toPhysical(const T* u) {
+    using std::exp;
+    return {u[kA0], u[kA1], exp(u[kKs]), u[kN], u[kC] * 1e3, u[kPhi], exp(u[kK])};
+}
+
+/// The inverse of toPhysical.
+ParameterVector toSolver(const ParameterVector& physical);
+
+/// d(physical)/d(u) of each parameter (toPhysical is diagonal).
+ParameterVector physicalPerSolver(const ParameterVector& physical);
+
+/// The parameters of a soil on a wheel: K_s = k_c/b + k_φ (Eq. 2.9), n = n₀ (n₁ is not estimated).
+ParameterVector fromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel);
+
+/// A Gaussian prior on one parameter, SI: the estimate is penalised by ((θ − mean)/std)².
+struct GaussianPrior {
+    double mean = 0.0;
+    double std = 0.0;  ///< > 0
+};
+
+/// One optional prior per parameter.
+using Priors = std::array<std::optional<GaussianPrior>, kFullParameterCount>;
+
+/// The spreads of a prior built from a soil preset, each justified in docs/identification.md
+/// ("Priors"): how far soils of one class differ from the preset that names the class.
+struct PriorSpreads {
+    double a0 = 0.1;             ///< [-] (Table 5.3–5.4 fits scatter 0.24–0.29 about 0.2)
+    double a1 = 0.1;             ///< [-]
+    double ks_relative = 0.5;    ///< K_s: ±50 %
+    double n = 0.2;              ///< [-]
+    double c_relative = 0.5;     ///< c: ±50 % of the preset's value, at least `c_floor_pa`
+    double c_floor_pa = 1e3;     ///< [Pa]
+    double phi_rad = 0.0872665;  ///< φ: ±5°
+    double k_relative = 0.5;     ///< K: ±50 %
+};
+
+/// Priors centred on a soil preset on this wheel with the given spreads.
+Priors priorsFromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
+                      const PriorSpreads& spreads = {});
+
+/// Parses one prior item in user units, "phi_deg=30±5" or "phi_deg=30+-5" (also "Ks=1500±500",
+/// "c_kPa=2±1"), into `priors`. Returns the problems (unknown name, bad number, std ≤ 0).
+std::vector<Issue> parsePriorItem(const std::string& item, Priors& priors);
+
+}  // namespace terra::identification

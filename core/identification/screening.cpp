@@ -1,0 +1,365 @@
+#include "core/identification/screening.h"
+
+#include <ceres/jet.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <boost/random/mersenne_twister.hpp>
+#include <boost/random/uniform_real_distribution.hpp>
+#include <cmath>
+
+#include "core/contact/wheel_forces.h"
+
+namespace terra::identification::detail {
+namespace {
+
+// The linear parameters are solved for in units of order one: K_s and K_s tan φ in MPa/m^n, c in
+// kPa.
+constexpr double kModulusUnit = 1e6, kCohesionUnit = 1e3;
+// Nominal values of (K_s, c, φ) at which the basis is extracted (any values give the same basis
+// up to the quadrature error; realistic ones keep the integrator's adaptive splits realistic).
+constexpr double kNominalModulus = 1e6, kNominalCohesion = 1e3, kNominalFriction = 0.5;
+
+// min ½ αᵀGα − bᵀα subject to C α = e (equalities) and A α ≤ d (inequalities), three unknowns:
+// the minimiser restricted to each face of the feasible polytope (a set of active inequalities)
+// is tried, and the best feasible one is the answer (the problem is convex, so it is the minimum).
+struct SmallQp {
+    Eigen::Matrix3d g;
+    Eigen::Vector3d b;
+    std::vector<Eigen::RowVector3d> eq_rows;
+    std::vector<double> eq_values;
+    std::vector<Eigen::RowVector3d> in_rows;
+    std::vector<double> in_values;
+
+    bool solveOnFace(const std::vector<int>& active, Eigen::Vector3d& x) const {
+        const int m = static_cast<int>(eq_rows.size() + active.size());
+        if (m > 3) return false;
+        Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(3 + m, 3 + m);
+        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 + m);
+        kkt.topLeftCorner<3, 3>() = g;
+        rhs.head<3>() = b;
+        int row = 3;
+        auto add = [&](const Eigen::RowVector3d& c, double value) {
+            kkt.block<1, 3>(row, 0) = c;
+            kkt.block<3, 1>(0, row) = c.transpose();
+            rhs(row) = value;
+            ++row;
+        };
+        for (std::size_t k = 0; k < eq_rows.size(); ++k) add(eq_rows[k], eq_values[k]);
+        for (int k : active) add(in_rows[k], in_values[k]);
+        // Complete orthogonal decomposition: with collinear columns (a tiny n makes K_s and
+        // K_s tan φ nearly so) the KKT matrix is singular, and its minimum-norm solution is one
+        // of the equally good minimisers.
+        x = kkt.completeOrthogonalDecomposition().solve(rhs).head<3>();
+        if (!x.allFinite()) return false;
+        for (std::size_t k = 0; k < in_rows.size(); ++k) {
+            if (in_rows[k].dot(x) > in_values[k] + 1e-9 * (1.0 + std::abs(in_values[k])))
+                return false;
+        }
+        return true;
+    }
+
+    // The minimum and the rows that hold on its face (equalities and active inequalities).
+    bool solve(Eigen::Vector3d& best, std::vector<Eigen::RowVector3d>& face) const {
+        const int n = static_cast<int>(in_rows.size());
+        double best_value = INFINITY;
+        for (int mask = 0; mask < (1 << n); ++mask) {
+            std::vector<int> active;
+            for (int k = 0; k < n; ++k) {
+                if (mask & (1 << k)) active.push_back(k);
+            }
+            Eigen::Vector3d x;
+            if (!solveOnFace(active, x)) continue;
+            const double value = 0.5 * x.dot(g * x) - b.dot(x);
+            if (value < best_value) {
+                best_value = value;
+                best = x;
+                face = eq_rows;
+                for (int k : active) face.push_back(in_rows[k]);
+            }
+            if (mask == 0) break;  // the unconstrained minimiser is feasible: it is the minimum
+        }
+        return std::isfinite(best_value);
+    }
+};
+
+double radicalInverse(unsigned index, unsigned base) {
+    double result = 0.0, fraction = 1.0 / base;
+    while (index > 0) {
+        result += fraction * (index % base);
+        index /= base;
+        fraction /= base;
+    }
+    return result;
+}
+
+}  // namespace
+
+// The weighted rows of the projected least-squares problem at one point (a₀, a₁, n, K): data
+// rows F ≈ Φ α, prior rows of K_s and c, the projected α and its face.
+struct LinearProjection::Linearised {
+    std::vector<Eigen::RowVector3d> rows;  // Φ, weighted (data rows first, then prior rows)
+    std::vector<double> y;                 // targets, weighted
+    Eigen::Vector3d alpha;                 // (K_s, c, K_s tan φ) in (MPa/m^n, kPa, MPa/m^n)
+    std::vector<Eigen::RowVector3d> face;  // rows holding on the active face
+    double nonlinear_prior = 0.0;          // Σ ((θ − mean)/std)² of a₀, a₁, n, K
+};
+
+LinearProjection::LinearProjection(const Objective& objective, std::vector<std::size_t> samples,
+                                   const wheel::WheelParameters& wheel)
+    : objective_(objective), samples_(std::move(samples)), wheel_(wheel) {
+    for (std::size_t i : samples_) {
+        const auto active = objective_.model->channels(i);
+        for (int c = 0; c < 3; ++c) data_rows_ += active[c];
+    }
+}
+
+bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) const {
+    using J = ceres::Jet<double, 3>;
+    const ObservationModel& model = *objective_.model;
+    const double tan0 = std::tan(kNominalFriction);
+    const contact::ContactParameters<J> cp{J(wheel_.radius_m),
+                                           J(wheel_.width_m),
+                                           J(p[kN]),
+                                           J(0.0),
+                                           J(kNominalModulus, 0),
+                                           J(kNominalCohesion, 1),
+                                           J(kNominalFriction, 2),
+                                           J(p[kK]),
+                                           J(0.0),
+                                           J(p[kA0]),
+                                           J(p[kA1]),
+                                           model.setup().max_shear_deformation_m};
+    out.rows.clear();
+    out.y.clear();
+    for (std::size_t i : samples_) {
+        const Sample& s = model.sample(i);
+        const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
+                                            J(s.entry_angle_rad), J(0.0), std::nullopt};
+        const contact::WheelForces<J> f = contact::computeForces(cp, op);
+        const J* channel[3] = {&f.fx, &f.fz, &f.my};
+        const auto active = model.channels(i);
+        for (int c = 0; c < 3; ++c) {
+            if (!active[c]) continue;
+            // ∂F/∂c = Q, ∂F/∂φ = K_s R / cos²φ, ∂F/∂K_s = P + tan φ R.
+            const double q = channel[c]->v[1];
+            const double r = channel[c]->v[2] * (1.0 / (kNominalModulus * (1.0 + tan0 * tan0)));
+            const double pk = channel[c]->v[0] - tan0 * r;
+            const double w = 1.0 / objective_.sigma[c];
+            out.rows.emplace_back(pk * kModulusUnit * w, q * kCohesionUnit * w,
+                                  r * kModulusUnit * w);
+            out.y.push_back(model.measured(i, static_cast<Channel>(c)) * w);
+        }
+    }
+    // Priors on K_s and c are rows of the linear problem; priors on a₀, a₁, n, K are constants.
+    const Priors& priors = objective_.priors;
+    const auto& fixed = objective_.fixed;
+    const auto addPrior = [&](int k, int index, double unit) {
+        if (!priors[k] || fixed[k]) return;
+        const double w = unit / priors[k]->std;
+        Eigen::RowVector3d row = Eigen::RowVector3d::Zero();
+        row(index) = w;
+        out.rows.push_back(row);
+        out.y.push_back(w * priors[k]->mean / unit);
+    };
+    addPrior(kKs, 0, kModulusUnit);
+    addPrior(kC, 1, kCohesionUnit);
+    out.nonlinear_prior = 0.0;
+    for (int k : {kA0, kA1, kN, kK}) {
+        if (priors[k] && !fixed[k])
+            out.nonlinear_prior += std::pow((p[k] - priors[k]->mean) / priors[k]->std, 2);
+    }
+    SmallQp qp;
+    qp.g = Eigen::Matrix3d::Zero();
+    qp.b = Eigen::Vector3d::Zero();
+    for (std::size_t r = 0; r < out.rows.size(); ++r) {
+        qp.g += out.rows[r].transpose() * out.rows[r];
+        qp.b += out.rows[r].transpose() * out.y[r];
+    }
+    // Scaled to a unit trace (the minimiser is the same): the KKT matrix then mixes the normal
+    // equations and the constraint rows at one scale, so the active constraints hold to rounding.
+    const double scale = qp.g.trace() > 0 ? 1.0 / qp.g.trace() : 1.0;
+    qp.g = qp.g * scale + Eigen::Matrix3d::Identity() * 1e-12;
+    qp.b *= scale;
+    const ParameterBounds& bounds = objective_.bounds;
+    const auto bound = [&](const Eigen::RowVector3d& row, double value) {
+        qp.in_rows.push_back(row);
+        qp.in_values.push_back(value);
+    };
+    const auto hold = [&](const Eigen::RowVector3d& row, double value) {
+        qp.eq_rows.push_back(row);
+        qp.eq_values.push_back(value);
+    };
+    if (fixed[kKs]) {
+        hold({1, 0, 0}, p[kKs] / kModulusUnit);
+    } else {
+        bound({-1, 0, 0}, -bounds.lower[kKs] / kModulusUnit);
+        bound({1, 0, 0}, bounds.upper[kKs] / kModulusUnit);
+    }
+    if (fixed[kC]) {
+        hold({0, 1, 0}, p[kC] / kCohesionUnit);
+    } else {
+        bound({0, -1, 0}, -bounds.lower[kC] / kCohesionUnit);
+        bound({0, 1, 0}, bounds.upper[kC] / kCohesionUnit);
+    }
+    if (fixed[kPhi]) {
+        hold({std::tan(p[kPhi]), 0, -1}, 0.0);
+    } else {
+        bound({std::tan(bounds.lower[kPhi]), 0, -1}, 0.0);
+        bound({-std::tan(bounds.upper[kPhi]), 0, 1}, 0.0);
+    }
+    return qp.solve(out.alpha, out.face);
+}
+
+double LinearProjection::project(ParameterVector& p) const {
+    Linearised l;
+    if (!linearise(p, l)) return INFINITY;
+    p[kKs] = l.alpha(0) * kModulusUnit;
+    p[kC] = l.alpha(1) * kCohesionUnit;
+    p[kPhi] = std::atan2(l.alpha(2), l.alpha(0));
+    double chi2 = l.nonlinear_prior;
+    for (std::size_t r = 0; r < l.rows.size(); ++r)
+        chi2 += std::pow(l.rows[r].dot(l.alpha) - l.y[r], 2);
+    return chi2;
+}
+
+class LinearProjection::Cost final : public ceres::CostFunction {
+public:
+    explicit Cost(const LinearProjection& projection) : projection_(projection) {
+        const Objective& o = projection_.objective_;
+        for (int k : {kKs, kC}) alpha_priors_ += o.priors[k] && !o.fixed[k];
+        for (int k : {kA0, kA1, kN, kK}) {
+            if (o.priors[k] && !o.fixed[k]) nonlinear_priors_.push_back(k);
+        }
+        set_num_residuals(projection_.data_rows_ + alpha_priors_ +
+                          static_cast<int>(nonlinear_priors_.size()));
+        mutable_parameter_block_sizes()->push_back(kFullParameterCount);
+    }
+
+    bool Evaluate(double const* const* parameters, double* residuals,
+                  double** jacobians) const override {
+        constexpr int kP = kFullParameterCount;
+        const double* u = parameters[0];
+        const std::array<double, kP> physical = toPhysical(u);
+        ParameterVector p;
+        std::copy(physical.begin(), physical.end(), p.begin());
+        // Ceres evaluates a trial point without the Jacobian, then (when it is accepted) again with
+        // it: the linearisation of the trial is kept for that second call.
+        if (!std::equal(u, u + kP, cached_u_.begin()) || !cached_ok_) {
+            std::copy(u, u + kP, cached_u_.begin());
+            cached_ok_ = projection_.linearise(p, cached_);
+        }
+        if (!cached_ok_) return false;
+        const Linearised& l = cached_;
+        const int m = static_cast<int>(l.rows.size());
+        for (int r = 0; r < m; ++r) residuals[r] = l.rows[r].dot(l.alpha) - l.y[r];
+        const Priors& priors = projection_.objective_.priors;
+        for (std::size_t t = 0; t < nonlinear_priors_.size(); ++t) {
+            const int k = nonlinear_priors_[t];
+            residuals[m + t] = (p[k] - priors[k]->mean) / priors[k]->std;
+        }
+        if (!jacobians || !jacobians[0]) return true;
+        double* jac = jacobians[0];
+        std::fill(jac, jac + num_residuals() * kP, 0.0);
+        // ∂F/∂(a₀, a₁, n, ln K) at the projected α, weighted: one Jet evaluation per sample.
+        using J = ceres::Jet<double, 4>;
+        const ObservationModel& model = *projection_.objective_.model;
+        const contact::ContactParameters<J> cp{J(projection_.wheel_.radius_m),
+                                               J(projection_.wheel_.width_m),
+                                               J(u[kN], 2),
+                                               J(0.0),
+                                               J(l.alpha(0) * kModulusUnit),
+                                               J(l.alpha(1) * kCohesionUnit),
+                                               J(std::atan2(l.alpha(2), l.alpha(0))),
+                                               exp(J(u[kK], 3)),
+                                               J(0.0),
+                                               J(u[kA0], 0),
+                                               J(u[kA1], 1),
+                                               model.setup().max_shear_deformation_m};
+        Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m, 4);
+        int row = 0;
+        for (std::size_t i : projection_.samples_) {
+            const Sample& s = model.sample(i);
+            const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
+                                                J(s.entry_angle_rad), J(0.0), std::nullopt};
+            const contact::WheelForces<J> f = contact::computeForces(cp, op);
+            const J* channel[3] = {&f.fx, &f.fz, &f.my};
+            const auto active = model.channels(i);
+            for (int c = 0; c < 3; ++c) {
+                if (!active[c]) continue;
+                const double w = 1.0 / projection_.objective_.sigma[c];
+                for (int k = 0; k < 4; ++k) d(row, k) = channel[c]->v[k] * w;
+                ++row;
+            }
+        }
+        // Kaufman: J = P⊥ D, P⊥ the projector onto the complement of Φ N, N a basis of the
+        // directions α can still move in on its face.
+        Eigen::MatrixXd phi(m, 3);
+        for (int r = 0; r < m; ++r) phi.row(r) = l.rows[r];
+        Eigen::MatrixXd basis = Eigen::Matrix3d::Identity();
+        if (!l.face.empty()) {
+            Eigen::MatrixXd c(static_cast<int>(l.face.size()), 3);
+            for (std::size_t r = 0; r < l.face.size(); ++r) c.row(static_cast<int>(r)) = l.face[r];
+            basis = Eigen::FullPivLU<Eigen::MatrixXd>(c).kernel();
+            if (basis.cols() == 1 && basis.norm() == 0.0) basis.resize(3, 0);
+        }
+        if (basis.cols() > 0) {
+            const Eigen::MatrixXd columns = phi * basis;
+            const Eigen::HouseholderQR<Eigen::MatrixXd> qr(columns);
+            const Eigen::MatrixXd q =
+                qr.householderQ() * Eigen::MatrixXd::Identity(m, columns.cols());
+            d -= q * (q.transpose() * d);
+        }
+        static constexpr int kColumn[4] = {kA0, kA1, kN, kK};
+        for (int r = 0; r < m; ++r) {
+            for (int k = 0; k < 4; ++k) jac[r * kP + kColumn[k]] = d(r, k);
+        }
+        const ParameterVector slope = physicalPerSolver(p);
+        for (std::size_t t = 0; t < nonlinear_priors_.size(); ++t) {
+            const int k = nonlinear_priors_[t];
+            jac[(m + t) * kP + k] = slope[k] / priors[k]->std;
+        }
+        return true;
+    }
+
+private:
+    const LinearProjection& projection_;
+    mutable std::array<double, kFullParameterCount> cached_u_{};
+    mutable Linearised cached_;
+    mutable bool cached_ok_ = false;
+    int alpha_priors_ = 0;
+    std::vector<int> nonlinear_priors_;
+};
+
+ceres::CostFunction* LinearProjection::costFunction() const { return new Cost(*this); }
+
+std::vector<ParameterVector> haltonDesign(int count,
+                                          const std::array<bool, kFullParameterCount>& vary,
+                                          const DesignBox& box, const ParameterVector& base,
+                                          std::uint64_t seed) {
+    static constexpr unsigned kPrimes[kFullParameterCount] = {2, 3, 5, 7, 11, 13, 17};
+    boost::random::mt19937_64 engine(seed);
+    boost::random::uniform_real_distribution<double> uniform(0.0, 1.0);
+    ParameterVector shift{};
+    for (double& v : shift) v = uniform(engine);
+    const ParameterVector lo = toSolver(box.lower), hi = toSolver(box.upper);
+    std::vector<ParameterVector> points;
+    for (int i = 0; i < count; ++i) {
+        ParameterVector u = toSolver(base);
+        int dimension = 0;
+        for (int k = 0; k < kFullParameterCount; ++k) {
+            if (!vary[k]) continue;
+            double h =
+                radicalInverse(static_cast<unsigned>(i + 1), kPrimes[dimension++]) + shift[k];
+            h -= std::floor(h);
+            u[k] = lo[k] + h * (hi[k] - lo[k]);
+        }
+        const auto p = toPhysical(u.data());
+        ParameterVector point;
+        std::copy(p.begin(), p.end(), point.begin());
+        points.push_back(point);
+    }
+    return points;
+}
+
+}  // namespace terra::identification::detail

@@ -1,0 +1,169 @@
+// The streaming estimator of issue #13 (streaming_estimator.h): slip sweeps at loads that change
+// every 50 samples (30, 58.86, 90 N), 1 % noise (of each channel's largest value over the run),
+// sandy loam then clayey soil on wheel A. The truth is Table 2.1 written out by hand.
+#include "core/identification/streaming_estimator.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/random/mersenne_twister.hpp>
+#include <boost/random/normal_distribution.hpp>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "core/identification/synthetic.h"
+#include "tests/core/contact/test_soils.h"
+
+namespace terra::identification {
+namespace {
+
+namespace soils = contact::testing;
+constexpr double kDeg = std::numbers::pi / 180.0;
+const wheel::WheelParameters kWheelA{"A", "", soils::kRadiusA, soils::kWidthA};
+// 1 % of the largest |F_x|, |F_z|, |M_y| of sandy loam's sweeps at 30–90 N [N, N, N·m].
+constexpr std::array<double, 3> kNoise{0.136, 0.90, 0.0195};
+
+ParameterVector truthOf(const contact::ContactParameters<double>& p) {
+    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
+            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
+}
+
+// `blocks` blocks of 50 samples; the load cycles through 30, 58.86, 90 N from block to block and
+// the slip sweeps 0.05 → 0.85, back in the next block.
+std::vector<Sample> drive(const contact::ContactParameters<double>& soil, int blocks,
+                          std::uint64_t seed) {
+    const double loads[3] = {30.0, 58.86, 90.0};
+    boost::random::mt19937_64 engine(seed);
+    boost::random::normal_distribution<double> normal(0.0, 1.0);
+    std::vector<Sample> out;
+    for (int b = 0; b < blocks; ++b) {
+        SyntheticSpec spec;
+        spec.loads_n = {loads[b % 3]};
+        for (int i = 0; i < 50; ++i) {
+            const double t = i / 49.0;
+            spec.slips.push_back(0.05 + 0.8 * (b % 2 ? 1.0 - t : t));
+        }
+        for (Sample s : synthesize(soil, spec).data.samples) {
+            s.load_n = loads[b % 3];
+            s.fx_n += kNoise[0] * normal(engine);
+            s.fz_n += kNoise[1] * normal(engine);
+            s.my_nm += kNoise[2] * normal(engine);
+            out.push_back(s);
+        }
+    }
+    return out;
+}
+
+StreamingEstimatorOptions options() {
+    StreamingEstimatorOptions o;
+    o.fit.max_shear_deformation_m = 0.02;  // both soils' j_max here (a setting of the model)
+    return o;
+}
+
+// Counts, per parameter, the estimates of samples [from, to) more than 3 std from the truth.
+struct Band {
+    std::array<int, kFullParameterCount> outside{};
+    int judged = 0;
+    double nis = 0.0;
+    int nis_count = 0;
+};
+
+void judge(const StreamEstimate& e, const ParameterVector& truth, Band& band) {
+    if (!e.estimated) return;
+    ++band.judged;
+    for (int k = 0; k < kFullParameterCount; ++k)
+        band.outside[k] += std::abs(e.parameters[k] - truth[k]) > 3.0 * e.std[k];
+    if (e.channels > 0) band.nis += e.nis / e.channels, ++band.nis_count;
+}
+
+TEST(StreamingEstimator, NoFalseAlarmInFiveThousandSamplesOfOneSoilAndHonestBands) {
+    const std::vector<Sample> samples = drive(soils::sandyLoam(), 100, 1);
+    ASSERT_EQ(samples.size(), 5000u);
+    StreamingEstimator estimator(kWheelA, options());
+    const ParameterVector truth = truthOf(soils::sandyLoam());
+    Band band;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const StreamEstimate e = estimator.push(samples[i]);
+        ASSERT_EQ(e.index, i);
+        EXPECT_FALSE(e.change_detected) << "false alarm at sample " << i;
+        EXPECT_EQ(e.estimated, i + 1 >= options().init_samples) << i;
+        if (i >= 300) judge(e, truth, band);  // settled: after six load changes
+    }
+    for (int k = 0; k < kFullParameterCount; ++k) {
+        // 3σ bands: 0.27 % outside for a consistent estimate; allow 1 %.
+        EXPECT_LE(band.outside[k], band.judged / 100) << parameterInfo()[k].name;
+    }
+    // The normalised innovations are χ² per channel: mean 1.
+    EXPECT_NEAR(band.nis / band.nis_count, 1.0, 0.2);
+    const auto covariance = estimator.covariance();
+    EXPECT_GT(covariance[kPhi][kPhi], 0.0);
+    EXPECT_EQ(covariance[kPhi][kPhi], covariance[kPhi][kPhi]);
+}
+
+TEST(StreamingEstimator, SoilBorderIsConfirmedWithinTenSamples) {
+    std::vector<Sample> samples = drive(soils::sandyLoam(), 20, 2);
+    const std::size_t border = samples.size();
+    const contact::ContactParameters<double> clay = soils::clayeySoil(0.02);
+    const std::vector<Sample> second = drive(clay, 8, 3);
+    samples.insert(samples.end(), second.begin(), second.end());
+    StreamingEstimator estimator(kWheelA, options());
+    const ParameterVector truth = truthOf(clay);
+    int changes = 0;
+    Band band;
+    StreamEstimate last;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        last = estimator.push(samples[i]);
+        if (last.change_detected) {
+            ++changes;
+            ASSERT_TRUE(last.change_at.has_value());
+            std::printf("change at %zu confirmed at %zu (border %zu)\n", *last.change_at, i,
+                        border);
+            EXPECT_GE(*last.change_at, border);
+            EXPECT_LE(*last.change_at, border + 2);
+            EXPECT_LT(i, border + 10);
+        }
+        if (i >= border + 200) judge(last, truth, band);
+    }
+    EXPECT_EQ(changes, 1);
+    for (int k = 0; k < kFullParameterCount; ++k)
+        EXPECT_LE(band.outside[k], band.judged / 100) << parameterInfo()[k].name;
+    EXPECT_NEAR(last.parameters[kPhi], 13.0 * kDeg, 3.0 * last.std[kPhi]);
+}
+
+TEST(StreamingEstimator, ALoneOutlierIsNeitherAChangeNorUsed) {
+    std::vector<Sample> samples = drive(soils::sandyLoam(), 4, 4);
+    samples[120].fz_n *= 3.0;
+    StreamingEstimator estimator(kWheelA, options());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const StreamEstimate e = estimator.push(samples[i]);
+        EXPECT_FALSE(e.change_detected) << i;
+        if (i == 120) {
+            EXPECT_FALSE(e.used);
+            EXPECT_GT(e.nis, 100.0);
+            EXPECT_LE(e.cusum, options().max_step_evidence);
+        }
+    }
+}
+
+TEST(StreamingEstimator, GivenNoiseLevelsAreKept) {
+    StreamingEstimatorOptions o = options();
+    o.fit.noise = {kNoise[0], kNoise[1], kNoise[2], 0.0};
+    StreamingEstimator estimator(kWheelA, o);
+    for (const Sample& s : drive(soils::sandyLoam(), 1, 5)) estimator.push(s);
+    EXPECT_EQ(estimator.noise()[kFxChannel], kNoise[0]);
+    EXPECT_EQ(estimator.noise()[kMyChannel], kNoise[2]);
+}
+
+TEST(StreamingEstimator, RejectsBadOptions) {
+    StreamingEstimatorOptions o;
+    o.window = 0;
+    EXPECT_THROW(StreamingEstimator(kWheelA, o), std::invalid_argument);
+    o = {};
+    o.gate_probability = 0.0;
+    EXPECT_THROW(StreamingEstimator(kWheelA, o), std::invalid_argument);
+    EXPECT_THROW(StreamingEstimator(wheel::WheelParameters{"bad", "", -1.0, 0.1}),
+                 std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace terra::identification
