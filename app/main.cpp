@@ -7,6 +7,7 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/main_window.h"
+#include "core/common/build_info.h"
 
 namespace {
 
@@ -15,7 +16,7 @@ int runHeadless(int argc, char** argv) {
     const terra::io::PresetLocations locations =
         terra::io::PresetLocations::standard(executableDirectory());
     CLI::App app{"TerraStudio: wheel-soil interaction (terramechanics) for wheeled mobile robots"};
-    app.set_version_flag("--version", std::string("terrastudio 0.1.0"));
+    app.set_version_flag("--version", std::string("terrastudio ") + terra::build_info::kVersion);
     app.require_subcommand(1);
     addWheelCommand(app, locations);
     addSinkageCommand(app, locations);

@@ -4,6 +4,7 @@
 
 #include <QApplication>
 #include <QCloseEvent>
+#include <QDesktopServices>
 #include <QDir>
 #include <QDockWidget>
 #include <QEventLoop>
@@ -22,9 +23,12 @@
 #include <QTimer>
 #include <QToolBar>
 #include <QUndoStack>
+#include <QUrl>
 #include <QVBoxLayout>
 #include <cstdio>
 
+#include "app/cli/cli_support.h"
+#include "core/common/build_info.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
@@ -67,7 +71,7 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         ui::AnalysisPanel* panel = panels_[i];
         tabs_->addTab(panel, titles[static_cast<int>(i)]);
         connect(panel, &ui::AnalysisPanel::resultShown, this,
-                [this, panel, title = titles[static_cast<int>(i)]](double ms) {
+                [this, title = titles[static_cast<int>(i)]](double ms) {
                     statusBar()->showMessage(
                         QString("%1 updated in %2 ms").arg(title).arg(ms, 0, 'f', 0), 5000);
                 });
@@ -190,11 +194,25 @@ void MainWindow::createMenus() {
             [this, i] { tabs_->setCurrentIndex(i); });
     }
     QMenu* help = menuBar()->addMenu("&Help");
-    help->addAction("&About", this, [this] {
-        QMessageBox::about(this, "About TerraStudio",
-                           "TerraStudio 0.1: wheel–soil interaction for agricultural robots.\n"
-                           "Model: thesis chapter 2 with the corrections of docs/model.md.\n"
-                           "User guide: docs/user-guide.md");
+    // The docs are installed beside the data (docs/install.md); the build tree mirrors the layout.
+    const QString guide = QString::fromStdString(
+        (executableDirectory() / build_info::kDocDirFromExecutable / "user-guide.md")
+            .lexically_normal()
+            .string());
+    help->addAction("&User guide", this, [this, guide] {
+        if (!QFileInfo::exists(guide)) {
+            QMessageBox::warning(this, "User guide", "The user guide is missing: " + guide);
+        } else if (!QDesktopServices::openUrl(QUrl::fromLocalFile(guide))) {
+            QMessageBox::information(this, "User guide", "No program opens " + guide);
+        }
+    });
+    help->addAction("&About", this, [this, guide] {
+        QMessageBox::about(
+            this, "About TerraStudio",
+            QString("TerraStudio %1: wheel–soil interaction for agricultural robots.\n"
+                    "Model: thesis chapter 2 with the corrections of docs/model.md.\n"
+                    "User guide: %2")
+                .arg(build_info::kVersion, guide));
     });
 }
 

@@ -19,10 +19,11 @@ using namespace terra::gsa;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 terra::soil::SoilParameters sandyLoamPreset() {
-    return terra::io::resolveSoil(terra::io::PresetLocations::standard({}), "sandy-loam").value();
+    return terra::io::resolveSoil(terra::io::PresetLocations{{TERRA_RESOURCE_DIR}}, "sandy-loam")
+        .value();
 }
 terra::wheel::WheelParameters wheelAPreset() {
-    return terra::io::resolveWheel(terra::io::PresetLocations::standard({}), "A").value();
+    return terra::io::resolveWheel(terra::io::PresetLocations{{TERRA_RESOURCE_DIR}}, "A").value();
 }
 
 // N samples with all four soil fields varied per sample over the study's ranges (an evenly

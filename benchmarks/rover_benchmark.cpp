@@ -15,7 +15,8 @@ namespace {
 using namespace terra;
 
 scenario::Scenario pulseSteering(contact::ContactModel model, double duration_s, double dt_s) {
-    auto loaded = scenario::resolveScenario(io::PresetLocations::standard({}), "pulse-steering");
+    auto loaded =
+        scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "pulse-steering");
     if (!loaded) throw std::runtime_error(loaded.message());
     scenario::Scenario s = loaded.value();
     s.options.contact.model = model;

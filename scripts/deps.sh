@@ -1,5 +1,8 @@
-# Sourced by scripts/test and scripts/studio: installs the Debian packages the product needs
-# (the whole set, so that later work does not fight the install), only those that are missing.
+# Sourced by scripts/test, scripts/studio and scripts/package: installs the Debian packages the
+# product needs (the whole set, so that later work does not fight the install), only those that
+# are missing. clang and clang-format are the second compiler and the format check
+# (scripts/check-clang, scripts/check-format); desktop-file-utils and shared-mime-info check the
+# installed desktop entry and MIME type (tests/install_test.cmake).
 # Uses sudo only when not root.
 
 TERRA_PACKAGES=(
@@ -9,6 +12,7 @@ TERRA_PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
+  clang clang-format desktop-file-utils shared-mime-info
 )
 
 terra_install_dependencies() {

@@ -2,13 +2,13 @@
 // headlessly: a CSV of the sweep and one PNG per quantity, written atomically into --out.
 #include <qcustomplot.h>
 
-#include <QApplication>
 #include <filesystem>
 #include <iostream>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
+#include "app/headless_application.h"
 #include "core/analysis/forces.h"
 #include "core/common/range.h"
 #include "core/contact/operating_fields.h"
@@ -53,12 +53,7 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     }
     std::cout << "wrote " << csv.string() << '\n';
 
-    // QCustomPlot paints with a QPainter: it needs an application object, offscreen here.
-    qputenv("QT_QPA_PLATFORM", "offscreen");
-    int argc = 1;
-    char name[] = "terrastudio";
-    char* argv[] = {name, nullptr};
-    QApplication application(argc, argv);
+    const HeadlessApplication application;  // QCustomPlot paints with a QPainter: it needs one
     QCustomPlot plot;
     plot.resize(o.width, o.height);
     const QString title = QString::fromStdString(soil.name + ", " + wheel.name + ", W = ") +

@@ -6,7 +6,6 @@
 // "Scripted runs").
 #include <qcustomplot.h>
 
-#include <QApplication>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -15,6 +14,8 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
+#include "app/headless_application.h"
+#include "core/common/build_info.h"
 #include "core/io/atomic_file.h"
 #include "core/project/script.h"
 #include "widgets/plots/analysis_figures.h"
@@ -132,12 +133,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
     fs::create_directories(o.out, ec);
     if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());
 
-    // QCustomPlot paints with a QPainter: it needs an application object, offscreen here.
-    qputenv("QT_QPA_PLATFORM", "offscreen");
-    int argc = 1;
-    char name[] = "terrastudio";
-    char* argv[] = {name, nullptr};
-    QApplication application(argc, argv);
+    const HeadlessApplication application;  // QCustomPlot paints with a QPainter: it needs one
 
     Writer writer(o.out, script.export_settings);
     std::vector<project::RunRecord> records;
@@ -168,8 +164,8 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
-    const nlohmann::json manifest =
-        project::manifest(script, o.script, records, "terrastudio 0.1.0", cancelled);
+    const nlohmann::json manifest = project::manifest(
+        script, o.script, records, std::string("terrastudio ") + build_info::kVersion, cancelled);
     if (const auto error =
             io::writeFileAtomically(out / "manifest.json", manifest.dump(2) + "\n")) {
         throw std::runtime_error(*error);

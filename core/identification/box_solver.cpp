@@ -160,7 +160,13 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                 changed = true;
             }
         }
-        if (!evaluateCost(problem, x, summary.cost, &summary.gradient)) {
+        // The gradient decides which held parameters to release; without any held, and when the
+        // caller does not want it, the cost alone will do (one Jacobian evaluation less).
+        const bool any_held =
+            std::find(held_on_bound.begin(), held_on_bound.end(), true) != held_on_bound.end();
+        summary.gradient.clear();
+        if (!evaluateCost(problem, x, summary.cost,
+                          any_held || options.gradient ? &summary.gradient : nullptr)) {
             summary.usable = false;
             summary.termination = "FAILURE: the cost cannot be evaluated at the solution";
             break;

@@ -31,6 +31,8 @@ struct BoxOptions {
     double parameter_tolerance = 1e-10;
     double gradient_tolerance = 1e-12;
     bool nonmonotonic_steps = false;
+    bool gradient =
+        true;  ///< compute BoxSummary::gradient (else only when the active set needs it)
 };
 
 /// The outcome.

@@ -128,6 +128,7 @@ detail::BoxOptions stepOptions(int max_iterations) {
     options.function_tolerance = 1e-10;
     options.parameter_tolerance = 1e-10;
     options.gradient_tolerance = 1e-12;
+    options.gradient = false;
     return options;
 }
 

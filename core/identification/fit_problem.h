@@ -60,17 +60,28 @@ struct ChannelResiduals {
 ChannelResiduals channelResiduals(const ObservationModel& model, const ParameterVector& p,
                                   const std::vector<std::size_t>& samples);
 
-/// What is computed at a solution: covariance of the free parameters (Gauss–Newton JᵀJ of the
-/// data with the loss's weights, plus the priors' information), std in SI, correlations, flags,
-/// and the Newton decrement of `gradient`.
+/// What is computed at a solution from one Jacobian: covariance of the free parameters
+/// (Gauss–Newton JᵀJ of the data with the loss's weights, plus the priors' information), std in
+/// SI, correlations, flags, the gradient of ½χ² (Jᵀr with the same weights) and its Newton
+/// decrement over the parameters not on a bound.
 struct AtSolution {
     Uncertainty uncertainty;
+    std::vector<double> gradient;
     double newton_decrement = 0.0;
 };
 AtSolution analyseSolution(const Objective& objective, const std::vector<std::size_t>& samples,
-                           const std::vector<double>& u, const std::vector<double>& gradient,
-                           const std::vector<bool>& at_bound, double covariance_scale,
-                           double correlation_flag, double bound_correlation_flag);
+                           const std::vector<double>& u, const std::vector<bool>& at_bound,
+                           double covariance_scale, double correlation_flag,
+                           double bound_correlation_flag);
+
+/// Gauss–Newton steps on the full seven-parameter objective (squared loss) from u, each with a
+/// backtracking line search, while they remove more than `tolerance` of χ²: the Levenberg–
+/// Marquardt damping crawls along a valley whose width is near the rounding of the normal
+/// equations (one load, no noise: c–φ), where an undamped step on the scaled normal equations
+/// (pseudo-inverse below 1e-14 of the largest eigenvalue) lands on the minimum in one or two.
+/// Parameters on a bound stay there. Returns the steps taken.
+int polish(const Objective& objective, const std::vector<std::size_t>& samples,
+           std::vector<double>& u, int max_steps, double tolerance);
 
 /// Indices 0..n−1.
 std::vector<std::size_t> allSamples(std::size_t n);

@@ -113,8 +113,8 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     }
     const double chi2 = estimated ? 2.0 * summary.cost / (residuals - free) : 1.0;
     result.uncertainty =
-        detail::analyseSolution(objective, all, u, summary.gradient, summary.at_bound, chi2,
-                                options.correlation_flag, options.bound_correlation_flag)
+        detail::analyseSolution(objective, all, u, summary.at_bound, chi2, options.correlation_flag,
+                                options.bound_correlation_flag)
             .uncertainty;
     return result;
 }

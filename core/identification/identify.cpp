@@ -297,13 +297,15 @@ private:
             objective_.sigma = sigma;
             if (change < 0.1 || round + 1 == kRounds) break;
         }
-        // χ² and gradient of the full seven-parameter objective at each minimum, with the final
-        // noise levels.
+        // χ² of the full seven-parameter objective at each minimum, with the final noise levels,
+        // after Gauss–Newton polishing where the damped solver stopped short (the best one's
+        // gradient comes with its covariance).
         const FitProblem problem(objective_, all_);
         for (Local& l : refined) {
+            if (options_.loss == Loss::kSquared && l.summary.usable)
+                l.summary.iterations += detail::polish(objective_, all_, l.u, 4, 1e-6);
             double cost = 0.0;
-            l.summary.usable = l.summary.usable &&
-                               detail::evaluateCost(problem.box(), l.u, cost, &l.summary.gradient);
+            l.summary.usable = l.summary.usable && detail::evaluateCost(problem.box(), l.u, cost);
             l.summary.cost = cost;
         }
         std::sort(refined.begin(), refined.end(), [](const Local& a, const Local& b) {
@@ -339,9 +341,12 @@ private:
     // Refines one minimum on all samples: on the projected problem (four parameters walked, the
     // valleys of K_s–n and c–φ gone) when it is the same objective, else on all seven.
     void solveAll(Local& l) {
+        // The gradient is computed afterwards, at the polished minimum.
+        detail::BoxOptions options = detail::refinementOptions();
+        options.gradient = false;
         if (!projectable()) {
             const FitProblem problem(objective_, all_);
-            l.summary = detail::solveInBox(problem.box(), l.u, detail::refinementOptions());
+            l.summary = detail::solveInBox(problem.box(), l.u, options);
             return;
         }
         const FitProblem problem(objective_, all_);
@@ -351,7 +356,7 @@ private:
         box.costs = {cost.get()};
         box.losses = {nullptr};
         for (int k : {kKs, kC, kPhi}) box.fixed[k] = true;
-        l.summary = detail::solveInBox(box, l.u, detail::refinementOptions());
+        l.summary = detail::solveInBox(box, l.u, options);
         ParameterVector p = physicalOf(l.u);
         projection.project(p);
         l.u = solverOf(p);
@@ -372,12 +377,7 @@ private:
         const Local& best = locals_[0];
         const auto covariance = Clock::now();
         const FitProblem problem(objective_, all_);
-        BoxSummary summary = best.summary;
-        if (summary.gradient.empty()) {
-            double cost = 0.0;
-            detail::evaluateCost(problem.box(), best.u, cost, &summary.gradient);
-            summary.cost = cost;
-        }
+        const BoxSummary& summary = best.summary;
         report_.parameters = physicalOf(best.u);
         report_.chi2 = 2.0 * summary.cost;
         report_.residuals = problem.dataResiduals();
@@ -391,14 +391,12 @@ private:
             report_.at_bound[k] = !objective_.fixed[k] && (best.u[k] <= lower[k] + margin ||
                                                            best.u[k] >= upper[k] - margin);
         }
-        report_.gradient_norm =
-            detail::projectedGradientNorm(problem.box(), best.u, summary.gradient);
         const int dof = std::max(1, report_.residuals - free_);
         const double scale = report_.noise_estimated ? report_.chi2 / dof : 1.0;
         std::vector<bool> at_bound(report_.at_bound.begin(), report_.at_bound.end());
-        const detail::AtSolution at =
-            detail::analyseSolution(objective_, all_, best.u, summary.gradient, at_bound, scale,
-                                    options_.correlation_flag, 0.5);
+        const detail::AtSolution at = detail::analyseSolution(
+            objective_, all_, best.u, at_bound, scale, options_.correlation_flag, 0.5);
+        report_.gradient_norm = detail::projectedGradientNorm(problem.box(), best.u, at.gradient);
         report_.uncertainty = at.uncertainty;
         report_.newton_decrement = at.newton_decrement;
         report_.rms = detail::channelResiduals(*model_, report_.parameters, all_).rms;
@@ -568,6 +566,14 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
         if (!(o.design.lower[k] > 0)) {
             issues.push_back(
                 {std::string("design.") + info[k].name, "the lower bound must be > 0"});
+        }
+    }
+    for (const Start& start : o.starts) {
+        for (int k = 0; k < kP; ++k) {
+            if (!std::isfinite(start.parameters[k])) {
+                issues.push_back({"starts." + start.label + "." + info[k].name,
+                                  "= " + formatNumber(start.parameters[k]) + " is not finite"});
+            }
         }
     }
     checkRange(issues, "design_points", o.design_points, {0, 100000});

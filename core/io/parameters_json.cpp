@@ -4,12 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/common/build_info.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json.h"
-
-#ifndef TERRA_SOURCE_RESOURCE_DIR
-#define TERRA_SOURCE_RESOURCE_DIR ""
-#endif
 
 namespace terra::io {
 namespace {
@@ -134,10 +131,9 @@ PresetLocations PresetLocations::standard(const std::filesystem::path& executabl
         out.directories.emplace_back(env);
     }
     if (!executable_dir.empty()) {
-        out.directories.push_back(executable_dir / ".." / "share" / "terrastudio");
+        out.directories.push_back(executable_dir / build_info::kDataDirFromExecutable);
         out.directories.push_back(executable_dir / "resources");
     }
-    if (*TERRA_SOURCE_RESOURCE_DIR) out.directories.emplace_back(TERRA_SOURCE_RESOURCE_DIR);
     return out;
 }
 

@@ -38,8 +38,8 @@ Result<wheel::WheelParameters> loadWheel(const std::filesystem::path& path);
 /// Where presets are looked up: each directory holds soils/ and wheels/.
 struct PresetLocations {
     std::vector<std::filesystem::path> directories;
-    /// The directories to search: $TERRASTUDIO_RESOURCES, `<exe dir>/../share/terrastudio`,
-    /// `<exe dir>/resources`, and the source tree's resources/ (built in).
+    /// The directories to search: $TERRASTUDIO_RESOURCES, `<exe dir>/../share/terrastudio` (the
+    /// install layout, which the build tree mirrors; build_info.h) and `<exe dir>/resources`.
     static PresetLocations standard(const std::filesystem::path& executable_dir);
 };
 

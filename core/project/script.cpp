@@ -176,7 +176,10 @@ ExpectationOutcome check(const Expectation& e, const Table& table) {
         const std::size_t k = table.column(key);
         double best = INFINITY;
         for (const auto* row : rows) best = std::min(best, std::abs((*row)[k] - value));
-        std::erase_if(rows, [&](const auto* row) { return std::abs((*row)[k] - value) > best; });
+        // The target is copied: clang 14 cannot capture a structured binding.
+        std::erase_if(rows, [&, target = value](const auto* row) {
+            return std::abs((*row)[k] - target) > best;
+        });
     }
     if (rows.empty()) {
         out.text = e.column + ": the results have no rows (no equilibrium?)";

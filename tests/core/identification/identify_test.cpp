@@ -301,10 +301,11 @@ TEST(Identify, InvalidInputIsReportedNotThrown) {
     o.folds = 1;
     o.priors[kPhi] = GaussianPrior{0.5, -1.0};
     o.fixed[kN] = 5.0;
+    o.starts = {{"guess", ParameterVector{0.2, 0.3, NAN, 0.5, 3e3, 0.4, 0.02}}};
     const IdentificationReport r = identify(data, kWheelA, o);
     EXPECT_EQ(r.status, IdentifyStatus::kInvalidInput);
     const std::string all = r.message;
-    for (const char* what : {"folds", "prior.phi_deg.std", "fix.n", "no load"})
+    for (const char* what : {"folds", "prior.phi_deg.std", "fix.n", "no load", "starts.guess.Ks"})
         EXPECT_NE(all.find(what), std::string::npos) << what << " in " << all;
     EXPECT_THROW(identify(data, wheel::WheelParameters{"bad", "", -1.0, 0.1}),
                  std::invalid_argument);
