@@ -210,7 +210,7 @@ void MainWindow::createMenus() {
         QMessageBox::about(
             this, "About TerraStudio",
             QString("TerraStudio %1: wheel–soil interaction for agricultural robots.\n"
-                    "Model: thesis chapter 2 with the errata of MODEL-NOTES.\n"
+                    "Model: thesis chapter 2 with the corrections of docs/model.md.\n"
                     "User guide: %2")
                 .arg(build_info::kVersion, guide));
     });
@@ -227,7 +227,7 @@ ui::AnalysisPanel* MainWindow::currentPanel() const {
 }
 
 bool MainWindow::openProject(const QString& path, bool quiet) {
-    auto project = ui::ProjectDocument::load(path);
+    auto project = ui::ProjectDocument::load(path, &locations_);
     if (!project) {
         if (!quiet)
             QMessageBox::warning(this, "Cannot open project",
@@ -369,7 +369,7 @@ void MainWindow::offerRecovery() {
         this, "Recover project",
         "TerraStudio did not close cleanly. Recover the unsaved project from the autosave?");
     if (answer == QMessageBox::Yes) {
-        auto project = ui::ProjectDocument::load(path);
+        auto project = ui::ProjectDocument::load(path, &locations_);
         if (project) {
             document_->reset(*project);
             document_->undoStack()->resetClean();  // recovered, not yet saved anywhere

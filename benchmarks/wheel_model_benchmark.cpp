@@ -63,7 +63,7 @@ void entryAngle(benchmark::State& state, ContactModel model) {
     int evaluations = 0, solves = 0;
     for (auto _ : state) {
         EntryAngleProblem problem;
-        problem.load_n = 58.86;
+        problem.load_n = terra::contact::kDefaultLoadN;
         problem.slip = slips[i++ % 4];
         problem.slip_angle_rad = 15.0 * kDeg;
         problem.model = model;

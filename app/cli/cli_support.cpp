@@ -8,6 +8,7 @@
 #include "core/analysis/sweep.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 
@@ -58,15 +59,19 @@ soil::SoilParameters ModelOptions::soilParameters(const io::PresetLocations& loc
                    !io::parseNumber(assignment.substr(equals + 1), value)) {
             issues.push_back(
                 {"--set " + key, "expected KEY=NUMBER, got " + io::quoteCell(assignment)});
-        } else if (checkRange(issues, "--set " + key, value, field->range, field->unit)) {
+        } else if (checkRange(issues, "--set " + key, value, field->range, field->displayUnit())) {
             soil::setUserValue(out, *field, value);
         }
     }
-    if (a0 && checkRange(issues, "--a0", *a0, {0.0, 1.0})) out.max_stress_a0 = *a0;
-    if (a1 && checkRange(issues, "--a1", *a1, {-1.0, 1.0})) out.max_stress_a1 = *a1;
-    if (jmax_m && checkRange(issues, "--jmax", *jmax_m, {0.0, 1.0, true, false}, "m")) {
-        out.max_shear_deformation_m = *jmax_m;
-    }
+    // The flags of optional soil fields: their ranges are the field table's.
+    auto flag = [&](const char* name, const char* key, const std::optional<double>& value) {
+        const soil::SoilField& field = *soil::findSoilField(key);
+        if (value && checkRange(issues, name, *value, field.range, field.displayUnit()))
+            field.setUserValue(out, *value);
+    };
+    flag("--a0", "a0", a0);
+    flag("--a1", "a1", a1);
+    flag("--jmax", "jmax_m", jmax_m);
     if (no_jmax) out.max_shear_deformation_m = std::numeric_limits<double>::infinity();
     for (Issue& issue : soil::validate(out, "soil ")) issues.push_back(std::move(issue));
     if (!issues.empty()) throw InputError(formatIssues(issues));
@@ -91,12 +96,12 @@ contact::ContactModel ModelOptions::contactModel() const {
 contact::ExitCondition ModelOptions::exitCondition() const {
     std::vector<Issue> issues;
     if (rut_ratio) {
-        checkRange(issues, "--rut-ratio", *rut_ratio, {0.0, 1.0});
+        checkRange(issues, "--rut-ratio", *rut_ratio, contact::rutRatioField().range);
         if (!issues.empty()) throw InputError(formatIssues(issues));
         return {contact::ExitCondition::Kind::kRutRatio, *rut_ratio};
     }
     const double deg = exit_angle_deg.value_or(0.0);
-    checkRange(issues, "--exit-angle", deg, {-90.0, 0.0}, "deg");
+    checkRange(issues, "--exit-angle", deg, contact::exitAngleField().range, "deg");
     if (!issues.empty()) throw InputError(formatIssues(issues));
     return {contact::ExitCondition::Kind::kAngle, units::degToRad(deg)};
 }
@@ -104,9 +109,20 @@ contact::ExitCondition ModelOptions::exitCondition() const {
 std::optional<double> ModelOptions::maxStressAngleRad() const {
     if (!max_stress_angle_deg) return std::nullopt;
     std::vector<Issue> issues;
-    checkRange(issues, "--max-stress-angle", *max_stress_angle_deg, {-90.0, 90.0}, "deg");
+    checkRange(issues, "--max-stress-angle", *max_stress_angle_deg,
+               contact::maxStressAngleField().range, "deg");
     if (!issues.empty()) throw InputError(formatIssues(issues));
     return units::degToRad(*max_stress_angle_deg);
+}
+
+analysis::ModelChoices ModelOptions::choices() const {
+    return {exitCondition(), maxStressAngleRad(), bulldozingModel()};
+}
+
+analysis::Inputs ModelOptions::inputs(const io::PresetLocations& locations) const {
+    analysis::Inputs in{soilParameters(locations), wheelParameters(locations), {}};
+    in.conditions.quadratic = contactModel() == contact::ContactModel::kQuadratic;
+    return in;
 }
 
 std::vector<double> parseValues(const std::string& text, const std::string& what) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/analysis.h"
 #include "core/contact/bulldozing.h"
 #include "core/contact/contact_parameters.h"
 #include "core/contact/sinkage.h"
@@ -49,6 +50,11 @@ struct ModelOptions {
     contact::ContactModel contactModel() const;
     contact::ExitCondition exitCondition() const;
     std::optional<double> maxStressAngleRad() const;
+    /// The exit condition, θ_m and bulldozing coefficients the flags choose.
+    analysis::ModelChoices choices() const;
+    /// The soil and wheel, with the conditions' defaults (core/analysis/conditions.h) and the
+    /// contact model of --model.
+    analysis::Inputs inputs(const io::PresetLocations& locations) const;
 };
 
 /// "0:0.99:100" (first:last:count), "5,10,15" or "0.3": the values, or InputError naming `what`.

@@ -8,11 +8,12 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
+#include "core/analysis/identification.h"
+#include "core/analysis/identified_parameters.h"
+#include "core/analysis/streaming_identification.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
-#include "core/identification/decoupled_fit.h"
-#include "core/identification/full_fit.h"
-#include "core/identification/streaming.h"
+#include "core/contact/operating_fields.h"
 #include "core/identification/synthetic.h"
 #include "core/io/csv.h"
 
@@ -21,7 +22,7 @@ namespace {
 
 struct SynthOptions {
     ModelOptions model;
-    std::string loads = "58.86";
+    std::string loads = formatNumber(contact::kDefaultLoadN);
     std::string slips = "0:0.9:60";
     double slip_angle_deg = 0.0;
     std::vector<std::string> noise;  // channel=sigma or channel=P%
@@ -63,68 +64,85 @@ struct IdentifyOptions {
     std::string guess;
     bool json = false;
     bool skip_bad_rows = false;
-    bool refine = false;
-    std::vector<std::string> fix;    // name=value
+    bool refine = analysis::IdentificationSettings{}.refine;
+    std::vector<std::string> fix;    // key=value, identified_parameters.h keys
     std::vector<std::string> noise;  // fx=, fz=, my= noise levels for the refinement weights
     std::optional<double> jmax_m;
     std::string stream;  // --stream FILE: one estimate per sample
-    std::size_t window = 60;
+    std::size_t window = identification::StreamingOptions{}.window;
 };
 
-// `identify --stream FILE`: feeds the samples one at a time to the streaming identifier and
-// prints one line per sample (JSON Lines with --json), then the detected soil changes.
-void runStream(const IdentifyOptions& o, const identification::DataSet& data,
-               const wheel::WheelParameters& wheel,
+// Decimals of an identified parameter in the text output (K_s in kPa/m^n is in the thousands).
+int decimals(const analysis::IdentifiedField& field) {
+    const std::string key = field.key;
+    return key == "Ks_kPa" ? 1 : key == "c_kPa" ? 3 : key == "phi_deg" ? 2 : 4;
+}
+
+// One identified parameter for a human: its symbol, value (and ± std) and unit.
+std::string shown(const analysis::IdentifiedField& field, double si,
+                  const std::optional<double>& std_si = std::nullopt) {
+    std::string text = std::string(field.symbol) + " = " + fixed(field.toUser(si), decimals(field));
+    if (std_si && *std_si > 0) text += " ± " + fixed(*std_si / field.to_si, 4);
+    const std::string unit = field.displayUnit();
+    return unit.empty() ? text : text + " " + unit;
+}
+
+// The identified parameters as JSON: the field table's keys in its units.
+nlohmann::json parametersJson(const identification::DecoupledParameters& p) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const analysis::IdentifiedField& field : analysis::identifiedFields())
+        j[field.key] = field.userValue(p);
+    return j;
+}
+
+// `identify --stream FILE`: the samples fed one at a time to the streaming identifier
+// (core/analysis/streaming_identification.h), one line per sample (JSON Lines with --json), then
+// the detected soil changes.
+void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
                const identification::DecoupledParameters& guess) {
-    identification::StreamingOptions options;
-    options.initial = guess;
-    options.window = o.window;
-    identification::StreamingIdentifier identifier(wheel, options);
-    std::vector<std::size_t> changes;
-    const SignalCancellation cancellation;
-    std::size_t fed = 0;
-    if (!o.json) {
-        std::cout << "sample  time_s      a0      a1   Ks_kPa      n0      n1   c_kPa  phi_deg     "
-                     "K_m   score  window\n";
+    analysis::StreamingSettings settings;
+    settings.csv = o.stream;
+    settings.skip_bad_rows = o.skip_bad_rows;
+    settings.options.initial = guess;
+    settings.options.window = o.window;
+    analysis::StreamSource source;
+    try {
+        source = analysis::streamSource(inputs, settings);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(std::string(e.what()) + "\n(use --skip-bad-rows to skip bad rows)");
     }
-    for (const identification::Sample& sample : data.samples) {
-        if (cancellation.requested()) break;
-        ++fed;
-        const identification::StreamUpdate u = identifier.push(sample);
-        if (u.change_detected && u.change_at) changes.push_back(*u.change_at);
-        const identification::DecoupledParameters& p = u.parameters;
+    // The data are read: a signal from now on stops the identifier after the sample in hand.
+    const SignalCancellation cancellation;
+    const analysis::StreamingResult result = analysis::playStreaming(
+        std::move(source), inputs.wheel, settings.options, cancellation.flag());
+    for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
+    if (!o.json) {
+        std::cout << "sample  time_s";
+        for (const analysis::IdentifiedField& field : analysis::identifiedFields())
+            std::cout << ' ' << std::setw(8) << field.key;
+        std::cout << "   score  window\n";
+    }
+    for (const analysis::StreamFrame& frame : result.frames) {
+        const identification::StreamUpdate& u = frame.update;
         if (o.json) {
             nlohmann::json j{{"sample", u.index},
                              {"estimated", u.estimated},
                              {"window", u.window_size},
                              {"score", roundSignificant(u.residual_score, 4)}};
-            if (sample.time_s) j["time_s"] = *sample.time_s;
-            if (u.estimated) {
-                j.update({{"a0", p.a0},
-                          {"a1", p.a1},
-                          {"Ks", p.pressure_modulus / 1e3},
-                          {"n0", p.n0},
-                          {"n1", p.n1},
-                          {"c_kPa", p.cohesion_pa / 1e3},
-                          {"phi_deg", units::radToDeg(p.friction_angle_rad)},
-                          {"K_m", p.shear_modulus_m}});
-            }
+            j["time_s"] = frame.time_s;
+            if (u.estimated) j.update(parametersJson(u.parameters));
             if (u.change_at) j["change_at"] = *u.change_at;
             std::cout << j.dump() << '\n';
             continue;
         }
-        std::cout << std::setw(6) << u.index << ' ' << std::setw(7)
-                  << (sample.time_s ? fixed(*sample.time_s, 2) : "-");
+        std::cout << std::setw(6) << u.index << ' ' << std::setw(7) << fixed(frame.time_s, 2);
         if (u.estimated) {
-            std::cout << ' ' << std::setw(7) << fixed(p.a0, 4) << ' ' << std::setw(7)
-                      << fixed(p.a1, 4) << ' ' << std::setw(8) << fixed(p.pressure_modulus / 1e3, 1)
-                      << ' ' << std::setw(7) << fixed(p.n0, 4) << ' ' << std::setw(7)
-                      << fixed(p.n1, 4) << ' ' << std::setw(7) << fixed(p.cohesion_pa / 1e3, 3)
-                      << ' ' << std::setw(8) << fixed(units::radToDeg(p.friction_angle_rad), 2)
-                      << ' ' << std::setw(7) << fixed(p.shear_modulus_m, 4);
+            for (const analysis::IdentifiedField& field : analysis::identifiedFields()) {
+                std::cout << ' ' << std::setw(8)
+                          << fixed(field.userValue(u.parameters), decimals(field));
+            }
         } else {
-            std::cout
-                << "   (collecting samples)                                                  ";
+            std::cout << "   (collecting samples)                                              ";
         }
         std::cout << ' ' << std::setw(7) << fixed(u.residual_score, 2) << ' ' << std::setw(7)
                   << u.window_size;
@@ -132,74 +150,51 @@ void runStream(const IdentifyOptions& o, const identification::DataSet& data,
         std::cout << '\n';
     }
     const std::string note = "cancelled by " + cancellation.signalName() + " after " +
-                             std::to_string(fed) + " of " + std::to_string(data.samples.size()) +
-                             " samples";
-    const bool cancelled = fed < data.samples.size();
+                             std::to_string(result.frames.size()) + " of " +
+                             std::to_string(result.sample_count) + " samples";
     if (o.json) {
-        if (cancelled)
+        if (result.cancelled)
             std::cout << nlohmann::json{{"cancelled", true}, {"note", note}}.dump() << '\n';
     } else {
-        std::cout << (changes.empty() ? std::string("no soil change detected")
-                                      : "soil changes detected at samples:");
-        for (std::size_t c : changes) std::cout << ' ' << c;
+        std::cout << (result.changes.empty() ? std::string("no soil change detected")
+                                             : "soil changes detected at samples:");
+        for (std::size_t c : result.changes) std::cout << ' ' << c;
         std::cout << '\n';
-        if (cancelled) std::cout << note << '\n';
+        if (result.cancelled) std::cout << note << '\n';
     }
     std::cout.flush();
-    if (cancelled) exitCancelled(cancellation, note);
+    if (result.cancelled) exitCancelled(cancellation, note);
 }
 
-// --fix a0=0.2,a1=0.3 in the output units (Ks kPa/m^n, c kPa, phi deg).
-void applyFixes(const std::vector<std::string>& items, identification::DecoupledParameters& p,
-                identification::RefineOptions& options) {
-    using namespace identification;
+// --fix a0=0.2,a1=0.3: identified_parameters.h keys, values in their units.
+std::vector<std::pair<std::string, double>> parseFixes(const std::vector<std::string>& items) {
+    std::vector<std::string> keys;
+    for (const analysis::IdentifiedField& field : analysis::identifiedFields()) {
+        if (analysis::fullParameterOf(field)) keys.emplace_back(field.key);
+    }
+    std::string list;
+    for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
+    std::vector<std::pair<std::string, double>> out;
+    std::vector<Issue> issues;
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const std::string key = item.substr(0, equals);
         double value = 0.0;
         if (equals == std::string::npos || !io::parseNumber(item.substr(equals + 1), value)) {
-            throw InputError(
-                "--fix '" + item +
-                "': expected NAME=VALUE, NAME one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
+            issues.push_back({"--fix " + item, "expected NAME=VALUE, NAME one of " + list});
+        } else if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+            const std::string near = nearestName(key, keys);
+            issues.push_back(
+                {"--fix " + key, "not a refined parameter (" + list + ")" +
+                                     (near.empty() ? "" : "; did you mean " + near + "?")});
+        } else {
+            const analysis::IdentifiedField& field = *analysis::findIdentifiedField(key);
+            if (checkRange(issues, "--fix " + key, value, field.range, field.displayUnit()))
+                out.emplace_back(key, value);
         }
-        if (key == "a0")
-            p.a0 = value, options.fixed[kA0] = true;
-        else if (key == "a1")
-            p.a1 = value, options.fixed[kA1] = true;
-        else if (key == "Ks")
-            p.pressure_modulus = value * 1e3, options.fixed[kKs] = true;
-        else if (key == "n")
-            p.n0 = value, options.fixed[kN] = true;
-        else if (key == "c_kPa")
-            p.cohesion_pa = value * 1e3, options.fixed[kC] = true;
-        else if (key == "phi_deg")
-            p.friction_angle_rad = units::degToRad(value), options.fixed[kPhi] = true;
-        else if (key == "K_m")
-            p.shear_modulus_m = value, options.fixed[kK] = true;
-        else
-            throw InputError("--fix '" + key +
-                             "': unknown; one of a0, a1, Ks, n, c_kPa, phi_deg, K_m");
     }
-}
-
-// Output units of the identified parameters: Ks in kPa/m^n, c in kPa, phi in deg.
-double outputValue(int k, double si) {
-    using namespace identification;
-    if (k == kKs || k == kC) return si / 1e3;
-    if (k == kPhi) return units::radToDeg(si);
-    return si;
-}
-
-identification::DecoupledParameters guessFrom(const soil::SoilParameters& soil,
-                                              const wheel::WheelParameters& wheel) {
-    return {soil.max_stress_a0,
-            soil.max_stress_a1,
-            soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus,
-            soil.sinkage_exponent,
-            soil.sinkage_exponent_slip,
-            soil.cohesion_pa,
-            soil.friction_angle_rad,
-            soil.shear_modulus_m};
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    return out;
 }
 
 }  // namespace
@@ -267,90 +262,86 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     i->add_flag("--json", identify->json, "JSON output");
     i->add_flag("--skip-bad-rows", identify->skip_bad_rows,
                 "Skip invalid rows instead of stopping");
-    i->add_flag(
-        "--refine", identify->refine,
-        "Refine a0, a1, Ks, n, c, phi, K with the full model (removes the linearisation bias)");
+    i->add_flag("--refine,!--no-refine", identify->refine,
+                "Refine a0, a1, Ks, n, c, phi, K with the full model (removes the linearisation "
+                "bias; the default); --no-refine: the decoupled fit alone")
+        ->capture_default_str();
     i->add_option("--fix", identify->fix,
-                  "With --refine: keep parameters fixed, e.g. a0=0.2,a1=0.3")
+                  "Refinement: keep parameters fixed, e.g. a0=0.2,a1=0.3 (keys of the output)")
         ->delimiter(',');
     i->add_option(
          "--noise", identify->noise,
-         "With --refine: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
+         "Refinement: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
         ->delimiter(',');
     i->add_option("--jmax", identify->jmax_m,
-                  "With --refine: the model's j_max [m] (default: the guess soil's, else none)");
-    i->callback([identify, &locations] {
-        if (identify->data.empty() == identify->stream.empty())
+                  "Refinement: the model's j_max [m] (default: the guess soil's, else none)");
+    i->callback([identify, refine = i->get_option("--refine"), &locations] {
+        const IdentifyOptions& o = *identify;
+        if (o.data.empty() == o.stream.empty())
             throw InputError("give --data FILE or --stream FILE");
-        const bool streaming = !identify->stream.empty();
-        if (streaming && identify->refine) throw InputError("--refine does not apply to --stream");
-        const auto read =
-            identification::readDataSet(streaming ? identify->stream : identify->data,
-                                        identify->skip_bad_rows ? identification::BadRows::kSkip
-                                                                : identification::BadRows::kStop);
-        if (!read) throw InputError(read.message() + "\n(use --skip-bad-rows to skip bad rows)");
-        for (const Issue& skipped : read->skipped)
-            std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
-        if (read->data.samples.empty())
-            throw InputError((streaming ? identify->stream : identify->data) +
-                             ": no valid samples");
+        const bool streaming = !o.stream.empty();
+        if (streaming && refine->count() > 0 && o.refine)
+            throw InputError("--refine does not apply to --stream");
         ModelOptions names;
-        names.wheel = identify->wheel;
-        const auto wheel = names.wheelParameters(locations);
+        names.wheel = o.wheel;
+        analysis::Inputs inputs;
+        inputs.wheel = names.wheelParameters(locations);
         identification::DecoupledParameters guess;
-        if (!identify->guess.empty()) {
-            names.soil = identify->guess;
-            guess = guessFrom(names.soilParameters(locations), wheel);
+        // j_max of the forward model: --jmax, else the guess soil's, else none.
+        inputs.soil.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+        if (!o.guess.empty()) {
+            names.soil = o.guess;
+            inputs.soil = names.soilParameters(locations);
+            guess = analysis::identifiedOf(inputs.soil, inputs.wheel);
         }
         if (streaming) {
-            runStream(*identify, read->data, wheel, guess);
+            runStream(o, inputs, guess);
             return;
         }
-        const auto fit = identification::fitDecoupled(read->data, wheel, guess);
-        identification::DecoupledParameters p = fit.parameters;
-        std::vector<identification::StepReport> reports = fit.steps;
-        std::optional<identification::Uncertainty> uncertainty;
-        if (!identify->refine &&
-            (!identify->fix.empty() || !identify->noise.empty() || identify->jmax_m)) {
-            throw InputError("--fix, --noise and --jmax belong to --refine");
+        if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax_m)) {
+            throw InputError(
+                "--fix, --noise and --jmax belong to the refinement (drop --no-refine)");
         }
-        if (identify->refine) {
-            identification::RefineOptions options;
-            applyFixes(identify->fix, p, options);
-            identification::NoiseSpec noise;
-            parseNoise(identify->noise, noise);
-            options.sigma_fx = noise.fx.absolute;
-            options.sigma_fz = noise.fz.absolute;
-            options.sigma_my = noise.my.absolute;
-            if (identify->jmax_m) {
-                std::vector<Issue> issues;
-                checkRange(issues, "--jmax", *identify->jmax_m, {0.0, 1.0, true, false}, "m");
-                if (!issues.empty()) throw InputError(formatIssues(issues));
-                options.max_shear_deformation_m = *identify->jmax_m;
-            } else if (!identify->guess.empty()) {
-                options.max_shear_deformation_m =
-                    names.soilParameters(locations).max_shear_deformation_m;
-            }
-            const auto refined = identification::refineFullModel(read->data, wheel, p, options);
-            p = refined.parameters;
-            reports.push_back(refined.report);
-            uncertainty = refined.uncertainty;
+        analysis::IdentificationSettings settings;
+        settings.csv = o.data;
+        settings.skip_bad_rows = o.skip_bad_rows;
+        settings.guess = guess;
+        settings.refine = o.refine;
+        settings.fixed = parseFixes(o.fix);
+        identification::NoiseSpec noise;
+        parseNoise(o.noise, noise);
+        settings.sigma_fx_n = noise.fx.absolute;
+        settings.sigma_fz_n = noise.fz.absolute;
+        settings.sigma_my_nm = noise.my.absolute;
+        if (o.jmax_m) {
+            std::vector<Issue> issues;
+            const soil::SoilField& jmax = *soil::findSoilField("jmax_m");
+            checkRange(issues, "--jmax", *o.jmax_m, jmax.range, jmax.displayUnit());
+            if (!issues.empty()) throw InputError(formatIssues(issues));
+            settings.max_shear_deformation_m = *o.jmax_m;
         }
-        nlohmann::json j{{"a0", p.a0},
-                         {"a1", p.a1},
-                         {"Ks", p.pressure_modulus / 1e3},
-                         {"n0", p.n0},
-                         {"n1", p.n1},
-                         {"c_kPa", p.cohesion_pa / 1e3},
-                         {"phi_deg", units::radToDeg(p.friction_angle_rad)},
-                         {"K_m", p.shear_modulus_m}};
-        if (identify->refine) j["n"] = p.n0;
+        const analysis::IdentificationResult result =
+            analysis::computeIdentification(inputs, settings);
+        if (!result.data_issues.empty())
+            throw InputError(result.message + "\n(use --skip-bad-rows to skip bad rows)");
+        if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
+        for (const Issue& skipped : result.skipped)
+            std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
+        const identification::DecoupledParameters& p = result.identified;
+        const std::optional<identification::Uncertainty> uncertainty =
+            result.refined ? std::optional(result.refined->uncertainty) : std::nullopt;
+        const std::vector<identification::StepReport> reports = result.steps();
+        nlohmann::json j = parametersJson(p);
         if (uncertainty) {
             nlohmann::json std_json = nlohmann::json::object();
             for (int k = 0; k < identification::kFullParameterCount; ++k) {
-                std_json[identification::fullParameterNames()[k]] =
-                    uncertainty->computed ? nlohmann::json(outputValue(k, uncertainty->std[k]))
-                                          : nlohmann::json();
+                const analysis::IdentifiedField& field =
+                    analysis::fieldOf(static_cast<identification::FullParameter>(k));
+                std_json[field.key] =
+                    uncertainty->computed
+                        ? nlohmann::json(uncertainty->std[static_cast<std::size_t>(k)] /
+                                         field.to_si)
+                        : nlohmann::json();
             }
             j["std"] = std_json;
             j["flags"] = uncertainty->flags;
@@ -365,29 +356,25 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                              {"time_ms", step.wall_time_ms}});
         }
         j["steps"] = steps;
-        j["samples"] = read->data.samples.size();
-        if (identify->json) {
+        j["samples"] = result.data.samples.size();
+        if (o.json) {
             std::cout << j.dump(2) << '\n';
         } else {
-            auto pm = [&](int k) {
-                return uncertainty && uncertainty->computed && uncertainty->std[k] > 0
-                           ? " ± " + fixed(outputValue(k, uncertainty->std[k]), 4)
-                           : std::string();
-            };
-            using namespace identification;
-            std::cout << (identify->refine ? "full-model identification (decoupled start), "
-                                           : "decoupled identification, ")
-                      << read->data.samples.size() << " samples, " << wheel.name << "\n"
-                      << "  a0 = " << fixed(p.a0, 4) << pm(kA0) << "   a1 = " << fixed(p.a1, 4)
-                      << pm(kA1) << "\n"
-                      << "  Ks = " << fixed(p.pressure_modulus / 1e3, 1) << pm(kKs) << " kPa/m^n   "
-                      << (identify->refine ? "n = " + fixed(p.n0, 4) + pm(kN)
-                                           : "n0 = " + fixed(p.n0, 4) + "   n1 = " + fixed(p.n1, 4))
-                      << "\n"
-                      << "  c = " << fixed(p.cohesion_pa / 1e3, 3) << pm(kC)
-                      << " kPa   phi = " << fixed(units::radToDeg(p.friction_angle_rad), 2)
-                      << pm(kPhi) << " deg   K = " << fixed(p.shear_modulus_m, 4) << pm(kK)
-                      << " m\n";
+            std::cout << (o.refine ? "full-model identification (decoupled start), "
+                                   : "decoupled identification, ")
+                      << result.data.samples.size() << " samples, " << inputs.wheel.name << "\n";
+            int column = 0;
+            for (const analysis::IdentifiedField& field : analysis::identifiedFields()) {
+                const auto full = analysis::fullParameterOf(field);
+                if (o.refine && !full) continue;  // n1 = 0 after the refinement
+                std::optional<double> sd;
+                if (uncertainty && uncertainty->computed && full)
+                    sd = uncertainty->std[static_cast<std::size_t>(*full)];
+                std::cout << (column % 3 == 0 ? "  " : "   ") << shown(field, p.*field.member, sd)
+                          << (column % 3 == 2 ? "\n" : "");
+                ++column;
+            }
+            if (column % 3 != 0) std::cout << '\n';
             for (const auto& step : reports) {
                 std::cout << "  step " << step.name << ": |r|^2 = " << step.squared_residual_norm
                           << ", " << fixed(step.wall_time_ms, 2) << " ms, " << step.termination
@@ -398,9 +385,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                     std::cout << "  note: " << flag << '\n';
             }
         }
-        bool usable = fit.usable();
-        for (const auto& step : reports) usable = usable && step.usable;
-        if (!usable) throw std::runtime_error("the fit did not converge to a usable solution");
+        if (!result.usable())
+            throw std::runtime_error("the fit did not converge to a usable solution");
     });
 }
 

@@ -9,9 +9,9 @@
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
 #include "app/headless_application.h"
-#include "core/analysis/sweep.h"
+#include "core/analysis/forces.h"
 #include "core/common/range.h"
-#include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "widgets/plots/sweep_plot.h"
@@ -21,28 +21,22 @@ namespace {
 
 struct RenderOptions {
     ModelOptions model;
-    double load_n = units::kGravity * 6.0;  // Table 2.6
+    double load_n = analysis::OperatingConditions{}.load_n;
     std::string out = "out";
     int width = 1200;
     int height = 800;
 };
 
 int render(const RenderOptions& o, const io::PresetLocations& locations) {
-    const auto soil = o.model.soilParameters(locations);
-    const auto wheel = o.model.wheelParameters(locations);
-    analysis::SweepSpec spec;
-    spec.slips = analysis::linspace(0.0, 0.99, 100);
-    for (double beta : {5.0, 10.0, 15.0, 20.0, 25.0, 30.0})
-        spec.slip_angles_rad.push_back(units::degToRad(beta));
-    spec.load_n = o.load_n;
-    spec.exit = o.model.exitCondition();
-    spec.max_stress_angle_rad = o.model.maxStressAngleRad();
-    spec.model = o.model.contactModel();
-    spec.bulldozing = o.model.bulldozingModel();
+    analysis::Inputs inputs = o.model.inputs(locations);
+    inputs.conditions.load_n = o.load_n;
+    analysis::ForcesSettings settings;
+    settings.model = o.model.choices();
     const SignalCancellation cancellation;
-    spec.cancel = cancellation.flag();
-    const analysis::SweepResult result =
-        analysis::sweepSlip(contact::makeContactParameters(soil, wheel), spec);
+    const analysis::ForcesResult result =
+        analysis::computeForceSweep(inputs, settings, cancellation.flag());
+    const soil::SoilParameters& soil = inputs.soil;
+    const wheel::WheelParameters& wheel = inputs.wheel;
     for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
 
     std::error_code ec;
@@ -90,7 +84,8 @@ void addRenderCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--height", options->height, "Image height [px]")->check(CLI::Range(200, 8000));
     cmd->callback([options, &locations] {
         std::vector<Issue> issues;
-        if (!checkRange(issues, "--load", options->load_n, {0.0, 1e7, true, false}, "N")) {
+        const FieldInfo& load = contact::loadField();
+        if (!checkRange(issues, "--load", options->load_n, load.range, load.displayUnit())) {
             throw InputError(formatIssues(issues));
         }
         render(*options, locations);

@@ -9,6 +9,7 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
+#include "core/analysis/rover.h"
 #include "core/common/range.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
@@ -70,32 +71,36 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         ->check(CLI::IsMember({"full", "quadratic"}));
     cmd->callback([options, &locations] {
         const SimulateOptions& o = *options;
+        // The rover service (core/analysis/rover.h), as the studio's rover panel and scripts.
+        analysis::RoverSettings settings;
+        settings.scenario = o.scenario;
         Result<scenario::Scenario> loaded = scenario::resolveScenario(locations, o.scenario);
         if (!loaded) throw InputError(loaded.message());
-        scenario::Scenario s = loaded.value();
-        std::vector<Issue> issues;
-        if (o.duration_s &&
-            checkRange(issues, "--duration", *o.duration_s, {0.0, 86400.0, true, false}, "s")) {
-            s.duration_s = *o.duration_s;
-        }
-        if (o.time_step_s && checkRange(issues, "--step", *o.time_step_s, {1e-6, 0.05}, "s")) {
-            s.time_step_s = *o.time_step_s;
-            s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
-        }
+        settings.loaded = loaded.value();
+        settings.duration_s = o.duration_s;
+        settings.time_step_s = o.time_step_s;
         if (o.model) {
-            s.options.contact.model = *o.model == "quadratic" ? contact::ContactModel::kQuadratic
-                                                              : contact::ContactModel::kFull;
+            settings.model = *o.model == "quadratic" ? contact::ContactModel::kQuadratic
+                                                     : contact::ContactModel::kFull;
         }
+        std::vector<Issue> issues;
+        if (o.duration_s)
+            checkRange(issues, "--duration", *o.duration_s, scenario::kDurationRange, "s");
+        if (o.time_step_s)
+            checkRange(issues, "--step", *o.time_step_s, scenario::kTimeStepRange, "s");
         if (!issues.empty()) throw InputError(formatIssues(issues));
 
         const SignalCancellation cancellation;
-        scenario::RunOptions run;
+        analysis::Control run;
         run.cancel = cancellation.flag();
         const bool tty = ::isatty(STDERR_FILENO) == 1;
         if (tty) run.progress = drawProgress;
         scenario::RunResult result;
+        scenario::Scenario s;
         try {
-            result = scenario::runScenario(s, run);
+            analysis::RoverResult rover = analysis::runRover(settings, run);
+            result = std::move(rover.run);
+            s = std::move(rover.scenario);
         } catch (const std::invalid_argument& e) {
             throw InputError(std::string(o.scenario) + ": " + e.what());
         }

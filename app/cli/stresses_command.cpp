@@ -1,16 +1,15 @@
 // `terrastudio stresses`: σ, τ, τ_t, τ_l and j over the contact (Eqs. 2.13–2.22), exact and from
-// the quadratic approximation (Eqs. 2.36–2.38), with RMSE and MAE (Eqs. 2.39–2.40, Tables 2.4–2.5).
-#include <cmath>
+// the quadratic approximation (Eqs. 2.36–2.38), with RMSE and MAE (Eqs. 2.39–2.40, Tables 2.4–2.5):
+// core/analysis/stresses.h, as the studio's stress panel and a script's "stresses".
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "core/analysis/stresses.h"
 #include "core/common/range.h"
-#include "core/common/table.h"
-#include "core/common/units.h"
-#include "core/contact/quadratic_model.h"
+#include "core/contact/operating_fields.h"
 #include "core/io/csv.h"
 #include "core/io/table_json.h"
 
@@ -19,10 +18,8 @@ namespace {
 
 struct StressOptions {
     ModelOptions model;
-    double slip = 0.3;  // Table 2.3
-    double slip_angle_deg = 12.0;
-    double entry_angle_deg = 30.0;
-    double step_deg = 0.01;  // MODEL-NOTES: the grid of Tables 2.4–2.5
+    analysis::StressSettings settings;
+    std::optional<double> load_n;
     bool json = false;
     std::string out;
 };
@@ -31,17 +28,22 @@ struct StressOptions {
 
 void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
     auto options = std::make_shared<StressOptions>();
+    analysis::StressSettings& s = options->settings;
     CLI::App* cmd = app.add_subcommand(
         "stresses",
         "Stress distributions over the contact, exact and quadratic, with RMSE/MAE "
         "(Figs. 2.11, 2.16; Tables 2.4-2.5)");
     options->model.addTo(*cmd);
-    cmd->add_option("--slip", options->slip, "Slip ratio s in [-1, 1]")->capture_default_str();
-    cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle [deg]")
+    cmd->add_option("--slip", s.slip, "Slip ratio s in " + contact::slipField().range.describe())
         ->capture_default_str();
-    cmd->add_option("--entry-angle", options->entry_angle_deg, "Entry angle theta_f [deg]")
-        ->capture_default_str();
-    cmd->add_option("--step", options->step_deg, "Grid step [deg]")
+    cmd->add_option("--slip-angle", s.slip_angle_deg, "Slip angle [deg]")->capture_default_str();
+    auto* load = cmd->add_option("--load", options->load_n,
+                                 "Wheel load W [N]: theta_f solved from F_z = W (default " +
+                                     formatNumber(contact::kDefaultLoadN) + ")");
+    cmd->add_option("--entry-angle", s.entry_angle_deg,
+                    "Fixed entry angle theta_f [deg] instead of a load (Table 2.3: 30)")
+        ->excludes(load);
+    cmd->add_option("--step", s.step_deg, "Grid step [deg]")
         ->check(CLI::Range(1e-4, 10.0))
         ->capture_default_str();
     cmd->add_flag("--json", options->json, "JSON: the error summary and the grid");
@@ -50,46 +52,25 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "to stdout");
     cmd->callback([options, &locations] {
         const StressOptions& o = *options;
-        const auto soil = o.model.soilParameters(locations);
-        const auto wheel = o.model.wheelParameters(locations);
-        const auto p = contact::makeContactParameters(soil, wheel);
-        const double theta_f = units::degToRad(o.entry_angle_deg);
-        const contact::OperatingPoint<double> op{o.slip, units::degToRad(o.slip_angle_deg), theta_f,
-                                                 o.model.exitCondition().exitAngle(theta_f),
-                                                 o.model.maxStressAngleRad()};
-        contact::requireValid(op);
-        const double step = units::degToRad(o.step_deg);
-        const contact::StressField<double> field(p, op);
-        const contact::QuadraticStress<double> quadratic = contact::fitQuadraticStress(field);
-        const auto errors = contact::quadraticApproximationErrors(p, op, step);
-
-        Table grid;
-        grid.columns = {"theta_deg",      "sigma_kPa",     "tau_kPa",        "tau_t_kPa",
-                        "tau_l_kPa",      "j_m",           "sigma_quad_kPa", "tau_quad_kPa",
-                        "tau_t_quad_kPa", "tau_l_quad_kPa"};
-        // The grid of quadraticApproximationErrors: from the θ_r the model uses (≥ −θ_f).
-        const double theta_r = field.exitAngle();
-        const auto steps = static_cast<long>(std::floor((theta_f - theta_r) / step + 1e-9));
-        for (long i = 0; i <= steps; ++i) {
-            const double theta = theta_r + static_cast<double>(i) * step;
-            const auto e = field.at(theta);
-            const auto q = quadratic.at(theta);
-            grid.rows.push_back({plainZero(roundSignificant(units::radToDeg(theta))), e.sigma / 1e3,
-                                 e.tau / 1e3, e.tau_t / 1e3, e.tau_l / 1e3, e.shear, q.sigma / 1e3,
-                                 q.tau / 1e3, q.tau_t / 1e3, q.tau_l / 1e3});
-        }
+        analysis::Inputs inputs = o.model.inputs(locations);
+        if (o.load_n) inputs.conditions.load_n = *o.load_n;
+        analysis::StressSettings settings = o.settings;
+        settings.model = o.model.choices();
+        const analysis::StressResult result = analysis::computeStresses(inputs, settings);
+        if (!result.message.empty()) throw std::runtime_error(result.message);
+        const Table& grid = result.table;
         const char* names[] = {"sigma", "tau", "tau_t", "tau_l"};
         const bool to_file = !o.out.empty() && o.out != "-";
         // θ_m as the user typed it (15, not 15.000000000000002), or Eq. 2.18's value.
-        const double theta_m_deg =
-            plainZero(roundSignificant(units::radToDeg(field.maxStressAngle())));
+        const double theta_m_deg = plainZero(roundSignificant(result.max_stress_angle_deg));
         if (o.json) {
             nlohmann::json summary;
             for (int k = 0; k < 4; ++k) {
-                summary[std::string(names[k]) + "_rmse_kPa"] = errors[k].rmse / 1e3;
-                summary[std::string(names[k]) + "_mae_kPa"] = errors[k].mae / 1e3;
+                summary[std::string(names[k]) + "_rmse_kPa"] = result.errors[k].rmse / 1e3;
+                summary[std::string(names[k]) + "_mae_kPa"] = result.errors[k].mae / 1e3;
             }
             summary["max_stress_angle_deg"] = theta_m_deg;
+            summary["entry_angle_deg"] = plainZero(roundSignificant(result.entry_angle_deg));
             summary["points"] = grid.rows.size();
             writeOutput(
                 o.out,
@@ -103,19 +84,22 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
             if (!to_file) return;
             std::cerr << "wrote " << o.out << ": " << grid.rows.size() << " angles\n";
         }
-        std::cout << soil.name << ", " << wheel.name << ": s = " << formatNumber(o.slip)
-                  << ", beta = " << formatNumber(o.slip_angle_deg)
-                  << " deg, theta_f = " << formatNumber(o.entry_angle_deg)
-                  << " deg, theta_m = " << fixed(theta_m_deg, 4)
+        std::cout << inputs.soil.name << ", " << inputs.wheel.name
+                  << ": s = " << formatNumber(settings.slip)
+                  << ", beta = " << formatNumber(settings.slip_angle_deg) << " deg, theta_f = "
+                  << (settings.entry_angle_deg ? formatNumber(*settings.entry_angle_deg) + " deg"
+                                               : fixed(result.entry_angle_deg, 4) + " deg (W = " +
+                                                     formatNumber(inputs.conditions.load_n) + " N)")
+                  << ", theta_m = " << fixed(theta_m_deg, 4)
                   << " deg\nquadratic approximation vs exact over " << grid.rows.size()
-                  << " angles (step " << formatNumber(o.step_deg) << " deg):\n"
+                  << " angles (step " << formatNumber(settings.step_deg) << " deg):\n"
                   << "            sigma      tau    tau_t    tau_l\n";
         std::cout << "  RMSE kPa";
         for (int k = 0; k < 4; ++k)
-            std::cout << ' ' << std::setw(8) << fixed(errors[k].rmse / 1e3, 4);
+            std::cout << ' ' << std::setw(8) << fixed(result.errors[k].rmse / 1e3, 4);
         std::cout << "\n  MAE  kPa";
         for (int k = 0; k < 4; ++k)
-            std::cout << ' ' << std::setw(8) << fixed(errors[k].mae / 1e3, 4);
+            std::cout << ' ' << std::setw(8) << fixed(result.errors[k].mae / 1e3, 4);
         std::cout << '\n';
     });
 }

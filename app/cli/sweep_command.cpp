@@ -4,7 +4,8 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
-#include "core/analysis/sweep.h"
+#include "core/analysis/forces.h"
+#include "core/analysis/sensitivity.h"
 #include "core/common/units.h"
 #include "core/io/csv.h"
 #include "core/io/table_json.h"
@@ -12,38 +13,45 @@
 namespace terra::app {
 namespace {
 
+// The defaults of the sweeps are the conditions' (core/analysis/conditions.h).
+std::string defaultGrid() {
+    const analysis::OperatingConditions c;
+    return "0:" + formatNumber(c.slip_max) + ":" + std::to_string(c.slip_count);
+}
+
+std::string joined(const std::vector<double>& values) {
+    std::string text;
+    for (double v : values) text += (text.empty() ? "" : ",") + formatNumber(v);
+    return text;
+}
+
 struct SweepOptions {
     ModelOptions model;
-    std::string slips = "0:0.99:100";
-    std::string slip_angles = "5,10,15,20,25,30";
+    std::string slips;  // empty: the conditions' grid
+    std::string slip_angles = joined(analysis::OperatingConditions{}.slip_angles_deg);
+    std::string slip_angles_flag = "--slip-angles";
     std::optional<double> load_n;
     std::optional<double> entry_angle_deg;
     bool json = false;
     std::string out;
     // sensitivity only
-    std::string parameter = "all";
+    analysis::SensitivitySettings sensitivity;
     std::string values;
-};
 
-analysis::SweepSpec makeSpec(const SweepOptions& o) {
-    analysis::SweepSpec spec;
-    spec.slips = parseValues(o.slips, "--slips");
-    spec.slip_angles_rad.clear();
-    for (double deg : parseValues(o.slip_angles, "--slip-angles")) {
-        spec.slip_angles_rad.push_back(units::degToRad(deg));
+    analysis::Inputs inputs(const io::PresetLocations& locations) const {
+        analysis::Inputs in = model.inputs(locations);
+        in.conditions.slip_angles_deg = parseValues(slip_angles, slip_angles_flag);
+        if (load_n) in.conditions.load_n = *load_n;
+        return in;
     }
-    if (o.entry_angle_deg) {
-        spec.load_n.reset();
-        spec.entry_angle_rad = units::degToRad(*o.entry_angle_deg);
-    } else {
-        spec.load_n = o.load_n.value_or(units::kGravity * 6.0);  // Table 2.6: 6 kg
+    analysis::ForcesSettings forces() const {
+        analysis::ForcesSettings s;
+        s.model = model.choices();
+        s.entry_angle_deg = entry_angle_deg;
+        if (!slips.empty()) s.slips = parseValues(slips, "--slips");
+        return s;
     }
-    spec.exit = o.model.exitCondition();
-    spec.max_stress_angle_rad = o.model.maxStressAngleRad();
-    spec.model = o.model.contactModel();
-    spec.bulldozing = o.model.bulldozingModel();
-    return spec;
-}
+};
 
 // Writes the table; a cancelled sweep is written too, marked: "cancelled": true in JSON, a last
 // comment line in CSV (which the CSV readers skip), then the cancellation's exit code.
@@ -72,11 +80,13 @@ void emit(const SweepOptions& o, const analysis::SweepResult& result,
     }
 }
 
-void addCommonOptions(CLI::App& cmd, SweepOptions& o) {
+void addCommonOptions(CLI::App& cmd, SweepOptions& o, const std::string& slips_default) {
     o.model.addTo(cmd);
-    cmd.add_option("--slips", o.slips, "Slips: range first:last:count or list")
-        ->capture_default_str();
-    auto* load = cmd.add_option("--load", o.load_n, "Wheel load W [N] (default 58.86 = 6 kg)");
+    cmd.add_option("--slips", o.slips,
+                   "Slips: range first:last:count or list (default " + slips_default + ")");
+    auto* load = cmd.add_option(
+        "--load", o.load_n,
+        "Wheel load W [N] (default " + formatNumber(analysis::OperatingConditions{}.load_n) + ")");
     cmd.add_option("--entry-angle", o.entry_angle_deg, "Fixed entry angle [deg] instead of a load")
         ->excludes(load);
     cmd.add_flag("--json", o.json, "JSON output instead of CSV");
@@ -89,92 +99,48 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     auto sweep = std::make_shared<SweepOptions>();
     CLI::App* cmd = app.add_subcommand(
         "sweep", "Forces vs slip for a set of slip angles (Figs. 2.18-2.26), CSV or JSON");
-    addCommonOptions(*cmd, *sweep);
+    addCommonOptions(*cmd, *sweep, defaultGrid());
     cmd->add_option("--slip-angles", sweep->slip_angles, "Slip angles [deg]")
         ->capture_default_str();
     cmd->callback([sweep, &locations] {
-        const auto soil = sweep->model.soilParameters(locations);
-        const auto wheel = sweep->model.wheelParameters(locations);
-        analysis::SweepSpec spec = makeSpec(*sweep);
         const SignalCancellation cancellation;
-        spec.cancel = cancellation.flag();
-        emit(*sweep, analysis::sweepSlip(contact::makeContactParameters(soil, wheel), spec),
+        emit(*sweep,
+             analysis::computeForceSweep(sweep->inputs(locations), sweep->forces(),
+                                         cancellation.flag()),
              cancellation);
     });
 
     auto sens = std::make_shared<SweepOptions>();
-    sens->slip_angles = "15";
+    analysis::SensitivitySettings& defaults = sens->sensitivity;
+    sens->slip_angles = joined(defaults.slip_angles_deg);
+    sens->slip_angles_flag = "--slip-angle";
     CLI::App* s = app.add_subcommand(
         "sensitivity", "Vary one soil parameter, sweep slip (section 4.2, Table 4.1)");
-    addCommonOptions(*s, *sens);
+    addCommonOptions(*s, *sens,
+                     "0:" + formatNumber(analysis::OperatingConditions{}.slip_max) + ":" +
+                         std::to_string(defaults.slip_count));
     s->add_option("--slip-angle", sens->slip_angles, "Slip angle(s) [deg]")->capture_default_str();
-    s->add_option("--parameter", sens->parameter,
+    s->add_option("--parameter", defaults.parameter,
                   "Soil field key (n, c_kPa, phi_deg, kc, kphi, K_m, ...) or 'all' for Table 4.1")
         ->capture_default_str();
     s->add_option("--values", sens->values, "Values in file units (default: Table 4.1's)");
     s->callback([sens, &locations] {
-        const auto soil = sens->model.soilParameters(locations);
-        const auto wheel = sens->model.wheelParameters(locations);
-        std::vector<analysis::SensitivityParameter> parameters;
-        if (sens->parameter == "all") {
-            if (!sens->values.empty()) throw InputError("--values needs a single --parameter");
-            parameters = analysis::thesisSensitivityParameters();
-        } else {
-            if (!soil::findSoilField(sens->parameter)) {
-                throw InputError("--parameter: unknown soil field '" + sens->parameter + "'");
-            }
-            analysis::SensitivityParameter parameter{sens->parameter, {}};
-            if (!sens->values.empty()) {
-                parameter.values = parseValues(sens->values, "--values");
-            } else {
-                for (const auto& p : analysis::thesisSensitivityParameters()) {
-                    if (p.key == sens->parameter) parameter.values = p.values;
-                }
-                if (parameter.values.empty()) {
-                    throw InputError("--values: Table 4.1 has no variations of '" +
-                                     sens->parameter + "'; give --values");
-                }
-            }
-            parameters.push_back(parameter);
-        }
-        // Validate every value before computing anything.
-        std::vector<Issue> issues;
-        for (const auto& parameter : parameters) {
-            const soil::SoilField* field = soil::findSoilField(parameter.key);
-            for (double v : parameter.values) {
-                checkRange(issues, "--values " + parameter.key, v, field->range, field->unit);
-            }
-        }
-        if (!issues.empty()) throw InputError(formatIssues(issues));
-        analysis::SweepResult all;
-        all.table.columns = {"parameter", "value"};
-        for (const std::string& c : analysis::sweepColumns()) all.table.columns.push_back(c);
-        analysis::SweepSpec spec = makeSpec(*sens);
+        const analysis::Inputs inputs = sens->inputs(locations);
+        analysis::SensitivitySettings settings = sens->sensitivity;
+        settings.slip_angles_deg = inputs.conditions.slip_angles_deg;
+        settings.sweep = sens->forces();
+        if (!sens->values.empty()) settings.values = parseValues(sens->values, "--values");
         const SignalCancellation cancellation;
-        spec.cancel = cancellation.flag();
-        for (std::size_t k = 0; k < parameters.size() && !all.cancelled; ++k) {
-            const auto one = analysis::sensitivity(soil, wheel, parameters[k], spec);
-            all.cancelled = one.cancelled;
-            for (const auto& row : one.table.rows) {
-                std::vector<double> values{static_cast<double>(k)};
-                values.insert(values.end(), row.begin(), row.end());
-                all.table.rows.push_back(std::move(values));
-            }
-            all.warnings.insert(all.warnings.end(), one.warnings.begin(), one.warnings.end());
-        }
-        if (parameters.size() == 1) {
-            // A single parameter: name the value column after it.
-            all.table.columns.erase(all.table.columns.begin());
-            all.table.columns[0] = parameters[0].key;
-            for (auto& row : all.table.rows) row.erase(row.begin());
-        } else {
+        const analysis::SensitivityResult result =
+            analysis::computeSensitivity(inputs, settings, cancellation.flag());
+        if (result.parameter_keys.size() > 1) {
             std::string legend;
-            for (std::size_t k = 0; k < parameters.size(); ++k) {
-                legend += (k ? ", " : "") + std::to_string(k) + " = " + parameters[k].key;
+            for (std::size_t k = 0; k < result.parameter_keys.size(); ++k) {
+                legend += (k ? ", " : "") + std::to_string(k) + " = " + result.parameter_keys[k];
             }
             std::cerr << "parameter column: " << legend << '\n';
         }
-        emit(*sens, all, cancellation);
+        emit(*sens, result.family, cancellation);
     });
 }
 

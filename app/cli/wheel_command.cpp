@@ -8,8 +8,10 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/signals.h"
+#include "core/analysis/operating_point.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/quadratic_model.h"
 #include "core/contact/sinkage.h"
 #include "core/contact/wheel_forces.h"
@@ -34,83 +36,19 @@ struct WheelOptions {
     bool skip_bad_rows = false;
 };
 
-// One operating point: either θ_f or W given.
-struct PointInput {
-    double slip = 0.0;
-    double slip_angle_deg = 0.0;
-    std::optional<double> entry_angle_deg;
-    std::optional<double> load_n;
-    contact::ExitCondition exit;
-    std::optional<double> max_stress_angle_rad;
-};
+using analysis::PointResult;
+using analysis::PointSpec;
 
-struct PointResult {
-    WheelForces<double> forces;
-    double entry_angle_deg = 0.0;
-    double exit_angle_deg = 0.0;
-    double sinkage_m = 0.0;
-    bool solved_from_load = false;
-    std::string failure;        ///< non-empty: no equilibrium, or F_z = W not reproducible
-    std::string status = "ok";  ///< batch status column: ok, no-equilibrium, load-not-matched
-    std::string warning;        ///< non-empty: the integration hit its piece cap
-};
-
+// One operating point of the command line: the model flags' choices and contact model.
 PointResult evaluate(const ContactParameters<double>& p, const WheelOptions& options,
-                     const PointInput& in) {
-    std::vector<Issue> issues;
-    checkRange(issues, "slip", in.slip, {-1.0, 1.0});
-    checkRange(issues, "slip_angle_deg", in.slip_angle_deg, {-90.0, 90.0, true, true}, "deg");
-    if (in.load_n) checkRange(issues, "load_N", *in.load_n, {0.0, 1e7, true, false}, "N");
-    if (in.entry_angle_deg) {
-        checkRange(issues, "entry_angle_deg", *in.entry_angle_deg, {0.0, 90.0, true, false}, "deg");
+                     PointSpec in) {
+    in.contact_model = options.model.contactModel();
+    in.model.bulldozing = options.model.bulldozingModel();
+    try {
+        return analysis::evaluatePoint(p, in);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
     }
-    if (!issues.empty()) throw InputError(formatIssues(issues));
-
-    PointResult out;
-    double theta_f = 0.0;
-    const double beta = units::degToRad(in.slip_angle_deg);
-    if (in.load_n) {
-        contact::EntryAngleProblem problem;
-        problem.load_n = *in.load_n;
-        problem.slip = in.slip;
-        problem.slip_angle_rad = beta;
-        problem.exit = in.exit;
-        problem.max_stress_angle_rad = in.max_stress_angle_rad;
-        problem.model = options.model.contactModel();
-        const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
-        if (!solution.ok()) {
-            out.failure = solution.message;
-            out.status = solution.status == contact::SinkageSolution::Status::kLoadNotMatched
-                             ? "load-not-matched"
-                             : "no-equilibrium";
-            return out;
-        }
-        theta_f = solution.entry_angle_rad;
-        out.solved_from_load = true;
-    } else {
-        theta_f = units::degToRad(*in.entry_angle_deg);
-    }
-    // θ_r kept ≥ −θ_f, as the model does (docs/model.md); reported as used.
-    const OperatingPoint<double> op{in.slip, beta, theta_f,
-                                    std::max(in.exit.exitAngle(theta_f), -theta_f),
-                                    in.max_stress_angle_rad};
-    contact::requireValid(op);
-    if (options.model.contactModel() == contact::ContactModel::kFull) {
-        contact::IntegrationReport report;
-        out.forces = contact::computeForces(p, op, options.model.bulldozingModel(), {}, &report);
-        if (!report.converged) {
-            out.warning = "the force integration stopped at its cap of " +
-                          std::to_string(report.pieces) +
-                          " pieces before reaching its tolerance (estimated relative error " +
-                          formatNumber(roundSignificant(report.error_estimate, 2)) + ")";
-        }
-    } else {
-        out.forces = contact::computeQuadraticForces(p, op, options.model.bulldozingModel());
-    }
-    out.entry_angle_deg = roundSignificant(units::radToDeg(theta_f));
-    out.exit_angle_deg = roundSignificant(units::radToDeg(op.exit_angle_rad));
-    out.sinkage_m = p.radius_m * (1.0 - std::cos(theta_f));
-    return out;
 }
 
 nlohmann::json toJson(const PointResult& r) {
@@ -130,7 +68,7 @@ nlohmann::json toJson(const PointResult& r) {
 }
 
 void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
-                const WheelOptions& o, const PointInput& in, const PointResult& r) {
+                const WheelOptions& o, const PointSpec& in, const PointResult& r) {
     std::ostringstream s;
     s << soil.name << ", " << wheel.name << " (r = " << wheel.radius_m
       << " m, b = " << wheel.width_m << " m), " << o.model.model << " model\n";
@@ -165,17 +103,19 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     std::cout << s.str();
 }
 
-// The batch CSV's columns and their ranges (those of the single-point flags; docs/cli.md).
-const io::NumericColumn kSlip{"slip", {-1.0, 1.0}, ""};
-const io::NumericColumn kSlipAngle{
-    "slip_angle_deg", {-90.0, 90.0, true, true}, "deg", units::degToRad};
-const io::NumericColumn kEntryAngle{
-    "entry_angle_deg", {0.0, 90.0, true, false}, "deg", units::degToRad};
-const io::NumericColumn kLoad{"load_N", {0.0, 1e7, true, false}, "N"};
-const io::NumericColumn kExitAngle{"exit_angle_deg", {-90.0, 0.0}, "deg", units::degToRad};
-const io::NumericColumn kRutRatio{"rut_ratio", {0.0, 1.0}, ""};
-const io::NumericColumn kMaxStressAngle{
-    "max_stress_angle_deg", {-90.0, 90.0}, "deg", units::degToRad};
+// The batch CSV's columns: the operating point's field table (contact/operating_fields.h), as
+// the single-point flags (docs/cli.md).
+io::NumericColumn columnOf(const FieldInfo& field) {
+    const bool degrees = field.displayUnit() == "deg";
+    return {field.key, field.range, field.displayUnit(), degrees ? units::degToRad : nullptr};
+}
+const io::NumericColumn kSlip = columnOf(contact::slipField());
+const io::NumericColumn kSlipAngle = columnOf(contact::slipAngleField());
+const io::NumericColumn kEntryAngle = columnOf(contact::entryAngleField());
+const io::NumericColumn kLoad = columnOf(contact::loadField());
+const io::NumericColumn kExitAngle = columnOf(contact::exitAngleField());
+const io::NumericColumn kRutRatio = columnOf(contact::rutRatioField());
+const io::NumericColumn kMaxStressAngle = columnOf(contact::maxStressAngleField());
 
 // Batch mode: one operating point per CSV row.
 int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
@@ -223,7 +163,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             if (column < 0 || cells[column].empty()) return fallback;
             return io::readCell(cells[column], spec, where, issues);
         };
-        PointInput in;
+        PointSpec in;
         in.slip = cell(c_slip, kSlip, o.slip).value_or(0.0);
         in.slip_angle_deg = cell(c_beta, kSlipAngle, o.slip_angle_deg).value_or(0.0);
         in.entry_angle_deg = cell(c_theta, kEntryAngle, o.entry_angle_deg);
@@ -239,19 +179,19 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         if (!in.entry_angle_deg && !in.load_n && issues.size() == before)
             issues.push_back({where, "no entry_angle_deg or load_N"});
-        in.exit = o.model.exitCondition();
+        in.model.exit = o.model.exitCondition();
         const auto exit = cell(c_exit, kExitAngle, std::nullopt);
         const auto rut = cell(c_rut, kRutRatio, std::nullopt);
         if (exit && rut) {
             issues.push_back({where, "give exit_angle_deg or rut_ratio, not both"});
         } else if (exit) {
-            in.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
+            in.model.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(*exit)};
         } else if (rut) {
-            in.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
+            in.model.exit = {contact::ExitCondition::Kind::kRutRatio, *rut};
         }
-        in.max_stress_angle_rad = o.model.maxStressAngleRad();
+        in.model.max_stress_angle_rad = o.model.maxStressAngleRad();
         if (auto theta_m = cell(c_theta_m, kMaxStressAngle, std::nullopt)) {
-            in.max_stress_angle_rad = units::degToRad(*theta_m);
+            in.model.max_stress_angle_rad = units::degToRad(*theta_m);
         }
         PointResult result;
         if (issues.size() == before) {
@@ -320,7 +260,8 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
         "wheel", "Forces and moments of one wheel at one operating point (or a CSV of points)");
     options->model.addTo(*cmd);
     cmd->add_option("--slip", options->slip,
-                    "Slip ratio s in [-1, 1] (Eq. 2.1; 1: spinning in place, -1: locked)")
+                    "Slip ratio s in " + contact::slipField().range.describe() +
+                        " (Eq. 2.1; 1: spinning in place, -1: locked)")
         ->capture_default_str();
     cmd->add_option("--slip-angle", options->slip_angle_deg, "Slip angle beta [deg] (Eq. 2.2)")
         ->capture_default_str();
@@ -350,8 +291,12 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
         if (!o.entry_angle_deg && !o.load_n) {
             throw InputError("wheel: give --entry-angle DEG or --load N (or --input points.csv)");
         }
-        PointInput in{o.slip,   o.slip_angle_deg,        o.entry_angle_deg,
-                      o.load_n, o.model.exitCondition(), o.model.maxStressAngleRad()};
+        PointSpec in;
+        in.slip = o.slip;
+        in.slip_angle_deg = o.slip_angle_deg;
+        in.entry_angle_deg = o.entry_angle_deg;
+        in.load_n = o.load_n;
+        in.model = o.model.choices();
         const PointResult result = evaluate(p, o, in);
         if (!result.failure.empty()) throw std::runtime_error(result.failure);
         if (!result.warning.empty()) std::cerr << "warning: " << result.warning << '\n';

@@ -9,6 +9,7 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/quadratic_model.h"
 #include "core/contact/wheel_forces.h"
 
@@ -105,9 +106,18 @@ bool contactOf(const Prepared& prep, std::size_t i, ContactParameters<double>& p
         }
         return false;
     }
-    p = {prep.radius_m,      prep.width_m,    s.sinkage_exponent,   s.sinkage_exponent_slip,
-         pressure_modulus,   s.cohesion_pa,   s.friction_angle_rad, s.shear_modulus_m,
-         s.unit_weight_n_m3, s.max_stress_a0, s.max_stress_a1,      s.max_shear_deformation_m};
+    p = {.radius_m = prep.radius_m,
+         .width_m = prep.width_m,
+         .sinkage_exponent = s.sinkage_exponent,
+         .sinkage_exponent_slip = s.sinkage_exponent_slip,
+         .pressure_modulus = pressure_modulus,
+         .cohesion_pa = s.cohesion_pa,
+         .friction_angle_rad = s.friction_angle_rad,
+         .shear_modulus_m = s.shear_modulus_m,
+         .unit_weight_n_m3 = s.unit_weight_n_m3,
+         .max_stress_a0 = s.max_stress_a0,
+         .max_stress_a1 = s.max_stress_a1,
+         .max_shear_deformation_m = s.max_shear_deformation_m};
     return true;
 }
 
@@ -118,18 +128,18 @@ void checkPoint(std::vector<Issue>& issues, const Prepared& prep, std::size_t i)
     auto due = [i](const Column& c) { return c.stride != 0 || i == 0; };
     const double s = prep.slip.at(i);
     if (due(prep.slip) && !(std::abs(s) <= 1.0)) {
-        checkRange(issues, indexed("slip", prep.slip, i), s, {-1.0, 1.0});
+        checkRange(issues, indexed("slip", prep.slip, i), s, contact::slipField().range);
     }
     if (prep.has_slip_angle && due(prep.slip_angle)) {
         const double b = prep.slip_angle.at(i);
         if (!(std::abs(b) < 0.999999 * units::kPi / 2.0)) {
             checkRange(issues, indexed("slip_angle_deg", prep.slip_angle, i), deg(b),
-                       {-90.0, 90.0, true, true}, "deg");
+                       contact::slipAngleField().range, "deg");
         }
     }
     if (prep.has_load && due(prep.load)) {
         const double w = prep.load.at(i);
-        checkRange(issues, indexed("load_N", prep.load, i), w, {0.0, 1e7, true, false}, "N");
+        checkRange(issues, indexed("load_N", prep.load, i), w, contact::loadField().range, "N");
     } else if (!prep.has_load && due(prep.entry)) {
         const double t = prep.entry.at(i);
         if (!(t > 1e-9 && t < 0.999999 * units::kPi / 2.0)) {
@@ -291,13 +301,14 @@ void write(const BatchOutputView& out, std::size_t i, SampleStatus status, const
 void requireValid(const ModelOptions& options) {
     std::vector<Issue> issues;
     if (options.exit.kind == contact::ExitCondition::Kind::kRutRatio) {
-        checkRange(issues, "rut_ratio", options.exit.value, {0.0, 1.0});
+        checkRange(issues, "rut_ratio", options.exit.value, contact::rutRatioField().range);
     } else {
-        checkRange(issues, "exit_angle_deg", deg(options.exit.value), {-90.0, 0.0}, "deg");
+        checkRange(issues, "exit_angle_deg", deg(options.exit.value),
+                   contact::exitAngleField().range, "deg");
     }
     if (options.max_stress_angle_rad) {
         checkRange(issues, "max_stress_angle_deg", deg(*options.max_stress_angle_rad),
-                   {-90.0, 90.0}, "deg");
+                   contact::maxStressAngleField().range, "deg");
     }
     checkRange(issues, "integration.tolerance", options.integration.tolerance,
                {0.0, 1.0, true, false});

@@ -6,6 +6,7 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/contact/operating_fields.h"
 
 namespace terra::gsa {
 namespace {
@@ -55,15 +56,15 @@ void requireValid(const WheelStudy& study) {
     const OperatingGrid& grid = study.grid;
     if (grid.slips.empty()) issues.push_back({"slips", "no slip values"});
     if (grid.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles"});
-    for (double s : grid.slips) checkRange(issues, "slip", s, {-1.0, 1.0});
-    for (double b : grid.slip_angles_rad) {
-        checkRange(issues, "slip_angle_deg", deg(b), {-90.0, 90.0, true, true}, "deg");
-    }
+    auto check = [&](const FieldInfo& field, double value) {
+        checkRange(issues, field.key, value, field.range, field.displayUnit());
+    };
+    for (double s : grid.slips) check(contact::slipField(), s);
+    for (double b : grid.slip_angles_rad) check(contact::slipAngleField(), deg(b));
     if (grid.load_n) {
-        checkRange(issues, "load_N", *grid.load_n, {0.0, 1e7, true, false}, "N");
+        check(contact::loadField(), *grid.load_n);
     } else {
-        checkRange(issues, "entry_angle_deg", deg(grid.entry_angle_rad), {0.0, 90.0, true, false},
-                   "deg");
+        check(contact::entryAngleField(), deg(grid.entry_angle_rad));
     }
     if (study.outputs.empty()) issues.push_back({"outputs", "no output to study"});
     for (std::size_t i = 0; i < study.outputs.size(); ++i) {

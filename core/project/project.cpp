@@ -2,6 +2,7 @@
 
 #include "core/io/json.h"
 #include "core/io/parameters_json.h"
+#include "core/project/panels.h"
 
 namespace terra::project {
 
@@ -23,7 +24,8 @@ nlohmann::json toJson(const Project& project) {
             {"panels", project.panels}};
 }
 
-Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where) {
+Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where,
+                                const io::PresetLocations* locations) {
     std::vector<Issue> issues;
     ObjectReader r(json, issues, where);
     if (!r.isObject()) return issues;
@@ -53,16 +55,23 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
     r.texts("data_sets", project.data_sets);
     r.texts("scenarios", project.scenarios);
     ObjectReader panels = r.object("panels");
+    readPanels(panels, locations);
+    panels.finish();
     if (panels.isObject() && r.has("panels")) project.panels = json["panels"];
     r.finish();
     if (!issues.empty()) return issues;
     return project;
 }
 
-Result<Project> loadProject(const std::filesystem::path& path) {
+Result<Project> loadProject(const std::filesystem::path& path,
+                            const io::PresetLocations* locations) {
     Result<nlohmann::json> document = io::readJsonFile(path);
     if (!document) return document.issues();
-    return projectFromJson(document.value(), path.string());
+    return projectFromJson(document.value(), path.string(), locations);
+}
+
+analysis::Inputs inputsOf(const Project& project) {
+    return {project.soil, project.wheel, project.conditions};
 }
 
 }  // namespace terra::project

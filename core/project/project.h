@@ -11,9 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/analysis.h"
 #include "core/analysis/conditions.h"
 #include "core/common/issue.h"
 #include "core/io/json_reader.h"
+#include "core/io/parameters_json.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
@@ -40,9 +42,16 @@ struct Project {
 nlohmann::json toJson(const Project& project);
 
 /// A project from JSON; every problem is listed with its field path under `where` (the file).
-Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where);
+/// The panels' settings are checked too (panels.h); with `locations`, the scenarios edited in the
+/// rover panel are checked as scenarios.
+Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where,
+                                const io::PresetLocations* locations = nullptr);
 
 /// Reads a .terra file (strict JSON, then projectFromJson).
-Result<Project> loadProject(const std::filesystem::path& path);
+Result<Project> loadProject(const std::filesystem::path& path,
+                            const io::PresetLocations* locations = nullptr);
+
+/// What the project's analyses read: its soil, wheel and conditions.
+analysis::Inputs inputsOf(const Project& project);
 
 }  // namespace terra::project

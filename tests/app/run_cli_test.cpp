@@ -206,3 +206,106 @@ TEST_F(RunCommand, ShippedExampleScriptsRunAndMeetTheirExpectations) {
 }
 
 }  // namespace
+
+// The broken scripts measured in issue 10, each through the real executable: exit 2, the field
+// named on stderr, nothing written (the output directory is not even created).
+class StrictScript : public RunCommand {
+protected:
+    CliRun runText(const std::string& text) {
+        const fs::path path = dir_ / "script.json";
+        std::ofstream(path) << text;
+        return run("run " + path.string() + " --out " + (dir_ / "out").string());
+    }
+    CliRun runJson(const nlohmann::json& script) { return runText(script.dump(2)); }
+    void expectRejected(const CliRun& r, const std::string& message) {
+        EXPECT_EQ(r.exit_code, 2) << r.err << r.out;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+        EXPECT_LT(r.err.size(), 600u) << r.err;  // a short message, not a dump
+        EXPECT_FALSE(fs::exists(dir_ / "out")) << "something was written";
+    }
+};
+
+TEST_F(StrictScript, ConditionsThatAreNotAnObject) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["conditions"] = "x";
+    expectRejected(runJson(script),
+                   "script.json: conditions: expected a JSON object, got string \"x\"");
+}
+
+TEST_F(StrictScript, NumericTitle) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["title"] = 12;
+    expectRejected(runJson(script), "script.json: title: expected a string, got number 12");
+    script = forcesScript(0, 1);
+    script["analyses"][0]["title"] = 3.5;
+    expectRejected(runJson(script), "analyses[0].title: expected a string, got number 3.5");
+}
+
+TEST_F(StrictScript, MisspeltKeyNamesTheNearestOne) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["condtions"] = script["conditions"];
+    script.erase("conditions");
+    expectRejected(runJson(script), "condtions: unknown key; did you mean \"conditions\"?");
+    script = forcesScript(0, 1);
+    script["analyses"][0]["expect"][0]["colum"] = "Fx_N";
+    expectRejected(runJson(script), "analyses[0].expect[0].colum: unknown key; did you mean");
+}
+
+TEST_F(StrictScript, DuplicatedKeyIsNamedWithItsPosition) {
+    // Line 2 holds the second "title" at column 3.
+    expectRejected(runText("{\"title\": \"a\",\n  \"title\": \"b\", \"analyses\": []}"),
+                   "script.json:2:3: duplicated key \"title\" at the top level (first at line 1, "
+                   "column 2)");
+}
+
+TEST_F(StrictScript, HugeSlipCountIsARangeError) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["analyses"].push_back({{"name", "s"}, {"type", "sensitivity"}, {"slip_count", 1e308}});
+    expectRejected(runJson(script),
+                   "script.json: analyses[1].slip_count: 1e+308 is outside the allowed range "
+                   "[2, 10000]");
+    // Beyond a double, in the text itself: the position and the key.
+    expectRejected(runText("{\"analyses\": [{\"type\": \"sensitivity\", \"slip_count\": 1e999}]}"),
+                   "script.json:1:53: analyses[0].slip_count: 1e999 is too large for a number");
+}
+
+TEST_F(StrictScript, EveryProblemIsListedAtOnce) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["title"] = 1;
+    script["conditions"]["load_N"] = -5;
+    script["analyses"][0]["type"] = "forcez";
+    script["analyses"].push_back({{"type", "stresses"}, {"slip", "0.2"}});
+    const CliRun r = runJson(script);
+    EXPECT_EQ(r.exit_code, 2);
+    for (const char* part : {"title", "conditions.load_N", "analyses[0].type",
+                             "did you mean \"forces\"", "analyses[1].slip: expected a number"}) {
+        EXPECT_NE(r.err.find(part), std::string::npos) << part << "\n" << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(StrictScript, DuplicatedAnalysisNamesWouldOverwriteEachOther) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["analyses"].push_back(script["analyses"][0]);
+    expectRejected(runJson(script), "analyses[1].name: \"fx\" is also the name of analyses[0]");
+}
+
+TEST_F(StrictScript, ExpectationTablesAndFiguresAreChecked) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["analyses"][0]["expect"][0]["table"] = "sweeps";
+    expectRejected(runJson(script),
+                   "analyses[0].expect[0].table: \"sweeps\" is not a table of forces (sweep); "
+                   "did you mean \"sweep\"?");
+    script = forcesScript(0, 1);
+    script["analyses"][0]["plots"] = {"Fx"};
+    expectRejected(runJson(script), "analyses[0].plots[0]: \"Fx\" is not one of Fx_N");
+}
+
+TEST_F(StrictScript, CommentsAreAllowedWhereverAKeyIs) {
+    const double fx = singlePointFx();
+    nlohmann::json script = forcesScript(fx - 1e-6, fx + 1e-6);
+    script["_comment"] = "a note";
+    script["analyses"][0]["expect"][0]["why"] = "the single-point command gives the same";
+    const CliRun r = runJson(script);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}

@@ -22,7 +22,7 @@ TEST(StressPanel, PlottedNormalStressFollowsBekkersLawInFrontOfTheMaximum) {
     test::resetToDefault(document);
     StressPanel panel(&document);
     ASSERT_TRUE(test::waitForResult(panel));
-    const StressResult& r = panel.result();
+    const analysis::StressResult& r = panel.result();
     ASSERT_TRUE(r.message.empty()) << r.message;
     ASSERT_EQ(panel.currentPlot()->graphCount(), 8);  // 4 stresses × (exact, quadratic)
     // σ(θ) = K_s (r (cos θ − cos θ_f))^n for θ_m ≤ θ ≤ θ_f (Eq. 2.17), sandy loam of Table 2.1.
@@ -48,7 +48,7 @@ TEST(StressPanel, PlottedNormalStressFollowsBekkersLawInFrontOfTheMaximum) {
 // A tornado where both extremes of a parameter move F_x the same way (k_c: +2 and +6 N) must
 // show both bars: side by side in the parameter's row, not one over the other.
 TEST(Tornado, LowAndHighBarsSitSideBySideAndKeepTheirLengths) {
-    SensitivityResult result;
+    analysis::SensitivityResult result;
     result.tornado.columns = {"parameter_index", "Fx_low_N", "Fx_high_N", "Fx_base_N"};
     result.tornado.rows = {{0, 8.0, 15.0, 10.0},   // n: −2, +5
                            {1, 12.0, 16.0, 10.0},  // kc: +2, +6 (same direction)

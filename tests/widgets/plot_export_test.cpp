@@ -10,7 +10,8 @@
 #include <QSvgRenderer>
 #include <QTemporaryDir>
 
-#include "widgets/analyses/analyses.h"
+#include "core/analysis/forces.h"
+#include "core/project/project.h"
 #include "widgets/plots/sweep_plot.h"
 #include "widgets_test_support.h"
 
@@ -31,11 +32,10 @@ int colouredPixels(const QImage& image) {
 class PlotExport : public ::testing::Test {
 protected:
     void SetUp() override {
-        AnalysisInputs in =
-            AnalysisInputs::from(ProjectDocument::defaultProject(test::resources()));
+        analysis::Inputs in = project::inputsOf(ProjectDocument::defaultProject(test::resources()));
         in.conditions.slip_angles_deg = {5, 20};
         in.conditions.slip_count = 40;
-        table_ = computeForceSweep(in).table;
+        table_ = analysis::computeForceSweep(in).table;
         plotSweep(plot_, table_, sweepQuantities()[0], "test");
     }
     QCustomPlot plot_;

@@ -10,7 +10,8 @@
 #include <QPalette>
 #include <QTemporaryDir>
 
-#include "widgets/analyses/analyses.h"
+#include "core/analysis/forces.h"
+#include "core/project/project.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/plot_export.h"
 #include "widgets/plots/sweep_plot.h"
@@ -38,11 +39,10 @@ protected:
     void SetUp() override {
         saved_ = QApplication::palette();
         QApplication::setPalette(darkPalette());
-        AnalysisInputs in =
-            AnalysisInputs::from(ProjectDocument::defaultProject(test::resources()));
+        analysis::Inputs in = project::inputsOf(ProjectDocument::defaultProject(test::resources()));
         in.conditions.slip_angles_deg = {5, 20};
         in.conditions.slip_count = 30;
-        table_ = computeForceSweep(in).table;
+        table_ = analysis::computeForceSweep(in).table;
     }
     void TearDown() override { QApplication::setPalette(saved_); }
     QPalette saved_;
@@ -111,7 +111,7 @@ TEST_F(DarkDesktop, PlotsWithTheirOwnColoursAreLeftAlone) {
 TEST_F(DarkDesktop, ChangingThePaletteRethemesDrawnPlots) {
     QApplication::setPalette(saved_);  // start light
     QCustomPlot plot;
-    SensitivityResult empty;
+    analysis::SensitivityResult empty;
     plotTornado(plot, empty, 0.3, "tornado");  // through resetPlot()
     EXPECT_GT(lightness(plot.axisRect()->backgroundBrush().color()), 0.7);
     QApplication::setPalette(darkPalette());  // the desktop switches to dark

@@ -129,7 +129,7 @@ TEST(RoverPanelEditing, InvalidScenarioIsRefusedNamingTheField) {
     EXPECT_TRUE(dialog.errorText().contains("duration_s")) << dialog.errorText().toStdString();
     dialog.setText("{\"name\": \"straight\",");  // broken JSON
     EXPECT_FALSE(dialog.okEnabled());
-    EXPECT_TRUE(dialog.errorText().contains("not valid JSON")) << dialog.errorText().toStdString();
+    EXPECT_TRUE(dialog.errorText().contains("invalid JSON")) << dialog.errorText().toStdString();
     dialog.setText(original);
     EXPECT_TRUE(dialog.okEnabled());
 

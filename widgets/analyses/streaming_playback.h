@@ -1,9 +1,10 @@
 #pragma once
 /// @file streaming_playback.h
-/// Streaming identification played back in the studio (issue 5, "streaming playback"; the
-/// identifier is core/identification/streaming.h): the samples of a data set are fed one at a time
-/// through a StreamingIdentifier on a worker thread, paced by the samples' time stamps at a chosen
-/// speed (or as fast as possible), with pause, resume and stop at any time.
+/// Streaming identification played back in the studio: the frames of
+/// core/analysis/streaming_identification.h (the same as `identify --stream` and a script's
+/// "streaming" analysis compute) made on a worker thread one sample at a time, paced by the
+/// samples' time stamps at a chosen speed (or as fast as possible), with pause, resume and stop
+/// at any time.
 ///
 /// The GUI thread never computes: the worker posts at most one notification at a time (coalesced),
 /// and the GUI thread takes every frame produced since the last one, so a run at full speed cannot
@@ -20,55 +21,14 @@
 #include <thread>
 #include <vector>
 
-#include "core/common/issue.h"
-#include "core/identification/data_set.h"
-#include "core/identification/decoupled_fit.h"
+#include "core/analysis/streaming_identification.h"
 #include "core/identification/streaming.h"
-#include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
 namespace terra::ui {
 
-/// A data set to play and, when it was synthesised, where its soil changes.
-struct StreamSource {
-    identification::DataSet data;
-    std::optional<std::size_t> true_border;  ///< index of the first sample of the second soil
-    std::string description;                 ///< "sandy loam → clayey soil, 1 % noise", "log.csv"
-    std::vector<std::string> warnings;       ///< rows skipped, points the soil could not carry
-    /// Synthetic data: the parameters each stretch was made with, from its first sample on (for
-    /// drawing the truth beside the estimates; K_s = k_c/b + k_φ).
-    std::vector<std::pair<std::size_t, identification::DecoupledParameters>> truth;
-};
-
-/// A synthetic drive over a soil border: the slip sweep of the first soil, then of the second,
-/// each in a scrambled but fixed order (a robot's slip wanders; a monotone sweep is not what a
-/// streaming identifier sees), with Gaussian noise (Eq. 5.1). Samples are 10 ms apart (100 Hz).
-struct SoilBorderSpec {
-    soil::SoilParameters first;
-    soil::SoilParameters second;
-    wheel::WheelParameters wheel;
-    double load_n = 58.86;          ///< W [N]
-    double noise_relative = 0.01;   ///< σ per channel as a fraction of its largest value
-    std::uint64_t seed = 1;         ///< the second soil uses seed + 1
-    int samples_per_soil = 101;     ///< slips 0.05 … 0.9
-    double sample_period_s = 0.01;  ///< time between samples [s]
-};
-/// Throws std::invalid_argument for an invalid soil, wheel, load or noise.
-StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec);
-
-/// Reads a CSV for playback (data_set.h columns). Bad rows either stop the read, every one listed
-/// with its line number, or are skipped and listed in `warnings`.
-Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_rows);
-
-/// What the studio shows of one sample.
-struct StreamFrame {
-    identification::StreamUpdate update;  ///< the identifier's state after the sample
-    double time_s = 0.0;                  ///< the sample's time (its time_s, or index × 10 ms)
-    double fx_measured_n = 0.0;           ///< F_x of the sample [N]
-    /// F_x the estimate *before* this sample predicts at its slip and entry angle (decoupled model,
-    /// Eq. 4.4) [N]; NaN while there is no estimate.
-    double fx_predicted_n = 0.0;
-};
+using analysis::StreamFrame;
+using analysis::StreamSource;
 
 /// Plays one data set at a time through a StreamingIdentifier on its own worker thread (not the
 /// shared thread pool: a paced run sleeps most of the time and must not starve the analyses).

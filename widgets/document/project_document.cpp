@@ -228,8 +228,8 @@ bool ProjectDocument::save(const QString& path, QString* error) {
     return true;
 }
 
-Result<Project> ProjectDocument::load(const QString& path) {
-    return project::loadProject(path.toStdString());
+Result<Project> ProjectDocument::load(const QString& path, const io::PresetLocations* locations) {
+    return project::loadProject(path.toStdString(), locations);
 }
 
 Project ProjectDocument::defaultProject(const io::PresetLocations& locations) {

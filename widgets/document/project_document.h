@@ -50,8 +50,11 @@ public:
 
     /// Writes the project atomically (QSaveFile); on failure the document stays modified.
     bool save(const QString& path, QString* error);
-    /// Reads a project file; the open document is untouched (caller calls reset()).
-    static Result<Project> load(const QString& path);
+    /// Reads a project file (core/project/project.h: strict, every problem listed); with
+    /// `locations` the scenarios edited in the rover panel are checked too. The open document is
+    /// untouched (the caller calls reset()).
+    static Result<Project> load(const QString& path,
+                                const io::PresetLocations* locations = nullptr);
     /// A new project on presets "sandy-loam" and "A" (the studio's default).
     static Project defaultProject(const io::PresetLocations& locations);
 

@@ -127,6 +127,12 @@ void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     });
 }
 
+nlohmann::json AnalysisPanel::withChanges(const nlohmann::json& changes) const {
+    nlohmann::json all = settings();
+    if (changes.is_object()) all.update(changes);
+    return all;
+}
+
 void AnalysisPanel::storeSettings() {
     document_->setPanelSettings(name_.toStdString(), settings());
 }

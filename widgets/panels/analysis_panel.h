@@ -76,6 +76,9 @@ protected:
     /// Enables drag/zoom and a crosshair read-out shown in `readout`.
     static void makeInteractive(QCustomPlot* plot, QLabel* readout);
     void storeSettings();
+    /// The panel's settings with `changes` over them, for applySettings: an object of some keys
+    /// changes only those (a .terra file's are whole; core/project/panels.h checks them).
+    nlohmann::json withChanges(const nlohmann::json& changes) const;
 
     ProjectDocument* document_;
 

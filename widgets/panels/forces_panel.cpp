@@ -9,7 +9,7 @@
 #include <QVBoxLayout>
 #include <algorithm>
 
-#include "widgets/analyses/analyses.h"
+#include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/sweep_plot.h"
@@ -19,8 +19,8 @@ namespace {
 
 /// What one computation of the panel produces.
 struct ForcesOutcome {
-    analysis::SweepResult sweep;
-    SoilCurves soil;
+    analysis::ForcesResult sweep;
+    analysis::SoilCurves soil;
 };
 
 }  // namespace
@@ -87,14 +87,16 @@ std::vector<std::pair<QString, QCustomPlot*>> ForcesPanel::plots() const {
 
 nlohmann::json ForcesPanel::settings() const {
     const auto all = plots();
-    return {
-        {"plot",
-         all[static_cast<std::size_t>(std::max(tabs_->currentIndex(), 0))].first.toStdString()}};
+    project::ForcesPanelSettings s;
+    s.plot = all[static_cast<std::size_t>(std::max(tabs_->currentIndex(), 0))].first.toStdString();
+    return project::toJson(s);
 }
 
-void ForcesPanel::applySettings(const nlohmann::json& settings) {
-    if (!settings.contains("plot") || !settings["plot"].is_string()) return;
-    const QString wanted = QString::fromStdString(settings["plot"].get<std::string>());
+void ForcesPanel::applySettings(const nlohmann::json& json) {
+    const auto settings =
+        project::panelSettingsFromJson<project::ForcesPanelSettings>(withChanges(json));
+    if (!settings) return;  // projects are checked when opened: only a program error lands here
+    const QString wanted = QString::fromStdString(settings->plot);
     const auto all = plots();
     for (std::size_t i = 0; i < all.size(); ++i) {
         if (all[i].first == wanted) tabs_->setCurrentIndex(static_cast<int>(i));
@@ -112,11 +114,13 @@ QCustomPlot* ForcesPanel::currentPlot() const {
 }
 
 AnalysisPanel::Job ForcesPanel::makeJob() {
-    const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
+    const analysis::Inputs inputs = project::inputsOf(document_->project());
     return [inputs](const std::atomic<bool>& cancel) -> std::any {
+        const analysis::Control control{&cancel};
         ForcesOutcome out;
-        out.soil = computeSoilCurves(inputs, {}, &cancel);  // ~1 ms, ~6 % of the sweep (sandy loam)
-        out.sweep = computeForceSweep(inputs, &cancel);
+        // ~1 ms, ~6 % of the sweep (sandy loam).
+        out.soil = analysis::computeSoilCurves(inputs, {}, control);
+        out.sweep = analysis::computeForceSweep(inputs, {}, control);
         return out;
     };
 }

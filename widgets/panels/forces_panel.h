@@ -5,8 +5,8 @@
 /// against sinkage (Fig. 2.15) and static sinkage against load (Fig. 2.6); all recomputed live off
 /// the GUI thread whenever the soil, wheel or conditions change (AnalysisPanel).
 
-#include "core/analysis/sweep.h"
-#include "widgets/analyses/soil_curves.h"
+#include "core/analysis/forces.h"
+#include "core/analysis/soil_curves.h"
 #include "widgets/panels/analysis_panel.h"
 
 class QComboBox;
@@ -21,9 +21,9 @@ public:
     explicit ForcesPanel(ProjectDocument* document, QWidget* parent = nullptr);
 
     /// The last sweep on screen (empty before the first one finishes).
-    const analysis::SweepResult& result() const { return result_; }
+    const analysis::ForcesResult& result() const { return result_; }
     /// The last bulldozing and static-sinkage curves on screen.
-    const SoilCurves& soilCurves() const { return soil_curves_; }
+    const analysis::SoilCurves& soilCurves() const { return soil_curves_; }
 
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
@@ -45,8 +45,8 @@ private:
         plots_;  ///< one per sweep quantity, then bulldozing_, static_sinkage_
     QCustomPlot* bulldozing_;
     QCustomPlot* static_sinkage_;
-    analysis::SweepResult result_;
-    SoilCurves soil_curves_;
+    analysis::ForcesResult result_;
+    analysis::SoilCurves soil_curves_;
 };
 
 }  // namespace terra::ui

@@ -21,8 +21,8 @@
 #include <QVBoxLayout>
 #include <cmath>
 
-#include "core/common/units.h"
 #include "core/io/parameters_json.h"
+#include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/figures.h"
 
@@ -30,20 +30,6 @@ namespace terra::ui {
 namespace {
 
 const char* kChannels[] = {"Fx_N", "Fz_N", "My_Nm"};
-
-// The project soil's value of each identified parameter (user units), for comparison.
-std::vector<double> trueValues(const Project& p) {
-    const auto& s = p.soil;
-    const double ks = s.cohesive_modulus / p.wheel.width_m + s.frictional_modulus;
-    return {s.max_stress_a0,
-            s.max_stress_a1,
-            ks / 1e3,
-            s.sinkage_exponent,
-            s.sinkage_exponent_slip,
-            s.cohesion_pa / 1e3,
-            units::radToDeg(s.friction_angle_rad),
-            s.shear_modulus_m};
-}
 
 }  // namespace
 
@@ -57,11 +43,11 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     noise_ = new QDoubleSpinBox(this);
     noise_->setRange(0.0, 20.0);
     noise_->setSuffix(" %");
-    noise_->setValue(2.0);
+    noise_->setValue(project::IdentificationPanelSettings{}.noise_percent);
     noise_->setToolTip(
         "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     refine_ = new QCheckBox("Refine (full model, std deviations)", this);
-    refine_->setChecked(true);
+    refine_->setChecked(project::IdentificationPanelSettings{}.refine);
     three_loads_ = new QCheckBox("Synthesise at ½W, W, 1½W", this);
     three_loads_->setChecked(true);
     three_loads_->setToolTip(
@@ -157,75 +143,63 @@ QCustomPlot* IdentificationPanel::currentPlot() const {
 
 Table IdentificationPanel::currentTable() const {
     if (pages_->currentIndex() == 0) return result_.curves;
-    Table t;
-    t.columns = {"sample", "time_s",        "estimated", "a0",  "a1",    "Ks_kPa",    "n0",
-                 "n1",     "c_kPa",         "phi_deg",   "K_m", "score", "change_at", "window",
-                 "Fx_N",   "Fx_predicted_N"};
-    for (const StreamFrame& f : stream_frames_) {
-        const auto& u = f.update;
-        const auto& p = u.parameters;
-        const double nan = std::nan("");
-        const bool e = u.estimated;
-        t.rows.push_back({static_cast<double>(u.index), f.time_s, e ? 1.0 : 0.0, e ? p.a0 : nan,
-                          e ? p.a1 : nan, e ? p.pressure_modulus / 1e3 : nan, e ? p.n0 : nan,
-                          e ? p.n1 : nan, e ? p.cohesion_pa / 1e3 : nan,
-                          e ? units::radToDeg(p.friction_angle_rad) : nan,
-                          e ? p.shear_modulus_m : nan, u.residual_score,
-                          u.change_at ? static_cast<double>(*u.change_at) : nan,
-                          static_cast<double>(u.window_size), f.fx_measured_n, f.fx_predicted_n});
-    }
-    return t;
+    return analysis::framesTable(stream_frames_);
 }
 
 nlohmann::json IdentificationPanel::settings() const {
-    return {{"csv", file_->text().toStdString()},
-            {"noise_percent", noise_->value()},
-            {"refine", refine_->isChecked()},
-            {"three_loads", three_loads_->isChecked()},
-            {"page", pages_->currentIndex() == 1 ? "streaming" : "fit"},
-            {"stream_csv", stream_source_->currentIndex() == 1 ? stream_file_->text().toStdString()
-                                                               : std::string()},
-            {"stream_second_soil", second_soil_->currentText().toStdString()},
-            {"stream_noise_percent", stream_noise_->value()},
-            {"stream_speed", speed_->currentData().toDouble()},
-            {"stream_skip_bad_rows", skip_bad_rows_->isChecked()}};
+    project::IdentificationPanelSettings s;
+    s.csv = file_->text().toStdString();
+    s.noise_percent = noise_->value();
+    s.refine = refine_->isChecked();
+    s.three_loads = three_loads_->isChecked();
+    s.page = pages_->currentIndex() == 1 ? "streaming" : "fit";
+    s.stream_csv = stream_source_->currentIndex() == 1 ? stream_file_->text().toStdString() : "";
+    s.stream_second_soil = second_soil_->currentText().toStdString();
+    s.stream_noise_percent = stream_noise_->value();
+    s.stream_speed = speed_->currentData().toDouble();
+    s.stream_skip_bad_rows = skip_bad_rows_->isChecked();
+    return project::toJson(s);
 }
 
-void IdentificationPanel::applySettings(const nlohmann::json& s) {
-    if (s.contains("csv")) file_->setText(QString::fromStdString(s["csv"].get<std::string>()));
-    if (s.contains("noise_percent")) noise_->setValue(s["noise_percent"].get<double>());
-    if (s.contains("refine")) refine_->setChecked(s["refine"].get<bool>());
-    if (s.contains("three_loads")) three_loads_->setChecked(s["three_loads"].get<bool>());
-    if (s.contains("page")) showPage(s["page"].get<std::string>() == "streaming" ? 1 : 0);
-    if (s.contains("stream_csv") || s.contains("stream_second_soil")) {
-        setStreamSource(QString::fromStdString(s.value("stream_csv", std::string())),
-                        QString::fromStdString(s.value("stream_second_soil",
-                                                       second_soil_->currentText().toStdString())));
+void IdentificationPanel::applySettings(const nlohmann::json& json) {
+    const auto settings =
+        project::panelSettingsFromJson<project::IdentificationPanelSettings>(withChanges(json));
+    if (!settings) return;  // projects are checked when opened: only a program error lands here
+    const project::IdentificationPanelSettings& s = *settings;
+    file_->setText(QString::fromStdString(s.csv));
+    noise_->setValue(s.noise_percent);
+    refine_->setChecked(s.refine);
+    three_loads_->setChecked(s.three_loads);
+    showPage(s.page == "streaming" ? 1 : 0);
+    setStreamSource(QString::fromStdString(s.stream_csv),
+                    QString::fromStdString(s.stream_second_soil));
+    stream_noise_->setValue(s.stream_noise_percent);
+    setStreamSpeed(s.stream_speed);
+    skip_bad_rows_->setChecked(s.stream_skip_bad_rows);
+}
+
+analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
+    analysis::IdentificationSettings settings;
+    settings.csv = file_->text().trimmed().toStdString();
+    settings.synthetic.noise_percent = noise_->value();
+    settings.refine = refine_->isChecked();
+    if (three_loads_->isChecked()) {
+        const double w = document_->project().conditions.load_n;
+        settings.synthetic.loads_n = {0.5 * w, w, 1.5 * w};
     }
-    if (s.contains("stream_noise_percent"))
-        stream_noise_->setValue(s["stream_noise_percent"].get<double>());
-    if (s.contains("stream_speed")) setStreamSpeed(s["stream_speed"].get<double>());
-    if (s.contains("stream_skip_bad_rows"))
-        skip_bad_rows_->setChecked(s["stream_skip_bad_rows"].get<bool>());
+    return settings;
 }
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
-    const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
-    IdentificationSettings settings;
-    settings.csv = file_->text().trimmed().toStdString();
-    settings.noise_relative = noise_->value() / 100.0;
-    settings.refine = refine_->isChecked();
-    if (three_loads_->isChecked()) {
-        const double w = inputs.conditions.load_n;
-        settings.loads_n = {0.5 * w, w, 1.5 * w};
-    }
-    return [inputs, settings](const std::atomic<bool>&) -> std::any {
-        return computeIdentification(inputs, settings);
+    const analysis::Inputs inputs = project::inputsOf(document_->project());
+    const analysis::IdentificationSettings settings = fitSettings();
+    return [inputs, settings](const std::atomic<bool>& cancel) -> std::any {
+        return analysis::computeIdentification(inputs, settings, {&cancel});
     };
 }
 
 void IdentificationPanel::present(const std::any& value) {
-    result_ = std::any_cast<IdentificationResult>(value);
+    result_ = std::any_cast<analysis::IdentificationResult>(value);
     if (!result_.message.empty()) {
         status_->setText("<b>Error:</b> " +
                          QString::fromStdString(result_.message).toHtmlEscaped());
@@ -241,24 +215,28 @@ void IdentificationPanel::present(const std::any& value) {
                                .arg(source));
     }
     const Table& t = result_.parameters;
-    const std::vector<double> truth = trueValues(document_->project());
+    const Project& project = document_->project();
+    const auto truth = analysis::identifiedOf(project.soil, project.wheel);
     const bool synthetic = file_->text().isEmpty();
-    parameters_->setRowCount(8);
-    for (int i = 0; i < 8; ++i) {
-        const std::string name = t.columns[static_cast<std::size_t>(i)];
-        parameters_->setItem(i, 0, new QTableWidgetItem(QString::fromStdString(name)));
-        parameters_->setItem(
-            i, 1,
-            new QTableWidgetItem(QString::number(t.rows[0][static_cast<std::size_t>(i)], 'g', 5)));
+    const auto fields = analysis::identifiedFields();
+    parameters_->setRowCount(static_cast<int>(fields.size()));
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+        const analysis::IdentifiedField& field = fields[i];
+        const int row = static_cast<int>(i);
+        auto* name = new QTableWidgetItem(QString::fromStdString(field.symbolWithUnit()));
+        name->setToolTip(QString::fromUtf8(field.description));
+        parameters_->setItem(row, 0, name);
+        parameters_->setItem(row, 1, new QTableWidgetItem(QString::number(t.rows[0][i], 'g', 5)));
         QString std_text = "–";
-        for (std::size_t c = 8; c < t.columns.size(); ++c) {
-            if (t.columns[c] == name + "_std") std_text = QString::number(t.rows[0][c], 'g', 3);
+        for (std::size_t c = fields.size(); c < t.columns.size(); ++c) {
+            if (t.columns[c] == std::string(field.key) + "_std")
+                std_text = QString::number(t.rows[0][c], 'g', 3);
         }
-        parameters_->setItem(i, 2, new QTableWidgetItem(std_text));
+        parameters_->setItem(row, 2, new QTableWidgetItem(std_text));
         parameters_->setItem(
-            i, 3,
-            new QTableWidgetItem(
-                synthetic ? QString::number(truth[static_cast<std::size_t>(i)], 'g', 5) : "–"));
+            row, 3,
+            new QTableWidgetItem(synthetic ? QString::number(field.userValue(truth), 'g', 5)
+                                           : "–"));
     }
     QStringList steps;
     for (const auto& step : result_.fit.steps) {
@@ -309,7 +287,7 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     stream_noise_ = new QDoubleSpinBox(page);
     stream_noise_->setRange(0.0, 20.0);
     stream_noise_->setSuffix(" % noise");
-    stream_noise_->setValue(1.0);
+    stream_noise_->setValue(project::IdentificationPanelSettings{}.stream_noise_percent);
     stream_noise_->setToolTip(
         "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     stream_file_ = new QLineEdit(page);
@@ -450,34 +428,22 @@ void IdentificationPanel::play() {
         playback_->resume();
         return;
     }
-    StreamingPlayback::SourceFactory factory;
     const Project& project = document_->project();
-    if (stream_source_->currentIndex() == 1) {
-        const std::string path = stream_file_->text().trimmed().toStdString();
-        if (path.empty()) {
-            stream_status_->setText("<b>Error:</b> choose a CSV file to play");
-            return;
-        }
-        const bool skip = skip_bad_rows_->isChecked();
-        factory = [path, skip] {
-            auto read = readStreamSource(path, skip);
-            if (!read) throw std::invalid_argument(read.message());
-            return *read;
-        };
-    } else {
-        SoilBorderSpec spec;
-        spec.first = project.soil;
-        spec.wheel = project.wheel;
-        spec.load_n = project.conditions.load_n;
-        spec.noise_relative = stream_noise_->value() / 100.0;
-        const std::string second = second_soil_->currentText().toStdString();
-        factory = [spec, second]() mutable {
-            auto soil = io::resolveSoil(presetLocations(), second);
-            if (!soil) throw std::invalid_argument("second soil: " + soil.message());
-            spec.second = *soil;
-            return synthesiseSoilBorder(spec);
-        };
+    analysis::StreamingSettings settings = streamSettings();
+    if (stream_source_->currentIndex() == 1 && settings.csv.empty()) {
+        stream_status_->setText("<b>Error:</b> choose a CSV file to play");
+        return;
     }
+    const analysis::Inputs inputs = project::inputsOf(project);
+    // Reading or synthesising runs on the worker, not on the GUI thread.
+    StreamingPlayback::SourceFactory factory = [inputs, settings]() mutable {
+        if (settings.csv.empty()) {
+            auto soil = io::resolveSoil(presetLocations(), settings.second_soil);
+            if (!soil) throw std::invalid_argument("second soil: " + soil.message());
+            settings.second = *soil;
+        }
+        return analysis::streamSource(inputs, settings);
+    };
     // A running playback ends first (its "stopped" state is handled now, not after the new run's
     // figures were cleared).
     if (playback_->isActive()) playback_->stop();
@@ -492,8 +458,19 @@ void IdentificationPanel::play() {
     position_->setValue(0);
     position_->setFormat("preparing…");
     stream_status_->setText("Playing…");
-    playback_->start(std::move(factory), project.wheel, identification::StreamingOptions{},
+    playback_->start(std::move(factory), project.wheel, settings.options,
                      speed_->currentData().toDouble());
+}
+
+analysis::StreamingSettings IdentificationPanel::streamSettings() const {
+    analysis::StreamingSettings settings;
+    if (stream_source_->currentIndex() == 1) {
+        settings.csv = stream_file_->text().trimmed().toStdString();
+        settings.skip_bad_rows = skip_bad_rows_->isChecked();
+    }
+    settings.second_soil = second_soil_->currentText().toStdString();
+    settings.noise_percent = stream_noise_->value();
+    return settings;
 }
 
 void IdentificationPanel::pausePlayback() { playback_->pause(); }
@@ -577,13 +554,18 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
     if (stream_border_) text += QString(" (true border: %1)").arg(*stream_border_);
     if (!stream_frames_.empty() && stream_frames_.back().update.estimated) {
         const auto& p = stream_frames_.back().update.parameters;
-        text += QString(
-                    ". Last estimate (decoupled model, biased; refine a settled window for numbers "
-                    "to report): "
-                    "φ = %1°, c = %2 kPa, K = %3 mm")
-                    .arg(units::radToDeg(p.friction_angle_rad), 0, 'f', 1)
-                    .arg(p.cohesion_pa / 1e3, 0, 'f', 2)
-                    .arg(p.shear_modulus_m * 1e3, 0, 'f', 1);
+        QStringList values;
+        for (const char* key : {"phi_deg", "c_kPa", "K_m"}) {
+            const analysis::IdentifiedField& f = *analysis::findIdentifiedField(key);
+            values << QString("%1 = %2 %3")
+                          .arg(QString::fromUtf8(f.symbol))
+                          .arg(f.userValue(p), 0, 'g', 3)
+                          .arg(QString::fromStdString(f.displayUnit()));
+        }
+        text +=
+            ". Last estimate (decoupled model, biased; refine a settled window for numbers "
+            "to report): " +
+            values.join(", ");
     }
     if (!stream_warnings_.isEmpty()) {
         text += QString(". %1 warning(s): %2")

@@ -10,7 +10,8 @@
 /// onto a second soil, fed sample by sample on a worker at 0.1×, 1×, 10× or full speed, with pause
 /// and stop; the estimates, the residual score and the detected change points grow as it plays.
 
-#include "widgets/analyses/analyses.h"
+#include "core/analysis/identification.h"
+#include "core/analysis/streaming_identification.h"
 #include "widgets/analyses/streaming_playback.h"
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/plots/identification_figures.h"
@@ -34,7 +35,11 @@ public:
     explicit IdentificationPanel(ProjectDocument* document, QWidget* parent = nullptr);
     ~IdentificationPanel() override;  ///< stops the playback and waits for its worker
 
-    const IdentificationResult& result() const { return result_; }
+    const analysis::IdentificationResult& result() const { return result_; }
+    /// The batch fit's settings as the controls show them (core/analysis/identification.h).
+    analysis::IdentificationSettings fitSettings() const;
+    /// The streaming playback's settings as the controls show them (the second soil by name).
+    analysis::StreamingSettings streamSettings() const;
     /// Uses this CSV as data (empty: synthesise from the project's soil).
     void setDataFile(const QString& path);
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
@@ -90,7 +95,7 @@ private:
     QTabWidget* tabs_;
     std::vector<QCustomPlot*> plots_;
     QTableWidget* parameters_;
-    IdentificationResult result_;
+    analysis::IdentificationResult result_;
 
     // Streaming page.
     QComboBox* stream_source_;

@@ -18,7 +18,10 @@
 #include <QVBoxLayout>
 #include <filesystem>
 
+#include "core/analysis/rover.h"
 #include "core/io/atomic_file.h"
+#include "core/io/json.h"
+#include "core/project/panels.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/plots/rover_figures.h"
 
@@ -42,15 +45,10 @@ fs::path presetFile(const io::PresetLocations& locations, const std::string& nam
 Result<scenario::Scenario> parseScenarioText(const QString& text, const std::string& name,
                                              const io::PresetLocations& locations) {
     const std::string where = "edited " + name;
-    nlohmann::json json;
-    try {
-        json = nlohmann::json::parse(text.toStdString());
-    } catch (const nlohmann::json::parse_error& e) {
-        // nlohmann's message holds the line and column ("parse error at line 3, column 7: ...").
-        return std::vector<Issue>{{where, std::string("not valid JSON: ") + e.what()}};
-    }
+    const Result<nlohmann::json> json = io::parseJson(text.toStdString(), where);
+    if (!json) return json.issues();
     // Relative files (soils, robots) resolve against the preset's directory, as for the file.
-    return scenario::scenarioFromJson(json, where, locations,
+    return scenario::scenarioFromJson(json.value(), where, locations,
                                       presetFile(locations, name).parent_path());
 }
 
@@ -263,25 +261,26 @@ QCustomPlot* RoverPanel::currentPlot() const {
 std::string RoverPanel::currentName() const { return scenario_->currentText().toStdString(); }
 
 nlohmann::json RoverPanel::settings() const {
-    return {{"scenario", currentName()}, {"edited", edits_}};
+    return project::toJson(project::RoverPanelSettings{currentName(), edits_});
 }
 
-void RoverPanel::applySettings(const nlohmann::json& s) {
-    if (s.contains("edited") && s["edited"].is_object()) edits_ = s["edited"];
-    if (s.contains("scenario") && s["scenario"].is_string()) {
-        const int i = scenario_->findText(QString::fromStdString(s["scenario"].get<std::string>()));
-        if (i >= 0) scenario_->setCurrentIndex(i);
-    }
+void RoverPanel::applySettings(const nlohmann::json& json) {
+    const auto settings =
+        project::panelSettingsFromJson<project::RoverPanelSettings>(withChanges(json));
+    if (!settings) return;  // projects are checked when opened: only a program error lands here
+    edits_ = settings->edited;
+    const int i = scenario_->findText(QString::fromStdString(settings->scenario));
+    if (i >= 0) scenario_->setCurrentIndex(i);
     showScenarioState();
 }
 
 nlohmann::json RoverPanel::currentJson() const {
     const std::string name = currentName();
     if (edits_.contains(name)) return edits_[name];
-    std::string text;
     const fs::path file = presetFile(locations_, name);
-    if (file.empty() || io::readFile(file, text)) return nullptr;
-    return nlohmann::json::parse(text, nullptr, false);
+    if (file.empty()) return nullptr;
+    const Result<nlohmann::json> json = io::readJsonFile(file);
+    return json ? json.value() : nlohmann::json();
 }
 
 QString RoverPanel::scenarioText() const {
@@ -293,7 +292,7 @@ QString RoverPanel::scenarioText() const {
             return QString::fromStdString(text);  // as written
     }
     const nlohmann::json json = currentJson();
-    return json.is_discarded() || json.is_null() ? QString() : QString::fromStdString(json.dump(2));
+    return json.is_null() ? QString() : QString::fromStdString(json.dump(2));
 }
 
 bool RoverPanel::isEdited() const { return edits_.contains(currentName()); }
@@ -304,7 +303,7 @@ bool RoverPanel::setScenarioText(const QString& text, QString* error) {
         if (error) *error = QString::fromStdString(parsed.message());
         return false;
     }
-    storeEdit(nlohmann::json::parse(text.toStdString()));
+    storeEdit(io::parseJson(text.toStdString(), {}).value());
     return true;
 }
 
@@ -345,12 +344,13 @@ AnalysisPanel::Job RoverPanel::makeJob() {
                                                  locations_)
                              : scenario::resolveScenario(locations_, name);
     if (!loaded) throw std::invalid_argument(loaded.message());
-    const scenario::Scenario scenario = *loaded;
+    analysis::RoverSettings settings;
+    settings.scenario = name;
+    settings.loaded = *loaded;
     QPointer<QProgressBar> bar = progress_;
-    return [scenario, bar](const std::atomic<bool>& cancel) -> std::any {
-        scenario::RunOptions options;
-        options.cancel = &cancel;
-        options.progress = [bar](double fraction) {
+    return [settings, bar](const std::atomic<bool>& cancel) -> std::any {
+        analysis::Control control{&cancel};
+        control.progress = [bar](double fraction) {
             QMetaObject::invokeMethod(
                 bar,
                 [bar, fraction] {
@@ -359,15 +359,14 @@ AnalysisPanel::Job RoverPanel::makeJob() {
                 Qt::QueuedConnection);
         };
         // The scenario travels with its result: the top view needs its robot and soils.
-        return std::make_pair(scenario, scenario::runScenario(scenario, options));
+        return analysis::runRover(settings, control);
     };
 }
 
 void RoverPanel::present(const std::any& value) {
-    auto [scenario, result] =
-        std::any_cast<std::pair<scenario::Scenario, scenario::RunResult>>(value);
-    shown_ = std::move(scenario);
-    result_ = std::move(result);
+    auto result = std::any_cast<analysis::RoverResult>(value);
+    shown_ = std::move(result.scenario);
+    result_ = std::move(result.run);
     shown_name_ = currentName() + (isEdited() ? " (edited)" : "");
     progress_->setValue(100);
     title_ = roverTitle(shown_name_, result_.status);

@@ -10,6 +10,7 @@
 #include <QVBoxLayout>
 #include <algorithm>
 
+#include "core/project/panels.h"
 #include "core/soil/soil_parameters.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/figures.h"
@@ -28,15 +29,16 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
                                      field ? field->unit : "", values.join(", ")),
                             QString::fromStdString(p.key));
     }
-    parameter_->setCurrentIndex(parameter_->findData("phi_deg"));
+    const analysis::SensitivitySettings defaults;
+    parameter_->setCurrentIndex(parameter_->findData(QString::fromStdString(defaults.parameter)));
     slip_angle_ = new QDoubleSpinBox(this);
     slip_angle_->setRange(-60.0, 60.0);
     slip_angle_->setSuffix(" °");
-    slip_angle_->setValue(10.0);
+    slip_angle_->setValue(defaults.slip_angles_deg.front());
     tornado_slip_ = new QDoubleSpinBox(this);
     tornado_slip_->setRange(0.0, 1.0);
     tornado_slip_->setSingleStep(0.05);
-    tornado_slip_->setValue(0.3);
+    tornado_slip_->setValue(defaults.tornado_slip);
     status_ = new QLabel(this);
     readout_ = new QLabel(this);
     tabs_ = new QTabWidget(this);
@@ -94,46 +96,48 @@ Table SensitivityPanel::currentTable() const {
 
 nlohmann::json SensitivityPanel::settings() const {
     static const char* const kPlots[] = {"Fx", "Fs", "tornado"};
-    return {{"parameter", parameter_->currentData().toString().toStdString()},
-            {"slip_angle_deg", slip_angle_->value()},
-            {"tornado_slip", tornado_slip_->value()},
-            {"plot", kPlots[std::clamp(tabs_->currentIndex(), 0, 2)]}};
+    project::SensitivityPanelSettings s;
+    s.analysis = applied_;
+    s.analysis.parameter = parameter_->currentData().toString().toStdString();
+    s.analysis.slip_angles_deg = {slip_angle_->value()};
+    s.analysis.tornado_slip = tornado_slip_->value();
+    s.plot = kPlots[std::clamp(tabs_->currentIndex(), 0, 2)];
+    return project::toJson(s);
 }
 
-void SensitivityPanel::applySettings(const nlohmann::json& s) {
-    if (s.contains("parameter")) {
-        const int i =
-            parameter_->findData(QString::fromStdString(s["parameter"].get<std::string>()));
-        if (i >= 0) parameter_->setCurrentIndex(i);
-    }
-    if (s.contains("slip_angle_deg")) slip_angle_->setValue(s["slip_angle_deg"].get<double>());
-    if (s.contains("tornado_slip")) tornado_slip_->setValue(s["tornado_slip"].get<double>());
-    if (s.contains("plot") && s["plot"].is_string()) {  // the shown tab: "Fx", "Fs" or "tornado"
-        const std::string plot = s["plot"].get<std::string>();
-        tabs_->setCurrentWidget(plot == "tornado" ? tornado_ : plot == "Fs" ? fs_ : fx_);
-    }
+void SensitivityPanel::applySettings(const nlohmann::json& json) {
+    const auto settings =
+        project::panelSettingsFromJson<project::SensitivityPanelSettings>(withChanges(json));
+    if (!settings) return;  // projects are checked when opened: only a program error lands here
+    applied_ = settings->analysis;
+    const int i = parameter_->findData(QString::fromStdString(applied_.parameter));
+    if (i >= 0) parameter_->setCurrentIndex(i);
+    slip_angle_->setValue(applied_.slip_angles_deg.front());
+    tornado_slip_->setValue(applied_.tornado_slip);
+    const std::string& plot = settings->plot;
+    tabs_->setCurrentWidget(plot == "tornado" ? tornado_ : plot == "Fs" ? fs_ : fx_);
 }
 
 AnalysisPanel::Job SensitivityPanel::makeJob() {
-    const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
-    SensitivitySettings settings;
+    const analysis::Inputs inputs = project::inputsOf(document_->project());
+    analysis::SensitivitySettings settings = applied_;
     settings.parameter = parameter_->currentData().toString().toStdString();
-    settings.slip_angle_deg = slip_angle_->value();
+    settings.slip_angles_deg = {slip_angle_->value()};
     settings.tornado_slip = tornado_slip_->value();
     shown_ = settings;
     return [inputs, settings](const std::atomic<bool>& cancel) -> std::any {
-        return computeSensitivity(inputs, settings, &cancel);
+        return analysis::computeSensitivity(inputs, settings, {&cancel});
     };
 }
 
 void SensitivityPanel::present(const std::any& value) {
-    result_ = std::any_cast<SensitivityResult>(value);
+    result_ = std::any_cast<analysis::SensitivityResult>(value);
     const Project& p = document_->project();
     const QString title =
         QString("%1, %2, W = %3 N, β = %4°")
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
-            .arg(shown_.slip_angle_deg);
+            .arg(shown_.slip_angles_deg.front());
     plotSensitivityFamily(*fx_, result_, shown_.parameter, "Fx_N", title);
     plotSensitivityFamily(*fs_, result_, shown_.parameter, "Fs_N", title);
     plotTornado(*tornado_, result_, shown_.tornado_slip, title);

@@ -4,7 +4,7 @@
 /// family of F_x and F_s curves over its Table 4.1 variations, and a tornado chart of how far each
 /// parameter moves F_x at a chosen slip.
 
-#include "widgets/analyses/analyses.h"
+#include "core/analysis/sensitivity.h"
 #include "widgets/panels/analysis_panel.h"
 
 class QComboBox;
@@ -19,7 +19,7 @@ class SensitivityPanel : public AnalysisPanel {
 public:
     explicit SensitivityPanel(ProjectDocument* document, QWidget* parent = nullptr);
 
-    const SensitivityResult& result() const { return result_; }
+    const analysis::SensitivityResult& result() const { return result_; }
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
     Table currentTable() const override;
@@ -40,8 +40,9 @@ private:
     QCustomPlot* fx_;
     QCustomPlot* fs_;
     QCustomPlot* tornado_;
-    SensitivityResult result_;
-    SensitivitySettings shown_;
+    analysis::SensitivityResult result_;
+    analysis::SensitivitySettings shown_;
+    analysis::SensitivitySettings applied_;  // what the project gave beyond the controls
 };
 
 }  // namespace terra::ui

@@ -8,6 +8,8 @@
 #include <QLabel>
 #include <QVBoxLayout>
 
+#include "core/contact/operating_fields.h"
+#include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/figures.h"
 
@@ -15,17 +17,18 @@ namespace terra::ui {
 
 StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
     : AnalysisPanel(document, "stresses", parent) {
+    const analysis::StressSettings defaults;
     slip_ = new QDoubleSpinBox(this);
     slip_->setRange(-1.0, 1.0);
     slip_->setSingleStep(0.05);
     slip_->setDecimals(3);
-    slip_->setValue(0.2);
-    slip_->setToolTip("Slip ratio s [-] (−1 locked … 1 spinning in place)");
+    slip_->setValue(defaults.slip);
+    slip_->setToolTip(QString::fromUtf8(contact::slipField().description));
     slip_angle_ = new QDoubleSpinBox(this);
     slip_angle_->setRange(-60.0, 60.0);
     slip_angle_->setSuffix(" °");
-    slip_angle_->setValue(10.0);
-    slip_angle_->setToolTip("Slip angle β [deg] (−60 … 60)");
+    slip_angle_->setValue(defaults.slip_angle_deg);
+    slip_angle_->setToolTip(QString::fromUtf8(contact::slipAngleField().description));
     stress_ = new QComboBox(this);
     stress_->addItem("All stresses", "all");
     stress_->addItem("Normal stress σ", "sigma");
@@ -67,33 +70,39 @@ StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
     scheduleUpdate();
 }
 
-nlohmann::json StressPanel::settings() const {
-    return {{"slip", slip_->value()},
-            {"slip_angle_deg", slip_angle_->value()},
-            {"stress", stress_->currentData().toString().toStdString()}};
+analysis::StressSettings StressPanel::current() const {
+    analysis::StressSettings s = applied_;
+    s.slip = slip_->value();
+    s.slip_angle_deg = slip_angle_->value();
+    s.stress = stress_->currentData().toString().toStdString();
+    return s;
 }
 
-void StressPanel::applySettings(const nlohmann::json& s) {
-    if (s.contains("slip")) slip_->setValue(s["slip"].get<double>());
-    if (s.contains("slip_angle_deg")) slip_angle_->setValue(s["slip_angle_deg"].get<double>());
-    if (s.contains("stress")) {
-        const int i = stress_->findData(QString::fromStdString(s["stress"].get<std::string>()));
-        if (i >= 0) stress_->setCurrentIndex(i);
-    }
+nlohmann::json StressPanel::settings() const {
+    return project::toJson(project::StressPanelSettings{current()});
+}
+
+void StressPanel::applySettings(const nlohmann::json& json) {
+    const auto settings =
+        project::panelSettingsFromJson<project::StressPanelSettings>(withChanges(json));
+    if (!settings) return;  // projects are checked when opened: only a program error lands here
+    applied_ = settings->analysis;
+    slip_->setValue(applied_.slip);
+    slip_angle_->setValue(applied_.slip_angle_deg);
+    const int i = stress_->findData(QString::fromStdString(applied_.stress));
+    if (i >= 0) stress_->setCurrentIndex(i);
 }
 
 AnalysisPanel::Job StressPanel::makeJob() {
-    const AnalysisInputs inputs = AnalysisInputs::from(document_->project());
-    StressSettings settings;
-    settings.slip = slip_->value();
-    settings.slip_angle_deg = slip_angle_->value();
-    return [inputs, settings](const std::atomic<bool>&) -> std::any {
-        return computeStresses(inputs, settings);
+    const analysis::Inputs inputs = project::inputsOf(document_->project());
+    const analysis::StressSettings settings = current();
+    return [inputs, settings](const std::atomic<bool>& cancel) -> std::any {
+        return analysis::computeStresses(inputs, settings, {&cancel});
     };
 }
 
 void StressPanel::present(const std::any& value) {
-    result_ = std::any_cast<StressResult>(value);
+    result_ = std::any_cast<analysis::StressResult>(value);
     if (!result_.message.empty()) {
         info_->setText("<b>No equilibrium:</b> " +
                        QString::fromStdString(result_.message).toHtmlEscaped());

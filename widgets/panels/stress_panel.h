@@ -2,9 +2,9 @@
 /// @file stress_panel.h
 /// Stress distribution panel (Figs. 2.11, 2.16; Tables 2.4–2.5): σ, τ, τ_t, τ_l over the contact
 /// angle at one slip and slip angle (θ_f solved from the load), exact and quadratic overlaid, with
-/// the approximation's RMSE and MAE.
+/// the approximation's RMSE and MAE (core/analysis/stresses.h, as `terrastudio stresses`).
 
-#include "widgets/analyses/analyses.h"
+#include "core/analysis/stresses.h"
 #include "widgets/panels/analysis_panel.h"
 
 class QComboBox;
@@ -18,7 +18,7 @@ class StressPanel : public AnalysisPanel {
 public:
     explicit StressPanel(ProjectDocument* document, QWidget* parent = nullptr);
 
-    const StressResult& result() const { return result_; }
+    const analysis::StressResult& result() const { return result_; }
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override {
         return {{"stresses", plot_}};
     }
@@ -33,13 +33,15 @@ protected:
 
 private:
     void redraw();
+    analysis::StressSettings current() const;
     QDoubleSpinBox* slip_;
     QDoubleSpinBox* slip_angle_;
     QComboBox* stress_;
     QLabel* info_;
     QLabel* readout_;
     QCustomPlot* plot_;
-    StressResult result_;
+    analysis::StressResult result_;
+    analysis::StressSettings applied_;  // what the project gave beyond the controls (θ_f, step, …)
 };
 
 }  // namespace terra::ui

@@ -83,8 +83,8 @@ void resetPlot(QCustomPlot& plot, const QString& title) {
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
 }
 
-void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress,
-                  const QString& title) {
+void plotStresses(QCustomPlot& plot, const analysis::StressResult& result,
+                  const std::string& stress, const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Contact angle θ [deg]");
     plot.yAxis->setLabel("Stress [kPa]");
@@ -109,7 +109,7 @@ void plotStresses(QCustomPlot& plot, const StressResult& result, const std::stri
     finish(plot);
 }
 
-void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result,
+void plotSensitivityFamily(QCustomPlot& plot, const analysis::SensitivityResult& result,
                            const std::string& key, const std::string& column_name,
                            const QString& title) {
     resetPlot(plot, title);
@@ -142,7 +142,7 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result,
     finish(plot);
 }
 
-void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip,
+void plotTornado(QCustomPlot& plot, const analysis::SensitivityResult& result, double slip,
                  const QString& title) {
     resetPlot(plot, title);
     const Table& t = result.tornado;
@@ -202,7 +202,7 @@ void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip
     plot.replot();
 }
 
-void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& title) {
+void plotBulldozing(QCustomPlot& plot, const analysis::SoilCurves& curves, const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Sinkage h [mm]");
     plot.yAxis->setLabel("Bulldozing resistance F_b [N]");
@@ -224,7 +224,8 @@ void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& 
     plot.replot();
 }
 
-void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QString& title) {
+void plotStaticSinkage(QCustomPlot& plot, const analysis::SoilCurves& curves,
+                       const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Vertical load W [N]");
     plot.yAxis->setLabel("Static sinkage h_s [mm]");
@@ -269,7 +270,7 @@ void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QStrin
     plot.replot();
 }
 
-void plotIdentification(QCustomPlot& plot, const IdentificationResult& result,
+void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult& result,
                         const std::string& channel, const QString& title) {
     resetPlot(plot, title);
     plot.xAxis->setLabel("Slip ratio s [-]");

@@ -1,13 +1,15 @@
 #pragma once
 /// @file figures.h
-/// Draws the analyses' results (widgets/analyses/analyses.h) on a QCustomPlot: the same drawing
+/// Draws the analyses' results (core/analysis) on a QCustomPlot: the same drawing
 /// for the panels and for headless exports. Each function replaces what the plot showed.
 
 #include <QString>
 #include <string>
 
-#include "widgets/analyses/analyses.h"
-#include "widgets/analyses/soil_curves.h"
+#include "core/analysis/identification.h"
+#include "core/analysis/sensitivity.h"
+#include "core/analysis/soil_curves.h"
+#include "core/analysis/stresses.h"
 
 class QCustomPlot;
 
@@ -18,11 +20,11 @@ void resetPlot(QCustomPlot& plot, const QString& title);
 
 /// One stress ("sigma", "tau", "tau_t", "tau_l") over θ: exact solid, quadratic dashed, with the
 /// RMSE/MAE in the legend. "all" draws the four exact and approximated pairs together.
-void plotStresses(QCustomPlot& plot, const StressResult& result, const std::string& stress,
-                  const QString& title);
+void plotStresses(QCustomPlot& plot, const analysis::StressResult& result,
+                  const std::string& stress, const QString& title);
 
 /// One curve per value of the varied parameter: `column` (Fx_N or Fs_N) against slip.
-void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result,
+void plotSensitivityFamily(QCustomPlot& plot, const analysis::SensitivityResult& result,
                            const std::string& key, const std::string& column, const QString& title);
 
 /// Horizontal bars: the change of F_x from the base soil at the lowest and highest variation of
@@ -31,19 +33,19 @@ void plotSensitivityFamily(QCustomPlot& plot, const SensitivityResult& result,
 /// high bar at k + kTornadoBarOffset, each kTornadoBarWidth tall: side by side, never overlapping.
 constexpr double kTornadoBarOffset = 0.19;
 constexpr double kTornadoBarWidth = 0.36;
-void plotTornado(QCustomPlot& plot, const SensitivityResult& result, double slip,
+void plotTornado(QCustomPlot& plot, const analysis::SensitivityResult& result, double slip,
                  const QString& title);
 
 /// Bulldozing resistance F_b of one side wall against sinkage h (Fig. 2.15): Bekker's coefficients
 /// solid (the ones the forces use), Hegedus's dashed.
-void plotBulldozing(QCustomPlot& plot, const SoilCurves& curves, const QString& title);
+void plotBulldozing(QCustomPlot& plot, const analysis::SoilCurves& curves, const QString& title);
 
 /// Static sinkage h against load W (Fig. 2.6): Bekker's Eq. 2.8 (E2), Eq. 2.7 over the whole
 /// contact and over its front half; a vertical line marks the project's load.
-void plotStaticSinkage(QCustomPlot& plot, const SoilCurves& curves, const QString& title);
+void plotStaticSinkage(QCustomPlot& plot, const analysis::SoilCurves& curves, const QString& title);
 
 /// Data (points) and fitted curve (line) of one channel ("Fx_N", "Fz_N", "My_Nm") against slip.
-void plotIdentification(QCustomPlot& plot, const IdentificationResult& result,
+void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult& result,
                         const std::string& channel, const QString& title);
 
 }  // namespace terra::ui

@@ -6,7 +6,7 @@
 #include <limits>
 #include <tuple>
 
-#include "core/common/units.h"
+#include "core/analysis/identified_parameters.h"
 
 namespace terra::ui {
 namespace {
@@ -15,6 +15,15 @@ const QColor kBlue(31, 119, 180), kOrange(255, 127, 14), kGreen(44, 160, 44),
     kPurple(148, 103, 189), kBrown(140, 86, 75), kRed(214, 39, 40), kGrey(110, 110, 110);
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The estimates drawn, by graph name, and the field of the identified parameters each shows.
+constexpr std::pair<const char*, const char*> kPlotted[] = {
+    {"phi", "phi_deg"}, {"c", "c_kPa"}, {"Ks", "Ks_kPa"}, {"n0", "n0"}, {"K", "K_m"}};
+
+// "φ [deg]": the axis label of an identified parameter (identified_parameters.h).
+QString label(const char* key) {
+    return QString::fromStdString(analysis::findIdentifiedField(key)->symbolWithUnit());
+}
 
 void styleAxisLabel(QCPAxis* axis, const QString& label, const QColor& color) {
     axis->setLabel(label);
@@ -82,9 +91,9 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
     auto* est_margins = new QCPMarginGroup(estimates_);
     auto* det_margins = new QCPMarginGroup(detection_);
     // Estimates: φ | c, K_s | n₀, K.
-    QCPAxisRect* r0 = addRect(estimates_, 1, "φ [deg]", "c [kPa]", false);
-    QCPAxisRect* r1 = addRect(estimates_, 2, "K_s [kPa/m^N]", "n₀ [-]", false);
-    QCPAxisRect* r2 = addRect(estimates_, 3, "K [mm]", "", false);
+    QCPAxisRect* r0 = addRect(estimates_, 1, label("phi_deg"), label("c_kPa"), false);
+    QCPAxisRect* r1 = addRect(estimates_, 2, label("Ks_kPa"), label("n0"), false);
+    QCPAxisRect* r2 = addRect(estimates_, 3, label("K_m"), "", false);
     // Detection: score, F_x.
     QCPAxisRect* r3 = addRect(detection_, 1, "Residual score [-]", "", true);
     QCPAxisRect* r4 = addRect(detection_, 2, "F_x [N]", "", false);
@@ -122,11 +131,11 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         g->setPen(QPen(color, 1.2, Qt::DotLine));
         graphs_.emplace_back(name, g);
     }
-    styleAxisLabel(left(r0), "φ [deg]", kBlue);
-    styleAxisLabel(right(r0), "c [kPa]", kOrange);
-    styleAxisLabel(left(r1), "K_s [kPa/m^N]", kGreen);
-    styleAxisLabel(right(r1), "n₀ [-]", kPurple);
-    styleAxisLabel(left(r2), "K [mm]", kBrown);
+    styleAxisLabel(left(r0), label("phi_deg"), kBlue);
+    styleAxisLabel(right(r0), label("c_kPa"), kOrange);
+    styleAxisLabel(left(r1), label("Ks_kPa"), kGreen);
+    styleAxisLabel(right(r1), label("n0"), kPurple);
+    styleAxisLabel(left(r2), label("K_m"), kBrown);
     current_ =
         dotGraph(bottom(r4), left(r4), kRed, QCPScatterStyle::ssCircle, 12.0, "current sample");
     current_->setPen(QPen(kRed, 2.0));
@@ -242,14 +251,9 @@ void StreamingFigures::setTruth(
                                                 : static_cast<double>(sample_count_)) -
                           0.5;
         const auto& p = truth[i].second;
-        const std::pair<const char*, double> values[] = {
-            {"phi_true", units::radToDeg(p.friction_angle_rad)},
-            {"c_true", p.cohesion_pa / 1e3},
-            {"Ks_true", p.pressure_modulus / 1e3},
-            {"n0_true", p.n0},
-            {"K_true", p.shear_modulus_m * 1e3}};
-        for (const auto& [name, v] : values) {
-            QCPGraph* g = graph(name);
+        for (const auto& [name, key] : kPlotted) {
+            const double v = analysis::findIdentifiedField(key)->userValue(p);
+            QCPGraph* g = graph(QString(name) + "_true");
             if (i > 0) g->addData(from, kNaN);  // a step, not a slope, at the border
             g->addData(from + 1e-9, v);
             g->addData(to - 1e-9, v);
@@ -293,13 +297,10 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
     for (const StreamFrame& f : frames) {
         const auto& u = f.update;
         const double k = static_cast<double>(u.index);
-        const auto& p = u.parameters;
-        const bool e = u.estimated;
-        g("phi")->addData(k, e ? units::radToDeg(p.friction_angle_rad) : kNaN);
-        g("c")->addData(k, e ? p.cohesion_pa / 1e3 : kNaN);
-        g("Ks")->addData(k, e ? p.pressure_modulus / 1e3 : kNaN);
-        g("n0")->addData(k, e ? p.n0 : kNaN);
-        g("K")->addData(k, e ? p.shear_modulus_m * 1e3 : kNaN);
+        for (const auto& [name, key] : kPlotted) {
+            const double v = analysis::findIdentifiedField(key)->userValue(u.parameters);
+            g(name)->addData(k, u.estimated ? v : kNaN);
+        }
         const bool scored = u.residual_score > 0.0;
         g("score")->addData(k, scored ? u.residual_score : kNaN);
         if (scored && u.residual_score > threshold_) g("far_off")->addData(k, u.residual_score);

@@ -1,0 +1,96 @@
+#pragma once
+/// @file analysis.h
+/// The shape every analysis of the product has (docs/architecture.md, "Analysis services"): a
+/// settings struct with its defaults, a reader of those settings from JSON that reports every
+/// problem with its field path, and a compute function (inputs, settings, control) → a typed
+/// result, viewed uniformly as an Outcome (named tables, notes, status) by the script runner,
+/// the reports and the Python module. The command line, the scripts and the studio's panels all
+/// call the same compute function; nothing else assembles an analysis.
+
+#include <any>
+#include <atomic>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/analysis/conditions.h"
+#include "core/common/issue.h"
+#include "core/common/table.h"
+#include "core/contact/bulldozing.h"
+#include "core/contact/contact_parameters.h"
+#include "core/contact/sinkage.h"
+#include "core/io/json_reader.h"
+#include "core/soil/soil_parameters.h"
+#include "core/wheel/wheel_parameters.h"
+
+namespace terra::analysis {
+
+/// What an analysis of a project reads: the soil, the wheel and the operating conditions.
+struct Inputs {
+    soil::SoilParameters soil;
+    wheel::WheelParameters wheel;
+    OperatingConditions conditions;
+
+    /// The soil on the wheel as the contact model sees it; throws std::invalid_argument when the
+    /// soil or the wheel is invalid or K_s = k_c/b + k_φ ≤ 0.
+    contact::ContactParameters<double> contact() const;
+};
+
+/// Every problem of the inputs: soil, wheel, conditions and the pair (K_s > 0).
+std::vector<Issue> validate(const Inputs& inputs);
+
+/// Progress and cancellation of a running analysis (the studio's workers, the CLI's Ctrl-C).
+struct Control {
+    Control(const std::atomic<bool>* cancel_flag = nullptr,  // NOLINT(google-explicit-constructor)
+            std::function<void(double)> on_progress = {})
+        : cancel(cancel_flag), progress(std::move(on_progress)) {}
+
+    const std::atomic<bool>* cancel;       ///< set: stop early, keep what was computed
+    std::function<void(double)> progress;  ///< fraction done in [0, 1]; may be empty
+
+    bool cancelled() const { return cancel != nullptr && cancel->load(std::memory_order_relaxed); }
+    void report(double fraction) const {
+        if (progress) progress(fraction);
+    }
+};
+
+/// Contact-model choices beyond the soil and the wheel (the command line's model flags; the
+/// thesis's defaults: θ_r = 0, θ_m from Eq. 2.18, Bekker's bulldozing coefficients).
+struct ModelChoices {
+    contact::ExitCondition exit;                 ///< θ_r or rut ratio λ (Eq. 2.12)
+    std::optional<double> max_stress_angle_rad;  ///< fixed θ_m; empty: Eq. 2.18
+    contact::BulldozingModel bulldozing = contact::BulldozingModel::kBekker;  ///< Eq. 2.27
+};
+
+/// Reads "exit_angle_deg" or "rut_ratio", "max_stress_angle_deg" and "bulldozing" (bekker,
+/// hegedus); absent keys keep the defaults.
+void readModelChoices(io::ObjectReader& r, ModelChoices& out);
+/// The non-default choices as JSON (the keys readModelChoices reads).
+void writeModelChoices(const ModelChoices& choices, nlohmann::json& out);
+
+/// One table of a result.
+struct NamedTable {
+    std::string name;  ///< what a script's expectation calls it ("sweep", "errors")
+    /// The CSV file is NAME + suffix + ".csv" ("", "-errors"); empty: not written as CSV.
+    std::optional<std::string> file_suffix;
+    Table table;
+};
+
+/// A result seen uniformly: its tables, notes and status, and the typed result for the figures.
+struct Outcome {
+    enum class Status { kCompleted, kCancelled, kFailed };
+    Status status = Status::kCompleted;
+    std::string message;             ///< why it failed or stopped early
+    std::vector<NamedTable> tables;  ///< the main table first
+    std::vector<std::string> notes;  ///< warnings and solver reports
+    std::vector<std::pair<std::string, nlohmann::json>> documents;  ///< file suffix → JSON output
+    std::any result;  ///< the typed result (ForcesResult, StressResult, …), for the figures
+
+    /// The table of that name ("" or absent: the main table), or nullptr.
+    const Table* table(std::string_view name = {}) const;
+};
+
+}  // namespace terra::analysis

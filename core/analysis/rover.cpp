@@ -1,0 +1,145 @@
+#include "core/analysis/rover.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/common/units.h"
+#include "core/scenario/scenario_json.h"
+
+namespace terra::analysis {
+
+void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out) {
+    if (r.text("scenario", out.scenario, io::Presence::kRequired)) {
+        std::string name = out.scenario;
+        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
+            !context.base_dir.empty()) {
+            name = (context.base_dir / name).string();
+        }
+        if (context.locations != nullptr) {
+            Result<scenario::Scenario> loaded = scenario::resolveScenario(*context.locations, name);
+            if (loaded) {
+                out.loaded = loaded.value();
+            } else {
+                for (const Issue& issue : loaded.issues())
+                    r.report("scenario",
+                             (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
+            }
+        }
+    }
+    double value = 0.0;
+    if (r.number("duration_s", value, scenario::kDurationRange, "s")) out.duration_s = value;
+    if (r.number("time_step_s", value, scenario::kTimeStepRange, "s")) out.time_step_s = value;
+    contact::ContactModel model = contact::ContactModel::kFull;
+    if (r.choice<contact::ContactModel>("model", model,
+                                        {{"full", contact::ContactModel::kFull},
+                                         {"quadratic", contact::ContactModel::kQuadratic}})) {
+        out.model = model;
+    }
+}
+
+scenario::Scenario roverScenario(const RoverSettings& settings) {
+    if (!settings.loaded) {
+        throw std::invalid_argument("scenario '" + settings.scenario + "' is not resolved");
+    }
+    scenario::Scenario s = *settings.loaded;
+    std::vector<Issue> issues;
+    if (settings.duration_s &&
+        checkRange(issues, "duration_s", *settings.duration_s, scenario::kDurationRange, "s")) {
+        s.duration_s = *settings.duration_s;
+    }
+    if (settings.time_step_s &&
+        checkRange(issues, "time_step_s", *settings.time_step_s, scenario::kTimeStepRange, "s")) {
+        s.time_step_s = *settings.time_step_s;
+        s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
+    }
+    if (settings.model) s.options.contact.model = *settings.model;
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    return s;
+}
+
+const std::vector<std::string>& roverFigureKeys() {
+    static const std::vector<std::string> keys{"path",     "yaw",      "velocities", "slip",
+                                               "steering", "wheel-vx", "wheel-vy",   "drawbar-pull",
+                                               "load",     "sinkage",  "top-view"};
+    return keys;
+}
+
+RoverResult runRover(const RoverSettings& settings, const Control& control) {
+    RoverResult out;
+    out.scenario = roverScenario(settings);
+    scenario::RunOptions options;
+    options.cancel = control.cancel;
+    options.progress = control.progress;
+    out.run = scenario::runScenario(out.scenario, options);
+    return out;
+}
+
+Table roverSummaryTable(const RoverResult& result) {
+    const nlohmann::json summary = scenario::toJson(result.run, result.scenario);
+    const Table& series = result.run.series;
+    Table t;
+    t.rows.emplace_back();
+    auto add = [&](const std::string& key, double value) {
+        t.columns.push_back(key);
+        t.rows[0].push_back(value);
+    };
+    for (const auto& [key, value] : summary.items()) {
+        if (value.is_number()) add(key, value.get<double>());
+        if (value.is_object()) {
+            for (const auto& [sub, v] : value.items()) {
+                if (v.is_number()) add(key + "_" + sub, v.get<double>());
+            }
+        }
+    }
+    add("yaw_deg", units::radToDeg(summary.value("yaw_rad", 0.0)));
+    double max_y = 0.0, max_yaw = 0.0;
+    if (!series.rows.empty()) {
+        for (double y : series.values("y_m")) max_y = std::max(max_y, std::abs(y));
+        for (double yaw : series.values("yaw_deg")) max_yaw = std::max(max_yaw, std::abs(yaw));
+    }
+    add("max_abs_y_m", max_y);
+    add("max_abs_yaw_deg", max_yaw);
+    return t;
+}
+
+Outcome roverOutcome(RoverResult result) {
+    Outcome out;
+    const scenario::RunResult& run = result.run;
+    const nlohmann::json summary = scenario::toJson(run, result.scenario);
+    if (run.status == scenario::RunResult::Status::kDiverged) {
+        out.status = Outcome::Status::kFailed;
+        out.message = "the run diverged: " + run.message;
+    } else if (run.status == scenario::RunResult::Status::kCancelled) {
+        out.status = Outcome::Status::kCancelled;
+        out.message = run.message;
+    }
+    out.tables.push_back({"summary", std::nullopt, roverSummaryTable(result)});
+    out.tables.push_back({"timeseries", "-timeseries", run.series});
+    if (!run.streaming.columns.empty())
+        out.tables.push_back({"streaming", "-streaming", run.streaming});
+    out.documents.emplace_back("-summary.json", summary);
+    if (run.status != scenario::RunResult::Status::kCompleted) {
+        out.notes.push_back("run " + summary.value("status", std::string()) + ": " + run.message);
+    }
+    if (summary.contains("warning")) out.notes.push_back(summary["warning"].get<std::string>());
+    out.notes.push_back("final pose x = " + formatNumber(run.summary.x_m) +
+                        " m, y = " + formatNumber(run.summary.y_m) +
+                        " m, yaw = " + formatNumber(units::radToDeg(run.summary.yaw_rad)) +
+                        " deg; motor energy " + formatNumber(run.summary.energy_j) + " J");
+    out.result = std::move(result);
+    return out;
+}
+
+AnalysisType roverType() {
+    std::vector<FigureSpec> figures;
+    for (const std::string& key : roverFigureKeys()) figures.push_back({key, "-" + key});
+    return makeAnalysisType<RoverSettings>(
+        "rover", "the 4WD/4WS robot driven through a scenario on deformable soil (Figs. 3.7-3.15)",
+        {"summary", "timeseries", "streaming"}, std::move(figures), readRoverSettings,
+        [](const Inputs&, const RoverSettings& s, const Control& c) { return runRover(s, c); },
+        roverOutcome, false);
+}
+
+}  // namespace terra::analysis

@@ -1,0 +1,60 @@
+#pragma once
+/// @file rover.h
+/// A rover scenario run (thesis chapter 3, docs/dynamics.md): the 4WD/4WS robot driven through a
+/// scenario on its soils, with its time series, summary and optional streaming identification.
+/// The studio's rover panel, `terrastudio simulate` and a script's "rover" analysis. The
+/// scenario brings its own robot and soils: a project's soil, wheel and conditions do not apply.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/analysis/analysis.h"
+#include "core/analysis/registry.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario.h"
+
+namespace terra::analysis {
+
+struct RoverSettings {
+    std::string scenario = "straight";  ///< a scenario preset (resources/scenarios) or a file
+    std::optional<scenario::Scenario>
+        loaded;                         ///< that scenario, resolved (by the reader or caller)
+    std::optional<double> duration_s;   ///< overrides the scenario's duration [s]
+    std::optional<double> time_step_s;  ///< overrides its time step [s]
+    std::optional<contact::ContactModel> model;  ///< overrides its contact model
+};
+
+/// "scenario" (required; relative files against the context's directory, resolved at once),
+/// "duration_s", "time_step_s", "model" (full, quadratic).
+void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);
+
+/// The scenario with the overrides applied; throws std::invalid_argument when it is not
+/// resolved or an override is out of range.
+scenario::Scenario roverScenario(const RoverSettings& settings);
+
+/// The figures of a run (rover_figures.h draws them), in the panel's order, and the top view.
+const std::vector<std::string>& roverFigureKeys();
+
+struct RoverResult {
+    scenario::Scenario scenario;  ///< as run (the top view draws its robot and soils)
+    scenario::RunResult run;
+};
+
+/// Runs it (progress and cancel from `control`). Throws std::invalid_argument when the robot
+/// cannot be set up (scenario::runScenario).
+RoverResult runRover(const RoverSettings& settings, const Control& control = {});
+
+/// A run's summary as a one-row table for expectations: every number of the summary JSON
+/// (nested objects flattened: mean_slip_FL …), yaw_deg, and the largest |y| and |yaw| over the
+/// run (max_abs_y_m, max_abs_yaw_deg: a straight line stays on its line all along).
+Table roverSummaryTable(const RoverResult& result);
+
+/// Tables "summary" (main, not written as CSV), "timeseries", "streaming" (when the scenario has
+/// the hook); the document "-summary.json"; notes: the status, warnings and the final pose. A
+/// diverged run is a failure, a cancelled one cancelled; both keep their partial tables.
+Outcome roverOutcome(RoverResult result);
+
+AnalysisType roverType();
+
+}  // namespace terra::analysis

@@ -1,0 +1,246 @@
+#include "core/analysis/streaming_identification.h"
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include "core/analysis/identified_parameters.h"
+#include "core/contact/contact_parameters.h"
+#include "core/identification/synthetic.h"
+
+namespace terra::analysis {
+namespace {
+
+namespace id = identification;
+
+constexpr double kDefaultPeriodS = 0.01;  // 100 Hz when the data carry no time
+const Range kNoisePercent{0.0, 100.0};
+
+// One soil's sweep in a scrambled, fixed order (stride coprime to the count).
+std::vector<id::Sample> scrambledSweep(const soil::SoilParameters& soil, const SoilBorderSpec& spec,
+                                       std::uint64_t seed, std::vector<std::string>& warnings) {
+    id::SyntheticSpec s;
+    s.loads_n = {spec.load_n};
+    const int n = spec.samples_per_soil;
+    for (int i = 0; i < n; ++i) s.slips.push_back(n == 1 ? 0.3 : 0.05 + 0.85 * i / (n - 1));
+    s.noise.fx.relative = s.noise.fz.relative = s.noise.my.relative = spec.noise_relative;
+    s.seed = seed;
+    id::SyntheticData d = id::synthesize(contact::makeContactParameters(soil, spec.wheel), s);
+    for (auto& w : d.warnings) warnings.push_back(soil.name + ": " + w);
+    const std::size_t count = d.data.samples.size();
+    std::size_t stride = 37;
+    while (count > 1 && std::gcd(stride, count) != 1) ++stride;
+    std::vector<id::Sample> out;
+    out.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) out.push_back(d.data.samples[(i * stride) % count]);
+    return out;
+}
+
+}  // namespace
+
+StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec) {
+    if (spec.samples_per_soil < 1) {
+        throw std::invalid_argument("samples_per_soil = " + std::to_string(spec.samples_per_soil) +
+                                    " must be ≥ 1");
+    }
+    if (!(spec.sample_period_s > 0.0)) throw std::invalid_argument("sample_period_s must be > 0");
+    StreamSource out;
+    std::vector<id::Sample> samples = scrambledSweep(spec.first, spec, spec.seed, out.warnings);
+    out.true_border = samples.size();
+    const std::vector<id::Sample> second =
+        scrambledSweep(spec.second, spec, spec.seed + 1, out.warnings);
+    samples.insert(samples.end(), second.begin(), second.end());
+    for (std::size_t i = 0; i < samples.size(); ++i)
+        samples[i].time_s = static_cast<double>(i) * spec.sample_period_s;
+    out.data.samples = std::move(samples);
+    out.truth = {{0, identifiedOf(spec.first, spec.wheel)},
+                 {*out.true_border, identifiedOf(spec.second, spec.wheel)}};
+    const auto percent = static_cast<int>(std::lround(spec.noise_relative * 100.0));
+    out.description =
+        spec.first.name + " → " + spec.second.name + ", " + std::to_string(percent) + " % noise";
+    return out;
+}
+
+Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_rows) {
+    auto read = id::readDataSet(path, skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop);
+    if (!read) return read.issues();
+    StreamSource out;
+    out.data = read->data;
+    out.description = std::filesystem::path(path).filename().string();
+    for (const Issue& issue : read->skipped)
+        out.warnings.push_back("skipped " + issue.where + ": " + issue.message);
+    if (out.data.samples.empty()) return std::vector<Issue>{{path, "no valid samples"}};
+    return out;
+}
+
+void readStreamingSettings(io::ObjectReader& r, const ReadContext& context,
+                           StreamingSettings& out) {
+    r.boolean("skip_bad_rows", out.skip_bad_rows);
+    if (r.text("csv", out.csv) && !out.csv.empty()) {
+        std::filesystem::path path(out.csv);
+        if (path.is_relative() && !context.base_dir.empty()) path = context.base_dir / path;
+        out.csv = path.string();
+        if (Result<StreamSource> read = readStreamSource(out.csv, out.skip_bad_rows); !read) {
+            for (const Issue& issue : read.issues())
+                r.report("csv", issue.where + ": " + issue.message);
+        }
+    }
+    if (r.text("second_soil", out.second_soil) || out.csv.empty()) {
+        std::string name = out.second_soil;
+        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
+            !context.base_dir.empty()) {
+            name = (context.base_dir / name).string();
+        }
+        if (context.locations != nullptr) {
+            Result<soil::SoilParameters> soil = io::resolveSoil(*context.locations, name);
+            if (soil) {
+                out.second = soil.value();
+            } else {
+                r.report("second_soil", soil.message());
+            }
+        }
+    }
+    r.number("noise_percent", out.noise_percent, kNoisePercent, "%");
+    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max() - 1);
+    int window = static_cast<int>(out.options.window);
+    if (r.integer("window", window, static_cast<int>(out.options.min_samples), 100000))
+        out.options.window = static_cast<std::size_t>(window);
+}
+
+StreamSource streamSource(const Inputs& in, const StreamingSettings& s) {
+    if (!s.csv.empty()) {
+        Result<StreamSource> read = readStreamSource(s.csv, s.skip_bad_rows);
+        if (!read) throw std::invalid_argument(read.message());
+        return read.value();
+    }
+    if (!s.second)
+        throw std::invalid_argument("second_soil: the soil after the border is not resolved");
+    std::vector<Issue> issues;
+    checkRange(issues, "noise_percent", s.noise_percent, kNoisePercent, "%");
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    SoilBorderSpec spec;
+    spec.first = in.soil;
+    spec.second = *s.second;
+    spec.wheel = in.wheel;
+    spec.load_n = in.conditions.load_n;
+    spec.noise_relative = s.noise_percent / 100.0;
+    spec.seed = s.seed;
+    return synthesiseSoilBorder(spec);
+}
+
+std::vector<double> sampleTimes(const id::DataSet& data) {
+    std::vector<double> t(data.samples.size());
+    bool own = !data.samples.empty();
+    for (std::size_t i = 0; i < t.size() && own; ++i) {
+        own = data.samples[i].time_s.has_value() && std::isfinite(*data.samples[i].time_s) &&
+              (i == 0 || *data.samples[i].time_s >= *data.samples[i - 1].time_s);
+        if (own) t[i] = *data.samples[i].time_s;
+    }
+    if (!own) {
+        for (std::size_t i = 0; i < t.size(); ++i) t[i] = static_cast<double>(i) * kDefaultPeriodS;
+    }
+    return t;
+}
+
+StreamingRun::StreamingRun(const wheel::WheelParameters& wheel, const id::StreamingOptions& options)
+    : wheel_(wheel), identifier_(wheel, options) {}
+
+StreamFrame StreamingRun::push(const id::Sample& sample, double time_s) {
+    StreamFrame frame;
+    frame.time_s = time_s;
+    frame.fx_measured_n = sample.fx_n;
+    frame.fx_predicted_n =
+        estimate_
+            ? id::decoupledForward(*estimate_, wheel_, sample.slip, sample.entry_angle_rad).fx_n
+            : std::numeric_limits<double>::quiet_NaN();
+    frame.update = identifier_.push(sample);
+    if (frame.update.estimated) {
+        estimate_ = frame.update.parameters;
+    } else {
+        estimate_.reset();
+    }
+    return frame;
+}
+
+Table framesTable(const std::vector<StreamFrame>& frames) {
+    Table t;
+    t.columns = {"sample", "time_s", "estimated"};
+    for (const IdentifiedField& field : identifiedFields()) t.columns.emplace_back(field.key);
+    for (const char* c : {"score", "change_at", "window", "Fx_N", "Fx_predicted_N"})
+        t.columns.emplace_back(c);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const StreamFrame& f : frames) {
+        const id::StreamUpdate& u = f.update;
+        std::vector<double> row{static_cast<double>(u.index), f.time_s, u.estimated ? 1.0 : 0.0};
+        for (const IdentifiedField& field : identifiedFields())
+            row.push_back(u.estimated ? field.toUser(u.parameters.*field.member) : nan);
+        row.insert(row.end(),
+                   {u.residual_score, u.change_at ? static_cast<double>(*u.change_at) : nan,
+                    static_cast<double>(u.window_size), f.fx_measured_n, f.fx_predicted_n});
+        t.rows.push_back(std::move(row));
+    }
+    return t;
+}
+
+StreamingResult computeStreaming(const Inputs& in, const StreamingSettings& s,
+                                 const Control& control) {
+    return playStreaming(streamSource(in, s), in.wheel, s.options, control);
+}
+
+StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters& wheel,
+                              const id::StreamingOptions& options, const Control& control) {
+    StreamingResult out;
+    out.source = std::move(source);
+    const std::vector<id::Sample> samples = std::move(out.source.data.samples);
+    out.source.data.samples.clear();
+    if (samples.empty()) throw std::invalid_argument("the data set has no samples");
+    out.sample_count = samples.size();
+    const std::vector<double> times = sampleTimes(id::DataSet{samples});
+    StreamingRun run(wheel, options);
+    out.frames.reserve(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (control.cancelled()) {
+            out.cancelled = true;
+            break;
+        }
+        out.frames.push_back(run.push(samples[i], times[i]));
+        const id::StreamUpdate& u = out.frames.back().update;
+        if (u.change_detected && u.change_at) out.changes.push_back(*u.change_at);
+        control.report(static_cast<double>(i + 1) / static_cast<double>(samples.size()));
+    }
+    return out;
+}
+
+Outcome streamingOutcome(StreamingResult result) {
+    Outcome out;
+    out.status = result.cancelled ? Outcome::Status::kCancelled : Outcome::Status::kCompleted;
+    out.tables.push_back({"frames", "", framesTable(result.frames)});
+    out.notes = result.source.warnings;
+    std::string changes;
+    for (std::size_t c : result.changes)
+        changes += (changes.empty() ? "" : ", ") + std::to_string(c);
+    out.notes.push_back(changes.empty() ? "no change of soil detected"
+                                        : "change of soil at sample " + changes);
+    if (result.source.true_border) {
+        out.notes.push_back("true border at sample " + std::to_string(*result.source.true_border));
+    }
+    out.result = std::move(result);
+    return out;
+}
+
+AnalysisType streamingType() {
+    return makeAnalysisType<StreamingSettings>(
+        "streaming",
+        "streaming identification of a CSV or of a synthetic drive over a soil border, with the "
+        "detected change of soil",
+        {"frames"}, {{"estimates", "-estimates"}, {"detection", "-detection"}},
+        readStreamingSettings,
+        [](const Inputs& in, const StreamingSettings& s, const Control& c) {
+            return computeStreaming(in, s, c);
+        },
+        streamingOutcome);
+}
+
+}  // namespace terra::analysis

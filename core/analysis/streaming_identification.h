@@ -1,0 +1,129 @@
+#pragma once
+/// @file streaming_identification.h
+/// Streaming identification of a data set (core/identification/streaming.h): the samples fed one
+/// at a time, each giving a frame — the estimate, the residual score, a detected change of soil,
+/// and F_x measured against F_x predicted by the estimate before the sample. The data are a CSV
+/// or a synthetic drive over a soil border. The studio's streaming playback (which paces the same
+/// frames in time, widgets/analyses/streaming_playback.h), `terrastudio identify --stream` and a
+/// script's "streaming" analysis.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/analysis/analysis.h"
+#include "core/analysis/registry.h"
+#include "core/common/issue.h"
+#include "core/identification/data_set.h"
+#include "core/identification/decoupled_fit.h"
+#include "core/identification/streaming.h"
+
+namespace terra::analysis {
+
+/// A data set to play and, when it was synthesised, where its soil changes.
+struct StreamSource {
+    identification::DataSet data;
+    std::optional<std::size_t> true_border;  ///< index of the first sample of the second soil
+    std::string description;                 ///< "sandy loam → clayey soil, 1 % noise", "log.csv"
+    std::vector<std::string> warnings;       ///< rows skipped, points the soil could not carry
+    /// Synthetic data: the parameters each stretch was made with, from its first sample on (for
+    /// drawing the truth beside the estimates; K_s = k_c/b + k_φ).
+    std::vector<std::pair<std::size_t, identification::DecoupledParameters>> truth;
+};
+
+/// A synthetic drive over a soil border: the slip sweep of the first soil, then of the second,
+/// each in a scrambled but fixed order (a robot's slip wanders; a monotone sweep is not what a
+/// streaming identifier sees), with Gaussian noise (Eq. 5.1). Samples are 10 ms apart (100 Hz).
+struct SoilBorderSpec {
+    soil::SoilParameters first;
+    soil::SoilParameters second;
+    wheel::WheelParameters wheel;
+    double load_n = contact::kDefaultLoadN;  ///< W [N]
+    double noise_relative = 0.01;            ///< σ per channel as a fraction of its largest value
+    std::uint64_t seed = 1;                  ///< the second soil uses seed + 1
+    int samples_per_soil = 101;              ///< slips 0.05 … 0.9
+    double sample_period_s = 0.01;           ///< time between samples [s]
+};
+/// Throws std::invalid_argument for an invalid soil, wheel, load or noise.
+StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec);
+
+/// Reads a CSV for playback (data_set.h columns). Bad rows either stop the read, every one listed
+/// with its line number, or are skipped and listed in `warnings`.
+Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_rows);
+
+struct StreamingSettings {
+    std::string csv;             ///< data file; empty: a synthetic drive over a soil border
+    bool skip_bad_rows = false;  ///< false: a bad row stops the read, every bad row listed
+    /// Synthetic: the soil after the border (a preset or a file); the first is the inputs'.
+    std::string second_soil = "clayey-soil";
+    std::optional<soil::SoilParameters> second;  ///< that soil, resolved (by the reader or caller)
+    double noise_percent = 1.0;  ///< synthetic: σ as % of each channel's largest value
+    std::uint64_t seed = 1;      ///< synthetic: noise seed
+    identification::StreamingOptions options;  ///< window, threshold, start of the first fit
+};
+
+/// "csv" (relative to the context's directory), "skip_bad_rows", "second_soil" (resolved through
+/// the context's presets), "noise_percent", "seed", "window".
+void readStreamingSettings(io::ObjectReader& r, const ReadContext& context, StreamingSettings& out);
+
+/// The data the settings name: the CSV, or the drive from the inputs' soil onto the second soil
+/// at the conditions' load. Throws std::invalid_argument when it cannot be read or made.
+StreamSource streamSource(const Inputs& inputs, const StreamingSettings& settings);
+
+/// What the studio shows of one sample.
+struct StreamFrame {
+    identification::StreamUpdate update;  ///< the identifier's state after the sample
+    double time_s = 0.0;                  ///< the sample's time (its time_s, or index × 10 ms)
+    double fx_measured_n = 0.0;           ///< F_x of the sample [N]
+    /// F_x the estimate *before* this sample predicts at its slip and entry angle (decoupled model,
+    /// Eq. 4.4) [N]; NaN while there is no estimate.
+    double fx_predicted_n = 0.0;
+};
+
+/// The times the samples are played at: the data's own when every sample has one and they
+/// never go back, else 10 ms apart.
+std::vector<double> sampleTimes(const identification::DataSet& data);
+
+/// One streaming run, sample by sample (the playback paces the calls; computeStreaming does not).
+class StreamingRun {
+public:
+    StreamingRun(const wheel::WheelParameters& wheel,
+                 const identification::StreamingOptions& options);
+    /// The frame of one more sample, played at `time_s`.
+    StreamFrame push(const identification::Sample& sample, double time_s);
+
+private:
+    wheel::WheelParameters wheel_;
+    identification::StreamingIdentifier identifier_;
+    std::optional<identification::DecoupledParameters> estimate_;  // before the next sample
+};
+
+/// One row per frame: sample, time_s, estimated, the identified fields (NaN while there is no
+/// estimate), score, change_at (NaN when none), window, Fx_N, Fx_predicted_N.
+Table framesTable(const std::vector<StreamFrame>& frames);
+
+struct StreamingResult {
+    StreamSource source;  ///< without its samples (they are the frames')
+    std::vector<StreamFrame> frames;
+    std::vector<std::size_t> changes;  ///< samples where a change of soil began
+    std::size_t sample_count = 0;      ///< of the source (more than the frames when cancelled)
+    bool cancelled = false;
+};
+
+/// Plays a source's samples as fast as they compute, on `wheel`. Throws std::invalid_argument
+/// for a source without samples.
+StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters& wheel,
+                              const identification::StreamingOptions& options,
+                              const Control& control = {});
+/// The settings' source (streamSource), played. Throws std::invalid_argument when the data
+/// cannot be read or made.
+StreamingResult computeStreaming(const Inputs& inputs, const StreamingSettings& settings = {},
+                                 const Control& control = {});
+/// Table "frames"; notes: the source's warnings and the changes found.
+Outcome streamingOutcome(StreamingResult result);
+
+AnalysisType streamingType();
+
+}  // namespace terra::analysis

@@ -1,0 +1,131 @@
+#include "core/analysis/stresses.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/contact/operating_fields.h"
+
+namespace terra::analysis {
+namespace {
+
+const Range kStepRange{1e-4, 10.0};  // [deg]: a grid of at most ~1e6 points, at least one step
+
+double plainZero(double value) { return value == 0.0 ? 0.0 : value; }
+
+}  // namespace
+
+const std::vector<std::string>& stressNames() {
+    static const std::vector<std::string> names{"all", "sigma", "tau", "tau_t", "tau_l"};
+    return names;
+}
+
+void readStressSettings(io::ObjectReader& r, StressSettings& out) {
+    const FieldInfo& slip = contact::slipField();
+    r.number(slip.key, out.slip, slip.range);
+    const FieldInfo& beta = contact::slipAngleField();
+    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
+    const FieldInfo& theta_f = contact::entryAngleField();
+    double value = 0.0;
+    if (r.number(theta_f.key, value, theta_f.range, theta_f.displayUnit()))
+        out.entry_angle_deg = value;
+    r.number("step_deg", out.step_deg, kStepRange, "deg");
+    r.choiceName("stress", out.stress, stressNames());
+    readModelChoices(r, out.model);
+}
+
+nlohmann::json toJson(const StressSettings& s) {
+    nlohmann::json out{
+        {"slip", s.slip}, {"slip_angle_deg", s.slip_angle_deg}, {"stress", s.stress}};
+    if (s.entry_angle_deg) out["entry_angle_deg"] = *s.entry_angle_deg;
+    if (s.step_deg != StressSettings{}.step_deg) out["step_deg"] = s.step_deg;
+    writeModelChoices(s.model, out);
+    return out;
+}
+
+StressResult computeStresses(const Inputs& in, const StressSettings& settings, const Control&) {
+    std::vector<Issue> issues;
+    checkRange(issues, "step_deg", settings.step_deg, kStepRange, "deg");
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    const contact::ContactParameters<double> params = in.contact();
+    const double beta = units::degToRad(settings.slip_angle_deg);
+    StressResult out;
+    out.table.columns = {"theta_deg",      "sigma_kPa",     "tau_kPa",        "tau_t_kPa",
+                         "tau_l_kPa",      "j_m",           "sigma_quad_kPa", "tau_quad_kPa",
+                         "tau_t_quad_kPa", "tau_l_quad_kPa"};
+    contact::OperatingPoint<double> op;
+    if (settings.entry_angle_deg) {
+        const double theta_f = units::degToRad(*settings.entry_angle_deg);
+        op = {settings.slip, beta, theta_f, settings.model.exit.exitAngle(theta_f),
+              settings.model.max_stress_angle_rad};
+    } else {
+        contact::EntryAngleProblem problem;
+        problem.load_n = in.conditions.load_n;
+        problem.slip = settings.slip;
+        problem.slip_angle_rad = beta;
+        problem.exit = settings.model.exit;
+        problem.max_stress_angle_rad = settings.model.max_stress_angle_rad;
+        problem.model = in.conditions.model();
+        const contact::SinkageSolution solution = contact::solveEntryAngle(params, problem);
+        if (!solution.ok()) {
+            out.message = solution.message;
+            return out;
+        }
+        op = contact::operatingPoint(problem, solution.entry_angle_rad);
+    }
+    contact::requireValid(op);
+    const double step = units::degToRad(settings.step_deg);
+    const contact::StressField<double> field(params, op);
+    const contact::QuadraticStress<double> quadratic = contact::fitQuadraticStress(field);
+    out.entry_angle_deg = units::radToDeg(field.entryAngle());
+    out.max_stress_angle_deg = units::radToDeg(field.maxStressAngle());
+    // The grid of quadraticApproximationErrors: from the θ_r the model uses (≥ −θ_f).
+    const double theta_r = field.exitAngle();
+    const auto steps = static_cast<long>(std::floor((field.entryAngle() - theta_r) / step + 1e-9));
+    for (long i = 0; i <= steps; ++i) {
+        const double theta = theta_r + static_cast<double>(i) * step;
+        const auto e = field.at(theta);
+        const auto q = quadratic.at(theta);
+        out.table.rows.push_back({plainZero(roundSignificant(units::radToDeg(theta))),
+                                  e.sigma / 1e3, e.tau / 1e3, e.tau_t / 1e3, e.tau_l / 1e3, e.shear,
+                                  q.sigma / 1e3, q.tau / 1e3, q.tau_t / 1e3, q.tau_l / 1e3});
+    }
+    out.errors = contact::quadraticApproximationErrors(params, op, step);
+    return out;
+}
+
+Table errorTable(const StressResult& result) {
+    Table errors{{"stress_index", "rmse_kPa", "mae_kPa"}, {}};
+    for (int i = 0; i < 4; ++i) {
+        errors.rows.push_back(
+            {static_cast<double>(i), result.errors[i].rmse / 1e3, result.errors[i].mae / 1e3});
+    }
+    return errors;
+}
+
+Outcome stressOutcome(StressResult result) {
+    Outcome out;
+    out.tables.push_back({"stresses", "", result.table});
+    out.tables.push_back({"errors", "-errors", errorTable(result)});
+    if (!result.message.empty()) out.notes.push_back(result.message);
+    out.result = std::move(result);
+    return out;
+}
+
+AnalysisType stressesType() {
+    return makeAnalysisType<StressSettings>(
+        "stresses",
+        "stress distributions at one operating point, exact and quadratic, with RMSE/MAE "
+        "(Figs. 2.11, 2.16; Tables 2.4-2.5)",
+        {"stresses", "errors"}, {{"stresses", ""}},
+        [](io::ObjectReader& r, const ReadContext&, StressSettings& s) {
+            readStressSettings(r, s);
+        },
+        [](const Inputs& in, const StressSettings& s, const Control& c) {
+            return computeStresses(in, s, c);
+        },
+        stressOutcome);
+}
+
+}  // namespace terra::analysis

@@ -1,0 +1,60 @@
+#pragma once
+/// @file stresses.h
+/// The stress distributions over the contact at one operating point (thesis Figs. 2.11, 2.16):
+/// σ, τ, τ_t, τ_l and the shear deformation j (Eqs. 2.13–2.22), exact and from the quadratic
+/// approximation (Eqs. 2.36–2.38), with the approximation's RMSE and MAE over the grid
+/// (Eqs. 2.39–2.40, Tables 2.4–2.5). The studio's stress panel, `terrastudio stresses` and a
+/// script's "stresses" analysis.
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "core/analysis/analysis.h"
+#include "core/analysis/registry.h"
+#include "core/contact/quadratic_model.h"
+
+namespace terra::analysis {
+
+struct StressSettings {
+    double slip = 0.3;             ///< s [-] (Table 2.3)
+    double slip_angle_deg = 12.0;  ///< β [deg] (Table 2.3)
+    /// A fixed entry angle θ_f [deg] (Table 2.3: 30°); empty: solved so that F_z = W (§2.6.1).
+    std::optional<double> entry_angle_deg;
+    /// Grid step [deg] of the table and of the errors: 0.01° reproduces Tables 2.4–2.5
+    /// (docs/model.md).
+    double step_deg = 0.01;
+    std::string stress = "all";  ///< what the figure shows: all, sigma, tau, tau_t, tau_l
+    ModelChoices model;          ///< θ_r and θ_m (the bulldozing choice does not apply)
+};
+
+/// The names a figure can show (StressSettings::stress).
+const std::vector<std::string>& stressNames();
+
+/// "slip", "slip_angle_deg", "entry_angle_deg", "step_deg", "stress" and the model choices.
+void readStressSettings(io::ObjectReader& r, StressSettings& out);
+/// The settings as JSON (the keys readStressSettings reads).
+nlohmann::json toJson(const StressSettings& settings);
+
+struct StressResult {
+    /// theta_deg, sigma_kPa, tau_kPa, tau_t_kPa, tau_l_kPa, j_m and the quadratic
+    /// sigma_quad_kPa, tau_quad_kPa, tau_t_quad_kPa, tau_l_quad_kPa: θ = θ_r, θ_r + step, …, ≤ θ_f
+    /// with the θ_r the model uses (≥ −θ_f).
+    Table table;
+    std::array<contact::ApproximationError, 4> errors{};  ///< σ, τ, τ_t, τ_l [Pa]
+    double entry_angle_deg = 0.0;                         ///< θ_f used (given or solved)
+    double max_stress_angle_deg = 0.0;  ///< θ_m used (Eq. 2.18 or fixed, inside [θ_r, θ_f])
+    std::string message;                ///< non-empty: no equilibrium at this load
+};
+
+/// Throws std::invalid_argument for invalid inputs or settings.
+StressResult computeStresses(const Inputs& inputs, const StressSettings& settings = {},
+                             const Control& control = {});
+/// The errors as a table: stress_index (0 σ, 1 τ, 2 τ_t, 3 τ_l), rmse_kPa, mae_kPa.
+Table errorTable(const StressResult& result);
+/// Tables "stresses" and "errors"; the note: no equilibrium.
+Outcome stressOutcome(StressResult result);
+
+AnalysisType stressesType();
+
+}  // namespace terra::analysis

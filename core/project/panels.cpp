@@ -1,0 +1,107 @@
+#include "core/project/panels.h"
+
+#include "core/scenario/scenario_json.h"
+
+namespace terra::project {
+
+using io::ObjectReader;
+
+void readPanelSettings(ObjectReader& r, ForcesPanelSettings& out) { r.text("plot", out.plot); }
+
+void readPanelSettings(ObjectReader& r, StressPanelSettings& out) {
+    analysis::readStressSettings(r, out.analysis);
+}
+
+void readPanelSettings(ObjectReader& r, SensitivityPanelSettings& out) {
+    analysis::readSensitivitySettings(r, out.analysis);
+    r.choiceName("plot", out.plot, {"Fx", "Fs", "tornado"});
+}
+
+void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
+    const Range percent{0.0, 100.0};
+    r.text("csv", out.csv);
+    r.number("noise_percent", out.noise_percent, percent, "%");
+    r.boolean("refine", out.refine);
+    r.boolean("three_loads", out.three_loads);
+    r.choiceName("page", out.page, {"fit", "streaming"});
+    r.text("stream_csv", out.stream_csv);
+    r.text("stream_second_soil", out.stream_second_soil);
+    r.number("stream_noise_percent", out.stream_noise_percent, percent, "%");
+    r.number("stream_speed", out.stream_speed, {0.0, 1000.0});
+    r.boolean("stream_skip_bad_rows", out.stream_skip_bad_rows);
+}
+
+void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
+                       const io::PresetLocations* locations) {
+    r.text("scenario", out.scenario);
+    if (!r.has("edited")) {
+        r.allow("edited");
+        return;
+    }
+    ObjectReader edited = r.object("edited");
+    if (!edited.isObject()) return;
+    const nlohmann::json& all = *r.value("edited");
+    for (const auto& [name, scenario] : all.items()) {
+        edited.allow(name);
+        if (locations != nullptr) {
+            const Result<scenario::Scenario> parsed =
+                scenario::scenarioFromJson(scenario, "", *locations);
+            for (const Issue& issue : parsed.issues())
+                edited.report(name,
+                              (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
+        } else if (!scenario.is_object()) {
+            edited.report(name, "expected a scenario object, got " + io::describeJson(scenario));
+        }
+    }
+    out.edited = all;
+}
+
+nlohmann::json toJson(const ForcesPanelSettings& s) { return {{"plot", s.plot}}; }
+
+nlohmann::json toJson(const StressPanelSettings& s) { return analysis::toJson(s.analysis); }
+
+nlohmann::json toJson(const SensitivityPanelSettings& s) {
+    nlohmann::json out = analysis::toJson(s.analysis);
+    out["plot"] = s.plot;
+    return out;
+}
+
+nlohmann::json toJson(const IdentificationPanelSettings& s) {
+    return {{"csv", s.csv},
+            {"noise_percent", s.noise_percent},
+            {"refine", s.refine},
+            {"three_loads", s.three_loads},
+            {"page", s.page},
+            {"stream_csv", s.stream_csv},
+            {"stream_second_soil", s.stream_second_soil},
+            {"stream_noise_percent", s.stream_noise_percent},
+            {"stream_speed", s.stream_speed},
+            {"stream_skip_bad_rows", s.stream_skip_bad_rows}};
+}
+
+nlohmann::json toJson(const RoverPanelSettings& s) {
+    return {{"scenario", s.scenario}, {"edited", s.edited}};
+}
+
+void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
+    auto check = [&](const char* name, auto settings) {
+        if (!panels.has(name)) {
+            panels.allow(name);
+            return;
+        }
+        ObjectReader r = panels.object(name);
+        if constexpr (std::is_same_v<decltype(settings), RoverPanelSettings>) {
+            readPanelSettings(r, settings, locations);
+        } else {
+            readPanelSettings(r, settings);
+        }
+        r.finish();
+    };
+    check("forces", ForcesPanelSettings{});
+    check("stresses", StressPanelSettings{});
+    check("sensitivity", SensitivityPanelSettings{});
+    check("identification", IdentificationPanelSettings{});
+    check("rover", RoverPanelSettings{});
+}
+
+}  // namespace terra::project

@@ -1,0 +1,85 @@
+#pragma once
+/// @file panels.h
+/// What each studio panel saves in a .terra file's "panels" object: the settings of its
+/// analysis and what it shows (a tab, a page). Read strictly like the rest of the file, so a
+/// project never opens half-understood; the panels apply these structs, never raw JSON.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/analysis/identification.h"
+#include "core/analysis/sensitivity.h"
+#include "core/analysis/streaming_identification.h"
+#include "core/analysis/stresses.h"
+#include "core/io/json_reader.h"
+#include "core/io/parameters_json.h"
+
+namespace terra::project {
+
+/// "forces": the tab shown ("Fx_N-vs-slip", … as the panel names its plots).
+struct ForcesPanelSettings {
+    std::string plot;
+};
+
+/// "stresses": the analysis's settings (slip, slip angle, the stress shown, …).
+struct StressPanelSettings {
+    analysis::StressSettings analysis;
+};
+
+/// "sensitivity": the analysis's settings and the tab shown (Fx, Fs, tornado).
+struct SensitivityPanelSettings {
+    analysis::SensitivitySettings analysis;
+    std::string plot = "Fx";
+};
+
+/// "identification": the batch fit's settings and the streaming playback's, by their keys.
+struct IdentificationPanelSettings {
+    std::string csv;  ///< data of the batch fit; empty: synthetic
+    double noise_percent = analysis::SyntheticSource{}.noise_percent;
+    bool refine = analysis::IdentificationSettings{}.refine;
+    bool three_loads = true;   ///< synthesise at ½W, W, 1½W (one load cannot separate c and φ)
+    std::string page = "fit";  ///< fit or streaming
+    std::string stream_csv;    ///< empty: a synthetic drive over a soil border
+    std::string stream_second_soil = analysis::StreamingSettings{}.second_soil;
+    double stream_noise_percent = analysis::StreamingSettings{}.noise_percent;
+    double stream_speed = 1.0;  ///< sample time per wall time; 0: as fast as possible
+    bool stream_skip_bad_rows = analysis::StreamingSettings{}.skip_bad_rows;
+};
+
+/// "rover": the scenario chosen and the scenarios edited in the panel (name → scenario JSON).
+struct RoverPanelSettings {
+    std::string scenario;
+    nlohmann::json edited = nlohmann::json::object();
+};
+
+void readPanelSettings(io::ObjectReader& r, ForcesPanelSettings& out);
+void readPanelSettings(io::ObjectReader& r, StressPanelSettings& out);
+void readPanelSettings(io::ObjectReader& r, SensitivityPanelSettings& out);
+void readPanelSettings(io::ObjectReader& r, IdentificationPanelSettings& out);
+/// The edited scenarios are checked as scenarios when `locations` is given.
+void readPanelSettings(io::ObjectReader& r, RoverPanelSettings& out,
+                       const io::PresetLocations* locations = nullptr);
+
+nlohmann::json toJson(const ForcesPanelSettings& settings);
+nlohmann::json toJson(const StressPanelSettings& settings);
+nlohmann::json toJson(const SensitivityPanelSettings& settings);
+nlohmann::json toJson(const IdentificationPanelSettings& settings);
+nlohmann::json toJson(const RoverPanelSettings& settings);
+
+/// Checks a "panels" object: forces, stresses, sensitivity, identification, rover (each
+/// optional); another panel name is an unknown key.
+void readPanels(io::ObjectReader& panels, const io::PresetLocations* locations);
+
+/// One panel's settings from JSON (what the panel stored), every problem in the result.
+template <typename Settings>
+Result<Settings> panelSettingsFromJson(const nlohmann::json& json) {
+    std::vector<Issue> issues;
+    io::ObjectReader r(json, issues);
+    Settings settings;
+    readPanelSettings(r, settings);
+    r.finish();
+    if (!issues.empty()) return issues;
+    return settings;
+}
+
+}  // namespace terra::project

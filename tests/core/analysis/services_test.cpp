@@ -1,0 +1,228 @@
+// The analysis services against independent values: published tables, closed forms typed from
+// the thesis, and second paths through the core; and the registry's promises (every type reads
+// its defaults, names its tables).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/analysis/forces.h"
+#include "core/analysis/identification.h"
+#include "core/analysis/operating_point.h"
+#include "core/analysis/registry.h"
+#include "core/analysis/sensitivity.h"
+#include "core/analysis/sinkage_study.h"
+#include "core/analysis/soil_curves.h"
+#include "core/analysis/streaming_identification.h"
+#include "core/analysis/stresses.h"
+#include "core/common/units.h"
+#include "core/io/parameters_json.h"
+
+namespace terra::analysis {
+namespace {
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+Inputs sandyLoamOnA() {
+    Inputs in;
+    in.soil = io::resolveSoil(kLocations, "sandy-loam").value();
+    in.wheel = io::resolveWheel(kLocations, "A").value();
+    return in;
+}
+
+// Tables 2.4 and 2.5 of the thesis (sandy loam, Table 2.3's point, θ_m = 15°, no j_max; τ_l RMSE
+// 0.2121 per erratum E11 of docs/model.md).
+TEST(StressService, ReproducesTables24And25AtTable23sPoint) {
+    Inputs in = sandyLoamOnA();
+    in.soil.max_shear_deformation_m = INFINITY;
+    StressSettings s;  // s = 0.3, β = 12° by default (Table 2.3)
+    s.entry_angle_deg = 30.0;
+    s.model.max_stress_angle_rad = units::degToRad(15.0);
+    const StressResult r = computeStresses(in, s);
+    ASSERT_TRUE(r.message.empty()) << r.message;
+    const double rmse[] = {2.1623, 0.4808, 0.4315, 0.2121};
+    const double mae[] = {1.7427, 0.3558, 0.3214, 0.1524};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_NEAR(r.errors[k].rmse / 1e3, rmse[k], 0.5e-4) << k;
+        EXPECT_NEAR(r.errors[k].mae / 1e3, mae[k], 0.5e-4) << k;
+    }
+    EXPECT_EQ(r.table.rows.size(), 3001u);  // 0°, 0.01°, …, 30°
+    EXPECT_EQ(r.table.rows.back()[r.table.column("theta_deg")], 30.0);
+    const Table errors = errorTable(r);
+    EXPECT_EQ(errors.rows[3][errors.column("rmse_kPa")], r.errors[3].rmse / 1e3);
+}
+
+// Bekker's static sinkage, Eq. 2.8 as corrected (E2), typed here from Table 2.1:
+// h = [W / (√(2r) b K_s (1 − n/3))]^(1/(n + 1/2)).
+TEST(SinkageService, BekkerColumnIsEquation28) {
+    const Inputs in = sandyLoamOnA();
+    SinkageSettings s;
+    s.loads_n = {25.0, 58.86, 98.0};
+    const SinkageStudy study = computeSinkage(in, s);
+    ASSERT_EQ(study.table.rows.size(), 3u);
+    const double r = 0.092, b = 0.107, n = 0.7, ks = 5.3e3 / b + 1.515e6;
+    for (const auto& row : study.table.rows) {
+        const double w = row[0];
+        const double h = std::pow(w / (std::sqrt(2 * r) * b * ks * (1 - n / 3)), 1 / (n + 0.5));
+        EXPECT_NEAR(row[study.table.column("bekker_sinkage_m")], h, 1e-12 * h) << w;
+    }
+}
+
+TEST(OperatingPointService, ASolvedEntryAngleCarriesTheLoad) {
+    const Inputs in = sandyLoamOnA();
+    PointSpec spec;
+    spec.slip = 0.3;
+    spec.slip_angle_deg = 15.0;
+    spec.load_n = 58.86;
+    const PointResult r = evaluatePoint(in.contact(), spec);
+    ASSERT_TRUE(r.failure.empty()) << r.failure;
+    EXPECT_TRUE(r.solved_from_load);
+    EXPECT_NEAR(r.forces.fz, 58.86, 1e-8);
+    EXPECT_NEAR(r.sinkage_m, 0.092 * (1 - std::cos(units::degToRad(r.entry_angle_deg))), 1e-12);
+    spec.load_n.reset();
+    EXPECT_THROW(evaluatePoint(in.contact(), spec), std::invalid_argument);  // neither θ_f nor W
+}
+
+// The sweep of the service is the core sweep of the conditions' grid (a second path to it).
+TEST(ForcesService, SweepsTheConditionsGridAtTheirLoad) {
+    Inputs in = sandyLoamOnA();
+    in.conditions.slip_angles_deg = {5.0, 20.0};
+    in.conditions.slip_count = 11;
+    in.conditions.slip_max = 0.5;
+    const ForcesResult r = computeForceSweep(in);
+    SweepSpec spec;
+    spec.slips = linspace(0.0, 0.5, 11);
+    spec.slip_angles_rad = {units::degToRad(5.0), units::degToRad(20.0)};
+    spec.load_n = in.conditions.load_n;
+    const SweepResult direct = sweepSlip(in.contact(), spec);
+    EXPECT_EQ(r.table.rows, direct.table.rows);
+    EXPECT_EQ(r.table.rows.size(), 22u);
+    for (const auto& row : r.table.rows) EXPECT_NEAR(row[r.table.column("Fz_N")], 58.86, 1e-8);
+    const Outcome o = forcesOutcome(r);
+    ASSERT_NE(o.table("sweep"), nullptr);
+    EXPECT_EQ(o.table(), o.table("sweep"));
+}
+
+// The family of φ holds Table 4.1's four values; the tornado's base is F_x of the unchanged soil
+// at the tornado's slip, as a one-point sweep gives it.
+TEST(SensitivityService, FamilyOfTable41AndTornadoAgainstAOnePointSweep) {
+    Inputs in = sandyLoamOnA();
+    SensitivitySettings s;
+    s.slip_count = 5;
+    const SensitivityResult r = computeSensitivity(in, s);
+    const std::size_t phi = r.family.table.column("phi_deg");
+    std::vector<double> values;
+    for (const auto& row : r.family.table.rows) {
+        if (values.empty() || values.back() != row[phi]) values.push_back(row[phi]);
+    }
+    EXPECT_EQ(values, (std::vector<double>{25.0, 30.0, 35.0, 40.0}));
+    ASSERT_EQ(r.tornado.rows.size(), 6u);
+    in.conditions.slip_angles_deg = s.slip_angles_deg;
+    ForcesSettings point;
+    point.slips = {s.tornado_slip};
+    const ForcesResult base = computeForceSweep(in, point);
+    EXPECT_EQ(r.tornado.rows[0][r.tornado.column("Fx_base_N")],
+              base.table.rows[0][base.table.column("Fx_N")]);
+    SensitivitySettings bad;
+    bad.parameter = "phi_deg";
+    bad.values = {20.0, 70.0};
+    EXPECT_THROW(computeSensitivity(in, bad), std::invalid_argument);
+}
+
+// Noise-free synthetic data of the soil itself at three loads: the refined fit returns the
+// soil's own parameters (the truth is the soil file, not the code's output).
+TEST(IdentificationService, RefinedFitOfNoiseFreeDataReturnsTheSoil) {
+    Inputs in = sandyLoamOnA();
+    in.soil.max_shear_deformation_m = INFINITY;
+    IdentificationSettings s;
+    s.synthetic.noise_percent = 0.0;
+    s.synthetic.loads_n = {30.0, 58.86, 90.0};
+    s.synthetic.slip_count = 30;
+    const IdentificationResult r = computeIdentification(in, s);
+    ASSERT_TRUE(r.message.empty()) << r.message;
+    ASSERT_TRUE(r.usable());
+    const Table& t = r.parameters;
+    EXPECT_NEAR(t.rows[0][t.column("phi_deg")], 29.0, 1e-3);
+    EXPECT_NEAR(t.rows[0][t.column("c_kPa")], 1.7, 1e-3);
+    EXPECT_NEAR(t.rows[0][t.column("K_m")], 0.025, 1e-5);
+    EXPECT_NEAR(t.rows[0][t.column("Ks_kPa")], (5.3e3 / 0.107 + 1.515e6) / 1e3, 1.0);
+    EXPECT_EQ(r.steps().size(), 4u);  // three decoupled steps and the refinement
+    IdentificationSettings fixed = s;
+    fixed.fixed = {{"n1", 0.1}};  // not a refined parameter
+    EXPECT_THROW(computeIdentification(in, fixed), std::invalid_argument);
+}
+
+TEST(StreamingService, ComputedFramesFindTheSyntheticBorder) {
+    Inputs in = sandyLoamOnA();
+    StreamingSettings s;
+    s.second = io::resolveSoil(kLocations, "clayey-soil").value();
+    const StreamingResult r = computeStreaming(in, s);
+    ASSERT_TRUE(r.source.true_border.has_value());
+    ASSERT_EQ(r.frames.size(), 202u);  // 101 samples of each soil
+    ASSERT_FALSE(r.changes.empty());
+    // Detected within a few samples of the true border (the persistence is 3).
+    EXPECT_NEAR(static_cast<double>(r.changes.front()), static_cast<double>(*r.source.true_border),
+                5.0);
+    const Table t = framesTable(r.frames);
+    EXPECT_EQ(t.rows.size(), r.frames.size());
+    EXPECT_EQ(t.rows[150][t.column("sample")], 150.0);
+}
+
+TEST(SoilCurvesService, NoLoadNoSinkageAndBulldozingGrowsWithSinkage) {
+    const SoilCurves c = computeSoilCurves(sandyLoamOnA());
+    EXPECT_EQ(c.static_sinkage.rows.front(), (std::vector<double>{0.0, 0.0, 0.0, 0.0}));
+    EXPECT_NEAR(c.static_sinkage.rows.back()[0], 2.0 * 58.86, 1e-12);  // max_load_factor × W
+    const std::size_t fb = c.bulldozing.column("Fb_bekker_N");
+    for (std::size_t i = 1; i < c.bulldozing.rows.size(); ++i)
+        EXPECT_GT(c.bulldozing.rows[i][fb], c.bulldozing.rows[i - 1][fb]) << i;
+    SoilCurvesSettings bad;
+    bad.points = 1;
+    EXPECT_THROW(computeSoilCurves(sandyLoamOnA(), bad), std::invalid_argument);
+}
+
+// Every registered type reads an empty settings object without a problem (its defaults) and its
+// outcome's tables are the names it declares, the main one first.
+TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
+    const ReadContext context{&kLocations, {}};
+    for (const AnalysisType& type : analysisTypes()) {
+        if (!type.uses_inputs) continue;  // the rover needs a scenario: see below
+        std::vector<Issue> issues;
+        const nlohmann::json empty = nlohmann::json::object();
+        io::ObjectReader r(empty, issues);
+        const std::any settings = type.read(r, context);
+        r.finish();
+        EXPECT_TRUE(issues.empty()) << type.name << ": " << formatIssues(issues);
+        if (type.name == "identification" || type.name == "streaming") continue;  // slow
+        const Outcome outcome = type.run(settings, sandyLoamOnA(), {});
+        ASSERT_FALSE(outcome.tables.empty()) << type.name;
+        EXPECT_EQ(outcome.tables.front().name, type.tables.front()) << type.name;
+        for (const NamedTable& t : outcome.tables) {
+            EXPECT_NE(std::find(type.tables.begin(), type.tables.end(), t.name), type.tables.end())
+                << type.name << ": " << t.name;
+        }
+    }
+    std::vector<Issue> issues;
+    const nlohmann::json rover = {{"scenario", "straight"}, {"duration_s", 0.5}};
+    io::ObjectReader r(rover, issues);
+    findAnalysisType("rover")->read(r, context);
+    r.finish();
+    EXPECT_TRUE(issues.empty()) << formatIssues(issues);
+    EXPECT_EQ(findAnalysisType("forcez"), nullptr);
+}
+
+TEST(Registry, SettingsReadersNameTheFieldAndTheRange) {
+    const ReadContext context{&kLocations, {}};
+    const nlohmann::json bad = {{"slip", 1.5}, {"stress", "sigmaa"}, {"step_deg", 0}};
+    std::vector<Issue> issues;
+    io::ObjectReader r(bad, issues, "s.json", "analyses[0]");
+    findAnalysisType("stresses")->read(r, context);
+    r.finish();
+    ASSERT_EQ(issues.size(), 3u) << formatIssues(issues);
+    EXPECT_EQ(issues[0].where, "s.json: analyses[0].slip");
+    EXPECT_EQ(issues[0].message, "1.5 is outside the allowed range [-1, 1]");
+    EXPECT_EQ(issues[1].where, "s.json: analyses[0].step_deg");
+    EXPECT_EQ(issues[2].where, "s.json: analyses[0].stress");
+    EXPECT_NE(issues[2].message.find("did you mean \"sigma\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace terra::analysis

@@ -1,0 +1,86 @@
+// .terra files read strictly: what the studio writes reads back the same; what is wrong is
+// named, panels' settings included.
+#include "core/project/project.h"
+
+#include <gtest/gtest.h>
+
+#include "core/io/json.h"
+#include "core/project/panels.h"
+
+namespace terra::project {
+namespace {
+
+using nlohmann::json;
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+Project sandyLoam() {
+    Project p;
+    p.soil = io::resolveSoil(kLocations, "sandy-loam").value();
+    p.wheel = io::resolveWheel(kLocations, "A").value();
+    return p;
+}
+
+TEST(ProjectFile, WhatIsWrittenReadsBackTheSame) {
+    Project p = sandyLoam();
+    p.conditions.load_n = 73.5;
+    p.conditions.quadratic = true;
+    p.data_sets = {"a.csv"};
+    StressPanelSettings stresses;
+    stresses.analysis.slip = 0.25;
+    p.panels["stresses"] = toJson(stresses);
+    p.panels["rover"] = toJson(RoverPanelSettings{"straight", json::object()});
+    const Result<Project> back = projectFromJson(toJson(p), "p.terra", &kLocations);
+    ASSERT_TRUE(back.ok()) << back.message();
+    EXPECT_TRUE(back.value() == p);
+    EXPECT_EQ(back->conditions.load_n, 73.5);
+    EXPECT_EQ(inputsOf(*back).conditions.load_n, 73.5);
+}
+
+TEST(ProjectFile, ProblemsAreNamedPanelsIncluded) {
+    json j = toJson(sandyLoam());
+    j["conditions"]["slip_count"] = 1e308;
+    j["soil"]["phi_deg"] = "29";
+    j["scenarioz"] = json::array();
+    j["panels"]["stresses"] = {{"slip", 2}};
+    j["panels"]["sensitivity"] = {{"plot", "Fz"}};
+    j["panels"]["rover"] = {{"edited", {{"straight", {{"duration_s", 5}}}}}};
+    j["panels"]["charts"] = json::object();
+    const Result<Project> p = projectFromJson(j, "p.terra", &kLocations);
+    ASSERT_FALSE(p.ok());
+    const std::string m = p.message();
+    for (const char* part :
+         {"p.terra: conditions.slip_count: 1e+308 is outside the allowed range",
+          "p.terra: soil.phi_deg: expected a number", "scenarioz: unknown key",
+          "did you mean \"scenarios\"?", "panels.stresses.slip: 2 is outside",
+          "panels.sensitivity.plot: \"Fz\" is not one of Fx, Fs, tornado",
+          "panels.rover.edited.straight: ", "terrain: missing", "panels.charts: unknown key"}) {
+        EXPECT_TRUE(contains(m, part)) << part << "\n" << m;
+    }
+}
+
+TEST(ProjectFile, NotAProjectAndNewerVersions) {
+    EXPECT_FALSE(projectFromJson(json::object(), "x", nullptr).ok());
+    json j = toJson(Project{});
+    j["version"] = 2;
+    const Result<Project> p = projectFromJson(j, "x", nullptr);
+    ASSERT_FALSE(p.ok());
+    EXPECT_TRUE(contains(p.message(), "version: 2 is outside the allowed range [1, 1]"))
+        << p.message();
+}
+
+TEST(ProjectFile, DuplicatedKeysInTheFileAreErrors) {
+    const Result<json> parsed = io::parseJson(
+        "{\"format\": \"terrastudio-project\", \"conditions\": {\"load_N\": 1, "
+        "\"load_N\": 2}}",
+        "p.terra");
+    ASSERT_FALSE(parsed.ok());
+    EXPECT_TRUE(contains(parsed.message(), "duplicated key \"load_N\" in conditions"));
+}
+
+}  // namespace
+}  // namespace terra::project

@@ -1,0 +1,117 @@
+#include "widgets/plots/analysis_figures.h"
+
+#include <qcustomplot.h>
+
+#include <stdexcept>
+
+#include "core/analysis/forces.h"
+#include "core/analysis/identification.h"
+#include "core/analysis/rover.h"
+#include "core/analysis/sensitivity.h"
+#include "core/analysis/soil_curves.h"
+#include "core/analysis/streaming_identification.h"
+#include "core/analysis/stresses.h"
+#include "widgets/plots/figures.h"
+#include "widgets/plots/identification_figures.h"
+#include "widgets/plots/rover_figures.h"
+#include "widgets/plots/sweep_plot.h"
+
+namespace terra::ui {
+namespace {
+
+template <typename T>
+const T& resultOf(const analysis::Outcome& outcome) {
+    return std::any_cast<const T&>(outcome.result);
+}
+
+[[noreturn]] void unknown(const std::string& type, const std::string& key) {
+    throw std::invalid_argument("analysis type \"" + type + "\" has no figure \"" + key + "\"");
+}
+
+// The streaming figures draw into two plots: the one asked for and a scratch one.
+void drawStreaming(QCustomPlot& plot, const std::string& key,
+                   const analysis::StreamingResult& result) {
+    if (key != "estimates" && key != "detection") unknown("streaming", key);
+    QCustomPlot scratch;
+    const bool estimates = key == "estimates";
+    StreamingFigures figures(estimates ? &plot : &scratch, estimates ? &scratch : &plot);
+    figures.reset(
+        result.source.truth.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"),
+        result.frames.size(), result.source.true_border,
+        identification::StreamingOptions{}.threshold);
+    figures.setTruth(result.source.truth);
+    figures.append(result.frames);
+    figures.replot();
+}
+
+}  // namespace
+
+void drawAnalysisFigure(QCustomPlot& plot, const std::string& type, const std::string& key,
+                        const std::any& settings, const analysis::Outcome& outcome,
+                        const QString& title) {
+    if (type == "forces") {
+        for (const SweepQuantity& q : sweepQuantities()) {
+            if (q.column == key) {
+                plotSweep(plot, resultOf<analysis::ForcesResult>(outcome).table, q, title);
+                return;
+            }
+        }
+    } else if (type == "soil-curves") {
+        const auto& curves = resultOf<analysis::SoilCurves>(outcome);
+        if (key == "bulldozing") return plotBulldozing(plot, curves, title);
+        if (key == "static-sinkage") return plotStaticSinkage(plot, curves, title);
+    } else if (type == "stresses") {
+        if (key == "stresses") {
+            const auto& s = std::any_cast<const analysis::StressSettings&>(settings);
+            return plotStresses(plot, resultOf<analysis::StressResult>(outcome), s.stress, title);
+        }
+    } else if (type == "sensitivity") {
+        const auto& s = std::any_cast<const analysis::SensitivitySettings&>(settings);
+        const auto& r = resultOf<analysis::SensitivityResult>(outcome);
+        if (key == "Fx" || key == "Fs") {
+            return plotSensitivityFamily(plot, r, r.parameter_keys.front(), key + "_N", title);
+        }
+        if (key == "tornado") return plotTornado(plot, r, s.tornado_slip, title);
+    } else if (type == "identification") {
+        const auto& r = resultOf<analysis::IdentificationResult>(outcome);
+        if (key == "Fx") return plotIdentification(plot, r, "Fx_N", title);
+        if (key == "Fz") return plotIdentification(plot, r, "Fz_N", title);
+        if (key == "My") return plotIdentification(plot, r, "My_Nm", title);
+    } else if (type == "streaming") {
+        return drawStreaming(plot, key, resultOf<analysis::StreamingResult>(outcome));
+    } else if (type == "rover") {
+        const auto& r = resultOf<analysis::RoverResult>(outcome);
+        if (key == "top-view") {
+            const std::size_t rows = r.run.series.rows.size();
+            return plotRoverTopView(plot, r.scenario, r.run.series, rows == 0 ? 0 : rows - 1,
+                                    title);
+        }
+        for (const RoverFigure& f : roverFigures()) {
+            if (f.key == key) return plotRoverFigure(plot, r.run.series, key, title);
+        }
+    }
+    unknown(type, key);
+}
+
+QString analysisTitle(const std::string& type, const std::optional<std::string>& title,
+                      const analysis::Inputs& inputs, const std::any& settings,
+                      const analysis::Outcome& outcome) {
+    if (type == "rover") {
+        if (title) return QString::fromStdString(*title);
+        const auto& r = resultOf<analysis::RoverResult>(outcome);
+        return roverTitle(r.scenario.name, r.run.status);
+    }
+    QString text =
+        QString::fromStdString(title.value_or(inputs.soil.name + ", " + inputs.wheel.name)) +
+        QString(", W = %1 N").arg(inputs.conditions.load_n);
+    if (type == "stresses") {
+        const auto& s = std::any_cast<const analysis::StressSettings&>(settings);
+        text += QString(", s = %1, β = %2°").arg(s.slip).arg(s.slip_angle_deg);
+    } else if (type == "sensitivity") {
+        const auto& s = std::any_cast<const analysis::SensitivitySettings&>(settings);
+        text += QString(", β = %1°").arg(s.slip_angles_deg.front());
+    }
+    return text;
+}
+
+}  // namespace terra::ui
