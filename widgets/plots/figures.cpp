@@ -305,7 +305,7 @@ void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult&
         QCPGraph* line = plot.addGraph();
         line->setData(curve.first, curve.second);
         line->setPen(QPen(QColor(214, 39, 40), 1.8));
-        line->setName(result.refined ? "full model, refined fit" : "decoupled fit");
+        line->setName(result.report ? "full model, global fit" : "decoupled fit");
         if (!first) line->removeFromLegend();
         first = false;
         (void)w;
