@@ -150,11 +150,8 @@ void AnalysisPanel::presentOutcome(const Outcome& outcome) {
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
     // The read-out's text must never widen the panel (a scroll bar would come and go with the
-    // mouse): it takes the room its layout gives it.
-    QSizePolicy policy(QSizePolicy::Ignored, readout->sizePolicy().verticalPolicy());
-    policy.setHorizontalStretch(3);  // most of a bar's free room, beside its stretch
-    readout->setSizePolicy(policy);
-    readout->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    // mouse): with an explicit minimum, the layout may shrink it below its text when room is short.
+    if (readout->minimumWidth() == 0) readout->setMinimumWidth(120);
     plot->setMouseTracking(true);
     QObject::connect(plot, &QCustomPlot::mouseMove, readout, [plot, readout](QMouseEvent* event) {
         const double x = plot->xAxis->pixelToCoord(event->position().x());

@@ -446,7 +446,7 @@ void RoverPanel::present(const std::any& value) {
     const auto& s = result_.summary;
     const char* status[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
     status_->setText(
-        QString("%1 on %9: %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance "
+        QString("%1 on %9 — %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance "
                 "%6 m, motor energy %7 J%8")
             .arg(status[static_cast<int>(result_.status)])
             .arg(s.duration_s, 0, 'f', 2)

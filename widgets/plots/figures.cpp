@@ -348,14 +348,16 @@ void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult&
         const QString at = sweeps.size() > 1 || w > 0.0 ? QString(", W = %1 N").arg(w) : QString();
         QCPGraph* data = plot.addGraph();
         data->setData(sweep.slip, sweep.data);  // unsorted: keep the measured order
-        data->setName("data" + at);
+        // One legend entry per load (its line); the points share one "data" entry.
+        data->setName("data (points, coloured by load)");
+        if (index > 1) data->removeFromLegend();
         data->setPen(QPen(color));
         data->setLineStyle(QCPGraph::lsNone);
         data->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 4));
         QCPGraph* line = plot.addGraph();
         line->setData(sweep.slip, sweep.fit);
         line->setPen(QPen(color, 1.8));
-        line->setName(model + at);
+        line->setName(at.isEmpty() ? model : at.mid(2) + ", " + model);
     }
     finish(plot);
 }
