@@ -4,6 +4,9 @@
 #include <qcustomplot.h>
 
 #include <QImage>
+#include <QLabel>
+#include <QProgressBar>
+#include <QSignalSpy>
 #include <cmath>
 
 #include "core/common/units.h"
@@ -162,6 +165,51 @@ TEST(RoverPanel, CancelKeepsThePartialRunMarkedAsSuch) {
     panel.cancelRunning();
     ASSERT_TRUE(test::waitForResult(panel, 120000));
     EXPECT_EQ(panel.result().status, scenario::RunResult::Status::kCancelled);
+    // Not "100 %": the bar stays where the run stopped and says it was cancelled.
+    auto* progress = panel.findChild<QProgressBar*>();
+    ASSERT_NE(progress, nullptr);
+    EXPECT_LT(progress->value(), 100);
+    EXPECT_TRUE(progress->format().contains("cancelled")) << progress->format().toStdString();
+    const QString title = plotTitle(*panel.plots().back().second);  // the top view
+    EXPECT_TRUE(title.contains("CANCELLED")) << title.toStdString();
+
+    // A new run retitles the old plots at once: they are not this run's.
+    QSignalSpy again(&panel, &AnalysisPanel::busyChanged);
+    panel.recompute();
+    ASSERT_TRUE(again.wait(10000));
+    EXPECT_TRUE(plotTitle(*panel.plots().back().second).contains("previous run"));
+    panel.cancelRunning();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+}
+
+// Before any run, the top view shows the scenario's soils and start, and the panel says which
+// soils it runs on (its own, not the project's).
+TEST(RoverPanel, SaysWhichSoilsAScenarioRunsOnBeforeARun) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "pulse-steering"}});
+    QCustomPlot* top = panel.plots().back().second;
+    EXPECT_TRUE(plotTitle(*top).contains("not run yet")) << plotTitle(*top).toStdString();
+    EXPECT_GE(top->itemCount(), 2);  // the base soil's rectangle and its label
+    bool said = false;
+    for (QLabel* label : panel.findChildren<QLabel*>())
+        said = said || label->text().contains("own soils");
+    EXPECT_TRUE(said);
+}
+
+// All four stresses: the legend sits under the axes, off the curves (it covered σ).
+TEST(StressPanel, LegendOfAllStressesDoesNotCoverTheCurves) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    StressPanel panel(&document);
+    panel.resize(700, 500);
+    panel.show();
+    ASSERT_TRUE(test::waitForResult(panel));
+    QCustomPlot* plot = panel.currentPlot();
+    plot->replot();
+    EXPECT_TRUE(plot->legend->visible());
+    EXPECT_FALSE(plot->legend->outerRect().intersects(plot->axisRect()->rect()));
 }
 
 }  // namespace

@@ -149,6 +149,9 @@ void AnalysisPanel::presentOutcome(const Outcome& outcome) {
 
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
+    // The read-out's text must never widen the panel (a scroll bar would come and go with the
+    // mouse): with an explicit minimum, the layout may shrink it below its text when room is short.
+    if (readout->minimumWidth() == 0) readout->setMinimumWidth(120);
     plot->setMouseTracking(true);
     QObject::connect(plot, &QCustomPlot::mouseMove, readout, [plot, readout](QMouseEvent* event) {
         const double x = plot->xAxis->pixelToCoord(event->position().x());

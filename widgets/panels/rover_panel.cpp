@@ -140,7 +140,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     scrubber_->setEnabled(false);
     scrubber_->setToolTip("Time: drag, or use the arrow keys to step through the run");
     time_ = new QLabel("t = – s", view_page);
-    time_->setMinimumWidth(150);
+    time_->setMinimumWidth(time_->fontMetrics().horizontalAdvance("t = 000.00 s, ψ = -000.00°"));
     play_ = new QPushButton("Play", view_page);
     play_->setCheckable(true);
     play_->setEnabled(false);
@@ -168,20 +168,24 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         if (index > 0) drawFigure(static_cast<std::size_t>(index - 1));
     });
 
+    // Two rows: what runs, then running it. One row needed ~1000 px, more than a 1024 px screen
+    // leaves the panel.
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Scenario:", this));
-    bar->addWidget(scenario_);
+    bar->addWidget(scenario_, 1);
     bar->addWidget(edit_);
     bar->addWidget(revert_);
     bar->addWidget(edited_label_);
     bar->addWidget(new QLabel("Duration:", this));
     bar->addWidget(duration_);
-    bar->addWidget(run_);
-    bar->addWidget(cancel_);
-    bar->addWidget(progress_, 1);
-    bar->addWidget(readout_);
+    auto* run_bar = new QHBoxLayout;
+    run_bar->addWidget(run_);
+    run_bar->addWidget(cancel_);
+    run_bar->addWidget(progress_, 1);
+    run_bar->addWidget(readout_, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
+    layout->addLayout(run_bar);
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
 
@@ -341,6 +345,36 @@ void RoverPanel::showScenarioState() {
     if (json.is_object() && json.contains("duration_s") && json["duration_s"].is_number()) {
         duration_->setValue(json["duration_s"].get<double>());
     }
+    previewScenario();
+}
+
+namespace {
+
+/// "sandy loam; patches: clay, wet sand" — the soils a scenario drives on.
+QString soilsOf(const scenario::Scenario& scenario) {
+    QString text = QString::fromStdString(scenario.terrain.base.name);
+    QStringList patches;
+    for (const dynamics::SoilPatch& patch : scenario.terrain.patches)
+        patches << QString::fromStdString(patch.soil.name);
+    patches.removeDuplicates();
+    if (!patches.isEmpty()) text += "; patches: " + patches.join(", ");
+    return text;
+}
+
+}  // namespace
+
+void RoverPanel::previewScenario() {
+    if (isBusy()) return;
+    const std::string name = currentName();
+    const QString shown = QString::fromStdString(name) + (isEdited() ? " (edited)" : "");
+    if (!result_.series.rows.empty() && QString::fromStdString(shown_name_) == shown) return;
+    auto loaded = isEdited() ? parseScenarioText(QString::fromStdString(edits_[name].dump()), name,
+                                                 locations_)
+                             : scenario::resolveScenario(locations_, name);
+    if (!loaded) return;  // Run says what is wrong
+    plotRoverTopView(*top_view_, *loaded, Table{}, 0, shown + " — not run yet: soils and start");
+    status_->setText(QString("Runs on the scenario's own soils (not the project's): %1. Press Run.")
+                         .arg(soilsOf(*loaded).toHtmlEscaped()));
 }
 
 void RoverPanel::editScenario() {
@@ -412,8 +446,8 @@ void RoverPanel::present(const std::any& value) {
     const auto& s = result_.summary;
     const char* status[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
     status_->setText(
-        QString("%1: %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance %6 m, "
-                "motor energy %7 J%8")
+        QString("%1 on %9 — %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance "
+                "%6 m, motor energy %7 J%8")
             .arg(status[static_cast<int>(result_.status)])
             .arg(s.duration_s, 0, 'f', 2)
             .arg(s.x_m, 0, 'f', 3)
@@ -422,7 +456,8 @@ void RoverPanel::present(const std::any& value) {
             .arg(s.distance_m, 0, 'f', 3)
             .arg(s.energy_j, 0, 'f', 1)
             .arg(result_.message.empty() ? QString()
-                                         : ". " + QString::fromStdString(result_.message)));
+                                         : ". " + QString::fromStdString(result_.message))
+            .arg(soilsOf(shown_).toHtmlEscaped()));
 }
 
 QString RoverPanel::timeLabel() const {

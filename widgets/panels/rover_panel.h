@@ -96,6 +96,9 @@ private:
     std::string currentName() const;
     nlohmann::json currentJson() const;  // edited or file JSON (null when unreadable)
     void showScenarioState();
+    /// Before a run (or after choosing another scenario): the top view of its soils and start,
+    /// and which soils it runs on (a scenario brings its own; the project's soil is not used).
+    void previewScenario();
     void storeEdit(const nlohmann::json& json);
     /// Draws figure i of roverFigures() if the shown run has not been drawn on it yet. Figures are
     /// drawn when their tab is first shown (or exported), not all in present(): drawing the eleven

@@ -66,9 +66,34 @@ const char* stressLabel(const std::string& stress) {
     return "τ_l";
 }
 
+/// Puts the legend back inside the axis rect (where placeLegend() moves it between corners).
+void legendInside(QCustomPlot& plot) {
+    QCPLayoutInset* inset = plot.axisRect()->insetLayout();
+    if (inset->elementCount() > 0 && inset->elementAt(0) == plot.legend) return;
+    if (plot.legend->layout()) plot.legend->layout()->take(plot.legend);
+    plot.plotLayout()->simplify();
+    inset->addElement(plot.legend, Qt::AlignRight | Qt::AlignTop);
+    plot.legend->setWrap(0);
+    plot.legend->setFillOrder(QCPLayoutGrid::foRowsFirst);
+}
+
+/// Puts the legend under the axis rect in `columns` columns: for a legend too big to sit on the
+/// curves (the eight entries of all four stresses covered σ).
+void legendBelow(QCustomPlot& plot, int columns) {
+    if (plot.legend->layout()) plot.legend->layout()->take(plot.legend);
+    plot.plotLayout()->simplify();
+    const int row = plot.plotLayout()->rowCount();
+    plot.plotLayout()->addElement(row, 0, plot.legend);
+    plot.plotLayout()->setRowStretchFactor(row, 0.001);
+    plot.legend->setWrap(columns);
+    plot.legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
+    plot.legend->setMargins(QMargins(6, 2, 6, 2));
+}
+
 }  // namespace
 
 void resetPlot(QCustomPlot& plot, const QString& title) {
+    legendInside(plot);
     plot.clearGraphs();
     plot.clearItems();
     plot.clearPlottables();
@@ -121,6 +146,8 @@ void plotStresses(QCustomPlot& plot, const analysis::StressResult& result,
                 paletteColor(int(i)), Qt::DashLine);
     }
     finish(plot);
+    legendBelow(plot, 2);  // exact and quadratic of one stress side by side, under the plot
+    plot.replot();
 }
 
 void plotSensitivityFamily(QCustomPlot& plot, const analysis::SensitivityResult& result,
@@ -321,14 +348,16 @@ void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult&
         const QString at = sweeps.size() > 1 || w > 0.0 ? QString(", W = %1 N").arg(w) : QString();
         QCPGraph* data = plot.addGraph();
         data->setData(sweep.slip, sweep.data);  // unsorted: keep the measured order
-        data->setName("data" + at);
+        // One legend entry per load (its line); the points share one "data" entry.
+        data->setName("data (points, coloured by load)");
+        if (index > 1) data->removeFromLegend();
         data->setPen(QPen(color));
         data->setLineStyle(QCPGraph::lsNone);
         data->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 4));
         QCPGraph* line = plot.addGraph();
         line->setData(sweep.slip, sweep.fit);
         line->setPen(QPen(color, 1.8));
-        line->setName(model + at);
+        line->setName(at.isEmpty() ? model : at.mid(2) + ", " + model);
     }
     finish(plot);
 }

@@ -310,6 +310,17 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
         heading->setPen(QPen(QColor(30, 30, 30), 1.6));
         plot.legend->setVisible(true);
     }
+    if (t.rows.empty()) {
+        // Before a run: where the robot starts.
+        QCPGraph* start = plot.addGraph();
+        start->setData(QVector<double>{scenario.initial.x_m},
+                       QVector<double>{scenario.initial.y_m});
+        start->setLineStyle(QCPGraph::lsNone);
+        start->setScatterStyle(
+            QCPScatterStyle(QCPScatterStyle::ssCrossCircle, QColor(30, 30, 30), 14));
+        start->setName("start of the centre of mass");
+        plot.legend->setVisible(true);
+    }
     plot.xAxis->setRange(x0, x1);
     plot.yAxis->setRange(y0, y1);
     plot.replot();  // lays out the axis rect: the scale ratio needs its size in pixels
