@@ -2,16 +2,21 @@
 // reproducibility by seed, the same table as a script's "sensitivity-global" analysis, and exit
 // code 2 naming the flag, the value and the range for bad input.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "cli_process.h"
 #include "cli_runner.h"
 
 namespace {
@@ -227,6 +232,34 @@ TEST_F(GsaScript, BandsScriptMatchesTheBandsCommand) {
             EXPECT_GE(csv.at(row, k + "_p95"), csv.at(row, k + "_nominal"));
         }
     }
+}
+
+TEST(GsaCli, ProgressGoesToStderrUpToTheEnd) {
+    const CliRun r = run(kStudy + " --progress");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("progress: 100 %"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, run(kStudy).out);
+}
+
+// Ctrl-C: the indices of the base samples evaluated so far are written, marked, exit 130.
+TEST_F(GsaScript, InterruptedStudyWritesTheSamplesSoFar) {
+    using namespace std::chrono_literals;
+    const fs::path csv = dir_ / "gsa.csv";
+    terra::test::CliProcess p(
+        {"gsa", "--slip", "0.3", "--samples", "262144", "--resamples", "10", "--out", csv.string()},
+        dir_ / "gsa");
+    ASSERT_TRUE(p.waitUntilCatching(SIGINT, 60s)) << p.err();
+    std::this_thread::sleep_for(300ms);
+    p.signal(SIGINT);
+    const int status = p.wait();
+    ASSERT_TRUE(WIFEXITED(status)) << p.err();
+    EXPECT_EQ(WEXITSTATUS(status), 130) << p.err();
+    const std::string text = readText(csv);
+    EXPECT_NE(text.find("# cancelled by SIGINT"), std::string::npos) << text;
+    const Csv table = parseCsv(text);
+    ASSERT_EQ(table.rows.size(), 1u) << text;
+    EXPECT_LT(table.at(0, "Fx_N_samples"), 262144.0);
+    EXPECT_NE(p.err().find("cancelled: indices from the"), std::string::npos) << p.err();
 }
 
 struct BadFlag {
