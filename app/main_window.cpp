@@ -81,7 +81,8 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     // The identified soil's covariance feeds the global study's "identified soil" source.
     connect(identification, &ui::AnalysisPanel::resultShown, global, [identification, global] {
         const analysis::IdentificationResult& r = identification->result();
-        if (r.refined) global->setIdentification(r.identified, r.refined->uncertainty);
+        if (r.report && r.report->usable())
+            global->setIdentification(r.identified, r.report->uncertainty);
     });
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
