@@ -31,6 +31,7 @@
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/panels/forces_panel.h"
+#include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
@@ -68,11 +69,21 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     tabs_ = new QTabWidget(this);
     tabs_->setDocumentMode(true);
     auto* identification = new ui::IdentificationPanel(document_, tabs_);
-    panels_ = {new ui::ForcesPanel(document_, tabs_), new ui::StressPanel(document_, tabs_),
-               new ui::SensitivityPanel(document_, tabs_), identification,
-               new ui::RoverPanel(document_, locations_, tabs_)};
-    const QStringList titles{"Forces vs slip", "Stresses", "Sensitivity", "Identification",
-                             "Rover scenario"};
+    auto* global = new ui::GlobalSensitivityPanel(document_, tabs_);
+    panels_ = {new ui::ForcesPanel(document_, tabs_),
+               new ui::StressPanel(document_, tabs_),
+               new ui::SensitivityPanel(document_, tabs_),
+               identification,
+               new ui::RoverPanel(document_, locations_, tabs_),
+               global};
+    const QStringList titles{"Forces vs slip", "Stresses",       "Sensitivity",
+                             "Identification", "Rover scenario", "Global sensitivity"};
+    // The identified soil's covariance feeds the global study's "identified soil" source.
+    connect(identification, &ui::AnalysisPanel::resultShown, global, [identification, global] {
+        const analysis::IdentificationResult& r = identification->result();
+        if (r.report && r.report->usable())
+            global->setIdentification(r.identified, r.report->uncertainty);
+    });
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
         // A panel whose controls need more room than a small screen leaves scrolls instead of

@@ -18,6 +18,8 @@ void addRenderCommand(CLI::App& app, const io::PresetLocations& locations);
 void addStressesCommand(CLI::App& app, const io::PresetLocations& locations);
 void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations);
 void addRunCommand(CLI::App& app, const io::PresetLocations& locations);
+/// `gsa` and `bands`: the global studies of core/analysis/global_sensitivity.h.
+void addGsaCommands(CLI::App& app, const io::PresetLocations& locations);
 void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

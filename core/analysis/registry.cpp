@@ -1,6 +1,7 @@
 #include "core/analysis/registry.h"
 
 #include "core/analysis/forces.h"
+#include "core/analysis/global_sensitivity.h"
 #include "core/analysis/identification.h"
 #include "core/analysis/rover.h"
 #include "core/analysis/sensitivity.h"
@@ -14,8 +15,10 @@ namespace terra::analysis {
 const std::vector<AnalysisType>& analysisTypes() {
     // One line per analysis: a new one is added here (docs/architecture.md, "Adding an analysis").
     static const std::vector<AnalysisType> types{
-        forcesType(),      soilCurvesType(),     stressesType(),  sinkageType(),
-        sensitivityType(), identificationType(), streamingType(), roverType(),
+        forcesType(),          soilCurvesType(),  stressesType(),
+        sinkageType(),         sensitivityType(), identificationType(),
+        streamingType(),       roverType(),       globalSensitivityType(),
+        uncertaintyBandType(),
     };
     return types;
 }

@@ -1,5 +1,9 @@
 #include "core/project/panels.h"
 
+#include <limits>
+
+#include "core/contact/operating_fields.h"
+#include "core/gsa/wheel_target.h"
 #include "core/scenario/scenario_json.h"
 
 namespace terra::project {
@@ -60,6 +64,29 @@ void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
     out.edited = all;
 }
 
+void readPanelSettings(ObjectReader& r, GlobalSensitivityPanelSettings& out) {
+    r.choiceName("page", out.page, {"indices", "bands"});
+    r.choiceName("method", out.method, {"sobol", "morris"});
+    r.choiceName("output", out.output, gsa::outputNames());
+    r.numbers("slips", out.slips, contact::slipField().range, {}, 1, 1000);
+    const FieldInfo& beta = contact::slipAngleField();
+    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
+    r.integer("samples", out.samples, 2, 1 << 20);
+    r.integer("band_samples", out.band_samples, 2, 1 << 20);
+    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
+}
+
+nlohmann::json toJson(const GlobalSensitivityPanelSettings& s) {
+    return {{"page", s.page},
+            {"method", s.method},
+            {"output", s.output},
+            {"slips", s.slips},
+            {"slip_angle_deg", s.slip_angle_deg},
+            {"samples", s.samples},
+            {"band_samples", s.band_samples},
+            {"seed", s.seed}};
+}
+
 nlohmann::json toJson(const ForcesPanelSettings& s) { return {{"plot", s.plot}}; }
 
 nlohmann::json toJson(const StressPanelSettings& s) { return analysis::toJson(s.analysis); }
@@ -110,6 +137,7 @@ void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
     check("sensitivity", SensitivityPanelSettings{});
     check("identification", IdentificationPanelSettings{});
     check("rover", RoverPanelSettings{});
+    check("global-sensitivity", GlobalSensitivityPanelSettings{});
 }
 
 }  // namespace terra::project

@@ -4,8 +4,10 @@
 /// analysis and what it shows (a tab, a page). Read strictly like the rest of the file, so a
 /// project never opens half-understood; the panels apply these structs, never raw JSON.
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/analysis/identification.h"
 #include "core/analysis/sensitivity.h"
@@ -51,6 +53,19 @@ struct IdentificationPanelSettings {
     std::string loss = "l2";          ///< l2, huber or cauchy
 };
 
+/// "global-sensitivity": the page shown, the study's method, grid and sample sizes (the ranges
+/// of its parameter table are not saved: they start from docs/sensitivity.md's example).
+struct GlobalSensitivityPanelSettings {
+    std::string page = "indices";  ///< indices or bands
+    std::string method = "sobol";  ///< sobol or morris
+    std::string output = "Fx_N";   ///< the output shown (gsa::outputNames())
+    std::vector<double> slips{0.1, 0.3, 0.6};
+    double slip_angle_deg = 0.0;
+    int samples = 1024;      ///< Sobol' base samples or Morris trajectories
+    int band_samples = 256;  ///< Monte Carlo samples of the bands
+    std::uint64_t seed = 1;
+};
+
 /// "rover": the scenario chosen and the scenarios edited in the panel (name → scenario JSON).
 struct RoverPanelSettings {
     std::string scenario;
@@ -61,6 +76,7 @@ void readPanelSettings(io::ObjectReader& r, ForcesPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, StressPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, SensitivityPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, IdentificationPanelSettings& out);
+void readPanelSettings(io::ObjectReader& r, GlobalSensitivityPanelSettings& out);
 /// The edited scenarios are checked as scenarios when `locations` is given.
 void readPanelSettings(io::ObjectReader& r, RoverPanelSettings& out,
                        const io::PresetLocations* locations = nullptr);
@@ -69,9 +85,11 @@ nlohmann::json toJson(const ForcesPanelSettings& settings);
 nlohmann::json toJson(const StressPanelSettings& settings);
 nlohmann::json toJson(const SensitivityPanelSettings& settings);
 nlohmann::json toJson(const IdentificationPanelSettings& settings);
+nlohmann::json toJson(const GlobalSensitivityPanelSettings& settings);
 nlohmann::json toJson(const RoverPanelSettings& settings);
 
-/// Checks a "panels" object: forces, stresses, sensitivity, identification, rover (each
+/// Checks a "panels" object: forces, stresses, sensitivity, identification, rover,
+/// global-sensitivity (each
 /// optional); another panel name is an unknown key.
 void readPanels(io::ObjectReader& panels, const io::PresetLocations* locations);
 

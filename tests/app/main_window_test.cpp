@@ -145,6 +145,7 @@ TEST(MainWindow, EveryShortcutOfTheUserGuideBelongsToOneAction) {
                                                          {"Ctrl+Q", "action.quit"},
                                                          {"Ctrl+1", "action.panel1"},
                                                          {"Ctrl+5", "action.panel5"},
+                                                         {"Ctrl+6", "action.panel6"},
                                                          {"F1", "action.help"},
                                                          {"Ctrl+/", "action.shortcuts"}};
     for (const auto& [key, name] : guide) {

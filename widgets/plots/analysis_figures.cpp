@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/analysis/forces.h"
+#include "core/analysis/global_sensitivity.h"
 #include "core/analysis/identification.h"
 #include "core/analysis/rover.h"
 #include "core/analysis/sensitivity.h"
@@ -12,6 +13,7 @@
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
 #include "widgets/plots/figures.h"
+#include "widgets/plots/gsa_figures.h"
 #include "widgets/plots/identification_figures.h"
 #include "widgets/plots/rover_figures.h"
 #include "widgets/plots/sweep_plot.h"
@@ -72,6 +74,17 @@ void drawAnalysisFigure(QCustomPlot& plot, const std::string& type, const std::s
             return plotSensitivityFamily(plot, r, r.parameter_keys.front(), key + "_N", title);
         }
         if (key == "tornado") return plotTornado(plot, r, s.tornado_slip, title);
+    } else if (type == "sensitivity-global") {
+        // A script's figure shows the first output at the first slip angle (docs/user-guide.md).
+        if (key == "indices") {
+            return plotGlobalIndices(plot, resultOf<analysis::GlobalSensitivityResult>(outcome), 0,
+                                     0, title);
+        }
+    } else if (type == "uncertainty-bands") {
+        if (key == "bands") {
+            return plotUncertaintyBands(plot, resultOf<analysis::UncertaintyBandResult>(outcome), 0,
+                                        0, title);
+        }
     } else if (type == "identification") {
         const auto& r = resultOf<analysis::IdentificationResult>(outcome);
         if (key == "Fx") return plotIdentification(plot, r, "Fx_N", title);

@@ -1,0 +1,384 @@
+// `terrastudio gsa` (Sobol' indices or Morris screening) and `terrastudio bands` (Monte Carlo
+// percentile bands against slip): the flags build the settings of the registry's
+// "sensitivity-global" and "uncertainty-bands" analyses (core/analysis/global_sensitivity.h), so
+// the command and a script's analysis compute the same table (docs/cli.md, "gsa", "bands").
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <tuple>
+
+#include "app/cli/cli_support.h"
+#include "app/cli/commands.h"
+#include "app/cli/signals.h"
+#include "core/analysis/global_sensitivity.h"
+#include "core/common/range.h"
+#include "core/contact/operating_fields.h"
+#include "core/io/csv.h"
+#include "core/io/table_json.h"
+#include "core/soil/soil_parameters.h"
+
+namespace terra::app {
+namespace {
+
+constexpr int kMaxSamples = 1 << 24;
+
+struct StudyOptions {
+    ModelOptions model;
+    std::vector<std::string> uniform;  // --param KEY=LOW:HIGH
+    std::vector<std::string> normal;   // --normal KEY=MEAN,SD[,LOW:HIGH]
+    std::string slips;
+    std::string slip_angles = "0";
+    std::optional<double> load_n;
+    std::optional<double> entry_angle_deg;
+    std::string outputs;
+    int samples = 0;
+    std::uint64_t seed = 1;
+    double max_failed_fraction = analysis::StudyDefinition{}.max_failed_fraction;
+    int threads = 0;
+    bool json = false;
+    bool progress = false;
+    std::string csv, out;
+    CLI::App* command = nullptr;
+    // gsa only
+    std::string method = "sobol";
+    int levels = 4;
+    int resamples = 1000;
+    double confidence = 0.95;
+    // bands only
+    int slip_count = analysis::UncertaintyBandSettings{}.slip_count;
+    std::string percentiles = "5,50,95";
+};
+
+[[noreturn]] void bad(const std::string& flag, const std::string& value, const std::string& why) {
+    throw InputError(flag + " " + io::quoteCell(value) + ": " + why);
+}
+
+double number(const std::string& flag, const std::string& whole, const std::string& text) {
+    double value = 0.0;
+    if (!io::parseNumber(text, value) || !std::isfinite(value))
+        bad(flag, whole, io::quoteCell(text) + " is not a number");
+    return value;
+}
+
+// KEY=REST: the soil field and the text after '='.
+std::pair<const soil::SoilField*, std::string> assignment(const std::string& flag,
+                                                          const std::string& text,
+                                                          const std::string& form) {
+    const auto equals = text.find('=');
+    if (equals == std::string::npos) bad(flag, text, "expected " + form);
+    const std::string key = text.substr(0, equals);
+    const soil::SoilField* field = soil::findSoilField(key);
+    if (!field) {
+        std::vector<std::string> keys;
+        std::string all;
+        for (const soil::SoilField& f : soil::soilFields()) {
+            keys.emplace_back(f.key);
+            all += (all.empty() ? "" : ", ") + std::string(f.key);
+        }
+        const std::string near = nearestName(key, keys);
+        bad(flag, text,
+            "\"" + key + "\" is not a soil field" +
+                (near.empty() ? "" : " (did you mean \"" + near + "\"?)") + "; fields: " + all);
+    }
+    return {field, text.substr(equals + 1)};
+}
+
+void inField(const std::string& flag, const std::string& text, const soil::SoilField& field,
+             double value) {
+    std::vector<Issue> issues;
+    if (!checkRange(issues, field.key, value, field.range, field.displayUnit()))
+        bad(flag, text, field.key + std::string(" = ") + issues.front().message);
+}
+
+std::pair<double, double> range(const std::string& flag, const std::string& text,
+                                const std::string& part, const soil::SoilField& field) {
+    const auto colon = part.find(':');
+    if (colon == std::string::npos || part.find(':', colon + 1) != std::string::npos)
+        bad(flag, text, "expected a range LOW:HIGH, got " + io::quoteCell(part));
+    const double low = number(flag, text, part.substr(0, colon));
+    const double high = number(flag, text, part.substr(colon + 1));
+    inField(flag, text, field, low);
+    inField(flag, text, field, high);
+    if (!(low < high))
+        bad(flag, text, "low " + formatNumber(low) + " must be below high " + formatNumber(high));
+    return {low, high};
+}
+
+analysis::UncertainParameter uniformOf(const std::string& text) {
+    const auto [field, rest] = assignment("--param", text, "KEY=LOW:HIGH (e.g. phi_deg=20:35)");
+    const auto [low, high] = range("--param", text, rest, *field);
+    return {field->key, gsa::Uniform{low, high}};
+}
+
+analysis::UncertainParameter normalOf(const std::string& text) {
+    const auto [field, rest] =
+        assignment("--normal", text, "KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH (e.g. phi_deg=29,2)");
+    std::vector<std::string> parts;
+    std::stringstream stream(rest);
+    for (std::string part; std::getline(stream, part, ',');) parts.push_back(part);
+    if (parts.size() != 2 && parts.size() != 3)
+        bad("--normal", text, "expected KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH");
+    gsa::Normal n;
+    n.mean = number("--normal", text, parts[0]);
+    n.sd = number("--normal", text, parts[1]);
+    if (!(n.sd > 0.0)) bad("--normal", text, "sd " + parts[1] + " must be above 0");
+    if (parts.size() == 3) {
+        std::tie(n.low, n.high) = range("--normal", text, parts[2], *field);
+    }
+    return {field->key, n};
+}
+
+std::vector<std::string> names(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream stream(text);
+    for (std::string part; std::getline(stream, part, ',');) out.push_back(part);
+    return out;
+}
+
+void checkCount(const std::string& flag, long long value, long long low, long long high) {
+    if (value < low || value > high) {
+        bad(flag, std::to_string(value),
+            "outside the allowed range [" + std::to_string(low) + ", " + std::to_string(high) +
+                "]");
+    }
+}
+
+void checkValues(const std::string& flag, const std::string& text,
+                 const std::vector<double>& values, const FieldInfo& field) {
+    for (double v : values) {
+        std::vector<Issue> issues;
+        if (!checkRange(issues, flag, v, field.range, field.displayUnit()))
+            bad(flag, text, issues.front().message);
+    }
+}
+
+// The study of the flags, every flag checked (exit 2 naming it, its value and the range).
+analysis::StudyDefinition definitionOf(const StudyOptions& o) {
+    analysis::StudyDefinition d;
+    // The parameters in the order they were given, --param and --normal interleaved.
+    std::size_t u = 0, n = 0;
+    std::vector<analysis::UncertainParameter> parameters;
+    for (const CLI::Option* option : o.command->parse_order()) {
+        if (option->get_name() == "--param" && u < o.uniform.size())
+            parameters.push_back(uniformOf(o.uniform[u++]));
+        if (option->get_name() == "--normal" && n < o.normal.size())
+            parameters.push_back(normalOf(o.normal[n++]));
+    }
+    for (; u < o.uniform.size(); ++u) parameters.push_back(uniformOf(o.uniform[u]));
+    for (; n < o.normal.size(); ++n) parameters.push_back(normalOf(o.normal[n]));
+    for (std::size_t i = 0; i < parameters.size(); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+            if (parameters[i].key == parameters[j].key)
+                throw InputError(parameters[i].key + " is varied twice (--param/--normal)");
+        }
+    }
+    if (!parameters.empty()) d.parameters = std::move(parameters);
+    if (!o.outputs.empty()) {
+        d.outputs = names(o.outputs);
+        for (const std::string& name : d.outputs) {
+            if (gsa::findOutput(name)) continue;
+            std::string all;
+            for (const std::string& known : gsa::outputNames())
+                all += (all.empty() ? "" : ",") + known;
+            const std::string near = nearestName(name, gsa::outputNames());
+            bad("--outputs", o.outputs,
+                "\"" + name + "\" is not an output" +
+                    (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
+                    "; outputs: " + all);
+        }
+    }
+    if (!o.slips.empty()) {
+        d.slips = parseValues(o.slips, "--slip");
+        checkValues("--slip", o.slips, d.slips, contact::slipField());
+    }
+    d.slip_angles_deg = parseValues(o.slip_angles, "--slip-angle");
+    checkValues("--slip-angle", o.slip_angles, d.slip_angles_deg, contact::slipAngleField());
+    if (o.load_n) {
+        checkValues("--load", formatNumber(*o.load_n), {*o.load_n}, contact::loadField());
+        d.load_n = o.load_n;
+    }
+    if (o.entry_angle_deg) {
+        checkValues("--entry-angle", formatNumber(*o.entry_angle_deg), {*o.entry_angle_deg},
+                    contact::entryAngleField());
+        d.entry_angle_deg = o.entry_angle_deg;
+    }
+    d.seed = o.seed;
+    if (!(o.max_failed_fraction >= 0.0 && o.max_failed_fraction <= 1.0)) {
+        bad("--max-failed-fraction", formatNumber(o.max_failed_fraction),
+            "outside the allowed range [0, 1]");
+    }
+    d.max_failed_fraction = o.max_failed_fraction;
+    checkCount("--threads", o.threads, 0, 1024);
+    d.threads = o.threads;
+    d.model = o.model.choices();
+    return d;
+}
+
+void addStudyOptions(CLI::App& cmd, StudyOptions& o, const std::string& slips_default,
+                     const std::string& samples_help) {
+    o.command = &cmd;
+    o.model.addTo(cmd);
+    cmd.add_option("--param", o.uniform,
+                   "Uniform parameter KEY=LOW:HIGH in the soil file's unit (repeatable), e.g. "
+                   "--param phi_deg=20:35; default: phi_deg=20:35 c_kPa=0:5 K_m=0.005:0.04 "
+                   "n=0.5:1.1");
+    cmd.add_option("--normal", o.normal,
+                   "Normal parameter KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH (truncated; repeatable)");
+    cmd.add_option("--slip", o.slips,
+                   "Slips: list a,b,c or range first:last:count (default " + slips_default + ")");
+    cmd.add_option("--slip-angle", o.slip_angles, "Slip angle(s) beta [deg]")
+        ->capture_default_str();
+    auto* load = cmd.add_option("--load", o.load_n,
+                                "Wheel load W [N], entry angle solved per sample (default " +
+                                    formatNumber(analysis::OperatingConditions{}.load_n) + ")");
+    cmd.add_option("--entry-angle", o.entry_angle_deg, "Fixed entry angle [deg] instead of a load")
+        ->excludes(load);
+    std::string all;
+    for (const std::string& name : gsa::outputNames()) all += (all.empty() ? "" : ",") + name;
+    cmd.add_option("--outputs", o.outputs, "Outputs, comma separated, among " + all);
+    cmd.add_option("--samples", o.samples, samples_help);
+    cmd.add_option("--seed", o.seed, "Seed: the same seed gives the same numbers")
+        ->capture_default_str();
+    cmd.add_option("--max-failed-fraction", o.max_failed_fraction,
+                   "Largest share of samples without equilibrium at a point, in [0, 1]")
+        ->capture_default_str();
+    cmd.add_option("--threads", o.threads, "Worker threads (0: one per core; same numbers)")
+        ->capture_default_str();
+    cmd.add_flag("--json", o.json, "JSON output instead of CSV");
+    auto* csv = cmd.add_option("--csv", o.csv, "Write the CSV table to this file");
+    cmd.add_option("--out", o.out, "Output file (default: stdout)")->excludes(csv);
+    cmd.add_flag("--progress", o.progress, "Report progress on stderr");
+}
+
+analysis::Control controlOf(const StudyOptions& o, const SignalCancellation& cancellation) {
+    std::function<void(double)> progress;
+    if (o.progress) {
+        auto last = std::make_shared<int>(-1);
+        progress = [last](double fraction) {
+            const int percent = static_cast<int>(fraction * 100.0);
+            if (percent / 10 == *last / 10) return;
+            *last = percent;
+            std::cerr << "progress: " << percent << " %\n";
+        };
+    }
+    return {cancellation.flag(), progress};
+}
+
+// Writes the outcome (its table as CSV, or `json`); a refused study is an error (exit 1), a
+// cancelled one is written marked and exits with the signal's code.
+void emit(const StudyOptions& o, const analysis::Outcome& outcome, const nlohmann::json& json,
+          const SignalCancellation& cancellation) {
+    for (const std::string& note : outcome.notes) std::cerr << "note: " << note << '\n';
+    if (outcome.status == analysis::Outcome::Status::kFailed)
+        throw std::runtime_error(outcome.message);
+    const bool cancelled = outcome.status == analysis::Outcome::Status::kCancelled;
+    const std::string path = o.csv.empty() ? o.out : o.csv;
+    std::string text;
+    if (o.json && o.csv.empty()) {
+        nlohmann::json j = json;
+        if (cancelled) j["cancelled"] = true;
+        text = j.dump(2) + "\n";
+    } else {
+        text = io::toCsv(outcome.tables.front().table);
+        if (cancelled) text += "# cancelled by " + cancellation.signalName() + "\n";
+    }
+    writeOutput(path, text);
+    if (!path.empty() && path != "-") std::cerr << "wrote " << path << '\n';
+    if (cancelled) exitCancelled(cancellation, outcome.message);
+}
+
+}  // namespace
+
+void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
+    auto study = std::make_shared<StudyOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "gsa",
+        "Global sensitivity: Sobol' S1/ST with confidence intervals, or Morris mu*/sigma, "
+        "of outputs at chosen slips over soil parameter ranges or distributions");
+    addStudyOptions(*cmd, *study, "0.1,0.3,0.6",
+                    "Sobol': base samples N (N (d + 2) model runs per point; default 4096); "
+                    "Morris: trajectories (default 64)");
+    cmd->add_option("--method", study->method, "sobol or morris")
+        ->check(CLI::IsMember({"sobol", "morris"}))
+        ->capture_default_str();
+    cmd->add_option("--levels", study->levels, "Morris grid levels p (even)")
+        ->capture_default_str();
+    cmd->add_option("--resamples", study->resamples,
+                    "Bootstrap resamples of the intervals (0: none)")
+        ->capture_default_str();
+    cmd->add_option("--confidence", study->confidence,
+                    "Confidence level of the intervals, in (0, 1)")
+        ->capture_default_str();
+    cmd->callback([study, &locations] {
+        const StudyOptions& o = *study;
+        const analysis::Inputs inputs = o.model.inputs(locations);
+        analysis::GlobalSensitivitySettings s;
+        s.study = definitionOf(o);
+        s.method =
+            o.method == "morris" ? analysis::GsaMethod::kMorris : analysis::GsaMethod::kSobol;
+        if (o.samples != 0) {
+            checkCount("--samples", o.samples, 2, kMaxSamples);
+            s.samples = static_cast<std::size_t>(o.samples);
+        } else if (s.method == analysis::GsaMethod::kMorris) {
+            s.samples = gsa::MorrisOptions{}.trajectories;
+        }
+        checkCount("--levels", o.levels, 2, 1000);
+        if (o.levels % 2 != 0) bad("--levels", std::to_string(o.levels), "must be even");
+        checkCount("--resamples", o.resamples, 0, 1000000);
+        if (!(o.confidence > 0.0 && o.confidence < 1.0))
+            bad("--confidence", formatNumber(o.confidence), "outside the allowed range (0, 1)");
+        s.levels = o.levels;
+        s.resamples = o.resamples;
+        s.confidence_level = o.confidence;
+        if (s.method == analysis::GsaMethod::kMorris) {
+            for (const analysis::UncertainParameter& p : s.study.parameters) {
+                if (!std::holds_alternative<gsa::Uniform>(p.distribution))
+                    bad("--normal", p.key, "Morris screening needs ranges (--param KEY=LOW:HIGH)");
+            }
+        }
+        const SignalCancellation cancellation;
+        analysis::Outcome outcome = analysis::globalSensitivityOutcome(
+            analysis::computeGlobalSensitivity(inputs, s, controlOf(o, cancellation)));
+        const auto& result =
+            std::any_cast<const analysis::GlobalSensitivityResult&>(outcome.result);
+        emit(o, outcome, result.toJson(), cancellation);
+    });
+
+    auto bands = std::make_shared<StudyOptions>();
+    CLI::App* b = app.add_subcommand(
+        "bands",
+        "Uncertainty bands: Monte Carlo percentiles of outputs against slip when soil "
+        "parameters follow ranges or distributions, with the nominal soil's curve");
+    addStudyOptions(*b, *bands, "0:slip_max:20",
+                    "Monte Carlo samples M (default " +
+                        std::to_string(analysis::UncertaintyBandSettings{}.samples) + ")");
+    b->add_option("--percentiles", bands->percentiles, "Percentiles in [0, 100]")
+        ->capture_default_str();
+    b->callback([bands, &locations] {
+        const StudyOptions& o = *bands;
+        const analysis::Inputs inputs = o.model.inputs(locations);
+        analysis::UncertaintyBandSettings s;
+        const std::vector<std::string> outputs = s.study.outputs;
+        s.study = definitionOf(o);
+        if (o.outputs.empty()) s.study.outputs = outputs;
+        if (o.slips.empty()) s.study.slips.clear();  // 0 … slip_max in slip_count points
+        if (o.samples != 0) {
+            checkCount("--samples", o.samples, 2, kMaxSamples);
+            s.samples = static_cast<std::size_t>(o.samples);
+        }
+        s.percentiles = parseValues(o.percentiles, "--percentiles");
+        for (double q : s.percentiles) {
+            if (!(q >= 0.0 && q <= 100.0))
+                bad("--percentiles", o.percentiles,
+                    formatNumber(q) + " is outside the allowed range [0, 100]");
+        }
+        const SignalCancellation cancellation;
+        analysis::Outcome outcome = analysis::uncertaintyBandOutcome(
+            analysis::computeUncertaintyBands(inputs, s, controlOf(o, cancellation)));
+        emit(o, outcome, io::toJson(outcome.tables.front().table), cancellation);
+    });
+}
+
+}  // namespace terra::app

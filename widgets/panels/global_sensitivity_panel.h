@@ -1,0 +1,102 @@
+#pragma once
+/// @file global_sensitivity_panel.h
+/// Global sensitivity panel: which soil parameters matter when all are uncertain together, and
+/// how uncertain the predicted forces are. Its "Indices" page shows Sobol' S1 and ST (or Morris
+/// μ*, σ) of a chosen output against slip as bars with confidence whiskers; its "Uncertainty
+/// bands" page shows Monte Carlo percentile bands of an output against slip around the project
+/// soil's curve. The uncertain parameters are the ranges the user ticks in the table, or the
+/// identified soil's covariance (from the identification panel's last fit). Computed on "Compute"
+/// off the GUI thread (core/analysis/global_sensitivity.h), with progress and cancel.
+
+#include <atomic>
+#include <memory>
+#include <optional>
+
+#include "core/analysis/global_sensitivity.h"
+#include "widgets/panels/analysis_panel.h"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QTabWidget;
+class QTableWidget;
+class QTimer;
+
+namespace terra::ui {
+
+class GlobalSensitivityPanel : public AnalysisPanel {
+    Q_OBJECT
+public:
+    explicit GlobalSensitivityPanel(ProjectDocument* document, QWidget* parent = nullptr);
+
+    /// What the last computation gave (empty before one finished).
+    const std::optional<analysis::GlobalSensitivityResult>& indices() const { return indices_; }
+    const std::optional<analysis::UncertaintyBandResult>& bands() const { return bands_; }
+
+    /// The page computed by compute(): 0 indices, 1 bands.
+    void showPage(int page);
+    /// A parameter row of the table: ticked (varied) with this range in the field's unit.
+    /// Returns false for a key the table does not list.
+    bool setRange(const std::string& key, bool varied, double low, double high);
+    void setSlips(const QString& slips);
+    void setSamples(int samples);
+    void setMethod(analysis::GsaMethod method);
+    /// The identified soil and its uncertainty (the identification panel's refined fit): makes
+    /// "identified soil's covariance" available as the source of the parameters.
+    void setIdentification(const identification::DecoupledParameters& identified,
+                           const identification::Uncertainty& uncertainty);
+    /// 0: the ranges of the table; 1: the identified soil's covariance.
+    void setSource(int source);
+    /// Computes the current page.
+    void compute();
+
+    /// The settings the controls make (throws std::invalid_argument for unreadable slips).
+    analysis::GlobalSensitivitySettings indexSettings() const;
+    analysis::UncertaintyBandSettings bandSettings() const;
+
+    std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
+    QCustomPlot* currentPlot() const override;
+    Table currentTable() const override;
+    nlohmann::json settings() const override;
+    void applySettings(const nlohmann::json& settings) override;
+
+protected:
+    Job makeJob() override;
+    void present(const std::any& result) override;
+
+private:
+    analysis::StudyDefinition definition() const;
+    analysis::Inputs inputs() const;
+    void redraw();
+
+    QTabWidget* pages_;
+    QTableWidget* parameters_;
+    QComboBox* source_;
+    QComboBox* method_;
+    QComboBox* output_;
+    QLineEdit* slips_;
+    QDoubleSpinBox* slip_angle_;
+    QSpinBox* samples_;
+    QSpinBox* band_samples_;
+    QSpinBox* seed_;
+    QPushButton* compute_;
+    QPushButton* cancel_;
+    QProgressBar* progress_;
+    QLabel* status_;
+    QLabel* readout_;
+    QCustomPlot* indices_plot_;
+    QCustomPlot* bands_plot_;
+    QTimer* progress_timer_;
+    std::shared_ptr<std::atomic<double>> fraction_;
+    std::optional<analysis::GlobalSensitivityResult> indices_;
+    std::optional<analysis::UncertaintyBandResult> bands_;
+    // The identification's estimate and uncertainty (setIdentification), if any.
+    std::optional<std::pair<identification::DecoupledParameters, identification::Uncertainty>>
+        identification_;
+};
+
+}  // namespace terra::ui
