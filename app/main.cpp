@@ -27,6 +27,7 @@ int runHeadless(int argc, char** argv) {
     addIdentifyCommands(app, locations);
     addRunCommand(app, locations);
     addSimulateCommand(app, locations);
+    addValidateCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

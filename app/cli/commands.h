@@ -19,5 +19,6 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations);
 void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations);
 void addRunCommand(CLI::App& app, const io::PresetLocations& locations);
 void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations);
+void addValidateCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

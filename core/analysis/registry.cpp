@@ -8,14 +8,15 @@
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/validation.h"
 
 namespace terra::analysis {
 
 const std::vector<AnalysisType>& analysisTypes() {
     // One line per analysis: a new one is added here (docs/architecture.md, "Adding an analysis").
     static const std::vector<AnalysisType> types{
-        forcesType(),      soilCurvesType(),     stressesType(),  sinkageType(),
-        sensitivityType(), identificationType(), streamingType(), roverType(),
+        forcesType(),         soilCurvesType(), stressesType(), sinkageType(),    sensitivityType(),
+        identificationType(), streamingType(),  roverType(),    validationType(),
     };
     return types;
 }
