@@ -22,6 +22,7 @@ struct ValidateOptions {
     std::string model = "full";
     bool json = false;
     bool calibrate = false;
+    bool fit_n1 = false;
     std::string fit_slips;
     std::vector<std::string> noise;  // CHANNEL=SIGMA
     std::string save_soil;
@@ -137,6 +138,11 @@ void printHuman(const analysis::ValidationResult& r, const analysis::Inputs& in)
                 out << (unit.empty() ? "" : " " + unit) << "   (prior "
                     << formatNumber(roundSignificant(c.prior[i] * info.to_user, 5)) << ")\n";
             }
+            if (c.n1) {
+                out << "  n1 = " << formatNumber(roundSignificant(*c.n1, 4));
+                if (c.n1_std) out << " ± " << formatNumber(roundSignificant(*c.n1_std, 3));
+                out << "   (thesis model: 0; from the profile of chi2 over n1)\n";
+            }
             for (const std::string& flag : c.report.uncertainty.flags)
                 out << "  note: " << flag << '\n';
             printRun(out, *c.after, true);
@@ -179,11 +185,16 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "With --calibrate: noise std per channel weighting the fit, e.g. "
                     "Fx_N=1,sinkage_m=0.001 (default: estimated)")
         ->delimiter(',');
+    cmd->add_flag("--fit-n1", o->fit_n1,
+                  "With --calibrate: fit n1 of the slip-sinkage exponent N = n + n1 s too "
+                  "(docs/model.md, Slip-sinkage)");
     cmd->add_option("--save-soil", o->save_soil,
                     "With --calibrate: write the calibrated soil as a soil file");
     cmd->callback([o, &locations] {
-        if (!o->calibrate && (!o->fit_slips.empty() || !o->noise.empty() || !o->save_soil.empty()))
-            throw InputError("--fit-slips, --noise and --save-soil belong to --calibrate");
+        if (!o->calibrate &&
+            (!o->fit_slips.empty() || !o->noise.empty() || !o->save_soil.empty() || o->fit_n1))
+            throw InputError(
+                "--fit-slips, --noise, --fit-n1 and --save-soil belong to --calibrate");
         Result<io::Experiment> read = io::readExperiment(o->experiments);
         if (!read) throw InputError(read.message());
         const io::Experiment& experiment = read.value();
@@ -211,6 +222,7 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
         settings.experiments = o->experiments;
         settings.data = experiment;
         settings.calibrate = o->calibrate;
+        settings.fit_n1 = o->fit_n1;
         if (!o->fit_slips.empty()) settings.fit_slips = parseValues(o->fit_slips, "--fit-slips");
         parseNoise(o->noise, settings);
         analysis::ValidationResult result;

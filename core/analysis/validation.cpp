@@ -159,6 +159,76 @@ id::DataSet fitData(const std::vector<PointComparison>& points, std::vector<std:
     return data;
 }
 
+// n₁ of N = n + n₁ s by its profile: χ²(n₁) is the identification's minimum with n₁ held (its
+// priors included), over a coarse grid, then golden-section search in the best grid cell; the
+// std from the curvature of χ² at the minimum (Δχ² = 1). The noise levels are held at the n₁ = 0
+// fit's where they would be estimated, so that the χ² of different n₁ compare.
+void profileN1(const id::DataSet& data, const wheel::WheelParameters& wheel,
+               id::IdentifyOptions options, Calibration& cal) {
+    options.sinkage_exponent_slip = 0.0;
+    const id::IdentificationReport first = id::identify(data, wheel, options);
+    if (!first.usable()) {
+        cal.report = first;
+        return;
+    }
+    options.noise = first.noise;
+    auto chi2 = [&](double n1) {
+        id::IdentifyOptions o = options;
+        o.sinkage_exponent_slip = n1;
+        id::IdentificationReport r = id::identify(data, wheel, o);
+        const double value = r.usable() ? r.chi2 : std::numeric_limits<double>::infinity();
+        cal.n1_profile.emplace_back(n1, value);
+        return std::pair{value, std::move(r)};
+    };
+    // n₁ in [−0.6, 0.8], step 0.2, then refined: N = n + n₁ s stays inside n's range [0.1, 2]
+    // over the slips of a test for the usual n ≈ 0.5–1.2.
+    constexpr double kLow = -0.6, kHigh = 0.8, kStep = 0.2;
+    double best_n1 = 0.0, best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= 7; ++k) {
+        const double n1 = kLow + kStep * k;
+        const double value = chi2(n1).first;
+        if (value < best) {
+            best = value;
+            best_n1 = n1;
+        }
+    }
+    if (!std::isfinite(best)) {
+        cal.report = first;
+        cal.report.status = id::IdentifyStatus::kFailed;
+        cal.report.message = "no n1 in [-0.6, 0.8] gave a usable fit";
+        return;
+    }
+    // Golden section on [best − step, best + step] within [low, high]: 14 steps shrink it 850×.
+    double a = std::max(kLow, best_n1 - kStep), b = std::min(kHigh, best_n1 + kStep);
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = chi2(x1).first, f2 = chi2(x2).first;
+    for (int i = 0; i < 14; ++i) {
+        if (f1 < f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - g * (b - a);
+            f1 = chi2(x1).first;
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + g * (b - a);
+            f2 = chi2(x2).first;
+        }
+    }
+    const double n1 = f1 < f2 ? x1 : x2;
+    auto [value, report] = chi2(n1);
+    cal.n1 = n1;
+    cal.report = std::move(report);
+    // Curvature by central differences, h = 0.02.
+    constexpr double h = 0.02;
+    const double up = chi2(n1 + h).first, down = chi2(n1 - h).first;
+    const double curvature = (up - 2.0 * value + down) / (h * h);
+    if (std::isfinite(curvature) && curvature > 0.0) cal.n1_std = std::sqrt(2.0 / curvature);
+}
+
 }  // namespace
 
 void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
@@ -192,6 +262,10 @@ void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
     }
     if (!out.fit_slips.empty() && !out.calibrate) {
         r.report("fit_slips", "belongs to the calibration: add \"calibrate\": true");
+    }
+    r.boolean("fit_n1", out.fit_n1);
+    if (out.fit_n1 && !out.calibrate) {
+        r.report("fit_n1", "belongs to the calibration: add \"calibrate\": true");
     }
     if (r.has("noise")) {
         io::ObjectReader noise = r.object("noise");
@@ -266,7 +340,7 @@ ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experime
 
 soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
                                         const wheel::WheelParameters& wheel,
-                                        const id::ParameterVector& p) {
+                                        const id::ParameterVector& p, double n1) {
     soil::SoilParameters out = prior;
     const double ks_prior = prior.cohesive_modulus / wheel.width_m + prior.frictional_modulus;
     if (!(ks_prior > 0.0)) {
@@ -279,7 +353,7 @@ soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
     out.max_stress_a0 = p[id::kA0];
     out.max_stress_a1 = p[id::kA1];
     out.sinkage_exponent = p[id::kN];
-    out.sinkage_exponent_slip = 0.0;
+    out.sinkage_exponent_slip = n1;
     out.cohesion_pa = p[id::kC];
     out.friction_angle_rad = p[id::kPhi];
     out.shear_modulus_m = p[id::kK];
@@ -339,10 +413,9 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
     Calibration cal;
     cal.prior = id::fromSoil(in.soil, in.wheel);
     const id::DataSet data = fitData(out.before.points, cal.channels, out.notes);
-    if (in.soil.sinkage_exponent_slip != 0.0) {
+    if (in.soil.sinkage_exponent_slip != 0.0 && !s.fit_n1) {
         out.notes.push_back(
-            "calibration: the identification's model has n1 = 0; the calibrated "
-            "soil's n1 is 0");
+            "calibration: n1 is not fitted (add fit_n1): the calibrated soil's n1 is 0");
     }
     id::IdentifyOptions options;
     options.source = id::DataSource::kLoad;
@@ -361,11 +434,20 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
     if (cal.channels.empty()) {
         cal.report.status = id::IdentifyStatus::kInvalidInput;
         cal.report.message = "no channel to fit (Fx_N, My_Nm or sinkage_m)";
-    } else {
+    } else if (!s.fit_n1) {
         cal.report = id::identify(data, in.wheel, options);
+    } else {
+        profileN1(data, in.wheel, options, cal);
     }
     if (cal.report.usable()) {
-        cal.soil = soilFromParameters(in.soil, in.wheel, cal.report.parameters);
+        cal.soil =
+            soilFromParameters(in.soil, in.wheel, cal.report.parameters, cal.n1.value_or(0.0));
+        if (const std::vector<Issue> bad = soil::validate(cal.soil); !bad.empty()) {
+            cal.report.status = id::IdentifyStatus::kFailed;
+            cal.report.message = "the calibrated soil is not a valid soil: " + formatIssues(bad);
+        }
+    }
+    if (cal.report.usable()) {
         cal.soil.name = in.soil.name + " (calibrated)";
         cal.soil.source = "calibrated by terrastudio validate to " + experiment.source + " with " +
                           in.soil.name + " as prior";
@@ -409,6 +491,19 @@ nlohmann::json toJson(const ValidationResult& r) {
                                              : nlohmann::json()},
                                  {"prior", c.prior[i] * info.to_user},
                                  {"at_bound", rep.at_bound[i]}};
+        }
+        if (c.n1) {
+            params["n1"] = {{"value", *c.n1},
+                            {"std", c.n1_std ? nlohmann::json(*c.n1_std) : nlohmann::json()},
+                            {"prior", 0.0},
+                            {"at_bound", false}};
+            nlohmann::json profile = nlohmann::json::array();
+            for (const auto& [n1, chi2] : c.n1_profile) {
+                profile.push_back(
+                    {{"n1", n1},
+                     {"chi2", std::isfinite(chi2) ? nlohmann::json(chi2) : nlohmann::json()}});
+            }
+            cal["n1_profile"] = profile;
         }
         cal["parameters"] = params;
         cal["termination"] = rep.termination;
@@ -468,6 +563,10 @@ Outcome validationOutcome(ValidationResult result) {
                                            ? c.report.uncertainty.std[i] * info.to_user
                                            : kNaN,
                                        c.prior[i] * info.to_user});
+            }
+            if (c.n1) {
+                parameters.columns.insert(parameters.columns.end(), {"n1", "n1_std", "n1_prior"});
+                row.insert(row.end(), {*c.n1, c.n1_std.value_or(kNaN), 0.0});
             }
             parameters.rows.push_back(std::move(row));
             out.tables.push_back({"parameters", "-parameters", std::move(parameters)});

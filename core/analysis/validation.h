@@ -33,10 +33,13 @@ struct ValidationSettings {
     /// Noise std of each channel weighting the calibration [N, N·m, m, N, N]
     /// (io::ExperimentChannel order); 0: estimated from the residuals.
     std::array<double, io::kExperimentChannelCount> noise{};
+    /// Calibration only: fit n₁ of the slip-sinkage exponent N = n + n₁ s too (docs/model.md,
+    /// "Slip-sinkage"), by profiling χ² over n₁; false: n₁ = 0, the thesis model.
+    bool fit_n1 = false;
 };
 
 /// "experiments" (required; relative to the context's directory, read at once), "calibrate",
-/// "fit_slips", "noise" ({"Fx_N", "My_Nm", "sinkage_m"}).
+/// "fit_slips", "noise" ({"Fx_N", "My_Nm", "sinkage_m"}), "fit_n1".
 void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
                             ValidationSettings& out);
 
@@ -76,7 +79,11 @@ struct Calibration {
     identification::ParameterVector prior{};  ///< the given soil's parameters on this wheel (SI)
     std::vector<std::string> channels;        ///< the channels fitted ("Fx_N", "sinkage_m")
     soil::SoilParameters soil;                ///< the calibrated soil (usable report only)
-    std::optional<ValidationRun> after;       ///< every point with the calibrated soil
+    /// With fit_n1: n₁ at the minimum of the profile χ²(n₁) (the report is the fit at it), its
+    /// std from the profile's curvature (Δχ² = 1), and the profile (n₁, χ²) evaluated.
+    std::optional<double> n1, n1_std;
+    std::vector<std::pair<double, double>> n1_profile;
+    std::optional<ValidationRun> after;  ///< every point with the calibrated soil
     /// Held-out points only (when fit_slips leaves some out): with the given and the calibrated
     /// soil.
     std::optional<ValidationMetrics> held_out_before, held_out;
@@ -97,12 +104,12 @@ ValidationMetrics computeMetrics(const std::vector<PointComparison>& points,
 ValidationRun predictExperiment(const Inputs& inputs, const io::Experiment& experiment);
 
 /// The soil whose parameters on `wheel` are `p` (identify.h's θ): a₀, a₁, n, c, φ, K taken over,
-/// n₁ = 0 (the identification's model), and k_c, k_φ both scaled by K_s(p)/K_s(prior) so that
+/// n₁ as given (the identification's model), and k_c, k_φ both scaled by K_s(p)/K_s(prior) so that
 /// K_s = k_c/b + k_φ is p's on this wheel width (only K_s is seen by a test at one width). The
 /// rest (γ, j_max) as `prior`'s.
 soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
                                         const wheel::WheelParameters& wheel,
-                                        const identification::ParameterVector& p);
+                                        const identification::ParameterVector& p, double n1 = 0.0);
 
 /// Throws std::invalid_argument for invalid inputs or settings (a fit slip that is not in the
 /// test); a test that cannot be read is a problem of the settings (read before).
