@@ -172,6 +172,11 @@ void profileN1(const id::DataSet& data, const wheel::WheelParameters& wheel,
         return;
     }
     options.noise = first.noise;
+    // The profile's fits start where the n₁ = 0 fit ended (and from the given soil): n₁ moves
+    // the minimum continuously, so the space-filling design is not needed again.
+    options.starts.push_back({"the n1 = 0 fit", first.parameters});
+    options.design_points = 0;
+    options.descents = 2;
     auto chi2 = [&](double n1) {
         id::IdentifyOptions o = options;
         o.sinkage_exponent_slip = n1;

@@ -92,7 +92,7 @@ Result<Experiment> parseExperimentCsv(const std::string& text, const std::string
     Result<CsvDocument> read = parseCsv(text, where);
     if (!read) return read.issues();
     const CsvDocument& doc = read.value();
-    std::vector<Issue> issues = doc.row_issues;
+    std::vector<Issue> issues;
     const std::vector<std::string> names = columnNames();
     std::vector<int> index(names.size(), -1);
     for (std::size_t i = 0; i < doc.header.size(); ++i) {
@@ -117,7 +117,8 @@ Result<Experiment> parseExperimentCsv(const std::string& text, const std::string
                           "no measured channel: expected at least one of Fx_N, My_Nm, "
                           "sinkage_m, Fy_N, Fz_N"});
     }
-    if (!issues.empty()) return issues;
+    if (!issues.empty()) return issues;  // the header: no row can be read
+    issues = doc.row_issues;             // rows with the wrong number of cells
 
     Experiment out;
     out.source = where;

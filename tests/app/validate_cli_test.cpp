@@ -135,7 +135,8 @@ TEST_F(ValidateCommand, TheShippedDingTestNeedsNoSoilOrWheelFlags) {
 
 TEST_F(ValidateCommand, CalibrationOnNoiseFreeDataOfAKnownSoilRecoversIt) {
     // The truth: HIT-LSS1 with n, φ, K and a₀ moved; the prior is the book soil.
-    const std::string truth = write("truth.json", R"({"name": "truth", "n": 0.9, "c_kPa": 0.4,
+    // (Not truth.json: beside truth.csv that would be the test's sidecar.)
+    const std::string truth = write("truth-soil.json", R"({"name": "truth", "n": 0.9, "c_kPa": 0.4,
         "phi_deg": 28, "kc": 15.6, "kphi": 2407.4, "K_m": 0.015, "gamma_kN_m3": 16,
         "a0": 0.35, "a1": 0.2})")
                                   .string();
@@ -271,6 +272,43 @@ TEST_F(ValidateCommand, TheShippedScriptMeetsItsExpectations) {
                          "/scripts/ding2011-validation.json --out " + (dir_ / "out").string());
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "out" / "ding-held-out-held-out-metrics.csv"));
+}
+
+TEST_F(ValidateCommand, FitN1RecoversTheSlipSinkageOfDataMadeWithIt) {
+    // The truth has Ding's N = n + n1 s with n1 = 0.3; the prior (the book soil) has n1 = 0.
+    const std::string truth = write("truth.json", R"({"name": "truth", "n": 1.0, "n1": 0.3,
+        "c_kPa": 0.25, "phi_deg": 31.9, "kc": 15.6, "kphi": 2407.4, "K_m": 0.011,
+        "gamma_kN_m3": 16, "a0": 0.4, "a1": 0.15})")
+                                  .string();
+    std::string csv = "load_N,slip,Fx_N,sinkage_m\n";
+    for (double load : {40.0, 80.0, 120.0}) {
+        for (double slip : {0.0, 0.1, 0.2, 0.3, 0.45, 0.6}) {
+            const json w = wheelAt(truth, load, slip);
+            std::ostringstream row;
+            row.precision(17);
+            row << load << ',' << slip << ',' << w["Fx_N"].get<double>() << ','
+                << w["sinkage_m"].get<double>() << '\n';
+            csv += row.str();
+        }
+    }
+    const fs::path file = write("n1.csv", csv);
+    const fs::path saved = dir_ / "n1-soil.json";
+    const CliRun r = run("validate --experiments " + file.string() +
+                         " --soil hit-lss1 --wheel ding2011-smooth --calibrate --fit-n1 "
+                         "--noise Fx_N=0.01,sinkage_m=1e-5 --json --save-soil " +
+                         saved.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const json j = json::parse(r.out);
+    const json& p = j["calibration"]["parameters"];
+    EXPECT_NEAR(p["n1"]["value"].get<double>(), 0.3, 0.005) << p.dump(2);
+    EXPECT_NEAR(p["n"]["value"].get<double>(), 1.0, 0.01) << p.dump(2);
+    EXPECT_LT(j["calibration"]["metrics"]["sinkage_m"]["rmse"].get<double>(), 1e-4);
+    // The saved soil carries n1, and `wheel` reads it.
+    std::ifstream in(saved);
+    const json soil = json::parse(in);
+    EXPECT_NEAR(soil["n1"].get<double>(), 0.3, 0.005);
+    EXPECT_NEAR(wheelAt(saved.string(), 80, 0.6)["sinkage_m"].get<double>(),
+                wheelAt(truth, 80, 0.6)["sinkage_m"].get<double>(), 1e-4);
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ TEST(ExperimentMetadata, ReadsStrictlyAndNamesTheField) {
     EXPECT_TRUE(contains(msg, "t.json: soil.parameters.phi_deg: 75 is outside")) << msg;
     EXPECT_TRUE(contains(msg, "t.json: channels.Fx_N.kind")) << msg;
     EXPECT_TRUE(contains(msg, "t.json: tset")) << msg;
-    EXPECT_TRUE(contains(msg, "did you mean test")) << msg;
+    EXPECT_TRUE(contains(msg, "did you mean \"test\"")) << msg;
 }
 
 TEST(Experiment, ReadFromTheCsvOrTheSidecarAndTheShippedDingTest) {
