@@ -28,6 +28,7 @@ int runHeadless(int argc, char** argv) {
     addRunCommand(app, locations);
     addSimulateCommand(app, locations);
     addGsaCommands(app, locations);
+    addValidateCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -21,5 +21,6 @@ void addRunCommand(CLI::App& app, const io::PresetLocations& locations);
 /// `gsa` and `bands`: the global studies of core/analysis/global_sensitivity.h.
 void addGsaCommands(CLI::App& app, const io::PresetLocations& locations);
 void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations);
+void addValidateCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

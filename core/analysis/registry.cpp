@@ -9,6 +9,7 @@
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/validation.h"
 
 namespace terra::analysis {
 
@@ -18,7 +19,7 @@ const std::vector<AnalysisType>& analysisTypes() {
         forcesType(),          soilCurvesType(),  stressesType(),
         sinkageType(),         sensitivityType(), identificationType(),
         streamingType(),       roverType(),       globalSensitivityType(),
-        uncertaintyBandType(),
+        uncertaintyBandType(), validationType(),
     };
     return types;
 }

@@ -102,7 +102,9 @@ public:
     Search(const DataSet& data, const wheel::WheelParameters& wheel, const IdentifyOptions& o,
            IdentificationReport& report)
         : options_(o), report_(report), wheel_(wheel) {
-        report_.setup = setupModel(data, o.source, o.load_n, o.max_shear_deformation_m).value();
+        report_.setup =
+            setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip)
+                .value();
         model_.emplace(data, wheel, report_.setup);
         objective_.model = &*model_;
         provisional_ = provisionalNoise(*model_, o.noise);
@@ -501,7 +503,8 @@ void holdout(const DataSet& data, const wheel::WheelParameters& wheel,
         const std::vector<Prediction> predictions = predictAll(held, wheel, fit.parameters, inner);
         const ObservationModel model(
             held, wheel,
-            setupModel(held, report.setup.source, options.load_n, options.max_shear_deformation_m)
+            setupModel(held, report.setup.source, options.load_n, options.max_shear_deformation_m,
+                       options.sinkage_exponent_slip)
                 .value());
         for (std::size_t i = 0; i < held.samples.size(); ++i) {
             if (!predictions[i].ok) {
@@ -590,7 +593,7 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
         issues.push_back({"holdout", "give a holdout fraction or a number of folds, not both"});
     }
     const Result<ModelSetup> setup =
-        setupModel(data, o.source, o.load_n, o.max_shear_deformation_m);
+        setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip);
     if (!setup) {
         const std::vector<Issue>& more = setup.issues();
         issues.insert(issues.end(), more.begin(), more.end());
@@ -622,7 +625,8 @@ IdentificationReport identify(const DataSet& data, const wheel::WheelParameters&
 std::vector<Prediction> predictAll(const DataSet& data, const wheel::WheelParameters& wheel,
                                    const ParameterVector& p, const IdentifyOptions& options) {
     const Result<ModelSetup> setup =
-        setupModel(data, options.source, options.load_n, options.max_shear_deformation_m);
+        setupModel(data, options.source, options.load_n, options.max_shear_deformation_m,
+                   options.sinkage_exponent_slip);
     if (!setup) throw std::invalid_argument(setup.message());
     const ObservationModel model(data, wheel, setup.value());
     std::vector<Prediction> out;

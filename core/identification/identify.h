@@ -61,6 +61,9 @@ struct IdentifyOptions {
     std::optional<double> load_n;
     /// j_max of the model [m] (Eq. 2.16; a setting of the model, not identified).
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    /// n₁ of Ding's slip-sinkage exponent N = n + n₁ s (docs/model.md, "Slip-sinkage"), held at
+    /// this value (not estimated: a caller profiles it); 0, the default, is the thesis model.
+    double sinkage_exponent_slip = 0.0;
     /// Noise std per channel [N, N, N·m, m]; ≤ 0: estimated from the residuals of the fit.
     ChannelValues noise{};
     /// Parameters held at a value (SI) instead of estimated.

@@ -20,11 +20,11 @@ constexpr int kNewtonSteps = 8;
 template <typename T>
 contact::ContactParameters<T> contactParameters(const std::array<T, kFullParameterCount>& p,
                                                 const wheel::WheelParameters& wheel,
-                                                double max_shear_deformation_m) {
+                                                const ModelSetup& setup) {
     return {T(wheel.radius_m),
             T(wheel.width_m),
             p[kN],
-            T(0.0),
+            T(setup.sinkage_exponent_slip),
             p[kKs],
             p[kC],
             p[kPhi],
@@ -32,7 +32,7 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
             T(0.0),
             p[kA0],
             p[kA1],
-            max_shear_deformation_m};
+            setup.max_shear_deformation_m};
 }
 
 template <typename T>
@@ -80,7 +80,7 @@ const std::array<const char*, kChannelCount>& channelNames() {
 }
 
 Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
-                              double max_shear_deformation_m) {
+                              double max_shear_deformation_m, double sinkage_exponent_slip) {
     std::vector<Issue> issues;
     if (data.samples.empty()) return std::vector<Issue>{{"data", "no samples"}};
     if (load_n) checkRange(issues, "load_N", *load_n, {0.0, 1e7, true, false}, "N");
@@ -93,6 +93,7 @@ Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optio
     if (!issues.empty()) return issues;
     ModelSetup setup;
     setup.max_shear_deformation_m = max_shear_deformation_m;
+    setup.sinkage_exponent_slip = sinkage_exponent_slip;
     setup.source = source == DataSource::kAuto
                        ? (columns.entry_angle ? DataSource::kEntryAngle : DataSource::kLoad)
                        : source;
@@ -188,8 +189,7 @@ double ObservationModel::measured(std::size_t i, Channel c) const {
 Prediction ObservationModel::predict(std::size_t i, const ParameterVector& p) const {
     Prediction out;
     const Sample& s = samples_[i];
-    const contact::ContactParameters<double> cp =
-        contactParameters(p, wheel_, setup_.max_shear_deformation_m);
+    const contact::ContactParameters<double> cp = contactParameters(p, wheel_, setup_);
     double theta = s.entry_angle_rad;
     if (setup_.source == DataSource::kLoad) {
         const std::optional<double> root =
@@ -223,8 +223,7 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
         std::array<J, n> uj;
         for (int k = 0; k < n; ++k) uj[k] = J(u[k], k);
         const contact::WheelForces<J> f = forcesAt(
-            contactParameters(toPhysical(uj.data()), wheel_, setup_.max_shear_deformation_m), s,
-            J(s.entry_angle_rad));
+            contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(s.entry_angle_rad));
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
         for (int c = 0; c < 3; ++c) {
             value[c] = channel[c]->a;
@@ -236,17 +235,15 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
         ParameterVector p{};
         const auto physical = toPhysical(u);
         std::copy(physical.begin(), physical.end(), p.begin());
-        const std::optional<double> root =
-            solveEntryAngle(contactParameters(p, wheel_, setup_.max_shear_deformation_m), s,
-                            setup_.loads_n[i], last_entry_angle_[i]);
+        const std::optional<double> root = solveEntryAngle(contactParameters(p, wheel_, setup_), s,
+                                                           setup_.loads_n[i], last_entry_angle_[i]);
         if (!root) return false;
         last_entry_angle_[i] = *root;
         using J = ceres::Jet<double, n + 1>;
         std::array<J, n> uj;
         for (int k = 0; k < n; ++k) uj[k] = J(u[k], k);
-        const contact::WheelForces<J> f = forcesAt(
-            contactParameters(toPhysical(uj.data()), wheel_, setup_.max_shear_deformation_m), s,
-            J(*root, n));
+        const contact::WheelForces<J> f =
+            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, n));
         const double dfz_dtheta = f.fz.v[n];
         if (!(dfz_dtheta > 0.0)) return false;
         std::array<double, n> dtheta{};

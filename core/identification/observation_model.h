@@ -46,7 +46,10 @@ struct ModelSetup {
     std::array<bool, kChannelCount> channels{};   ///< the residual channels
     std::vector<double> loads_n;  ///< W per sample: the F_z measurement (entry angle) or the load
     double max_shear_deformation_m = 0.0;  ///< j_max of the model [m] (+inf for none)
-    std::string description;               ///< "entry angle; channels Fx_N, Fz_N, My_Nm"
+    /// n₁ of Ding's slip-dependent exponent N = n + n₁ s (docs/model.md, "Slip-sinkage"), held
+    /// fixed (not estimated); 0: the thesis model's constant n.
+    double sinkage_exponent_slip = 0.0;
+    std::string description;  ///< "entry angle; channels Fx_N, Fz_N, My_Nm"
 };
 
 /// Resolves the setup. W per sample is the `W_N` cell, else `load_n`, else the measured F_z. With
@@ -54,7 +57,7 @@ struct ModelSetup {
 /// load, F_x, M_y and the sinkage are. Issues name what is missing (no θ_f and no load, no
 /// channel).
 Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
-                              double max_shear_deformation_m);
+                              double max_shear_deformation_m, double sinkage_exponent_slip = 0.0);
 
 /// The model's prediction for one sample.
 struct Prediction {

@@ -72,8 +72,15 @@ wheel::WheelParameters readWheel(ObjectReader& r) {
     wheel::WheelParameters wheel;
     r.text("name", wheel.name);
     r.text("source", wheel.source);
-    for (const wheel::WheelField& field : wheel::wheelFields())
-        r.field(field, wheel.*field.member, Presence::kRequired);
+    const std::size_t before = r.issues().size();
+    for (const wheel::WheelField& field : wheel::wheelFields()) {
+        r.field(field, wheel.*field.member,
+                field.required ? Presence::kRequired : Presence::kOptional);
+    }
+    // The rules across fields (a whole grouser count, grousers below the radius).
+    if (r.isObject() && r.issues().size() == before) {
+        for (Issue& issue : wheel::validate(wheel)) r.report(issue.where, std::move(issue.message));
+    }
     return wheel;
 }
 
@@ -114,6 +121,9 @@ json toJson(const soil::SoilParameters& soil) {
 json toJson(const wheel::WheelParameters& wheel) {
     json out{{"name", wheel.name}, {"r_m", wheel.radius_m}, {"b_m", wheel.width_m}};
     if (!wheel.source.empty()) out["source"] = wheel.source;
+    for (const wheel::WheelField& field : wheel::wheelFields()) {
+        if (!field.required && wheel.*field.member != 0.0) out[field.key] = field.userValue(wheel);
+    }
     return out;
 }
 

@@ -19,7 +19,8 @@ namespace terra::io {
 /// The soil of the object `r` reads: every field of the table (soil_parameters.h) and the rule
 /// across them; problems go to the reader's issues. The caller calls r.finish().
 soil::SoilParameters readSoil(ObjectReader& r);
-/// The wheel of the object `r` reads ({"name", "source", "r_m", "b_m"}).
+/// The wheel of the object `r` reads ({"name", "source", "r_m", "b_m"}, optional
+/// "grouser_height_m", "grouser_count", "grouser_thickness_m") and the rules across them.
 wheel::WheelParameters readWheel(ObjectReader& r);
 
 /// Soil from a JSON object; `where` prefixes every issue ("soils/x.json").

@@ -1,19 +1,22 @@
 #include "core/wheel/wheel_parameters.h"
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 namespace terra::wheel {
 namespace {
 
-WheelField make(FieldInfo info, double WheelParameters::*member) {
+WheelField make(FieldInfo info, double WheelParameters::*member, bool required = true) {
     WheelField field{info};
     field.member = member;
+    field.required = required;
     return field;
 }
 
 // Up to 5 m: any wheel of a vehicle, and a radius typed in millimetres is caught.
-const std::array<WheelField, 2> kFields{{
+// Grousers: up to 0.5 m high and thick (a lug typed in millimetres is caught), up to 360 of them.
+const std::array<WheelField, 5> kFields{{
     make({"r_m",
           "m",
           "r",
@@ -30,6 +33,28 @@ const std::array<WheelField, 2> kFields{{
           "K_s = k_c/b + k_φ (Eq. 2.9).",
           {0.0, 5.0, true, false}},
          &WheelParameters::width_m),
+    make({"grouser_height_m",
+          "m",
+          "h_g",
+          "grouser height",
+          "Height h_g of the grousers (lugs) above the rim, in metres; 0 or absent: a smooth "
+          "wheel. The thesis model ignores it; lug extensions read it (docs/model.md).",
+          {0.0, 0.5}},
+         &WheelParameters::grouser_height_m, false),
+    make({"grouser_count",
+          "-",
+          "N_g",
+          "grouser count",
+          "Number N_g of grousers around the rim, a whole number; 0 or absent: a smooth wheel.",
+          {0.0, 360.0}},
+         &WheelParameters::grouser_count, false),
+    make({"grouser_thickness_m",
+          "m",
+          "t_g",
+          "grouser thickness",
+          "Thickness t_g of one grouser along the rim, in metres; 0 or absent: not given.",
+          {0.0, 0.5}},
+         &WheelParameters::grouser_thickness_m, false),
 }};
 
 }  // namespace
@@ -45,6 +70,15 @@ std::vector<Issue> validate(const WheelParameters& wheel, const std::string& pre
     for (const WheelField& field : kFields) {
         checkRange(issues, prefix + field.key, wheel.*field.member, field.range,
                    field.displayUnit());
+    }
+    if (std::isfinite(wheel.grouser_count) &&
+        wheel.grouser_count != std::floor(wheel.grouser_count))
+        issues.push_back({prefix + "grouser_count",
+                          formatNumber(wheel.grouser_count) + " is not a whole number"});
+    if (issues.empty() && wheel.grouser_height_m >= wheel.radius_m) {
+        issues.push_back({prefix + "grouser_height_m", formatNumber(wheel.grouser_height_m) +
+                                                           " m is not below the radius r_m = " +
+                                                           formatNumber(wheel.radius_m) + " m"});
     }
     return issues;
 }

@@ -22,6 +22,9 @@ TEST(AnalysisFigures, EveryDeclaredFigureOfEveryTypeIsDrawn) {
         // Small settings: a short rover run, few slips for the sweeps and the fits.
         nlohmann::json settings = nlohmann::json::object();
         if (type.name == "rover") settings = {{"scenario", "straight"}, {"duration_s", 0.5}};
+        if (type.name == "validation")
+            settings = {{"experiments", std::string(TERRA_RESOURCE_DIR) +
+                                            "/experiments/ding2011-smooth-hit-lss1-80N.csv"}};
         if (type.name == "sensitivity" || type.name == "identification")
             settings["slip_count"] = 10;
         std::vector<Issue> issues;

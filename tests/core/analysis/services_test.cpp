@@ -185,7 +185,8 @@ TEST(SoilCurvesService, NoLoadNoSinkageAndBulldozingGrowsWithSinkage) {
 TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
     const ReadContext context{&kLocations, {}};
     for (const AnalysisType& type : analysisTypes()) {
-        if (!type.uses_inputs) continue;  // the rover needs a scenario: see below
+        if (!type.uses_inputs) continue;          // the rover needs a scenario: see below
+        if (type.name == "validation") continue;  // needs a test: see below
         std::vector<Issue> issues;
         const nlohmann::json empty = nlohmann::json::object();
         io::ObjectReader r(empty, issues);
@@ -207,6 +208,25 @@ TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
     findAnalysisType("rover")->read(r, context);
     r.finish();
     EXPECT_TRUE(issues.empty()) << formatIssues(issues);
+    // The validation needs its test ("experiments" is required).
+    issues.clear();
+    const nlohmann::json none = nlohmann::json::object();
+    io::ObjectReader v(none, issues);
+    findAnalysisType("validation")->read(v, context);
+    v.finish();
+    ASSERT_EQ(issues.size(), 1u) << formatIssues(issues);
+    EXPECT_EQ(issues[0].where, "experiments");
+    issues.clear();
+    const nlohmann::json ding = {
+        {"experiments",
+         std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-hit-lss1-80N.csv"}};
+    io::ObjectReader d(ding, issues);
+    const std::any settings = findAnalysisType("validation")->read(d, context);
+    d.finish();
+    EXPECT_TRUE(issues.empty()) << formatIssues(issues);
+    const Outcome outcome = findAnalysisType("validation")->run(settings, sandyLoamOnA(), {});
+    ASSERT_FALSE(outcome.tables.empty());
+    EXPECT_EQ(outcome.tables.front().name, "metrics");
     EXPECT_EQ(findAnalysisType("forcez"), nullptr);
 }
 

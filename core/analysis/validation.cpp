@@ -1,0 +1,603 @@
+#include "core/analysis/validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/analysis/operating_point.h"
+#include "core/common/units.h"
+#include "core/identification/parameters.h"
+
+namespace terra::analysis {
+namespace {
+
+namespace id = identification;
+using io::kExperimentChannelCount;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A fit slip matches a point's slip to this (slips are read from files as typed).
+constexpr double kSlipMatch = 1e-9;
+// The channels the identification from the load can fit, and its channel of each.
+constexpr std::array<std::optional<id::Channel>, kExperimentChannelCount> kFitChannel{
+    id::kFxChannel, id::kMyChannel, id::kSinkageChannel, std::nullopt, std::nullopt};
+
+const char* nameOf(std::size_t c) { return io::experimentChannels()[c].name; }
+
+bool inFitSlips(double slip, const std::vector<double>& fit_slips) {
+    if (fit_slips.empty()) return true;
+    return std::any_of(fit_slips.begin(), fit_slips.end(),
+                       [slip](double s) { return std::abs(s - slip) <= kSlipMatch; });
+}
+
+nlohmann::json metricsJson(const ValidationMetrics& metrics) {
+    nlohmann::json out = nlohmann::json::object();
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (!metrics[c]) continue;
+        const ChannelMetrics& m = *metrics[c];
+        out[nameOf(c)] = {
+            {"rmse", m.rmse},
+            {"mae", m.mae},
+            {"max_rel_error",
+             std::isnan(m.max_rel_error) ? nlohmann::json() : nlohmann::json(m.max_rel_error)},
+            {"count", m.count}};
+    }
+    return out;
+}
+
+nlohmann::json pointsJson(const std::vector<PointComparison>& points, bool with_fit) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const PointComparison& p : points) {
+        nlohmann::json j{{"load_N", p.point.load_n},
+                         {"slip", p.point.slip},
+                         {"slip_angle_deg", p.point.slip_angle_deg},
+                         {"line", p.point.line}};
+        if (p.predicted) {
+            j["entry_angle_deg"] = p.entry_angle_deg;
+        } else {
+            j["failure"] = p.failure;
+        }
+        if (with_fit) j["in_fit"] = p.in_fit;
+        for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+            if (!p.point.measured[c]) continue;
+            j[nameOf(c)] = {
+                {"measured", *p.point.measured[c]},
+                {"predicted", p.predicted ? nlohmann::json(p.values[c]) : nlohmann::json()}};
+        }
+        out.push_back(std::move(j));
+    }
+    return out;
+}
+
+Table metricsTable(const ValidationMetrics& metrics) {
+    Table t;
+    std::vector<double> row;
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (!metrics[c]) continue;
+        const std::string n = nameOf(c);
+        t.columns.insert(t.columns.end(),
+                         {n + "_rmse", n + "_mae", n + "_max_rel_error", n + "_count"});
+        row.insert(row.end(), {metrics[c]->rmse, metrics[c]->mae, metrics[c]->max_rel_error,
+                               static_cast<double>(metrics[c]->count)});
+    }
+    t.rows.push_back(std::move(row));
+    return t;
+}
+
+Table pointsTable(const std::vector<PointComparison>& points, bool with_fit) {
+    Table t;
+    t.columns = {"load_N", "slip", "slip_angle_deg", "entry_angle_deg"};
+    std::array<bool, kExperimentChannelCount> measured{};
+    for (const PointComparison& p : points) {
+        for (std::size_t c = 0; c < kExperimentChannelCount; ++c)
+            measured[c] = measured[c] || p.point.measured[c].has_value();
+    }
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (!measured[c]) continue;
+        t.columns.push_back(std::string(nameOf(c)) + "_measured");
+        t.columns.push_back(std::string(nameOf(c)) + "_predicted");
+    }
+    if (with_fit) t.columns.emplace_back("in_fit");
+    for (const PointComparison& p : points) {
+        std::vector<double> row{p.point.load_n, p.point.slip, p.point.slip_angle_deg,
+                                p.predicted ? p.entry_angle_deg : kNaN};
+        for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+            if (!measured[c]) continue;
+            row.push_back(p.point.measured[c].value_or(kNaN));
+            row.push_back(p.predicted ? p.values[c] : kNaN);
+        }
+        if (with_fit) row.push_back(p.in_fit ? 1.0 : 0.0);
+        t.rows.push_back(std::move(row));
+    }
+    return t;
+}
+
+// The identification's data set of the points in the fit: θ_f solved from each point's load,
+// the channels that every fitted point measures (the sinkage may be missing at some).
+id::DataSet fitData(const std::vector<PointComparison>& points, std::vector<std::string>& channels,
+                    std::vector<std::string>& notes) {
+    std::array<std::size_t, kExperimentChannelCount> count{};
+    std::size_t fitted = 0;
+    for (const PointComparison& p : points) {
+        if (!p.in_fit) continue;
+        ++fitted;
+        for (std::size_t c = 0; c < kExperimentChannelCount; ++c)
+            count[c] += p.point.measured[c] ? 1 : 0;
+    }
+    std::array<bool, kExperimentChannelCount> use{};
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (count[c] == 0) continue;
+        if (!kFitChannel[c]) {
+            notes.push_back(std::string("calibration: ") + nameOf(c) +
+                            " is not fitted (the identification from the load fits Fx_N, My_Nm "
+                            "and sinkage_m)");
+            continue;
+        }
+        if (c != io::kExpSinkage && count[c] < fitted) {
+            notes.push_back(std::string("calibration: ") + nameOf(c) + " is measured at " +
+                            std::to_string(count[c]) + " of the " + std::to_string(fitted) +
+                            " fitted points only: not fitted (the identification needs it at "
+                            "every point)");
+            continue;
+        }
+        use[c] = true;
+        channels.emplace_back(nameOf(c));
+    }
+    id::DataSet data;
+    data.columns = {
+        .entry_angle = false, .fx = use[io::kExpFx], .fz = false, .my = use[io::kExpMy]};
+    for (const PointComparison& p : points) {
+        if (!p.in_fit) continue;
+        id::Sample s;
+        s.slip = p.point.slip;
+        s.slip_angle_rad = units::degToRad(p.point.slip_angle_deg);
+        s.load_n = p.point.load_n;
+        s.fx_n = p.point.measured[io::kExpFx].value_or(0.0);
+        s.my_nm = p.point.measured[io::kExpMy].value_or(0.0);
+        if (use[io::kExpSinkage]) s.sinkage_m = p.point.measured[io::kExpSinkage];
+        data.samples.push_back(s);
+    }
+    return data;
+}
+
+// n₁ of N = n + n₁ s by its profile: χ²(n₁) is the identification's minimum with n₁ held (its
+// priors included), over a coarse grid, then golden-section search in the best grid cell; the
+// std from the curvature of χ² at the minimum (Δχ² = 1). The noise levels are held at the n₁ = 0
+// fit's where they would be estimated, so that the χ² of different n₁ compare.
+void profileN1(const id::DataSet& data, const wheel::WheelParameters& wheel,
+               id::IdentifyOptions options, Calibration& cal) {
+    options.sinkage_exponent_slip = 0.0;
+    const id::IdentificationReport first = id::identify(data, wheel, options);
+    if (!first.usable()) {
+        cal.report = first;
+        return;
+    }
+    options.noise = first.noise;
+    // The profile's fits start where the n₁ = 0 fit ended (and from the given soil): n₁ moves
+    // the minimum continuously, so the space-filling design is not needed again.
+    options.starts.push_back({"the n1 = 0 fit", first.parameters});
+    options.design_points = 0;
+    options.descents = 2;
+    auto chi2 = [&](double n1) {
+        id::IdentifyOptions o = options;
+        o.sinkage_exponent_slip = n1;
+        id::IdentificationReport r = id::identify(data, wheel, o);
+        const double value = r.usable() ? r.chi2 : std::numeric_limits<double>::infinity();
+        cal.n1_profile.emplace_back(n1, value);
+        return std::pair{value, std::move(r)};
+    };
+    // n₁ in [−0.6, 0.8], step 0.2, then refined: N = n + n₁ s stays inside n's range [0.1, 2]
+    // over the slips of a test for the usual n ≈ 0.5–1.2.
+    constexpr double kLow = -0.6, kHigh = 0.8, kStep = 0.2;
+    double best_n1 = 0.0, best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= 7; ++k) {
+        const double n1 = kLow + kStep * k;
+        const double value = chi2(n1).first;
+        if (value < best) {
+            best = value;
+            best_n1 = n1;
+        }
+    }
+    if (!std::isfinite(best)) {
+        cal.report = first;
+        cal.report.status = id::IdentifyStatus::kFailed;
+        cal.report.message = "no n1 in [-0.6, 0.8] gave a usable fit";
+        return;
+    }
+    // Golden section on [best − step, best + step] within [low, high]: 14 steps shrink it 850×.
+    double a = std::max(kLow, best_n1 - kStep), b = std::min(kHigh, best_n1 + kStep);
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = chi2(x1).first, f2 = chi2(x2).first;
+    for (int i = 0; i < 14; ++i) {
+        if (f1 < f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - g * (b - a);
+            f1 = chi2(x1).first;
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + g * (b - a);
+            f2 = chi2(x2).first;
+        }
+    }
+    const double n1 = f1 < f2 ? x1 : x2;
+    auto [value, report] = chi2(n1);
+    cal.n1 = n1;
+    cal.report = std::move(report);
+    // Curvature by central differences, h = 0.02.
+    constexpr double h = 0.02;
+    const double up = chi2(n1 + h).first, down = chi2(n1 - h).first;
+    const double curvature = (up - 2.0 * value + down) / (h * h);
+    if (std::isfinite(curvature) && curvature > 0.0) cal.n1_std = std::sqrt(2.0 / curvature);
+}
+
+}  // namespace
+
+void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
+                            ValidationSettings& out) {
+    if (r.text("experiments", out.experiments, io::Presence::kRequired) &&
+        !out.experiments.empty()) {
+        std::filesystem::path path(out.experiments);
+        if (path.is_relative() && !context.base_dir.empty()) path = context.base_dir / path;
+        out.experiments = path.string();
+        Result<io::Experiment> read = io::readExperiment(path);
+        if (!read) {
+            for (const Issue& issue : read.issues())
+                r.report("experiments", issue.where + ": " + issue.message);
+        } else {
+            out.data = read.value();
+        }
+    }
+    r.boolean("calibrate", out.calibrate);
+    r.numbers("fit_slips", out.fit_slips, {-1.0, 1.0}, {}, 1);
+    if (out.data) {
+        for (std::size_t i = 0; i < out.fit_slips.size(); ++i) {
+            const double s = out.fit_slips[i];
+            if (std::none_of(out.data->points.begin(), out.data->points.end(),
+                             [s](const io::ExperimentPoint& p) {
+                                 return std::abs(p.slip - s) <= kSlipMatch;
+                             })) {
+                r.report("fit_slips[" + std::to_string(i) + "]",
+                         formatNumber(s) + " is not a slip of the test");
+            }
+        }
+    }
+    if (!out.fit_slips.empty() && !out.calibrate) {
+        r.report("fit_slips", "belongs to the calibration: add \"calibrate\": true");
+    }
+    r.boolean("fit_n1", out.fit_n1);
+    if (out.fit_n1 && !out.calibrate) {
+        r.report("fit_n1", "belongs to the calibration: add \"calibrate\": true");
+    }
+    if (r.has("noise")) {
+        io::ObjectReader noise = r.object("noise");
+        for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+            if (!kFitChannel[c]) continue;
+            const io::ExperimentColumn& column = io::experimentChannels()[c];
+            noise.number(column.name, out.noise[c], {0.0, 1e6, true, false}, column.unit);
+        }
+        noise.finish();
+    } else {
+        r.allow("noise");
+    }
+}
+
+ValidationMetrics computeMetrics(const std::vector<PointComparison>& points,
+                                 std::optional<bool> in_fit) {
+    ValidationMetrics out;
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        ChannelMetrics m;
+        double squares = 0.0, absolutes = 0.0;
+        for (const PointComparison& p : points) {
+            if (in_fit && p.in_fit != *in_fit) continue;
+            if (!p.predicted || !p.point.measured[c]) continue;
+            const double measured = *p.point.measured[c];
+            const double error = p.values[c] - measured;
+            ++m.count;
+            squares += error * error;
+            absolutes += std::abs(error);
+            if (measured != 0.0) {
+                const double rel = std::abs(error) / std::abs(measured);
+                m.max_rel_error =
+                    std::isnan(m.max_rel_error) ? rel : std::max(m.max_rel_error, rel);
+            }
+        }
+        if (m.count == 0) continue;
+        m.rmse = std::sqrt(squares / static_cast<double>(m.count));
+        m.mae = absolutes / static_cast<double>(m.count);
+        out[c] = m;
+    }
+    return out;
+}
+
+ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experiment) {
+    ValidationRun out;
+    out.soil = in.soil;
+    const contact::ContactParameters<double> p = in.contact();
+    for (const io::ExperimentPoint& point : experiment.points) {
+        PointComparison c;
+        c.point = point;
+        PointSpec spec;
+        spec.slip = point.slip;
+        spec.slip_angle_deg = point.slip_angle_deg;
+        spec.load_n = point.load_n;
+        spec.contact_model = in.conditions.model();
+        try {
+            const PointResult r = evaluatePoint(p, spec);
+            if (r.failure.empty()) {
+                c.predicted = true;
+                c.entry_angle_deg = r.entry_angle_deg;
+                c.values = {r.forces.fx, r.forces.my, r.sinkage_m, r.forces.fs, r.forces.fz};
+            } else {
+                c.failure = r.failure;
+            }
+        } catch (const std::invalid_argument& e) {
+            c.failure = e.what();
+        }
+        out.points.push_back(std::move(c));
+    }
+    out.metrics = computeMetrics(out.points);
+    return out;
+}
+
+soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
+                                        const wheel::WheelParameters& wheel,
+                                        const id::ParameterVector& p, double n1) {
+    soil::SoilParameters out = prior;
+    const double ks_prior = prior.cohesive_modulus / wheel.width_m + prior.frictional_modulus;
+    if (!(ks_prior > 0.0)) {
+        throw std::invalid_argument("soilFromParameters: K_s of the prior soil on this wheel is " +
+                                    formatNumber(ks_prior) + ", must be > 0");
+    }
+    const double scale = p[id::kKs] / ks_prior;
+    out.cohesive_modulus = prior.cohesive_modulus * scale;
+    out.frictional_modulus = prior.frictional_modulus * scale;
+    out.max_stress_a0 = p[id::kA0];
+    out.max_stress_a1 = p[id::kA1];
+    out.sinkage_exponent = p[id::kN];
+    out.sinkage_exponent_slip = n1;
+    out.cohesion_pa = p[id::kC];
+    out.friction_angle_rad = p[id::kPhi];
+    out.shear_modulus_m = p[id::kK];
+    return out;
+}
+
+ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s,
+                                   const Control& control) {
+    std::vector<Issue> issues = validate(in);
+    io::Experiment experiment;
+    if (s.data) {
+        experiment = *s.data;
+    } else if (s.experiments.empty()) {
+        issues.push_back({"experiments", "no test given"});
+    } else {
+        Result<io::Experiment> read = io::readExperiment(s.experiments);
+        if (!read) {
+            for (const Issue& issue : read.issues()) issues.push_back(issue);
+        } else {
+            experiment = read.value();
+        }
+    }
+    for (double slip : s.fit_slips) {
+        if (std::none_of(experiment.points.begin(), experiment.points.end(),
+                         [slip](const io::ExperimentPoint& p) {
+                             return std::abs(p.slip - slip) <= kSlipMatch;
+                         })) {
+            issues.push_back({"fit_slips", formatNumber(slip) + " is not a slip of the test"});
+        }
+    }
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+
+    ValidationResult out;
+    out.source = experiment.source;
+    if (experiment.metadata && experiment.metadata->wheel) {
+        const wheel::WheelParameters& w = *experiment.metadata->wheel;
+        if (w.radius_m != in.wheel.radius_m || w.width_m != in.wheel.width_m) {
+            out.notes.push_back("the wheel (r = " + formatNumber(in.wheel.radius_m) +
+                                " m, b = " + formatNumber(in.wheel.width_m) +
+                                " m) is not the test's (r = " + formatNumber(w.radius_m) +
+                                " m, b = " + formatNumber(w.width_m) + " m)");
+        }
+    }
+    if (in.wheel.lugged()) {
+        out.notes.push_back("the wheel has grousers; the thesis model treats it as smooth");
+    }
+    out.before = predictExperiment(in, experiment);
+    for (PointComparison& p : out.before.points) p.in_fit = inFitSlips(p.point.slip, s.fit_slips);
+    for (const PointComparison& p : out.before.points) {
+        if (!p.predicted) {
+            out.notes.push_back(out.source + ":" + std::to_string(p.point.line) +
+                                ": no prediction: " + p.failure);
+        }
+    }
+    if (!s.calibrate || control.cancelled()) return out;
+
+    Calibration cal;
+    cal.prior = id::fromSoil(in.soil, in.wheel);
+    const id::DataSet data = fitData(out.before.points, cal.channels, out.notes);
+    if (in.soil.sinkage_exponent_slip != 0.0 && !s.fit_n1) {
+        out.notes.push_back(
+            "calibration: n1 is not fitted (add fit_n1): the calibrated soil's n1 is 0");
+    }
+    id::IdentifyOptions options;
+    options.source = id::DataSource::kLoad;
+    options.max_shear_deformation_m = in.soil.max_shear_deformation_m;
+    options.priors = id::priorsFromSoil(in.soil, in.wheel);
+    options.starts = {{"given soil (" + in.soil.name + ")", cal.prior}};
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (kFitChannel[c]) options.noise[*kFitChannel[c]] = s.noise[c];
+    }
+    if (control.cancel != nullptr || control.progress) {
+        options.progress = [&control](double f) {
+            control.report(f);
+            return !control.cancelled();
+        };
+    }
+    if (cal.channels.empty()) {
+        cal.report.status = id::IdentifyStatus::kInvalidInput;
+        cal.report.message = "no channel to fit (Fx_N, My_Nm or sinkage_m)";
+    } else if (!s.fit_n1) {
+        cal.report = id::identify(data, in.wheel, options);
+    } else {
+        profileN1(data, in.wheel, options, cal);
+    }
+    if (cal.report.usable()) {
+        cal.soil =
+            soilFromParameters(in.soil, in.wheel, cal.report.parameters, cal.n1.value_or(0.0));
+        if (const std::vector<Issue> bad = soil::validate(cal.soil); !bad.empty()) {
+            cal.report.status = id::IdentifyStatus::kFailed;
+            cal.report.message = "the calibrated soil is not a valid soil: " + formatIssues(bad);
+        }
+    }
+    if (cal.report.usable()) {
+        cal.soil.name = in.soil.name + " (calibrated)";
+        cal.soil.source = "calibrated by terrastudio validate to " + experiment.source + " with " +
+                          in.soil.name + " as prior";
+        Inputs calibrated = in;
+        calibrated.soil = cal.soil;
+        cal.after = predictExperiment(calibrated, experiment);
+        for (PointComparison& p : cal.after->points)
+            p.in_fit = inFitSlips(p.point.slip, s.fit_slips);
+        if (!s.fit_slips.empty() &&
+            std::any_of(cal.after->points.begin(), cal.after->points.end(),
+                        [](const PointComparison& p) { return !p.in_fit; })) {
+            cal.held_out_before = computeMetrics(out.before.points, false);
+            cal.held_out = computeMetrics(cal.after->points, false);
+        }
+    }
+    out.calibration = std::move(cal);
+    return out;
+}
+
+nlohmann::json toJson(const ValidationResult& r) {
+    const bool with_fit = r.calibration.has_value();
+    nlohmann::json out{{"experiments", r.source},
+                       {"soil", r.before.soil.name},
+                       {"points", pointsJson(r.before.points, false)},
+                       {"metrics", metricsJson(r.before.metrics)}};
+    if (!r.notes.empty()) out["notes"] = r.notes;
+    if (!with_fit) return out;
+    const Calibration& c = *r.calibration;
+    const id::IdentificationReport& rep = c.report;
+    nlohmann::json cal{{"usable", rep.usable()}, {"channels", c.channels}};
+    if (!rep.message.empty()) cal["message"] = rep.message;
+    if (!rep.issues.empty()) cal["issues"] = formatIssues(rep.issues);
+    if (rep.usable()) {
+        nlohmann::json params = nlohmann::json::object();
+        for (int k = 0; k < id::kFullParameterCount; ++k) {
+            const id::ParameterInfo& info = id::parameterInfo()[static_cast<std::size_t>(k)];
+            const auto i = static_cast<std::size_t>(k);
+            params[info.name] = {{"value", rep.parameters[i] * info.to_user},
+                                 {"std", rep.uncertainty.computed
+                                             ? nlohmann::json(rep.uncertainty.std[i] * info.to_user)
+                                             : nlohmann::json()},
+                                 {"prior", c.prior[i] * info.to_user},
+                                 {"at_bound", rep.at_bound[i]}};
+        }
+        if (c.n1) {
+            params["n1"] = {{"value", *c.n1},
+                            {"std", c.n1_std ? nlohmann::json(*c.n1_std) : nlohmann::json()},
+                            {"prior", 0.0},
+                            {"at_bound", false}};
+            nlohmann::json profile = nlohmann::json::array();
+            for (const auto& [n1, chi2] : c.n1_profile) {
+                profile.push_back(
+                    {{"n1", n1},
+                     {"chi2", std::isfinite(chi2) ? nlohmann::json(chi2) : nlohmann::json()}});
+            }
+            cal["n1_profile"] = profile;
+        }
+        cal["parameters"] = params;
+        cal["termination"] = rep.termination;
+        cal["chi2"] = rep.chi2;
+        cal["noise_estimated"] = rep.noise_estimated;
+        nlohmann::json noise = nlohmann::json::object();
+        for (int ch = 0; ch < id::kChannelCount; ++ch) {
+            if (rep.setup.channels[static_cast<std::size_t>(ch)])
+                noise[id::channelNames()[static_cast<std::size_t>(ch)]] =
+                    rep.noise[static_cast<std::size_t>(ch)];
+        }
+        cal["noise"] = noise;
+        if (!rep.uncertainty.flags.empty()) cal["flags"] = rep.uncertainty.flags;
+        cal["soil"] = io::toJson(c.soil);
+        cal["points"] = pointsJson(c.after->points, true);
+        cal["metrics"] = metricsJson(c.after->metrics);
+        if (c.held_out) {
+            cal["held_out"] = {{"metrics_before", metricsJson(*c.held_out_before)},
+                               {"metrics", metricsJson(*c.held_out)}};
+        }
+    }
+    out["calibration"] = cal;
+    return out;
+}
+
+Outcome validationOutcome(ValidationResult result) {
+    Outcome out;
+    out.tables.push_back({"metrics", "-metrics", metricsTable(result.before.metrics)});
+    out.tables.push_back({"points", "-points", pointsTable(result.before.points, false)});
+    out.notes = result.notes;
+    if (result.calibration) {
+        const Calibration& c = *result.calibration;
+        if (!c.report.usable()) {
+            out.status = Outcome::Status::kFailed;
+            out.message =
+                "calibration failed: " +
+                (c.report.message.empty() ? formatIssues(c.report.issues) : c.report.message);
+        } else {
+            out.tables.push_back(
+                {"calibrated_metrics", "-calibrated-metrics", metricsTable(c.after->metrics)});
+            out.tables.push_back(
+                {"calibrated_points", "-calibrated-points", pointsTable(c.after->points, true)});
+            if (c.held_out) {
+                out.tables.push_back(
+                    {"held_out_metrics", "-held-out-metrics", metricsTable(*c.held_out)});
+            }
+            Table parameters;
+            std::vector<double> row;
+            for (int k = 0; k < id::kFullParameterCount; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const id::ParameterInfo& info = id::parameterInfo()[i];
+                parameters.columns.insert(parameters.columns.end(),
+                                          {std::string(info.name), std::string(info.name) + "_std",
+                                           std::string(info.name) + "_prior"});
+                row.insert(row.end(), {c.report.parameters[i] * info.to_user,
+                                       c.report.uncertainty.computed
+                                           ? c.report.uncertainty.std[i] * info.to_user
+                                           : kNaN,
+                                       c.prior[i] * info.to_user});
+            }
+            if (c.n1) {
+                parameters.columns.insert(parameters.columns.end(), {"n1", "n1_std", "n1_prior"});
+                row.insert(row.end(), {*c.n1, c.n1_std.value_or(kNaN), 0.0});
+            }
+            parameters.rows.push_back(std::move(row));
+            out.tables.push_back({"parameters", "-parameters", std::move(parameters)});
+            out.notes.push_back("calibration: " + c.report.termination +
+                                ", χ² = " + formatNumber(roundSignificant(c.report.chi2, 6)));
+            for (const std::string& flag : c.report.uncertainty.flags)
+                out.notes.push_back("calibration: " + flag);
+        }
+    }
+    out.documents.emplace_back("-validation.json", toJson(result));
+    out.result = std::move(result);
+    return out;
+}
+
+AnalysisType validationType() {
+    return makeAnalysisType<ValidationSettings>(
+        "validation",
+        "the model against a measured single-wheel test (io/experiment.h): per point and channel, "
+        "RMSE, MAE, largest relative error; optionally calibrated to the test first",
+        {"metrics", "points", "calibrated_metrics", "calibrated_points", "held_out_metrics",
+         "parameters"},
+        {}, readValidationSettings,
+        [](const Inputs& in, const ValidationSettings& s, const Control& c) {
+            return computeValidation(in, s, c);
+        },
+        validationOutcome);
+}
+
+}  // namespace terra::analysis

@@ -1,0 +1,131 @@
+#pragma once
+/// @file validation.h
+/// The model against measured single-wheel tests (docs/validation.md): every measured point is
+/// predicted with its load given (θ_f solved from F_z = W, section 2.6.1: the same model as
+/// `terrastudio wheel --load`), and each channel's errors are summarised as RMSE, MAE and the
+/// largest relative error. Optionally the soil is first calibrated to the test — the global
+/// identification from the load (core/identification/identify.h) with the given soil as a
+/// Gaussian prior — on all points or on some slips only, the others then held out.
+/// `terrastudio validate` and a script's "validation" analysis.
+
+#include <array>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/analysis/analysis.h"
+#include "core/analysis/registry.h"
+#include "core/identification/identify.h"
+#include "core/io/experiment.h"
+
+namespace terra::analysis {
+
+struct ValidationSettings {
+    std::string experiments;  ///< the test: its CSV or its sidecar JSON (io/experiment.h)
+    /// The test read already (a script's reader reads it before anything runs); when set,
+    /// `experiments` only names it.
+    std::optional<io::Experiment> data;
+    bool calibrate = false;  ///< fit the soil to the test first
+    /// Calibrate on the points at these slips only (each must be a slip of the test); the others
+    /// are held out and predicted. Empty: every point.
+    std::vector<double> fit_slips;
+    /// Noise std of each channel weighting the calibration [N, N·m, m, N, N]
+    /// (io::ExperimentChannel order); 0: estimated from the residuals.
+    std::array<double, io::kExperimentChannelCount> noise{};
+    /// Calibration only: fit n₁ of the slip-sinkage exponent N = n + n₁ s too (docs/model.md,
+    /// "Slip-sinkage"), by profiling χ² over n₁; false: n₁ = 0, the thesis model.
+    bool fit_n1 = false;
+};
+
+/// "experiments" (required; relative to the context's directory, read at once), "calibrate",
+/// "fit_slips", "noise" ({"Fx_N", "My_Nm", "sinkage_m"}), "fit_n1".
+void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
+                            ValidationSettings& out);
+
+/// The errors of one channel over the points that measure it and have a prediction.
+struct ChannelMetrics {
+    std::size_t count = 0;  ///< points compared
+    double rmse = 0.0;      ///< √(mean (predicted − measured)²)
+    double mae = 0.0;       ///< mean |predicted − measured|
+    /// max |predicted − measured| / |measured| over the points with measured ≠ 0 (NaN if none)
+    double max_rel_error = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Per channel; empty where no point measures it (or none could be predicted).
+using ValidationMetrics = std::array<std::optional<ChannelMetrics>, io::kExperimentChannelCount>;
+
+/// One measured point and the model's prediction of it.
+struct PointComparison {
+    io::ExperimentPoint point;
+    bool predicted = false;  ///< false: no equilibrium at this load (see failure)
+    std::string failure;     ///< why there is no prediction
+    double entry_angle_deg = std::numeric_limits<double>::quiet_NaN();
+    /// F_x, M_y, sinkage r (1 − cos θ_f), side force F_s (Eq. 2.24), F_z [N, N·m, m, N, N]
+    std::array<double, io::kExperimentChannelCount> values{};
+    bool in_fit = true;  ///< among the points the calibration used
+};
+
+/// The points of a test predicted with one soil, and their metrics.
+struct ValidationRun {
+    soil::SoilParameters soil;
+    std::vector<PointComparison> points;
+    ValidationMetrics metrics;
+};
+
+/// The calibration of the soil to the test.
+struct Calibration {
+    identification::IdentificationReport report;
+    identification::ParameterVector prior{};  ///< the given soil's parameters on this wheel (SI)
+    std::vector<std::string> channels;        ///< the channels fitted ("Fx_N", "sinkage_m")
+    soil::SoilParameters soil;                ///< the calibrated soil (usable report only)
+    /// With fit_n1: n₁ at the minimum of the profile χ²(n₁) (the report is the fit at it), its
+    /// std from the profile's curvature (Δχ² = 1), and the profile (n₁, χ²) evaluated.
+    std::optional<double> n1, n1_std;
+    std::vector<std::pair<double, double>> n1_profile;
+    std::optional<ValidationRun> after;  ///< every point with the calibrated soil
+    /// Held-out points only (when fit_slips leaves some out): with the given and the calibrated
+    /// soil.
+    std::optional<ValidationMetrics> held_out_before, held_out;
+};
+
+struct ValidationResult {
+    std::string source;  ///< the test's file
+    ValidationRun before;
+    std::optional<Calibration> calibration;
+    std::vector<std::string> notes;
+};
+
+/// The errors of the points (those with in_fit == `in_fit` when given).
+ValidationMetrics computeMetrics(const std::vector<PointComparison>& points,
+                                 std::optional<bool> in_fit = std::nullopt);
+
+/// Predicts every point of `experiment` with the soil and wheel of `inputs`.
+ValidationRun predictExperiment(const Inputs& inputs, const io::Experiment& experiment);
+
+/// The soil whose parameters on `wheel` are `p` (identify.h's θ): a₀, a₁, n, c, φ, K taken over,
+/// n₁ as given (the identification's model), and k_c, k_φ both scaled by K_s(p)/K_s(prior) so that
+/// K_s = k_c/b + k_φ is p's on this wheel width (only K_s is seen by a test at one width). The
+/// rest (γ, j_max) as `prior`'s.
+soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
+                                        const wheel::WheelParameters& wheel,
+                                        const identification::ParameterVector& p, double n1 = 0.0);
+
+/// Throws std::invalid_argument for invalid inputs or settings (a fit slip that is not in the
+/// test); a test that cannot be read is a problem of the settings (read before).
+ValidationResult computeValidation(const Inputs& inputs, const ValidationSettings& settings,
+                                   const Control& control = {});
+
+/// The result as JSON: {"points": [{"load_N", "slip", "slip_angle_deg", CHANNEL: {"measured",
+/// "predicted"}, …}], "metrics": {CHANNEL: {"rmse", "mae", "max_rel_error", "count"}}, and with a
+/// calibration "calibration": {…} (docs/cli.md, `validate`).
+nlohmann::json toJson(const ValidationResult& result);
+
+/// Tables "metrics" (main: one row, CHANNEL_rmse, CHANNEL_mae, CHANNEL_max_rel_error,
+/// CHANNEL_count per measured channel), "points" and, calibrated, "calibrated_metrics",
+/// "calibrated_points", "held_out_metrics", "parameters"; the JSON as "-validation.json".
+Outcome validationOutcome(ValidationResult result);
+
+AnalysisType validationType();
+
+}  // namespace terra::analysis
