@@ -150,9 +150,9 @@ def _split_conditions(keywords):
 def run(analysis, soil="sandy-loam", wheel="A", *, conditions=None, **settings):
     """Any analysis of the registry (analyses()) as a run script's analysis object.
 
-    settings: the analysis's keys as in a run script (docs/cli.md); conditions: the operating
-    conditions (load_N, slip_angles_deg, slip_count, slip_max, model). Returns {"status",
-    "message", "tables": {name: {column: array}}, "notes", "documents"}.
+    settings: the analysis's keys as in a run script (docs/user-guide.md, "Scripted runs");
+    conditions: the operating conditions (load_N, slip_angles_deg, slip_count, slip_max, model).
+    Returns {"status", "message", "tables": {name: {column: array}}, "notes", "documents"}.
     """
     return _core._run(analysis, _as_soil(soil), _as_wheel(wheel), dict(conditions or {}),
                       settings)
