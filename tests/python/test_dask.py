@@ -1,10 +1,9 @@
 """Studies on a Dask cluster: a 2-worker LocalCluster gives the local numbers bit for bit."""
 
+import distributed  # Debian's python3-distributed (scripts/deps.sh): a missing one fails the test
 import numpy as np
 import pytest
 import terrastudio as ts
-
-distributed = pytest.importorskip("distributed")
 
 SOIL, WHEEL = "sandy-loam", "A"
 PARAMETERS = {"phi_deg": (20.0, 35.0), "c_kPa": (0.0, 5.0), "K_m": (0.005, 0.04),
