@@ -2,7 +2,8 @@
 # product needs (the whole set, so that later work does not fight the install), only those that
 # are missing. clang and clang-format are the second compiler and the format check
 # (scripts/check-clang, scripts/check-format); desktop-file-utils and shared-mime-info check the
-# installed desktop entry and MIME type (tests/install_test.cmake).
+# installed desktop entry and MIME type (tests/install_test.cmake); libclang-rt-14-dev holds
+# libFuzzer and the sanitizer runtimes of clang 14 (scripts/fuzz).
 # Uses sudo only when not root.
 
 TERRA_PACKAGES=(
@@ -12,7 +13,7 @@ TERRA_PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
-  clang clang-format desktop-file-utils shared-mime-info
+  clang clang-format desktop-file-utils shared-mime-info libclang-rt-14-dev
 )
 
 terra_install_dependencies() {
