@@ -4,7 +4,6 @@
 
 #include <QApplication>
 #include <QCloseEvent>
-#include <QDesktopServices>
 #include <QDir>
 #include <QDockWidget>
 #include <QEventLoop>
@@ -15,6 +14,8 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QScreen>
+#include <QScrollArea>
 #include <QSettings>
 #include <QStackedWidget>
 #include <QStandardPaths>
@@ -23,12 +24,9 @@
 #include <QTimer>
 #include <QToolBar>
 #include <QUndoStack>
-#include <QUrl>
 #include <QVBoxLayout>
 #include <cstdio>
 
-#include "app/cli/cli_support.h"
-#include "core/common/build_info.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
@@ -37,13 +35,21 @@
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
-#include "widgets/plots/export_dialog.h"
 
 namespace terra::app {
 namespace {
 
-constexpr int kMaxRecent = 8;
 constexpr int kAutosaveIntervalMs = 30000;
+
+/// The widget in a frameless scroll area that resizes it: it fills the area when there is room and
+/// scrolls when the area is smaller than its minimum size.
+QScrollArea* scrollable(QWidget* content) {
+    auto* area = new QScrollArea;
+    area->setWidget(content);
+    area->setWidgetResizable(true);
+    area->setFrameShape(QFrame::NoFrame);
+    return area;
+}
 
 QDockWidget* dock(QMainWindow* window, const QString& title, const QString& name,
                   QWidget* content) {
@@ -69,7 +75,11 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
                              "Rover scenario"};
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
-        tabs_->addTab(panel, titles[static_cast<int>(i)]);
+        // A panel whose controls need more room than a small screen leaves scrolls instead of
+        // widening the window past the screen (the window was ≥ 1497 px wide).
+        tabs_->addTab(scrollable(panel), titles[static_cast<int>(i)]);
+        panel->installPlotMenus();
+        connect(panel, &ui::AnalysisPanel::exportRequested, this, &MainWindow::exportCurrentPlot);
         connect(panel, &ui::AnalysisPanel::resultShown, this,
                 [this, title = titles[static_cast<int>(i)]](double ms) {
                     statusBar()->showMessage(
@@ -82,7 +92,6 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     setCentralWidget(tabs_);
 
     auto* tree = new ui::ProjectTree(document_, this);
-    tree->setMinimumWidth(210);
     editors_ = new QStackedWidget(this);
     editors_->addWidget(new ui::SoilEditor(document_, locations_, editors_));
     editors_->addWidget(new ui::WheelEditor(document_, locations_, editors_));
@@ -119,11 +128,19 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
                 showPanel("identification");
             });
 
-    auto* left = dock(this, "Project", "project_dock", tree);
-    auto* right = dock(this, "Properties", "properties_dock", editors_);
-    addDockWidget(Qt::LeftDockWidgetArea, left);
-    addDockWidget(Qt::RightDockWidgetArea, right);
-    resizeDocks({left, right}, {230, 330}, Qt::Horizontal);
+    // Both docks on the left, the tree above the properties: the plots get the width (1024 px
+    // screens leave them ~680 px). The properties scroll when the screen is short.
+    auto* project_dock = dock(this, "Project", "project_dock", tree);
+    auto* properties_dock = dock(this, "Properties", "properties_dock", scrollable(editors_));
+    addDockWidget(Qt::LeftDockWidgetArea, project_dock);
+    addDockWidget(Qt::LeftDockWidgetArea, properties_dock);
+    splitDockWidget(project_dock, properties_dock, Qt::Vertical);
+    resizeDocks({project_dock}, {330}, Qt::Horizontal);
+    resizeDocks({project_dock, properties_dock}, {170, 500}, Qt::Vertical);
+    for (QTabWidget* tabs : findChildren<QTabWidget*>()) {
+        tabs->setUsesScrollButtons(true);  // tabs that do not fit scroll, never widen the window
+        tabs->setElideMode(Qt::ElideNone);
+    }
     createMenus();
 
     connect(document_, &ui::ProjectDocument::modifiedChanged, this, &MainWindow::updateTitle);
@@ -138,82 +155,22 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     const QSettings settings;
     restoreGeometry(settings.value("window/geometry").toByteArray());
     restoreState(settings.value("window/state").toByteArray());
+    fitToScreen();
     QTimer::singleShot(0, this, &MainWindow::offerRecovery);
 }
 
-void MainWindow::createMenus() {
-    QMenu* file = menuBar()->addMenu("&File");
-    QToolBar* bar = addToolBar("Main");
-    bar->setObjectName("main_toolbar");
-    auto add = [&](QMenu* menu, const QString& text, QKeySequence key, auto slot,
-                   bool toolbar = false) {
-        QAction* action = menu->addAction(text, this, slot);
-        action->setShortcut(key);
-        if (toolbar) bar->addAction(action);
-        return action;
-    };
-    add(
-        file, "&New", QKeySequence::New, [this] { newProject(); }, true);
-    add(
-        file, "&Open…", QKeySequence::Open,
-        [this] {
-            if (!maybeSave()) return;
-            const QString path = QFileDialog::getOpenFileName(this, "Open project", {},
-                                                              "TerraStudio project (*.terra)");
-            if (!path.isEmpty()) openProject(path);
-        },
-        true);
-    recent_menu_ = file->addMenu("Open &Recent");
-    rebuildRecentMenu();
-    add(
-        file, "&Save", QKeySequence::Save, [this] { save(); }, true);
-    add(file, "Save &As…", QKeySequence::SaveAs, [this] { saveAs(); });
-    file->addSeparator();
-    add(
-        file, "&Export Plot…", QKeySequence(Qt::CTRL | Qt::Key_E), [this] { exportCurrentPlot(); },
-        true);
-    add(file, "Export &Data (CSV)…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_E),
-        [this] { exportCurrentData(); });
-    file->addSeparator();
-    add(file, "&Quit", QKeySequence::Quit, [this] { close(); });
-
-    QMenu* edit = menuBar()->addMenu("&Edit");
-    QAction* undo = document_->undoStack()->createUndoAction(this, "&Undo");
-    undo->setShortcut(QKeySequence::Undo);
-    QAction* redo = document_->undoStack()->createRedoAction(this, "&Redo");
-    redo->setShortcut(QKeySequence::Redo);
-    edit->addActions({undo, redo});
-    bar->addSeparator();
-    bar->addActions({undo, redo});
-
-    QMenu* view = menuBar()->addMenu("&View");
-    for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
-    view->addSeparator();
-    for (int i = 0; i < tabs_->count(); ++i) {
-        add(view, tabs_->tabText(i), QKeySequence(Qt::CTRL | (Qt::Key_1 + i)),
-            [this, i] { tabs_->setCurrentIndex(i); });
-    }
-    QMenu* help = menuBar()->addMenu("&Help");
-    // The docs are installed beside the data (docs/install.md); the build tree mirrors the layout.
-    const QString guide = QString::fromStdString(
-        (executableDirectory() / build_info::kDocDirFromExecutable / "user-guide.md")
-            .lexically_normal()
-            .string());
-    help->addAction("&User guide", this, [this, guide] {
-        if (!QFileInfo::exists(guide)) {
-            QMessageBox::warning(this, "User guide", "The user guide is missing: " + guide);
-        } else if (!QDesktopServices::openUrl(QUrl::fromLocalFile(guide))) {
-            QMessageBox::information(this, "User guide", "No program opens " + guide);
-        }
-    });
-    help->addAction("&About", this, [this, guide] {
-        QMessageBox::about(
-            this, "About TerraStudio",
-            QString("TerraStudio %1: wheel–soil interaction for agricultural robots.\n"
-                    "Model: thesis chapter 2 with the corrections of docs/model.md.\n"
-                    "User guide: %2")
-                .arg(build_info::kVersion, guide));
-    });
+void MainWindow::fitToScreen() {
+    // On the screen, title bar included: a window taller or wider than the screen hides its
+    // title-bar buttons (a 1366×768 laptop got 1497×860). Room is left for the frame.
+    const QScreen* s = screen() ? screen() : QGuiApplication::primaryScreen();
+    if (!s) return;
+    const QRect available = s->availableGeometry();
+    const QSize frame(16, 40);
+    const QSize fitted = size().boundedTo(available.size() - frame).expandedTo(minimumSizeHint());
+    if (fitted != size()) resize(fitted);
+    if (!available.contains(frameGeometry().topLeft()) ||
+        !available.contains(frameGeometry().bottomRight()))
+        move(available.topLeft());
 }
 
 void MainWindow::showPanel(const QString& name) {
@@ -223,7 +180,8 @@ void MainWindow::showPanel(const QString& name) {
 }
 
 ui::AnalysisPanel* MainWindow::currentPanel() const {
-    return qobject_cast<ui::AnalysisPanel*>(tabs_->currentWidget());
+    const int i = tabs_->currentIndex();
+    return i < 0 ? nullptr : panels_[static_cast<std::size_t>(i)];
 }
 
 bool MainWindow::openProject(const QString& path, bool quiet) {
@@ -239,6 +197,9 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
         const std::string name = panel->name().toStdString();
         if (project->panels.contains(name)) panel->applySettings(project->panels[name]);
     }
+    // The panels taking the file's settings write them back (in their own form, defaults
+    // filled in): that is not an edit. The opened project is what is on disk.
+    document_->markUnmodified();
     addRecent(QFileInfo(path).absoluteFilePath());
     statusBar()->showMessage("Opened " + path, 4000);
     return true;
@@ -296,49 +257,6 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     event->accept();
 }
 
-void MainWindow::exportCurrentPlot() {
-    ui::AnalysisPanel* panel = currentPanel();
-    if (!panel) return;
-    const QString suggested = QDir::home().filePath(panel->name() + ".png");
-    ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(),
-                                       suggested);
-}
-
-void MainWindow::exportCurrentData() {
-    ui::AnalysisPanel* panel = currentPanel();
-    if (!panel) return;
-    const QString path = QFileDialog::getSaveFileName(
-        this, "Export data", QDir::home().filePath(panel->name() + ".csv"), "CSV (*.csv)");
-    QString error;
-    if (!path.isEmpty() && !ui::exportTable(panel->currentTable(), path, &error)) {
-        QMessageBox::warning(this, "Export failed", error);
-    }
-}
-
-void MainWindow::addRecent(const QString& path) {
-    QSettings settings;
-    QStringList recent = settings.value("recentFiles").toStringList();
-    recent.removeAll(path);
-    recent.prepend(path);
-    while (recent.size() > kMaxRecent) recent.removeLast();
-    settings.setValue("recentFiles", recent);
-    rebuildRecentMenu();
-}
-
-void MainWindow::rebuildRecentMenu() {
-    recent_menu_->clear();
-    const QStringList recent = QSettings().value("recentFiles").toStringList();
-    for (const QString& path : recent) {
-        recent_menu_
-            ->addAction(QFileInfo(path).fileName(), this,
-                        [this, path] {
-                            if (maybeSave()) openProject(path);
-                        })
-            ->setToolTip(path);
-    }
-    recent_menu_->setEnabled(!recent.isEmpty());
-}
-
 void MainWindow::updateTitle() {
     const QString name = document_->filePath().isEmpty()
                              ? "untitled.terra"
@@ -384,7 +302,7 @@ int MainWindow::takeScreenshots(const QString& dir) {
     int failures = 0;
     for (int i = 0; i < tabs_->count(); ++i) {
         tabs_->setCurrentIndex(i);
-        auto* panel = qobject_cast<ui::AnalysisPanel*>(tabs_->widget(i));
+        ui::AnalysisPanel* panel = panels_[static_cast<std::size_t>(i)];
         if (panel) {
             QEventLoop loop;
             QTimer::singleShot(60000, &loop, &QEventLoop::quit);

@@ -16,6 +16,7 @@ class QTimer;
 
 namespace terra::ui {
 class AnalysisPanel;
+class HelpDialog;
 class ProjectDocument;
 }  // namespace terra::ui
 
@@ -37,12 +38,18 @@ public:
     /// Waits for each analysis panel's result, grabs the window showing it into
     /// DIR/studio-<panel>.png and returns an exit code (the GUI smoke test and docs/images).
     int takeScreenshots(const QString& dir);
+    /// The in-app help (Help ▸ User guide, F1; Keyboard shortcuts, Ctrl+/).
+    void showHelp(bool shortcuts);
+    ui::HelpDialog* helpDialog() const { return help_; }
+    /// docs/user-guide.md where the program is installed (or built).
+    static QString userGuidePath();
 
 protected:
     void closeEvent(QCloseEvent* event) override;
 
 private:
-    void createMenus();
+    void createMenus();  // main_window_menus.cpp, with the exports, recent files and help
+    void fitToScreen();
     bool maybeSave();
     bool save();
     bool saveTo(const QString& path);
@@ -64,6 +71,7 @@ private:
     std::vector<ui::AnalysisPanel*> panels_;
     QMenu* recent_menu_ = nullptr;
     QTimer* autosave_timer_;
+    ui::HelpDialog* help_ = nullptr;
 };
 
 }  // namespace terra::app

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <utility>
 
 #include "core/common/range.h"
@@ -16,10 +17,11 @@ namespace {
 template <typename T>
 class SetValueCommand : public QUndoCommand {
 public:
-    SetValueCommand(const QString& text, int merge_id, T before, T after,
+    SetValueCommand(const QString& text, int merge_id, int gesture, T before, T after,
                     std::function<void(const T&)> apply)
         : QUndoCommand(text),
           merge_id_(merge_id),
+          gesture_(gesture),
           before_(std::move(before)),
           after_(std::move(after)),
           apply_(std::move(apply)) {}
@@ -27,19 +29,24 @@ public:
     void redo() override { apply_(after_); }
     int id() const override { return merge_id_; }
     bool mergeWith(const QUndoCommand* other) override {
-        // Same id implies same field and type: a drag of one slider becomes one undo step.
-        after_ = static_cast<const SetValueCommand*>(other)->after_;
+        // Same id implies same field and type: a drag of one slider becomes one undo step. A new
+        // gesture (endMerge(): slider released, typing finished) starts a step of its own.
+        const auto* next = static_cast<const SetValueCommand*>(other);
+        if (next->gesture_ != gesture_) return false;
+        after_ = next->after_;
+        setText(next->text());  // the label names the value the step ends on
         return true;
     }
 
 private:
     int merge_id_;
+    int gesture_;
     T before_, after_;
     std::function<void(const T&)> apply_;
 };
 
 // Merge ids: one per field; -1 (no merging) for whole-object replacements.
-constexpr int kSoilFieldIdBase = 100;
+constexpr int kSoilFieldIdBase = 100, kSoilNameId = 150;
 constexpr int kWheelRadiusId = 200, kWheelWidthId = 201, kLoadId = 300, kSlipAnglesId = 301,
               kModelId = 302;
 
@@ -75,11 +82,11 @@ template <typename T>
 bool ProjectDocument::pushField(const QString& text, int merge_id, Part part, T* field,
                                 const T& value) {
     if (*field == value) return true;
-    undo_->push(
-        new SetValueCommand<T>(text, merge_id, *field, value, [this, field, part](const T& v) {
-            *field = v;
-            notify(part);
-        }));
+    undo_->push(new SetValueCommand<T>(text, merge_id, gesture_, *field, value,
+                                       [this, field, part](const T& v) {
+                                           *field = v;
+                                           notify(part);
+                                       }));
     return true;
 }
 
@@ -89,38 +96,81 @@ bool ProjectDocument::push(const QString& text, int merge_id, Part part, T Proje
     return pushField(text, merge_id, part, &(project_.*member), value);
 }
 
+std::string ProjectDocument::editedSoilName(const Project& project) {
+    // Leaving a preset: the soil is no longer that preset, and says so wherever its name goes.
+    if (project.soil_preset.empty()) return project.soil.name;
+    const std::string suffix = " (edited)";
+    const std::string& name = project.soil.name.empty() ? project.soil_preset : project.soil.name;
+    return name.ends_with(suffix) ? name : name + suffix;
+}
+
+bool ProjectDocument::pushSoil(const QString& text, int merge_id, soil::SoilParameters soil,
+                               const std::string& preset) {
+    using Pair = std::pair<soil::SoilParameters, std::string>;
+    const Pair before{project_.soil, project_.soil_preset}, after{std::move(soil), preset};
+    if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second)
+        return true;
+    undo_->push(
+        new SetValueCommand<Pair>(text, merge_id, gesture_, before, after, [this](const Pair& v) {
+            project_.soil = v.first;
+            project_.soil_preset = v.second;
+            notify(Part::kSoil);
+        }));
+    return true;
+}
+
 bool ProjectDocument::setSoilValue(const std::string& key, double user_value) {
     const auto fields = soil::soilFields();
     for (std::size_t i = 0; i < fields.size(); ++i) {
         const soil::SoilField& field = fields[i];
         if (key != field.key) continue;
-        if (!field.range.contains(user_value)) return false;
-        double& member = project_.soil.*(field.member);
+        // j_max is optional: +inf is "no limit" (the range itself excludes it).
+        const bool no_limit =
+            key == "jmax_m" && user_value == std::numeric_limits<double>::infinity();
+        if (!no_limit && !field.range.contains(user_value)) return false;
         if (roundSignificant(soil::userValue(project_.soil, field)) == roundSignificant(user_value))
             return true;
         soil::SoilParameters candidate = project_.soil;
         soil::setUserValue(candidate, field, user_value);
         if (!soil::validate(candidate).empty()) return false;
-        return pushField(QString("Set %1 = %2 %3")
-                             .arg(QString::fromUtf8(field.symbol))
-                             .arg(user_value)
-                             .arg(QString::fromStdString(field.displayUnit())),
-                         kSoilFieldIdBase + static_cast<int>(i), Part::kSoil, &member,
-                         candidate.*(field.member));
+        candidate.name = editedSoilName(project_);
+        const QString value =
+            no_limit
+                ? QString("no limit")
+                : QString("%1 %2").arg(user_value).arg(QString::fromStdString(field.displayUnit()));
+        return pushSoil(
+            QString("Set %1 = %2").arg(QString::fromUtf8(field.symbol), value.trimmed()),
+            kSoilFieldIdBase + static_cast<int>(i), std::move(candidate), "");
     }
     return false;
+}
+
+bool ProjectDocument::setSoilName(const std::string& name) {
+    if (name.empty() || name == project_.soil.name) return !name.empty();
+    soil::SoilParameters candidate = project_.soil;
+    candidate.name = name;
+    // A name of one's own is a custom soil, even with a preset's values.
+    return pushSoil(QString("Rename soil to %1").arg(QString::fromStdString(name)), kSoilNameId,
+                    std::move(candidate), "");
 }
 
 bool ProjectDocument::setWheelValue(const std::string& key, double metres) {
     const wheel::WheelField* field = wheel::findWheelField(key);
     if (!field || !field->range.contains(metres)) return false;
     const bool radius = field == &wheel::radiusField();
-    return pushField(QString("Set wheel %1 = %2 %3")
+    wheel::WheelParameters candidate = project_.wheel;
+    candidate.*field->member = field->toSi(metres);
+    if (candidate.*field->member == project_.wheel.*field->member) return true;
+    if (!project_.wheel_preset.empty()) {
+        const std::string suffix = " (edited)";
+        const std::string& name = candidate.name.empty() ? project_.wheel_preset : candidate.name;
+        candidate.name = name.ends_with(suffix) ? name : name + suffix;
+    }
+    return pushWheel(QString("Set wheel %1 = %2 %3")
                          .arg(QString::fromUtf8(field->symbol))
                          .arg(metres)
                          .arg(QString::fromUtf8(field->unit)),
-                     radius ? kWheelRadiusId : kWheelWidthId, Part::kWheel,
-                     &(project_.wheel.*field->member), field->toSi(metres));
+                     radius ? kWheelRadiusId : kWheelWidthId, std::move(candidate), "");
 }
 
 bool ProjectDocument::setLoad(double load_n) {
@@ -149,33 +199,28 @@ bool ProjectDocument::setQuadraticModel(bool quadratic) {
 
 bool ProjectDocument::setSoil(const soil::SoilParameters& soil, const std::string& preset) {
     if (!soil::validate(soil).empty()) return false;
-    using Pair = std::pair<soil::SoilParameters, std::string>;
-    const Pair before{project_.soil, project_.soil_preset}, after{soil, preset};
-    if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second)
-        return true;
-    undo_->push(
-        new SetValueCommand<Pair>(QString("Soil preset %1").arg(QString::fromStdString(preset)), -1,
-                                  before, after, [this](const Pair& v) {
-                                      project_.soil = v.first;
-                                      project_.soil_preset = v.second;
-                                      notify(Part::kSoil);
-                                  }));
-    return true;
+    return pushSoil(QString("Soil preset %1").arg(QString::fromStdString(preset)), -1, soil,
+                    preset);
 }
 
 bool ProjectDocument::setWheel(const wheel::WheelParameters& wheel, const std::string& preset) {
     if (!wheel::validate(wheel).empty()) return false;
+    return pushWheel(QString("Wheel preset %1").arg(QString::fromStdString(preset)), -1, wheel,
+                     preset);
+}
+
+bool ProjectDocument::pushWheel(const QString& text, int merge_id, wheel::WheelParameters wheel,
+                                const std::string& preset) {
     using Pair = std::pair<wheel::WheelParameters, std::string>;
-    const Pair before{project_.wheel, project_.wheel_preset}, after{wheel, preset};
+    const Pair before{project_.wheel, project_.wheel_preset}, after{std::move(wheel), preset};
     if (io::toJson(before.first) == io::toJson(after.first) && before.second == after.second)
         return true;
     undo_->push(
-        new SetValueCommand<Pair>(QString("Wheel preset %1").arg(QString::fromStdString(preset)),
-                                  -1, before, after, [this](const Pair& v) {
-                                      project_.wheel = v.first;
-                                      project_.wheel_preset = v.second;
-                                      notify(Part::kWheel);
-                                  }));
+        new SetValueCommand<Pair>(text, merge_id, gesture_, before, after, [this](const Pair& v) {
+            project_.wheel = v.first;
+            project_.wheel_preset = v.second;
+            notify(Part::kWheel);
+        }));
     return true;
 }
 
@@ -206,6 +251,13 @@ void ProjectDocument::reset(const Project& project, const QString& file_path) {
     emit filePathChanged(file_path_);
     for (Part part : {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets}) notify(part);
     emit modifiedChanged(false);
+}
+
+void ProjectDocument::markUnmodified() {
+    const bool was_modified = isModified();
+    settings_modified_ = false;
+    undo_->setClean();
+    if (was_modified) emit modifiedChanged(false);
 }
 
 bool ProjectDocument::save(const QString& path, QString* error) {

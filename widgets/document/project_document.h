@@ -30,8 +30,15 @@ public:
 
     /// A soil field (soil_parameters.h field table) in its user unit. Out-of-range or non-finite
     /// values are refused (false, nothing pushed); an unchanged value pushes nothing (true).
+    /// Editing a soil that is a preset leaves the preset: the soil becomes custom and is named
+    /// "<preset's name> (edited)" (editedSoilName()), in the editor, plot titles, exports and the
+    /// .terra file alike. "jmax_m" also takes +inf (no limit).
     bool setSoilValue(const std::string& key, double user_value);
-    /// "r_m" or "b_m" in metres, same rules.
+    /// The soil's name (a custom soil of that name; empty is refused).
+    bool setSoilName(const std::string& name);
+    /// The name an edit gives the project's soil: "<name> (edited)" while it is a preset.
+    static std::string editedSoilName(const Project& project);
+    /// "r_m" or "b_m" in metres, same rules; editing a preset wheel names it "<name> (edited)".
     bool setWheelValue(const std::string& key, double metres);
     /// W [N], same rules.
     bool setLoad(double load_n);
@@ -44,6 +51,13 @@ public:
     /// Panel settings are session state but not undoable edits of the model; a change marks the
     /// project modified (they are saved with it) until the next save or reset.
     void setPanelSettings(const std::string& panel, const nlohmann::json& settings);
+
+    /// Ends the current undo step: the next edit, even of the same field, is a step of its own
+    /// (editors call it when a slider is released or typing in a field ends).
+    void endMerge() { ++gesture_; }
+    /// The state on disk is what is shown (an opened project after its panels took their
+    /// settings): not modified, Undo stays as it is.
+    void markUnmodified();
 
     /// Replaces everything (new/open): clears the undo stack and marks the document clean.
     void reset(const Project& project, const QString& file_path = {});
@@ -75,10 +89,15 @@ private:
     template <typename T>
     bool pushField(const QString& text, int merge_id, Part part, T* field, const T& value);
     void notify(Part part);
+    bool pushSoil(const QString& text, int merge_id, soil::SoilParameters soil,
+                  const std::string& preset);
+    bool pushWheel(const QString& text, int merge_id, wheel::WheelParameters wheel,
+                   const std::string& preset);
 
     Project project_;
     QUndoStack* undo_;
     int revision_ = 0;
+    int gesture_ = 0;                 // commands of different gestures never merge
     bool settings_modified_ = false;  // panel settings changed since the last save/reset
     QString file_path_;
 };

@@ -1,6 +1,8 @@
 #include "widgets/editors/project_tree.h"
 
 #include <QFileInfo>
+#include <QHeaderView>
+#include <QTreeWidgetItemIterator>
 
 #include "widgets/document/project_document.h"
 
@@ -10,6 +12,10 @@ ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent)
     : QTreeWidget(parent), document_(document) {
     setHeaderLabels({"Project", "Value"});
     setColumnCount(2);
+    // The names take what they need, the values the rest (they were cut to "sandy l…").
+    header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+    header()->setStretchLastSection(true);
+    header()->setMinimumSectionSize(40);
     const char* names[] = {"Soil", "Wheel", "Operating conditions", "Data sets", "Scenarios"};
     for (int i = 0; i < 5; ++i) {
         items_[i] = new QTreeWidgetItem(this, {names[i]});
@@ -61,6 +67,11 @@ void ProjectTree::refresh() {
     }
     items_[kScenarios]->setText(
         1, scenario_count == 0 ? "shipped only" : QString::number(scenario_count));
+    // Whatever does not fit is in the tooltip.
+    for (QTreeWidgetItemIterator it(this); *it; ++it) {
+        (*it)->setToolTip(0, (*it)->text(0));
+        (*it)->setToolTip(1, (*it)->text(1));
+    }
     expandAll();
     resizeColumnToContents(0);
 }

@@ -1,8 +1,11 @@
 #include "widgets/editors/property_editors.h"
 
 #include <QComboBox>
+#include <QEvent>
 #include <QFormLayout>
 #include <QGridLayout>
+#include <QKeyEvent>
+#include <QKeySequence>
 #include <QLabel>
 #include <QLineEdit>
 #include <QSignalBlocker>
@@ -11,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "widgets/document/project_document.h"
 #include "widgets/editors/validated_spin_box.h"
@@ -76,11 +80,52 @@ QComboBox* presetBox(const io::PresetLocations& locations, const char* kind, QWi
     return box;
 }
 
-void selectPreset(QComboBox* box, const std::string& preset) {
+/// Selects the preset, or the first item named after the custom soil or wheel ("sandy loam
+/// (edited)") when there is none.
+void selectPreset(QComboBox* box, const std::string& preset, const std::string& custom_name) {
     const QSignalBlocker block(box);
-    const int i = box->findData(QString::fromStdString(preset));
+    box->setItemText(
+        0, custom_name.empty() ? QString("(custom)") : QString::fromStdString(custom_name));
+    const int i = preset.empty() ? 0 : box->findData(QString::fromStdString(preset));
     box->setCurrentIndex(i >= 0 ? i : 0);
 }
+
+/// The line under an editor's fields that says what is wrong with the text being typed. It keeps
+/// its two lines of height when empty, so a message never moves the fields.
+QLabel* messageLabel(QWidget* parent) {
+    auto* label = new QLabel(parent);
+    label->setObjectName("message");
+    label->setWordWrap(true);
+    label->setMinimumHeight(2 * label->fontMetrics().lineSpacing() + 4);
+    label->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+    QPalette palette = label->palette();
+    palette.setColor(QPalette::WindowText, QColor(192, 57, 43));
+    label->setPalette(palette);
+    return label;
+}
+
+/// Lets Ctrl+Z / Ctrl+Y reach the studio's undo stack from a line edit whose text is unchanged
+/// (a QLineEdit claims them for its own text undo otherwise).
+class UndoPassThrough : public QObject {
+public:
+    using QObject::QObject;
+    bool eventFilter(QObject* watched, QEvent* event) override {
+        if (event->type() == QEvent::ShortcutOverride) {
+            auto* key = static_cast<QKeyEvent*>(event);
+            auto* edit = qobject_cast<QLineEdit*>(watched);
+            const bool shortcut =
+                key->matches(QKeySequence::Undo) || key->matches(QKeySequence::Redo) ||
+                QKeySequence(key->keyCombination()) == QKeySequence(Qt::CTRL | Qt::Key_Y);
+            if (shortcut && edit && !edit->isModified()) {
+                event->ignore();
+                return true;
+            }
+        }
+        return QObject::eventFilter(watched, event);
+    }
+};
+
+void passUndoShortcuts(QLineEdit* edit) { edit->installEventFilter(new UndoPassThrough(edit)); }
 
 }  // namespace
 
@@ -88,10 +133,20 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
                        QWidget* parent)
     : QWidget(parent), document_(document), locations_(locations) {
     preset_ = presetBox(locations_, "soils", this);
+    preset_->setToolTip(
+        "A soil of resources/soils (docs/soils.md). Editing a field leaves the "
+        "preset: the soil is then named \"<preset> (edited)\" or as you name it.");
+    name_ = new QLineEdit(this);
+    name_->setObjectName("soil.name");
+    name_->setToolTip("The soil's name: plot titles, exports and the .terra file carry it.");
+    passUndoShortcuts(name_);
+    message_ = messageLabel(this);
     auto* grid = new QGridLayout;
     grid->addWidget(new QLabel("<b>Soil preset</b>", this), 0, 0);
     grid->addWidget(preset_, 0, 1, 1, 2);
-    int row = 1;
+    grid->addWidget(new QLabel("Name", this), 1, 0);
+    grid->addWidget(name_, 1, 1, 1, 2);
+    int row = 2;
     for (const soil::SoilField& field : soil::soilFields()) {
         const bool jmax = std::string(field.key) == "jmax_m";
         auto* box = new ValidatedSpinBox(field, decimalsFor(field.range), this);
@@ -104,31 +159,31 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         auto* slider = new QSlider(Qt::Horizontal, this);
         slider->setObjectName(QString("soil.") + field.key + ".slider");
         slider->setRange(0, SliderScale::forBox(*box).steps);
-        slider->setMinimumWidth(90);
+        slider->setMinimumWidth(60);
         auto* label = new QLabel(
             QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)),
             this);
-        label->setToolTip(QString("%1 (%2): %3")
-                              .arg(QString::fromUtf8(field.label), QString::fromUtf8(field.key),
-                                   QString::fromUtf8(field.description)));
+        label->setToolTip(box->toolTip());
+        slider->setToolTip(box->toolTip());
         grid->addWidget(label, row, 0);
         grid->addWidget(box, row, 1);
         grid->addWidget(slider, row, 2);
         ++row;
         const std::string key = field.key;
         fields_[key] = {box, slider};
-        connect(box, &QDoubleSpinBox::valueChanged, this, [this, key, box, jmax](double value) {
+        connect(box, &QDoubleSpinBox::valueChanged, this, [this, key, jmax](double value) {
+            // The lowest value of j_max's box is "no limit" (+inf for the model).
             const double user =
                 jmax && value == 0.0 ? std::numeric_limits<double>::infinity() : value;
-            if (jmax && std::isinf(user)) {
-                soil::SoilParameters soil = document_->project().soil;
-                soil.max_shear_deformation_m = user;
-                document_->setSoil(soil, "");
-            } else if (!document_->setSoilValue(key, user)) {
+            if (!document_->setSoilValue(key, user)) {
                 refresh();  // refused by the model (e.g. K_s ≤ 0): show the model's value again
             }
-            (void)box;
         });
+        // A drag is one undo step, a value typed afterwards another (and the other way round).
+        connect(slider, &QSlider::sliderReleased, document_, &ProjectDocument::endMerge);
+        connect(box, &ValidatedSpinBox::editingStarted, document_, &ProjectDocument::endMerge);
+        connect(box, &QDoubleSpinBox::editingFinished, document_, &ProjectDocument::endMerge);
+        connect(box, &ValidatedSpinBox::messageChanged, message_, &QLabel::setText);
         connect(slider, &QSlider::valueChanged, this, [box](int position) {
             box->setValue(SliderScale::forBox(*box).fromSlider(position));
         });
@@ -136,7 +191,12 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
     grid->setColumnStretch(2, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(grid);
+    layout->addWidget(message_);
     layout->addStretch(1);
+    connect(name_, &QLineEdit::editingFinished, this, [this] {
+        const std::string name = name_->text().trimmed().toStdString();
+        if (name.empty() || !document_->setSoilName(name)) refresh();
+    });
 
     connect(preset_, &QComboBox::currentIndexChanged, this, [this] {
         const std::string name = preset_->currentData().toString().toStdString();
@@ -159,7 +219,10 @@ QSlider* SoilEditor::slider(const std::string& key) const {
 
 void SoilEditor::refresh() {
     const Project& project = document_->project();
-    selectPreset(preset_, project.soil_preset);
+    selectPreset(preset_, project.soil_preset,
+                 project.soil_preset.empty() ? project.soil.name : "");
+    if (!name_->hasFocus() || !name_->isModified())
+        name_->setText(QString::fromStdString(project.soil.name));
     for (const soil::SoilField& field : soil::soilFields()) {
         auto [box, slider] = fields_.at(field.key);
         const double value = soil::userValue(project.soil, field);
@@ -181,6 +244,7 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
     width_ = new ValidatedSpinBox(b, 4, this);
     width_->setObjectName(QString("wheel.") + b.key);
     width_->setSingleStep(0.005);
+    message_ = messageLabel(this);
     auto* form = new QFormLayout(this);
     form->addRow("<b>Wheel preset</b>", preset_);
     auto label = [](const FieldInfo& f) {
@@ -190,6 +254,12 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
     };
     form->addRow(label(r), radius_);
     form->addRow(label(b), width_);
+    form->addRow(message_);
+    for (ValidatedSpinBox* box : {radius_, width_}) {
+        connect(box, &ValidatedSpinBox::editingStarted, document_, &ProjectDocument::endMerge);
+        connect(box, &QDoubleSpinBox::editingFinished, document_, &ProjectDocument::endMerge);
+        connect(box, &ValidatedSpinBox::messageChanged, message_, &QLabel::setText);
+    }
     connect(preset_, &QComboBox::currentIndexChanged, this, [this] {
         const std::string name = preset_->currentData().toString().toStdString();
         if (name.empty()) return;
@@ -207,7 +277,8 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
 
 void WheelEditor::refresh() {
     const Project& project = document_->project();
-    selectPreset(preset_, project.wheel_preset);
+    selectPreset(preset_, project.wheel_preset,
+                 project.wheel_preset.empty() ? project.wheel.name : "");
     radius_->setCommittedValue(project.wheel.radius_m);
     width_->setCommittedValue(project.wheel.width_m);
 }
@@ -224,33 +295,68 @@ ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
     slip_angles_->setToolTip(QString("%1, comma separated, each in %2")
                                  .arg(QString::fromUtf8(angles.description),
                                       QString::fromStdString(angles.range.describe())));
+    passUndoShortcuts(slip_angles_);
+    message_ = messageLabel(this);
     auto* form = new QFormLayout(this);
     form->addRow(QString("Load %1").arg(QString::fromStdString(load.symbolWithUnit())), load_);
     form->addRow(QString("Slip angles %1").arg(QString::fromStdString(angles.symbolWithUnit())),
                  slip_angles_);
+    form->addRow(message_);
     connect(load_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
         if (!document_->setLoad(v)) refresh();
     });
+    connect(load_, &ValidatedSpinBox::editingStarted, document_, &ProjectDocument::endMerge);
+    connect(load_, &QDoubleSpinBox::editingFinished, document_, &ProjectDocument::endMerge);
+    connect(load_, &ValidatedSpinBox::messageChanged, message_, &QLabel::setText);
+    // Checked at every keystroke (the first bad value named), applied on Enter / focus-out.
+    connect(slip_angles_, &QLineEdit::textEdited, this, [this] { checkSlipAngles(); });
     connect(slip_angles_, &QLineEdit::editingFinished, this, [this] {
-        std::vector<double> values;
-        bool ok = true;
-        for (const QString& part : slip_angles_->text().split(',', Qt::SkipEmptyParts)) {
-            bool parsed = false;
-            const double v = part.trimmed().toDouble(&parsed);
-            ok = ok && parsed && analysis::slipAnglesField().range.contains(v);
-            values.push_back(v);
-        }
-        if (!ok || values.empty() || !document_->setSlipAngles(values)) {
-            slip_angles_->setStyleSheet("QLineEdit { border: 2px solid #d62728; }");
-            slip_angles_->setToolTip(
-                QString("Not a comma-separated list of angles in %1 deg: not applied")
-                    .arg(QString::fromStdString(analysis::slipAnglesField().range.describe())));
-            return;
-        }
-        slip_angles_->setStyleSheet({});
+        const std::optional<std::vector<double>> values = checkSlipAngles();
+        if (!values) return;  // flagged in place, not applied
+        document_->endMerge();
+        if (!document_->setSlipAngles(*values)) refresh();
+        slip_angles_->setModified(false);
     });
     connect(document_, &ProjectDocument::conditionsChanged, this, &ConditionsEditor::refresh);
     refresh();
+}
+
+std::optional<std::vector<double>> ConditionsEditor::checkSlipAngles() {
+    const FieldInfo& field = analysis::slipAnglesField();
+    std::vector<double> values;
+    QString problem;
+    for (const QString& part : slip_angles_->text().split(',')) {
+        const QString text = part.trimmed();
+        bool parsed = false;
+        const double v = text.toDouble(&parsed);
+        if (text.isEmpty()) {
+            problem = "an empty entry between commas";
+        } else if (!parsed) {
+            problem = QString("\"%1\" is not a number").arg(text);
+        } else if (!field.range.contains(v)) {
+            problem = QString("β = %1 deg is outside the allowed range %2 deg")
+                          .arg(text, QString::fromStdString(field.range.describe()));
+        }
+        if (!problem.isEmpty()) break;
+        values.push_back(v);
+    }
+    if (slip_angles_->text().trimmed().isEmpty()) problem = "no slip angle given";
+    const bool ok = problem.isEmpty();
+    QPalette palette = QPalette();
+    if (!ok) {
+        palette = slip_angles_->palette();
+        palette.setColor(QPalette::Base, QColor(255, 222, 222));
+        palette.setColor(QPalette::Text, QColor(150, 0, 0));
+    }
+    slip_angles_->setPalette(palette);
+    const QString message =
+        ok ? QString()
+           : QString("Slip angles: %1; comma-separated angles in %2 deg, not applied")
+                 .arg(problem, QString::fromStdString(field.range.describe()));
+    slip_angles_->setProperty("invalidMessage", message);
+    message_->setText(message);
+    if (!ok) return std::nullopt;
+    return values;
 }
 
 void ConditionsEditor::refresh() {
@@ -259,7 +365,10 @@ void ConditionsEditor::refresh() {
     QStringList angles;
     for (double beta : c.slip_angles_deg) angles << QString::number(beta);
     slip_angles_->setText(angles.join(", "));
-    slip_angles_->setStyleSheet({});
+    slip_angles_->setModified(false);
+    slip_angles_->setPalette(QPalette());
+    slip_angles_->setProperty("invalidMessage", QString());
+    message_->clear();
 }
 
 }  // namespace terra::ui

@@ -7,12 +7,15 @@
 
 #include <QWidget>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/io/parameters_json.h"
 
 class QComboBox;
 class QDoubleSpinBox;
+class QLabel;
 class QLineEdit;
 class QSlider;
 
@@ -54,6 +57,8 @@ private:
     ProjectDocument* document_;
     io::PresetLocations locations_;
     QComboBox* preset_;
+    QLineEdit* name_;
+    QLabel* message_;  // what is wrong with the text being typed
     std::map<std::string, std::pair<ValidatedSpinBox*, QSlider*>> fields_;
 };
 
@@ -70,6 +75,7 @@ private:
     QComboBox* preset_;
     ValidatedSpinBox* radius_;
     ValidatedSpinBox* width_;
+    QLabel* message_;
 };
 
 class ConditionsEditor : public QWidget {
@@ -77,12 +83,17 @@ class ConditionsEditor : public QWidget {
 public:
     explicit ConditionsEditor(ProjectDocument* document, QWidget* parent = nullptr);
     ValidatedSpinBox* loadBox() const { return load_; }
+    QLineEdit* slipAnglesEdit() const { return slip_angles_; }
 
 private:
     void refresh();
+    /// The typed list, or nothing: then the field is tinted and the message names the first bad
+    /// entry and the allowed range.
+    std::optional<std::vector<double>> checkSlipAngles();
     ProjectDocument* document_;
     ValidatedSpinBox* load_;
     QLineEdit* slip_angles_;
+    QLabel* message_;
 };
 
 }  // namespace terra::ui

@@ -1,7 +1,9 @@
 #include "widgets/editors/validated_spin_box.h"
 
 #include <QKeyEvent>
+#include <QKeySequence>
 #include <QLineEdit>
+#include <QPalette>
 #include <QSignalBlocker>
 #include <QTimer>
 #include <cmath>
@@ -41,10 +43,14 @@ ValidatedSpinBox::ValidatedSpinBox(const FieldInfo& field, int decimals, QWidget
 }
 
 void ValidatedSpinBox::setCommittedValue(double value) {
-    const QSignalBlocker block(this);
-    setValue(value);
-    committed_ = this->value();
-    flag(true, {});
+    const bool had_message = !valid_ || !property("rejectedMessage").toString().isEmpty();
+    {
+        const QSignalBlocker block(this);
+        setValue(value);
+        committed_ = this->value();
+        flag(true, {});
+    }
+    if (had_message) emit messageChanged({});  // outside the blocker: the editor's line clears
 }
 
 void ValidatedSpinBox::commitTyped() {
@@ -67,39 +73,106 @@ void ValidatedSpinBox::keyPressEvent(QKeyEvent* event) {
     QDoubleSpinBox::keyPressEvent(event);
 }
 
+void ValidatedSpinBox::focusInEvent(QFocusEvent* event) {
+    emit editingStarted();
+    QDoubleSpinBox::focusInEvent(event);
+}
+
 void ValidatedSpinBox::focusOutEvent(QFocusEvent* event) {
     debounce_->stop();  // QAbstractSpinBox commits acceptable text on focus-out itself
     revertIfInvalid();
     QDoubleSpinBox::focusOutEvent(event);
 }
 
+bool ValidatedSpinBox::event(QEvent* event) {
+    // The line edit inside claims Ctrl+Z / Ctrl+Y for its own text undo, so the studio's Undo did
+    // nothing while the cursor was in a field. Text typed but not yet committed is dropped (that
+    // is the undo the user sees); otherwise the shortcut goes on to the document's undo stack.
+    if (event->type() == QEvent::ShortcutOverride) {
+        auto* key = static_cast<QKeyEvent*>(event);
+        const bool undo = key->matches(QKeySequence::Undo);
+        const bool redo = key->matches(QKeySequence::Redo) ||
+                          QKeySequence(key->keyCombination()) == QKeySequence(Qt::CTRL | Qt::Key_Y);
+        if (undo || redo) {
+            debounce_->stop();
+            if (undo && (!valid_ || textFromValue(committed_) != cleanText())) {
+                setCommittedValue(committed_);
+                event->accept();  // consumed here: typing dropped, the document untouched
+                return true;
+            }
+            event->ignore();  // not overridden: the window's Undo/Redo shortcut fires
+            return true;
+        }
+    }
+    return QDoubleSpinBox::event(event);
+}
+
 QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
     const QValidator::State state = QDoubleSpinBox::validate(text, pos);
     QString number = text;
     if (!suffix().isEmpty()) number.chop(suffix().size());
+    number = number.trimmed();
     bool parsed = false;
-    const double value = locale().toDouble(number.trimmed(), &parsed);
+    const double value = locale().toDouble(number, &parsed);
+    const QString allowed = QString("allowed %1%2")
+                                .arg(QString::fromStdString(range_.describe()),
+                                     unit_.isEmpty() ? QString() : " " + unit_);
     if (state == QValidator::Acceptable ||
         (!specialValueText().isEmpty() && text == specialValueText())) {
         flag(true, {});
-    } else if (parsed) {
+        return state;
+    }
+    if (parsed) {
+        // Out of range: keep the whole text on screen ("75", not the "7" a refused keystroke
+        // leaves), flagged with the range; it is never committed (revertIfInvalid()).
         flag(false, QString("%1 = %2 %3 is outside the allowed range %4")
                         .arg(name_, QString::number(value), unit_,
-                             QString::fromStdString(range_.describe())));
-    } else {
-        flag(false, QString("%1: \"%2\" is not a number").arg(name_, number));
+                             QString::fromStdString(range_.describe()))
+                        .simplified());
+        return QValidator::Intermediate;
     }
-    return state;
+    if (number.isEmpty() || number == "-" || number == "+" || number.endsWith('e') ||
+        number.endsWith('E') || number == locale().decimalPoint()) {
+        flag(true, {});  // the start of a number: wait for the rest
+        return QValidator::Intermediate;
+    }
+    if (!specialValueText().isEmpty() && specialValueText().startsWith(number)) return state;
+    // Not a number: the keystroke is refused, and the field says why (it used to do nothing).
+    auto* self = const_cast<ValidatedSpinBox*>(this);
+    const QString message = QString("%1: \"%2\" is not a number (%3)").arg(name_, number, allowed);
+    self->setProperty("rejectedMessage", message);
+    emit self->messageChanged(message);
+    return QValidator::Invalid;
 }
 
 void ValidatedSpinBox::flag(bool valid, const QString& message) const {
-    if (valid == valid_) return;
-    valid_ = valid;
     auto* self = const_cast<ValidatedSpinBox*>(this);
-    self->setStyleSheet(valid ? QString()
-                              : QString("QDoubleSpinBox { border: 2px solid #d62728; }"));
+    if (valid && !property("rejectedMessage").toString().isEmpty()) {
+        self->setProperty("rejectedMessage", QString());
+        if (valid_) emit self->messageChanged({});
+    }
+    if (valid == valid_) {
+        if (!valid && message != property("invalidMessage").toString()) {
+            self->lineEdit()->setToolTip(message);
+            self->setProperty("invalidMessage", message);
+            emit self->messageChanged(message);
+        }
+        return;
+    }
+    valid_ = valid;
+    // A tinted background, not a style-sheet border: a border changes the box's size hint and
+    // shifted every row below by a few pixels while the field was red.
+    if (valid) {
+        self->setPalette(QPalette());
+    } else {
+        QPalette palette = self->palette();
+        palette.setColor(QPalette::Base, QColor(255, 222, 222));
+        palette.setColor(QPalette::Text, QColor(150, 0, 0));
+        self->setPalette(palette);
+    }
     self->lineEdit()->setToolTip(valid ? QString() : message);
     self->setProperty("invalidMessage", valid ? QString() : message);
+    emit self->messageChanged(valid ? QString() : message);
 }
 
 }  // namespace terra::ui

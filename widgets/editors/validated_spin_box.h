@@ -4,7 +4,9 @@
 /// field (red frame, tooltip naming the value and the range) and never committed — the spin box
 /// reverts to the last valid value when editing ends. Typing is live but debounced: once the
 /// text has been acceptable and unchanged for debounceMs(), it is committed (valueChanged) as if
-/// Enter had been pressed; arrows, wheel, Enter and focus-out commit at once.
+/// Enter had been pressed; arrows, wheel, Enter and focus-out commit at once. A number out of range
+/// stays on screen whole, tinted, with messageChanged() naming the range; a keystroke that cannot
+/// make a number ("abc") is refused with a message.
 
 #include <QDoubleSpinBox>
 
@@ -37,11 +39,21 @@ public:
     static constexpr int kDebounceMs = 300;
     int debounceMs() const { return kDebounceMs; }
 
+signals:
+    /// What is wrong with the text being typed (the value and the allowed range, or "not a
+    /// number"); empty when it is fine again. Editors show it under the fields.
+    void messageChanged(const QString& message);
+    /// The field got the focus: typing in it is a new undo step (ProjectDocument::endMerge()).
+    void editingStarted();
+
 protected:
     /// Enter or leaving the field with flagged text restores the last committed value: a
     /// half-typed prefix ("7" of "75") is never committed either.
     void keyPressEvent(QKeyEvent* event) override;
+    void focusInEvent(QFocusEvent* event) override;
     void focusOutEvent(QFocusEvent* event) override;
+    /// Ctrl+Z / Ctrl+Y reach the studio's undo stack with the cursor in the field.
+    bool event(QEvent* event) override;
 
 private:
     void revertIfInvalid();

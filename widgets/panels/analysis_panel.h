@@ -52,11 +52,15 @@ public:
     void recompute() { scheduleUpdate(); }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
     void cancelRunning();
+    /// Gives every plot of plots() the right-click menu (plot_menu.h): "Export plot…" emits
+    /// exportRequested(), "Copy data" copies currentTable().
+    void installPlotMenus();
 
 signals:
     void resultShown(double latency_ms);  ///< a new result is on screen, after the given time [ms]
     void failed(const QString& message);
     void busyChanged(bool busy);
+    void exportRequested();  ///< "Export plot…" of a plot's right-click menu
 
 protected:
     void showEvent(QShowEvent* event) override;
@@ -73,7 +77,9 @@ protected:
     void scheduleUpdate();
     /// Whether project edits recompute automatically (false: only recompute()).
     void setLive(bool live) { live_ = live; }
-    /// Enables drag/zoom and a crosshair read-out shown in `readout`.
+    /// Enables drag/zoom and a read-out of the mouse position in `readout`, with the axes' units
+    /// ("Slip ratio s = 0.25, Drawbar pull F_x = 120 N"); it is cleared when the mouse leaves the
+    /// plot or the plot is hidden (another tab), so it never describes a plot out of sight.
     static void makeInteractive(QCustomPlot* plot, QLabel* readout);
     void storeSettings();
     /// The panel's settings with `changes` over them, for applySettings: an object of some keys

@@ -23,6 +23,7 @@
 #include "core/io/json.h"
 #include "core/project/panels.h"
 #include "core/scenario/scenario_json.h"
+#include "widgets/plots/figures.h"
 #include "widgets/plots/rover_figures.h"
 
 namespace terra::ui {
@@ -216,14 +217,26 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         storeSettings();
         recompute();
     });
-    connect(cancel_, &QPushButton::clicked, this, &AnalysisPanel::cancelRunning);
+    connect(cancel_, &QPushButton::clicked, this, [this] {
+        status_->setText("Cancelling…");
+        cancelRunning();
+    });
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         run_->setEnabled(!busy);
         cancel_->setEnabled(busy);
         edit_->setEnabled(!busy);
         if (busy) {
             progress_->setValue(0);
+            progress_->setFormat("%p %");
             status_->setText("Running…");
+            // The plots of the previous run are not this run's: say so in their titles (they
+            // used to keep "… completed" while the new run went on).
+            if (!title_.isEmpty()) {
+                title_ = QString("%1 — previous run; running %2…")
+                             .arg(QString::fromStdString(shown_name_), scenario_->currentText());
+                for (QCustomPlot* plot : plots_) setPlotTitle(*plot, title_);
+                setPlotTitle(*top_view_, title_);
+            }
         }
     });
     connect(this, &AnalysisPanel::failed, this, [this](const QString& m) {
@@ -368,7 +381,15 @@ void RoverPanel::present(const std::any& value) {
     shown_ = std::move(result.scenario);
     result_ = std::move(result.run);
     shown_name_ = currentName() + (isEdited() ? " (edited)" : "");
-    progress_->setValue(100);
+    // Only a completed run is 100 %: a cancelled or diverged one stays where it stopped.
+    if (result_.status == scenario::RunResult::Status::kCompleted) {
+        progress_->setValue(100);
+        progress_->setFormat("%p %");
+    } else {
+        progress_->setFormat(result_.status == scenario::RunResult::Status::kCancelled
+                                 ? "%p % (cancelled)"
+                                 : "%p % (diverged)");
+    }
     title_ = roverTitle(shown_name_, result_.status);
     const Table& t = result_.series;
     drawn_.assign(plots_.size(), false);

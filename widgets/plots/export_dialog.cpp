@@ -10,12 +10,19 @@
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSpinBox>
+#include <algorithm>
 
 namespace terra::ui {
 
 ExportDialog::ExportDialog(const QString& suggested_path, QWidget* parent) : QDialog(parent) {
     setWindowTitle("Export plot");
     path_ = new QLineEdit(suggested_path, this);
+    path_->setObjectName("export.path");
+    // The whole path on screen (it was clipped to the form's default width); long paths scroll.
+    path_->setMinimumWidth(
+        std::min(path_->fontMetrics().horizontalAdvance(suggested_path) + 24, 720));
+    path_->setToolTip(suggested_path);
+    connect(path_, &QLineEdit::textChanged, path_, &QLineEdit::setToolTip);
     auto* browse = new QPushButton("…", this);
     width_ = new QSpinBox(this);
     width_->setRange(16, 20000);
@@ -64,14 +71,17 @@ ExportOptions ExportDialog::options() const {
 bool ExportDialog::writeCsv() const { return csv_->isChecked(); }
 
 bool ExportDialog::exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table,
-                                    const QString& suggested_path) {
+                                    const QString& suggested_path, QStringList* written) {
     ExportDialog dialog(suggested_path, parent);
     if (dialog.exec() != QDialog::Accepted) return false;
     QString error;
     bool ok = exportPlot(plot, dialog.path(), dialog.options(), &error);
+    if (ok && written) written->append(dialog.path());
     if (ok && dialog.writeCsv()) {
         const QFileInfo info(dialog.path());
-        ok = exportTable(table, info.path() + "/" + info.completeBaseName() + ".csv", &error);
+        const QString csv = info.path() + "/" + info.completeBaseName() + ".csv";
+        ok = exportTable(table, csv, &error);
+        if (ok && written) written->append(csv);
     }
     if (!ok) QMessageBox::warning(parent, "Export failed", error);
     return ok;

@@ -4,6 +4,7 @@
 /// exportPlot() and exportTable() — the same writers as the headless runner.
 
 #include <QDialog>
+#include <QStringList>
 
 #include "widgets/plots/plot_export.h"
 
@@ -23,9 +24,9 @@ public:
     bool writeCsv() const;
 
     /// Asks, then writes the plot (and its data as CSV beside it). Returns false when cancelled or
-    /// failed (the failure is shown to the user).
+    /// failed (the failure is shown to the user); `written` gets the files written.
     static bool exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table,
-                                 const QString& suggested_path);
+                                 const QString& suggested_path, QStringList* written = nullptr);
 
 private:
     QLineEdit* path_;

@@ -83,6 +83,20 @@ void resetPlot(QCustomPlot& plot, const QString& title) {
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
 }
 
+QString plotTitle(const QCustomPlot& plot) {
+    if (plot.plotLayout()->rowCount() < 2) return {};
+    auto* title = qobject_cast<QCPTextElement*>(plot.plotLayout()->element(0, 0));
+    return title ? title->text() : QString();
+}
+
+void setPlotTitle(QCustomPlot& plot, const QString& text) {
+    if (plot.plotLayout()->rowCount() < 2) return;
+    auto* title = qobject_cast<QCPTextElement*>(plot.plotLayout()->element(0, 0));
+    if (!title) return;
+    title->setText(text);
+    plot.replot();
+}
+
 void plotStresses(QCustomPlot& plot, const analysis::StressResult& result,
                   const std::string& stress, const QString& title) {
     resetPlot(plot, title);
@@ -283,32 +297,38 @@ void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult&
         return;
     }
     const QVector<double> slip = column(result.curves, "slip");
-    QCPGraph* data = plot.addGraph();
-    data->setData(slip, column(result.curves, channel));  // unsorted: several sweeps
-    data->setName("data");
-    data->setPen(QPen(QColor(90, 90, 90)));
-    data->setLineStyle(QCPGraph::lsNone);
-    data->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 4));
+    const QVector<double> measured = column(result.curves, channel);
     std::string fitted = channel;
     fitted.insert(channel.rfind('_'), "_fit");
-    // One fitted line per sweep (per load), so that sweeps are not joined.
+    // One colour per sweep (per load): its data points and its fitted line, each in the legend
+    // with the load (three sweeps used to share one "data" entry). Sweeps are never joined.
     const QVector<double> fit = column(result.curves, fitted);
     const QVector<double> load = column(result.curves, "W_N");
-    std::map<double, std::pair<QVector<double>, QVector<double>>> sweeps;
+    struct Sweep {
+        QVector<double> slip, data, fit;
+    };
+    std::map<double, Sweep> sweeps;
     for (int i = 0; i < slip.size(); ++i) {
-        auto& sweep = sweeps[std::isnan(load[i]) ? 0.0 : load[i]];
-        sweep.first.push_back(slip[i]);
-        sweep.second.push_back(fit[i]);
+        Sweep& sweep = sweeps[std::isnan(load[i]) ? 0.0 : load[i]];
+        sweep.slip.push_back(slip[i]);
+        sweep.data.push_back(measured[i]);
+        sweep.fit.push_back(fit[i]);
     }
-    bool first = true;
-    for (const auto& [w, curve] : sweeps) {
+    const QString model = result.refined ? "full model, refined fit" : "decoupled fit";
+    int index = 0;
+    for (const auto& [w, sweep] : sweeps) {
+        const QColor color = paletteColor(index++);
+        const QString at = sweeps.size() > 1 || w > 0.0 ? QString(", W = %1 N").arg(w) : QString();
+        QCPGraph* data = plot.addGraph();
+        data->setData(sweep.slip, sweep.data);  // unsorted: keep the measured order
+        data->setName("data" + at);
+        data->setPen(QPen(color));
+        data->setLineStyle(QCPGraph::lsNone);
+        data->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCircle, 4));
         QCPGraph* line = plot.addGraph();
-        line->setData(curve.first, curve.second);
-        line->setPen(QPen(QColor(214, 39, 40), 1.8));
-        line->setName(result.refined ? "full model, refined fit" : "decoupled fit");
-        if (!first) line->removeFromLegend();
-        first = false;
-        (void)w;
+        line->setData(sweep.slip, sweep.fit);
+        line->setPen(QPen(color, 1.8));
+        line->setName(model + at);
     }
     finish(plot);
 }

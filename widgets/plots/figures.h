@@ -18,6 +18,12 @@ namespace terra::ui {
 /// Clears graphs, items and the title row, then sets a new title.
 void resetPlot(QCustomPlot& plot, const QString& title);
 
+/// Changes the title resetPlot() set, keeping what the plot shows (replots); no-op without one.
+void setPlotTitle(QCustomPlot& plot, const QString& title);
+
+/// The title resetPlot() set ("" without one).
+QString plotTitle(const QCustomPlot& plot);
+
 /// One stress ("sigma", "tau", "tau_t", "tau_l") over θ: exact solid, quadratic dashed, with the
 /// RMSE/MAE in the legend. "all" draws the four exact and approximated pairs together.
 void plotStresses(QCustomPlot& plot, const analysis::StressResult& result,

@@ -1,0 +1,174 @@
+// The main window's menus, toolbar, exports and help (main_window.h); split from
+// main_window.cpp to keep each file small. Every shortcut of docs/user-guide.md is set explicitly:
+// the platform's standard keys are empty on some desktops (Save As, Ctrl+Y under a plain X11
+// window manager), and the guide promises them everywhere.
+#include <QApplication>
+#include <QDir>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QToolBar>
+#include <QUndoStack>
+
+#include "app/cli/cli_support.h"
+#include "app/main_window.h"
+#include "core/common/build_info.h"
+#include "widgets/document/project_document.h"
+#include "widgets/help/help_dialog.h"
+#include "widgets/panels/analysis_panel.h"
+#include "widgets/plots/export_dialog.h"
+
+namespace terra::app {
+namespace {
+
+constexpr int kMaxRecent = 8;
+
+QKeySequence keys(QKeyCombination combination) { return QKeySequence(combination); }
+
+}  // namespace
+
+void MainWindow::createMenus() {
+    QMenu* file = menuBar()->addMenu("&File");
+    QToolBar* bar = addToolBar("Main");
+    bar->setObjectName("main_toolbar");
+    auto add = [&](QMenu* menu, const QString& text, const QList<QKeySequence>& shortcuts,
+                   const QString& name, auto slot, bool toolbar = false) {
+        QAction* action = menu->addAction(text, this, slot);
+        action->setShortcuts(shortcuts);
+        action->setObjectName(name);
+        if (toolbar) bar->addAction(action);
+        return action;
+    };
+    add(
+        file, "&New", {keys(Qt::CTRL | Qt::Key_N)}, "action.new", [this] { newProject(); }, true);
+    add(
+        file, "&Open…", {keys(Qt::CTRL | Qt::Key_O)}, "action.open",
+        [this] {
+            if (!maybeSave()) return;
+            const QString path = QFileDialog::getOpenFileName(this, "Open project", {},
+                                                              "TerraStudio project (*.terra)");
+            if (!path.isEmpty()) openProject(path);
+        },
+        true);
+    recent_menu_ = file->addMenu("Open &Recent");
+    rebuildRecentMenu();
+    add(
+        file, "&Save", {keys(Qt::CTRL | Qt::Key_S)}, "action.save", [this] { save(); }, true);
+    add(file, "Save &As…", {keys(Qt::CTRL | Qt::SHIFT | Qt::Key_S)}, "action.save_as",
+        [this] { saveAs(); });
+    file->addSeparator();
+    add(
+        file, "&Export Plot…", {keys(Qt::CTRL | Qt::Key_E)}, "action.export_plot",
+        [this] { exportCurrentPlot(); }, true);
+    add(file, "Export &Data (CSV)…", {keys(Qt::CTRL | Qt::SHIFT | Qt::Key_E)}, "action.export_data",
+        [this] { exportCurrentData(); });
+    file->addSeparator();
+    add(file, "&Quit", {keys(Qt::CTRL | Qt::Key_Q)}, "action.quit", [this] { close(); });
+
+    QMenu* edit = menuBar()->addMenu("&Edit");
+    QAction* undo = document_->undoStack()->createUndoAction(this, "&Undo");
+    undo->setShortcuts({keys(Qt::CTRL | Qt::Key_Z)});
+    undo->setObjectName("action.undo");
+    QAction* redo = document_->undoStack()->createRedoAction(this, "&Redo");
+    redo->setShortcuts({keys(Qt::CTRL | Qt::SHIFT | Qt::Key_Z), keys(Qt::CTRL | Qt::Key_Y)});
+    redo->setObjectName("action.redo");
+    edit->addActions({undo, redo});
+    bar->addSeparator();
+    bar->addActions({undo, redo});
+
+    QMenu* view = menuBar()->addMenu("&View");
+    for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
+    view->addSeparator();
+    for (int i = 0; i < tabs_->count() && i < 9; ++i) {
+        add(view, tabs_->tabText(i), {QKeySequence(Qt::CTRL | (Qt::Key_1 + i))},
+            QString("action.panel%1").arg(i + 1), [this, i] { tabs_->setCurrentIndex(i); });
+    }
+
+    QMenu* help = menuBar()->addMenu("&Help");
+    add(help, "&User guide", {keys(Qt::Key_F1)}, "action.help", [this] { showHelp(false); });
+    add(help, "&Keyboard shortcuts", {keys(Qt::CTRL | Qt::Key_Slash)}, "action.shortcuts",
+        [this] { showHelp(true); });
+    help->addAction("&About TerraStudio", this, [this] {
+        QMessageBox::about(this, "About TerraStudio",
+                           QString("<b>TerraStudio %1</b><br>Wheel–soil interaction for "
+                                   "agricultural robots: the model of thesis chapter 2 with the "
+                                   "corrections of docs/model.md.<br>Help ▸ User guide (F1) "
+                                   "explains the studio.")
+                               .arg(build_info::kVersion));
+    });
+}
+
+QString MainWindow::userGuidePath() {
+    // The docs are installed beside the data (docs/install.md); the build tree mirrors the layout.
+    return QString::fromStdString(
+        (executableDirectory() / build_info::kDocDirFromExecutable / "user-guide.md")
+            .lexically_normal()
+            .string());
+}
+
+void MainWindow::showHelp(bool shortcuts) {
+    if (!help_) {
+        help_ = new ui::HelpDialog(userGuidePath(), findChildren<QAction*>(), this);
+        help_->setObjectName("help_dialog");
+    }
+    shortcuts ? help_->showShortcuts() : help_->showGuide();
+    help_->show();
+    help_->raise();
+    help_->activateWindow();
+}
+
+void MainWindow::exportCurrentPlot() {
+    ui::AnalysisPanel* panel = currentPanel();
+    if (!panel) return;
+    const QString suggested = QDir::home().filePath(panel->name() + ".png");
+    QStringList written;
+    if (ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(),
+                                           suggested, &written)) {
+        statusBar()->showMessage("Exported " + written.join(" and "), 8000);
+    }
+}
+
+void MainWindow::exportCurrentData() {
+    ui::AnalysisPanel* panel = currentPanel();
+    if (!panel) return;
+    const QString path = QFileDialog::getSaveFileName(
+        this, "Export data", QDir::home().filePath(panel->name() + ".csv"), "CSV (*.csv)");
+    if (path.isEmpty()) return;
+    QString error;
+    if (!ui::exportTable(panel->currentTable(), path, &error)) {
+        QMessageBox::warning(this, "Export failed", error);
+        return;
+    }
+    statusBar()->showMessage("Exported " + path, 8000);
+}
+
+void MainWindow::addRecent(const QString& path) {
+    QSettings settings;
+    QStringList recent = settings.value("recentFiles").toStringList();
+    recent.removeAll(path);
+    recent.prepend(path);
+    while (recent.size() > kMaxRecent) recent.removeLast();
+    settings.setValue("recentFiles", recent);
+    rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+    recent_menu_->clear();
+    const QStringList recent = QSettings().value("recentFiles").toStringList();
+    for (const QString& path : recent) {
+        recent_menu_
+            ->addAction(QFileInfo(path).fileName(), this,
+                        [this, path] {
+                            if (maybeSave()) openProject(path);
+                        })
+            ->setToolTip(path);
+    }
+    recent_menu_->setEnabled(!recent.isEmpty());
+}
+
+}  // namespace terra::app

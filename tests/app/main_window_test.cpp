@@ -1,0 +1,241 @@
+// Issue 12, the studio's main window on real widgets (QT_QPA_PLATFORM=offscreen): it fits a
+// 1024×700 screen, an opened project is unmodified, a corrupt project names line and column,
+// every shortcut of docs/user-guide.md works, and Ctrl+Z works with the cursor in a field.
+#include "app/main_window.h"
+
+#include <gtest/gtest.h>
+
+#include <QAction>
+#include <QApplication>
+#include <QComboBox>
+#include <QDialog>
+#include <QFile>
+#include <QFileDialog>
+#include <QSlider>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTimer>
+#include <QUndoStack>
+#include <functional>
+
+#include "widgets/document/project_document.h"
+#include "widgets/editors/property_editors.h"
+#include "widgets/editors/validated_spin_box.h"
+#include "widgets/help/help_dialog.h"
+
+namespace terra::app {
+namespace {
+
+io::PresetLocations resources() { return {{TERRA_RESOURCE_DIR}}; }
+
+void settle(int ms = 100) { QTest::qWait(ms); }
+
+/// The window has the keyboard again (after a dialog closed).
+void activate(QWidget& window) {
+    window.activateWindow();
+    ASSERT_TRUE(QTest::qWaitForWindowActive(&window));
+}
+
+/// Runs `check` on the first modal dialog that opens within `timeout_ms`, then closes it.
+void onNextDialog(std::function<void(QWidget*)> check, bool* seen) {
+    auto* timer = new QTimer;
+    timer->setInterval(20);
+    QObject::connect(timer, &QTimer::timeout, [timer, check, seen] {
+        QWidget* modal = QApplication::activeModalWidget();
+        if (!modal) return;
+        *seen = true;
+        check(modal);
+        if (auto* dialog = qobject_cast<QDialog*>(modal)) dialog->reject();
+        timer->stop();
+        timer->deleteLater();
+    });
+    timer->start();
+}
+
+struct Studio {
+    Studio() : window(resources()) {
+        window.show();
+        window.activateWindow();
+        EXPECT_TRUE(QTest::qWaitForWindowActive(&window));
+    }
+    MainWindow window;
+    QAction* action(const QString& name) { return window.findChild<QAction*>(name); }
+};
+
+TEST(MainWindow, FitsA1024x700Screen) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    const QSize minimum = w.minimumSizeHint().expandedTo(w.minimumSize());
+    EXPECT_LE(minimum.width(), 1024);
+    EXPECT_LE(minimum.height(), 700);
+    w.resize(1024, 700);
+    settle();
+    EXPECT_EQ(w.size(), QSize(1024, 700));
+    // Every panel at that size, and the controls one edits with, are on screen in the window.
+    auto* tabs = w.findChild<QTabWidget*>();
+    for (int i = 0; i < tabs->count(); ++i) {
+        tabs->setCurrentIndex(i);
+        settle(20);
+        EXPECT_EQ(w.size(), QSize(1024, 700)) << i;
+    }
+    auto* soil = w.findChild<ui::SoilEditor*>();
+    ASSERT_NE(soil, nullptr);
+    for (QWidget* control : {static_cast<QWidget*>(soil->findChild<QComboBox*>()),
+                             static_cast<QWidget*>(soil->spinBox("phi_deg")),
+                             static_cast<QWidget*>(soil->slider("phi_deg"))}) {
+        const QRect in_window(control->mapTo(&w, QPoint(0, 0)), control->size());
+        EXPECT_TRUE(w.rect().contains(in_window)) << control->objectName().toStdString();
+        EXPECT_FALSE(control->visibleRegion().isEmpty()) << control->objectName().toStdString();
+    }
+}
+
+TEST(MainWindow, OpenedProjectIsUnmodified) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("p1.terra");
+    {
+        Studio studio;
+        auto* document = studio.window.document();
+        ASSERT_TRUE(document->setSoilValue("phi_deg", 33.0));
+        ASSERT_TRUE(document->setLoad(70.0));
+        studio.window.showPanel("stresses");
+        settle();
+        QString error;
+        ASSERT_TRUE(document->save(path, &error)) << error.toStdString();
+    }
+    Studio studio;
+    ASSERT_TRUE(studio.window.openProject(path, true));
+    settle(300);
+    EXPECT_FALSE(studio.window.document()->isModified());
+    EXPECT_FALSE(studio.window.isWindowModified());
+    EXPECT_TRUE(studio.window.windowTitle().startsWith("p1.terra"));
+    EXPECT_FALSE(studio.action("action.undo")->isEnabled());
+    EXPECT_TRUE(studio.window.close());  // no save prompt: it would block here
+}
+
+TEST(MainWindow, CorruptProjectErrorGivesLineAndColumn) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("broken.terra");
+    QFile file(path);
+    ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+    file.write("{\n  \"format\": \"terrastudio-project\",\n  \"version\": 1,,\n}\n");
+    file.close();
+    const auto project = ui::ProjectDocument::load(path);
+    ASSERT_FALSE(project);
+    const std::string message = project.message();
+    EXPECT_NE(message.find("broken.terra:3:16"), std::string::npos) << message;
+    Studio studio;
+    EXPECT_FALSE(studio.window.openProject(path, true));
+    EXPECT_TRUE(studio.window.document()->filePath().isEmpty());  // the open document stays
+}
+
+// The table of docs/user-guide.md "Keyboard shortcuts": each key belongs to exactly one action.
+TEST(MainWindow, EveryShortcutOfTheUserGuideBelongsToOneAction) {
+    Studio studio;
+    const std::vector<std::pair<QString, QString>> guide{{"Ctrl+N", "action.new"},
+                                                         {"Ctrl+O", "action.open"},
+                                                         {"Ctrl+S", "action.save"},
+                                                         {"Ctrl+Shift+S", "action.save_as"},
+                                                         {"Ctrl+Z", "action.undo"},
+                                                         {"Ctrl+Shift+Z", "action.redo"},
+                                                         {"Ctrl+Y", "action.redo"},
+                                                         {"Ctrl+E", "action.export_plot"},
+                                                         {"Ctrl+Shift+E", "action.export_data"},
+                                                         {"Ctrl+Q", "action.quit"},
+                                                         {"Ctrl+1", "action.panel1"},
+                                                         {"Ctrl+5", "action.panel5"},
+                                                         {"F1", "action.help"},
+                                                         {"Ctrl+/", "action.shortcuts"}};
+    for (const auto& [key, name] : guide) {
+        const QKeySequence sequence(key);
+        QStringList owners;
+        for (QAction* action : studio.window.findChildren<QAction*>()) {
+            if (action->shortcuts().contains(sequence)) owners << action->objectName();
+        }
+        EXPECT_EQ(owners, QStringList{name}) << key.toStdString();
+    }
+}
+
+TEST(MainWindow, ShortcutsWorkFromTheKeyboard) {
+    QTemporaryDir dir;
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* document = w.document();
+    auto* tabs = w.findChild<QTabWidget*>();
+
+    QTest::keyClick(&w, Qt::Key_2, Qt::ControlModifier);
+    EXPECT_EQ(tabs->currentIndex(), 1);
+    QTest::keyClick(&w, Qt::Key_1, Qt::ControlModifier);
+    EXPECT_EQ(tabs->currentIndex(), 0);
+
+    ASSERT_TRUE(document->setLoad(70.0));
+    QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier);
+    EXPECT_DOUBLE_EQ(document->project().conditions.load_n, 58.86);
+    QTest::keyClick(&w, Qt::Key_Y, Qt::ControlModifier);
+    EXPECT_DOUBLE_EQ(document->project().conditions.load_n, 70.0);
+    QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier);
+    QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+    EXPECT_DOUBLE_EQ(document->project().conditions.load_n, 70.0);
+
+    bool seen = false;
+    onNextDialog([](QWidget* dialog) { EXPECT_NE(qobject_cast<QFileDialog*>(dialog), nullptr); },
+                 &seen);
+    QTest::keyClick(&w, Qt::Key_S, Qt::ControlModifier | Qt::ShiftModifier);
+    EXPECT_TRUE(seen) << "Ctrl+Shift+S opened no Save As dialog";
+    activate(w);
+
+    QString error;
+    ASSERT_TRUE(document->save(dir.filePath("s.terra"), &error));
+    ASSERT_TRUE(document->setLoad(75.0));
+    QTest::keyClick(&w, Qt::Key_S, Qt::ControlModifier);  // has a file: saves without asking
+    EXPECT_FALSE(document->isModified());
+
+    seen = false;
+    onNextDialog([](QWidget* dialog) { EXPECT_EQ(dialog->windowTitle(), "Export plot"); }, &seen);
+    QTest::keyClick(&w, Qt::Key_E, Qt::ControlModifier);
+    EXPECT_TRUE(seen) << "Ctrl+E opened no export dialog";
+    activate(w);
+
+    QTest::keyClick(&w, Qt::Key_F1);
+    ASSERT_NE(w.helpDialog(), nullptr);
+    EXPECT_TRUE(w.helpDialog()->isVisible());
+    const QTableWidget* table = w.helpDialog()->shortcutTable();
+    QStringList listed;
+    for (int r = 0; r < table->rowCount(); ++r) listed << table->item(r, 0)->text();
+    EXPECT_TRUE(listed.join(" ").contains("Ctrl+Shift+S")) << listed.join(" | ").toStdString();
+    w.helpDialog()->close();
+    activate(w);
+
+    QTest::keyClick(&w, Qt::Key_Q, Qt::ControlModifier);  // unmodified: closes without asking
+    EXPECT_FALSE(w.isVisible());
+}
+
+TEST(MainWindow, CtrlZWorksWithTheCursorInAField) {
+    Studio studio;
+    auto* document = studio.window.document();
+    auto* soil = studio.window.findChild<ui::SoilEditor*>();
+    ui::ValidatedSpinBox* phi = soil->spinBox("phi_deg");
+    phi->setFocus();
+    ASSERT_TRUE(QTest::qWaitFor([&] { return phi->hasFocus(); }, 2000));
+    phi->selectAll();
+    QTest::keyClicks(phi, "33");
+    QTest::keyClick(phi, Qt::Key_Return);
+    ASSERT_EQ(document->undoStack()->count(), 1);
+    ASSERT_TRUE(phi->hasFocus());
+    QTest::keyClick(phi, Qt::Key_Z, Qt::ControlModifier);  // focus still in the field
+    EXPECT_EQ(document->undoStack()->index(), 0);
+    EXPECT_DOUBLE_EQ(phi->value(), 29.0);
+    QTest::keyClick(phi, Qt::Key_Y, Qt::ControlModifier);
+    EXPECT_DOUBLE_EQ(phi->value(), 33.0);
+
+    // Typed but not yet committed: Ctrl+Z drops the typing, the document is untouched.
+    phi->selectAll();
+    QTest::keyClicks(phi, "4");
+    QTest::keyClick(phi, Qt::Key_Z, Qt::ControlModifier);
+    EXPECT_DOUBLE_EQ(phi->value(), 33.0);
+    EXPECT_EQ(document->undoStack()->index(), 1);
+}
+
+}  // namespace
+}  // namespace terra::app

@@ -1,0 +1,49 @@
+#include "widgets/plots/plot_menu.h"
+
+#include <qcustomplot.h>
+
+#include <QApplication>
+#include <QClipboard>
+#include <QMenu>
+
+#include "core/io/csv.h"
+
+namespace terra::ui {
+
+QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* parent) {
+    auto* menu = new QMenu(parent);
+    QCustomPlot* p = &plot;
+    if (hooks.export_plot) {
+        menu->addAction("Export plot…", hooks.export_plot)->setObjectName("plot.export");
+    }
+    menu->addAction("Copy image", [p] { QApplication::clipboard()->setPixmap(p->toPixmap()); })
+        ->setObjectName("plot.copy_image");
+    if (hooks.table) {
+        menu->addAction(
+                "Copy data (CSV)",
+                [table = hooks.table] {
+                    QApplication::clipboard()->setText(QString::fromStdString(io::toCsv(table())));
+                })
+            ->setObjectName("plot.copy_data");
+    }
+    menu->addSeparator();
+    menu->addAction("Reset view",
+                    [p] {
+                        p->rescaleAxes();
+                        p->replot();
+                    })
+        ->setObjectName("plot.reset_view");
+    return menu;
+}
+
+void installPlotMenu(QCustomPlot& plot, PlotMenuHooks hooks) {
+    plot.setContextMenuPolicy(Qt::CustomContextMenu);
+    QCustomPlot* p = &plot;
+    QObject::connect(p, &QWidget::customContextMenuRequested, p, [p, hooks](const QPoint& at) {
+        QMenu* menu = makePlotMenu(*p, hooks, p);
+        menu->setAttribute(Qt::WA_DeleteOnClose);
+        menu->popup(p->mapToGlobal(at));
+    });
+}
+
+}  // namespace terra::ui
