@@ -12,7 +12,10 @@ WheelField make(FieldInfo info, double WheelParameters::*member) {
     return field;
 }
 
-// Up to 5 m: any wheel of a vehicle, and a radius typed in millimetres is caught.
+// From 1 cm (r) and 5 mm (b), below the smallest wheels run on soil (micro-rover and soil-bin
+// wheels are several cm), so that an absurd magnitude (r = 5e-324 m, 1e-300 m) is an input error,
+// not "no equilibrium"; up to 5 m: any wheel of a vehicle, and a value typed in millimetres is
+// caught (docs/reliability.md, "Physical ranges").
 const std::array<WheelField, 2> kFields{{
     make({"r_m",
           "m",
@@ -20,7 +23,7 @@ const std::array<WheelField, 2> kFields{{
           "wheel radius",
           "Radius r of the rigid wheel, in metres (Tables 2.2, 5.1); sinkage h = r (1 − cos θ_f) "
           "(Eq. 2.12).",
-          {0.0, 5.0, true, false}},
+          {0.01, 5.0}},
          &WheelParameters::radius_m),
     make({"b_m",
           "m",
@@ -28,7 +31,7 @@ const std::array<WheelField, 2> kFields{{
           "wheel width",
           "Width b of the rigid wheel, in metres (Tables 2.2, 5.1); it enters Bekker's modulus "
           "K_s = k_c/b + k_φ (Eq. 2.9).",
-          {0.0, 5.0, true, false}},
+          {0.005, 5.0}},
          &WheelParameters::width_m),
 }};
 
