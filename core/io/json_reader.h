@@ -125,6 +125,8 @@ public:
     std::string where(std::string_view key) const;
     const std::string& source() const { return source_; }
     const std::string& path() const { return path_; }
+    /// The keys read or allowed so far (what finish() accepts), in the order they were read.
+    const std::vector<std::string>& knownKeys() const { return known_; }
     std::vector<Issue>& issues() const { return *issues_; }
 
 private:
