@@ -8,6 +8,7 @@
 #include "app/cli/commands.h"
 #include "app/main_window.h"
 #include "core/common/build_info.h"
+#include "core/project/project.h"
 
 namespace {
 
@@ -52,7 +53,25 @@ int runHeadless(int argc, char** argv) {
 }
 
 // `terrastudio` or `terrastudio [gui] [FILE.terra] [--panel NAME] [--screenshots DIR]`.
+// A project named on the command line that cannot be read is a command-line error like any other
+// (exit 2, the file, key and value on stderr), found before any window or dialog exists.
 int runGui(int argc, char** argv) {
+    const terra::io::PresetLocations locations =
+        terra::io::PresetLocations::standard(terra::app::executableDirectory());
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--panel" || arg == "--screenshots") {
+            ++i;
+            continue;
+        }
+        if (arg.size() > 6 && arg.ends_with(".terra")) {
+            const auto project = terra::project::loadProject(arg, &locations);
+            if (!project) {
+                std::cerr << "error: " << project.message() << '\n';
+                return terra::app::kBadInput;
+            }
+        }
+    }
     QApplication application(argc, argv);
     QApplication::setApplicationName("TerraStudio");
     QApplication::setOrganizationName("TerraStudio");

@@ -3,7 +3,8 @@
 # are missing. clang and clang-format are the second compiler and the format check
 # (scripts/check-clang, scripts/check-format); desktop-file-utils and shared-mime-info check the
 # installed desktop entry and MIME type (tests/install_test.cmake). The Python module needs
-# pybind11 and Python's headers, its tests numpy, pytest and Dask's distributed (docs/python.md).
+# pybind11 and Python's headers, its tests numpy, pytest and Dask's distributed (docs/python.md);
+# libclang-rt-14-dev holds libFuzzer and the sanitizer runtimes of clang 14 (scripts/fuzz).
 # Uses sudo only when not root.
 
 TERRA_PACKAGES=(
@@ -13,7 +14,7 @@ TERRA_PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
-  clang clang-format desktop-file-utils shared-mime-info
+  clang clang-format desktop-file-utils shared-mime-info libclang-rt-14-dev
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed
 )
 

@@ -105,17 +105,13 @@ void printHuman(const soil::SoilParameters& soil, const wheel::WheelParameters& 
 
 // The batch CSV's columns: the operating point's field table (contact/operating_fields.h), as
 // the single-point flags (docs/cli.md).
-io::NumericColumn columnOf(const FieldInfo& field) {
-    const bool degrees = field.displayUnit() == "deg";
-    return {field.key, field.range, field.displayUnit(), degrees ? units::degToRad : nullptr};
-}
-const io::NumericColumn kSlip = columnOf(contact::slipField());
-const io::NumericColumn kSlipAngle = columnOf(contact::slipAngleField());
-const io::NumericColumn kEntryAngle = columnOf(contact::entryAngleField());
-const io::NumericColumn kLoad = columnOf(contact::loadField());
-const io::NumericColumn kExitAngle = columnOf(contact::exitAngleField());
-const io::NumericColumn kRutRatio = columnOf(contact::rutRatioField());
-const io::NumericColumn kMaxStressAngle = columnOf(contact::maxStressAngleField());
+const io::NumericColumn kSlip = io::numericColumn(contact::slipField());
+const io::NumericColumn kSlipAngle = io::numericColumn(contact::slipAngleField());
+const io::NumericColumn kEntryAngle = io::numericColumn(contact::entryAngleField());
+const io::NumericColumn kLoad = io::numericColumn(contact::loadField());
+const io::NumericColumn kExitAngle = io::numericColumn(contact::exitAngleField());
+const io::NumericColumn kRutRatio = io::numericColumn(contact::rutRatioField());
+const io::NumericColumn kMaxStressAngle = io::numericColumn(contact::maxStressAngleField());
 
 // Batch mode: one operating point per CSV row.
 int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {

@@ -81,14 +81,16 @@ const FieldInfo& rutRatioField() {
 }
 
 const FieldInfo& loadField() {
-    // Up to 100 kN per wheel: far beyond any field robot, and a load typed in grams is caught.
+    // From 0.01 N (one gram), below which the sinkage solver finds no equilibrium worth the name
+    // (1e-300 N was "F_z does not rise through the load"), up to 100 kN per wheel: far beyond any
+    // field robot, and a load typed in grams is caught.
     static const FieldInfo field{"load_N",
                                  "N",
                                  "W",
                                  "wheel load",
                                  "Vertical load W on the wheel, in newtons; the entry angle is "
                                  "solved so that F_z = W (section 2.6.1).",
-                                 {0.0, 1e5, true, false}};
+                                 {0.01, 1e5}};
     return field;
 }
 

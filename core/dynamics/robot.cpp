@@ -20,7 +20,7 @@ const std::array<RobotField, 8> kFields{{
           "m_c",
           "chassis mass",
           "Mass of the chassis without its wheels, in kg (docs/dynamics.md).",
-          {0.0, 1e6, true, false}},
+          {0.01, 1e6}},
          &RobotParameters::chassis_mass_kg, true),
     make({"wheel_mass_kg",
           "kg",
@@ -36,21 +36,21 @@ const std::array<RobotField, 8> kFields{{
           "wheel spin inertia",
           "Moment of inertia of one wheel about its axle, in kg·m²; about its diameters the rover "
           "takes half of it (a disc).",
-          {0.0, 1e6, true, false}},
+          {1e-6, 1e6}},
          &RobotParameters::wheel_spin_inertia_kg_m2, false),
     make({"wheelbase_m",
           "m",
           "L",
           "wheelbase",
           "Distance from the front to the rear axle, in m.",
-          {0.0, 100.0, true, false}},
+          {0.01, 100.0}},
          &RobotParameters::wheelbase_m, true),
     make({"track_m",
           "m",
           "T",
           "track",
           "Distance between the left and right wheel centres, in m.",
-          {0.0, 100.0, true, false}},
+          {0.01, 100.0}},
          &RobotParameters::track_m, true),
     make({"com_height_m",
           "m",
@@ -83,7 +83,7 @@ const FieldInfo kInertia{"chassis_inertia_kg_m2",
                          "chassis inertia",
                          "Principal moments [Ixx, Iyy, Izz] of the chassis about its centre of "
                          "mass, body axes x forward, y left, z up, in kg·m².",
-                         {0.0, 1e6, true, false}};
+                         {1e-6, 1e6}};
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/common/range.h"
+#include "core/common/units.h"
 #include "core/io/atomic_file.h"
 
 namespace terra::io {
@@ -178,6 +179,11 @@ std::optional<double> readCell(const std::string& cell, const NumericColumn& col
                     " when converted to SI units (" + formatNumber(si) + "); " + allowed);
     }
     return value;
+}
+
+NumericColumn numericColumn(const FieldInfo& field) {
+    const bool degrees = field.displayUnit() == "deg";
+    return {field.key, field.range, field.displayUnit(), degrees ? units::degToRad : nullptr};
 }
 
 }  // namespace terra::io

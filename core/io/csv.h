@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/common/range.h"
 #include "core/common/table.h"
@@ -52,6 +53,10 @@ struct NumericColumn {
     std::string unit;
     double (*to_si)(double) = nullptr;
 };
+
+/// The column of a field of a field table (core/common/field.h): its key, range and display unit;
+/// a field shown in degrees is converted to radians.
+NumericColumn numericColumn(const FieldInfo& field);
 
 /// Reads one cell of `column` and returns its value in the file's unit, or appends an issue at
 /// `where` ("data.csv:12") naming the column, the value (quoted, at most ~80 characters) and the

@@ -71,7 +71,7 @@ const std::array<SoilField, 11> kFields{{
           "shear deformation modulus",
           "Shear deformation modulus K of Janosi–Hanamoto's τ = τ_max (1 − e^(−j/K)) (Eq. 2.20), "
           "in metres.",
-          {0.0, 0.5, true, false}},
+          {1e-4, 0.5}},
          &SoilParameters::shear_modulus_m),
     make({"gamma_kN_m3",
           "kN/m³",
@@ -79,7 +79,7 @@ const std::array<SoilField, 11> kFields{{
           "specific weight",
           "Specific weight γ of the soil, used by the bulldozing resistance (Eq. 2.27), in "
           "kN/m³.",
-          {0.0, 30.0, true, false},
+          {0.5, 30.0},
           1e3},
          &SoilParameters::unit_weight_n_m3),
     make({"a0",
@@ -102,7 +102,7 @@ const std::array<SoilField, 11> kFields{{
           "shear deformation limit",
           "Largest shear deformation j_max a smooth wheel builds up (Eq. 2.16), in metres; "
           "absent: no limit.",
-          {0.0, 1.0, true, false}},
+          {1e-4, 1.0}},
          &SoilParameters::max_shear_deformation_m, false),
     make({"n1",
           "-",

@@ -14,8 +14,11 @@ WheelField make(FieldInfo info, double WheelParameters::*member, bool required =
     return field;
 }
 
-// Up to 5 m: any wheel of a vehicle, and a radius typed in millimetres is caught.
-// Grousers: up to 0.5 m high and thick (a lug typed in millimetres is caught), up to 360 of them.
+// From 1 cm (r) and 5 mm (b), below the smallest wheels run on soil (micro-rover and soil-bin
+// wheels are several cm), so that an absurd magnitude (r = 5e-324 m, 1e-300 m) is an input error,
+// not "no equilibrium"; up to 5 m: any wheel of a vehicle, and a value typed in millimetres is
+// caught (docs/reliability.md, "Physical ranges"). Grousers: up to 0.5 m high and thick (a lug
+// typed in millimetres is caught), up to 360 of them.
 const std::array<WheelField, 5> kFields{{
     make({"r_m",
           "m",
@@ -23,7 +26,7 @@ const std::array<WheelField, 5> kFields{{
           "wheel radius",
           "Radius r of the rigid wheel, in metres (Tables 2.2, 5.1); sinkage h = r (1 − cos θ_f) "
           "(Eq. 2.12).",
-          {0.0, 5.0, true, false}},
+          {0.01, 5.0}},
          &WheelParameters::radius_m),
     make({"b_m",
           "m",
@@ -31,7 +34,7 @@ const std::array<WheelField, 5> kFields{{
           "wheel width",
           "Width b of the rigid wheel, in metres (Tables 2.2, 5.1); it enters Bekker's modulus "
           "K_s = k_c/b + k_φ (Eq. 2.9).",
-          {0.0, 5.0, true, false}},
+          {0.005, 5.0}},
          &WheelParameters::width_m),
     make({"grouser_height_m",
           "m",

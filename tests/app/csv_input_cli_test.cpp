@@ -128,7 +128,7 @@ TEST_F(CsvInput, WheelBatchRejectsEveryBadCellWithFileLineColumnValueAndRange) {
         {"0.2,0,1e-320,,,,",
          "entry_angle_deg = '1e-320' is subnormal (magnitude below 2.2e-308), too small to "
          "compute with; allowed range (0, 90] deg"},
-        {"0.2,0,,1e999,,,", "load_N = '1e999' overflows a double; allowed range (0, 1e+05] N"},
+        {"0.2,0,,1e999,,,", "load_N = '1e999' overflows a double; allowed range [0.01, 1e+05] N"},
         {"0.2,0,,58.86,5,,", "exit_angle_deg = 5 is outside the allowed range [-90, 0] deg"},
         {"0.2,0,,58.86,,-inf,", "rut_ratio = '-inf' is not a finite number; allowed range [0, 1]"},
         {"0.2,0,,58.86,,,abc",

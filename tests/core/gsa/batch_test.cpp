@@ -125,7 +125,7 @@ TEST(Batch, BadInputNamesTheArrayTheIndexTheValueAndTheRange) {
               std::string::npos);
     const double no_load = -5.0;
     EXPECT_NE(messageOf(sandyLoam(), {3, slip, {}, {&no_load, 1}, {}, {}})
-                  .find("load_N: -5 is outside the allowed range (0, 1e+05] N"),
+                  .find("load_N: -5 is outside the allowed range [0.01, 1e+05] N"),
               std::string::npos);
     std::vector<double> many(40, 999.0);
     const std::string listed =

@@ -345,7 +345,7 @@ TEST(WheelFiles, NegativeRadius) {
     ASSERT_FALSE(wheel.ok());
     ASSERT_EQ(wheel.issues().size(), 1u) << wheel.message();
     EXPECT_EQ(wheel.issues()[0].where, file.string() + ": r_m");
-    EXPECT_EQ(wheel.issues()[0].message, "-0.092 is outside the allowed range (0, 5] m");
+    EXPECT_EQ(wheel.issues()[0].message, "-0.092 is outside the allowed range [0.01, 5] m");
 }
 
 // ---- Bad values in memory --------------------------------------------------------------------
@@ -380,9 +380,9 @@ TEST(SoilJson, OutOfRangeValuesNameFieldValueAndRange) {
     for (const Case& c : {Case{"phi_deg", 75.0, "75 is outside the allowed range [0, 60) deg"},
                           Case{"phi_deg", 60.0, "60 is outside the allowed range [0, 60) deg"},
                           Case{"n", 0.0, "0 is outside the allowed range [0.1, 2]"},
-                          Case{"K_m", 0.0, "0 is outside the allowed range (0, 0.5] m"},
+                          Case{"K_m", 0.0, "0 is outside the allowed range [1e-04, 0.5] m"},
                           Case{"c_kPa", -0.5, "-0.5 is outside the allowed range [0, 200] kPa"},
-                          Case{"jmax_m", 0.0, "0 is outside the allowed range (0, 1] m"}}) {
+                          Case{"jmax_m", 0.0, "0 is outside the allowed range [1e-04, 1] m"}}) {
         json j = sandyLoamJson();
         j[c.key] = c.value;
         const Result<soil::SoilParameters> soil = soilFromJson(j, "f.json");
@@ -469,7 +469,7 @@ TEST(WheelJson, BadInputs) {
     ASSERT_FALSE(wheel.ok());
     ASSERT_EQ(wheel.issues().size(), 1u);
     EXPECT_EQ(wheel.issues()[0].where, "w.json: b_m");
-    EXPECT_EQ(wheel.issues()[0].message, "missing; expected a number in (0, 5] m");
+    EXPECT_EQ(wheel.issues()[0].message, "missing; expected a number in [0.005, 5] m");
 
     json typo = good;
     typo["radius"] = 0.1;
@@ -485,7 +485,7 @@ TEST(WheelJson, BadInputs) {
     wheel = wheelFromJson(text, "");
     ASSERT_FALSE(wheel.ok());
     EXPECT_EQ(wheel.issues()[0].where, "r_m");
-    EXPECT_TRUE(contains(wheel.issues()[0].message, "expected a number in (0, 5]"));
+    EXPECT_TRUE(contains(wheel.issues()[0].message, "expected a number in [0.01, 5]"));
 }
 
 // ---- Resolving a name or a path --------------------------------------------------------------

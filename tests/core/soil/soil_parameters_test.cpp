@@ -131,10 +131,10 @@ TEST(SoilValidate, ReportsEveryOutOfRangeFieldWithValueAndRange) {
     EXPECT_EQ(c->message, "-1 is outside the allowed range [0, 200] kPa");
     const Issue* k = issueAt(issues, "K_m");
     ASSERT_NE(k, nullptr);
-    EXPECT_EQ(k->message, "0 is outside the allowed range (0, 0.5] m");
+    EXPECT_EQ(k->message, "0 is outside the allowed range [1e-04, 0.5] m");
     const Issue* gamma = issueAt(issues, "gamma_kN_m3");
     ASSERT_NE(gamma, nullptr);
-    EXPECT_EQ(gamma->message, "31 is outside the allowed range (0, 30] kN/m³");
+    EXPECT_EQ(gamma->message, "31 is outside the allowed range [0.5, 30] kN/m³");
     const Issue* kphi = issueAt(issues, "kphi");
     ASSERT_NE(kphi, nullptr);
     EXPECT_EQ(kphi->message, "2e+05 is outside the allowed range [0, 1e+05] kN/m^(n+2)");
@@ -185,7 +185,7 @@ TEST(SoilValidate, RequireValidThrowsInvalidArgumentNamingTheField) {
         EXPECT_NE(what.find("soil.phi_deg: 75 is outside the allowed range [0, 60) deg"),
                   std::string::npos)
             << what;
-        EXPECT_NE(what.find("soil.K_m: -0.01 is outside the allowed range (0, 0.5] m"),
+        EXPECT_NE(what.find("soil.K_m: -0.01 is outside the allowed range [1e-04, 0.5] m"),
                   std::string::npos)
             << what;
     }
@@ -257,7 +257,7 @@ TEST(SoilValidate, InvalidShearLimitsAreReported) {
         const std::vector<Issue> issues = validate(soil);
         ASSERT_EQ(issues.size(), 1u) << jmax << ": " << formatIssues(issues);
         EXPECT_EQ(issues[0].where, "jmax_m");
-        EXPECT_NE(issues[0].message.find("(0, 1] m"), std::string::npos) << issues[0].message;
+        EXPECT_NE(issues[0].message.find("[1e-04, 1] m"), std::string::npos) << issues[0].message;
     }
 }
 
@@ -326,7 +326,7 @@ TEST(WheelValidate, NonPositiveRadiusIsReported) {
         ASSERT_EQ(issues.size(), 1u) << r;
         EXPECT_EQ(issues[0].where, "r_m");
         EXPECT_EQ(issues[0].message, (r == 0.0 ? "0" : "-0.092") +
-                                         std::string(" is outside the allowed range (0, 5] m"));
+                                         std::string(" is outside the allowed range [0.01, 5] m"));
     }
 }
 
@@ -336,13 +336,13 @@ TEST(WheelValidate, NonPositiveOrNaNWidthIsReported) {
     std::vector<Issue> issues = validate(wheel, "wheel.");
     ASSERT_EQ(issues.size(), 1u);
     EXPECT_EQ(issues[0].where, "wheel.b_m");
-    EXPECT_EQ(issues[0].message, "0 is outside the allowed range (0, 5] m");
+    EXPECT_EQ(issues[0].message, "0 is outside the allowed range [0.005, 5] m");
 
     wheel.width_m = kNaN;
     issues = validate(wheel);
     ASSERT_EQ(issues.size(), 1u);
     EXPECT_EQ(issues[0].where, "b_m");
-    EXPECT_EQ(issues[0].message, "nan is not a finite number; allowed range (0, 5] m");
+    EXPECT_EQ(issues[0].message, "nan is not a finite number; allowed range [0.005, 5] m");
 }
 
 TEST(WheelValidate, BothFieldsReportedAndRequireValidThrows) {
@@ -356,7 +356,7 @@ TEST(WheelValidate, BothFieldsReportedAndRequireValidThrows) {
     } catch (const std::invalid_argument& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("wheel.r_m: nan is not a finite number"), std::string::npos) << what;
-        EXPECT_NE(what.find("wheel.b_m: -0.1 is outside the allowed range (0, 5] m"),
+        EXPECT_NE(what.find("wheel.b_m: -0.1 is outside the allowed range [0.005, 5] m"),
                   std::string::npos)
             << what;
     }
