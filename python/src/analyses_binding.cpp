@@ -40,7 +40,7 @@ const char* statusName(analysis::Outcome::Status status) {
 
 // A data set given as columns (the CSV columns of data_set.h), read by the CSV reader so that
 // the same rows are refused with the same messages.
-identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_rows) {
+identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_rows, bool refine) {
     std::vector<std::string> names;
     std::vector<std::vector<double>> values;
     for (auto [key, value] : columns) {
@@ -62,9 +62,12 @@ identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_r
             csv += (c ? "," : "") + formatNumber(values[c][r]);  // shortest round trip
         csv += '\n';
     }
+    // The columns the identification's own CSV reader insists on (the full model reads data
+    // without an entry angle and with any channels).
     auto read = identification::parseDataSet(
         csv, "data",
-        skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop);
+        skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop,
+        refine ? identification::ColumnNeeds::kFullModel : identification::ColumnNeeds::kDecoupled);
     if (!read) raiseIssues(read.issues());
     if (read->data.samples.empty()) throw std::invalid_argument("data: no valid samples");
     return read->data;
@@ -90,7 +93,8 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
     if (!data.is_none()) {
         auto* identification = std::any_cast<analysis::IdentificationSettings>(&typed);
         if (!identification) throw std::invalid_argument(type_name + " takes no data");
-        identification->data = dataFromColumns(data, identification->skip_bad_rows);
+        identification->data =
+            dataFromColumns(data, identification->skip_bad_rows, identification->refine);
         identification->csv = "data";
     }
     analysis::Outcome outcome;
