@@ -432,7 +432,8 @@ TEST(Cli, RenderRejectsAZeroLoadWithTheRange) {
     const CliRun r =
         run("render --soil sandy-loam --wheel A --load 0 --out /tmp/terra_render_never");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("--load: 0 is outside the allowed range [0.01, 1e+05] N"), std::string::npos)
+    EXPECT_NE(r.err.find("--load: 0 is outside the allowed range [0.01, 1e+05] N"),
+              std::string::npos)
         << r.err;
     EXPECT_FALSE(std::filesystem::exists("/tmp/terra_render_never"));
 }
