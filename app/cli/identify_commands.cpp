@@ -69,8 +69,204 @@ struct IdentifyOptions {
     std::vector<std::string> noise;  // fx=, fz=, my= noise levels for the refinement weights
     std::optional<double> jmax_m;
     std::string stream;  // --stream FILE: one estimate per sample
-    std::size_t window = identification::StreamingOptions{}.window;
+    std::size_t window = identification::StreamingEstimatorOptions{}.window;
+    // The full model's global identification (core/identification/identify.h).
+    std::vector<std::string> prior;  // name=mean±std items, or one soil preset/file
+    std::optional<double> holdout;   // fraction in (0, 1)
+    std::optional<int> folds;        // k ≥ 2
+    std::optional<int> starts;       // design points
+    std::string loss = "l2";
+    std::optional<double> load_n;  // W of rows without a W_N cell
 };
+
+const Range kHoldoutRange{0.0, 1.0, true, true};
+const Range kFoldsRange{2.0, 1000.0};
+const Range kStartsRange{0.0, 100000.0};
+
+// --prior items: NAME=MEAN±STD (or +-) in the units of parameterInfo(), or one soil (preset or
+// JSON file) whose values become the means with the spreads of PriorSpreads.
+void parsePriors(const std::vector<std::string>& items, const io::PresetLocations& locations,
+                 analysis::IdentificationSettings& settings) {
+    std::vector<Issue> issues;
+    for (const std::string& item : items) {
+        if (item.find('=') != std::string::npos) {
+            identification::Priors scratch;
+            for (const Issue& issue : identification::parsePriorItem(item, scratch))
+                issues.push_back({"--prior", issue.where + ": " + issue.message});
+            settings.prior_items.push_back(item);
+            continue;
+        }
+        if (settings.prior_soil) {
+            issues.push_back({"--prior " + item, "a second soil prior (after " +
+                                                     settings.prior_soil_name +
+                                                     "); give one soil and NAME=MEAN±STD items"});
+            continue;
+        }
+        ModelOptions names;
+        names.soil = item;
+        try {
+            settings.prior_soil = names.soilParameters(locations);
+            settings.prior_soil_name = item;
+        } catch (const InputError& e) {
+            issues.push_back({"--prior " + item,
+                              std::string("neither NAME=MEAN±STD (e.g. phi_deg=30±5, names a0, a1, "
+                                          "Ks, n, c_kPa, phi_deg, K_m) nor a soil: ") +
+                                  e.what()});
+        }
+    }
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+}
+
+// The global identification's options from the flags (checked: exit 2 names the flag, the
+// value and the allowed range).
+void applyGlobalOptions(const IdentifyOptions& o, const io::PresetLocations& locations,
+                        analysis::IdentificationSettings& settings) {
+    std::vector<Issue> issues;
+    if (o.holdout) checkRange(issues, "--holdout", *o.holdout, kHoldoutRange);
+    if (o.folds) checkRange(issues, "--folds", *o.folds, kFoldsRange);
+    if (o.holdout && o.folds)
+        issues.push_back({"--holdout", "give --holdout FRACTION or --folds K, not both"});
+    if (o.starts) checkRange(issues, "--starts", *o.starts, kStartsRange);
+    const auto loss = analysis::lossFromName(o.loss);
+    if (!loss) {
+        issues.push_back({"--loss", "'" + o.loss + "' is not a loss; allowed: l2, huber, cauchy"});
+    }
+    if (o.load_n) {
+        const FieldInfo& load = contact::loadField();
+        checkRange(issues, "--load", *o.load_n, load.range, load.displayUnit());
+    }
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    parsePriors(o.prior, locations, settings);
+    settings.holdout_fraction = o.holdout.value_or(0.0);
+    settings.folds = o.folds.value_or(0);
+    if (o.starts) settings.design_points = *o.starts;
+    settings.loss = *loss;
+    settings.load_n = o.load_n;
+}
+
+// Parameters in the output's keys and units (identified_parameters.h) from SI values.
+nlohmann::json userJson(const identification::ParameterVector& si) {
+    nlohmann::json j = nlohmann::json::object();
+    for (int k = 0; k < identification::kFullParameterCount; ++k) {
+        const analysis::IdentifiedField& field =
+            analysis::fieldOf(static_cast<identification::FullParameter>(k));
+        j[field.key] = si[static_cast<std::size_t>(k)] / field.to_si;
+    }
+    return j;
+}
+
+// Per-channel values of the channels in use, by column name.
+nlohmann::json channelJson(const identification::ChannelValues& values,
+                           const std::array<bool, identification::kChannelCount>& used) {
+    nlohmann::json j = nlohmann::json::object();
+    for (int c = 0; c < identification::kChannelCount; ++c) {
+        if (used[static_cast<std::size_t>(c)])
+            j[identification::channelNames()[static_cast<std::size_t>(c)]] =
+                values[static_cast<std::size_t>(c)];
+    }
+    return j;
+}
+
+// The keys the global identification adds: prior, holdout, ambiguity, gradient_norm (and what
+// the fit started from, its data source, χ², noise levels).
+void addGlobalJson(const analysis::IdentificationResult& result, nlohmann::json& j) {
+    const identification::IdentificationReport& r = *result.report;
+    nlohmann::json prior = nlohmann::json::object();
+    for (int k = 0; k < identification::kFullParameterCount; ++k) {
+        const identification::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
+        if (!c.active) continue;
+        const analysis::IdentifiedField& field =
+            analysis::fieldOf(static_cast<identification::FullParameter>(k));
+        prior[field.key] = {{"prior_mean", c.prior_mean / field.to_si},
+                            {"prior_std", c.prior_std / field.to_si},
+                            {"posterior_mean", c.posterior_mean / field.to_si},
+                            {"posterior_std", c.posterior_std / field.to_si},
+                            {"shift_in_prior_std", c.shift_in_prior_std},
+                            {"std_ratio", c.std_ratio}};
+    }
+    j["prior"] = prior.empty() ? nlohmann::json() : prior;
+    if (r.holdout.computed) {
+        j["holdout"] = {
+            {"folds", r.holdout.folds},
+            {"samples", r.holdout.samples},
+            {"failed", r.holdout.failed},
+            {"rms", channelJson(r.holdout.rms, r.holdout.channels)},
+            {"rms_in_fit", channelJson(r.holdout.rms_in_fit, r.holdout.channels)},
+            {"rms_over_noise", channelJson(r.holdout.rms_over_noise, r.holdout.channels)}};
+    } else {
+        j["holdout"] = nullptr;
+    }
+    nlohmann::json ambiguity = nlohmann::json::array();
+    for (const identification::Minimum& m : r.ambiguity) {
+        ambiguity.push_back({{"parameters", userJson(m.parameters)},
+                             {"std", userJson(m.std)},
+                             {"chi2", m.chi2},
+                             {"delta_chi2", m.delta_chi2},
+                             {"start", m.label}});
+    }
+    j["ambiguity"] = ambiguity;
+    j["ambiguity_delta_chi2"] = r.ambiguity_delta_chi2;
+    j["gradient_norm"] = r.gradient_norm;
+    j["newton_decrement"] = r.newton_decrement;
+    j["chi2"] = r.chi2;
+    j["start"] = result.start_description;
+    j["source"] = r.setup.description;
+    j["noise"] = channelJson(r.noise, r.setup.channels);
+    j["noise_estimated"] = r.noise_estimated;
+}
+
+// The same for a person.
+void printGlobal(const analysis::IdentificationResult& result) {
+    const identification::IdentificationReport& r = *result.report;
+    std::cout << "  started from: " << result.start_description << '\n';
+    std::cout << "  data: " << r.setup.description << "; chi2 = " << roundSignificant(r.chi2, 5)
+              << ", gradient norm = " << roundSignificant(r.gradient_norm, 3)
+              << ", Newton decrement = " << roundSignificant(r.newton_decrement, 3) << '\n';
+    bool header = false;
+    for (int k = 0; k < identification::kFullParameterCount; ++k) {
+        const identification::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
+        if (!c.active) continue;
+        const analysis::IdentifiedField& field =
+            analysis::fieldOf(static_cast<identification::FullParameter>(k));
+        if (!header)
+            std::cout << "  prior -> posterior (shift in prior std, posterior/prior std):\n";
+        header = true;
+        std::cout << "    " << field.symbol << ": "
+                  << roundSignificant(c.prior_mean / field.to_si, 4) << " ± "
+                  << roundSignificant(c.prior_std / field.to_si, 3) << " -> "
+                  << roundSignificant(c.posterior_mean / field.to_si, 4) << " ± "
+                  << roundSignificant(c.posterior_std / field.to_si, 3) << "  ("
+                  << fixed(c.shift_in_prior_std, 2) << ", " << fixed(c.std_ratio, 2) << ")\n";
+    }
+    if (r.holdout.computed) {
+        std::cout << "  held-out RMS (" << r.holdout.samples << " samples, " << r.holdout.folds
+                  << " fold(s)), in noise std:";
+        for (int c = 0; c < identification::kChannelCount; ++c) {
+            if (!r.holdout.channels[static_cast<std::size_t>(c)]) continue;
+            std::cout << ' ' << identification::channelNames()[static_cast<std::size_t>(c)] << ' '
+                      << fixed(r.holdout.rms_over_noise[static_cast<std::size_t>(c)], 2)
+                      << " (in fit "
+                      << fixed(r.holdout.rms_in_fit[static_cast<std::size_t>(c)] /
+                                   r.noise[static_cast<std::size_t>(c)],
+                               2)
+                      << ")";
+        }
+        std::cout << '\n';
+    }
+    for (const identification::Minimum& m : r.ambiguity) {
+        std::cout << "  AMBIGUOUS: another minimum with delta chi2 = "
+                  << roundSignificant(m.delta_chi2, 3) << " (threshold "
+                  << roundSignificant(r.ambiguity_delta_chi2, 3) << "):";
+        for (int k = 0; k < identification::kFullParameterCount; ++k) {
+            const analysis::IdentifiedField& field =
+                analysis::fieldOf(static_cast<identification::FullParameter>(k));
+            std::cout << ' ' << field.key << " = "
+                      << roundSignificant(m.parameters[static_cast<std::size_t>(k)] / field.to_si,
+                                          4);
+        }
+        std::cout << '\n';
+    }
+}
 
 // Decimals of an identified parameter in the text output (K_s in kPa/m^n is in the thousands).
 int decimals(const analysis::IdentifiedField& field) {
@@ -95,58 +291,94 @@ nlohmann::json parametersJson(const identification::DecoupledParameters& p) {
     return j;
 }
 
-// `identify --stream FILE`: the samples fed one at a time to the streaming identifier
-// (core/analysis/streaming_identification.h), one line per sample (JSON Lines with --json), then
-// the detected soil changes.
+// `identify --stream FILE`: the samples fed one at a time to the streaming estimator on the full
+// model (core/analysis/streaming_identification.h), one line per sample (JSON Lines with --json):
+// the estimate with its std, the normalised innovation, the CUSUM, and a confirmed change of
+// soil as `change_at` (the sample where it began) on the line of the sample that confirmed it.
 void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
-               const identification::DecoupledParameters& guess) {
+               const std::optional<soil::SoilParameters>& guess) {
     analysis::StreamingSettings settings;
     settings.csv = o.stream;
     settings.skip_bad_rows = o.skip_bad_rows;
-    settings.options.initial = guess;
     settings.options.window = o.window;
+    settings.options.fit.load_n = o.load_n;
+    if (o.jmax_m) {
+        std::vector<Issue> issues;
+        const soil::SoilField& jmax = *soil::findSoilField("jmax_m");
+        checkRange(issues, "--jmax", *o.jmax_m, jmax.range, jmax.displayUnit());
+        if (!issues.empty()) throw InputError(formatIssues(issues));
+        settings.options.fit.max_shear_deformation_m = *o.jmax_m;
+    }
+    if (o.load_n) {
+        std::vector<Issue> issues;
+        const FieldInfo& load = contact::loadField();
+        checkRange(issues, "--load", *o.load_n, load.range, load.displayUnit());
+        if (!issues.empty()) throw InputError(formatIssues(issues));
+    }
+    if (guess) {
+        settings.options.fit.starts.push_back(
+            {"guess " + o.guess, identification::fromSoil(*guess, inputs.wheel)});
+    }
     analysis::StreamSource source;
     try {
         source = analysis::streamSource(inputs, settings);
     } catch (const std::invalid_argument& e) {
         throw InputError(std::string(e.what()) + "\n(use --skip-bad-rows to skip bad rows)");
     }
-    // The data are read: a signal from now on stops the identifier after the sample in hand.
+    // The data are read: a signal from now on stops the estimator after the sample in hand.
     const SignalCancellation cancellation;
-    const analysis::StreamingResult result = analysis::playStreaming(
-        std::move(source), inputs.wheel, settings.options, cancellation.flag());
+    analysis::StreamingResult result;
+    try {
+        result = analysis::playStreaming(std::move(source), inputs.wheel, settings.options,
+                                         cancellation.flag());
+    } catch (const std::invalid_argument& e) {
+        throw InputError(o.stream + ": " + e.what());
+    }
     for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
+    const auto fields = analysis::identifiedFields();
     if (!o.json) {
         std::cout << "sample  time_s";
-        for (const analysis::IdentifiedField& field : analysis::identifiedFields())
-            std::cout << ' ' << std::setw(8) << field.key;
-        std::cout << "   score  window\n";
+        for (const analysis::IdentifiedField& field : fields) {
+            if (analysis::fullParameterOf(field))
+                std::cout << ' ' << std::setw(8) << field.key << ' ' << std::setw(8) << "±std";
+        }
+        std::cout << "     nis   cusum\n";
     }
     for (const analysis::StreamFrame& frame : result.frames) {
-        const identification::StreamUpdate& u = frame.update;
+        const identification::StreamEstimate& u = frame.estimate;
         if (o.json) {
             nlohmann::json j{{"sample", u.index},
                              {"estimated", u.estimated},
-                             {"window", u.window_size},
-                             {"score", roundSignificant(u.residual_score, 4)}};
+                             {"used", u.used},
+                             {"nis", roundSignificant(u.nis, 6)},
+                             {"cusum", roundSignificant(u.cusum, 6)}};
             j["time_s"] = frame.time_s;
-            if (u.estimated) j.update(parametersJson(u.parameters));
-            if (u.change_at) j["change_at"] = *u.change_at;
+            if (u.estimated) {
+                j.update(parametersJson(frame.parameters));
+                j["std"] = userJson(u.std);
+            }
+            if (u.change_rejected) j["change_rejected"] = true;
+            if (u.change_detected && u.change_at) j["change_at"] = *u.change_at;
             std::cout << j.dump() << '\n';
             continue;
         }
         std::cout << std::setw(6) << u.index << ' ' << std::setw(7) << fixed(frame.time_s, 2);
         if (u.estimated) {
-            for (const analysis::IdentifiedField& field : analysis::identifiedFields()) {
+            for (const analysis::IdentifiedField& field : fields) {
+                const auto k = analysis::fullParameterOf(field);
+                if (!k) continue;
                 std::cout << ' ' << std::setw(8)
-                          << fixed(field.userValue(u.parameters), decimals(field));
+                          << fixed(field.userValue(frame.parameters), decimals(field)) << ' '
+                          << std::setw(8)
+                          << roundSignificant(u.std[static_cast<std::size_t>(*k)] / field.to_si, 2);
             }
         } else {
-            std::cout << "   (collecting samples)                                              ";
+            std::cout << "   (collecting samples for the first fit)";
         }
-        std::cout << ' ' << std::setw(7) << fixed(u.residual_score, 2) << ' ' << std::setw(7)
-                  << u.window_size;
-        if (u.change_at) std::cout << "  soil change since sample " << *u.change_at;
+        std::cout << ' ' << std::setw(7) << fixed(u.nis, 2) << ' ' << std::setw(7)
+                  << fixed(u.cusum, 2);
+        if (u.change_detected && u.change_at)
+            std::cout << "  soil change confirmed, began at sample " << *u.change_at;
         std::cout << '\n';
     }
     const std::string note = "cancelled by " + cancellation.signalName() + " after " +
@@ -156,8 +388,8 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         if (result.cancelled)
             std::cout << nlohmann::json{{"cancelled", true}, {"note", note}}.dump() << '\n';
     } else {
-        std::cout << (result.changes.empty() ? std::string("no soil change detected")
-                                             : "soil changes detected at samples:");
+        std::cout << (result.changes.empty() ? std::string("no soil change confirmed")
+                                             : "soil changes confirmed, beginning at samples:");
         for (std::size_t c : result.changes) std::cout << ' ' << c;
         std::cout << '\n';
         if (result.cancelled) std::cout << note << '\n';
@@ -243,29 +475,51 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     });
 
     auto identify = std::make_shared<IdentifyOptions>();
-    CLI::App* i = app.add_subcommand("identify",
-                                     "Identify soil parameters from wheel data: the decoupled "
-                                     "three-step fit (Eqs. 4.12, 4.17, 4.18)");
+    CLI::App* i = app.add_subcommand(
+        "identify",
+        "Identify soil parameters from wheel data: the global identification on the full model "
+        "(no start needed), or the decoupled three-step fit (Eqs. 4.12, 4.17, 4.18)");
     CLI::Option* data_option = i->add_option(
-        "--data", identify->data, "Data set CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm)");
+        "--data", identify->data,
+        "Data set CSV: slip, entry_angle_deg, Fx_N, Fz_N, My_Nm; or from the load: slip, W_N (or "
+        "--load), any of Fx_N, My_Nm, sinkage_m, Fz_N");
     CLI::Option* stream_option =
         i->add_option("--stream", identify->stream,
                       "Streaming identification: feed the samples of this CSV one at a time, one "
                       "line of estimates per sample");
     data_option->excludes(stream_option);
-    i->add_option("--window", identify->window, "With --stream: samples in the sliding window")
+    i->add_option("--window", identify->window,
+                  "With --stream: samples in the moving horizon (older ones live on in the "
+                  "arrival cost)")
         ->capture_default_str()
-        ->check(CLI::Range(std::size_t{12}, std::size_t{100000}));
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1000}));
     i->add_option("--wheel", identify->wheel, "Wheel preset or JSON file")->capture_default_str();
     i->add_option("--guess", identify->guess,
-                  "Initial guess: soil preset or JSON file (default: thesis chapter 5)");
+                  "Optional extra start: soil preset or JSON file (the global search needs none; "
+                  "with --no-refine the decoupled fit's start, default thesis chapter 5)");
     i->add_flag("--json", identify->json, "JSON output");
     i->add_flag("--skip-bad-rows", identify->skip_bad_rows,
                 "Skip invalid rows instead of stopping");
     i->add_flag("--refine,!--no-refine", identify->refine,
-                "Refine a0, a1, Ks, n, c, phi, K with the full model (removes the linearisation "
-                "bias; the default); --no-refine: the decoupled fit alone")
+                "Identify a0, a1, Ks, n, c, phi, K on the full model by a global search (removes "
+                "the linearisation bias; the default); --no-refine: the decoupled fit alone")
         ->capture_default_str();
+    i->add_option("--prior", identify->prior,
+                  "Gaussian priors: NAME=MEAN±STD (or +-) with NAME a0, a1, Ks [kPa/m^n], n, "
+                  "c_kPa, phi_deg, K_m, and/or one soil preset or file (±0.1 a0/a1, ±50 % Ks, c, "
+                  "K, ±0.2 n, ±5 deg phi); repeatable")
+        ->delimiter(',');
+    i->add_option("--holdout", identify->holdout,
+                  "Held-out error: predict this fraction (0, 1) of the samples from a fit "
+                  "without them");
+    i->add_option("--folds", identify->folds, "Held-out error by K-fold cross-validation (K ≥ 2)");
+    i->add_option("--starts", identify->starts,
+                  "Points of the space-filling design of starts (default 64; presets and --guess "
+                  "come on top)");
+    i->add_option("--loss", identify->loss, "Loss: l2, huber or cauchy (outliers)")
+        ->capture_default_str();
+    i->add_option("--load", identify->load_n,
+                  "W [N] of every row without a W_N cell (data without an entry angle)");
     i->add_option("--fix", identify->fix,
                   "Refinement: keep parameters fixed, e.g. a0=0.2,a1=0.3 (keys of the output)")
         ->delimiter(',');
@@ -274,7 +528,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
          "Refinement: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
         ->delimiter(',');
     i->add_option("--jmax", identify->jmax_m,
-                  "Refinement: the model's j_max [m] (default: the guess soil's, else none)");
+                  "Full model: the model's j_max [m] (default: none; a setting of the model, not "
+                  "taken from --guess)");
     i->callback([identify, refine = i->get_option("--refine"), &locations] {
         const IdentifyOptions& o = *identify;
         if (o.data.empty() == o.stream.empty())
@@ -282,31 +537,45 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         const bool streaming = !o.stream.empty();
         if (streaming && refine->count() > 0 && o.refine)
             throw InputError("--refine does not apply to --stream");
+        if (streaming && (!o.prior.empty() || o.holdout || o.folds || o.starts || o.loss != "l2"))
+            throw InputError(
+                "--prior, --holdout, --folds, --starts and --loss do not apply to --stream");
         ModelOptions names;
         names.wheel = o.wheel;
         analysis::Inputs inputs;
         inputs.wheel = names.wheelParameters(locations);
         identification::DecoupledParameters guess;
-        // j_max of the forward model: --jmax, else the guess soil's, else none.
+        // The fit never uses the inputs' soil for a CSV (j_max is --jmax, else none).
         inputs.soil.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+        std::optional<soil::SoilParameters> guess_soil;
         if (!o.guess.empty()) {
             names.soil = o.guess;
-            inputs.soil = names.soilParameters(locations);
-            guess = analysis::identifiedOf(inputs.soil, inputs.wheel);
+            guess_soil = names.soilParameters(locations);
+            guess = analysis::identifiedOf(*guess_soil, inputs.wheel);
         }
         if (streaming) {
-            runStream(o, inputs, guess);
+            runStream(o, inputs, guess_soil);
             return;
         }
-        if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax_m)) {
+        const bool global_flags =
+            !o.prior.empty() || o.holdout || o.folds || o.starts || o.load_n || o.loss != "l2";
+        if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax_m || global_flags)) {
             throw InputError(
-                "--fix, --noise and --jmax belong to the refinement (drop --no-refine)");
+                "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss and --load "
+                "belong to the full model (drop --no-refine)");
         }
         analysis::IdentificationSettings settings;
         settings.csv = o.data;
         settings.skip_bad_rows = o.skip_bad_rows;
         settings.guess = guess;
         settings.refine = o.refine;
+        if (o.refine) {
+            applyGlobalOptions(o, locations, settings);
+            if (guess_soil) {
+                settings.starts.push_back(
+                    {"guess " + o.guess, identification::fromSoil(*guess_soil, inputs.wheel)});
+            }
+        }
         settings.fixed = parseFixes(o.fix);
         identification::NoiseSpec noise;
         parseNoise(o.noise, noise);
@@ -320,8 +589,14 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             if (!issues.empty()) throw InputError(formatIssues(issues));
             settings.max_shear_deformation_m = *o.jmax_m;
         }
-        const analysis::IdentificationResult result =
-            analysis::computeIdentification(inputs, settings);
+        const SignalCancellation cancellation;
+        analysis::IdentificationResult result;
+        try {
+            result = analysis::computeIdentification(inputs, settings, cancellation.flag());
+        } catch (const std::invalid_argument& e) {
+            throw InputError(e.what());
+        }
+        if (result.message == "cancelled") exitCancelled(cancellation, "identify cancelled");
         if (!result.data_issues.empty())
             throw InputError(result.message + "\n(use --skip-bad-rows to skip bad rows)");
         if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
@@ -329,7 +604,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
         const identification::DecoupledParameters& p = result.identified;
         const std::optional<identification::Uncertainty> uncertainty =
-            result.refined ? std::optional(result.refined->uncertainty) : std::nullopt;
+            result.report ? std::optional(result.report->uncertainty) : std::nullopt;
         const std::vector<identification::StepReport> reports = result.steps();
         nlohmann::json j = parametersJson(p);
         if (uncertainty) {
@@ -357,10 +632,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         }
         j["steps"] = steps;
         j["samples"] = result.data.samples.size();
+        if (result.report) addGlobalJson(result, j);
         if (o.json) {
             std::cout << j.dump(2) << '\n';
         } else {
-            std::cout << (o.refine ? "full-model identification (decoupled start), "
+            std::cout << (o.refine ? "full-model identification (global search), "
                                    : "decoupled identification, ")
                       << result.data.samples.size() << " samples, " << inputs.wheel.name << "\n";
             int column = 0;
@@ -380,6 +656,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                           << ", " << fixed(step.wall_time_ms, 2) << " ms, " << step.termination
                           << '\n';
             }
+            if (result.report) printGlobal(result);
             if (uncertainty) {
                 for (const std::string& flag : uncertainty->flags)
                     std::cout << "  note: " << flag << '\n';

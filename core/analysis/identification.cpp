@@ -11,6 +11,7 @@
 #include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
 #include "core/identification/synthetic.h"
+#include "core/io/parameters_json.h"
 
 namespace terra::analysis {
 namespace {
@@ -19,16 +20,42 @@ namespace id = identification;
 
 const Range kNoisePercent{0.0, 100.0};
 const Range kSigma{0.0, 1e6};
+const Range kHoldout{0.0, 1.0, true, true};
+constexpr int kMaxFolds = 1000;
+constexpr int kMaxDesignPoints = 100000;
+
+// A measured value, or NaN when the data set does not carry the channel.
+double measuredOr(bool measured, double value) {
+    return measured ? value : std::numeric_limits<double>::quiet_NaN();
+}
+
+id::DecoupledParameters decoupledOf(const id::ParameterVector& p) {
+    id::DecoupledParameters out;
+    out.a0 = p[id::kA0];
+    out.a1 = p[id::kA1];
+    out.pressure_modulus = p[id::kKs];
+    out.n0 = p[id::kN];
+    out.n1 = 0.0;  // the full model's N is constant
+    out.cohesion_pa = p[id::kC];
+    out.friction_angle_rad = p[id::kPhi];
+    out.shear_modulus_m = p[id::kK];
+    return out;
+}
 
 // The data of the settings: given, read from the CSV, or synthesised from the inputs' soil.
+// The full model reads data without an entry angle (θ_f from the load) and with any channels.
+id::ColumnNeeds needsOf(const IdentificationSettings& s) {
+    return s.refine ? id::ColumnNeeds::kFullModel : id::ColumnNeeds::kDecoupled;
+}
+
 void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationResult& out) {
     if (s.data) {
         out.data = *s.data;
         return;
     }
     if (!s.csv.empty()) {
-        auto read =
-            id::readDataSet(s.csv, s.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop);
+        auto read = id::readDataSet(
+            s.csv, s.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop, needsOf(s));
         if (!read) {
             out.data_issues = read.issues();
             out.message = read.message();
@@ -60,8 +87,14 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
         std::filesystem::path path(out.csv);
         if (path.is_relative() && !context.base_dir.empty()) path = context.base_dir / path;
         out.csv = path.string();
+        // "refine" is read first (below) when present, so that a file without an entry angle
+        // is read as the full model reads it.
+        bool refine = out.refine;
+        if (r.has("refine")) r.boolean("refine", refine);
+        out.refine = refine;
         auto read =
-            id::readDataSet(path, out.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop);
+            id::readDataSet(path, out.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop,
+                            refine ? id::ColumnNeeds::kFullModel : id::ColumnNeeds::kDecoupled);
         if (!read) {
             for (const Issue& issue : read.issues())
                 r.report("csv", issue.where + ": " + issue.message);
@@ -103,6 +136,100 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
     const soil::SoilField* jmax = soil::findSoilField("jmax_m");
     double value = 0.0;
     if (r.field(*jmax, value)) out.max_shear_deformation_m = value;
+
+    if (r.texts("priors", out.prior_items)) {
+        for (const std::string& item : out.prior_items) {
+            id::Priors scratch;
+            for (const Issue& issue : id::parsePriorItem(item, scratch))
+                r.report("priors", issue.where + ": " + issue.message);
+        }
+    }
+    if (r.text("prior_soil", out.prior_soil_name) && !out.prior_soil_name.empty() &&
+        context.locations != nullptr) {
+        std::string name = out.prior_soil_name;
+        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
+            !context.base_dir.empty()) {
+            name = (context.base_dir / name).string();
+        }
+        Result<soil::SoilParameters> soil = io::resolveSoil(*context.locations, name);
+        if (soil) {
+            out.prior_soil = soil.value();  // centred on the wheel when the analysis runs
+        } else {
+            r.report("prior_soil", soil.message());
+        }
+    }
+    std::string loss;
+    if (r.text("loss", loss)) {
+        if (const auto l = lossFromName(loss)) {
+            out.loss = *l;
+        } else {
+            r.report("loss", "'" + loss + "' is not a loss (l2, huber, cauchy)");
+        }
+    }
+    r.number("holdout", out.holdout_fraction, kHoldout);
+    r.integer("folds", out.folds, 0, kMaxFolds);
+    r.integer("starts", out.design_points, 0, kMaxDesignPoints);
+    double load_n = 0.0;
+    if (r.number("load_N", load_n, load.range, load.displayUnit())) out.load_n = load_n;
+}
+
+std::optional<id::Loss> lossFromName(const std::string& name) {
+    if (name == "l2" || name == "squared") return id::Loss::kSquared;
+    if (name == "huber") return id::Loss::kHuber;
+    if (name == "cauchy") return id::Loss::kCauchy;
+    return std::nullopt;
+}
+
+const char* lossName(id::Loss loss) {
+    switch (loss) {
+        case id::Loss::kHuber:
+            return "huber";
+        case id::Loss::kCauchy:
+            return "cauchy";
+        case id::Loss::kSquared:
+            break;
+    }
+    return "l2";
+}
+
+id::Priors priorsOf(const IdentificationSettings& s, const wheel::WheelParameters& wheel,
+                    std::string* source) {
+    id::Priors priors{};
+    std::string text;
+    if (s.prior_soil) {
+        priors = id::priorsFromSoil(*s.prior_soil, wheel);
+        text = (s.prior_soil_name.empty() ? s.prior_soil->name : s.prior_soil_name) + " preset";
+    }
+    std::vector<Issue> issues;
+    for (const std::string& item : s.prior_items) {
+        const std::vector<Issue> bad = id::parsePriorItem(item, priors);
+        issues.insert(issues.end(), bad.begin(), bad.end());
+        text += (text.empty() ? "" : " + ") + item;
+    }
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    if (source != nullptr) *source = text;
+    return priors;
+}
+
+id::IdentifyOptions identifyOptions(const IdentificationSettings& s,
+                                    const wheel::WheelParameters& wheel, double jmax) {
+    id::IdentifyOptions o;
+    o.priors = priorsOf(s, wheel);
+    o.load_n = s.load_n;
+    o.max_shear_deformation_m = jmax;
+    o.noise = {s.sigma_fx_n, s.sigma_fz_n, s.sigma_my_nm, 0.0};
+    o.loss = s.loss;
+    o.starts = s.starts;
+    o.design_points = s.design_points;
+    o.holdout_fraction = s.holdout_fraction;
+    o.folds = s.folds;
+    for (const auto& [key, value] : s.fixed) {
+        const IdentifiedField* field = findIdentifiedField(key);
+        if (field == nullptr) continue;
+        if (const auto k = fullParameterOf(*field))
+            o.fixed[static_cast<std::size_t>(*k)] = field->toSi(value);
+    }
+    return o;
 }
 
 nlohmann::json toJson(const IdentificationSettings& s) {
@@ -118,24 +245,53 @@ nlohmann::json toJson(const IdentificationSettings& s) {
         out["noise"] = {{"Fx_N", s.sigma_fx_n}, {"Fz_N", s.sigma_fz_n}, {"My_Nm", s.sigma_my_nm}};
     }
     if (s.max_shear_deformation_m) out["jmax_m"] = *s.max_shear_deformation_m;
+    if (!s.prior_items.empty()) out["priors"] = s.prior_items;
+    if (!s.prior_soil_name.empty()) out["prior_soil"] = s.prior_soil_name;
+    if (s.loss != id::Loss::kSquared) out["loss"] = lossName(s.loss);
+    if (s.holdout_fraction > 0) out["holdout"] = s.holdout_fraction;
+    if (s.folds > 0) out["folds"] = s.folds;
+    if (s.design_points != id::IdentifyOptions{}.design_points) out["starts"] = s.design_points;
+    if (s.load_n) out["load_N"] = *s.load_n;
     return out;
 }
 
 std::vector<id::StepReport> IdentificationResult::steps() const {
-    std::vector<id::StepReport> out = fit.steps;
-    if (refined) out.push_back(refined->report);
+    if (!report) {
+        return fit.steps;
+    }
+    const id::IdentificationReport& r = *report;
+    double best_screening = std::numeric_limits<double>::infinity();
+    int descended = 0;
+    for (const id::StartReport& start : r.starts) {
+        best_screening = std::min(best_screening, start.screening_cost);
+        descended += start.descended ? 1 : 0;
+    }
+    std::vector<id::StepReport> out;
+    out.push_back({"screening: " + std::to_string(r.starts.size()) + " starts", !r.starts.empty(),
+                   "best chi2 on the subset after the linear projection",
+                   static_cast<int>(r.starts.size()),
+                   std::isfinite(best_screening) ? best_screening : 0.0, r.timing.screening_ms});
+    out.push_back({"descent: " + std::to_string(descended) + " best starts on the subset",
+                   descended > 0, "", descended, 0.0, r.timing.descent_ms});
+    out.push_back({"refinement: " + std::to_string(r.minima.size()) + " minima on all samples",
+                   r.usable(), r.termination, r.iterations, r.chi2,
+                   r.timing.refinement_ms + r.timing.covariance_ms});
+    if (r.holdout.computed) {
+        out.push_back({"held-out: " + std::to_string(r.holdout.folds) + " fold(s)",
+                       r.holdout.samples > r.holdout.failed, "", r.holdout.folds, 0.0,
+                       r.timing.holdout_ms});
+    }
     return out;
 }
 
 bool IdentificationResult::usable() const {
     if (!message.empty()) return false;
-    bool ok = fit.usable();
-    if (refined) ok = ok && refined->report.usable;
-    return ok;
+    if (report) return report->usable();
+    return fit.usable();
 }
 
 IdentificationResult computeIdentification(const Inputs& in, const IdentificationSettings& s,
-                                           const Control&) {
+                                           const Control& control) {
     std::vector<Issue> issues;
     checkRange(issues, "noise_percent", s.synthetic.noise_percent, kNoisePercent, "%");
     for (const auto& [key, value] : s.fixed) {
@@ -146,6 +302,20 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
             checkRange(issues, "fix " + key, value, field->range, field->displayUnit());
         }
     }
+    if (s.holdout_fraction != 0.0) checkRange(issues, "holdout", s.holdout_fraction, kHoldout);
+    if (s.folds != 0 && (s.folds < 2 || s.folds > kMaxFolds)) {
+        issues.push_back({"folds", std::to_string(s.folds) + " is outside the allowed range [2, " +
+                                       std::to_string(kMaxFolds) + "] (0: none)"});
+    }
+    if (s.holdout_fraction != 0.0 && s.folds != 0)
+        issues.push_back({"holdout", "give a holdout fraction or folds, not both"});
+    if (s.design_points < 0 || s.design_points > kMaxDesignPoints) {
+        issues.push_back({"starts", std::to_string(s.design_points) +
+                                        " is outside the allowed range [0, " +
+                                        std::to_string(kMaxDesignPoints) + "]"});
+    }
+    if (!s.prior_soil_name.empty() && !s.prior_soil)
+        issues.push_back({"prior_soil", "'" + s.prior_soil_name + "' is not resolved"});
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     IdentificationResult out;
     loadData(in, s, out);
@@ -154,74 +324,95 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         out.message = "the data set has no samples";
         return out;
     }
+    // A CSV's fit never depends on the inputs' soil: its j_max is the settings' (none by
+    // default); synthetic data were made from the inputs' soil, whose j_max is their model's.
+    const bool synthetic = !s.data && s.csv.empty();
+    const double jmax = s.max_shear_deformation_m.value_or(
+        synthetic ? in.soil.max_shear_deformation_m : std::numeric_limits<double>::infinity());
     const auto start = std::chrono::steady_clock::now();
-    out.fit = id::fitDecoupled(out.data, in.wheel, s.guess);
-    id::DecoupledParameters p = out.fit.parameters;
-    const double jmax = s.max_shear_deformation_m.value_or(in.soil.max_shear_deformation_m);
+    id::DecoupledParameters p;
+    std::vector<id::Prediction> predictions;
     if (s.refine) {
-        id::RefineOptions options;
-        for (const auto& [key, value] : s.fixed) {
-            const IdentifiedField& field = *findIdentifiedField(key);
-            field.setUserValue(p, value);
-            options.fixed[*fullParameterOf(field)] = true;
+        std::string prior_source;
+        priorsOf(s, in.wheel, &prior_source);
+        id::IdentifyOptions options = identifyOptions(s, in.wheel, jmax);
+        options.progress = [&control](double fraction) {
+            control.report(fraction);
+            return !control.cancelled();
+        };
+        out.report = id::identify(out.data, in.wheel, options);
+        const id::IdentificationReport& r = *out.report;
+        out.start_description =
+            "global search: " + std::to_string(s.design_points) + " design points, no start needed";
+        for (const id::Start& extra : s.starts) out.start_description += " + " + extra.label;
+        if (!prior_source.empty()) out.start_description += "; prior: " + prior_source;
+        if (r.status == id::IdentifyStatus::kInvalidInput) {
+            out.message = formatIssues(r.issues);
+            return out;
         }
-        options.sigma_fx = s.sigma_fx_n;
-        options.sigma_fz = s.sigma_fz_n;
-        options.sigma_my = s.sigma_my_nm;
-        options.max_shear_deformation_m = jmax;
-        out.refined = id::refineFullModel(out.data, in.wheel, p, options);
-        p = out.refined->parameters;
+        if (r.status == id::IdentifyStatus::kCancelled) {
+            out.message = "cancelled";
+            return out;
+        }
+        p = decoupledOf(r.parameters);
+        predictions = id::predictAll(out.data, in.wheel, r.parameters, options);
+    } else {
+        if (!out.data.columns.entry_angle || !out.data.columns.fx || !out.data.columns.fz ||
+            !out.data.columns.my) {
+            out.message = "the decoupled fit needs entry_angle_deg, Fx_N, Fz_N and My_Nm";
+            return out;
+        }
+        out.fit = id::fitDecoupled(out.data, in.wheel, s.guess);
+        p = out.fit.parameters;
+        out.start_description =
+            "decoupled three-step fit from fixed guesses (a0 = " + formatNumber(s.guess.a0) +
+            ", phi = " + formatNumber(units::radToDeg(s.guess.friction_angle_rad)) + " deg, …)";
     }
     out.identified = p;
     out.fit_time_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-    out.curves.columns = {"slip",     "entry_angle_deg", "Fx_N",      "Fz_N", "My_Nm",
-                          "Fx_fit_N", "Fz_fit_N",        "My_fit_Nm", "W_N"};
-    // Fitted curves: the full model with the identified parameters when refined (its forward
-    // model), else the decoupled model the fit used. γ only enters bulldozing, left out here.
-    std::optional<contact::ContactParameters<double>> full;
-    if (out.refined) {
-        full = contact::ContactParameters<double>{.radius_m = in.wheel.radius_m,
-                                                  .width_m = in.wheel.width_m,
-                                                  .sinkage_exponent = p.n0,
-                                                  .sinkage_exponent_slip = 0.0,
-                                                  .pressure_modulus = p.pressure_modulus,
-                                                  .cohesion_pa = p.cohesion_pa,
-                                                  .friction_angle_rad = p.friction_angle_rad,
-                                                  .shear_modulus_m = p.shear_modulus_m,
-                                                  .unit_weight_n_m3 = in.soil.unit_weight_n_m3,
-                                                  .max_stress_a0 = p.a0,
-                                                  .max_stress_a1 = p.a1,
-                                                  .max_shear_deformation_m = jmax};
-    }
-    for (const id::Sample& sample : out.data.samples) {
-        double fx, fz, my;
-        if (full) {
-            const contact::OperatingPoint<double> op{sample.slip,
-                                                     sample.slip_angle_rad.value_or(0.0),
-                                                     sample.entry_angle_rad, 0.0, std::nullopt};
-            const auto f = contact::computeForces(*full, op);
-            fx = f.fx;
-            fz = f.fz;
-            my = f.my;
+    out.curves.columns = {
+        "slip",      "entry_angle_deg", "Fx_N",      "Fz_N", "My_Nm",
+        "Fx_fit_N",  "Fz_fit_N",        "My_fit_Nm", "W_N",  "entry_angle_fit_deg",
+        "sinkage_m", "sinkage_fit_m"};
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const id::DataColumns& columns = out.data.columns;
+    for (std::size_t i = 0; i < out.data.samples.size(); ++i) {
+        const id::Sample& sample = out.data.samples[i];
+        double fx = nan, fz = nan, my = nan, theta = nan, sinkage = nan;
+        if (!predictions.empty()) {
+            const id::Prediction& f = predictions[i];
+            if (f.ok) {
+                fx = f.values[id::kFxChannel];
+                fz = f.values[id::kFzChannel];
+                my = f.values[id::kMyChannel];
+                sinkage = f.values[id::kSinkageChannel];
+                theta = units::radToDeg(f.entry_angle_rad);
+            }
         } else {
+            // γ only enters bulldozing, left out here (the decoupled model's own forces).
             const auto f = id::decoupledForward(p, in.wheel, sample.slip, sample.entry_angle_rad);
             fx = f.fx_n;
             fz = f.fz_n;
             my = f.my_nm;
+            theta = units::radToDeg(sample.entry_angle_rad);
+            sinkage = in.wheel.radius_m * (1.0 - std::cos(sample.entry_angle_rad));
         }
-        out.curves.rows.push_back({sample.slip, units::radToDeg(sample.entry_angle_rad),
-                                   sample.fx_n, sample.fz_n, sample.my_nm, fx, fz, my,
-                                   sample.load_n.value_or(std::nan(""))});
+        out.curves.rows.push_back(
+            {sample.slip, measuredOr(columns.entry_angle, units::radToDeg(sample.entry_angle_rad)),
+             measuredOr(columns.fx, sample.fx_n), measuredOr(columns.fz, sample.fz_n),
+             measuredOr(columns.my, sample.my_nm), fx, fz, my,
+             sample.load_n.value_or(s.load_n.value_or(nan)), theta, sample.sinkage_m.value_or(nan),
+             sinkage});
     }
     std::vector<double> row;
     for (const IdentifiedField& field : identifiedFields()) {
         out.parameters.columns.emplace_back(field.key);
         row.push_back(field.toUser(p.*field.member));
     }
-    if (out.refined && out.refined->uncertainty.computed) {
-        const auto& sd = out.refined->uncertainty.std;
+    if (out.report && out.report->uncertainty.computed) {
+        const auto& sd = out.report->uncertainty.std;
         for (int k = 0; k < id::kFullParameterCount; ++k) {
             const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
             out.parameters.columns.push_back(std::string(field.key) + "_std");
@@ -241,6 +432,12 @@ Outcome identificationOutcome(IdentificationResult result) {
     out.tables.push_back({"parameters", "-parameters", result.parameters});
     out.tables.push_back({"curves", "", result.curves});
     out.notes = result.warnings;
+    if (!result.start_description.empty()) out.notes.push_back(result.start_description);
+    if (result.report && !result.report->ambiguity.empty()) {
+        out.notes.push_back("ambiguous: " + std::to_string(result.report->ambiguity.size()) +
+                            " other minimum(s) within delta chi2 " +
+                            formatNumber(result.report->ambiguity_delta_chi2));
+    }
     for (const Issue& skipped : result.skipped)
         out.notes.push_back("skipped " + skipped.where + ": " + skipped.message);
     for (const id::StepReport& step : result.steps()) {
@@ -254,8 +451,8 @@ Outcome identificationOutcome(IdentificationResult result) {
 AnalysisType identificationType() {
     return makeAnalysisType<IdentificationSettings>(
         "identification",
-        "soil parameters from wheel data (CSV or synthetic): decoupled fit, refined through the "
-        "full model (chapter 5, Figs. 5.1-5.6)",
+        "soil parameters from wheel data (CSV or synthetic): global identification on the full "
+        "model, or the decoupled fit alone (chapter 5, Figs. 5.1-5.6)",
         {"parameters", "curves"}, {{"Fx", "-Fx"}, {"Fz", "-Fz"}, {"My", "-My"}},
         readIdentificationSettings,
         [](const Inputs& in, const IdentificationSettings& s, const Control& c) {

@@ -1,11 +1,17 @@
 #pragma once
 /// @file identification.h
-/// Soil identification from wheel data (thesis chapters 4–5): the decoupled three-step fit
-/// (Eqs. 4.12, 4.17, 4.18) and, by default, its refinement through the full model with standard
-/// deviations (core/identification/full_fit.h), on a CSV data set or on synthetic data made from
-/// the inputs' soil (Eq. 5.1). The studio's identification panel, `terrastudio identify --data`
-/// and a script's "identification" analysis. The algorithms are core/identification's; this
-/// service only chooses the data, the start and the options, and tabulates the result.
+/// Soil identification from wheel data (thesis chapters 4–5): by default the global
+/// identification on the full model (core/identification/identify.h: a space-filling design of
+/// starts, screening, descents, refinement; priors, robust loss, held-out error, ambiguity), or
+/// the thesis's decoupled three-step fit alone (Eqs. 4.12, 4.17, 4.18), on a CSV data set or on
+/// synthetic data made from the inputs' soil (Eq. 5.1). The studio's identification panel,
+/// `terrastudio identify --data` and a script's "identification" analysis. The algorithms are
+/// core/identification's; this service only chooses the data and the options, and tabulates the
+/// result.
+///
+/// A CSV's fit depends on the data and the settings only, never on the inputs' soil: the global
+/// search starts from its design (and the settings' `starts`), j_max is the settings' (none by
+/// default). Synthetic data are made from the inputs' soil, so there its j_max is the model's.
 
 #include <cstdint>
 #include <optional>
@@ -19,6 +25,7 @@
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
+#include "core/identification/identify.h"
 
 namespace terra::analysis {
 
@@ -40,8 +47,25 @@ struct IdentificationSettings {
     /// `csv` only names it.
     std::optional<identification::DataSet> data;
     SyntheticSource synthetic;
-    identification::DecoupledParameters guess;  ///< start of the fit (the thesis's guesses)
-    bool refine = true;  ///< refine through the full model (removes the linearisation bias)
+    identification::DecoupledParameters guess;  ///< start of the decoupled fit (thesis's guesses)
+    /// true: the global identification on the full model (identify.h; removes the decoupled
+    /// model's linearisation bias and does not depend on a start); false: the decoupled fit alone.
+    bool refine = true;
+    /// Full model: starts besides the space-filling design (a user's guess); none is needed.
+    std::vector<identification::Start> starts;
+    /// Full model: points of the space-filling design (`--starts`).
+    int design_points = identification::IdentifyOptions{}.design_points;
+    /// Full model: Gaussian priors centred on a soil (PriorSpreads of parameters.h) and named
+    /// ("sandy-loam"), then items in user units ("phi_deg=30±5", parsePriorItem) on top.
+    std::optional<soil::SoilParameters> prior_soil;
+    std::string prior_soil_name;
+    std::vector<std::string> prior_items;
+    identification::Loss loss = identification::Loss::kSquared;
+    /// Full model: held-out validation, a fraction in (0, 1) or k ≥ 2 folds (0: none).
+    double holdout_fraction = 0.0;
+    int folds = 0;
+    /// Full model: W [N] of every sample without a W_N cell (data without an entry angle).
+    std::optional<double> load_n;
     /// Refinement only: parameters kept at a value, by field key (identified_parameters.h) with
     /// the value in the field's unit.
     std::vector<std::pair<std::string, double>> fixed;
@@ -53,7 +77,9 @@ struct IdentificationSettings {
 
 /// "csv" (relative to the context's directory, read at once: a bad file is a problem of the
 /// settings), "skip_bad_rows", "noise_percent", "seed", "loads_N", "slip_count", "refine",
-/// "fix" ({key: value}), "noise" ({"Fx_N", "Fz_N", "My_Nm"}), "jmax_m".
+/// "fix" ({key: value}), "noise" ({"Fx_N", "Fz_N", "My_Nm"}), "jmax_m", and for the full model
+/// "priors" (["phi_deg=30±5", …]), "prior_soil" (a preset or file, PriorSpreads), "loss" ("l2",
+/// "huber", "cauchy"), "holdout" (fraction), "folds", "starts" (design points), "load_N".
 void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
                                 IdentificationSettings& out);
 nlohmann::json toJson(const IdentificationSettings& settings);
@@ -63,11 +89,14 @@ struct IdentificationResult {
     std::vector<Issue> skipped;         ///< rows left out (skip_bad_rows)
     std::vector<std::string> warnings;  ///< synthetic points the soil cannot carry
     identification::DecoupledFit fit;
-    std::optional<identification::RefineResult> refined;
+    /// The global identification's report (refine = true).
+    std::optional<identification::IdentificationReport> report;
     identification::DecoupledParameters identified;  ///< the final estimate
-    /// slip, entry_angle_deg, Fx_N, Fz_N, My_Nm (data), Fx_fit_N, Fz_fit_N, My_fit_Nm (the full
-    /// model with the identified parameters when refined, else the decoupled model) and W_N (the
-    /// sample's load, NaN when the data do not say).
+    /// slip, entry_angle_deg, Fx_N, Fz_N, My_Nm (data; NaN where not measured), Fx_fit_N,
+    /// Fz_fit_N, My_fit_Nm (the full model with the identified parameters when refined, else the
+    /// decoupled model), W_N (the sample's load, NaN when the data do not say), then
+    /// entry_angle_fit_deg (the model's θ_f: measured, or solved from the load), sinkage_m and
+    /// sinkage_fit_m.
     Table curves;
     /// One row: identifiedFields() in their units, and when refined the *_std columns of the
     /// refined parameters.
@@ -76,19 +105,39 @@ struct IdentificationResult {
     std::string message;             ///< non-empty: there was nothing to fit (see data_issues)
     std::vector<Issue> data_issues;  ///< why the data could not be read
 
-    /// Every step's report: the three decoupled steps, then the refinement's.
+    /// What the fit started from, for a person: "global search (64 design points)", "+ guess …",
+    /// "prior: …", or "decoupled fit from the thesis's guesses".
+    std::string start_description;
+
+    /// Every step's report: the three decoupled steps, or the global identification's phases
+    /// (screening, descent, refinement, and held-out when computed).
     std::vector<identification::StepReport> steps() const;
     /// The fit and its refinement converged to usable solutions.
     bool usable() const;
 };
 
 /// Throws std::invalid_argument for invalid inputs or settings (a fixed key that is not a
-/// refined parameter); data that cannot be read come back in `data_issues`.
+/// refined parameter, a holdout fraction outside (0, 1)); data that cannot be read come back in
+/// `data_issues`, data the identification cannot use (no load and no entry angle) in `message`.
 IdentificationResult computeIdentification(const Inputs& inputs,
                                            const IdentificationSettings& settings = {},
                                            const Control& control = {});
 /// Tables "parameters" (main) and "curves"; notes: each step's termination and Σr².
 Outcome identificationOutcome(IdentificationResult result);
+
+/// The identification options of the settings (the full model's) on this wheel, for
+/// `identify()`. Throws std::invalid_argument for a bad prior item.
+identification::IdentifyOptions identifyOptions(const IdentificationSettings& settings,
+                                                const wheel::WheelParameters& wheel,
+                                                double max_shear_deformation_m);
+/// The priors of the settings on this wheel, and what they come from ("sandy-loam preset +
+/// phi_deg=30±5"; empty: none). Throws std::invalid_argument for a bad item.
+identification::Priors priorsOf(const IdentificationSettings& settings,
+                                const wheel::WheelParameters& wheel, std::string* source = nullptr);
+
+/// Reads a loss name: "l2" (or "squared"), "huber", "cauchy"; nullopt for another.
+std::optional<identification::Loss> lossFromName(const std::string& name);
+const char* lossName(identification::Loss loss);
 
 AnalysisType identificationType();
 

@@ -16,6 +16,7 @@ namespace {
 namespace id = identification;
 
 constexpr double kDefaultPeriodS = 0.01;  // 100 Hz when the data carry no time
+constexpr int kMaxWindow = 1000;          // a horizon beyond this costs more than a refit
 const Range kNoisePercent{0.0, 100.0};
 
 // One soil's sweep in a scrambled, fixed order (stride coprime to the count).
@@ -64,7 +65,8 @@ StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec) {
 }
 
 Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_rows) {
-    auto read = id::readDataSet(path, skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop);
+    auto read = id::readDataSet(path, skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop,
+                                id::ColumnNeeds::kFullModel);
     if (!read) return read.issues();
     StreamSource out;
     out.data = read->data;
@@ -105,8 +107,12 @@ void readStreamingSettings(io::ObjectReader& r, const ReadContext& context,
     r.number("noise_percent", out.noise_percent, kNoisePercent, "%");
     r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max() - 1);
     int window = static_cast<int>(out.options.window);
-    if (r.integer("window", window, static_cast<int>(out.options.min_samples), 100000))
+    if (r.integer("window", window, 1, kMaxWindow))
         out.options.window = static_cast<std::size_t>(window);
+    double load = 0.0;
+    const FieldInfo& load_field = contact::loadField();
+    if (r.number("load_N", load, load_field.range, load_field.displayUnit()))
+        out.options.fit.load_n = load;
 }
 
 StreamSource streamSource(const Inputs& in, const StreamingSettings& s) {
@@ -144,20 +150,38 @@ std::vector<double> sampleTimes(const id::DataSet& data) {
     return t;
 }
 
-StreamingRun::StreamingRun(const wheel::WheelParameters& wheel, const id::StreamingOptions& options)
-    : wheel_(wheel), identifier_(wheel, options) {}
+StreamingRun::StreamingRun(const wheel::WheelParameters& wheel,
+                           const id::StreamingEstimatorOptions& options)
+    : wheel_(wheel), options_(options), estimator_(wheel, options) {}
 
 StreamFrame StreamingRun::push(const id::Sample& sample, double time_s) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     StreamFrame frame;
     frame.time_s = time_s;
-    frame.fx_measured_n = sample.fx_n;
-    frame.fx_predicted_n =
-        estimate_
-            ? id::decoupledForward(*estimate_, wheel_, sample.slip, sample.entry_angle_rad).fx_n
-            : std::numeric_limits<double>::quiet_NaN();
-    frame.update = identifier_.push(sample);
-    if (frame.update.estimated) {
-        estimate_ = frame.update.parameters;
+    frame.fx_measured_n = options_.columns.fx ? sample.fx_n : nan;
+    frame.fx_predicted_n = nan;
+    if (estimate_ && options_.columns.fx) {
+        // The prediction of the estimate before the sample, on the estimator's own model.
+        try {
+            const std::vector<id::Prediction> p = id::predictAll(
+                id::DataSet({sample}, options_.columns), wheel_, *estimate_, options_.fit);
+            if (!p.empty() && p.front().ok) frame.fx_predicted_n = p.front().values[id::kFxChannel];
+        } catch (const std::invalid_argument&) {
+            // a sample the model cannot read (no load): no prediction
+        }
+    }
+    frame.estimate = estimator_.push(sample);
+    if (frame.estimate.estimated) {
+        estimate_ = frame.estimate.parameters;
+        const id::ParameterVector& p = frame.estimate.parameters;
+        frame.parameters.a0 = p[id::kA0];
+        frame.parameters.a1 = p[id::kA1];
+        frame.parameters.pressure_modulus = p[id::kKs];
+        frame.parameters.n0 = p[id::kN];
+        frame.parameters.n1 = 0.0;
+        frame.parameters.cohesion_pa = p[id::kC];
+        frame.parameters.friction_angle_rad = p[id::kPhi];
+        frame.parameters.shear_modulus_m = p[id::kK];
     } else {
         estimate_.reset();
     }
@@ -168,17 +192,23 @@ Table framesTable(const std::vector<StreamFrame>& frames) {
     Table t;
     t.columns = {"sample", "time_s", "estimated"};
     for (const IdentifiedField& field : identifiedFields()) t.columns.emplace_back(field.key);
-    for (const char* c : {"score", "change_at", "window", "Fx_N", "Fx_predicted_N"})
+    for (int k = 0; k < id::kFullParameterCount; ++k)
+        t.columns.push_back(std::string(fieldOf(static_cast<id::FullParameter>(k)).key) + "_std");
+    for (const char* c : {"nis", "cusum", "used", "change_at", "Fx_N", "Fx_predicted_N"})
         t.columns.emplace_back(c);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (const StreamFrame& f : frames) {
-        const id::StreamUpdate& u = f.update;
+        const id::StreamEstimate& u = f.estimate;
         std::vector<double> row{static_cast<double>(u.index), f.time_s, u.estimated ? 1.0 : 0.0};
         for (const IdentifiedField& field : identifiedFields())
-            row.push_back(u.estimated ? field.toUser(u.parameters.*field.member) : nan);
-        row.insert(row.end(),
-                   {u.residual_score, u.change_at ? static_cast<double>(*u.change_at) : nan,
-                    static_cast<double>(u.window_size), f.fx_measured_n, f.fx_predicted_n});
+            row.push_back(u.estimated ? field.toUser(f.parameters.*field.member) : nan);
+        for (int k = 0; k < id::kFullParameterCount; ++k) {
+            const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+            row.push_back(u.estimated ? u.std[static_cast<std::size_t>(k)] / field.to_si : nan);
+        }
+        row.insert(row.end(), {u.nis, u.cusum, u.used ? 1.0 : 0.0,
+                               u.change_at ? static_cast<double>(*u.change_at) : nan,
+                               f.fx_measured_n, f.fx_predicted_n});
         t.rows.push_back(std::move(row));
     }
     return t;
@@ -186,11 +216,20 @@ Table framesTable(const std::vector<StreamFrame>& frames) {
 
 StreamingResult computeStreaming(const Inputs& in, const StreamingSettings& s,
                                  const Control& control) {
-    return playStreaming(streamSource(in, s), in.wheel, s.options, control);
+    return playStreaming(streamSource(in, s), in.wheel, streamingOptions(in, s), control);
+}
+
+id::StreamingEstimatorOptions streamingOptions(const Inputs& in, const StreamingSettings& s) {
+    id::StreamingEstimatorOptions options = s.options;
+    // Synthetic data are made from the inputs' soil: its j_max is their model's. A CSV's model
+    // never depends on the inputs' soil (the settings' j_max, none by default).
+    if (s.csv.empty() && !std::isfinite(options.fit.max_shear_deformation_m))
+        options.fit.max_shear_deformation_m = in.soil.max_shear_deformation_m;
+    return options;
 }
 
 StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters& wheel,
-                              const id::StreamingOptions& options, const Control& control) {
+                              id::StreamingEstimatorOptions options, const Control& control) {
     StreamingResult out;
     out.source = std::move(source);
     const std::vector<id::Sample> samples = std::move(out.source.data.samples);
@@ -198,6 +237,7 @@ StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters&
     if (samples.empty()) throw std::invalid_argument("the data set has no samples");
     out.sample_count = samples.size();
     const std::vector<double> times = sampleTimes(id::DataSet{samples});
+    options.columns = out.source.data.columns;
     StreamingRun run(wheel, options);
     out.frames.reserve(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -206,7 +246,7 @@ StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters&
             break;
         }
         out.frames.push_back(run.push(samples[i], times[i]));
-        const id::StreamUpdate& u = out.frames.back().update;
+        const id::StreamEstimate& u = out.frames.back().estimate;
         if (u.change_detected && u.change_at) out.changes.push_back(*u.change_at);
         control.report(static_cast<double>(i + 1) / static_cast<double>(samples.size()));
     }

@@ -1,8 +1,10 @@
 #pragma once
 /// @file streaming_identification.h
-/// Streaming identification of a data set (core/identification/streaming.h): the samples fed one
-/// at a time, each giving a frame — the estimate, the residual score, a detected change of soil,
-/// and F_x measured against F_x predicted by the estimate before the sample. The data are a CSV
+/// Streaming identification of a data set on the full model (core/identification/
+/// streaming_estimator.h: moving horizon with an arrival cost, CUSUM on normalised innovations
+/// confirmed by a likelihood-ratio test): the samples fed one at a time, each giving a frame — the
+/// estimate with its std, the normalised innovation and the CUSUM, a confirmed change of soil, and
+/// F_x measured against F_x predicted by the estimate before the sample. The data are a CSV
 /// or a synthetic drive over a soil border. The studio's streaming playback (which paces the same
 /// frames in time, widgets/analyses/streaming_playback.h), `terrastudio identify --stream` and a
 /// script's "streaming" analysis.
@@ -18,7 +20,7 @@
 #include "core/common/issue.h"
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
-#include "core/identification/streaming.h"
+#include "core/identification/streaming_estimator.h"
 
 namespace terra::analysis {
 
@@ -49,8 +51,9 @@ struct SoilBorderSpec {
 /// Throws std::invalid_argument for an invalid soil, wheel, load or noise.
 StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec);
 
-/// Reads a CSV for playback (data_set.h columns). Bad rows either stop the read, every one listed
-/// with its line number, or are skipped and listed in `warnings`.
+/// Reads a CSV for playback (data_set.h columns, as the full model reads them: an entry angle or a
+/// load). Bad rows either stop the read, every one listed with its line number, or are skipped and
+/// listed in `warnings`.
 Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_rows);
 
 struct StreamingSettings {
@@ -61,11 +64,13 @@ struct StreamingSettings {
     std::optional<soil::SoilParameters> second;  ///< that soil, resolved (by the reader or caller)
     double noise_percent = 1.0;  ///< synthetic: σ as % of each channel's largest value
     std::uint64_t seed = 1;      ///< synthetic: noise seed
-    identification::StreamingOptions options;  ///< window, threshold, start of the first fit
+    /// The estimator's options (window, change test, the model of its fits); `columns` is set
+    /// from the data when played.
+    identification::StreamingEstimatorOptions options;
 };
 
 /// "csv" (relative to the context's directory), "skip_bad_rows", "second_soil" (resolved through
-/// the context's presets), "noise_percent", "seed", "window".
+/// the context's presets), "noise_percent", "seed", "window" (the moving horizon), "load_N".
 void readStreamingSettings(io::ObjectReader& r, const ReadContext& context, StreamingSettings& out);
 
 /// The data the settings name: the CSV, or the drive from the inputs' soil onto the second soil
@@ -74,11 +79,13 @@ StreamSource streamSource(const Inputs& inputs, const StreamingSettings& setting
 
 /// What the studio shows of one sample.
 struct StreamFrame {
-    identification::StreamUpdate update;  ///< the identifier's state after the sample
-    double time_s = 0.0;                  ///< the sample's time (its time_s, or index × 10 ms)
-    double fx_measured_n = 0.0;           ///< F_x of the sample [N]
-    /// F_x the estimate *before* this sample predicts at its slip and entry angle (decoupled model,
-    /// Eq. 4.4) [N]; NaN while there is no estimate.
+    identification::StreamEstimate estimate;  ///< the estimator's state after the sample
+    /// The estimate in the field table's terms (identified_parameters.h; n₀ = n, n₁ = 0).
+    identification::DecoupledParameters parameters;
+    double time_s = 0.0;         ///< the sample's time (its time_s, or index × 10 ms)
+    double fx_measured_n = 0.0;  ///< F_x of the sample [N] (NaN when not measured)
+    /// F_x the estimate *before* this sample predicts for it (full model) [N]; NaN while there is
+    /// no estimate.
     double fx_predicted_n = 0.0;
 };
 
@@ -89,25 +96,28 @@ std::vector<double> sampleTimes(const identification::DataSet& data);
 /// One streaming run, sample by sample (the playback paces the calls; computeStreaming does not).
 class StreamingRun {
 public:
+    /// `options.columns` says which channels the samples carry.
     StreamingRun(const wheel::WheelParameters& wheel,
-                 const identification::StreamingOptions& options);
+                 const identification::StreamingEstimatorOptions& options);
     /// The frame of one more sample, played at `time_s`.
     StreamFrame push(const identification::Sample& sample, double time_s);
 
 private:
     wheel::WheelParameters wheel_;
-    identification::StreamingIdentifier identifier_;
-    std::optional<identification::DecoupledParameters> estimate_;  // before the next sample
+    identification::StreamingEstimatorOptions options_;
+    identification::StreamingEstimator estimator_;
+    std::optional<identification::ParameterVector> estimate_;  // before the next sample
 };
 
-/// One row per frame: sample, time_s, estimated, the identified fields (NaN while there is no
-/// estimate), score, change_at (NaN when none), window, Fx_N, Fx_predicted_N.
+/// One row per frame: sample, time_s, estimated, the identified fields and their *_std (NaN
+/// while there is no estimate; n1 has no std), nis, cusum, used, change_at (NaN when none), Fx_N,
+/// Fx_predicted_N.
 Table framesTable(const std::vector<StreamFrame>& frames);
 
 struct StreamingResult {
     StreamSource source;  ///< without its samples (they are the frames')
     std::vector<StreamFrame> frames;
-    std::vector<std::size_t> changes;  ///< samples where a change of soil began
+    std::vector<std::size_t> changes;  ///< samples where a confirmed change of soil began
     std::size_t sample_count = 0;      ///< of the source (more than the frames when cancelled)
     bool cancelled = false;
 };
@@ -115,8 +125,12 @@ struct StreamingResult {
 /// Plays a source's samples as fast as they compute, on `wheel`. Throws std::invalid_argument
 /// for a source without samples.
 StreamingResult playStreaming(StreamSource source, const wheel::WheelParameters& wheel,
-                              const identification::StreamingOptions& options,
+                              identification::StreamingEstimatorOptions options,
                               const Control& control = {});
+/// The estimator's options for these inputs and settings: a synthetic drive's model takes the
+/// inputs' soil's j_max (the data were made with it); a CSV's never depends on the inputs' soil.
+identification::StreamingEstimatorOptions streamingOptions(const Inputs& inputs,
+                                                           const StreamingSettings& settings);
 /// The settings' source (streamSource), played. Throws std::invalid_argument when the data
 /// cannot be read or made.
 StreamingResult computeStreaming(const Inputs& inputs, const StreamingSettings& settings = {},

@@ -29,6 +29,10 @@ void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
     r.number("stream_noise_percent", out.stream_noise_percent, percent, "%");
     r.number("stream_speed", out.stream_speed, {0.0, 1000.0});
     r.boolean("stream_skip_bad_rows", out.stream_skip_bad_rows);
+    r.text("prior_soil", out.prior_soil);
+    r.text("prior_items", out.prior_items);
+    r.choiceName("validation", out.validation, {"none", "holdout", "folds"});
+    r.choiceName("loss", out.loss, {"l2", "huber", "cauchy"});
 }
 
 void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
@@ -76,7 +80,11 @@ nlohmann::json toJson(const IdentificationPanelSettings& s) {
             {"stream_second_soil", s.stream_second_soil},
             {"stream_noise_percent", s.stream_noise_percent},
             {"stream_speed", s.stream_speed},
-            {"stream_skip_bad_rows", s.stream_skip_bad_rows}};
+            {"stream_skip_bad_rows", s.stream_skip_bad_rows},
+            {"prior_soil", s.prior_soil},
+            {"prior_items", s.prior_items},
+            {"validation", s.validation},
+            {"loss", s.loss}};
 }
 
 nlohmann::json toJson(const RoverPanelSettings& s) {

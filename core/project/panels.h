@@ -44,6 +44,11 @@ struct IdentificationPanelSettings {
     double stream_noise_percent = analysis::StreamingSettings{}.noise_percent;
     double stream_speed = 1.0;  ///< sample time per wall time; 0: as fast as possible
     bool stream_skip_bad_rows = analysis::StreamingSettings{}.skip_bad_rows;
+    // The global fit's options (core/analysis/identification.h).
+    std::string prior_soil;           ///< soil preset the priors are centred on; empty: none
+    std::string prior_items;          ///< "phi_deg=30±5, c_kPa=2±1" (parsePriorItem items)
+    std::string validation = "none";  ///< none, holdout (20 % of the samples) or folds (5)
+    std::string loss = "l2";          ///< l2, huber or cauchy
 };
 
 /// "rover": the scenario chosen and the scenarios edited in the panel (name → scenario JSON).

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -87,11 +88,24 @@ TEST(IdentificationStreaming, SandyLoamThenClayAtFullSpeedShowsTheBorder) {
     const double k_before = t.rows[border - 1][t.column("K_m")];
     const double k_after = t.rows.back()[t.column("K_m")];
     EXPECT_LT(k_after, 0.6 * k_before);
-    // Right after the border the window restarts: no estimate until it has 12 samples again.
-    const std::size_t confirmed = changes[0] + 2;
+    // ±σ bands around every estimate: below and above it by the std the frame carries.
+    const auto& figures = panel.streamingFigures();
+    ASSERT_EQ(figures.graph("K_lo")->dataCount(), 202);
+    const double k_std = t.rows.back()[t.column("K_m_std")];
+    EXPECT_GT(k_std, 0.0);
+    EXPECT_NEAR((figures.graph("K_hi")->data()->constEnd() - 1)->value, k_after + k_std, 1e-12);
+    EXPECT_NEAR((figures.graph("K_lo")->data()->constEnd() - 1)->value, k_after - k_std, 1e-12);
+    // The confirmed change is marked where it was confirmed, after it began.
+    ASSERT_EQ(figures.confirmedAt().size(), 1u);
+    EXPECT_GE(figures.confirmedAt()[0], changes[0]);
+    EXPECT_LE(figures.confirmedAt()[0], border + 10);
+    // Right after the confirmation the estimator re-initialises from the change point: no estimate
+    // until it has its 30 initialisation samples again.
+    ASSERT_EQ(panel.streamingFigures().confirmedAt().size(), 1u);
+    const std::size_t confirmed = panel.streamingFigures().confirmedAt()[0];
     EXPECT_EQ(t.rows[confirmed][t.column("estimated")], 0.0);
-    // The prediction before the border is the decoupled model's at each sample (finite, and of
-    // the measured magnitude: within 30 % of F_z at this load).
+    // The prediction before the border is the full model's at each sample (finite, and of the
+    // measured magnitude: within 30 % of F_z at this load).
     const double fx_pred = t.rows[border - 1][t.column("Fx_predicted_N")];
     EXPECT_TRUE(std::isfinite(fx_pred));
     EXPECT_LT(std::abs(fx_pred - t.rows[border - 1][t.column("Fx_N")]), 0.3 * 58.86);
@@ -209,6 +223,11 @@ TEST(IdentificationStreaming, ABadCsvRowIsReportedWithItsLineNumber) {
         << panel.streamStatus().toStdString();
     EXPECT_EQ(panel.streamingFigures().frameCount(), 0u);
     EXPECT_TRUE(button(panel, "Play")->isEnabled());
+    // It does not hang on "preparing…": the position bar says the run failed.
+    const auto* position = panel.findChild<QProgressBar*>();
+    ASSERT_NE(position, nullptr);
+    EXPECT_FALSE(position->format().contains("preparing")) << position->format().toStdString();
+    EXPECT_TRUE(position->format().contains("failed")) << position->format().toStdString();
 
     // Skipping bad rows plays the other 19 and says which line was left out.
     panel.applySettings({{"stream_skip_bad_rows", true}});
@@ -218,6 +237,124 @@ TEST(IdentificationStreaming, ABadCsvRowIsReportedWithItsLineNumber) {
     expectOneRunInOrder(panel, 19);
     EXPECT_TRUE(panel.streamStatus().contains("broken.csv:6"))
         << panel.streamStatus().toStdString();
+}
+
+// A CSV of clayey soil at three loads with 1 % noise, j_max = none (so that the fit's model is
+// the data's): the file and its truth.
+std::string clayCsv(const QTemporaryDir& dir) {
+    identification::SyntheticSpec spec;
+    spec.loads_n = {30.0, 58.86, 90.0};
+    for (int i = 0; i < 20; ++i) spec.slips.push_back(0.05 + 0.04 * i);
+    spec.noise.fx.relative = spec.noise.fz.relative = spec.noise.my.relative = 0.01;
+    spec.seed = 3;
+    auto clay = io::resolveSoil(test::resources(), "clayey-soil");
+    auto wheel = io::resolveWheel(test::resources(), "A");
+    EXPECT_TRUE(clay && wheel);
+    soil::SoilParameters soil = clay.value();
+    soil.max_shear_deformation_m = INFINITY;
+    const auto data =
+        identification::synthesize(contact::makeContactParameters(soil, *wheel), spec).data;
+    const std::string path = dir.filePath("clay.csv").toStdString();
+    std::ofstream(path) << identification::toCsv(data);
+    return path;
+}
+
+// Issue 12: the batch fit of a CSV gives the same answer whatever soil the project holds (it
+// used to start from the project's soil), and the panel says what it starts from.
+TEST(IdentificationPanel, BatchFitOfACsvDoesNotDependOnTheProjectSoil) {
+    QTemporaryDir dir;
+    const std::string csv = clayCsv(dir);
+    ProjectDocument document;
+    test::resetToDefault(document);  // sandy loam
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}});
+    panel.setDataFile(QString::fromStdString(csv));
+    EXPECT_TRUE(panel.startDescription().contains("global search"))
+        << panel.startDescription().toStdString();
+    EXPECT_TRUE(panel.startDescription().contains("project's soil is not used"));
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().message.empty()) << panel.result().message;
+    const Table first = panel.result().parameters;
+
+    // An unrelated project field changes: the project's soil becomes snow, edited.
+    auto preset = io::resolveSoil(test::resources(), "snow");
+    ASSERT_TRUE(preset);
+    soil::SoilParameters snow = preset.value();
+    snow.friction_angle_rad = units::degToRad(40.0);
+    snow.max_shear_deformation_m = 0.005;
+    ASSERT_TRUE(document.setSoil(snow, "snow"));
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const Table second = panel.result().parameters;
+    ASSERT_EQ(first.columns, second.columns);
+    for (std::size_t c = 0; c < first.columns.size(); ++c)
+        EXPECT_EQ(first.rows[0][c], second.rows[0][c]) << first.columns[c];
+    // And the answer is the data's soil (resources/soils/clayey-soil.json: φ = 13°, c = 4.14 kPa),
+    // within three reported std.
+    EXPECT_NEAR(second.rows[0][second.column("phi_deg")], 13.0,
+                3.0 * second.rows[0][second.column("phi_deg_std")]);
+    EXPECT_NEAR(second.rows[0][second.column("c_kPa")], 4.14,
+                3.0 * second.rows[0][second.column("c_kPa_std")]);
+    EXPECT_TRUE(panel.fitReport().contains("global search")) << panel.fitReport().toStdString();
+    EXPECT_TRUE(panel.fitReport().contains("Gradient norm"));
+    EXPECT_TRUE(panel.fitReport().contains("Ambiguity"));
+}
+
+// Prior against posterior, the held-out error and the ambiguity line, as the panel shows them.
+TEST(IdentificationPanel, ShowsPriorAgainstPosteriorAndTheHeldOutError) {
+    QTemporaryDir dir;
+    const std::string csv = clayCsv(dir);
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}});
+    panel.setDataFile(QString::fromStdString(csv));
+    panel.setFitOptions("", "phi_deg=12±2", "folds", "l2");
+    EXPECT_TRUE(panel.startDescription().contains("prior: phi_deg=12±2"))
+        << panel.startDescription().toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().report.has_value()) << panel.result().message;
+    const auto& report = *panel.result().report;
+    // Row of φ in the table (the field table's order: a0, a1, Ks, n0, n1, c, phi, K).
+    int phi_row = -1;
+    for (int row = 0; row < 8; ++row) {
+        if (panel.parameterCell(row, 0).startsWith("φ")) phi_row = row;
+    }
+    ASSERT_GE(phi_row, 0);
+    EXPECT_EQ(panel.parameterCell(phi_row, 3), "12 ± 2");
+    const auto& c = report.prior[identification::kPhi];
+    ASSERT_TRUE(c.active);
+    EXPECT_EQ(panel.parameterCell(phi_row, 4), QString::number(c.std_ratio, 'f', 2));
+    EXPECT_LT(c.std_ratio, 1.0);  // three loads see φ
+    // Five folds: every sample is predicted once.
+    EXPECT_TRUE(report.holdout.computed);
+    EXPECT_EQ(report.holdout.samples, 60u);
+    EXPECT_TRUE(panel.fitReport().contains("Held-out RMS (60 samples, 5 fold(s))"))
+        << panel.fitReport().toStdString();
+    // A bad prior item is named and nothing runs.
+    panel.setFitOptions("", "phi_deg=12", "none", "l2");
+    button(panel, "Fit")->click();
+    EXPECT_TRUE(panel.fitStatus().contains("phi_deg=12")) << panel.fitStatus().toStdString();
+    EXPECT_FALSE(panel.isBusy());
+}
+
+// Issue 12: a bad CSV row is reported with its line number in the batch fit too.
+TEST(IdentificationPanel, ABadCsvRowIsReportedWithItsLineNumberInTheBatchFit) {
+    QTemporaryDir dir;
+    const std::string path = dir.filePath("broken.csv").toStdString();
+    std::ofstream(path) << "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n"
+                           "0.1,12,1,58,0.5\n0.2,12.5,2,58,0.6\n0.3,13,3,58,0.7\n"
+                           "0.4,13.5,4,58,0.8\n0.5,abc,5,58,0.9\n0.6,14.5,6,58,1.0\n";
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.setDataFile(QString::fromStdString(path));
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 60000));
+    EXPECT_TRUE(panel.fitStatus().contains("broken.csv:6")) << panel.fitStatus().toStdString();
+    EXPECT_TRUE(panel.fitStatus().contains("abc")) << panel.fitStatus().toStdString();
 }
 
 TEST(IdentificationStreaming, SettingsRoundTrip) {

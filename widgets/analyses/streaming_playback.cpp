@@ -62,7 +62,7 @@ void StreamingPlayback::reapFinishedWorkers() {
 }
 
 void StreamingPlayback::start(SourceFactory source, wheel::WheelParameters wheel,
-                              identification::StreamingOptions options, double speed) {
+                              identification::StreamingEstimatorOptions options, double speed) {
     stop();
     reapFinishedWorkers();
     auto run = std::make_shared<Run>();
@@ -164,7 +164,7 @@ void StreamingPlayback::deliver(const std::shared_ptr<Run>& run) {
 
 void StreamingPlayback::work(std::shared_ptr<Run> run, SourceFactory make_source,
                              wheel::WheelParameters wheel,
-                             identification::StreamingOptions options) {
+                             identification::StreamingEstimatorOptions options) {
     auto finish = [&](bool completed, std::string error) {
         std::lock_guard lock(run->mutex);
         run->done = true;
@@ -177,6 +177,7 @@ void StreamingPlayback::work(std::shared_ptr<Run> run, SourceFactory make_source
     try {
         source = make_source();
         if (source.data.samples.empty()) throw std::invalid_argument("the data set has no samples");
+        options.columns = source.data.columns;
         streaming.emplace(wheel, options);
     } catch (const std::exception& e) {
         finish(false, e.what());

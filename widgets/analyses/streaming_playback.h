@@ -47,7 +47,7 @@ public:
     /// Starts a new run; a running one is stopped first and nothing of it is delivered again.
     /// `speed`: sample time per wall time (1 = real time); ≤ 0 plays as fast as possible.
     void start(SourceFactory source, wheel::WheelParameters wheel,
-               identification::StreamingOptions options, double speed);
+               identification::StreamingEstimatorOptions options, double speed);
     void pause();
     void resume();
     /// Stops the current run now; the frames delivered so far stay valid (a partial run).
@@ -73,7 +73,7 @@ signals:
 private:
     struct Run;
     void work(std::shared_ptr<Run> run, SourceFactory source, wheel::WheelParameters wheel,
-              identification::StreamingOptions options);
+              identification::StreamingEstimatorOptions options);
     void post(
         const std::shared_ptr<Run>& run);  // worker: ask the GUI thread to deliver (coalesced)
     void deliver(const std::shared_ptr<Run>& run);  // GUI thread

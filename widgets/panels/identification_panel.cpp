@@ -30,6 +30,25 @@ namespace terra::ui {
 namespace {
 
 const char* kChannels[] = {"Fx_N", "Fz_N", "My_Nm"};
+const char* kChannelSymbols[] = {"F_x [N]", "F_z [N]", "M_y [N·m]"};
+constexpr double kHoldoutFraction = 0.2;  // "hold out 20 %": ~1 in 5 samples predicted
+constexpr int kFolds = 5;
+
+io::PresetLocations presetLocations() {
+    return io::PresetLocations::standard(QCoreApplication::applicationDirPath().toStdString());
+}
+
+// "phi_deg=30±5, c_kPa=2±1" → its items.
+std::vector<std::string> priorItems(const QString& text) {
+    std::vector<std::string> out;
+    for (const QString& item : text.split(',', Qt::SkipEmptyParts)) {
+        const QString trimmed = item.trimmed();
+        if (!trimmed.isEmpty()) out.push_back(trimmed.toStdString());
+    }
+    return out;
+}
+
+QString number(double value, int digits = 4) { return QString::number(value, 'g', digits); }
 
 }  // namespace
 
@@ -46,7 +65,10 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     noise_->setValue(project::IdentificationPanelSettings{}.noise_percent);
     noise_->setToolTip(
         "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
-    refine_ = new QCheckBox("Refine (full model, std deviations)", this);
+    refine_ = new QCheckBox("Full model (global search)", this);
+    refine_->setToolTip(
+        "On: the global identification on the full model (no start needed; std, priors, held-out "
+        "error, ambiguity). Off: the thesis's decoupled three-step fit from fixed guesses");
     refine_->setChecked(project::IdentificationPanelSettings{}.refine);
     three_loads_ = new QCheckBox("Synthesise at ½W, W, 1½W", this);
     three_loads_->setChecked(true);
@@ -58,14 +80,49 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
     tabs_ = new QTabWidget(this);
-    for (const char* channel : kChannels) {
+    for (const char* channel : kChannelSymbols) {
         auto* plot = new QCustomPlot(tabs_);
         makeInteractive(plot, readout_);
         plots_.push_back(plot);
-        tabs_->addTab(plot, channel);
+        tabs_->addTab(plot, QString::fromUtf8(channel));
     }
-    parameters_ = new QTableWidget(0, 4, this);
-    parameters_->setHorizontalHeaderLabels({"Parameter", "Identified", "± std", "Project soil"});
+    parameters_ = new QTableWidget(0, 6, this);
+    parameters_->setHorizontalHeaderLabels(
+        {"Parameter", "Identified", "± std", "Prior", "σ post/prior", "Truth (synthetic)"});
+    parameters_->horizontalHeaderItem(4)->setToolTip(
+        "Posterior std / prior std: near 1 the data do not see the parameter (the prior decides); "
+        "≪ 1 the data determine it");
+    parameters_->horizontalHeaderItem(5)->setToolTip(
+        "The project soil the synthetic data were made from (none for a CSV)");
+    prior_soil_ = new QComboBox(this);
+    prior_soil_->addItem("none");
+    for (const std::string& name : io::presetNames(presetLocations(), "soils"))
+        prior_soil_->addItem(QString::fromStdString(name));
+    prior_soil_->setToolTip(
+        "Gaussian priors centred on a soil preset: ±0.1 a₀, a₁; ±50 % K_s, c (at least 1 kPa), K; "
+        "±0.2 n; ±5° φ (docs/identification.md, Priors)");
+    prior_items_ = new QLineEdit(this);
+    prior_items_->setPlaceholderText("e.g. phi_deg=30±5, c_kPa=2±1");
+    prior_items_->setToolTip(
+        "Priors per parameter, mean±std (or +-) in a0, a1, Ks [kPa/m^n], n, c_kPa, phi_deg, K_m; "
+        "on top of the soil prior");
+    validation_ = new QComboBox(this);
+    validation_->addItem("no held-out error", "none");
+    validation_->addItem("hold out 20 %", "holdout");
+    validation_->addItem("5-fold", "folds");
+    validation_->setToolTip(
+        "Predict samples the fit did not use: the held-out RMS against the noise level");
+    loss_ = new QComboBox(this);
+    loss_->addItem("least squares", "l2");
+    loss_->addItem("Huber", "huber");
+    loss_->addItem("Cauchy", "cauchy");
+    loss_->setToolTip("Robust losses limit the pull of outliers");
+    start_ = new QLabel(this);
+    start_->setWordWrap(true);
+    report_ = new QLabel(this);
+    report_->setWordWrap(true);
+    report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    report_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
     parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
     parameters_->verticalHeader()->hide();
     parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -77,17 +134,32 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     bar->addWidget(new QLabel("Noise:", this));
     bar->addWidget(noise_);
     bar->addWidget(three_loads_);
-    bar->addWidget(refine_);
-    bar->addWidget(fit_);
+    // The fit's options on a second row, so that neither row forces a wide window.
+    auto* options = new QHBoxLayout;
+    options->addWidget(refine_);
+    options->addWidget(new QLabel("Prior:", this));
+    options->addWidget(prior_soil_);
+    options->addWidget(prior_items_, 1);
+    options->addWidget(validation_);
+    options->addWidget(new QLabel("Loss:", this));
+    options->addWidget(loss_);
+    options->addWidget(fit_);
+    auto* side = new QWidget(this);
+    auto* side_layout = new QVBoxLayout(side);
+    side_layout->setContentsMargins(0, 0, 0, 0);
+    side_layout->addWidget(parameters_, 2);
+    side_layout->addWidget(report_, 1);
     auto* splitter = new QSplitter(this);
     splitter->addWidget(tabs_);
-    splitter->addWidget(parameters_);
+    splitter->addWidget(side);
     splitter->setStretchFactor(0, 3);
     splitter->setStretchFactor(1, 1);
-    parameters_->setMaximumWidth(460);
+    side->setMaximumWidth(560);
     auto* fit_layout = new QVBoxLayout(fit_page);
     fit_layout->setContentsMargins(0, 0, 0, 0);
     fit_layout->addLayout(bar);
+    fit_layout->addLayout(options);
+    fit_layout->addWidget(start_);
     fit_layout->addWidget(splitter, 1);
     auto* bottom = new QHBoxLayout;
     bottom->addWidget(status_, 1);
@@ -110,9 +182,30 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         if (!path.isEmpty()) setDataFile(path);
     });
     connect(fit_, &QPushButton::clicked, this, [this] {
+        // Prior items are checked before anything runs; a bad one is named, nothing is fitted.
+        if (refine_->isChecked()) {
+            std::vector<Issue> issues;
+            identification::Priors scratch;
+            for (const std::string& item : priorItems(prior_items_->text())) {
+                const auto bad = identification::parsePriorItem(item, scratch);
+                issues.insert(issues.end(), bad.begin(), bad.end());
+            }
+            if (!issues.empty()) {
+                status_->setText("<b>Error:</b> " +
+                                 QString::fromStdString(formatIssues(issues)).toHtmlEscaped());
+                return;
+            }
+        }
         storeSettings();
         recompute();
     });
+    for (QComboBox* combo : {prior_soil_, validation_, loss_}) {
+        connect(combo, &QComboBox::currentIndexChanged, this, [this] { updateFitControls(); });
+    }
+    connect(prior_items_, &QLineEdit::textChanged, this, [this] { updateFitControls(); });
+    connect(refine_, &QCheckBox::toggled, this, [this] { updateFitControls(); });
+    connect(file_, &QLineEdit::textChanged, this, [this] { updateFitControls(); });
+    updateFitControls();
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         fit_->setEnabled(!busy);
         if (busy) status_->setText("Fitting…");
@@ -121,6 +214,54 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         fit_->setEnabled(true);
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
     });
+}
+
+QString IdentificationPanel::startDescription() const {
+    if (!refine_->isChecked()) {
+        return "Starts from: the thesis's fixed guesses (decoupled three-step fit; no search)";
+    }
+    QString text = QString("Starts from: global search (%1 design points, and no start needed)")
+                       .arg(identification::IdentifyOptions{}.design_points);
+    QStringList prior;
+    if (prior_soil_->currentIndex() > 0) prior << prior_soil_->currentText() + " preset";
+    for (const std::string& item : priorItems(prior_items_->text()))
+        prior << QString::fromStdString(item);
+    text += prior.isEmpty() ? QString("; no prior") : "; prior: " + prior.join(" + ");
+    text += file_->text().trimmed().isEmpty()
+                ? QString("; data synthesised from the project's soil")
+                : QString("; the project's soil is not used");
+    return text;
+}
+
+QString IdentificationPanel::fitStatus() const { return status_->text(); }
+
+QString IdentificationPanel::fitReport() const { return report_->text(); }
+
+void IdentificationPanel::setFitOptions(const QString& prior_soil, const QString& prior_items,
+                                        const QString& validation, const QString& loss) {
+    const int soil = prior_soil_->findText(prior_soil);
+    prior_soil_->setCurrentIndex(prior_soil.isEmpty() || soil < 0 ? 0 : soil);
+    prior_items_->setText(prior_items);
+    if (const int i = validation_->findData(validation); i >= 0) validation_->setCurrentIndex(i);
+    if (const int i = loss_->findData(loss); i >= 0) loss_->setCurrentIndex(i);
+    updateFitControls();
+}
+
+QString IdentificationPanel::parameterCell(int row, int column) const {
+    const QTableWidgetItem* item = parameters_->item(row, column);
+    return item != nullptr ? item->text() : QString();
+}
+
+void IdentificationPanel::updateFitControls() {
+    const bool global = refine_->isChecked();
+    for (QWidget* w :
+         std::initializer_list<QWidget*>{prior_soil_, prior_items_, validation_, loss_})
+        w->setEnabled(global);
+    // Noise and the three loads only apply to synthetic data.
+    const bool synthetic = file_->text().trimmed().isEmpty();
+    noise_->setEnabled(synthetic);
+    three_loads_->setEnabled(synthetic);
+    start_->setText(startDescription());
 }
 
 void IdentificationPanel::setDataFile(const QString& path) {
@@ -158,6 +299,10 @@ nlohmann::json IdentificationPanel::settings() const {
     s.stream_noise_percent = stream_noise_->value();
     s.stream_speed = speed_->currentData().toDouble();
     s.stream_skip_bad_rows = skip_bad_rows_->isChecked();
+    s.prior_soil = prior_soil_->currentIndex() > 0 ? prior_soil_->currentText().toStdString() : "";
+    s.prior_items = prior_items_->text().toStdString();
+    s.validation = validation_->currentData().toString().toStdString();
+    s.loss = loss_->currentData().toString().toStdString();
     return project::toJson(s);
 }
 
@@ -176,6 +321,8 @@ void IdentificationPanel::applySettings(const nlohmann::json& json) {
     stream_noise_->setValue(s.stream_noise_percent);
     setStreamSpeed(s.stream_speed);
     skip_bad_rows_->setChecked(s.stream_skip_bad_rows);
+    setFitOptions(QString::fromStdString(s.prior_soil), QString::fromStdString(s.prior_items),
+                  QString::fromStdString(s.validation), QString::fromStdString(s.loss));
 }
 
 analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
@@ -183,7 +330,17 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
     settings.csv = file_->text().trimmed().toStdString();
     settings.synthetic.noise_percent = noise_->value();
     settings.refine = refine_->isChecked();
-    if (three_loads_->isChecked()) {
+    if (settings.refine) {
+        if (prior_soil_->currentIndex() > 0)
+            settings.prior_soil_name = prior_soil_->currentText().toStdString();
+        settings.prior_items = priorItems(prior_items_->text());
+        const QString validation = validation_->currentData().toString();
+        if (validation == "holdout") settings.holdout_fraction = kHoldoutFraction;
+        if (validation == "folds") settings.folds = kFolds;
+        settings.loss = analysis::lossFromName(loss_->currentData().toString().toStdString())
+                            .value_or(identification::Loss::kSquared);
+    }
+    if (three_loads_->isChecked() && settings.csv.empty()) {
         const double w = document_->project().conditions.load_n;
         settings.synthetic.loads_n = {0.5 * w, w, 1.5 * w};
     }
@@ -192,8 +349,13 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
     const analysis::Inputs inputs = project::inputsOf(document_->project());
-    const analysis::IdentificationSettings settings = fitSettings();
-    return [inputs, settings](const std::atomic<bool>& cancel) -> std::any {
+    analysis::IdentificationSettings settings = fitSettings();
+    return [inputs, settings](const std::atomic<bool>& cancel) mutable -> std::any {
+        if (!settings.prior_soil_name.empty()) {  // read on the worker, not the GUI thread
+            auto soil = io::resolveSoil(presetLocations(), settings.prior_soil_name);
+            if (!soil) throw std::invalid_argument("prior: " + soil.message());
+            settings.prior_soil = *soil;
+        }
         return analysis::computeIdentification(inputs, settings, {&cancel});
     };
 }
@@ -201,8 +363,10 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
 void IdentificationPanel::present(const std::any& value) {
     result_ = std::any_cast<analysis::IdentificationResult>(value);
     if (!result_.message.empty()) {
-        status_->setText("<b>Error:</b> " +
-                         QString::fromStdString(result_.message).toHtmlEscaped());
+        status_->setText(
+            "<b>Error:</b> " +
+            QString::fromStdString(result_.message).toHtmlEscaped().replace("\n", "<br>"));
+        report_->clear();
         return;
     }
     const QString source = file_->text().isEmpty()
@@ -216,8 +380,11 @@ void IdentificationPanel::present(const std::any& value) {
     }
     const Table& t = result_.parameters;
     const Project& project = document_->project();
-    const auto truth = analysis::identifiedOf(project.soil, project.wheel);
+    // The truth column is the project's soil only for data synthesised from it.
     const bool synthetic = file_->text().isEmpty();
+    const auto truth = analysis::identifiedOf(project.soil, project.wheel);
+    const identification::IdentificationReport* report =
+        result_.report ? &*result_.report : nullptr;
     const auto fields = analysis::identifiedFields();
     parameters_->setRowCount(static_cast<int>(fields.size()));
     for (std::size_t i = 0; i < fields.size(); ++i) {
@@ -226,44 +393,96 @@ void IdentificationPanel::present(const std::any& value) {
         auto* name = new QTableWidgetItem(QString::fromStdString(field.symbolWithUnit()));
         name->setToolTip(QString::fromUtf8(field.description));
         parameters_->setItem(row, 0, name);
-        parameters_->setItem(row, 1, new QTableWidgetItem(QString::number(t.rows[0][i], 'g', 5)));
+        parameters_->setItem(row, 1, new QTableWidgetItem(number(t.rows[0][i], 5)));
         QString std_text = "–";
         for (std::size_t c = fields.size(); c < t.columns.size(); ++c) {
-            if (t.columns[c] == std::string(field.key) + "_std")
-                std_text = QString::number(t.rows[0][c], 'g', 3);
+            if (t.columns[c] == std::string(field.key) + "_std") std_text = number(t.rows[0][c], 3);
         }
         parameters_->setItem(row, 2, new QTableWidgetItem(std_text));
+        QString prior = "–", ratio = "–";
+        if (const auto full = analysis::fullParameterOf(field); report && full) {
+            const identification::PriorComparison& c =
+                report->prior[static_cast<std::size_t>(*full)];
+            if (c.active) {
+                prior = number(c.prior_mean / field.to_si) + " ± " +
+                        number(c.prior_std / field.to_si, 3);
+                ratio = QString::number(c.std_ratio, 'f', 2);
+            }
+        }
+        parameters_->setItem(row, 3, new QTableWidgetItem(prior));
+        parameters_->setItem(row, 4, new QTableWidgetItem(ratio));
         parameters_->setItem(
-            row, 3,
-            new QTableWidgetItem(synthetic ? QString::number(field.userValue(truth), 'g', 5)
-                                           : "–"));
+            row, 5, new QTableWidgetItem(synthetic ? number(field.userValue(truth), 5) : "–"));
     }
+    QStringList lines;
+    lines << QString::fromStdString(result_.start_description).toHtmlEscaped();
+    if (report) {
+        lines << QString("Data: %1.").arg(QString::fromStdString(report->setup.description));
+        lines << QString("Gradient norm %1, Newton decrement %2 (≪ 1 at a minimum).")
+                     .arg(number(report->gradient_norm, 2))
+                     .arg(number(report->newton_decrement, 2));
+        if (report->holdout.computed) {
+            QStringList channels;
+            for (int c = 0; c < identification::kChannelCount; ++c) {
+                const auto k = static_cast<std::size_t>(c);
+                if (!report->holdout.channels[k]) continue;
+                channels << QString("%1 %2 (%3 σ)")
+                                .arg(identification::channelNames()[k])
+                                .arg(number(report->holdout.rms[k], 3))
+                                .arg(QString::number(report->holdout.rms_over_noise[k], 'f', 2));
+            }
+            lines << QString(
+                         "Held-out RMS (%1 samples, %2 fold(s)): %3. ≈ 1 σ: the model "
+                         "predicts new samples to the noise.")
+                         .arg(report->holdout.samples)
+                         .arg(report->holdout.folds)
+                         .arg(channels.join(", "));
+        } else {
+            lines << QString("Held-out error: not computed (choose hold out or 5-fold).");
+        }
+        auto answer = [&fields](const identification::ParameterVector& p) {
+            QStringList values;
+            for (const char* key : {"phi_deg", "c_kPa", "Ks_kPa", "n0", "K_m"}) {
+                const analysis::IdentifiedField& f = *analysis::findIdentifiedField(key);
+                const auto full = analysis::fullParameterOf(f);
+                values << QString("%1 = %2")
+                              .arg(QString::fromUtf8(f.symbol))
+                              .arg(number(p[static_cast<std::size_t>(*full)] / f.to_si));
+            }
+            (void)fields;
+            return values.join(", ");
+        };
+        if (report->ambiguity.empty()) {
+            lines << QString("Ambiguity: none (no other minimum within Δχ² = %1).")
+                         .arg(number(report->ambiguity_delta_chi2, 3));
+        } else {
+            lines << QString(
+                         "<b>Ambiguous</b>: %1 other minimum(s) within Δχ² = %2 — the data "
+                         "cannot choose. Best: %3.")
+                         .arg(report->ambiguity.size())
+                         .arg(number(report->ambiguity_delta_chi2, 3))
+                         .arg(answer(report->parameters));
+            for (const identification::Minimum& m : report->ambiguity) {
+                lines << QString("Other (Δχ² = %1): %2.")
+                             .arg(number(m.delta_chi2, 3))
+                             .arg(answer(m.parameters));
+            }
+        }
+        for (const auto& flag : report->uncertainty.flags)
+            lines << QString::fromStdString(flag).toHtmlEscaped();
+    }
+    report_->setText(lines.join("<br>"));
     QStringList steps;
-    for (const auto& step : result_.fit.steps) {
+    for (const auto& step : result_.steps()) {
         steps << QString("%1: Σr² = %2")
                      .arg(QString::fromStdString(step.name))
                      .arg(step.squared_residual_norm, 0, 'g', 4);
-    }
-    if (result_.refined) {
-        steps << QString("refined: Σr² = %1 (%2)")
-                     .arg(result_.refined->report.squared_residual_norm, 0, 'g', 4)
-                     .arg(QString::fromStdString(result_.refined->report.termination).left(40));
-        for (const auto& flag : result_.refined->uncertainty.flags)
-            steps << QString::fromStdString(flag);
     }
     status_->setText(QString("Fit in %1 ms. ").arg(result_.fit_time_ms, 0, 'f', 0) +
                      steps.join(";  "));
 }
 
 // --- Streaming playback -------------------------------------------------------------------------
-
-namespace {
-
-io::PresetLocations presetLocations() {
-    return io::PresetLocations::standard(QCoreApplication::applicationDirPath().toStdString());
-}
-
-}  // namespace
 
 IdentificationPanel::~IdentificationPanel() {
     delete playback_;  // stops the run and joins its worker before the figures go
@@ -354,8 +573,10 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     layout->addWidget(splitter, 1);
     layout->addWidget(stream_status_);
     stream_status_->setText(
-        "Press Play: the samples are fed one at a time through the streaming identifier "
-        "(sliding window of 60, change of soil when the residual score stays above 8).");
+        "Press Play: the samples are fed one at a time through the streaming estimator on the "
+        "full model (moving horizon of 5 with an arrival cost; shaded: ±σ). A change of soil is "
+        "an alarm of the CUSUM of normalised innovations (above h = ln 10⁶) confirmed by a "
+        "likelihood-ratio refit; a change of load or slip alone is none.");
 
     connect(stream_source_, &QComboBox::currentIndexChanged, this,
             [this] { updateStreamControls(); });
@@ -375,31 +596,36 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
         updatePosition();
         stream_figures_->replot();
     });
-    connect(playback_, &StreamingPlayback::sourceReady, this,
-            [this](const StreamSource& source, std::size_t count) {
-                stream_count_ = count;
-                stream_border_ = source.true_border;
-                stream_description_ = QString::fromStdString(source.description);
-                stream_warnings_.clear();
-                for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
-                stream_frames_.clear();
-                stream_frames_.reserve(count);
-                stream_figures_->reset(source.truth.empty() ? QString("Estimates")
-                                                            : QString("Estimates (dotted: truth)"),
-                                       count, stream_border_,
-                                       identification::StreamingOptions{}.threshold);
-                stream_figures_->setTruth(source.truth);
-                position_->setRange(0, static_cast<int>(count));
-                position_->setValue(0);
-                position_->setFormat("%v / %m samples");
-                stream_figures_->replot();
-                updatePosition();
-            });
+    connect(
+        playback_, &StreamingPlayback::sourceReady, this,
+        [this](const StreamSource& source, std::size_t count) {
+            stream_count_ = count;
+            stream_border_ = source.true_border;
+            stream_description_ = QString::fromStdString(source.description);
+            stream_warnings_.clear();
+            for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
+            stream_frames_.clear();
+            stream_frames_.reserve(count);
+            stream_figures_->reset(
+                source.truth.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"),
+                count, stream_border_,
+                identification::StreamingEstimatorOptions{}.change_threshold);
+            stream_figures_->setTruth(source.truth);
+            position_->setRange(0, static_cast<int>(count));
+            position_->setValue(0);
+            position_->setFormat("%v / %m samples");
+            stream_figures_->replot();
+            updatePosition();
+        });
     connect(playback_, &StreamingPlayback::framesReady, this, &IdentificationPanel::showFrames);
     connect(playback_, &StreamingPlayback::stateChanged, this,
             &IdentificationPanel::playbackStateChanged);
     connect(playback_, &StreamingPlayback::failed, this, [this](const QString& message) {
         stream_status_->setText("<b>Error:</b> " + message.toHtmlEscaped().replace("\n", "<br>"));
+        // The data could not be read or played: say so where "preparing…" was.
+        position_->setRange(0, 1);
+        position_->setValue(0);
+        position_->setFormat("failed: see the message below");
     });
     updateStreamControls();
 }
@@ -452,13 +678,14 @@ void IdentificationPanel::play() {
     stream_count_ = 0;
     stream_border_.reset();
     stream_figures_->reset("Estimates: preparing the data…", 0, std::nullopt,
-                           identification::StreamingOptions{}.threshold);
+                           identification::StreamingEstimatorOptions{}.change_threshold);
     stream_figures_->replot();
     position_->setRange(0, 1);
     position_->setValue(0);
     position_->setFormat("preparing…");
     stream_status_->setText("Playing…");
-    playback_->start(std::move(factory), project.wheel, settings.options,
+    playback_->start(std::move(factory), project.wheel,
+                     analysis::streamingOptions(inputs, settings),
                      speed_->currentData().toDouble());
 }
 
@@ -495,11 +722,11 @@ void IdentificationPanel::updatePosition() {
         return;
     }
     const StreamFrame& f = stream_frames_.back();
-    position_text_->setText(QString("sample %1 · t = %2 s · window %3 · score %4")
-                                .arg(f.update.index)
+    position_text_->setText(QString("sample %1 · t = %2 s · NIS %3 · CUSUM %4")
+                                .arg(f.estimate.index)
                                 .arg(f.time_s, 0, 'f', 2)
-                                .arg(f.update.window_size)
-                                .arg(f.update.residual_score, 0, 'f', 1));
+                                .arg(f.estimate.nis, 0, 'f', 1)
+                                .arg(f.estimate.cusum, 0, 'f', 1));
 }
 
 void IdentificationPanel::updateStreamControls() {
@@ -552,20 +779,21 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
     text += changes.isEmpty() ? QString("; no change of soil detected")
                               : QString("; change of soil at sample %1").arg(changes.join(", "));
     if (stream_border_) text += QString(" (true border: %1)").arg(*stream_border_);
-    if (!stream_frames_.empty() && stream_frames_.back().update.estimated) {
-        const auto& p = stream_frames_.back().update.parameters;
+    if (!stream_frames_.empty() && stream_frames_.back().estimate.estimated) {
+        const auto& p = stream_frames_.back().parameters;
         QStringList values;
         for (const char* key : {"phi_deg", "c_kPa", "K_m"}) {
             const analysis::IdentifiedField& f = *analysis::findIdentifiedField(key);
-            values << QString("%1 = %2 %3")
+            const auto full = analysis::fullParameterOf(f);
+            values << QString("%1 = %2 ± %3 %4")
                           .arg(QString::fromUtf8(f.symbol))
                           .arg(f.userValue(p), 0, 'g', 3)
+                          .arg(stream_frames_.back().estimate.std[static_cast<std::size_t>(*full)] /
+                                   f.to_si,
+                               0, 'g', 2)
                           .arg(QString::fromStdString(f.displayUnit()));
         }
-        text +=
-            ". Last estimate (decoupled model, biased; refine a settled window for numbers "
-            "to report): " +
-            values.join(", ");
+        text += ". Last estimate ± std: " + values.join(", ");
     }
     if (!stream_warnings_.isEmpty()) {
         text += QString(". %1 warning(s): %2")

@@ -1,14 +1,18 @@
 #pragma once
 /// @file identification_panel.h
 /// Identification panel (chapter 5, Figs. 5.1–5.6): synthesise data from the project's soil or
-/// load a CSV, run the three-step decoupled fit (and the full-model refinement with standard
-/// deviations), and see data against fitted curves for F_x, F_z and M_y with the parameters,
-/// residual norms and timing. Runs on "Fit", not on every edit (a fit takes seconds).
+/// load a CSV, run the global identification on the full model (core/identification/identify.h
+/// through core/analysis/identification.h, the same procedure as `terrastudio identify`) or the
+/// decoupled fit alone, and see data against fitted curves for F_x, F_z and M_y with the
+/// parameters ± std, prior against posterior, the held-out error, the ambiguity (both answers) and
+/// the gradient norm. A CSV's fit depends on the CSV and the panel's options only, never on the
+/// project's soil; the panel says what the fit starts from. Runs on "Fit", off the GUI thread.
 ///
-/// Its second page plays a data set back through the streaming identifier
+/// Its second page plays a data set back through the streaming estimator
 /// (widgets/analyses/streaming_playback.h): a CSV, or a synthetic drive from the project's soil
 /// onto a second soil, fed sample by sample on a worker at 0.1×, 1×, 10× or full speed, with pause
-/// and stop; the estimates, the residual score and the detected change points grow as it plays.
+/// and stop; the estimates with ±σ bands, the CUSUM and the confirmed change points grow as it
+/// plays. A CSV that cannot be read is reported with its line numbers.
 
 #include "core/analysis/identification.h"
 #include "core/analysis/streaming_identification.h"
@@ -42,6 +46,17 @@ public:
     analysis::StreamingSettings streamSettings() const;
     /// Uses this CSV as data (empty: synthesise from the project's soil).
     void setDataFile(const QString& path);
+    /// What the next fit starts from, as the panel shows it ("global search …", "prior: …").
+    QString startDescription() const;
+    /// The batch page's status line and its report (held-out error, ambiguity, gradient norm).
+    QString fitStatus() const;
+    QString fitReport() const;
+    /// The global fit's options as a user sets them: prior soil ("" none), prior items,
+    /// validation ("none", "holdout", "folds"), loss ("l2", "huber", "cauchy").
+    void setFitOptions(const QString& prior_soil, const QString& prior_items,
+                       const QString& validation, const QString& loss);
+    /// The parameter table's text (row, column), for tests.
+    QString parameterCell(int row, int column) const;
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
     /// The fit's data and curves, or on the streaming page one row per played sample.
@@ -79,6 +94,7 @@ signals:
 
 private:
     void buildStreamingPage(QWidget* page);
+    void updateFitControls();
     void showFrames(const std::vector<StreamFrame>& frames);
     void playbackStateChanged(StreamingPlayback::State state);
     void updateStreamControls();
@@ -95,6 +111,12 @@ private:
     QTabWidget* tabs_;
     std::vector<QCustomPlot*> plots_;
     QTableWidget* parameters_;
+    QComboBox* prior_soil_;
+    QLineEdit* prior_items_;
+    QComboBox* validation_;
+    QComboBox* loss_;
+    QLabel* start_;
+    QLabel* report_;
     analysis::IdentificationResult result_;
 
     // Streaming page.

@@ -38,7 +38,7 @@ void drawStreaming(QCustomPlot& plot, const std::string& key,
     figures.reset(
         result.source.truth.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"),
         result.frames.size(), result.source.true_border,
-        identification::StreamingOptions{}.threshold);
+        identification::StreamingEstimatorOptions{}.change_threshold);
     figures.setTruth(result.source.truth);
     figures.append(result.frames);
     figures.replot();

@@ -314,7 +314,7 @@ void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult&
         sweep.data.push_back(measured[i]);
         sweep.fit.push_back(fit[i]);
     }
-    const QString model = result.refined ? "full model, refined fit" : "decoupled fit";
+    const QString model = result.report ? "full model, global fit" : "decoupled fit";
     int index = 0;
     for (const auto& [w, sweep] : sweeps) {
         const QColor color = paletteColor(index++);

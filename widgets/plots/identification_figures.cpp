@@ -15,6 +15,7 @@ const QColor kBlue(31, 119, 180), kOrange(255, 127, 14), kGreen(44, 160, 44),
     kPurple(148, 103, 189), kBrown(140, 86, 75), kRed(214, 39, 40), kGrey(110, 110, 110);
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const QString kBandSuffix = " ±σ";
 
 // The estimates drawn, by graph name, and the field of the identified parameters each shows.
 constexpr std::pair<const char*, const char*> kPlotted[] = {
@@ -57,7 +58,9 @@ void rescaleValues(QCPAxisRect* rect) {
         bool found = false;
         QCPRange range;
         for (QCPGraph* g : axis->graphs()) {
-            if (!g->visible() || g->dataCount() == 0) continue;
+            // The ±σ bands may be wide right after a (re)initialisation: the axes follow the
+            // estimates, the bands are clipped.
+            if (!g->visible() || g->dataCount() == 0 || g->name().endsWith(kBandSuffix)) continue;
             bool ok = false;
             const QCPRange r = g->getValueRange(ok, QCP::sdBoth);
             if (!ok || !std::isfinite(r.lower) || !std::isfinite(r.upper)) continue;
@@ -95,7 +98,7 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
     QCPAxisRect* r1 = addRect(estimates_, 2, label("Ks_kPa"), label("n0"), false);
     QCPAxisRect* r2 = addRect(estimates_, 3, label("K_m"), "", false);
     // Detection: score, F_x.
-    QCPAxisRect* r3 = addRect(detection_, 1, "Residual score [-]", "", true);
+    QCPAxisRect* r3 = addRect(detection_, 1, "CUSUM g [-]", "", false);
     QCPAxisRect* r4 = addRect(detection_, 2, "F_x [N]", "", false);
     for (QCPAxisRect* r : {r0, r1, r2}) r->setMarginGroup(QCP::msLeft | QCP::msRight, est_margins);
     for (QCPAxisRect* r : {r3, r4}) r->setMarginGroup(QCP::msLeft | QCP::msRight, det_margins);
@@ -111,7 +114,7 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         {"Ks", lineGraph(bottom(r1), left(r1), kGreen, "K_s")},
         {"n0", lineGraph(bottom(r1), right(r1), kPurple, "n₀")},
         {"K", lineGraph(bottom(r2), left(r2), kBrown, "K")},
-        {"score", dotGraph(bottom(r3), left(r3), kBlue, QCPScatterStyle::ssDisc, 3.5, "score")},
+        {"score", lineGraph(bottom(r3), left(r3), kBlue, "CUSUM")},
         {"far_off",
          dotGraph(bottom(r3), left(r3), kRed, QCPScatterStyle::ssDisc, 5.0, "above threshold")},
         {"fx_measured", dotGraph(bottom(r4), left(r4), QColor(40, 40, 40), QCPScatterStyle::ssDisc,
@@ -130,6 +133,22 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         QCPGraph* g = lineGraph(key, value, color, name);
         g->setPen(QPen(color, 1.2, Qt::DotLine));
         graphs_.emplace_back(name, g);
+        // The estimate ± its std (the estimator's posterior), a shaded band under the line.
+        const QString base = name.left(name.size() - 5);  // "phi_true" → "phi"
+        QCPGraph* lo = lineGraph(key, value, color, base + "_lo" + kBandSuffix);
+        QCPGraph* hi = lineGraph(key, value, color, base + "_hi" + kBandSuffix);
+        QColor edge = color;
+        edge.setAlpha(90);
+        QColor fill = color;
+        fill.setAlpha(45);
+        for (QCPGraph* b : {lo, hi}) {
+            b->setPen(QPen(edge, 0.8));
+            b->setLayer("grid");  // below the estimates (layer "main")
+        }
+        hi->setBrush(fill);
+        hi->setChannelFillGraph(lo);
+        graphs_.emplace_back(base + "_lo", lo);
+        graphs_.emplace_back(base + "_hi", hi);
     }
     styleAxisLabel(left(r0), label("phi_deg"), kBlue);
     styleAxisLabel(right(r0), label("c_kPa"), kOrange);
@@ -168,7 +187,8 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
         }
         plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
     }
-    reset("Estimates", 0, std::nullopt, 8.0);
+    reset("Estimates", 0, std::nullopt,
+          identification::StreamingEstimatorOptions{}.change_threshold);
 }
 
 QCPAxisRect* StreamingFigures::addRect(QCustomPlot* plot, int row, const QString& left,
@@ -210,13 +230,14 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count,
     sample_count_ = sample_count;
     threshold_ = threshold;
     changes_.clear();
+    confirmed_.clear();
     if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0)))
         t->setText(title);
     const double upper = std::max<double>(10.0, static_cast<double>(sample_count));
     for (QCPAxisRect* r : rects_)
         r->axis(QCPAxis::atBottom)->setRange(-0.02 * upper - 0.5, 1.02 * upper + 0.5);
-    // The threshold the score is compared with (streaming.h): above it for `persistence` samples
-    // in a row is a change.
+    // The CUSUM's threshold h (streaming_estimator.h): above it an alarm, which the
+    // likelihood-ratio test then confirms or rejects.
     QCPAxisRect* score = rects_[3];
     auto* line = new QCPItemStraightLine(detection_);
     line->setClipAxisRect(score);
@@ -295,15 +316,20 @@ void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::
 void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
     auto g = [this](const char* name) { return graph(name); };
     for (const StreamFrame& f : frames) {
-        const auto& u = f.update;
+        const auto& u = f.estimate;
         const double k = static_cast<double>(u.index);
         for (const auto& [name, key] : kPlotted) {
-            const double v = analysis::findIdentifiedField(key)->userValue(u.parameters);
+            const analysis::IdentifiedField& field = *analysis::findIdentifiedField(key);
+            const double v = field.userValue(f.parameters);
             g(name)->addData(k, u.estimated ? v : kNaN);
+            const auto full = analysis::fullParameterOf(field);
+            const double sd =
+                u.estimated && full ? u.std[static_cast<std::size_t>(*full)] / field.to_si : kNaN;
+            g((QString(name) + "_lo").toUtf8().constData())->addData(k, v - sd);
+            g((QString(name) + "_hi").toUtf8().constData())->addData(k, v + sd);
         }
-        const bool scored = u.residual_score > 0.0;
-        g("score")->addData(k, scored ? u.residual_score : kNaN);
-        if (scored && u.residual_score > threshold_) g("far_off")->addData(k, u.residual_score);
+        g("score")->addData(k, u.estimated || u.cusum > 0.0 ? u.cusum : kNaN);
+        if (u.cusum > threshold_) g("far_off")->addData(k, u.cusum);
         g("fx_measured")->addData(k, f.fx_measured_n);
         g("fx_predicted")->addData(k, f.fx_predicted_n);
         if (u.change_detected && u.change_at) {
@@ -311,22 +337,23 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
             markVertical(*u.change_at, kRed, Qt::SolidLine,
                          QString("change at %1").arg(*u.change_at),
                          QString("change at %1 (confirmed at %2)").arg(*u.change_at).arg(u.index));
+            confirmed_.push_back(u.index);
         }
         ++frames_;
     }
     if (!frames.empty()) {
         const StreamFrame& f = frames.back();
         current_->data()->clear();
-        current_->addData(static_cast<double>(f.update.index), f.fx_measured_n);
+        current_->addData(static_cast<double>(f.estimate.index), f.fx_measured_n);
         current_label_->setText(
             std::isfinite(f.fx_predicted_n)
                 ? QString("F_x at sample %1 (t = %2 s, ○): measured %3 N (●), predicted %4 N (×)")
-                      .arg(f.update.index)
+                      .arg(f.estimate.index)
                       .arg(f.time_s, 0, 'f', 2)
                       .arg(f.fx_measured_n, 0, 'f', 2)
                       .arg(f.fx_predicted_n, 0, 'f', 2)
                 : QString("F_x at sample %1 (t = %2 s, ○): measured %3 N (●), no estimate yet")
-                      .arg(f.update.index)
+                      .arg(f.estimate.index)
                       .arg(f.time_s, 0, 'f', 2)
                       .arg(f.fx_measured_n, 0, 'f', 2));
     }

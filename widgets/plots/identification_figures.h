@@ -1,9 +1,10 @@
 #pragma once
 /// @file identification_figures.h
 /// The streaming-identification figures (widgets/analyses/streaming_playback.h), drawn as the
-/// samples arrive: the estimated parameters over sample index (φ and c, K_s and n₀, K), the
-/// prediction-residual score with its threshold, and measured against predicted F_x, with the
-/// detected change points (and the true border of synthetic data) as vertical lines.
+/// samples arrive: the estimated parameters over sample index (φ and c, K_s and n₀, K) with
+/// shaded ±σ bands (the estimator's posterior std), the CUSUM of the change test with its
+/// threshold, and measured against predicted F_x, with the confirmed change points (and the true
+/// border of synthetic data) as vertical lines.
 
 #include <QString>
 #include <cstddef>
@@ -36,9 +37,12 @@ public:
     void replot();
 
     std::size_t frameCount() const { return frames_; }
+    /// Where each confirmed change began, and the sample that confirmed it.
     const std::vector<std::size_t>& changePoints() const { return changes_; }
-    /// Graphs by name, for tests: "phi", "c", "Ks", "n0", "K", "score", "fx_measured",
-    /// "fx_predicted", and the truth "phi_true", "c_true", "Ks_true", "n0_true", "K_true".
+    const std::vector<std::size_t>& confirmedAt() const { return confirmed_; }
+    /// Graphs by name, for tests: "phi", "c", "Ks", "n0", "K", their bands "phi_lo", "phi_hi", …
+    /// (estimate ∓ std), "score" (the CUSUM), "fx_measured", "fx_predicted", and the truth
+    /// "phi_true", "c_true", "Ks_true", "n0_true", "K_true".
     QCPGraph* graph(const QString& name) const;
 
 private:
@@ -55,8 +59,9 @@ private:
     QCPTextElement* current_label_ = nullptr;
     std::size_t frames_ = 0;
     std::size_t sample_count_ = 0;
-    double threshold_ = 8.0;
+    double threshold_ = 13.8155;
     std::vector<std::size_t> changes_;
+    std::vector<std::size_t> confirmed_;
 };
 
 }  // namespace terra::ui

@@ -145,7 +145,8 @@ TEST(IdentificationService, RefinedFitOfNoiseFreeDataReturnsTheSoil) {
     EXPECT_NEAR(t.rows[0][t.column("c_kPa")], 1.7, 1e-3);
     EXPECT_NEAR(t.rows[0][t.column("K_m")], 0.025, 1e-5);
     EXPECT_NEAR(t.rows[0][t.column("Ks_kPa")], (5.3e3 / 0.107 + 1.515e6) / 1e3, 1.0);
-    EXPECT_EQ(r.steps().size(), 4u);  // three decoupled steps and the refinement
+    EXPECT_EQ(r.steps().size(), 3u);  // the global fit: screening, descent, refinement
+    ASSERT_TRUE(r.report.has_value());
     IdentificationSettings fixed = s;
     fixed.fixed = {{"n1", 0.1}};  // not a refined parameter
     EXPECT_THROW(computeIdentification(in, fixed), std::invalid_argument);
@@ -159,7 +160,7 @@ TEST(StreamingService, ComputedFramesFindTheSyntheticBorder) {
     ASSERT_TRUE(r.source.true_border.has_value());
     ASSERT_EQ(r.frames.size(), 202u);  // 101 samples of each soil
     ASSERT_FALSE(r.changes.empty());
-    // Detected within a few samples of the true border (the persistence is 3).
+    // Placed at the true border (the likelihood-ratio test confirms it a few samples later).
     EXPECT_NEAR(static_cast<double>(r.changes.front()), static_cast<double>(*r.source.true_border),
                 5.0);
     const Table t = framesTable(r.frames);
