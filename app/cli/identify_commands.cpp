@@ -302,6 +302,13 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     settings.skip_bad_rows = o.skip_bad_rows;
     settings.options.window = o.window;
     settings.options.fit.load_n = o.load_n;
+    if (o.jmax_m) {
+        std::vector<Issue> issues;
+        const soil::SoilField& jmax = *soil::findSoilField("jmax_m");
+        checkRange(issues, "--jmax", *o.jmax_m, jmax.range, jmax.displayUnit());
+        if (!issues.empty()) throw InputError(formatIssues(issues));
+        settings.options.fit.max_shear_deformation_m = *o.jmax_m;
+    }
     if (o.load_n) {
         std::vector<Issue> issues;
         const FieldInfo& load = contact::loadField();

@@ -134,15 +134,16 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     bar->addWidget(new QLabel("Noise:", this));
     bar->addWidget(noise_);
     bar->addWidget(three_loads_);
-    bar->addWidget(refine_);
-    bar->addWidget(fit_);
+    // The fit's options on a second row, so that neither row forces a wide window.
     auto* options = new QHBoxLayout;
+    options->addWidget(refine_);
     options->addWidget(new QLabel("Prior:", this));
     options->addWidget(prior_soil_);
     options->addWidget(prior_items_, 1);
     options->addWidget(validation_);
     options->addWidget(new QLabel("Loss:", this));
     options->addWidget(loss_);
+    options->addWidget(fit_);
     auto* side = new QWidget(this);
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
