@@ -59,7 +59,7 @@ TEST(ExperimentCsv, EveryBadCellIsReportedWithItsLineColumnValueAndRange) {
         << issues[0].message;
     EXPECT_EQ(issues[1].where, "t.csv:3");
     EXPECT_TRUE(
-        contains(issues[1].message, "load_N = -3 is outside the allowed range (0, 100000] N"))
+        contains(issues[1].message, "load_N = -3 is outside the allowed range (0, 1e+05] N"))
         << issues[1].message;
     EXPECT_EQ(issues[2].where, "t.csv:3");
     EXPECT_TRUE(contains(issues[2].message, "Fx_N = 'x' is not a number")) << issues[2].message;
