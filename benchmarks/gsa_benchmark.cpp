@@ -73,6 +73,29 @@ BENCHMARK(BatchForces)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// 10⁶ evaluations with θ_f given and every output written to caller-owned arrays: the C++ side
+// of the Python module's figure (benchmarks/python_module_benchmark.py times terrastudio.forces
+// on the same samples; docs/performance.md, "Python module"). Args: threads.
+void BatchMillion(benchmark::State& state) {
+    const Samples samples(1000000);
+    const double entry = 25 * kDeg;
+    const BatchInput input = samples.input(nullptr, &entry);
+    const auto soil = sandyLoamPreset();
+    const auto wheel = wheelAPreset();
+    RunControl control;
+    control.threads = static_cast<int>(state.range(0));
+    std::vector<std::vector<double>> outputs(11, std::vector<double>(input.count));
+    std::vector<SampleStatus> status(input.count);
+    const BatchOutputView out{outputs[0], outputs[1], outputs[2],  outputs[3],
+                              outputs[4], outputs[5], outputs[6],  outputs[7],
+                              outputs[8], outputs[9], outputs[10], status};
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(evaluateBatch(soil, wheel, input, {}, out, control));
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * input.count));
+}
+BENCHMARK(BatchMillion)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The same with the load given: one cold entry-angle solve per sample.
 void BatchEntryAngle(benchmark::State& state) {
     const Samples samples(static_cast<std::size_t>(state.range(0)));

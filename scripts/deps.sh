@@ -2,7 +2,8 @@
 # product needs (the whole set, so that later work does not fight the install), only those that
 # are missing. clang and clang-format are the second compiler and the format check
 # (scripts/check-clang, scripts/check-format); desktop-file-utils and shared-mime-info check the
-# installed desktop entry and MIME type (tests/install_test.cmake).
+# installed desktop entry and MIME type (tests/install_test.cmake). The Python module needs
+# pybind11 and Python's headers, its tests numpy, pytest and Dask's distributed (docs/python.md).
 # Uses sudo only when not root.
 
 TERRA_PACKAGES=(
@@ -13,6 +14,7 @@ TERRA_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth fonts-dejavu-core
   clang clang-format desktop-file-utils shared-mime-info
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed
 )
 
 terra_install_dependencies() {

@@ -36,3 +36,5 @@ check_dir(core/scenario "#include *\"core/(analysis|project)/"
           "core/scenario must not include the analysis services or the project")
 check_dir(core/analysis "#include *\"core/project/"
           "core/analysis must not include the project (the project holds analysis settings)")
+check_dir(python "#include *[<\"](Q[A-Za-z]|qcustomplot|widgets/|app/)"
+          "the Python module binds the core only (no Qt, widgets or app)")

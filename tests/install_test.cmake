@@ -2,7 +2,10 @@
 # with no way to reach this tree's resources: the binary must hold no path of the source or build
 # tree, and the run must use the prefix's data (a preset removed from the prefix is unknown, a
 # preset added to it is listed and used). Also checks the desktop entry and the MIME type.
-#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK=... -DVERSION=... -P install_test.cmake
+# With PYTHON set (the module is built), the installed package is imported from the prefix and
+# finds the prefix's presets too.
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK=... -DVERSION=... [-DPYTHON=... -DPYTHON_DIR=...]
+#         -P install_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
 set(prefix "${WORK}/prefix")
@@ -106,6 +109,29 @@ endif()
 file(GLOB images "${WORK}/run/*.png")
 if(NOT images)
   message(FATAL_ERROR "run wrote no plot into ${WORK}/run")
+endif()
+
+# The Python package from the prefix only: imported from there, with the prefix's data.
+if(PYTHON)
+  set(package "${prefix}/${PYTHON_DIR}/terrastudio")
+  if(NOT EXISTS "${package}/__init__.py" OR NOT EXISTS "${package}/__init__.pyi")
+    message(FATAL_ERROR "the Python package is not installed in ${package}")
+  endif()
+  set(probe [=[
+import sys, terrastudio as ts
+assert ts.__file__.startswith(sys.argv[1]), ts.__file__
+assert "install-probe" in ts.presets("soils") and "snow" not in ts.presets("soils")
+out = ts.forces("install-probe", "B", slip=[0.1, 0.2], load_N=80.0)
+assert out["ok"].all(), out
+print(ts.__version__, ts.soil("install-probe").name)
+]=])
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=TERRASTUDIO_RESOURCES
+                          "PYTHONPATH=${prefix}/${PYTHON_DIR}" ${PYTHON} -c "${probe}" "${package}"
+                  WORKING_DIRECTORY "${elsewhere}" RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out STREQUAL "${VERSION} install probe\n")
+    message(FATAL_ERROR "import terrastudio from the prefix (${rc}): ${out}${err}")
+  endif()
 endif()
 
 file(REMOVE_RECURSE "${WORK}")

@@ -1,0 +1,147 @@
+#include "python/src/analyses_binding.h"
+
+#include <pybind11/stl.h>
+
+#include <any>
+#include <string>
+#include <vector>
+
+#include "core/analysis/identification.h"
+#include "core/analysis/registry.h"
+#include "core/analysis/stresses.h"
+#include "core/identification/data_set.h"
+#include "core/io/json_reader.h"
+#include "python/src/convert.h"
+
+namespace terra::python {
+namespace {
+
+const analysis::AnalysisType& typeNamed(const std::string& name) {
+    if (const analysis::AnalysisType* type = analysis::findAnalysisType(name)) return *type;
+    const std::vector<std::string> names = analysis::analysisTypeNames();
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    const std::string near = nearestName(name, names);
+    throw std::invalid_argument("analysis \"" + name + "\" is not one of " + list +
+                                (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
+}
+
+const char* statusName(analysis::Outcome::Status status) {
+    switch (status) {
+        case analysis::Outcome::Status::kCompleted:
+            return "completed";
+        case analysis::Outcome::Status::kCancelled:
+            return "cancelled";
+        case analysis::Outcome::Status::kFailed:
+            return "failed";
+    }
+    return "?";
+}
+
+// A data set given as columns (the CSV columns of data_set.h), read by the CSV reader so that
+// the same rows are refused with the same messages.
+identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_rows, bool refine) {
+    std::vector<std::string> names;
+    std::vector<std::vector<double>> values;
+    for (auto [key, value] : columns) {
+        names.push_back(key.cast<std::string>());
+        values.push_back(
+            py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value)
+                .cast<std::vector<double>>());
+        if (values.back().size() != values.front().size()) {
+            throw std::invalid_argument(
+                "data: column " + names.back() + " has " + std::to_string(values.back().size()) +
+                " values, " + names.front() + " " + std::to_string(values.front().size()));
+        }
+    }
+    std::string csv;
+    for (std::size_t c = 0; c < names.size(); ++c) csv += (c ? "," : "") + names[c];
+    csv += '\n';
+    for (std::size_t r = 0; !values.empty() && r < values.front().size(); ++r) {
+        for (std::size_t c = 0; c < names.size(); ++c)
+            csv += (c ? "," : "") + formatNumber(values[c][r]);  // shortest round trip
+        csv += '\n';
+    }
+    // The columns the identification's own CSV reader insists on (the full model reads data
+    // without an entry angle and with any channels).
+    auto read = identification::parseDataSet(
+        csv, "data",
+        skip_bad_rows ? identification::BadRows::kSkip : identification::BadRows::kStop,
+        refine ? identification::ColumnNeeds::kFullModel : identification::ColumnNeeds::kDecoupled);
+    if (!read) raiseIssues(read.issues());
+    if (read->data.samples.empty()) throw std::invalid_argument("data: no valid samples");
+    return read->data;
+}
+
+py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
+             const wheel::WheelParameters& wheel, const py::dict& conditions,
+             const py::dict& settings, py::object data) {
+    const analysis::AnalysisType& type = typeNamed(type_name);
+    const nlohmann::json conditions_json = toJson(conditions);
+    const nlohmann::json settings_json = toJson(settings);
+    std::vector<Issue> issues;
+    analysis::Inputs inputs{soil, wheel, {}};
+    io::ObjectReader c(conditions_json, issues);
+    analysis::readConditions(c, inputs.conditions);
+    c.finish();
+    if (type.uses_inputs && issues.empty()) issues = analysis::validate(inputs);
+    io::ObjectReader r(settings_json, issues);
+    const analysis::ReadContext context{&presetLocations(), {}};
+    std::any typed = type.read(r, context);
+    r.finish();
+    if (!issues.empty()) raiseIssues(issues);
+    if (!data.is_none()) {
+        auto* identification = std::any_cast<analysis::IdentificationSettings>(&typed);
+        if (!identification) throw std::invalid_argument(type_name + " takes no data");
+        identification->data =
+            dataFromColumns(data, identification->skip_bad_rows, identification->refine);
+        identification->csv = "data";
+    }
+    analysis::Outcome outcome;
+    {
+        py::gil_scoped_release release;
+        outcome = type.run(typed, inputs, analysis::Control{});
+    }
+    py::dict out;
+    out["status"] = statusName(outcome.status);
+    out["message"] = outcome.message;
+    py::dict tables;
+    for (const analysis::NamedTable& t : outcome.tables)
+        tables[py::str(t.name)] = tableToDict(t.table);
+    out["tables"] = tables;
+    out["notes"] = outcome.notes;
+    py::dict documents;
+    for (const auto& [suffix, json] : outcome.documents)
+        documents[py::str(suffix)] = fromJson(json);
+    out["documents"] = documents;
+    // What the tables do not hold.
+    if (const auto* stresses = std::any_cast<analysis::StressResult>(&outcome.result)) {
+        out["entry_angle_deg"] = stresses->entry_angle_deg;
+        out["max_stress_angle_deg"] = stresses->max_stress_angle_deg;
+        if (!stresses->message.empty()) out["message"] = stresses->message;
+    }
+    if (const auto* fit = std::any_cast<analysis::IdentificationResult>(&outcome.result)) {
+        out["usable"] = fit->usable();
+        out["fit_time_ms"] = fit->fit_time_ms;
+        if (!fit->message.empty()) out["message"] = fit->message;
+    }
+    return out;
+}
+
+}  // namespace
+
+void bindAnalyses(py::module_& m) {
+    m.def("_run", &run, py::arg("type"), py::arg("soil"), py::arg("wheel"), py::arg("conditions"),
+          py::arg("settings"), py::arg("data") = py::none());
+    m.def(
+        "analyses",
+        []() {
+            py::dict out;
+            for (const analysis::AnalysisType& type : analysis::analysisTypes())
+                out[py::str(type.name)] = type.summary;
+            return out;
+        },
+        "The analyses of the registry, name -> one-line summary (terrastudio.run runs any).");
+}
+
+}  // namespace terra::python

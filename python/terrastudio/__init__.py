@@ -1,0 +1,335 @@
+"""TerraStudio from Python: the wheel-soil model of the studio and the command line (docs/python.md).
+
+Every number comes from the C++ core (the same code as ``terrastudio`` on the command line and the
+studio): this package only broadcasts arrays, names keywords and shapes the results.
+
+    >>> import numpy as np, terrastudio as ts
+    >>> soil, wheel = ts.soil("sandy-loam"), ts.wheel("A")
+    >>> out = ts.forces(soil, wheel, slip=np.linspace(0, 0.9, 91), slip_angle_deg=5.0, load_N=58.86)
+    >>> out["Fx_N"], out["sinkage_m"], out["ok"]
+
+Bad input raises ValueError with the command line's message (field, value, allowed range).
+"""
+
+import math
+import os
+
+import numpy as np
+
+from . import _core, _layout
+from ._core import (STATUS, Soil, Wheel, analyses, presets, sobol_design, soil, soil_fields,
+                    wheel)
+
+__version__ = _core.__version__
+__all__ = [
+    "STATUS",
+    "Soil",
+    "Wheel",
+    "analyses",
+    "forces",
+    "identify",
+    "morris",
+    "presets",
+    "run",
+    "simulate",
+    "sobol",
+    "sobol_design",
+    "sobol_indices",
+    "soil",
+    "soil_fields",
+    "stresses",
+    "sweep",
+    "wheel",
+]
+
+_core._set_data_dir(os.path.normpath(os.path.join(os.path.dirname(__file__), _layout.DATA_DIR)))
+
+# Keywords of forces(), sobol() and morris() that choose the contact model (the command line's
+# model flags); every other keyword of forces() is a soil field.
+_MODEL_OPTIONS = ("exit_angle_deg", "rut_ratio", "max_stress_angle_deg", "bulldozing", "model")
+# The keys of the operating conditions (a run script's "conditions").
+_CONDITIONS = ("load_N", "slip_angles_deg", "slip_count", "slip_max", "model")
+_OUTPUTS = (
+    "Fx_N",
+    "Fy_N",
+    "Fz_N",
+    "Mx_Nm",
+    "My_Nm",
+    "Mz_Nm",
+    "Fb_N",
+    "Fs_N",
+    "entry_angle_deg",
+    "exit_angle_deg",
+    "sinkage_m",
+)
+
+
+def _plain(value):
+    """json.dumps' fallback: numpy arrays and scalars as lists and numbers."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"{type(value).__name__} is not a number, string, list or dict")
+
+
+def _as_soil(value):
+    return value if isinstance(value, Soil) else soil(value)
+
+
+def _as_wheel(value):
+    return value if isinstance(value, Wheel) else wheel(value)
+
+
+def _broadcast(arrays):
+    """The arrays broadcast together: (shape, {name: flat float64 array of size(shape) or 1})."""
+    converted = {}
+    for name, value in arrays.items():
+        try:
+            converted[name] = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"{name}: expected numbers ({e})") from None
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in converted.values()))
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in converted.items() if a.ndim > 0)
+        raise ValueError(f"the arrays do not broadcast together: {shapes}") from None
+    flat = {}
+    for name, a in converted.items():
+        if a.size == 1:
+            flat[name] = a.reshape(1)  # one value for every sample, never copied N times
+        else:
+            flat[name] = np.ascontiguousarray(np.broadcast_to(a, shape)).reshape(-1)
+    return shape, flat
+
+
+def forces(soil, wheel, slip, slip_angle_deg=0.0, load_N=None, entry_angle_deg=None, *,
+           threads=0, invalid_soil="raise", **fields):
+    """Forces, moments and sinkage of the wheel at every operating point.
+
+    soil, wheel: Soil and Wheel, or what soil() and wheel() take (a preset name, a file, a dict).
+    slip: s [-] in [-1, 1]; slip_angle_deg: beta [deg]; load_N: W [N] > 0 (theta_f solved so that
+    F_z = W, thesis section 2.6.1) or entry_angle_deg: theta_f [deg] given.
+    fields: soil fields by their file keys and units (phi_deg, c_kPa, K_m, n, kc, kphi, ...; see
+    soil_fields()) replacing the soil's value per sample, and the model options exit_angle_deg,
+    rut_ratio, max_stress_angle_deg, bulldozing ("bekker", "hegedus"), model ("full",
+    "quadratic"). Every array argument broadcasts with the others (numpy rules).
+    threads: worker threads (0: one per hardware thread; the numbers do not depend on it). The
+    GIL is released while the core computes.
+    invalid_soil: "raise" (ValueError naming the sample, the field, the value and its range) or
+    "flag" (such samples get status 3 and NaN; for sampled distributions).
+
+    Returns a dict of arrays of the broadcast shape: Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, Mz_Nm, Fb_N,
+    Fs_N [N, N*m], entry_angle_deg, exit_angle_deg [deg], sinkage_m [m] (NaN where there is no
+    result), ok (bool: an equilibrium was found) and status (uint8 codes, names in STATUS).
+    """
+    options = {k: fields.pop(k) for k in list(fields) if k in _MODEL_OPTIONS}
+    arrays = {"slip": slip, "slip_angle_deg": slip_angle_deg}
+    if load_N is not None:
+        arrays["load_N"] = load_N
+    if entry_angle_deg is not None:
+        arrays["entry_angle_deg"] = entry_angle_deg
+    arrays.update(fields)
+    shape, flat = _broadcast(arrays)
+    count = math.prod(shape)
+    out = _core._forces(
+        _as_soil(soil), _as_wheel(wheel), count, flat.pop("slip"), flat.pop("slip_angle_deg"),
+        flat.pop("load_N", None), flat.pop("entry_angle_deg", None), flat, options, int(threads),
+        invalid_soil)
+    result = {name: out[name].reshape(shape) for name in _OUTPUTS}
+    result["status"] = out["status"].reshape(shape)
+    result["ok"] = result["status"] == 0
+    return result
+
+
+def _split_conditions(keywords):
+    conditions = {k: keywords.pop(k) for k in list(keywords) if k in _CONDITIONS}
+    return conditions, keywords
+
+
+def run(analysis, soil="sandy-loam", wheel="A", *, conditions=None, **settings):
+    """Any analysis of the registry (analyses()) as a run script's analysis object.
+
+    settings: the analysis's keys as in a run script (docs/user-guide.md, "Scripted runs");
+    conditions: the operating conditions (load_N, slip_angles_deg, slip_count, slip_max, model).
+    Returns {"status", "message", "tables": {name: {column: array}}, "notes", "documents"}.
+    """
+    return _core._run(analysis, _as_soil(soil), _as_wheel(wheel), dict(conditions or {}),
+                      settings)
+
+
+def sweep(soil, wheel, slips=None, *, entry_angle_deg=None, **keywords):
+    """Forces and moments against slip for each slip angle (thesis Figs. 2.18-2.26).
+
+    slips: the slips (default: slip_count points from 0 to slip_max); slip_angles_deg (default
+    5, 10, ..., 30), load_N (default 58.86) or entry_angle_deg; model options as forces().
+    Returns the sweep table's columns (slip_angle_deg, slip, entry_angle_deg, exit_angle_deg,
+    sinkage_m, Fx_N, ..., Fs_N: one row per point with an equilibrium) and "notes" (the points
+    without one).
+    """
+    conditions, settings = _split_conditions(keywords)
+    if slips is not None:
+        settings["slips"] = np.atleast_1d(np.asarray(slips, dtype=np.float64))
+    if entry_angle_deg is not None:
+        settings["entry_angle_deg"] = entry_angle_deg
+    out = run("forces", soil, wheel, conditions=conditions, **settings)
+    table = dict(out["tables"]["sweep"])
+    table["notes"] = out["notes"]
+    return table
+
+
+def stresses(soil, wheel, slip=0.3, slip_angle_deg=12.0, *, entry_angle_deg=None, load_N=None,
+             step_deg=0.01, **keywords):
+    """Normal and shear stresses over the contact at one operating point (Eqs. 2.13-2.22), exact
+    and from the quadratic approximation (Eqs. 2.36-2.38), with the approximation's errors.
+
+    entry_angle_deg given, or solved so that F_z = load_N (default 58.86 N). Returns {"stresses":
+    {theta_deg, sigma_kPa, tau_kPa, ...}, "errors": {stress_index, rmse_kPa, mae_kPa},
+    "entry_angle_deg", "max_stress_angle_deg", "message"}.
+    """
+    conditions = {} if load_N is None else {"load_N": load_N}
+    settings = {"slip": slip, "slip_angle_deg": slip_angle_deg, "step_deg": step_deg}
+    if entry_angle_deg is not None:
+        settings["entry_angle_deg"] = entry_angle_deg
+    settings.update(keywords)
+    out = run("stresses", soil, wheel, conditions=conditions, **settings)
+    return {
+        "stresses": out["tables"]["stresses"],
+        "errors": out["tables"]["errors"],
+        "entry_angle_deg": out["entry_angle_deg"],
+        "max_stress_angle_deg": out["max_stress_angle_deg"],
+        "message": out["message"],
+    }
+
+
+def identify(data, wheel, soil="sandy-loam", **settings):
+    """Soil identification from wheel data (thesis chapters 4-5): the decoupled fit and its
+    refinement through the full model with standard deviations.
+
+    data: a CSV file (columns slip, entry_angle_deg, Fx_N, Fz_N, My_Nm; docs/identification.md),
+    a dict of those columns as arrays, or None for synthetic data made from `soil`
+    (noise_percent, seed, loads_N, slip_count). Other settings as a run script's identification
+    (refine, fix, noise, skip_bad_rows, jmax_m). Returns {"parameters": {name: value}, "curves":
+    {column: array}, "usable", "notes", "message"}.
+    """
+    columns = None
+    if isinstance(data, dict):
+        columns = data
+    elif data is not None:
+        settings["csv"] = os.fspath(data)
+    out = _core._run("identification", _as_soil(soil), _as_wheel(wheel), {}, settings, columns)
+    parameters = {k: float(v[0]) for k, v in out["tables"]["parameters"].items() if len(v)}
+    return {
+        "parameters": parameters,
+        "curves": out["tables"]["curves"],
+        "usable": out["usable"],
+        "notes": out["notes"],
+        "message": out["message"],
+    }
+
+
+def simulate(scenario="straight", **settings):
+    """A rover scenario run (thesis chapter 3): a preset name (presets("scenarios")) or a file;
+    duration_s, time_step_s and model override the scenario's. Returns {"summary": {...},
+    "timeseries": {column: array}, "status", "message", "notes"} (and "streaming" when the
+    scenario identifies the soil as it drives).
+    """
+    settings["scenario"] = os.fspath(scenario)
+    out = run("rover", **settings)
+    result = {"status": out["status"], "message": out["message"], "notes": out["notes"]}
+    for name, table in out["tables"].items():
+        result[name] = table
+    documents = out["documents"]
+    summary = [v for k, v in documents.items() if "summary" in k]
+    result["summary"] = summary[0] if summary else result.get("summary")
+    return result
+
+
+def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entry_angle_deg,
+                     outputs, options):
+    unknown = [k for k in options if k not in _MODEL_OPTIONS]
+    if unknown:
+        raise TypeError(f"unexpected keyword {unknown[0]!r} (model options: "
+                        f"{', '.join(_MODEL_OPTIONS)})")
+    if isinstance(outputs, str):
+        outputs = [outputs]
+    angle_axis = np.ndim(slip_angle_deg) > 0
+    if load_N is None and entry_angle_deg is None:
+        load_N = 58.86  # Table 2.6's 6 kg, the conditions' default
+    return dict(
+        soil=_as_soil(soil), wheel=_as_wheel(wheel), parameters=dict(parameters),
+        slips=[float(s) for s in np.atleast_1d(slip)],
+        slip_angles_deg=[float(b) for b in np.atleast_1d(slip_angle_deg)],
+        load_N=None if load_N is None else float(load_N),
+        entry_angle_deg=None if entry_angle_deg is None else float(entry_angle_deg),
+        outputs=list(outputs), options=options, angle_axis=bool(angle_axis))
+
+
+def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, load_N=None,
+          entry_angle_deg=None, outputs=("Fx_N",), samples=4096, seed=1, *, correlated=None,
+          resamples=1000, confidence=0.95, max_failed_fraction=0.05, client=None, chunks=None,
+          threads=0, **options):
+    """Sobol' first-order and total indices of the wheel model (docs/sensitivity.md).
+
+    parameters: {soil file key: distribution} in the file's units, in the order of the indices'
+    rows; a distribution is (low, high) (uniform), {"range": [low, high]} or {"normal": [mean,
+    sd], "bounds": [low, high]} (bounds optional). correlated: {"keys", "mean", "covariance"}, a
+    multivariate normal group after them (an identification's posterior).
+    slip, slip_angle_deg: the operating points; load_N (theta_f solved per sample; 58.86 N when
+    neither is given) or entry_angle_deg. outputs: any of Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, Mz_Nm, Fb_N, Fs_N,
+    sinkage_m, entry_angle_deg, exit_angle_deg. samples: N base samples (N (d + 2) rows, each
+    evaluated at every point); seed: the Sobol' sequence's shift and the bootstrap's seed.
+    client: a dask.distributed.Client to evaluate the rows on its workers, in `chunks` pieces
+    (default: 4 per worker thread); the result is bit for bit the local one.
+
+    Returns {"S1", "ST", "S1_conf", "ST_conf"}: {output: array [parameter, slip]} ([parameter,
+    slip angle, slip] when slip_angle_deg is a list), "parameters", "outputs", "slip",
+    "slip_angle_deg", "evaluations", "dropped" (base samples left out per point), "status",
+    "message". Raises RuntimeError when too many evaluations failed at some point.
+    """
+    arguments = _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N,
+                                 entry_angle_deg, outputs, options)
+    arguments.update(correlated=correlated, samples=int(samples), seed=int(seed),
+                     resamples=int(resamples), confidence=float(confidence),
+                     max_failed_fraction=float(max_failed_fraction))
+    return _study("sobol", arguments, client, chunks, threads)
+
+
+def morris(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, load_N=None,
+           entry_angle_deg=None, outputs=("Fx_N",), trajectories=64, levels=4, seed=1, *,
+           resamples=1000, confidence=0.95, max_failed_fraction=0.05, client=None, chunks=None,
+           threads=0, **options):
+    """Morris elementary-effects screening of the wheel model (docs/sensitivity.md).
+
+    parameters: {soil file key: (low, high)} (uniform ranges only). The other arguments as
+    sobol(). Returns {"mu_star", "mu", "sigma", "mu_star_conf"}: {output: array [parameter,
+    slip]} and the keys sobol() returns besides the indices.
+    """
+    arguments = _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N,
+                                 entry_angle_deg, outputs, options)
+    arguments.update(trajectories=int(trajectories), levels=int(levels), seed=int(seed),
+                     resamples=int(resamples), confidence=float(confidence),
+                     max_failed_fraction=float(max_failed_fraction))
+    return _study("morris", arguments, client, chunks, threads)
+
+
+def sobol_indices(parameters, values, samples=4096, seed=1, *, correlated=None, resamples=1000,
+                  confidence=0.95, threads=0):
+    """Sobol' indices of any model from its outputs on sobol_design(parameters, samples, seed,
+    correlated): values is [rows] or [rows, outputs]. Returns {"S1", "ST", "S1_conf", "ST_conf"}
+    as arrays [parameter, output] and "parameters"."""
+    return _core.sobol_indices(dict(parameters), correlated, int(samples), int(seed), values,
+                               int(resamples), float(confidence), int(threads))
+
+
+def _plan(kind, arguments):
+    return (_core._SobolPlan if kind == "sobol" else _core._MorrisPlan)(**arguments)
+
+
+def _study(kind, arguments, client, chunks, threads):
+    plan = _plan(kind, arguments)
+    if client is None:
+        return plan.run(int(threads))
+    from ._dask import run_on
+
+    return run_on(client, kind, arguments, plan, chunks, int(threads))

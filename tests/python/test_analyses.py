@@ -1,0 +1,101 @@
+"""sweep, stresses, identify, simulate and run: the registry's analyses from Python."""
+
+import numpy as np
+import pytest
+import terrastudio as ts
+
+SOIL, WHEEL = "sandy-loam", "A"
+
+
+def test_sweep_agrees_with_forces_point_by_point():
+    # The sweep warm-starts each entry-angle solve from the previous slip, the batch starts cold:
+    # two routes to the same equilibrium, equal within the solver's tolerance.
+    slips = [0.05, 0.2, 0.4, 0.8]
+    table = ts.sweep(SOIL, WHEEL, slips, slip_angles_deg=[5.0, 20.0], load_N=70.0)
+    assert len(table["slip"]) == 8 and table["notes"] == []
+    out = ts.forces(SOIL, WHEEL, slip=table["slip"], slip_angle_deg=table["slip_angle_deg"],
+                    load_N=70.0)
+    np.testing.assert_allclose(table["Fz_N"], 70.0, rtol=1e-6)
+    np.testing.assert_allclose(out["Fx_N"], table["Fx_N"], rtol=1e-6, atol=1e-6)
+    np.testing.assert_allclose(out["entry_angle_deg"], table["entry_angle_deg"], rtol=1e-6)
+
+
+def test_sweep_with_a_fixed_entry_angle_is_the_batch_exactly():
+    table = ts.sweep(SOIL, WHEEL, [0.1, 0.5], slip_angles_deg=[10.0], entry_angle_deg=25.0)
+    out = ts.forces(SOIL, WHEEL, slip=[0.1, 0.5], slip_angle_deg=10.0, entry_angle_deg=25.0)
+    np.testing.assert_array_equal(out["My_Nm"], table["My_Nm"])
+
+
+def test_sweep_reports_unknown_keys_like_a_script():
+    with pytest.raises(ValueError, match='did you mean "slips"'):
+        ts.sweep(SOIL, WHEEL, slipz=[0.1])
+    with pytest.raises(ValueError, match=r"slips\[1\]: 2 is outside the allowed range"):
+        ts.sweep(SOIL, WHEEL, [0.1, 2.0])
+
+
+def test_stresses_at_a_given_entry_angle():
+    out = ts.stresses(SOIL, WHEEL, slip=0.3, slip_angle_deg=12.0, entry_angle_deg=30.0,
+                      step_deg=0.5)
+    s = out["stresses"]
+    assert out["entry_angle_deg"] == pytest.approx(30.0, rel=1e-12)
+    assert s["theta_deg"][-1] == pytest.approx(30.0)
+    # σ vanishes at the entry angle (no sinkage there, Eq. 2.13) and peaks inside the contact.
+    assert s["sigma_kPa"][-1] == pytest.approx(0.0, abs=1e-9)
+    assert 0.0 < np.argmax(s["sigma_kPa"]) < len(s["sigma_kPa"]) - 1
+    assert len(out["errors"]["rmse_kPa"]) == 4
+
+
+def test_identify_recovers_the_soil_of_noiseless_synthetic_data():
+    # Data made from the soil without noise: the full-model refinement lands on that soil (the
+    # decoupled start is a linearisation and is off by itself).
+    soil, wheel = ts.soil(SOIL), ts.wheel(WHEEL)
+    out = ts.identify(None, wheel, soil, noise_percent=0.0, slip_count=12)
+    p = out["parameters"]
+    assert out["usable"]
+    for key, expected in (("phi_deg", soil["phi_deg"]), ("c_kPa", soil["c_kPa"]),
+                          ("K_m", soil["K_m"]), ("n0", soil["n"]), ("a0", soil["a0"]),
+                          ("a1", soil["a1"])):
+        assert p[key] == pytest.approx(expected, rel=1e-6), key
+    # K_s = k_c / b + k_phi (Eq. 2.3), in kPa-based file units.
+    assert p["Ks_kPa"] == pytest.approx(soil["kc"] / wheel.b_m + soil["kphi"], rel=1e-6)
+    assert p["phi_deg_std"] < 1e-6
+    assert len(out["curves"]["slip"]) == 12
+
+
+def test_identify_from_columns_equals_from_csv(tmp_path):
+    soil = ts.soil(SOIL)
+    synthetic = ts.identify(None, WHEEL, soil, noise_percent=1.0, slip_count=10, refine=False)
+    c = synthetic["curves"]
+    data = {k: c[k] for k in ("slip", "entry_angle_deg", "Fx_N", "Fz_N", "My_Nm")}
+    path = tmp_path / "data.csv"
+    with open(path, "w") as f:
+        f.write(",".join(data) + "\n")
+        for row in zip(*data.values()):
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+    from_columns = ts.identify(data, WHEEL, refine=False)
+    from_file = ts.identify(path, WHEEL, refine=False)
+    assert from_columns["parameters"] == from_file["parameters"]
+
+
+def test_identify_bad_data():
+    with pytest.raises(ValueError, match="slip"):
+        ts.identify({"slip": [0.1, 3.0], "entry_angle_deg": [20, 20], "Fx_N": [1, 2],
+                     "Fz_N": [50, 50], "My_Nm": [1, 1]}, WHEEL)
+
+
+def test_simulate_a_preset_scenario():
+    out = ts.simulate("pulse-steering", duration_s=1.0)
+    assert out["status"] == "completed", out["message"]
+    t = out["timeseries"]
+    assert t["t_s"][-1] == pytest.approx(1.0, abs=0.05)
+    assert isinstance(out["summary"], dict)
+    with pytest.raises(ValueError, match="scenario"):
+        ts.simulate("no-such-scenario")
+
+
+def test_run_lists_and_runs_the_registry():
+    assert "forces" in ts.analyses() and "soil-curves" in ts.analyses()
+    out = ts.run("soil-curves", SOIL, WHEEL)
+    assert out["status"] == "completed" and out["tables"]
+    with pytest.raises(ValueError, match='did you mean "forces"'):
+        ts.run("forcse")

@@ -1,0 +1,57 @@
+"""Studies on a Dask cluster: a 2-worker LocalCluster gives the local numbers bit for bit."""
+
+import distributed  # Debian's python3-distributed (scripts/deps.sh): a missing one fails the test
+import numpy as np
+import pytest
+import terrastudio as ts
+
+SOIL, WHEEL = "sandy-loam", "A"
+PARAMETERS = {"phi_deg": (20.0, 35.0), "c_kPa": (0.0, 5.0), "K_m": (0.005, 0.04),
+              "n": (0.5, 1.1)}
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=40)
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def assert_same(local, remote, keys):
+    for key in keys:
+        for output, value in local[key].items():
+            np.testing.assert_array_equal(remote[key][output], value, err_msg=f"{key} {output}")
+    assert remote["evaluations"] == local["evaluations"]
+
+
+def test_sobol_on_two_workers_is_bit_identical(client):
+    kwargs = dict(slip=[0.1, 0.3, 0.6], load_N=58.86, outputs=["Fx_N", "sinkage_m"],
+                  samples=256, seed=1, resamples=200)
+    local = ts.sobol(SOIL, WHEEL, PARAMETERS, **kwargs)
+    remote = ts.sobol(SOIL, WHEEL, PARAMETERS, client=client, **kwargs)
+    assert_same(local, remote, ("S1", "ST", "S1_conf", "ST_conf"))
+    # Uneven chunks, a modified soil and a slip angle travel too.
+    soil = ts.soil(SOIL, phi_deg=28.123456789)
+    kwargs.update(slip_angle_deg=7.0, samples=64)
+    local = ts.sobol(soil, WHEEL, PARAMETERS, **kwargs)
+    remote = ts.sobol(soil, WHEEL, PARAMETERS, client=client, chunks=5, **kwargs)
+    assert_same(local, remote, ("S1", "ST", "S1_conf", "ST_conf"))
+
+
+def test_morris_on_two_workers_is_bit_identical(client):
+    kwargs = dict(slip=[0.2, 0.5], entry_angle_deg=25.0, trajectories=32, resamples=100)
+    local = ts.morris(SOIL, WHEEL, PARAMETERS, **kwargs)
+    remote = ts.morris(SOIL, WHEEL, PARAMETERS, client=client, **kwargs)
+    assert_same(local, remote, ("mu_star", "mu", "sigma", "mu_star_conf"))
+
+
+def test_chunks_cover_the_rows_in_whole_groups():
+    from terrastudio._dask import chunk_bounds
+
+    bounds = chunk_bounds(60, 6, 4)
+    assert bounds[0][0] == 0 and bounds[-1][1] == 60
+    assert all(b % 6 == 0 and e % 6 == 0 and b < e for b, e in bounds)
+    assert all(bounds[i][1] == bounds[i + 1][0] for i in range(len(bounds) - 1))
+    assert chunk_bounds(12, 6, 10) == [(0, 6), (6, 12)]
