@@ -1,6 +1,7 @@
 #include "core/project/panels.h"
 
 #include <limits>
+#include <type_traits>
 
 #include "core/contact/operating_fields.h"
 #include "core/gsa/wheel_target.h"
@@ -119,25 +120,33 @@ nlohmann::json toJson(const RoverPanelSettings& s) {
 }
 
 void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
-    auto check = [&](const char* name, auto settings) {
+    // Each panel's settings are read into a default-constructed value (by reference: GCC 12
+    // warns of a maybe-uninitialized vector when a temporary is copied into the lambda).
+    auto check = [&](const char* name, auto& settings) {
         if (!panels.has(name)) {
             panels.allow(name);
             return;
         }
         ObjectReader r = panels.object(name);
-        if constexpr (std::is_same_v<decltype(settings), RoverPanelSettings>) {
+        if constexpr (std::is_same_v<std::remove_cvref_t<decltype(settings)>, RoverPanelSettings>) {
             readPanelSettings(r, settings, locations);
         } else {
             readPanelSettings(r, settings);
         }
         r.finish();
     };
-    check("forces", ForcesPanelSettings{});
-    check("stresses", StressPanelSettings{});
-    check("sensitivity", SensitivityPanelSettings{});
-    check("identification", IdentificationPanelSettings{});
-    check("rover", RoverPanelSettings{});
-    check("global-sensitivity", GlobalSensitivityPanelSettings{});
+    ForcesPanelSettings forces;
+    StressPanelSettings stresses;
+    SensitivityPanelSettings sensitivity;
+    IdentificationPanelSettings identification;
+    RoverPanelSettings rover;
+    GlobalSensitivityPanelSettings global_sensitivity;
+    check("forces", forces);
+    check("stresses", stresses);
+    check("sensitivity", sensitivity);
+    check("identification", identification);
+    check("rover", rover);
+    check("global-sensitivity", global_sensitivity);
 }
 
 }  // namespace terra::project
