@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/test_temp_dir.h"
 #include "cli_runner.h"
 
 namespace {
@@ -22,14 +23,6 @@ using terra::test::run;
 
 class BadNumbers : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("terra_badnum_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
     std::string write(const std::string& name, const std::string& text) {
         const fs::path path = dir_ / name;
         std::ofstream(path) << text;
@@ -43,7 +36,8 @@ protected:
             EXPECT_NE(r.err.find(piece), std::string::npos)
                 << command << "\nmissing: " << piece << "\nin: " << r.err;
     }
-    fs::path dir_;
+    terra::testing::TempDir temp_;  // a fresh directory per test, removed afterwards
+    const std::filesystem::path dir_ = temp_.path();
 };
 
 std::string soilWith(const std::string& c_kpa) {

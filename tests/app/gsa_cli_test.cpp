@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "../core/test_temp_dir.h"
 #include "cli_process.h"
 #include "cli_runner.h"
 
@@ -143,14 +144,6 @@ TEST(GsaCli, MorrisScreeningGivesNoEffectToTheUnusedParameter) {
 
 class GsaScript : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("terra_gsa_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
     fs::path writeScript(const nlohmann::json& analysis) {
         const nlohmann::json script = {{"soil", "sandy-loam"},
                                        {"wheel", "A"},
@@ -160,7 +153,8 @@ protected:
         std::ofstream(path) << script.dump(2);
         return path;
     }
-    fs::path dir_;
+    terra::testing::TempDir temp_;  // a fresh directory per test, removed afterwards
+    const std::filesystem::path dir_ = temp_.path();
 };
 
 TEST_F(GsaScript, ScriptAndCommandLineGiveTheSameTable) {

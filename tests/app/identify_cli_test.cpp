@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/test_temp_dir.h"
 #include "cli_runner.h"
 
 namespace {
@@ -27,14 +28,6 @@ const double kKsKpa = 5.3 / 0.107 + 1515.0;
 
 class IdentifyCli : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = std::filesystem::temp_directory_path() /
-               ("terra_identify_cli_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        std::filesystem::create_directories(dir_);
-    }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
-
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     // `synth` into FILE; returns the path.
@@ -75,7 +68,8 @@ protected:
         return path(name);
     }
 
-    std::filesystem::path dir_;
+    terra::testing::TempDir temp_;  // a fresh directory per test, removed afterwards
+    const std::filesystem::path dir_ = temp_.path();
 };
 
 nlohmann::json identifyJson(const std::string& arguments) {

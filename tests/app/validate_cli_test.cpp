@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/test_temp_dir.h"
 #include "cli_runner.h"
 
 namespace {
@@ -41,20 +42,13 @@ json wheelAt(const std::string& soil, double load, double slip) {
 
 class ValidateCommand : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("terra_validate_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
     fs::path write(const std::string& name, const std::string& text) {
         const fs::path path = dir_ / name;
         std::ofstream(path) << text;
         return path;
     }
-    fs::path dir_;
+    terra::testing::TempDir temp_;  // a fresh directory per test, removed afterwards
+    const std::filesystem::path dir_ = temp_.path();
 };
 
 TEST_F(ValidateCommand, DataMadeByTheModelItselfHaveNoError) {
