@@ -12,6 +12,7 @@
 #include "core/identification/data_set.h"
 #include "core/io/json_reader.h"
 #include "python/src/convert.h"
+#include "python/src/interruptible.h"
 
 namespace terra::python {
 namespace {
@@ -75,7 +76,7 @@ identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_r
 
 py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
              const wheel::WheelParameters& wheel, const py::dict& conditions,
-             const py::dict& settings, py::object data) {
+             const py::dict& settings, py::object data, const py::object& progress) {
     const analysis::AnalysisType& type = typeNamed(type_name);
     const nlohmann::json conditions_json = toJson(conditions);
     const nlohmann::json settings_json = toJson(settings);
@@ -97,11 +98,11 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
             dataFromColumns(data, identification->skip_bad_rows, identification->refine);
         identification->csv = "data";
     }
-    analysis::Outcome outcome;
-    {
-        py::gil_scoped_release release;
-        outcome = type.run(typed, inputs, analysis::Control{});
-    }
+    const analysis::Outcome outcome = runInterruptible(
+        [&](const WorkControl& work) {
+            return type.run(typed, inputs, analysis::Control{work.cancel, work.progress});
+        },
+        progress);
     py::dict out;
     out["status"] = statusName(outcome.status);
     out["message"] = outcome.message;
@@ -132,7 +133,7 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
 
 void bindAnalyses(py::module_& m) {
     m.def("_run", &run, py::arg("type"), py::arg("soil"), py::arg("wheel"), py::arg("conditions"),
-          py::arg("settings"), py::arg("data") = py::none());
+          py::arg("settings"), py::arg("data") = py::none(), py::arg("progress") = py::none());
     m.def(
         "analyses",
         []() {

@@ -14,6 +14,7 @@
 #include "core/gsa/batch.h"
 #include "core/io/json_reader.h"
 #include "python/src/convert.h"
+#include "python/src/interruptible.h"
 
 namespace terra::python {
 namespace {
@@ -66,7 +67,7 @@ gsa::ModelOptions readOptions(const py::dict& options) {
 py::dict forces(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
                 std::size_t count, py::handle slip, py::handle slip_angle_deg, py::handle load_n,
                 py::handle entry_angle_deg, const py::dict& overrides, const py::dict& options,
-                int threads, const std::string& invalid_soil) {
+                int threads, const std::string& invalid_soil, const py::object& progress) {
     if (invalid_soil != "raise" && invalid_soil != "flag") {
         throw std::invalid_argument("invalid_soil: \"" + invalid_soil +
                                     "\" is not one of raise, flag");
@@ -102,34 +103,38 @@ py::dict forces(const soil::SoilParameters& soil, const wheel::WheelParameters& 
     view_out.status = {reinterpret_cast<gsa::SampleStatus*>(status.mutable_data()), count};
     std::vector<double*> pointers;  // taken with the GIL held
     for (py::array_t<double>& a : arrays) pointers.push_back(a.mutable_data());
-    {
-        py::gil_scoped_release release;
-        const std::vector<double> beta_rad = radians(view(beta));
-        const std::vector<double> theta_rad = radians(view(theta));
-        gsa::BatchInput input;
-        input.count = count;
-        input.slip = view(s);
-        input.slip_angle_rad = beta_rad;
-        input.load_n = view(w);
-        input.entry_angle_rad = theta_rad;
-        for (std::size_t k = 0; k < keys.size(); ++k) {
-            input.soil.push_back(
-                {keys[k], {values[k].data(), static_cast<std::size_t>(values[k].size())}});
-        }
-        gsa::RunControl control;
-        control.threads = threads;
-        gsa::evaluateBatch(
-            soil, wheel, input, model, view_out, control,
-            invalid_soil == "raise" ? gsa::InvalidSoil::kThrow : gsa::InvalidSoil::kFlag);
-        // Angles in degrees, and NaN where there is no result (the batch writes 0 there).
-        constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-        for (std::size_t i = 0; i < count; ++i) {
-            view_out.entry_angle_rad[i] = units::radToDeg(view_out.entry_angle_rad[i]);
-            view_out.exit_angle_rad[i] = units::radToDeg(view_out.exit_angle_rad[i]);
-            if (view_out.status[i] == gsa::SampleStatus::kOk) continue;
-            for (double* a : pointers) a[i] = nan;
-        }
-    }
+    runInterruptible(
+        [&](const WorkControl& work) {
+            const std::vector<double> beta_rad = radians(view(beta));
+            const std::vector<double> theta_rad = radians(view(theta));
+            gsa::BatchInput input;
+            input.count = count;
+            input.slip = view(s);
+            input.slip_angle_rad = beta_rad;
+            input.load_n = view(w);
+            input.entry_angle_rad = theta_rad;
+            for (std::size_t k = 0; k < keys.size(); ++k) {
+                input.soil.push_back(
+                    {keys[k], {values[k].data(), static_cast<std::size_t>(values[k].size())}});
+            }
+            gsa::RunControl control;
+            control.threads = threads;
+            control.cancel = work.cancel;
+            control.progress = work.progress;
+            gsa::evaluateBatch(
+                soil, wheel, input, model, view_out, control,
+                invalid_soil == "raise" ? gsa::InvalidSoil::kThrow : gsa::InvalidSoil::kFlag);
+            // Angles in degrees, and NaN where there is no result (the batch writes 0 there).
+            constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+            for (std::size_t i = 0; i < count; ++i) {
+                view_out.entry_angle_rad[i] = units::radToDeg(view_out.entry_angle_rad[i]);
+                view_out.exit_angle_rad[i] = units::radToDeg(view_out.exit_angle_rad[i]);
+                if (view_out.status[i] == gsa::SampleStatus::kOk) continue;
+                for (double* a : pointers) a[i] = nan;
+            }
+            return true;
+        },
+        progress);
     out["status"] = status;
     return out;
 }
@@ -139,7 +144,8 @@ py::dict forces(const soil::SoilParameters& soil, const wheel::WheelParameters& 
 void bindForces(py::module_& m) {
     m.def("_forces", &forces, py::arg("soil"), py::arg("wheel"), py::arg("count"), py::arg("slip"),
           py::arg("slip_angle_deg"), py::arg("load_N"), py::arg("entry_angle_deg"),
-          py::arg("overrides"), py::arg("options"), py::arg("threads"), py::arg("invalid_soil"));
+          py::arg("overrides"), py::arg("options"), py::arg("threads"), py::arg("invalid_soil"),
+          py::arg("progress") = py::none());
     py::list names;
     for (int code = 0; code <= static_cast<int>(gsa::SampleStatus::kNotEvaluated); ++code)
         names.append(gsa::statusName(static_cast<gsa::SampleStatus>(code)));

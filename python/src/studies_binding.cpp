@@ -14,6 +14,7 @@
 #include "core/gsa/wheel_studies.h"
 #include "core/io/json_reader.h"
 #include "python/src/convert.h"
+#include "python/src/interruptible.h"
 
 namespace terra::python {
 namespace {
@@ -338,17 +339,22 @@ public:
     }
 
     // The whole study here, through the core's study function.
-    py::dict run(int threads) const {
-        gsa::RunControl control;
-        control.threads = threads;
-        py::gil_scoped_release release;
+    py::dict run(int threads, const py::object& progress) const {
+        const auto study = [&](const WorkControl& work) {
+            gsa::RunControl control;
+            control.threads = threads;
+            control.cancel = work.cancel;
+            control.progress = work.progress;
+            if constexpr (std::is_same_v<Design, gsa::SaltelliDesign>) {
+                return gsa::sobolStudy(target_.study(), options_, control);
+            } else {
+                return gsa::morrisStudy(target_.study(), options_, control);
+            }
+        };
+        const auto r = runInterruptible(study, progress);
         if constexpr (std::is_same_v<Design, gsa::SaltelliDesign>) {
-            const auto r = gsa::sobolStudy(target_.study(), options_, control);
-            py::gil_scoped_acquire acquire;
             return sobolDict(r, target_.study(), angle_axis_);
         } else {
-            const auto r = gsa::morrisStudy(target_.study(), options_, control);
-            py::gil_scoped_acquire acquire;
             return morrisDict(r, target_.study(), angle_axis_);
         }
     }
@@ -395,7 +401,7 @@ void planMethods(py::class_<P>& c) {
         .def_property_readonly("evaluations_per_row", &P::evaluationsPerRow)
         .def("evaluate", &P::evaluate, py::arg("begin"), py::arg("end"), py::arg("threads") = 0)
         .def("gather", &P::gather, py::arg("chunks"), py::arg("threads") = 0)
-        .def("run", &P::run, py::arg("threads") = 0);
+        .def("run", &P::run, py::arg("threads") = 0, py::arg("progress") = py::none());
 }
 
 }  // namespace

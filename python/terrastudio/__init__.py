@@ -104,7 +104,7 @@ def _broadcast(arrays):
 
 
 def forces(soil, wheel, slip, slip_angle_deg=0.0, load_N=None, entry_angle_deg=None, *,
-           threads=0, invalid_soil="raise", **fields):
+           threads=0, invalid_soil="raise", progress=None, **fields):
     """Forces, moments and sinkage of the wheel at every operating point.
 
     soil, wheel: Soil and Wheel, or what soil() and wheel() take (a preset name, a file, a dict).
@@ -118,6 +118,9 @@ def forces(soil, wheel, slip, slip_angle_deg=0.0, load_N=None, entry_angle_deg=N
     GIL is released while the core computes.
     invalid_soil: "raise" (ValueError naming the sample, the field, the value and its range) or
     "flag" (such samples get status 3 and NaN; for sampled distributions).
+    progress: None or a callable(fraction) called about every 50 ms from the calling thread.
+    Ctrl-C (KeyboardInterrupt) stops the computation within about 1 % of it, here as in every
+    long call of the module (run, sweep, identify, simulate, sobol, morris).
 
     Returns a dict of arrays of the broadcast shape: Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, Mz_Nm, Fb_N,
     Fs_N [N, N*m], entry_angle_deg, exit_angle_deg [deg], sinkage_m [m] (NaN where there is no
@@ -135,7 +138,7 @@ def forces(soil, wheel, slip, slip_angle_deg=0.0, load_N=None, entry_angle_deg=N
     out = _core._forces(
         _as_soil(soil), _as_wheel(wheel), count, flat.pop("slip"), flat.pop("slip_angle_deg"),
         flat.pop("load_N", None), flat.pop("entry_angle_deg", None), flat, options, int(threads),
-        invalid_soil)
+        invalid_soil, progress)
     result = {name: out[name].reshape(shape) for name in _OUTPUTS}
     result["status"] = out["status"].reshape(shape)
     result["ok"] = result["status"] == 0
@@ -147,15 +150,16 @@ def _split_conditions(keywords):
     return conditions, keywords
 
 
-def run(analysis, soil="sandy-loam", wheel="A", *, conditions=None, **settings):
+def run(analysis, soil="sandy-loam", wheel="A", *, conditions=None, progress=None, **settings):
     """Any analysis of the registry (analyses()) as a run script's analysis object.
 
     settings: the analysis's keys as in a run script (docs/user-guide.md, "Scripted runs");
     conditions: the operating conditions (load_N, slip_angles_deg, slip_count, slip_max, model).
+    progress: None or a callable(fraction), as forces(); Ctrl-C stops the analysis.
     Returns {"status", "message", "tables": {name: {column: array}}, "notes", "documents"}.
     """
     return _core._run(analysis, _as_soil(soil), _as_wheel(wheel), dict(conditions or {}),
-                      settings)
+                      settings, None, progress)
 
 
 def sweep(soil, wheel, slips=None, *, entry_angle_deg=None, **keywords):
@@ -212,12 +216,14 @@ def identify(data, wheel, soil="sandy-loam", **settings):
     (refine, fix, noise, skip_bad_rows, jmax_m). Returns {"parameters": {name: value}, "curves":
     {column: array}, "usable", "notes", "message"}.
     """
+    progress = settings.pop("progress", None)
     columns = None
     if isinstance(data, dict):
         columns = data
     elif data is not None:
         settings["csv"] = os.fspath(data)
-    out = _core._run("identification", _as_soil(soil), _as_wheel(wheel), {}, settings, columns)
+    out = _core._run("identification", _as_soil(soil), _as_wheel(wheel), {}, settings, columns,
+                     progress)
     parameters = {k: float(v[0]) for k, v in out["tables"]["parameters"].items() if len(v)}
     return {
         "parameters": parameters,
@@ -268,7 +274,7 @@ def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entr
 def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, load_N=None,
           entry_angle_deg=None, outputs=("Fx_N",), samples=4096, seed=1, *, correlated=None,
           resamples=1000, confidence=0.95, max_failed_fraction=0.05, client=None, chunks=None,
-          threads=0, **options):
+          threads=0, progress=None, **options):
     """Sobol' first-order and total indices of the wheel model (docs/sensitivity.md).
 
     parameters: {soil file key: distribution} in the file's units, in the order of the indices'
@@ -281,6 +287,8 @@ def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, loa
     evaluated at every point); seed: the Sobol' sequence's shift and the bootstrap's seed.
     client: a dask.distributed.Client to evaluate the rows on its workers, in `chunks` pieces
     (default: 4 per worker thread); the result is bit for bit the local one.
+    progress: None or a callable(fraction) (local runs; with a client, Dask's own dashboard
+    shows progress); Ctrl-C stops a local study.
 
     Returns {"S1", "ST", "S1_conf", "ST_conf"}: {output: array [parameter, slip]} ([parameter,
     slip angle, slip] when slip_angle_deg is a list), "parameters", "outputs", "slip",
@@ -292,13 +300,13 @@ def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, loa
     arguments.update(correlated=correlated, samples=int(samples), seed=int(seed),
                      resamples=int(resamples), confidence=float(confidence),
                      max_failed_fraction=float(max_failed_fraction))
-    return _study("sobol", arguments, client, chunks, threads)
+    return _study("sobol", arguments, client, chunks, threads, progress)
 
 
 def morris(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, load_N=None,
            entry_angle_deg=None, outputs=("Fx_N",), trajectories=64, levels=4, seed=1, *,
            resamples=1000, confidence=0.95, max_failed_fraction=0.05, client=None, chunks=None,
-           threads=0, **options):
+           threads=0, progress=None, **options):
     """Morris elementary-effects screening of the wheel model (docs/sensitivity.md).
 
     parameters: {soil file key: (low, high)} (uniform ranges only). The other arguments as
@@ -310,7 +318,7 @@ def morris(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, lo
     arguments.update(trajectories=int(trajectories), levels=int(levels), seed=int(seed),
                      resamples=int(resamples), confidence=float(confidence),
                      max_failed_fraction=float(max_failed_fraction))
-    return _study("morris", arguments, client, chunks, threads)
+    return _study("morris", arguments, client, chunks, threads, progress)
 
 
 def sobol_indices(parameters, values, samples=4096, seed=1, *, correlated=None, resamples=1000,
@@ -326,10 +334,10 @@ def _plan(kind, arguments):
     return (_core._SobolPlan if kind == "sobol" else _core._MorrisPlan)(**arguments)
 
 
-def _study(kind, arguments, client, chunks, threads):
+def _study(kind, arguments, client, chunks, threads, progress=None):
     plan = _plan(kind, arguments)
     if client is None:
-        return plan.run(int(threads))
+        return plan.run(int(threads), progress)
     from ._dask import run_on
 
     return run_on(client, kind, arguments, plan, chunks, int(threads))

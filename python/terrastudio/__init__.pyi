@@ -1,6 +1,6 @@
 # Type stub of the terrastudio package (docs/python.md). Arrays are numpy float64 unless noted.
 import os
-from typing import Any, Literal, Mapping, Sequence, TypedDict, Union
+from typing import Any, Callable, Literal, Mapping, Sequence, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -64,6 +64,7 @@ def forces(
     *,
     threads: int = 0,
     invalid_soil: Literal["raise", "flag"] = "raise",
+    progress: Callable[[float], object] | None = None,
     **fields: Any,
 ) -> ForcesResult: ...
 def run(
@@ -72,6 +73,7 @@ def run(
     wheel: WheelSpec = "A",
     *,
     conditions: Mapping[str, Any] | None = None,
+    progress: Callable[[float], object] | None = None,
     **settings: Any,
 ) -> dict[str, Any]: ...
 def sweep(
@@ -115,6 +117,7 @@ def sobol(
     client: Any = None,
     chunks: int | None = None,
     threads: int = 0,
+    progress: Callable[[float], object] | None = None,
     **options: Any,
 ) -> dict[str, Any]: ...
 def morris(
@@ -136,6 +139,7 @@ def morris(
     client: Any = None,
     chunks: int | None = None,
     threads: int = 0,
+    progress: Callable[[float], object] | None = None,
     **options: Any,
 ) -> dict[str, Any]: ...
 def sobol_design(
