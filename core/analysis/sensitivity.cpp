@@ -139,6 +139,7 @@ SensitivityResult computeSensitivity(const Inputs& in, const SensitivitySettings
     const double base_fx =
         base.table.rows.empty() ? std::nan("") : base.table.values("Fx_N").front();
     out.tornado.columns = {"parameter_index", "Fx_low_N", "Fx_high_N", "Fx_base_N"};
+    out.tornado.label_column = "parameter";
     const std::vector<SensitivityParameter> table41 = thesisSensitivityParameters();
     for (std::size_t i = 0; i < table41.size(); ++i) {
         if (control.cancelled()) {
@@ -156,6 +157,7 @@ SensitivityResult computeSensitivity(const Inputs& in, const SensitivitySettings
         }
         out.tornado.rows.push_back({static_cast<double>(i), low, high, base_fx});
         out.tornado_keys.push_back(extremes.key);
+        out.tornado.labels.push_back(extremes.key);
     }
     return out;
 }

@@ -39,8 +39,9 @@ struct SensitivityResult {
     /// columns "parameter" (index into parameter_keys) and "value" instead.
     SweepResult family;
     std::vector<std::string> parameter_keys;  ///< the parameters of the family, in order
-    /// One row per Table 4.1 parameter: parameter_index, Fx_low_N, Fx_high_N, Fx_base_N (F_x at
-    /// the lowest and highest variation and with the soil unchanged).
+    /// One row per Table 4.1 parameter, labelled by its soil-file key in the text column
+    /// "parameter" (written first in CSV and JSON): parameter_index, Fx_low_N, Fx_high_N,
+    /// Fx_base_N (F_x at the lowest and highest variation and with the soil unchanged).
     Table tornado;
     std::vector<std::string> tornado_keys;
 };

@@ -47,17 +47,29 @@ std::vector<std::string> splitLine(const std::string& line) {
     return cells;
 }
 
+// A text cell: quoted (with doubled quotes) when it holds a comma, a quote or a line break.
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+    std::string out = "\"";
+    for (const char ch : text) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    return out + '"';
+}
+
 }  // namespace
 
 std::string toCsv(const Table& table) {
     std::string out;
+    const bool labelled = !table.label_column.empty();
+    if (labelled) out += csvField(table.label_column);
     for (std::size_t i = 0; i < table.columns.size(); ++i) {
-        out += (i ? "," : "") + table.columns[i];
+        out += (i || labelled ? "," : "") + table.columns[i];
     }
     out += '\n';
-    for (const auto& row : table.rows) {
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        const auto& row = table.rows[r];
+        if (labelled) out += csvField(r < table.labels.size() ? table.labels[r] : std::string());
         for (std::size_t i = 0; i < row.size(); ++i) {
-            if (i) out += ',';
+            if (i || labelled) out += ',';
             if (std::isfinite(row[i])) out += formatNumber(row[i]);
         }
         out += '\n';

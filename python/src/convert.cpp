@@ -1,5 +1,7 @@
 #include "python/src/convert.h"
 
+#include <pybind11/stl.h>
+
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
@@ -52,6 +54,7 @@ py::array_t<double> toArray(const std::vector<double>& values) {
 
 py::dict tableToDict(const Table& table) {
     py::dict out;
+    if (!table.label_column.empty()) out[py::str(table.label_column)] = table.labels;
     for (std::size_t c = 0; c < table.columns.size(); ++c) {
         py::array_t<double> column(static_cast<py::ssize_t>(table.rows.size()));
         double* data = column.mutable_data();

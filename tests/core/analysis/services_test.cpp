@@ -116,6 +116,12 @@ TEST(SensitivityService, FamilyOfTable41AndTornadoAgainstAOnePointSweep) {
     }
     EXPECT_EQ(values, (std::vector<double>{25.0, 30.0, 35.0, 40.0}));
     ASSERT_EQ(r.tornado.rows.size(), 6u);
+    // Each row is labelled by its Table 4.1 parameter's soil-file key, in the table's order.
+    EXPECT_EQ(r.tornado.label_column, "parameter");
+    std::vector<std::string> keys;
+    for (const SensitivityParameter& p : thesisSensitivityParameters()) keys.push_back(p.key);
+    EXPECT_EQ(r.tornado.labels, keys);
+    EXPECT_EQ(r.tornado.labels, r.tornado_keys);
     in.conditions.slip_angles_deg = s.slip_angles_deg;
     ForcesSettings point;
     point.slips = {s.tornado_slip};

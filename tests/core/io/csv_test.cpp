@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/table_json.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
@@ -30,6 +31,35 @@ using terra::testing::TempDir;
 TEST(ToCsv, HeaderThenOneLinePerRow) {
     const Table table{{"slip", "Fx_N"}, {{0.1, 12.5}, {0.2, -3.25}}};
     EXPECT_EQ(toCsv(table), "slip,Fx_N\n0.1,12.5\n0.2,-3.25\n");
+}
+
+// A label column comes first, quoted (RFC 4180: doubled quotes) where a label holds a comma or a
+// quote, and the parser reads the labels back as they were.
+TEST(ToCsv, LabelColumnComesFirstAndRoundTrips) {
+    Table table{{"Fx_N"}, {{1.5}, {-2.0}, {kNaN}}};
+    table.label_column = "parameter";
+    table.labels = {"phi_deg", "a,b", "say \"x\""};
+    const std::string text = toCsv(table);
+    EXPECT_EQ(text, "parameter,Fx_N\nphi_deg,1.5\n\"a,b\",-2\n\"say \"\"x\"\"\",\n");
+    const Result<CsvDocument> doc = parseCsv(text, "labels.csv");
+    ASSERT_TRUE(doc.ok()) << doc.message();
+    ASSERT_EQ(doc->rows.size(), 3u);
+    EXPECT_EQ(doc->header, (std::vector<std::string>{"parameter", "Fx_N"}));
+    EXPECT_EQ(doc->rows[1][0], "a,b");
+    EXPECT_EQ(doc->rows[2][0], "say \"x\"");
+    EXPECT_EQ(doc->rows[2][1], "");
+}
+
+// JSON rows carry the label under the label column's name, beside the numbers (NaN as null).
+TEST(TableJson, LabelColumnIsAKeyOfEachRow) {
+    Table table{{"Fx_N"}, {{1.5}, {kNaN}}};
+    table.label_column = "parameter";
+    table.labels = {"phi_deg", "c_kPa"};
+    const nlohmann::json rows = toJson(table);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0], (nlohmann::json{{"parameter", "phi_deg"}, {"Fx_N", 1.5}}));
+    EXPECT_EQ(rows[1]["parameter"], "c_kPa");
+    EXPECT_TRUE(rows[1]["Fx_N"].is_null());
 }
 
 TEST(ToCsv, NoRowsGivesOnlyTheHeader) { EXPECT_EQ(toCsv(Table{{"a", "b", "c"}, {}}), "a,b,c\n"); }
