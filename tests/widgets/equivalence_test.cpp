@@ -72,9 +72,20 @@ protected:
         Table t;
         if (!read) return t;
         t.columns = read->header;
+        // A tornado's first column is its text label column (Table::label_column).
+        const bool labelled = !t.columns.empty() && t.columns.front() == "parameter";
+        if (labelled) {
+            t.label_column = t.columns.front();
+            t.columns.erase(t.columns.begin());
+        }
         for (const auto& cells : read->rows) {
             std::vector<double> row;
-            for (const std::string& cell : cells) {
+            for (std::size_t k = 0; k < cells.size(); ++k) {
+                const std::string& cell = cells[k];
+                if (labelled && k == 0) {
+                    t.labels.push_back(cell);
+                    continue;
+                }
                 double value = std::nan("");
                 if (!cell.empty()) {
                     EXPECT_TRUE(io::parseNumber(cell, value)) << name << ": " << cell;
@@ -88,6 +99,8 @@ protected:
 
     static void expectSame(const Table& panel, const Table& cli, const std::string& what) {
         ASSERT_EQ(panel.columns, cli.columns) << what;
+        ASSERT_EQ(panel.label_column, cli.label_column) << what;
+        ASSERT_EQ(panel.labels, cli.labels) << what;
         ASSERT_EQ(panel.rows.size(), cli.rows.size()) << what;
         ASSERT_GT(panel.rows.size(), 0u) << what;
         for (std::size_t i = 0; i < panel.rows.size(); ++i) {

@@ -113,6 +113,68 @@ TEST(RoverPanelTopView, ScrubbingMovesTheRobotToTheSeriesPoseWithoutRecomputing)
     EXPECT_EQ(busy.count(), 0);
 }
 
+QCPAbstractItem* timeCursor(QCustomPlot& plot) {
+    for (int i = 0; i < plot.itemCount(); ++i) {
+        if (plot.item(i)->objectName() == "time-cursor") return plot.item(i);
+    }
+    return nullptr;
+}
+
+// While scrubbing, every time plot shows a vertical line at the scrubbed row's time and the path a
+// ring at its centre of mass, in figures drawn before and after the scrubber moved.
+TEST(RoverPanelTopView, TimePlotsShowACursorAtTheScrubbedTime) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "pulse-steering"}});
+    QString error;
+    ASSERT_TRUE(panel.setScenarioText(pulseText(panel, 4.0), &error)) << error.toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const Table& t = panel.result().series;
+    ASSERT_GT(t.rows.size(), 300u);
+    const auto figures = panel.plots();  // draws every figure (as an export does)
+    // Right after the run the cursor is at the end.
+    const double t_end = t.rows.back()[t.column("t_s")];
+    for (const auto& [name, plot] : figures) {
+        if (name == "rover-top-view") continue;
+        QCPAbstractItem* cursor = timeCursor(*plot);
+        ASSERT_NE(cursor, nullptr) << name.toStdString();
+        if (name == "rover-path") {
+            auto* ring = qobject_cast<QCPItemTracer*>(cursor);
+            ASSERT_NE(ring, nullptr);
+            EXPECT_DOUBLE_EQ(ring->position->coords().x(), t.rows.back()[t.column("x_m")]);
+            EXPECT_DOUBLE_EQ(ring->position->coords().y(), t.rows.back()[t.column("y_m")]);
+        } else {
+            auto* line = qobject_cast<QCPItemStraightLine*>(cursor);
+            ASSERT_NE(line, nullptr) << name.toStdString();
+            EXPECT_DOUBLE_EQ(line->point1->coords().x(), t_end) << name.toStdString();
+            EXPECT_DOUBLE_EQ(line->point2->coords().x(), t_end) << name.toStdString();
+        }
+    }
+    const std::size_t row = 123;
+    panel.scrubber()->setValue(static_cast<int>(row));
+    const auto& r = t.rows[row];
+    for (const auto& [name, plot] : figures) {
+        if (name == "rover-top-view") continue;
+        QCPAbstractItem* cursor = timeCursor(*plot);
+        ASSERT_NE(cursor, nullptr) << name.toStdString();
+        if (auto* ring = qobject_cast<QCPItemTracer*>(cursor)) {
+            EXPECT_DOUBLE_EQ(ring->position->coords().x(), r[t.column("x_m")]);
+            EXPECT_DOUBLE_EQ(ring->position->coords().y(), r[t.column("y_m")]);
+        } else {
+            auto* line = qobject_cast<QCPItemStraightLine*>(cursor);
+            ASSERT_NE(line, nullptr);
+            EXPECT_DOUBLE_EQ(line->point1->coords().x(), r[t.column("t_s")]) << name.toStdString();
+        }
+        // One cursor per plot, however often it moved.
+        int cursors = 0;
+        for (int i = 0; i < plot->itemCount(); ++i)
+            cursors += plot->item(i)->objectName() == "time-cursor";
+        EXPECT_EQ(cursors, 1) << name.toStdString();
+    }
+}
+
 TEST(RoverPanelEditing, InvalidScenarioIsRefusedNamingTheField) {
     ProjectDocument document;
     test::resetToDefault(document);

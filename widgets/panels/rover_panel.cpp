@@ -165,7 +165,13 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     }
     drawn_.assign(plots_.size(), true);  // nothing to draw yet
     connect(tabs_, &QTabWidget::currentChanged, this, [this](int index) {
-        if (index > 0) drawFigure(static_cast<std::size_t>(index - 1));
+        if (index <= 0) return;
+        const auto i = static_cast<std::size_t>(index - 1);
+        if (drawn_[i]) {
+            plots_[i]->replot(QCustomPlot::rpQueuedReplot);  // its cursor may have moved
+        } else {
+            drawFigure(i);
+        }
     });
 
     // Two rows: what runs, then running it. One row needed ~1000 px, more than a 1024 px screen
@@ -255,6 +261,9 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
 void RoverPanel::drawFigure(std::size_t i) const {
     if (i >= plots_.size() || drawn_[i]) return;
     plotRoverFigure(*plots_[i], result_.series, roverFigures()[i].key, title_);
+    setRoverTimeCursor(*plots_[i], result_.series, roverFigures()[i].key,
+                       static_cast<std::size_t>(scrubber_->value()));
+    plots_[i]->replot(QCustomPlot::rpQueuedReplot);
     drawn_[i] = true;
 }
 
@@ -427,7 +436,6 @@ void RoverPanel::present(const std::any& value) {
     title_ = roverTitle(shown_name_, result_.status);
     const Table& t = result_.series;
     drawn_.assign(plots_.size(), false);
-    if (tabs_->currentIndex() > 0) drawFigure(static_cast<std::size_t>(tabs_->currentIndex() - 1));
     const int last = static_cast<int>(t.rows.size()) - 1;
     plotRoverTopView(*top_view_, shown_, t, static_cast<std::size_t>(std::max(last, 0)), title_);
     {
@@ -439,6 +447,8 @@ void RoverPanel::present(const std::any& value) {
     scrubber_->setEnabled(last > 0);
     play_->setEnabled(last > 0);
     time_->setText(timeLabel());
+    // After the scrubber is at the last row: the figure's time cursor starts there.
+    if (tabs_->currentIndex() > 0) drawFigure(static_cast<std::size_t>(tabs_->currentIndex() - 1));
     if (t.rows.size() < 2) {
         status_->setText("No output: " + QString::fromStdString(result_.message));
         return;
@@ -478,6 +488,14 @@ void RoverPanel::scrubTo(int row) {
     }
     setRoverTopViewPose(*top_view_, shown_.robot, result_.series, static_cast<std::size_t>(row));
     time_->setText(timeLabel());
+    // The time plots' cursors follow; only the plot in view is redrawn now (the others when their
+    // tab is shown, see the constructor), so that dragging stays smooth.
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+        if (!drawn_[i]) continue;
+        setRoverTimeCursor(*plots_[i], result_.series, roverFigures()[i].key,
+                           static_cast<std::size_t>(row));
+        if (tabs_->currentWidget() == plots_[i]) plots_[i]->replot(QCustomPlot::rpQueuedReplot);
+    }
 }
 
 }  // namespace terra::ui

@@ -197,6 +197,39 @@ void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key,
     }
 }
 
+void setRoverTimeCursor(QCustomPlot& plot, const Table& t, const std::string& key,
+                        std::size_t row) {
+    if (row >= t.rows.size()) return;
+    QCPAbstractItem* item = nullptr;
+    for (int i = 0; i < plot.itemCount() && !item; ++i) {
+        if (plot.item(i)->objectName() == "time-cursor") item = plot.item(i);
+    }
+    const QColor colour(90, 90, 90);
+    if (key == "path") {
+        auto* ring = qobject_cast<QCPItemTracer*>(item);
+        if (!ring) {
+            ring = new QCPItemTracer(&plot);  // no graph: its position is set directly
+            ring->setObjectName("time-cursor");
+            ring->setStyle(QCPItemTracer::tsCircle);
+            ring->setSize(11);
+            ring->setPen(QPen(colour, 1.8));
+            ring->setSelectable(false);
+        }
+        ring->position->setCoords(t.rows[row][t.column("x_m")], t.rows[row][t.column("y_m")]);
+        return;
+    }
+    auto* line = qobject_cast<QCPItemStraightLine*>(item);
+    if (!line) {
+        line = new QCPItemStraightLine(&plot);
+        line->setObjectName("time-cursor");
+        line->setPen(QPen(colour, 1.2, Qt::DashLine));
+        line->setSelectable(false);
+    }
+    const double time = t.rows[row][t.column("t_s")];
+    line->point1->setCoords(time, 0.0);
+    line->point2->setCoords(time, 1.0);
+}
+
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status) {
     const char* text[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
     return QString("%1 — %2").arg(QString::fromStdString(scenario_name),

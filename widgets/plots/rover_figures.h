@@ -38,6 +38,13 @@ const std::vector<RoverFigure>& roverFigures();
 void plotRoverFigure(QCustomPlot& plot, const Table& series, const std::string& key,
                      const QString& title);
 
+/// The time cursor of figure `key` at row `row` of the series (the rover panel's scrubber): a
+/// vertical dashed line at t on the time plots, a ring at the centre of mass on the path. Created
+/// on the first call (an item named "time-cursor"), moved on the next; no replot. Nothing for a
+/// row outside the series.
+void setRoverTimeCursor(QCustomPlot& plot, const Table& series, const std::string& key,
+                        std::size_t row);
+
 /// "pulse-steering — completed" (or "CANCELLED (partial)", "DIVERGED (partial)").
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status);
 
