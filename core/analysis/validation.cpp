@@ -313,6 +313,74 @@ ValidationMetrics computeMetrics(const std::vector<PointComparison>& points,
     return out;
 }
 
+namespace {
+
+// The prediction at one point: F_x, M_y, sinkage, F_s, F_z, or a failure.
+struct Prediction {
+    std::array<double, kExperimentChannelCount> values{};
+    double entry_angle_deg = kNaN;
+    std::string failure;
+};
+
+Prediction predict(const contact::ContactParameters<double>& p, contact::ContactModel model,
+                   double slip, double slip_angle_deg, double load_n) {
+    Prediction out;
+    PointSpec spec;
+    spec.slip = slip;
+    spec.slip_angle_deg = slip_angle_deg;
+    spec.load_n = load_n;
+    spec.contact_model = model;
+    try {
+        const PointResult r = evaluatePoint(p, spec);
+        if (r.failure.empty()) {
+            out.entry_angle_deg = r.entry_angle_deg;
+            out.values = {r.forces.fx, r.forces.my, r.sinkage_m, r.forces.fs, r.forces.fz};
+        } else {
+            out.failure = r.failure;
+        }
+    } catch (const std::invalid_argument& e) {
+        out.failure = e.what();
+    }
+    return out;
+}
+
+Table modelCurves(const contact::ContactParameters<double>& p, contact::ContactModel model,
+                  const io::Experiment& experiment) {
+    Table t;
+    t.columns = {"load_N", "slip_angle_deg", "slip"};
+    for (const io::ExperimentColumn& c : io::experimentChannels()) t.columns.emplace_back(c.name);
+    // The test's (load, slip angle) groups in the order they first appear, with their slips.
+    struct Group {
+        double load_n, slip_angle_deg, low, high;
+    };
+    std::vector<Group> groups;
+    for (const io::ExperimentPoint& point : experiment.points) {
+        auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) {
+            return g.load_n == point.load_n && g.slip_angle_deg == point.slip_angle_deg;
+        });
+        if (it == groups.end()) {
+            groups.push_back(
+                {point.load_n, point.slip_angle_deg, std::min(0.0, point.slip), point.slip});
+        } else {
+            it->low = std::min(it->low, point.slip);
+            it->high = std::max(it->high, point.slip);
+        }
+    }
+    for (Group& g : groups) {
+        g.high = std::min(1.0, std::max(g.high, g.low + 0.05));
+        for (int k = 0; k < kValidationCurveSlips; ++k) {
+            const double slip = g.low + (g.high - g.low) * k / (kValidationCurveSlips - 1);
+            const Prediction r = predict(p, model, slip, g.slip_angle_deg, g.load_n);
+            std::vector<double> row{g.load_n, g.slip_angle_deg, slip};
+            for (const double v : r.values) row.push_back(r.failure.empty() ? v : kNaN);
+            t.rows.push_back(std::move(row));
+        }
+    }
+    return t;
+}
+
+}  // namespace
+
 ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experiment) {
     ValidationRun out;
     out.soil = in.soil;
@@ -320,26 +388,18 @@ ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experime
     for (const io::ExperimentPoint& point : experiment.points) {
         PointComparison c;
         c.point = point;
-        PointSpec spec;
-        spec.slip = point.slip;
-        spec.slip_angle_deg = point.slip_angle_deg;
-        spec.load_n = point.load_n;
-        spec.contact_model = in.conditions.model();
-        try {
-            const PointResult r = evaluatePoint(p, spec);
-            if (r.failure.empty()) {
-                c.predicted = true;
-                c.entry_angle_deg = r.entry_angle_deg;
-                c.values = {r.forces.fx, r.forces.my, r.sinkage_m, r.forces.fs, r.forces.fz};
-            } else {
-                c.failure = r.failure;
-            }
-        } catch (const std::invalid_argument& e) {
-            c.failure = e.what();
+        const Prediction r =
+            predict(p, in.conditions.model(), point.slip, point.slip_angle_deg, point.load_n);
+        c.predicted = r.failure.empty();
+        c.failure = r.failure;
+        if (c.predicted) {
+            c.entry_angle_deg = r.entry_angle_deg;
+            c.values = r.values;
         }
         out.points.push_back(std::move(c));
     }
     out.metrics = computeMetrics(out.points);
+    out.curves = modelCurves(p, in.conditions.model(), experiment);
     return out;
 }
 
@@ -538,6 +598,7 @@ Outcome validationOutcome(ValidationResult result) {
     Outcome out;
     out.tables.push_back({"metrics", "-metrics", metricsTable(result.before.metrics)});
     out.tables.push_back({"points", "-points", pointsTable(result.before.points, false)});
+    out.tables.push_back({"curves", "-curves", result.before.curves});
     out.notes = result.notes;
     if (result.calibration) {
         const Calibration& c = *result.calibration;
@@ -551,6 +612,7 @@ Outcome validationOutcome(ValidationResult result) {
                 {"calibrated_metrics", "-calibrated-metrics", metricsTable(c.after->metrics)});
             out.tables.push_back(
                 {"calibrated_points", "-calibrated-points", pointsTable(c.after->points, true)});
+            out.tables.push_back({"calibrated_curves", "-calibrated-curves", c.after->curves});
             if (c.held_out) {
                 out.tables.push_back(
                     {"held_out_metrics", "-held-out-metrics", metricsTable(*c.held_out)});
@@ -591,9 +653,10 @@ AnalysisType validationType() {
         "validation",
         "the model against a measured single-wheel test (io/experiment.h): per point and channel, "
         "RMSE, MAE, largest relative error; optionally calibrated to the test first",
-        {"metrics", "points", "calibrated_metrics", "calibrated_points", "held_out_metrics",
-         "parameters"},
-        {}, readValidationSettings,
+        {"metrics", "points", "curves", "calibrated_metrics", "calibrated_points",
+         "calibrated_curves", "held_out_metrics", "parameters"},
+        {{"Fx", "-Fx"}, {"sinkage", "-sinkage"}, {"My", "-My"}, {"Fy", "-Fy"}},
+        readValidationSettings,
         [](const Inputs& in, const ValidationSettings& s, const Control& c) {
             return computeValidation(in, s, c);
         },

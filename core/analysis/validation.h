@@ -71,7 +71,14 @@ struct ValidationRun {
     soil::SoilParameters soil;
     std::vector<PointComparison> points;
     ValidationMetrics metrics;
+    /// The model against slip through the test, for plots: for each (load, slip angle) of its
+    /// points, kValidationCurveSlips slips evenly from min(0, the lowest slip) to the highest
+    /// (at least 0.05 wide); columns load_N, slip_angle_deg, slip, then the channels Fx_N, My_Nm,
+    /// sinkage_m, Fy_N, Fz_N as predicted (NaN where there is no equilibrium).
+    Table curves;
 };
+
+inline constexpr int kValidationCurveSlips = 61;
 
 /// The calibration of the soil to the test.
 struct Calibration {
@@ -122,8 +129,10 @@ ValidationResult computeValidation(const Inputs& inputs, const ValidationSetting
 nlohmann::json toJson(const ValidationResult& result);
 
 /// Tables "metrics" (main: one row, CHANNEL_rmse, CHANNEL_mae, CHANNEL_max_rel_error,
-/// CHANNEL_count per measured channel), "points" and, calibrated, "calibrated_metrics",
-/// "calibrated_points", "held_out_metrics", "parameters"; the JSON as "-validation.json".
+/// CHANNEL_count per measured channel), "points", "curves" (ValidationRun::curves) and,
+/// calibrated, "calibrated_metrics", "calibrated_points", "calibrated_curves", "held_out_metrics",
+/// "parameters"; the JSON as "-validation.json". Figures "Fx", "sinkage", "My", "Fy": the
+/// measured points on the model's curves (widgets/plots/figures.h, plotValidation).
 Outcome validationOutcome(ValidationResult result);
 
 AnalysisType validationType();

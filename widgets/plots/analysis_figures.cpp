@@ -2,6 +2,8 @@
 
 #include <qcustomplot.h>
 
+#include <filesystem>
+#include <map>
 #include <stdexcept>
 
 #include "core/analysis/forces.h"
@@ -12,6 +14,7 @@
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/validation.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/gsa_figures.h"
 #include "widgets/plots/identification_figures.h"
@@ -90,6 +93,12 @@ void drawAnalysisFigure(QCustomPlot& plot, const std::string& type, const std::s
         if (key == "Fx") return plotIdentification(plot, r, "Fx_N", title);
         if (key == "Fz") return plotIdentification(plot, r, "Fz_N", title);
         if (key == "My") return plotIdentification(plot, r, "My_Nm", title);
+    } else if (type == "validation") {
+        const auto& r = resultOf<analysis::ValidationResult>(outcome);
+        const std::map<std::string, std::string> channels{
+            {"Fx", "Fx_N"}, {"sinkage", "sinkage_m"}, {"My", "My_Nm"}, {"Fy", "Fy_N"}};
+        if (const auto it = channels.find(key); it != channels.end())
+            return plotValidation(plot, r, it->second, title);
     } else if (type == "streaming") {
         return drawStreaming(plot, key, resultOf<analysis::StreamingResult>(outcome));
     } else if (type == "rover") {
@@ -113,6 +122,13 @@ QString analysisTitle(const std::string& type, const std::optional<std::string>&
         if (title) return QString::fromStdString(*title);
         const auto& r = resultOf<analysis::RoverResult>(outcome);
         return roverTitle(r.scenario.name, r.run.status);
+    }
+    if (type == "validation") {
+        // The test's loads, not the conditions', are the ones plotted.
+        if (title) return QString::fromStdString(*title);
+        const auto& r = resultOf<analysis::ValidationResult>(outcome);
+        const std::string test = std::filesystem::path(r.source).stem().string();
+        return QString::fromStdString(inputs.wheel.name + " against the test " + test);
     }
     QString text =
         QString::fromStdString(title.value_or(inputs.soil.name + ", " + inputs.wheel.name)) +

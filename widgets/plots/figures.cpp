@@ -311,6 +311,95 @@ void plotStaticSinkage(QCustomPlot& plot, const analysis::SoilCurves& curves,
     plot.replot();
 }
 
+void plotValidation(QCustomPlot& plot, const analysis::ValidationResult& result,
+                    const std::string& channel, const QString& title) {
+    const auto& channels = io::experimentChannels();
+    std::size_t c = 0;
+    while (c < channels.size() && channels[c].name != channel) ++c;
+    if (c == channels.size()) throw std::invalid_argument("no channel \"" + channel + "\"");
+    const bool sinkage = channel == "sinkage_m";
+    const double factor = sinkage ? 1e3 : 1.0;  // sinkage in mm
+    const QString unit = sinkage ? "mm" : channel == "My_Nm" ? "N·m" : "N";
+    const QString label = channel == "Fx_N"    ? "Drawbar pull F_x [N]"
+                          : channel == "My_Nm" ? "Resistance torque M_y [N·m]"
+                          : sinkage            ? "Sinkage h [mm]"
+                          : channel == "Fy_N"  ? "Side force F_y [N]"
+                                               : "Vertical force F_z [N]";
+    const bool measured = std::any_of(
+        result.before.points.begin(), result.before.points.end(),
+        [c](const analysis::PointComparison& p) { return p.point.measured[c].has_value(); });
+    resetPlot(plot, measured ? title : title + " (not measured in this test)");
+    plot.xAxis->setLabel("Slip ratio s [-]");
+    plot.yAxis->setLabel(label);
+    const analysis::ValidationRun* calibrated =
+        result.calibration && result.calibration->report.usable() && result.calibration->after
+            ? &*result.calibration->after
+            : nullptr;
+    auto rmse = [&](const analysis::ValidationRun& run) {
+        const auto& m = run.metrics[c];
+        return m ? QString(", RMSE %1 %2").arg(m->rmse * factor, 0, 'g', 3).arg(unit) : QString();
+    };
+    // The groups of the curves table, in its order.
+    const Table& curves = result.before.curves;
+    std::vector<std::pair<double, double>> groups;
+    for (const auto& row : curves.rows) {
+        const std::pair<double, double> g{row[0], row[1]};
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+    }
+    const std::size_t y = curves.column(channel);
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+        const auto [load, beta] = groups[k];
+        const QColor color = paletteColor(static_cast<int>(k));
+        QString at = QString("W = %1 N").arg(load, 0, 'g', 4);
+        if (beta != 0.0) at += QString(", β = %1°").arg(beta, 0, 'g', 3);
+        auto curve = [&](const analysis::ValidationRun& run, const QString& name, const QColor& pen,
+                         Qt::PenStyle style) {
+            QVector<double> s, v;
+            for (const auto& row : run.curves.rows) {
+                if (row[0] != load || row[1] != beta || !std::isfinite(row[y])) continue;
+                s.push_back(row[2]);
+                v.push_back(row[y] * factor);
+            }
+            addLine(plot, s, v, name, pen, style);
+        };
+        curve(result.before,
+              QString("%1, %2%3")
+                  .arg(QString::fromStdString(result.before.soil.name), at,
+                       groups.size() == 1 ? rmse(result.before) : QString()),
+              color, Qt::SolidLine);
+        if (calibrated) {
+            curve(*calibrated,
+                  QString("calibrated, %1%2")
+                      .arg(at, groups.size() == 1 ? rmse(*calibrated) : QString()),
+                  groups.size() == 1 ? paletteColor(3) : color, Qt::DashLine);
+        }
+        // Points the calibration used (discs) and held out (rings: predicted, not fitted).
+        QVector<double> s[2], v[2];
+        for (const analysis::PointComparison& p : result.before.points) {
+            if (p.point.load_n != load || p.point.slip_angle_deg != beta || !p.point.measured[c])
+                continue;
+            const int held_out = calibrated && !p.in_fit ? 1 : 0;
+            s[held_out].push_back(p.point.slip);
+            v[held_out].push_back(*p.point.measured[c] * factor);
+        }
+        for (int held_out = 0; held_out < 2; ++held_out) {
+            if (s[held_out].isEmpty()) continue;
+            QCPGraph* points = plot.addGraph();
+            points->setData(s[held_out], v[held_out]);
+            points->setName((held_out ? "measured, held out, " : "measured, ") + at);
+            points->setPen(QPen(color, held_out ? 1.8 : 1.0));
+            points->setLineStyle(QCPGraph::lsNone);
+            points->setScatterStyle(
+                QCPScatterStyle(held_out ? QCPScatterStyle::ssCircle : QCPScatterStyle::ssDisc, 8));
+        }
+    }
+    finish(plot);
+    // Measured points often sit at the ends of the slip range (s = 0, the largest slip tested):
+    // a margin keeps them whole.
+    plot.xAxis->scaleRange(1.08, plot.xAxis->range().center());
+    plot.replot();
+}
+
 void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult& result,
                         const std::string& channel, const QString& title) {
     resetPlot(plot, title);

@@ -10,6 +10,7 @@
 #include "core/analysis/sensitivity.h"
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/validation.h"
 
 class QCustomPlot;
 
@@ -53,5 +54,12 @@ void plotStaticSinkage(QCustomPlot& plot, const analysis::SoilCurves& curves, co
 /// Data (points) and fitted curve (line) of one channel ("Fx_N", "Fz_N", "My_Nm") against slip.
 void plotIdentification(QCustomPlot& plot, const analysis::IdentificationResult& result,
                         const std::string& channel, const QString& title);
+
+/// A measured test against the model: channel `channel` ("Fx_N", "My_Nm", "sinkage_m" in mm,
+/// "Fy_N", "Fz_N") against slip, per (load, slip angle) of the test one colour: the measured
+/// points (discs), the given soil's curve (solid) and, after a usable calibration, the calibrated
+/// soil's (dashed), each curve's legend entry with its RMSE over the measured points.
+void plotValidation(QCustomPlot& plot, const analysis::ValidationResult& result,
+                    const std::string& channel, const QString& title);
 
 }  // namespace terra::ui

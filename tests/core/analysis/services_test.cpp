@@ -14,6 +14,7 @@
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/validation.h"
 #include "core/common/units.h"
 #include "core/io/parameters_json.h"
 
@@ -233,6 +234,32 @@ TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
     const Outcome outcome = findAnalysisType("validation")->run(settings, sandyLoamOnA(), {});
     ASSERT_FALSE(outcome.tables.empty());
     EXPECT_EQ(outcome.tables.front().name, "metrics");
+    // The curves for the plots: the test's one load (80 N), 61 slips from 0 to its largest slip
+    // 0.6, each point the forward model at that load — the same numbers a force sweep at 80 N
+    // gives (an independent path through the sweep's own entry-angle solves).
+    const auto& validation = std::any_cast<const ValidationResult&>(outcome.result);
+    const Table& curves = validation.before.curves;
+    ASSERT_EQ(curves.rows.size(), static_cast<std::size_t>(kValidationCurveSlips));
+    EXPECT_EQ(curves.rows.front()[curves.column("slip")], 0.0);
+    EXPECT_EQ(curves.rows.back()[curves.column("slip")], 0.6);
+    Inputs at80 = sandyLoamOnA();
+    at80.conditions.load_n = 80.0;
+    at80.conditions.slip_angles_deg = {0.0};
+    ForcesSettings sweep;
+    sweep.slips = {0.0, 0.3, 0.6};
+    const ForcesResult direct = computeForceSweep(at80, sweep);
+    ASSERT_EQ(direct.table.rows.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const auto& row = curves.rows[30 * k];
+        EXPECT_EQ(row[curves.column("load_N")], 80.0);
+        EXPECT_DOUBLE_EQ(row[curves.column("slip")], sweep.slips[k]);
+        for (const char* channel : {"Fx_N", "My_Nm", "sinkage_m", "Fz_N"}) {
+            const double expected = direct.table.rows[k][direct.table.column(channel)];
+            EXPECT_NEAR(row[curves.column(channel)], expected, 1e-9 * (1.0 + std::abs(expected)))
+                << channel << " at s = " << sweep.slips[k];
+        }
+    }
+    EXPECT_NE(outcome.table("curves"), nullptr);
     EXPECT_EQ(findAnalysisType("forcez"), nullptr);
 }
 
