@@ -253,6 +253,7 @@ TEST_F(IdentifyCli, BadFlagValuesExitTwoNamingFlagValueAndRange) {
         {"--starts -3", {"--starts", "-3"}},
         {"--load -5", {"--load", "-5"}},
         {"--no-refine --prior phi_deg=30±5", {"--prior", "--no-refine"}},
+        {"--no-refine --profile", {"--profile", "--no-refine"}},
     };
     for (const Case& c : cases) {
         const CliRun r = run("identify --data " + data + " --wheel A " + c.flags);
