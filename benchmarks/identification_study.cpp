@@ -16,6 +16,7 @@
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
 #include "core/identification/identify.h"
+#include "core/identification/profile_interval.h"
 #include "core/identification/streaming_estimator.h"
 #include "core/identification/synthetic.h"
 #include "core/io/parameters_json.h"
@@ -184,10 +185,11 @@ void coverage() {
         std::vector<double> loads;
         bool from_load;
         int slips;
+        bool profile;
     };
-    const Setting settings[] = {{"one load, theta_f", {58.86}, false, 46},
-                                {"three loads, theta_f", {30, 58.86, 90}, false, 31},
-                                {"three loads, from the load", {30, 58.86, 90}, true, 31}};
+    const Setting settings[] = {{"one load, theta_f", {58.86}, false, 46, true},
+                                {"three loads, theta_f", {30, 58.86, 90}, false, 31, true},
+                                {"three loads, from the load", {30, 58.86, 90}, true, 31, false}};
     const ContactParameters<double> p = contactOf(kSandyLoam, kA, 0.02);
     const ParameterVector truth = truthOf(p);
     for (const Setting& s : settings) {
@@ -195,6 +197,10 @@ void coverage() {
         std::array<int, kFullParameterCount> covered{};
         int runs = 0, ambiguous = 0;
         double time = 0.0;
+        std::array<int, kFullParameterCount> profiled{}, profile_covered{}, flagged_count{}, fits{},
+            open{}, hybrid{};
+        std::array<double, kFullParameterCount> width{};
+        double profile_ms = 0.0;
         for (std::uint64_t seed = 1; seed <= 20; ++seed) {
             DataSet d = sweeps(p, s.loads, 0.01, seed, s.slips);
             if (s.from_load) d = fromLoad(std::move(d), 58.86);
@@ -212,6 +218,32 @@ void coverage() {
                 std_sum[k] += r.uncertainty.std[k] / truth[k];
                 covered[k] += std::abs(r.parameters[k] - truth[k]) <= 3 * r.uncertainty.std[k];
             }
+            if (!s.profile) continue;
+            // Profile-likelihood intervals (Δχ² = 9) of every parameter, and of those identify
+            // flags (a trade-off pair or a bound).
+            const auto begin = std::chrono::steady_clock::now();
+            std::array<bool, kFullParameterCount> all{};
+            all.fill(true);
+            const auto flagged = tradeOffParameters(r);
+            const auto intervals = profileIntervals(d, wheelOf(kA), o, r, all);
+            profile_ms +=
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
+                    .count();
+            for (int k = 0; k < kFullParameterCount; ++k) {
+                const ProfileInterval& i = intervals[k];
+                if (!i.computed) continue;
+                ++profiled[k];
+                flagged_count[k] += flagged[k];
+                fits[k] += i.fits;
+                const bool in = i.lower <= truth[k] && truth[k] <= i.upper;
+                profile_covered[k] += in;
+                width[k] += (i.upper - i.lower) / truth[k];
+                open[k] += i.lower_at_bound || i.upper_at_bound;
+                // The 3σ interval where identify flags the parameter, the profile elsewhere.
+                hybrid[k] += flagged[k]
+                                 ? in
+                                 : std::abs(r.parameters[k] - truth[k]) <= 3 * r.uncertainty.std[k];
+            }
         }
         std::printf("\n%s: %d usable runs, %d with an ambiguity, %.0f ms each on average\n\n",
                     s.name, runs, ambiguous, time / std::max(runs, 1));
@@ -222,6 +254,20 @@ void coverage() {
             std::printf("| %s | %+.2f %% | %.2f %% | %.2f %% | %d / %d |\n",
                         parameterInfo()[k].name, 100 * sum[k] / runs,
                         100 * std::sqrt(sum2[k] / runs), 100 * std_sum[k] / runs, covered[k], runs);
+        }
+        if (!s.profile) continue;
+        std::printf(
+            "\nProfile-likelihood intervals (profile_interval.h, Δχ² = 9), %.0f ms per run on "
+            "average:\n\n| parameter | profiled | truth inside | mean width | open at a bound | "
+            "flagged | profile where flagged, 3σ elsewhere | fits per parameter |\n"
+            "|---|---|---|---|---|---|---|---|\n",
+            profile_ms / std::max(runs, 1));
+        for (int k = 0; k < kFullParameterCount; ++k) {
+            const int n = std::max(profiled[k], 1);
+            std::printf("| %s | %d | %d / %d | %.2f %% | %d | %d | %d / %d | %.1f |\n",
+                        parameterInfo()[k].name, profiled[k], profile_covered[k], profiled[k],
+                        100 * width[k] / n, open[k], flagged_count[k], hybrid[k], profiled[k],
+                        static_cast<double>(fits[k]) / n);
         }
     }
 }

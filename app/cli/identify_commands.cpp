@@ -77,6 +77,7 @@ struct IdentifyOptions {
     std::optional<int> starts;       // design points
     std::string loss = "l2";
     std::optional<double> load_n;  // W of rows without a W_N cell
+    bool profile = false;          // profile-likelihood intervals of the flagged parameters
 };
 
 const Range kHoldoutRange{0.0, 1.0, true, true};
@@ -142,6 +143,7 @@ void applyGlobalOptions(const IdentifyOptions& o, const io::PresetLocations& loc
     if (o.starts) settings.design_points = *o.starts;
     settings.loss = *loss;
     settings.load_n = o.load_n;
+    settings.profile = o.profile;
 }
 
 // Parameters in the output's keys and units (identified_parameters.h) from SI values.
@@ -213,6 +215,20 @@ void addGlobalJson(const analysis::IdentificationResult& result, nlohmann::json&
     j["source"] = r.setup.description;
     j["noise"] = channelJson(r.noise, r.setup.channels);
     j["noise_estimated"] = r.noise_estimated;
+    // profile_interval: per parameter profiled (--profile), the interval in the output's units
+    // and whether the profile reached a bound before Δχ²; null without --profile.
+    nlohmann::json profile = nlohmann::json::object();
+    for (int k = 0; k < identification::kFullParameterCount; ++k) {
+        const identification::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
+        if (!p.computed) continue;
+        const analysis::IdentifiedField& field =
+            analysis::fieldOf(static_cast<identification::FullParameter>(k));
+        profile[field.key] = {
+            {"lower", p.lower / field.to_si},     {"upper", p.upper / field.to_si},
+            {"lower_at_bound", p.lower_at_bound}, {"upper_at_bound", p.upper_at_bound},
+            {"delta_chi2", p.delta_chi2},         {"fits", p.fits}};
+    }
+    j["profile_interval"] = profile.empty() ? nlohmann::json() : profile;
 }
 
 // The same for a person.
@@ -252,6 +268,22 @@ void printGlobal(const analysis::IdentificationResult& result) {
                       << ")";
         }
         std::cout << '\n';
+    }
+    bool profile_header = false;
+    for (int k = 0; k < identification::kFullParameterCount; ++k) {
+        const identification::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
+        if (!p.computed) continue;
+        const analysis::IdentifiedField& field =
+            analysis::fieldOf(static_cast<identification::FullParameter>(k));
+        if (!profile_header)
+            std::cout << "  profile-likelihood intervals (delta chi2 = "
+                      << roundSignificant(p.delta_chi2, 3) << ", the 3-std level):\n";
+        profile_header = true;
+        std::cout << "    " << field.symbol << ": " << roundSignificant(p.lower / field.to_si, 4)
+                  << (p.lower_at_bound ? " (bound)" : "") << " .. "
+                  << roundSignificant(p.upper / field.to_si, 4)
+                  << (p.upper_at_bound ? " (bound)" : "")
+                  << (field.displayUnit().empty() ? "" : " " + field.displayUnit()) << '\n';
     }
     for (const identification::Minimum& m : r.ambiguity) {
         std::cout << "  AMBIGUOUS: another minimum with delta chi2 = "
@@ -520,6 +552,10 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         ->capture_default_str();
     i->add_option("--load", identify->load_n,
                   "W [N] of every row without a W_N cell (data without an entry angle)");
+    i->add_flag(
+        "--profile", identify->profile,
+        "Profile-likelihood intervals (delta chi2 = 9) of the parameters in a flagged "
+        "trade-off or at a bound (JSON key profile_interval; up to 10 refinements per side)");
     i->add_option("--fix", identify->fix,
                   "Refinement: keep parameters fixed, e.g. a0=0.2,a1=0.3 (keys of the output)")
         ->delimiter(',');
@@ -537,9 +573,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         const bool streaming = !o.stream.empty();
         if (streaming && refine->count() > 0 && o.refine)
             throw InputError("--refine does not apply to --stream");
-        if (streaming && (!o.prior.empty() || o.holdout || o.folds || o.starts || o.loss != "l2"))
+        if (streaming &&
+            (!o.prior.empty() || o.holdout || o.folds || o.starts || o.loss != "l2" || o.profile))
             throw InputError(
-                "--prior, --holdout, --folds, --starts and --loss do not apply to --stream");
+                "--prior, --holdout, --folds, --starts, --loss and --profile do not apply to "
+                "--stream");
         ModelOptions names;
         names.wheel = o.wheel;
         analysis::Inputs inputs;
@@ -557,12 +595,12 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             runStream(o, inputs, guess_soil);
             return;
         }
-        const bool global_flags =
-            !o.prior.empty() || o.holdout || o.folds || o.starts || o.load_n || o.loss != "l2";
+        const bool global_flags = !o.prior.empty() || o.holdout || o.folds || o.starts ||
+                                  o.load_n || o.loss != "l2" || o.profile;
         if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax_m || global_flags)) {
             throw InputError(
-                "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss and --load "
-                "belong to the full model (drop --no-refine)");
+                "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss, --load and "
+                "--profile belong to the full model (drop --no-refine)");
         }
         analysis::IdentificationSettings settings;
         settings.csv = o.data;

@@ -169,6 +169,7 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
     r.number("holdout", out.holdout_fraction, kHoldout);
     r.integer("folds", out.folds, 0, kMaxFolds);
     r.integer("starts", out.design_points, 0, kMaxDesignPoints);
+    r.boolean("profile", out.profile);
     double load_n = 0.0;
     if (r.number("load_N", load_n, load.range, load.displayUnit())) out.load_n = load_n;
 }
@@ -252,6 +253,7 @@ nlohmann::json toJson(const IdentificationSettings& s) {
     if (s.folds > 0) out["folds"] = s.folds;
     if (s.design_points != id::IdentifyOptions{}.design_points) out["starts"] = s.design_points;
     if (s.load_n) out["load_N"] = *s.load_n;
+    if (s.profile) out["profile"] = true;
     return out;
 }
 
@@ -356,6 +358,14 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         }
         p = decoupledOf(r.parameters);
         predictions = id::predictAll(out.data, in.wheel, r.parameters, options);
+        if (s.profile && r.usable()) {
+            const auto profile_start = std::chrono::steady_clock::now();
+            out.profile = id::profileIntervals(out.data, in.wheel, options, r,
+                                               id::tradeOffParameters(r, options.correlation_flag));
+            out.profile_time_ms = std::chrono::duration<double, std::milli>(
+                                      std::chrono::steady_clock::now() - profile_start)
+                                      .count();
+        }
     } else {
         if (!out.data.columns.entry_angle || !out.data.columns.fx || !out.data.columns.fz ||
             !out.data.columns.my) {
@@ -370,7 +380,9 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
     }
     out.identified = p;
     out.fit_time_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count() -
+        out.profile_time_ms;
 
     out.curves.columns = {
         "slip",      "entry_angle_deg", "Fx_N",      "Fz_N", "My_Nm",

@@ -13,6 +13,7 @@
 /// search starts from its design (and the settings' `starts`), j_max is the settings' (none by
 /// default). Synthetic data are made from the inputs' soil, so there its j_max is the model's.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,6 +27,7 @@
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
 #include "core/identification/identify.h"
+#include "core/identification/profile_interval.h"
 
 namespace terra::analysis {
 
@@ -73,13 +75,17 @@ struct IdentificationSettings {
     double sigma_fx_n = 0.0, sigma_fz_n = 0.0, sigma_my_nm = 0.0;
     /// The forward model's j_max [m] (a setting, not identified); empty: the inputs' soil's.
     std::optional<double> max_shear_deformation_m;
+    /// Full model: profile-likelihood intervals (Δχ² = 9, profile_interval.h) of the parameters
+    /// in a flagged trade-off or at a bound (`--profile`; costs up to 10 refinements per side).
+    bool profile = false;
 };
 
 /// "csv" (relative to the context's directory, read at once: a bad file is a problem of the
 /// settings), "skip_bad_rows", "noise_percent", "seed", "loads_N", "slip_count", "refine",
 /// "fix" ({key: value}), "noise" ({"Fx_N", "Fz_N", "My_Nm"}), "jmax_m", and for the full model
 /// "priors" (["phi_deg=30±5", …]), "prior_soil" (a preset or file, PriorSpreads), "loss" ("l2",
-/// "huber", "cauchy"), "holdout" (fraction), "folds", "starts" (design points), "load_N".
+/// "huber", "cauchy"), "holdout" (fraction), "folds", "starts" (design points), "load_N",
+/// "profile" (true: profile-likelihood intervals of the flagged parameters).
 void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
                                 IdentificationSettings& out);
 nlohmann::json toJson(const IdentificationSettings& settings);
@@ -102,6 +108,9 @@ struct IdentificationResult {
     /// refined parameters.
     Table parameters;
     double fit_time_ms = 0.0;
+    /// Profile-likelihood intervals (settings.profile; `computed` false for the others).
+    std::array<identification::ProfileInterval, identification::kFullParameterCount> profile{};
+    double profile_time_ms = 0.0;
     std::string message;             ///< non-empty: there was nothing to fit (see data_issues)
     std::vector<Issue> data_issues;  ///< why the data could not be read
 

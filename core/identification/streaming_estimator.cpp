@@ -201,18 +201,15 @@ struct StreamingEstimator::State {
         return true;
     }
 
-    // Starts tracking from a batch fit: its estimate, noise levels, and as the arrival cost the
-    // information of its samples at the estimate, its priors and the weak regulariser.
-    void adopt(const DataSet& data, const IdentificationReport& fit) {
-        source = fit.setup.source;
-        sigma = fit.noise;
-        const ParameterVector u0 = toSolver(fit.parameters);
-        for (int k = 0; k < kP; ++k) u(k) = u0[k];
+    // The information of a batch fit's samples at its estimate, its priors and the weak
+    // regulariser (solver coordinates; zero rows and columns for held parameters).
+    Matrix informationOf(const DataSet& data, const IdentificationReport& fit) const {
+        const ParameterVector at = toSolver(fit.parameters);
         const ObservationModel model(data, wheel, fit.setup);
         Matrix information = regulariser();
         std::vector<double> r(kChannelCount), j(kChannelCount * kP);
         for (std::size_t i = 0; i < model.size(); ++i) {
-            if (!model.residuals(i, u.data(), sigma, r.data(), j.data())) continue;
+            if (!model.residuals(i, at.data(), fit.noise, r.data(), j.data())) continue;
             const int rows = model.residualCount(i);
             const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kP, Eigen::RowMajor>> jm(
                 j.data(), rows, kP);
@@ -224,9 +221,19 @@ struct StreamingEstimator::State {
                 information(k, k) += std::pow(slope[k] / options.fit.priors[k]->std, 2);
             if (fixed[k]) information.row(k).setZero(), information.col(k).setZero();
         }
-        arrival_information = information;
+        return information;
+    }
+
+    // Starts tracking from a batch fit: its estimate, noise levels, and as the arrival cost the
+    // information of its samples at the estimate, its priors and the weak regulariser.
+    void adopt(const DataSet& data, const IdentificationReport& fit) {
+        source = fit.setup.source;
+        sigma = fit.noise;
+        const ParameterVector u0 = toSolver(fit.parameters);
+        for (int k = 0; k < kP; ++k) u(k) = u0[k];
+        arrival_information = informationOf(data, fit);
         arrival_mean = u;
-        covariance = inverse(information);
+        covariance = inverse(arrival_information);
         window.clear();
         buffer.clear();
         segment.clear();
@@ -266,9 +273,66 @@ struct StreamingEstimator::State {
         }
     }
 
+    // The log-likelihood ratio of the CUSUM, ℓ = ½ [ε (1 − 1/λ) − m ln λ], capped.
+    double evidenceOf(double nis, int m) const {
+        const double lambda = options.change_inflation;
+        return std::min(0.5 * (nis * (1.0 - 1.0 / lambda) - m * std::log(lambda)),
+                        options.max_step_evidence);
+    }
+
+    // Where a confirmed change began: the generalised likelihood-ratio estimate of the change
+    // time (docs/identification.md §8). Before τ the innovations are N(0, S), from τ on
+    // N(0, λS) with λ ≥ 1 unknown; with the suspect samples' ε taken against the batch fit of the
+    // history (`before`, its covariance from the information of its samples: the running
+    // estimate's linearisation can underrate how far a new slip or load lies from what its
+    // samples determined), the log-likelihood ratio of a change at τ, maximised over λ, is
+    // G(τ) = ½ [Σ ε − M − M ln(Σ ε / M)] over the samples from τ on (M their residuals,
+    // λ̂ = Σ ε / M), and the change began at argmax_τ G. The CUSUM's fixed λ would count a
+    // sample of the old soil with ε > m ln λ /(1 − 1/λ) (5.5 for m = 3, p = 2 %) as evidence of a
+    // change and place it early; λ̂ of a real border is ~100. Returns an index into `segment`.
+    std::size_t placeChange(const DataSet& history, const IdentificationReport& before) const {
+        const Matrix p = inverse(informationOf(history, before));
+        const ParameterVector at = toSolver(before.parameters);
+        std::vector<double> nis(segment.size(), INFINITY);
+        std::vector<int> rows(segment.size(), 1);
+        Member m;
+        for (std::size_t k = 0; k < segment.size(); ++k) {
+            m.model = modelOf(segment[k].sample);
+            if (!m.model) continue;  // cannot be predicted by the old soil
+            rows[k] = m.model->residualCount(0);
+            m.r.resize(rows[k]);
+            Eigen::Matrix<double, Eigen::Dynamic, kP, Eigen::RowMajor> jr(rows[k], kP);
+            if (!m.model->residuals(0, at.data(), sigma, m.r.data(), jr.data())) continue;
+            m.j = jr;
+            for (int c = 0; c < kP; ++c) {
+                if (fixed[c]) m.j.col(c).setZero();
+            }
+            const Eigen::MatrixXd innovation =
+                m.j * p * m.j.transpose() + Eigen::MatrixXd::Identity(rows[k], rows[k]);
+            nis[k] = m.r.dot(innovation.ldlt().solve(m.r));
+        }
+        std::size_t best = segment.size() - 1;
+        double best_ratio = -INFINITY, sum = 0.0, count = 0.0;
+        for (std::size_t k = segment.size(); k-- > 0;) {
+            // A sample the old soil cannot carry is a change at the latest there.
+            if (!std::isfinite(nis[k])) return k;
+            sum += nis[k];
+            count += rows[k];
+            const double lambda = std::max(1.0, sum / count);
+            const double ratio = 0.5 * (sum * (1.0 - 1.0 / lambda) - count * std::log(lambda));
+            if (ratio > best_ratio) best_ratio = ratio, best = k;
+        }
+        return best;
+    }
+
     // The generalised likelihood-ratio test of an alarm (see the header). True: a change of
-    // soil; false: the joint fit explains everything and has become the estimate.
-    bool confirm(StreamEstimate& out) {
+    // soil, beginning at segment[first]; false: the joint fit explains everything and has become
+    // the estimate.
+    bool confirm(StreamEstimate& out, std::size_t& first) {
+        // Without a history to test against: the first suspect sample beyond the gate (the CUSUM
+        // may have left zero on a few noisy samples of the old soil before it).
+        first = 0;
+        while (first + 1 < segment.size() && segment[first].usable) ++first;
         if (recent.size() < 2 * static_cast<std::size_t>(kP)) return true;
         IdentifyOptions o = options.fit;
         o.noise = sigma;
@@ -289,12 +353,20 @@ struct StreamingEstimator::State {
         o.starts = {start};
         if (before.usable()) o.starts.push_back({"history", before.parameters});
         const IdentificationReport together = identify(joint, wheel, o);
-        if (!before.usable() || !together.usable()) return true;
+        if (!before.usable()) return true;
+        if (!together.usable()) {
+            first = placeChange(history, before);
+            return true;
+        }
         const int added = together.residuals - before.residuals;
+
         out.change_statistic = together.chi2 - before.chi2;
         const double limit = boost::math::quantile(boost::math::chi_squared(std::max(added, 1)),
                                                    1.0 - options.confirm_probability);
-        if (out.change_statistic > limit) return true;
+        if (out.change_statistic > limit) {
+            first = placeChange(history, before);
+            return true;
+        }
         adopt(joint, together);
         return false;
     }
@@ -376,9 +448,7 @@ StreamEstimate StreamingEstimator::push(const Sample& sample) {
         member.j * prior * member.j.transpose() + Eigen::MatrixXd::Identity(m, m);
     out.nis = member.r.dot(innovation.ldlt().solve(member.r));
     out.channels = m;
-    const double lambda = s.options.change_inflation;
-    const double evidence = std::min(0.5 * (out.nis * (1.0 - 1.0 / lambda) - m * std::log(lambda)),
-                                     s.options.max_step_evidence);
+    const double evidence = s.evidenceOf(out.nis, m);
     const double gate =
         boost::math::quantile(boost::math::chi_squared(m), 1.0 - s.options.gate_probability);
     const bool usable = out.nis <= gate;
@@ -389,14 +459,11 @@ StreamEstimate StreamingEstimator::push(const Sample& sample) {
         s.segment.push_back({sample, out.index, usable});
     }
     if (s.cusum > s.options.change_threshold) {
-        if (!s.confirm(out)) {
+        std::size_t first = 0;
+        if (!s.confirm(out, first)) {
             out.change_rejected = true;
             return finish();
         }
-        // The change began at the segment's first sample beyond the gate (the CUSUM may have
-        // left zero on a few noisy samples of the old soil before it).
-        std::size_t first = 0;
-        while (first + 1 < s.segment.size() && s.segment[first].usable) ++first;
         out.change_detected = true;
         out.change_at = s.segment[first].index;
         s.tracking = false;

@@ -203,6 +203,36 @@ TEST_F(IdentifyCli, PriorsFromASoilAndFromItems) {
     EXPECT_NEAR(ascii["prior"]["c_kPa"]["prior_std"].get<double>(), 1.0, 1e-12);
 }
 
+// One load sees c + σ tan φ: identify flags c and φ, and --profile gives their profile-likelihood
+// intervals (identification.md §5), which hold the estimate and the soil's truth; without
+// --profile the key is null.
+TEST_F(IdentifyCli, ProfileIntervalsOfAFlaggedTradeOff) {
+    const std::string data = synth("one-load.csv",
+                                   "--soil sandy-loam --wheel A --load 58.86 --slips 0:0.9:46 "
+                                   "--noise fx=1%,fz=1%,my=1% --seed 3");
+    const auto plain = identifyJson("--data " + data + " --wheel A --jmax 0.02");
+    EXPECT_TRUE(plain["profile_interval"].is_null()) << plain.dump();
+    const auto j = identifyJson("--data " + data + " --wheel A --jmax 0.02 --profile");
+    ASSERT_TRUE(j["profile_interval"].is_object()) << j.dump();
+    const auto& p = j["profile_interval"];
+    for (const auto& [key, truth] : std::vector<std::pair<std::string, double>>{
+             {"c_kPa", kCohesionKpa}, {"phi_deg", kPhiDeg}}) {
+        ASSERT_TRUE(p.contains(key)) << p.dump();
+        const double lower = p[key]["lower"].get<double>(), upper = p[key]["upper"].get<double>();
+        EXPECT_LE(lower, j[key].get<double>()) << key;
+        EXPECT_GE(upper, j[key].get<double>()) << key;
+        EXPECT_LE(lower, truth) << key;
+        EXPECT_GE(upper, truth) << key;
+        EXPECT_EQ(p[key]["delta_chi2"].get<double>(), 9.0);
+    }
+    const CliRun text = run("identify --data " + data + " --wheel A --jmax 0.02 --profile");
+    EXPECT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("profile-likelihood intervals"), std::string::npos) << text.out;
+    const CliRun stream = run("identify --stream " + data + " --wheel A --profile");
+    EXPECT_EQ(stream.exit_code, 2);
+    EXPECT_NE(stream.err.find("--profile"), std::string::npos) << stream.err;
+}
+
 // Bad values: exit 2, naming the flag, the value and what is allowed.
 TEST_F(IdentifyCli, BadFlagValuesExitTwoNamingFlagValueAndRange) {
     const std::string data = synth("d.csv", "--soil sandy-loam --wheel A --slips 0.05:0.85:12");
@@ -223,6 +253,7 @@ TEST_F(IdentifyCli, BadFlagValuesExitTwoNamingFlagValueAndRange) {
         {"--starts -3", {"--starts", "-3"}},
         {"--load -5", {"--load", "-5"}},
         {"--no-refine --prior phi_deg=30±5", {"--prior", "--no-refine"}},
+        {"--no-refine --profile", {"--profile", "--no-refine"}},
     };
     for (const Case& c : cases) {
         const CliRun r = run("identify --data " + data + " --wheel A " + c.flags);

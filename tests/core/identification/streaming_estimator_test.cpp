@@ -130,6 +130,71 @@ TEST(StreamingEstimator, SoilBorderIsConfirmedWithinTenSamples) {
     EXPECT_NEAR(last.parameters[kPhi], 13.0 * kDeg, 3.0 * last.std[kPhi]);
 }
 
+// A test rig's log: at each load in turn the slip sweeps monotonically 0 → 0.9 (`per_load`
+// samples), 1 % noise as above. The initialisation then sees only the first sweep's low slips,
+// and every later sample lies at a slip or load it has not seen.
+std::vector<Sample> monotone(const contact::ContactParameters<double>& soil,
+                             const std::vector<double>& loads, int per_load, std::uint64_t seed) {
+    boost::random::mt19937_64 engine(seed);
+    boost::random::normal_distribution<double> normal(0.0, 1.0);
+    std::vector<Sample> out;
+    for (double load : loads) {
+        SyntheticSpec spec;
+        spec.loads_n = {load};
+        for (int i = 0; i < per_load; ++i) spec.slips.push_back(0.9 * i / (per_load - 1));
+        for (Sample s : synthesize(soil, spec).data.samples) {
+            s.load_n = load;
+            s.fx_n += kNoise[0] * normal(engine);
+            s.fz_n += kNoise[1] * normal(engine);
+            s.my_nm += kNoise[2] * normal(engine);
+            out.push_back(s);
+        }
+    }
+    return out;
+}
+
+// Streams `first` then `second` and checks: one change, placed at the border (±2), confirmed
+// within 10 samples of it, and the clay's friction angle at the end within 3 std.
+void expectOneBorder(const std::vector<Sample>& first, const std::vector<Sample>& second) {
+    std::vector<Sample> samples = first;
+    samples.insert(samples.end(), second.begin(), second.end());
+    const std::size_t border = first.size();
+    StreamingEstimator estimator(kWheelA, options());
+    int changes = 0;
+    StreamEstimate last;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        last = estimator.push(samples[i]);
+        if (!last.change_detected) continue;
+        ++changes;
+        ASSERT_TRUE(last.change_at.has_value());
+        EXPECT_GE(*last.change_at + 2, border) << "confirmed at " << i;
+        EXPECT_LE(*last.change_at, border + 2) << "confirmed at " << i;
+        EXPECT_LT(i, border + 10);
+    }
+    EXPECT_EQ(changes, 1);
+    ASSERT_TRUE(last.estimated);
+    EXPECT_NEAR(last.parameters[kPhi], 13.0 * kDeg, 3.0 * last.std[kPhi]);
+}
+
+// One load, 80 slips of sandy loam then 80 of clayey soil, each swept monotonically (the model's
+// j_max is the data's: 0.02 m for both soils).
+TEST(StreamingEstimator, MonotoneSweepAtOneLoadBorderPlacedAndNoFalseChange) {
+    for (std::uint64_t seed : {1u, 2u}) {
+        SCOPED_TRACE(seed);
+        expectOneBorder(monotone(soils::sandyLoam(), {58.86}, 80, seed),
+                        monotone(soils::clayeySoil(0.02), {58.86}, 80, seed + 10));
+    }
+}
+
+// Three loads × 30 monotone slips of sandy loam, then three × 20 of clayey soil.
+TEST(StreamingEstimator, MonotoneSweepsPerLoadBorderPlacedAndNoFalseChange) {
+    for (std::uint64_t seed : {1u, 2u}) {
+        SCOPED_TRACE(seed);
+        expectOneBorder(monotone(soils::sandyLoam(), {30.0, 58.86, 90.0}, 30, seed),
+                        monotone(soils::clayeySoil(0.02), {30.0, 58.86, 90.0}, 20, seed + 10));
+    }
+}
+
 TEST(StreamingEstimator, ALoneOutlierIsNeitherAChangeNorUsed) {
     std::vector<Sample> samples = drive(soils::sandyLoam(), 4, 4);
     samples[120].fz_n *= 3.0;
