@@ -55,6 +55,9 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
     }
     if (settings.model) s.options.contact.model = *settings.model;
+    // The overrides together with the scenario's own values (a --duration below the step).
+    if (issues.empty() && (settings.duration_s || settings.time_step_s))
+        issues = scenario::validate(s);
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     return s;
 }
