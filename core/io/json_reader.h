@@ -158,10 +158,19 @@ std::vector<Issue> withAllowedRanges(const std::vector<BadNumber>& bad_numbers,
 /// readJsonFile, with the allowed range of its field: `read` runs on the document with such
 /// numbers marked, only to learn the ranges (withAllowedRanges).
 template <typename T, typename Read>
+Result<T> readJsonTextWith(std::string_view text, const std::string& source, Read read);
+
+template <typename T, typename Read>
 Result<T> readJsonFileWith(const std::filesystem::path& path, Read read) {
     std::string text;
     const std::string source = path.string();
     if (const auto error = readFile(path, text)) return std::vector<Issue>{{source, *error}};
+    return readJsonTextWith<T>(text, source, read);
+}
+
+/// readJsonFileWith for a text already read (`source` names it).
+template <typename T, typename Read>
+Result<T> readJsonTextWith(std::string_view text, const std::string& source, Read read) {
     std::vector<BadNumber> bad;
     Result<nlohmann::json> document = parseJsonMarkingNumbers(text, source, bad);
     if (!document) {
