@@ -100,7 +100,10 @@ std::optional<Signal> readSignal(ObjectReader& parent, const std::string& key, c
                 continue;
             }
             const double ti = (*t)[i].get<double>(), vi = (*v)[i].get<double>();
-            if (!signal.times_s.empty() && !(ti > signal.times_s.back())) {
+            std::vector<Issue> time_issues;
+            if (!checkRange(time_issues, "", ti, time, "s")) {
+                r.report(at, time_issues.front().message);
+            } else if (!signal.times_s.empty() && !(ti > signal.times_s.back())) {
                 r.report(at, "t_s = " + formatNumber(ti) +
                                  " must be greater than the previous time " +
                                  formatNumber(signal.times_s.back()));

@@ -237,6 +237,18 @@ TEST_F(BadNumbers, TinyDurationsAndHugeSignalAmplitudesAreNamedWithTheirRange) {
         "\"ramp\", \"value\": 0, \"amplitude\": 1e9, \"start_s\": 0, \"duration_s\": 1e-300}}}}");
     expectRejected("simulate --scenario " + ramp + " --out " + (dir_ / "o").string(),
                    {ramp, "wheels.all.omega_rad_s", "allowed range [0, 1000] rad/s"});
+    // A table's times have a range too (they had none: 1e999 named no range).
+    for (const std::string t : {"1e999", "-1"}) {
+        const std::string table = write(
+            "table.json",
+            "{\"robot\": \"default\", \"duration_s\": 0.01, \"time_step_s\": 0.001,"
+            " \"terrain\": \"sandy-loam\", \"wheels\": {\"all\": {\"omega_rad_s\": {\"type\": "
+            "\"table\", \"t_s\": [0, " +
+                t + "], \"values\": [0.4, 0.5]}}}}");
+        expectRejected(
+            "simulate --scenario " + table + " --out " + (dir_ / "o").string(),
+            {table, "wheels.all.omega_rad_s.t_s[1]: " + t, "allowed range [0, 1e+06] s"});
+    }
 }
 
 }  // namespace
