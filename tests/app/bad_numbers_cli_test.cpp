@@ -223,6 +223,16 @@ TEST_F(BadNumbers, TinyDurationsAndHugeSignalAmplitudesAreNamedWithTheirRange) {
     expectRejected("simulate --scenario " + short_run + " --out " + (dir_ / "o").string(),
                    {short_run, "duration_s: 1e-300 is shorter than one time step (0.001 s)",
                     "allowed range [0.001, 86400] s"});
+    expectRejected("simulate --scenario straight --duration 1e-300 --out " + (dir_ / "o").string(),
+                   {"duration_s: 1e-300 is shorter than one time step (0.001 s)",
+                    "allowed range [0.001, 86400] s"});
+    const std::string script =
+        write("rover.json",
+              "{\"analyses\": [{\"name\": \"r\", \"type\": \"rover\", \"scenario\": "
+              "\"straight\", \"duration_s\": 1e-300}]}");
+    expectRejected("run " + script + " --out " + (dir_ / "o").string(),
+                   {script + ": analyses[0].duration_s: 1e-300 is shorter than one time step",
+                    "allowed range [0.001, 86400] s"});
     for (const std::string amplitude : {"1e9", "-1e9", "1e10"}) {
         const std::string signal = write("signal.json", scenarioWith("default", amplitude));
         const std::string range = amplitude == "1e10" ? "allowed range [-1e+09, 1e+09] deg"
