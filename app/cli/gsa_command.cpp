@@ -11,6 +11,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/global_sensitivity.h"
 #include "core/common/range.h"
@@ -252,18 +253,9 @@ void addStudyOptions(CLI::App& cmd, StudyOptions& o, const std::string& slips_de
     cmd.add_flag("--progress", o.progress, "Report progress on stderr");
 }
 
-analysis::Control controlOf(const StudyOptions& o, const SignalCancellation& cancellation) {
-    std::function<void(double)> progress;
-    if (o.progress) {
-        auto last = std::make_shared<int>(-1);
-        progress = [last](double fraction) {
-            const int percent = static_cast<int>(fraction * 100.0);
-            if (percent / 10 == *last / 10) return;
-            *last = percent;
-            std::cerr << "progress: " << percent << " %\n";
-        };
-    }
-    return {cancellation.flag(), progress};
+// --progress: lines every 10 % wherever stderr goes; otherwise the bar on a terminal.
+TerminalProgress::Mode progressMode(const StudyOptions& o) {
+    return o.progress ? TerminalProgress::Mode::kLines : TerminalProgress::Mode::kBar;
 }
 
 // Writes the outcome (its table as CSV, or `json`); a refused study is an error (exit 1), a
@@ -339,8 +331,11 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
             }
         }
         const SignalCancellation cancellation;
-        analysis::Outcome outcome = analysis::globalSensitivityOutcome(
-            analysis::computeGlobalSensitivity(inputs, s, controlOf(o, cancellation)));
+        TerminalProgress progress("gsa", progressMode(o));
+        analysis::Outcome outcome =
+            analysis::globalSensitivityOutcome(analysis::computeGlobalSensitivity(
+                inputs, s, {cancellation.flag(), progress.callback()}));
+        progress.finish();
         const auto& result =
             std::any_cast<const analysis::GlobalSensitivityResult&>(outcome.result);
         emit(o, outcome, result.toJson(), cancellation);
@@ -375,8 +370,11 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
                     formatNumber(q) + " is outside the allowed range [0, 100]");
         }
         const SignalCancellation cancellation;
-        analysis::Outcome outcome = analysis::uncertaintyBandOutcome(
-            analysis::computeUncertaintyBands(inputs, s, controlOf(o, cancellation)));
+        TerminalProgress progress("bands", progressMode(o));
+        analysis::Outcome outcome =
+            analysis::uncertaintyBandOutcome(analysis::computeUncertaintyBands(
+                inputs, s, {cancellation.flag(), progress.callback()}));
+        progress.finish();
         emit(o, outcome, io::toJson(outcome.tables.front().table), cancellation);
     });
 }

@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/identification.h"
 #include "core/analysis/identified_parameters.h"
@@ -359,13 +360,15 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     }
     // The data are read: a signal from now on stops the estimator after the sample in hand.
     const SignalCancellation cancellation;
+    TerminalProgress progress("identify --stream");
     analysis::StreamingResult result;
     try {
         result = analysis::playStreaming(std::move(source), inputs.wheel, settings.options,
-                                         cancellation.flag());
+                                         {cancellation.flag(), progress.callback()});
     } catch (const std::invalid_argument& e) {
         throw InputError(o.stream + ": " + e.what());
     }
+    progress.finish();
     for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
     const auto fields = analysis::identifiedFields();
     if (!o.json) {
@@ -491,8 +494,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         parseNoise(synth->noise, spec.noise);
         const SignalCancellation cancellation;
         spec.cancel = cancellation.flag();
+        TerminalProgress progress("synth");
+        spec.progress = progress.callback();
         const auto out =
             identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
+        progress.finish();
         for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
         // A cancelled run is written too, marked by a last comment line (the data set reader
         // skips it, so `identify` reads the partial file).
@@ -628,12 +634,15 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             settings.max_shear_deformation_m = *o.jmax_m;
         }
         const SignalCancellation cancellation;
+        TerminalProgress progress("identify");
         analysis::IdentificationResult result;
         try {
-            result = analysis::computeIdentification(inputs, settings, cancellation.flag());
+            result = analysis::computeIdentification(inputs, settings,
+                                                     {cancellation.flag(), progress.callback()});
         } catch (const std::invalid_argument& e) {
             throw InputError(e.what());
         }
+        progress.finish();
         if (result.message == "cancelled") exitCancelled(cancellation, "identify cancelled");
         if (!result.data_issues.empty())
             throw InputError(result.message + "\n(use --skip-bad-rows to skip bad rows)");

@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "app/headless_application.h"
 #include "core/analysis/forces.h"
@@ -33,8 +34,10 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     analysis::ForcesSettings settings;
     settings.model = o.model.choices();
     const SignalCancellation cancellation;
+    TerminalProgress progress("render");
     const analysis::ForcesResult result =
-        analysis::computeForceSweep(inputs, settings, cancellation.flag());
+        analysis::computeForceSweep(inputs, settings, {cancellation.flag(), progress.callback()});
+    progress.finish();
     const soil::SoilParameters& soil = inputs.soil;
     const wheel::WheelParameters& wheel = inputs.wheel;
     for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';

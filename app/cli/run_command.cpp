@@ -13,6 +13,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "app/headless_application.h"
 #include "core/common/build_info.h"
@@ -84,13 +85,13 @@ private:
 };
 
 project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer,
-                          const std::atomic<bool>* cancel) {
+                          const analysis::Control& control) {
     project::RunRecord record;
     record.name = a.name;
     record.type = a.type->name;
     const auto start = std::chrono::steady_clock::now();
     try {
-        const analysis::Outcome outcome = a.type->run(a.settings, a.inputs, cancel);
+        const analysis::Outcome outcome = a.type->run(a.settings, a.inputs, control);
         const QString title =
             ui::analysisTitle(a.type->name, a.title, a.inputs, a.settings, outcome);
         // A failed or cancelled run keeps its partial results: they are written all the same.
@@ -140,7 +141,12 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
     const SignalCancellation cancellation;
     for (const project::ScriptAnalysis& a : script.analyses) {
         if (cancellation.requested()) break;
-        project::RunRecord record = runOne(a, writer, cancellation.flag());
+        // One bar per analysis, left on its own line when it ends.
+        TerminalProgress progress("run " + a.name + " (" + std::to_string(records.size() + 1) +
+                                  "/" + std::to_string(script.analyses.size()) + ")");
+        project::RunRecord record =
+            runOne(a, writer, analysis::Control{cancellation.flag(), progress.callback()});
+        progress.finish();
         if (!record.error.empty())
             std::cout << "FAIL: " << record.name << ": " << record.error << '\n';
         for (const auto& outcome : record.outcomes) {

@@ -1,13 +1,11 @@
 // terrastudio simulate: run a rover scenario (docs/dynamics.md), write the time series and the
 // summary, with a progress bar on a terminal; Ctrl-C, SIGTERM and SIGHUP stop it and it still
 // writes.
-#include <unistd.h>
-
-#include <cstdio>
 #include <iostream>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/rover.h"
 #include "core/common/range.h"
@@ -25,15 +23,6 @@ struct SimulateOptions {
     std::optional<double> time_step_s;
     std::optional<std::string> model;
 };
-
-void drawProgress(double fraction) {
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(fraction * kWidth + 0.5);
-    std::string bar(static_cast<std::size_t>(filled), '#');
-    bar.resize(kWidth, '.');
-    std::fprintf(stderr, "\r[%s] %3d %%", bar.c_str(), static_cast<int>(fraction * 100.0 + 0.5));
-    std::fflush(stderr);
-}
 
 void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const std::string& out) {
     const scenario::Summary& m = r.summary;
@@ -93,8 +82,8 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         const SignalCancellation cancellation;
         analysis::Control run;
         run.cancel = cancellation.flag();
-        const bool tty = ::isatty(STDERR_FILENO) == 1;
-        if (tty) run.progress = drawProgress;
+        TerminalProgress progress("simulate");
+        run.progress = progress.callback();
         scenario::RunResult result;
         scenario::Scenario s;
         try {
@@ -104,7 +93,7 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         } catch (const std::invalid_argument& e) {
             throw InputError(std::string(o.scenario) + ": " + e.what());
         }
-        if (tty) std::fputs("\n", stderr);
+        progress.finish();
 
         if (const auto error = scenario::writeResults(result, s, o.out))
             throw std::runtime_error(*error);

@@ -3,6 +3,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/forces.h"
 #include "core/analysis/sensitivity.h"
@@ -103,11 +104,13 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--slip-angles", sweep->slip_angles, "Slip angles [deg]")
         ->capture_default_str();
     cmd->callback([sweep, &locations] {
+        const analysis::Inputs inputs = sweep->inputs(locations);
         const SignalCancellation cancellation;
-        emit(*sweep,
-             analysis::computeForceSweep(sweep->inputs(locations), sweep->forces(),
-                                         cancellation.flag()),
-             cancellation);
+        TerminalProgress progress("sweep");
+        const analysis::ForcesResult result = analysis::computeForceSweep(
+            inputs, sweep->forces(), {cancellation.flag(), progress.callback()});
+        progress.finish();
+        emit(*sweep, result, cancellation);
     });
 
     auto sens = std::make_shared<SweepOptions>();
@@ -131,8 +134,10 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
         settings.sweep = sens->forces();
         if (!sens->values.empty()) settings.values = parseValues(sens->values, "--values");
         const SignalCancellation cancellation;
-        const analysis::SensitivityResult result =
-            analysis::computeSensitivity(inputs, settings, cancellation.flag());
+        TerminalProgress progress("sensitivity");
+        const analysis::SensitivityResult result = analysis::computeSensitivity(
+            inputs, settings, {cancellation.flag(), progress.callback()});
+        progress.finish();
         if (result.parameter_keys.size() > 1) {
             std::string legend;
             for (std::size_t k = 0; k < result.parameter_keys.size(); ++k) {

@@ -6,6 +6,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/validation.h"
 #include "core/common/range.h"
@@ -228,11 +229,14 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
         analysis::ValidationResult result;
         {
             const SignalCancellation cancellation;
+            TerminalProgress progress("validate");
             try {
-                result = analysis::computeValidation(inputs, settings, cancellation.flag());
+                result = analysis::computeValidation(inputs, settings,
+                                                     {cancellation.flag(), progress.callback()});
             } catch (const std::invalid_argument& e) {
                 throw InputError(e.what());
             }
+            progress.finish();
             if (cancellation.requested()) exitCancelled(cancellation, "validate cancelled");
         }
         if (o->json) {

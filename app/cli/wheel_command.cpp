@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/operating_point.h"
 #include "core/common/range.h"
@@ -142,6 +143,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     int failed = 0;
     std::size_t cancelled = 0;
     const SignalCancellation cancellation;
+    TerminalProgress progress("wheel --input");
+    const double row_count = static_cast<double>(doc.rows.size());
     for (std::size_t row = 0; row < doc.rows.size(); ++row) {
         const auto& cells = doc.rows[row];
         if (cancellation.requested()) {
@@ -151,6 +154,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             ++cancelled;
             continue;
         }
+        progress.update(static_cast<double>(row) / row_count);
         const std::string where = o.input + ":" + std::to_string(doc.line_numbers[row]);
         const std::size_t before = issues.size();
         // A cell of a column (its range checked, docs/cli.md "Batch mode"), else the flag's value.
@@ -201,7 +205,10 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             ++skipped;
             continue;
         }
-        if (!result.warning.empty()) std::cerr << where << ": warning: " << result.warning << '\n';
+        if (!result.warning.empty()) {
+            progress.clear();
+            std::cerr << where << ": warning: " << result.warning << '\n';
+        }
         for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
         if (!result.failure.empty()) {
             ++failed;
@@ -216,6 +223,8 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         }
         csv += '\n';
     }
+    if (cancelled == 0) progress.update(1.0);
+    progress.finish();
     if (!issues.empty()) {
         // In line order: rows with the wrong cell count come from the reader, the rest from here.
         const std::string prefix = o.input + ":";

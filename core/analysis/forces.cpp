@@ -31,6 +31,7 @@ SweepSpec forcesSpec(const Inputs& in, const ForcesSettings& settings, const Con
     spec.model = in.conditions.model();
     spec.threads = settings.threads;
     spec.cancel = control.cancel;
+    spec.progress = control.progress;
     return spec;
 }
 

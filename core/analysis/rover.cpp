@@ -31,6 +31,20 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
     double value = 0.0;
     if (r.number("duration_s", value, scenario::kDurationRange, "s")) out.duration_s = value;
     if (r.number("time_step_s", value, scenario::kTimeStepRange, "s")) out.time_step_s = value;
+    // The overrides against the scenario's own step and duration (a duration below one step),
+    // while the file's position is at hand.
+    if (out.loaded && (out.duration_s || out.time_step_s)) {
+        scenario::Scenario s = *out.loaded;
+        if (out.duration_s) s.duration_s = *out.duration_s;
+        if (out.time_step_s) {
+            s.time_step_s = *out.time_step_s;
+            s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
+        }
+        for (const Issue& issue : scenario::validate(s)) {
+            if (issue.where == "duration_s" || issue.where == "time_step_s")
+                r.report(issue.where, issue.message);
+        }
+    }
     contact::ContactModel model = contact::ContactModel::kFull;
     if (r.choice<contact::ContactModel>("model", model,
                                         {{"full", contact::ContactModel::kFull},
@@ -55,6 +69,9 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
     }
     if (settings.model) s.options.contact.model = *settings.model;
+    // The overrides together with the scenario's own values (a --duration below the step).
+    if (issues.empty() && (settings.duration_s || settings.time_step_s))
+        issues = scenario::validate(s);
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     return s;
 }

@@ -113,8 +113,16 @@ SensitivityResult computeSensitivity(const Inputs& in, const SensitivitySettings
     out.family.table.columns = all ? std::vector<std::string>{"parameter", "value"}
                                    : std::vector<std::string>{parameters.front().key};
     for (const std::string& c : sweepColumns()) out.family.table.columns.push_back(c);
+    const double count = static_cast<double>(parameters.size());
     for (std::size_t k = 0; k < parameters.size(); ++k) {
-        const SweepResult one = sensitivity(in.soil, in.wheel, parameters[k], spec);
+        SweepSpec family_spec = spec;
+        if (control.progress) {
+            // The family is the work; the tornado's dozen points after it are not counted.
+            family_spec.progress = [&control, k, count](double f) {
+                control.report((static_cast<double>(k) + f) / count);
+            };
+        }
+        const SweepResult one = sensitivity(in.soil, in.wheel, parameters[k], family_spec);
         for (const auto& row : one.table.rows) {
             std::vector<double> values;
             if (all) values.push_back(static_cast<double>(k));
@@ -133,6 +141,7 @@ SensitivityResult computeSensitivity(const Inputs& in, const SensitivitySettings
     // Tornado: F_x at one slip (and the first slip angle) for the extreme variations of each
     // Table 4.1 parameter.
     SweepSpec point = spec;
+    point.progress = nullptr;
     point.slips = {settings.tornado_slip};
     point.slip_angles_rad = {spec.slip_angles_rad.front()};
     const SweepResult base = sweepSlip(in.contact(), point);

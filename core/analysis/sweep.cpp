@@ -30,8 +30,9 @@ struct Row {
 double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
 
 // One slip angle over all slips, warm-starting each solve from the previous one.
+// `done` is called after each slip.
 std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSpec& spec,
-                               double beta) {
+                               double beta, const std::function<void()>& done) {
     std::vector<Row> rows;
     std::optional<double> previous;
     for (double s : spec.slips) {
@@ -47,6 +48,7 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                                 "β = " + formatNumber(deg(beta)) + "°, s = " + formatNumber(s) +
                                     ": " + solution.message});
                 previous.reset();
+                done();
                 continue;
             }
             theta_f = solution.entry_angle_rad;
@@ -67,6 +69,7 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
             f.mz,      f.fb, f.fs};
         for (double& v : values) v = v == 0.0 ? 0.0 : v;
         rows.push_back({std::move(values), {}});
+        done();
     }
     return rows;
 }
@@ -136,13 +139,19 @@ SweepResult sweepSlip(const ContactParameters<double>& p, const SweepSpec& spec)
     // throws, the others stop at their next slip angle, and the failure is rethrown here.
     std::vector<std::exception_ptr> failures(workers);
     std::atomic<bool> failed{false};
+    std::atomic<std::size_t> points_done{0};
+    const double points = static_cast<double>(angles * spec.slips.size());
+    const std::function<void()> done = [&] {
+        const std::size_t now = points_done.fetch_add(1, std::memory_order_relaxed) + 1;
+        if (spec.progress) spec.progress(static_cast<double>(now) / points);
+    };
     {
         std::vector<std::jthread> pool;
         for (std::size_t w = 0; w < workers; ++w) {
             pool.emplace_back([&, w] {
                 try {
                     for (std::size_t i = w; i < angles && !failed.load(); i += workers) {
-                        per_angle[i] = sweepOneAngle(p, spec, spec.slip_angles_rad[i]);
+                        per_angle[i] = sweepOneAngle(p, spec, spec.slip_angles_rad[i], done);
                     }
                 } catch (...) {
                     failures[w] = std::current_exception();
@@ -185,10 +194,18 @@ SweepResult sensitivity(const soil::SoilParameters& soil, const wheel::WheelPara
     SweepResult result;
     result.table.columns = {parameter.key};
     for (const std::string& c : sweepColumns()) result.table.columns.push_back(c);
-    for (double value : parameter.values) {
+    const double count = static_cast<double>(parameter.values.size());
+    for (std::size_t v = 0; v < parameter.values.size(); ++v) {
+        const double value = parameter.values[v];
         soil::SoilParameters varied = soil;
         soil::setUserValue(varied, *field, value);
-        const SweepResult one = sweepSlip(contact::makeContactParameters(varied, wheel), spec);
+        SweepSpec one_spec = spec;
+        if (spec.progress) {
+            one_spec.progress = [&spec, v, count](double f) {
+                spec.progress((static_cast<double>(v) + f) / count);
+            };
+        }
+        const SweepResult one = sweepSlip(contact::makeContactParameters(varied, wheel), one_spec);
         for (const auto& row : one.table.rows) {
             std::vector<double> values{value};
             values.insert(values.end(), row.begin(), row.end());

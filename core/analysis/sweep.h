@@ -31,6 +31,9 @@ struct SweepSpec {
     contact::IntegrationOptions integration;
     int threads = 0;                            ///< 0: one per hardware thread
     const std::atomic<bool>* cancel = nullptr;  ///< set to stop early (rows so far are kept)
+    /// Fraction of the points done, in [0, 1]; called from the worker threads (it must be
+    /// thread-safe) after each point. May be empty.
+    std::function<void(double)> progress;
 };
 
 /// n evenly spaced values from first to last inclusive (n ≥ 2), or {first} for n = 1.

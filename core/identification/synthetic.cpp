@@ -38,9 +38,13 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
     validate(spec);
     SyntheticData out;
     const bool several_loads = spec.loads_n.size() > 1;
+    const double points = static_cast<double>(spec.loads_n.size() * spec.slips.size());
+    std::size_t done = 0;
     for (double load : spec.loads_n) {
         std::optional<double> previous;
         for (double s : spec.slips) {
+            if (spec.progress && done > 0) spec.progress(static_cast<double>(done) / points);
+            ++done;
             if (spec.cancel && spec.cancel->load(std::memory_order_relaxed)) {
                 out.cancelled = true;
                 break;
@@ -75,6 +79,7 @@ SyntheticData synthesize(const contact::ContactParameters<double>& p, const Synt
         }
         if (out.cancelled) break;
     }
+    if (spec.progress && !out.cancelled) spec.progress(1.0);
     // Eq. 5.1: ỹ = y + e, e ~ N(0, σ²) per channel, in a fixed order so a seed is reproducible.
     double max_fx = 0, max_fz = 0, max_my = 0, max_theta = 0;
     for (const Sample& s : out.data.samples) {

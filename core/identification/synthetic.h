@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -39,6 +40,7 @@ struct SyntheticSpec {
     std::uint64_t seed = 1;
     double sample_period_s = 0.01;              ///< time between samples (100 Hz)
     const std::atomic<bool>* cancel = nullptr;  ///< set to stop early (the samples so far are kept)
+    std::function<void(double)> progress;  ///< fraction of the points done, in [0, 1]; may be empty
 };
 
 /// The data set and the points left out because the soil cannot carry the load there.

@@ -169,12 +169,12 @@ Result<Experiment> parseExperimentCsv(const std::string& text, const std::string
     return out;
 }
 
-Result<ExperimentMetadata> parseExperimentMetadata(const std::string& text,
-                                                   const std::string& where) {
-    Result<nlohmann::json> json = parseJson(text, where);
-    if (!json) return json.issues();
+namespace {
+
+Result<ExperimentMetadata> readExperimentMetadata(const nlohmann::json& json,
+                                                  const std::string& where) {
     std::vector<Issue> issues;
-    ObjectReader r(json.value(), issues, where);
+    ObjectReader r(json, issues, where);
     ExperimentMetadata m;
     std::string format;
     r.choiceName("format", format, {"terrastudio-experiment"}, Presence::kRequired);
@@ -227,6 +227,13 @@ Result<ExperimentMetadata> parseExperimentMetadata(const std::string& text,
     r.finish();
     if (!issues.empty()) return issues;
     return m;
+}
+
+}  // namespace
+
+Result<ExperimentMetadata> parseExperimentMetadata(const std::string& text,
+                                                   const std::string& where) {
+    return readJsonTextWith<ExperimentMetadata>(text, where, readExperimentMetadata);
 }
 
 Result<Experiment> readExperiment(const fs::path& path) {

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -31,7 +32,8 @@ struct SyntaxError {
 // position of every token for the messages.
 class Parser {
 public:
-    Parser(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
+    Parser(std::string_view text, std::string source, std::vector<BadNumber>* bad_numbers = nullptr)
+        : text_(text), source_(std::move(source)), bad_numbers_(bad_numbers) {}
 
     Result<json> parse() {
         // A UTF-8 byte-order mark is not JSON but some editors write one: skip it.
@@ -383,17 +385,15 @@ private:
         const bool zero_digits = token.find_first_of("123456789") == std::string_view::npos ||
                                  token.find_first_of("123456789") > token.find_first_of("eE");
         if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-            numberIssue(at, token,
-                        overflows(token) ? "is too large for a number (beyond ±1.8e308)"
-                                         : "is too small for a number (below 2.2e-308, it would "
-                                           "read as 0)");
-            return 0.0;
+            return numberIssue(at, token,
+                               overflows(token) ? "is too large for a number (beyond ±1.8e308)"
+                                                : "is too small for a number (below 2.2e-308, it "
+                                                  "would read as 0)");
         }
         if (error != std::errc{} || end != last) fail("malformed number");
         if (std::fpclassify(value) == FP_SUBNORMAL || (value == 0.0 && !zero_digits)) {
-            numberIssue(at, token,
-                        "is too small for a number (below 2.2e-308, it would lose its digits)");
-            return 0.0;
+            return numberIssue(
+                at, token, "is too small for a number (below 2.2e-308, it would lose its digits)");
         }
         return value;
     }
@@ -418,24 +418,38 @@ private:
         return exponent + magnitude > 0;
     }
 
-    void numberIssue(const Position& at, std::string_view token, const std::string& what) {
+    // Returns the value that stands for the bad number in the document: 0 (the parse fails
+    // anyway) or, when the numbers are marked, NaN.
+    json numberIssue(const Position& at, std::string_view token, const std::string& what) {
         const std::string field = path();
-        issues_.push_back({where(at), (field.empty() ? std::string() : field + ": ") +
-                                          shorten(std::string(token)) + " " + what});
+        Issue issue{where(at), (field.empty() ? std::string() : field + ": ") +
+                                   shorten(std::string(token)) + " " + what};
+        if (bad_numbers_ == nullptr) {
+            issues_.push_back(std::move(issue));
+            return 0.0;
+        }
+        bad_numbers_->push_back({std::move(issue), field});
+        return std::numeric_limits<double>::quiet_NaN();
     }
 
     std::string_view text_;
     std::string source_;
     std::size_t i_ = 0;
     Position pos_;
-    std::vector<std::string> path_;  // keys and "[i]" of the value being parsed
-    std::vector<Issue> issues_;      // duplicated keys, numbers out of range
+    std::vector<std::string> path_;        // keys and "[i]" of the value being parsed
+    std::vector<Issue> issues_;            // duplicated keys, numbers out of range
+    std::vector<BadNumber>* bad_numbers_;  // set: numbers out of range go here, marked NaN
 };
 
 }  // namespace
 
 Result<json> parseJson(std::string_view text, const std::string& source) {
     return Parser(text, source).parse();
+}
+
+Result<json> parseJsonMarkingNumbers(std::string_view text, const std::string& source,
+                                     std::vector<BadNumber>& bad_numbers) {
+    return Parser(text, source, &bad_numbers).parse();
 }
 
 Result<json> readJsonFile(const std::filesystem::path& path) {

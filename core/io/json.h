@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/common/issue.h"
 
@@ -26,6 +27,19 @@ Result<nlohmann::json> parseJson(std::string_view text, const std::string& sourc
 
 /// Reads a file and parses it with its path as the source.
 Result<nlohmann::json> readJsonFile(const std::filesystem::path& path);
+
+/// A number of a JSON text that no double holds: overflow, underflow to zero, subnormal.
+struct BadNumber {
+    Issue issue;       ///< as parseJson reports it: "SOURCE:LINE:COLUMN", "PATH: 1e999 is too …"
+    std::string path;  ///< the key path of the value ("wheels.all.steer_deg.amplitude", "a[2]")
+};
+
+/// parseJson, except that numbers a double cannot hold do not fail the parse: each is a NaN in
+/// the value (no JSON text holds one, so a NaN marks it) and is listed in `bad_numbers`, so that
+/// a reader can name the allowed range of its field (readJsonFileWith in json_reader.h). A
+/// syntax error or a duplicated key still fails.
+Result<nlohmann::json> parseJsonMarkingNumbers(std::string_view text, const std::string& source,
+                                               std::vector<BadNumber>& bad_numbers);
 
 /// A value as JSON text for a message, cut to at most `max_chars` characters ("…" marks the cut).
 std::string quoteJson(const nlohmann::json& value, std::size_t max_chars = 80);

@@ -321,3 +321,34 @@ void ObjectReader::finish() {
 }
 
 }  // namespace terra::io
+
+namespace terra::io {
+
+std::vector<Issue> withAllowedRanges(const std::vector<BadNumber>& bad_numbers,
+                                     const std::vector<Issue>& reader_issues,
+                                     const std::string& source) {
+    std::vector<Issue> out;
+    for (const BadNumber& bad : bad_numbers) {
+        Issue issue = bad.issue;
+        const std::string at = source.empty() ? bad.path : source + ": " + bad.path;
+        for (const Issue& r : reader_issues) {
+            if (r.where != at) continue;
+            // number(), field(), integer() and the signals' checks say "allowed range R"; the
+            // 64-bit integers "is not a whole number in [a, b]".
+            constexpr std::string_view kRange = "allowed range ", kWhole = "a whole number in ";
+            if (const auto k = r.message.find(kRange); k != std::string::npos) {
+                issue.message += "; " + r.message.substr(k);
+                break;
+            }
+            if (const auto k = r.message.find(kWhole); k != std::string::npos) {
+                issue.message +=
+                    "; allowed range " + r.message.substr(k + kWhole.size()) + " (whole numbers)";
+                break;
+            }
+        }
+        out.push_back(std::move(issue));
+    }
+    return out;
+}
+
+}  // namespace terra::io

@@ -20,6 +20,7 @@
 /// New checks (cross-field rules, file references) are added by the caller with report().
 
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -29,6 +30,8 @@
 #include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/common/range.h"
+#include "core/io/atomic_file.h"
+#include "core/io/json.h"
 
 namespace terra::io {
 
@@ -139,5 +142,45 @@ private:
     std::string path_;
     std::vector<std::string> known_;
 };
+
+/// The issues of `bad_numbers`, each naming the allowed range of its field as a reader run on
+/// the marked document (parseJsonMarkingNumbers) states it in `reader_issues`: an ObjectReader
+/// reports a NaN at SOURCE: PATH as "nan is not a finite number; allowed range R UNIT", so the
+/// issue becomes "SOURCE:LINE:COLUMN: PATH: 1e999 is too large for a number (beyond ±1.8e308);
+/// allowed range R UNIT". A number the reader did not check (a comment key, a value kept as it
+/// is) keeps its message.
+std::vector<Issue> withAllowedRanges(const std::vector<BadNumber>& bad_numbers,
+                                     const std::vector<Issue>& reader_issues,
+                                     const std::string& source);
+
+/// Reads the JSON file at `path` and hands it to `read(document, source)`, which returns a
+/// Result<T> (source: the path). A number a double cannot hold (1e999, 1e-320) is an error as in
+/// readJsonFile, with the allowed range of its field: `read` runs on the document with such
+/// numbers marked, only to learn the ranges (withAllowedRanges).
+template <typename T, typename Read>
+Result<T> readJsonTextWith(std::string_view text, const std::string& source, Read read);
+
+template <typename T, typename Read>
+Result<T> readJsonFileWith(const std::filesystem::path& path, Read read) {
+    std::string text;
+    const std::string source = path.string();
+    if (const auto error = readFile(path, text)) return std::vector<Issue>{{source, *error}};
+    return readJsonTextWith<T>(text, source, read);
+}
+
+/// readJsonFileWith for a text already read (`source` names it).
+template <typename T, typename Read>
+Result<T> readJsonTextWith(std::string_view text, const std::string& source, Read read) {
+    std::vector<BadNumber> bad;
+    Result<nlohmann::json> document = parseJsonMarkingNumbers(text, source, bad);
+    if (!document) {
+        std::vector<Issue> issues = document.issues();
+        for (const BadNumber& b : bad) issues.push_back(b.issue);
+        return issues;
+    }
+    Result<T> value = read(document.value(), source);
+    if (bad.empty()) return value;
+    return withAllowedRanges(bad, value.ok() ? std::vector<Issue>{} : value.issues(), source);
+}
 
 }  // namespace terra::io

@@ -15,9 +15,7 @@ using nlohmann::json;
 
 template <typename T, typename Parse>
 Result<T> loadJsonFile(const std::filesystem::path& path, Parse parse) {
-    Result<json> document = readJsonFile(path);
-    if (!document) return document.issues();
-    return parse(document.value(), path.string());
+    return readJsonFileWith<T>(path, parse);
 }
 
 template <typename T, typename Load>

@@ -65,9 +65,10 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
 
 Result<Project> loadProject(const std::filesystem::path& path,
                             const io::PresetLocations* locations) {
-    Result<nlohmann::json> document = io::readJsonFile(path);
-    if (!document) return document.issues();
-    return projectFromJson(document.value(), path.string(), locations);
+    return io::readJsonFileWith<Project>(
+        path, [&](const nlohmann::json& document, const std::string& source) {
+            return projectFromJson(document, source, locations);
+        });
 }
 
 analysis::Inputs inputsOf(const Project& project) {

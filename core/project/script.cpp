@@ -345,9 +345,9 @@ Result<Script> scriptFromJson(const json& document, const std::string& where,
 }
 
 Result<Script> loadScript(const fs::path& path, const io::PresetLocations& locations) {
-    Result<json> document = io::readJsonFile(path);
-    if (!document) return document.issues();
-    return scriptFromJson(document.value(), path.string(), locations, path.parent_path());
+    return io::readJsonFileWith<Script>(path, [&](const json& document, const std::string& source) {
+        return scriptFromJson(document, source, locations, path.parent_path());
+    });
 }
 
 int failureCount(const std::vector<RunRecord>& records) {

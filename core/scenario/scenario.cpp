@@ -18,6 +18,16 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     std::vector<Issue> issues = dynamics::validate(s.robot, prefix + "robot.");
     checkRange(issues, prefix + "duration_s", s.duration_s, kDurationRange, "s");
     checkRange(issues, prefix + "time_step_s", s.time_step_s, kTimeStepRange, "s");
+    // A run shorter than one step would compute nothing (it has lround(T / Δt) = 0 steps) and
+    // report the initial state as a result: a duration typed in the wrong unit.
+    if (kTimeStepRange.contains(s.time_step_s) && kDurationRange.contains(s.duration_s) &&
+        s.duration_s < s.time_step_s) {
+        const Range at_least{s.time_step_s, kDurationRange.high};
+        issues.push_back({prefix + "duration_s",
+                          formatNumber(s.duration_s) + " is shorter than one time step (" +
+                              formatNumber(s.time_step_s) + " s); allowed range " +
+                              at_least.describe() + " s"});
+    }
     if (s.time_step_s > 0.0) {
         checkRange(issues, prefix + "output_interval_s", s.output_interval_s,
                    {s.time_step_s, 3600.0}, "s");

@@ -100,7 +100,10 @@ std::optional<Signal> readSignal(ObjectReader& parent, const std::string& key, c
                 continue;
             }
             const double ti = (*t)[i].get<double>(), vi = (*v)[i].get<double>();
-            if (!signal.times_s.empty() && !(ti > signal.times_s.back())) {
+            std::vector<Issue> time_issues;
+            if (!checkRange(time_issues, "", ti, time, "s")) {
+                r.report(at, time_issues.front().message);
+            } else if (!signal.times_s.empty() && !(ti > signal.times_s.back())) {
                 r.report(at, "t_s = " + formatNumber(ti) +
                                  " must be greater than the previous time " +
                                  formatNumber(signal.times_s.back()));
@@ -249,9 +252,10 @@ Result<dynamics::RobotParameters> resolveRobot(const io::PresetLocations& locati
                                                 "' is neither a file nor a preset; presets: " +
                                                 (names.empty() ? "(none found)" : names)}};
     }
-    Result<json> document = io::readJsonFile(file);
-    if (!document) return document.issues();
-    return robotFromJson(document.value(), file.string(), locations);
+    return io::readJsonFileWith<dynamics::RobotParameters>(
+        file, [&](const json& document, const std::string& source) {
+            return robotFromJson(document, source, locations);
+        });
 }
 
 Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
@@ -398,10 +402,10 @@ Result<Scenario> scenarioFromJson(const json& object, const std::string& where,
 }
 
 Result<Scenario> loadScenario(const fs::path& path, const io::PresetLocations& locations) {
-    Result<json> document = io::readJsonFile(path);
-    if (!document) return document.issues();
     Result<Scenario> s =
-        scenarioFromJson(document.value(), path.string(), locations, path.parent_path());
+        io::readJsonFileWith<Scenario>(path, [&](const json& document, const std::string& source) {
+            return scenarioFromJson(document, source, locations, path.parent_path());
+        });
     if (!s) return s;
     Scenario out = s.value();
     if (out.name.empty()) out.name = path.stem().string();

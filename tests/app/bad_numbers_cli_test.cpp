@@ -9,6 +9,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -63,27 +65,31 @@ TEST_F(BadNumbers, OverflowAndSubnormalInEveryJsonFileNameFileLineKeyAndValue) {
             v == "1e999" ? v + " is too large for a number" : v + " is too small for a number";
         const std::string soil = write("soil.json", soilWith(v));
         expectRejected("wheel --soil " + soil + " --slip 0.2 --load 58",
-                       {soil + ":1:", "c_kPa: " + what});
+                       {soil + ":1:34: c_kPa: " + what, "; allowed range [0, 200] kPa"});
         const std::string wheel =
             write("wheel.json", "{\"name\": \"w\", \"r_m\": " + v + ", \"b_m\": 0.1}");
         expectRejected("wheel --wheel " + wheel + " --slip 0.2 --load 58",
-                       {wheel + ":1:", "r_m: " + what});
+                       {wheel + ":1:22: r_m: " + what, "; allowed range [0.01, 5] m"});
         const std::string robot = write("robot.json", robotWith(v));
         const std::string with_robot = write("with-robot.json", scenarioWith(robot, "5"));
-        expectRejected("simulate --scenario " + with_robot + " --out " + (dir_ / "o").string(),
-                       {robot + ":1:", "chassis_mass_kg: " + what});
+        expectRejected(
+            "simulate --scenario " + with_robot + " --out " + (dir_ / "o").string(),
+            {robot + ":1:", "chassis_mass_kg: " + what, "; allowed range [0.01, 1e+06] kg"});
         const std::string signal = write("signal.json", scenarioWith("default", v));
         expectRejected("simulate --scenario " + signal + " --out " + (dir_ / "o").string(),
-                       {signal + ":2:", "wheels.all.steer_deg.amplitude: " + what});
+                       {signal + ":2:", "wheels.all.steer_deg.amplitude: " + what,
+                        "; allowed range [-1e+09, 1e+09] deg"});
         const std::string script =
             write("script.json", "{\"conditions\": {\"load_N\": " + v + "}, \"analyses\": []}");
-        expectRejected("run " + script + " --out " + (dir_ / "o").string(),
-                       {script + ":1:", "conditions.load_N: " + what});
+        expectRejected(
+            "run " + script + " --out " + (dir_ / "o").string(),
+            {script + ":1:", "conditions.load_N: " + what, "; allowed range [0.01, 1e+05] N"});
         const std::string project = write("p.terra",
                                           "{\"format\": \"terrastudio-project\", \"version\": 1,\n"
                                           "\"conditions\": {\"load_N\": " +
                                               v + "}}");
-        expectRejected(project, {project + ":2:", "conditions.load_N: " + what});
+        expectRejected(project, {project + ":2:", "conditions.load_N: " + what,
+                                 "; allowed range [0.01, 1e+05] N"});
     }
 }
 
@@ -118,6 +124,141 @@ TEST_F(BadNumbers, AbsurdMagnitudesAreOutsideThePhysicalRanges) {
     const std::string points = write("points.csv", "slip,load_N\n0.2,1e-300\n");
     expectRejected("wheel --input " + points,
                    {points + ":2: load_N = 1e-300 is outside the allowed range [0.01, 1e+05] N"});
+}
+
+// Every numeric value of the shipped soil, wheel, robot, scenarios and script, replaced in turn by
+// a number a double cannot hold (1e999, -1e999) or by a subnormal one (1e-320): exit 2, and the
+// message names the file with line and column, the key path, the value and the field's range.
+std::string readText(const fs::path& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// The paths of the numbers in `j` ("a.b", "a[2]"), as the messages spell them.
+void numberPaths(const nlohmann::json& j, const std::string& path, std::vector<std::string>& out) {
+    if (j.is_number()) out.push_back(path);
+    if (j.is_object()) {
+        for (const auto& [key, value] : j.items())
+            numberPaths(value, path.empty() ? key : path + "." + key, out);
+    }
+    if (j.is_array()) {
+        for (std::size_t i = 0; i < j.size(); ++i)
+            numberPaths(j[i], path + "[" + std::to_string(i) + "]", out);
+    }
+}
+
+nlohmann::json::json_pointer pointerOf(const std::string& path) {
+    std::string pointer;
+    std::string segment;
+    auto flush = [&] {
+        if (!segment.empty()) pointer += "/" + segment;
+        segment.clear();
+    };
+    for (char c : path) {
+        if (c == '.' || c == '[') {
+            flush();
+        } else if (c != ']') {
+            segment += c;
+        }
+    }
+    flush();
+    return nlohmann::json::json_pointer(pointer);
+}
+
+TEST_F(BadNumbers, EveryNumericFieldOfEveryFileNamesTheRangeOfAnOverflowOrSubnormal) {
+    const fs::path resources = TERRA_RESOURCE_DIR;
+    struct Case {
+        std::string file;                                        // under resources/
+        std::function<std::string(const std::string&)> command;  // for the bad file's path
+    };
+    const std::string out = (dir_ / "o").string();
+    const std::vector<Case> cases{
+        {"soils/sandy-loam.json",
+         [](const std::string& f) { return "wheel --soil " + f + " --slip 0.2 --load 58"; }},
+        {"wheels/A.json",
+         [](const std::string& f) { return "wheel --wheel " + f + " --slip 0.2 --load 58"; }},
+        {"robots/default.json",
+         [&](const std::string& f) {
+             return "simulate --scenario " + write("uses-robot.json", scenarioWith(f, "5")) +
+                    " --out " + out;
+         }},
+        {"scenarios/pulse-steering.json",
+         [&](const std::string& f) { return "simulate --scenario " + f + " --out " + out; }},
+        {"scenarios/soil-border.json",
+         [&](const std::string& f) { return "simulate --scenario " + f + " --out " + out; }},
+        {"scripts/default.json",
+         [&](const std::string& f) { return "run " + f + " --out " + out; }},
+    };
+    int checked = 0;
+    for (const Case& c : cases) {
+        const nlohmann::json original = nlohmann::json::parse(readText(resources / c.file));
+        std::vector<std::string> paths;
+        numberPaths(original, "", paths);
+        ASSERT_FALSE(paths.empty()) << c.file;
+        for (const std::string& path : paths) {
+            for (const std::string bad : {"1e999", "-1e999", "1e-320"}) {
+                if (bad == "-1e999" && path != paths.front()) continue;  // once per file
+                nlohmann::json edited = original;
+                edited[pointerOf(path)] = "@BAD@";
+                std::string text = edited.dump(1);
+                text.replace(text.find("\"@BAD@\""), 7, bad);
+                const std::string file = write(fs::path(c.file).filename().string(), text);
+                const std::string what =
+                    bad == "1e-320" ? " is too small for a number" : " is too large for a number";
+                expectRejected(c.command(file),
+                               {file + ":", ": " + path + ": " + bad + what, "; allowed range "});
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 60);
+}
+
+// Item 3 of the brief for scenarios: a duration just above 0 and signal amplitudes of ±1e9 (the
+// edge of the amplitude's range) are clear exit-2 errors naming the key and the range.
+TEST_F(BadNumbers, TinyDurationsAndHugeSignalAmplitudesAreNamedWithTheirRange) {
+    std::string tiny = scenarioWith("default", "5");
+    tiny.replace(tiny.find("\"duration_s\": 0.01"), 18, "\"duration_s\": 1e-300");
+    const std::string short_run = write("tiny.json", tiny);
+    expectRejected("simulate --scenario " + short_run + " --out " + (dir_ / "o").string(),
+                   {short_run, "duration_s: 1e-300 is shorter than one time step (0.001 s)",
+                    "allowed range [0.001, 86400] s"});
+    expectRejected("simulate --scenario straight --duration 1e-300 --out " + (dir_ / "o").string(),
+                   {"duration_s: 1e-300 is shorter than one time step (0.001 s)",
+                    "allowed range [0.001, 86400] s"});
+    const std::string script =
+        write("rover.json",
+              "{\"analyses\": [{\"name\": \"r\", \"type\": \"rover\", \"scenario\": "
+              "\"straight\", \"duration_s\": 1e-300}]}");
+    expectRejected("run " + script + " --out " + (dir_ / "o").string(),
+                   {script + ": analyses[0].duration_s: 1e-300 is shorter than one time step",
+                    "allowed range [0.001, 86400] s"});
+    for (const std::string amplitude : {"1e9", "-1e9", "1e10"}) {
+        const std::string signal = write("signal.json", scenarioWith("default", amplitude));
+        const std::string range = amplitude == "1e10" ? "allowed range [-1e+09, 1e+09] deg"
+                                                      : "allowed range [-60, 60] deg";
+        expectRejected("simulate --scenario " + signal + " --out " + (dir_ / "o").string(),
+                       {signal, "wheels.all.steer_deg", range});
+    }
+    const std::string ramp = write(
+        "ramp.json",
+        "{\"robot\": \"default\", \"duration_s\": 0.01, \"time_step_s\": 0.001,"
+        " \"terrain\": \"sandy-loam\", \"wheels\": {\"all\": {\"omega_rad_s\": {\"type\": "
+        "\"ramp\", \"value\": 0, \"amplitude\": 1e9, \"start_s\": 0, \"duration_s\": 1e-300}}}}");
+    expectRejected("simulate --scenario " + ramp + " --out " + (dir_ / "o").string(),
+                   {ramp, "wheels.all.omega_rad_s", "allowed range [0, 1000] rad/s"});
+    // A table's times have a range too (they had none: 1e999 named no range).
+    for (const std::string t : {"1e999", "-1"}) {
+        const std::string table = write(
+            "table.json",
+            "{\"robot\": \"default\", \"duration_s\": 0.01, \"time_step_s\": 0.001,"
+            " \"terrain\": \"sandy-loam\", \"wheels\": {\"all\": {\"omega_rad_s\": {\"type\": "
+            "\"table\", \"t_s\": [0, " +
+                t + "], \"values\": [0.4, 0.5]}}}}");
+        expectRejected(
+            "simulate --scenario " + table + " --out " + (dir_ / "o").string(),
+            {table, "wheels.all.omega_rad_s.t_s[1]: " + t, "allowed range [0, 1e+06] s"});
+    }
 }
 
 }  // namespace

@@ -125,6 +125,20 @@ TEST(ExperimentMetadata, ReadsStrictlyAndNamesTheField) {
     EXPECT_TRUE(contains(msg, "did you mean \"test\"")) << msg;
 }
 
+// A number no double holds, in a metadata file: its position, key and the field's range.
+TEST(Experiment, MetadataNumberBeyondADoubleNamesItsRange) {
+    const std::string text =
+        "{\"format\": \"terrastudio-experiment\", \"format_version\": 1,\n"
+        " \"soil\": {\"parameters\": {\"phi_deg\": 1e999}}}";
+    const Result<ExperimentMetadata> m = parseExperimentMetadata(text, "t.json");
+    ASSERT_FALSE(m.ok());
+    ASSERT_EQ(m.issues().size(), 1u) << m.message();
+    EXPECT_EQ(m.issues()[0].where, "t.json:2:37");
+    EXPECT_EQ(m.issues()[0].message,
+              "soil.parameters.phi_deg: 1e999 is too large for a number (beyond ±1.8e308); "
+              "allowed range [0, 60) deg");
+}
+
 TEST(Experiment, ReadFromTheCsvOrTheSidecarAndTheShippedDingTest) {
     const fs::path ding =
         fs::path(TERRA_RESOURCE_DIR) / "experiments" / "ding2011-smooth-hit-lss1-80N.csv";

@@ -3,7 +3,10 @@
 #include "core/io/json_reader.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "core/common/units.h"
@@ -212,6 +215,44 @@ TEST(NearestName, OneEditPerThreeCharactersOrTheUnitLeftOut) {
     EXPECT_EQ(nearestName("phi", keys), "phi_deg");
     EXPECT_EQ(nearestName("color", keys), "");
     EXPECT_EQ(nearestName("", keys), "");
+}
+
+// The loaders' way (readJsonFileWith): a number no double holds keeps its position and gains the
+// range that the field's reader states, here for a number, an array element and an integer.
+TEST(ReadJsonFileWith, BadNumbersNameTheRangeOfTheirField) {
+    const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                       ("terra_marked_" + std::to_string(::getpid()) + ".json");
+    std::ofstream(file) << "{\"x\": 1e999,\n \"list\": [1, 1e-320], \"n\": -1e999, \"_c\": 1e999}";
+    auto read = [](const json& j, const std::string& source) -> Result<double> {
+        std::vector<Issue> issues;
+        ObjectReader r(j, issues, source);
+        double x = 0.0;
+        std::vector<double> list;
+        int n = 0;
+        r.number("x", x, {0.0, 5.0}, "m");
+        r.numbers("list", list, {-1.0, 1.0});
+        r.integer("n", n, 2, 10);
+        r.finish();
+        if (!issues.empty()) return issues;
+        return x;
+    };
+    const Result<double> result = readJsonFileWith<double>(file, read);
+    std::filesystem::remove(file);
+    ASSERT_FALSE(result.ok());
+    const std::string source = file.string();
+    ASSERT_EQ(result.issues().size(), 4u) << result.message();
+    EXPECT_EQ(result.issues()[0].where, source + ":1:7");
+    EXPECT_EQ(result.issues()[0].message,
+              "x: 1e999 is too large for a number (beyond ±1.8e308); allowed range [0, 5] m");
+    EXPECT_EQ(result.issues()[1].where, source + ":2:14");
+    EXPECT_TRUE(contains(result.issues()[1].message,
+                         "list[1]: 1e-320 is too small for a number (below 2.2e-308, it would "
+                         "lose its digits); allowed range [-1, 1]"))
+        << result.issues()[1].message;
+    EXPECT_TRUE(contains(result.issues()[2].message, "n: -1e999 is too large for a number"));
+    EXPECT_TRUE(contains(result.issues()[2].message, "; allowed range [2, 10]"));
+    // A comment key is read by no one: the message stays, without a range, and the file fails.
+    EXPECT_EQ(result.issues()[3].message, "_c: 1e999 is too large for a number (beyond ±1.8e308)");
 }
 
 }  // namespace

@@ -72,6 +72,31 @@ TEST(StrictJson, NumbersBeyondADoubleNameTheirFieldAndPosition) {
     EXPECT_EQ(edges.value()[1].get<double>(), std::numeric_limits<double>::min());
 }
 
+TEST(StrictJson, MarkedNumbersAreNanInTheValueAndListedWithTheirPath) {
+    const std::string text = "{\"a\": [1, 1e999], \"b\": {\"c\": -1e-320}, \"d\": 2}";
+    std::vector<BadNumber> bad;
+    const Result<json> parsed = parseJsonMarkingNumbers(text, "m.json", bad);
+    ASSERT_TRUE(parsed.ok()) << parsed.message();
+    EXPECT_TRUE(std::isnan(parsed.value()["a"][1].get<double>()));
+    EXPECT_TRUE(std::isnan(parsed.value()["b"]["c"].get<double>()));
+    EXPECT_EQ(parsed.value()["d"], 2);
+    ASSERT_EQ(bad.size(), 2u);
+    EXPECT_EQ(bad[0].path, "a[1]");
+    EXPECT_EQ(bad[0].issue.where, "m.json:1:11");
+    EXPECT_EQ(bad[0].issue.message, "a[1]: 1e999 is too large for a number (beyond ±1.8e308)");
+    EXPECT_EQ(bad[1].path, "b.c");
+    EXPECT_TRUE(contains(bad[1].issue.message, "b.c: -1e-320 is too small"))
+        << bad[1].issue.message;
+    // The plain parse of the same text fails with the same issues.
+    const Result<json> strict = parseJson(text, "m.json");
+    ASSERT_FALSE(strict.ok());
+    ASSERT_EQ(strict.issues().size(), 2u);
+    EXPECT_EQ(strict.issues()[0].message, bad[0].issue.message);
+    // A syntax error still fails the marking parse.
+    std::vector<BadNumber> none;
+    EXPECT_FALSE(parseJsonMarkingNumbers("{\"a\": 1e999,}", "m.json", none).ok());
+}
+
 TEST(StrictJson, SyntaxErrorsGiveLineAndColumn) {
     struct Case {
         const char* text;
