@@ -602,6 +602,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
         for (const Issue& skipped : result.skipped)
             std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
+        for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
         const identification::DecoupledParameters& p = result.identified;
         const std::optional<identification::Uncertainty> uncertainty =
             result.report ? std::optional(result.report->uncertainty) : std::nullopt;

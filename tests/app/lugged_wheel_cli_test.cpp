@@ -2,7 +2,8 @@
 // lug-effect coefficient give the smooth wheel's numbers exactly; with λ_s the drawbar pull at the
 // load rises; on a (nearly) frictionless soil the torque is that of a smooth wheel of radius
 // r_s = r + λ_s h_g, a limit case computed by a second `wheel` run; an out-of-range λ_s is an
-// input error naming the field; `sweep` and `validate` (forward and --calibrate) take the file.
+// input error naming the field; `sweep`, `validate` (forward and --calibrate) and `identify` take
+// the file.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -127,6 +128,31 @@ TEST_F(LuggedWheelCli, ValidateAndCalibrateTakeTheLuggedWheel) {
     ASSERT_TRUE(k.contains("calibration")) << c.out;
     EXPECT_LT(k["calibration"]["metrics"]["Fx_N"]["rmse"].get<double>(),
               k["metrics"]["Fx_N"]["rmse"].get<double>());
+}
+
+// `synth` with a lugged wheel A, then `identify` with the same wheel: the full-model
+// identification gives back the soil (sandy loam, j_max 0.02 m); the decoupled fit, which has no
+// shearing radius, says that it treats the wheel as smooth.
+TEST_F(LuggedWheelCli, IdentifyWithTheLuggedWheelRecoversTheSoil) {
+    json w{{"name", "A lugged"},       {"r_m", 0.092},        {"b_m", 0.107},
+           {"grouser_height_m", 0.01}, {"grouser_count", 18}, {"lug_effect_coefficient", 0.5}};
+    const std::string wheel_file = (dir_ / "wheel-a-lugged.json").string();
+    std::ofstream(wheel_file) << w.dump();
+    const std::string data = (dir_ / "lugged.csv").string();
+    const CliRun s = run("synth --soil sandy-loam --wheel " + wheel_file +
+                         " --load 40,58.86,80 --slips 0:0.75:16 --out " + data);
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const CliRun r =
+        run("identify --data " + data + " --wheel " + wheel_file + " --jmax 0.02 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json p = json::parse(r.out);
+    EXPECT_NEAR(p["phi_deg"].get<double>(), 29.0, 1e-3) << r.out;
+    EXPECT_NEAR(p["n0"].get<double>(), 0.7, 1e-4) << r.out;
+    EXPECT_NEAR(p["K_m"].get<double>(), 0.025, 1e-5) << r.out;
+    const CliRun decoupled =
+        run("identify --data " + data + " --wheel " + wheel_file + " --no-refine");
+    EXPECT_EQ(decoupled.exit_code, 0) << decoupled.err;
+    EXPECT_TRUE(contains(decoupled.err, "treats the lugged wheel as smooth")) << decoupled.err;
 }
 
 }  // namespace
