@@ -335,6 +335,11 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         throw InputError(o.stream + ": " + e.what());
     }
     for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
+    if (inputs.wheel.lugShearOffset() > 0.0) {
+        // The streaming estimator is the decoupled model (Eqs. 4.1–4.18) on the rim radius.
+        std::cerr << "warning: the streaming estimator treats the lugged wheel as smooth "
+                     "(docs/model.md, \"Lugs\")\n";
+    }
     const auto fields = analysis::identifiedFields();
     if (!o.json) {
         std::cout << "sample  time_s";
