@@ -24,6 +24,12 @@ ContactParameters<double> clayeySoil() {
             13.24e3, 0.2,   0.3, 0.009};
 }
 
+// The same soil under wheel A with 12 mm grousers and λ_s = 0.5 (docs/model.md, "Lugs").
+ContactParameters<double> lugged(ContactParameters<double> p) {
+    p.lug_shear_offset_m = 0.5 * 0.012;
+    return p;
+}
+
 // A spread of operating points so that the branch predictor and caches see realistic variety.
 std::vector<OperatingPoint<double>> points() {
     std::vector<OperatingPoint<double>> out;
@@ -44,6 +50,7 @@ void fullForces(benchmark::State& state, ContactParameters<double> p) {
 }
 BENCHMARK_CAPTURE(fullForces, sandy_loam, sandyLoam());
 BENCHMARK_CAPTURE(fullForces, clayey_soil, clayeySoil());
+BENCHMARK_CAPTURE(fullForces, sandy_loam_lugged, lugged(sandyLoam()));
 
 void quadraticForces(benchmark::State& state, ContactParameters<double> p) {
     const auto ops = points();
@@ -54,6 +61,7 @@ void quadraticForces(benchmark::State& state, ContactParameters<double> p) {
 }
 BENCHMARK_CAPTURE(quadraticForces, sandy_loam, sandyLoam());
 BENCHMARK_CAPTURE(quadraticForces, clayey_soil, clayeySoil());
+BENCHMARK_CAPTURE(quadraticForces, sandy_loam_lugged, lugged(sandyLoam()));
 
 // A cold entry-angle solve (no warm start): bracket from Bekker's static sinkage, then TOMS 748.
 void entryAngle(benchmark::State& state, ContactModel model) {

@@ -370,6 +370,11 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     }
     progress.finish();
     for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
+    if (inputs.wheel.lugShearOffset() > 0.0) {
+        // The streaming estimator is the decoupled model (Eqs. 4.1–4.18) on the rim radius.
+        std::cerr << "warning: the streaming estimator treats the lugged wheel as smooth "
+                     "(docs/model.md, \"Lugs\")\n";
+    }
     const auto fields = analysis::identifiedFields();
     if (!o.json) {
         std::cout << "sample  time_s";
@@ -649,6 +654,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
         for (const Issue& skipped : result.skipped)
             std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
+        for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
         const identification::DecoupledParameters& p = result.identified;
         const std::optional<identification::Uncertainty> uncertainty =
             result.report ? std::optional(result.report->uncertainty) : std::nullopt;

@@ -374,6 +374,13 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         }
         out.fit = id::fitDecoupled(out.data, in.wheel, s.guess);
         p = out.fit.parameters;
+        if (in.wheel.lugShearOffset() > 0.0) {
+            // The decoupled model (Eqs. 4.1–4.17) is the thesis's linearisation on the rim
+            // radius; it has no shearing radius (docs/model.md, "Lugs").
+            out.warnings.push_back(
+                "the decoupled fit treats the lugged wheel as smooth (the lug model is only in "
+                "the full model: refine)");
+        }
         out.start_description =
             "decoupled three-step fit from fixed guesses (a0 = " + formatNumber(s.guess.a0) +
             ", phi = " + formatNumber(units::radToDeg(s.guess.friction_angle_rad)) + " deg, …)";

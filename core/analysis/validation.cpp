@@ -462,8 +462,16 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
                                 " m, b = " + formatNumber(w.width_m) + " m)");
         }
     }
-    if (in.wheel.lugged()) {
-        out.notes.push_back("the wheel has grousers; the thesis model treats it as smooth");
+    if (in.wheel.lugged() && in.wheel.lugShearOffset() > 0.0) {
+        out.notes.push_back(
+            "lug model: the soil shears at r_s = r + lug_effect_coefficient * "
+            "grouser_height_m = " +
+            formatNumber(in.wheel.radius_m + in.wheel.lugShearOffset()) +
+            " m, and the slip is taken on r_s (docs/model.md, \"Lugs\")");
+    } else if (in.wheel.lugged()) {
+        out.notes.push_back(
+            "the wheel has grousers; the thesis model treats it as smooth (give "
+            "lug_effect_coefficient in the wheel file for the lug model, docs/model.md, \"Lugs\")");
     }
     out.before = predictExperiment(in, experiment);
     for (PointComparison& p : out.before.points) p.in_fit = inFitSlips(p.point.slip, s.fit_slips);

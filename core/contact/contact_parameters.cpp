@@ -33,7 +33,8 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
             .unit_weight_n_m3 = soil.unit_weight_n_m3,
             .max_stress_a0 = soil.max_stress_a0,
             .max_stress_a1 = soil.max_stress_a1,
-            .max_shear_deformation_m = soil.max_shear_deformation_m};
+            .max_shear_deformation_m = soil.max_shear_deformation_m,
+            .lug_shear_offset_m = wheel.lugShearOffset()};
 }
 
 void requireValid(const OperatingPoint<double>& op) {

@@ -31,6 +31,15 @@ struct ContactParameters {
     /// j_max [m] (Eq. 2.16), +inf for no limit. A plain double: it moves where the integrand has a
     /// kink, and is never identified.
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    /// λ_s h_g [m]: the excess of the shearing radius over the rim, r_s = r + λ_s h_g (Ding et
+    /// al.'s lug effect; docs/model.md, "Lugs"). 0: the thesis model, exactly. A plain double: it
+    /// is a property of the wheel, never identified.
+    double lug_shear_offset_m = 0.0;
+
+    /// Whether the lug model is on (λ_s h_g > 0).
+    bool lugged() const { return lug_shear_offset_m != 0.0; }
+    /// r_s = r + λ_s h_g [m]: the radius of the cylinder on which the soil shears; r when smooth.
+    T shearRadius() const { return radius_m + lug_shear_offset_m; }
 
     /// The same parameters in another scalar type (derivatives dropped or started at zero).
     template <typename U>
@@ -46,7 +55,8 @@ struct ContactParameters {
                 .unit_weight_n_m3 = scalarCast<U>(unit_weight_n_m3),
                 .max_stress_a0 = scalarCast<U>(max_stress_a0),
                 .max_stress_a1 = scalarCast<U>(max_stress_a1),
-                .max_shear_deformation_m = max_shear_deformation_m};
+                .max_shear_deformation_m = max_shear_deformation_m,
+                .lug_shear_offset_m = lug_shear_offset_m};
     }
 };
 

@@ -196,7 +196,17 @@ template <typename T>
 WheelForces<T> computeQuadraticForces(const ContactParameters<T>& p, const OperatingPoint<T>& op,
                                       BulldozingModel bulldozing = BulldozingModel::kBekker) {
     const StressField<T> field(p, op);
-    const QuadraticStress<T> q = fitQuadraticStress(field);
+    QuadraticStress<T> q = fitQuadraticStress(field);
+    if (field.lugged()) {
+        // The lug model weights the shear stresses with ρ = r_s/r as the full model does
+        // (wheel_forces.h, evaluatePiece); the parabolas are linear in their coefficients.
+        const T& rho = field.shearRadiusRatio();
+        for (QuadraticRegion<T>* region : {&q.front, &q.rear}) {
+            for (Parabola<T>* parabola : {&region->tau_t, &region->tau_l}) {
+                parabola->a *= rho, parabola->b *= rho, parabola->c *= rho;
+            }
+        }
+    }
     detail::ForceSums<T> sums;
     detail::addRegion(q.front, q.max_stress_angle, sums);
     detail::addRegion(q.rear, q.max_stress_angle, sums);

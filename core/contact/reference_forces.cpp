@@ -62,6 +62,30 @@ WheelForces<double> computeForcesReference(const ContactParameters<double>& p,
         }
         return total;
     };
+    if (p.lugged()) {
+        // The lug model term by term (docs/model.md, "Lugs"), without the ρ weighting of
+        // computeForces(): σ on the rim (r b dθ, lever arm r), shear on the cylinder of radius r_s
+        // (r_s b dθ, lever arm r_s).
+        const double r = p.radius_m, rs = p.shearRadius(), b = p.width_m;
+        auto sigma = [&](double t) { return field.at(t).sigma; };
+        auto tau_t = [&](double t) { return field.at(t).tau_t; };
+        auto tau_l = [&](double t) { return field.at(t).tau_l; };
+        WheelForces<double> f;
+        f.fx = rs * b * integrate([&](double t) { return tau_t(t) * std::cos(t); }) -
+               r * b * integrate([&](double t) { return sigma(t) * std::sin(t); });
+        f.fz = r * b * integrate([&](double t) { return sigma(t) * std::cos(t); }) +
+               rs * b * integrate([&](double t) { return tau_t(t) * std::sin(t); });
+        f.fy = 0.0 - rs * b * integrate(tau_l);
+        f.mx = 0.0 - rs * rs * b * integrate([&](double t) { return tau_l(t) * std::cos(t); });
+        f.my = rs * rs * b * integrate(tau_t);
+        f.mz = 0.0 - rs * rs * b * integrate([&](double t) { return tau_l(t) * std::sin(t); });
+        // Bulldozing and the side force as assembleForces() (the rim's submerged segment).
+        const WheelForces<double> walls =
+            assembleForces(p, op, detail::ForceSums<double>{}, bulldozing);
+        f.fb = walls.fb;
+        f.fs = f.fy + (walls.fs - walls.fy);
+        return f;
+    }
     detail::ForceSums<double> sums;
     sums.fx = integrate([&](double t) {
         const auto s = field.at(t);

@@ -43,6 +43,8 @@ class StressField {
 public:
     StressField(const ContactParameters<T>& p, const OperatingPoint<T>& op)
         : radius_(p.radius_m),
+          shear_radius_(p.lugged() ? p.shearRadius() : p.radius_m),
+          lugged_(p.lugged()),
           entry_(op.entry_angle_rad),
           exit_(clampedExitAngle(op.exit_angle_rad, op.entry_angle_rad)),
           max_stress_(clampedMaxStressAngle(p, op)),
@@ -79,6 +81,7 @@ public:
         }
         rear_slope_ =
             max_stress_ > exit_ ? T((entry_ - max_stress_) / (max_stress_ - exit_)) : T(0.0);
+        shear_ratio_ = lugged_ ? T(shear_radius_ / radius_) : T(1.0);
     }
 
     const T& entryAngle() const { return entry_; }           ///< θ_f [rad]
@@ -89,6 +92,13 @@ public:
     bool driving() const { return driving_; }
     bool locked() const { return locked_; }  ///< s = −1: the wheel does not turn (ω = 0)
     double maxShearDeformation() const { return max_shear_; }
+    /// r_s [m]: the radius on which the soil shears, r + λ_s h_g (docs/model.md, "Lugs"); r for
+    /// a smooth wheel. j (Eq. 2.14) is computed with it; σ (Eq. 2.17) with the rim radius r.
+    const T& shearRadius() const { return shear_radius_; }
+    /// Whether the lug model is on (r_s > r).
+    bool lugged() const { return lugged_; }
+    /// r_s / r [-]: the integrators weight the shear stresses with it (docs/model.md, "Lugs").
+    const T& shearRadiusRatio() const { return shear_ratio_; }
 
     /// cos θ_a − cos θ_f for θ_a = θ_f − 2d, as 2 sin((θ_f + θ_a)/2) sin((θ_f − θ_a)/2) =
     /// 2 sin(θ_f − d) sin d. The plain difference of cosines loses ~eps/θ_f² relative at small θ_f
@@ -145,7 +155,7 @@ public:
         out.sigma = normalStress(theta, versine);
         if (locked_) return lockedShear(out, theta, cos_theta);
 
-        const ShearDeformation<T> j = shearDeformation(radius_, entry_, sin_entry_, kappa_,
+        const ShearDeformation<T> j = shearDeformation(shear_radius_, entry_, sin_entry_, kappa_,
                                                        lateral_velocity_, theta, sin_theta);
         out.shear_t = j.tangential;
         out.shear_l = j.lateral;
@@ -217,6 +227,8 @@ private:
     }
 
     T radius_;
+    T shear_radius_;  // r_s = r + λ_s h_g
+    bool lugged_;
     T entry_;
     T exit_;
     T max_stress_;
@@ -235,7 +247,8 @@ private:
     T one_minus_kappa_;
     T lateral_velocity_;
     T slip_angle_tan_;
-    T rear_slope_;  // (θ_f − θ_m)/(θ_m − θ_r) of Eq. 2.19
+    T rear_slope_;   // (θ_f − θ_m)/(θ_m − θ_r) of Eq. 2.19
+    T shear_ratio_;  // r_s / r
 };
 
 }  // namespace terra::contact

@@ -131,7 +131,14 @@ void evaluatePiece(const StressField<T>& field, const Region<T>& region, const K
         const T theta = region.theta(piece.u0 + du * rule.nodes[i], jacobian);
         const T s = sin(theta);
         const T c = cos(theta);
-        const StressSample<T> st = field.at(theta, s, c);
+        StressSample<T> st = field.at(theta, s, c);
+        if (field.lugged()) {
+            // The shear acts on the cylinder of radius r_s = ρ r (docs/model.md, "Lugs"): its
+            // area element is r_s b dθ, so the shear integrands carry ρ here and the moments' lever
+            // arm r_s the other ρ (assembleForces).
+            st.tau_t *= field.shearRadiusRatio();
+            st.tau_l *= field.shearRadiusRatio();
+        }
         const T dtheta = region.length * (jacobian * du);
         const T fx = st.tau_t * c - st.sigma * s;
         const T fz = st.sigma * c + st.tau_t * s;
@@ -157,14 +164,11 @@ void evaluatePiece(const StressField<T>& field, const Region<T>& region, const K
 
 template <typename T>
 ShearGeometry shearGeometry(const ContactParameters<T>& p, const StressField<T>& field) {
-    return {scalarValue(p.radius_m),
-            scalarValue(field.entryAngle()),
-            scalarValue(field.exitAngle()),
-            scalarValue(field.velocityRatio()),
-            scalarValue(field.lateralVelocity()),
-            p.max_shear_deformation_m,
-            scalarValue(p.shear_modulus_m),
-            scalarValue(field.slipAngleTangent())};
+    // j (and so its kinks) is computed on the shearing radius r_s (r for a smooth wheel).
+    return {scalarValue(field.shearRadius()),     scalarValue(field.entryAngle()),
+            scalarValue(field.exitAngle()),       scalarValue(field.velocityRatio()),
+            scalarValue(field.lateralVelocity()), p.max_shear_deformation_m,
+            scalarValue(p.shear_modulus_m),       scalarValue(field.slipAngleTangent())};
 }
 
 // The contact integrals ∫(τ_t cos θ − σ sin θ), ∫(σ cos θ + τ_t sin θ), ∫τ_l, ∫τ_l cos θ,
@@ -273,11 +277,14 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
 }  // namespace detail
 
 /// Applies the integral prefactors (r b, r² b and the signs of Eqs. 2.23–2.35) and bulldozing.
+/// With the lug model (p.lugged()) the sums hold the shear stresses weighted by ρ = r_s/r, and the
+/// moments, pure shear integrals, take the lever arm r_s: r r_s b instead of r² b (docs/model.md,
+/// "Lugs": M_y = r_s² b ∫τ_t dθ).
 template <typename T>
 WheelForces<T> assembleForces(const ContactParameters<T>& p, const OperatingPoint<T>& op,
                               const detail::ForceSums<T>& sums, BulldozingModel bulldozing) {
     const T rb = p.radius_m * p.width_m;
-    const T r2b = rb * p.radius_m;
+    const T r2b = p.lugged() ? T(rb * p.shearRadius()) : T(rb * p.radius_m);
     WheelForces<T> f;
     // 0 − x rather than −x: no lateral motion gives F_y = M_x = M_z = +0, never "-0" on output.
     f.fx = rb * sums.fx;

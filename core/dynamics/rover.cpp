@@ -244,6 +244,9 @@ const RoverState& Rover::evaluate(const Commands& commands) {
     const btVector3 w = m.body->getBaseOmega();
     const btVector3 up(0, 0, 1);
     const double r = m.robot.wheel.radius_m;
+    // The slip is defined on the shearing radius r_s = r + λ_s h_g (docs/model.md, "Lugs"); r
+    // for a smooth wheel.
+    const double shear_radius = r + m.robot.wheel.lugShearOffset();
 
     m.commands = commands;
     m.soil_power = 0.0;
@@ -269,7 +272,7 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         k.forward_speed_m_s = hub_velocity.dot(x_w);
         k.lateral_speed_m_s = hub_velocity.dot(y_w);
         // The rim speed from the wheel body's own spin (joint rate plus the chassis' pitch).
-        k.rim_speed_m_s = r * omega.dot(y_w);
+        k.rim_speed_m_s = shear_radius * omega.dot(y_w);
         k.sinkage_m = r - hub.z();
         ws.soil_index = m.terrain.soilIndexAt(hub.x(), hub.y());
         ws.contact = evaluateContact(m.soils[ws.soil_index], k, m.options.contact);

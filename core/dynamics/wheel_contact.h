@@ -30,8 +30,9 @@ struct ContactOptions {
 struct WheelKinematics {
     double forward_speed_m_s = 0.0;  ///< v_x [m/s] of the hub along the wheel heading
     double lateral_speed_m_s = 0.0;  ///< v_y [m/s] of the hub to the wheel's left
-    double rim_speed_m_s = 0.0;      ///< r ω [m/s]
-    double sinkage_m = 0.0;          ///< h [m]: depth of the rim's lowest point below the surface
+    /// r ω [m/s]; r_s ω with the lug model (r_s = r + λ_s h_g, docs/model.md, "Lugs")
+    double rim_speed_m_s = 0.0;
+    double sinkage_m = 0.0;  ///< h [m]: depth of the rim's lowest point below the surface
 };
 
 /// The contact of one wheel at one instant.

@@ -45,6 +45,7 @@ struct Override {
 struct Prepared {
     SoilParameters base;  // without name and source: copied per sample without allocating
     double width_m = 0.0, radius_m = 0.0;
+    double lug_shear_offset_m = 0.0;  // λ_s h_g (docs/model.md, "Lugs")
     std::vector<Override> overrides;
     bool exponent_varied = false;  // n or n1 overridden: N = n + n1 s is re-checked per sample
     Column slip, slip_angle, load, entry;
@@ -117,7 +118,8 @@ bool contactOf(const Prepared& prep, std::size_t i, ContactParameters<double>& p
          .unit_weight_n_m3 = s.unit_weight_n_m3,
          .max_stress_a0 = s.max_stress_a0,
          .max_stress_a1 = s.max_stress_a1,
-         .max_shear_deformation_m = s.max_shear_deformation_m};
+         .max_shear_deformation_m = s.max_shear_deformation_m,
+         .lug_shear_offset_m = prep.lug_shear_offset_m};
     return true;
 }
 
@@ -160,6 +162,7 @@ Prepared prepare(const SoilParameters& soil, const wheel::WheelParameters& wheel
     prep.base.name.clear(), prep.base.source.clear();
     prep.base.name.shrink_to_fit(), prep.base.source.shrink_to_fit();
     prep.width_m = wheel.width_m, prep.radius_m = wheel.radius_m;
+    prep.lug_shear_offset_m = wheel.lugShearOffset();
     prep.count = input.count;
     const std::size_t n = input.count;
     std::vector<Issue> issues;

@@ -32,7 +32,8 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
             T(0.0),
             p[kA0],
             p[kA1],
-            setup.max_shear_deformation_m};
+            setup.max_shear_deformation_m,
+            wheel.lugShearOffset()};
 }
 
 template <typename T>

@@ -129,7 +129,8 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
                                            J(0.0),
                                            J(p[kA0]),
                                            J(p[kA1]),
-                                           model.setup().max_shear_deformation_m};
+                                           model.setup().max_shear_deformation_m,
+                                           wheel_.lugShearOffset()};
     out.rows.clear();
     out.y.clear();
     for (std::size_t i : samples_) {
@@ -275,7 +276,8 @@ public:
                                                J(0.0),
                                                J(u[kA0], 0),
                                                J(u[kA1], 1),
-                                               model.setup().max_shear_deformation_m};
+                                               model.setup().max_shear_deformation_m,
+                                               projection_.wheel_.lugShearOffset()};
         Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m, 4);
         int row = 0;
         for (std::size_t i : projection_.samples_) {

@@ -19,7 +19,7 @@ WheelField make(FieldInfo info, double WheelParameters::*member, bool required =
 // not "no equilibrium"; up to 5 m: any wheel of a vehicle, and a value typed in millimetres is
 // caught (docs/reliability.md, "Physical ranges"). Grousers: up to 0.5 m high and thick (a lug
 // typed in millimetres is caught), up to 360 of them.
-const std::array<WheelField, 5> kFields{{
+const std::array<WheelField, 6> kFields{{
     make({"r_m",
           "m",
           "r",
@@ -41,7 +41,8 @@ const std::array<WheelField, 5> kFields{{
           "h_g",
           "grouser height",
           "Height h_g of the grousers (lugs) above the rim, in metres; 0 or absent: a smooth "
-          "wheel. The thesis model ignores it; lug extensions read it (docs/model.md).",
+          "wheel. The thesis model ignores it; the lug model (lug_effect_coefficient > 0) reads "
+          "it (docs/model.md, \"Lugs\").",
           {0.0, 0.5}},
          &WheelParameters::grouser_height_m, false),
     make({"grouser_count",
@@ -58,6 +59,16 @@ const std::array<WheelField, 5> kFields{{
           "Thickness t_g of one grouser along the rim, in metres; 0 or absent: not given.",
           {0.0, 0.5}},
          &WheelParameters::grouser_thickness_m, false),
+    // λ_s in [0, 1]: the equivalent shearing surface lies between the rim and the grouser tips.
+    make({"lug_effect_coefficient",
+          "-",
+          "λ_s",
+          "lug-effect coefficient",
+          "Ding et al.'s lug-effect coefficient λ_s: the soil shears on a cylinder of radius "
+          "r_s = r + λ_s h_g (docs/model.md, \"Lugs\"). 0 or absent: the lug model is off (the "
+          "thesis model, every wheel smooth); it acts only on a wheel with grousers.",
+          {0.0, 1.0}},
+         &WheelParameters::lug_effect_coefficient, false),
 }};
 
 }  // namespace

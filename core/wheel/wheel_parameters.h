@@ -1,8 +1,9 @@
 #pragma once
 /// @file wheel_parameters.h
 /// Geometry of a rigid wheel (thesis Tables 2.2 and 5.1), in metres, with its grousers (lugs)
-/// described for the lug extensions of the literature. The thesis model treats every wheel as
-/// smooth: it ignores the grouser fields.
+/// and the lug-effect coefficient λ_s of Ding et al.'s shearing radius r_s = r + λ_s h_g
+/// (docs/model.md, "Lugs"). With λ_s = 0 (the default) the model is the thesis's and treats every
+/// wheel as smooth.
 
 #include <span>
 #include <string>
@@ -28,16 +29,27 @@ struct WheelParameters {
     double grouser_count = 0.0;
     /// t_g [m]: thickness of a grouser along the rim; 0: not given.
     double grouser_thickness_m = 0.0;
+    /// λ_s [-]: Ding et al.'s lug-effect coefficient in r_s = r + λ_s h_g, in [0, 1] (0: the
+    /// soil shears at the rim, the thesis model; 1: at the grouser tips). 0 (the default) switches
+    /// the lug model off.
+    double lug_effect_coefficient = 0.0;
 
     /// Whether the wheel has grousers (a height and a count both above 0).
     bool lugged() const { return grouser_height_m > 0.0 && grouser_count > 0.0; }
+
+    /// λ_s h_g [m], the shearing radius' excess over the rim, r_s − r; 0 for a smooth wheel or
+    /// λ_s = 0 (the thesis model).
+    double lugShearOffset() const {
+        return lugged() ? lug_effect_coefficient * grouser_height_m : 0.0;
+    }
 };
 
 /// One user-facing field of the wheel (core/common/field.h).
 using WheelField = Field<WheelParameters>;
 
-/// The field table: r_m, b_m (required), grouser_height_m, grouser_count, grouser_thickness_m
-/// (optional; absent: 0, a smooth wheel). Metres in files and on screen as in SI.
+/// The field table: r_m, b_m (required), grouser_height_m, grouser_count, grouser_thickness_m,
+/// lug_effect_coefficient (optional; absent: 0, a smooth wheel or the lug model off). Metres in
+/// files and on screen as in SI.
 std::span<const WheelField> wheelFields();
 const WheelField& radiusField();
 const WheelField& widthField();

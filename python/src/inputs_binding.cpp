@@ -144,15 +144,29 @@ A rigid wheel: radius r_m and width b_m [m]. Made by terrastudio.wheel().
         .def("__eq__",
              [](const WheelParameters& a, const WheelParameters& b) {
                  return a.name == b.name && a.source == b.source && a.radius_m == b.radius_m &&
-                        a.width_m == b.width_m;
+                        a.width_m == b.width_m && a.grouser_height_m == b.grouser_height_m &&
+                        a.grouser_count == b.grouser_count &&
+                        a.grouser_thickness_m == b.grouser_thickness_m &&
+                        a.lug_effect_coefficient == b.lug_effect_coefficient;
              })
+        // Every field, the grousers and λ_s included: the lug model (docs/model.md, "Lugs") reads
+        // them, so a wheel sent to a worker process must keep them.
         .def(py::pickle(
             [](const WheelParameters& w) {
-                return py::make_tuple(w.name, w.source, w.radius_m, w.width_m);
+                return py::make_tuple(w.name, w.source, w.radius_m, w.width_m, w.grouser_height_m,
+                                      w.grouser_count, w.grouser_thickness_m,
+                                      w.lug_effect_coefficient);
             },
             [](const py::tuple& t) {
-                return WheelParameters{t[0].cast<std::string>(), t[1].cast<std::string>(),
-                                       t[2].cast<double>(), t[3].cast<double>()};
+                WheelParameters w{t[0].cast<std::string>(), t[1].cast<std::string>(),
+                                  t[2].cast<double>(), t[3].cast<double>()};
+                if (t.size() >= 8) {
+                    w.grouser_height_m = t[4].cast<double>();
+                    w.grouser_count = t[5].cast<double>();
+                    w.grouser_thickness_m = t[6].cast<double>();
+                    w.lug_effect_coefficient = t[7].cast<double>();
+                }
+                return w;
             }));
 
     m.def(

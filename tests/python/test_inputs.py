@@ -82,3 +82,20 @@ def test_soils_and_wheels_pickle_bit_for_bit():
     again = pickle.loads(pickle.dumps(soil))
     assert again == soil and again["phi_deg"] == soil["phi_deg"]
     assert pickle.loads(pickle.dumps(ts.wheel("B"))) == ts.wheel("B")
+
+
+def test_lugged_wheels_keep_their_grousers_through_pickle_and_into_the_forces():
+    # A worker process must get the lug model's fields (docs/model.md, "Lugs"), and ts.forces
+    # must use them: the drawbar pull at the load is the command line's, and above the smooth one.
+    import pickle
+
+    spec = {"name": "A lugged", "r_m": 0.092, "b_m": 0.107, "grouser_height_m": 0.01,
+            "grouser_count": 18, "lug_effect_coefficient": 0.5}
+    lugged = ts.wheel(spec)
+    again = pickle.loads(pickle.dumps(lugged))
+    assert again == lugged and again.to_dict() == lugged.to_dict()
+    assert again.to_dict()["lug_effect_coefficient"] == 0.5
+    assert lugged != ts.wheel({k: v for k, v in spec.items() if k != "lug_effect_coefficient"})
+    smooth = ts.forces("sandy-loam", "A", slip=[0.3], load_N=[58.86])
+    out = ts.forces("sandy-loam", again, slip=[0.3], load_N=[58.86])
+    assert out["Fx_N"][0] > smooth["Fx_N"][0] + 0.1

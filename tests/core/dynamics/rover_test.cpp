@@ -98,6 +98,48 @@ TEST(Rover, SteadySlipMatchesTheCoreModelUnderTheSameLoads) {
     }
 }
 
+// With the lug model (docs/model.md, "Lugs") the slip is taken on the shearing radius
+// r_s = r + λ_s h_g: the steady speed is r_s ω (1 − s), and s is where the lugged core model, under
+// the loads the dynamics found, gives zero net drawbar pull.
+TEST(Rover, LuggedWheelsSlipOnTheShearingRadius) {
+    scenario::Scenario s = straight();
+    s.robot.wheel.grouser_height_m = 0.010;
+    s.robot.wheel.grouser_count = 18;
+    s.robot.wheel.lug_effect_coefficient = 0.5;
+    const double rs = s.robot.wheel.radius_m + 0.005;
+    const scenario::RunResult r = scenario::runScenario(s);
+    ASSERT_EQ(r.status, scenario::RunResult::Status::kCompleted);
+    const auto p = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    ASSERT_DOUBLE_EQ(p.shearRadius(), rs);
+    auto netPull = [&](double slip) {
+        double total = 0.0;
+        for (const char* w : kCornerNames) {
+            contact::EntryAngleProblem problem;
+            problem.load_n = at(r, std::string(w) + "_load_N");
+            problem.slip = slip;
+            const auto solution = contact::solveEntryAngle(p, problem);
+            EXPECT_TRUE(solution.ok());
+            const contact::OperatingPoint<double> op{slip, 0.0, solution.entry_angle_rad, 0.0, {}};
+            total += contact::computeForces(p, op).fx;
+        }
+        return total;
+    };
+    double lo = 0.01, hi = 0.9;
+    ASSERT_LT(netPull(lo), 0.0);
+    ASSERT_GT(netPull(hi), 0.0);
+    for (int i = 0; i < 50; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (netPull(mid) < 0.0 ? lo : hi) = mid;
+    }
+    const double expected = 0.5 * (lo + hi);
+    for (const char* w : kCornerNames) {
+        const double slip = at(r, std::string(w) + "_slip");
+        EXPECT_NEAR(slip, expected, 0.01 * expected) << w;
+        const double v = rs * 0.4 * (1.0 - slip);
+        EXPECT_NEAR(at(r, "forward_m_s"), v, 0.01 * v) << w;
+    }
+}
+
 TEST(Rover, SteadySinkageAgreesWithTheEntryAngleEstimator) {
     const scenario::Scenario s = straight();
     const scenario::RunResult r = scenario::runScenario(s);
