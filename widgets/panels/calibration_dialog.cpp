@@ -4,7 +4,6 @@
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QFileInfo>
-#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
@@ -49,6 +48,7 @@ void setupTable(QTableWidget* table, const QStringList& headers) {
     table->setHorizontalHeaderLabels(headers);
     table->verticalHeader()->hide();
     table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    table->setFocusPolicy(Qt::NoFocus);  // read-only: no current-cell frame
     table->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
     table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
 }
@@ -87,14 +87,17 @@ CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
         "Replaces the project's soil by the calibrated one (Edit ▸ Undo restores it)");
     auto* close = new QDialogButtonBox(QDialogButtonBox::Close, this);
 
-    auto* options = new QGridLayout;
-    options->addWidget(new QLabel("Noise σ: F_x", this), 0, 0);
-    options->addWidget(fx_noise_, 0, 1);
-    options->addWidget(new QLabel("M_y", this), 0, 2);
-    options->addWidget(my_noise_, 0, 3);
-    options->addWidget(new QLabel("h", this), 0, 4);
-    options->addWidget(sinkage_noise_, 0, 5);
-    options->addWidget(fit_n1_, 1, 0, 1, 6);
+    auto* options = new QHBoxLayout;
+    options->addWidget(new QLabel("Noise σ:", this));
+    for (auto [label, box] : {std::pair{"F_x", fx_noise_}, std::pair{"M_y", my_noise_},
+                              std::pair{"h", sinkage_noise_}}) {
+        options->addSpacing(8);
+        options->addWidget(new QLabel(label, this));
+        options->addWidget(box);
+    }
+    options->addSpacing(16);
+    options->addWidget(fit_n1_);
+    options->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
     run_bar->addWidget(cancel_);
@@ -217,13 +220,15 @@ void CalibrationDialog::showResult() {
     const bool usable = cal.report.usable() && cal.after;
     QStringList lines;
     if (usable) {
+        QStringList fitted;
+        for (const std::string& name : cal.channels) {
+            for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
+                if (name == io::experimentChannels()[c].name)
+                    fitted << channelLabel(static_cast<io::ExperimentChannel>(c));
+            }
+        }
         lines << QString("Calibrated on %1: %2, χ² = %3.")
-                     .arg(QString::fromStdString([&] {
-                         std::string joined;
-                         for (const std::string& c : cal.channels)
-                             joined += (joined.empty() ? "" : ", ") + c;
-                         return joined;
-                     }()))
+                     .arg(fitted.join(", "))
                      .arg(QString::fromStdString(cal.report.termination))
                      .arg(cal.report.chi2, 0, 'g', 4);
     } else {
@@ -308,9 +313,13 @@ void CalibrationDialog::updateButtons() {
     const bool running = isRunning();
     run_->setEnabled(!running && document_->experiment() != nullptr);
     cancel_->setEnabled(running);
-    for (QWidget* w :
-         std::initializer_list<QWidget*>{fx_noise_, my_noise_, sinkage_noise_, fit_n1_})
-        w->setEnabled(!running);
+    // The noise of a channel the test does not measure does not apply.
+    const io::Experiment* measured = document_->experiment();
+    const std::pair<QWidget*, io::ExperimentChannel> noises[] = {
+        {fx_noise_, io::kExpFx}, {my_noise_, io::kExpMy}, {sinkage_noise_, io::kExpSinkage}};
+    for (const auto& [box, channel] : noises)
+        box->setEnabled(!running && measured && measured->measures(channel));
+    fit_n1_->setEnabled(!running);
     apply_->setEnabled(canApply());
     if (result_ && status_shows_result_ && !running && !applied_ &&
         result_revision_ != document_->revision()) {

@@ -91,7 +91,8 @@ bool promptLoadExperiment(QWidget* parent, ProjectDocument& document,
     if (path.isEmpty()) return false;
     const Result<io::Experiment> read = io::readExperiment(path.toStdString());
     if (!read) {
-        QMessageBox::warning(parent, "Cannot load experiment", QString::fromStdString(read.message()));
+        QMessageBox::warning(parent, "Cannot load experiment",
+                             QString::fromStdString(read.message()));
         return false;
     }
     const ExperimentSetup setup = experimentSetup(*read, locations);

@@ -106,14 +106,18 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     test_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     test_label_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
     metrics_ = new QTableWidget(0, 5, test_box_);
-    metrics_->setHorizontalHeaderLabels({"Channel", "Points", "RMSE", "MAE", "Max rel. error"});
+    metrics_->setHorizontalHeaderLabels({"Channel", "Points", "RMSE", "MAE", "Max rel."});
     metrics_->horizontalHeaderItem(4)->setToolTip(
-        "max |predicted − measured| / |measured| over the points with a measured value ≠ 0");
+        "Largest relative error: max |predicted − measured| / |measured| over the points with a "
+        "measured value ≠ 0");
     metrics_->verticalHeader()->hide();
     metrics_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    metrics_->setFocusPolicy(Qt::NoFocus);
     metrics_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     metrics_->horizontalHeader()->setStretchLastSection(true);
-    metrics_->setVerticalScrollBarPolicy(Qt::ScrollBarAsNeeded);
+    // Sized to its cells (showMetrics): no scroll bar takes a row's room.
+    metrics_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    metrics_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
     metrics_->setToolTip(
         "The model at each measured point, θ_f solved from the measured load (docs/validation.md)");
     calibrate_ = new QPushButton("Calibrate to this test…", test_box_);
@@ -122,14 +126,18 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
         "after, then apply it to the project (undoable)");
     auto* remove = new QPushButton("Remove test", test_box_);
     remove->setToolTip("Take the test out of the project (undoable)");
-    auto* buttons = new QVBoxLayout;
+    // The test and its actions on the left, the metrics on the right: fits 1024 px screens.
+    auto* buttons = new QHBoxLayout;
     buttons->addWidget(calibrate_);
     buttons->addWidget(remove);
     buttons->addStretch(1);
+    auto* left = new QVBoxLayout;
+    left->addWidget(test_label_);
+    left->addLayout(buttons);
+    left->addStretch(1);
     auto* test_layout = new QHBoxLayout(test_box_);
-    test_layout->addWidget(test_label_, 2);
+    test_layout->addLayout(left, 2);
     test_layout->addWidget(metrics_, 3);
-    test_layout->addLayout(buttons);
 
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
@@ -309,9 +317,13 @@ void ForcesPanel::showMetrics() {
         text += "<br><i>" + QString::fromStdString(note).toHtmlEscaped() + "</i>";
     test_label_->setText(text);
     // As tall as its rows (a test measures one to five channels), never taller than five.
-    const int rows = std::min(metrics_->rowCount(), 5);
-    metrics_->setFixedHeight(metrics_->horizontalHeader()->height() + 2 * metrics_->frameWidth() +
-                             rows * metrics_->verticalHeader()->defaultSectionSize() + 2);
+    metrics_->resizeRowsToContents();
+    int height = metrics_->horizontalHeader()->sizeHint().height() + 2 * metrics_->frameWidth();
+    for (int row = 0; row < std::min(metrics_->rowCount(), 5); ++row)
+        height += metrics_->rowHeight(row);
+    metrics_->setFixedHeight(height);
+    metrics_->resizeColumnsToContents();
+    metrics_->setMinimumWidth(metrics_->horizontalHeader()->length() + 2 * metrics_->frameWidth());
 }
 
 }  // namespace terra::ui

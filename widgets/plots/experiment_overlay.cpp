@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace terra::ui {
@@ -116,6 +117,20 @@ void overlayExperiment(QCustomPlot& plot, const SweepQuantity& quantity,
         ++index;
     }
     fitSweepAxes(plot);
+    // A marker on the edge of the axes (s = 0) would be cut in half by the axis: room for it.
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const auto& [conditions, data] : measured) {
+        for (double s : data.first) {
+            low = std::min(low, s);
+            high = std::max(high, s);
+        }
+    }
+    QCPRange x = plot.xAxis->range();
+    const double margin = 0.025 * x.size();
+    if (low - x.lower < 0.4 * margin) x.lower -= margin;
+    if (x.upper - high < 0.4 * margin) x.upper += margin;
+    plot.xAxis->setRange(x);
+    plot.replot();
 }
 
 }  // namespace terra::ui

@@ -61,8 +61,11 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
     plot.yAxis->setLabel(quantity.label);
     plot.legend->setVisible(true);
     plot.plotLayout()->insertRow(0);
-    plot.plotLayout()->addElement(0, 0,
-                                  new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    auto* heading = new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold));
+    // A long title (soil and wheel names) must not set the plot's minimum width: on a narrow
+    // screen it would widen the panel past the window. Narrower than its text, it is clipped.
+    heading->setMinimumSize(1, 0);
+    plot.plotLayout()->addElement(0, 0, heading);
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
     fitSweepAxes(plot);
 }
