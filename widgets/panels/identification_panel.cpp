@@ -21,6 +21,8 @@
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "core/analysis/validation.h"
+#include "core/identification/parameters.h"
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
@@ -49,6 +51,18 @@ std::vector<std::string> priorItems(const QString& text) {
 }
 
 QString number(double value, int digits = 4) { return QString::number(value, 'g', digits); }
+
+// Channel names of the data files ("Fx_N") in a text for a person: their symbols, as the tabs
+// and the other panels show them.
+QString withSymbols(QString text) {
+    const std::pair<const char*, const char*> symbols[] = {
+        {"Fx_N", "F_x"}, {"Fz_N", "F_z"}, {"My_Nm", "M_y"}, {"sinkage_m", "h"}};
+    for (const auto& [name, symbol] : symbols)
+        text.replace(QString::fromUtf8(name), QString::fromUtf8(symbol));
+    return text;
+}
+
+const QString kIdentifiedSuffix = " (identified)";
 
 }  // namespace
 
@@ -88,7 +102,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     }
     parameters_ = new QTableWidget(0, 6, this);
     parameters_->setHorizontalHeaderLabels(
-        {"Parameter", "Identified", "± std", "Prior", "σ post/prior", "Truth (synthetic)"});
+        {"Parameter", "Identified", "± std", "Prior", "σ post/prior", "Truth"});
     parameters_->horizontalHeaderItem(4)->setToolTip(
         "Posterior std / prior std: near 1 the data do not see the parameter (the prior decides); "
         "≪ 1 the data determine it");
@@ -123,9 +137,18 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     report_->setWordWrap(true);
     report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     report_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
-    parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+    // Columns as wide as their text, numbers on one line (they wrapped to "0.\n38273" in a
+    // narrow side panel); a side panel narrower than the table scrolls it.
+    parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    parameters_->horizontalHeader()->setStretchLastSection(true);
+    parameters_->setWordWrap(false);
     parameters_->verticalHeader()->hide();
     parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    apply_ = new QPushButton("Apply identified soil to project", this);
+    apply_->setToolTip(
+        "Replace the project's soil by the identified parameters (a₀, a₁, K_s, n, n₁, c, φ, K); "
+        "k_c : k_φ, γ and j_max stay the project soil's. Edit ▸ Undo restores the soil");
+    apply_->setEnabled(false);
 
     auto* fit_page = new QWidget(this);
     auto* bar = new QHBoxLayout;
@@ -148,12 +171,13 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
     side_layout->addWidget(parameters_, 2);
+    side_layout->addWidget(apply_);
     side_layout->addWidget(report_, 1);
     auto* splitter = new QSplitter(this);
     splitter->addWidget(tabs_);
     splitter->addWidget(side);
     splitter->setStretchFactor(0, 3);
-    splitter->setStretchFactor(1, 1);
+    splitter->setStretchFactor(1, 2);
     side->setMaximumWidth(560);
     auto* fit_layout = new QVBoxLayout(fit_page);
     fit_layout->setContentsMargins(0, 0, 0, 0);
@@ -176,6 +200,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(pages_, 1);
 
+    connect(apply_, &QPushButton::clicked, this, [this] { applyIdentifiedSoil(); });
     connect(browse, &QPushButton::clicked, this, [this] {
         const QString path =
             QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
@@ -250,6 +275,50 @@ void IdentificationPanel::setFitOptions(const QString& prior_soil, const QString
 QString IdentificationPanel::parameterCell(int row, int column) const {
     const QTableWidgetItem* item = parameters_->item(row, column);
     return item != nullptr ? item->text() : QString();
+}
+
+QString IdentificationPanel::parameterHeader(int column) const {
+    const QTableWidgetItem* item = parameters_->horizontalHeaderItem(column);
+    return item != nullptr ? item->text() : QString();
+}
+
+std::optional<soil::SoilParameters> IdentificationPanel::identifiedSoil() const {
+    if (!result_.message.empty() || result_.parameters.rows.empty()) return std::nullopt;
+    if (result_.report && !result_.report->usable()) return std::nullopt;
+    const identification::DecoupledParameters& d = result_.identified;
+    identification::ParameterVector p{};
+    p[identification::kA0] = d.a0;
+    p[identification::kA1] = d.a1;
+    p[identification::kKs] = d.pressure_modulus;
+    p[identification::kN] = d.n0;
+    p[identification::kC] = d.cohesion_pa;
+    p[identification::kPhi] = d.friction_angle_rad;
+    p[identification::kK] = d.shear_modulus_m;
+    const soil::SoilParameters& base = document_->project().soil;
+    soil::SoilParameters soil;
+    try {
+        soil = analysis::soilFromParameters(base, fit_wheel_, p, d.n1);
+    } catch (const std::invalid_argument&) {
+        return std::nullopt;  // the project's soil has K_s ≤ 0 on that wheel: no k_c : k_φ
+    }
+    if (fit_source_ == "synthetic") {
+        std::string name = base.name;
+        const std::string suffix = kIdentifiedSuffix.toStdString();
+        if (name.ends_with(suffix)) name.resize(name.size() - suffix.size());
+        soil.name = name + suffix;
+    } else {
+        soil.name = "identified from " + fit_source_.toStdString();
+    }
+    soil.source = "identified by the studio's identification panel from " +
+                  fit_source_.toStdString() + " on " + fit_wheel_.name;
+    if (!soil::validate(soil).empty()) return std::nullopt;
+    return soil;
+}
+
+bool IdentificationPanel::applyIdentifiedSoil() {
+    const std::optional<soil::SoilParameters> soil = identifiedSoil();
+    if (!soil) return false;
+    return document_->setSoil(*soil, "", QString("Apply identified soil (%1)").arg(fit_source_));
 }
 
 void IdentificationPanel::updateFitControls() {
@@ -349,6 +418,7 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
     const analysis::Inputs inputs = project::inputsOf(document_->project());
+    pending_wheel_ = inputs.wheel;
     analysis::IdentificationSettings settings = fitSettings();
     return [inputs, settings](const std::atomic<bool>& cancel) mutable -> std::any {
         if (!settings.prior_soil_name.empty()) {  // read on the worker, not the GUI thread
@@ -362,6 +432,10 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
 
 void IdentificationPanel::present(const std::any& value) {
     result_ = std::any_cast<analysis::IdentificationResult>(value);
+    fit_wheel_ = pending_wheel_;
+    fit_source_ =
+        file_->text().isEmpty() ? QString("synthetic") : QFileInfo(file_->text()).fileName();
+    apply_->setEnabled(identifiedSoil().has_value());
     if (!result_.message.empty()) {
         status_->setText(
             "<b>Error:</b> " +
@@ -417,7 +491,8 @@ void IdentificationPanel::present(const std::any& value) {
     QStringList lines;
     lines << QString::fromStdString(result_.start_description).toHtmlEscaped();
     if (report) {
-        lines << QString("Data: %1.").arg(QString::fromStdString(report->setup.description));
+        lines << QString("Data: %1.")
+                     .arg(withSymbols(QString::fromStdString(report->setup.description)));
         lines << QString("Gradient norm %1, Newton decrement %2 (≪ 1 at a minimum).")
                      .arg(number(report->gradient_norm, 2))
                      .arg(number(report->newton_decrement, 2));
@@ -427,7 +502,7 @@ void IdentificationPanel::present(const std::any& value) {
                 const auto k = static_cast<std::size_t>(c);
                 if (!report->holdout.channels[k]) continue;
                 channels << QString("%1 %2 (%3 σ)")
-                                .arg(identification::channelNames()[k])
+                                .arg(withSymbols(identification::channelNames()[k]))
                                 .arg(number(report->holdout.rms[k], 3))
                                 .arg(QString::number(report->holdout.rms_over_noise[k], 'f', 2));
             }
