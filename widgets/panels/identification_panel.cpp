@@ -121,16 +121,18 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         "Priors per parameter, mean±std (or +-) in a0, a1, Ks [kPa/m^n], n, c_kPa, phi_deg, K_m; "
         "on top of the soil prior");
     validation_ = new QComboBox(this);
-    validation_->addItem("no held-out error", "none");
-    validation_->addItem("hold out 20 %", "holdout");
+    validation_->addItem("no held-out", "none");
+    validation_->addItem("hold-out 20%", "holdout");
     validation_->addItem("5-fold", "folds");
     validation_->setToolTip(
         "Predict samples the fit did not use: the held-out RMS against the noise level");
     loss_ = new QComboBox(this);
     loss_->addItem("least squares", "l2");
-    loss_->addItem("Huber", "huber");
-    loss_->addItem("Cauchy", "cauchy");
-    loss_->setToolTip("Robust losses limit the pull of outliers");
+    loss_->addItem("Huber loss", "huber");
+    loss_->addItem("Cauchy loss", "cauchy");
+    loss_->setToolTip(
+        "The loss of the fit: least squares, or a robust loss (Huber, Cauchy) that limits the pull "
+        "of outliers");
     start_ = new QLabel(this);
     start_->setWordWrap(true);
     report_ = new QLabel(this);
@@ -164,9 +166,16 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     options->addWidget(prior_soil_);
     options->addWidget(prior_items_, 1);
     options->addWidget(validation_);
-    options->addWidget(new QLabel("Loss:", this));
     options->addWidget(loss_);
-    options->addWidget(fit_);
+    // Fit at the end of the line that says what it starts from: the options row then fits the
+    // panel on a 1024 px screen (it needed 816 px with Fit and full-width combos).
+    for (QComboBox* combo : {prior_soil_, validation_}) {
+        combo->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+        combo->setMinimumContentsLength(12);  // the longest item ("clayey-soil", "hold-out 20%")
+    }
+    auto* start_row = new QHBoxLayout;
+    start_row->addWidget(start_, 1);
+    start_row->addWidget(fit_);
     auto* side = new QWidget(this);
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
@@ -183,7 +192,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     fit_layout->setContentsMargins(0, 0, 0, 0);
     fit_layout->addLayout(bar);
     fit_layout->addLayout(options);
-    fit_layout->addWidget(start_);
+    fit_layout->addLayout(start_row);
     fit_layout->addWidget(splitter, 1);
     auto* bottom = new QHBoxLayout;
     bottom->addWidget(status_, 1);
@@ -448,9 +457,7 @@ void IdentificationPanel::present(const std::any& value) {
                                : QFileInfo(file_->text()).fileName();
     for (std::size_t i = 0; i < plots_.size(); ++i) {
         plotIdentification(*plots_[i], result_, kChannels[i],
-                           QString("Identification: %1 samples (%2)")
-                               .arg(result_.data.samples.size())
-                               .arg(source));
+                           QString("%1 samples (%2)").arg(result_.data.samples.size()).arg(source));
     }
     const Table& t = result_.parameters;
     const Project& project = document_->project();
@@ -607,7 +614,6 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     position_->setValue(0);
     position_->setFormat("no run yet");
     position_text_ = new QLabel(page);
-    position_text_->setMinimumWidth(260);
     stream_status_ = new QLabel(page);
     stream_status_->setWordWrap(true);
     stream_status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -634,7 +640,6 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     play_row->addWidget(pause_);
     play_row->addWidget(stop_);
     play_row->addWidget(position_, 1);
-    play_row->addWidget(position_text_);
     auto* splitter = new QSplitter(page);
     splitter->addWidget(stream_plots_[0]);
     splitter->addWidget(stream_plots_[1]);
@@ -645,6 +650,8 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addLayout(source_row);
     layout->addLayout(play_row);
+    // On a line of its own: beside the controls it made the page 786 px wide (1024 px screens).
+    layout->addWidget(position_text_);
     layout->addWidget(splitter, 1);
     layout->addWidget(stream_status_);
     stream_status_->setText(
