@@ -10,11 +10,13 @@
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include <QTreeWidgetItem>
 #include <QUndoStack>
 #include <cmath>
 
 #include "core/analysis/validation.h"
 #include "core/io/json.h"
+#include "widgets/editors/project_tree.h"
 #include "widgets/panels/calibration_dialog.h"
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
@@ -130,6 +132,20 @@ TEST(Experiment, TheTestsSetupComesWithItInTheSameUndoStep) {
     EXPECT_EQ(document.project().wheel_preset, "A");
     EXPECT_DOUBLE_EQ(document.project().conditions.load_n, 58.86);
     EXPECT_EQ(document.experiment(), nullptr);
+}
+
+TEST(Experiment, TheProjectTreeNamesTheTestAndFollowsUndo) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ProjectTree tree(&document);
+    QTreeWidgetItem* item = tree.topLevelItem(ProjectTree::kExperiment);
+    ASSERT_NE(item, nullptr);
+    EXPECT_EQ(item->text(0), "Measured test");
+    EXPECT_EQ(item->text(1), "none");
+    ASSERT_TRUE(loadExperiment(document, kTest));
+    EXPECT_EQ(item->text(1), "ding2011-smooth-hit-lss1-80N.csv");
+    document.undoStack()->undo();
+    EXPECT_EQ(item->text(1), "none");
 }
 
 TEST(Experiment, IsSavedInTheProjectFileAndReadBackWhenOpened) {
