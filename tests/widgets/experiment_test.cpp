@@ -226,6 +226,23 @@ TEST(ForcesPanel, OverlaysTheMeasuredPointsOnTheModelAtTheMeasuredLoad) {
     EXPECT_DOUBLE_EQ(measured_h->data()->at(0)->value, 5.0);
     EXPECT_DOUBLE_EQ(measured_h->data()->at(1)->key, 0.6);
     EXPECT_DOUBLE_EQ(measured_h->data()->at(1)->value, 17.5);
+    // The plot's data (its CSV export, "Copy data") carry the measured points and the model at
+    // the test's load, marked by the "measured" and "load_N" columns.
+    const Table data = panel.currentTable();
+    const std::size_t measured_col = data.column("measured"), load = data.column("load_N"),
+                      fx_col = data.column("Fx_N"), slip = data.column("slip");
+    std::vector<double> measured_fx, test_load_rows;
+    for (const auto& row : data.rows) {
+        if (row[measured_col] == 1.0) {
+            EXPECT_EQ(row[load], 80.0);
+            measured_fx.push_back(row[fx_col]);
+            EXPECT_EQ(row[slip], kSlips[measured_fx.size() - 1]);
+        }
+    }
+    EXPECT_EQ(measured_fx, std::vector<double>(std::begin(kDrawbarPull), std::end(kDrawbarPull)));
+    // 600 rows of the project's six slip angles, 100 of the model at the test's β = 0°, 6 measured.
+    EXPECT_EQ(data.rows.size(), 600u + 100u + 6u);
+
     // Torque and side force are not measured in this test: no measured graph there.
     EXPECT_EQ(graphNamed(*namedPlot(panel, "My_Nm-vs-slip"), "measured"), nullptr);
     EXPECT_EQ(graphNamed(*namedPlot(panel, "Fs_N-vs-slip"), "measured"), nullptr);

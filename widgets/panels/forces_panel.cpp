@@ -194,6 +194,11 @@ void ForcesPanel::applySettings(const nlohmann::json& json) {
 Table ForcesPanel::currentTable() const {
     if (currentPlot() == bulldozing_) return soil_curves_.bulldozing;
     if (currentPlot() == static_sinkage_) return soil_curves_.static_sinkage;
+    // With a test on the plots, its data go with them (the export writes what the figure shows).
+    if (validation_ && document_->experiment()) {
+        return tableWithTest(result_.table, document_->project().conditions.load_n,
+                             *document_->experiment(), test_sweeps_);
+    }
     return result_.table;
 }
 

@@ -133,4 +133,34 @@ void overlayExperiment(QCustomPlot& plot, const SweepQuantity& quantity,
     plot.replot();
 }
 
+Table tableWithTest(const Table& sweep, double project_load_n, const io::Experiment& experiment,
+                    const std::vector<TestSweep>& sweeps) {
+    Table out;
+    out.columns = sweep.columns;
+    out.columns.insert(out.columns.end(), {"load_N", "measured"});
+    auto append = [&out](const Table& t, double load_n) {
+        for (std::vector<double> row : t.rows) {
+            row.insert(row.end(), {load_n, 0.0});
+            out.rows.push_back(std::move(row));
+        }
+    };
+    append(sweep, project_load_n);
+    for (const TestSweep& s : sweeps) append(s.table, s.load_n);
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    const std::size_t beta = sweep.column("slip_angle_deg"), slip = sweep.column("slip");
+    for (const io::ExperimentPoint& p : experiment.points) {
+        std::vector<double> row(out.columns.size(), kNaN);
+        row[beta] = p.slip_angle_deg;
+        row[slip] = p.slip;
+        for (const std::string& column : sweep.columns) {
+            const std::optional<io::ExperimentChannel> channel = measuredChannel(column);
+            if (channel && p.measured[*channel]) row[sweep.column(column)] = *p.measured[*channel];
+        }
+        row[out.columns.size() - 2] = p.load_n;
+        row[out.columns.size() - 1] = 1.0;
+        out.rows.push_back(std::move(row));
+    }
+    return out;
+}
+
 }  // namespace terra::ui

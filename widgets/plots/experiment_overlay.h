@@ -47,4 +47,11 @@ void overlayExperiment(QCustomPlot& plot, const SweepQuantity& quantity,
                        const io::Experiment& experiment, const std::vector<TestSweep>& sweeps,
                        const analysis::OperatingConditions& shown);
 
+/// The data behind a plot with a test overlaid (its CSV export and "Copy data"): the project's
+/// sweep rows, the rows of the model at the test's conditions, then one row per measured point
+/// with the measured values in their columns (the test's Fy_N under Fs_N, as plotted) and NaN
+/// elsewhere; the columns of the sweep plus "load_N" and "measured" (1 for measured rows).
+Table tableWithTest(const Table& sweep, double project_load_n, const io::Experiment& experiment,
+                    const std::vector<TestSweep>& sweeps);
+
 }  // namespace terra::ui
