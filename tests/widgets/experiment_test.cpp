@@ -248,6 +248,46 @@ TEST(ForcesPanel, OverlaysTheMeasuredPointsOnTheModelAtTheMeasuredLoad) {
     EXPECT_EQ(graphNamed(*namedPlot(panel, "Fs_N-vs-slip"), "measured"), nullptr);
 }
 
+// A test at two loads and slip angles: one measured series per condition, and the model drawn
+// at a condition only where the project's own curves are not already at it.
+TEST(ForcesPanel, OverlaysEachConditionOfATestAndTheModelOnlyWhereTheProjectLacksIt) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("two-loads.csv");
+    {
+        QFile file(path);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        // 58.86 N and β = 5° are the default project's load and first slip angle.
+        file.write("load_N,slip,slip_angle_deg,Fx_N\n40,0.1,0,1.5\n40,0.3,0,3\n58.86,0.2,5,2\n");
+    }
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ASSERT_TRUE(loadExperiment(document, path));
+    ForcesPanel panel(&document);
+    panel.show();
+    ASSERT_TRUE(test::waitForResult(panel));
+    QCustomPlot* fx = namedPlot(panel, "Fx_N-vs-slip");
+    QStringList names;
+    for (int g = 0; g < fx->graphCount(); ++g) names << fx->graph(g)->name();
+    EXPECT_TRUE(names.contains("model, W = 40 N, β = 0°")) << names.join("; ").toStdString();
+    EXPECT_FALSE(names.contains("model, W = 58.86 N, β = 5°")) << names.join("; ").toStdString();
+    QCPGraph* low = graphNamed(*fx, "measured, W = 40 N, β = 0°");
+    QCPGraph* high = graphNamed(*fx, "measured, W = 58.86 N, β = 5°");
+    ASSERT_NE(low, nullptr);
+    ASSERT_NE(high, nullptr);
+    EXPECT_EQ(low->dataCount(), 2);
+    EXPECT_DOUBLE_EQ(low->data()->at(1)->value, 3.0);
+    EXPECT_EQ(high->dataCount(), 1);
+    EXPECT_DOUBLE_EQ(high->data()->at(0)->key, 0.2);
+    // The model at 40 N, β = 0° is the sweep of a project at that load and slip angle.
+    analysis::Inputs at_test = project::inputsOf(document.project());
+    at_test.conditions.load_n = 40.0;
+    at_test.conditions.slip_angles_deg = {0.0};
+    const Table expected = analysis::computeForceSweep(at_test).table;
+    QCPGraph* model = graphNamed(*fx, "model, W = 40 N");
+    ASSERT_EQ(model->dataCount(), static_cast<int>(expected.rows.size()));
+    EXPECT_DOUBLE_EQ(model->data()->at(30)->value, expected.rows[30][expected.column("Fx_N")]);
+}
+
 TEST(ForcesPanel, ShowsTheMetricsOfCoresValidation) {
     ProjectDocument document;
     loadWithSetup(document);

@@ -32,6 +32,7 @@ struct ForcesOutcome {
     analysis::SoilCurves soil;
     std::optional<analysis::ValidationResult> validation;  ///< with a test in the project
     std::vector<TestSweep> test_sweeps;
+    std::shared_ptr<const io::Experiment> test;  ///< the test compared (drawn with its result)
 };
 
 /// The panel's quantities against slip: the sweep's six, then the sinkage.
@@ -195,9 +196,9 @@ Table ForcesPanel::currentTable() const {
     if (currentPlot() == bulldozing_) return soil_curves_.bulldozing;
     if (currentPlot() == static_sinkage_) return soil_curves_.static_sinkage;
     // With a test on the plots, its data go with them (the export writes what the figure shows).
-    if (validation_ && document_->experiment()) {
-        return tableWithTest(result_.table, document_->project().conditions.load_n,
-                             *document_->experiment(), test_sweeps_);
+    if (validation_ && shown_test_) {
+        return tableWithTest(result_.table, document_->project().conditions.load_n, *shown_test_,
+                             test_sweeps_);
     }
     return result_.table;
 }
@@ -219,6 +220,7 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
         out.sweep = analysis::computeForceSweep(inputs, {}, control);
         // A test of a few points and one load adds one slip angle's sweep (~1/6 of the above).
         if (test) compareWithTest(inputs, *test, control, out);
+        out.test = test;
         return out;
     };
 }
@@ -229,13 +231,15 @@ void ForcesPanel::present(const std::any& value) {
     soil_curves_ = std::move(outcome.soil);
     validation_ = std::move(outcome.validation);
     test_sweeps_ = std::move(outcome.test_sweeps);
+    // The test this result was computed with (an intermediate frame may be of an earlier one).
+    shown_test_ = std::move(outcome.test);
     const Project& p = document_->project();
     const QString title =
         QString("%1, %2, W = %3 N%4")
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
             .arg(p.conditions.quadratic ? " (quadratic model)" : "");
-    const io::Experiment* test = validation_ ? document_->experiment() : nullptr;
+    const io::Experiment* test = validation_ ? shown_test_.get() : nullptr;
     for (std::size_t i = 0; i < panelQuantities().size(); ++i) {
         plotSweep(*plots_[i], result_.table, panelQuantities()[i], title);
         if (test)
@@ -278,6 +282,7 @@ void ForcesPanel::updateTestBox() {
     if (!test) {
         metrics_->setRowCount(0);
         validation_.reset();
+        shown_test_.reset();
         test_label_->setText(p.experiment.empty()
                                  ? QString()
                                  : "<b>The test cannot be read:</b> " +

@@ -12,6 +12,7 @@
 /// load (experiment_overlay.h), and a box under the plots gives RMSE, MAE and the largest relative
 /// error per measured channel, with "Calibrate to this test…" (calibration_dialog.h).
 
+#include <memory>
 #include <optional>
 
 #include "core/analysis/forces.h"
@@ -81,6 +82,7 @@ private:
     analysis::SoilCurves soil_curves_;
     std::optional<analysis::ValidationResult> validation_;
     std::vector<TestSweep> test_sweeps_;
+    std::shared_ptr<const io::Experiment> shown_test_;  ///< the test validation_ is of
 };
 
 }  // namespace terra::ui
