@@ -30,6 +30,7 @@
 #include "widgets/document/project_document.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
+#include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
@@ -120,6 +121,21 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         editors_);
     scenarios->setWordWrap(true);
     editors_->addWidget(scenarios);
+    auto* test_page = new QWidget(editors_);
+    auto* test_text = new QLabel(
+        "A measured single-wheel test (docs/validation.md): the Forces vs slip panel draws its "
+        "points over the model, gives the errors and calibrates the soil to it.",
+        test_page);
+    test_text->setWordWrap(true);
+    auto* load_test = new QPushButton("Load experiment…", test_page);
+    auto* test_layout = new QVBoxLayout(test_page);
+    test_layout->addWidget(test_text);
+    test_layout->addWidget(load_test);
+    test_layout->addStretch(1);
+    editors_->addWidget(test_page);
+    connect(load_test, &QPushButton::clicked, this, [this] {
+        if (ui::promptLoadExperiment(this, *document_, locations_)) showPanel("forces");
+    });
     connect(tree, &ui::ProjectTree::pageRequested, editors_, &QStackedWidget::setCurrentIndex);
     connect(load_data, &QPushButton::clicked, this, [this, identification] {
         const QString path =

@@ -21,6 +21,7 @@
 #include "widgets/document/project_document.h"
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/panels/experiment_actions.h"
 #include "widgets/plots/export_dialog.h"
 
 namespace terra::app {
@@ -61,6 +62,10 @@ void MainWindow::createMenus() {
         file, "&Save", {keys(Qt::CTRL | Qt::Key_S)}, "action.save", [this] { save(); }, true);
     add(file, "Save &As…", {keys(Qt::CTRL | Qt::SHIFT | Qt::Key_S)}, "action.save_as",
         [this] { saveAs(); });
+    file->addSeparator();
+    add(file, "Load E&xperiment…", {keys(Qt::CTRL | Qt::Key_L)}, "action.load_experiment", [this] {
+        if (ui::promptLoadExperiment(this, *document_, locations_)) showPanel("forces");
+    });
     file->addSeparator();
     add(
         file, "&Export Plot…", {keys(Qt::CTRL | Qt::Key_E)}, "action.export_plot",

@@ -12,16 +12,18 @@ using io::Presence;
 bool Project::operator==(const Project& other) const { return toJson(*this) == toJson(other); }
 
 nlohmann::json toJson(const Project& project) {
-    return {{"format", kFormat},
-            {"version", kVersion},
-            {"soil_preset", project.soil_preset},
-            {"soil", io::toJson(project.soil)},
-            {"wheel_preset", project.wheel_preset},
-            {"wheel", io::toJson(project.wheel)},
-            {"conditions", analysis::toJson(project.conditions)},
-            {"data_sets", project.data_sets},
-            {"scenarios", project.scenarios},
-            {"panels", project.panels}};
+    nlohmann::json out{{"format", kFormat},
+                       {"version", kVersion},
+                       {"soil_preset", project.soil_preset},
+                       {"soil", io::toJson(project.soil)},
+                       {"wheel_preset", project.wheel_preset},
+                       {"wheel", io::toJson(project.wheel)},
+                       {"conditions", analysis::toJson(project.conditions)},
+                       {"data_sets", project.data_sets},
+                       {"scenarios", project.scenarios},
+                       {"panels", project.panels}};
+    if (!project.experiment.empty()) out["experiment"] = project.experiment;
+    return out;
 }
 
 Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where,
@@ -54,6 +56,9 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
     conditions.finish();
     r.texts("data_sets", project.data_sets);
     r.texts("scenarios", project.scenarios);
+    // Only the reference ("" or absent: none): the test is read when the studio shows it (like
+    // the data sets), so a moved test file does not keep the project from opening.
+    r.text("experiment", project.experiment);
     ObjectReader panels = r.object("panels");
     readPanels(panels, locations);
     panels.finish();

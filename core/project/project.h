@@ -31,8 +31,13 @@ struct Project {
     std::string wheel_preset = "A";
     wheel::WheelParameters wheel;
     analysis::OperatingConditions conditions;
-    std::vector<std::string> data_sets;                ///< CSV paths (identification)
-    std::vector<std::string> scenarios;                ///< scenario file paths (rover)
+    std::vector<std::string> data_sets;  ///< CSV paths (identification)
+    std::vector<std::string> scenarios;  ///< scenario file paths (rover)
+    /// A measured single-wheel test (core/io/experiment.h: its CSV or its sidecar JSON) that the
+    /// forces panel overlays on the model and calibrates to; relative paths are relative to the
+    /// .terra file. "" = none. Written only when set ("experiment"), so that a project without a
+    /// test is the version-1 file older studios read.
+    std::string experiment;
     nlohmann::json panels = nlohmann::json::object();  ///< per-panel settings, by panel name
 
     bool operator==(const Project& other) const;

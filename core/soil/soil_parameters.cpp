@@ -108,8 +108,8 @@ const std::array<SoilField, 11> kFields{{
           "-",
           "n₁",
           "slip dependence of n",
-          "n₁ of the slip-dependent exponent N = n₀ + n₁ s (Ding); 0 keeps n constant. "
-          "Dimensionless.",
+          "n₁ of the slip-dependent sinkage exponent N = n₀ + n₁ s (Ding; the thesis's Eqs. 4.1, "
+          "4.17); 0 keeps n constant. Dimensionless.",
           {-1.0, 1.0}},
          &SoilParameters::sinkage_exponent_slip, false),
 }};

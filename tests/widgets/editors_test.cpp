@@ -4,6 +4,7 @@
 
 #include <QComboBox>
 #include <QLineEdit>
+#include <QRegularExpression>
 #include <QSlider>
 #include <QTest>
 #include <QUndoStack>
@@ -210,6 +211,28 @@ TEST(SoilEditor, EveryFieldOfTheCoreTableHasAnEditorWithItsRange) {
         EXPECT_TRUE(box->toolTip().contains(QString::fromStdString(field.displayUnit())))
             << field.key;
         EXPECT_TRUE(box->toolTip().contains(QString::fromUtf8(field.label))) << field.key;
+    }
+}
+
+// Issue 12: every soil parameter's editor — its label, field and slider — says in its tooltip
+// what the parameter means, the thesis equation it belongs to, and its unit.
+TEST(SoilEditor, EveryParameterTooltipSaysMeaningEquationAndUnit) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    const QRegularExpression equation("Eqs?\\. [0-9]+\\.[0-9]+");
+    for (const soil::SoilField& field : soil::soilFields()) {
+        const QString tip = editor.spinBox(field.key)->toolTip();
+        EXPECT_TRUE(tip.contains(QString::fromUtf8(field.label))) << field.key;
+        EXPECT_TRUE(tip.contains(equation)) << field.key << ": " << tip.toStdString();
+        const std::string unit = field.displayUnit();
+        EXPECT_TRUE(unit.empty() ? tip.contains("Dimensionless")
+                                 : tip.contains(QString::fromStdString(unit)))
+            << field.key << ": " << tip.toStdString();
+        auto* slider =
+            editor.findChild<QSlider*>(QString("soil.") + field.key + QString(".slider"));
+        ASSERT_NE(slider, nullptr) << field.key;
+        EXPECT_EQ(slider->toolTip(), tip) << field.key;
     }
 }
 

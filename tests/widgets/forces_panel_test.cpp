@@ -41,7 +41,7 @@ TEST(ForcesPanel, ShowsOneCurvePerSlipAngleFromTheModel) {
     ASSERT_TRUE(test::waitForResult(panel));
     const Table& table = panel.result().table;
     EXPECT_EQ(table.rows.size(), 600u);   // 6 slip angles × 100 slips, all in equilibrium
-    ASSERT_EQ(panel.plots().size(), 8u);  // six quantities vs slip, F_b(h), h_s(W)
+    ASSERT_EQ(panel.plots().size(), 9u);  // six quantities and h vs slip, F_b(h), h_s(W)
     for (const auto& [name, plot] : panel.plots()) {
         if (name.endsWith("-vs-slip")) {
             EXPECT_EQ(plot->graphCount(), 6) << name.toStdString();

@@ -9,9 +9,11 @@
 
 #include <QProgressBar>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QUndoStack>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -355,6 +357,81 @@ TEST(IdentificationPanel, ABadCsvRowIsReportedWithItsLineNumberInTheBatchFit) {
     ASSERT_TRUE(test::waitForResult(panel, 60000));
     EXPECT_TRUE(panel.fitStatus().contains("broken.csv:6")) << panel.fitStatus().toStdString();
     EXPECT_TRUE(panel.fitStatus().contains("abc")) << panel.fitStatus().toStdString();
+}
+
+// Issue 12: the table and the report name parameters and channels by symbol and unit, like the
+// other panels, never by the file keys ("Fx_N", "phi_deg").
+TEST(IdentificationPanel, TableAndReportShowSymbolsWithUnitsNotFileKeys) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}});
+    panel.setFitOptions("", "", "holdout", "l2");
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().message.empty()) << panel.result().message;
+    const QRegularExpression key(
+        "Fx_N|Fz_N|My_Nm|sinkage_m|phi_deg|c_kPa|Ks_kPa|K_m|\\bn0\\b|\\bn1\\b|\\ba0\\b|\\ba1\\b");
+    QStringList symbols;
+    for (int row = 0; row < 8; ++row) {
+        symbols << panel.parameterCell(row, 0);
+        for (int column = 0; column < 6; ++column) {
+            EXPECT_FALSE(panel.parameterCell(row, column).contains(key))
+                << row << " " << column << ": " << panel.parameterCell(row, column).toStdString();
+        }
+    }
+    for (int column = 0; column < 6; ++column)
+        EXPECT_FALSE(panel.parameterHeader(column).contains(key)) << column;
+    // The field table's order: a0, a1, Ks, n0, n1, c, phi, K.
+    EXPECT_EQ(symbols, (QStringList{"a₀", "a₁", "K_s [kPa/m^n]", "n₀", "n₁", "c [kPa]", "φ [deg]",
+                                    "K [m]"}));
+    const QString report = panel.fitReport();
+    EXPECT_FALSE(report.contains(key)) << report.toStdString();
+    EXPECT_TRUE(report.contains("Held-out RMS")) << report.toStdString();
+    EXPECT_TRUE(report.contains("F_x")) << report.toStdString();
+}
+
+// Issue 12: "Apply identified soil to project" puts the fit into the project as one undo step,
+// and Undo gives the soil back exactly.
+TEST(IdentificationPanel, ApplyingTheIdentifiedSoilIsOneUndoStep) {
+    ProjectDocument document;
+    test::resetToDefault(document);  // sandy loam, wheel A
+    const std::string before = io::toJson(document.project().soil).dump();
+    IdentificationPanel panel(&document);
+    QPushButton* apply = button(panel, "Apply identified soil");
+    ASSERT_NE(apply, nullptr);
+    EXPECT_FALSE(apply->isEnabled());  // nothing fitted yet
+    EXPECT_FALSE(panel.applyIdentifiedSoil());
+    EXPECT_EQ(document.undoStack()->count(), 0);
+
+    panel.applySettings({{"refine", true}});
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().report && panel.result().report->usable());
+    EXPECT_TRUE(apply->isEnabled());
+    const identification::DecoupledParameters& fit = panel.result().identified;
+    apply->click();
+    ASSERT_EQ(document.undoStack()->count(), 1);
+    EXPECT_EQ(document.undoStack()->undoText(), "Apply identified soil (synthetic)");
+    const soil::SoilParameters& soil = document.project().soil;
+    EXPECT_EQ(soil.name, "sandy loam (identified)");
+    EXPECT_TRUE(document.project().soil_preset.empty());
+    EXPECT_EQ(soil.friction_angle_rad, fit.friction_angle_rad);
+    EXPECT_EQ(soil.cohesion_pa, fit.cohesion_pa);
+    EXPECT_EQ(soil.shear_modulus_m, fit.shear_modulus_m);
+    EXPECT_EQ(soil.sinkage_exponent, fit.n0);
+    EXPECT_EQ(soil.max_stress_a0, fit.a0);
+    EXPECT_EQ(soil.max_stress_a1, fit.a1);
+    // K_s = k_c/b + k_φ (Eq. 2.9) on wheel A (b = 0.107 m) is the identified one; k_c : k_φ and
+    // γ are the project soil's (Table 2.1: 5.3 kN/m^(n+1), 1515 kN/m^(n+2), 15.2 kN/m³).
+    EXPECT_NEAR(soil.cohesive_modulus / 0.107 + soil.frictional_modulus, fit.pressure_modulus,
+                1e-9 * fit.pressure_modulus);
+    EXPECT_NEAR(soil.cohesive_modulus / soil.frictional_modulus, 5.3 / 1515.0, 1e-12);
+    EXPECT_EQ(soil.unit_weight_n_m3, 15.2e3);
+
+    document.undoStack()->undo();
+    EXPECT_EQ(io::toJson(document.project().soil).dump(), before);
+    EXPECT_EQ(document.project().soil_preset, "sandy-loam");
 }
 
 TEST(IdentificationStreaming, SettingsRoundTrip) {

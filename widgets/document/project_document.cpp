@@ -1,5 +1,7 @@
 #include "widgets/document/project_document.h"
 
+#include <QDir>
+#include <QFileInfo>
 #include <QSaveFile>
 #include <QUndoStack>
 #include <algorithm>
@@ -73,6 +75,9 @@ void ProjectDocument::notify(Part part) {
             break;
         case Part::kDataSets:
             emit dataSetsChanged();
+            break;
+        case Part::kExperiment:
+            emit experimentChanged();
             break;
     }
     emit changed();
@@ -197,10 +202,12 @@ bool ProjectDocument::setQuadraticModel(bool quadratic) {
                      Part::kConditions, &project_.conditions.quadratic, quadratic);
 }
 
-bool ProjectDocument::setSoil(const soil::SoilParameters& soil, const std::string& preset) {
+bool ProjectDocument::setSoil(const soil::SoilParameters& soil, const std::string& preset,
+                              const QString& text) {
     if (!soil::validate(soil).empty()) return false;
-    return pushSoil(QString("Soil preset %1").arg(QString::fromStdString(preset)), -1, soil,
-                    preset);
+    return pushSoil(
+        text.isEmpty() ? QString("Soil preset %1").arg(QString::fromStdString(preset)) : text, -1,
+        soil, preset);
 }
 
 bool ProjectDocument::setWheel(const wheel::WheelParameters& wheel, const std::string& preset) {
@@ -231,6 +238,43 @@ bool ProjectDocument::addDataSet(const std::string& path) {
     return pushField(QString("Add data set"), -1, Part::kDataSets, &project_.data_sets, sets);
 }
 
+ProjectDocument::ExperimentState ProjectDocument::readExperiment(const std::string& path) const {
+    ExperimentState state{path, nullptr, {}};
+    if (path.empty()) return state;
+    QString resolved = QString::fromStdString(path);
+    // A hand-written relative path is relative to the .terra file (the studio stores absolute).
+    if (QFileInfo(resolved).isRelative() && !file_path_.isEmpty())
+        resolved = QFileInfo(file_path_).dir().filePath(resolved);
+    Result<io::Experiment> read = io::readExperiment(resolved.toStdString());
+    if (read) {
+        state.data = std::make_shared<const io::Experiment>(std::move(read.value()));
+    } else {
+        state.error = read.message();
+    }
+    return state;
+}
+
+bool ProjectDocument::setExperiment(const QString& path, QString* error) {
+    const std::string absolute =
+        path.isEmpty() ? std::string() : QFileInfo(path).absoluteFilePath().toStdString();
+    if (absolute == project_.experiment) return true;
+    ExperimentState after = readExperiment(absolute);
+    if (!after.error.empty()) {
+        if (error) *error = QString::fromStdString(after.error);
+        return false;
+    }
+    const QString text = absolute.empty()
+                             ? QString("Remove experiment")
+                             : QString("Load experiment %1").arg(QFileInfo(path).fileName());
+    undo_->push(new SetValueCommand<ExperimentState>(
+        text, -1, gesture_, experiment_, std::move(after), [this](const ExperimentState& v) {
+            project_.experiment = v.path;
+            experiment_ = v;
+            notify(Part::kExperiment);
+        }));
+    return true;
+}
+
 void ProjectDocument::setPanelSettings(const std::string& panel, const nlohmann::json& settings) {
     if (project_.panels.contains(panel) && project_.panels[panel] == settings) return;
     project_.panels[panel] = settings;
@@ -248,8 +292,13 @@ void ProjectDocument::reset(const Project& project, const QString& file_path) {
     undo_->clear();
     undo_->setClean();
     file_path_ = file_path;
+    // A test that cannot be read any more (moved, edited) keeps its reference and says why
+    // (experimentError()); the project opens all the same.
+    experiment_ = readExperiment(project_.experiment);
     emit filePathChanged(file_path_);
-    for (Part part : {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets}) notify(part);
+    for (Part part :
+         {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets, Part::kExperiment})
+        notify(part);
     emit modifiedChanged(false);
 }
 

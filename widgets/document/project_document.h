@@ -7,7 +7,9 @@
 
 #include <QObject>
 #include <QString>
+#include <memory>
 
+#include "core/io/experiment.h"
 #include "core/io/parameters_json.h"
 #include "core/project/project.h"
 
@@ -45,9 +47,21 @@ public:
     bool setSlipAngles(const std::vector<double>& slip_angles_deg);
     bool setQuadraticModel(bool quadratic);
     /// Replace the whole soil or wheel (a preset was chosen); refused when invalid.
-    bool setSoil(const soil::SoilParameters& soil, const std::string& preset);
+    /// `text` names the undo step (default "Soil preset <preset>").
+    bool setSoil(const soil::SoilParameters& soil, const std::string& preset,
+                 const QString& text = {});
     bool setWheel(const wheel::WheelParameters& wheel, const std::string& preset);
     bool addDataSet(const std::string& path);
+    /// Reads a measured test (core/io/experiment.h: its CSV or its sidecar JSON) and makes it the
+    /// project's, stored by its absolute path: one undo step "Load experiment <file>"; an empty
+    /// path removes the test ("Remove experiment"). A test that cannot be read pushes nothing:
+    /// false, and `error` lists every problem with its file:line.
+    bool setExperiment(const QString& path, QString* error = nullptr);
+    /// The project's test as read when it was set or the project was opened (its path relative
+    /// to the .terra file when not absolute); nullptr when there is none or it cannot be read.
+    const io::Experiment* experiment() const { return experiment_.data.get(); }
+    /// Why the project's test could not be read ("" when it could, or there is none).
+    QString experimentError() const { return QString::fromStdString(experiment_.error); }
     /// Panel settings are session state but not undoable edits of the model; a change marks the
     /// project modified (they are saved with it) until the next save or reset.
     void setPanelSettings(const std::string& panel, const nlohmann::json& settings);
@@ -77,13 +91,21 @@ signals:
     void wheelChanged();
     void conditionsChanged();
     void dataSetsChanged();
+    void experimentChanged();     ///< the test was loaded, removed, or undone (see experiment())
     void changed();               ///< after any change of the model (revision bumped)
     void panelSettingsChanged();  ///< a panel's settings changed (not a model change)
     void modifiedChanged(bool modified);
     void filePathChanged(const QString& path);
 
 private:
-    enum class Part { kSoil, kWheel, kConditions, kDataSets };
+    enum class Part { kSoil, kWheel, kConditions, kDataSets, kExperiment };
+    /// The project's test path and what reading it gave (undo keeps the read test).
+    struct ExperimentState {
+        std::string path;
+        std::shared_ptr<const io::Experiment> data;
+        std::string error;
+    };
+    ExperimentState readExperiment(const std::string& path) const;
     template <typename T>
     bool push(const QString& text, int merge_id, Part part, T Project::*member, const T& value);
     template <typename T>
@@ -95,6 +117,7 @@ private:
                    const std::string& preset);
 
     Project project_;
+    ExperimentState experiment_;
     QUndoStack* undo_;
     int revision_ = 0;
     int gesture_ = 0;                 // commands of different gestures never merge

@@ -16,8 +16,9 @@ ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent)
     header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
     header()->setStretchLastSection(true);
     header()->setMinimumSectionSize(40);
-    const char* names[] = {"Soil", "Wheel", "Operating conditions", "Data sets", "Scenarios"};
-    for (int i = 0; i < 5; ++i) {
+    const char* names[] = {"Soil",      "Wheel",     "Operating conditions",
+                           "Data sets", "Scenarios", "Measured test"};
+    for (int i = 0; i < kPageCount; ++i) {
         items_[i] = new QTreeWidgetItem(this, {names[i]});
         items_[i]->setData(0, Qt::UserRole, i);
     }
@@ -67,6 +68,8 @@ void ProjectTree::refresh() {
     }
     items_[kScenarios]->setText(
         1, scenario_count == 0 ? "shipped only" : QString::number(scenario_count));
+    const QString test = QString::fromStdString(p.experiment);
+    items_[kExperiment]->setText(1, test.isEmpty() ? QString("none") : QFileInfo(test).fileName());
     // Whatever does not fit is in the tooltip.
     for (QTreeWidgetItemIterator it(this); *it; ++it) {
         (*it)->setToolTip(0, (*it)->text(0));

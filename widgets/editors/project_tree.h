@@ -1,7 +1,8 @@
 #pragma once
 /// @file project_tree.h
-/// The project tree on the studio's left: soil, wheel, operating conditions, data sets and
-/// scenarios, each labelled with its current value; selecting an item asks for its editor.
+/// The project tree on the studio's left: soil, wheel, operating conditions, data sets,
+/// scenarios and the measured test, each labelled with its current value; selecting an item asks
+/// for its editor page.
 
 #include <QTreeWidget>
 
@@ -13,7 +14,7 @@ class ProjectTree : public QTreeWidget {
     Q_OBJECT
 public:
     /// The editor pages, in the order of the property editor's stack.
-    enum Page { kSoil, kWheel, kConditions, kDataSets, kScenarios };
+    enum Page { kSoil, kWheel, kConditions, kDataSets, kScenarios, kExperiment, kPageCount };
 
     explicit ProjectTree(ProjectDocument* document, QWidget* parent = nullptr);
 
@@ -23,7 +24,7 @@ signals:
 private:
     void refresh();
     ProjectDocument* document_;
-    QTreeWidgetItem* items_[5];
+    QTreeWidgetItem* items_[kPageCount];
 };
 
 }  // namespace terra::ui

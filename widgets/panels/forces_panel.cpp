@@ -3,14 +3,23 @@
 #include <qcustomplot.h>
 
 #include <QComboBox>
+#include <QFileInfo>
+#include <QGroupBox>
 #include <QHBoxLayout>
+#include <QHeaderView>
 #include <QLabel>
+#include <QPushButton>
 #include <QTabWidget>
+#include <QTableWidget>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <map>
+#include <memory>
+#include <set>
 
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/calibration_dialog.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/sweep_plot.h"
 
@@ -21,7 +30,38 @@ namespace {
 struct ForcesOutcome {
     analysis::ForcesResult sweep;
     analysis::SoilCurves soil;
+    std::optional<analysis::ValidationResult> validation;  ///< with a test in the project
+    std::vector<TestSweep> test_sweeps;
+    std::shared_ptr<const io::Experiment> test;  ///< the test compared (drawn with its result)
 };
+
+/// The panel's quantities against slip: the sweep's six, then the sinkage.
+const std::vector<SweepQuantity>& panelQuantities() {
+    static const std::vector<SweepQuantity> quantities = [] {
+        std::vector<SweepQuantity> all = sweepQuantities();
+        all.push_back(sinkageQuantity());
+        return all;
+    }();
+    return quantities;
+}
+
+/// The test's points predicted, and the model swept at each of its loads over its slip angles.
+void compareWithTest(const analysis::Inputs& inputs, const io::Experiment& test,
+                     const analysis::Control& control, ForcesOutcome& out) {
+    analysis::ValidationSettings settings;
+    settings.experiments = test.source;
+    settings.data = test;
+    out.validation = analysis::computeValidation(inputs, settings, control);
+    std::map<double, std::set<double>> conditions;  // load → slip angles
+    for (const io::ExperimentPoint& p : test.points) conditions[p.load_n].insert(p.slip_angle_deg);
+    for (const auto& [load, angles] : conditions) {
+        if (control.cancelled()) return;
+        analysis::Inputs at_test = inputs;
+        at_test.conditions.load_n = load;
+        at_test.conditions.slip_angles_deg.assign(angles.begin(), angles.end());
+        out.test_sweeps.push_back({load, analysis::computeForceSweep(at_test, {}, control).table});
+    }
+}
 
 }  // namespace
 
@@ -34,7 +74,7 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     readout_ = new QLabel(this);
     readout_->setMinimumWidth(260);
     tabs_ = new QTabWidget(this);
-    for (const SweepQuantity& quantity : sweepQuantities()) {
+    for (const SweepQuantity& quantity : panelQuantities()) {
         auto* plot = new QCustomPlot(tabs_);
         makeInteractive(plot, readout_);
         plots_.push_back(plot);
@@ -59,9 +99,58 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     bar->addWidget(model_);
     bar->addWidget(status_, 1);
     bar->addWidget(readout_);
+
+    // The measured test: what it is, its metrics, and its calibration (hidden without a test).
+    test_box_ = new QGroupBox("Measured test", this);
+    test_label_ = new QLabel(test_box_);
+    test_label_->setWordWrap(true);
+    test_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    test_label_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+    metrics_ = new QTableWidget(0, 5, test_box_);
+    metrics_->setHorizontalHeaderLabels({"Channel", "Points", "RMSE", "MAE", "Max rel."});
+    metrics_->horizontalHeaderItem(4)->setToolTip(
+        "Largest relative error: max |predicted − measured| / |measured| over the points with a "
+        "measured value ≠ 0");
+    metrics_->verticalHeader()->hide();
+    metrics_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    metrics_->setFocusPolicy(Qt::NoFocus);
+    metrics_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    metrics_->horizontalHeader()->setStretchLastSection(true);
+    // Sized to its cells (showMetrics): no scroll bar takes a row's room.
+    metrics_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    metrics_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    metrics_->setToolTip(
+        "The model at each measured point, θ_f solved from the measured load (docs/validation.md)");
+    calibrate_ = new QPushButton("Calibrate to this test…", test_box_);
+    calibrate_->setToolTip(
+        "Fit the soil to the measurements, with the project's soil as the prior; see before and "
+        "after, then apply it to the project (undoable)");
+    auto* remove = new QPushButton("Remove test", test_box_);
+    remove->setToolTip("Take the test out of the project (undoable)");
+    // The test and its actions on the left, the metrics on the right: fits 1024 px screens.
+    auto* buttons = new QHBoxLayout;
+    buttons->addWidget(calibrate_);
+    buttons->addWidget(remove);
+    buttons->addStretch(1);
+    auto* left = new QVBoxLayout;
+    left->addWidget(test_label_);
+    left->addLayout(buttons);
+    left->addStretch(1);
+    auto* test_layout = new QHBoxLayout(test_box_);
+    test_layout->addLayout(left, 2);
+    test_layout->addWidget(metrics_, 3);
+
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
     layout->addWidget(tabs_, 1);
+    layout->addWidget(test_box_);
+    connect(calibrate_, &QPushButton::clicked, this, [this] {
+        CalibrationDialog* dialog = openCalibration();
+        if (dialog) dialog->show();
+    });
+    connect(remove, &QPushButton::clicked, this, [this] { document_->setExperiment({}); });
+    connect(document_, &ProjectDocument::experimentChanged, this, [this] { updateTestBox(); });
+    updateTestBox();
 
     connect(model_, &QComboBox::currentIndexChanged, this,
             [this] { document_->setQuadraticModel(model_->currentData().toBool()); });
@@ -76,8 +165,8 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
 
 std::vector<std::pair<QString, QCustomPlot*>> ForcesPanel::plots() const {
     std::vector<std::pair<QString, QCustomPlot*>> out;
-    for (std::size_t i = 0; i < sweepQuantities().size(); ++i) {
-        out.emplace_back(QString::fromStdString(sweepQuantities()[i].column) + "-vs-slip",
+    for (std::size_t i = 0; i < panelQuantities().size(); ++i) {
+        out.emplace_back(QString::fromStdString(panelQuantities()[i].column) + "-vs-slip",
                          plots_[i]);
     }
     out.emplace_back("Fb-vs-sinkage", bulldozing_);
@@ -106,6 +195,11 @@ void ForcesPanel::applySettings(const nlohmann::json& json) {
 Table ForcesPanel::currentTable() const {
     if (currentPlot() == bulldozing_) return soil_curves_.bulldozing;
     if (currentPlot() == static_sinkage_) return soil_curves_.static_sinkage;
+    // With a test on the plots, its data go with them (the export writes what the figure shows).
+    if (validation_ && shown_test_) {
+        return tableWithTest(result_.table, document_->project().conditions.load_n, *shown_test_,
+                             test_sweeps_);
+    }
     return result_.table;
 }
 
@@ -115,12 +209,18 @@ QCustomPlot* ForcesPanel::currentPlot() const {
 
 AnalysisPanel::Job ForcesPanel::makeJob() {
     const analysis::Inputs inputs = project::inputsOf(document_->project());
-    return [inputs](const std::atomic<bool>& cancel) -> std::any {
+    std::shared_ptr<const io::Experiment> test;
+    if (const io::Experiment* e = document_->experiment())
+        test = std::make_shared<const io::Experiment>(*e);
+    return [inputs, test](const std::atomic<bool>& cancel) -> std::any {
         const analysis::Control control{&cancel};
         ForcesOutcome out;
         // ~1 ms, ~6 % of the sweep (sandy loam).
         out.soil = analysis::computeSoilCurves(inputs, {}, control);
         out.sweep = analysis::computeForceSweep(inputs, {}, control);
+        // A test of a few points and one load adds one slip angle's sweep (~1/6 of the above).
+        if (test) compareWithTest(inputs, *test, control, out);
+        out.test = test;
         return out;
     };
 }
@@ -129,15 +229,23 @@ void ForcesPanel::present(const std::any& value) {
     auto outcome = std::any_cast<ForcesOutcome>(value);
     result_ = std::move(outcome.sweep);
     soil_curves_ = std::move(outcome.soil);
+    validation_ = std::move(outcome.validation);
+    test_sweeps_ = std::move(outcome.test_sweeps);
+    // The test this result was computed with (an intermediate frame may be of an earlier one).
+    shown_test_ = std::move(outcome.test);
     const Project& p = document_->project();
     const QString title =
         QString("%1, %2, W = %3 N%4")
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
             .arg(p.conditions.quadratic ? " (quadratic model)" : "");
-    for (std::size_t i = 0; i < sweepQuantities().size(); ++i) {
-        plotSweep(*plots_[i], result_.table, sweepQuantities()[i], title);
+    const io::Experiment* test = validation_ ? shown_test_.get() : nullptr;
+    for (std::size_t i = 0; i < panelQuantities().size(); ++i) {
+        plotSweep(*plots_[i], result_.table, panelQuantities()[i], title);
+        if (test)
+            overlayExperiment(*plots_[i], panelQuantities()[i], *test, test_sweeps_, p.conditions);
     }
+    showMetrics();
     const QString soil_title =
         QString("%1, %2 (r = %3 mm, b = %4 mm)")
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
@@ -151,6 +259,81 @@ void ForcesPanel::present(const std::any& value) {
             : QString("%1 points; %2 without equilibrium (the wheel would sink to its axle)")
                   .arg(result_.table.rows.size())
                   .arg(result_.warnings.size()));
+}
+
+}  // namespace terra::ui
+
+namespace terra::ui {
+
+CalibrationDialog* ForcesPanel::openCalibration() {
+    if (!document_->experiment()) return nullptr;
+    if (!calibration_) {
+        calibration_ = new CalibrationDialog(document_, this);
+        calibration_->setObjectName("calibration_dialog");
+    }
+    return calibration_;
+}
+
+void ForcesPanel::updateTestBox() {
+    const Project& p = document_->project();
+    test_box_->setVisible(!p.experiment.empty());
+    const io::Experiment* test = document_->experiment();
+    calibrate_->setEnabled(test != nullptr);
+    if (!test) {
+        metrics_->setRowCount(0);
+        validation_.reset();
+        shown_test_.reset();
+        test_label_->setText(p.experiment.empty()
+                                 ? QString()
+                                 : "<b>The test cannot be read:</b> " +
+                                       document_->experimentError().toHtmlEscaped());
+        return;
+    }
+    const QString file = QFileInfo(QString::fromStdString(test->source)).fileName();
+    QString text = "<b>" + file.toHtmlEscaped() + "</b>";
+    QString tip = QString::fromStdString(test->source);
+    if (test->metadata) {
+        const io::ExperimentMetadata& m = *test->metadata;
+        if (!m.test.empty()) text += "<br>" + QString::fromStdString(m.test).toHtmlEscaped();
+        for (const std::string* part : {&m.citation, &m.figures, &m.notes}) {
+            if (!part->empty()) tip += "\n\n" + QString::fromStdString(*part);
+        }
+    }
+    test_label_->setText(text);
+    test_label_->setToolTip(tip);
+}
+
+void ForcesPanel::showMetrics() {
+    metrics_->setRowCount(0);
+    if (!validation_) return;
+    const analysis::ValidationResult& v = *validation_;
+    for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
+        if (!v.before.metrics[c]) continue;
+        const auto channel = static_cast<io::ExperimentChannel>(c);
+        const analysis::ChannelMetrics& m = *v.before.metrics[c];
+        const int row = metrics_->rowCount();
+        metrics_->insertRow(row);
+        auto* name = new QTableWidgetItem(channelLabel(channel));
+        name->setToolTip(QString::fromUtf8(io::experimentChannels()[c].label));
+        metrics_->setItem(row, 0, name);
+        metrics_->setItem(row, 1, new QTableWidgetItem(QString::number(m.count)));
+        metrics_->setItem(row, 2, new QTableWidgetItem(channelValue(channel, m.rmse)));
+        metrics_->setItem(row, 3, new QTableWidgetItem(channelValue(channel, m.mae)));
+        metrics_->setItem(row, 4, new QTableWidgetItem(relativeError(m.max_rel_error)));
+    }
+    // The notes (another wheel than the test's, points without equilibrium) under the test.
+    QString text = test_label_->text().section("<br><i>", 0, 0);
+    for (const std::string& note : v.notes)
+        text += "<br><i>" + QString::fromStdString(note).toHtmlEscaped() + "</i>";
+    test_label_->setText(text);
+    // As tall as its rows (a test measures one to five channels), never taller than five.
+    metrics_->resizeRowsToContents();
+    int height = metrics_->horizontalHeader()->sizeHint().height() + 2 * metrics_->frameWidth();
+    for (int row = 0; row < std::min(metrics_->rowCount(), 5); ++row)
+        height += metrics_->rowHeight(row);
+    metrics_->setFixedHeight(height);
+    metrics_->resizeColumnsToContents();
+    metrics_->setMinimumWidth(metrics_->horizontalHeader()->length() + 2 * metrics_->frameWidth());
 }
 
 }  // namespace terra::ui

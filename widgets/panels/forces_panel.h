@@ -4,16 +4,33 @@
 /// for the project's slip angles, one plot per quantity in tabs, plus bulldozing resistance
 /// against sinkage (Fig. 2.15) and static sinkage against load (Fig. 2.6); all recomputed live off
 /// the GUI thread whenever the soil, wheel or conditions change (AnalysisPanel).
+///
+/// With a measured test in the project (File ▸ Load Experiment…, core/io/experiment.h), the same
+/// job predicts every measured point (core/analysis/validation.h, θ_f solved from the measured
+/// load) and sweeps the model at the test's loads and slip angles: the drawbar pull, torque,
+/// sinkage and side-force plots show the measured points over the model curves at the measured
+/// load (experiment_overlay.h), and a box under the plots gives RMSE, MAE and the largest relative
+/// error per measured channel, with "Calibrate to this test…" (calibration_dialog.h).
+
+#include <memory>
+#include <optional>
 
 #include "core/analysis/forces.h"
 #include "core/analysis/soil_curves.h"
+#include "core/analysis/validation.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/plots/experiment_overlay.h"
 
 class QComboBox;
+class QGroupBox;
 class QLabel;
+class QPushButton;
 class QTabWidget;
+class QTableWidget;
 
 namespace terra::ui {
+
+class CalibrationDialog;
 
 class ForcesPanel : public AnalysisPanel {
     Q_OBJECT
@@ -24,6 +41,14 @@ public:
     const analysis::ForcesResult& result() const { return result_; }
     /// The last bulldozing and static-sinkage curves on screen.
     const analysis::SoilCurves& soilCurves() const { return soil_curves_; }
+    /// The project's test predicted with the soil on screen (empty without a test).
+    const std::optional<analysis::ValidationResult>& validation() const { return validation_; }
+    /// The metrics table under the plots (rows: measured channels; columns: channel, points,
+    /// RMSE, MAE, max rel. error), for tests.
+    QTableWidget* metricsTable() const { return metrics_; }
+    /// Opens "Calibrate to this test" (created on first use; nullptr before).
+    CalibrationDialog* openCalibration();
+    CalibrationDialog* calibrationDialog() const { return calibration_; }
 
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
@@ -37,6 +62,9 @@ protected:
     void present(const std::any& result) override;
 
 private:
+    void updateTestBox();
+    void showMetrics();
+
     QComboBox* model_;
     QLabel* status_;
     QLabel* readout_;
@@ -45,8 +73,16 @@ private:
         plots_;  ///< one per sweep quantity, then bulldozing_, static_sinkage_
     QCustomPlot* bulldozing_;
     QCustomPlot* static_sinkage_;
+    QGroupBox* test_box_;
+    QLabel* test_label_;
+    QTableWidget* metrics_;
+    QPushButton* calibrate_;
+    CalibrationDialog* calibration_ = nullptr;
     analysis::ForcesResult result_;
     analysis::SoilCurves soil_curves_;
+    std::optional<analysis::ValidationResult> validation_;
+    std::vector<TestSweep> test_sweeps_;
+    std::shared_ptr<const io::Experiment> shown_test_;  ///< the test validation_ is of
 };
 
 }  // namespace terra::ui

@@ -21,6 +21,8 @@
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "core/analysis/validation.h"
+#include "core/identification/parameters.h"
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
@@ -49,6 +51,18 @@ std::vector<std::string> priorItems(const QString& text) {
 }
 
 QString number(double value, int digits = 4) { return QString::number(value, 'g', digits); }
+
+// Channel names of the data files ("Fx_N") in a text for a person: their symbols, as the tabs
+// and the other panels show them.
+QString withSymbols(QString text) {
+    const std::pair<const char*, const char*> symbols[] = {
+        {"Fx_N", "F_x"}, {"Fz_N", "F_z"}, {"My_Nm", "M_y"}, {"sinkage_m", "h"}};
+    for (const auto& [name, symbol] : symbols)
+        text.replace(QString::fromUtf8(name), QString::fromUtf8(symbol));
+    return text;
+}
+
+const QString kIdentifiedSuffix = " (identified)";
 
 }  // namespace
 
@@ -88,7 +102,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     }
     parameters_ = new QTableWidget(0, 6, this);
     parameters_->setHorizontalHeaderLabels(
-        {"Parameter", "Identified", "± std", "Prior", "σ post/prior", "Truth (synthetic)"});
+        {"Parameter", "Identified", "± std", "Prior", "σ post/prior", "Truth"});
     parameters_->horizontalHeaderItem(4)->setToolTip(
         "Posterior std / prior std: near 1 the data do not see the parameter (the prior decides); "
         "≪ 1 the data determine it");
@@ -107,25 +121,36 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         "Priors per parameter, mean±std (or +-) in a0, a1, Ks [kPa/m^n], n, c_kPa, phi_deg, K_m; "
         "on top of the soil prior");
     validation_ = new QComboBox(this);
-    validation_->addItem("no held-out error", "none");
-    validation_->addItem("hold out 20 %", "holdout");
+    validation_->addItem("no held-out", "none");
+    validation_->addItem("hold-out 20%", "holdout");
     validation_->addItem("5-fold", "folds");
     validation_->setToolTip(
         "Predict samples the fit did not use: the held-out RMS against the noise level");
     loss_ = new QComboBox(this);
     loss_->addItem("least squares", "l2");
-    loss_->addItem("Huber", "huber");
-    loss_->addItem("Cauchy", "cauchy");
-    loss_->setToolTip("Robust losses limit the pull of outliers");
+    loss_->addItem("Huber loss", "huber");
+    loss_->addItem("Cauchy loss", "cauchy");
+    loss_->setToolTip(
+        "The loss of the fit: least squares, or a robust loss (Huber, Cauchy) that limits the pull "
+        "of outliers");
     start_ = new QLabel(this);
     start_->setWordWrap(true);
     report_ = new QLabel(this);
     report_->setWordWrap(true);
     report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     report_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
-    parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+    // Columns as wide as their text, numbers on one line (they wrapped to "0.\n38273" in a
+    // narrow side panel); a side panel narrower than the table scrolls it.
+    parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    parameters_->horizontalHeader()->setStretchLastSection(true);
+    parameters_->setWordWrap(false);
     parameters_->verticalHeader()->hide();
     parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    apply_ = new QPushButton("Apply identified soil to project", this);
+    apply_->setToolTip(
+        "Replace the project's soil by the identified parameters (a₀, a₁, K_s, n, n₁, c, φ, K); "
+        "k_c : k_φ, γ and j_max stay the project soil's. Edit ▸ Undo restores the soil");
+    apply_->setEnabled(false);
 
     auto* fit_page = new QWidget(this);
     auto* bar = new QHBoxLayout;
@@ -141,25 +166,33 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     options->addWidget(prior_soil_);
     options->addWidget(prior_items_, 1);
     options->addWidget(validation_);
-    options->addWidget(new QLabel("Loss:", this));
     options->addWidget(loss_);
-    options->addWidget(fit_);
+    // Fit at the end of the line that says what it starts from: the options row then fits the
+    // panel on a 1024 px screen (it needed 816 px with Fit and full-width combos).
+    for (QComboBox* combo : {prior_soil_, validation_}) {
+        combo->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+        combo->setMinimumContentsLength(12);  // the longest item ("clayey-soil", "hold-out 20%")
+    }
+    auto* start_row = new QHBoxLayout;
+    start_row->addWidget(start_, 1);
+    start_row->addWidget(fit_);
     auto* side = new QWidget(this);
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
     side_layout->addWidget(parameters_, 2);
+    side_layout->addWidget(apply_);
     side_layout->addWidget(report_, 1);
     auto* splitter = new QSplitter(this);
     splitter->addWidget(tabs_);
     splitter->addWidget(side);
     splitter->setStretchFactor(0, 3);
-    splitter->setStretchFactor(1, 1);
+    splitter->setStretchFactor(1, 2);
     side->setMaximumWidth(560);
     auto* fit_layout = new QVBoxLayout(fit_page);
     fit_layout->setContentsMargins(0, 0, 0, 0);
     fit_layout->addLayout(bar);
     fit_layout->addLayout(options);
-    fit_layout->addWidget(start_);
+    fit_layout->addLayout(start_row);
     fit_layout->addWidget(splitter, 1);
     auto* bottom = new QHBoxLayout;
     bottom->addWidget(status_, 1);
@@ -176,6 +209,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(pages_, 1);
 
+    connect(apply_, &QPushButton::clicked, this, [this] { applyIdentifiedSoil(); });
     connect(browse, &QPushButton::clicked, this, [this] {
         const QString path =
             QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
@@ -250,6 +284,50 @@ void IdentificationPanel::setFitOptions(const QString& prior_soil, const QString
 QString IdentificationPanel::parameterCell(int row, int column) const {
     const QTableWidgetItem* item = parameters_->item(row, column);
     return item != nullptr ? item->text() : QString();
+}
+
+QString IdentificationPanel::parameterHeader(int column) const {
+    const QTableWidgetItem* item = parameters_->horizontalHeaderItem(column);
+    return item != nullptr ? item->text() : QString();
+}
+
+std::optional<soil::SoilParameters> IdentificationPanel::identifiedSoil() const {
+    if (!result_.message.empty() || result_.parameters.rows.empty()) return std::nullopt;
+    if (result_.report && !result_.report->usable()) return std::nullopt;
+    const identification::DecoupledParameters& d = result_.identified;
+    identification::ParameterVector p{};
+    p[identification::kA0] = d.a0;
+    p[identification::kA1] = d.a1;
+    p[identification::kKs] = d.pressure_modulus;
+    p[identification::kN] = d.n0;
+    p[identification::kC] = d.cohesion_pa;
+    p[identification::kPhi] = d.friction_angle_rad;
+    p[identification::kK] = d.shear_modulus_m;
+    const soil::SoilParameters& base = document_->project().soil;
+    soil::SoilParameters soil;
+    try {
+        soil = analysis::soilFromParameters(base, fit_wheel_, p, d.n1);
+    } catch (const std::invalid_argument&) {
+        return std::nullopt;  // the project's soil has K_s ≤ 0 on that wheel: no k_c : k_φ
+    }
+    if (fit_source_ == "synthetic") {
+        std::string name = base.name;
+        const std::string suffix = kIdentifiedSuffix.toStdString();
+        if (name.ends_with(suffix)) name.resize(name.size() - suffix.size());
+        soil.name = name + suffix;
+    } else {
+        soil.name = "identified from " + fit_source_.toStdString();
+    }
+    soil.source = "identified by the studio's identification panel from " +
+                  fit_source_.toStdString() + " on " + fit_wheel_.name;
+    if (!soil::validate(soil).empty()) return std::nullopt;
+    return soil;
+}
+
+bool IdentificationPanel::applyIdentifiedSoil() {
+    const std::optional<soil::SoilParameters> soil = identifiedSoil();
+    if (!soil) return false;
+    return document_->setSoil(*soil, "", QString("Apply identified soil (%1)").arg(fit_source_));
 }
 
 void IdentificationPanel::updateFitControls() {
@@ -349,6 +427,7 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
     const analysis::Inputs inputs = project::inputsOf(document_->project());
+    pending_wheel_ = inputs.wheel;
     analysis::IdentificationSettings settings = fitSettings();
     return [inputs, settings](const std::atomic<bool>& cancel) mutable -> std::any {
         if (!settings.prior_soil_name.empty()) {  // read on the worker, not the GUI thread
@@ -362,6 +441,10 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
 
 void IdentificationPanel::present(const std::any& value) {
     result_ = std::any_cast<analysis::IdentificationResult>(value);
+    fit_wheel_ = pending_wheel_;
+    fit_source_ =
+        file_->text().isEmpty() ? QString("synthetic") : QFileInfo(file_->text()).fileName();
+    apply_->setEnabled(identifiedSoil().has_value());
     if (!result_.message.empty()) {
         status_->setText(
             "<b>Error:</b> " +
@@ -374,9 +457,7 @@ void IdentificationPanel::present(const std::any& value) {
                                : QFileInfo(file_->text()).fileName();
     for (std::size_t i = 0; i < plots_.size(); ++i) {
         plotIdentification(*plots_[i], result_, kChannels[i],
-                           QString("Identification: %1 samples (%2)")
-                               .arg(result_.data.samples.size())
-                               .arg(source));
+                           QString("%1 samples (%2)").arg(result_.data.samples.size()).arg(source));
     }
     const Table& t = result_.parameters;
     const Project& project = document_->project();
@@ -417,7 +498,8 @@ void IdentificationPanel::present(const std::any& value) {
     QStringList lines;
     lines << QString::fromStdString(result_.start_description).toHtmlEscaped();
     if (report) {
-        lines << QString("Data: %1.").arg(QString::fromStdString(report->setup.description));
+        lines << QString("Data: %1.")
+                     .arg(withSymbols(QString::fromStdString(report->setup.description)));
         lines << QString("Gradient norm %1, Newton decrement %2 (≪ 1 at a minimum).")
                      .arg(number(report->gradient_norm, 2))
                      .arg(number(report->newton_decrement, 2));
@@ -427,7 +509,7 @@ void IdentificationPanel::present(const std::any& value) {
                 const auto k = static_cast<std::size_t>(c);
                 if (!report->holdout.channels[k]) continue;
                 channels << QString("%1 %2 (%3 σ)")
-                                .arg(identification::channelNames()[k])
+                                .arg(withSymbols(identification::channelNames()[k]))
                                 .arg(number(report->holdout.rms[k], 3))
                                 .arg(QString::number(report->holdout.rms_over_noise[k], 'f', 2));
             }
@@ -532,7 +614,6 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     position_->setValue(0);
     position_->setFormat("no run yet");
     position_text_ = new QLabel(page);
-    position_text_->setMinimumWidth(260);
     stream_status_ = new QLabel(page);
     stream_status_->setWordWrap(true);
     stream_status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -559,7 +640,6 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     play_row->addWidget(pause_);
     play_row->addWidget(stop_);
     play_row->addWidget(position_, 1);
-    play_row->addWidget(position_text_);
     auto* splitter = new QSplitter(page);
     splitter->addWidget(stream_plots_[0]);
     splitter->addWidget(stream_plots_[1]);
@@ -570,6 +650,8 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addLayout(source_row);
     layout->addLayout(play_row);
+    // On a line of its own: beside the controls it made the page 786 px wide (1024 px screens).
+    layout->addWidget(position_text_);
     layout->addWidget(splitter, 1);
     layout->addWidget(stream_status_);
     stream_status_->setText(

@@ -57,6 +57,17 @@ public:
                        const QString& validation, const QString& loss);
     /// The parameter table's text (row, column), for tests.
     QString parameterCell(int row, int column) const;
+    /// The parameter table's header text of a column, for tests.
+    QString parameterHeader(int column) const;
+    /// The shown fit as a soil for the project: the identified a₀, a₁, K_s, n (n₀), n₁, c, φ, K
+    /// on the wheel the fit used, with k_c : k_φ, γ and j_max of the project's soil
+    /// (analysis::soilFromParameters: K_s = k_c/b + k_φ is the identified one on that wheel);
+    /// named "<soil> (identified)" for synthetic data, "identified from <file>" for a CSV. Empty
+    /// without a usable fit or when the result is not a valid soil.
+    std::optional<soil::SoilParameters> identifiedSoil() const;
+    /// "Apply identified soil to project": replaces the project's soil by identifiedSoil(), one
+    /// undo step ("Apply identified soil (<source>)"). False when there is nothing to apply.
+    bool applyIdentifiedSoil();
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
     /// The fit's data and curves, or on the streaming page one row per played sample.
@@ -111,6 +122,10 @@ private:
     QTabWidget* tabs_;
     std::vector<QCustomPlot*> plots_;
     QTableWidget* parameters_;
+    QPushButton* apply_;
+    wheel::WheelParameters pending_wheel_;  // of the job last started
+    wheel::WheelParameters fit_wheel_;      // of the result on screen
+    QString fit_source_;                    // "synthetic" or the CSV's file name
     QComboBox* prior_soil_;
     QLineEdit* prior_items_;
     QComboBox* validation_;

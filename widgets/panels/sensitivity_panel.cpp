@@ -58,11 +58,15 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
     bar->addWidget(new QLabel("Tornado at s =", this));
     bar->addWidget(tornado_slip_);
     bar->addStretch(1);
-    bar->addWidget(readout_);
+    // The read-out under the plots, beside the status: in the controls' row it made the panel
+    // 755 px wide, wider than a 1024×700 window leaves it.
+    auto* bottom = new QHBoxLayout;
+    bottom->addWidget(status_, 1);
+    bottom->addWidget(readout_);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
     layout->addWidget(tabs_, 1);
-    layout->addWidget(status_);
+    layout->addLayout(bottom);
 
     auto changed = [this] {
         storeSettings();

@@ -102,8 +102,11 @@ void resetPlot(QCustomPlot& plot, const QString& title) {
     if (plot.plotLayout()->rowCount() > 1) plot.plotLayout()->removeAt(0);
     plot.plotLayout()->simplify();
     plot.plotLayout()->insertRow(0);
-    plot.plotLayout()->addElement(0, 0,
-                                  new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    auto* heading = new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold));
+    // A long title (soil and wheel names) must not set the plot's minimum width: on a narrow
+    // screen it would widen the panel past the window. Narrower than its text, it is clipped.
+    heading->setMinimumSize(1, 0);
+    plot.plotLayout()->addElement(0, 0, heading);
     plot.legend->setVisible(false);
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
 }

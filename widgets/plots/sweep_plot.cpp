@@ -21,6 +21,11 @@ const std::vector<SweepQuantity>& sweepQuantities() {
     return quantities;
 }
 
+const SweepQuantity& sinkageQuantity() {
+    static const SweepQuantity quantity{"sinkage_m", "Sinkage h [mm]", 1e3};
+    return quantity;
+}
+
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
                const QString& title) {
     plot.clearGraphs();
@@ -35,7 +40,7 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
         if (!std::isfinite(row[slip]) || !std::isfinite(row[value])) continue;
         auto& curve = curves[row[beta]];
         curve.first.push_back(row[slip]);
-        curve.second.push_back(row[value]);
+        curve.second.push_back(row[value] * quantity.scale);
     }
     int index = 0;
     for (const auto& [angle, data] : curves) {
@@ -56,9 +61,16 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
     plot.yAxis->setLabel(quantity.label);
     plot.legend->setVisible(true);
     plot.plotLayout()->insertRow(0);
-    plot.plotLayout()->addElement(0, 0,
-                                  new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold)));
+    auto* heading = new QCPTextElement(&plot, title, QFont("sans", 11, QFont::Bold));
+    // A long title (soil and wheel names) must not set the plot's minimum width: on a narrow
+    // screen it would widen the panel past the window. Narrower than its text, it is clipped.
+    heading->setMinimumSize(1, 0);
+    plot.plotLayout()->addElement(0, 0, heading);
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
+    fitSweepAxes(plot);
+}
+
+void fitSweepAxes(QCustomPlot& plot) {
     plot.rescaleAxes();
     // A quantity held constant (F_z = W at equilibrium) would otherwise zoom into rounding noise.
     const QCPRange y = plot.yAxis->range();

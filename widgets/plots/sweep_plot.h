@@ -16,15 +16,23 @@ namespace terra::ui {
 struct SweepQuantity {
     std::string column;  ///< table column ("Fx_N")
     QString label;       ///< axis label with unit ("Drawbar pull F_x [N]")
+    double scale = 1.0;  ///< plotted value = table value × scale (m → mm: 1e3)
 };
 
 /// The quantities of the forces panel (Figs. 2.18–2.26): F_x, F_s, F_z, M_y, M_z, θ_f.
 const std::vector<SweepQuantity>& sweepQuantities();
 
+/// Sinkage h = r (1 − cos θ_f) against slip, in mm (the forces panel's tab; not in render's set).
+const SweepQuantity& sinkageQuantity();
+
 /// Replaces the plot's graphs by `quantity` against slip, one graph per slip angle, with a legend.
 /// Non-finite values are skipped, never drawn.
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
                const QString& title);
+
+/// Fits the axes to the graphs (a quantity held constant is not zoomed into rounding noise), puts
+/// the legend where it covers the least data (placeLegend) and replots: after graphs were added.
+void fitSweepAxes(QCustomPlot& plot);
 
 /// Puts the legend in the corner of the axis rect that covers the fewest data points.
 void placeLegend(QCustomPlot& plot);

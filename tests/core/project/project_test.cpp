@@ -73,6 +73,37 @@ TEST(ProjectFile, NotAProjectAndNewerVersions) {
         << p.message();
 }
 
+// The measured test (core/io/experiment.h) is an optional key of version 1: a project with one
+// reads back with it, a project without one is written without the key (the file of the studios
+// before it, which reject unknown keys), and a file of those studios reads as "no test".
+TEST(ProjectFile, TheExperimentIsAnOptionalReferenceOfVersionOne) {
+    Project p = sandyLoam();
+    EXPECT_FALSE(toJson(p).contains("experiment"));
+    p.experiment = "../experiments/ding2011-smooth-hit-lss1-80N.json";
+    const json written = toJson(p);
+    EXPECT_EQ(written["version"], 1);
+    EXPECT_EQ(written["experiment"], "../experiments/ding2011-smooth-hit-lss1-80N.json");
+    const Result<Project> back = projectFromJson(written, "p.terra", &kLocations);
+    ASSERT_TRUE(back.ok()) << back.message();
+    EXPECT_EQ(back->experiment, p.experiment);
+    EXPECT_TRUE(back.value() == p);
+
+    // A version-1 file written before the key existed: every key but "experiment".
+    json old = toJson(sandyLoam());
+    ASSERT_FALSE(old.contains("experiment"));
+    const Result<Project> read = projectFromJson(old, "old.terra", &kLocations);
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_TRUE(read->experiment.empty());
+
+    // Only the reference is read: a test file that does not exist does not stop the project.
+    old["experiment"] = "no/such/test.csv";
+    EXPECT_TRUE(projectFromJson(old, "p.terra", &kLocations).ok());
+    old["experiment"] = 3;
+    const Result<Project> bad = projectFromJson(old, "p.terra", &kLocations);
+    ASSERT_FALSE(bad.ok());
+    EXPECT_TRUE(contains(bad.message(), "p.terra: experiment: expected a string")) << bad.message();
+}
+
 TEST(ProjectFile, DuplicatedKeysInTheFileAreErrors) {
     const Result<json> parsed = io::parseJson(
         "{\"format\": \"terrastudio-project\", \"conditions\": {\"load_N\": 1, "

@@ -1,0 +1,363 @@
+#include "widgets/panels/calibration_dialog.h"
+
+#include <QCheckBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFileInfo>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPointer>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <QtConcurrent/QtConcurrentRun>
+
+#include "core/identification/parameters.h"
+#include "core/project/project.h"
+#include "widgets/document/project_document.h"
+#include "widgets/plots/experiment_overlay.h"
+
+namespace terra::ui {
+namespace {
+
+namespace id = identification;
+
+const QString kSuffix = " (calibrated)";
+
+QDoubleSpinBox* noiseBox(QWidget* parent, const QString& unit, double max, const QString& tip) {
+    auto* box = new QDoubleSpinBox(parent);
+    box->setRange(0.0, max);
+    box->setDecimals(3);
+    box->setSingleStep(0.1);
+    box->setSuffix(" " + unit);
+    box->setSpecialValueText("estimated");
+    box->setToolTip(tip + "; 0: estimated from the residuals (docs/validation.md)");
+    return box;
+}
+
+QTableWidgetItem* cell(const QString& text, const QString& tip = {}) {
+    auto* item = new QTableWidgetItem(text);
+    if (!tip.isEmpty()) item->setToolTip(tip);
+    return item;
+}
+
+void setupTable(QTableWidget* table, const QStringList& headers) {
+    table->setColumnCount(static_cast<int>(headers.size()));
+    table->setHorizontalHeaderLabels(headers);
+    table->verticalHeader()->hide();
+    table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    table->setFocusPolicy(Qt::NoFocus);  // read-only: no current-cell frame
+    table->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+    table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+}
+
+}  // namespace
+
+CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
+    : QDialog(parent), document_(document) {
+    setWindowTitle("Calibrate to this test");
+    intro_ = new QLabel(this);
+    intro_->setWordWrap(true);
+    fx_noise_ = noiseBox(this, "N", 1e3, "Noise std of the measured drawbar pull F_x");
+    my_noise_ = noiseBox(this, "N·m", 1e3, "Noise std of the measured torque M_y");
+    sinkage_noise_ = noiseBox(this, "mm", 100.0, "Noise std of the measured sinkage h");
+    fit_n1_ = new QCheckBox("Fit n₁ too (slip-sinkage N = n + n₁ s)", this);
+    fit_n1_->setToolTip(
+        "Profiles χ² over n₁ (docs/model.md, Slip-sinkage): about forty fits instead of one");
+    run_ = new QPushButton("Calibrate", this);
+    run_->setDefault(true);
+    cancel_ = new QPushButton("Cancel", this);
+    progress_ = new QProgressBar(this);
+    progress_->setRange(0, 100);
+    progress_->setValue(0);
+    status_ = new QLabel(this);
+    status_->setWordWrap(true);
+    status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    metrics_ = new QTableWidget(0, 3, this);
+    setupTable(metrics_, {"Metric", "Given soil", "Calibrated"});
+    parameters_ = new QTableWidget(0, 4, this);
+    setupTable(parameters_, {"Parameter", "Calibrated", "± std", "Prior (given soil)"});
+    parameters_->horizontalHeaderItem(2)->setToolTip(
+        "From the fit's covariance (Laplace approximation); as large as the value: the test does "
+        "not determine the parameter, the prior does");
+    apply_ = new QPushButton("Apply calibrated soil to project", this);
+    apply_->setToolTip(
+        "Replaces the project's soil by the calibrated one (Edit ▸ Undo restores it)");
+    auto* close = new QDialogButtonBox(QDialogButtonBox::Close, this);
+
+    auto* options = new QHBoxLayout;
+    options->addWidget(new QLabel("Noise σ:", this));
+    for (auto [label, box] : {std::pair{"F_x", fx_noise_}, std::pair{"M_y", my_noise_},
+                              std::pair{"h", sinkage_noise_}}) {
+        options->addSpacing(8);
+        options->addWidget(new QLabel(label, this));
+        options->addWidget(box);
+    }
+    options->addSpacing(16);
+    options->addWidget(fit_n1_);
+    options->addStretch(1);
+    auto* run_bar = new QHBoxLayout;
+    run_bar->addWidget(run_);
+    run_bar->addWidget(cancel_);
+    run_bar->addWidget(progress_, 1);
+    auto* tables = new QHBoxLayout;
+    tables->addWidget(metrics_, 1);
+    tables->addWidget(parameters_, 1);
+    auto* bottom = new QHBoxLayout;
+    bottom->addWidget(apply_);
+    bottom->addStretch(1);
+    bottom->addWidget(close);
+    auto* layout = new QVBoxLayout(this);
+    layout->addWidget(intro_);
+    layout->addLayout(options);
+    layout->addLayout(run_bar);
+    layout->addWidget(status_);
+    layout->addLayout(tables, 1);
+    layout->addLayout(bottom);
+    resize(820, 460);
+
+    connect(run_, &QPushButton::clicked, this, [this] { start(); });
+    connect(cancel_, &QPushButton::clicked, this, [this] { cancel(); });
+    connect(apply_, &QPushButton::clicked, this, [this] { apply(); });
+    connect(close, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, &CalibrationDialog::finished);
+    // Another soil, wheel or test makes the result one of an earlier project.
+    connect(document_, &ProjectDocument::changed, this, [this] { updateButtons(); });
+    updateButtons();
+}
+
+CalibrationDialog::~CalibrationDialog() {
+    if (cancel_flag_) cancel_flag_->store(true);
+    watcher_.waitForFinished();
+}
+
+analysis::ValidationSettings CalibrationDialog::settings() const {
+    analysis::ValidationSettings s;
+    if (const io::Experiment* test = document_->experiment()) {
+        s.experiments = test->source;
+        s.data = *test;
+    }
+    s.calibrate = true;
+    s.noise[io::kExpFx] = fx_noise_->value();
+    s.noise[io::kExpMy] = my_noise_->value();
+    s.noise[io::kExpSinkage] = sinkage_noise_->value() / 1e3;
+    s.fit_n1 = fit_n1_->isChecked();
+    return s;
+}
+
+void CalibrationDialog::setOptions(double fx_noise_n, double my_noise_nm, double sinkage_noise_mm,
+                                   bool fit_n1) {
+    fx_noise_->setValue(fx_noise_n);
+    my_noise_->setValue(my_noise_nm);
+    sinkage_noise_->setValue(sinkage_noise_mm);
+    fit_n1_->setChecked(fit_n1);
+}
+
+bool CalibrationDialog::start() {
+    if (isRunning() || !document_->experiment()) return false;
+    const analysis::Inputs inputs = project::inputsOf(document_->project());
+    const analysis::ValidationSettings s = settings();
+    started_revision_ = document_->revision();
+    applied_ = false;
+    status_shows_result_ = false;
+    cancel_flag_ = std::make_shared<std::atomic<bool>>(false);
+    auto flag = cancel_flag_;
+    progress_->setValue(0);
+    progress_->setFormat("%p %");
+    status_->setText("Calibrating…");
+    QPointer<QProgressBar> bar = progress_;
+    watcher_.setFuture(QtConcurrent::run([inputs, s, flag, bar] {
+        analysis::Control control{flag.get()};
+        control.progress = [bar](double fraction) {
+            QMetaObject::invokeMethod(
+                bar,
+                [bar, fraction] {
+                    if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
+                },
+                Qt::QueuedConnection);
+        };
+        Outcome out;
+        try {
+            out.result = analysis::computeValidation(inputs, s, control);
+        } catch (const std::exception& e) {
+            out.error = QString::fromUtf8(e.what());
+        }
+        out.cancelled = flag->load();
+        return out;
+    }));
+    updateButtons();
+    return true;
+}
+
+void CalibrationDialog::cancel() {
+    if (!cancel_flag_ || !isRunning()) return;
+    cancel_flag_->store(true);
+    status_->setText("Cancelling…");
+}
+
+void CalibrationDialog::finished() {
+    const Outcome out = watcher_.result();
+    if (out.cancelled) {
+        progress_->setFormat("%p % (cancelled)");
+        status_->setText("Cancelled: nothing to apply.");
+    } else if (!out.error.isEmpty()) {
+        status_->setText("<b>Error:</b> " + out.error.toHtmlEscaped());
+    } else {
+        result_ = out.result;
+        result_revision_ = started_revision_;
+        progress_->setValue(100);
+        showResult();
+    }
+    updateButtons();
+    emit calibrationFinished();
+}
+
+void CalibrationDialog::showResult() {
+    const analysis::ValidationResult& r = *result_;
+    const analysis::Calibration& cal = *r.calibration;
+    const bool usable = cal.report.usable() && cal.after;
+    QStringList lines;
+    if (usable) {
+        QStringList fitted;
+        for (const std::string& name : cal.channels) {
+            for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
+                if (name == io::experimentChannels()[c].name)
+                    fitted << channelLabel(static_cast<io::ExperimentChannel>(c));
+            }
+        }
+        lines << QString("Calibrated on %1: %2, χ² = %3.")
+                     .arg(fitted.join(", "))
+                     .arg(QString::fromStdString(cal.report.termination))
+                     .arg(cal.report.chi2, 0, 'g', 4);
+    } else {
+        lines << "<b>Calibration failed:</b> " +
+                     QString::fromStdString(cal.report.message.empty()
+                                                ? formatIssues(cal.report.issues)
+                                                : cal.report.message)
+                         .toHtmlEscaped();
+    }
+    for (const std::string& flag : cal.report.uncertainty.flags)
+        lines << QString::fromStdString(flag).toHtmlEscaped();
+    for (const std::string& note : r.notes) lines << QString::fromStdString(note).toHtmlEscaped();
+    status_->setText(lines.join("<br>"));
+    status_shows_result_ = true;
+
+    metrics_->setRowCount(0);
+    for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
+        const auto& before = r.before.metrics[c];
+        if (!before) continue;
+        const auto channel = static_cast<io::ExperimentChannel>(c);
+        const analysis::ChannelMetrics* after =
+            usable && cal.after->metrics[c] ? &*cal.after->metrics[c] : nullptr;
+        const QString name = channelLabel(channel).section(' ', 0, 0);
+        const std::pair<QString, std::pair<QString, QString>> rows[] = {
+            {name + " RMSE",
+             {channelValue(channel, before->rmse),
+              after ? channelValue(channel, after->rmse) : QString()}},
+            {name + " MAE",
+             {channelValue(channel, before->mae),
+              after ? channelValue(channel, after->mae) : QString()}},
+            {name + " max rel. error",
+             {relativeError(before->max_rel_error),
+              after ? relativeError(after->max_rel_error) : QString()}}};
+        for (const auto& [label, values] : rows) {
+            const int row = metrics_->rowCount();
+            metrics_->insertRow(row);
+            metrics_->setItem(row, 0, cell(label));
+            metrics_->setItem(row, 1, cell(values.first));
+            metrics_->setItem(row, 2, cell(values.second));
+        }
+    }
+    parameters_->setRowCount(0);
+    if (!usable) return;
+    for (int k = 0; k < id::kFullParameterCount; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        const id::ParameterInfo& info = id::parameterInfo()[i];
+        const QString unit = QString::fromUtf8(info.unit);
+        const QString label =
+            QString::fromUtf8(info.symbol) + (unit == "-" ? "" : " [" + unit + "]");
+        const double value = cal.report.parameters[i] * info.to_user;
+        const int row = parameters_->rowCount();
+        parameters_->insertRow(row);
+        parameters_->setItem(row, 0, cell(label, QString::fromUtf8(info.name)));
+        parameters_->setItem(
+            row, 1,
+            cell(QString::number(value, 'g', 5) + (cal.report.at_bound[i] ? " (at bound)" : "")));
+        parameters_->setItem(
+            row, 2,
+            cell(cal.report.uncertainty.computed
+                     ? QString::number(cal.report.uncertainty.std[i] * info.to_user, 'g', 3)
+                     : QString::fromUtf8("–")));
+        parameters_->setItem(row, 3, cell(QString::number(cal.prior[i] * info.to_user, 'g', 5)));
+    }
+    if (cal.n1) {
+        const int row = parameters_->rowCount();
+        parameters_->insertRow(row);
+        parameters_->setItem(row, 0, cell("n₁", "n1"));
+        parameters_->setItem(row, 1, cell(QString::number(*cal.n1, 'g', 5)));
+        parameters_->setItem(
+            row, 2,
+            cell(cal.n1_std ? QString::number(*cal.n1_std, 'g', 3) : QString::fromUtf8("–")));
+        parameters_->setItem(row, 3, cell("0"));
+    }
+}
+
+bool CalibrationDialog::canApply() const {
+    return !isRunning() && result_ && result_->calibration &&
+           result_->calibration->report.usable() && result_revision_ == document_->revision();
+}
+
+void CalibrationDialog::updateButtons() {
+    const bool running = isRunning();
+    run_->setEnabled(!running && document_->experiment() != nullptr);
+    cancel_->setEnabled(running);
+    // The noise of a channel the test does not measure does not apply.
+    const io::Experiment* measured = document_->experiment();
+    const std::pair<QWidget*, io::ExperimentChannel> noises[] = {
+        {fx_noise_, io::kExpFx}, {my_noise_, io::kExpMy}, {sinkage_noise_, io::kExpSinkage}};
+    for (const auto& [box, channel] : noises)
+        box->setEnabled(!running && measured && measured->measures(channel));
+    fit_n1_->setEnabled(!running);
+    apply_->setEnabled(canApply());
+    if (result_ && status_shows_result_ && !running && !applied_ &&
+        result_revision_ != document_->revision()) {
+        status_shows_result_ = false;  // said once
+        status_->setText(
+            "The project changed since this calibration: run it again to apply it.<br>" +
+            status_->text());
+    }
+    const io::Experiment* test = document_->experiment();
+    intro_->setText(
+        test ? QString("Fits the project's soil (%1) to the test %2 on the project's wheel (%3), "
+                       "with the soil as the prior and first start.")
+                   .arg(QString::fromStdString(document_->project().soil.name).toHtmlEscaped(),
+                        QFileInfo(QString::fromStdString(test->source)).fileName().toHtmlEscaped(),
+                        QString::fromStdString(document_->project().wheel.name).toHtmlEscaped())
+             : QString("The project has no measured test (File ▸ Load Experiment…)."));
+}
+
+bool CalibrationDialog::apply() {
+    if (!canApply()) return false;
+    soil::SoilParameters soil = result_->calibration->soil;
+    // Calibrating a calibrated soil again: one suffix, not two.
+    const std::string suffix = kSuffix.toStdString();
+    std::string base = document_->project().soil.name;
+    if (base.ends_with(suffix)) base.resize(base.size() - suffix.size());
+    soil.name = base + suffix;
+    const QString test = QFileInfo(QString::fromStdString(result_->source)).fileName();
+    applied_ = true;
+    const bool applied = document_->setSoil(soil, "", QString("Calibrate soil to %1").arg(test));
+    applied_ = applied;
+    if (applied)
+        status_->setText("Applied: the project's soil is now " +
+                         QString::fromStdString(soil.name).toHtmlEscaped() +
+                         " (Edit ▸ Undo restores the previous one).");
+    updateButtons();
+    return applied;
+}
+
+QString CalibrationDialog::statusText() const { return status_->text(); }
+
+}  // namespace terra::ui

@@ -1,0 +1,98 @@
+#pragma once
+/// @file calibration_dialog.h
+/// "Calibrate to this test" (forces panel): fits the project's soil to its measured test with the
+/// validation analysis's calibration (core/analysis/validation.h — the global identification from
+/// the load with the project's soil as the Gaussian prior and first start, the same as
+/// `terrastudio validate --calibrate`), on a worker thread with a progress bar and Cancel. Shows
+/// the metrics before and after and the fitted parameters with their std and prior; "Apply" puts
+/// the calibrated soil, named "<soil> (calibrated)", into the project as one undo step. A result
+/// whose project has changed since the fit started (another soil, wheel or test) is not applied.
+
+#include <QDialog>
+#include <QFutureWatcher>
+#include <atomic>
+#include <memory>
+#include <optional>
+
+#include "core/analysis/validation.h"
+
+class QCheckBox;
+class QDoubleSpinBox;
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QTableWidget;
+
+namespace terra::ui {
+
+class ProjectDocument;
+
+class CalibrationDialog : public QDialog {
+    Q_OBJECT
+public:
+    explicit CalibrationDialog(ProjectDocument* document, QWidget* parent = nullptr);
+    ~CalibrationDialog() override;  ///< cancels a running fit and waits for its worker
+
+    /// The settings the controls show: the project's test, calibrate, the noise levels
+    /// (0: estimated from the residuals) and whether n₁ is fitted too.
+    analysis::ValidationSettings settings() const;
+    /// The noise std of F_x [N], M_y [N·m] and the sinkage [mm] (0: estimated), and n₁.
+    void setOptions(double fx_noise_n, double my_noise_nm, double sinkage_noise_mm, bool fit_n1);
+
+    /// Starts the calibration of the project's soil to its test (false: no test, or running).
+    bool start();
+    /// Asks the running fit to stop; the dialog then says it was cancelled (nothing to apply).
+    void cancel();
+    bool isRunning() const { return watcher_.isRunning(); }
+    /// The last finished calibration (before/after), if any.
+    const std::optional<analysis::ValidationResult>& result() const { return result_; }
+    /// Whether the result can be applied: usable, and the project is still the one it was fitted
+    /// for.
+    bool canApply() const;
+    /// Puts the calibrated soil into the project (one undo step "Calibrate soil to <test>").
+    bool apply();
+
+    QString statusText() const;
+    /// The metrics table (rows: channel × RMSE, MAE, max rel. error; columns: metric, given soil,
+    /// calibrated) and the parameter table (symbol [unit], calibrated, ± std, prior), for tests.
+    QTableWidget* metricsTable() const { return metrics_; }
+    QTableWidget* parameterTable() const { return parameters_; }
+
+signals:
+    /// A calibration ended (finished, failed or cancelled); result() holds it when it finished.
+    void calibrationFinished();
+
+private:
+    struct Outcome {
+        std::optional<analysis::ValidationResult> result;
+        QString error;
+        bool cancelled = false;
+    };
+    void finished();
+    void showResult();
+    void updateButtons();
+
+    ProjectDocument* document_;
+    QLabel* intro_;
+    QDoubleSpinBox* fx_noise_;
+    QDoubleSpinBox* my_noise_;
+    QDoubleSpinBox* sinkage_noise_;
+    QCheckBox* fit_n1_;
+    QPushButton* run_;
+    QPushButton* cancel_;
+    QProgressBar* progress_;
+    QLabel* status_;
+    QTableWidget* metrics_;
+    QTableWidget* parameters_;
+    QPushButton* apply_;
+    QFutureWatcher<Outcome> watcher_;
+    std::shared_ptr<std::atomic<bool>> cancel_flag_;
+    std::optional<analysis::ValidationResult> result_;
+    int started_revision_ = -1;  ///< the document's revision the running or last fit is of
+    int result_revision_ = -1;
+    bool applied_ = false;
+    bool status_shows_result_ = false;  ///< the status line describes result_  ///< the result was
+                                        ///< applied (the change that follows is ours)
+};
+
+}  // namespace terra::ui
