@@ -1,5 +1,6 @@
 // `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`
 // (the decoupled three-step fit, §4.3).
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -513,6 +514,15 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                                     (out.cancelled ? "# " + note + "\n" : std::string()));
         if (!synth->out.empty() && synth->out != "-") {
             std::cerr << "wrote " << synth->out << ": " << out.data.samples.size() << " samples\n";
+        }
+        // The data carry the soil's shear limit; identify's model has none unless --jmax gives it
+        // (a fit of a CSV never reads a soil). Without it the fit meets a model error at large slip
+        // (docs/identification.md §11): say so where the data are made.
+        if (std::isfinite(soil.max_shear_deformation_m)) {
+            const std::string jmax = formatNumber(soil.max_shear_deformation_m);
+            std::cerr << "note: made with the soil's j_max = " << jmax
+                      << " m (Eq. 2.16): identify these data with --jmax " << jmax
+                      << " (identify's model has no j_max unless given)\n";
         }
         if (out.cancelled) exitCancelled(cancellation, "synth " + note);
     });

@@ -122,6 +122,19 @@ TEST_F(IdentifyCli, FromTheLoadAloneNoiseFreeDataGiveTheSoilBack) {
 
 // The answer does not depend on the start: two far-apart guesses (and none) give one optimum,
 // with the truth inside three reported std (clayey soil, three loads, 1 % noise).
+// synth says which j_max its data carry (the soil's; sandy loam's is 20 mm), since identify's
+// model has none unless --jmax gives it; a soil without one gets no such note.
+TEST_F(IdentifyCli, SynthNamesTheShearLimitItsDataCarry) {
+    const CliRun with = run("synth --soil sandy-loam --slips 0:0.9:10 --out " + path("a.csv"));
+    ASSERT_EQ(with.exit_code, 0) << with.err;
+    EXPECT_NE(with.err.find("j_max = 0.02 m"), std::string::npos) << with.err;
+    EXPECT_NE(with.err.find("--jmax 0.02"), std::string::npos) << with.err;
+    const CliRun without =
+        run("synth --soil sandy-loam --no-jmax --slips 0:0.9:10 --out " + path("b.csv"));
+    ASSERT_EQ(without.exit_code, 0) << without.err;
+    EXPECT_EQ(without.err.find("j_max"), std::string::npos) << without.err;
+}
+
 TEST_F(IdentifyCli, TwoDifferentGuessesGiveOneAnswer) {
     const std::string data = synth("clay.csv",
                                    "--soil clayey-soil --wheel A --load 30,58.86,90 "
