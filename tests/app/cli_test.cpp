@@ -362,7 +362,10 @@ TEST(Cli, StressesJsonToAFileSaysSoAndEchoesTypedAngles) {
         run("sweep --soil sandy-loam --wheel A --entry-angle 25 --slips 0.1,0.5 "
             "--slip-angles 5 --json");
     ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
-    for (const auto& row : nlohmann::json::parse(sweep.out)["rows"]) {
+    // A named document: a range-for over parse(...)["rows"] would iterate a destroyed temporary
+    // (found by the test suite under ASan, docs/reliability.md).
+    const auto document = nlohmann::json::parse(sweep.out);
+    for (const auto& row : document["rows"]) {
         EXPECT_EQ(row["entry_angle_deg"].get<double>(), 25.0);  // not 25.000000000000004
     }
 }
