@@ -71,7 +71,9 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     tabs_->setDocumentMode(true);
     auto* identification = new ui::IdentificationPanel(document_, tabs_);
     auto* global = new ui::GlobalSensitivityPanel(document_, tabs_);
-    panels_ = {new ui::ForcesPanel(document_, tabs_),
+    auto* forces = new ui::ForcesPanel(document_, tabs_);
+    forces->setPresetLocations(locations_);  // "Compare with…" lists the soil presets
+    panels_ = {forces,
                new ui::StressPanel(document_, tabs_),
                new ui::SensitivityPanel(document_, tabs_),
                identification,

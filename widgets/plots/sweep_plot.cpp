@@ -26,6 +26,14 @@ const SweepQuantity& sinkageQuantity() {
     return quantity;
 }
 
+QColor sweepColor(int index) {
+    // Distinct on white and on a dark frame (no yellow on white).
+    static const QColor colors[] = {
+        QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),   QColor(214, 39, 40),
+        QColor(148, 103, 189), QColor(140, 86, 75),  QColor(227, 119, 194), QColor(127, 127, 127)};
+    return colors[((index % 8) + 8) % 8];
+}
+
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
                const QString& title) {
     plot.clearGraphs();
@@ -47,12 +55,7 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
         QCPGraph* graph = plot.addGraph();
         graph->setData(data.first, data.second, true);
         graph->setName(QString("β = %1°").arg(angle));
-        // Distinct on white and on a dark frame (no yellow on white).
-        static const QColor colors[] = {QColor(31, 119, 180),  QColor(255, 127, 14),
-                                        QColor(44, 160, 44),   QColor(214, 39, 40),
-                                        QColor(148, 103, 189), QColor(140, 86, 75),
-                                        QColor(227, 119, 194), QColor(127, 127, 127)};
-        QPen pen(colors[index % 8]);
+        QPen pen(sweepColor(index));
         pen.setWidthF(1.8);
         graph->setPen(pen);
         ++index;

@@ -3,6 +3,7 @@
 /// Draws a force-versus-slip table (core/analysis/sweep.h) on a QCustomPlot: one curve per slip
 /// angle, axes labelled with units, and exports it to PNG at an explicit size.
 
+#include <QColor>
 #include <QString>
 #include <string>
 
@@ -24,6 +25,10 @@ const std::vector<SweepQuantity>& sweepQuantities();
 
 /// Sinkage h = r (1 − cos θ_f) against slip, in mm (the forces panel's tab; not in render's set).
 const SweepQuantity& sinkageQuantity();
+
+/// The pen colour of a sweep's `index`-th slip-angle curve (plotSweep; a reference soil's dashed
+/// curves use the same colour for the same β).
+QColor sweepColor(int index);
 
 /// Replaces the plot's graphs by `quantity` against slip, one graph per slip angle, with a legend.
 /// Non-finite values are skipped, never drawn.
