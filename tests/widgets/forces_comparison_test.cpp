@@ -80,7 +80,7 @@ TEST(ForcesComparison, PinnedSoilKeepsItsCurvesWhileTheProjectSoilIsEdited) {
     // One dashed curve per slip angle, one legend entry for them all.
     std::vector<QCPGraph*> reference = graphsNamed(*fx, "reference");
     ASSERT_EQ(reference.size(), 6u);
-    EXPECT_EQ(reference[0]->name(), "sandy loam (before edit) (dashed)");
+    EXPECT_EQ(reference[0]->name(), "sandy loam (before edit), dashed");
     EXPECT_EQ(reference[1]->name(), QString::fromUtf8("sandy loam (before edit), β = 10°"));
     EXPECT_EQ(reference[0]->pen().style(), Qt::DashLine);
     EXPECT_EQ(reference[0]->pen().color(), fx->graph(0)->pen().color());  // same β, same colour

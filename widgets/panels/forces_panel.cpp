@@ -476,8 +476,9 @@ void ForcesPanel::updateCompareControls() {
                 .arg(name, QString::fromStdString(shown_reference_.error).toHtmlEscaped()));
         return;
     }
-    compare_label_->setText(
-        QString("Dashed: <b>%1</b>, on the project's wheel and conditions").arg(name));
+    compare_label_->setText(QString("Dashed: <b>%1</b>").arg(name));
+    compare_label_->setToolTip(
+        "The reference soil, swept with the project's wheel, load and slip angles");
 }
 
 }  // namespace terra::ui

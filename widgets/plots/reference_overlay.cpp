@@ -66,7 +66,7 @@ void overlayReferenceSweep(QCustomPlot& plot, const SweepQuantity& quantity, con
     for (const auto& [angle, data] : curves) {
         QCPGraph* graph = addReferenceGraph(plot, data.first, data.second, sweepColor(index),
                                             QString("%1, β = %2°").arg(name).arg(angle));
-        if (index == 0 && curves.size() > 1) graph->setName(name + " (dashed)");
+        if (index == 0 && curves.size() > 1) graph->setName(name + ", dashed");
         if (index > 0) graph->removeFromLegend();
         ++index;
     }

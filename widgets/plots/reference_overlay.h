@@ -20,7 +20,7 @@ namespace terra::ui {
 /// plot drawn by plotSweep: one dashed curve per slip angle, in the colour of the project's curve
 /// of the same β (sweepColor), object name "reference", named "<name>, β = 5°". One legend entry
 /// stands for them all: with one slip angle the curve's own, with several the first curve's,
-/// renamed "<name> (dashed)". Refits the axes (fitSweepAxes); an empty sweep adds nothing.
+/// renamed "<name>, dashed". Refits the axes (fitSweepAxes); an empty sweep adds nothing.
 void overlayReferenceSweep(QCustomPlot& plot, const SweepQuantity& quantity, const Table& sweep,
                            const QString& name);
 
