@@ -164,7 +164,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     preview_rows_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     preview_rows_->setWordWrap(false);
     preview_rows_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-    preview_rows_->setMaximumHeight(24 + 20 * kPreviewRows + 4);
+    // The header, five rows and a horizontal scroll bar.
+    preview_rows_->setMaximumHeight(26 + 20 * kPreviewRows + 22);
     preview_rows_->setToolTip("The first rows of the file as it has them (line numbers at left)");
     auto* preview_layout = new QVBoxLayout(preview_box_);
     preview_layout->addWidget(preview_);
