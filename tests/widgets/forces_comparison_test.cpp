@@ -186,6 +186,39 @@ TEST(ForcesComparison, APresetIsSweptWithTheProjectsWheelAndConditions) {
     EXPECT_EQ(panel.referenceName(), QString::fromStdString(soil->name));
 }
 
+TEST(ForcesComparison, AMeasuredTestStaysOverTheReferenceAndBothGoIntoTheData) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("test.csv");
+    {
+        QFile file(path);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        file.write("load_N,slip,slip_angle_deg,Fx_N\n40,0.1,0,1.5\n40,0.3,0,3\n");
+    }
+    ProjectDocument document;
+    test::resetToDefault(document);
+    QString error;
+    ASSERT_TRUE(document.setExperiment(path, &error)) << error.toStdString();
+    ForcesPanel panel(&document);
+    panel.show();
+    ASSERT_TRUE(test::waitForResult(panel));
+    panel.pinReference();
+    ASSERT_TRUE(test::waitForResult(panel));
+    QCustomPlot* fx = namedPlot(panel, "Fx_N-vs-slip");
+    EXPECT_EQ(graphsNamed(*fx, "reference").size(), 6u);
+    ASSERT_EQ(graphsNamed(*fx, "measured").size(), 1u);
+    // The measured points are drawn last, over every curve.
+    EXPECT_EQ(fx->graph(fx->graphCount() - 1)->objectName(), "measured");
+    const Table t = panel.currentTable();
+    // 600 project rows, 100 of the model at 40 N, β = 0°, 2 measured, then 600 of the reference.
+    ASSERT_EQ(t.rows.size(), 600u + 100u + 2u + 600u);
+    const std::size_t measured = t.column("measured"), load = t.column("load_N");
+    EXPECT_EQ(t.labels[701], "sandy loam");
+    EXPECT_DOUBLE_EQ(t.rows[701][measured], 1.0);
+    EXPECT_EQ(t.labels[702], "sandy loam (before edit)");
+    EXPECT_DOUBLE_EQ(t.rows[702][measured], 0.0);
+    EXPECT_DOUBLE_EQ(t.rows[702][load], document.project().conditions.load_n);
+}
+
 TEST(ReferenceOverlay, TableWithReferenceMatchesColumnsByNameAndNamesEachRow) {
     Table shown{{"slip", "Fx_N", "load_N", "measured"},
                 {{0.1, 5.0, 80.0, 0.0}, {0.2, 7.0, 80.0, 1.0}}};
