@@ -179,6 +179,15 @@ TEST(ForcesComparison, APresetIsSweptWithTheProjectsWheelAndConditions) {
     EXPECT_GT(
         std::abs(fxAt(panel.referenceSweep(), 5.0, 0.5) - fxAt(panel.result().table, 5.0, 0.5)),
         0.1);
+    // A load edit sweeps the reference again at the new load (it is reused only while its soil,
+    // the wheel and the conditions are unchanged, e.g. while the project's soil is edited).
+    ASSERT_TRUE(document.setLoad(75.0));
+    ASSERT_TRUE(test::waitForResult(panel));
+    expected.conditions.load_n = 75.0;
+    const analysis::ForcesResult at_75 =
+        analysis::computeForceSweep(project::inputsOf(expected), {});
+    EXPECT_NEAR(fxAt(panel.referenceSweep(), 5.0, 0.5), fxAt(at_75.table, 5.0, 0.5), 1e-9);
+    EXPECT_GT(std::abs(fxAt(at_75.table, 5.0, 0.5) - fxAt(core.table, 5.0, 0.5)), 1e-3);
     // A preset that does not exist is refused with a message, the comparison stays.
     QString error;
     EXPECT_FALSE(panel.compareWithPreset("no-such-soil", &error));

@@ -253,7 +253,17 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
     std::shared_ptr<const io::Experiment> test;
     if (const io::Experiment* e = document_->experiment())
         test = std::make_shared<const io::Experiment>(*e);
-    return [inputs, test, reference = reference_](const std::atomic<bool>& cancel) -> std::any {
+    std::optional<Reference> reference = reference_;
+    nlohmann::json key;
+    std::optional<ReferenceCurves> cached;
+    if (reference) {
+        key = {{"name", reference->name},
+               {"soil", io::toJson(reference->soil)},
+               {"wheel", io::toJson(inputs.wheel)},
+               {"conditions", analysis::toJson(inputs.conditions)}};
+        if (cached_reference_.complete && cached_reference_.key == key) cached = cached_reference_;
+    }
+    return [inputs, test, reference, key, cached](const std::atomic<bool>& cancel) -> std::any {
         const analysis::Control control{&cancel};
         ForcesOutcome out;
         // ~1 ms, ~6 % of the sweep (sandy loam).
@@ -263,8 +273,11 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
         if (test) compareWithTest(inputs, *test, control, out);
         out.test = test;
         // The reference soil on the project's wheel and conditions: as long again as the sweep.
-        if (reference && !control.cancelled()) {
+        if (cached) {
+            out.reference = *cached;
+        } else if (reference && !control.cancelled()) {
             out.reference.name = reference->name;
+            out.reference.key = key;
             analysis::Inputs at_reference = inputs;
             at_reference.soil = reference->soil;
             try {
@@ -275,6 +288,7 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
                 out.reference.soil = {};
                 out.reference.error = e.what();
             }
+            out.reference.complete = !control.cancelled();
         }
         return out;
     };
@@ -296,6 +310,7 @@ void ForcesPanel::present(const std::any& value) {
             .arg(p.conditions.quadratic ? " (quadratic model)" : "");
     const io::Experiment* test = validation_ ? shown_test_.get() : nullptr;
     shown_reference_ = std::move(outcome.reference);
+    if (shown_reference_.complete) cached_reference_ = shown_reference_;
     const QString reference = QString::fromStdString(shown_reference_.name);
     for (std::size_t i = 0; i < panelQuantities().size(); ++i) {
         plotSweep(*plots_[i], result_.table, panelQuantities()[i], title);

@@ -99,7 +99,9 @@ public:
         std::string name;  ///< empty: no reference
         Table sweep;
         analysis::SoilCurves soil;
-        std::string error;  ///< why it could not be computed ("" when it could)
+        std::string error;      ///< why it could not be computed ("" when it could)
+        nlohmann::json key;     ///< what it was computed of: soil, wheel, conditions, name
+        bool complete = false;  ///< not cancelled: reusable while `key` does not change
     };
 
 private:
@@ -115,6 +117,9 @@ private:
     std::optional<io::PresetLocations> locations_;
     std::optional<Reference> reference_;  ///< the reference asked for
     ReferenceCurves shown_reference_;     ///< the reference of the result on screen
+    /// The last complete reference, reused by the next job while its key is the same (editing the
+    /// project's soil leaves a pinned reference's inputs as they are: it is not swept again).
+    ReferenceCurves cached_reference_;
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;
