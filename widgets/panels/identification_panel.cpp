@@ -155,7 +155,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     start_ = new QLabel(this);
     start_->setWordWrap(true);
     // The CSV before a fit: its first rows, what is read of it and what will be fitted.
-    preview_box_ = new QGroupBox("Data preview", this);
+    preview_box_ = new QGroupBox(this);
+    preview_box_->setFlat(true);
     preview_ = new QLabel(preview_box_);
     preview_->setWordWrap(true);
     preview_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -170,7 +171,6 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     auto* preview_layout = new QVBoxLayout(preview_box_);
     preview_layout->addWidget(preview_);
     preview_layout->addWidget(preview_rows_);
-    preview_box_->hide();
     report_ = new QLabel(this);
     report_->setWordWrap(true);
     report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -215,8 +215,14 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     auto* side = new QWidget(this);
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
-    side_layout->addWidget(preview_box_);
-    side_layout->addWidget(parameters_, 2);
+    // The CSV's preview and the fitted parameters share the room: the preview is in front
+    // after a CSV is chosen, the parameters after a fit.
+    side_tabs_ = new QTabWidget(side);
+    side_tabs_->setDocumentMode(true);
+    side_tabs_->addTab(parameters_, "Parameters");
+    side_tabs_->addTab(preview_box_, "Data preview");
+    side_tabs_->setTabVisible(1, false);
+    side_layout->addWidget(side_tabs_, 2);
     side_layout->addWidget(apply_);
     side_layout->addWidget(report_, 1);
     auto* splitter = new QSplitter(this);
@@ -488,6 +494,7 @@ void IdentificationPanel::present(const std::any& value) {
     fit_source_ =
         file_->text().isEmpty() ? QString("synthetic") : QFileInfo(file_->text()).fileName();
     apply_->setEnabled(identifiedSoil().has_value());
+    if (result_.message.empty()) side_tabs_->setCurrentIndex(0);  // the fit's parameters
     if (!result_.message.empty()) {
         status_->setText(
             "<b>Error:</b> " +
@@ -934,7 +941,7 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
 namespace terra::ui {
 
 QString IdentificationPanel::dataPreview() const {
-    return preview_box_->isHidden() ? QString() : preview_->text();
+    return side_tabs_->isTabVisible(1) ? preview_->text() : QString();
 }
 
 QString IdentificationPanel::dataPreviewCell(int row, int column) const {
@@ -953,11 +960,12 @@ void IdentificationPanel::updateDataPreview() {
     preview_rows_->setRowCount(0);
     preview_rows_->setColumnCount(0);
     if (path.isEmpty()) {
-        preview_box_->hide();
+        side_tabs_->setTabVisible(1, false);
         return;
     }
-    preview_box_->show();
-    preview_box_->setTitle("Data preview: " + QFileInfo(path).fileName());
+    side_tabs_->setTabVisible(1, true);
+    side_tabs_->setCurrentIndex(1);
+    preview_box_->setTitle(QFileInfo(path).fileName());
     QFile file(path);
     if (!QFileInfo(path).isFile() || !file.open(QIODevice::ReadOnly | QIODevice::Text)) {
         preview_->setText("No such file: " + path);

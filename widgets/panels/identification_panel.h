@@ -14,7 +14,8 @@
 /// and stop; the estimates with ±σ bands, the CUSUM and the confirmed change points grow as it
 /// plays. A CSV that cannot be read is reported with its line numbers.
 ///
-/// A CSV chosen for the batch fit is previewed before Fit (updateDataPreview): its first rows as
+/// A CSV chosen for the batch fit is previewed before Fit (updateDataPreview, a "Data preview"
+/// tab beside the parameters, in front until a fit is shown): its first rows as
 /// the file has them, the columns found and ignored, the rows read and every bad row by line, and
 /// the channels the fit will compare (core/identification/observation_model.h's setupModel, the
 /// same choice as the fit's), or why it cannot fit the file.
@@ -143,6 +144,7 @@ private:
     QComboBox* validation_;
     QComboBox* loss_;
     QLabel* start_;
+    QTabWidget* side_tabs_;  ///< "Parameters", "Data preview" (shown for a CSV)
     QGroupBox* preview_box_;
     QLabel* preview_;
     QTableWidget* preview_rows_;
