@@ -3,10 +3,14 @@
 // line, and the channels the fit will compare.
 #include <gtest/gtest.h>
 
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <fstream>
 #include <string>
 
+#include "core/contact/contact_parameters.h"
+#include "core/identification/synthetic.h"
+#include "core/io/parameters_json.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets_test_support.h"
 
@@ -90,6 +94,32 @@ TEST(IdentificationPreview, DataWithoutAnEntryAngleFitTheirChannelsFromTheLoad) 
     panel.setDataFile(dir.filePath("missing.csv"));
     EXPECT_TRUE(panel.dataPreview().startsWith("No such file"))
         << panel.dataPreview().toStdString();
+}
+
+TEST(IdentificationPreview, IsInFrontUntilAFitIsShownThenTheParametersAre) {
+    identification::SyntheticSpec spec;
+    for (int i = 0; i < 30; ++i) spec.slips.push_back(0.03 * i);
+    auto soil = io::resolveSoil(test::resources(), "sandy-loam");
+    auto wheel = io::resolveWheel(test::resources(), "A");
+    ASSERT_TRUE(soil && wheel);
+    const auto data =
+        identification::synthesize(contact::makeContactParameters(*soil, *wheel), spec).data;
+    QTemporaryDir dir;
+    const std::string path = writeFile(dir, "good.csv", identification::toCsv(data));
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    auto* side = panel.findChild<QTabWidget*>("identification.side_tabs");
+    ASSERT_NE(side, nullptr);
+    EXPECT_FALSE(side->isTabVisible(1));
+    panel.setDataFile(QString::fromStdString(path));
+    EXPECT_TRUE(side->isTabVisible(1));
+    EXPECT_EQ(side->currentIndex(), 1);
+    EXPECT_TRUE(panel.dataPreview().contains("Rows: 30 read")) << panel.dataPreview().toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    EXPECT_EQ(side->currentIndex(), 0);           // the parameters of the fit
+    EXPECT_FALSE(panel.dataPreview().isEmpty());  // the preview stays one click away
 }
 
 }  // namespace

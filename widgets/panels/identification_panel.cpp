@@ -218,6 +218,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     // The CSV's preview and the fitted parameters share the room: the preview is in front
     // after a CSV is chosen, the parameters after a fit.
     side_tabs_ = new QTabWidget(side);
+    side_tabs_->setObjectName("identification.side_tabs");
     side_tabs_->setDocumentMode(true);
     side_tabs_->addTab(parameters_, "Parameters");
     side_tabs_->addTab(preview_box_, "Data preview");
