@@ -313,7 +313,9 @@ void ForcesPanel::present(const std::any& value) {
     if (shown_reference_.complete) cached_reference_ = shown_reference_;
     const QString reference = QString::fromStdString(shown_reference_.name);
     for (std::size_t i = 0; i < panelQuantities().size(); ++i) {
-        plotSweep(*plots_[i], result_.table, panelQuantities()[i], title);
+        // With a reference the overlay refits and replots: the plot is drawn once.
+        plotSweep(*plots_[i], result_.table, panelQuantities()[i], title,
+                  shown_reference_.sweep.rows.empty());
         overlayReferenceSweep(*plots_[i], panelQuantities()[i], shown_reference_.sweep, reference);
         if (test)
             overlayExperiment(*plots_[i], panelQuantities()[i], *test, test_sweeps_, p.conditions);

@@ -35,7 +35,7 @@ QColor sweepColor(int index) {
 }
 
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
-               const QString& title) {
+               const QString& title, bool replot) {
     plot.clearGraphs();
     plot.clearItems();
     if (plot.plotLayout()->rowCount() > 1) plot.plotLayout()->removeAt(0);
@@ -70,10 +70,10 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
     heading->setMinimumSize(1, 0);
     plot.plotLayout()->addElement(0, 0, heading);
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
-    fitSweepAxes(plot);
+    fitSweepAxes(plot, replot);
 }
 
-void fitSweepAxes(QCustomPlot& plot) {
+void fitSweepAxes(QCustomPlot& plot, bool replot) {
     plot.rescaleAxes();
     // A quantity held constant (F_z = W at equilibrium) would otherwise zoom into rounding noise.
     const QCPRange y = plot.yAxis->range();
@@ -84,7 +84,7 @@ void fitSweepAxes(QCustomPlot& plot) {
         plot.yAxis->scaleRange(1.1, y.center());
     }
     placeLegend(plot);
-    plot.replot();
+    if (replot) plot.replot();
 }
 
 void placeLegend(QCustomPlot& plot) {

@@ -31,13 +31,15 @@ const SweepQuantity& sinkageQuantity();
 QColor sweepColor(int index);
 
 /// Replaces the plot's graphs by `quantity` against slip, one graph per slip angle, with a legend.
-/// Non-finite values are skipped, never drawn.
+/// Non-finite values are skipped, never drawn. `replot` false: the caller adds graphs and replots
+/// (fitSweepAxes), so the plot is drawn once.
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
-               const QString& title);
+               const QString& title, bool replot = true);
 
 /// Fits the axes to the graphs (a quantity held constant is not zoomed into rounding noise), puts
-/// the legend where it covers the least data (placeLegend) and replots: after graphs were added.
-void fitSweepAxes(QCustomPlot& plot);
+/// the legend where it covers the least data (placeLegend) and replots (unless `replot` is
+/// false): after graphs were added.
+void fitSweepAxes(QCustomPlot& plot, bool replot = true);
 
 /// Puts the legend in the corner of the axis rect that covers the fewest data points.
 void placeLegend(QCustomPlot& plot);
