@@ -71,7 +71,9 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     tabs_->setDocumentMode(true);
     auto* identification = new ui::IdentificationPanel(document_, tabs_);
     auto* global = new ui::GlobalSensitivityPanel(document_, tabs_);
-    panels_ = {new ui::ForcesPanel(document_, tabs_),
+    auto* forces = new ui::ForcesPanel(document_, tabs_);
+    forces->setPresetLocations(locations_);  // "Compare with…" lists the soil presets
+    panels_ = {forces,
                new ui::StressPanel(document_, tabs_),
                new ui::SensitivityPanel(document_, tabs_),
                identification,
@@ -348,6 +350,31 @@ int MainWindow::takeScreenshots(const QString& dir) {
         const QString path = dir + "/studio-" + name + ".png";
         if (!grab().save(path)) ++failures;
         std::printf("wrote %s\n", qPrintable(path));
+    }
+    // "Compare with…" (docs/images/studio-compare.png): the soil pinned, φ edited to 35°, then
+    // the edit undone and the comparison cleared, so the project ends as it began.
+    if (auto* forces = dynamic_cast<ui::ForcesPanel*>(panels_.front())) {
+        tabs_->setCurrentIndex(0);
+        auto waitForResult = [forces] {
+            QEventLoop loop;
+            QTimer::singleShot(60000, &loop, &QEventLoop::quit);
+            connect(forces, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+            connect(forces, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+            loop.exec();
+        };
+        forces->pinReference();
+        waitForResult();
+        const int steps = document_->undoStack()->index();
+        document_->setSoilValue("phi_deg", 35.0);
+        waitForResult();
+        QEventLoop settle;
+        QTimer::singleShot(300, &settle, &QEventLoop::quit);
+        settle.exec();
+        const QString path = dir + "/studio-compare.png";
+        if (!grab().save(path)) ++failures;
+        std::printf("wrote %s\n", qPrintable(path));
+        document_->undoStack()->setIndex(steps);
+        forces->clearComparison();
     }
     document_->undoStack()->setClean();
     return failures == 0 ? 0 : 1;

@@ -8,19 +8,23 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QMenu>
 #include <QPushButton>
 #include <QTabWidget>
 #include <QTableWidget>
+#include <QToolButton>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <map>
 #include <memory>
 #include <set>
+#include <stdexcept>
 
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/panels/calibration_dialog.h"
 #include "widgets/plots/figures.h"
+#include "widgets/plots/reference_overlay.h"
 #include "widgets/plots/sweep_plot.h"
 
 namespace terra::ui {
@@ -33,6 +37,7 @@ struct ForcesOutcome {
     std::optional<analysis::ValidationResult> validation;  ///< with a test in the project
     std::vector<TestSweep> test_sweeps;
     std::shared_ptr<const io::Experiment> test;  ///< the test compared (drawn with its result)
+    ForcesPanel::ReferenceCurves reference;      ///< the reference soil swept (name "": none)
 };
 
 /// The panel's quantities against slip: the sweep's six, then the sinkage.
@@ -100,6 +105,29 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     bar->addWidget(status_, 1);
     bar->addWidget(readout_);
 
+    // A reference soil drawn dashed over the project's curves (a row of its own: fits 1024 px).
+    compare_ = new QToolButton(this);
+    compare_->setObjectName("forces.compare");
+    compare_->setText("Compare with…");
+    compare_->setToolTip(
+        "Draw a reference soil dashed over the project's curves, swept with the project's wheel "
+        "and conditions: the current soil pinned before you edit it, or a soil preset");
+    compare_->setPopupMode(QToolButton::InstantPopup);
+    compare_->setMenu(new QMenu(compare_));
+    connect(compare_->menu(), &QMenu::aboutToShow, this, [this] { fillCompareMenu(); });
+    fillCompareMenu();
+    clear_compare_ = new QPushButton("Clear comparison", this);
+    clear_compare_->setObjectName("forces.clear_comparison");
+    clear_compare_->setToolTip("Remove the reference soil's curves");
+    connect(clear_compare_, &QPushButton::clicked, this, [this] { clearComparison(); });
+    compare_label_ = new QLabel(this);
+    compare_label_->setMinimumWidth(1);  // a long soil name is clipped, never widens the panel
+    auto* compare_bar = new QHBoxLayout;
+    compare_bar->addWidget(compare_);
+    compare_bar->addWidget(clear_compare_);
+    compare_bar->addWidget(compare_label_, 1);
+    updateCompareControls();
+
     // The measured test: what it is, its metrics, and its calibration (hidden without a test).
     test_box_ = new QGroupBox("Measured test", this);
     test_label_ = new QLabel(test_box_);
@@ -142,6 +170,7 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
 
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
+    layout->addLayout(compare_bar);
     layout->addWidget(tabs_, 1);
     layout->addWidget(test_box_);
     connect(calibrate_, &QPushButton::clicked, this, [this] {
@@ -193,14 +222,26 @@ void ForcesPanel::applySettings(const nlohmann::json& json) {
 }
 
 Table ForcesPanel::currentTable() const {
-    if (currentPlot() == bulldozing_) return soil_curves_.bulldozing;
-    if (currentPlot() == static_sinkage_) return soil_curves_.static_sinkage;
-    // With a test on the plots, its data go with them (the export writes what the figure shows).
-    if (validation_ && shown_test_) {
-        return tableWithTest(result_.table, document_->project().conditions.load_n, *shown_test_,
-                             test_sweeps_);
+    const Project& p = document_->project();
+    Table shown, reference;
+    if (currentPlot() == bulldozing_) {
+        shown = soil_curves_.bulldozing;
+        reference = shown_reference_.soil.bulldozing;
+    } else if (currentPlot() == static_sinkage_) {
+        shown = soil_curves_.static_sinkage;
+        reference = shown_reference_.soil.static_sinkage;
+    } else if (validation_ && shown_test_) {
+        // With a test on the plots, its data go with them (the export writes what the figure
+        // shows).
+        shown = tableWithTest(result_.table, p.conditions.load_n, *shown_test_, test_sweeps_);
+        reference = shown_reference_.sweep;
+    } else {
+        shown = result_.table;
+        reference = shown_reference_.sweep;
     }
-    return result_.table;
+    if (shown_reference_.name.empty() || reference.rows.empty()) return shown;
+    return tableWithReference(shown, p.soil.name, reference, shown_reference_.name,
+                              p.conditions.load_n);
 }
 
 QCustomPlot* ForcesPanel::currentPlot() const {
@@ -212,7 +253,17 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
     std::shared_ptr<const io::Experiment> test;
     if (const io::Experiment* e = document_->experiment())
         test = std::make_shared<const io::Experiment>(*e);
-    return [inputs, test](const std::atomic<bool>& cancel) -> std::any {
+    std::optional<Reference> reference = reference_;
+    nlohmann::json key;
+    std::optional<ReferenceCurves> cached;
+    if (reference) {
+        key = {{"name", reference->name},
+               {"soil", io::toJson(reference->soil)},
+               {"wheel", io::toJson(inputs.wheel)},
+               {"conditions", analysis::toJson(inputs.conditions)}};
+        if (cached_reference_.complete && cached_reference_.key == key) cached = cached_reference_;
+    }
+    return [inputs, test, reference, key, cached](const std::atomic<bool>& cancel) -> std::any {
         const analysis::Control control{&cancel};
         ForcesOutcome out;
         // ~1 ms, ~6 % of the sweep (sandy loam).
@@ -221,6 +272,24 @@ AnalysisPanel::Job ForcesPanel::makeJob() {
         // A test of a few points and one load adds one slip angle's sweep (~1/6 of the above).
         if (test) compareWithTest(inputs, *test, control, out);
         out.test = test;
+        // The reference soil on the project's wheel and conditions: as long again as the sweep.
+        if (cached) {
+            out.reference = *cached;
+        } else if (reference && !control.cancelled()) {
+            out.reference.name = reference->name;
+            out.reference.key = key;
+            analysis::Inputs at_reference = inputs;
+            at_reference.soil = reference->soil;
+            try {
+                out.reference.soil = analysis::computeSoilCurves(at_reference, {}, control);
+                out.reference.sweep = analysis::computeForceSweep(at_reference, {}, control).table;
+            } catch (const std::exception& e) {  // e.g. K_s ≤ 0 for this soil on another wheel
+                out.reference.sweep = {};
+                out.reference.soil = {};
+                out.reference.error = e.what();
+            }
+            out.reference.complete = !control.cancelled();
+        }
         return out;
     };
 }
@@ -240,8 +309,14 @@ void ForcesPanel::present(const std::any& value) {
             .arg(p.conditions.load_n)
             .arg(p.conditions.quadratic ? " (quadratic model)" : "");
     const io::Experiment* test = validation_ ? shown_test_.get() : nullptr;
+    shown_reference_ = std::move(outcome.reference);
+    if (shown_reference_.complete) cached_reference_ = shown_reference_;
+    const QString reference = QString::fromStdString(shown_reference_.name);
     for (std::size_t i = 0; i < panelQuantities().size(); ++i) {
-        plotSweep(*plots_[i], result_.table, panelQuantities()[i], title);
+        // With a reference the overlay refits and replots: the plot is drawn once.
+        plotSweep(*plots_[i], result_.table, panelQuantities()[i], title,
+                  shown_reference_.sweep.rows.empty());
+        overlayReferenceSweep(*plots_[i], panelQuantities()[i], shown_reference_.sweep, reference);
         if (test)
             overlayExperiment(*plots_[i], panelQuantities()[i], *test, test_sweeps_, p.conditions);
     }
@@ -253,6 +328,9 @@ void ForcesPanel::present(const std::any& value) {
             .arg(p.wheel.width_m * 1e3);
     plotBulldozing(*bulldozing_, soil_curves_, soil_title);
     plotStaticSinkage(*static_sinkage_, soil_curves_, soil_title);
+    overlayReferenceBulldozing(*bulldozing_, shown_reference_.soil, reference);
+    overlayReferenceStaticSinkage(*static_sinkage_, shown_reference_.soil, reference);
+    updateCompareControls();
     status_->setText(
         result_.warnings.empty()
             ? QString("%1 points").arg(result_.table.rows.size())
@@ -334,6 +412,90 @@ void ForcesPanel::showMetrics() {
     metrics_->setFixedHeight(height);
     metrics_->resizeColumnsToContents();
     metrics_->setMinimumWidth(metrics_->horizontalHeader()->length() + 2 * metrics_->frameWidth());
+}
+
+}  // namespace terra::ui
+
+namespace terra::ui {
+
+void ForcesPanel::setPresetLocations(const io::PresetLocations& locations) {
+    locations_ = locations;
+    fillCompareMenu();
+}
+
+void ForcesPanel::pinReference() {
+    const soil::SoilParameters& soil = document_->project().soil;
+    compareWith(soil.name + " (before edit)", soil);
+}
+
+void ForcesPanel::compareWith(const std::string& name, const soil::SoilParameters& soil) {
+    reference_ = Reference{name, soil};
+    updateCompareControls();
+    scheduleUpdate();
+}
+
+bool ForcesPanel::compareWithPreset(const std::string& preset, QString* error) {
+    if (!locations_) {
+        if (error) *error = "no preset directory";
+        return false;
+    }
+    const Result<soil::SoilParameters> soil = io::resolveSoil(*locations_, preset);
+    if (!soil) {
+        if (error) *error = QString::fromStdString(soil.message());
+        return false;
+    }
+    compareWith(soil->name, *soil);
+    return true;
+}
+
+void ForcesPanel::clearComparison() {
+    reference_.reset();
+    updateCompareControls();
+    scheduleUpdate();
+}
+
+QString ForcesPanel::referenceName() const {
+    return reference_ ? QString::fromStdString(reference_->name) : QString();
+}
+
+void ForcesPanel::fillCompareMenu() {
+    QMenu* menu = compare_->menu();
+    menu->clear();
+    QAction* pin = menu->addAction(QString("Current soil: pin \"%1\" as it is now")
+                                       .arg(QString::fromStdString(document_->project().soil.name)),
+                                   this, [this] { pinReference(); });
+    pin->setObjectName("forces.compare_pin");
+    pin->setToolTip("Keep the current curves, dashed, while you edit the soil");
+    if (!locations_) return;
+    menu->addSection("Soil preset");
+    for (const std::string& preset : io::presetNames(*locations_, "soils")) {
+        QAction* action = menu->addAction(QString::fromStdString(preset), this, [this, preset] {
+            QString error;
+            if (!compareWithPreset(preset, &error))
+                compare_label_->setText("<b>Cannot compare:</b> " + error.toHtmlEscaped());
+        });
+        action->setObjectName(QString::fromStdString("forces.compare_preset." + preset));
+    }
+}
+
+void ForcesPanel::updateCompareControls() {
+    clear_compare_->setEnabled(reference_.has_value());
+    if (!reference_) {
+        compare_label_->setText(
+            "<i>No comparison: pin the current soil before editing it, or "
+            "pick a preset</i>");
+        return;
+    }
+    const QString name = QString::fromStdString(reference_->name).toHtmlEscaped();
+    if (!shown_reference_.error.empty() && shown_reference_.name == reference_->name) {
+        compare_label_->setText(
+            QString("<b>%1</b> cannot be computed: %2")
+                .arg(name, QString::fromStdString(shown_reference_.error).toHtmlEscaped()));
+        return;
+    }
+    compare_label_->setText(QString("Dashed: <b>%1</b>").arg(name));
+    compare_label_->setToolTip(
+        "The reference soil, swept with the project's wheel, load and slip angles");
 }
 
 }  // namespace terra::ui

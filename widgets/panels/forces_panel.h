@@ -11,6 +11,11 @@
 /// sinkage and side-force plots show the measured points over the model curves at the measured
 /// load (experiment_overlay.h), and a box under the plots gives RMSE, MAE and the largest relative
 /// error per measured channel, with "Calibrate to this test…" (calibration_dialog.h).
+///
+/// "Compare with…" overlays a reference soil on every plot (reference_overlay.h): the project's
+/// soil pinned as it is now ("sandy loam (before edit)"), kept while the project's soil is edited,
+/// or a soil preset. The same job sweeps it with the project's wheel and conditions (two soils, one
+/// wheel); "Clear comparison" removes it. The reference is session state, not saved in the project.
 
 #include <memory>
 #include <optional>
@@ -18,10 +23,12 @@
 #include "core/analysis/forces.h"
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/validation.h"
+#include "core/io/parameters_json.h"
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/plots/experiment_overlay.h"
 
 class QComboBox;
+class QToolButton;
 class QGroupBox;
 class QLabel;
 class QPushButton;
@@ -50,6 +57,27 @@ public:
     CalibrationDialog* openCalibration();
     CalibrationDialog* calibrationDialog() const { return calibration_; }
 
+    /// Where "Compare with…" lists soil presets (none until set; the main window sets it).
+    void setPresetLocations(const io::PresetLocations& locations);
+    /// Pins the project's soil as it is now as the reference, named "<soil's name> (before
+    /// edit)", and recomputes.
+    void pinReference();
+    /// Makes `soil` the reference under `name` and recomputes.
+    void compareWith(const std::string& name, const soil::SoilParameters& soil);
+    /// A soil preset ("clayey-soil") as the reference, under its soil's name; false (and
+    /// `error`) when it cannot be read.
+    bool compareWithPreset(const std::string& preset, QString* error = nullptr);
+    /// Removes the reference and recomputes.
+    void clearComparison();
+    /// The reference asked for (its name; empty: none).
+    QString referenceName() const;
+    /// The reference's curves on screen: swept with the project's wheel and conditions of that
+    /// result (empty tables without a reference or when it cannot be computed).
+    const Table& referenceSweep() const { return shown_reference_.sweep; }
+    const analysis::SoilCurves& referenceSoilCurves() const { return shown_reference_.soil; }
+    QToolButton* compareButton() const { return compare_; }
+    QPushButton* clearComparisonButton() const { return clear_compare_; }
+
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
     QCustomPlot* currentPlot() const override;
     Table currentTable() const override;
@@ -61,11 +89,37 @@ protected:
     Job makeJob() override;
     void present(const std::any& result) override;
 
+public:
+    /// A reference soil and what the panel computed of it.
+    struct Reference {
+        std::string name;
+        soil::SoilParameters soil;
+    };
+    struct ReferenceCurves {
+        std::string name;  ///< empty: no reference
+        Table sweep;
+        analysis::SoilCurves soil;
+        std::string error;      ///< why it could not be computed ("" when it could)
+        nlohmann::json key;     ///< what it was computed of: soil, wheel, conditions, name
+        bool complete = false;  ///< not cancelled: reusable while `key` does not change
+    };
+
 private:
     void updateTestBox();
+    void updateCompareControls();
+    void fillCompareMenu();
     void showMetrics();
 
     QComboBox* model_;
+    QToolButton* compare_;
+    QPushButton* clear_compare_;
+    QLabel* compare_label_;
+    std::optional<io::PresetLocations> locations_;
+    std::optional<Reference> reference_;  ///< the reference asked for
+    ReferenceCurves shown_reference_;     ///< the reference of the result on screen
+    /// The last complete reference, reused by the next job while its key is the same (editing the
+    /// project's soil leaves a pinned reference's inputs as they are: it is not swept again).
+    ReferenceCurves cached_reference_;
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;

@@ -6,8 +6,10 @@
 #include <QComboBox>
 #include <QCoreApplication>
 #include <QDoubleSpinBox>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
@@ -20,8 +22,12 @@
 #include <QTimer>
 #include <QVBoxLayout>
 #include <cmath>
+#include <limits>
+#include <set>
 
 #include "core/analysis/validation.h"
+#include "core/identification/data_set.h"
+#include "core/identification/observation_model.h"
 #include "core/identification/parameters.h"
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
@@ -63,6 +69,19 @@ QString withSymbols(QString text) {
 }
 
 const QString kIdentifiedSuffix = " (identified)";
+
+// The columns data_set.h reads; others are ignored.
+const std::set<QString> kKnownColumns = {"slip", "entry_angle_deg", "entry_angle_rad", "Fx_N",
+                                         "Fz_N", "My_Nm",           "slip_angle_deg",  "Fy_N",
+                                         "W_N",  "sinkage_m",       "time_s"};
+constexpr int kPreviewRows = 5;  // data rows of the file shown before a fit
+
+// One CSV line's cells (the data files have no quoted fields; a quote is shown as it is).
+QStringList csvCells(const QString& line) {
+    QStringList cells = line.split(',');
+    for (QString& cell : cells) cell = cell.trimmed();
+    return cells;
+}
 
 }  // namespace
 
@@ -135,6 +154,23 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         "of outliers");
     start_ = new QLabel(this);
     start_->setWordWrap(true);
+    // The CSV before a fit: its first rows, what is read of it and what will be fitted.
+    preview_box_ = new QGroupBox(this);
+    preview_box_->setFlat(true);
+    preview_ = new QLabel(preview_box_);
+    preview_->setWordWrap(true);
+    preview_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    preview_rows_ = new QTableWidget(0, 0, preview_box_);
+    preview_rows_->verticalHeader()->setDefaultSectionSize(20);
+    preview_rows_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    preview_rows_->setWordWrap(false);
+    preview_rows_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    // The header, five rows and a horizontal scroll bar.
+    preview_rows_->setMaximumHeight(26 + 20 * kPreviewRows + 22);
+    preview_rows_->setToolTip("The first rows of the file as it has them (line numbers at left)");
+    auto* preview_layout = new QVBoxLayout(preview_box_);
+    preview_layout->addWidget(preview_);
+    preview_layout->addWidget(preview_rows_);
     report_ = new QLabel(this);
     report_->setWordWrap(true);
     report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -179,7 +215,15 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     auto* side = new QWidget(this);
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
-    side_layout->addWidget(parameters_, 2);
+    // The CSV's preview and the fitted parameters share the room: the preview is in front
+    // after a CSV is chosen, the parameters after a fit.
+    side_tabs_ = new QTabWidget(side);
+    side_tabs_->setObjectName("identification.side_tabs");
+    side_tabs_->setDocumentMode(true);
+    side_tabs_->addTab(parameters_, "Parameters");
+    side_tabs_->addTab(preview_box_, "Data preview");
+    side_tabs_->setTabVisible(1, false);
+    side_layout->addWidget(side_tabs_, 2);
     side_layout->addWidget(apply_);
     side_layout->addWidget(report_, 1);
     auto* splitter = new QSplitter(this);
@@ -237,8 +281,14 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         connect(combo, &QComboBox::currentIndexChanged, this, [this] { updateFitControls(); });
     }
     connect(prior_items_, &QLineEdit::textChanged, this, [this] { updateFitControls(); });
-    connect(refine_, &QCheckBox::toggled, this, [this] { updateFitControls(); });
-    connect(file_, &QLineEdit::textChanged, this, [this] { updateFitControls(); });
+    connect(refine_, &QCheckBox::toggled, this, [this] {
+        updateFitControls();
+        updateDataPreview();  // the full model and the decoupled fit read other columns
+    });
+    connect(file_, &QLineEdit::textChanged, this, [this] {
+        updateFitControls();
+        updateDataPreview();
+    });
     updateFitControls();
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         fit_->setEnabled(!busy);
@@ -445,6 +495,7 @@ void IdentificationPanel::present(const std::any& value) {
     fit_source_ =
         file_->text().isEmpty() ? QString("synthetic") : QFileInfo(file_->text()).fileName();
     apply_->setEnabled(identifiedSoil().has_value());
+    if (result_.message.empty()) side_tabs_->setCurrentIndex(0);  // the fit's parameters
     if (!result_.message.empty()) {
         status_->setText(
             "<b>Error:</b> " +
@@ -884,6 +935,114 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
     }
     stream_status_->setText(text);
     emit playbackEnded(state);
+}
+
+}  // namespace terra::ui
+
+namespace terra::ui {
+
+QString IdentificationPanel::dataPreview() const {
+    return side_tabs_->isTabVisible(1) ? preview_->text() : QString();
+}
+
+QString IdentificationPanel::dataPreviewCell(int row, int column) const {
+    const QTableWidgetItem* item = preview_rows_->item(row, column);
+    return item != nullptr ? item->text() : QString();
+}
+
+QString IdentificationPanel::dataPreviewHeader(int column) const {
+    const QTableWidgetItem* item = preview_rows_->horizontalHeaderItem(column);
+    return item != nullptr ? item->text() : QString();
+}
+
+void IdentificationPanel::updateDataPreview() {
+    const QString path = file_->text().trimmed();
+    preview_rows_->clear();
+    preview_rows_->setRowCount(0);
+    preview_rows_->setColumnCount(0);
+    if (path.isEmpty()) {
+        side_tabs_->setTabVisible(1, false);
+        return;
+    }
+    side_tabs_->setTabVisible(1, true);
+    side_tabs_->setCurrentIndex(1);
+    preview_box_->setTitle(QFileInfo(path).fileName());
+    QFile file(path);
+    if (!QFileInfo(path).isFile() || !file.open(QIODevice::ReadOnly | QIODevice::Text)) {
+        preview_->setText("No such file: " + path);
+        return;
+    }
+    // The first rows as the file has them, with their line numbers.
+    QStringList header;
+    int line_number = 0;
+    while (!file.atEnd() && preview_rows_->rowCount() < kPreviewRows) {
+        const QString line = QString::fromUtf8(file.readLine()).trimmed();
+        ++line_number;
+        if (line_number == 1) {
+            header = csvCells(line);
+            preview_rows_->setColumnCount(static_cast<int>(header.size()));
+            preview_rows_->setHorizontalHeaderLabels(header);
+            continue;
+        }
+        if (line.isEmpty()) continue;
+        const int row = preview_rows_->rowCount();
+        preview_rows_->insertRow(row);
+        preview_rows_->setVerticalHeaderItem(row,
+                                             new QTableWidgetItem(QString::number(line_number)));
+        const QStringList cells = csvCells(line);
+        for (int c = 0; c < std::min<int>(static_cast<int>(cells.size()), header.size()); ++c)
+            preview_rows_->setItem(row, c, new QTableWidgetItem(cells[c]));
+    }
+    QStringList known, ignored;
+    for (const QString& column : header)
+        (kKnownColumns.contains(column) ? known : ignored) << column;
+    QStringList lines;
+    lines << "Columns: " +
+                 (known.isEmpty() ? QString("none of the data columns") : known.join(", ")) +
+                 (ignored.isEmpty() ? QString() : " (ignored: " + ignored.join(", ") + ")");
+    // Read as the fit reads it (the same columns needed), every bad row listed: the fit itself
+    // refuses a file with bad rows.
+    const bool full_model = refine_->isChecked();
+    const auto needs = full_model ? identification::ColumnNeeds::kFullModel
+                                  : identification::ColumnNeeds::kDecoupled;
+    auto read =
+        identification::readDataSet(path.toStdString(), identification::BadRows::kSkip, needs);
+    if (!read) {
+        lines << "Cannot be fitted: " + withSymbols(QString::fromStdString(read.message()));
+        preview_->setText(lines.join("\n"));
+        return;
+    }
+    const std::size_t good = read->data.samples.size(), bad = read->skipped.size();
+    lines << QString("Rows: %1 read%2").arg(good).arg(bad ? QString(", %1 bad").arg(bad) : "");
+    for (const Issue& issue : read->skipped) {
+        const QString where = QString::fromStdString(issue.where);
+        const QString line = where.section(':', -1);  // "data.csv:6" → "6"
+        lines << QString("  line %1: %2").arg(line, QString::fromStdString(issue.message));
+    }
+    if (bad > 0) lines << "Fit refuses the file until the bad rows are fixed or removed.";
+    if (full_model) {
+        const auto setup =
+            identification::setupModel(read->data, identification::DataSource::kAuto, std::nullopt,
+                                       std::numeric_limits<double>::infinity());
+        if (!setup) {
+            lines << "Cannot be fitted: " + withSymbols(QString::fromStdString(setup.message()));
+        } else {
+            QStringList fitted;
+            for (int c = 0; c < identification::kChannelCount; ++c) {
+                if (setup->channels[static_cast<std::size_t>(c)])
+                    fitted << withSymbols(QString::fromUtf8(identification::channelNames()[c]));
+            }
+            lines << QString("Fits: %1 (%2)")
+                         .arg(fitted.join(", "),
+                              setup->source == identification::DataSource::kEntryAngle
+                                  ? "entry angle measured"
+                                  : "entry angle solved from the load");
+        }
+    } else {
+        lines << "Fits: " + withSymbols("Fx_N, Fz_N, My_Nm") +
+                     " (decoupled fit: entry angle measured)";
+    }
+    preview_->setText(lines.join("\n"));
 }
 
 }  // namespace terra::ui

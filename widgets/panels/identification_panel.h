@@ -13,6 +13,12 @@
 /// onto a second soil, fed sample by sample on a worker at 0.1×, 1×, 10× or full speed, with pause
 /// and stop; the estimates with ±σ bands, the CUSUM and the confirmed change points grow as it
 /// plays. A CSV that cannot be read is reported with its line numbers.
+///
+/// A CSV chosen for the batch fit is previewed before Fit (updateDataPreview, a "Data preview"
+/// tab beside the parameters, in front until a fit is shown): its first rows as
+/// the file has them, the columns found and ignored, the rows read and every bad row by line, and
+/// the channels the fit will compare (core/identification/observation_model.h's setupModel, the
+/// same choice as the fit's), or why it cannot fit the file.
 
 #include "core/analysis/identification.h"
 #include "core/analysis/streaming_identification.h"
@@ -30,6 +36,7 @@ class QPushButton;
 class QTimer;
 class QTabWidget;
 class QTableWidget;
+class QGroupBox;
 
 namespace terra::ui {
 
@@ -46,6 +53,11 @@ public:
     analysis::StreamingSettings streamSettings() const;
     /// Uses this CSV as data (empty: synthesise from the project's soil).
     void setDataFile(const QString& path);
+    /// The preview of the batch fit's CSV (plain text of its summary: rows, columns, bad rows by
+    /// line, channels fitted; empty for synthetic data), and its first rows as cells.
+    QString dataPreview() const;
+    QString dataPreviewCell(int row, int column) const;
+    QString dataPreviewHeader(int column) const;
     /// What the next fit starts from, as the panel shows it ("global search …", "prior: …").
     QString startDescription() const;
     /// The batch page's status line and its report (held-out error, ambiguity, gradient norm).
@@ -106,6 +118,7 @@ signals:
 private:
     void buildStreamingPage(QWidget* page);
     void updateFitControls();
+    void updateDataPreview();
     void showFrames(const std::vector<StreamFrame>& frames);
     void playbackStateChanged(StreamingPlayback::State state);
     void updateStreamControls();
@@ -131,6 +144,10 @@ private:
     QComboBox* validation_;
     QComboBox* loss_;
     QLabel* start_;
+    QTabWidget* side_tabs_;  ///< "Parameters", "Data preview" (shown for a CSV)
+    QGroupBox* preview_box_;
+    QLabel* preview_;
+    QTableWidget* preview_rows_;
     QLabel* report_;
     analysis::IdentificationResult result_;
 

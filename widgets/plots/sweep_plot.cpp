@@ -26,8 +26,16 @@ const SweepQuantity& sinkageQuantity() {
     return quantity;
 }
 
+QColor sweepColor(int index) {
+    // Distinct on white and on a dark frame (no yellow on white).
+    static const QColor colors[] = {
+        QColor(31, 119, 180),  QColor(255, 127, 14), QColor(44, 160, 44),   QColor(214, 39, 40),
+        QColor(148, 103, 189), QColor(140, 86, 75),  QColor(227, 119, 194), QColor(127, 127, 127)};
+    return colors[((index % 8) + 8) % 8];
+}
+
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
-               const QString& title) {
+               const QString& title, bool replot) {
     plot.clearGraphs();
     plot.clearItems();
     if (plot.plotLayout()->rowCount() > 1) plot.plotLayout()->removeAt(0);
@@ -47,12 +55,7 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
         QCPGraph* graph = plot.addGraph();
         graph->setData(data.first, data.second, true);
         graph->setName(QString("β = %1°").arg(angle));
-        // Distinct on white and on a dark frame (no yellow on white).
-        static const QColor colors[] = {QColor(31, 119, 180),  QColor(255, 127, 14),
-                                        QColor(44, 160, 44),   QColor(214, 39, 40),
-                                        QColor(148, 103, 189), QColor(140, 86, 75),
-                                        QColor(227, 119, 194), QColor(127, 127, 127)};
-        QPen pen(colors[index % 8]);
+        QPen pen(sweepColor(index));
         pen.setWidthF(1.8);
         graph->setPen(pen);
         ++index;
@@ -67,10 +70,10 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
     heading->setMinimumSize(1, 0);
     plot.plotLayout()->addElement(0, 0, heading);
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
-    fitSweepAxes(plot);
+    fitSweepAxes(plot, replot);
 }
 
-void fitSweepAxes(QCustomPlot& plot) {
+void fitSweepAxes(QCustomPlot& plot, bool replot) {
     plot.rescaleAxes();
     // A quantity held constant (F_z = W at equilibrium) would otherwise zoom into rounding noise.
     const QCPRange y = plot.yAxis->range();
@@ -81,7 +84,7 @@ void fitSweepAxes(QCustomPlot& plot) {
         plot.yAxis->scaleRange(1.1, y.center());
     }
     placeLegend(plot);
-    plot.replot();
+    if (replot) plot.replot();
 }
 
 void placeLegend(QCustomPlot& plot) {

@@ -3,6 +3,7 @@
 /// Draws a force-versus-slip table (core/analysis/sweep.h) on a QCustomPlot: one curve per slip
 /// angle, axes labelled with units, and exports it to PNG at an explicit size.
 
+#include <QColor>
 #include <QString>
 #include <string>
 
@@ -25,14 +26,20 @@ const std::vector<SweepQuantity>& sweepQuantities();
 /// Sinkage h = r (1 − cos θ_f) against slip, in mm (the forces panel's tab; not in render's set).
 const SweepQuantity& sinkageQuantity();
 
+/// The pen colour of a sweep's `index`-th slip-angle curve (plotSweep; a reference soil's dashed
+/// curves use the same colour for the same β).
+QColor sweepColor(int index);
+
 /// Replaces the plot's graphs by `quantity` against slip, one graph per slip angle, with a legend.
-/// Non-finite values are skipped, never drawn.
+/// Non-finite values are skipped, never drawn. `replot` false: the caller adds graphs and replots
+/// (fitSweepAxes), so the plot is drawn once.
 void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quantity,
-               const QString& title);
+               const QString& title, bool replot = true);
 
 /// Fits the axes to the graphs (a quantity held constant is not zoomed into rounding noise), puts
-/// the legend where it covers the least data (placeLegend) and replots: after graphs were added.
-void fitSweepAxes(QCustomPlot& plot);
+/// the legend where it covers the least data (placeLegend) and replots (unless `replot` is
+/// false): after graphs were added.
+void fitSweepAxes(QCustomPlot& plot, bool replot = true);
 
 /// Puts the legend in the corner of the axis rect that covers the fewest data points.
 void placeLegend(QCustomPlot& plot);
