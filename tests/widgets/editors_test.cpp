@@ -270,6 +270,26 @@ TEST(ConditionsEditor, BadSlipAngleListIsFlaggedNotApplied) {
     EXPECT_EQ(document.project().conditions.slip_angles_deg, (std::vector<double>{0.0, 15.0}));
 }
 
+// An edited soil is named "sandy loam (edited)" by the document: the tree shows that name once
+// (it used to append a second "(edited)"); a name the user types is said to be edited.
+TEST(ProjectTree, AnEditedSoilIsSaidToBeEditedOnce) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ProjectTree tree(&document);
+    QTreeWidgetItem* soil = tree.topLevelItem(ProjectTree::kSoil);
+    ASSERT_NE(soil, nullptr);
+    EXPECT_EQ(soil->text(1), QString::fromStdString(document.project().soil_preset));
+    ASSERT_TRUE(document.setSoilValue("phi_deg", 35.0));
+    ASSERT_TRUE(document.project().soil_preset.empty());
+    const QString name = QString::fromStdString(document.project().soil.name);
+    EXPECT_TRUE(name.endsWith("(edited)")) << name.toStdString();
+    EXPECT_EQ(soil->text(1), name);
+    EXPECT_EQ(soil->text(1).count("(edited)"), 1);
+    ASSERT_TRUE(document.setSoilName("my field"));
+    EXPECT_EQ(soil->text(1), "my field (edited)");
+    EXPECT_EQ(soil->toolTip(1), soil->text(1));
+}
+
 // The tree lists the scenarios edited in the rover panel (kept in its settings) as they appear.
 TEST(ProjectTree, ListsEditedScenarios) {
     ProjectDocument document;

@@ -33,14 +33,24 @@ ProjectTree::ProjectTree(ProjectDocument* document, QWidget* parent)
     setCurrentItem(items_[kSoil]);
 }
 
+namespace {
+
+// A soil or wheel that is no longer its preset: its name, said to be edited unless the name
+// already qualifies itself ("sandy loam (edited)", "… (calibrated)": no "(edited) (edited)").
+QString notPresetLabel(const std::string& name) {
+    const QString text = QString::fromStdString(name);
+    return text.endsWith(')') ? text : text + " (edited)";
+}
+
+}  // namespace
+
 void ProjectTree::refresh() {
     const Project& p = document_->project();
-    items_[kSoil]->setText(
-        1,
-        QString::fromStdString(p.soil_preset.empty() ? p.soil.name + " (edited)" : p.soil_preset));
-    items_[kWheel]->setText(
-        1, QString::fromStdString(p.wheel_preset.empty() ? p.wheel.name + " (edited)"
-                                                         : p.wheel_preset));
+    items_[kSoil]->setText(1, p.soil_preset.empty() ? notPresetLabel(p.soil.name)
+                                                    : QString::fromStdString(p.soil_preset));
+    items_[kWheel]->setText(1, p.wheel_preset.empty() ? notPresetLabel(p.wheel.name)
+                                                      : QString::fromStdString(p.wheel_preset));
+    for (const int row : {kSoil, kWheel}) items_[row]->setToolTip(1, items_[row]->text(1));
     items_[kConditions]->setText(1, QString("W = %1 N").arg(p.conditions.load_n));
     qDeleteAll(items_[kDataSets]->takeChildren());
     for (const std::string& path : p.data_sets) {
