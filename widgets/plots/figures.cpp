@@ -351,7 +351,8 @@ void plotValidation(QCustomPlot& plot, const analysis::ValidationResult& result,
     }
     const std::size_t y = curves.column(channel);
     for (std::size_t k = 0; k < groups.size(); ++k) {
-        const auto [load, beta] = groups[k];
+        // Plain variables: clang 14 cannot capture structured bindings in the lambda below.
+        const double load = groups[k].first, beta = groups[k].second;
         const QColor color = paletteColor(static_cast<int>(k));
         QString at = QString("W = %1 N").arg(load, 0, 'g', 4);
         if (beta != 0.0) at += QString(", β = %1°").arg(beta, 0, 'g', 3);
