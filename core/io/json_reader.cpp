@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/io/csv.h"
 #include "core/io/json.h"
 
 namespace terra::io {
@@ -314,9 +315,12 @@ void ObjectReader::finish() {
         if (!key.empty() && key[0] == '_') continue;  // a comment
         if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
         const std::string near = nearestName(key, known_);
-        report(key, near.empty() ? "unknown key; allowed keys: " + listNames(known_)
-                                 : "unknown key; did you mean \"" + near +
-                                       "\"? Allowed keys: " + listNames(known_));
+        // A key is user text: quoted to ~80 characters like a bad value (a fuzzed 1000-character
+        // key used to be echoed whole, in the location and the message).
+        const std::string shown = key.size() > 80 ? quoteCell(key) : key;
+        report(shown, near.empty() ? "unknown key; allowed keys: " + listNames(known_)
+                                   : "unknown key; did you mean \"" + near +
+                                         "\"? Allowed keys: " + listNames(known_));
     }
 }
 

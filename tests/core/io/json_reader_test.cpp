@@ -54,6 +54,31 @@ TEST(ObjectReader, ReadsTypedFieldsWithDefaultsForAbsentOnes) {
 
 // The measured cases of issue 10: a string where an object belongs, a number where a string
 // belongs, a misspelt key, an integer of 1e308.
+// An unknown key is user text: a huge one (found by fuzzing, tests/fuzz/crashes/soil_json/) is
+// quoted to ~80 characters with its length, in the location and nowhere else in full.
+TEST(ObjectReader, AHugeUnknownKeyIsQuotedNotEchoed) {
+    const std::string key(5000, 'k');
+    const json object = {{"n", 0.7}, {key, 1.0}};
+    std::vector<Issue> issues;
+    ObjectReader r(object, issues, "soil.json");
+    double n = 0.0;
+    r.number("n", n, Range{0.0, 2.0});
+    r.finish();
+    ASSERT_EQ(issues.size(), 1u);
+    EXPECT_LT(issues[0].where.size() + issues[0].message.size(), 400u)
+        << issues[0].where << ": " << issues[0].message;
+    EXPECT_NE(issues[0].where.find("(5000 characters)"), std::string::npos) << issues[0].where;
+    EXPECT_NE(issues[0].message.find("unknown key"), std::string::npos);
+    // A short unknown key is named as typed.
+    issues.clear();
+    const json typo = {{"nn", 0.7}};
+    ObjectReader q(typo, issues, "soil.json");
+    q.number("n", n, Range{0.0, 2.0});
+    q.finish();
+    ASSERT_EQ(issues.size(), 1u);
+    EXPECT_EQ(issues[0].where, "soil.json: nn");
+}
+
 TEST(ObjectReader, WrongTypesNameTheFieldAndTheExpectedType) {
     const json j = json::parse(R"({"conditions": "x", "title": 12, "condtions": {},
                                    "analyses": [{"slip_count": 1e308}, {"slip_count": 2.5}]})");
