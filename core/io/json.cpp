@@ -422,7 +422,9 @@ private:
     // anyway) or, when the numbers are marked, NaN.
     json numberIssue(const Position& at, std::string_view token, const std::string& what) {
         const std::string field = path();
-        Issue issue{where(at), (field.empty() ? std::string() : field + ": ") +
+        // The key path is user text too: shortened in the message (a fuzzed 1400-character key
+        // was echoed whole), kept whole for the range lookup.
+        Issue issue{where(at), (field.empty() ? std::string() : shorten(field) + ": ") +
                                    shorten(std::string(token)) + " " + what};
         if (bad_numbers_ == nullptr) {
             issues_.push_back(std::move(issue));
