@@ -12,9 +12,12 @@
 #include "core/identification/synthetic.h"
 #include "core/io/parameters_json.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
 
 namespace terra::identification {
 namespace {
+
+using testing::truthOf;
 
 using contact::ContactParameters;
 namespace soils = contact::testing;
@@ -25,11 +28,6 @@ const wheel::WheelParameters kWheelB{"B", "", 0.135, 0.165};
 
 ContactParameters<double> clayOnB() {
     return soils::thesisSoil(0.5, 4.14, 13.0, 13.2, 692.2, 0.01, 13.24, 0.009, 0.135, 0.165);
-}
-
-ParameterVector truthOf(const ContactParameters<double>& p) {
-    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
 }
 
 // Slip sweeps s = 0 : 0.03 : 0.9 at each load, noise a fraction of each channel's largest value.

@@ -12,37 +12,19 @@
 #include "core/identification/observation_model.h"
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
 
 namespace terra::identification {
 namespace {
+
+using testing::fromLoad;
+using testing::truthOf;
 
 namespace soils = contact::testing;
 
 // Wheel A with 12 mm grousers and λ_s = 0.5: r_s = 0.098 m.
 wheel::WheelParameters luggedWheelA() {
     return {"A lugged", "", 0.092, 0.107, 0.012, 18.0, 0.002, 0.5};
-}
-
-ParameterVector truthOf(const contact::ContactParameters<double>& p) {
-    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
-}
-
-// Sweeps at the given loads as a robot sees them: W per sample, the rim's sinkage, no θ_f, no F_z.
-DataSet fromLoad(const contact::ContactParameters<double>& soil, const std::vector<double>& loads) {
-    SyntheticSpec spec;
-    for (int i = 0; i <= 15; ++i) spec.slips.push_back(0.05 * i);
-    spec.loads_n = loads;
-    DataSet data = synthesize(soil, spec).data;
-    data.columns.entry_angle = false;
-    data.columns.fz = false;
-    for (Sample& s : data.samples) {
-        s.sinkage_m = soil.radius_m * (1.0 - std::cos(s.entry_angle_rad));
-        s.load_n = s.load_n.value_or(loads.front());
-        s.entry_angle_rad = 0.0;
-        s.fz_n = 0.0;
-    }
-    return data;
 }
 
 TEST(LuggedIdentification, ObservationModelIsTheLuggedForwardModel) {

@@ -10,17 +10,15 @@
 
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
 
 namespace terra::identification {
 namespace {
 
+using testing::truthOf;
+
 namespace soils = contact::testing;
 const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
-
-ParameterVector truthOf(const contact::ContactParameters<double>& p) {
-    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
-}
 
 DataSet sweeps(std::vector<double> loads, std::uint64_t seed, int slips) {
     SyntheticSpec spec;

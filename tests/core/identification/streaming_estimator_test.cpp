@@ -13,20 +13,18 @@
 
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
 
 namespace terra::identification {
 namespace {
+
+using testing::truthOf;
 
 namespace soils = contact::testing;
 constexpr double kDeg = std::numbers::pi / 180.0;
 const wheel::WheelParameters kWheelA{"A", "", soils::kRadiusA, soils::kWidthA};
 // 1 % of the largest |F_x|, |F_z|, |M_y| of sandy loam's sweeps at 30–90 N [N, N, N·m].
 constexpr std::array<double, 3> kNoise{0.136, 0.90, 0.0195};
-
-ParameterVector truthOf(const contact::ContactParameters<double>& p) {
-    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
-}
 
 // `blocks` blocks of 50 samples; the load cycles through 30, 58.86, 90 N from block to block and
 // the slip sweeps 0.05 → 0.85, back in the next block.
