@@ -381,7 +381,7 @@ Table modelCurves(const contact::ContactParameters<double>& p, contact::ContactM
 
 }  // namespace
 
-ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experiment) {
+ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experiment, bool curves) {
     ValidationRun out;
     out.soil = in.soil;
     const contact::ContactParameters<double> p = in.contact();
@@ -399,7 +399,7 @@ ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experime
         out.points.push_back(std::move(c));
     }
     out.metrics = computeMetrics(out.points);
-    out.curves = modelCurves(p, in.conditions.model(), experiment);
+    if (curves) out.curves = modelCurves(p, in.conditions.model(), experiment);
     return out;
 }
 
@@ -473,7 +473,7 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
             "the wheel has grousers; the thesis model treats it as smooth (give "
             "lug_effect_coefficient in the wheel file for the lug model, docs/model.md, \"Lugs\")");
     }
-    out.before = predictExperiment(in, experiment);
+    out.before = predictExperiment(in, experiment, s.curves);
     for (PointComparison& p : out.before.points) p.in_fit = inFitSlips(p.point.slip, s.fit_slips);
     for (const PointComparison& p : out.before.points) {
         if (!p.predicted) {
@@ -526,7 +526,7 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
                           in.soil.name + " as prior";
         Inputs calibrated = in;
         calibrated.soil = cal.soil;
-        cal.after = predictExperiment(calibrated, experiment);
+        cal.after = predictExperiment(calibrated, experiment, s.curves);
         for (PointComparison& p : cal.after->points)
             p.in_fit = inFitSlips(p.point.slip, s.fit_slips);
         if (!s.fit_slips.empty() &&

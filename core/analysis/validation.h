@@ -36,6 +36,9 @@ struct ValidationSettings {
     /// Calibration only: fit n₁ of the slip-sinkage exponent N = n + n₁ s too (docs/model.md,
     /// "Slip-sinkage"), by profiling χ² over n₁; false: n₁ = 0, the thesis model.
     bool fit_n1 = false;
+    /// Compute ValidationRun::curves (the model lines of the validation figures). The studio's
+    /// forces panel draws its own sweeps at the test's loads and turns this off.
+    bool curves = true;
 };
 
 /// "experiments" (required; relative to the context's directory, read at once), "calibrate",
@@ -107,8 +110,10 @@ struct ValidationResult {
 ValidationMetrics computeMetrics(const std::vector<PointComparison>& points,
                                  std::optional<bool> in_fit = std::nullopt);
 
-/// Predicts every point of `experiment` with the soil and wheel of `inputs`.
-ValidationRun predictExperiment(const Inputs& inputs, const io::Experiment& experiment);
+/// Predicts every point of `experiment` with the soil and wheel of `inputs` (and, with `curves`,
+/// the model against slip through them).
+ValidationRun predictExperiment(const Inputs& inputs, const io::Experiment& experiment,
+                                bool curves = true);
 
 /// The soil whose parameters on `wheel` are `p` (identify.h's θ): a₀, a₁, n, c, φ, K taken over,
 /// n₁ as given (the identification's model), and k_c, k_φ both scaled by K_s(p)/K_s(prior) so that

@@ -140,6 +140,7 @@ analysis::ValidationSettings CalibrationDialog::settings() const {
         s.data = *test;
     }
     s.calibrate = true;
+    s.curves = false;  // the dialog shows metrics and parameters, no figure
     s.noise[io::kExpFx] = fx_noise_->value();
     s.noise[io::kExpMy] = my_noise_->value();
     s.noise[io::kExpSinkage] = sinkage_noise_->value() / 1e3;

@@ -56,6 +56,7 @@ void compareWithTest(const analysis::Inputs& inputs, const io::Experiment& test,
     analysis::ValidationSettings settings;
     settings.experiments = test.source;
     settings.data = test;
+    settings.curves = false;  // the test_sweeps below are the panel's model lines
     out.validation = analysis::computeValidation(inputs, settings, control);
     std::map<double, std::set<double>> conditions;  // load → slip angles
     for (const io::ExperimentPoint& p : test.points) conditions[p.load_n].insert(p.slip_angle_deg);

@@ -260,6 +260,13 @@ TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
         }
     }
     EXPECT_NE(outcome.table("curves"), nullptr);
+    // Without curves (the studio's panels) the points and metrics are the same, the curves empty.
+    ValidationSettings bare = std::any_cast<const ValidationSettings&>(settings);
+    bare.curves = false;
+    const ValidationResult without = computeValidation(sandyLoamOnA(), bare);
+    EXPECT_TRUE(without.before.curves.rows.empty());
+    ASSERT_EQ(without.before.points.size(), validation.before.points.size());
+    EXPECT_EQ(without.before.metrics[0]->rmse, validation.before.metrics[0]->rmse);
     EXPECT_EQ(findAnalysisType("forcez"), nullptr);
 }
 
