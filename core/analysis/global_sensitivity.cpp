@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/analysis/sweep.h"
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
@@ -26,7 +27,7 @@ const soil::SoilField* soilField(const std::string& key, std::vector<Issue>& iss
     const soil::SoilField* field = soil::findSoilField(key);
     if (!field) {
         const std::string near = nearestName(key, soilKeys());
-        issues.push_back({where, "\"" + key + "\" is not a soil field" +
+        issues.push_back({where, quoteText(key, '"') + " is not a soil field" +
                                      (near.empty() ? "" : " (did you mean \"" + near + "\"?)")});
     }
     return field;
@@ -45,7 +46,7 @@ std::vector<Issue> parameterIssues(const StudyDefinition& d) {
     std::vector<std::string> seen;
     auto repeated = [&](const std::string& key, const std::string& where) {
         for (const std::string& s : seen) {
-            if (s == key) issues.push_back({where, "\"" + key + "\" is varied twice"});
+            if (s == key) issues.push_back({where, quoteText(key, '"') + " is varied twice"});
         }
         seen.push_back(key);
     };
@@ -120,7 +121,7 @@ std::vector<Issue> definitionIssues(const StudyDefinition& d) {
         std::string all;
         for (const std::string& n : gsa::outputNames()) all += (all.empty() ? "" : ", ") + n;
         issues.push_back({"outputs[" + std::to_string(i) + "]",
-                          "\"" + d.outputs[i] + "\" is not an output" +
+                          quoteText(d.outputs[i], '"') + " is not an output" +
                               (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
                               "; outputs: " + all});
     }

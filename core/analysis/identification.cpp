@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/analysis/sweep.h"
+#include "core/common/quoted.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
@@ -163,7 +164,7 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
         if (const auto l = lossFromName(loss)) {
             out.loss = *l;
         } else {
-            r.report("loss", "'" + loss + "' is not a loss (l2, huber, cauchy)");
+            r.report("loss", quoteText(loss) + " is not a loss (l2, huber, cauchy)");
         }
     }
     r.number("holdout", out.holdout_fraction, kHoldout);
@@ -299,7 +300,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
     for (const auto& [key, value] : s.fixed) {
         const IdentifiedField* field = findIdentifiedField(key);
         if (field == nullptr || !fullParameterOf(*field)) {
-            issues.push_back({"fix", "'" + key + "' is not a refined parameter"});
+            issues.push_back({"fix", quoteText(key) + " is not a refined parameter"});
         } else {
             checkRange(issues, "fix " + key, value, field->range, field->displayUnit());
         }
@@ -317,7 +318,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
                                         std::to_string(kMaxDesignPoints) + "]"});
     }
     if (!s.prior_soil_name.empty() && !s.prior_soil)
-        issues.push_back({"prior_soil", "'" + s.prior_soil_name + "' is not resolved"});
+        issues.push_back({"prior_soil", quoteText(s.prior_soil_name) + " is not resolved"});
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     IdentificationResult out;
     loadData(in, s, out);

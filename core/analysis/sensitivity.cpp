@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/common/quoted.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
 
@@ -23,7 +24,7 @@ std::vector<SensitivityParameter> parametersOf(const SensitivitySettings& s,
         for (const soil::SoilField& f : soil::soilFields()) keys.emplace_back(f.key);
         const std::string near = nearestName(s.parameter, keys);
         issues.push_back(
-            {"parameter", "\"" + s.parameter + "\" is not a soil field" +
+            {"parameter", quoteText(s.parameter, '"') + " is not a soil field" +
                               (near.empty() ? "" : " (did you mean \"" + near + "\"?)")});
         return out;
     }

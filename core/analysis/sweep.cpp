@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/contact_angles.h"
@@ -190,7 +191,7 @@ std::vector<SensitivityParameter> thesisSensitivityParameters() {
 SweepResult sensitivity(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
                         const SensitivityParameter& parameter, const SweepSpec& spec) {
     const soil::SoilField* field = soil::findSoilField(parameter.key);
-    if (!field) throw std::invalid_argument("unknown soil parameter '" + parameter.key + "'");
+    if (!field) throw std::invalid_argument("unknown soil parameter " + quoteText(parameter.key));
     SweepResult result;
     result.table.columns = {parameter.key};
     for (const std::string& c : sweepColumns()) result.table.columns.push_back(c);

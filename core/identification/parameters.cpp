@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/io/csv.h"
 
@@ -60,7 +61,7 @@ Priors priorsFromSoil(const soil::SoilParameters& soil, const wheel::WheelParame
 }
 
 std::vector<Issue> parsePriorItem(const std::string& item, Priors& priors) {
-    const std::string where = "prior '" + item + "'";
+    const std::string where = "prior " + quoteText(item);
     const std::size_t equals = item.find('=');
     if (equals == std::string::npos) {
         return {{where, "expected name=mean±std, e.g. phi_deg=30±5 (or 30+-5)"}};

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/io/atomic_file.h"
@@ -145,11 +146,7 @@ bool parseNumber(const std::string& cell, double& value) {
 }
 
 std::string quoteCell(const std::string& cell, std::size_t max_chars) {
-    if (cell.size() <= max_chars) return "'" + cell + "'";
-    // Cut at a UTF-8 character boundary (never inside a multi-byte sequence).
-    std::size_t cut = max_chars;
-    while (cut > 0 && (static_cast<unsigned char>(cell[cut]) & 0xC0) == 0x80) --cut;
-    return "'" + cell.substr(0, cut) + "…' (" + std::to_string(cell.size()) + " characters)";
+    return quoteText(cell, '\'', max_chars);
 }
 
 std::optional<double> readCell(const std::string& cell, const NumericColumn& column,

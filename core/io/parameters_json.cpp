@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "core/common/build_info.h"
+#include "core/common/quoted.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json.h"
 
@@ -36,15 +37,16 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
     const std::string field = kind == "soils" ? "soil" : "wheel";
     if (looks_like_path) {
         // A path is never a preset name: say what is wrong with the path.
-        return std::vector<Issue>{{field, fs::exists(name_or_path, ec)
-                                              ? "'" + name_or_path + "' is not a regular file"
-                                              : "file '" + name_or_path + "' does not exist"}};
+        return std::vector<Issue>{
+            {field, fs::exists(name_or_path, ec)
+                        ? quoteText(name_or_path) + " is not a regular file"
+                        : "file " + quoteText(name_or_path) + " does not exist"}};
     }
     std::string names;
     for (const std::string& n : presetNames(locations, kind))
         names += (names.empty() ? "" : ", ") + n;
-    return std::vector<Issue>{{field, "'" + name_or_path +
-                                          "' is neither a file nor a preset; presets: " +
+    return std::vector<Issue>{{field, quoteText(name_or_path) +
+                                          " is neither a file nor a preset; presets: " +
                                           (names.empty() ? "(none found)" : names)}};
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/io/json.h"
 #include "core/io/json_reader.h"
@@ -89,8 +90,9 @@ std::vector<Expectation> readExpectations(ObjectReader& r, const analysis::Analy
             std::string names;
             for (const std::string& t : type->tables) names += (names.empty() ? "" : ", ") + t;
             const std::string near = nearestName(x.table, type->tables);
-            e.report("table", "\"" + x.table + "\" is not a table of " + type->name + " (" + names +
-                                  ")" + (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
+            e.report("table", quoteText(x.table, '"') + " is not a table of " + type->name + " (" +
+                                  names + ")" +
+                                  (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
         }
         e.text("why", x.why);
         if (e.has("at")) {
@@ -142,7 +144,8 @@ std::vector<analysis::FigureSpec> readFigures(ObjectReader& r, const analysis::A
             for (const std::string& k : keys) names += (names.empty() ? "" : ", ") + k;
             const std::string near = nearestName(wanted[i], keys);
             r.report("plots[" + std::to_string(i) + "]",
-                     "\"" + wanted[i] + "\" is not one of " + (names.empty() ? "(none)" : names) +
+                     quoteText(wanted[i], '"') + " is not one of " +
+                         (names.empty() ? "(none)" : names) +
                          (near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
             continue;
         }
@@ -170,7 +173,8 @@ ExpectationOutcome check(const Expectation& e, const Table& table) {
     for (const auto& row : table.rows) rows.push_back(&row);
     for (const auto& [key, value] : e.at) {
         if (!hasColumn(table, key)) {
-            out.text = e.column + ": no column \"" + key + "\" to select the row by";
+            out.text = quoteText(e.column, '"') + ": no column " + quoteText(key, '"') +
+                       " to select the row by";
             return out;
         }
         const std::size_t k = table.column(key);
@@ -199,7 +203,9 @@ std::vector<ExpectationOutcome> evaluate(const std::vector<Expectation>& expecta
     for (const Expectation& e : expectations) {
         const Table* table = outcome.table(e.table);
         if (table == nullptr) {
-            out.push_back({e.column + ": the analysis has no table \"" + e.table + "\"", false});
+            out.push_back({quoteText(e.column, '"') + ": the analysis has no table " +
+                               quoteText(e.table, '"'),
+                           false});
         } else {
             out.push_back(check(e, *table));
         }
@@ -278,13 +284,13 @@ Result<Script> scriptFromJson(const json& document, const std::string& where,
         item.name = type_name.empty() ? "analysis-" + std::to_string(i) : type_name;
         a.text("name", item.name);
         if (!fileSafe(item.name)) {
-            a.report("name", "\"" + item.name +
-                                 "\" cannot start a file name (empty, a leading '.', a '/' or "
+            a.report("name", quoteText(item.name, '"') +
+                                 " cannot start a file name (empty, a leading '.', a '/' or "
                                  "longer than 100 characters)");
         }
         for (std::size_t j = 0; j < i && j < script.analyses.size(); ++j) {
             if (script.analyses[j].name == item.name) {
-                a.report("name", "\"" + item.name + "\" is also the name of analyses[" +
+                a.report("name", quoteText(item.name, '"') + " is also the name of analyses[" +
                                      std::to_string(j) +
                                      "]: their files would overwrite each other");
             }

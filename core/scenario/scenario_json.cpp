@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/io/json.h"
@@ -248,8 +249,8 @@ Result<dynamics::RobotParameters> resolveRobot(const io::PresetLocations& locati
         std::string names;
         for (const std::string& n : io::presetNames(locations, "robots"))
             names += (names.empty() ? "" : ", ") + n;
-        return std::vector<Issue>{{"robot", "'" + name_or_path +
-                                                "' is neither a file nor a preset; presets: " +
+        return std::vector<Issue>{{"robot", quoteText(name_or_path) +
+                                                " is neither a file nor a preset; presets: " +
                                                 (names.empty() ? "(none found)" : names)}};
     }
     return io::readJsonFileWith<dynamics::RobotParameters>(
@@ -427,8 +428,8 @@ Result<Scenario> resolveScenario(const io::PresetLocations& locations,
     std::string names;
     for (const std::string& n : io::presetNames(locations, "scenarios"))
         names += (names.empty() ? "" : ", ") + n;
-    return std::vector<Issue>{{"scenario", "'" + name_or_path +
-                                               "' is neither a file nor a scenario; scenarios: " +
+    return std::vector<Issue>{{"scenario", quoteText(name_or_path) +
+                                               " is neither a file nor a scenario; scenarios: " +
                                                (names.empty() ? "(none found)" : names)}};
 }
 

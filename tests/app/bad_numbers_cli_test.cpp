@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -262,3 +263,66 @@ TEST_F(BadNumbers, TinyDurationsAndHugeSignalAmplitudesAreNamedWithTheirRange) {
 }
 
 }  // namespace
+
+namespace {
+
+// The longest line of a command's stderr.
+std::size_t longestLine(const std::string& text) {
+    std::size_t longest = 0, start = 0;
+    while (start <= text.size()) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        longest = std::max(longest, end - start);
+        start = end + 1;
+    }
+    return longest;
+}
+
+}  // namespace
+
+// Fuzzing found it (scenario_json, 2026-12-02): a preset name of 1,500 characters was echoed whole
+// in "'…' is neither a file nor a preset". Every name, path or text a message quotes is cut to 80
+// characters with its length (a choice among names to 60): a robot, soil or wheel preset name, a
+// path, a script's table name, sensitivity parameter and analysis name.
+TEST_F(BadNumbers, HugeNamesAndPathsAreQuotedShort) {
+    const std::string name(1500, 'x');
+    const std::string cut = "'" + std::string(80, 'x') + "\u2026' (1500 characters)";
+    const std::string o = (dir_ / "o").string();
+    struct Case {
+        std::string command;
+        std::string piece;
+    };
+    const std::vector<Case> cases{
+        {"simulate --scenario " + write("robot.json", scenarioWith(name, "5")) + " --out " + o,
+         "robot: robot: " + cut + " is neither a file nor a preset"},
+        {"wheel --soil " + name + " --slip 0.2 --load 58", cut + " is neither a file nor a preset"},
+        {"wheel --wheel a/" + name + " --slip 0.2 --load 58",
+         "file 'a/" + std::string(78, 'x') + "\u2026' (1502 characters) does not exist"},
+        {"run " +
+             write("table.json", "{\"analyses\": [{\"type\": \"validation\", \"experiments\": \"" +
+                                     std::string(TERRA_RESOURCE_DIR) +
+                                     "/experiments/ding2011-smooth-hit-lss1-80N.csv\", \"expect\": "
+                                     "[{\"column\": \"Fx_N_rmse\", \"table\": \"" +
+                                     name + "\", \"max\": 4}]}]}") +
+             " --out " + o,
+         "\"" + std::string(80, 'x') + "\u2026\" (1500 characters) is not a table of"},
+        {"run " +
+             write("parameter.json",
+                   "{\"analyses\": [{\"type\": \"sensitivity\", \"parameter\": \"" + name +
+                       "\", \"values\": [1, 2]}]}") +
+             " --out " + o,
+         "analyses[0].parameter: \"" + std::string(57, 'x') + "...\" is not one of all, n,"},
+        {"run " +
+             write("name.json",
+                   "{\"analyses\": [{\"type\": \"forces\", \"name\": \"" + name + "\"}]}") +
+             " --out " + o,
+         "\"" + std::string(80, 'x') + "\u2026\" (1500 characters) cannot start a file name"},
+    };
+    for (const Case& c : cases) {
+        const CliRun r = run(c.command);
+        EXPECT_EQ(r.exit_code, 2) << c.command.substr(0, 200) << "\n" << r.err.substr(0, 600);
+        EXPECT_NE(r.err.find(c.piece), std::string::npos)
+            << c.command.substr(0, 200) << "\nmissing: " << c.piece
+            << "\nin: " << r.err.substr(0, 600);
+        EXPECT_LT(longestLine(r.err), 600u) << r.err.substr(0, 600);
+    }
+}

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <QComboBox>
+#include <QLabel>
 #include <QLineEdit>
 #include <QRegularExpression>
 #include <QSlider>
@@ -252,6 +253,70 @@ TEST(SoilEditor, ChoosingAPresetIsOneUndoableEdit) {
     document.undoStack()->undo();
     EXPECT_EQ(document.project().soil_preset, "sandy-loam");
     EXPECT_EQ(preset->currentData().toString(), "sandy-loam");
+}
+
+// Issue 14: the wheel editor has every field of the wheel's table, the grousers and λ_s with them
+// (it used to show r and b only, so a lugged wheel could not be described in the studio).
+TEST(WheelEditor, EveryFieldOfTheCoreTableHasAnEditorWithItsRange) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    WheelEditor editor(&document, test::resources());
+    for (const wheel::WheelField& field : wheel::wheelFields()) {
+        ValidatedSpinBox* box = editor.spinBox(field.key);
+        ASSERT_NE(box, nullptr) << field.key;
+        EXPECT_EQ(box->allowedRange().describe(), field.range.describe()) << field.key;
+        EXPECT_TRUE(box->toolTip().contains(QString::fromUtf8(field.label))) << field.key;
+        EXPECT_DOUBLE_EQ(box->value(), field.userValue(document.project().wheel)) << field.key;
+    }
+    EXPECT_EQ(editor.spinBox("grouser_count")->decimals(), 0);  // a whole number
+    EXPECT_TRUE(editor.lugSummary()->text().startsWith("Smooth wheel"));
+}
+
+// Grousers typed one field at a time: each edit is one undo step; the summary says when the lug
+// model acts and at which shearing radius (r_s = r + λ_s h_g, docs/model.md "Lugs"); grousers as
+// high as the radius are refused with the reason and never reach the model.
+TEST(WheelEditor, GrousersAreTypedUndoneAndCheckedAgainstTheRadius) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    WheelEditor editor(&document, test::resources());
+    editor.show();
+    const double r = document.project().wheel.radius_m;
+    ASSERT_GT(r, 0.02);
+    typeInto(editor.spinBox("grouser_height_m"), "0.01");
+    typeInto(editor.spinBox("grouser_count"), "24");
+    EXPECT_DOUBLE_EQ(document.project().wheel.grouser_height_m, 0.01);
+    EXPECT_DOUBLE_EQ(document.project().wheel.grouser_count, 24.0);
+    EXPECT_TRUE(document.project().wheel.lugged());
+    EXPECT_TRUE(editor.lugSummary()->text().contains("lug model off"))
+        << editor.lugSummary()->text().toStdString();
+    typeInto(editor.spinBox("lug_effect_coefficient"), "0.5");
+    EXPECT_DOUBLE_EQ(document.project().wheel.lug_effect_coefficient, 0.5);
+    // 0.5 × 10 mm = 5 mm beyond the rim.
+    const QString rs = QString::number((r + 0.005) * 1e3, 'f', 1);
+    EXPECT_TRUE(editor.lugSummary()->text().contains("= " + rs + " mm"))
+        << editor.lugSummary()->text().toStdString() << " vs " << rs.toStdString();
+    EXPECT_EQ(document.undoStack()->count(), 3);
+    EXPECT_EQ(document.undoStack()->text(2).toStdString(), "Set wheel λ_s = 0.5");
+
+    // In range on its own ([0, 0.5] m) but not below the radius: refused with the reason.
+    const QString too_high = QString::number(r + 0.01, 'f', 4);
+    typeInto(editor.spinBox("grouser_height_m"), too_high);
+    EXPECT_DOUBLE_EQ(document.project().wheel.grouser_height_m, 0.01);
+    EXPECT_EQ(document.undoStack()->count(), 3);
+    EXPECT_DOUBLE_EQ(editor.spinBox("grouser_height_m")->value(), 0.01);
+    const QString message = editor.findChild<QLabel*>("message")
+                                ? editor.findChild<QLabel*>("message")->text()
+                                : QString();
+    EXPECT_TRUE(message.contains("is not below the radius")) << message.toStdString();
+
+    document.undoStack()->undo();
+    EXPECT_DOUBLE_EQ(document.project().wheel.lug_effect_coefficient, 0.0);
+    EXPECT_DOUBLE_EQ(editor.spinBox("lug_effect_coefficient")->value(), 0.0);
+    EXPECT_TRUE(editor.lugSummary()->text().contains("lug model off"));
+    document.undoStack()->undo();
+    document.undoStack()->undo();
+    EXPECT_FALSE(document.project().wheel.lugged());
+    EXPECT_TRUE(editor.lugSummary()->text().startsWith("Smooth wheel"));
 }
 
 TEST(ConditionsEditor, BadSlipAngleListIsFlaggedNotApplied) {

@@ -49,8 +49,7 @@ private:
 
 // Merge ids: one per field; -1 (no merging) for whole-object replacements.
 constexpr int kSoilFieldIdBase = 100, kSoilNameId = 150;
-constexpr int kWheelRadiusId = 200, kWheelWidthId = 201, kLoadId = 300, kSlipAnglesId = 301,
-              kModelId = 302;
+constexpr int kWheelFieldIdBase = 200, kLoadId = 300, kSlipAnglesId = 301, kModelId = 302;
 
 }  // namespace
 
@@ -159,23 +158,36 @@ bool ProjectDocument::setSoilName(const std::string& name) {
                     std::move(candidate), "");
 }
 
-bool ProjectDocument::setWheelValue(const std::string& key, double metres) {
+std::string ProjectDocument::wheelValueProblem(const std::string& key, double value) const {
     const wheel::WheelField* field = wheel::findWheelField(key);
-    if (!field || !field->range.contains(metres)) return false;
-    const bool radius = field == &wheel::radiusField();
+    if (!field) return key + ": not a wheel field";
     wheel::WheelParameters candidate = project_.wheel;
-    candidate.*field->member = field->toSi(metres);
+    field->setUserValue(candidate, value);
+    const std::vector<Issue> issues = wheel::validate(candidate);
+    return issues.empty() ? std::string() : formatIssues(issues);
+}
+
+bool ProjectDocument::setWheelValue(const std::string& key, double value) {
+    const std::span<const wheel::WheelField> fields = wheel::wheelFields();
+    const wheel::WheelField* field = wheel::findWheelField(key);
+    if (!field || !field->range.contains(value) || !wheelValueProblem(key, value).empty())
+        return false;
+    wheel::WheelParameters candidate = project_.wheel;
+    field->setUserValue(candidate, value);
     if (candidate.*field->member == project_.wheel.*field->member) return true;
     if (!project_.wheel_preset.empty()) {
         const std::string suffix = " (edited)";
         const std::string& name = candidate.name.empty() ? project_.wheel_preset : candidate.name;
         candidate.name = name.ends_with(suffix) ? name : name + suffix;
     }
-    return pushWheel(QString("Set wheel %1 = %2 %3")
-                         .arg(QString::fromUtf8(field->symbol))
-                         .arg(metres)
-                         .arg(QString::fromUtf8(field->unit)),
-                     radius ? kWheelRadiusId : kWheelWidthId, std::move(candidate), "");
+    const int merge_id = kWheelFieldIdBase + static_cast<int>(field - fields.data());
+    return pushWheel(
+        QString("Set wheel %1 = %2%3")
+            .arg(QString::fromUtf8(field->symbol))
+            .arg(value)
+            .arg(field->displayUnit().empty() ? QString()
+                                              : " " + QString::fromStdString(field->displayUnit())),
+        merge_id, std::move(candidate), "");
 }
 
 bool ProjectDocument::setLoad(double load_n) {

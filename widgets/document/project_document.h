@@ -40,8 +40,14 @@ public:
     bool setSoilName(const std::string& name);
     /// The name an edit gives the project's soil: "<name> (edited)" while it is a preset.
     static std::string editedSoilName(const Project& project);
-    /// "r_m" or "b_m" in metres, same rules; editing a preset wheel names it "<name> (edited)".
-    bool setWheelValue(const std::string& key, double metres);
+    /// A wheel field ("r_m", "b_m", "grouser_height_m", "grouser_count", "grouser_thickness_m",
+    /// "lug_effect_coefficient") in the field's unit, same rules, and the whole wheel must stay
+    /// valid (grousers below the radius, a whole count); editing a preset wheel names it
+    /// "<name> (edited)".
+    bool setWheelValue(const std::string& key, double value);
+    /// Why setWheelValue(key, value) is refused ("grouser_height_m: 0.2 m is not below the
+    /// radius r_m = 0.15 m"), or "" when it is not.
+    std::string wheelValueProblem(const std::string& key, double value) const;
     /// W [N], same rules.
     bool setLoad(double load_n);
     bool setSlipAngles(const std::vector<double>& slip_angles_deg);

@@ -232,19 +232,40 @@ void SoilEditor::refresh() {
     }
 }
 
+namespace {
+
+/// Decimals and step of a wheel field's box: r and b to 0.1 mm, the grousers to 0.1 mm, the count
+/// whole, λ_s to 0.01.
+std::pair<int, double> wheelBoxResolution(const wheel::WheelField& field) {
+    const std::string key = field.key;
+    if (key == "grouser_count") return {0, 1.0};
+    if (key == "lug_effect_coefficient") return {2, 0.05};
+    if (key == "grouser_height_m" || key == "grouser_thickness_m") return {4, 0.001};
+    return {4, 0.005};
+}
+
+/// What the lug model does with this wheel, in one line (docs/model.md, "Lugs").
+QString lugSummaryText(const wheel::WheelParameters& w) {
+    if (!w.lugged()) return "Smooth wheel: the thesis model.";
+    if (w.lug_effect_coefficient <= 0.0)
+        return QString("%1 grousers of %2 mm; lug model off (λ_s = 0): sheared as a smooth wheel.")
+            .arg(w.grouser_count)
+            .arg(w.grouser_height_m * 1e3, 0, 'g', 4);
+    return QString("Lug model on: the soil shears at r_s = r + λ_s h_g = %1 mm (r = %2 mm).")
+        .arg((w.radius_m + w.lugShearOffset()) * 1e3, 0, 'f', 1)
+        .arg(w.radius_m * 1e3, 0, 'f', 1);
+}
+
+}  // namespace
+
 WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& locations,
                          QWidget* parent)
     : QWidget(parent), document_(document), locations_(locations) {
     preset_ = presetBox(locations_, "wheels", this);
-    const wheel::WheelField& r = wheel::radiusField();
-    const wheel::WheelField& b = wheel::widthField();
-    radius_ = new ValidatedSpinBox(r, 4, this);
-    radius_->setObjectName(QString("wheel.") + r.key);
-    radius_->setSingleStep(0.005);
-    width_ = new ValidatedSpinBox(b, 4, this);
-    width_->setObjectName(QString("wheel.") + b.key);
-    width_->setSingleStep(0.005);
     message_ = messageLabel(this);
+    lug_summary_ = new QLabel(this);
+    lug_summary_->setObjectName("wheel.lug_summary");
+    lug_summary_->setWordWrap(true);
     auto* form = new QFormLayout(this);
     form->addRow("<b>Wheel preset</b>", preset_);
     auto label = [](const FieldInfo& f) {
@@ -252,35 +273,52 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
         return text.left(1).toUpper() + text.mid(1) + " " +
                QString::fromStdString(f.symbolWithUnit());
     };
-    form->addRow(label(r), radius_);
-    form->addRow(label(b), width_);
-    form->addRow(message_);
-    for (ValidatedSpinBox* box : {radius_, width_}) {
+    for (const wheel::WheelField& field : wheel::wheelFields()) {
+        if (std::string(field.key) == "grouser_height_m")
+            form->addRow("<b>Grousers (lugs)</b>", new QWidget(this));
+        const auto [decimals, step] = wheelBoxResolution(field);
+        auto* box = new ValidatedSpinBox(field, decimals, this);
+        box->setObjectName(QString("wheel.") + field.key);
+        box->setSingleStep(step);
+        form->addRow(label(field), box);
+        const std::string key = field.key;
+        fields_[key] = box;
         connect(box, &ValidatedSpinBox::editingStarted, document_, &ProjectDocument::endMerge);
         connect(box, &QDoubleSpinBox::editingFinished, document_, &ProjectDocument::endMerge);
         connect(box, &ValidatedSpinBox::messageChanged, message_, &QLabel::setText);
+        connect(box, &QDoubleSpinBox::valueChanged, this, [this, key](double v) {
+            if (document_->setWheelValue(key, v)) return;
+            // Refused: in range on its own but not with the other fields (grousers as high as
+            // the radius). Say why, then show the model's value again.
+            const std::string problem = document_->wheelValueProblem(key, v);
+            refresh();
+            message_->setText(QString::fromStdString(problem));
+        });
     }
+    form->addRow(lug_summary_);
+    form->addRow(message_);
     connect(preset_, &QComboBox::currentIndexChanged, this, [this] {
         const std::string name = preset_->currentData().toString().toStdString();
         if (name.empty()) return;
         if (auto wheel = io::resolveWheel(locations_, name)) document_->setWheel(*wheel, name);
     });
-    connect(radius_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
-        if (!document_->setWheelValue(wheel::radiusField().key, v)) refresh();
-    });
-    connect(width_, &QDoubleSpinBox::valueChanged, this, [this](double v) {
-        if (!document_->setWheelValue(wheel::widthField().key, v)) refresh();
-    });
     connect(document_, &ProjectDocument::wheelChanged, this, &WheelEditor::refresh);
     refresh();
+}
+
+ValidatedSpinBox* WheelEditor::spinBox(const std::string& key) const {
+    const auto it = fields_.find(key);
+    return it == fields_.end() ? nullptr : it->second;
 }
 
 void WheelEditor::refresh() {
     const Project& project = document_->project();
     selectPreset(preset_, project.wheel_preset,
                  project.wheel_preset.empty() ? project.wheel.name : "");
-    radius_->setCommittedValue(project.wheel.radius_m);
-    width_->setCommittedValue(project.wheel.width_m);
+    for (const wheel::WheelField& field : wheel::wheelFields())
+        fields_.at(field.key)->setCommittedValue(field.userValue(project.wheel));
+    lug_summary_->setText(lugSummaryText(project.wheel));
+    message_->clear();
 }
 
 ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)

@@ -1,9 +1,10 @@
 #pragma once
 /// @file property_editors.h
 /// The property editors of the studio's right-hand side: soil (preset + every field of the core's
-/// field table with unit, range-validated spin box and slider), wheel (preset, r, b) and operating
-/// conditions. They write only through the document's setters (one undo command each) and follow
-/// its signals back, with signal blockers against feedback loops.
+/// field table with unit, range-validated spin box and slider), wheel (preset and every field of
+/// the wheel's table: r, b, the grousers and the lug-effect coefficient) and operating conditions.
+/// They write only through the document's setters (one undo command each) and follow its signals
+/// back, with signal blockers against feedback loops.
 
 #include <QWidget>
 #include <map>
@@ -67,14 +68,18 @@ class WheelEditor : public QWidget {
 public:
     WheelEditor(ProjectDocument* document, const io::PresetLocations& locations,
                 QWidget* parent = nullptr);
+    /// The spin box of a wheel field key ("r_m", "grouser_count", …), for tests.
+    ValidatedSpinBox* spinBox(const std::string& key) const;
+    /// The line that says whether the lug model acts on this wheel, and how.
+    QLabel* lugSummary() const { return lug_summary_; }
 
 private:
     void refresh();
     ProjectDocument* document_;
     io::PresetLocations locations_;
     QComboBox* preset_;
-    ValidatedSpinBox* radius_;
-    ValidatedSpinBox* width_;
+    std::map<std::string, ValidatedSpinBox*> fields_;
+    QLabel* lug_summary_;
     QLabel* message_;
 };
 
