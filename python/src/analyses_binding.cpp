@@ -46,9 +46,7 @@ identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_r
     std::vector<std::vector<double>> values;
     for (auto [key, value] : columns) {
         names.push_back(key.cast<std::string>());
-        values.push_back(
-            py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value)
-                .cast<std::vector<double>>());
+        values.push_back(alignedArray<double>(value).cast<std::vector<double>>());
         if (values.back().size() != values.front().size()) {
             throw std::invalid_argument(
                 "data: column " + names.back() + " has " + std::to_string(values.back().size()) +

@@ -7,6 +7,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,6 +33,23 @@ py::object fromJson(const nlohmann::json& json);
 
 /// Raises ValueError with every issue, one line each (the CLI's and the scripts' messages).
 [[noreturn]] void raiseIssues(const std::vector<Issue>& issues);
+
+/// `object` as a C-contiguous numpy array of T (converted when it is of another type or layout),
+/// or an empty handle when it is not numeric; copied also when its data are not aligned for T. A
+/// numpy array rebuilt from a pickle or a byte buffer (how dask returns a worker's chunk) may start
+/// at any byte, and reading a double there is undefined behaviour (UBSan: "misaligned address"),
+/// although x86 tolerates it.
+template <typename T>
+py::array_t<T, py::array::c_style | py::array::forcecast> alignedArray(py::handle object) {
+    using Array = py::array_t<T, py::array::c_style | py::array::forcecast>;
+    Array a = Array::ensure(object);
+    if (a && reinterpret_cast<std::uintptr_t>(a.data()) % alignof(T) != 0) {
+        Array copy(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
+        std::memcpy(copy.mutable_data(), a.data(), static_cast<std::size_t>(a.nbytes()));
+        a = std::move(copy);
+    }
+    return a;
+}
 
 /// A copy of the values as a new 1-D numpy array.
 py::array_t<double> toArray(const std::vector<double>& values);

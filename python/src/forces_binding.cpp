@@ -24,7 +24,7 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 // A flat input array: `count` values or one.
 std::optional<Array> inputArray(py::handle object, const char* name, std::size_t count) {
     if (object.is_none()) return std::nullopt;
-    Array a = Array::ensure(object);
+    Array a = alignedArray<double>(object);
     if (!a) throw std::invalid_argument(std::string(name) + ": expected numbers");
     if (a.ndim() != 1 || (static_cast<std::size_t>(a.size()) != count && a.size() != 1)) {
         throw std::invalid_argument(std::string(name) + ": expected a flat array of " +

@@ -36,7 +36,7 @@ struct StudyArguments {
 };
 
 std::vector<double> numbers(py::handle value, const std::string& what) {
-    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+    const auto a = alignedArray<double>(value);
     if (!a) {
         throw std::invalid_argument(what + ": expected numbers, got " +
                                     py::repr(value).cast<std::string>());
@@ -186,7 +186,7 @@ py::array_t<typename Matrix::Scalar> toNumpy(const Matrix& m) {
 template <typename Matrix>
 Matrix fromNumpy(py::handle object, Eigen::Index cols) {
     using T = typename Matrix::Scalar;
-    const auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(object);
+    const auto a = alignedArray<T>(object);
     if (!a || a.ndim() != 2 || a.shape(1) != cols) {
         throw std::invalid_argument("chunk: expected a 2-D array with " + std::to_string(cols) +
                                     " columns");
@@ -411,7 +411,7 @@ py::dict sobolIndices(const py::dict& parameters, const py::object& correlated, 
                       std::uint64_t seed, py::handle values, int resamples, double confidence,
                       int threads) {
     const gsa::SaltelliDesign design(spaceOf(parameters, correlated), samples, seed);
-    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+    auto a = alignedArray<double>(values);
     if (!a || (a.ndim() != 1 && a.ndim() != 2) ||
         static_cast<std::size_t>(a.shape(0)) != design.rows()) {
         throw std::invalid_argument(

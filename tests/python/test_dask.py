@@ -55,3 +55,52 @@ def test_chunks_cover_the_rows_in_whole_groups():
     assert all(b % 6 == 0 and e % 6 == 0 and b < e for b, e in bounds)
     assert all(bounds[i][1] == bounds[i + 1][0] for i in range(len(bounds) - 1))
     assert chunk_bounds(12, 6, 10) == [(0, 6), (6, 12)]
+
+
+def misaligned(a):
+    """A copy of `a` whose data start one byte past an 8-byte boundary, as a numpy array rebuilt
+    from a pickle or a byte buffer may (dask's transport)."""
+    a = np.ascontiguousarray(a)
+    buffer = bytearray(a.nbytes + 1)
+    out = np.frombuffer(buffer, dtype=a.dtype, count=a.size, offset=1).reshape(a.shape)
+    out[...] = a
+    assert not out.flags.aligned or a.dtype.itemsize == 1
+    return out
+
+
+class MisaligningClient:
+    """Runs the tasks here, and hands their arrays back misaligned: the bindings must copy such
+    arrays before reading them (reading a double at an odd address is undefined behaviour; UBSan
+    stopped the ASan run of this file there, docs/reliability.md)."""
+
+    def nthreads(self):
+        return {"here": 1}
+
+    def scatter(self, values, broadcast=False):
+        return values
+
+    def submit(self, function, *args, pure=True):
+        return function(*args)
+
+    def gather(self, parts):
+        return [tuple(misaligned(a) for a in part) for part in parts]
+
+
+def test_misaligned_chunks_and_inputs_give_the_same_numbers():
+    kwargs = dict(slip=[0.2, 0.5], load_N=58.86, outputs=["Fx_N"], samples=32, seed=2,
+                  resamples=50)
+    local = ts.sobol(SOIL, WHEEL, PARAMETERS, **kwargs)
+    remote = ts.sobol(SOIL, WHEEL, PARAMETERS, client=MisaligningClient(), chunks=3, **kwargs)
+    assert_same(local, remote, ("S1", "ST", "S1_conf", "ST_conf"))
+    slips = np.array([0.05, 0.2, 0.4, 0.8])
+    aligned = ts.forces(SOIL, WHEEL, slips, load_N=58.86)
+    shifted = ts.forces(SOIL, WHEEL, misaligned(slips), load_N=misaligned(np.full(4, 58.86)))
+    for key in ("Fx_N", "My_Nm", "sinkage_m"):
+        np.testing.assert_array_equal(shifted[key], aligned[key], err_msg=key)
+    # A user's own model outputs, misaligned, into the estimator.
+    parameters = {"x1": (0.0, 1.0), "x2": (0.0, 1.0)}
+    x = ts.sobol_design(parameters, 64, seed=1)
+    y = x[:, 0] + 2.0 * x[:, 1]
+    a = ts.sobol_indices(parameters, y, samples=64, seed=1, resamples=50)
+    b = ts.sobol_indices(parameters, misaligned(y), samples=64, seed=1, resamples=50)
+    np.testing.assert_array_equal(a["S1"], b["S1"])
