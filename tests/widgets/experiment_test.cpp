@@ -382,6 +382,63 @@ TEST(ForcesPanel, CalibratesOffTheGuiThreadImprovesTheMetricsAndUndoRestoresTheS
     EXPECT_DOUBLE_EQ(panel.validation()->before.metrics[io::kExpFx]->rmse, rmse_before);
 }
 
+// Fit on some slips, predict the others: the dialog shows the held-out errors with the given and
+// the calibrated soil, the numbers `validate --fit-slips` computes (the core, run here with the
+// same settings); a fit slip that is not a number, or not a slip of the test, is refused, named.
+TEST(ForcesPanel, CalibrationOnSomeSlipsShowsTheHeldOutErrors) {
+    ProjectDocument document;
+    loadWithSetup(document);
+    ForcesPanel panel(&document);
+    CalibrationDialog* dialog = panel.openCalibration();
+    ASSERT_NE(dialog, nullptr);
+    QSignalSpy done(dialog, &CalibrationDialog::calibrationFinished);
+    dialog->setOptions(1.0, 0.0, 1.0, false);
+
+    dialog->setFitSlips("0, 0.2x");
+    EXPECT_FALSE(dialog->start());
+    EXPECT_TRUE(dialog->statusText().contains("'0.2x' is not a number"))
+        << dialog->statusText().toStdString();
+    dialog->setFitSlips("0, 0.15");  // not a slip of the test
+    ASSERT_TRUE(dialog->start());
+    ASSERT_TRUE(done.wait(120000));
+    EXPECT_FALSE(dialog->result().has_value() && dialog->canApply());
+    EXPECT_TRUE(dialog->statusText().contains("0.15")) << dialog->statusText().toStdString();
+
+    dialog->setFitSlips("0, 0.2, 0.6");
+    ASSERT_TRUE(dialog->start());
+    ASSERT_TRUE(done.wait(120000));
+    ASSERT_TRUE(dialog->result().has_value());
+    const analysis::Calibration& cal = *dialog->result()->calibration;
+    ASSERT_TRUE(cal.report.usable()) << cal.report.message;
+    ASSERT_TRUE(cal.held_out.has_value());
+
+    analysis::ValidationSettings s = *dialog->settings();
+    EXPECT_EQ(s.fit_slips, (std::vector<double>{0.0, 0.2, 0.6}));
+    const analysis::ValidationResult expected =
+        analysis::computeValidation(project::inputsOf(document.project()), s);
+    const analysis::ChannelMetrics& held = *(*expected.calibration->held_out)[io::kExpFx];
+    const analysis::ChannelMetrics& held_before =
+        *(*expected.calibration->held_out_before)[io::kExpFx];
+    EXPECT_EQ(held.count, 3u);  // s = 0.1, 0.3, 0.4 held out
+    const QTableWidget& metrics = *dialog->metricsTable();
+    ASSERT_EQ(metrics.columnCount(), 5);
+    EXPECT_EQ(metrics.horizontalHeaderItem(4)->text(), "Held out\ncalibrated");
+    EXPECT_EQ(metrics.item(0, 0)->text(), "F_x RMSE");
+    EXPECT_NEAR(number(metrics, 0, 3), held_before.rmse, 5e-4 * held_before.rmse);
+    EXPECT_NEAR(number(metrics, 0, 4), held.rmse, 5e-4 * held.rmse);
+    // The held-out RMSE from the points themselves: predicted − measured at the three slips.
+    double squares = 0.0;
+    int count = 0;
+    for (const analysis::PointComparison& p : cal.after->points) {
+        if (p.in_fit || !p.point.measured[io::kExpFx]) continue;
+        const double e = p.values[io::kExpFx] - *p.point.measured[io::kExpFx];
+        squares += e * e;
+        ++count;
+    }
+    ASSERT_EQ(count, 3);
+    EXPECT_NEAR(number(metrics, 0, 4), std::sqrt(squares / 3.0), 5e-4 * held.rmse);
+}
+
 TEST(ForcesPanel, ACalibrationOfAnEarlierProjectOrCancelledIsNotApplied) {
     ProjectDocument document;
     loadWithSetup(document);

@@ -7,6 +7,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
 #include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
@@ -66,6 +67,13 @@ CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
     fit_n1_ = new QCheckBox("Fit n₁ too (slip-sinkage N = n + n₁ s)", this);
     fit_n1_->setToolTip(
         "Profiles χ² over n₁ (docs/model.md, Slip-sinkage): about forty fits instead of one");
+    fit_slips_ = new QLineEdit(this);
+    fit_slips_->setObjectName("fit_slips");
+    fit_slips_->setPlaceholderText("every point");
+    fit_slips_->setToolTip(
+        "Calibrate on the points at these slips only (comma separated, each a slip of the test); "
+        "the others are held out and predicted: their errors say how well the calibrated soil "
+        "predicts what it was not fitted to (docs/validation.md)");
     run_ = new QPushButton("Calibrate", this);
     run_->setDefault(true);
     cancel_ = new QPushButton("Cancel", this);
@@ -98,6 +106,9 @@ CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
     options->addSpacing(16);
     options->addWidget(fit_n1_);
     options->addStretch(1);
+    auto* slips = new QHBoxLayout;
+    slips->addWidget(new QLabel("Fit on slips:", this));
+    slips->addWidget(fit_slips_, 1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
     run_bar->addWidget(cancel_);
@@ -112,6 +123,7 @@ CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
     auto* layout = new QVBoxLayout(this);
     layout->addWidget(intro_);
     layout->addLayout(options);
+    layout->addLayout(slips);
     layout->addLayout(run_bar);
     layout->addWidget(status_);
     layout->addLayout(tables, 1);
@@ -133,8 +145,30 @@ CalibrationDialog::~CalibrationDialog() {
     watcher_.waitForFinished();
 }
 
-analysis::ValidationSettings CalibrationDialog::settings() const {
+QString CalibrationDialog::fitSlipsProblem() const {
+    const QString text = fit_slips_->text().trimmed();
+    if (text.isEmpty()) return {};
+    for (const QString& part : text.split(',')) {
+        bool ok = false;
+        part.trimmed().toDouble(&ok);
+        if (!ok)
+            return QString(
+                       "Fit on slips: '%1' is not a number; give slips of the test, comma "
+                       "separated, or nothing for every point")
+                .arg(part.trimmed().left(40));
+    }
+    return {};
+}
+
+void CalibrationDialog::setFitSlips(const QString& slips) { fit_slips_->setText(slips); }
+
+std::optional<analysis::ValidationSettings> CalibrationDialog::settings() const {
+    if (!fitSlipsProblem().isEmpty()) return std::nullopt;
     analysis::ValidationSettings s;
+    const QString slips = fit_slips_->text().trimmed();
+    if (!slips.isEmpty()) {
+        for (const QString& part : slips.split(',')) s.fit_slips.push_back(part.toDouble());
+    }
     if (const io::Experiment* test = document_->experiment()) {
         s.experiments = test->source;
         s.data = *test;
@@ -158,8 +192,13 @@ void CalibrationDialog::setOptions(double fx_noise_n, double my_noise_nm, double
 
 bool CalibrationDialog::start() {
     if (isRunning() || !document_->experiment()) return false;
+    const std::optional<analysis::ValidationSettings> typed = settings();
+    if (!typed) {
+        status_->setText("<b>Error:</b> " + fitSlipsProblem().toHtmlEscaped());
+        return false;
+    }
     const analysis::Inputs inputs = project::inputsOf(document_->project());
-    const analysis::ValidationSettings s = settings();
+    const analysis::ValidationSettings s = *typed;
     started_revision_ = document_->revision();
     applied_ = false;
     status_shows_result_ = false;
@@ -246,29 +285,52 @@ void CalibrationDialog::showResult() {
     status_shows_result_ = true;
 
     metrics_->setRowCount(0);
+    // Held-out points (fit slips leaving some out): two more columns, their errors with the given
+    // and the calibrated soil.
+    const bool held_out = usable && cal.held_out && cal.held_out_before;
+    QStringList headers{"Metric", "Given soil", "Calibrated"};
+    if (held_out)
+        headers << "Held out\ngiven"
+                << "Held out\ncalibrated";
+    setupTable(metrics_, headers);
+    if (held_out) {
+        metrics_->horizontalHeaderItem(3)->setToolTip(
+            "The points the calibration did not use, with the given soil");
+        metrics_->horizontalHeaderItem(4)->setToolTip(
+            "The points the calibration did not use, predicted by the calibrated soil");
+    }
+    using Metric = std::optional<analysis::ChannelMetrics>;
     for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
         const auto& before = r.before.metrics[c];
         if (!before) continue;
         const auto channel = static_cast<io::ExperimentChannel>(c);
-        const analysis::ChannelMetrics* after =
-            usable && cal.after->metrics[c] ? &*cal.after->metrics[c] : nullptr;
+        const Metric none;
+        const Metric* columns[] = {&before, usable ? &cal.after->metrics[c] : &none,
+                                   held_out ? &(*cal.held_out_before)[c] : &none,
+                                   held_out ? &(*cal.held_out)[c] : &none};
         const QString name = channelLabel(channel).section(' ', 0, 0);
-        const std::pair<QString, std::pair<QString, QString>> rows[] = {
-            {name + " RMSE",
-             {channelValue(channel, before->rmse),
-              after ? channelValue(channel, after->rmse) : QString()}},
-            {name + " MAE",
-             {channelValue(channel, before->mae),
-              after ? channelValue(channel, after->mae) : QString()}},
-            {name + " max rel. error",
-             {relativeError(before->max_rel_error),
-              after ? relativeError(after->max_rel_error) : QString()}}};
-        for (const auto& [label, values] : rows) {
+        const std::pair<QString,
+                        QString (*)(io::ExperimentChannel, const analysis::ChannelMetrics&)>
+            rows[] = {{name + " RMSE",
+                       [](io::ExperimentChannel ch, const analysis::ChannelMetrics& m) {
+                           return channelValue(ch, m.rmse);
+                       }},
+                      {name + " MAE",
+                       [](io::ExperimentChannel ch, const analysis::ChannelMetrics& m) {
+                           return channelValue(ch, m.mae);
+                       }},
+                      {name + " max rel. error",
+                       [](io::ExperimentChannel, const analysis::ChannelMetrics& m) {
+                           return relativeError(m.max_rel_error);
+                       }}};
+        for (const auto& [label, format] : rows) {
             const int row = metrics_->rowCount();
             metrics_->insertRow(row);
             metrics_->setItem(row, 0, cell(label));
-            metrics_->setItem(row, 1, cell(values.first));
-            metrics_->setItem(row, 2, cell(values.second));
+            for (int col = 0; col < (held_out ? 4 : 2); ++col) {
+                const Metric& m = *columns[col];
+                metrics_->setItem(row, col + 1, cell(m ? format(channel, *m) : QString()));
+            }
         }
     }
     parameters_->setRowCount(0);
@@ -321,6 +383,7 @@ void CalibrationDialog::updateButtons() {
     for (const auto& [box, channel] : noises)
         box->setEnabled(!running && measured && measured->measures(channel));
     fit_n1_->setEnabled(!running);
+    fit_slips_->setEnabled(!running);
     apply_->setEnabled(canApply());
     if (result_ && status_shows_result_ && !running && !applied_ &&
         result_revision_ != document_->revision()) {

@@ -4,7 +4,9 @@
 /// validation analysis's calibration (core/analysis/validation.h — the global identification from
 /// the load with the project's soil as the Gaussian prior and first start, the same as
 /// `terrastudio validate --calibrate`), on a worker thread with a progress bar and Cancel. Shows
-/// the metrics before and after and the fitted parameters with their std and prior; "Apply" puts
+/// the metrics before and after and the fitted parameters with their std and prior; with "Fit on
+/// slips" it calibrates on those slips only and shows the errors on the held-out points too (the
+/// others, predicted, as `validate --fit-slips`); "Apply" puts
 /// the calibrated soil, named "<soil> (calibrated)", into the project as one undo step. A result
 /// whose project has changed since the fit started (another soil, wheel or test) is not applied.
 
@@ -19,6 +21,7 @@
 class QCheckBox;
 class QDoubleSpinBox;
 class QLabel;
+class QLineEdit;
 class QProgressBar;
 class QPushButton;
 class QTableWidget;
@@ -34,8 +37,13 @@ public:
     ~CalibrationDialog() override;  ///< cancels a running fit and waits for its worker
 
     /// The settings the controls show: the project's test, calibrate, the noise levels
-    /// (0: estimated from the residuals) and whether n₁ is fitted too.
-    analysis::ValidationSettings settings() const;
+    /// (0: estimated from the residuals), whether n₁ is fitted too and the fit slips; nothing
+    /// (and fitSlipsProblem() says why) while the fit slips are not a list of numbers.
+    std::optional<analysis::ValidationSettings> settings() const;
+    /// The slips to calibrate on, comma separated ("" or blank: every point).
+    void setFitSlips(const QString& slips);
+    /// What is wrong with the typed fit slips, or "".
+    QString fitSlipsProblem() const;
     /// The noise std of F_x [N], M_y [N·m] and the sinkage [mm] (0: estimated), and n₁.
     void setOptions(double fx_noise_n, double my_noise_nm, double sinkage_noise_mm, bool fit_n1);
 
@@ -54,7 +62,8 @@ public:
 
     QString statusText() const;
     /// The metrics table (rows: channel × RMSE, MAE, max rel. error; columns: metric, given soil,
-    /// calibrated) and the parameter table (symbol [unit], calibrated, ± std, prior), for tests.
+    /// calibrated, and with held-out points: held out with the given soil, held out calibrated) and
+    /// the parameter table (symbol [unit], calibrated, ± std, prior), for tests.
     QTableWidget* metricsTable() const { return metrics_; }
     QTableWidget* parameterTable() const { return parameters_; }
 
@@ -78,6 +87,7 @@ private:
     QDoubleSpinBox* my_noise_;
     QDoubleSpinBox* sinkage_noise_;
     QCheckBox* fit_n1_;
+    QLineEdit* fit_slips_;
     QPushButton* run_;
     QPushButton* cancel_;
     QProgressBar* progress_;
