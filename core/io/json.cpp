@@ -166,7 +166,8 @@ private:
             if (inserted) {
                 object[key] = std::move(value);
             } else {
-                const std::string in = path_.empty() ? "at the top level" : "in " + path();
+                // The path is user text too (a fuzzed 1,300-character parent key, 2026-12-02).
+                const std::string in = path_.empty() ? "at the top level" : "in " + shorten(path());
                 issues_.push_back(
                     {where(key_at), "duplicated key \"" + shorten(key) + "\" " + in +
                                         " (first at line " + std::to_string(it->second.line) +
@@ -205,8 +206,12 @@ private:
         }
     }
 
+    // At most 80 bytes, cut at a UTF-8 character boundary (never inside a multi-byte sequence).
     static std::string shorten(const std::string& text) {
-        return text.size() <= 80 ? text : text.substr(0, 77) + "...";
+        if (text.size() <= 80) return text;
+        std::size_t cut = 77;
+        while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+        return text.substr(0, cut) + "...";
     }
 
     int hexDigit() {

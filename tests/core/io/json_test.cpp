@@ -47,6 +47,20 @@ TEST(StrictJson, DuplicatedKeysAreNamedWithBothPositions) {
     EXPECT_TRUE(contains(parsed.issues()[1].message, "\"title\" at the top level"));
 }
 
+// Fuzzing found it (script_json, 2026-12-02): a duplicated key inside an object whose own key was
+// 1,300 characters echoed that parent key whole in "in <path>". The path is cut like the key.
+TEST(StrictJson, ADuplicatedKeyUnderAHugeParentKeyIsNamedShort) {
+    const std::string parent = std::string(1300, 'p') + "é";
+    const std::string text = "{\"" + parent + "\": {\"a\": 1, \"a\": 2}}";
+    const Result<json> parsed = parseJson(text, "s.json");
+    ASSERT_FALSE(parsed.ok());
+    ASSERT_EQ(parsed.issues().size(), 1u);
+    const std::string& message = parsed.issues()[0].message;
+    EXPECT_LT(message.size(), 200u) << message.substr(0, 300);
+    EXPECT_TRUE(contains(message, "duplicated key \"a\" in " + std::string(77, 'p') + "..."))
+        << message.substr(0, 300);
+}
+
 TEST(StrictJson, NumbersBeyondADoubleNameTheirFieldAndPosition) {
     const std::string text =
         "{\"analyses\": [{}, {}, {\"slip_count\": 1e999}],\n"
