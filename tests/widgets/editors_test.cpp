@@ -304,9 +304,9 @@ TEST(WheelEditor, GrousersAreTypedUndoneAndCheckedAgainstTheRadius) {
     EXPECT_DOUBLE_EQ(document.project().wheel.grouser_height_m, 0.01);
     EXPECT_EQ(document.undoStack()->count(), 3);
     EXPECT_DOUBLE_EQ(editor.spinBox("grouser_height_m")->value(), 0.01);
-    const QString message = editor.findChild<QLabel*>("message")
-                                ? editor.findChild<QLabel*>("message")->text()
-                                : QString();
+    const auto* label = editor.findChild<QLabel*>("message");
+    ASSERT_NE(label, nullptr);
+    const QString message = label->text();
     EXPECT_TRUE(message.contains("is not below the radius")) << message.toStdString();
 
     document.undoStack()->undo();

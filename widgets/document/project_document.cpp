@@ -170,8 +170,8 @@ std::string ProjectDocument::wheelValueProblem(const std::string& key, double va
 bool ProjectDocument::setWheelValue(const std::string& key, double value) {
     const std::span<const wheel::WheelField> fields = wheel::wheelFields();
     const wheel::WheelField* field = wheel::findWheelField(key);
-    if (!field || !field->range.contains(value) || !wheelValueProblem(key, value).empty())
-        return false;
+    // wheel::validate checks the field's range and the cross-field rules (grousers below r).
+    if (!field || !wheelValueProblem(key, value).empty()) return false;
     wheel::WheelParameters candidate = project_.wheel;
     field->setUserValue(candidate, value);
     if (candidate.*field->member == project_.wheel.*field->member) return true;
