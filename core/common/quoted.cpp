@@ -10,4 +10,8 @@ std::string quoteText(std::string_view text, char mark, std::size_t max_chars) {
            std::to_string(text.size()) + " characters)";
 }
 
+std::string pathLabel(std::string_view path, std::size_t max_chars) {
+    return path.size() <= max_chars ? std::string(path) : quoteText(path, '\'', max_chars);
+}
+
 }  // namespace terra

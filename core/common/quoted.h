@@ -14,4 +14,9 @@ namespace terra {
 /// (docs/reliability.md: a bad value is quoted to ~80 characters).
 std::string quoteText(std::string_view text, char mark = '\'', std::size_t max_chars = 80);
 
+/// A file's path as the place an issue names (its `where`): the path itself when it has at most
+/// `max_chars` characters, else quoted short like quoteText, so that a huge path given for a file
+/// that does not exist is not echoed whole (fuzz finding, docs/reliability.md).
+std::string pathLabel(std::string_view path, std::size_t max_chars = 80);
+
 }  // namespace terra

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/io/atomic_file.h"
@@ -114,7 +115,7 @@ Result<DataSetRead> readDataSet(const std::filesystem::path& path, BadRows polic
                                 ColumnNeeds needs) {
     std::string text;
     if (const auto error = io::readFile(path, text))
-        return std::vector<Issue>{{path.string(), *error}};
+        return std::vector<Issue>{{pathLabel(path.string()), *error}};
     return parseDataSet(text, path.string(), policy, needs);
 }
 

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/common/quoted.h"
+
 namespace terra::io {
 namespace {
 
@@ -165,7 +167,7 @@ std::optional<std::string> writeFileAtomically(const std::filesystem::path& path
 
 std::optional<std::string> readFile(const std::filesystem::path& path, std::string& content) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) return "cannot open " + path.string();
+    if (!in) return "cannot open " + pathLabel(path.string());
     std::ostringstream buffer;
     buffer << in.rdbuf();
     content = buffer.str();

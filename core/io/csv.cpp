@@ -129,7 +129,8 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
 
 Result<CsvDocument> readCsv(const std::filesystem::path& path) {
     std::string text;
-    if (const auto error = readFile(path, text)) return std::vector<Issue>{{path.string(), *error}};
+    if (const auto error = readFile(path, text))
+        return std::vector<Issue>{{pathLabel(path.string()), *error}};
     return parseCsv(text, path.string());
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/common/quoted.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/json.h"
@@ -242,7 +243,7 @@ Result<Experiment> readExperiment(const fs::path& path) {
     std::string text;
     if (path.extension() == ".json") {
         if (const auto error = readFile(path, text))
-            return std::vector<Issue>{{path.string(), *error}};
+            return std::vector<Issue>{{pathLabel(path.string()), *error}};
         Result<ExperimentMetadata> m = parseExperimentMetadata(text, path.string());
         if (!m) return m.issues();
         if (m->data_file.empty()) {
@@ -256,13 +257,14 @@ Result<Experiment> readExperiment(const fs::path& path) {
         std::error_code ec;
         if (fs::is_regular_file(sidecar, ec)) {
             if (const auto error = readFile(sidecar, text))
-                return std::vector<Issue>{{sidecar.string(), *error}};
+                return std::vector<Issue>{{pathLabel(sidecar.string()), *error}};
             Result<ExperimentMetadata> m = parseExperimentMetadata(text, sidecar.string());
             if (!m) return m.issues();
             metadata = m.value();
         }
     }
-    if (const auto error = readFile(csv, text)) return std::vector<Issue>{{csv.string(), *error}};
+    if (const auto error = readFile(csv, text))
+        return std::vector<Issue>{{pathLabel(csv.string()), *error}};
     Result<Experiment> read = parseExperimentCsv(text, csv.string());
     if (!read) return read.issues();
     Experiment out = read.value();

@@ -8,6 +8,7 @@
 #include <map>
 #include <vector>
 
+#include "core/common/quoted.h"
 #include "core/io/atomic_file.h"
 
 namespace terra::io {
@@ -461,7 +462,8 @@ Result<json> parseJsonMarkingNumbers(std::string_view text, const std::string& s
 
 Result<json> readJsonFile(const std::filesystem::path& path) {
     std::string text;
-    if (const auto error = readFile(path, text)) return std::vector<Issue>{{path.string(), *error}};
+    if (const auto error = readFile(path, text))
+        return std::vector<Issue>{{pathLabel(path.string()), *error}};
     return parseJson(text, path.string());
 }
 

@@ -29,6 +29,7 @@
 
 #include "core/common/field.h"
 #include "core/common/issue.h"
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/io/atomic_file.h"
 #include "core/io/json.h"
@@ -164,7 +165,8 @@ template <typename T, typename Read>
 Result<T> readJsonFileWith(const std::filesystem::path& path, Read read) {
     std::string text;
     const std::string source = path.string();
-    if (const auto error = readFile(path, text)) return std::vector<Issue>{{source, *error}};
+    if (const auto error = readFile(path, text))
+        return std::vector<Issue>{{pathLabel(source), *error}};
     return readJsonTextWith<T>(text, source, read);
 }
 

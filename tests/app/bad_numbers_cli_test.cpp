@@ -282,7 +282,8 @@ std::size_t longestLine(const std::string& text) {
 // Fuzzing found it (scenario_json, 2026-12-02): a preset name of 1,500 characters was echoed whole
 // in "'…' is neither a file nor a preset". Every name, path or text a message quotes is cut to 80
 // characters with its length (a choice among names to 60): a robot, soil or wheel preset name, a
-// path, a script's table name, sensitivity parameter and analysis name.
+// path, a script's table name, sensitivity parameter and analysis name, a file that cannot be
+// opened.
 TEST_F(BadNumbers, HugeNamesAndPathsAreQuotedShort) {
     const std::string name(1500, 'x');
     const std::string cut = "'" + std::string(80, 'x') + "\u2026' (1500 characters)";
@@ -316,6 +317,17 @@ TEST_F(BadNumbers, HugeNamesAndPathsAreQuotedShort) {
                    "{\"analyses\": [{\"type\": \"forces\", \"name\": \"" + name + "\"}]}") +
              " --out " + o,
          "\"" + std::string(80, 'x') + "\u2026\" (1500 characters) cannot start a file name"},
+        // Fuzzing found it (script_json, 2026-12-02): a file that cannot be opened was named
+        // whole twice ("<path>: cannot open <path>").
+        {"run " +
+             write("experiments.json",
+                   "{\"analyses\": [{\"type\": \"validation\", \"experiments\": \"/nonexistent/" +
+                       name + ".csv\"}]}") +
+             " --out " + o,
+         "experiments: '/nonexistent/" + std::string(67, 'x') +
+             "\u2026' (1517 characters): cannot open '/nonexistent/"},
+        {"run /nonexistent/" + name + ".json --out " + o,
+         "'/nonexistent/" + std::string(67, 'x') + "\u2026' (1518 characters)"},
     };
     for (const Case& c : cases) {
         const CliRun r = run(c.command);
