@@ -30,6 +30,7 @@
 #include "widgets/document/project_document.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
+#include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
@@ -75,11 +76,12 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     forces->setPresetLocations(locations_);  // "Compare with…" lists the soil presets
     panels_ = {forces,
                new ui::StressPanel(document_, tabs_),
+               new ui::CompactionPanel(document_, locations_, tabs_),
                new ui::SensitivityPanel(document_, tabs_),
                identification,
                new ui::RoverPanel(document_, locations_, tabs_),
                global};
-    const QStringList titles{"Forces vs slip", "Stresses",       "Sensitivity",
+    const QStringList titles{"Forces vs slip", "Stresses",       "Compaction",        "Sensitivity",
                              "Identification", "Rover scenario", "Global sensitivity"};
     // The identified soil's covariance feeds the global study's "identified soil" source.
     connect(identification, &ui::AnalysisPanel::resultShown, global, [identification, global] {

@@ -30,8 +30,8 @@ public:
     ui::ProjectDocument* document() const { return document_; }
     /// Opens a project file; false (and a message box unless `quiet`) when it cannot be read.
     bool openProject(const QString& path, bool quiet = false);
-    /// Shows the panel with this name ("forces", "stresses", "sensitivity", "identification",
-    /// "rover").
+    /// Shows the panel with this name ("forces", "stresses", "compaction", "sensitivity",
+    /// "identification", "global-sensitivity", "rover").
     void showPanel(const QString& name);
     /// Where the crash-recovery copy of the open project is kept.
     static QString autosavePath();

@@ -16,7 +16,7 @@ endfunction()
 check_dir(core "#include *[<\"](Q[A-Za-z]|qcustomplot)" "core must stay Qt-free")
 check_dir(core "#include *\"(widgets|app)/" "core must not include widgets/ or app/")
 check_dir(widgets "#include *\"app/" "widgets must not include app/")
-check_dir(core/common "#include *\"core/(soil|wheel|contact|analysis|identification|dynamics|scenario|io|project)/"
+check_dir(core/common "#include *\"core/(soil|wheel|contact|compaction|analysis|identification|dynamics|scenario|io|project)/"
           "core/common is the bottom layer")
 check_dir(core/soil "#include *\"core/(wheel|contact|analysis|identification|dynamics|scenario|io|project)/"
           "core/soil depends only on common")
@@ -24,8 +24,10 @@ check_dir(core/wheel "#include *\"core/(soil|contact|analysis|identification|dyn
           "core/wheel depends only on common")
 check_dir(core/contact "#include *\"core/(analysis|identification|dynamics|scenario|io|project)/"
           "core/contact must not include higher modules")
+check_dir(core/compaction "#include *\"core/(analysis|identification|dynamics|scenario|io|project|gsa)/"
+          "core/compaction depends on contact, soil, wheel and common only")
 check_dir(core/gsa "#include *\"core/(analysis|identification|dynamics|scenario|io|project)/"
-          "core/gsa depends on contact, soil, wheel and common only")
+          "core/gsa depends on compaction, contact, soil, wheel and common only")
 check_dir(core/identification "#include *\"core/(analysis|dynamics|scenario|project)/"
           "core/identification depends on contact, io and common only")
 check_dir(core/io "#include *\"core/(contact|analysis|identification|dynamics|scenario|project)/"

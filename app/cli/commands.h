@@ -22,5 +22,7 @@ void addRunCommand(CLI::App& app, const io::PresetLocations& locations);
 void addGsaCommands(CLI::App& app, const io::PresetLocations& locations);
 void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations);
 void addValidateCommand(CLI::App& app, const io::PresetLocations& locations);
+/// `compaction`: stress at depth, compaction risk and repeated passes (core/analysis/compaction.h).
+void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

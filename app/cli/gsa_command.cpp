@@ -42,6 +42,10 @@ struct StudyOptions {
     bool progress = false;
     std::string csv, out;
     CLI::App* command = nullptr;
+    // compaction outputs (docs/compaction.md)
+    std::optional<double> depth_m, concentration;
+    std::optional<int> passes;
+    std::optional<std::string> profile;
     // gsa only
     std::string method = "sobol";
     int levels = 4;
@@ -156,7 +160,8 @@ void checkValues(const std::string& flag, const std::string& text,
 }
 
 // The study of the flags, every flag checked (exit 2 naming it, its value and the range).
-analysis::StudyDefinition definitionOf(const StudyOptions& o) {
+analysis::StudyDefinition definitionOf(const StudyOptions& o,
+                                       const io::PresetLocations& locations) {
     analysis::StudyDefinition d;
     // The parameters in the order they were given, --param and --normal interleaved.
     std::size_t u = 0, n = 0;
@@ -214,6 +219,26 @@ analysis::StudyDefinition definitionOf(const StudyOptions& o) {
     checkCount("--threads", o.threads, 0, 1024);
     d.threads = o.threads;
     d.model = o.model.choices();
+    if (o.depth_m) {
+        if (!(*o.depth_m > 0.0 && *o.depth_m <= 10.0))
+            bad("--depth", formatNumber(*o.depth_m), "outside the allowed range (0, 10] m");
+        d.compaction.depth_m = *o.depth_m;
+    }
+    if (o.passes) {
+        checkCount("--passes", *o.passes, 1, 100);
+        d.compaction.passes = *o.passes;
+    }
+    if (o.concentration) {
+        if (!(*o.concentration >= 2.5 && *o.concentration <= 12.0))
+            bad("--concentration", formatNumber(*o.concentration),
+                "outside the allowed range [2.5, 12]");
+        d.compaction.concentration = o.concentration;
+    }
+    if (o.profile) {
+        Result<soil::SoilProfile> profile = io::resolveProfile(locations, *o.profile);
+        if (!profile) throw InputError("--profile: " + profile.message());
+        d.compaction.profile = profile.value();
+    }
     return d;
 }
 
@@ -251,6 +276,15 @@ void addStudyOptions(CLI::App& cmd, StudyOptions& o, const std::string& slips_de
     auto* csv = cmd.add_option("--csv", o.csv, "Write the CSV table to this file");
     cmd.add_option("--out", o.out, "Output file (default: stdout)")->excludes(csv);
     cmd.add_flag("--progress", o.progress, "Report progress on stderr");
+    cmd.add_option("--depth", o.depth_m,
+                   "Depth [m] of the output max_sigma_z_kPa (default 0.3; docs/compaction.md)");
+    cmd.add_option("--passes", o.passes,
+                   "Wheels on one track for the compaction outputs (default 1)");
+    cmd.add_option("--profile", o.profile,
+                   "Soil profile of red_to_depth_m: preset or file (default: the soil's own)");
+    cmd.add_option(
+        "--concentration", o.concentration,
+        "Concentration factor nu of the compaction outputs (default: per layer, else 5)");
 }
 
 // --progress: lines every 10 % wherever stderr goes; otherwise the bar on a terminal.
@@ -307,7 +341,7 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         const StudyOptions& o = *study;
         const analysis::Inputs inputs = o.model.inputs(locations);
         analysis::GlobalSensitivitySettings s;
-        s.study = definitionOf(o);
+        s.study = definitionOf(o, locations);
         s.method =
             o.method == "morris" ? analysis::GsaMethod::kMorris : analysis::GsaMethod::kSobol;
         if (o.samples != 0) {
@@ -356,7 +390,7 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         const analysis::Inputs inputs = o.model.inputs(locations);
         analysis::UncertaintyBandSettings s;
         const std::vector<std::string> outputs = s.study.outputs;
-        s.study = definitionOf(o);
+        s.study = definitionOf(o, locations);
         if (o.outputs.empty()) s.study.outputs = outputs;
         if (o.slips.empty()) s.study.slips.clear();  // 0 … slip_max in slip_count points
         if (o.samples != 0) {

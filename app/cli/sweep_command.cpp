@@ -151,7 +151,7 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
 
 void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
     auto json = std::make_shared<bool>(false);
-    CLI::App* cmd = app.add_subcommand("presets", "List the soil and wheel presets");
+    CLI::App* cmd = app.add_subcommand("presets", "List the soil, wheel and soil-profile presets");
     cmd->add_flag("--json", *json, "JSON output");
     cmd->callback([json, &locations] {
         nlohmann::json all{{"soils", nlohmann::json::array()}, {"wheels", nlohmann::json::array()}};
@@ -199,6 +199,21 @@ void addPresetsCommand(CLI::App& app, const io::PresetLocations& locations) {
             all["wheels"].push_back(j);
             text << "  " << name << "  " << wheel->name << ": r = " << wheel->radius_m
                  << " m, b = " << wheel->width_m << " m\n";
+        }
+        text << "Soil profiles (layers; docs/compaction.md):\n";
+        all["profiles"] = nlohmann::json::array();
+        for (const std::string& name : io::presetNames(locations, "profiles")) {
+            const auto profile = io::resolveProfile(locations, name);
+            if (!profile) {
+                text << "  " << name << ": INVALID: " << profile.message() << '\n';
+                all["profiles"].push_back({{"preset", name}, {"error", profile.message()}});
+                continue;
+            }
+            nlohmann::json j = io::toJson(profile.value());
+            j["preset"] = name;
+            all["profiles"].push_back(j);
+            text << "  " << name << "  " << profile->name << ": " << profile->layers.size()
+                 << " layers to " << profile->layers.back().bottom_m << " m\n";
         }
         std::cout << (*json ? all.dump(2) + "\n" : text.str());
     });

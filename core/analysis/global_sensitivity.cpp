@@ -10,6 +10,7 @@
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/parameters_json.h"
 #include "core/soil/soil_parameters.h"
 
 namespace terra::analysis {
@@ -245,6 +246,11 @@ void readDefinitionKeys(io::ObjectReader& r, StudyDefinition& out, bool slips_re
     r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
     r.number("max_failed_fraction", out.max_failed_fraction, {0.0, 1.0});
     readModelChoices(r, out.model);
+    if (r.has("compaction")) {
+        io::ObjectReader c = r.object("compaction");
+        readCompactionStudy(c, out.compaction);
+        c.finish();
+    }
 }
 
 void reportIssues(io::ObjectReader& r, const StudyDefinition& d, bool slips_needed) {
@@ -294,6 +300,21 @@ Eigen::MatrixXd outputBlock(const Eigen::MatrixXd& m, std::size_t output, std::s
 
 }  // namespace
 
+void readCompactionStudy(io::ObjectReader& c, gsa::CompactionStudy& study) {
+    c.number("depth_m", study.depth_m, Range{0.0, 10.0, true}, "m");
+    c.integer("passes", study.passes, 1, 100);
+    double nu = 0.0;
+    if (c.number("concentration", nu, Range{2.5, 12.0})) study.concentration = nu;
+    c.choice("risk_stress", study.measure,
+             {{"sigma_z", compaction::RiskMeasure::kVertical},
+              {"sigma_1", compaction::RiskMeasure::kMajor}});
+    if (c.has("profile")) {
+        io::ObjectReader p = c.object("profile");
+        study.profile = io::readProfile(p);
+        p.finish();
+    }
+}
+
 gsa::WheelStudy wheelStudyOf(const Inputs& in, const StudyDefinition& d) {
     std::vector<Issue> issues = definitionIssues(d);
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
@@ -317,6 +338,7 @@ gsa::WheelStudy wheelStudyOf(const Inputs& in, const StudyDefinition& d) {
     study.outputs.clear();
     for (const std::string& name : d.outputs) study.outputs.push_back(*gsa::findOutput(name));
     study.parameters = spaceOf(d);
+    study.compaction = d.compaction;
     gsa::requireValid(study);
     return study;
 }

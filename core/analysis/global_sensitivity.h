@@ -57,6 +57,9 @@ struct StudyDefinition {
     double max_failed_fraction = 0.05;      ///< in [0, 1] (gsa::SobolOptions)
     ModelChoices model;
     int threads = 0;  ///< 0: one per hardware thread (the numbers do not depend on it)
+    /// Where the compaction outputs (max_sigma_z_kPa, red_to_depth_m, rut_depth_m) are
+    /// evaluated: "compaction": {"depth_m", "passes", "concentration", "profile" (an object)}.
+    gsa::CompactionStudy compaction;
 };
 
 /// The gsa study these settings make of the inputs: the inputs' soil as the base soil (fields
@@ -75,6 +78,10 @@ struct GlobalSensitivitySettings {
     int resamples = 1000;        ///< bootstrap resamples of the confidence intervals
     double confidence_level = 0.95;
 };
+
+/// The keys of a study's "compaction" object: "depth_m", "passes", "concentration",
+/// "risk_stress" and "profile" (an object; readProfile).
+void readCompactionStudy(io::ObjectReader& r, gsa::CompactionStudy& out);
 
 /// The keys of a study definition (shared with the bands): "parameters" (an array of {"key",
 /// and "range": [low, high] or "normal": [mean, sd] with an optional "bounds": [low, high]}),

@@ -1,5 +1,6 @@
 #include "core/analysis/registry.h"
 
+#include "core/analysis/compaction.h"
 #include "core/analysis/forces.h"
 #include "core/analysis/global_sensitivity.h"
 #include "core/analysis/identification.h"
@@ -19,7 +20,7 @@ const std::vector<AnalysisType>& analysisTypes() {
         forcesType(),          soilCurvesType(),  stressesType(),
         sinkageType(),         sensitivityType(), identificationType(),
         streamingType(),       roverType(),       globalSensitivityType(),
-        uncertaintyBandType(), validationType(),
+        uncertaintyBandType(), validationType(),  compactionType(),
     };
     return types;
 }

@@ -35,6 +35,23 @@ struct ContactParameters {
     /// al.'s lug effect; docs/model.md, "Lugs"). 0: the thesis model, exactly. A plain double: it
     /// is a property of the wheel, never identified.
     double lug_shear_offset_m = 0.0;
+    /// The soil's memory of earlier passes on this track (docs/compaction.md, "Repeated
+    /// passes"): Wong's unload–reload law. Plain doubles, never identified; all 0 (untouched soil)
+    /// is the thesis model, bit for bit.
+    /// z_p [m]: the rut left by earlier passes (plastic sinkage below the untouched surface); the
+    /// contact starts at the rut's bottom.
+    double rut_depth_m = 0.0;
+    /// δ = p_u / k_u [m]: the depth below the rut's bottom over which the soil reloads
+    /// elastically, up to the deepest earlier sinkage z_u = z_p + δ. 0: no memory.
+    double reload_depth_m = 0.0;
+    /// k_u = k₀ + A_u z_u [Pa/m]: the reload stiffness (Wong's repetitive-loading law).
+    double reload_modulus_pa_m = 0.0;
+    /// j₀ [m]: shear deformation the soil already carries from earlier passes, added to the
+    /// magnitude of Eq. 2.15 before the j_max limit (Eq. 2.16). 0: untouched soil.
+    double shear_offset_m = 0.0;
+
+    /// Whether earlier passes are remembered (a reload branch or a rut).
+    bool remembers() const { return reload_depth_m > 0.0 || rut_depth_m > 0.0; }
 
     /// Whether the lug model is on (λ_s h_g > 0).
     bool lugged() const { return lug_shear_offset_m != 0.0; }
@@ -56,7 +73,11 @@ struct ContactParameters {
                 .max_stress_a0 = scalarCast<U>(max_stress_a0),
                 .max_stress_a1 = scalarCast<U>(max_stress_a1),
                 .max_shear_deformation_m = max_shear_deformation_m,
-                .lug_shear_offset_m = lug_shear_offset_m};
+                .lug_shear_offset_m = lug_shear_offset_m,
+                .rut_depth_m = rut_depth_m,
+                .reload_depth_m = reload_depth_m,
+                .reload_modulus_pa_m = reload_modulus_pa_m,
+                .shear_offset_m = shear_offset_m};
     }
 };
 

@@ -55,7 +55,12 @@ public:
           max_shear_(p.max_shear_deformation_m),
           driving_(op.slip >= 0.0),
           // s = −1 (requireValid keeps s ≥ −1): κ is infinite, at() takes the limit.
-          locked_(!(op.slip > -1.0)) {
+          locked_(!(op.slip > -1.0)),
+          remembers_(p.remembers()),
+          rut_depth_(p.rut_depth_m),
+          reload_depth_(p.reload_depth_m),
+          reload_modulus_(p.reload_modulus_pa_m),
+          shear_offset_(p.shear_offset_m) {
         using std::cos;
         using std::sin;
         using std::tan;
@@ -84,6 +89,7 @@ public:
         shear_ratio_ = lugged_ ? T(shear_radius_ / radius_) : T(1.0);
     }
 
+    const T& radiusValue() const { return radius_; }         ///< r [m]
     const T& entryAngle() const { return entry_; }           ///< θ_f [rad]
     const T& exitAngle() const { return exit_; }             ///< θ_r [rad]
     const T& maxStressAngle() const { return max_stress_; }  ///< θ_m [rad]
@@ -135,6 +141,14 @@ public:
                                             : cosineGap(T(0.5 * ((theta - exit_) * rear_slope_)));
         // Guard the ends: pow(0, N) has an infinite derivative, and the value is 0 there anyway.
         if (!(base > 0.0)) return T(0.0);
+        if (remembers_) {
+            // A loaded track (docs/compaction.md, R1): d below the rut's bottom reloads
+            // elastically, k_u d, up to the deepest earlier sinkage (d = δ), then follows the
+            // virgin curve K_s z^N at the depth z = z_p + d below the untouched surface.
+            const T depth = radius_ * base;
+            if (depth < reload_depth_) return reload_modulus_ * depth;
+            return modulus_ * pow(rut_depth_ + depth, exponent_);
+        }
         return modulus_ * pow(radius_ * base, exponent_);
     }
 
@@ -162,7 +176,8 @@ public:
         const T squared = out.shear_t * out.shear_t + out.shear_l * out.shear_l;
         // sqrt(0) has an infinite derivative; j is identically 0 at θ_f whatever the parameters.
         T shear = squared > 0.0 ? T(sqrt(squared)) : T(0.0);
-        if (shear > max_shear_) shear = T(max_shear_);  // Eq. 2.16
+        if (shear_offset_ > 0.0) shear += shear_offset_;  // earlier passes (compaction.md, R3)
+        if (shear > max_shear_) shear = T(max_shear_);    // Eq. 2.16
         out.shear = shear;
 
         // Eqs. 2.20, 2.21; −expm1(−j/K) = 1 − exp(−j/K) without cancellation for small j.
@@ -184,6 +199,13 @@ public:
         }
         return out;
     }
+
+    /// Whether the soil remembers earlier passes (ContactParameters::remembers()).
+    bool remembers() const { return remembers_; }
+    /// δ [m]: the elastic reload depth below the rut's bottom (0 without memory).
+    double reloadDepth() const { return reload_depth_; }
+    /// j₀ [m]: shear deformation carried from earlier passes.
+    double shearOffset() const { return shear_offset_; }
 
     /// Lateral shear velocity κ tan β [-] (per unit rω); ±inf for the locked wheel with β ≠ 0.
     const T& lateralVelocity() const { return lateral_velocity_; }
@@ -249,6 +271,11 @@ private:
     T slip_angle_tan_;
     T rear_slope_;   // (θ_f − θ_m)/(θ_m − θ_r) of Eq. 2.19
     T shear_ratio_;  // r_s / r
+    bool remembers_;
+    double rut_depth_;       // z_p [m]
+    double reload_depth_;    // δ [m]
+    double reload_modulus_;  // k_u [Pa/m]
+    double shear_offset_;    // j₀ [m]
 };
 
 }  // namespace terra::contact

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <new>
 
@@ -165,10 +166,32 @@ void evaluatePiece(const StressField<T>& field, const Region<T>& region, const K
 template <typename T>
 ShearGeometry shearGeometry(const ContactParameters<T>& p, const StressField<T>& field) {
     // j (and so its kinks) is computed on the shearing radius r_s (r for a smooth wheel).
+    // With a shear offset j₀ from earlier passes, j_max is reached where the local j = j_max − j₀.
+    const double max_shear = field.shearOffset() > 0.0
+                                 ? std::max(p.max_shear_deformation_m - field.shearOffset(), 0.0)
+                                 : p.max_shear_deformation_m;
     return {scalarValue(field.shearRadius()),     scalarValue(field.entryAngle()),
             scalarValue(field.exitAngle()),       scalarValue(field.velocityRatio()),
-            scalarValue(field.lateralVelocity()), p.max_shear_deformation_m,
+            scalarValue(field.lateralVelocity()), max_shear,
             scalarValue(p.shear_modulus_m),       scalarValue(field.slipAngleTangent())};
+}
+
+// The angles where σ has the reload law's kink (both regions), NaN where there is none.
+template <typename T>
+std::array<double, 2> reloadKinks(const StressField<T>& field) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double r = scalarValue(field.radiusValue());
+    const double entry = scalarValue(field.entryAngle());
+    const double cos_kink = std::cos(entry) + field.reloadDepth() / r;
+    if (!(field.reloadDepth() > 0.0) || !(cos_kink < 1.0)) return {nan, nan};
+    const double front = std::acos(cos_kink);
+    const double theta_m = scalarValue(field.maxStressAngle());
+    const double theta_r = scalarValue(field.exitAngle());
+    // θ_e(θ) = θ_f − (θ − θ_r)(θ_f − θ_m)/(θ_m − θ_r) = front, solved for θ behind θ_m.
+    const double rear = entry > theta_m && theta_m > theta_r
+                            ? theta_r + (entry - front) * (theta_m - theta_r) / (entry - theta_m)
+                            : nan;
+    return {front >= theta_m ? front : nan, rear};
 }
 
 // The contact integrals ∫(τ_t cos θ − σ sin θ), ∫(σ cos θ + τ_t sin θ), ∫τ_l, ∫τ_l cos θ,
@@ -216,6 +239,15 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
             for (int k = 0; k < set->count; ++k) {
                 const double theta = set->angles[k];
                 if (theta <= lo || theta >= hi) continue;
+                const double distance = region.singular_at_hi ? hi - theta : theta - lo;
+                breaks[n++] = std::pow(distance / (hi - lo), 1.0 / q);
+            }
+        }
+        if (field.remembers()) {
+            // The reload law's kink (elastic k_u d meets the virgin curve at d = δ): on the front
+            // where r (cos θ − cos θ_f) = δ, and behind θ_m at its equivalent angle (Eq. 2.19).
+            for (const double theta : reloadKinks(field)) {
+                if (!(theta > lo && theta < hi)) continue;  // NaN: no kink
                 const double distance = region.singular_at_hi ? hi - theta : theta - lo;
                 breaks[n++] = std::pow(distance / (hi - lo), 1.0 / q);
             }

@@ -1,8 +1,12 @@
 #include "core/gsa/wheel_target.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -11,9 +15,13 @@
 namespace terra::gsa {
 namespace {
 
-constexpr const char* kOutputNames[] = {
-    "Fx_N", "Fy_N", "Fz_N",      "Mx_Nm",           "My_Nm",         "Mz_Nm",
-    "Fb_N", "Fs_N", "sinkage_m", "entry_angle_deg", "exit_angle_deg"};
+constexpr const char* kOutputNames[] = {"Fx_N",           "Fy_N",
+                                        "Fz_N",           "Mx_Nm",
+                                        "My_Nm",          "Mz_Nm",
+                                        "Fb_N",           "Fs_N",
+                                        "sinkage_m",      "entry_angle_deg",
+                                        "exit_angle_deg", "max_sigma_z_kPa",
+                                        "red_to_depth_m", "rut_depth_m"};
 
 double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
 
@@ -34,7 +42,88 @@ void checkBound(std::vector<Issue>& issues, const std::string& name, const soil:
     }
 }
 
+// The compaction outputs of one sample (docs/compaction.md): `passes` wheels on one track; the
+// largest σ_z at the depth and the deepest red zone over the passes, the rut after them.
+struct CompactionValues {
+    bool ok = false;
+    double max_sigma_z_kpa = 0.0;
+    double red_depth_m = 0.0;
+    double rut_m = 0.0;
+};
+
+CompactionValues evaluateCompaction(const contact::ContactParameters<double>& untouched,
+                                    const compaction::PassConditions& conditions,
+                                    const CompactionStudy& study,
+                                    const std::vector<soil::SoilLayer>& initial_layers,
+                                    bool stresses, bool red) {
+    CompactionValues out;
+    std::vector<soil::SoilLayer> layers = initial_layers;
+    compaction::TrackMemory memory;
+    const compaction::FootprintOptions footprint;
+    for (int k = 1; k <= study.passes; ++k) {
+        const compaction::SolvedPass pass =
+            compaction::solvePass(untouched, memory, study.reload, conditions);
+        if (!pass.ok) return out;
+        if (stresses || red) {
+            const std::vector<compaction::PointLoad> loads =
+                compaction::wheelFootprint(pass.params, pass.op, footprint);
+            double deepest = 0.0;
+            for (const compaction::PointLoad& l : loads)
+                deepest = std::max(deepest, l.position.z());
+            std::map<double, compaction::StressPropagation> cache;
+            auto propagationAt = [&](double z) -> const compaction::StressPropagation& {
+                double nu = 5.0;
+                if (study.concentration) {
+                    nu = *study.concentration;
+                } else if (const int i = compaction::layerIndex(layers, z);
+                           i >= 0 && layers[static_cast<std::size_t>(i)].concentration) {
+                    nu = *layers[static_cast<std::size_t>(i)].concentration;
+                }
+                auto it = cache.find(nu);
+                if (it == cache.end())
+                    it = cache.emplace(nu, compaction::StressPropagation(loads, nu)).first;
+                return it->second;
+            };
+            if (stresses && study.depth_m > deepest + 1e-3) {
+                out.max_sigma_z_kpa =
+                    std::max(out.max_sigma_z_kpa,
+                             compaction::passStress(propagationAt(study.depth_m), study.depth_m,
+                                                    compaction::RiskMeasure::kVertical) /
+                                 1e3);
+            }
+            if (red) {
+                out.red_depth_m =
+                    std::max(out.red_depth_m,
+                             compaction::redZoneDepth(study.red_scan_depths, layers, propagationAt,
+                                                      study.measure, deepest));
+                // The layers compact (K1–K3) before the next pass, as the analysis does.
+                for (soil::SoilLayer& layer : layers) {
+                    const double z = std::max(0.5 * (layer.top_m + layer.bottom_m), deepest + 0.01);
+                    if (z > layer.bottom_m || k == study.passes) continue;
+                    const compaction::StressMeasures m =
+                        compaction::passMaxima(propagationAt(z), 0.0, z).maxima;
+                    const double compared =
+                        study.measure == compaction::RiskMeasure::kMajor ? m.major : m.sigma_z;
+                    const bool published = layer.compression && layer.compression->virgin_n;
+                    layer.bulk_density_kg_m3 =
+                        soil::compactedDensity(layer, published ? m.mean : compared);
+                    layer.precompression_pa = std::max(*layer.precompression_pa, compared);
+                }
+            }
+        }
+        memory = compaction::rememberPass(memory, study.reload, untouched, conditions, pass);
+    }
+    out.rut_m = memory.rut_depth_m;
+    out.ok = true;
+    return out;
+}
+
 }  // namespace
+
+bool isCompactionOutput(Output output) {
+    return output == Output::kMaxSigmaZ || output == Output::kRedDepth ||
+           output == Output::kRutDepth;
+}
 
 const char* outputName(Output output) { return kOutputNames[static_cast<int>(output)]; }
 
@@ -92,6 +181,35 @@ void requireValid(const WheelStudy& study) {
         } else {
             const Normal& n = std::get<Normal>(*marginal);
             checkBound(issues, name, *field, "the truncation", n.low, n.high);
+        }
+    }
+    const bool compaction_outputs =
+        std::any_of(study.outputs.begin(), study.outputs.end(), isCompactionOutput);
+    if (compaction_outputs) {
+        const CompactionStudy& c = study.compaction;
+        if (!grid.load_n) {
+            issues.push_back({"entry_angle_deg",
+                              "the compaction outputs need a load (the wheel "
+                              "sinks into the rut of the passes before it)"});
+        }
+        checkRange(issues, "compaction.depth_m", c.depth_m, Range{0.0, 10.0, true}, "m");
+        if (c.passes < 1 || c.passes > 100) {
+            issues.push_back(
+                {"compaction.passes", std::to_string(c.passes) + " is outside [1, 100]"});
+        }
+        if (c.concentration)
+            checkRange(issues, "compaction.concentration", *c.concentration, Range{2.5, 12.0});
+        const bool red = std::find(study.outputs.begin(), study.outputs.end(), Output::kRedDepth) !=
+                         study.outputs.end();
+        const std::optional<soil::SoilProfile>& profile =
+            c.profile ? c.profile : study.soil.profile;
+        if (red && !profile) {
+            issues.push_back({"outputs",
+                              "red_to_depth_m needs a soil profile (the soil file's "
+                              "\"profile\", or the study's)"});
+        }
+        if (profile) {
+            for (Issue& issue : soil::validate(*profile)) issues.push_back(std::move(issue));
         }
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
@@ -196,14 +314,28 @@ TargetValues WheelTarget::evaluate(const Eigen::MatrixXd& rows, const RunControl
             case Output::kExitAngle:
                 view.exit_angle_rad = b;
                 break;
+            case Output::kMaxSigmaZ:
+            case Output::kRedDepth:
+            case Output::kRutDepth:
+                break;  // per sample below
         }
     }
+    // With compaction outputs the batch (the first pass's status) is the first 10 % of the work.
+    const bool compaction_outputs =
+        std::any_of(study_.outputs.begin(), study_.outputs.end(), isCompactionOutput);
+    RunControl batch_control = control, compaction_control = control;
+    if (compaction_outputs && control.progress) {
+        batch_control.progress = [&](double f) { control.progress(0.1 * f); };
+        compaction_control.progress = [&](double f) { control.progress(0.1 + 0.9 * f); };
+    }
     const BatchSummary summary = evaluateBatch(study_.soil, study_.wheel, input, study_.model, view,
-                                               control, InvalidSoil::kFlag);
+                                               batch_control, InvalidSoil::kFlag);
+    evaluateCompactionOutputs(input, buffers, status, compaction_control);
     TargetValues out;
     out.values.resize(static_cast<Eigen::Index>(r_count), static_cast<Eigen::Index>(columns()));
     out.status.resize(static_cast<Eigen::Index>(r_count), static_cast<Eigen::Index>(points));
-    out.cancelled = summary.cancelled;
+    out.cancelled = summary.cancelled || std::find(status.begin(), status.end(),
+                                                   SampleStatus::kNotEvaluated) != status.end();
     for (std::size_t o = 0; o < study_.outputs.size(); ++o) {
         const Output output = study_.outputs[o];
         const bool angle = output == Output::kEntryAngle || output == Output::kExitAngle;
@@ -222,6 +354,86 @@ TargetValues WheelTarget::evaluate(const Eigen::MatrixXd& rows, const RunControl
         }
     }
     return out;
+}
+
+void WheelTarget::evaluateCompactionOutputs(const BatchInput& input,
+                                            std::vector<std::vector<double>>& buffers,
+                                            std::vector<SampleStatus>& status,
+                                            const RunControl& control) const {
+    std::vector<std::size_t> slots;  // (output index) of each compaction output
+    for (std::size_t o = 0; o < study_.outputs.size(); ++o)
+        if (isCompactionOutput(study_.outputs[o])) slots.push_back(o);
+    if (slots.empty()) return;
+    auto wants = [&](Output which) {
+        return std::find(study_.outputs.begin(), study_.outputs.end(), which) !=
+               study_.outputs.end();
+    };
+    const bool stresses = wants(Output::kMaxSigmaZ), red = wants(Output::kRedDepth);
+    const CompactionStudy& c = study_.compaction;
+    const std::optional<soil::SoilProfile>& profile = c.profile ? c.profile : study_.soil.profile;
+    std::vector<soil::SoilLayer> layers =
+        profile ? profile->layers : std::vector<soil::SoilLayer>{};
+    for (soil::SoilLayer& layer : layers)
+        layer.precompression_pa = soil::precompressionStress(layer);
+    std::vector<const soil::SoilField*> fields;
+    for (const SoilOverride& o : input.soil) fields.push_back(soil::findSoilField(o.key));
+    auto value = [](std::span<const double> values, std::size_t i) {
+        return values.size() == 1 ? values[0] : values[i];
+    };
+    const std::size_t n = input.count;
+    std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> done{0};
+    std::mutex progress_mutex;
+    auto work = [&] {
+        for (;;) {
+            if (control.cancel && control.cancel->load(std::memory_order_relaxed)) return;
+            const std::size_t i = next.fetch_add(1);
+            if (i >= n) return;
+            if (status[i] == SampleStatus::kOk) {
+                soil::SoilParameters soil = study_.soil;
+                for (std::size_t k = 0; k < fields.size(); ++k)
+                    soil::setUserValue(soil, *fields[k], value(input.soil[k].values, i));
+                compaction::PassConditions conditions;
+                conditions.load_n = value(input.load_n, i);
+                conditions.slip = value(input.slip, i);
+                conditions.slip_angle_rad =
+                    input.slip_angle_rad.empty() ? 0.0 : value(input.slip_angle_rad, i);
+                conditions.exit = study_.model.exit;
+                conditions.max_stress_angle_rad = study_.model.max_stress_angle_rad;
+                conditions.bulldozing = study_.model.bulldozing;
+                conditions.model = study_.model.model;
+                const CompactionValues v =
+                    evaluateCompaction(contact::makeContactParameters(soil, study_.wheel),
+                                       conditions, c, layers, stresses, red);
+                if (!v.ok) {
+                    status[i] = SampleStatus::kNoEquilibrium;
+                } else {
+                    for (std::size_t o : slots) {
+                        const Output which = study_.outputs[o];
+                        buffers[o][i] = which == Output::kMaxSigmaZ  ? v.max_sigma_z_kpa
+                                        : which == Output::kRedDepth ? v.red_depth_m
+                                                                     : v.rut_m;
+                    }
+                }
+            }
+            const std::size_t finished = done.fetch_add(1) + 1;
+            if (control.progress && finished % std::max<std::size_t>(1, n / 100) == 0) {
+                std::lock_guard lock(progress_mutex);
+                control.progress(static_cast<double>(finished) / n);
+            }
+        }
+    };
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t threads = std::max<std::size_t>(
+        1, std::min<std::size_t>(n, control.threads > 0 ? control.threads : hardware));
+    {
+        std::vector<std::jthread> pool;
+        for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+        work();
+    }
+    // Samples a cancel left unevaluated.
+    for (std::size_t i = next.load(); i < n; ++i)
+        if (status[i] == SampleStatus::kOk) status[i] = SampleStatus::kNotEvaluated;
 }
 
 TargetValues evaluateInChunks(

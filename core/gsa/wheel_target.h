@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/compaction/passes.h"
 #include "core/contact/operating_fields.h"
 #include "core/gsa/batch.h"
 #include "core/gsa/parameter_space.h"
@@ -35,6 +36,27 @@ enum class Output {
     kSinkage,     ///< "sinkage_m": h [m]
     kEntryAngle,  ///< "entry_angle_deg": θ_f [deg]
     kExitAngle,   ///< "exit_angle_deg": θ_r [deg]
+    // Compaction (docs/compaction.md; WheelStudy::compaction says where and how many passes):
+    kMaxSigmaZ,  ///< "max_sigma_z_kPa": largest σ_z at the study's depth over the passes [kPa]
+    kRedDepth,   ///< "red_to_depth_m": depth where the red zone ends (0: none) [m]; needs a profile
+    kRutDepth,   ///< "rut_depth_m": the rut after the passes [m]
+};
+
+/// Whether an output is one of the compaction outputs (evaluated per sample, not by the batch).
+bool isCompactionOutput(Output output);
+
+/// Where and how the compaction outputs are evaluated.
+struct CompactionStudy {
+    double depth_m = 0.3;  ///< depth of max_sigma_z_kPa [m] below the untouched surface
+    int passes = 1;        ///< wheels on the track (rut_depth_m after them; stresses: the largest)
+    /// Layers for red_to_depth_m; empty: the base soil's own profile.
+    std::optional<soil::SoilProfile> profile;
+    std::optional<double> concentration;  ///< ν for every depth; empty: each layer's, else 5
+    compaction::ReloadLaw reload;
+    compaction::RiskMeasure measure = compaction::RiskMeasure::kVertical;
+    /// Depths scanned for the red zone [m] (refined between them by bisection).
+    std::vector<double> red_scan_depths{0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4,
+                                        0.5, 0.6,  0.7, 0.8,  0.9, 1.0,  1.2};
 };
 
 /// The output's column name ("Fx_N"); values of study outputs are in the unit it names.
@@ -63,7 +85,8 @@ struct WheelStudy {
     ModelOptions model;
     OperatingGrid grid;
     std::vector<Output> outputs{Output::kFx};
-    ParameterSpace parameters;  ///< names: soil file keys; values in the file's units
+    ParameterSpace parameters;   ///< names: soil file keys; values in the file's units
+    CompactionStudy compaction;  ///< for the compaction outputs
 };
 
 /// Throws std::invalid_argument listing every problem, each naming the field, the value and the
@@ -124,6 +147,13 @@ public:
     std::vector<FailureCounts> failures(const TargetValues& values) const;
 
 private:
+    /// Fills the compaction outputs' buffers of the samples the batch evaluated (status kOk);
+    /// a sample whose later pass finds no equilibrium becomes kNoEquilibrium.
+    void evaluateCompactionOutputs(const BatchInput& input,
+                                   std::vector<std::vector<double>>& buffers,
+                                   std::vector<SampleStatus>& status,
+                                   const RunControl& control) const;
+
     WheelStudy study_;
 };
 

@@ -34,7 +34,7 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
         if (fs::is_regular_file(candidate, ec)) return load(candidate);
     }
     if (fs::is_regular_file(name_or_path, ec)) return load(name_or_path);
-    const std::string field = kind == "soils" ? "soil" : "wheel";
+    const std::string field = kind == "soils" ? "soil" : kind == "profiles" ? "profile" : "wheel";
     if (looks_like_path) {
         // A path is never a preset name: say what is wrong with the path.
         return std::vector<Issue>{
@@ -65,7 +65,99 @@ soil::SoilParameters readSoil(ObjectReader& r) {
     if (r.isObject() && r.issues().size() == before) {
         for (Issue& issue : soil::validate(soil)) r.report(issue.where, std::move(issue.message));
     }
+    if (r.has("profile")) {
+        ObjectReader p = r.object("profile");
+        soil.profile = readProfile(p);
+        p.finish();
+    }
     return soil;
+}
+
+soil::SoilProfile readProfile(ObjectReader& r) {
+    soil::SoilProfile profile;
+    const std::size_t before = r.issues().size();
+    r.text("name", profile.name);
+    r.text("source", profile.source);
+    const json* layers = r.array("layers", Presence::kRequired);
+    const Range depth{0.0, 10.0};
+    for (std::size_t i = 0; layers && i < layers->size(); ++i) {
+        ObjectReader l = r.element("layers", *layers, i);
+        soil::SoilLayer layer;
+        l.number("top_m", layer.top_m, depth, "m", Presence::kRequired);
+        l.number("bottom_m", layer.bottom_m, depth, "m", Presence::kRequired);
+        double value = 0.0;
+        // Clay's range is checked by soil::validate, which knows a percentage when it sees one.
+        if (l.number("clay_kg_kg", value, Range{-1e300, 1e300})) layer.clay_kg_kg = value;
+        if (l.number("bulk_density_Mg_m3", value, Range{0.5, 2.2}, "Mg/m3"))
+            layer.bulk_density_kg_m3 = value * 1e3;
+        if (l.number("particle_density_Mg_m3", value, Range{2.0, 3.0}, "Mg/m3"))
+            layer.particle_density_kg_m3 = value * 1e3;
+        if (l.number("matric_suction_hPa", value, Range{-1e300, 1e300}))
+            layer.matric_suction_pa = value * 100.0;
+        if (l.number("sigma_pc_kPa", value, Range{1.0, 5000.0}, "kPa"))
+            layer.precompression_pa = value * 1e3;
+        if (l.number("nu", value, Range{2.5, 12.0})) layer.concentration = value;
+        if (l.has("compression")) {
+            ObjectReader c = l.object("compression");
+            soil::CompressionLaw law;
+            if (c.number("N", value, Range{1.0, 5.0})) law.virgin_n = value;
+            c.number("lambda", law.lambda, Range{1e-4, 1.0}, {}, Presence::kRequired);
+            c.number("kappa", law.kappa, Range{0.0, 1.0}, {}, Presence::kRequired);
+            if (c.number("kappa2", value, Range{0.0, 1.0})) law.kappa_steep = value;
+            c.number("m", law.yield_offset, Range{0.0, 10.0});
+            c.finish();
+            layer.compression = law;
+        }
+        l.finish();
+        profile.layers.push_back(layer);
+    }
+    if (r.issues().size() == before) {
+        std::vector<Issue> rules = soil::validate(profile, "");
+        for (Issue& issue : rules) {
+            // "" prefix gives ".layers[1].x": the reader's path names the profile.
+            std::string where = issue.where;
+            if (!where.empty() && where.front() == '.') where.erase(0, 1);
+            r.report(where, std::move(issue.message));
+        }
+    }
+    return profile;
+}
+
+json toJson(const soil::SoilProfile& profile) {
+    json out{{"name", profile.name}};
+    if (!profile.source.empty()) out["source"] = profile.source;
+    json layers = json::array();
+    for (const soil::SoilLayer& l : profile.layers) {
+        json layer{{"top_m", l.top_m},
+                   {"bottom_m", l.bottom_m},
+                   {"bulk_density_Mg_m3", l.bulk_density_kg_m3 / 1e3}};
+        if (l.clay_kg_kg) layer["clay_kg_kg"] = *l.clay_kg_kg;
+        if (l.matric_suction_pa) layer["matric_suction_hPa"] = *l.matric_suction_pa / 100.0;
+        if (l.precompression_pa) layer["sigma_pc_kPa"] = *l.precompression_pa / 1e3;
+        if (l.concentration) layer["nu"] = *l.concentration;
+        if (l.particle_density_kg_m3 != soil::SoilLayer{}.particle_density_kg_m3)
+            layer["particle_density_Mg_m3"] = l.particle_density_kg_m3 / 1e3;
+        if (l.compression) {
+            const soil::CompressionLaw& c = *l.compression;
+            json law{{"lambda", c.lambda}, {"kappa", c.kappa}};
+            if (c.virgin_n) law["N"] = *c.virgin_n;
+            if (c.kappa_steep) law["kappa2"] = *c.kappa_steep;
+            if (c.yield_offset != 0.0) law["m"] = c.yield_offset;
+            layer["compression"] = law;
+        }
+        layers.push_back(layer);
+    }
+    out["layers"] = layers;
+    return out;
+}
+
+Result<soil::SoilProfile> profileFromJson(const json& object, const std::string& where) {
+    std::vector<Issue> issues;
+    ObjectReader r(object, issues, where);
+    soil::SoilProfile profile = readProfile(r);
+    r.finish();
+    if (!issues.empty()) return issues;
+    return profile;
 }
 
 wheel::WheelParameters readWheel(ObjectReader& r) {
@@ -105,6 +197,7 @@ Result<wheel::WheelParameters> wheelFromJson(const json& object, const std::stri
 json toJson(const soil::SoilParameters& soil) {
     json out{{"name", soil.name}};
     if (!soil.source.empty()) out["source"] = soil.source;
+    if (soil.profile) out["profile"] = toJson(*soil.profile);
     for (const soil::SoilField& field : soil::soilFields()) {
         const double value = soil::userValue(soil, field);
         if (!field.required) {
@@ -133,6 +226,10 @@ Result<soil::SoilParameters> loadSoil(const std::filesystem::path& path) {
 
 Result<wheel::WheelParameters> loadWheel(const std::filesystem::path& path) {
     return loadJsonFile<wheel::WheelParameters>(path, wheelFromJson);
+}
+
+Result<soil::SoilProfile> loadProfile(const std::filesystem::path& path) {
+    return loadJsonFile<soil::SoilProfile>(path, profileFromJson);
 }
 
 PresetLocations PresetLocations::standard(const std::filesystem::path& executable_dir) {
@@ -174,6 +271,13 @@ Result<wheel::WheelParameters> resolveWheel(const PresetLocations& locations,
     return resolve<wheel::WheelParameters>(
         locations, "wheels", name_or_path,
         [](const std::filesystem::path& p) { return loadWheel(p); });
+}
+
+Result<soil::SoilProfile> resolveProfile(const PresetLocations& locations,
+                                         const std::string& name_or_path) {
+    return resolve<soil::SoilProfile>(
+        locations, "profiles", name_or_path,
+        [](const std::filesystem::path& p) { return loadProfile(p); });
 }
 
 }  // namespace terra::io

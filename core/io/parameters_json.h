@@ -12,16 +12,29 @@
 #include "core/common/issue.h"
 #include "core/io/json_reader.h"
 #include "core/soil/soil_parameters.h"
+#include "core/soil/soil_profile.h"
 #include "core/wheel/wheel_parameters.h"
 
 namespace terra::io {
 
-/// The soil of the object `r` reads: every field of the table (soil_parameters.h) and the rule
-/// across them; problems go to the reader's issues. The caller calls r.finish().
+/// The soil of the object `r` reads: every field of the table (soil_parameters.h), the rule
+/// across them and an optional "profile" object (readProfile); problems go to the reader's
+/// issues. The caller calls r.finish().
 soil::SoilParameters readSoil(ObjectReader& r);
 /// The wheel of the object `r` reads ({"name", "source", "r_m", "b_m"}, optional
 /// "grouser_height_m", "grouser_count", "grouser_thickness_m") and the rules across them.
 wheel::WheelParameters readWheel(ObjectReader& r);
+
+/// A soil profile ({"name", "source", "layers": [{"top_m", "bottom_m", "clay_kg_kg",
+/// "bulk_density_Mg_m3", "matric_suction_hPa", "sigma_pc_kPa", "nu", "particle_density_Mg_m3",
+/// "compression": {"N", "lambda", "kappa", "kappa2", "m"}}, …]}; docs/compaction.md) and its
+/// rules (soil::validate); problems go to the reader's issues.
+soil::SoilProfile readProfile(ObjectReader& r);
+/// The JSON form of a profile (the keys readProfile reads; optional ones only when set).
+nlohmann::json toJson(const soil::SoilProfile& profile);
+/// Profile from a JSON object, or from a file, or a preset name ("loam-moist") or path.
+Result<soil::SoilProfile> profileFromJson(const nlohmann::json& json, const std::string& where);
+Result<soil::SoilProfile> loadProfile(const std::filesystem::path& path);
 
 /// Soil from a JSON object; `where` prefixes every issue ("soils/x.json").
 Result<soil::SoilParameters> soilFromJson(const nlohmann::json& json, const std::string& where);
@@ -52,5 +65,8 @@ Result<soil::SoilParameters> resolveSoil(const PresetLocations& locations,
                                          const std::string& name_or_path);
 Result<wheel::WheelParameters> resolveWheel(const PresetLocations& locations,
                                             const std::string& name_or_path);
+/// A profile preset (resources/profiles: "sandy-loam-moist") or a path to a JSON file.
+Result<soil::SoilProfile> resolveProfile(const PresetLocations& locations,
+                                         const std::string& name_or_path);
 
 }  // namespace terra::io

@@ -17,6 +17,11 @@ void readPanelSettings(ObjectReader& r, StressPanelSettings& out) {
     analysis::readStressSettings(r, out.analysis);
 }
 
+void readPanelSettings(ObjectReader& r, CompactionPanelSettings& out,
+                       const io::PresetLocations* locations) {
+    analysis::readCompactionSettings(r, out.analysis, locations);
+}
+
 void readPanelSettings(ObjectReader& r, SensitivityPanelSettings& out) {
     analysis::readSensitivitySettings(r, out.analysis);
     r.choiceName("plot", out.plot, {"Fx", "Fs", "tornado"});
@@ -92,6 +97,8 @@ nlohmann::json toJson(const ForcesPanelSettings& s) { return {{"plot", s.plot}};
 
 nlohmann::json toJson(const StressPanelSettings& s) { return analysis::toJson(s.analysis); }
 
+nlohmann::json toJson(const CompactionPanelSettings& s) { return analysis::toJson(s.analysis); }
+
 nlohmann::json toJson(const SensitivityPanelSettings& s) {
     nlohmann::json out = analysis::toJson(s.analysis);
     out["plot"] = s.plot;
@@ -128,7 +135,9 @@ void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
             return;
         }
         ObjectReader r = panels.object(name);
-        if constexpr (std::is_same_v<std::remove_cvref_t<decltype(settings)>, RoverPanelSettings>) {
+        using Settings = std::remove_cvref_t<decltype(settings)>;
+        if constexpr (std::is_same_v<Settings, RoverPanelSettings> ||
+                      std::is_same_v<Settings, CompactionPanelSettings>) {
             readPanelSettings(r, settings, locations);
         } else {
             readPanelSettings(r, settings);
@@ -137,12 +146,14 @@ void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
     };
     ForcesPanelSettings forces;
     StressPanelSettings stresses;
+    CompactionPanelSettings compaction;
     SensitivityPanelSettings sensitivity;
     IdentificationPanelSettings identification;
     RoverPanelSettings rover;
     GlobalSensitivityPanelSettings global_sensitivity;
     check("forces", forces);
     check("stresses", stresses);
+    check("compaction", compaction);
     check("sensitivity", sensitivity);
     check("identification", identification);
     check("rover", rover);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/compaction.h"
 #include "core/analysis/identification.h"
 #include "core/analysis/sensitivity.h"
 #include "core/analysis/streaming_identification.h"
@@ -26,6 +27,11 @@ struct ForcesPanelSettings {
 /// "stresses": the analysis's settings (slip, slip angle, the stress shown, …).
 struct StressPanelSettings {
     analysis::StressSettings analysis;
+};
+
+/// "compaction": the analysis's settings (slip, passes, profile, ν, width, map, …).
+struct CompactionPanelSettings {
+    analysis::CompactionSettings analysis;
 };
 
 /// "sensitivity": the analysis's settings and the tab shown (Fx, Fs, tornado).
@@ -74,6 +80,9 @@ struct RoverPanelSettings {
 
 void readPanelSettings(io::ObjectReader& r, ForcesPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, StressPanelSettings& out);
+/// A profile given by preset name is found in `locations` (else read as a path).
+void readPanelSettings(io::ObjectReader& r, CompactionPanelSettings& out,
+                       const io::PresetLocations* locations = nullptr);
 void readPanelSettings(io::ObjectReader& r, SensitivityPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, IdentificationPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, GlobalSensitivityPanelSettings& out);
@@ -83,14 +92,14 @@ void readPanelSettings(io::ObjectReader& r, RoverPanelSettings& out,
 
 nlohmann::json toJson(const ForcesPanelSettings& settings);
 nlohmann::json toJson(const StressPanelSettings& settings);
+nlohmann::json toJson(const CompactionPanelSettings& settings);
 nlohmann::json toJson(const SensitivityPanelSettings& settings);
 nlohmann::json toJson(const IdentificationPanelSettings& settings);
 nlohmann::json toJson(const GlobalSensitivityPanelSettings& settings);
 nlohmann::json toJson(const RoverPanelSettings& settings);
 
-/// Checks a "panels" object: forces, stresses, sensitivity, identification, rover,
-/// global-sensitivity (each
-/// optional); another panel name is an unknown key.
+/// Checks a "panels" object: forces, stresses, compaction, sensitivity, identification, rover,
+/// global-sensitivity (each optional); another panel name is an unknown key.
 void readPanels(io::ObjectReader& panels, const io::PresetLocations* locations);
 
 /// One panel's settings from JSON (what the panel stored), every problem in the result.

@@ -4,6 +4,7 @@
 /// kN/m^(n+1), kN/m^(n+2), kN/m³; the conversion happens in the field table below, at the edge).
 
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/common/range.h"
+#include "core/soil/soil_profile.h"
 
 namespace terra::soil {
 
@@ -32,6 +34,8 @@ struct SoilParameters {
     double max_stress_a1 = 0.3;           ///< a₁ [-] of Eq. 2.18
     /// j_max [m]: shear deformation limit of a smooth wheel (Eq. 2.16); +inf = no limit.
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    /// The layers below the surface, for compaction (soil_profile.h); empty: none given.
+    std::optional<SoilProfile> profile;
 
     bool hasShearLimit() const {
         return max_shear_deformation_m < std::numeric_limits<double>::infinity();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/analysis/global_sensitivity.h"
 #include "core/common/units.h"
 #include "core/gsa/wheel_studies.h"
 #include "core/io/json_reader.h"
@@ -127,6 +128,7 @@ gsa::ModelOptions modelOptions(const py::dict& options, contact::ContactModel* c
     analysis::readModelChoices(r, choices);
     bool quadratic = false;
     r.choice<bool>("model", quadratic, {{"full", false}, {"quadratic", true}});
+    r.allow("compaction");  // read by studyOf
     r.finish();
     if (!issues.empty()) raiseIssues(issues);
     gsa::ModelOptions out;
@@ -168,6 +170,15 @@ gsa::WheelStudy studyOf(const StudyArguments& a) {
         study.outputs.push_back(*output);
     }
     study.parameters = spaceOf(a.parameters, a.correlated);
+    if (a.options.contains("compaction")) {
+        // The compaction outputs' settings, as a script's study "compaction" object.
+        const nlohmann::json json = toJson(a.options["compaction"].cast<py::dict>());
+        std::vector<Issue> issues;
+        io::ObjectReader r(json, issues, {}, "compaction");
+        analysis::readCompactionStudy(r, study.compaction);
+        r.finish();
+        if (!issues.empty()) raiseIssues(issues);
+    }
     return study;
 }
 

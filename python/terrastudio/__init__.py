@@ -26,6 +26,7 @@ __all__ = [
     "Soil",
     "Wheel",
     "analyses",
+    "compaction",
     "forces",
     "identify",
     "morris",
@@ -46,7 +47,8 @@ _core._set_data_dir(os.path.normpath(os.path.join(os.path.dirname(__file__), _la
 
 # Keywords of forces(), sobol() and morris() that choose the contact model (the command line's
 # model flags); every other keyword of forces() is a soil field.
-_MODEL_OPTIONS = ("exit_angle_deg", "rut_ratio", "max_stress_angle_deg", "bulldozing", "model")
+_MODEL_OPTIONS = ("exit_angle_deg", "rut_ratio", "max_stress_angle_deg", "bulldozing", "model",
+                  "compaction")
 # The keys of the operating conditions (a run script's "conditions").
 _CONDITIONS = ("load_N", "slip_angles_deg", "slip_count", "slip_max", "model")
 _OUTPUTS = (
@@ -206,6 +208,73 @@ def stresses(soil, wheel, slip=0.3, slip_angle_deg=12.0, *, entry_angle_deg=None
     }
 
 
+def compaction(soil="sandy-loam", wheel="A", load_N=None, slip=0.1, slip_angle_deg=0.0, *,
+               profile=None, depth_m=0.3, **settings):
+    """Stress at depth, compaction risk and repeated passes (docs/compaction.md).
+
+    profile: a preset name ("loam-moist"), a path or a dict (default: the soil's own, else none);
+    other settings as a run script's "compaction" (concentration, depths_m, passes, width,
+    risk_stress, reload_k0_kPa_m, reload_Au_kPa_m2, shear_memory, model options).
+    With scalar load_N, slip, slip_angle_deg and concentration: the dict of ``terrastudio
+    compaction --json`` ("profile", "red_to_depth_m", "passes", ...). With arrays (broadcast
+    together): arrays of that shape — "sigma_z_kPa", "p_kPa" and "sigma_1_kPa" at depth_m (the
+    largest over the passes), "red_to_depth_m" (nan without a profile), "rut_depth_m" and
+    "sinkage_m" after the last pass, "Fx_N" and "My_Nm" of the first pass, "ok" — and "results",
+    the dicts themselves.
+    """
+    conditions_arrays = {"load_N": load_N, "slip": slip, "slip_angle_deg": slip_angle_deg,
+                         "concentration": settings.pop("concentration", None)}
+    given = {k: v for k, v in conditions_arrays.items() if v is not None}
+    if profile is not None:
+        settings["profile"] = profile if isinstance(profile, dict) else os.fspath(profile)
+
+    def one(values):
+        conditions = {}
+        local = dict(settings)
+        for key, value in values.items():
+            if key == "load_N":
+                conditions["load_N"] = float(value)
+            else:
+                local[key] = float(value)
+        out = run("compaction", soil, wheel, conditions=conditions, **local)
+        document = out["documents"].get("", {})
+        if out["status"] != "completed" and not document.get("passes"):
+            raise RuntimeError(out["message"])
+        return document
+
+    if all(np.ndim(v) == 0 for v in given.values()):
+        return one(given)
+    depths = settings.get("depths_m")
+    base = [round(0.1 + 0.05 * i, 12) for i in range(19)] if depths is None else list(depths)
+    settings["depths_m"] = sorted(set(base) | {float(depth_m)})
+    names = list(given)
+    arrays = np.broadcast_arrays(*[np.asarray(given[k], dtype=np.float64) for k in names])
+    shape = arrays[0].shape
+    keys = ("sigma_z_kPa", "p_kPa", "sigma_1_kPa", "red_to_depth_m", "rut_depth_m", "sinkage_m",
+            "Fx_N", "My_Nm")
+    result = {k: np.full(shape, np.nan) for k in keys}
+    result["ok"] = np.zeros(shape, dtype=bool)
+    results = np.empty(shape, dtype=object)
+    for index in np.ndindex(shape):
+        document = one({k: a[index] for k, a in zip(names, arrays)})
+        results[index] = document
+        rows = [r for r in document["profile"] if abs(r["depth_m"] - depth_m) < 1e-12]
+        if rows:
+            for k in ("sigma_z_kPa", "p_kPa", "sigma_1_kPa"):
+                result[k][index] = rows[0][k]
+        if "red_to_depth_m" in document:
+            result["red_to_depth_m"][index] = document["red_to_depth_m"]
+        passes = document["passes"]
+        if passes:
+            result["rut_depth_m"][index] = passes[-1]["rut_depth_m"]
+            result["sinkage_m"][index] = passes[-1]["sinkage_m"]
+            result["Fx_N"][index] = passes[0]["Fx_N"]
+            result["My_Nm"][index] = passes[0]["My_Nm"]
+        result["ok"][index] = document["status"] == "completed"
+    result["results"] = results
+    return result
+
+
 def identify(data, wheel, soil="sandy-loam", **settings):
     """Soil identification from wheel data (thesis chapters 4-5): the decoupled fit and its
     refinement through the full model with standard deviations.
@@ -251,6 +320,28 @@ def simulate(scenario="straight", **settings):
     return result
 
 
+def _read_profile(name):
+    """A profile preset's or file's JSON object (the study's "profile" must be an object)."""
+    import json
+
+    path = os.fspath(name)
+    if not (os.sep in path or path.endswith(".json")):
+        path = os.path.join(os.path.dirname(__file__), _layout.DATA_DIR, "profiles", path + ".json")
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def _compaction_study(settings):
+    """compaction={"depth_m", "passes", "concentration", "risk_stress", "profile"}: the settings of
+    the compaction outputs (max_sigma_z_kPa, red_to_depth_m, rut_depth_m); a profile given by
+    preset name or path is read here."""
+    settings = dict(settings)
+    profile = settings.get("profile")
+    if profile is not None and not isinstance(profile, dict):
+        settings["profile"] = _read_profile(profile)
+    return settings
+
+
 def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entry_angle_deg,
                      outputs, options):
     unknown = [k for k in options if k not in _MODEL_OPTIONS]
@@ -259,6 +350,9 @@ def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entr
                         f"{', '.join(_MODEL_OPTIONS)})")
     if isinstance(outputs, str):
         outputs = [outputs]
+    if "compaction" in options:
+        options = dict(options)
+        options["compaction"] = _compaction_study(options["compaction"])
     angle_axis = np.ndim(slip_angle_deg) > 0
     if load_N is None and entry_angle_deg is None:
         load_N = 58.86  # Table 2.6's 6 kg, the conditions' default
@@ -283,7 +377,9 @@ def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, loa
     multivariate normal group after them (an identification's posterior).
     slip, slip_angle_deg: the operating points; load_N (theta_f solved per sample; 58.86 N when
     neither is given) or entry_angle_deg. outputs: any of Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, Mz_Nm, Fb_N, Fs_N,
-    sinkage_m, entry_angle_deg, exit_angle_deg. samples: N base samples (N (d + 2) rows, each
+    sinkage_m, entry_angle_deg, exit_angle_deg, and the compaction outputs max_sigma_z_kPa,
+    red_to_depth_m, rut_depth_m with compaction={"depth_m", "passes", "concentration", "profile"}
+    (a preset name, a path or a dict; docs/compaction.md). samples: N base samples (N (d + 2) rows, each
     evaluated at every point); seed: the Sobol' sequence's shift and the bootstrap's seed.
     client: a dask.distributed.Client to evaluate the rows on its workers, in `chunks` pieces
     (default: 4 per worker thread); the result is bit for bit the local one.

@@ -91,6 +91,17 @@ def stresses(
     step_deg: float = 0.01,
     **keywords: Any,
 ) -> dict[str, Any]: ...
+def compaction(
+    soil: SoilSpec = "sandy-loam",
+    wheel: WheelSpec = "A",
+    load_N: ArrayLike | None = None,
+    slip: ArrayLike = 0.1,
+    slip_angle_deg: ArrayLike = 0.0,
+    *,
+    profile: str | os.PathLike[str] | Mapping[str, Any] | None = None,
+    depth_m: float = 0.3,
+    **settings: Any,
+) -> dict[str, Any]: ...
 def identify(
     data: str | os.PathLike[str] | Mapping[str, ArrayLike] | None,
     wheel: WheelSpec,

@@ -173,6 +173,7 @@ TEST(MainWindow, EveryShortcutOfTheUserGuideBelongsToOneAction) {
                                                          {"Ctrl+1", "action.panel1"},
                                                          {"Ctrl+5", "action.panel5"},
                                                          {"Ctrl+6", "action.panel6"},
+                                                         {"Ctrl+7", "action.panel7"},
                                                          {"F1", "action.help"},
                                                          {"Ctrl+/", "action.shortcuts"}};
     for (const auto& [key, name] : guide) {

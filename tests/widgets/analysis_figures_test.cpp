@@ -25,6 +25,7 @@ TEST(AnalysisFigures, EveryDeclaredFigureOfEveryTypeIsDrawn) {
         if (type.name == "validation")
             settings = {{"experiments", std::string(TERRA_RESOURCE_DIR) +
                                             "/experiments/ding2011-smooth-hit-lss1-80N.csv"}};
+        if (type.name == "compaction") settings["map_points"] = {20, 10};  // the map is opt-in
         if (type.name == "sensitivity" || type.name == "identification")
             settings["slip_count"] = 10;
         std::vector<Issue> issues;
@@ -41,9 +42,13 @@ TEST(AnalysisFigures, EveryDeclaredFigureOfEveryTypeIsDrawn) {
             EXPECT_NO_THROW(drawAnalysisFigure(plot, type.name, figure.key, read, outcome, title))
                 << type.name << " " << figure.key;
             int drawn = 0;
-            for (int i = 0; i < plot.plottableCount(); ++i)
+            for (int i = 0; i < plot.plottableCount(); ++i) {
                 drawn += plot.plottable(i)->interface1D() &&
                          plot.plottable(i)->interface1D()->dataCount() > 0;
+                // A heat map holds 2-D data (the compaction map).
+                if (const auto* map = qobject_cast<QCPColorMap*>(plot.plottable(i)))
+                    drawn += map->data()->keySize() > 0 && map->data()->valueSize() > 0;
+            }
             EXPECT_GT(drawn, 0) << type.name << " " << figure.key << ": nothing drawn";
         }
         QCustomPlot plot;

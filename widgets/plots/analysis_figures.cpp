@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/analysis/compaction.h"
 #include "core/analysis/forces.h"
 #include "core/analysis/global_sensitivity.h"
 #include "core/analysis/identification.h"
@@ -15,6 +16,7 @@
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
 #include "core/analysis/validation.h"
+#include "widgets/plots/compaction_figures.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/gsa_figures.h"
 #include "widgets/plots/identification_figures.h"
@@ -70,6 +72,11 @@ void drawAnalysisFigure(QCustomPlot& plot, const std::string& type, const std::s
             const auto& s = std::any_cast<const analysis::StressSettings&>(settings);
             return plotStresses(plot, resultOf<analysis::StressResult>(outcome), s.stress, title);
         }
+    } else if (type == "compaction") {
+        const auto& r = resultOf<analysis::CompactionResult>(outcome);
+        if (key == "profile") return plotCompactionProfile(plot, r, 0, title);  // the envelope
+        if (key == "passes") return plotCompactionPasses(plot, r, title);
+        if (key == "map") return plotCompactionMap(plot, r, title);
     } else if (type == "sensitivity") {
         const auto& s = std::any_cast<const analysis::SensitivitySettings&>(settings);
         const auto& r = resultOf<analysis::SensitivityResult>(outcome);
@@ -136,6 +143,13 @@ QString analysisTitle(const std::string& type, const std::optional<std::string>&
     if (type == "stresses") {
         const auto& s = std::any_cast<const analysis::StressSettings&>(settings);
         text += QString(", s = %1, β = %2°").arg(s.slip).arg(s.slip_angle_deg);
+    } else if (type == "compaction") {
+        const auto& s = std::any_cast<const analysis::CompactionSettings&>(settings);
+        text += QString(", s = %1, %2 %3")
+                    .arg(s.slip)
+                    .arg(s.passes)
+                    .arg(s.passes == 1 ? "pass" : "passes");
+        return compactionTitle(text, resultOf<analysis::CompactionResult>(outcome));
     } else if (type == "sensitivity") {
         const auto& s = std::any_cast<const analysis::SensitivitySettings&>(settings);
         text += QString(", β = %1°").arg(s.slip_angles_deg.front());

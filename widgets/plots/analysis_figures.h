@@ -2,7 +2,8 @@
 /// @file analysis_figures.h
 /// The figures of every analysis type of the registry (core/analysis/registry.h), by type and
 /// figure key, from the analysis's Outcome: the same drawings as the studio's panels (figures.h,
-/// sweep_plot.h, identification_figures.h, rover_figures.h), for `terrastudio run`.
+/// sweep_plot.h, identification_figures.h, rover_figures.h, compaction_figures.h), for
+/// `terrastudio run`.
 
 #include <QString>
 #include <any>

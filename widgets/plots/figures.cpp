@@ -77,8 +77,9 @@ void legendInside(QCustomPlot& plot) {
     plot.legend->setFillOrder(QCPLayoutGrid::foRowsFirst);
 }
 
-/// Puts the legend under the axis rect in `columns` columns: for a legend too big to sit on the
-/// curves (the eight entries of all four stresses covered σ).
+}  // namespace
+
+// For a legend too big to sit on the curves (the eight entries of all four stresses covered σ).
 void legendBelow(QCustomPlot& plot, int columns) {
     if (plot.legend->layout()) plot.legend->layout()->take(plot.legend);
     plot.plotLayout()->simplify();
@@ -89,8 +90,6 @@ void legendBelow(QCustomPlot& plot, int columns) {
     plot.legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
     plot.legend->setMargins(QMargins(6, 2, 6, 2));
 }
-
-}  // namespace
 
 void resetPlot(QCustomPlot& plot, const QString& title) {
     legendInside(plot);

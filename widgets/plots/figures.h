@@ -25,6 +25,10 @@ void setPlotTitle(QCustomPlot& plot, const QString& title);
 /// The title resetPlot() set ("" without one).
 QString plotTitle(const QCustomPlot& plot);
 
+/// Puts the legend under the axis rect (in column 0 of the plot's layout), `columns` entries a
+/// row: off the data. resetPlot() puts it back inside.
+void legendBelow(QCustomPlot& plot, int columns);
+
 /// One stress ("sigma", "tau", "tau_t", "tau_l") over θ: exact solid, quadratic dashed, with the
 /// RMSE/MAE in the legend. "all" draws the four exact and approximated pairs together.
 void plotStresses(QCustomPlot& plot, const analysis::StressResult& result,
