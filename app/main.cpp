@@ -31,6 +31,7 @@ int runHeadless(int argc, char** argv) {
     addGsaCommands(app, locations);
     addValidateCommand(app, locations);
     addCompactionCommand(app, locations);
+    addTractionCommand(app, locations);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

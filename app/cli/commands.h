@@ -24,5 +24,7 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations);
 void addValidateCommand(CLI::App& app, const io::PresetLocations& locations);
 /// `compaction`: stress at depth, compaction risk and repeated passes (core/analysis/compaction.h).
 void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations);
+/// `traction`: the best slip for a soil (core/analysis/traction.h).
+void addTractionCommand(CLI::App& app, const io::PresetLocations& locations);
 
 }  // namespace terra::app

@@ -10,6 +10,7 @@
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/traction.h"
 #include "core/analysis/validation.h"
 
 namespace terra::analysis {
@@ -21,6 +22,7 @@ const std::vector<AnalysisType>& analysisTypes() {
         sinkageType(),         sensitivityType(), identificationType(),
         streamingType(),       roverType(),       globalSensitivityType(),
         uncertaintyBandType(), validationType(),  compactionType(),
+        tractionType(),
     };
     return types;
 }

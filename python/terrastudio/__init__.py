@@ -40,6 +40,7 @@ __all__ = [
     "soil_fields",
     "stresses",
     "sweep",
+    "traction",
     "wheel",
 ]
 
@@ -273,6 +274,31 @@ def compaction(soil="sandy-loam", wheel="A", load_N=None, slip=0.1, slip_angle_d
         result["ok"][index] = document["status"] == "completed"
     result["results"] = results
     return result
+
+
+def traction(soil="sandy-loam", wheel="A", load_N=None, slip_angle_deg=0.0, *,
+             objective="efficiency", max_sinkage_m=None, posterior=None, **settings):
+    """The best slip for a soil (docs/traction.md): s* that maximises the drawbar pull or the
+    tractive efficiency eta = Fx r (1 - s) / My, optionally under a sinkage cap; with a posterior
+    (a dict {"parameters", "mean", "covariance"} in soil keys and units, or a soil file holding
+    one) the band of the objective and a robust s* (the largest lower quantile).
+
+    Returns the dict of ``terrastudio traction --json``: "optimal_slip", "objective", "Fx_N",
+    "My_Nm", "efficiency", "sinkage_m", "curve" (and "band", "robust_slip", "expected_slip").
+    Raises RuntimeError when no slip meets the cap or has an equilibrium.
+    """
+    local = dict(settings, slip_angle_deg=float(slip_angle_deg), objective=objective)
+    if max_sinkage_m is not None:
+        local["max_sinkage_m"] = float(max_sinkage_m)
+    if posterior is not None:
+        local["posterior"] = posterior if isinstance(posterior, dict) else os.fspath(posterior)
+    conditions, local = _split_conditions(local)
+    if load_N is not None:
+        conditions["load_N"] = float(load_N)
+    out = run("traction", soil, wheel, conditions=conditions, **local)
+    if out["status"] != "completed":
+        raise RuntimeError(out["message"])
+    return out["documents"][""]
 
 
 def identify(data, wheel, soil="sandy-loam", **settings):

@@ -102,6 +102,17 @@ def compaction(
     depth_m: float = 0.3,
     **settings: Any,
 ) -> dict[str, Any]: ...
+def traction(
+    soil: SoilSpec = "sandy-loam",
+    wheel: WheelSpec = "A",
+    load_N: float | None = None,
+    slip_angle_deg: float = 0.0,
+    *,
+    objective: str = "efficiency",
+    max_sinkage_m: float | None = None,
+    posterior: str | os.PathLike[str] | Mapping[str, Any] | None = None,
+    **settings: Any,
+) -> dict[str, Any]: ...
 def identify(
     data: str | os.PathLike[str] | Mapping[str, ArrayLike] | None,
     wheel: WheelSpec,

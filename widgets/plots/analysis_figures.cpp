@@ -15,6 +15,7 @@
 #include "core/analysis/soil_curves.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/analysis/traction.h"
 #include "core/analysis/validation.h"
 #include "widgets/plots/compaction_figures.h"
 #include "widgets/plots/figures.h"
@@ -22,6 +23,7 @@
 #include "widgets/plots/identification_figures.h"
 #include "widgets/plots/rover_figures.h"
 #include "widgets/plots/sweep_plot.h"
+#include "widgets/plots/traction_figures.h"
 
 namespace terra::ui {
 namespace {
@@ -72,6 +74,9 @@ void drawAnalysisFigure(QCustomPlot& plot, const std::string& type, const std::s
             const auto& s = std::any_cast<const analysis::StressSettings&>(settings);
             return plotStresses(plot, resultOf<analysis::StressResult>(outcome), s.stress, title);
         }
+    } else if (type == "traction") {
+        if (key == "efficiency")
+            return plotTraction(plot, resultOf<analysis::TractionResult>(outcome), title);
     } else if (type == "compaction") {
         const auto& r = resultOf<analysis::CompactionResult>(outcome);
         if (key == "profile") return plotCompactionProfile(plot, r, 0, title);  // the envelope

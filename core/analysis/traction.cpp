@@ -1,0 +1,502 @@
+#include "core/analysis/traction.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <boost/math/tools/minima.hpp>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+#include "core/analysis/operating_point.h"
+#include "core/analysis/registry.h"
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/contact/operating_fields.h"
+#include "core/io/json.h"
+#include "core/io/parameters_json.h"
+#include "core/soil/soil_parameters.h"
+
+namespace terra::analysis {
+namespace {
+
+constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+const Range kSearchSlip{0.0, 0.99};
+const Range kQuantileRange{0.01, 0.99};
+
+std::vector<Issue> settingsIssues(const TractionSettings& s) {
+    std::vector<Issue> issues;
+    checkRange(issues, "slip_angle_deg", s.slip_angle_deg, contact::slipAngleField().range, "deg");
+    checkRange(issues, "slip_min", s.slip_min, kSearchSlip);
+    checkRange(issues, "slip_max", s.slip_max, kSearchSlip);
+    if (issues.empty() && !(s.slip_min < s.slip_max)) {
+        issues.push_back({"slip_max", formatNumber(s.slip_max) +
+                                          " must be above slip_min = " + formatNumber(s.slip_min)});
+    }
+    if (s.max_sinkage_m)
+        checkRange(issues, "max_sinkage_m", *s.max_sinkage_m, {0.0, 1.0, true}, "m");
+    if (s.curve_points < 5 || s.curve_points > 10000) {
+        issues.push_back(
+            {"curve_points", std::to_string(s.curve_points) + " is outside [5, 10000]"});
+    }
+    if (s.posterior_samples < 10 || s.posterior_samples > 100000) {
+        issues.push_back({"posterior_samples",
+                          std::to_string(s.posterior_samples) + " is outside [10, 100000]"});
+    }
+    checkRange(issues, "quantile", s.quantile, kQuantileRange);
+    if (s.posterior) {
+        const SoilPosterior& p = *s.posterior;
+        const std::size_t n = p.parameters.size();
+        if (n == 0) issues.push_back({"posterior.parameters", "no parameters"});
+        for (const std::string& key : p.parameters) {
+            if (!soil::findSoilField(key))
+                issues.push_back({"posterior.parameters", quoteText(key) + " is not a soil field"});
+        }
+        if (p.mean.size() != n) {
+            issues.push_back({"posterior.mean", std::to_string(p.mean.size()) + " values for " +
+                                                    std::to_string(n) + " parameters"});
+        }
+        bool square = p.covariance.size() == n;
+        for (const auto& row : p.covariance) square = square && row.size() == n;
+        if (!square) {
+            issues.push_back({"posterior.covariance",
+                              "must be " + std::to_string(n) + " x " + std::to_string(n)});
+        } else if (n > 0) {
+            Eigen::MatrixXd c(n, n);
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t j = 0; j < n; ++j) c(i, j) = p.covariance[i][j];
+            const Eigen::LLT<Eigen::MatrixXd> llt(c);
+            if (!c.isApprox(c.transpose(), 1e-9) || llt.info() != Eigen::Success) {
+                issues.push_back({"posterior.covariance", "is not symmetric positive definite"});
+            }
+        }
+    }
+    return issues;
+}
+
+double quantileOf(std::vector<double> values, double q) {
+    if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(values.begin(), values.end());
+    const double at = q * static_cast<double>(values.size() - 1);  // Hyndman & Fan type 7
+    const auto lo = static_cast<std::size_t>(std::floor(at));
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (at - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+// The largest of f on [a, b] around a scan's best point (Brent's method, Boost.Math), never
+// below the scan's own value.
+template <typename F>
+std::pair<double, double> refine(F f, double a, double b, double x_best, double f_best) {
+    std::uintmax_t iterations = 60;
+    const auto [x, minus] = boost::math::tools::brent_find_minima(
+        [&](double s) {
+            const double v = f(s);
+            return std::isfinite(v) ? -v : std::numeric_limits<double>::max();
+        },
+        a, b, 30, iterations);
+    return -minus > f_best ? std::pair{x, -minus} : std::pair{x_best, f_best};
+}
+
+// Standard normal draws from the fully specified mt19937_64 (Box–Muller), so that a seed gives the
+// same soils on every platform (std::normal_distribution is implementation-defined).
+class NormalDraws {
+public:
+    explicit NormalDraws(std::uint64_t seed) : engine_(seed) {}
+    double next() {
+        if (spare_) {
+            spare_ = false;
+            return stored_;
+        }
+        const double u1 = (static_cast<double>(engine_() >> 11) + 0.5) * 0x1.0p-53;
+        const double u2 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+        const double radius = std::sqrt(-2.0 * std::log(u1));
+        stored_ = radius * std::sin(2.0 * std::numbers::pi * u2);
+        spare_ = true;
+        return radius * std::cos(2.0 * std::numbers::pi * u2);
+    }
+
+private:
+    std::mt19937_64 engine_;
+    bool spare_ = false;
+    double stored_ = 0.0;
+};
+
+}  // namespace
+
+const char* objectiveName(TractionObjective objective) {
+    return objective == TractionObjective::kDrawbar ? "drawbar" : "efficiency";
+}
+
+void readPosterior(io::ObjectReader& r, SoilPosterior& out) {
+    r.texts("parameters", out.parameters, io::Presence::kRequired);
+    r.numbers("mean", out.mean, Range{-1e300, 1e300}, {}, 1, 100, io::Presence::kRequired);
+    if (const nlohmann::json* rows = r.array("covariance", io::Presence::kRequired)) {
+        for (std::size_t i = 0; i < rows->size(); ++i) {
+            const nlohmann::json& row = (*rows)[i];
+            std::vector<double> values;
+            bool ok = row.is_array();
+            for (const nlohmann::json& v : row) {
+                ok = ok && v.is_number();
+                if (ok) values.push_back(v.get<double>());
+            }
+            if (!ok) {
+                r.report("covariance", "row " + std::to_string(i) + " is not an array of numbers");
+                continue;
+            }
+            out.covariance.push_back(std::move(values));
+        }
+    }
+}
+
+void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
+                          const std::filesystem::path& base_dir) {
+    const FieldInfo& beta = contact::slipAngleField();
+    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
+    r.choice(
+        "objective", out.objective,
+        {{"drawbar", TractionObjective::kDrawbar}, {"efficiency", TractionObjective::kEfficiency}});
+    double value = 0.0;
+    if (r.number("max_sinkage_m", value, {0.0, 1.0, true}, "m")) out.max_sinkage_m = value;
+    r.number("slip_min", out.slip_min, kSearchSlip);
+    r.number("slip_max", out.slip_max, kSearchSlip);
+    r.integer("curve_points", out.curve_points, 5, 10000);
+    r.integer("posterior_samples", out.posterior_samples, 10, 100000);
+    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
+    r.number("quantile", out.quantile, kQuantileRange);
+    if (const nlohmann::json* posterior = r.value("posterior")) {
+        SoilPosterior p;
+        if (posterior->is_object()) {
+            io::ObjectReader pr = r.object("posterior");
+            readPosterior(pr, p);
+            pr.finish();
+            out.posterior = p;
+        } else if (posterior->is_string()) {
+            // A soil file with its posterior (`identify --save-soil`): only "posterior" is read.
+            std::filesystem::path path = posterior->get<std::string>();
+            if (path.is_relative() && !base_dir.empty()) path = base_dir / path;
+            Result<nlohmann::json> file = io::readJsonFile(path);
+            if (!file) {
+                for (const Issue& issue : file.issues()) r.report("posterior", issue.message);
+            } else {
+                std::vector<Issue> issues;
+                const nlohmann::json& doc = file.value();
+                io::ObjectReader fr(doc.contains("posterior") ? doc["posterior"] : doc, issues,
+                                    path.string(), "posterior");
+                readPosterior(fr, p);
+                fr.finish();
+                for (Issue& issue : issues)
+                    r.report("posterior", issue.where + ": " + issue.message);
+                if (issues.empty()) out.posterior = p;
+            }
+        } else {
+            r.report("posterior",
+                     "expected an object or a file, got " + io::describeJson(*posterior));
+        }
+    }
+    readModelChoices(r, out.model);
+    for (Issue& issue : settingsIssues(out)) {
+        if (issue.where.rfind("posterior", 0) == 0 || issue.where == "slip_max")
+            r.report(issue.where, std::move(issue.message));
+    }
+}
+
+nlohmann::json toJson(const TractionSettings& s) {
+    nlohmann::json out{{"slip_angle_deg", s.slip_angle_deg},
+                       {"objective", objectiveName(s.objective)},
+                       {"slip_min", s.slip_min},
+                       {"slip_max", s.slip_max},
+                       {"curve_points", s.curve_points},
+                       {"quantile", s.quantile}};
+    if (s.max_sinkage_m) out["max_sinkage_m"] = *s.max_sinkage_m;
+    if (s.posterior) {
+        out["posterior"] = {{"parameters", s.posterior->parameters},
+                            {"mean", s.posterior->mean},
+                            {"covariance", s.posterior->covariance}};
+        out["posterior_samples"] = s.posterior_samples;
+        out["seed"] = s.seed;
+    }
+    writeModelChoices(s.model, out);
+    return out;
+}
+
+double objectiveValue(TractionObjective objective, const TractionPoint& p) {
+    if (!p.ok) return kMinusInfinity;
+    return objective == TractionObjective::kDrawbar ? p.fx_n : p.efficiency;
+}
+
+TractionPoint tractionPoint(const contact::ContactParameters<double>& params, double load_n,
+                            double slip, const TractionSettings& s, contact::ContactModel model) {
+    PointSpec spec;
+    spec.slip = slip;
+    spec.slip_angle_deg = s.slip_angle_deg;
+    spec.load_n = load_n;
+    spec.model = s.model;
+    spec.contact_model = model;
+    const PointResult r = evaluatePoint(params, spec);
+    TractionPoint p;
+    p.slip = slip;
+    if (!r.failure.empty()) return p;
+    p.fx_n = r.forces.fx;
+    p.my_nm = r.forces.my;
+    p.sinkage_m = r.sinkage_m;
+    // η = output power / input power = F_x v / (M_y ω), v = r ω (1 − s) when driving.
+    p.efficiency = p.my_nm > 0.0 ? p.fx_n * params.radius_m * (1.0 - slip) / p.my_nm : 0.0;
+    p.ok = !s.max_sinkage_m || p.sinkage_m <= *s.max_sinkage_m;
+    return p;
+}
+
+TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
+                               const Control& control) {
+    if (std::vector<Issue> issues = settingsIssues(s); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
+    TractionResult out;
+    out.objective = s.objective;
+    // The nominal soil: the given one with the posterior's mean.
+    soil::SoilParameters nominal = in.soil;
+    if (s.posterior) {
+        for (std::size_t k = 0; k < s.posterior->parameters.size(); ++k)
+            soil::setUserValue(nominal, *soil::findSoilField(s.posterior->parameters[k]),
+                               s.posterior->mean[k]);
+        if (std::vector<Issue> issues = soil::validate(nominal, "posterior.mean."); !issues.empty())
+            throw std::invalid_argument(formatIssues(issues));
+    }
+    const contact::ContactParameters<double> params =
+        contact::makeContactParameters(nominal, in.wheel);
+    const contact::ContactModel model = in.conditions.model();
+    const double load = in.conditions.load_n;
+    auto at = [&](const contact::ContactParameters<double>& p, double slip) {
+        return tractionPoint(p, load, slip, s, model);
+    };
+    std::vector<double> slips;
+    for (int i = 0; i < s.curve_points; ++i)
+        slips.push_back(s.slip_min + (s.slip_max - s.slip_min) * i / (s.curve_points - 1));
+    for (double slip : slips) out.curve.push_back(at(params, slip));
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < out.curve.size(); ++i)
+        if (objectiveValue(s.objective, out.curve[i]) >
+            objectiveValue(s.objective, out.curve[best]))
+            best = i;
+    const double best_value = objectiveValue(s.objective, out.curve[best]);
+    if (!std::isfinite(best_value)) {
+        out.message = s.max_sinkage_m
+                          ? "no slip in [" + formatNumber(s.slip_min) + ", " +
+                                formatNumber(s.slip_max) + "] keeps the sinkage below " +
+                                formatNumber(*s.max_sinkage_m) + " m"
+                          : "no slip has an equilibrium at this load";
+        return out;
+    }
+    const double a = slips[best == 0 ? 0 : best - 1];
+    const double b = slips[std::min(best + 1, slips.size() - 1)];
+    const auto [slip_star, value] =
+        refine([&](double slip) { return objectiveValue(s.objective, at(params, slip)); }, a, b,
+               slips[best], best_value);
+    (void)value;
+    out.optimal_slip = slip_star;
+    out.at_optimum = at(params, slip_star);
+    if (best + 1 == slips.size() || best == 0) {
+        out.notes.push_back("s* is at the search's " + std::string(best == 0 ? "lower" : "upper") +
+                            " bound (" + formatNumber(slips[best]) + "): the " +
+                            objectiveName(s.objective) + " still grows beyond it");
+    }
+    control.report(s.posterior ? 0.1 : 1.0);
+
+    if (s.posterior && !control.cancelled()) {
+        const SoilPosterior& post = *s.posterior;
+        const std::size_t d = post.parameters.size();
+        Eigen::MatrixXd covariance(d, d);
+        for (std::size_t i = 0; i < d; ++i)
+            for (std::size_t j = 0; j < d; ++j) covariance(i, j) = post.covariance[i][j];
+        const Eigen::MatrixXd lower = covariance.llt().matrixL();
+        const Eigen::Map<const Eigen::VectorXd> mean(post.mean.data(),
+                                                     static_cast<Eigen::Index>(d));
+        NormalDraws draws(s.seed);
+        std::vector<contact::ContactParameters<double>> soils;
+        for (int k = 0; k < s.posterior_samples; ++k) {
+            Eigen::VectorXd z(d);
+            for (std::size_t i = 0; i < d; ++i) z(static_cast<Eigen::Index>(i)) = draws.next();
+            const Eigen::VectorXd x = mean + lower * z;
+            soil::SoilParameters soil = nominal;
+            for (std::size_t i = 0; i < d; ++i)
+                soil::setUserValue(soil, *soil::findSoilField(post.parameters[i]),
+                                   x(static_cast<Eigen::Index>(i)));
+            if (!soil::validate(soil).empty()) {
+                ++out.invalid_samples;
+                continue;
+            }
+            try {
+                soils.push_back(contact::makeContactParameters(soil, in.wheel));
+            } catch (const std::invalid_argument&) {
+                ++out.invalid_samples;
+            }
+        }
+        if (out.invalid_samples > 0) {
+            out.notes.push_back(std::to_string(out.invalid_samples) + " of " +
+                                std::to_string(s.posterior_samples) +
+                                " posterior draws fall outside a field's range and are left out");
+        }
+        auto valuesAt = [&](double slip) {
+            std::vector<double> v;
+            for (const auto& p : soils) {
+                const double f = objectiveValue(s.objective, at(p, slip));
+                if (std::isfinite(f)) v.push_back(f);
+            }
+            return v;
+        };
+        std::size_t best_q = 0, best_mean = 0;
+        for (std::size_t i = 0; i < slips.size(); ++i) {
+            if (control.cancelled()) break;
+            const std::vector<double> v = valuesAt(slips[i]);
+            TractionBand band;
+            band.slip = slips[i];
+            band.samples = static_cast<int>(v.size());
+            if (!v.empty()) {
+                double sum = 0.0;
+                for (double x : v) sum += x;
+                band.mean = sum / static_cast<double>(v.size());
+                band.p5 = quantileOf(v, 0.05);
+                band.p50 = quantileOf(v, 0.5);
+                band.p95 = quantileOf(v, 0.95);
+                band.quantile = quantileOf(v, s.quantile);
+            } else {
+                band.mean = band.p5 = band.p50 = band.p95 = band.quantile = kMinusInfinity;
+            }
+            out.band.push_back(band);
+            if (band.quantile > out.band[best_q].quantile) best_q = i;
+            if (band.mean > out.band[best_mean].mean) best_mean = i;
+            control.report(0.1 + 0.8 * static_cast<double>(i + 1) / slips.size());
+        }
+        if (out.band.size() == slips.size() && std::isfinite(out.band[best_q].quantile)) {
+            // Robust s*: the largest lower quantile; refined between the neighbouring slips
+            // (each evaluation is every posterior soil at that slip).
+            const auto [robust, q] = refine(
+                [&](double slip) {
+                    const std::vector<double> v = valuesAt(slip);
+                    // Lose no draw: a slip where some soils have no equilibrium is not robust.
+                    if (v.size() < soils.size()) return kMinusInfinity;
+                    return quantileOf(v, s.quantile);
+                },
+                slips[best_q == 0 ? 0 : best_q - 1], slips[std::min(best_q + 1, slips.size() - 1)],
+                slips[best_q], out.band[best_q].quantile);
+            out.robust_slip = robust;
+            out.robust_value = q;
+            out.expected_slip = slips[best_mean];
+        } else if (control.cancelled()) {
+            out.notes.push_back("cancelled: the posterior's band is partial");
+        }
+    }
+    control.report(1.0);
+    return out;
+}
+
+nlohmann::json toJson(const TractionResult& r) {
+    using nlohmann::json;
+    json out{{"objective", objectiveName(r.objective)}};
+    if (r.optimal_slip) {
+        out["optimal_slip"] = *r.optimal_slip;
+        out["Fx_N"] = r.at_optimum.fx_n;
+        out["My_Nm"] = r.at_optimum.my_nm;
+        out["efficiency"] = r.at_optimum.efficiency;
+        out["sinkage_m"] = r.at_optimum.sinkage_m;
+    }
+    json curve = json::array();
+    for (const TractionPoint& p : r.curve) {
+        json row{{"slip", p.slip}, {"ok", p.ok}};
+        if (p.ok || p.my_nm != 0.0) {
+            row["Fx_N"] = p.fx_n;
+            row["My_Nm"] = p.my_nm;
+            row["efficiency"] = p.efficiency;
+            row["sinkage_m"] = p.sinkage_m;
+        }
+        curve.push_back(row);
+    }
+    out["curve"] = curve;
+    if (!r.band.empty()) {
+        json band = json::array();
+        for (const TractionBand& b : r.band) {
+            json row{{"slip", b.slip}, {"samples", b.samples}};
+            if (b.samples > 0) {
+                row["mean"] = b.mean;
+                row["p5"] = b.p5;
+                row["p50"] = b.p50;
+                row["p95"] = b.p95;
+                row["quantile"] = b.quantile;
+            }
+            band.push_back(row);
+        }
+        out["band"] = band;
+        if (r.robust_slip) {
+            out["robust_slip"] = *r.robust_slip;
+            out["robust_value"] = r.robust_value;
+        }
+        if (r.expected_slip) out["expected_slip"] = *r.expected_slip;
+        out["invalid_samples"] = r.invalid_samples;
+    }
+    out["status"] = r.ok() ? "completed" : "failed";
+    if (!r.message.empty()) out["message"] = r.message;
+    out["notes"] = r.notes;
+    return out;
+}
+
+Outcome tractionOutcome(TractionResult result) {
+    Outcome out;
+    Table curve{{"slip", "Fx_N", "My_Nm", "efficiency", "sinkage_m", "ok"}, {}};
+    const bool band = result.band.size() == result.curve.size() && !result.band.empty();
+    if (band) {
+        for (const char* c : {"objective_mean", "objective_p5", "objective_p50", "objective_p95",
+                              "objective_quantile"})
+            curve.columns.emplace_back(c);
+    }
+    for (std::size_t i = 0; i < result.curve.size(); ++i) {
+        const TractionPoint& p = result.curve[i];
+        std::vector<double> row{p.slip,       p.fx_n,      p.my_nm,
+                                p.efficiency, p.sinkage_m, p.ok ? 1.0 : 0.0};
+        if (band) {
+            const TractionBand& b = result.band[i];
+            // A slip where no posterior soil has an equilibrium has no band: 0 with samples = 0
+            // would read as a value, so those rows keep the nominal objective (noted).
+            const double fallback = objectiveValue(result.objective, p);
+            for (double v : {b.mean, b.p5, b.p50, b.p95, b.quantile})
+                row.push_back(std::isfinite(v) ? v : (std::isfinite(fallback) ? fallback : 0.0));
+        }
+        curve.rows.push_back(std::move(row));
+    }
+    Table optimum{{"optimal_slip", "Fx_N", "My_Nm", "efficiency", "sinkage_m"}, {}};
+    if (result.optimal_slip) {
+        optimum.rows.push_back({*result.optimal_slip, result.at_optimum.fx_n,
+                                result.at_optimum.my_nm, result.at_optimum.efficiency,
+                                result.at_optimum.sinkage_m});
+        if (result.robust_slip) {
+            optimum.columns.emplace_back("robust_slip");
+            optimum.rows.back().push_back(*result.robust_slip);
+        }
+    }
+    out.tables.push_back({"curve", "", std::move(curve)});
+    out.tables.push_back({"optimum", "-optimum", std::move(optimum)});
+    out.notes = result.notes;
+    if (!result.ok()) {
+        out.status = Outcome::Status::kFailed;
+        out.message = result.message;
+    }
+    out.documents.push_back({"", toJson(result)});
+    out.result = std::move(result);
+    return out;
+}
+
+AnalysisType tractionType() {
+    return makeAnalysisType<TractionSettings>(
+        "traction",
+        "the slip that maximises drawbar pull or tractive efficiency, with the posterior's band "
+        "and a robust slip (docs/traction.md)",
+        {"curve", "optimum"}, {{"efficiency", ""}},
+        [](io::ObjectReader& r, const ReadContext& context, TractionSettings& s) {
+            readTractionSettings(r, s, context.base_dir);
+        },
+        [](const Inputs& in, const TractionSettings& s, const Control& c) {
+            return computeTraction(in, s, c);
+        },
+        tractionOutcome);
+}
+
+}  // namespace terra::analysis

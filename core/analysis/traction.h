@@ -1,0 +1,115 @@
+#pragma once
+/// @file traction.h
+/// The best slip for a soil (docs/traction.md): the slip s* that maximises a wheel's drawbar pull
+/// F_x or its tractive efficiency η = F_x r (1 − s) / M_y at its load and slip angle, optionally
+/// under a sinkage cap; and, from an identified soil's posterior, the band of the objective
+/// against slip and a robust s* (the slip that maximises a lower quantile of the objective over
+/// the posterior). `terrastudio traction`, a script's "traction" and Python's ts.traction.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/analysis/analysis.h"
+
+namespace terra::analysis {
+
+/// What s* maximises.
+enum class TractionObjective {
+    kDrawbar,     ///< F_x [N] (Eq. 2.23)
+    kEfficiency,  ///< η = F_x r (1 − s) / M_y [-] (output power over input power)
+};
+const char* objectiveName(TractionObjective objective);
+
+/// Soil parameters known as a multivariate normal (an identification's posterior), in the soil
+/// file's keys and units: {"parameters": [keys], "mean": [...], "covariance": [[...]]}.
+struct SoilPosterior {
+    std::vector<std::string> parameters;
+    std::vector<double> mean;
+    std::vector<std::vector<double>> covariance;
+};
+
+struct TractionSettings {
+    double slip_angle_deg = 0.0;  ///< β [deg]
+    TractionObjective objective = TractionObjective::kEfficiency;
+    std::optional<double> max_sinkage_m;  ///< cap on the sinkage h [m] (compaction.md's concern)
+    double slip_min = 0.01;               ///< the search's slips [-]
+    double slip_max = 0.9;
+    int curve_points = 60;  ///< slips of the curve, evenly from slip_min to slip_max
+    std::optional<SoilPosterior> posterior;  ///< the soil's uncertainty
+    int posterior_samples = 200;             ///< soils drawn from it
+    std::uint64_t seed = 1;
+    double quantile = 0.1;  ///< robust s* maximises this quantile of the objective (0.5: median)
+    ModelChoices model;
+};
+
+/// "slip_angle_deg", "objective" (drawbar, efficiency), "max_sinkage_m", "slip_min",
+/// "slip_max", "curve_points", "posterior" (an object, or a file: a soil file holding
+/// "posterior", relative to `base_dir`), "posterior_samples", "seed", "quantile" and the model
+/// choices.
+void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
+                          const std::filesystem::path& base_dir = {});
+nlohmann::json toJson(const TractionSettings& settings);
+/// The posterior of a soil file's "posterior" object (SoilPosterior's keys), problems named.
+void readPosterior(io::ObjectReader& r, SoilPosterior& out);
+
+/// The wheel at one slip.
+struct TractionPoint {
+    double slip = 0.0;
+    double fx_n = 0.0;
+    double my_nm = 0.0;
+    double efficiency = 0.0;  ///< η; 0 where M_y ≤ 0 (the wheel is driven by the soil)
+    double sinkage_m = 0.0;
+    bool ok = false;  ///< an equilibrium exists and the sinkage cap holds
+};
+
+/// The objective's spread over the posterior at one slip.
+struct TractionBand {
+    double slip = 0.0;
+    double mean = 0.0, p5 = 0.0, p50 = 0.0, p95 = 0.0;
+    double quantile = 0.0;  ///< at TractionSettings::quantile
+    int samples = 0;        ///< soils with an equilibrium at this slip
+};
+
+struct TractionResult {
+    TractionObjective objective = TractionObjective::kEfficiency;
+    std::optional<double> optimal_slip;  ///< s* of the given soil (the posterior's mean)
+    TractionPoint at_optimum;
+    std::vector<TractionPoint> curve;
+    /// With a posterior: the band on the curve's slips, the robust s* (the quantile's maximum)
+    /// and the slip of the largest expected objective.
+    std::vector<TractionBand> band;
+    std::optional<double> robust_slip;
+    double robust_value = 0.0;
+    std::optional<double> expected_slip;
+    int invalid_samples = 0;  ///< posterior draws outside a field's range (left out)
+    std::string message;      ///< non-empty: no slip meets the cap or has an equilibrium
+    std::vector<std::string> notes;
+
+    bool ok() const { return optimal_slip.has_value(); }
+};
+
+/// The objective's value at a point (F_x, or η; −∞ where the point is not ok).
+double objectiveValue(TractionObjective objective, const TractionPoint& point);
+
+/// The wheel at slip s: θ_f from F_z = W, forces (full or quadratic model), η, sinkage.
+TractionPoint tractionPoint(const contact::ContactParameters<double>& params, double load_n,
+                            double slip, const TractionSettings& settings,
+                            contact::ContactModel model);
+
+/// Throws std::invalid_argument for invalid inputs or settings.
+TractionResult computeTraction(const Inputs& inputs, const TractionSettings& settings = {},
+                               const Control& control = {});
+
+/// `terrastudio traction --json`: "optimal_slip", "objective", "Fx_N", "My_Nm", "efficiency",
+/// "sinkage_m" at s*, "curve": [{"slip", "Fx_N", "My_Nm", "efficiency", "sinkage_m"}, …], and
+/// with a posterior "robust_slip", "expected_slip", "band".
+nlohmann::json toJson(const TractionResult& result);
+/// Tables "curve" (with the band's columns when there is one) and "optimum".
+Outcome tractionOutcome(TractionResult result);
+
+struct AnalysisType;
+AnalysisType tractionType();
+
+}  // namespace terra::analysis

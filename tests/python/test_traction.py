@@ -1,0 +1,36 @@
+"""ts.traction: the command line's JSON, and the posterior's robust slip."""
+
+import json
+
+import pytest
+
+import terrastudio as ts
+
+
+def test_the_best_slip_is_the_command_lines(cli):
+    out = ts.traction("sandy-loam", "A", load_N=70.0, objective="efficiency")
+    run = cli("traction", "--soil", "sandy-loam", "--wheel", "A", "--load", 70, "--json")
+    assert run.returncode == 0, run.stderr
+    expected = json.loads(run.stdout)
+    assert out["optimal_slip"] == expected["optimal_slip"]
+    assert [p["efficiency"] for p in out["curve"]] == [p["efficiency"] for p in expected["curve"]]
+    # eta at s* from its own forces.
+    assert out["efficiency"] == pytest.approx(
+        out["Fx_N"] * ts.wheel("A").r_m * (1 - out["optimal_slip"]) / out["My_Nm"], rel=1e-12)
+
+
+def test_a_posterior_file_gives_a_robust_slip(tmp_path, cli):
+    soil = tmp_path / "identified.json"
+    soil.write_text(json.dumps({"posterior": {"parameters": ["phi_deg", "n"], "mean": [29.0, 0.7],
+                                              "covariance": [[4.0, -0.05], [-0.05, 0.0025]]}}))
+    out = ts.traction("sandy-loam", "A", posterior=soil, posterior_samples=50, model="quadratic")
+    assert 0.0 < out["robust_slip"] < 1.0
+    assert out["robust_value"] <= max(b["p50"] for b in out["band"] if b["samples"])
+    run = cli("traction", "--posterior", soil, "--samples", 50, "--model", "quadratic", "--json")
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout)["robust_slip"] == out["robust_slip"]
+
+
+def test_a_cap_no_slip_meets_raises():
+    with pytest.raises(RuntimeError, match="sinkage"):
+        ts.traction("sandy-loam", "A", max_sinkage_m=1e-4)
