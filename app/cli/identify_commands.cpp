@@ -1,5 +1,6 @@
-// `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`
-// (the decoupled three-step fit, §4.3).
+// `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`:
+// the global identification on the full model with its uncertainty (`--refine`, the default), the
+// decoupled three-step fit of §4.3 alone (`--no-refine`), or the streaming estimator (`--stream`).
 #include <cmath>
 #include <iomanip>
 #include <iostream>

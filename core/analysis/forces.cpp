@@ -1,5 +1,6 @@
 #include "core/analysis/forces.h"
 
+#include "core/analysis/registry.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
 

@@ -7,10 +7,11 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/analysis/sweep.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
 
 struct ForcesSettings {
     ModelChoices model;

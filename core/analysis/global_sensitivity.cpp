@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/analysis/registry.h"
 #include "core/analysis/sweep.h"
 #include "core/common/quoted.h"
 #include "core/common/range.h"

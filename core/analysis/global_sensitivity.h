@@ -15,13 +15,14 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/gsa/parameter_space.h"
 #include "core/gsa/uncertainty_bands.h"
 #include "core/gsa/wheel_studies.h"
 #include "core/identification/full_fit.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
 
 /// One independent uncertain soil parameter: its soil file key ("phi_deg") and its distribution
 /// in the file's unit (gsa::Uniform{low, high} or gsa::Normal{mean, sd, low, high}).

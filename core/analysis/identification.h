@@ -22,7 +22,6 @@
 
 #include "core/analysis/analysis.h"
 #include "core/analysis/identified_parameters.h"
-#include "core/analysis/registry.h"
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
@@ -30,6 +29,9 @@
 #include "core/identification/profile_interval.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
+struct ReadContext;
 
 /// Synthetic data of the identification: slip sweeps of the inputs' soil with Gaussian noise.
 struct SyntheticSource {

@@ -3,7 +3,8 @@
 /// The field table of the identified soil parameters (core/common/field.h): a₀, a₁, K_s, n₀, n₁,
 /// c, φ, K with their display units (kPa/m^n, kPa, deg). The identification's tables, the
 /// command line's output (`identify`, JSON and text), the studio's parameter table and the
-/// streaming figures read it: no other place converts them to display units.
+/// streaming figures read it. (identification::parameterInfo names the same parameters for the
+/// solver, in SI: two tables of one vocabulary, issue 26.)
 
 #include <optional>
 #include <span>

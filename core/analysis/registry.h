@@ -1,9 +1,10 @@
 #pragma once
 /// @file registry.h
 /// The analysis types the product offers, by name: what `terrastudio run` dispatches on (no
-/// hand-written if/else), what the studio draws figures for and the Python module will list. A
-/// new analysis is one service (settings, reader, compute, outcome; docs/architecture.md) and one
-/// line in registry.cpp.
+/// hand-written if/else), what the studio draws figures for and what the Python module lists and
+/// runs (terrastudio.analyses(), terrastudio.run()). A new analysis is one service (settings,
+/// reader, compute, outcome; docs/architecture.md) and one line in registry.cpp; the services'
+/// headers only forward-declare AnalysisType (the registry includes them, not the reverse).
 
 #include <any>
 #include <filesystem>

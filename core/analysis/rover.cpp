@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/analysis/registry.h"
 #include "core/common/units.h"
 #include "core/scenario/scenario_json.h"
 

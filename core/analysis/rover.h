@@ -10,11 +10,13 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
+struct ReadContext;
 
 struct RoverSettings {
     std::string scenario = "straight";  ///< a scenario preset (resources/scenarios) or a file

@@ -11,10 +11,11 @@
 
 #include "core/analysis/analysis.h"
 #include "core/analysis/forces.h"
-#include "core/analysis/registry.h"
 #include "core/analysis/sweep.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
 
 struct SensitivitySettings {
     /// A soil field key (soil_parameters.h), or "all": every parameter of Table 4.1 in turn.

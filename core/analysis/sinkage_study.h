@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
 
 struct SinkageSettings {
     std::vector<double> loads_n;  ///< W [N]; empty: the conditions' load

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/analysis/registry.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/bulldozing.h"

@@ -6,10 +6,11 @@
 /// The studio's forces panel and a script's "soil-curves" analysis.
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/common/table.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
 
 struct SoilCurvesSettings {
     int points = 61;  ///< grid size of each curve

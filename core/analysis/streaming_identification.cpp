@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/analysis/identified_parameters.h"
+#include "core/analysis/registry.h"
 #include "core/contact/contact_parameters.h"
 #include "core/identification/synthetic.h"
 

@@ -16,13 +16,15 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/common/issue.h"
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/streaming_estimator.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
+struct ReadContext;
 
 /// A data set to play and, when it was synthesised, where its soil changes.
 struct StreamSource {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/analysis/registry.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"

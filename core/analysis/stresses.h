@@ -11,10 +11,11 @@
 #include <string>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/contact/quadratic_model.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
 
 struct StressSettings {
     double slip = 0.3;             ///< s [-] (Table 2.3)

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/analysis/operating_point.h"
+#include "core/analysis/registry.h"
 #include "core/common/units.h"
 #include "core/identification/parameters.h"
 

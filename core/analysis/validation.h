@@ -15,11 +15,13 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
-#include "core/analysis/registry.h"
 #include "core/identification/identify.h"
 #include "core/io/experiment.h"
 
 namespace terra::analysis {
+
+struct AnalysisType;
+struct ReadContext;
 
 struct ValidationSettings {
     std::string experiments;  ///< the test: its CSV or its sidecar JSON (io/experiment.h)

@@ -2,7 +2,8 @@
 /// @file panels.h
 /// What each studio panel saves in a .terra file's "panels" object: the settings of its
 /// analysis and what it shows (a tab, a page). Read strictly like the rest of the file, so a
-/// project never opens half-understood; the panels apply these structs, never raw JSON.
+/// project never opens half-understood. The stresses and compaction panels store their
+/// analysis's own settings struct; the others a struct of their controls.
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
