@@ -1,5 +1,7 @@
 // `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`
 // (the decoupled three-step fit, §4.3).
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -659,8 +661,17 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         }
         progress.finish();
         if (result.message == "cancelled") exitCancelled(cancellation, "identify cancelled");
-        if (!result.data_issues.empty())
-            throw InputError(result.message + "\n(use --skip-bad-rows to skip bad rows)");
+        if (!result.data_issues.empty()) {
+            // The hint only where rows are bad (FILE:LINE), not for a file that cannot be read.
+            const bool rows = std::any_of(
+                result.data_issues.begin(), result.data_issues.end(), [](const Issue& issue) {
+                    const auto colon = issue.where.rfind(':');
+                    return colon != std::string::npos && colon + 1 < issue.where.size() &&
+                           std::isdigit(static_cast<unsigned char>(issue.where[colon + 1]));
+                });
+            throw InputError(result.message +
+                             (rows ? "\n(use --skip-bad-rows to skip bad rows)" : ""));
+        }
         if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
         for (const Issue& skipped : result.skipped)
             std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
