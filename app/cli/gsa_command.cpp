@@ -258,8 +258,9 @@ TerminalProgress::Mode progressMode(const StudyOptions& o) {
     return o.progress ? TerminalProgress::Mode::kLines : TerminalProgress::Mode::kBar;
 }
 
-// Writes the outcome (its table as CSV, or `json`); a refused study is an error (exit 1), a
-// cancelled one is written marked and exits with the signal's code.
+// Writes the outcome (its table as CSV, or `json`, an object); a refused study is an error
+// (exit 1), a cancelled one is written marked (JSON: "cancelled": true and a "note", as `sweep`;
+// CSV: a last comment line) and exits with the signal's code.
 void emit(const StudyOptions& o, const analysis::Outcome& outcome, const nlohmann::json& json,
           const SignalCancellation& cancellation) {
     for (const std::string& note : outcome.notes) std::cerr << "note: " << note << '\n';
@@ -267,14 +268,20 @@ void emit(const StudyOptions& o, const analysis::Outcome& outcome, const nlohman
         throw std::runtime_error(outcome.message);
     const bool cancelled = outcome.status == analysis::Outcome::Status::kCancelled;
     const std::string path = o.csv.empty() ? o.out : o.csv;
+    // The core says "cancelled: indices from the 512 of 4096 base samples …"; the note adds
+    // the signal.
+    std::string detail = outcome.message;
+    if (detail.rfind("cancelled: ", 0) == 0) detail.erase(0, 11);
+    const std::string note =
+        "cancelled by " + cancellation.signalName() + (detail.empty() ? "" : ": " + detail);
     std::string text;
     if (o.json && o.csv.empty()) {
         nlohmann::json j = json;
-        if (cancelled) j["cancelled"] = true;
+        if (cancelled) j.update({{"cancelled", true}, {"note", note}});
         text = j.dump(2) + "\n";
     } else {
         text = io::toCsv(outcome.tables.front().table);
-        if (cancelled) text += "# cancelled by " + cancellation.signalName() + "\n";
+        if (cancelled) text += "# " + note + "\n";
     }
     writeOutput(path, text);
     if (!path.empty() && path != "-") std::cerr << "wrote " << path << '\n';
@@ -375,7 +382,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
             analysis::uncertaintyBandOutcome(analysis::computeUncertaintyBands(
                 inputs, s, {cancellation.flag(), progress.callback()}));
         progress.finish();
-        emit(o, outcome, io::toJson(outcome.tables.front().table), cancellation);
+        // An object, not the bare array of rows: a cancelled study must carry its mark.
+        emit(o, outcome, nlohmann::json{{"rows", io::toJson(outcome.tables.front().table)}},
+             cancellation);
     });
 }
 

@@ -660,7 +660,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError(e.what());
         }
         progress.finish();
-        if (result.message == "cancelled") exitCancelled(cancellation, "identify cancelled");
+        if (result.message == "cancelled") {
+            exitCancelled(cancellation, "identify cancelled by " + cancellation.signalName() +
+                                            ": nothing written (a fit stopped halfway has no "
+                                            "result; docs/cli.md, \"Stopping a long command\")");
+        }
         if (!result.data_issues.empty()) {
             // The hint only where rows are bad (FILE:LINE), not for a file that cannot be read.
             const bool rows = std::any_of(

@@ -237,7 +237,12 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
                 throw InputError(e.what());
             }
             progress.finish();
-            if (cancellation.requested()) exitCancelled(cancellation, "validate cancelled");
+            if (cancellation.requested()) {
+                exitCancelled(cancellation,
+                              "validate cancelled by " + cancellation.signalName() +
+                                  ": nothing written (a calibration stopped halfway has no "
+                                  "result; docs/cli.md, \"Stopping a long command\")");
+            }
         }
         if (o->json) {
             std::cout << analysis::toJson(result).dump(2) << '\n';
