@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/analysis/sweep.h"
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
@@ -153,6 +154,23 @@ std::vector<double> parseValues(const std::string& text, const std::string& what
     std::vector<double> values;
     for (const std::string& part : parts) values.push_back(number(part));
     return values;
+}
+
+std::vector<NamedInput> ModelOptions::inputFiles() const {
+    return {{"--soil", soil}, {"--wheel", wheel}};
+}
+
+void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& output,
+                         const std::vector<NamedInput>& inputs) {
+    if (output.empty() || output == "-") return;
+    for (const NamedInput& input : inputs) {
+        std::error_code ec;
+        if (input.path.empty() || !std::filesystem::equivalent(output, input.path, ec) || ec)
+            continue;
+        throw InputError(flag + " '" + pathTail(output.string()) + "' is the input " + input.flag +
+                         " '" + pathTail(input.path.string()) +
+                         "': writing it would replace the input; choose another file");
+    }
 }
 
 void writeOutput(const std::string& path, const std::string& content) {

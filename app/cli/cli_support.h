@@ -26,6 +26,12 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// An input file of a command: the flag that named it and its path.
+struct NamedInput {
+    std::string flag;  ///< "--input", "--experiments", "script"
+    std::filesystem::path path;
+};
+
 /// Soil and wheel options shared by the subcommands, with the model flags that override the soil
 /// file (Table 2.3 fixes θ_m = 15° and uses no j_max).
 struct ModelOptions {
@@ -55,10 +61,20 @@ struct ModelOptions {
     /// The soil and wheel, with the conditions' defaults (core/analysis/conditions.h) and the
     /// contact model of --model.
     analysis::Inputs inputs(const io::PresetLocations& locations) const;
+    /// --soil and --wheel as input files (for refuseInputAsOutput; a preset name that is no
+    /// file is never equivalent to an output).
+    std::vector<NamedInput> inputFiles() const;
 };
 
 /// "0:0.99:100" (first:last:count), "5,10,15" or "0.3": the values, or InputError naming `what`.
 std::vector<double> parseValues(const std::string& text, const std::string& what);
+
+/// Throws InputError (exit 2) when `output`, a file the command is about to write (named by
+/// `flag`), is one of `inputs`: the same file after resolving links and relative paths
+/// (std::filesystem::equivalent), so that no command replaces the data it read. An output
+/// that does not exist yet is never an input.
+void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& output,
+                         const std::vector<NamedInput>& inputs);
 
 /// Writes `content` to `path` atomically, or to stdout when `path` is empty or "-".
 void writeOutput(const std::string& path, const std::string& content);

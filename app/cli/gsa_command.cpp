@@ -157,6 +157,8 @@ void checkValues(const std::string& flag, const std::string& text,
 
 // The study of the flags, every flag checked (exit 2 naming it, its value and the range).
 analysis::StudyDefinition definitionOf(const StudyOptions& o) {
+    refuseInputAsOutput("--out", o.out, o.model.inputFiles());
+    refuseInputAsOutput("--csv", o.csv, o.model.inputFiles());
     analysis::StudyDefinition d;
     // The parameters in the order they were given, --param and --normal interleaved.
     std::size_t u = 0, n = 0;

@@ -492,6 +492,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     s->add_option("--seed", synth->seed, "Random seed")->capture_default_str();
     s->add_option("--out", synth->out, "Output CSV (default: stdout)");
     s->callback([synth, &locations] {
+        refuseInputAsOutput("--out", synth->out, synth->model.inputFiles());
         const auto soil = synth->model.soilParameters(locations);
         const auto wheel = synth->model.wheelParameters(locations);
         identification::SyntheticSpec spec;

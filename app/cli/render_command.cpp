@@ -29,6 +29,8 @@ struct RenderOptions {
 };
 
 int render(const RenderOptions& o, const io::PresetLocations& locations) {
+    refuseInputAsOutput("--out", std::filesystem::path(o.out) / "forces-vs-slip.csv",
+                        o.model.inputFiles());
     analysis::Inputs inputs = o.model.inputs(locations);
     inputs.conditions.load_n = o.load_n;
     analysis::ForcesSettings settings;

@@ -130,6 +130,8 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
     if (!issues.empty()) throw InputError(formatIssues(issues));
     if (!o.formats.empty()) script.export_settings.formats = o.formats;
 
+    for (const char* file : {"report.md", "manifest.json"})
+        refuseInputAsOutput("--out", fs::path(o.out) / file, {{"script", o.script}});
     std::error_code ec;
     fs::create_directories(o.out, ec);
     if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());

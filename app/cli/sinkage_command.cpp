@@ -40,6 +40,7 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--out", options->out, "Write CSV (or JSON with --json) to this file");
     cmd->callback([options, &locations] {
         const SinkageOptions& o = *options;
+        refuseInputAsOutput("--out", o.out, o.model.inputFiles());
         const analysis::Inputs inputs = o.model.inputs(locations);
         analysis::SinkageSettings settings = o.settings;
         settings.loads_n = parseValues(o.loads, "--load");

@@ -40,6 +40,7 @@ struct SweepOptions {
     std::string values;
 
     analysis::Inputs inputs(const io::PresetLocations& locations) const {
+        refuseInputAsOutput("--out", out, model.inputFiles());
         analysis::Inputs in = model.inputs(locations);
         in.conditions.slip_angles_deg = parseValues(slip_angles, slip_angles_flag);
         if (load_n) in.conditions.load_n = *load_n;

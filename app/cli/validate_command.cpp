@@ -199,6 +199,15 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
         Result<io::Experiment> read = io::readExperiment(o->experiments);
         if (!read) throw InputError(read.message());
         const io::Experiment& experiment = read.value();
+        // The calibrated soil must not replace the test it was fitted to (or its sidecar, or
+        // the soil or wheel file it started from).
+        refuseInputAsOutput("--save-soil", o->save_soil,
+                            {{"--experiments", o->experiments},
+                             {"--experiments (its data)", experiment.source},
+                             {"--experiments (its sidecar)",
+                              std::filesystem::path(experiment.source).replace_extension(".json")},
+                             {"--soil", o->soil},
+                             {"--wheel", o->wheel}});
         ModelOptions names;
         names.set = o->set;
         names.model = o->model;

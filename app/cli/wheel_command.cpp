@@ -116,6 +116,9 @@ const io::NumericColumn kMaxStressAngle = io::numericColumn(contact::maxStressAn
 
 // Batch mode: one operating point per CSV row.
 int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
+    std::vector<NamedInput> inputs = o.model.inputFiles();
+    inputs.push_back({"--input", o.input});
+    refuseInputAsOutput("--output", o.output, inputs);
     Result<io::CsvDocument> read = io::readCsv(o.input);
     if (!read) throw InputError(read.message());
     const io::CsvDocument& doc = read.value();

@@ -228,6 +228,14 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
     if (ec) return "cannot create " + directory.string() + ": " + ec.message();
+    // A folder used before may hold a streaming.csv of an earlier run; this run writes none, so
+    // the old one would pass for this run's. Removed first: a run killed while writing leaves the
+    // earlier results without it, never with a stale one beside new results.
+    if (result.streaming.columns.empty()) {
+        const std::filesystem::path stale = directory / "streaming.csv";
+        std::filesystem::remove(stale, ec);
+        if (ec) return "cannot remove the earlier " + stale.string() + ": " + ec.message();
+    }
     if (auto error =
             io::writeFileAtomically(directory / "timeseries.csv", io::toCsv(result.series))) {
         return error;

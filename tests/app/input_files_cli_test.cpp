@@ -1,7 +1,7 @@
 // Inputs that end (issue 28, finding 2): every data input of the real executable must be a
 // regular file below the input limit. /dev/zero, a FIFO, a folder are refused by their kind
 // (exit 2) without reading a byte or blocking, and a file over TERRASTUDIO_MAX_INPUT_BYTES is
-// refused with the limit named (docs/cli.md, "Input files").
+// refused with the limit named (docs/cli.md, "Input files"). Inputs are never outputs (finding 4).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -150,6 +150,69 @@ TEST_F(InputFiles, AFileOverTheInputLimitIsRefusedWithTheLimitNamed) {
                                  "bytes"),
               std::string::npos)
         << malformed.err;
+}
+
+// Inputs are never outputs (issue 28, finding 4): an output that names an input file (the same
+// file after resolving links) is exit 2, and the input is left as it was.
+class InputsAreNotOutputs : public InputFiles {
+protected:
+    static std::string readText(const fs::path& path) {
+        std::ifstream in(path);
+        return {std::istreambuf_iterator<char>(in), {}};
+    }
+    void expectKept(const std::string& command, const fs::path& input, const std::string& piece) {
+        const std::string before = readText(input);
+        const CliRun r = run(command);
+        EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.err;
+        EXPECT_NE(r.err.find(piece), std::string::npos) << command << "\n" << r.err;
+        EXPECT_EQ(readText(input), before) << command << ": the input was replaced";
+    }
+};
+
+TEST_F(InputsAreNotOutputs, WheelBatchOutputThatIsItsInputIsRefused) {
+    const fs::path points = write("p.csv", "slip,load_N\n0.1,58\n");
+    // Paths are named by their ends (the temporary folder's path is long).
+    expectKept("wheel --input " + points.string() + " --output " + points.string(), points,
+               "/p.csv' is the input --input '");
+    expectKept("wheel --input " + points.string() + " --output " + points.string(), points,
+               "/p.csv': writing it would replace the input; choose another file");
+    // Through a link and a relative path: the same file all the same.
+    fs::create_symlink(points, dir_ / "link.csv");
+    expectKept("wheel --input " + points.string() + " --output " + (dir_ / "link.csv").string(),
+               points, "is the input --input");
+    expectKept("wheel --input " + points.string() + " --output " +
+                   (dir_ / "." / ".." / dir_.filename() / "p.csv").string(),
+               points, "is the input --input");
+    const fs::path soil =
+        write("soil.json", readText(std::string(TERRA_RESOURCE_DIR) + "/soils/sandy-loam.json"));
+    expectKept("sweep --soil " + soil.string() + " --out " + soil.string(), soil,
+               "/soil.json' is the input --soil '");
+    expectKept("synth --soil " + soil.string() + " --out " + soil.string(), soil,
+               "is the input --soil");
+}
+
+TEST_F(InputsAreNotOutputs, CalibratedSoilNeverReplacesTheTest) {
+    const fs::path test = write("e.csv", readText(kDing));
+    expectKept("validate --experiments " + test.string() + " --soil hit-lss1 --wheel " +
+                   "ding2011-smooth --calibrate --save-soil " + test.string(),
+               test, "/e.csv' is the input --experiments '");
+}
+
+TEST_F(InputsAreNotOutputs, ASimulateFolderUsedBeforeKeepsNoStaleStreamingFile) {
+    const fs::path out = dir_ / "s";
+    CliRun r = run("simulate --scenario soil-border --duration 0.5 --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(out / "streaming.csv"));
+    r = run("simulate --scenario straight --duration 0.5 --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_FALSE(fs::exists(out / "streaming.csv")) << "a stale streaming.csv was kept";
+    EXPECT_TRUE(fs::exists(out / "timeseries.csv"));
+    // A scenario file inside the output folder under a name simulate writes is refused.
+    const fs::path scenario = out / "summary.json";
+    std::ofstream(scenario) << readText(std::string(TERRA_RESOURCE_DIR) +
+                                        "/scenarios/straight.json");
+    expectKept("simulate --scenario " + scenario.string() + " --out " + out.string(), scenario,
+               "is the input --scenario");
 }
 
 }  // namespace
