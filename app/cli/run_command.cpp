@@ -95,8 +95,11 @@ project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer,
         const QString title =
             ui::analysisTitle(a.type->name, a.title, a.inputs, a.settings, outcome);
         // A failed or cancelled run keeps its partial results: they are written all the same.
-        for (const analysis::FigureSpec& figure : a.figures)
-            writer.figure(record, a, figure, outcome, title);
+        // One without any table (a stress field with no equilibrium) has no figure either.
+        if (!outcome.tables.empty()) {
+            for (const analysis::FigureSpec& figure : a.figures)
+                writer.figure(record, a, figure, outcome, title);
+        }
         for (const analysis::NamedTable& t : outcome.tables) {
             if (t.file_suffix) writer.table(record, a.name + *t.file_suffix, t.table);
         }

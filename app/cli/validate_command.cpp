@@ -259,9 +259,9 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
             printHuman(result, inputs);
         }
         std::cout.flush();
-        if (result.calibration && !result.calibration->report.usable())
-            throw std::runtime_error("the calibration did not give a usable fit: " +
-                                     result.calibration->report.message);
+        // No calibrated soil, nothing predicted: exit 1 with the reason, and no soil saved.
+        if (const std::string failure = analysis::validationFailure(result); !failure.empty())
+            throw std::runtime_error(failure);
         if (!o->save_soil.empty()) {
             if (const auto error = io::writeFileAtomically(
                     o->save_soil, io::toJson(result.calibration->soil).dump(2) + "\n"))
