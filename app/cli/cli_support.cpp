@@ -1,5 +1,6 @@
 #include "app/cli/cli_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -171,6 +172,13 @@ void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& o
                          " '" + pathTail(input.path.string()) +
                          "': writing it would replace the input; choose another file");
     }
+}
+
+void printLines(const std::vector<std::string>& lines, const std::string& prefix) {
+    const std::size_t shown = std::min(lines.size(), kMaxIssuesShown);
+    for (std::size_t i = 0; i < shown; ++i)
+        std::cerr << formatIssue({"", prefix + lines[i]}) << '\n';
+    if (shown < lines.size()) std::cerr << moreIssues(shown, lines.size(), "lines") << '\n';
 }
 
 void writeOutput(const std::string& path, const std::string& content) {

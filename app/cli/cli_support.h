@@ -76,6 +76,11 @@ std::vector<double> parseValues(const std::string& text, const std::string& what
 void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& output,
                          const std::vector<NamedInput>& inputs);
 
+/// Prints `lines` on stderr, one each after `prefix` ("warning: "): at most kMaxIssuesShown of
+/// them, each cut to kMaxIssueChars characters, then "… and N more" (core/common/issue.h), so
+/// that 20,000 bad rows skipped or warned about give a screenful, not megabytes.
+void printLines(const std::vector<std::string>& lines, const std::string& prefix);
+
 /// Writes `content` to `path` atomically, or to stdout when `path` is empty or "-".
 void writeOutput(const std::string& path, const std::string& content);
 

@@ -265,7 +265,7 @@ TerminalProgress::Mode progressMode(const StudyOptions& o) {
 // CSV: a last comment line) and exits with the signal's code.
 void emit(const StudyOptions& o, const analysis::Outcome& outcome, const nlohmann::json& json,
           const SignalCancellation& cancellation) {
-    for (const std::string& note : outcome.notes) std::cerr << "note: " << note << '\n';
+    printLines(outcome.notes, "note: ");
     if (outcome.status == analysis::Outcome::Status::kFailed)
         throw std::runtime_error(outcome.message);
     const bool cancelled = outcome.status == analysis::Outcome::Status::kCancelled;

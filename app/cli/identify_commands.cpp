@@ -372,7 +372,7 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         throw InputError(o.stream + ": " + e.what());
     }
     progress.finish();
-    for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
+    printLines(result.source.warnings, "");
     if (inputs.wheel.lugShearOffset() > 0.0) {
         // The streaming estimator is the decoupled model (Eqs. 4.1–4.18) on the rim radius.
         std::cerr << "warning: the streaming estimator treats the lugged wheel as smooth "
@@ -508,7 +508,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         const auto out =
             identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
         progress.finish();
-        for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
+        printLines(out.warnings, "warning: ");
         // A cancelled run is written too, marked by a last comment line (the data set reader
         // skips it, so `identify` reads the partial file).
         const std::string note = "cancelled by " + cancellation.signalName() + " after " +
@@ -678,9 +678,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                              (rows ? "\n(use --skip-bad-rows to skip bad rows)" : ""));
         }
         if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
-        for (const Issue& skipped : result.skipped)
-            std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
-        for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
+        std::vector<std::string> skipped;
+        for (const Issue& issue : result.skipped)
+            skipped.push_back("skipped " + issue.where + ": " + issue.message);
+        printLines(skipped, "");
+        printLines(result.warnings, "warning: ");
         const identification::DecoupledParameters& p = result.identified;
         const std::optional<identification::Uncertainty> uncertainty =
             result.report ? std::optional(result.report->uncertainty) : std::nullopt;

@@ -42,7 +42,7 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     progress.finish();
     const soil::SoilParameters& soil = inputs.soil;
     const wheel::WheelParameters& wheel = inputs.wheel;
-    for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
+    printLines(result.warnings, "warning: ");
 
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);

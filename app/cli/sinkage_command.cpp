@@ -51,7 +51,7 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
             checkRange(issues, "--load", w, load.range, load.displayUnit());
         if (!issues.empty()) throw InputError(formatIssues(issues));
         const analysis::SinkageStudy study = analysis::computeSinkage(inputs, settings);
-        for (const std::string& note : study.notes) std::cerr << "note: " << note << '\n';
+        printLines(study.notes, "note: ");
         const Table& table = study.table;
         const soil::SoilParameters& soil = inputs.soil;
         const wheel::WheelParameters& wheel = inputs.wheel;

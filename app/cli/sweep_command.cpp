@@ -59,7 +59,7 @@ struct SweepOptions {
 // comment line in CSV (which the CSV readers skip), then the cancellation's exit code.
 void emit(const SweepOptions& o, const analysis::SweepResult& result,
           const SignalCancellation& cancellation) {
-    for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
+    printLines(result.warnings, "warning: ");
     const std::string note = "cancelled by " + cancellation.signalName() + " after " +
                              std::to_string(result.table.rows.size()) + " rows";
     std::string text;

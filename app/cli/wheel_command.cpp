@@ -162,6 +162,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         "Mz_Nm,Fb_N,Fs_N\n";
     int failed = 0;
     std::size_t cancelled = 0;
+    std::vector<std::string> row_warnings;  // printed after the rows, bounded
     const SignalCancellation cancellation;
     TerminalProgress progress("wheel --input");
     const double row_count = static_cast<double>(doc.rows.size());
@@ -225,10 +226,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             ++skipped;
             continue;
         }
-        if (!result.warning.empty()) {
-            progress.clear();
-            std::cerr << where << ": warning: " << result.warning << '\n';
-        }
+        if (!result.warning.empty()) row_warnings.push_back(where + ": warning: " + result.warning);
         for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
         if (!result.failure.empty()) {
             ++failed;
@@ -245,6 +243,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     }
     if (cancelled == 0) progress.update(1.0);
     progress.finish();
+    printLines(row_warnings, "");
     if (!issues.empty()) {
         // In line order: rows with the wrong cell count come from the reader, the rest from here.
         const std::string prefix = o.input + ":";
