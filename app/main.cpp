@@ -30,6 +30,7 @@ int runHeadless(int argc, char** argv) {
     addSimulateCommand(app, locations);
     addGsaCommands(app, locations);
     addValidateCommand(app, locations);
+    makeOptionsStrict(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -66,6 +66,27 @@ struct ModelOptions {
     std::vector<NamedInput> inputFiles() const;
 };
 
+/// Why `text` is not a plain decimal number for a flag, or "" when it is one. Refused: empty
+/// text, hexadecimal ("0x0.8p0"), inf and nan, a number beyond a double, and a subnormal one
+/// (nonzero, below 2.2e-308 in magnitude: the CSV and JSON readers refuse it too). `whole`: a
+/// whole number in decimal digits (no fraction, no exponent; CLI11 alone would read "010" as
+/// octal 8 and "0x10" as 16); `non_negative`: no minus sign (CLI11 alone reads "-1" into an
+/// unsigned seed as 2^64 − 1).
+std::string numberProblem(const std::string& text, bool whole = false, bool non_negative = false);
+
+/// `value` from `text` when numberProblem accepts it; false otherwise.
+bool parseStrictNumber(const std::string& text, double& value);
+
+/// The checks every option of `app` and of its subcommands gets (docs/cli.md, "Strict values"):
+/// a value may not be empty (`--out ''` is no path, `--slips ''` no list), and a numeric option
+/// takes only what numberProblem accepts (whole and non-negative by the option's type). Call
+/// once every subcommand is added.
+void makeOptionsStrict(CLI::App& app);
+
+/// Throws InputError when two KEY=VALUE items of `flag` (--set, --noise, --prior, --fix) name
+/// the same key: the last one would silently win. Items without '=' are not keyed.
+void refuseRepeatedKeys(const std::string& flag, const std::vector<std::string>& items);
+
 /// "0:0.99:100" (first:last:count), "5,10,15" or "0.3": the values, or InputError naming `what`.
 std::vector<double> parseValues(const std::string& text, const std::string& what);
 

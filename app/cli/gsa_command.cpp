@@ -34,7 +34,7 @@ struct StudyOptions {
     std::optional<double> load_n;
     std::optional<double> entry_angle_deg;
     std::string outputs;
-    int samples = 0;
+    std::optional<int> samples;  // absent: the method's default (0 is a range error, not "default")
     std::uint64_t seed = 1;
     double max_failed_fraction = analysis::StudyDefinition{}.max_failed_fraction;
     int threads = 0;
@@ -58,8 +58,9 @@ struct StudyOptions {
 
 double number(const std::string& flag, const std::string& whole, const std::string& text) {
     double value = 0.0;
-    if (!io::parseNumber(text, value) || !std::isfinite(value))
-        bad(flag, whole, io::quoteCell(text) + " is not a number");
+    if (const std::string problem = numberProblem(text); !problem.empty())
+        bad(flag, whole, problem);
+    io::parseNumber(text, value);
     return value;
 }
 
@@ -319,9 +320,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         s.study = definitionOf(o);
         s.method =
             o.method == "morris" ? analysis::GsaMethod::kMorris : analysis::GsaMethod::kSobol;
-        if (o.samples != 0) {
-            checkCount("--samples", o.samples, 2, kMaxSamples);
-            s.samples = static_cast<std::size_t>(o.samples);
+        if (o.samples) {
+            checkCount("--samples", *o.samples, 2, kMaxSamples);
+            s.samples = static_cast<std::size_t>(*o.samples);
         } else if (s.method == analysis::GsaMethod::kMorris) {
             s.samples = gsa::MorrisOptions{}.trajectories;
         }
@@ -368,9 +369,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         s.study = definitionOf(o);
         if (o.outputs.empty()) s.study.outputs = outputs;
         if (o.slips.empty()) s.study.slips.clear();  // 0 … slip_max in slip_count points
-        if (o.samples != 0) {
-            checkCount("--samples", o.samples, 2, kMaxSamples);
-            s.samples = static_cast<std::size_t>(o.samples);
+        if (o.samples) {
+            checkCount("--samples", *o.samples, 2, kMaxSamples);
+            s.samples = static_cast<std::size_t>(*o.samples);
         }
         s.percentiles = parseValues(o.percentiles, "--percentiles");
         for (double q : s.percentiles) {

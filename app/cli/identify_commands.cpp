@@ -38,6 +38,7 @@ struct SynthOptions {
 void parseNoise(const std::vector<std::string>& items, identification::NoiseSpec& noise) {
     std::map<std::string, identification::ChannelNoise*> channels{
         {"fx", &noise.fx}, {"fz", &noise.fz}, {"my", &noise.my}, {"theta", &noise.entry_angle}};
+    refuseRepeatedKeys("--noise", items);
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const std::string key = item.substr(0, equals);
@@ -50,9 +51,17 @@ void parseNoise(const std::vector<std::string>& items, identification::NoiseSpec
         if (percent) value.pop_back();
         double sigma = 0.0;
         std::vector<Issue> issues;
-        if (!io::parseNumber(value, sigma))
-            throw InputError("--noise '" + item + "': not a number");
-        checkRange(issues, "--noise " + key, sigma, {0.0, percent ? 1000.0 : 1e6});
+        if (const std::string problem = numberProblem(value); !problem.empty())
+            throw InputError("--noise '" + item + "': " + problem);
+        io::parseNumber(value, sigma);
+        // θ_f lies in (0°, 90°]: a spread beyond 90° is no measurement noise of it.
+        if (percent) {
+            checkRange(issues, "--noise " + key, sigma, {0.0, 1000.0}, "%");
+        } else if (key == "theta") {
+            checkRange(issues, "--noise " + key, sigma, {0.0, 90.0}, "deg");
+        } else {
+            checkRange(issues, "--noise " + key, sigma, {0.0, 1e6}, key == "my" ? "N·m" : "N");
+        }
         if (!issues.empty()) throw InputError(formatIssues(issues));
         if (percent) {
             it->second->relative = sigma / 100.0;
@@ -92,6 +101,7 @@ const Range kStartsRange{0.0, 100000.0};
 // JSON file) whose values become the means with the spreads of PriorSpreads.
 void parsePriors(const std::vector<std::string>& items, const io::PresetLocations& locations,
                  analysis::IdentificationSettings& settings) {
+    refuseRepeatedKeys("--prior", items);
     std::vector<Issue> issues;
     for (const std::string& item : items) {
         if (item.find('=') != std::string::npos) {
@@ -451,11 +461,12 @@ std::vector<std::pair<std::string, double>> parseFixes(const std::vector<std::st
     for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
     std::vector<std::pair<std::string, double>> out;
     std::vector<Issue> issues;
+    refuseRepeatedKeys("--fix", items);
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const std::string key = item.substr(0, equals);
         double value = 0.0;
-        if (equals == std::string::npos || !io::parseNumber(item.substr(equals + 1), value)) {
+        if (equals == std::string::npos || !parseStrictNumber(item.substr(equals + 1), value)) {
             issues.push_back({"--fix " + item, "expected NAME=VALUE, NAME one of " + list});
         } else if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
             const std::string near = nearestName(key, keys);

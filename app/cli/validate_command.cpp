@@ -32,13 +32,14 @@ struct ValidateOptions {
 void parseNoise(const std::vector<std::string>& items, analysis::ValidationSettings& s) {
     std::map<std::string, std::size_t> channels{
         {"Fx_N", io::kExpFx}, {"My_Nm", io::kExpMy}, {"sinkage_m", io::kExpSinkage}};
+    refuseRepeatedKeys("--noise", items);
     std::vector<Issue> issues;
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const auto it = channels.find(item.substr(0, equals));
         double sigma = 0.0;
         if (equals == std::string::npos || it == channels.end() ||
-            !io::parseNumber(item.substr(equals + 1), sigma)) {
+            !parseStrictNumber(item.substr(equals + 1), sigma)) {
             issues.push_back({"--noise " + io::quoteCell(item),
                               "expected Fx_N=SIGMA, My_Nm=SIGMA or sinkage_m=SIGMA (N, N·m, m)"});
             continue;
