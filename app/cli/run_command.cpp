@@ -143,6 +143,22 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
 
     Writer writer(o.out, script.export_settings);
     std::vector<project::RunRecord> records;
+    const std::string tool = std::string("terrastudio ") + build_info::kVersion;
+    // The manifest is written first, marked running, and again after every analysis: a run
+    // killed outright (SIGKILL, a power cut) leaves a manifest that says so and lists what was
+    // finished, never data files without one. The end of the run rewrites it complete.
+    const fs::path manifest_path = fs::path(o.out) / "manifest.json";
+    auto writeRunningManifest = [&] {
+        nlohmann::json running = project::manifest(script, o.script, records, tool);
+        running.update({{"status", "running"},
+                        {"note",
+                         "the run has not finished (or was killed): the files of the "
+                         "analyses not listed here may be partial or from an earlier "
+                         "run"}});
+        if (const auto error = io::writeFileAtomically(manifest_path, running.dump(2) + "\n"))
+            throw std::runtime_error(*error);
+    };
+    writeRunningManifest();
     const SignalCancellation cancellation;
     for (const project::ScriptAnalysis& a : script.analyses) {
         if (cancellation.requested()) break;
@@ -159,6 +175,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
                       << outcome.text << '\n';
         }
         records.push_back(std::move(record));
+        writeRunningManifest();
     }
     // Cancelled: what was computed is written and reported; the analysis running at the signal
     // keeps its rows so far (its notes say so), the ones after it are not run.
@@ -175,10 +192,9 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
-    const nlohmann::json manifest = project::manifest(
-        script, o.script, records, std::string("terrastudio ") + build_info::kVersion, cancelled);
-    if (const auto error =
-            io::writeFileAtomically(out / "manifest.json", manifest.dump(2) + "\n")) {
+    nlohmann::json manifest = project::manifest(script, o.script, records, tool, cancelled);
+    manifest["status"] = cancelled.empty() ? "completed" : "cancelled";
+    if (const auto error = io::writeFileAtomically(manifest_path, manifest.dump(2) + "\n")) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "manifest.json").string() << '\n';

@@ -328,6 +328,16 @@ TEST_F(StrictScript, ExpectationTablesAndFiguresAreChecked) {
     expectRejected(runJson(script), "analyses[0].plots[0]: \"Fx\" is not one of Fx_N");
 }
 
+// Issue 28, finding 9: an analysis name with a line break (or any control character) became
+// file names holding it; it is refused like a '/' (exit 2, nothing written), shown escaped.
+TEST_F(StrictScript, AnAnalysisNameWithALineBreakIsRefused) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["analyses"][0]["name"] = "f\nx";
+    expectRejected(runJson(script), "analyses[0].name: \"f\\nx\" cannot start a file name");
+    script["analyses"][0]["name"] = "f\x1b[2Jx";
+    expectRejected(runJson(script), "analyses[0].name: \"f\\x1b[2Jx\" cannot start a file name");
+}
+
 TEST_F(StrictScript, CommentsAreAllowedWhereverAKeyIs) {
     const double fx = singlePointFx();
     nlohmann::json script = forcesScript(fx - 1e-6, fx + 1e-6);

@@ -308,6 +308,35 @@ TEST_F(Signals, IdentifyAndValidateWriteNothingAndSaySo) {
         << validate.err();
 }
 
+// Issue 28, finding 9: SIGKILL during `run` left data files without manifest.json. The manifest
+// is written first, marked running, and after every analysis: killed outright, the folder still
+// says what it holds.
+TEST_F(Signals, RunKilledOutrightLeavesAManifestMarkedRunning) {
+    const fs::path script = dir_ / "script.json";
+    std::ofstream(script) << nlohmann::json{
+        {"analyses",
+         {{{"name", "fx"}, {"type", "forces"}},
+          {{"name", "long"}, {"type", "rover"}, {"scenario", "straight"}, {"duration_s", 600}}}}};
+    const fs::path out = dir_ / "out";
+    CliProcess p({"run", script, "--out", out}, dir_ / "run");
+    const auto end = std::chrono::steady_clock::now() + 120s;
+    while (!fs::exists(out / "fx.csv") && !p.exited() && std::chrono::steady_clock::now() < end)
+        std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(fs::exists(out / "fx.csv")) << p.err();
+    std::this_thread::sleep_for(500ms);
+    p.signal(SIGKILL);
+    ASSERT_TRUE(WIFSIGNALED(p.wait()));
+    const auto manifest = nlohmann::json::parse(readText(out / "manifest.json"));
+    EXPECT_EQ(manifest["status"], "running");
+    ASSERT_EQ(manifest["analyses"].size(), 1u);
+    EXPECT_EQ(manifest["analyses"][0]["name"], "fx");
+    EXPECT_FALSE(fs::exists(out / "long-summary.json"));
+    // A run that ends says so.
+    std::ofstream(script) << nlohmann::json{{"analyses", {{{"name", "fx"}, {"type", "forces"}}}}};
+    ASSERT_EQ(terra::test::run("run " + script.string() + " --out " + out.string()).exit_code, 0);
+    EXPECT_EQ(nlohmann::json::parse(readText(out / "manifest.json"))["status"], "completed");
+}
+
 // SIGKILL while the 26 MB time series is being written (seen as an open file in the output
 // directory): the previous results stay whole and nothing else is left there; the next run
 // replaces them and leaves nothing either.

@@ -92,6 +92,13 @@ TEST_F(StrictFlags, ValuesWithoutTheirParameterAndAHugeAngleNoiseAreRefused) {
                    "--noise theta: 1000 is outside the allowed range [0, 90] deg");
 }
 
+// Issue 28, finding 9: an unknown subcommand is named, with the nearest one.
+TEST_F(StrictFlags, AnUnknownSubcommandIsNamed) {
+    expectRejected("whee --load 5",
+                   "error: 'whee' is not a subcommand; did you mean wheel? (subcommands: wheel, ");
+    expectRejected("--load 5", "error: '--load' comes before any subcommand");
+}
+
 // Issue 28, finding 7: 100,000 unknown soil keys gave 12.3 MB on stderr, 20,000 bad batch rows
 // 1.25 MB; at most 20 problems are listed, then their count.
 TEST_F(StrictFlags, AThousandProblemsPrintAScreenful) {
