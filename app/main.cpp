@@ -1,6 +1,7 @@
 // terrastudio: the studio GUI when started plainly, headless subcommands otherwise (docs/cli.md).
 #include <CLI/CLI.hpp>
 #include <QApplication>
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
@@ -8,9 +9,31 @@
 #include "app/cli/commands.h"
 #include "app/main_window.h"
 #include "core/common/build_info.h"
+#include "core/common/issue.h"
+#include "core/common/quoted.h"
 #include "core/project/project.h"
 
 namespace {
+
+// "'whee' is not a subcommand; did you mean wheel? …" when the first argument is neither a
+// subcommand nor an option of the program itself; "" otherwise.
+std::string unknownSubcommand(CLI::App& app, int argc, char** argv) {
+    if (argc < 2) return {};
+    const std::string first = argv[1];
+    std::vector<std::string> names;
+    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+        names.push_back(command->get_name());
+    if (std::find(names.begin(), names.end(), first) != names.end()) return {};
+    if (first == "--help" || first == "-h" || first == "--version") return {};
+    std::string all;
+    for (const std::string& name : names) all += (all.empty() ? "" : ", ") + name;
+    const std::string near = terra::nearestName(first, names);
+    const std::string what = !first.empty() && first[0] == '-'
+                                 ? terra::quoteText(first) + " comes before any subcommand"
+                                 : terra::quoteText(first) + " is not a subcommand";
+    return what + (near.empty() ? "" : "; did you mean " + near + "?") + " (subcommands: " + all +
+           "; terrastudio SUBCOMMAND --help for its options)";
+}
 
 int runHeadless(int argc, char** argv) {
     using namespace terra::app;
@@ -32,6 +55,12 @@ int runHeadless(int argc, char** argv) {
     addValidateCommand(app, locations);
     addCompactionCommand(app, locations);
     addTractionCommand(app, locations);
+    makeOptionsStrict(app);
+    // CLI11 answers an unknown first word with "A subcommand is required": name it instead.
+    if (const std::string problem = unknownSubcommand(app, argc, argv); !problem.empty()) {
+        std::cerr << "error: " << problem << '\n';
+        return kBadInput;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -1,11 +1,16 @@
 #include "app/cli/cli_support.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "core/analysis/sweep.h"
+#include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
@@ -44,6 +49,7 @@ soil::SoilParameters ModelOptions::soilParameters(const io::PresetLocations& loc
     Result<soil::SoilParameters> resolved = io::resolveSoil(locations, soil);
     if (!resolved) throw InputError(resolved.message());
     soil::SoilParameters out = resolved.value();
+    refuseRepeatedKeys("--set", set);
     std::vector<Issue> issues;
     for (const std::string& assignment : set) {
         const auto equals = assignment.find('=');
@@ -56,7 +62,7 @@ soil::SoilParameters ModelOptions::soilParameters(const io::PresetLocations& loc
                 keys += (keys.empty() ? "" : ", ") + std::string(f.key);
             issues.push_back({"--set " + key, "unknown soil field; fields: " + keys});
         } else if (equals == std::string::npos ||
-                   !io::parseNumber(assignment.substr(equals + 1), value)) {
+                   !parseStrictNumber(assignment.substr(equals + 1), value)) {
             issues.push_back(
                 {"--set " + key, "expected KEY=NUMBER, got " + io::quoteCell(assignment)});
         } else if (checkRange(issues, "--set " + key, value, field->range, field->displayUnit())) {
@@ -125,14 +131,105 @@ analysis::Inputs ModelOptions::inputs(const io::PresetLocations& locations) cons
     return in;
 }
 
+std::string numberProblem(const std::string& text, bool whole, bool non_negative) {
+    std::size_t begin = text.find_first_not_of(" \t");
+    if (begin == std::string::npos) return "empty value; give a number";
+    const std::string s = text.substr(begin, text.find_last_not_of(" \t") - begin + 1);
+    const std::string quoted = io::quoteCell(s);
+    if (non_negative && s[0] == '-') return quoted + " is negative; give a whole number >= 0";
+    if (whole) {
+        const std::size_t digits = s[0] == '+' || s[0] == '-' ? 1 : 0;
+        if (digits == s.size() || s.find_first_not_of("0123456789", digits) != std::string::npos) {
+            return quoted + " is not a whole number in decimal digits";
+        }
+        return {};
+    }
+    double value = 0.0;
+    if (!io::parseNumber(s, value)) {
+        const char* first = s.c_str() + (s[0] == '+' ? 1 : 0);
+        const auto [end, error] = std::from_chars(first, s.c_str() + s.size(), value);
+        if (error == std::errc::result_out_of_range && end == s.c_str() + s.size()) {
+            return quoted +
+                   (std::abs(std::strtod(first, nullptr)) < 1.0 ? " underflows" : " overflows") +
+                   " a double";
+        }
+        if (error == std::errc{} && end == s.c_str() + s.size())
+            return quoted + " is not a finite number";
+        return quoted + " is not a decimal number";
+    }
+    if (value != 0.0 && std::abs(value) < std::numeric_limits<double>::min()) {
+        return quoted + " is subnormal (magnitude below 2.2e-308), too small to compute with";
+    }
+    return {};
+}
+
+namespace {
+
+// A whole number checked by numberProblem, without blanks, '+' and leading zeros.
+std::string plainInteger(const std::string& text) {
+    const std::size_t begin = text.find_first_not_of(" \t+");
+    const std::size_t end = text.find_last_not_of(" \t") + 1;
+    const bool negative = text[begin] == '-';
+    const std::size_t start = begin + (negative ? 1 : 0);
+    const std::string digits = text.substr(start, end - start);
+    const std::size_t first = digits.find_first_not_of('0');
+    if (first == std::string::npos) return "0";
+    return (negative ? "-" : "") + digits.substr(first);
+}
+
+}  // namespace
+
+bool parseStrictNumber(const std::string& text, double& value) {
+    return numberProblem(text).empty() && io::parseNumber(text, value);
+}
+
+void makeOptionsStrict(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        if (option->get_type_size() == 0) continue;  // a flag: no value
+        const std::string type = option->get_type_name();
+        const bool unsigned_type = type.rfind("UINT", 0) == 0;
+        const bool integer = unsigned_type || type.rfind("INT", 0) == 0;
+        const bool number = integer || type.rfind("FLOAT", 0) == 0;
+        // A transform, run before the option's own checks: the number's text is made plain
+        // decimal ("010" → "10") for CLI11's conversion, which reads C literals.
+        option->transform(CLI::Validator(
+            [number, integer, unsigned_type](std::string& value) -> std::string {
+                if (!number) {
+                    return value.empty() ? std::string("empty value") : std::string();
+                }
+                const std::string problem = numberProblem(value, integer, unsigned_type);
+                if (problem.empty() && integer) value = plainInteger(value);
+                return problem;
+            },
+            ""));
+    }
+    for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+        makeOptionsStrict(*command);
+}
+
+void refuseRepeatedKeys(const std::string& flag, const std::vector<std::string>& items) {
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        const auto equals = items[i].find('=');
+        if (equals == std::string::npos) continue;
+        const std::string key = items[i].substr(0, equals);
+        for (std::size_t k = 0; k < i; ++k) {
+            if (items[k].find('=') != equals || items[k].compare(0, equals, key) != 0) continue;
+            throw InputError(flag + " " + key + ": given twice (" + io::quoteCell(items[k]) +
+                             " and " + io::quoteCell(items[i]) +
+                             "); give each key once, the last would silently win");
+        }
+    }
+}
+
 std::vector<double> parseValues(const std::string& text, const std::string& what) {
     auto number = [&](const std::string& cell) {
-        double value = 0.0;
-        if (!io::parseNumber(cell, value)) {
-            throw InputError(what + ": " + io::quoteCell(cell) +
-                             " is not a number (expected a value, a list a,b,c or a range " +
-                             "first:last:count)");
+        const std::string problem = numberProblem(cell);
+        if (!problem.empty()) {
+            throw InputError(what + ": " + problem +
+                             " (expected a value, a list a,b,c or a range first:last:count)");
         }
+        double value = 0.0;
+        io::parseNumber(cell, value);
         return value;
     };
     std::vector<std::string> parts;
@@ -153,6 +250,30 @@ std::vector<double> parseValues(const std::string& text, const std::string& what
     std::vector<double> values;
     for (const std::string& part : parts) values.push_back(number(part));
     return values;
+}
+
+std::vector<NamedInput> ModelOptions::inputFiles() const {
+    return {{"--soil", soil}, {"--wheel", wheel}};
+}
+
+void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& output,
+                         const std::vector<NamedInput>& inputs) {
+    if (output.empty() || output == "-") return;
+    for (const NamedInput& input : inputs) {
+        std::error_code ec;
+        if (input.path.empty() || !std::filesystem::equivalent(output, input.path, ec) || ec)
+            continue;
+        throw InputError(flag + " '" + pathTail(output.string()) + "' is the input " + input.flag +
+                         " '" + pathTail(input.path.string()) +
+                         "': writing it would replace the input; choose another file");
+    }
+}
+
+void printLines(const std::vector<std::string>& lines, const std::string& prefix) {
+    const std::size_t shown = std::min(lines.size(), kMaxIssuesShown);
+    for (std::size_t i = 0; i < shown; ++i)
+        std::cerr << formatIssue({"", prefix + lines[i]}) << '\n';
+    if (shown < lines.size()) std::cerr << moreIssues(shown, lines.size(), "lines") << '\n';
 }
 
 void writeOutput(const std::string& path, const std::string& content) {

@@ -26,6 +26,12 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// An input file of a command: the flag that named it and its path.
+struct NamedInput {
+    std::string flag;  ///< "--input", "--experiments", "script"
+    std::filesystem::path path;
+};
+
 /// Soil and wheel options shared by the subcommands, with the model flags that override the soil
 /// file (Table 2.3 fixes θ_m = 15° and uses no j_max).
 struct ModelOptions {
@@ -55,10 +61,46 @@ struct ModelOptions {
     /// The soil and wheel, with the conditions' defaults (core/analysis/conditions.h) and the
     /// contact model of --model.
     analysis::Inputs inputs(const io::PresetLocations& locations) const;
+    /// --soil and --wheel as input files (for refuseInputAsOutput; a preset name that is no
+    /// file is never equivalent to an output).
+    std::vector<NamedInput> inputFiles() const;
 };
+
+/// Why `text` is not a plain decimal number for a flag, or "" when it is one. Refused: empty
+/// text, hexadecimal ("0x0.8p0"), inf and nan, a number beyond a double, and a subnormal one
+/// (nonzero, below 2.2e-308 in magnitude: the CSV and JSON readers refuse it too). `whole`: a
+/// whole number in decimal digits (no fraction, no exponent; CLI11 alone would read "010" as
+/// octal 8 and "0x10" as 16); `non_negative`: no minus sign (CLI11 alone reads "-1" into an
+/// unsigned seed as 2^64 − 1).
+std::string numberProblem(const std::string& text, bool whole = false, bool non_negative = false);
+
+/// `value` from `text` when numberProblem accepts it; false otherwise.
+bool parseStrictNumber(const std::string& text, double& value);
+
+/// The checks every option of `app` and of its subcommands gets (docs/cli.md, "Strict values"):
+/// a value may not be empty (`--out ''` is no path, `--slips ''` no list), and a numeric option
+/// takes only what numberProblem accepts (whole and non-negative by the option's type). Call
+/// once every subcommand is added.
+void makeOptionsStrict(CLI::App& app);
+
+/// Throws InputError when two KEY=VALUE items of `flag` (--set, --noise, --prior, --fix) name
+/// the same key: the last one would silently win. Items without '=' are not keyed.
+void refuseRepeatedKeys(const std::string& flag, const std::vector<std::string>& items);
 
 /// "0:0.99:100" (first:last:count), "5,10,15" or "0.3": the values, or InputError naming `what`.
 std::vector<double> parseValues(const std::string& text, const std::string& what);
+
+/// Throws InputError (exit 2) when `output`, a file the command is about to write (named by
+/// `flag`), is one of `inputs`: the same file after resolving links and relative paths
+/// (std::filesystem::equivalent), so that no command replaces the data it read. An output
+/// that does not exist yet is never an input.
+void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& output,
+                         const std::vector<NamedInput>& inputs);
+
+/// Prints `lines` on stderr, one each after `prefix` ("warning: "): at most kMaxIssuesShown of
+/// them, each cut to kMaxIssueChars characters, then "… and N more" (core/common/issue.h), so
+/// that 20,000 bad rows skipped or warned about give a screenful, not megabytes.
+void printLines(const std::vector<std::string>& lines, const std::string& prefix);
 
 /// Writes `content` to `path` atomically, or to stdout when `path` is empty or "-".
 void writeOutput(const std::string& path, const std::string& content);

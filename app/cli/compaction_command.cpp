@@ -154,6 +154,9 @@ void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "Write the JSON (with --json) or the profile as CSV to this file");
     cmd->callback([options, &locations] {
         const CompactionOptions& o = *options;
+        std::vector<NamedInput> files = o.model.inputFiles();
+        if (o.profile) files.push_back({"--profile", *o.profile});
+        refuseInputAsOutput("--out", o.out, files);
         analysis::Inputs inputs = o.model.inputs(locations);
         if (o.load_n) {
             std::vector<Issue> issues;

@@ -34,7 +34,7 @@ struct StudyOptions {
     std::optional<double> load_n;
     std::optional<double> entry_angle_deg;
     std::string outputs;
-    int samples = 0;
+    std::optional<int> samples;  // absent: the method's default (0 is a range error, not "default")
     std::uint64_t seed = 1;
     double max_failed_fraction = analysis::StudyDefinition{}.max_failed_fraction;
     int threads = 0;
@@ -62,8 +62,9 @@ struct StudyOptions {
 
 double number(const std::string& flag, const std::string& whole, const std::string& text) {
     double value = 0.0;
-    if (!io::parseNumber(text, value) || !std::isfinite(value))
-        bad(flag, whole, io::quoteCell(text) + " is not a number");
+    if (const std::string problem = numberProblem(text); !problem.empty())
+        bad(flag, whole, problem);
+    io::parseNumber(text, value);
     return value;
 }
 
@@ -162,6 +163,8 @@ void checkValues(const std::string& flag, const std::string& text,
 // The study of the flags, every flag checked (exit 2 naming it, its value and the range).
 analysis::StudyDefinition definitionOf(const StudyOptions& o,
                                        const io::PresetLocations& locations) {
+    refuseInputAsOutput("--out", o.out, o.model.inputFiles());
+    refuseInputAsOutput("--csv", o.csv, o.model.inputFiles());
     analysis::StudyDefinition d;
     // The parameters in the order they were given, --param and --normal interleaved.
     std::size_t u = 0, n = 0;
@@ -292,23 +295,30 @@ TerminalProgress::Mode progressMode(const StudyOptions& o) {
     return o.progress ? TerminalProgress::Mode::kLines : TerminalProgress::Mode::kBar;
 }
 
-// Writes the outcome (its table as CSV, or `json`); a refused study is an error (exit 1), a
-// cancelled one is written marked and exits with the signal's code.
+// Writes the outcome (its table as CSV, or `json`, an object); a refused study is an error
+// (exit 1), a cancelled one is written marked (JSON: "cancelled": true and a "note", as `sweep`;
+// CSV: a last comment line) and exits with the signal's code.
 void emit(const StudyOptions& o, const analysis::Outcome& outcome, const nlohmann::json& json,
           const SignalCancellation& cancellation) {
-    for (const std::string& note : outcome.notes) std::cerr << "note: " << note << '\n';
+    printLines(outcome.notes, "note: ");
     if (outcome.status == analysis::Outcome::Status::kFailed)
         throw std::runtime_error(outcome.message);
     const bool cancelled = outcome.status == analysis::Outcome::Status::kCancelled;
     const std::string path = o.csv.empty() ? o.out : o.csv;
+    // The core says "cancelled: indices from the 512 of 4096 base samples …"; the note adds
+    // the signal.
+    std::string detail = outcome.message;
+    if (detail.rfind("cancelled: ", 0) == 0) detail.erase(0, 11);
+    const std::string note =
+        "cancelled by " + cancellation.signalName() + (detail.empty() ? "" : ": " + detail);
     std::string text;
     if (o.json && o.csv.empty()) {
         nlohmann::json j = json;
-        if (cancelled) j["cancelled"] = true;
+        if (cancelled) j.update({{"cancelled", true}, {"note", note}});
         text = j.dump(2) + "\n";
     } else {
         text = io::toCsv(outcome.tables.front().table);
-        if (cancelled) text += "# cancelled by " + cancellation.signalName() + "\n";
+        if (cancelled) text += "# " + note + "\n";
     }
     writeOutput(path, text);
     if (!path.empty() && path != "-") std::cerr << "wrote " << path << '\n';
@@ -344,9 +354,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         s.study = definitionOf(o, locations);
         s.method =
             o.method == "morris" ? analysis::GsaMethod::kMorris : analysis::GsaMethod::kSobol;
-        if (o.samples != 0) {
-            checkCount("--samples", o.samples, 2, kMaxSamples);
-            s.samples = static_cast<std::size_t>(o.samples);
+        if (o.samples) {
+            checkCount("--samples", *o.samples, 2, kMaxSamples);
+            s.samples = static_cast<std::size_t>(*o.samples);
         } else if (s.method == analysis::GsaMethod::kMorris) {
             s.samples = gsa::MorrisOptions{}.trajectories;
         }
@@ -393,9 +403,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         s.study = definitionOf(o, locations);
         if (o.outputs.empty()) s.study.outputs = outputs;
         if (o.slips.empty()) s.study.slips.clear();  // 0 … slip_max in slip_count points
-        if (o.samples != 0) {
-            checkCount("--samples", o.samples, 2, kMaxSamples);
-            s.samples = static_cast<std::size_t>(o.samples);
+        if (o.samples) {
+            checkCount("--samples", *o.samples, 2, kMaxSamples);
+            s.samples = static_cast<std::size_t>(*o.samples);
         }
         s.percentiles = parseValues(o.percentiles, "--percentiles");
         for (double q : s.percentiles) {
@@ -409,7 +419,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
             analysis::uncertaintyBandOutcome(analysis::computeUncertaintyBands(
                 inputs, s, {cancellation.flag(), progress.callback()}));
         progress.finish();
-        emit(o, outcome, io::toJson(outcome.tables.front().table), cancellation);
+        // An object, not the bare array of rows: a cancelled study must carry its mark.
+        emit(o, outcome, nlohmann::json{{"rows", io::toJson(outcome.tables.front().table)}},
+             cancellation);
     });
 }
 

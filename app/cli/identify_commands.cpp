@@ -1,6 +1,8 @@
 // `terrastudio synth` (synthetic identification data, thesis chapter 5) and `terrastudio identify`:
 // the global identification on the full model with its uncertainty (`--refine`, the default), the
 // decoupled three-step fit of §4.3 alone (`--no-refine`), or the streaming estimator (`--stream`).
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -37,6 +39,7 @@ struct SynthOptions {
 void parseNoise(const std::vector<std::string>& items, identification::NoiseSpec& noise) {
     std::map<std::string, identification::ChannelNoise*> channels{
         {"fx", &noise.fx}, {"fz", &noise.fz}, {"my", &noise.my}, {"theta", &noise.entry_angle}};
+    refuseRepeatedKeys("--noise", items);
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const std::string key = item.substr(0, equals);
@@ -49,9 +52,17 @@ void parseNoise(const std::vector<std::string>& items, identification::NoiseSpec
         if (percent) value.pop_back();
         double sigma = 0.0;
         std::vector<Issue> issues;
-        if (!io::parseNumber(value, sigma))
-            throw InputError("--noise '" + item + "': not a number");
-        checkRange(issues, "--noise " + key, sigma, {0.0, percent ? 1000.0 : 1e6});
+        if (const std::string problem = numberProblem(value); !problem.empty())
+            throw InputError("--noise '" + item + "': " + problem);
+        io::parseNumber(value, sigma);
+        // θ_f lies in (0°, 90°]: a spread beyond 90° is no measurement noise of it.
+        if (percent) {
+            checkRange(issues, "--noise " + key, sigma, {0.0, 1000.0}, "%");
+        } else if (key == "theta") {
+            checkRange(issues, "--noise " + key, sigma, {0.0, 90.0}, "deg");
+        } else {
+            checkRange(issues, "--noise " + key, sigma, {0.0, 1e6}, key == "my" ? "N·m" : "N");
+        }
         if (!issues.empty()) throw InputError(formatIssues(issues));
         if (percent) {
             it->second->relative = sigma / 100.0;
@@ -91,6 +102,7 @@ const Range kStartsRange{0.0, 100000.0};
 // JSON file) whose values become the means with the spreads of PriorSpreads.
 void parsePriors(const std::vector<std::string>& items, const io::PresetLocations& locations,
                  analysis::IdentificationSettings& settings) {
+    refuseRepeatedKeys("--prior", items);
     std::vector<Issue> issues;
     for (const std::string& item : items) {
         if (item.find('=') != std::string::npos) {
@@ -371,7 +383,7 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         throw InputError(o.stream + ": " + e.what());
     }
     progress.finish();
-    for (const std::string& w : result.source.warnings) std::cerr << w << '\n';
+    printLines(result.source.warnings, "");
     if (inputs.wheel.lugShearOffset() > 0.0) {
         // The streaming estimator is the decoupled model (Eqs. 4.1–4.18) on the rim radius.
         std::cerr << "warning: the streaming estimator treats the lugged wheel as smooth "
@@ -450,11 +462,12 @@ std::vector<std::pair<std::string, double>> parseFixes(const std::vector<std::st
     for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
     std::vector<std::pair<std::string, double>> out;
     std::vector<Issue> issues;
+    refuseRepeatedKeys("--fix", items);
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const std::string key = item.substr(0, equals);
         double value = 0.0;
-        if (equals == std::string::npos || !io::parseNumber(item.substr(equals + 1), value)) {
+        if (equals == std::string::npos || !parseStrictNumber(item.substr(equals + 1), value)) {
             issues.push_back({"--fix " + item, "expected NAME=VALUE, NAME one of " + list});
         } else if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
             const std::string near = nearestName(key, keys);
@@ -491,6 +504,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     s->add_option("--seed", synth->seed, "Random seed")->capture_default_str();
     s->add_option("--out", synth->out, "Output CSV (default: stdout)");
     s->callback([synth, &locations] {
+        refuseInputAsOutput("--out", synth->out, synth->model.inputFiles());
         const auto soil = synth->model.soilParameters(locations);
         const auto wheel = synth->model.wheelParameters(locations);
         identification::SyntheticSpec spec;
@@ -506,7 +520,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         const auto out =
             identification::synthesize(contact::makeContactParameters(soil, wheel), spec);
         progress.finish();
-        for (const std::string& w : out.warnings) std::cerr << "warning: " << w << '\n';
+        printLines(out.warnings, "warning: ");
         // A cancelled run is written too, marked by a last comment line (the data set reader
         // skips it, so `identify` reads the partial file).
         const std::string note = "cancelled by " + cancellation.signalName() + " after " +
@@ -659,13 +673,28 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError(e.what());
         }
         progress.finish();
-        if (result.message == "cancelled") exitCancelled(cancellation, "identify cancelled");
-        if (!result.data_issues.empty())
-            throw InputError(result.message + "\n(use --skip-bad-rows to skip bad rows)");
+        if (result.message == "cancelled") {
+            exitCancelled(cancellation, "identify cancelled by " + cancellation.signalName() +
+                                            ": nothing written (a fit stopped halfway has no "
+                                            "result; docs/cli.md, \"Stopping a long command\")");
+        }
+        if (!result.data_issues.empty()) {
+            // The hint only where rows are bad (FILE:LINE), not for a file that cannot be read.
+            const bool rows = std::any_of(
+                result.data_issues.begin(), result.data_issues.end(), [](const Issue& issue) {
+                    const auto colon = issue.where.rfind(':');
+                    return colon != std::string::npos && colon + 1 < issue.where.size() &&
+                           std::isdigit(static_cast<unsigned char>(issue.where[colon + 1]));
+                });
+            throw InputError(result.message +
+                             (rows ? "\n(use --skip-bad-rows to skip bad rows)" : ""));
+        }
         if (!result.message.empty()) throw InputError(o.data + ": " + result.message);
-        for (const Issue& skipped : result.skipped)
-            std::cerr << "skipped " << skipped.where << ": " << skipped.message << '\n';
-        for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
+        std::vector<std::string> skipped;
+        for (const Issue& issue : result.skipped)
+            skipped.push_back("skipped " + issue.where + ": " + issue.message);
+        printLines(skipped, "");
+        printLines(result.warnings, "warning: ");
         const identification::DecoupledParameters& p = result.identified;
         const std::optional<identification::Uncertainty> uncertainty =
             result.report ? std::optional(result.report->uncertainty) : std::nullopt;

@@ -29,6 +29,8 @@ struct RenderOptions {
 };
 
 int render(const RenderOptions& o, const io::PresetLocations& locations) {
+    refuseInputAsOutput("--out", std::filesystem::path(o.out) / "forces-vs-slip.csv",
+                        o.model.inputFiles());
     analysis::Inputs inputs = o.model.inputs(locations);
     inputs.conditions.load_n = o.load_n;
     analysis::ForcesSettings settings;
@@ -40,7 +42,7 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
     progress.finish();
     const soil::SoilParameters& soil = inputs.soil;
     const wheel::WheelParameters& wheel = inputs.wheel;
-    for (const std::string& w : result.warnings) std::cerr << "warning: " << w << '\n';
+    printLines(result.warnings, "warning: ");
 
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);

@@ -95,8 +95,11 @@ project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer,
         const QString title =
             ui::analysisTitle(a.type->name, a.title, a.inputs, a.settings, outcome);
         // A failed or cancelled run keeps its partial results: they are written all the same.
-        for (const analysis::FigureSpec& figure : a.figures)
-            writer.figure(record, a, figure, outcome, title);
+        // One without any table (a stress field with no equilibrium) has no figure either.
+        if (!outcome.tables.empty()) {
+            for (const analysis::FigureSpec& figure : a.figures)
+                writer.figure(record, a, figure, outcome, title);
+        }
         for (const analysis::NamedTable& t : outcome.tables) {
             if (t.file_suffix) writer.table(record, a.name + *t.file_suffix, t.table);
         }
@@ -130,6 +133,8 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
     if (!issues.empty()) throw InputError(formatIssues(issues));
     if (!o.formats.empty()) script.export_settings.formats = o.formats;
 
+    for (const char* file : {"report.md", "manifest.json"})
+        refuseInputAsOutput("--out", fs::path(o.out) / file, {{"script", o.script}});
     std::error_code ec;
     fs::create_directories(o.out, ec);
     if (ec) throw std::runtime_error("cannot create " + o.out + ": " + ec.message());
@@ -138,6 +143,22 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
 
     Writer writer(o.out, script.export_settings);
     std::vector<project::RunRecord> records;
+    const std::string tool = std::string("terrastudio ") + build_info::kVersion;
+    // The manifest is written first, marked running, and again after every analysis: a run
+    // killed outright (SIGKILL, a power cut) leaves a manifest that says so and lists what was
+    // finished, never data files without one. The end of the run rewrites it complete.
+    const fs::path manifest_path = fs::path(o.out) / "manifest.json";
+    auto writeRunningManifest = [&] {
+        nlohmann::json running = project::manifest(script, o.script, records, tool);
+        running.update({{"status", "running"},
+                        {"note",
+                         "the run has not finished (or was killed): the files of the "
+                         "analyses not listed here may be partial or from an earlier "
+                         "run"}});
+        if (const auto error = io::writeFileAtomically(manifest_path, running.dump(2) + "\n"))
+            throw std::runtime_error(*error);
+    };
+    writeRunningManifest();
     const SignalCancellation cancellation;
     for (const project::ScriptAnalysis& a : script.analyses) {
         if (cancellation.requested()) break;
@@ -154,6 +175,7 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
                       << outcome.text << '\n';
         }
         records.push_back(std::move(record));
+        writeRunningManifest();
     }
     // Cancelled: what was computed is written and reported; the analysis running at the signal
     // keeps its rows so far (its notes say so), the ones after it are not run.
@@ -170,10 +192,9 @@ int run(const RunOptions& o, const io::PresetLocations& locations) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "report.md").string() << '\n';
-    const nlohmann::json manifest = project::manifest(
-        script, o.script, records, std::string("terrastudio ") + build_info::kVersion, cancelled);
-    if (const auto error =
-            io::writeFileAtomically(out / "manifest.json", manifest.dump(2) + "\n")) {
+    nlohmann::json manifest = project::manifest(script, o.script, records, tool, cancelled);
+    manifest["status"] = cancelled.empty() ? "completed" : "cancelled";
+    if (const auto error = io::writeFileAtomically(manifest_path, manifest.dump(2) + "\n")) {
         throw std::runtime_error(*error);
     }
     std::cout << "wrote " << (out / "manifest.json").string() << '\n';

@@ -60,6 +60,10 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         ->check(CLI::IsMember({"full", "quadratic"}));
     cmd->callback([options, &locations] {
         const SimulateOptions& o = *options;
+        for (const char* file : {"timeseries.csv", "summary.json", "streaming.csv"}) {
+            refuseInputAsOutput("--out", std::filesystem::path(o.out) / file,
+                                {{"--scenario", o.scenario}});
+        }
         // The rover service (core/analysis/rover.h), as the studio's rover panel and scripts.
         analysis::RoverSettings settings;
         settings.scenario = o.scenario;

@@ -40,6 +40,7 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--out", options->out, "Write CSV (or JSON with --json) to this file");
     cmd->callback([options, &locations] {
         const SinkageOptions& o = *options;
+        refuseInputAsOutput("--out", o.out, o.model.inputFiles());
         const analysis::Inputs inputs = o.model.inputs(locations);
         analysis::SinkageSettings settings = o.settings;
         settings.loads_n = parseValues(o.loads, "--load");
@@ -50,7 +51,7 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
             checkRange(issues, "--load", w, load.range, load.displayUnit());
         if (!issues.empty()) throw InputError(formatIssues(issues));
         const analysis::SinkageStudy study = analysis::computeSinkage(inputs, settings);
-        for (const std::string& note : study.notes) std::cerr << "note: " << note << '\n';
+        printLines(study.notes, "note: ");
         const Table& table = study.table;
         const soil::SoilParameters& soil = inputs.soil;
         const wheel::WheelParameters& wheel = inputs.wheel;

@@ -52,6 +52,7 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "to stdout");
     cmd->callback([options, &locations] {
         const StressOptions& o = *options;
+        refuseInputAsOutput("--out", o.out, o.model.inputFiles());
         analysis::Inputs inputs = o.model.inputs(locations);
         if (o.load_n) inputs.conditions.load_n = *o.load_n;
         analysis::StressSettings settings = o.settings;

@@ -40,6 +40,7 @@ struct SweepOptions {
     std::string values;
 
     analysis::Inputs inputs(const io::PresetLocations& locations) const {
+        refuseInputAsOutput("--out", out, model.inputFiles());
         analysis::Inputs in = model.inputs(locations);
         in.conditions.slip_angles_deg = parseValues(slip_angles, slip_angles_flag);
         if (load_n) in.conditions.load_n = *load_n;
@@ -58,7 +59,7 @@ struct SweepOptions {
 // comment line in CSV (which the CSV readers skip), then the cancellation's exit code.
 void emit(const SweepOptions& o, const analysis::SweepResult& result,
           const SignalCancellation& cancellation) {
-    for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << '\n';
+    printLines(result.warnings, "warning: ");
     const std::string note = "cancelled by " + cancellation.signalName() + " after " +
                              std::to_string(result.table.rows.size()) + " rows";
     std::string text;
@@ -123,10 +124,14 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
                      "0:" + formatNumber(analysis::OperatingConditions{}.slip_max) + ":" +
                          std::to_string(defaults.slip_count));
     s->add_option("--slip-angle", sens->slip_angles, "Slip angle(s) [deg]")->capture_default_str();
-    s->add_option("--parameter", defaults.parameter,
-                  "Soil field key (n, c_kPa, phi_deg, kc, kphi, K_m, ...) or 'all' for Table 4.1")
-        ->capture_default_str();
-    s->add_option("--values", sens->values, "Values in file units (default: Table 4.1's)");
+    auto* parameter =
+        s->add_option(
+             "--parameter", defaults.parameter,
+             "Soil field key (n, c_kPa, phi_deg, kc, kphi, K_m, ...) or 'all' for Table 4.1")
+            ->capture_default_str();
+    // Values are in one field's unit: without --parameter they would silently vary the default.
+    s->add_option("--values", sens->values, "Values in file units (default: Table 4.1's)")
+        ->needs(parameter);
     s->callback([sens, &locations] {
         const analysis::Inputs inputs = sens->inputs(locations);
         analysis::SensitivitySettings settings = sens->sensitivity;

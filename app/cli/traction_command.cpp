@@ -117,6 +117,9 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "Write the JSON (with --json) or the curve as CSV to this file");
     cmd->callback([options, &locations] {
         const TractionOptions& o = *options;
+        std::vector<NamedInput> files = o.model.inputFiles();
+        if (o.posterior) files.push_back({"--posterior", *o.posterior});
+        refuseInputAsOutput("--out", o.out, files);
         analysis::Inputs inputs = o.model.inputs(locations);
         std::vector<Issue> issues;
         if (o.load_n) {

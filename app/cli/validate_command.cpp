@@ -32,13 +32,14 @@ struct ValidateOptions {
 void parseNoise(const std::vector<std::string>& items, analysis::ValidationSettings& s) {
     std::map<std::string, std::size_t> channels{
         {"Fx_N", io::kExpFx}, {"My_Nm", io::kExpMy}, {"sinkage_m", io::kExpSinkage}};
+    refuseRepeatedKeys("--noise", items);
     std::vector<Issue> issues;
     for (const std::string& item : items) {
         const auto equals = item.find('=');
         const auto it = channels.find(item.substr(0, equals));
         double sigma = 0.0;
         if (equals == std::string::npos || it == channels.end() ||
-            !io::parseNumber(item.substr(equals + 1), sigma)) {
+            !parseStrictNumber(item.substr(equals + 1), sigma)) {
             issues.push_back({"--noise " + io::quoteCell(item),
                               "expected Fx_N=SIGMA, My_Nm=SIGMA or sinkage_m=SIGMA (N, N·m, m)"});
             continue;
@@ -199,6 +200,15 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
         Result<io::Experiment> read = io::readExperiment(o->experiments);
         if (!read) throw InputError(read.message());
         const io::Experiment& experiment = read.value();
+        // The calibrated soil must not replace the test it was fitted to (or its sidecar, or
+        // the soil or wheel file it started from).
+        refuseInputAsOutput("--save-soil", o->save_soil,
+                            {{"--experiments", o->experiments},
+                             {"--experiments (its data)", experiment.source},
+                             {"--experiments (its sidecar)",
+                              std::filesystem::path(experiment.source).replace_extension(".json")},
+                             {"--soil", o->soil},
+                             {"--wheel", o->wheel}});
         ModelOptions names;
         names.set = o->set;
         names.model = o->model;
@@ -237,7 +247,12 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
                 throw InputError(e.what());
             }
             progress.finish();
-            if (cancellation.requested()) exitCancelled(cancellation, "validate cancelled");
+            if (cancellation.requested()) {
+                exitCancelled(cancellation,
+                              "validate cancelled by " + cancellation.signalName() +
+                                  ": nothing written (a calibration stopped halfway has no "
+                                  "result; docs/cli.md, \"Stopping a long command\")");
+            }
         }
         if (o->json) {
             std::cout << analysis::toJson(result).dump(2) << '\n';
@@ -245,9 +260,9 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
             printHuman(result, inputs);
         }
         std::cout.flush();
-        if (result.calibration && !result.calibration->report.usable())
-            throw std::runtime_error("the calibration did not give a usable fit: " +
-                                     result.calibration->report.message);
+        // No calibrated soil, nothing predicted: exit 1 with the reason, and no soil saved.
+        if (const std::string failure = analysis::validationFailure(result); !failure.empty())
+            throw std::runtime_error(failure);
         if (!o->save_soil.empty()) {
             if (const auto error = io::writeFileAtomically(
                     o->save_soil, io::toJson(result.calibration->soil).dump(2) + "\n"))

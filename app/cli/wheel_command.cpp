@@ -116,6 +116,9 @@ const io::NumericColumn kMaxStressAngle = io::numericColumn(contact::maxStressAn
 
 // Batch mode: one operating point per CSV row.
 int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
+    std::vector<NamedInput> inputs = o.model.inputFiles();
+    inputs.push_back({"--input", o.input});
+    refuseInputAsOutput("--output", o.output, inputs);
     Result<io::CsvDocument> read = io::readCsv(o.input);
     if (!read) throw InputError(read.message());
     const io::CsvDocument& doc = read.value();
@@ -131,9 +134,26 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
               c_theta = index("entry_angle_deg"), c_load = index("load_N"),
               c_exit = index("exit_angle_deg"), c_rut = index("rut_ratio"),
               c_theta_m = index("max_stress_angle_deg");
+    // A misspelt column ("slp", "Slip") would leave every row at the flag's default: an error
+    // when the column it most likely means is missing, a warning for any other unknown column.
+    const std::string header_at = o.input + ":" + std::to_string(doc.header_line);
+    const io::ColumnCheck columns =
+        io::checkColumns(doc.header,
+                         {kSlip.name, kSlipAngle.name, kEntryAngle.name, kLoad.name,
+                          kExitAngle.name, kRutRatio.name, kMaxStressAngle.name},
+                         header_at, "copied to the output as it is");
+    if (!columns.errors.empty()) throw InputError(formatIssues(columns.errors));
+    for (const Issue& warning : columns.warnings)
+        std::cerr << warning.where << ": warning: " << warning.message << '\n';
     if (c_theta < 0 && c_load < 0 && !o.entry_angle_deg && !o.load_n) {
         throw InputError(o.input + ": needs a column entry_angle_deg or load_N (or the flag " +
                          "--entry-angle / --load for every row)");
+    }
+    // Slip is the quantity a batch varies: say when its column is absent, so that a file
+    // without slips is not read as a file of slip 0 unnoticed.
+    if (c_slip < 0) {
+        std::cerr << o.input << ": note: no column slip: every row at s = " << formatNumber(o.slip)
+                  << " (--slip)\n";
     }
     std::string csv;
     for (std::size_t i = 0; i < doc.header.size(); ++i) csv += (i ? "," : "") + doc.header[i];
@@ -142,6 +162,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
         "Mz_Nm,Fb_N,Fs_N\n";
     int failed = 0;
     std::size_t cancelled = 0;
+    std::vector<std::string> row_warnings;  // printed after the rows, bounded
     const SignalCancellation cancellation;
     TerminalProgress progress("wheel --input");
     const double row_count = static_cast<double>(doc.rows.size());
@@ -205,10 +226,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
             ++skipped;
             continue;
         }
-        if (!result.warning.empty()) {
-            progress.clear();
-            std::cerr << where << ": warning: " << result.warning << '\n';
-        }
+        if (!result.warning.empty()) row_warnings.push_back(where + ": warning: " + result.warning);
         for (std::size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
         if (!result.failure.empty()) {
             ++failed;
@@ -225,6 +243,7 @@ int runBatch(const ContactParameters<double>& p, const WheelOptions& o) {
     }
     if (cancelled == 0) progress.update(1.0);
     progress.finish();
+    printLines(row_warnings, "");
     if (!issues.empty()) {
         // In line order: rows with the wrong cell count come from the reader, the rest from here.
         const std::string prefix = o.input + ":";

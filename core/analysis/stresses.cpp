@@ -107,9 +107,15 @@ Table errorTable(const StressResult& result) {
 
 Outcome stressOutcome(StressResult result) {
     Outcome out;
-    out.tables.push_back({"stresses", "", result.table});
-    out.tables.push_back({"errors", "-errors", errorTable(result)});
-    if (!result.message.empty()) out.notes.push_back(result.message);
+    if (!result.message.empty()) {
+        // No equilibrium: there is no grid, and an error table would read as zero errors (an
+        // expectation on it would pass). The analysis failed, with the reason.
+        out.status = Outcome::Status::kFailed;
+        out.message = result.message;
+    } else {
+        out.tables.push_back({"stresses", "", result.table});
+        out.tables.push_back({"errors", "-errors", errorTable(result)});
+    }
     out.result = std::move(result);
     return out;
 }

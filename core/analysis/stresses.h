@@ -53,7 +53,8 @@ StressResult computeStresses(const Inputs& inputs, const StressSettings& setting
                              const Control& control = {});
 /// The errors as a table: stress_index (0 σ, 1 τ, 2 τ_t, 3 τ_l), rmse_kPa, mae_kPa.
 Table errorTable(const StressResult& result);
-/// Tables "stresses" and "errors"; the note: no equilibrium.
+/// Tables "stresses" and "errors"; with no equilibrium (StressResult::message), no table and
+/// the status failed with that message.
 Outcome stressOutcome(StressResult result);
 
 AnalysisType stressesType();

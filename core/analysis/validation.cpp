@@ -513,6 +513,14 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
     } else {
         profileN1(data, in.wheel, options, cal);
     }
+    if (cal.report.status == id::IdentifyStatus::kNotConverged) {
+        // The solver stopped on its iteration budget: its point is no minimum, and the soil made
+        // of it would be printed and saved as calibrated, its metrics looking like a result.
+        cal.report.status = id::IdentifyStatus::kFailed;
+        cal.report.message = "the fit did not converge (" + cal.report.termination +
+                             "); its soil is not a calibration (give noise levels, more points "
+                             "or points at several loads)";
+    }
     if (cal.report.usable()) {
         cal.soil =
             soilFromParameters(in.soil, in.wheel, cal.report.parameters, cal.n1.value_or(0.0));
@@ -530,6 +538,13 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
         cal.after = predictExperiment(calibrated, experiment, s.curves);
         for (PointComparison& p : cal.after->points)
             p.in_fit = inFitSlips(p.point.slip, s.fit_slips);
+        if (cal.report.residuals <= cal.report.free_parameters) {
+            out.notes.push_back(
+                "calibration: " + std::to_string(cal.report.residuals) + " measured values for " +
+                std::to_string(cal.report.free_parameters) +
+                " free parameters: the fit can pass through every point, so the metrics of the "
+                "fitted points say little about the model; hold some out (fit_slips)");
+        }
         if (!s.fit_slips.empty() &&
             std::any_of(cal.after->points.begin(), cal.after->points.end(),
                         [](const PointComparison& p) { return !p.in_fit; })) {
@@ -603,20 +618,50 @@ nlohmann::json toJson(const ValidationResult& r) {
     return out;
 }
 
+std::string validationFailure(const ValidationResult& result) {
+    auto firstFailure = [](const ValidationRun& run) {
+        for (const PointComparison& p : run.points) {
+            if (!p.predicted) return p.failure;
+        }
+        return std::string();
+    };
+    auto nonePredicted = [](const ValidationRun& run) {
+        return std::none_of(run.points.begin(), run.points.end(),
+                            [](const PointComparison& p) { return p.predicted; });
+    };
+    if (result.calibration) {
+        const Calibration& c = *result.calibration;
+        if (!c.report.usable()) {
+            return "calibration failed: " +
+                   (c.report.message.empty() ? formatIssues(c.report.issues) : c.report.message);
+        }
+        if (c.after && nonePredicted(*c.after)) {
+            return "the calibrated soil predicts none of the test's points (" +
+                   firstFailure(*c.after) + ")";
+        }
+        return {};
+    }
+    if (nonePredicted(result.before)) {
+        return "no point of the test has a prediction with the given soil, so there is nothing "
+               "to compare (" +
+               firstFailure(result.before) + ")";
+    }
+    return {};
+}
+
 Outcome validationOutcome(ValidationResult result) {
     Outcome out;
+    if (const std::string failure = validationFailure(result); !failure.empty()) {
+        out.status = Outcome::Status::kFailed;
+        out.message = failure;
+    }
     out.tables.push_back({"metrics", "-metrics", metricsTable(result.before.metrics)});
     out.tables.push_back({"points", "-points", pointsTable(result.before.points, false)});
     out.tables.push_back({"curves", "-curves", result.before.curves});
     out.notes = result.notes;
     if (result.calibration) {
         const Calibration& c = *result.calibration;
-        if (!c.report.usable()) {
-            out.status = Outcome::Status::kFailed;
-            out.message =
-                "calibration failed: " +
-                (c.report.message.empty() ? formatIssues(c.report.issues) : c.report.message);
-        } else {
+        if (c.report.usable()) {
             out.tables.push_back(
                 {"calibrated_metrics", "-calibrated-metrics", metricsTable(c.after->metrics)});
             out.tables.push_back(

@@ -135,10 +135,16 @@ ValidationResult computeValidation(const Inputs& inputs, const ValidationSetting
 /// calibration "calibration": {…} (docs/cli.md, `validate`).
 nlohmann::json toJson(const ValidationResult& result);
 
+/// Why the validation is no result, or "": the calibration failed (its solver found no usable
+/// or no converged fit), the calibrated soil predicts none of the points, or, without a
+/// calibration, the given soil predicts none (every point without equilibrium: no metric).
+std::string validationFailure(const ValidationResult& result);
+
 /// Tables "metrics" (main: one row, CHANNEL_rmse, CHANNEL_mae, CHANNEL_max_rel_error,
 /// CHANNEL_count per measured channel), "points", "curves" (ValidationRun::curves) and,
 /// calibrated, "calibrated_metrics", "calibrated_points", "calibrated_curves", "held_out_metrics",
-/// "parameters"; the JSON as "-validation.json". Figures "Fx", "sinkage", "My", "Fy": the
+/// "parameters"; the JSON as "-validation.json". Failed (with validationFailure's reason) when
+/// validationFailure says so. Figures "Fx", "sinkage", "My", "Fy": the
 /// measured points on the model's curves (widgets/plots/figures.h, plotValidation).
 Outcome validationOutcome(ValidationResult result);
 

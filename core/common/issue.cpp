@@ -5,12 +5,61 @@
 
 namespace terra {
 
+namespace {
+
+bool continuation(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+std::size_t characters(std::string_view text) {
+    std::size_t n = 0;
+    for (const char c : text) n += continuation(c) ? 0 : 1;
+    return n;
+}
+
+// The last `keep` characters of `text`, after "…" when cut: a long place ("/a/long/path/f.csv:3")
+// keeps its file name and line.
+std::string tail(const std::string& text, std::size_t keep) {
+    if (characters(text) <= keep) return text;
+    std::size_t start = text.size(), kept = 0;
+    while (start > 0 && kept < keep) {
+        --start;
+        if (!continuation(text[start])) ++kept;
+    }
+    return "…" + text.substr(start);
+}
+
+}  // namespace
+
+std::string formatIssue(const Issue& issue) {
+    // The place first gives way (its end names the file and line), then the message's end.
+    constexpr std::size_t kWhereKept = 160;
+    const std::string where =
+        characters(issue.where) + characters(issue.message) + 2 > kMaxIssueChars
+            ? tail(issue.where, kWhereKept)
+            : issue.where;
+    const std::string line = where.empty() ? issue.message : where + ": " + issue.message;
+    std::size_t chars = 0;
+    for (std::size_t k = 0; k < line.size(); ++k) {
+        if (continuation(line[k])) continue;
+        if (++chars > kMaxIssueChars) {
+            return line.substr(0, k) + "… (" + std::to_string(characters(line)) + " characters)";
+        }
+    }
+    return line;
+}
+
+std::string moreIssues(std::size_t shown, std::size_t total, const std::string& what) {
+    return "… and " + std::to_string(total - shown) + " more (" + std::to_string(total) + " " +
+           what + " in all)";
+}
+
 std::string formatIssues(const std::vector<Issue>& issues) {
     std::string text;
-    for (const Issue& issue : issues) {
+    const std::size_t shown = std::min(issues.size(), kMaxIssuesShown);
+    for (std::size_t i = 0; i < shown; ++i) {
         if (!text.empty()) text += '\n';
-        text += issue.where.empty() ? issue.message : issue.where + ": " + issue.message;
+        text += formatIssue(issues[i]);
     }
+    if (shown < issues.size()) text += '\n' + moreIssues(shown, issues.size());
     return text;
 }
 

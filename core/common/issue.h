@@ -18,8 +18,25 @@ struct Issue {
     std::string message;  ///< what is wrong, with the value and the allowed range
 };
 
-/// Joins issues into one human-readable message, one line each ("where: message").
+/// At most this many issues are listed by formatIssues; the rest are counted ("… and 19980 more").
+inline constexpr std::size_t kMaxIssuesShown = 20;
+/// The longest line formatIssues prints, in characters (UTF-8 code points): a longer one is cut
+/// with its length given. The values in messages are quoted short already (quoteText); this
+/// bounds the rest (long paths, lists).
+inline constexpr std::size_t kMaxIssueChars = 500;
+
+/// One issue as a line, "where: message" (or the message alone), at most kMaxIssueChars
+/// characters.
+std::string formatIssue(const Issue& issue);
+
+/// Joins issues into one human-readable message, one line each ("where: message", formatIssue),
+/// the first kMaxIssuesShown of them, then "… and N more (M problems in all)": 100,000 bad
+/// rows or unknown keys give a screenful, not megabytes.
 std::string formatIssues(const std::vector<Issue>& issues);
+
+/// The count line formatIssues ends a cut list with ("… and 5 more (25 problems in all)"),
+/// for callers that print issues one by one.
+std::string moreIssues(std::size_t shown, std::size_t total, const std::string& what = "problems");
 
 /// The candidate a misspelt name most likely meant ("condtions" → "conditions", "phi" →
 /// "phi_deg"), or "" when none is close: at most one edit (insertion, deletion, substitution or

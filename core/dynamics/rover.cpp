@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/common/range.h"
@@ -18,7 +20,111 @@ namespace {
 int steerLink(int wheel) { return 2 * wheel; }
 int spinLink(int wheel) { return 2 * wheel + 1; }
 
+// One corner at rest on its soil: the static load, the entry-angle estimator's sinkage at s = 0,
+// and the vertical spring and damper the soil is to the body there.
+struct StaticCorner {
+    contact::SinkageSolution solution;
+    double stiffness_n_m = 0.0;  // k = (n + 1/2) W / h
+    double damping_n_s_m = 0.0;  // c = 2 ζ √(k W / g)
+};
+
+StaticCorner staticCorner(const contact::ContactParameters<double>& params,
+                          const soil::SoilParameters& soil, double load_n,
+                          const RobotParameters& robot, const RoverOptions& options) {
+    StaticCorner c;
+    contact::EntryAngleProblem problem;
+    problem.load_n = load_n;
+    problem.exit = {contact::ExitCondition::Kind::kAngle, options.contact.exit_angle_rad};
+    problem.model = options.contact.model;
+    problem.integration = options.contact.integration;
+    c.solution = contact::solveEntryAngle(params, problem);
+    if (!c.solution.ok()) return c;
+    // Critical damping of a corner on the soil's tangent stiffness there. F_z grows about like
+    // h^(n + 1/2) (Bekker, Eq. 2.8), so k ≈ (n + 1/2) W / h.
+    c.stiffness_n_m = (soil.sinkage_exponent + 0.5) * load_n / c.solution.sinkage_m;
+    c.damping_n_s_m = 2.0 * robot.vertical_damping_ratio *
+                      std::sqrt(c.stiffness_n_m * load_n / options.gravity_m_s2);
+    return c;
+}
+
+// The static load of corner i (0, 1 front; 2, 3 rear): the weight shared by the axles as the
+// composite centre of mass lies between them.
+double staticLoad(const RobotParameters& robot, const RoverOptions& options, int i) {
+    const double mass = robot.totalMass();
+    const double com_x = robot.com_forward_m * (robot.chassis_mass_kg / mass);
+    const double front_share = (0.5 * robot.wheelbase_m + com_x) / robot.wheelbase_m;
+    return 0.5 * mass * options.gravity_m_s2 * (i < 2 ? front_share : 1.0 - front_share);
+}
+
+// ω Δt < 2 (√(ζ² + 1) − ζ): the stability bound of the semi-implicit Euler step on
+// I ẍ + C ẋ + K x = 0 with the force of the step's start (docs/dynamics.md).
+double oscillatorStep(double stiffness, double damping, double inertia, double& omega,
+                      double& zeta) {
+    omega = std::sqrt(stiffness / inertia);
+    zeta = damping / (2.0 * std::sqrt(stiffness * inertia));
+    return 2.0 * (std::sqrt(zeta * zeta + 1.0) - zeta) / omega;
+}
+
 }  // namespace
+
+StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain,
+                            const RoverOptions& options) {
+    StepLimit out;
+    out.max_step_s = std::numeric_limits<double>::infinity();
+    // The body about its composite centre of mass (chassis frame at mid-wheelbase on the hubs'
+    // plane): the corners at (±L/2, ±T/2, 0), the chassis' centre of mass at (x_c, 0, z_c).
+    const double mc = robot.chassis_mass_kg, mw = robot.wheel_mass_kg;
+    const double mass = robot.totalMass();
+    const double xc = robot.com_forward_m, zc = robot.com_height_m;
+    const double cx = xc * mc / mass, cz = zc * mc / mass;  // composite centre of mass
+    const double half_l = 0.5 * robot.wheelbase_m, half_t = 0.5 * robot.track_m;
+    const double iw = robot.wheel_spin_inertia_kg_m2, it = 0.5 * iw;
+    // Pitch: the wheels turn with the chassis (the spin servos hold their rate), so I_w counts;
+    // roll: their inertia about a diameter, I_t.
+    double pitch_inertia =
+        robot.chassis_inertia_kg_m2[1] + mc * ((xc - cx) * (xc - cx) + (zc - cz) * (zc - cz));
+    double roll_inertia = robot.chassis_inertia_kg_m2[0] + mc * (zc - cz) * (zc - cz);
+    std::array<double, kWheelCount> arm_x{}, arm_y{};
+    for (int i = 0; i < kWheelCount; ++i) {
+        arm_x[i] = (i < 2 ? half_l : -half_l) - cx;
+        arm_y[i] = (i % 2 == 0 ? half_t : -half_t);
+        pitch_inertia += mw * (arm_x[i] * arm_x[i] + cz * cz) + iw;
+        roll_inertia += mw * (arm_y[i] * arm_y[i] + cz * cz) + it;
+    }
+    for (int s = 0; s < terrain.soilCount(); ++s) {
+        const soil::SoilParameters& soil = terrain.soil(s);
+        const auto params = contact::makeContactParameters(soil, robot.wheel);
+        double k = 0.0, c = 0.0, kx = 0.0, cx2 = 0.0, ky = 0.0, cy2 = 0.0, stiffest = 0.0;
+        bool carried = true;
+        for (int i = 0; i < kWheelCount; ++i) {
+            const StaticCorner corner =
+                staticCorner(params, soil, staticLoad(robot, options, i), robot, options);
+            if (!corner.solution.ok()) {
+                carried = false;
+                break;
+            }
+            k += corner.stiffness_n_m;
+            c += corner.damping_n_s_m;
+            kx += corner.stiffness_n_m * arm_x[i] * arm_x[i];
+            cx2 += corner.damping_n_s_m * arm_x[i] * arm_x[i];
+            ky += corner.stiffness_n_m * arm_y[i] * arm_y[i];
+            cy2 += corner.damping_n_s_m * arm_y[i] * arm_y[i];
+            stiffest = std::max(stiffest, corner.stiffness_n_m);
+        }
+        if (!carried) continue;
+        const std::array<std::tuple<const char*, double, double, double>, 3> modes{
+            std::tuple{"heave", k, c, mass}, std::tuple{"pitch", kx, cx2, pitch_inertia},
+            std::tuple{"roll", ky, cy2, roll_inertia}};
+        for (const auto& [name, stiffness, damping, inertia] : modes) {
+            double omega = 0.0, zeta = 0.0;
+            const double step = oscillatorStep(stiffness, damping, inertia, omega, zeta);
+            if (step < out.max_step_s) {
+                out = {step, name, soil.name, stiffest, omega, zeta};
+            }
+        }
+    }
+    return out;
+}
 
 struct Rover::Impl {
     RobotParameters robot;
@@ -147,22 +253,16 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
 
     // Static corner loads and sinkages (entry-angle estimator at s = 0, β = 0).
     const double r = robot.wheel.radius_m;
-    const double weight = m.total_mass * options.gravity_m_s2;
-    const double com_x = chassis_com.x() * (mc / m.total_mass);  // composite, from mid-wheelbase
-    const double front_share = (half_l + com_x) / robot.wheelbase_m;
     double mean_sinkage = 0.0;
     const double c0 = std::cos(initial.yaw_rad), s0 = std::sin(initial.yaw_rad);
     for (int i = 0; i < kWheelCount; ++i) {
-        const double load = 0.5 * weight * (i < 2 ? front_share : 1.0 - front_share);
+        const double load = staticLoad(robot, options, i);
         const btVector3& h = hub_geometric[i];
         const int soil = terrain.soilIndexAt(initial.x_m + c0 * h.x() - s0 * h.y(),
                                              initial.y_m + s0 * h.x() + c0 * h.y());
-        contact::EntryAngleProblem problem;
-        problem.load_n = load;
-        problem.exit = {contact::ExitCondition::Kind::kAngle, options.contact.exit_angle_rad};
-        problem.model = options.contact.model;
-        problem.integration = options.contact.integration;
-        const contact::SinkageSolution solution = contact::solveEntryAngle(m.soils[soil], problem);
+        const StaticCorner corner =
+            staticCorner(m.soils[soil], terrain.soil(soil), load, robot, options);
+        const contact::SinkageSolution& solution = corner.solution;
         if (!solution.ok()) {
             throw std::invalid_argument(std::string("robot: the static load of wheel ") +
                                         kCornerNames[i] + " (" + formatNumber(load) +
@@ -170,12 +270,7 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
                                         ": " + solution.message);
         }
         mean_sinkage += solution.sinkage_m / kWheelCount;
-        // Critical damping of a corner on the soil's tangent stiffness there. F_z grows about
-        // like h^(n + 1/2) (Bekker, Eq. 2.8), so k ≈ (n + 1/2) W / h.
-        const double stiffness =
-            (terrain.soil(soil).sinkage_exponent + 0.5) * load / solution.sinkage_m;
-        m.damping[i] =
-            2.0 * robot.vertical_damping_ratio * std::sqrt(stiffness * load / options.gravity_m_s2);
+        m.damping[i] = corner.damping_n_s_m;
     }
 
     // The multibody: floating base = chassis; per wheel a steering link (revolute about the

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 
 #include "core/dynamics/robot.h"
 #include "core/dynamics/terrain.h"
@@ -78,6 +79,28 @@ struct EnergyLedger {
     double initial_kinetic_j = 0.0;
     double initial_potential_j = 0.0;
 };
+
+/// The largest time step at which the explicit coupling of the soil's vertical forces to the
+/// robot is stable (docs/dynamics.md, "Step size and stability"). Each corner rests on the soil
+/// as on a spring of the soil's tangent stiffness k = (n + ½) W / h (Bekker, Eq. 2.8: F_z grows
+/// like h^(n+½)) with the damper c = 2ζ √(k W / g) of the rover; the body's heave, pitch and roll
+/// on these four springs are oscillators of stiffness K, damping C and mass or inertia I. The
+/// semi-implicit Euler step with the forces of the step's start is stable for
+/// (K/I) Δt² + 2 (C/I) Δt < 4, i.e. ω Δt < 2 (√(ζ² + 1) − ζ), ω = √(K/I), ζ = C / (2 √(K I)).
+struct StepLimit {
+    double max_step_s = 0.0;       ///< the smallest bound over the modes and soils [s]
+    std::string mode;              ///< "heave", "pitch" or "roll"
+    std::string soil;              ///< the soil's name
+    double stiffness_n_m = 0.0;    ///< k of the stiffest corner there [N/m]
+    double frequency_rad_s = 0.0;  ///< ω of that mode [rad/s]
+    double damping_ratio = 0.0;    ///< ζ of that mode
+};
+
+/// The StepLimit of the robot on every soil of the terrain, at its static corner loads (the
+/// entry-angle estimator at s = 0, as the Rover's start). A soil that cannot carry a corner load
+/// has no bound (the Rover refuses to start on it). max_step_s is +inf when no soil gives one.
+StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain,
+                            const RoverOptions& options);
 
 class Rover {
 public:

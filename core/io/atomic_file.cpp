@@ -6,9 +6,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
+#include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <system_error>
 
 #include "core/common/quoted.h"
@@ -165,12 +165,92 @@ std::optional<std::string> writeFileAtomically(const std::filesystem::path& path
     return detail::writeFileAtomically(path, content, true);
 }
 
+namespace {
+
+// The kind of a file that is not a regular one, for a message.
+const char* fileKind(mode_t mode) {
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "not a file of data";
+}
+
+std::string describeBytes(std::uint64_t bytes) {
+    if (bytes % (1ull << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+    return std::to_string(bytes) + " bytes";
+}
+
+}  // namespace
+
+std::optional<std::string> maxInputBytes(std::uint64_t& bytes) {
+    bytes = kDefaultMaxInputBytes;
+    const char* text = std::getenv(kMaxInputBytesVariable);
+    if (text == nullptr) return std::nullopt;
+    const std::string_view value(text);
+    std::uint64_t parsed = 0;
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), parsed);
+    constexpr std::uint64_t kLargest = 1ull << 62;
+    if (value.empty() || error != std::errc{} || end != value.data() + value.size() || parsed < 1 ||
+        parsed > kLargest) {
+        return std::string(kMaxInputBytesVariable) + ": " + quoteText(value) +
+               " is not a whole number of bytes in [1, 2^62]";
+    }
+    bytes = parsed;
+    return std::nullopt;
+}
+
 std::optional<std::string> readFile(const std::filesystem::path& path, std::string& content) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return "cannot open " + pathLabel(path.string());
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    content = buffer.str();
+    std::uint64_t limit = 0;
+    if (auto error = maxInputBytes(limit)) return error;
+    return readFile(path, content, limit);
+}
+
+std::optional<std::string> readFile(const std::filesystem::path& path, std::string& content,
+                                    std::uint64_t max_bytes) {
+    // A file that cannot be opened is named as before (pathLabel); one of the wrong kind or size
+    // by its end, where its name is.
+    const std::string label = pathTail(path.string());
+    const std::string opened = pathLabel(path.string());
+    // The type by name first (following links), so that a device is never even opened (opening
+    // some has effects); then again on the descriptor, so that a file swapped in between cannot
+    // slip through. O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer,
+    // for ever; a regular file ignores the flag.
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return "cannot open " + opened + ": " + reason(errno);
+    if (!S_ISREG(info.st_mode)) {
+        return label + " is not a regular file (" + fileKind(info.st_mode) + ")";
+    }
+    const Descriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
+    if (file.fd < 0) return "cannot open " + opened + ": " + reason(errno);
+    if (::fstat(file.fd, &info) != 0) return "cannot read " + opened + ": " + reason(errno);
+    if (!S_ISREG(info.st_mode)) {
+        return label + " is not a regular file (" + fileKind(info.st_mode) + ")";
+    }
+    const std::string limit_text = "larger than the input limit of " + describeBytes(max_bytes) +
+                                   " (set " + kMaxInputBytesVariable + " to read more)";
+    if (static_cast<std::uint64_t>(info.st_size) > max_bytes) {
+        return label + " has " + std::to_string(info.st_size) + " bytes, " + limit_text;
+    }
+    // Read to the end, not to st_size: a file may grow, and some (in /proc) claim size 0. The
+    // bound holds either way.
+    std::string text;
+    text.reserve(static_cast<std::size_t>(info.st_size));
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return "cannot read " + opened + ": " + reason(errno);
+        }
+        if (n == 0) break;
+        if (text.size() + static_cast<std::size_t>(n) > max_bytes) {
+            return label + " is " + limit_text;
+        }
+        text.append(buffer, static_cast<std::size_t>(n));
+    }
+    content = std::move(text);
     return std::nullopt;
 }
 

@@ -1,5 +1,6 @@
 #include "core/io/csv.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -20,7 +21,9 @@ std::string trim(const std::string& s) {
     return s.substr(begin, end - begin + 1);
 }
 
-std::vector<std::string> splitLine(const std::string& line) {
+// The cells of one line; `open_quote` is set to the 1-based column of a quoted cell that the
+// line does not close (0: none).
+std::vector<std::string> splitLine(const std::string& line, std::size_t& open_quote) {
     std::vector<std::string> cells;
     std::string cell;
     bool quoted = false;
@@ -37,6 +40,7 @@ std::vector<std::string> splitLine(const std::string& line) {
             }
         } else if (ch == '"') {
             quoted = true;
+            open_quote = cells.size() + 1;
         } else if (ch == ',') {
             cells.push_back(trim(cell));
             cell.clear();
@@ -45,7 +49,21 @@ std::vector<std::string> splitLine(const std::string& line) {
         }
     }
     cells.push_back(trim(cell));
+    if (!quoted) open_quote = 0;
     return cells;
+}
+
+// The end of the line that starts at `start`: the next LF, CR LF or lone CR (old Mac files and
+// some loggers end lines with CR alone), or the end of the text. `next` is where the following
+// line starts.
+std::size_t lineEnd(const std::string& text, std::size_t start, std::size_t& next) {
+    const std::size_t end = text.find_first_of("\r\n", start);
+    if (end == std::string::npos) {
+        next = text.size() + 1;
+        return text.size();
+    }
+    next = end + (text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n' ? 2 : 1);
+    return end;
 }
 
 // A text cell: quoted (with doubled quotes) when it holds a comma, a quote or a line break.
@@ -85,10 +103,10 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
     std::size_t start = 0;
     bool have_header = false;
     while (start <= text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string::npos) end = text.size();
+        std::size_t next = 0;
+        const std::size_t end = lineEnd(text, start, next);
         std::string line = text.substr(start, end - start);
-        start = end + 1;
+        start = next;
         ++line_number;
         if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // BOM
         const std::string stripped = trim(line);
@@ -96,9 +114,25 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
             if (end == text.size()) break;
             continue;
         }
-        std::vector<std::string> cells = splitLine(line);
-        if (!have_header) {
+        std::size_t open_quote = 0;
+        std::vector<std::string> cells = splitLine(line, open_quote);
+        const std::string at = where + ":" + std::to_string(line_number);
+        // A quote opened and never closed would swallow the rest of the line into one cell and
+        // the message would only count cells: say what it is.
+        const std::string unbalanced =
+            open_quote == 0 ? std::string()
+                            : "unbalanced double quote: the quoted cell in column " +
+                                  std::to_string(open_quote) +
+                                  " is not closed on its line (a quote inside a quoted cell is "
+                                  "written twice: \"\")";
+        if (!have_header && !unbalanced.empty()) {
+            issues.push_back({at, "header: " + unbalanced});
+            have_header = true;
+        } else if (!unbalanced.empty()) {
+            doc.row_issues.push_back({at, unbalanced});
+        } else if (!have_header) {
             doc.header = std::move(cells);
+            doc.header_line = line_number;
             have_header = true;
             for (std::size_t i = 0; i < doc.header.size(); ++i) {
                 if (doc.header[i].empty()) continue;  // an unnamed column is never read
@@ -125,6 +159,32 @@ Result<CsvDocument> parseCsv(const std::string& text, const std::string& where) 
     if (!have_header) issues.push_back({where, "empty file: expected a header row"});
     if (!issues.empty()) return issues;
     return doc;
+}
+
+ColumnCheck checkColumns(const std::vector<std::string>& header,
+                         const std::vector<std::string>& known, const std::string& where,
+                         const std::string& unknown_note) {
+    ColumnCheck out;
+    auto present = [&](const std::string& name) {
+        return std::find(header.begin(), header.end(), name) != header.end();
+    };
+    std::string all;
+    for (const std::string& name : known) all += (all.empty() ? "" : ", ") + name;
+    for (const std::string& column : header) {
+        if (column.empty() || std::find(known.begin(), known.end(), column) != known.end())
+            continue;
+        const std::string near = nearestName(column, known);
+        if (!near.empty() && !present(near)) {
+            out.errors.push_back({where, "unknown column " + quoteCell(column) + "; did you mean " +
+                                             near + "? (the file has no " + near +
+                                             " column; columns read: " + all + ")"});
+        } else {
+            out.warnings.push_back({where, "column " + quoteCell(column) +
+                                               " is not read (columns read: " + all + ")" +
+                                               (unknown_note.empty() ? "" : "; " + unknown_note)});
+        }
+    }
+    return out;
 }
 
 Result<CsvDocument> readCsv(const std::filesystem::path& path) {

@@ -21,6 +21,7 @@ std::string toCsv(const Table& table);
 /// A CSV file read as a header and rows of cells (text), each row with its line number.
 struct CsvDocument {
     std::vector<std::string> header;
+    int header_line = 0;  ///< 1-based file line of the header
     std::vector<std::vector<std::string>> rows;
     std::vector<int> line_numbers;  ///< 1-based file line of each row
     /// Rows left out because their cell count differs from the header's ("file:LINE"), so a
@@ -33,6 +34,19 @@ struct CsvDocument {
 /// missing header, or a header naming one column twice (which of the two would count?), fails the
 /// parse.
 Result<CsvDocument> parseCsv(const std::string& text, const std::string& where);
+
+/// The header's columns against those a reader knows (`known`): an unknown column whose nearest
+/// known name (nearestName: "slp", "Slip" → "slip") is absent from the header is an error,
+/// since the file most likely means that column and every row would silently take its default;
+/// any other unknown column is a warning (`unknown_note` says what becomes of it, e.g. "copied
+/// to the output"). Both at `where` ("points.csv:1").
+struct ColumnCheck {
+    std::vector<Issue> errors;
+    std::vector<Issue> warnings;
+};
+ColumnCheck checkColumns(const std::vector<std::string>& header,
+                         const std::vector<std::string>& known, const std::string& where,
+                         const std::string& unknown_note);
 
 /// Reads and parses a CSV file.
 Result<CsvDocument> readCsv(const std::filesystem::path& path);

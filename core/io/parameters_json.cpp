@@ -28,7 +28,9 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
     // the working directory; anything with a '/' or a ".json" ending is a path.
     const bool looks_like_path = name_or_path.find('/') != std::string::npos ||
                                  fs::path(name_or_path).extension() == ".json";
-    if (looks_like_path && fs::is_regular_file(name_or_path, ec)) return load(name_or_path);
+    // A path to something that is not a regular file (a folder, /dev/zero, a FIFO) goes to the
+    // reader too, which refuses it naming its kind.
+    if (looks_like_path && fs::exists(name_or_path, ec)) return load(name_or_path);
     for (const fs::path& dir : locations.directories) {
         const fs::path candidate = dir / kind / (name_or_path + ".json");
         if (fs::is_regular_file(candidate, ec)) return load(candidate);
@@ -37,10 +39,7 @@ Result<T> resolve(const PresetLocations& locations, const std::string& kind,
     const std::string field = kind == "soils" ? "soil" : kind == "profiles" ? "profile" : "wheel";
     if (looks_like_path) {
         // A path is never a preset name: say what is wrong with the path.
-        return std::vector<Issue>{
-            {field, fs::exists(name_or_path, ec)
-                        ? quoteText(name_or_path) + " is not a regular file"
-                        : "file " + quoteText(name_or_path) + " does not exist"}};
+        return std::vector<Issue>{{field, "file " + quoteText(name_or_path) + " does not exist"}};
     }
     std::string names;
     for (const std::string& n : presetNames(locations, kind))

@@ -154,10 +154,14 @@ std::vector<analysis::FigureSpec> readFigures(ObjectReader& r, const analysis::A
     return out;
 }
 
-// Whether a name can start file names in the output directory.
+// Whether a name can start file names in the output directory: no control character (a line
+// break in a file name breaks every listing and script that reads one), no path separator.
 bool fileSafe(const std::string& name) {
+    const bool control = std::any_of(name.begin(), name.end(), [](char c) {
+        return static_cast<unsigned char>(c) < 0x20 || c == '\x7f';
+    });
     return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos &&
-           name.find('\\') == std::string::npos && name.size() <= 100;
+           name.find('\\') == std::string::npos && name.size() <= 100 && !control;
 }
 
 }  // namespace
@@ -286,7 +290,8 @@ Result<Script> scriptFromJson(const json& document, const std::string& where,
         if (!fileSafe(item.name)) {
             a.report("name", quoteText(item.name, '"') +
                                  " cannot start a file name (empty, a leading '.', a '/' or "
-                                 "longer than 100 characters)");
+                                 "'\\', a control character such as a line break, or longer than "
+                                 "100 characters)");
         }
         for (std::size_t j = 0; j < i && j < script.analyses.size(); ++j) {
             if (script.analyses[j].name == item.name) {

@@ -65,6 +65,79 @@ bool finite(const dynamics::RoverState& s) {
     return true;
 }
 
+// (energy − dissipated − ΔE_kinetic − ΔE_potential) over the motors' work, or, when the motors
+// delivered nothing or took energy in (braking, or a diverged run), over the largest of the
+// other terms: the balance reported is always the one computed.
+double energyBalanceError(double energy, double dissipated, double kinetic, double potential) {
+    const double residual = energy - dissipated - kinetic - potential;
+    const double scale = energy > 0.0 ? energy
+                                      : std::max({std::abs(energy), std::abs(dissipated),
+                                                  std::abs(kinetic) + std::abs(potential)});
+    return scale > 0.0 ? residual / scale : 0.0;
+}
+
+// Watches a run for states no robot on flat soil reaches: a step too large for the contact's
+// stiffness shows in them long before it turns into NaN (issue 28: 0.05 s sent the robot 150 m,
+// flipped it and reported negative motor energy as a completed run).
+class DivergenceWatch {
+public:
+    DivergenceWatch(const Scenario& scenario, const dynamics::RoverState& start)
+        : z0_(start.position_m[2]),
+          radius_(scenario.robot.wheel.radius_m),
+          shear_radius_(scenario.robot.wheel.radius_m + scenario.robot.wheel.lugShearOffset()),
+          fastest_(scenario.initial.speed_m_s),
+          energy_floor_(1e-3 * scenario.robot.totalMass() * scenario.options.gravity_m_s2 *
+                        scenario.robot.wheel.radius_m) {}
+
+    // The rims' speeds commanded so far bound the robot's: on flat ground nothing else drives it.
+    void commanded(const dynamics::Commands& commands) {
+        for (const dynamics::WheelCommand& c : commands)
+            fastest_ = std::max(fastest_, shear_radius_ * std::abs(c.spin_rate_rad_s));
+    }
+
+    // Why the state is beyond physical bounds, or "".
+    std::string check(const dynamics::RoverState& s) const {
+        constexpr double kTipped = 60.0 * units::kPi / 180.0;
+        const double speed = std::hypot(s.velocity_m_s[0], s.velocity_m_s[1], s.velocity_m_s[2]);
+        const double speed_bound = 2.0 * fastest_ + 0.5;
+        if (speed > speed_bound) {
+            return "the speed " + formatNumber(roundSignificant(speed, 3)) +
+                   " m/s is beyond what the wheels drive (rims at most " +
+                   formatNumber(roundSignificant(fastest_, 3)) + " m/s)";
+        }
+        if (std::abs(s.roll_rad) > kTipped || std::abs(s.pitch_rad) > kTipped) {
+            return "the robot tipped over on flat ground (roll " +
+                   formatNumber(roundSignificant(units::radToDeg(s.roll_rad), 3)) + "°, pitch " +
+                   formatNumber(roundSignificant(units::radToDeg(s.pitch_rad), 3)) + "°)";
+        }
+        const double rise = s.position_m[2] - z0_;
+        if (rise > 1.0 || rise < -radius_) {
+            return "the robot " + std::string(rise > 0.0 ? "left the ground" : "sank through it") +
+                   " (its centre of mass moved " + formatNumber(roundSignificant(rise, 3)) +
+                   " m vertically)";
+        }
+        return {};
+    }
+
+    // An energy balance off by more than half of the energy involved: energy created or lost by
+    // the integration, not by any physics of the model.
+    std::string check(const dynamics::EnergyLedger& e) const {
+        const double kinetic = e.kinetic_j - e.initial_kinetic_j;
+        const double potential = e.potential_j - e.initial_potential_j;
+        const double residual = e.motor_work_j - e.dissipated_j - kinetic - potential;
+        const double error = energyBalanceError(e.motor_work_j, e.dissipated_j, kinetic, potential);
+        if (std::abs(residual) > energy_floor_ && std::abs(error) > 0.5) {
+            return "the energy balance is off by " +
+                   formatNumber(roundSignificant(100.0 * error, 3)) + " % (" +
+                   formatNumber(roundSignificant(residual, 3)) + " J)";
+        }
+        return {};
+    }
+
+private:
+    double z0_, radius_, shear_radius_, fastest_, energy_floor_;
+};
+
 // The streaming identifier of one wheel, fed with noisy samples at its own rate.
 class StreamingFeed {
 public:
@@ -130,13 +203,29 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     RunResult result;
     result.series.columns = seriesColumns();
     Summary& sum = result.summary;
+    DivergenceWatch watch(scenario, rover.state());
+    // Said with a divergence: whether the step is above the vertical modes' bound or, below it,
+    // meets the stiffer lateral and longitudinal forces of slow driving (docs/dynamics.md).
+    auto stepHint = [&] {
+        const dynamics::StepLimit limit =
+            dynamics::largestStableStep(scenario.robot, scenario.terrain, scenario.options);
+        const double allowed = kStableStepMargin * limit.max_step_s;
+        if (dt > allowed) {
+            return "the time step " + formatNumber(dt) + " s is above the largest stable step " +
+                   formatNumber(roundSignificant(allowed, 2)) + " s (docs/dynamics.md)";
+        }
+        return "try a smaller time step than " + formatNumber(dt) +
+               " s (docs/dynamics.md, \"Step size and stability\")";
+    };
     std::array<double, 2> last_xy{rover.state().position_m[0], rover.state().position_m[1]};
     long step = 0;
     for (;; ++step) {
         // Time from the step count (no accumulated rounding): bit-identical reruns and exact
         // signal switching times.
         const double t = static_cast<double>(step) * dt;
-        const dynamics::RoverState& state = rover.evaluate(scenario.commandsAt(t));
+        const dynamics::Commands commands = scenario.commandsAt(t);
+        watch.commanded(commands);
+        const dynamics::RoverState& state = rover.evaluate(commands);
         if (!finite(state)) {
             result.status = RunResult::Status::kDiverged;
             result.message = "the simulation diverged at t = " + formatNumber(t) + " s";
@@ -158,6 +247,18 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             sum.sunk_steps += c.sunk ? 1 : 0;
         }
         rover.advance(dt);
+        // The state every step (cheap); the energy ledger every 100 steps (it sums every body).
+        std::string diverged = watch.check(rover.state());
+        if (diverged.empty() && (step + 1) % 100 == 0) diverged = watch.check(rover.energy());
+        if (!diverged.empty()) {
+            ++step;
+            result.series.rows.push_back(seriesRow(rover.state()));
+            result.status = RunResult::Status::kDiverged;
+            result.message = "the simulation diverged at t = " +
+                             formatNumber(roundSignificant(rover.state().time_s, 6)) +
+                             " s: " + diverged + "; " + stepHint();
+            break;
+        }
         const auto& p = rover.state().position_m;
         sum.distance_m += std::hypot(p[0] - last_xy[0], p[1] - last_xy[1]);
         last_xy = {p[0], p[1]};
@@ -177,11 +278,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     sum.dissipated_j = e.dissipated_j;
     sum.kinetic_change_j = e.kinetic_j - e.initial_kinetic_j;
     sum.potential_change_j = e.potential_j - e.initial_potential_j;
-    if (sum.energy_j > 0.0) {
-        sum.energy_balance_error =
-            (sum.energy_j - sum.dissipated_j - sum.kinetic_change_j - sum.potential_change_j) /
-            sum.energy_j;
-    }
+    sum.energy_balance_error = energyBalanceError(sum.energy_j, sum.dissipated_j,
+                                                  sum.kinetic_change_j, sum.potential_change_j);
     if (feed) result.streaming = feed->take();
     return result;
 }
@@ -228,6 +326,14 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
     if (ec) return "cannot create " + directory.string() + ": " + ec.message();
+    // A folder used before may hold a streaming.csv of an earlier run; this run writes none, so
+    // the old one would pass for this run's. Removed first: a run killed while writing leaves the
+    // earlier results without it, never with a stale one beside new results.
+    if (result.streaming.columns.empty()) {
+        const std::filesystem::path stale = directory / "streaming.csv";
+        std::filesystem::remove(stale, ec);
+        if (ec) return "cannot remove the earlier " + stale.string() + ": " + ec.message();
+    }
     if (auto error =
             io::writeFileAtomically(directory / "timeseries.csv", io::toCsv(result.series))) {
         return error;

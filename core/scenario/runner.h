@@ -40,7 +40,8 @@ struct Summary {
     double kinetic_change_j = 0.0, potential_change_j = 0.0;  ///< [J]
     /// (energy − dissipated − ΔE_kinetic − ΔE_potential) / energy: 1e-5…4e-4 at a good step; above
     /// kEnergyBalanceTolerance the step is too large for the contact's stiffness
-    /// (docs/dynamics.md).
+    /// (docs/dynamics.md). When the motors' work is not positive, over the largest of |energy|,
+    /// |dissipated| and |ΔE_kinetic| + |ΔE_potential| instead (never left at 0 when it is not).
     double energy_balance_error = 0.0;
     double max_sinkage_m = 0.0;
     int sunk_steps = 0;  ///< wheel-steps with θ_f clamped at 90°
@@ -48,6 +49,10 @@ struct Summary {
 };
 
 struct RunResult {
+    /// kDiverged: a NaN, or a state no robot on flat soil reaches (a speed beyond twice the
+    /// fastest rim speed commanded plus 0.5 m/s, roll or pitch beyond 60°, the centre of mass
+    /// 1 m up or a wheel radius down, the energy balance off by more than 50 %); `message` says
+    /// when and why (docs/dynamics.md, "Step size and stability").
     enum class Status { kCompleted, kCancelled, kDiverged };
     Status status = Status::kCompleted;
     std::string message;

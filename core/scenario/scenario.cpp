@@ -1,9 +1,22 @@
 #include "core/scenario/scenario.h"
 
+#include <cmath>
+
 #include "core/common/range.h"
+#include "core/dynamics/rover.h"
 #include "core/soil/soil_parameters.h"
 
 namespace terra::scenario {
+namespace {
+
+// `value` > 0 rounded down to `digits` significant digits (a bound named in a message must itself
+// be allowed).
+double floorSignificant(double value, int digits) {
+    const double scale = std::pow(10.0, std::floor(std::log10(value)) - (digits - 1));
+    return roundSignificant(std::floor(value / scale) * scale);
+}
+
+}  // namespace
 
 dynamics::Commands Scenario::commandsAt(double t_s) const {
     dynamics::Commands commands;
@@ -51,6 +64,28 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
         }
     }
     checkRange(issues, prefix + "initial.speed_m_s", s.initial.speed_m_s, {0.0, 100.0}, "m/s");
+    // A step the dynamics cannot take stably sent the robot 150 m and flipped it, reported as a
+    // completed run (issue 28): refused here, with the largest stable step named.
+    if (issues.empty()) {
+        const dynamics::StepLimit limit =
+            dynamics::largestStableStep(s.robot, s.terrain, s.options);
+        const double allowed = kStableStepMargin * limit.max_step_s;
+        if (std::isfinite(allowed) && s.time_step_s > allowed) {
+            const Range range{kTimeStepRange.low, floorSignificant(allowed, 2)};
+            issues.push_back(
+                {prefix + "time_step_s",
+                 formatNumber(s.time_step_s) +
+                     " s is above the largest stable step of this robot on " + limit.soil + ", " +
+                     formatNumber(range.high) + " s (" +
+                     formatNumber(roundSignificant(100.0 * kStableStepMargin, 3)) + " % of the " +
+                     formatNumber(roundSignificant(limit.max_step_s, 3)) + " s at which its " +
+                     limit.mode + " on the soil's vertical stiffness, up to " +
+                     formatNumber(roundSignificant(limit.stiffness_n_m, 3)) +
+                     " N/m per wheel, turns unstable; docs/dynamics.md, \"Step size and "
+                     "stability\"); allowed range " +
+                     range.describe() + " s"});
+        }
+    }
     return issues;
 }
 

@@ -238,7 +238,8 @@ Result<dynamics::RobotParameters> resolveRobot(const io::PresetLocations& locati
     const bool looks_like_path = name_or_path.find('/') != std::string::npos ||
                                  fs::path(name_or_path).extension() == ".json";
     fs::path file;
-    if (looks_like_path && fs::is_regular_file(name_or_path, ec)) file = name_or_path;
+    // A path to something that is not a regular file goes to the reader, which names its kind.
+    if (looks_like_path && fs::exists(name_or_path, ec)) file = name_or_path;
     for (const fs::path& dir : locations.directories) {
         if (!file.empty()) break;
         if (fs::is_regular_file(dir / "robots" / (name_or_path + ".json"), ec)) {
@@ -418,7 +419,8 @@ Result<Scenario> resolveScenario(const io::PresetLocations& locations,
     std::error_code ec;
     const bool looks_like_path = name_or_path.find('/') != std::string::npos ||
                                  fs::path(name_or_path).extension() == ".json";
-    if (looks_like_path && fs::is_regular_file(name_or_path, ec))
+    // A path to something that is not a regular file goes to the reader, which names its kind.
+    if (looks_like_path && fs::exists(name_or_path, ec))
         return loadScenario(name_or_path, locations);
     for (const fs::path& dir : locations.directories) {
         const fs::path candidate = dir / "scenarios" / (name_or_path + ".json");

@@ -146,4 +146,85 @@ TEST_F(CsvInput, WheelBatchRejectsEveryBadCellWithFileLineColumnValueAndRange) {
     }
 }
 
+// Issue 28, finding 5: LF, CR LF and CR-only line endings are all lines (a CR-only file was
+// one header line: zero rows computed, exit 0); the rows' line numbers count the same way.
+TEST_F(CsvInput, EveryLineEndingIsALineEnd) {
+    const std::string expected =
+        run("wheel --input " + write("lf.csv", "slip,load_N\n0.1,58\n0.3,58\n") + " --output " +
+            (dir_ / "lf-out.csv").string())
+            .err;
+    for (const auto& [name, eol] : {std::pair{"crlf", "\r\n"}, {"cr", "\r"}, {"mixed", "\n"}}) {
+        const std::string text = std::string("slip,load_N") + eol + "0.1,58" + eol + "0.3,58" +
+                                 (std::string(name) == "mixed" ? "\r" : eol);
+        const std::string points = write(std::string(name) + ".csv", text);
+        const fs::path out = dir_ / (std::string(name) + "-out.csv");
+        const CliRun r = run("wheel --input " + points + " --output " + out.string());
+        EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err;
+        EXPECT_NE(r.err.find("wrote " + out.string() + ": 2 rows"), std::string::npos)
+            << name << ": " << r.err;
+    }
+    EXPECT_NE(expected.find(": 2 rows"), std::string::npos) << expected;
+    // A bad cell on the third line of a CR-only file is named at line 3.
+    const std::string bad = write("bad.csv", "slip,load_N\r0.1,58\r1.5,58\r");
+    const CliRun r = run("wheel --input " + bad);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(bad + ":3: slip = 1.5 is outside"), std::string::npos) << r.err;
+    // The identification data set too.
+    const std::string data = write("data.csv",
+                                   "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\r0.2,17,-1,58.86,0.5\r"
+                                   "0.3,18,1,58.86,0.6\r");
+    const CliRun d = run("identify --data " + data + " --json");
+    EXPECT_NE(d.exit_code, 2) << d.err;
+    EXPECT_NE(d.out.find("\"samples\": 2"), std::string::npos) << d.out << d.err;
+}
+
+// A misspelt batch column would leave every row at the flag's default (slip 0): an error when
+// the column it most likely means is missing, a warning for any other unknown column, a note
+// when there is no slip column at all.
+TEST_F(CsvInput, MisspeltBatchColumnsAreNamedWithTheNearestOne) {
+    for (const std::string column : {"slp", "Slip", "slip_"}) {
+        const std::string points = write("points.csv", column + ",load_N\n0.3,58\n");
+        const CliRun r = run("wheel --input " + points);
+        EXPECT_EQ(r.exit_code, 2) << column << ": " << r.err;
+        EXPECT_NE(r.err.find(points + ":1: unknown column '" + column +
+                             "'; did you mean slip? (the file has no slip column"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_EQ(r.out, "") << column;
+    }
+    // An unknown column next to the one it resembles is data of the user's: a warning, copied.
+    const std::string both = write("both.csv", "slip,Slip,load_N,run_id\n0.3,x,58,7\n");
+    CliRun r = run("wheel --input " + both);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find(both + ":1: warning: column 'Slip' is not read (columns read: slip, "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(both + ":1: warning: column 'run_id' is not read"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.out.find("0.3,x,58,7,ok,"), std::string::npos) << r.out;
+    // No slip column: said, with the slip every row takes.
+    const std::string none = write("none.csv", "load_N\n58\n");
+    r = run("wheel --input " + none + " --slip 0.2");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find(none + ": note: no column slip: every row at s = 0.2 (--slip)"),
+              std::string::npos)
+        << r.err;
+}
+
+// Issue 28, finding 9: an unbalanced quote is named as one, with its line and column.
+TEST_F(CsvInput, AnUnbalancedQuoteIsNamed) {
+    const std::string points = write("q.csv", "slip,load_N,label\n0.2,58,\"open\n0.3,58,ok\n");
+    CliRun r = run("wheel --input " + points);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(points + ":2: unbalanced double quote: the quoted cell in column 3 is "
+                                  "not closed on its line"),
+              std::string::npos)
+        << r.err;
+    const std::string header = write("h.csv", "slip,\"load_N\n0.2,58\n");
+    r = run("identify --data " + header);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(header + ":1: header: unbalanced double quote"), std::string::npos)
+        << r.err;
+}
+
 }  // namespace

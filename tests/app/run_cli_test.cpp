@@ -205,6 +205,33 @@ TEST_F(RunCommand, ShippedExampleScriptsRunAndMeetTheirExpectations) {
     }
 }
 
+// Issue 28, finding 6: a stress field at a load the soil cannot carry is a failed analysis (exit 1,
+// the reason in the report), not an empty grid, a table of zero errors and "All expectations met".
+TEST_F(RunCommand, StressesWithoutEquilibriumFailWithTheReason) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["conditions"]["load_N"] = 5000;
+    script["analyses"] = {{{"name", "st"},
+                           {"type", "stresses"},
+                           {"slip", 0.2},
+                           {"expect",
+                            {{{"table", "errors"},
+                              {"column", "rmse_kPa"},
+                              {"at", {{"stress_index", 0}}},
+                              {"min", 0},
+                              {"max", 100}}}}}};
+    const fs::path path = writeScript(script);
+    const CliRun r = run("run " + path.string() + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(r.exit_code, 1) << r.err << r.out;
+    EXPECT_NE(r.out.find("FAIL: st: no equilibrium"), std::string::npos) << r.out;
+    const std::string report = readText(dir_ / "out" / "report.md");
+    EXPECT_EQ(report.find("All expectations met"), std::string::npos) << report;
+    EXPECT_NE(report.find("FAILED"), std::string::npos) << report;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "st.csv")) << "an empty grid was written";
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "st-errors.csv")) << "a table of zero errors";
+    const auto manifest = nlohmann::json::parse(readText(dir_ / "out" / "manifest.json"));
+    EXPECT_GE(manifest["failed"].get<int>(), 1);
+}
+
 }  // namespace
 
 // The broken scripts measured in issue 10, each through the real executable: exit 2, the field
@@ -299,6 +326,16 @@ TEST_F(StrictScript, ExpectationTablesAndFiguresAreChecked) {
     script = forcesScript(0, 1);
     script["analyses"][0]["plots"] = {"Fx"};
     expectRejected(runJson(script), "analyses[0].plots[0]: \"Fx\" is not one of Fx_N");
+}
+
+// Issue 28, finding 9: an analysis name with a line break (or any control character) became
+// file names holding it; it is refused like a '/' (exit 2, nothing written), shown escaped.
+TEST_F(StrictScript, AnAnalysisNameWithALineBreakIsRefused) {
+    nlohmann::json script = forcesScript(0, 1);
+    script["analyses"][0]["name"] = "f\nx";
+    expectRejected(runJson(script), "analyses[0].name: \"f\\nx\" cannot start a file name");
+    script["analyses"][0]["name"] = "f\x1b[2Jx";
+    expectRejected(runJson(script), "analyses[0].name: \"f\\x1b[2Jx\" cannot start a file name");
 }
 
 TEST_F(StrictScript, CommentsAreAllowedWhereverAKeyIs) {

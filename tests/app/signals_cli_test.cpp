@@ -222,6 +222,121 @@ TEST_F(Signals, RunWritesTheReportAndManifestMarkedCancelled) {
     EXPECT_NE(readText(out / "report.md").find("Cancelled by SIGTERM"), std::string::npos);
 }
 
+// Issue 28, finding 3: every subcommand with --json or --out and a cancellable long run writes
+// its partial result marked cancelled (JSON: an object with "cancelled": true and a "note"; CSV:
+// a last comment line), or nothing and says so.
+TEST_F(Signals, BandsJsonIsMarkedCancelled) {
+    const fs::path file = dir_ / "b.json";
+    CliProcess p({"bands", "--samples", "65536", "--json", "--out", file}, dir_ / "bands");
+    ASSERT_EQ(stopWith(p, SIGTERM), 143) << p.err();
+    EXPECT_EQ(p.err().find("json.exception"), std::string::npos) << p.err();
+    const auto j = nlohmann::json::parse(readText(file));
+    EXPECT_EQ(j["cancelled"], true);
+    EXPECT_EQ(j["note"].get<std::string>().rfind("cancelled by SIGTERM: bands from the samples", 0),
+              0u)
+        << j["note"];
+    ASSERT_TRUE(j["rows"].is_array());
+    EXPECT_EQ(j["rows"].size(), 20u);  // every grid point, from the samples evaluated
+}
+
+TEST_F(Signals, BandsCsvEndsWithTheNote) {
+    const fs::path file = dir_ / "b.csv";
+    CliProcess p({"bands", "--samples", "65536", "--out", file}, dir_ / "bands");
+    ASSERT_EQ(stopWith(p, SIGINT), 130) << p.err();
+    const auto text = lines(readText(file));
+    ASSERT_GE(text.size(), 2u);
+    EXPECT_EQ(text.back().rfind("# cancelled by SIGINT: bands from the samples", 0), 0u)
+        << text.back();
+}
+
+TEST_F(Signals, GsaJsonIsMarkedCancelledWithANote) {
+    const fs::path file = dir_ / "gsa.json";
+    CliProcess p({"gsa", "--slip", "0.3", "--samples", "262144", "--resamples", "10", "--json",
+                  "--out", file},
+                 dir_ / "gsa");
+    ASSERT_EQ(stopWith(p, SIGHUP), 129) << p.err();
+    const auto j = nlohmann::json::parse(readText(file));
+    EXPECT_EQ(j["cancelled"], true);
+    EXPECT_EQ(j["note"].get<std::string>().rfind("cancelled by SIGHUP: indices from the", 0), 0u)
+        << j["note"];
+}
+
+TEST_F(Signals, SensitivityJsonIsMarkedCancelled) {
+    const fs::path file = dir_ / "sens.json";
+    CliProcess p({"sensitivity", "--parameter", "phi_deg", "--values", "20:35:50", "--slips",
+                  "0:0.99:2000", "--json", "--out", file},
+                 dir_ / "sens");
+    ASSERT_EQ(stopWith(p, SIGTERM), 143) << p.err();
+    const auto j = nlohmann::json::parse(readText(file));
+    EXPECT_EQ(j["cancelled"], true);
+    EXPECT_GT(j["rows"].size(), 0u);
+    EXPECT_LT(j["rows"].size(), 100000u);
+    EXPECT_EQ(j["note"],
+              "cancelled by SIGTERM after " + std::to_string(j["rows"].size()) + " rows");
+}
+
+// The batch fit and the validation write nothing when stopped (a fit stopped halfway is no
+// result) and say so, naming the signal.
+TEST_F(Signals, IdentifyAndValidateWriteNothingAndSaySo) {
+    const fs::path data = dir_ / "data.csv";
+    ASSERT_EQ(terra::test::run("synth --slips 0:0.9:4000 --load 40,60,80 --noise fx=0.5 --out " +
+                               data.string())
+                  .exit_code,
+              0);
+    CliProcess identify({"identify", "--data", data, "--json"}, dir_ / "identify");
+    ASSERT_EQ(stopWith(identify, SIGTERM), 143) << identify.err();
+    EXPECT_EQ(identify.out(), "");
+    EXPECT_NE(identify.err().find("identify cancelled by SIGTERM: nothing written"),
+              std::string::npos)
+        << identify.err();
+
+    // A measured test of 3000 points at three loads, calibrated.
+    const fs::path test = dir_ / "test.csv";
+    {
+        std::ofstream out(test);
+        out << "load_N,slip,Fx_N,sinkage_m\n";
+        for (int i = 0; i < 3000; ++i)
+            out << 40 + 20 * (i % 3) << ',' << 0.9 * i / 3000 << ",5,0.01\n";
+    }
+    CliProcess validate({"validate", "--experiments", test, "--soil", "sandy-loam", "--wheel", "A",
+                         "--calibrate", "--json"},
+                        dir_ / "validate");
+    ASSERT_EQ(stopWith(validate, SIGINT), 130) << validate.err();
+    EXPECT_EQ(validate.out(), "");
+    EXPECT_NE(validate.err().find("validate cancelled by SIGINT: nothing written"),
+              std::string::npos)
+        << validate.err();
+}
+
+// Issue 28, finding 9: SIGKILL during `run` left data files without manifest.json. The manifest
+// is written first, marked running, and after every analysis: killed outright, the folder still
+// says what it holds.
+TEST_F(Signals, RunKilledOutrightLeavesAManifestMarkedRunning) {
+    const fs::path script = dir_ / "script.json";
+    std::ofstream(script) << nlohmann::json{
+        {"analyses",
+         {{{"name", "fx"}, {"type", "forces"}},
+          {{"name", "long"}, {"type", "rover"}, {"scenario", "straight"}, {"duration_s", 600}}}}};
+    const fs::path out = dir_ / "out";
+    CliProcess p({"run", script, "--out", out}, dir_ / "run");
+    const auto end = std::chrono::steady_clock::now() + 120s;
+    while (!fs::exists(out / "fx.csv") && !p.exited() && std::chrono::steady_clock::now() < end)
+        std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(fs::exists(out / "fx.csv")) << p.err();
+    std::this_thread::sleep_for(500ms);
+    p.signal(SIGKILL);
+    ASSERT_TRUE(WIFSIGNALED(p.wait()));
+    const auto manifest = nlohmann::json::parse(readText(out / "manifest.json"));
+    EXPECT_EQ(manifest["status"], "running");
+    ASSERT_EQ(manifest["analyses"].size(), 1u);
+    EXPECT_EQ(manifest["analyses"][0]["name"], "fx");
+    EXPECT_FALSE(fs::exists(out / "long-summary.json"));
+    // A run that ends says so.
+    std::ofstream(script) << nlohmann::json{{"analyses", {{{"name", "fx"}, {"type", "forces"}}}}};
+    ASSERT_EQ(terra::test::run("run " + script.string() + " --out " + out.string()).exit_code, 0);
+    EXPECT_EQ(nlohmann::json::parse(readText(out / "manifest.json"))["status"], "completed");
+}
+
 // SIGKILL while the 26 MB time series is being written (seen as an open file in the output
 // directory): the previous results stay whole and nothing else is left there; the next run
 // replaces them and leaves nothing either.

@@ -305,4 +305,35 @@ TEST_F(ValidateCommand, FitN1RecoversTheSlipSinkageOfDataMadeWithIt) {
                 wheelAt(truth, 80, 0.6)["sinkage_m"].get<double>(), 1e-4);
 }
 
+// Issue 28, finding 6: a calibration whose solver stops on its iteration budget (here: three
+// points at a load the given soil cannot carry) is no calibrated soil: exit 1 with the reason,
+// no soil printed as calibrated, no RMSE of 0, nothing saved.
+TEST_F(ValidateCommand, AnUnconvergedCalibrationIsAFailure) {
+    const fs::path test = write("heavy.csv",
+                                "load_N,slip,Fx_N,sinkage_m\n3000,0.1,5,0.01\n3000,0.3,8,0.02\n"
+                                "3000,0.5,10,0.03\n");
+    const fs::path soil = dir_ / "calibrated.json";
+    CliRun r = run("validate --experiments " + test.string() +
+                   " --soil sandy-loam --wheel A --calibrate --save-soil " + soil.string());
+    EXPECT_EQ(r.exit_code, 1) << r.err << r.out;
+    EXPECT_NE(r.err.find("error: calibration failed: the fit did not converge (NO_CONVERGENCE"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(contains(r.out, "metrics (calibrated soil)")) << r.out;
+    EXPECT_FALSE(contains(r.out, "RMSE 0.000")) << r.out;
+    EXPECT_FALSE(fs::exists(soil));
+    r = run("validate --experiments " + test.string() +
+            " --soil sandy-loam --wheel A --calibrate --json");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["calibration"]["usable"], false);
+    EXPECT_FALSE(j["calibration"].contains("soil"));
+    // Without --calibrate: not one point has a prediction, so there is no metric to report.
+    r = run("validate --experiments " + test.string() + " --soil sandy-loam --wheel A");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("error: no point of the test has a prediction with the given soil"),
+              std::string::npos)
+        << r.err;
+}
+
 }  // namespace

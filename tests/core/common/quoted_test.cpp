@@ -28,5 +28,20 @@ TEST(Quoted, NeverCutsInsideAMultiByteCharacter) {
               "'" + std::string(79, 'a') + "…' (" + std::to_string(text.size()) + " characters)");
 }
 
+// Issue 28: a name with a line break or a terminal escape shows as what it is.
+TEST(Quoted, ControlCharactersAreEscaped) {
+    EXPECT_EQ(quoteText("a\nb"), "'a\\nb'");
+    EXPECT_EQ(quoteText("a\x1b[2Jb\t"), "'a\\x1b[2Jb\\t'");
+    EXPECT_EQ(quoteText(std::string("a\0b", 3)), "'a\\x00b'");
+}
+
+TEST(Quoted, PathTailKeepsTheFileName) {
+    EXPECT_EQ(pathTail("/a/b.csv"), "/a/b.csv");
+    const std::string deep = "/" + std::string(200, 'd') + "/points.csv";
+    const std::string tail = pathTail(deep, 20);
+    EXPECT_EQ(tail, "…" + deep.substr(deep.size() - 19));
+    EXPECT_EQ(tail.substr(tail.size() - 10), "points.csv");
+}
+
 }  // namespace
 }  // namespace terra

@@ -167,6 +167,55 @@ TEST(Rover, MotorWorkBalancesKineticPotentialAndDissipatedEnergy) {
 // Front-wheel steering δ on wheelbase L: kinematically the robot turns about a point on the rear
 // axle line, yaw rate = v tan δ / L. The wheels' slip angles on soil make it turn a little wider
 // (understeer), so the kinematic value is an upper bound reached within 15 %.
+// The linear bound of largestStableStep against the simulation itself: straight on, a step of 80 %
+// of it runs and balances its energy; 130 % of it diverges and the run stops as diverged, with
+// the reason (issue 28: a 50 ms step sent the robot 150 m and flipped it as a "completed" run).
+TEST(Rover, TheLargestStableStepIsWhereTheStraightRunTurnsUnstable) {
+    scenario::Scenario s = straight(4.0);
+    s.options.contact.model = contact::ContactModel::kQuadratic;
+    const StepLimit limit = largestStableStep(s.robot, s.terrain, s.options);
+    ASSERT_TRUE(std::isfinite(limit.max_step_s));
+    EXPECT_GT(limit.max_step_s, 1e-3);  // the shipped scenarios' 1 ms is well inside
+    EXPECT_LT(limit.max_step_s, 0.05);
+    scenario::Scenario stable = s, unstable = s;
+    stable.time_step_s = 0.8 * limit.max_step_s;
+    unstable.time_step_s = 1.3 * limit.max_step_s;
+    unstable.output_interval_s = unstable.time_step_s;  // at least one step
+    const scenario::RunResult good = scenario::runScenario(stable);
+    EXPECT_EQ(good.status, scenario::RunResult::Status::kCompleted) << good.message;
+    EXPECT_LT(std::abs(good.summary.energy_balance_error), scenario::kEnergyBalanceTolerance);
+    const scenario::RunResult bad = scenario::runScenario(unstable);
+    EXPECT_EQ(bad.status, scenario::RunResult::Status::kDiverged);
+    EXPECT_NE(bad.message.find("the simulation diverged at t = "), std::string::npos)
+        << bad.message;
+    EXPECT_NE(bad.message.find("is above the largest stable step"), std::string::npos)
+        << bad.message;
+    EXPECT_LT(bad.summary.duration_s, s.duration_s);
+    // A scenario file with that step is refused at load, naming the step it may take.
+    bool named = false;
+    for (const Issue& issue : scenario::validate(unstable))
+        named = named || (issue.where == "time_step_s" &&
+                          issue.message.find("largest stable step") != std::string::npos);
+    EXPECT_TRUE(named);
+    EXPECT_TRUE(scenario::validate(stable).empty());
+}
+
+// Whatever the step does, the summary's energy balance is the one computed: 50 ms on the straight
+// run gave negative motor work and reported an error of 0 (the division was skipped).
+TEST(Rover, ADivergedRunReportsItsEnergyBalance) {
+    scenario::Scenario s = straight(10.0);
+    s.options.contact.model = contact::ContactModel::kQuadratic;
+    s.time_step_s = 0.05;
+    const scenario::RunResult r = scenario::runScenario(s);
+    EXPECT_EQ(r.status, scenario::RunResult::Status::kDiverged);
+    const scenario::Summary& m = r.summary;
+    const double residual = m.energy_j - m.dissipated_j - m.kinetic_change_j - m.potential_change_j;
+    if (residual != 0.0) {
+        EXPECT_NE(m.energy_balance_error, 0.0);
+    }
+    EXPECT_TRUE(std::isfinite(m.energy_balance_error));
+}
+
 // The explicit coupling has a stability limit from the lateral stiffness at low speed: a 10 ms step
 // chatters, and the energy balance (computed from the contact powers, not from the state) shows it.
 TEST(Rover, TooLargeAStepIsFlaggedByTheEnergyBalance) {

@@ -174,5 +174,38 @@ TEST(AtomicFile, ConcurrentWritersOfOneFileEachLandWhole) {
     EXPECT_EQ(listing(temp.path()), (std::set<std::string>{"shared.csv"}));
 }
 
+// ---- readFile: inputs that end (issue 28) ------------------------------------------------
+
+TEST(ReadFile, RefusesDevicesFifosAndFoldersByTheirKind) {
+    TempDir temp;
+    std::string content;
+    auto error = readFile("/dev/zero", content);
+    ASSERT_TRUE(error.has_value());
+    EXPECT_EQ(*error, "/dev/zero is not a regular file (a character device)");
+    error = readFile(temp.path(), content);
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find("is not a regular file (a directory)"), std::string::npos) << *error;
+    const fs::path fifo = temp.path() / "pipe";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    error = readFile(fifo, content);  // returns at once: no writer is waited for
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find("is not a regular file (a FIFO (named pipe))"), std::string::npos);
+}
+
+TEST(ReadFile, ReadsAtMostTheLimit) {
+    TempDir temp;
+    const fs::path file = temp.path() / "big.csv";
+    std::ofstream(file) << std::string(1000, 'x');
+    std::string content = "kept";
+    auto error = readFile(file, content, 999);
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find("big.csv has 1000 bytes, larger than the input limit of 999 bytes"),
+              std::string::npos)
+        << *error;
+    EXPECT_EQ(content, "kept");  // untouched on failure
+    EXPECT_EQ(readFile(file, content, 1000), std::nullopt);
+    EXPECT_EQ(content.size(), 1000u);
+}
+
 }  // namespace
 }  // namespace terra::io

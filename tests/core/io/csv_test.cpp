@@ -365,5 +365,43 @@ TEST(ReadCell, AHugeCellIsQuotedShort) {
     EXPECT_NE(message.find("(200000 characters) overflows a double"), std::string::npos) << message;
 }
 
+// Issue 28: CR-only files (old Mac, some loggers) were one header line.
+TEST(ParseCsv, CrAloneCrLfAndLfAllEndLines) {
+    for (const std::string eol : {"\n", "\r\n", "\r"}) {
+        const auto doc = parseCsv("a,b" + eol + "1,2" + eol + eol + "3,4" + eol, "f.csv");
+        ASSERT_TRUE(doc.ok()) << doc.message();
+        ASSERT_EQ(doc->rows.size(), 2u);
+        EXPECT_EQ(doc->rows[1], (std::vector<std::string>{"3", "4"}));
+        EXPECT_EQ(doc->line_numbers, (std::vector<int>{2, 4}));
+    }
+}
+
+TEST(ParseCsv, AnUnbalancedQuoteIsNamedWithItsColumn) {
+    auto doc = parseCsv("a,b,c\n1,2,\"x\n4,5,6\n", "f.csv");
+    ASSERT_TRUE(doc.ok());
+    ASSERT_EQ(doc->row_issues.size(), 1u);
+    EXPECT_EQ(doc->row_issues[0].where, "f.csv:2");
+    EXPECT_NE(
+        doc->row_issues[0].message.find("unbalanced double quote: the quoted cell in column 3"),
+        std::string::npos);
+    EXPECT_EQ(doc->rows.size(), 1u);
+    doc = parseCsv("a,\"b\n1,2\n", "f.csv");
+    ASSERT_FALSE(doc.ok());
+    EXPECT_NE(doc.message().find("f.csv:1: header: unbalanced double quote"), std::string::npos);
+}
+
+TEST(CheckColumns, ANearNameOfAMissingColumnIsAnErrorAnyOtherAWarning) {
+    const std::vector<std::string> known{"slip", "load_N"};
+    ColumnCheck c = checkColumns({"slp", "load_N", "id"}, known, "p.csv:1", "copied");
+    ASSERT_EQ(c.errors.size(), 1u);
+    EXPECT_NE(c.errors[0].message.find("unknown column 'slp'; did you mean slip?"),
+              std::string::npos);
+    ASSERT_EQ(c.warnings.size(), 1u);
+    EXPECT_NE(c.warnings[0].message.find("column 'id' is not read"), std::string::npos);
+    c = checkColumns({"slip", "Slip", "load_N"}, known, "p.csv:1", "");
+    EXPECT_TRUE(c.errors.empty());  // slip is there: "Slip" is something else of the user's
+    EXPECT_EQ(c.warnings.size(), 1u);
+}
+
 }  // namespace
 }  // namespace terra::io
