@@ -35,6 +35,30 @@ std::string unknownSubcommand(CLI::App& app, int argc, char** argv) {
            "; terrastudio SUBCOMMAND --help for its options)";
 }
 
+// "--slp is not an option of wheel; did you mean --slip?" for each unknown option a parse left
+// over (CLI::ExtrasError), or "" when none is a --flag.
+std::string unknownOptions(const CLI::App& app) {
+    const CLI::App* command = nullptr;
+    for (const CLI::App* sub : app.get_subcommands()) command = sub;
+    if (command == nullptr) return {};
+    std::vector<std::string> flags;
+    for (const CLI::Option* option : command->get_options()) {
+        for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
+    }
+    std::string out;
+    for (const std::string& extra : app.remaining(true)) {
+        if (extra.rfind("--", 0) != 0) continue;
+        const std::string flag = extra.substr(0, extra.find('='));
+        const std::string near = terra::nearestName(flag, flags);
+        out += std::string(out.empty() ? "" : "\n") + terra::quoteText(flag) +
+               " is not an option of " + command->get_name() +
+               (near.empty() ? "" : "; did you mean " + near + "?");
+    }
+    return out.empty()
+               ? out
+               : out + "\n(terrastudio " + command->get_name() + " --help lists its options)";
+}
+
 int runHeadless(int argc, char** argv) {
     using namespace terra::app;
     const terra::io::PresetLocations locations =
@@ -67,6 +91,13 @@ int runHeadless(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::RuntimeError& e) {
         return e.get_exit_code();
+    } catch (const CLI::ExtrasError& e) {
+        if (const std::string named = unknownOptions(app); !named.empty()) {
+            std::cerr << "error: " << named << '\n';
+            return kBadInput;
+        }
+        app.exit(e);
+        return kBadInput;
     } catch (const CLI::ParseError& e) {
         app.exit(e);  // prints the message and usage hint on stderr
         return kBadInput;

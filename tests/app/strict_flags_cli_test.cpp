@@ -101,6 +101,24 @@ TEST_F(StrictFlags, AnUnknownSubcommandIsNamed) {
 
 // Issue 28, finding 7: 100,000 unknown soil keys gave 12.3 MB on stderr, 20,000 bad batch rows
 // 1.25 MB; at most 20 problems are listed, then their count.
+TEST_F(StrictFlags, AMisspeltOptionIsNamedWithTheNearestOne) {
+    CliRun r = run("wheel --slp 0.3");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("'--slp' is not an option of wheel; did you mean --slip?"),
+              std::string::npos)
+        << r.err;
+    r = run("compaction --pases=2");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("'--pases' is not an option of compaction; did you mean --passes?"),
+              std::string::npos)
+        << r.err;
+    // Nothing near: named, with where to look.
+    r = run("traction --colour red");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("'--colour' is not an option of traction\n"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("terrastudio traction --help"), std::string::npos) << r.err;
+}
+
 TEST_F(StrictFlags, AThousandProblemsPrintAScreenful) {
     std::ostringstream soil;
     soil << "{\"name\": \"s\", \"n\": 0.7, \"c_kPa\": 1, \"phi_deg\": 29, \"kc\": 5.3, "
