@@ -256,6 +256,22 @@ std::vector<NamedInput> ModelOptions::inputFiles() const {
     return {{"--soil", soil}, {"--wheel", wheel}};
 }
 
+void nameFlags(std::vector<Issue>& issues,
+               const std::vector<std::pair<std::string, std::string>>& keys_to_flags) {
+    for (Issue& issue : issues) {
+        // The longest key first, so that "slip_angle_deg" is not read as "slip".
+        std::size_t best = 0;
+        const std::pair<std::string, std::string>* match = nullptr;
+        for (const auto& pair : keys_to_flags) {
+            if (issue.where.rfind(pair.first, 0) == 0 && pair.first.size() > best) {
+                best = pair.first.size();
+                match = &pair;
+            }
+        }
+        if (match) issue.where = match->second + issue.where.substr(match->first.size());
+    }
+}
+
 void refuseInputAsOutput(const std::string& flag, const std::filesystem::path& output,
                          const std::vector<NamedInput>& inputs) {
     if (output.empty() || output == "-") return;

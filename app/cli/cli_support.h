@@ -90,6 +90,12 @@ void refuseRepeatedKeys(const std::string& flag, const std::vector<std::string>&
 /// "0:0.99:100" (first:last:count), "5,10,15" or "0.3": the values, or InputError naming `what`.
 std::vector<double> parseValues(const std::string& text, const std::string& what);
 
+/// Settings read from a JSON object built of flags: each issue's key renamed to its flag
+/// ("passes" → "--passes", "depths_m[1]" → "--depths[1]"), for the commands whose flags are read by
+/// their analysis's own settings reader (compaction, traction).
+void nameFlags(std::vector<Issue>& issues,
+               const std::vector<std::pair<std::string, std::string>>& keys_to_flags);
+
 /// Throws InputError (exit 2) when `output`, a file the command is about to write (named by
 /// `flag`), is one of `inputs`: the same file after resolving links and relative paths
 /// (std::filesystem::equivalent), so that no command replaces the data it read. An output

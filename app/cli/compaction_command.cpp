@@ -45,8 +45,8 @@ nlohmann::json settingsObject(const CompactionOptions& o) {
     return s;
 }
 
-// "slip" → "--slip": the reader's field names are the flags'.
-std::string flagOf(const std::string& where) {
+// The settings keys the flags set, and the flags' names for the reader's messages.
+const std::vector<std::pair<std::string, std::string>>& flagNames() {
     static const std::vector<std::pair<std::string, std::string>> names{
         {"slip_angle_deg", "--slip-angle"},
         {"slip", "--slip"},
@@ -58,10 +58,7 @@ std::string flagOf(const std::string& where) {
         {"width", "--width"},
         {"risk_stress", "--risk-stress"},
         {"passes", "--passes"}};
-    for (const auto& [key, flag] : names) {
-        if (where.rfind(key, 0) == 0) return flag + where.substr(key.size());
-    }
-    return where;
+    return names;
 }
 
 void printText(const analysis::Inputs& in, const analysis::CompactionSettings& s,
@@ -173,7 +170,7 @@ void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations) {
         analysis::readCompactionSettings(reader, settings, &locations, here);
         reader.finish();
         if (!issues.empty()) {
-            for (Issue& issue : issues) issue.where = flagOf(issue.where);
+            nameFlags(issues, flagNames());
             throw InputError(formatIssues(issues));
         }
         settings.model = o.model.choices();

@@ -41,16 +41,15 @@ nlohmann::json settingsObject(const TractionOptions& o) {
     return s;
 }
 
-std::string flagOf(const std::string& where) {
+// The settings keys the flags set, and the flags' names for the reader's messages.
+const std::vector<std::pair<std::string, std::string>>& flagNames() {
     static const std::vector<std::pair<std::string, std::string>> names{
         {"slip_angle_deg", "--slip-angle"}, {"objective", "--objective"},
         {"max_sinkage_m", "--max-sinkage"}, {"slip_min", "--slip-min"},
         {"slip_max", "--slip-max"},         {"quantile", "--quantile"},
         {"posterior_samples", "--samples"}, {"posterior", "--posterior"},
         {"curve_points", "--points"},       {"seed", "--seed"}};
-    for (const auto& [key, flag] : names)
-        if (where.rfind(key, 0) == 0) return flag + where.substr(key.size());
-    return where;
+    return names;
 }
 
 void printText(const analysis::Inputs& in, const analysis::TractionSettings& s,
@@ -133,7 +132,7 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
         analysis::readTractionSettings(reader, settings, std::filesystem::current_path());
         reader.finish();
         if (!issues.empty()) {
-            for (Issue& issue : issues) issue.where = flagOf(issue.where);
+            nameFlags(issues, flagNames());
             throw InputError(formatIssues(issues));
         }
         settings.model = o.model.choices();

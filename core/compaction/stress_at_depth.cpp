@@ -59,50 +59,41 @@ StressPropagation::StressPropagation(std::vector<PointLoad> loads, double concen
     }
 }
 
-Eigen::Matrix3d StressPropagation::stressAt(const Eigen::Vector3d& point) const {
-    Eigen::Matrix3d out = Eigen::Matrix3d::Zero();
-    const double nu = nu_;
-    const double vertical_factor = nu / (2.0 * std::numbers::pi);
-    const double horizontal_factor = nu * (nu - 2.0) / (2.0 * std::numbers::pi);
+template <typename Accumulate>
+void StressPropagation::forEachRadialStress(const Eigen::Vector3d& point,
+                                            Accumulate accumulate) const {
+    const double vertical_factor = nu_ / (2.0 * std::numbers::pi);
+    const double horizontal_factor = nu_ * (nu_ - 2.0) / (2.0 * std::numbers::pi);
     const int whole_h = integer_nu_ > 0 ? integer_nu_ - 3 : -1;
     for (const PointLoad& load : loads_) {
         const Eigen::Vector3d r = point - load.position;
         if (!(r.z() > 0.0)) continue;
         const double r2 = r.squaredNorm();
-        const double inverse_length = 1.0 / std::sqrt(r2);
-        const Eigen::Vector3d unit = r * inverse_length;
-        const double c = unit.z();  // cos ϑ
+        const Eigen::Vector3d unit = r * (1.0 / std::sqrt(r2));  // one division, not three
+        const double c = unit.z();                               // cos ϑ
         // C1 and C2 of docs/compaction.md: σ_R = [ν F_z c^(ν−2) + ν(ν−2) c^(ν−3) F_h·R̂]/(2π R²).
-        const double c_h = power(c, nu - 3.0, whole_h);
+        const double c_h = power(c, nu_ - 3.0, whole_h);
         const double tangential = load.force.x() * unit.x() + load.force.y() * unit.y();
-        const double sigma_r =
+        accumulate(
             (vertical_factor * load.force.z() * c_h * c + horizontal_factor * c_h * tangential) /
-            r2;
-        out.noalias() += sigma_r * (unit * unit.transpose());
+                r2,
+            unit);
     }
+}
+
+Eigen::Matrix3d StressPropagation::stressAt(const Eigen::Vector3d& point) const {
+    Eigen::Matrix3d out = Eigen::Matrix3d::Zero();
+    forEachRadialStress(point, [&](double sigma_r, const Eigen::Vector3d& unit) {
+        out.noalias() += sigma_r * (unit * unit.transpose());
+    });
     return out;
 }
 
 double StressPropagation::verticalStressAt(const Eigen::Vector3d& point) const {
     double out = 0.0;
-    const double nu = nu_;
-    const double vertical_factor = nu / (2.0 * std::numbers::pi);
-    const double horizontal_factor = nu * (nu - 2.0) / (2.0 * std::numbers::pi);
-    const int whole_h = integer_nu_ > 0 ? integer_nu_ - 3 : -1;
-    for (const PointLoad& load : loads_) {
-        const Eigen::Vector3d r = point - load.position;
-        if (!(r.z() > 0.0)) continue;
-        const double r2 = r.squaredNorm();
-        const double inverse_length = 1.0 / std::sqrt(r2);
-        const double c = r.z() * inverse_length;
-        const double c_h = power(c, nu - 3.0, whole_h);
-        const double tangential =
-            (load.force.x() * r.x() + load.force.y() * r.y()) * inverse_length;
-        const double sigma_r =
-            (vertical_factor * load.force.z() * c_h * c + horizontal_factor * c_h * tangential) /
-            r2;
-        out += sigma_r * c * c;
-    }
+    forEachRadialStress(point, [&](double sigma_r, const Eigen::Vector3d& unit) {
+        out += sigma_r * unit.z() * unit.z();
+    });
     return out;
 }
 

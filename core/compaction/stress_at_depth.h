@@ -63,6 +63,10 @@ public:
     }
 
 private:
+    /// Calls accumulate(σ_R, R̂) for every load P lies below (C1–C2).
+    template <typename Accumulate>
+    void forEachRadialStress(const Eigen::Vector3d& point, Accumulate accumulate) const;
+
     std::vector<PointLoad> loads_;
     double nu_;
     int integer_nu_;  // ν when it is a whole number (the powers become products), else 0
