@@ -255,9 +255,9 @@ void addStudyOptions(CLI::App& cmd, StudyOptions& o, const std::string& slips_de
                    "n=0.5:1.1");
     cmd.add_option("--normal", o.normal,
                    "Normal parameter KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH (truncated; repeatable)");
-    cmd.add_option("--slip", o.slips,
+    cmd.add_option("--slip,--slips", o.slips,
                    "Slips: list a,b,c or range first:last:count (default " + slips_default + ")");
-    cmd.add_option("--slip-angle", o.slip_angles, "Slip angle(s) beta [deg]")
+    cmd.add_option("--slip-angle,--slip-angles", o.slip_angles, "Slip angle(s) beta [deg]")
         ->capture_default_str();
     auto* load = cmd.add_option("--load", o.load_n,
                                 "Wheel load W [N], entry angle solved per sample (default " +

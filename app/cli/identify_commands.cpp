@@ -494,7 +494,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     synth->model.addTo(*s, false);
     s->add_option("--load", synth->loads, "W [N]: value, list a,b or range first:last:count")
         ->capture_default_str();
-    s->add_option("--slips", synth->slips, "Slips: range first:last:count or list")
+    s->add_option("--slips,--slip", synth->slips, "Slips: range first:last:count or list")
         ->capture_default_str();
     s->add_option("--slip-angle", synth->slip_angle_deg, "Slip angle [deg] (Table 5.2: 0)")
         ->capture_default_str();

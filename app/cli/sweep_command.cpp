@@ -84,7 +84,7 @@ void emit(const SweepOptions& o, const analysis::SweepResult& result,
 
 void addCommonOptions(CLI::App& cmd, SweepOptions& o, const std::string& slips_default) {
     o.model.addTo(cmd);
-    cmd.add_option("--slips", o.slips,
+    cmd.add_option("--slips,--slip", o.slips,
                    "Slips: range first:last:count or list (default " + slips_default + ")");
     auto* load = cmd.add_option(
         "--load", o.load_n,
@@ -102,7 +102,7 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     CLI::App* cmd = app.add_subcommand(
         "sweep", "Forces vs slip for a set of slip angles (Figs. 2.18-2.26), CSV or JSON");
     addCommonOptions(*cmd, *sweep, defaultGrid());
-    cmd->add_option("--slip-angles", sweep->slip_angles, "Slip angles [deg]")
+    cmd->add_option("--slip-angles,--slip-angle", sweep->slip_angles, "Slip angles [deg]")
         ->capture_default_str();
     cmd->callback([sweep, &locations] {
         const analysis::Inputs inputs = sweep->inputs(locations);
@@ -123,7 +123,8 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
     addCommonOptions(*s, *sens,
                      "0:" + formatNumber(analysis::OperatingConditions{}.slip_max) + ":" +
                          std::to_string(defaults.slip_count));
-    s->add_option("--slip-angle", sens->slip_angles, "Slip angle(s) [deg]")->capture_default_str();
+    s->add_option("--slip-angle,--slip-angles", sens->slip_angles, "Slip angle(s) [deg]")
+        ->capture_default_str();
     auto* parameter =
         s->add_option(
              "--parameter", defaults.parameter,

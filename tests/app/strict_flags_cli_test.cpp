@@ -119,6 +119,23 @@ TEST_F(StrictFlags, AMisspeltOptionIsNamedWithTheNearestOne) {
     EXPECT_NE(r.err.find("terrastudio traction --help"), std::string::npos) << r.err;
 }
 
+TEST_F(StrictFlags, TheSameQuantityHasTheSameFlagInEveryListCommand) {
+    // Where a list makes sense, the singular and the plural name the same option.
+    const CliRun plural = run("sweep --slips 0.1,0.3 --slip-angles 5 --json");
+    const CliRun singular = run("sweep --slip 0.1,0.3 --slip-angle 5 --json");
+    ASSERT_EQ(plural.exit_code, 0) << plural.err;
+    EXPECT_EQ(singular.exit_code, 0) << singular.err;
+    EXPECT_EQ(singular.out, plural.out);
+    const CliRun gsa = run("gsa --slips 0.2,0.4 --slip-angles 0 --samples 16 --json");
+    const CliRun gsa_singular = run("gsa --slip 0.2,0.4 --slip-angle 0 --samples 16 --json");
+    ASSERT_EQ(gsa.exit_code, 0) << gsa.err;
+    EXPECT_EQ(gsa.out, gsa_singular.out);
+    const CliRun sens = run("sensitivity --slip 0.2,0.4 --slip-angles 5 --json");
+    EXPECT_EQ(sens.exit_code, 0) << sens.err;
+    // Giving both names of one option is a repeated option, not two.
+    EXPECT_NE(run("sweep --slip 0.1 --slips 0.2").exit_code, 0);
+}
+
 TEST_F(StrictFlags, AThousandProblemsPrintAScreenful) {
     std::ostringstream soil;
     soil << "{\"name\": \"s\", \"n\": 0.7, \"c_kPa\": 1, \"phi_deg\": 29, \"kc\": 5.3, "
