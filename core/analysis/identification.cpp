@@ -53,6 +53,7 @@ id::ColumnNeeds needsOf(const IdentificationSettings& s) {
 void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationResult& out) {
     if (s.data) {
         out.data = *s.data;
+        out.warnings = s.data_warnings;
         return;
     }
     if (!s.csv.empty()) {
@@ -65,6 +66,8 @@ void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationR
         }
         out.data = read->data;
         out.skipped = read->skipped;
+        for (const Issue& issue : read->warnings)
+            out.warnings.push_back(issue.where + ": " + issue.message);
         return;
     }
     id::SyntheticSpec spec;
@@ -104,6 +107,8 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
             r.report("csv", out.csv + ": no valid samples");
         } else {
             out.data = read->data;
+            for (const Issue& issue : read->warnings)
+                out.data_warnings.push_back(issue.where + ": " + issue.message);
         }
     }
     r.number("noise_percent", out.synthetic.noise_percent, kNoisePercent, "%");

@@ -50,6 +50,9 @@ struct IdentificationSettings {
     /// The data read already (a script's reader reads the CSV before anything runs); when set,
     /// `csv` only names it.
     std::optional<identification::DataSet> data;
+    /// The columns of `csv` that the reader does not use ("FILE:1: column 'x' is not read …"),
+    /// passed on to the result's warnings.
+    std::vector<std::string> data_warnings;
     SyntheticSource synthetic;
     identification::DecoupledParameters guess;  ///< start of the decoupled fit (thesis's guesses)
     /// true: the global identification on the full model (identify.h; removes the decoupled
@@ -94,8 +97,9 @@ nlohmann::json toJson(const IdentificationSettings& settings);
 
 struct IdentificationResult {
     identification::DataSet data;
-    std::vector<Issue> skipped;         ///< rows left out (skip_bad_rows)
-    std::vector<std::string> warnings;  ///< synthetic points the soil cannot carry
+    std::vector<Issue> skipped;  ///< rows left out (skip_bad_rows)
+    /// Synthetic points the soil cannot carry; columns of the CSV that are not read.
+    std::vector<std::string> warnings;
     identification::DecoupledFit fit;
     /// The global identification's report (refine = true).
     std::optional<identification::IdentificationReport> report;

@@ -17,6 +17,7 @@
 ///    **loss** (Huber, Cauchy) and **held-out** prediction errors (a fraction, or k folds).
 /// Derivations, thresholds and measured figures: docs/identification.md.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -105,9 +106,14 @@ struct IdentifyOptions {
     double correlation_flag = 0.98;
 };
 
-/// Everything identify() checks before it runs: issues name the option or the data.
+/// Everything identify() checks before it runs: issues name the option or the data (among them,
+/// fewer measured values, with the priors on free parameters, than free parameters).
 std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& wheel,
                             const IdentifyOptions& options);
+
+/// The residuals per channel of a data set read with `setup` (the setup's channels at every
+/// sample, the sinkage only where the sample has one): the "measured values" the fit sees.
+std::array<int, kChannelCount> measuredValueCounts(const DataSet& data, const ModelSetup& setup);
 
 /// One start of the search and what became of it.
 struct StartReport {
@@ -186,6 +192,14 @@ struct IdentificationReport {
     int free_parameters = 0;
     ChannelValues noise{};  ///< noise std used per channel (given or estimated)
     bool noise_estimated = false;
+    /// Measured values per channel (measuredValueCounts).
+    std::array<int, kChannelCount> channel_values{};
+    /// Channels the fit interpolates: their noise level was estimated from no more measured
+    /// values than free parameters, and the fit passes through every one (RMS residual below
+    /// 0.1 % of the channel's largest value): the estimated noise has collapsed and the
+    /// channel's weight grown without bound, so its noise level and its residuals mean nothing
+    /// (a flag says so; a calibration is then not usable).
+    std::array<bool, kChannelCount> interpolated{};
     ChannelValues rms{};  ///< RMS residual per channel [N, N, N·m, m]
     /// The first-order check: largest |∂(½χ²)/∂u| over free parameters, u the solver coordinates
     /// (parameters.h), and the Newton decrement gᵀ H⁻¹ g (the χ² one more Newton step would

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +161,50 @@ TEST_F(IdentifyCli, TwoDifferentGuessesGiveOneAnswer) {
           "samples", "prior", "holdout", "ambiguity", "gradient_norm"}) {
         EXPECT_TRUE(none.contains(key)) << key;
     }
+}
+
+// Fewer measured values than free parameters: no fit, exit 2 naming both counts (issue 25,
+// item 5: one sample and seven parameters used to exit 0 with numbers).
+TEST_F(IdentifyCli, FewerValuesThanParametersAreRefused) {
+    std::ofstream(path("one.csv")) << "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.3,20,5,58.86,1.2\n";
+    CliRun r = run("identify --data " + path("one.csv") + " --wheel A");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.err.find("3 measured values (1 sample) for 7 free parameters"), std::string::npos)
+        << r.err;
+    // Fixing four of them leaves as many values as parameters: that is not refused.
+    r = run("identify --data " + path("one.csv") +
+            " --wheel A --fix a0=0.2,a1=0.3,n0=0.7,K_m=0.02");
+    EXPECT_EQ(r.err.find("free parameters: the data cannot"), std::string::npos) << r.err;
+    // Priors count: each is one value more.
+    r = run("identify --data " + path("one.csv") + " --wheel A --prior sandy-loam");
+    EXPECT_EQ(r.err.find("free parameters: the data cannot"), std::string::npos) << r.err;
+}
+
+// A column the reader does not know is never dropped silently: a misspelt channel whose name
+// is missing stops the read (exit 2, with the name it most likely means); another column is
+// listed on stderr.
+TEST_F(IdentifyCli, UnknownColumnsAreNamed) {
+    const std::string data = synth("d.csv", "--soil sandy-loam --wheel A --slips 0.05:0.85:12");
+    std::ifstream in(data);
+    std::string header, body, line;
+    std::getline(in, header);
+    while (std::getline(in, line)) body += line + "\n";
+    const auto replace = [](std::string text, const std::string& from, const std::string& to) {
+        return text.replace(text.find(from), from.size(), to);
+    };
+    std::ofstream(path("corrupt.csv")) << replace(header, "Fz_N", "Fz_M") << "\n" << body;
+    CliRun r = run("identify --data " + path("corrupt.csv") + " --wheel A --jmax 0.02");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.err.find("corrupt.csv:1: unknown column 'Fz_M'; did you mean Fz_N?"),
+              std::string::npos)
+        << r.err;
+    std::ofstream(path("extra.csv")) << replace(header, "Fz_N", "temperature_C") << "\n" << body;
+    r = run("identify --data " + path("extra.csv") + " --wheel A --jmax 0.02");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(
+        r.err.find("warning: " + path("extra.csv") + ":1: column 'temperature_C' is not read"),
+        std::string::npos)
+        << r.err;
 }
 
 // Held-out samples are predicted to the noise `synth` added (absolute σ per channel), by a
