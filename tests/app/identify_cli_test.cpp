@@ -163,6 +163,100 @@ TEST_F(IdentifyCli, TwoDifferentGuessesGiveOneAnswer) {
     }
 }
 
+// Cholesky factor of a symmetric matrix; false when it is not positive definite.
+bool positiveDefinite(const std::vector<std::vector<double>>& a) {
+    const std::size_t n = a.size();
+    std::vector<std::vector<double>> l(n, std::vector<double>(n, 0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j <= i; ++j) {
+            double sum = a[i][j];
+            for (std::size_t k = 0; k < j; ++k) sum -= l[i][k] * l[j][k];
+            if (i == j) {
+                if (!(sum > 0.0)) return false;
+                l[i][i] = std::sqrt(sum);
+            } else {
+                l[i][j] = sum / l[j][j];
+            }
+        }
+    }
+    return true;
+}
+
+// `identify --json` carries the Gauss–Newton covariance in the identification's names and units:
+// symmetric, positive definite, its mean the printed values and its diagonal the printed std
+// squared (README's tour data: three loads, 1 % noise).
+TEST_F(IdentifyCli, JsonCarriesTheCovarianceOfThePrintedStd) {
+    const std::string data = synth("tour.csv",
+                                   "--soil sandy-loam --wheel A --load 30,58.86,90 "
+                                   "--noise fx=1%,fz=1%,my=1%");
+    const auto j = identifyJson("--data " + data + " --wheel A --jmax 0.02");
+    ASSERT_TRUE(j["covariance"].is_object()) << j.dump();
+    const auto& c = j["covariance"];
+    const std::vector<std::string> names = c["parameters"].get<std::vector<std::string>>();
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"a0", "a1", "Ks_kPa", "n0", "c_kPa", "phi_deg", "K_m"}));
+    const auto cov = c["covariance"].get<std::vector<std::vector<double>>>();
+    ASSERT_EQ(cov.size(), names.size());
+    const double relative = 1e-9;
+    for (std::size_t a = 0; a < names.size(); ++a) {
+        ASSERT_EQ(cov[a].size(), names.size());
+        EXPECT_EQ(c["mean"][a].get<double>(), j[names[a]].get<double>()) << names[a];
+        const double sd = j["std"][names[a]].get<double>();
+        EXPECT_NEAR(std::sqrt(cov[a][a]), sd, relative * sd) << names[a];
+        for (std::size_t b = 0; b < a; ++b) EXPECT_EQ(cov[a][b], cov[b][a]) << a << ", " << b;
+    }
+    EXPECT_TRUE(positiveDefinite(cov));
+    // A fixed parameter has no variance: it leaves the covariance.
+    const auto fixed = identifyJson("--data " + data + " --wheel A --jmax 0.02 --fix a1=0.3");
+    ASSERT_TRUE(fixed["covariance"].is_object()) << fixed.dump();
+    EXPECT_EQ(fixed["covariance"]["parameters"].size(), 6u);
+    EXPECT_EQ(fixed["covariance"]["parameters"][1], "Ks_kPa");
+}
+
+// --save-soil writes an ordinary soil file (K_s as k_phi with k_c = 0, the fit's j_max) with the
+// posterior in the soil file's keys and units: the same numbers as the JSON's covariance.
+TEST_F(IdentifyCli, SaveSoilWritesTheSoilWithItsPosterior) {
+    const std::string data = synth("tour.csv",
+                                   "--soil sandy-loam --wheel A --load 30,58.86,90 "
+                                   "--noise fx=1%,fz=1%,my=1%");
+    const std::string out = path("identified.json");
+    const CliRun r =
+        run("identify --data " + data + " --wheel A --jmax 0.02 --json --save-soil " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("wrote " + out), std::string::npos) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    std::ifstream in(out);
+    const auto soil = nlohmann::json::parse(in);
+    EXPECT_EQ(soil["kc"].get<double>(), 0.0);
+    EXPECT_NEAR(soil["kphi"].get<double>(), j["Ks_kPa"].get<double>(),
+                1e-12 * j["Ks_kPa"].get<double>());
+    EXPECT_EQ(soil["phi_deg"].get<double>(), j["phi_deg"].get<double>());
+    EXPECT_EQ(soil["n"].get<double>(), j["n0"].get<double>());
+    EXPECT_EQ(soil["jmax_m"].get<double>(), 0.02);
+    const auto& p = soil["posterior"];
+    EXPECT_EQ(p["parameters"].get<std::vector<std::string>>(),
+              (std::vector<std::string>{"a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"}));
+    const auto cov = p["covariance"].get<std::vector<std::vector<double>>>();
+    const auto& identified = j["covariance"]["covariance"];
+    for (std::size_t a = 0; a < cov.size(); ++a) {
+        EXPECT_NEAR(p["mean"][a].get<double>(), j["covariance"]["mean"][a].get<double>(),
+                    1e-12 * std::abs(j["covariance"]["mean"][a].get<double>()));
+        for (std::size_t b = 0; b < cov.size(); ++b) {
+            EXPECT_NEAR(cov[a][b], identified[a][b].get<double>(),
+                        1e-12 * std::sqrt(cov[a][a] * cov[b][b]));
+        }
+    }
+    // An ordinary soil file: `wheel` reads it, and predicts the identified model's forces.
+    const CliRun wheel = run("wheel --soil " + out + " --wheel A --load 58.86 --slip 0.3 --json");
+    EXPECT_EQ(wheel.exit_code, 0) << wheel.err;
+    // The data are never overwritten.
+    const CliRun same = run("identify --data " + data + " --wheel A --save-soil " + data);
+    EXPECT_EQ(same.exit_code, 2);
+    EXPECT_NE(same.err.find("--save-soil"), std::string::npos) << same.err;
+    const CliRun stream = run("identify --stream " + data + " --wheel A --save-soil " + out);
+    EXPECT_EQ(stream.exit_code, 2);
+}
+
 // Fewer measured values than free parameters: no fit, exit 2 naming both counts (issue 25,
 // item 5: one sample and seven parameters used to exit 0 with numbers).
 TEST_F(IdentifyCli, FewerValuesThanParametersAreRefused) {
