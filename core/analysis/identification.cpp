@@ -335,6 +335,20 @@ void addGlobalJson(const IdentificationResult& result, nlohmann::json& j) {
     j["source"] = r.setup.description;
     j["noise"] = channelJson(r.noise, r.setup.channels);
     j["noise_estimated"] = r.noise_estimated;
+    // adequacy: per channel the trend test of the residuals in slip (null where not tested),
+    // the smallest p and whether it flags a systematic misfit.
+    nlohmann::json channels = nlohmann::json::object();
+    for (std::size_t c = 0; c < id::kChannelCount; ++c) {
+        if (!r.setup.channels[c]) continue;
+        const id::TrendTest& t = r.adequacy.trend[c];
+        channels[id::channelNames()[c]] =
+            t.tested() ? nlohmann::json{{"p", t.p},
+                                        {"F", t.f},
+                                        {"trend_share", t.trend_share},
+                                        {"dof", {t.trend_dof, t.values - t.trend_dof}}}
+                       : nlohmann::json();
+    }
+    j["adequacy"] = {{"p", r.adequacy.p}, {"flag", r.adequacy.flag}, {"channels", channels}};
     // profile_interval: per parameter profiled (profile), the interval in the output's units and
     // whether the profile reached a bound before Δχ²; null without it.
     nlohmann::json profile = nlohmann::json::object();

@@ -401,8 +401,11 @@ private:
         report_.gradient_norm = detail::projectedGradientNorm(problem.box(), best.u, at.gradient);
         report_.uncertainty = at.uncertainty;
         report_.newton_decrement = at.newton_decrement;
-        report_.rms = detail::channelResiduals(*model_, report_.parameters, all_).rms;
+        const detail::ChannelResiduals residuals =
+            detail::channelResiduals(*model_, report_.parameters, all_);
+        report_.rms = residuals.rms;
         flagInterpolation();
+        checkAdequacy(residuals);
         report_.timing.covariance_ms = millisecondsSince(covariance);
         // Every refined minimum, and the ambiguous ones: within the threshold and distinct (some
         // parameter more than three std away, or 1 % when the std is unknown).
@@ -465,6 +468,30 @@ private:
                 formatNumber(roundSignificant(report_.rms[c], 3)) +
                 "), so its estimated noise and its residuals mean nothing; give its noise level "
                 "or measure it at more points");
+        }
+    }
+
+    // The trend test per channel; residuals at rounding level (noise-free data of the model
+    // itself: below 1e-9 of the channel's largest value) are no misfit and are not tested.
+    void checkAdequacy(const detail::ChannelResiduals& residuals) {
+        AdequacyReport& a = report_.adequacy;
+        for (int c = 0; c < kChannelCount; ++c) {
+            if (residuals.count[c] == 0 || residuals.rms[c] <= 1e-9 * residuals.largest[c])
+                continue;
+            const TrendTest t = trendTest(residuals.residuals[c]);
+            a.trend[c] = t;
+            if (!t.tested()) continue;
+            a.p = std::min(a.p, t.p);
+            if (t.p >= options_.adequacy_p) continue;
+            a.flag = true;
+            report_.uncertainty.flags.push_back(
+                std::string("the ") + channelNames()[c] +
+                " residuals follow slip: a cubic trend per sweep holds " +
+                formatNumber(roundSignificant(100.0 * t.trend_share, 2)) +
+                " % of them (F = " + formatNumber(roundSignificant(t.f, 3)) +
+                ", p = " + formatNumber(roundSignificant(t.p, 2)) +
+                "): the misfit is systematic, the model misses something the data have (a shear "
+                "limit j_max?), so the estimate is biased and its std understate its error");
         }
     }
 

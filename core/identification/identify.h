@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/common/issue.h"
+#include "core/identification/adequacy.h"
 #include "core/identification/data_set.h"
 #include "core/identification/full_fit.h"
 #include "core/identification/observation_model.h"
@@ -104,6 +105,10 @@ struct IdentifyOptions {
 
     /// |correlation| above which a pair is flagged as not separable by the data.
     double correlation_flag = 0.98;
+    /// p of the trend test (adequacy.h) below which a channel's residuals are flagged as
+    /// systematic: 1e-3 per channel keeps the false alarms of a right model near 0.3 % with
+    /// three channels, while a missing j_max on the README tour's data gives p of 1e-5 to 1e-10.
+    double adequacy_p = 1e-3;
 };
 
 /// Everything identify() checks before it runs: issues name the option or the data (among them,
@@ -146,6 +151,14 @@ struct PriorComparison {
     double shift_in_prior_std = 0.0;
     /// posterior std / prior std: near 1, the data do not see the parameter; ≪ 1, they do.
     double std_ratio = 0.0;
+};
+
+/// Whether the fit's residuals are noise (adequacy.h): per channel, the lack-of-fit F test of
+/// a cubic trend in slip within each sweep (the samples of one W_N and slip angle).
+struct AdequacyReport {
+    std::array<TrendTest, kChannelCount> trend{};  ///< not tested where p is NaN
+    double p = 1.0;                                ///< the smallest p of the channels tested
+    bool flag = false;  ///< p < IdentifyOptions::adequacy_p: the misfit is systematic
 };
 
 /// Held-out prediction error per channel.
@@ -200,7 +213,8 @@ struct IdentificationReport {
     /// channel's weight grown without bound, so its noise level and its residuals mean nothing
     /// (a flag says so; a calibration is then not usable).
     std::array<bool, kChannelCount> interpolated{};
-    ChannelValues rms{};  ///< RMS residual per channel [N, N, N·m, m]
+    ChannelValues rms{};      ///< RMS residual per channel [N, N, N·m, m]
+    AdequacyReport adequacy;  ///< are the residuals noise or a pattern in slip?
     /// The first-order check: largest |∂(½χ²)/∂u| over free parameters, u the solver coordinates
     /// (parameters.h), and the Newton decrement gᵀ H⁻¹ g (the χ² one more Newton step would
     /// remove; ≪ 1 at a minimum).

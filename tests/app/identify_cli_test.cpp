@@ -257,6 +257,34 @@ TEST_F(IdentifyCli, SaveSoilWritesTheSoilWithItsPosterior) {
     EXPECT_EQ(stream.exit_code, 2);
 }
 
+// Issue 25, item 3: the README tour's data carry j_max = 20 mm; identified without it, φ comes out
+// many std below the soil's 29° with nothing said. The trend test of the residuals in slip flags
+// it (JSON "adequacy", a note); with the data's j_max it does not.
+TEST_F(IdentifyCli, ASystematicMisfitIsFlagged) {
+    const std::string data = synth("tour.csv",
+                                   "--soil sandy-loam --wheel A --load 30,58.86,90 "
+                                   "--noise fx=1%,fz=1%,my=1%");
+    const auto wrong = identifyJson("--data " + data + " --wheel A");
+    ASSERT_TRUE(wrong["adequacy"].is_object()) << wrong.dump();
+    EXPECT_TRUE(wrong["adequacy"]["flag"].get<bool>()) << wrong["adequacy"].dump();
+    EXPECT_LT(wrong["adequacy"]["p"].get<double>(), 1e-4);  // 1.1e-6 measured
+    EXPECT_GT(std::abs(wrong["phi_deg"].get<double>() - kPhiDeg),
+              5.0 * wrong["std"]["phi_deg"].get<double>());
+    bool noted = false;
+    for (const auto& flag : wrong["flags"])
+        noted |= flag.get<std::string>().find("the misfit is systematic") != std::string::npos;
+    EXPECT_TRUE(noted) << wrong["flags"].dump();
+    const CliRun text = run("identify --data " + data + " --wheel A");
+    EXPECT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("residuals follow slip"), std::string::npos) << text.out;
+
+    const auto right = identifyJson("--data " + data + " --wheel A --jmax 0.02");
+    EXPECT_FALSE(right["adequacy"]["flag"].get<bool>()) << right["adequacy"].dump();
+    EXPECT_GT(right["adequacy"]["p"].get<double>(), 1e-3);
+    for (const char* channel : {"Fx_N", "Fz_N", "My_Nm"})
+        EXPECT_TRUE(right["adequacy"]["channels"][channel]["p"].is_number()) << channel;
+}
+
 // Fewer measured values than free parameters: no fit, exit 2 naming both counts (issue 25,
 // item 5: one sample and seven parameters used to exit 0 with numbers).
 TEST_F(IdentifyCli, FewerValuesThanParametersAreRefused) {
