@@ -14,6 +14,7 @@
 #include "app/cli/progress.h"
 #include "app/cli/signals.h"
 #include "core/analysis/global_sensitivity.h"
+#include "core/analysis/soil_posterior.h"
 #include "core/common/range.h"
 #include "core/contact/operating_fields.h"
 #include "core/io/csv.h"
@@ -27,8 +28,9 @@ constexpr int kMaxSamples = 1 << 24;
 
 struct StudyOptions {
     ModelOptions model;
-    std::vector<std::string> uniform;  // --param KEY=LOW:HIGH
-    std::vector<std::string> normal;   // --normal KEY=MEAN,SD[,LOW:HIGH]
+    std::vector<std::string> uniform;      // --param KEY=LOW:HIGH
+    std::vector<std::string> normal;       // --normal KEY=MEAN,SD[,LOW:HIGH]
+    std::optional<std::string> posterior;  // --posterior FILE: a correlated group
     std::string slips;
     std::string slip_angles = "0";
     std::optional<double> load_n;
@@ -160,11 +162,42 @@ void checkValues(const std::string& flag, const std::string& text,
     }
 }
 
+// The soil and wheel of the flags: a --posterior file that is a soil file (`identify
+// --save-soil`) is also the soil when --soil is not given, so that the posterior's mean and the
+// fields it does not vary (k_c = 0, γ, j_max) are the identified soil's.
+analysis::Inputs inputsOf(const StudyOptions& o, const io::PresetLocations& locations) {
+    ModelOptions model = o.model;
+    if (o.posterior && o.command->get_option("--soil")->count() == 0 &&
+        analysis::isSoilFile(*o.posterior))
+        model.soil = *o.posterior;
+    return model.inputs(locations);
+}
+
+// --posterior FILE as the study's correlated group (soil file keys and units, correlations
+// kept); a key also given by --param or --normal is an error naming it. The group's keys, shape
+// and definiteness are checked with the rest of the study.
+analysis::CorrelatedParameters posteriorOf(
+    const std::string& path, const std::vector<analysis::UncertainParameter>& independent) {
+    const Result<analysis::SoilPosterior> read = analysis::readPosteriorFile(path);
+    if (!read) throw InputError("--posterior: " + formatIssues(read.issues()));
+    const analysis::SoilPosterior& p = read.value();
+    for (const std::string& key : p.parameters) {
+        for (const analysis::UncertainParameter& q : independent) {
+            if (q.key == key)
+                throw InputError(key + " is varied twice: by --posterior " + path +
+                                 " and by --param/--normal");
+        }
+    }
+    return {p.parameters, p.mean, p.covariance};
+}
+
 // The study of the flags, every flag checked (exit 2 naming it, its value and the range).
 analysis::StudyDefinition definitionOf(const StudyOptions& o,
                                        const io::PresetLocations& locations) {
-    refuseInputAsOutput("--out", o.out, o.model.inputFiles());
-    refuseInputAsOutput("--csv", o.csv, o.model.inputFiles());
+    std::vector<NamedInput> inputs = o.model.inputFiles();
+    if (o.posterior) inputs.push_back({"--posterior", *o.posterior});
+    refuseInputAsOutput("--out", o.out, inputs);
+    refuseInputAsOutput("--csv", o.csv, inputs);
     analysis::StudyDefinition d;
     // The parameters in the order they were given, --param and --normal interleaved.
     std::size_t u = 0, n = 0;
@@ -183,7 +216,14 @@ analysis::StudyDefinition definitionOf(const StudyOptions& o,
                 throw InputError(parameters[i].key + " is varied twice (--param/--normal)");
         }
     }
-    if (!parameters.empty()) d.parameters = std::move(parameters);
+    if (o.posterior) {
+        // The posterior alone, or with the independent parameters given beside it (never the
+        // default ranges, which would vary its keys a second time).
+        d.correlated = posteriorOf(*o.posterior, parameters);
+        d.parameters = std::move(parameters);
+    } else if (!parameters.empty()) {
+        d.parameters = std::move(parameters);
+    }
     if (!o.outputs.empty()) {
         d.outputs = names(o.outputs);
         for (const std::string& name : d.outputs) {
@@ -255,6 +295,10 @@ void addStudyOptions(CLI::App& cmd, StudyOptions& o, const std::string& slips_de
                    "n=0.5:1.1");
     cmd.add_option("--normal", o.normal,
                    "Normal parameter KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH (truncated; repeatable)");
+    cmd.add_option("--posterior", o.posterior,
+                   "Correlated parameters: a soil file with a \"posterior\" (identify "
+                   "--save-soil), sampled with its correlations; it is also the soil when "
+                   "--soil is not given");
     cmd.add_option("--slip,--slips", o.slips,
                    "Slips: list a,b,c or range first:last:count (default " + slips_default + ")");
     cmd.add_option("--slip-angle,--slip-angles", o.slip_angles, "Slip angle(s) beta [deg]")
@@ -349,7 +393,7 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         ->capture_default_str();
     cmd->callback([study, &locations] {
         const StudyOptions& o = *study;
-        const analysis::Inputs inputs = o.model.inputs(locations);
+        const analysis::Inputs inputs = inputsOf(o, locations);
         analysis::GlobalSensitivitySettings s;
         s.study = definitionOf(o, locations);
         s.method =
@@ -373,6 +417,9 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
                 if (!std::holds_alternative<gsa::Uniform>(p.distribution))
                     bad("--normal", p.key, "Morris screening needs ranges (--param KEY=LOW:HIGH)");
             }
+            if (o.posterior)
+                bad("--posterior", *o.posterior,
+                    "Morris screening needs ranges (--param KEY=LOW:HIGH)");
         }
         const SignalCancellation cancellation;
         TerminalProgress progress("gsa", progressMode(o));
@@ -397,7 +444,7 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
         ->capture_default_str();
     b->callback([bands, &locations] {
         const StudyOptions& o = *bands;
-        const analysis::Inputs inputs = o.model.inputs(locations);
+        const analysis::Inputs inputs = inputsOf(o, locations);
         analysis::UncertaintyBandSettings s;
         const std::vector<std::string> outputs = s.study.outputs;
         s.study = definitionOf(o, locations);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -21,6 +22,7 @@
 #include "core/contact/operating_fields.h"
 #include "core/identification/synthetic.h"
 #include "core/io/csv.h"
+#include "core/io/parameters_json.h"
 
 namespace terra::app {
 namespace {
@@ -92,6 +94,7 @@ struct IdentifyOptions {
     std::string loss = "l2";
     std::optional<double> load_n;  // W of rows without a W_N cell
     bool profile = false;          // profile-likelihood intervals of the flagged parameters
+    std::string save_soil;         // --save-soil OUT.json: the soil with its posterior
 };
 
 const Range kHoldoutRange{0.0, 1.0, true, true};
@@ -159,91 +162,6 @@ void applyGlobalOptions(const IdentifyOptions& o, const io::PresetLocations& loc
     settings.loss = *loss;
     settings.load_n = o.load_n;
     settings.profile = o.profile;
-}
-
-// Parameters in the output's keys and units (identified_parameters.h) from SI values.
-nlohmann::json userJson(const identification::ParameterVector& si) {
-    nlohmann::json j = nlohmann::json::object();
-    for (int k = 0; k < identification::kFullParameterCount; ++k) {
-        const analysis::IdentifiedField& field =
-            analysis::fieldOf(static_cast<identification::FullParameter>(k));
-        j[field.key] = si[static_cast<std::size_t>(k)] / field.to_si;
-    }
-    return j;
-}
-
-// Per-channel values of the channels in use, by column name.
-nlohmann::json channelJson(const identification::ChannelValues& values,
-                           const std::array<bool, identification::kChannelCount>& used) {
-    nlohmann::json j = nlohmann::json::object();
-    for (int c = 0; c < identification::kChannelCount; ++c) {
-        if (used[static_cast<std::size_t>(c)])
-            j[identification::channelNames()[static_cast<std::size_t>(c)]] =
-                values[static_cast<std::size_t>(c)];
-    }
-    return j;
-}
-
-// The keys the global identification adds: prior, holdout, ambiguity, gradient_norm (and what
-// the fit started from, its data source, χ², noise levels).
-void addGlobalJson(const analysis::IdentificationResult& result, nlohmann::json& j) {
-    const identification::IdentificationReport& r = *result.report;
-    nlohmann::json prior = nlohmann::json::object();
-    for (int k = 0; k < identification::kFullParameterCount; ++k) {
-        const identification::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
-        if (!c.active) continue;
-        const analysis::IdentifiedField& field =
-            analysis::fieldOf(static_cast<identification::FullParameter>(k));
-        prior[field.key] = {{"prior_mean", c.prior_mean / field.to_si},
-                            {"prior_std", c.prior_std / field.to_si},
-                            {"posterior_mean", c.posterior_mean / field.to_si},
-                            {"posterior_std", c.posterior_std / field.to_si},
-                            {"shift_in_prior_std", c.shift_in_prior_std},
-                            {"std_ratio", c.std_ratio}};
-    }
-    j["prior"] = prior.empty() ? nlohmann::json() : prior;
-    if (r.holdout.computed) {
-        j["holdout"] = {
-            {"folds", r.holdout.folds},
-            {"samples", r.holdout.samples},
-            {"failed", r.holdout.failed},
-            {"rms", channelJson(r.holdout.rms, r.holdout.channels)},
-            {"rms_in_fit", channelJson(r.holdout.rms_in_fit, r.holdout.channels)},
-            {"rms_over_noise", channelJson(r.holdout.rms_over_noise, r.holdout.channels)}};
-    } else {
-        j["holdout"] = nullptr;
-    }
-    nlohmann::json ambiguity = nlohmann::json::array();
-    for (const identification::Minimum& m : r.ambiguity) {
-        ambiguity.push_back({{"parameters", userJson(m.parameters)},
-                             {"std", userJson(m.std)},
-                             {"chi2", m.chi2},
-                             {"delta_chi2", m.delta_chi2},
-                             {"start", m.label}});
-    }
-    j["ambiguity"] = ambiguity;
-    j["ambiguity_delta_chi2"] = r.ambiguity_delta_chi2;
-    j["gradient_norm"] = r.gradient_norm;
-    j["newton_decrement"] = r.newton_decrement;
-    j["chi2"] = r.chi2;
-    j["start"] = result.start_description;
-    j["source"] = r.setup.description;
-    j["noise"] = channelJson(r.noise, r.setup.channels);
-    j["noise_estimated"] = r.noise_estimated;
-    // profile_interval: per parameter profiled (--profile), the interval in the output's units
-    // and whether the profile reached a bound before Δχ²; null without --profile.
-    nlohmann::json profile = nlohmann::json::object();
-    for (int k = 0; k < identification::kFullParameterCount; ++k) {
-        const identification::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
-        if (!p.computed) continue;
-        const analysis::IdentifiedField& field =
-            analysis::fieldOf(static_cast<identification::FullParameter>(k));
-        profile[field.key] = {
-            {"lower", p.lower / field.to_si},     {"upper", p.upper / field.to_si},
-            {"lower_at_bound", p.lower_at_bound}, {"upper_at_bound", p.upper_at_bound},
-            {"delta_chi2", p.delta_chi2},         {"fits", p.fits}};
-    }
-    j["profile_interval"] = profile.empty() ? nlohmann::json() : profile;
 }
 
 // The same for a person.
@@ -330,12 +248,34 @@ std::string shown(const analysis::IdentifiedField& field, double si,
     return unit.empty() ? text : text + " " + unit;
 }
 
-// The identified parameters as JSON: the field table's keys in its units.
-nlohmann::json parametersJson(const identification::DecoupledParameters& p) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const analysis::IdentifiedField& field : analysis::identifiedFields())
-        j[field.key] = field.userValue(p);
-    return j;
+// --save-soil OUT.json: the identified soil as a soil file (`base`'s γ; k_c = 0, k_φ = K_s; the
+// fit's j_max) with "posterior" in the soil file's keys and units, written atomically.
+void saveSoil(const IdentifyOptions& o, const analysis::IdentificationResult& result,
+              const soil::SoilParameters& base, const wheel::WheelParameters& wheel) {
+    const double jmax = o.jmax_m.value_or(std::numeric_limits<double>::infinity());
+    Result<soil::SoilParameters> soil = analysis::identifiedSoilFile(result, base, wheel, jmax);
+    if (!soil) throw std::runtime_error("--save-soil " + o.save_soil + ": " + soil.message());
+    soil::SoilParameters s = soil.value();
+    s.name = "identified from " + std::filesystem::path(o.data).filename().string();
+    s.source = "terrastudio identify --data " + o.data + " --wheel " + o.wheel + " (" +
+               (result.report ? "global identification" : "decoupled fit") + ", " +
+               std::to_string(result.data.samples.size()) + " samples" +
+               (o.guess.empty() ? "" : "; gamma from " + o.guess) + ")";
+    nlohmann::json file = io::toJson(s);
+    const nlohmann::json posterior = analysis::soilPosteriorJson(result, s, wheel);
+    if (!posterior.is_null()) file["posterior"] = posterior;
+    writeOutput(o.save_soil, file.dump(2) + "\n");
+    std::string what;
+    if (posterior.is_null()) {
+        what = std::string(" without a posterior (") +
+               (result.report ? "the covariance is rank deficient" : "the decoupled fit has none") +
+               ")";
+    } else {
+        for (const nlohmann::json& key : posterior["parameters"])
+            what += (what.empty() ? " with its posterior (keys " : ", ") + key.get<std::string>();
+        what += ")";
+    }
+    std::cerr << "wrote " << o.save_soil << ": the identified soil" << what << '\n';
 }
 
 // `identify --stream FILE`: the samples fed one at a time to the streaming estimator on the full
@@ -408,8 +348,8 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
                              {"cusum", roundSignificant(u.cusum, 6)}};
             j["time_s"] = frame.time_s;
             if (u.estimated) {
-                j.update(parametersJson(frame.parameters));
-                j["std"] = userJson(u.std);
+                j.update(analysis::identifiedJson(frame.parameters));
+                j["std"] = analysis::fullParametersJson(u.std);
             }
             if (u.change_rejected) j["change_rejected"] = true;
             if (u.change_detected && u.change_at) j["change_at"] = *u.change_at;
@@ -599,6 +539,10 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
          "--noise", identify->noise,
          "Refinement: noise levels fx=N,fz=N,my=Nm weighting the residuals (default: estimated)")
         ->delimiter(',');
+    i->add_option("--save-soil", identify->save_soil,
+                  "Write the identified soil to this soil file (k_c = 0, k_phi = Ks), with its "
+                  "posterior (mean and covariance in the soil file's keys) for traction, bands "
+                  "and gsa --posterior");
     i->add_option("--jmax", identify->jmax_m,
                   "Full model: the model's j_max [m] (default: none; a setting of the model, not "
                   "taken from --guess)");
@@ -614,6 +558,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError(
                 "--prior, --holdout, --folds, --starts, --loss and --profile do not apply to "
                 "--stream");
+        if (streaming && !o.save_soil.empty())
+            throw InputError("--save-soil does not apply to --stream");
         ModelOptions names;
         names.wheel = o.wheel;
         analysis::Inputs inputs;
@@ -630,6 +576,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (streaming) {
             runStream(o, inputs, guess_soil);
             return;
+        }
+        if (!o.save_soil.empty()) {
+            std::vector<NamedInput> files = names.inputFiles();
+            files.push_back({"--data", o.data});
+            refuseInputAsOutput("--save-soil", o.save_soil, files);
         }
         const bool global_flags = !o.prior.empty() || o.holdout || o.folds || o.starts ||
                                   o.load_n || o.loss != "l2" || o.profile;
@@ -699,35 +650,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         const std::optional<identification::Uncertainty> uncertainty =
             result.report ? std::optional(result.report->uncertainty) : std::nullopt;
         const std::vector<identification::StepReport> reports = result.steps();
-        nlohmann::json j = parametersJson(p);
-        if (uncertainty) {
-            nlohmann::json std_json = nlohmann::json::object();
-            for (int k = 0; k < identification::kFullParameterCount; ++k) {
-                const analysis::IdentifiedField& field =
-                    analysis::fieldOf(static_cast<identification::FullParameter>(k));
-                std_json[field.key] =
-                    uncertainty->computed
-                        ? nlohmann::json(uncertainty->std[static_cast<std::size_t>(k)] /
-                                         field.to_si)
-                        : nlohmann::json();
-            }
-            j["std"] = std_json;
-            j["flags"] = uncertainty->flags;
-        }
-        nlohmann::json steps = nlohmann::json::array();
-        for (const auto& step : reports) {
-            steps.push_back({{"step", step.name},
-                             {"usable", step.usable},
-                             {"termination", step.termination},
-                             {"iterations", step.iterations},
-                             {"squared_residual_norm", step.squared_residual_norm},
-                             {"time_ms", step.wall_time_ms}});
-        }
-        j["steps"] = steps;
-        j["samples"] = result.data.samples.size();
-        if (result.report) addGlobalJson(result, j);
         if (o.json) {
-            std::cout << j.dump(2) << '\n';
+            std::cout << analysis::toJson(result).dump(2) << '\n';
         } else {
             std::cout << (o.refine ? "full-model identification (global search), "
                                    : "decoupled identification, ")
@@ -757,6 +681,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         }
         if (!result.usable())
             throw std::runtime_error("the fit did not converge to a usable solution");
+        if (!o.save_soil.empty())
+            saveSoil(o, result, guess_soil.value_or(soil::SoilParameters{}), inputs.wheel);
     });
 }
 

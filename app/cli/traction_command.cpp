@@ -102,7 +102,7 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option(
         "--posterior", o.posterior,
         "A soil file with a \"posterior\" (identify --save-soil): the band and a robust "
-        "slip");
+        "slip; it is also the soil when --soil is not given");
     cmd->add_option("--quantile", o.quantile,
                     "Robust slip: maximise this quantile of the objective (default 0.1)");
     cmd->add_option("--samples", o.samples, "Soils drawn from the posterior (default 200)");
@@ -114,12 +114,18 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
                   "JSON: optimal_slip, objective, Fx_N, My_Nm, efficiency, curve");
     cmd->add_option("--out", o.out,
                     "Write the JSON (with --json) or the curve as CSV to this file");
-    cmd->callback([options, &locations] {
+    cmd->callback([options, cmd, &locations] {
         const TractionOptions& o = *options;
         std::vector<NamedInput> files = o.model.inputFiles();
         if (o.posterior) files.push_back({"--posterior", *o.posterior});
         refuseInputAsOutput("--out", o.out, files);
-        analysis::Inputs inputs = o.model.inputs(locations);
+        // A --posterior soil file (`identify --save-soil`) is the soil when --soil is not given:
+        // the posterior's mean and the fields it does not vary are then the identified soil's.
+        ModelOptions model = o.model;
+        if (o.posterior && cmd->get_option("--soil")->count() == 0 &&
+            analysis::isSoilFile(*o.posterior))
+            model.soil = *o.posterior;
+        analysis::Inputs inputs = model.inputs(locations);
         std::vector<Issue> issues;
         if (o.load_n) {
             const FieldInfo& load = contact::loadField();

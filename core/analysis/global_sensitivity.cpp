@@ -668,7 +668,11 @@ CorrelatedParameters correlatedFromIdentification(const identification::Decouple
     for (std::size_t i = 0; i < used.size(); ++i) {
         std::vector<double> row;
         for (std::size_t j = 0; j < used.size(); ++j) {
-            const double rho = i == j ? 1.0 : u.correlation[used[i]][used[j]];
+            // ρ made exactly symmetric (the covariance's rounding leaves ρ_ij ≠ ρ_ji in the
+            // last bit), so that a reader's symmetry check sees the matrix it is.
+            const double rho =
+                i == j ? 1.0
+                       : 0.5 * (u.correlation[used[i]][used[j]] + u.correlation[used[j]][used[i]]);
             row.push_back(sd[i] * sd[j] * rho);
         }
         out.covariance.push_back(std::move(row));

@@ -1,11 +1,14 @@
 #include "core/analysis/identification.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "core/analysis/global_sensitivity.h"
 #include "core/analysis/registry.h"
 #include "core/analysis/sweep.h"
 #include "core/common/quoted.h"
@@ -53,6 +56,7 @@ id::ColumnNeeds needsOf(const IdentificationSettings& s) {
 void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationResult& out) {
     if (s.data) {
         out.data = *s.data;
+        out.warnings = s.data_warnings;
         return;
     }
     if (!s.csv.empty()) {
@@ -65,6 +69,8 @@ void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationR
         }
         out.data = read->data;
         out.skipped = read->skipped;
+        for (const Issue& issue : read->warnings)
+            out.warnings.push_back(issue.where + ": " + issue.message);
         return;
     }
     id::SyntheticSpec spec;
@@ -104,6 +110,8 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
             r.report("csv", out.csv + ": no valid samples");
         } else {
             out.data = read->data;
+            for (const Issue& issue : read->warnings)
+                out.data_warnings.push_back(issue.where + ": " + issue.message);
         }
     }
     r.number("noise_percent", out.synthetic.noise_percent, kNoisePercent, "%");
@@ -259,6 +267,246 @@ nlohmann::json toJson(const IdentificationSettings& s) {
     return out;
 }
 
+namespace {
+
+// Parameters in the output's keys and units (identified_parameters.h) from SI values.
+nlohmann::json userJson(const id::ParameterVector& si) {
+    nlohmann::json j = nlohmann::json::object();
+    for (int k = 0; k < id::kFullParameterCount; ++k) {
+        const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+        j[field.key] = si[static_cast<std::size_t>(k)] / field.to_si;
+    }
+    return j;
+}
+
+// Per-channel values of the channels in use, by column name.
+nlohmann::json channelJson(const id::ChannelValues& values,
+                           const std::array<bool, id::kChannelCount>& used) {
+    nlohmann::json j = nlohmann::json::object();
+    for (std::size_t c = 0; c < id::kChannelCount; ++c) {
+        if (used[c]) j[id::channelNames()[c]] = values[c];
+    }
+    return j;
+}
+
+// The keys the global identification adds: prior, holdout, ambiguity, gradient_norm (and what
+// the fit started from, its data source, χ², noise levels, the covariance).
+void addGlobalJson(const IdentificationResult& result, nlohmann::json& j) {
+    const id::IdentificationReport& r = *result.report;
+    j["covariance"] = covarianceJson(r);
+    nlohmann::json prior = nlohmann::json::object();
+    for (int k = 0; k < id::kFullParameterCount; ++k) {
+        const id::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
+        if (!c.active) continue;
+        const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+        prior[field.key] = {{"prior_mean", c.prior_mean / field.to_si},
+                            {"prior_std", c.prior_std / field.to_si},
+                            {"posterior_mean", c.posterior_mean / field.to_si},
+                            {"posterior_std", c.posterior_std / field.to_si},
+                            {"shift_in_prior_std", c.shift_in_prior_std},
+                            {"std_ratio", c.std_ratio}};
+    }
+    j["prior"] = prior.empty() ? nlohmann::json() : prior;
+    if (r.holdout.computed) {
+        j["holdout"] = {
+            {"folds", r.holdout.folds},
+            {"samples", r.holdout.samples},
+            {"failed", r.holdout.failed},
+            {"rms", channelJson(r.holdout.rms, r.holdout.channels)},
+            {"rms_in_fit", channelJson(r.holdout.rms_in_fit, r.holdout.channels)},
+            {"rms_over_noise", channelJson(r.holdout.rms_over_noise, r.holdout.channels)}};
+    } else {
+        j["holdout"] = nullptr;
+    }
+    nlohmann::json ambiguity = nlohmann::json::array();
+    for (const id::Minimum& m : r.ambiguity) {
+        ambiguity.push_back({{"parameters", userJson(m.parameters)},
+                             {"std", userJson(m.std)},
+                             {"chi2", m.chi2},
+                             {"delta_chi2", m.delta_chi2},
+                             {"start", m.label}});
+    }
+    j["ambiguity"] = ambiguity;
+    j["ambiguity_delta_chi2"] = r.ambiguity_delta_chi2;
+    j["gradient_norm"] = r.gradient_norm;
+    j["newton_decrement"] = r.newton_decrement;
+    j["chi2"] = r.chi2;
+    j["start"] = result.start_description;
+    j["source"] = r.setup.description;
+    j["noise"] = channelJson(r.noise, r.setup.channels);
+    j["noise_estimated"] = r.noise_estimated;
+    // adequacy: per channel the trend test of the residuals in slip (null where not tested),
+    // the smallest p and whether it flags a systematic misfit.
+    nlohmann::json channels = nlohmann::json::object();
+    for (std::size_t c = 0; c < id::kChannelCount; ++c) {
+        if (!r.setup.channels[c]) continue;
+        const id::TrendTest& t = r.adequacy.trend[c];
+        channels[id::channelNames()[c]] =
+            t.tested() ? nlohmann::json{{"p", t.p},
+                                        {"F", t.f},
+                                        {"trend_share", t.trend_share},
+                                        {"dof", {t.trend_dof, t.values - t.trend_dof}}}
+                       : nlohmann::json();
+    }
+    j["adequacy"] = {{"p", r.adequacy.p}, {"flag", r.adequacy.flag}, {"channels", channels}};
+    // profile_interval: per parameter profiled (profile), the interval in the output's units and
+    // whether the profile reached a bound before Δχ²; null without it.
+    nlohmann::json profile = nlohmann::json::object();
+    for (int k = 0; k < id::kFullParameterCount; ++k) {
+        const id::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
+        if (!p.computed) continue;
+        const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+        profile[field.key] = {
+            {"lower", p.lower / field.to_si},     {"upper", p.upper / field.to_si},
+            {"lower_at_bound", p.lower_at_bound}, {"upper_at_bound", p.upper_at_bound},
+            {"delta_chi2", p.delta_chi2},         {"fits", p.fits}};
+    }
+    j["profile_interval"] = profile.empty() ? nlohmann::json() : profile;
+}
+
+}  // namespace
+
+nlohmann::json identifiedJson(const id::DecoupledParameters& p) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const IdentifiedField& field : identifiedFields()) j[field.key] = field.userValue(p);
+    return j;
+}
+
+nlohmann::json fullParametersJson(const id::ParameterVector& si) { return userJson(si); }
+
+nlohmann::json covarianceJson(const id::IdentificationReport& r) {
+    const id::Uncertainty& u = r.uncertainty;
+    if (!u.computed) return nullptr;
+    std::vector<std::size_t> free;
+    for (std::size_t k = 0; k < id::kFullParameterCount; ++k) {
+        if (u.std[k] > 0.0 && std::isfinite(u.std[k])) free.push_back(k);
+    }
+    if (free.empty()) return nullptr;
+    nlohmann::json names = nlohmann::json::array(), mean = nlohmann::json::array(),
+                   covariance = nlohmann::json::array();
+    for (std::size_t a : free) {
+        const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(a));
+        names.push_back(field.key);
+        mean.push_back(field.toUser(r.parameters[a]));
+        nlohmann::json row = nlohmann::json::array();
+        for (std::size_t b : free) {
+            const IdentifiedField& other = fieldOf(static_cast<id::FullParameter>(b));
+            // Σ_ab = σ_a σ_b ρ_ab in the display units (each std divided by its field's
+            // to_si, as the "std" output); ρ made exactly symmetric, the diagonal exactly σ².
+            const double rho = a == b ? 1.0 : 0.5 * (u.correlation[a][b] + u.correlation[b][a]);
+            row.push_back((u.std[a] / field.to_si) * (u.std[b] / other.to_si) * rho);
+        }
+        covariance.push_back(std::move(row));
+    }
+    return {{"parameters", names}, {"mean", mean}, {"covariance", covariance}};
+}
+
+nlohmann::json toJson(const IdentificationResult& result) {
+    nlohmann::json j = identifiedJson(result.identified);
+    if (result.report) {
+        const id::Uncertainty& u = result.report->uncertainty;
+        nlohmann::json std_json = nlohmann::json::object();
+        for (int k = 0; k < id::kFullParameterCount; ++k) {
+            const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+            std_json[field.key] =
+                u.computed ? nlohmann::json(u.std[static_cast<std::size_t>(k)] / field.to_si)
+                           : nlohmann::json();
+        }
+        j["std"] = std_json;
+        j["flags"] = u.flags;
+    }
+    nlohmann::json steps = nlohmann::json::array();
+    for (const id::StepReport& step : result.steps()) {
+        steps.push_back({{"step", step.name},
+                         {"usable", step.usable},
+                         {"termination", step.termination},
+                         {"iterations", step.iterations},
+                         {"squared_residual_norm", step.squared_residual_norm},
+                         {"time_ms", step.wall_time_ms}});
+    }
+    j["steps"] = steps;
+    j["samples"] = result.data.samples.size();
+    if (result.report) addGlobalJson(result, j);
+    return j;
+}
+
+Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& result,
+                                                const soil::SoilParameters& base,
+                                                const wheel::WheelParameters& wheel, double jmax) {
+    soil::SoilParameters flat = base;
+    flat.cohesive_modulus = 0.0;  // K_s wholly in k_φ: the soil is the identified one on any b
+    flat.profile.reset();
+    soil::SoilParameters soil = identifiedSoil(flat, wheel, result.identified);
+    soil.max_shear_deformation_m = jmax;
+    // A parameter that ended on a bound of the fit which is also its field's (c = 0) may lie a
+    // rounding outside it (−2e−17 kPa from the solver's coordinates): put it on the bound.
+    for (const soil::SoilField& field : soil::soilFields()) {
+        double& value = soil.*field.member;
+        const double width = field.range.high - field.range.low;
+        const double low = field.range.low * field.to_si, high = field.range.high * field.to_si;
+        const double tolerance = 1e-12 * width * field.to_si;
+        if (value < low && value >= low - tolerance) value = low;
+        if (value > high && value <= high + tolerance) value = high;
+    }
+    std::vector<Issue> issues = soil::validate(soil);
+    if (!issues.empty()) {
+        for (Issue& issue : issues)
+            issue.message = "the identified soil is not a valid soil: " + issue.message;
+        return issues;
+    }
+    return soil;
+}
+
+nlohmann::json soilPosteriorJson(const IdentificationResult& result,
+                                 const soil::SoilParameters& soil,
+                                 const wheel::WheelParameters& wheel) {
+    if (!result.report || !result.report->uncertainty.computed) return nullptr;
+    const id::IdentificationReport& r = *result.report;
+    // `soil` has k_c = 0: correlatedFromIdentification's k_φ is then K_s itself.
+    const CorrelatedParameters c =
+        correlatedFromIdentification(result.identified, r.uncertainty, soil, wheel);
+    // Its keys are the parameters with a std, in FullParameter order; a parameter that ended at
+    // a bound of the fit (c = 0) is held there: the posterior is the others' given it, the
+    // Schur complement Σ_ff − Σ_fb Σ_bb⁻¹ Σ_bf (the covariance with it fixed), since draws on
+    // both sides of the bound would be half of them no soil.
+    std::vector<Eigen::Index> kept, held;
+    Eigen::Index index = 0;
+    for (std::size_t k = 0; k < id::kFullParameterCount; ++k) {
+        if (!(r.uncertainty.std[k] > 0.0) || !std::isfinite(r.uncertainty.std[k])) continue;
+        (r.at_bound[k] ? held : kept).push_back(index++);
+    }
+    if (kept.empty()) return nullptr;
+    const auto n = static_cast<Eigen::Index>(c.keys.size());
+    Eigen::MatrixXd sigma(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        for (Eigen::Index j = 0; j < n; ++j)
+            sigma(i, j) = c.covariance[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    }
+    Eigen::MatrixXd conditional = sigma(kept, kept);
+    if (!held.empty()) {
+        conditional -= sigma(kept, held) * sigma(held, held).ldlt().solve(sigma(held, kept));
+        conditional = 0.5 * (conditional + conditional.transpose()).eval();
+    }
+    nlohmann::json keys = nlohmann::json::array(), mean = nlohmann::json::array(),
+                   covariance = nlohmann::json::array();
+    // In the identification's names and units (the interface of issue 25: "Ks_kPa", "n0", …;
+    // the readers translate them back, soil_posterior.h).
+    auto identificationName = [](const std::string& key) -> std::string {
+        if (key == "kphi") return "Ks_kPa";
+        if (key == "n") return "n0";
+        return key;
+    };
+    for (std::size_t a = 0; a < kept.size(); ++a) {
+        keys.push_back(identificationName(c.keys[static_cast<std::size_t>(kept[a])]));
+        mean.push_back(c.mean[static_cast<std::size_t>(kept[a])]);
+        std::vector<double> row;
+        for (std::size_t b = 0; b < kept.size(); ++b)
+            row.push_back(conditional(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)));
+        covariance.push_back(row);
+    }
+    return {{"parameters", keys}, {"mean", mean}, {"covariance", covariance}};
+}
+
 std::vector<id::StepReport> IdentificationResult::steps() const {
     if (!report) {
         return fit.steps;
@@ -281,8 +529,17 @@ std::vector<id::StepReport> IdentificationResult::steps() const {
                    r.usable(), r.termination, r.iterations, r.chi2,
                    r.timing.refinement_ms + r.timing.covariance_ms});
     if (r.holdout.computed) {
+        std::string text = std::to_string(r.holdout.samples) + " samples predicted";
+        if (r.holdout.failed > 0) text += ", " + std::to_string(r.holdout.failed) + " failed";
+        text += "; RMS / noise std";
+        for (std::size_t c = 0; c < id::kChannelCount; ++c) {
+            if (r.holdout.channels[c]) {
+                text += " " + std::string(id::channelNames()[c]) + " " +
+                        formatNumber(roundSignificant(r.holdout.rms_over_noise[c], 3));
+            }
+        }
         out.push_back({"held-out: " + std::to_string(r.holdout.folds) + " fold(s)",
-                       r.holdout.samples > r.holdout.failed, "", r.holdout.folds, 0.0,
+                       r.holdout.samples > r.holdout.failed, text, r.holdout.folds, 0.0,
                        r.timing.holdout_ms});
     }
     return out;
@@ -462,9 +719,16 @@ Outcome identificationOutcome(IdentificationResult result) {
     for (const Issue& skipped : result.skipped)
         out.notes.push_back("skipped " + skipped.where + ": " + skipped.message);
     for (const id::StepReport& step : result.steps()) {
-        out.notes.push_back(step.name + ": " + step.termination +
-                            ", Σr² = " + formatNumber(step.squared_residual_norm));
+        // A step without a termination or a residual (the descent, the held-out prediction)
+        // says only what it did.
+        std::string note = step.name;
+        if (!step.termination.empty()) note += ": " + step.termination;
+        if (step.squared_residual_norm > 0.0)
+            note += ", Σr² = " + formatNumber(step.squared_residual_norm);
+        out.notes.push_back(std::move(note));
     }
+    // The whole result as `identify --json` prints it (Python's ts.identify returns it).
+    if (result.message.empty()) out.documents.emplace_back("-identification.json", toJson(result));
     out.result = std::move(result);
     return out;
 }

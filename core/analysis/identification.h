@@ -50,6 +50,9 @@ struct IdentificationSettings {
     /// The data read already (a script's reader reads the CSV before anything runs); when set,
     /// `csv` only names it.
     std::optional<identification::DataSet> data;
+    /// The columns of `csv` that the reader does not use ("FILE:1: column 'x' is not read …"),
+    /// passed on to the result's warnings.
+    std::vector<std::string> data_warnings;
     SyntheticSource synthetic;
     identification::DecoupledParameters guess;  ///< start of the decoupled fit (thesis's guesses)
     /// true: the global identification on the full model (identify.h; removes the decoupled
@@ -94,8 +97,9 @@ nlohmann::json toJson(const IdentificationSettings& settings);
 
 struct IdentificationResult {
     identification::DataSet data;
-    std::vector<Issue> skipped;         ///< rows left out (skip_bad_rows)
-    std::vector<std::string> warnings;  ///< synthetic points the soil cannot carry
+    std::vector<Issue> skipped;  ///< rows left out (skip_bad_rows)
+    /// Synthetic points the soil cannot carry; columns of the CSV that are not read.
+    std::vector<std::string> warnings;
     identification::DecoupledFit fit;
     /// The global identification's report (refine = true).
     std::optional<identification::IdentificationReport> report;
@@ -126,6 +130,50 @@ struct IdentificationResult {
     /// The fit and its refinement converged to usable solutions.
     bool usable() const;
 };
+
+/// The identified parameters as JSON: identifiedFields()' keys in their units.
+nlohmann::json identifiedJson(const identification::DecoupledParameters& parameters);
+/// The seven parameters of the full model (SI) as JSON in their fields' keys and units.
+nlohmann::json fullParametersJson(const identification::ParameterVector& si);
+
+/// The Gauss–Newton covariance of the identified parameters (IdentificationReport::uncertainty:
+/// Σ_ij = σ_i σ_j ρ_ij) in the identification's keys and display units, each parameter's
+/// std scaled by its field's unit (Σ_ij / (to_si_i to_si_j)): {"parameters": [keys of the free
+/// parameters, fieldOf order], "mean": [the estimate], "covariance": [[…]]}; null when the
+/// covariance was not computed (rank deficient). Its diagonal's square roots are the "std" of
+/// toJson.
+nlohmann::json covarianceJson(const identification::IdentificationReport& report);
+
+/// The result as `terrastudio identify --json` prints it and Python's ts.identify returns it
+/// (docs/cli.md, "identify"): the parameters (identifiedFields() keys), and when refined "std",
+/// "flags", "covariance", "prior", "holdout", "ambiguity", "ambiguity_delta_chi2",
+/// "gradient_norm", "newton_decrement", "chi2", "start", "source", "noise",
+/// "noise_estimated", "profile_interval"; always "steps" and "samples". For a result with a
+/// `message` (nothing fitted) only "steps" and "samples" mean anything.
+nlohmann::json toJson(const IdentificationResult& result);
+
+/// The soil an identification found, as `identify --save-soil` writes it: `base` (its γ, which
+/// the wheel data do not see) with a₀, a₁, n, n₁, c, φ, K identified, k_c = 0 and k_φ = K_s (so
+/// that K_s = k_c/b + k_φ is the identified one on any width: a test at one width sees only
+/// K_s), and j_max as given (the fit's model's; +inf: none). Issues name the identified values
+/// that are outside a soil field's range (soil::validate).
+Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& result,
+                                                const soil::SoilParameters& base,
+                                                const wheel::WheelParameters& wheel,
+                                                double max_shear_deformation_m);
+
+/// The identification's posterior in the soil file's keys and units, the form `traction
+/// --posterior`, `bands --posterior` and a study's "correlated" group read: {"parameters":
+/// ["a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"] (the free ones), "mean": [the values
+/// of `soil`, identifiedSoilFile's], "covariance": [[…]]}. K_s is carried by k_φ (k_c = 0 in
+/// that soil, so Var k_φ = Var K_s), n₀ by n; the units are the identification's (kPa/m^n is
+/// kN/m^(n+2)), so the numbers equal covarianceJson's. A parameter that ended at a bound of the
+/// fit is held there (left out; the others' covariance is conditional on it, the Schur
+/// complement Σ_ff − Σ_fb Σ_bb⁻¹ Σ_bf). Null when the covariance was not computed (rank
+/// deficient, or the decoupled fit).
+nlohmann::json soilPosteriorJson(const IdentificationResult& result,
+                                 const soil::SoilParameters& soil,
+                                 const wheel::WheelParameters& wheel);
 
 /// Throws std::invalid_argument for invalid inputs or settings (a fixed key that is not a
 /// refined parameter, a holdout fraction outside (0, 1)); data that cannot be read come back in

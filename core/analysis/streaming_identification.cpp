@@ -72,6 +72,8 @@ Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_row
     StreamSource out;
     out.data = read->data;
     out.description = std::filesystem::path(path).filename().string();
+    for (const Issue& issue : read->warnings)
+        out.warnings.push_back("warning: " + issue.where + ": " + issue.message);
     for (const Issue& issue : read->skipped)
         out.warnings.push_back("skipped " + issue.where + ": " + issue.message);
     if (out.data.samples.empty()) return std::vector<Issue>{{path, "no valid samples"}};

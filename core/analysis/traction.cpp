@@ -129,27 +129,6 @@ const char* objectiveName(TractionObjective objective) {
     return objective == TractionObjective::kDrawbar ? "drawbar" : "efficiency";
 }
 
-void readPosterior(io::ObjectReader& r, SoilPosterior& out) {
-    r.texts("parameters", out.parameters, io::Presence::kRequired);
-    r.numbers("mean", out.mean, Range{-1e300, 1e300}, {}, 1, 100, io::Presence::kRequired);
-    if (const nlohmann::json* rows = r.array("covariance", io::Presence::kRequired)) {
-        for (std::size_t i = 0; i < rows->size(); ++i) {
-            const nlohmann::json& row = (*rows)[i];
-            std::vector<double> values;
-            bool ok = row.is_array();
-            for (const nlohmann::json& v : row) {
-                ok = ok && v.is_number();
-                if (ok) values.push_back(v.get<double>());
-            }
-            if (!ok) {
-                r.report("covariance", "row " + std::to_string(i) + " is not an array of numbers");
-                continue;
-            }
-            out.covariance.push_back(std::move(values));
-        }
-    }
-}
-
 void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
                           const std::filesystem::path& base_dir) {
     const FieldInfo& beta = contact::slipAngleField();
@@ -176,19 +155,11 @@ void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
             // A soil file with its posterior (`identify --save-soil`): only "posterior" is read.
             std::filesystem::path path = posterior->get<std::string>();
             if (path.is_relative() && !base_dir.empty()) path = base_dir / path;
-            Result<nlohmann::json> file = io::readJsonFile(path);
+            Result<SoilPosterior> file = readPosteriorFile(path);
             if (!file) {
-                for (const Issue& issue : file.issues()) r.report("posterior", issue.message);
+                for (const Issue& issue : file.issues()) r.report("posterior", formatIssue(issue));
             } else {
-                std::vector<Issue> issues;
-                const nlohmann::json& doc = file.value();
-                io::ObjectReader fr(doc.contains("posterior") ? doc["posterior"] : doc, issues,
-                                    path.string(), "posterior");
-                readPosterior(fr, p);
-                fr.finish();
-                for (Issue& issue : issues)
-                    r.report("posterior", issue.where + ": " + issue.message);
-                if (issues.empty()) out.posterior = p;
+                out.posterior = file.value();
             }
         } else {
             r.report("posterior",

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/analysis/soil_posterior.h"
 
 namespace terra::analysis {
 
@@ -21,14 +22,6 @@ enum class TractionObjective {
     kEfficiency,  ///< η = F_x r (1 − s) / M_y [-] (output power over input power)
 };
 const char* objectiveName(TractionObjective objective);
-
-/// Soil parameters known as a multivariate normal (an identification's posterior), in the soil
-/// file's keys and units: {"parameters": [keys], "mean": [...], "covariance": [[...]]}.
-struct SoilPosterior {
-    std::vector<std::string> parameters;
-    std::vector<double> mean;
-    std::vector<std::vector<double>> covariance;
-};
 
 struct TractionSettings {
     double slip_angle_deg = 0.0;  ///< β [deg]
@@ -51,8 +44,6 @@ struct TractionSettings {
 void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
                           const std::filesystem::path& base_dir = {});
 nlohmann::json toJson(const TractionSettings& settings);
-/// The posterior of a soil file's "posterior" object (SoilPosterior's keys), problems named.
-void readPosterior(io::ObjectReader& r, SoilPosterior& out);
 
 /// The wheel at one slip.
 struct TractionPoint {

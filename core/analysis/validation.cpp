@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "core/analysis/operating_point.h"
@@ -168,7 +169,10 @@ void profileN1(const id::DataSet& data, const wheel::WheelParameters& wheel,
                id::IdentifyOptions options, Calibration& cal) {
     options.sinkage_exponent_slip = 0.0;
     const id::IdentificationReport first = id::identify(data, wheel, options);
-    if (!first.usable()) {
+    // A channel interpolated with its noise estimated: the levels the profile would hold are
+    // meaningless (the calibration is refused with this report's flags).
+    if (!first.usable() ||
+        std::any_of(first.interpolated.begin(), first.interpolated.end(), std::identity{})) {
         cal.report = first;
         return;
     }
@@ -520,6 +524,28 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
         cal.report.message = "the fit did not converge (" + cal.report.termination +
                              "); its soil is not a calibration (give noise levels, more points "
                              "or points at several loads)";
+    }
+    if (cal.report.usable()) {
+        // A channel that the fit can pass through with its noise estimated: the estimate
+        // collapses onto those points, and the calibrated soil would look exact there.
+        std::string interpolated;
+        for (int c = 0; c < id::kChannelCount; ++c) {
+            const auto k = static_cast<std::size_t>(c);
+            if (!cal.report.interpolated[k]) continue;
+            interpolated += (interpolated.empty() ? "" : "; ") +
+                            std::string(id::channelNames()[k]) + " has " +
+                            std::to_string(cal.report.channel_values[k]) + " measured values for " +
+                            std::to_string(cal.report.free_parameters) +
+                            " free parameters and its noise is estimated: the fit passes "
+                            "through every one (RMS residual " +
+                            formatNumber(roundSignificant(cal.report.rms[k], 3)) + ")";
+        }
+        if (!interpolated.empty()) {
+            cal.report.status = id::IdentifyStatus::kFailed;
+            cal.report.message = "the fit interpolates: " + interpolated +
+                                 ", so the estimated noise has collapsed and the calibration "
+                                 "says nothing; give the channel's noise level or fit more points";
+        }
     }
     if (cal.report.usable()) {
         cal.soil =

@@ -36,6 +36,14 @@ int find(const std::vector<std::string>& header, const std::string& name) {
 
 }  // namespace
 
+const std::vector<std::string>& dataSetColumns() {
+    static const std::vector<std::string> columns{
+        "slip", "entry_angle_deg", "entry_angle_rad", "Fx_N",
+        "Fz_N", "My_Nm",           "slip_angle_deg",  "Fy_N",
+        "W_N",  "time_s",          "sinkage_m"};
+    return columns;
+}
+
 Result<DataSetRead> parseDataSet(const std::string& text, const std::string& where, BadRows policy,
                                  ColumnNeeds needs) {
     Result<io::CsvDocument> parsed = io::parseCsv(text, where);
@@ -47,7 +55,12 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
               c_beta = find(doc.header, "slip_angle_deg"), c_fy = find(doc.header, "Fy_N"),
               c_load = find(doc.header, "W_N"), c_time = find(doc.header, "time_s"),
               c_sinkage = find(doc.header, "sinkage_m");
-    std::vector<Issue> missing;
+    // A column the reader does not know is data the fit would lose without a word: a misspelt
+    // channel ("Fz_M", "fz_N") whose known name is absent stops the read (every row would lose
+    // that channel), any other unknown column is listed as a warning.
+    const io::ColumnCheck unknown = io::checkColumns(
+        doc.header, dataSetColumns(), where + ":" + std::to_string(doc.header_line), "");
+    std::vector<Issue> missing = unknown.errors;
     if (needs == ColumnNeeds::kDecoupled) {
         const std::pair<const char*, int> required[] = {
             {"slip", c_slip}, {"Fx_N", c_fx}, {"Fz_N", c_fz}, {"My_Nm", c_my}};
@@ -74,6 +87,7 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
     if (!missing.empty()) return missing;
 
     DataSetRead out;
+    out.warnings = unknown.warnings;
     out.data.columns = {c_deg >= 0 || c_rad >= 0, c_fx >= 0, c_fz >= 0, c_my >= 0};
     std::vector<Issue> bad = doc.row_issues;
     for (std::size_t r = 0; r < doc.rows.size(); ++r) {

@@ -3,7 +3,8 @@
 /// Measured or synthetic wheel data for soil identification (thesis chapter 5): a time series of
 /// samples (s, θ_f, F_x, F_z, M_y; optionally β, F_y, W, sinkage, time), with CSV import/export.
 ///
-/// CSV columns (header row, any order, extra columns ignored): `slip`, `entry_angle_deg` (or
+/// CSV columns (header row, any order; another column is listed as a warning, or stops the read
+/// when it looks like a misspelt known column that the file lacks): `slip`, `entry_angle_deg` (or
 /// `entry_angle_rad`), `Fx_N`, `Fz_N`, `My_Nm`; optional `slip_angle_deg`, `Fy_N`, `W_N`,
 /// `sinkage_m`, `time_s`. The decoupled fit needs the first five; the full-model identification
 /// (identify.h) also reads data without an entry angle (θ_f is then solved from the load W) and
@@ -69,7 +70,12 @@ enum class BadRows {
 struct DataSetRead {
     DataSet data;
     std::vector<Issue> skipped;
+    /// Columns of the header that no reader uses, at FILE:LINE of the header (io::checkColumns).
+    std::vector<Issue> warnings;
 };
+
+/// The columns the reader knows (the file comment above).
+const std::vector<std::string>& dataSetColumns();
 
 /// Parses CSV text; `where` names the source in messages ("data.csv").
 Result<DataSetRead> parseDataSet(const std::string& text, const std::string& where, BadRows policy,

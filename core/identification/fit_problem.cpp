@@ -188,12 +188,17 @@ ChannelResiduals channelResiduals(const ObservationModel& model, const Parameter
         const Prediction prediction = model.predict(i, p);
         if (!prediction.ok) continue;
         const auto active = model.channels(i);
+        const Sample& s = model.sample(i);
         for (int c = 0; c < kChannelCount; ++c) {
             if (!active[c]) continue;
-            const double r = prediction.values[c] - model.measured(i, static_cast<Channel>(c));
+            const double measured = model.measured(i, static_cast<Channel>(c));
+            const double r = prediction.values[c] - measured;
             sum[c] += r * r;
             ++out.count[c];
             absolute[c].push_back(std::abs(r));
+            out.largest[c] = std::max(out.largest[c], std::abs(measured));
+            out.residuals[c].push_back(
+                {s.load_n.value_or(0.0), s.slip_angle_rad.value_or(0.0), s.slip, r});
         }
     }
     for (int c = 0; c < kChannelCount; ++c) {

@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/identification/adequacy.h"
 #include "core/identification/box_solver.h"
 #include "core/identification/full_fit.h"
 #include "core/identification/identify.h"
@@ -56,6 +57,9 @@ struct ChannelResiduals {
     ChannelValues rms{};
     std::array<int, kChannelCount> count{};
     ChannelValues robust_std{};  ///< 1.4826 × median |r| (for robust losses)
+    ChannelValues largest{};     ///< largest |measured value| of the samples predicted
+    /// The residuals themselves (predicted − measured) with their sweep and slip (adequacy.h).
+    std::array<std::vector<OrderedResidual>, kChannelCount> residuals;
 };
 ChannelResiduals channelResiduals(const ObservationModel& model, const ParameterVector& p,
                                   const std::vector<std::size_t>& samples);

@@ -101,7 +101,7 @@ class Search {
 public:
     Search(const DataSet& data, const wheel::WheelParameters& wheel, const IdentifyOptions& o,
            IdentificationReport& report)
-        : options_(o), report_(report), wheel_(wheel) {
+        : data_(data), options_(o), report_(report), wheel_(wheel) {
         report_.setup =
             setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip)
                 .value();
@@ -401,7 +401,11 @@ private:
         report_.gradient_norm = detail::projectedGradientNorm(problem.box(), best.u, at.gradient);
         report_.uncertainty = at.uncertainty;
         report_.newton_decrement = at.newton_decrement;
-        report_.rms = detail::channelResiduals(*model_, report_.parameters, all_).rms;
+        const detail::ChannelResiduals residuals =
+            detail::channelResiduals(*model_, report_.parameters, all_);
+        report_.rms = residuals.rms;
+        flagInterpolation();
+        checkAdequacy(residuals);
         report_.timing.covariance_ms = millisecondsSince(covariance);
         // Every refined minimum, and the ambiguous ones: within the threshold and distinct (some
         // parameter more than three std away, or 1 % when the std is unknown).
@@ -443,6 +447,55 @@ private:
         }
     }
 
+    // A channel whose noise is estimated from no more values than free parameters can be fitted
+    // exactly: the estimate then follows the residuals down and the weight up, round after round.
+    // Whether it happened is seen in the residuals: below 0.1 % of the channel's largest value
+    // (a tenth of the provisional level), finer than any wheel test measures (the shared sheet's
+    // readings are good to a few %, a load cell to 0.1 % of its range); a channel that the others
+    // keep from its points (six drawbar pulls beside two sinkages, 3 N RMS) is not flagged.
+    void flagInterpolation() {
+        report_.channel_values = measuredValueCounts(data_, report_.setup);
+        for (int c = 0; c < kChannelCount; ++c) {
+            const int count = report_.channel_values[c];
+            if (count == 0 || options_.noise[c] > 0 || count > free_) continue;
+            if (!(report_.rms[c] <= 0.1 * provisional_[c])) continue;
+            report_.interpolated[c] = true;
+            report_.uncertainty.flags.push_back(
+                std::string(channelNames()[c]) + ": " + std::to_string(count) +
+                " measured values for " + std::to_string(free_) +
+                " free parameters with its noise estimated: the fit passes through every one "
+                "(RMS residual " +
+                formatNumber(roundSignificant(report_.rms[c], 3)) +
+                "), so its estimated noise and its residuals mean nothing; give its noise level "
+                "or measure it at more points");
+        }
+    }
+
+    // The trend test per channel; residuals at rounding level (noise-free data of the model
+    // itself: below 1e-9 of the channel's largest value) are no misfit and are not tested.
+    void checkAdequacy(const detail::ChannelResiduals& residuals) {
+        AdequacyReport& a = report_.adequacy;
+        for (int c = 0; c < kChannelCount; ++c) {
+            if (residuals.count[c] == 0 || residuals.rms[c] <= 1e-9 * residuals.largest[c])
+                continue;
+            const TrendTest t = trendTest(residuals.residuals[c]);
+            a.trend[c] = t;
+            if (!t.tested()) continue;
+            a.p = std::min(a.p, t.p);
+            if (t.p >= options_.adequacy_p) continue;
+            a.flag = true;
+            report_.uncertainty.flags.push_back(
+                std::string("the ") + channelNames()[c] +
+                " residuals follow slip: a cubic trend per sweep holds " +
+                formatNumber(roundSignificant(100.0 * t.trend_share, 2)) +
+                " % of them (F = " + formatNumber(roundSignificant(t.f, 3)) +
+                ", p = " + formatNumber(roundSignificant(t.p, 2)) +
+                "): the misfit is systematic, the model misses something the data have (a shear "
+                "limit j_max?), so the estimate is biased and its std understate its error");
+        }
+    }
+
+    const DataSet& data_;
     const IdentifyOptions& options_;
     IdentificationReport& report_;
     wheel::WheelParameters wheel_;
@@ -597,8 +650,41 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
     if (!setup) {
         const std::vector<Issue>& more = setup.issues();
         issues.insert(issues.end(), more.begin(), more.end());
+    } else {
+        // Fewer residuals than free parameters leave a family of exact fits: any "estimate" is
+        // one of them, picked by the start, and its covariance does not exist. A prior on a free
+        // parameter is one residual more.
+        const std::array<int, kChannelCount> counts = measuredValueCounts(data, setup.value());
+        const int residuals = std::accumulate(counts.begin(), counts.end(), 0);
+        int free = 0, priors = 0;
+        for (int k = 0; k < kP; ++k) {
+            if (o.fixed[k]) continue;
+            ++free;
+            priors += o.priors[k] ? 1 : 0;
+        }
+        if (residuals + priors < free) {
+            issues.push_back(
+                {"data", std::to_string(residuals) + " measured values (" +
+                             std::to_string(data.samples.size()) +
+                             (data.samples.size() == 1 ? " sample) " : " samples) ") +
+                             (priors > 0 ? "and " + std::to_string(priors) + " priors " : "") +
+                             "for " + std::to_string(free) +
+                             " free parameters: the data cannot determine them; add samples, "
+                             "hold parameters fixed or give priors"});
+        }
     }
     return issues;
+}
+
+std::array<int, kChannelCount> measuredValueCounts(const DataSet& data, const ModelSetup& setup) {
+    // As ObservationModel::channels: the setup's channels, less a sinkage the row does not have.
+    std::array<int, kChannelCount> counts{};
+    for (const Sample& s : data.samples) {
+        for (int c = 0; c < kChannelCount; ++c) {
+            if (setup.channels[c] && (c != kSinkageChannel || s.sinkage_m.has_value())) ++counts[c];
+        }
+    }
+    return counts;
 }
 
 IdentificationReport identify(const DataSet& data, const wheel::WheelParameters& wheel,

@@ -17,6 +17,7 @@
 ///    **loss** (Huber, Cauchy) and **held-out** prediction errors (a fraction, or k folds).
 /// Derivations, thresholds and measured figures: docs/identification.md.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "core/common/issue.h"
+#include "core/identification/adequacy.h"
 #include "core/identification/data_set.h"
 #include "core/identification/full_fit.h"
 #include "core/identification/observation_model.h"
@@ -103,11 +105,20 @@ struct IdentifyOptions {
 
     /// |correlation| above which a pair is flagged as not separable by the data.
     double correlation_flag = 0.98;
+    /// p of the trend test (adequacy.h) below which a channel's residuals are flagged as
+    /// systematic: 1e-3 per channel keeps the false alarms of a right model near 0.3 % with
+    /// three channels, while a missing j_max on the README tour's data gives p of 1e-5 to 1e-10.
+    double adequacy_p = 1e-3;
 };
 
-/// Everything identify() checks before it runs: issues name the option or the data.
+/// Everything identify() checks before it runs: issues name the option or the data (among them,
+/// fewer measured values, with the priors on free parameters, than free parameters).
 std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& wheel,
                             const IdentifyOptions& options);
+
+/// The residuals per channel of a data set read with `setup` (the setup's channels at every
+/// sample, the sinkage only where the sample has one): the "measured values" the fit sees.
+std::array<int, kChannelCount> measuredValueCounts(const DataSet& data, const ModelSetup& setup);
 
 /// One start of the search and what became of it.
 struct StartReport {
@@ -140,6 +151,14 @@ struct PriorComparison {
     double shift_in_prior_std = 0.0;
     /// posterior std / prior std: near 1, the data do not see the parameter; ≪ 1, they do.
     double std_ratio = 0.0;
+};
+
+/// Whether the fit's residuals are noise (adequacy.h): per channel, the lack-of-fit F test of
+/// a cubic trend in slip within each sweep (the samples of one W_N and slip angle).
+struct AdequacyReport {
+    std::array<TrendTest, kChannelCount> trend{};  ///< not tested where p is NaN
+    double p = 1.0;                                ///< the smallest p of the channels tested
+    bool flag = false;  ///< p < IdentifyOptions::adequacy_p: the misfit is systematic
 };
 
 /// Held-out prediction error per channel.
@@ -186,7 +205,16 @@ struct IdentificationReport {
     int free_parameters = 0;
     ChannelValues noise{};  ///< noise std used per channel (given or estimated)
     bool noise_estimated = false;
-    ChannelValues rms{};  ///< RMS residual per channel [N, N, N·m, m]
+    /// Measured values per channel (measuredValueCounts).
+    std::array<int, kChannelCount> channel_values{};
+    /// Channels the fit interpolates: their noise level was estimated from no more measured
+    /// values than free parameters, and the fit passes through every one (RMS residual below
+    /// 0.1 % of the channel's largest value): the estimated noise has collapsed and the
+    /// channel's weight grown without bound, so its noise level and its residuals mean nothing
+    /// (a flag says so; a calibration is then not usable).
+    std::array<bool, kChannelCount> interpolated{};
+    ChannelValues rms{};      ///< RMS residual per channel [N, N, N·m, m]
+    AdequacyReport adequacy;  ///< are the residuals noise or a pattern in slip?
     /// The first-order check: largest |∂(½χ²)/∂u| over free parameters, u the solver coordinates
     /// (parameters.h), and the Newton decrement gᵀ H⁻¹ g (the χ² one more Newton step would
     /// remove; ≪ 1 at a minimum).

@@ -69,6 +69,10 @@ soil::SoilParameters readSoil(ObjectReader& r) {
         soil.profile = readProfile(p);
         p.finish();
     }
+    // The identification's posterior that `identify --save-soil` writes beside the soil: read
+    // (and checked) by those that sample from it (traction, bands, gsa --posterior), not part of
+    // the soil.
+    r.allow("posterior");
     return soil;
 }
 

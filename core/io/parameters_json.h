@@ -19,7 +19,8 @@ namespace terra::io {
 
 /// The soil of the object `r` reads: every field of the table (soil_parameters.h), the rule
 /// across them and an optional "profile" object (readProfile); problems go to the reader's
-/// issues. The caller calls r.finish().
+/// issues. A "posterior" key (an identification's, `identify --save-soil`) is allowed and left
+/// to its readers. The caller calls r.finish().
 soil::SoilParameters readSoil(ObjectReader& r);
 /// The wheel of the object `r` reads ({"name", "source", "r_m", "b_m"}, optional
 /// "grouser_height_m", "grouser_count", "grouser_thickness_m") and the rules across them.

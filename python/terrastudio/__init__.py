@@ -302,14 +302,19 @@ def traction(soil="sandy-loam", wheel="A", load_N=None, slip_angle_deg=0.0, *,
 
 
 def identify(data, wheel, soil="sandy-loam", **settings):
-    """Soil identification from wheel data (thesis chapters 4-5): the decoupled fit and its
-    refinement through the full model with standard deviations.
+    """Soil identification from wheel data (thesis chapters 4-5): the global identification on
+    the full model (or, with refine=False, the decoupled fit alone) with its uncertainty.
 
     data: a CSV file (columns slip, entry_angle_deg, Fx_N, Fz_N, My_Nm; docs/identification.md),
     a dict of those columns as arrays, or None for synthetic data made from `soil`
     (noise_percent, seed, loads_N, slip_count). Other settings as a run script's identification
-    (refine, fix, noise, skip_bad_rows, jmax_m). Returns {"parameters": {name: value}, "curves":
-    {column: array}, "usable", "notes", "message"}.
+    (refine, fix, noise, skip_bad_rows, jmax_m, priors, loss, holdout, folds, starts, load_N,
+    profile).
+
+    Returns every key of ``terrastudio identify --json`` (the parameters a0, ..., K_m, "std",
+    "flags", "covariance", "prior", "holdout", "ambiguity", "steps", "samples", ...; a test
+    compares them) and "parameters" ({name: value}, with "*_std"), "curves" ({column: array}),
+    "usable", "notes", "message".
     """
     progress = settings.pop("progress", None)
     columns = None
@@ -320,13 +325,15 @@ def identify(data, wheel, soil="sandy-loam", **settings):
     out = _core._run("identification", _as_soil(soil), _as_wheel(wheel), {}, settings, columns,
                      progress)
     parameters = {k: float(v[0]) for k, v in out["tables"]["parameters"].items() if len(v)}
-    return {
+    result = dict(out["documents"].get("-identification.json", {}))
+    result.update({
         "parameters": parameters,
         "curves": out["tables"]["curves"],
         "usable": out["usable"],
         "notes": out["notes"],
         "message": out["message"],
-    }
+    })
+    return result
 
 
 def simulate(scenario="straight", **settings):
@@ -391,16 +398,51 @@ def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entr
         outputs=list(outputs), options=options, angle_axis=bool(angle_axis))
 
 
+_IDENTIFIED_TO_SOIL = {"Ks_kPa": "kphi", "n0": "n"}
+
+
+def _posterior_group(posterior, correlated, parameters):
+    """posterior= (a soil file with "posterior", e.g. ``identify --save-soil``'s, or a dict
+    {"parameters", "mean", "covariance"} in soil keys or the identification's names, or such a
+    file's dict) as a
+    study's correlated group; ValueError for a key also in `parameters` or both given."""
+    if posterior is None:
+        return correlated
+    if correlated is not None:
+        raise ValueError("give posterior= or correlated=, not both")
+    if isinstance(posterior, dict):
+        document = posterior
+    else:
+        import json
+
+        with open(os.fspath(posterior), encoding="utf-8") as f:
+            document = json.load(f)
+    group = document.get("posterior", document)
+    missing = [k for k in ("parameters", "mean", "covariance") if k not in group]
+    if missing:
+        raise ValueError(f"posterior: missing {', '.join(missing)}")
+    # The identification's names (identify --save-soil, identify --json's "covariance") of the
+    # two parameters whose soil keys differ: K_s is the saved soil's kphi (k_c = 0), n0 its n.
+    keys = [_IDENTIFIED_TO_SOIL.get(k, k) for k in group["parameters"]]
+    twice = [k for k in keys if k in parameters]
+    if twice:
+        raise ValueError(f"{twice[0]} is varied twice: by posterior= and by parameters")
+    return {"keys": keys, "mean": list(group["mean"]),
+            "covariance": [list(row) for row in group["covariance"]]}
+
+
 def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, load_N=None,
           entry_angle_deg=None, outputs=("Fx_N",), samples=4096, seed=1, *, correlated=None,
-          resamples=1000, confidence=0.95, max_failed_fraction=0.05, client=None, chunks=None,
-          threads=0, progress=None, **options):
+          posterior=None, resamples=1000, confidence=0.95, max_failed_fraction=0.05, client=None,
+          chunks=None, threads=0, progress=None, **options):
     """Sobol' first-order and total indices of the wheel model (docs/sensitivity.md).
 
     parameters: {soil file key: distribution} in the file's units, in the order of the indices'
     rows; a distribution is (low, high) (uniform), {"range": [low, high]} or {"normal": [mean,
     sd], "bounds": [low, high]} (bounds optional). correlated: {"keys", "mean", "covariance"}, a
-    multivariate normal group after them (an identification's posterior).
+    multivariate normal group after them (an identification's posterior); posterior: the same
+    from a soil file holding "posterior" (``identify --save-soil``) or its dict, in soil keys
+    and units (pass that file as `soil` too, so that the fields it does not vary are its own).
     slip, slip_angle_deg: the operating points; load_N (theta_f solved per sample; 58.86 N when
     neither is given) or entry_angle_deg. outputs: any of Fx_N, Fy_N, Fz_N, Mx_Nm, My_Nm, Mz_Nm, Fb_N, Fs_N,
     sinkage_m, entry_angle_deg, exit_angle_deg, and the compaction outputs max_sigma_z_kPa,
@@ -419,6 +461,7 @@ def sobol(soil, wheel, parameters, slip=(0.1, 0.3, 0.6), slip_angle_deg=0.0, loa
     """
     arguments = _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N,
                                  entry_angle_deg, outputs, options)
+    correlated = _posterior_group(posterior, correlated, parameters)
     arguments.update(correlated=correlated, samples=int(samples), seed=int(seed),
                      resamples=int(resamples), confidence=float(confidence),
                      max_failed_fraction=float(max_failed_fraction))

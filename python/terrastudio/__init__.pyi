@@ -133,6 +133,7 @@ def sobol(
     seed: int = 1,
     *,
     correlated: Mapping[str, Any] | None = None,
+    posterior: str | os.PathLike[str] | Mapping[str, Any] | None = None,
     resamples: int = 1000,
     confidence: float = 0.95,
     max_failed_fraction: float = 0.05,

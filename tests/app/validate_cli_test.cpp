@@ -336,4 +336,27 @@ TEST_F(ValidateCommand, AnUnconvergedCalibrationIsAFailure) {
         << r.err;
 }
 
+// Issue 25, item 5: a channel that the fit passes through, its noise estimated (the file's two
+// sinkage readings for seven free parameters), is no calibration: it used to report the sinkage
+// to 4.9e-15 mm. Exit 1 saying so; with the noise levels given it is one.
+TEST_F(ValidateCommand, ACalibrationThatInterpolatesIsNotUsable) {
+    const fs::path soil = dir_ / "calibrated.json";
+    CliRun r = run("validate --experiments " + kDing + " --calibrate --save-soil " + soil.string());
+    EXPECT_EQ(r.exit_code, 1) << r.err << r.out;
+    EXPECT_NE(r.err.find("error: calibration failed: the fit interpolates: "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("sinkage_m has 2 measured values for 7 free parameters and its noise is "
+                         "estimated: the fit passes through every one"),
+              std::string::npos)
+        << r.err;
+    // The six drawbar pulls, kept from their points by the sinkage, are no interpolation.
+    EXPECT_EQ(r.err.find("Fx_N has 6"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(soil));
+    r = run("validate --experiments " + kDing + " --calibrate --json");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(json::parse(r.out)["calibration"]["usable"], false);
+    r = run("validate --experiments " + kDing + " --calibrate --noise Fx_N=1,sinkage_m=0.001");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 }  // namespace

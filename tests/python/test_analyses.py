@@ -1,5 +1,7 @@
 """sweep, stresses, identify, simulate and run: the registry's analyses from Python."""
 
+import json
+
 import numpy as np
 import pytest
 import terrastudio as ts
@@ -75,6 +77,48 @@ def test_identify_from_columns_equals_from_csv(tmp_path):
     from_columns = ts.identify(data, WHEEL, refine=False)
     from_file = ts.identify(path, WHEEL, refine=False)
     assert from_columns["parameters"] == from_file["parameters"]
+
+
+def _same(a, b, where):
+    """a == b, numbers to 1e-9 relative (the same code on the same data), recursively."""
+    if isinstance(b, dict):
+        assert isinstance(a, dict) and set(a) == set(b), where
+        for key in b:
+            _same(a[key], b[key], f"{where}.{key}")
+    elif isinstance(b, list):
+        assert len(a) == len(b), where
+        for i, (x, y) in enumerate(zip(a, b)):
+            _same(x, y, f"{where}[{i}]")
+    elif isinstance(b, float) and not isinstance(b, bool):
+        assert a == pytest.approx(b, rel=1e-9, abs=1e-300), where
+    else:
+        assert a == b, where
+
+
+def test_identify_returns_what_the_command_line_prints(tmp_path, cli):
+    # Issue 25: ts.identify returned less than `identify --json` (no flags, no covariance, no
+    # held-out errors). Both print the core's one JSON; only the wall times differ.
+    data = tmp_path / "data.csv"
+    made = cli("synth", "--soil", SOIL, "--wheel", WHEEL, "--load", "30,58.86,90", "--slips",
+               "0.05:0.85:15", "--noise", "fx=1%,fz=1%,my=1%", "--out", data)
+    assert made.returncode == 0, made.stderr
+    printed = cli("identify", "--data", data, "--wheel", WHEEL, "--jmax", "0.02", "--folds", "3",
+                  "--json")
+    assert printed.returncode == 0, printed.stderr
+    expected = json.loads(printed.stdout)
+    out = ts.identify(data, WHEEL, jmax_m=0.02, folds=3)
+    assert out["usable"]
+    for step in expected["steps"] + out["steps"]:
+        del step["time_ms"]
+    for key, value in expected.items():
+        assert key in out, key
+        _same(out[key], value, key)
+    assert out["covariance"]["parameters"] == ["a0", "a1", "Ks_kPa", "n0", "c_kPa", "phi_deg",
+                                               "K_m"]
+    assert out["holdout"]["samples"] == 45
+    # The held-out step says what it did (it was an empty line).
+    held = [n for n in out["notes"] if n.startswith("held-out")]
+    assert held and "45 samples predicted" in held[0], out["notes"]
 
 
 def test_identify_bad_data():

@@ -1,6 +1,7 @@
 """Sobol' indices and Morris screening from Python: the core's estimator on a function with
 known indices, and the wheel study against an estimate computed here from ts.forces."""
 
+import json
 import math
 
 import numpy as np
@@ -109,3 +110,32 @@ def test_correlated_parameters():
                                "covariance": [[1.0, 0.001], [0.001, 1e-5]]},
                    samples=64, resamples=0)
     assert res["parameters"] == ["c_kPa", "phi_deg", "K_m"]
+
+
+def test_a_saved_posterior_is_the_command_lines_correlated_group(tmp_path, cli):
+    # `identify --save-soil` writes the posterior in the identification's names; ts.sobol(posterior=)
+    # reads them as soil keys and samples it
+    # as `gsa --posterior` does: the same indices.
+    data, soil = tmp_path / "data.csv", tmp_path / "identified.json"
+    made = cli("synth", "--soil", SOIL, "--wheel", WHEEL, "--load", "30,58.86,90", "--slips",
+               "0.05:0.85:15", "--noise", "fx=1%,fz=1%,my=1%", "--out", data)
+    assert made.returncode == 0, made.stderr
+    fit = cli("identify", "--data", data, "--wheel", WHEEL, "--jmax", "0.02", "--save-soil", soil)
+    assert fit.returncode == 0, fit.stderr
+    res = ts.sobol(soil, WHEEL, {}, slip=[0.3], samples=64, resamples=0, posterior=soil,
+                   model="quadratic")
+    assert res["parameters"] == ["a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"]
+    run = cli("gsa", "--posterior", soil, "--wheel", WHEEL, "--slip", 0.3, "--samples", 64,
+              "--resamples", 0, "--model", "quadratic", "--json")
+    assert run.returncode == 0, run.stderr
+    expected = json.loads(run.stdout)
+    np.testing.assert_allclose(res["S1"]["Fx_N"], np.array(expected["S1"]["Fx_N"]), rtol=1e-12)
+    with open(soil) as f:
+        document = json.load(f)
+    again = ts.sobol(soil, WHEEL, {}, slip=[0.3], samples=64, resamples=0,
+                     posterior=document["posterior"], model="quadratic")
+    np.testing.assert_array_equal(again["S1"]["Fx_N"], res["S1"]["Fx_N"])
+    with pytest.raises(ValueError, match="phi_deg is varied twice"):
+        ts.sobol(soil, WHEEL, {"phi_deg": (20, 30)}, posterior=soil, samples=8)
+    with pytest.raises(ValueError, match="not both"):
+        ts.sobol(soil, WHEEL, {}, posterior=soil, correlated=res, samples=8)

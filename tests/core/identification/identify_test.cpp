@@ -232,6 +232,29 @@ TEST(Identify, AmbiguousMinimaAreReportedWithBothAnswers) {
                 18.475, 1e-3);
 }
 
+TEST(Identify, TheTrendTestFlagsAMissingShearLimitAndNotTheRightModel) {
+    // Issue 25, item 3: data with j_max = 20 mm fitted by a model without it leave a smooth misfit
+    // along slip and a tight, wrong φ; with the data's j_max the residuals are noise. Ten seeds
+    // each, three loads, 1 % noise.
+    const ParameterVector truth = truthOf(soils::sandyLoam());
+    int flagged_wrong = 0, flagged_right = 0;
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+        const DataSet data = sweeps(soils::sandyLoam(), {30.0, 58.86, 90.0}, 0.01, seed);
+        const IdentificationReport right = identify(data, kWheelA, optionsFor(soils::sandyLoam()));
+        const IdentificationReport wrong = identify(data, kWheelA);  // no j_max
+        ASSERT_TRUE(right.usable() && wrong.usable()) << seed;
+        flagged_right += right.adequacy.flag;
+        flagged_wrong += wrong.adequacy.flag;
+        EXPECT_GT(right.adequacy.p, 1e-3) << seed;
+        EXPECT_LT(wrong.adequacy.p, 1e-3) << seed;  // measured 4e-6 to 1.2e-4
+        // What the flag is for: the wrong model's φ is many of its own std from the truth.
+        EXPECT_GT(std::abs(wrong.parameters[kPhi] - truth[kPhi]), 5.0 * wrong.uncertainty.std[kPhi])
+            << seed;
+    }
+    EXPECT_EQ(flagged_right, 0);
+    EXPECT_EQ(flagged_wrong, 10);
+}
+
 TEST(Identify, HeldOutErrorsMatchTheNoiseOnlyForTheRightModel) {
     const DataSet data = sweeps(soils::sandyLoam(), {30.0, 58.86, 90.0}, 0.01, 3);
     IdentifyOptions o = optionsFor(soils::sandyLoam());
