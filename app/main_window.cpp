@@ -97,9 +97,8 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         panel->installPlotMenus();
         connect(panel, &ui::AnalysisPanel::exportRequested, this, &MainWindow::exportCurrentPlot);
         connect(panel, &ui::AnalysisPanel::resultShown, this,
-                [this, title = titles[static_cast<int>(i)]](double ms) {
-                    statusBar()->showMessage(
-                        QString("%1 updated in %2 ms").arg(title).arg(ms, 0, 'f', 0), 5000);
+                [this, panel, title = titles[static_cast<int>(i)]] {
+                    statusBar()->showMessage(panel->resultMessage(title), 5000);
                 });
         connect(panel, &ui::AnalysisPanel::failed, this, [this](const QString& message) {
             statusBar()->showMessage("Error: " + message, 8000);

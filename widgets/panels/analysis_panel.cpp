@@ -5,6 +5,7 @@
 #include <QEvent>
 #include <QLabel>
 #include <QPointer>
+#include <QProgressBar>
 #include <QShowEvent>
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
@@ -76,6 +77,31 @@ void AnalysisPanel::cancelRunning() {
     if (cancel_) cancel_->store(true);
 }
 
+QString AnalysisPanel::resultMessage(const QString& tab) const {
+    if (completion_ == Completion::kComplete)
+        return QString("%1 updated in %2 ms").arg(tab).arg(last_latency_ms_, 0, 'f', 0);
+    return QString("%1: %2 after %3 ms — what was computed is shown")
+        .arg(tab, completionMark(completion_))
+        .arg(last_latency_ms_, 0, 'f', 0);
+}
+
+QString AnalysisPanel::markedStatus(const QString& text) const {
+    const QString mark = completionMark(completion_);
+    if (mark.isEmpty()) return text;
+    return text.isEmpty() ? "<b>" + mark + "</b>" : "<b>" + mark + "</b> — " + text;
+}
+
+void AnalysisPanel::trackProgress(QProgressBar* bar) {
+    progress_bar_ = bar;
+    bar->setObjectName("panel.progress");
+    bar->setRange(0, 100);
+    connect(this, &AnalysisPanel::busyChanged, bar, [bar](bool busy) {
+        if (!busy) return;
+        bar->setValue(0);
+        bar->setFormat(progressFormat(Completion::kComplete));
+    });
+}
+
 void AnalysisPanel::installPlotMenus() {
     for (const auto& [name, plot] : plots()) {
         installPlotMenu(*plot,
@@ -135,6 +161,11 @@ void AnalysisPanel::finished() {
         return;
     }
     presentOutcome(outcome);
+    if (progress_bar_) {
+        // Only a complete result is 100 %: a partial one stays where it stopped and says why.
+        if (completion_ == Completion::kComplete) progress_bar_->setValue(100);
+        progress_bar_->setFormat(progressFormat(completion_));
+    }
     last_latency_ms_ = static_cast<double>(since_edit_.nsecsElapsed()) / 1e6;
     emit resultShown(last_latency_ms_);
 }
@@ -142,7 +173,9 @@ void AnalysisPanel::finished() {
 void AnalysisPanel::presentOutcome(const Outcome& outcome) {
     QElapsedTimer drawing;
     drawing.start();
-    present(outcome.value);
+    completion_ = outcome.cancelled ? Completion::kCancelled : Completion::kComplete;
+    present(outcome.value);  // may refine completion_ from the result's own status
+    has_result_ = true;
     last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
     since_shown_.start();
 }

@@ -5,7 +5,10 @@
 /// result of the newest state (by revision). An edit asks the running computation to cancel and
 /// drops its result, unless nothing new has been drawn for kMaxFrameGapMs: then it runs to the end
 /// and is shown as an intermediate frame before the newest state is computed, so that a continuous
-/// drag keeps the plot moving. A run the user cancels shows what it computed. Reports the time
+/// drag keeps the plot moving. A run the user cancels shows what it computed, and every panel says
+/// so the same way (completion.h): its progress bar stays where the run stopped ("8 %
+/// (cancelled)"), its status line and plot titles carry "CANCELLED (partial)", and so do the
+/// studio's status bar (resultMessage()) and the exported figures (their titles). Reports the time
 /// from the edit to the repainted plot.
 
 #include <QElapsedTimer>
@@ -19,9 +22,11 @@
 #include <vector>
 
 #include "core/common/table.h"
+#include "widgets/plots/completion.h"
 
 class QCustomPlot;
 class QLabel;
+class QProgressBar;
 
 namespace terra::ui {
 
@@ -52,6 +57,16 @@ public:
     void recompute() { scheduleUpdate(); }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
     void cancelRunning();
+    /// Whether a result is on screen, and how complete it is (a cancelled run's is partial).
+    bool hasResult() const { return has_result_; }
+    Completion completion() const { return completion_; }
+    /// The studio's status-bar line about the result on screen, for the tab titled `tab`:
+    /// "Global sensitivity updated in 120 ms", or "Global sensitivity: CANCELLED (partial) after
+    /// 2964 ms — what was computed is shown".
+    QString resultMessage(const QString& tab) const;
+    /// `text` for the panel's status line, led by the mark of a partial result in bold
+    /// ("<b>CANCELLED (partial)</b> — 1024 model evaluations"); as is when complete.
+    QString markedStatus(const QString& text) const;
     /// Gives every plot of plots() the right-click menu (plot_menu.h): "Export plot…" emits
     /// exportRequested(), "Copy data" copies currentTable().
     void installPlotMenus();
@@ -72,6 +87,15 @@ protected:
     virtual Job makeJob() = 0;
     /// Shows a result (GUI thread); replots.
     virtual void present(const std::any& result) = 0;
+
+    /// How complete the result being presented is, when the result knows better than the cancel
+    /// flag (a run that diverged, or completed before the cancel arrived): call in present(),
+    /// before drawing. Before present() it is kCancelled when the run saw its cancel flag.
+    void setCompletion(Completion completion) { completion_ = completion; }
+    /// The panel's progress bar, kept honest here for every panel: 0 % when a run starts, 100 %
+    /// only when the result shown is complete, else where it stopped with the reason
+    /// ("8 % (cancelled)").
+    void trackProgress(QProgressBar* bar);
 
     /// Recompute after the current event (coalescing a burst of edits).
     void scheduleUpdate();
@@ -112,6 +136,9 @@ private:
     QElapsedTimer since_shown_;  // since the last present()
     double last_latency_ms_ = 0.0;
     double last_present_ms_ = 0.0;
+    bool has_result_ = false;
+    Completion completion_ = Completion::kComplete;
+    QProgressBar* progress_bar_ = nullptr;
 };
 
 }  // namespace terra::ui

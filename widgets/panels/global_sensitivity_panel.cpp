@@ -108,7 +108,7 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
     cancel_ = new QPushButton("Cancel", this);
     cancel_->setEnabled(false);
     progress_ = new QProgressBar(this);
-    progress_->setRange(0, 100);
+    trackProgress(progress_);
     status_ = new QLabel(this);
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
@@ -158,7 +158,6 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
         cancel_->setEnabled(busy);
         if (busy) {
             fraction_->store(0.0);
-            progress_->setValue(0);
             progress_timer_->start();
             status_->setText("Computing…");
         } else {
@@ -294,7 +293,14 @@ AnalysisPanel::Job GlobalSensitivityPanel::makeJob() {
 
 void GlobalSensitivityPanel::present(const std::any& value) {
     const auto& computed = std::any_cast<const Computed&>(value);
-    progress_->setValue(100);
+    // The study's own status (it knows whether it ran to the end), not the cancel flag alone.
+    const gsa::StudyStatus status =
+        computed.indices
+            ? computed.indices->status()
+            : (computed.bands ? computed.bands->bands.status : gsa::StudyStatus::kCompleted);
+    setCompletion(status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
+                                                         : Completion::kComplete);
+    progress_->setValue(static_cast<int>(100.0 * fraction_->load()));  // where it stopped
     if (computed.indices) indices_ = computed.indices;
     if (computed.bands) bands_ = computed.bands;
     QString message;
@@ -311,7 +317,7 @@ void GlobalSensitivityPanel::present(const std::any& value) {
         if (!computed.bands->bands.message.empty())
             message += "; " + QString::fromStdString(computed.bands->bands.message);
     }
-    status_->setText(message);
+    status_->setText(markedStatus(message.toHtmlEscaped()));
     redraw();
 }
 
@@ -323,10 +329,15 @@ void GlobalSensitivityPanel::redraw() {
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
             .arg(slip_angle_->value());
+    // Each page's title says whether its own study was cancelled (the other page's may not be).
+    auto marked = [&title](gsa::StudyStatus status) {
+        return markedTitle(title, status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
+                                                                         : Completion::kComplete);
+    };
     if (indices_ && output < indices_->outputs().size())
-        plotGlobalIndices(*indices_plot_, *indices_, output, 0, title);
+        plotGlobalIndices(*indices_plot_, *indices_, output, 0, marked(indices_->status()));
     if (bands_ && output < bands_->bands.outputs.size())
-        plotUncertaintyBands(*bands_plot_, *bands_, output, 0, title);
+        plotUncertaintyBands(*bands_plot_, *bands_, output, 0, marked(bands_->bands.status));
 }
 
 std::vector<std::pair<QString, QCustomPlot*>> GlobalSensitivityPanel::plots() const {

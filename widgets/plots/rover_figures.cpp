@@ -230,10 +230,23 @@ void setRoverTimeCursor(QCustomPlot& plot, const Table& t, const std::string& ke
     line->point2->setCoords(time, 1.0);
 }
 
+Completion roverCompletion(scenario::RunResult::Status status) {
+    switch (status) {
+        case scenario::RunResult::Status::kCompleted:
+            return Completion::kComplete;
+        case scenario::RunResult::Status::kCancelled:
+            return Completion::kCancelled;
+        case scenario::RunResult::Status::kDiverged:
+            break;
+    }
+    return Completion::kDiverged;
+}
+
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status) {
-    const char* text[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
-    return QString("%1 — %2").arg(QString::fromStdString(scenario_name),
-                                  text[static_cast<int>(status)]);
+    const QString name = QString::fromStdString(scenario_name);
+    const Completion completion = roverCompletion(status);
+    return completion == Completion::kComplete ? name + " — completed"
+                                               : markedTitle(name, completion);
 }
 
 RoverPose roverPoseAt(const Table& t, std::size_t row) {
