@@ -2,47 +2,18 @@
 
 #include <qcustomplot.h>
 
-#include <QEvent>
 #include <QLabel>
-#include <QPointer>
 #include <QProgressBar>
 #include <QShowEvent>
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
 #include "widgets/document/project_document.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_menu.h"
+#include "widgets/plots/plot_readout.h"
 
 namespace terra::ui {
-namespace {
-
-/// "Drawbar pull F_x = 120 N" from an axis label "Drawbar pull F_x [N]" and a coordinate.
-QString readoutPart(const QString& label, double value) {
-    const QString name = label.section(" [", 0, 0);
-    QString unit = label.section(" [", 1).section(']', 0, 0);
-    if (unit == "-") unit.clear();
-    return QString("%1 = %2%3")
-        .arg(name)
-        .arg(value, 0, 'g', 4)
-        .arg(unit.isEmpty() ? "" : " " + unit);
-}
-
-/// Clears a read-out when its plot stops being under the mouse or on screen.
-class ReadoutReset : public QObject {
-public:
-    ReadoutReset(QLabel* readout, QObject* parent) : QObject(parent), readout_(readout) {}
-    bool eventFilter(QObject* watched, QEvent* event) override {
-        if (event->type() == QEvent::Leave || event->type() == QEvent::Hide) {
-            if (readout_) readout_->clear();
-        }
-        return QObject::eventFilter(watched, event);
-    }
-
-private:
-    QPointer<QLabel> readout_;
-};
-
-}  // namespace
 
 AnalysisPanel::AnalysisPanel(ProjectDocument* document, const QString& name, QWidget* parent)
     : QWidget(parent), document_(document), name_(name) {
@@ -185,14 +156,8 @@ void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     // The read-out's text must never widen the panel (a scroll bar would come and go with the
     // mouse): with an explicit minimum, the layout may shrink it below its text when room is short.
     if (readout->minimumWidth() == 0) readout->setMinimumWidth(120);
-    plot->setMouseTracking(true);
-    QObject::connect(plot, &QCustomPlot::mouseMove, readout, [plot, readout](QMouseEvent* event) {
-        const double x = plot->xAxis->pixelToCoord(event->position().x());
-        const double y = plot->yAxis->pixelToCoord(event->position().y());
-        readout->setText(readoutPart(plot->xAxis->label(), x) + ",  " +
-                         readoutPart(plot->yAxis->label(), y));
-    });
-    plot->installEventFilter(new ReadoutReset(readout, plot));
+    installReadout(*plot, readout);
+    installLegendControls(*plot);
     // Double-click: back to the whole data.
     QObject::connect(plot, &QCustomPlot::mouseDoubleClick, plot, [plot](QMouseEvent*) {
         plot->rescaleAxes();

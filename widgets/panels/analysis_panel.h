@@ -101,9 +101,10 @@ protected:
     void scheduleUpdate();
     /// Whether project edits recompute automatically (false: only recompute()).
     void setLive(bool live) { live_ = live; }
-    /// Enables drag/zoom and a read-out of the mouse position in `readout`, with the axes' units
-    /// ("Slip ratio s = 0.25, Drawbar pull F_x = 120 N"); it is cleared when the mouse leaves the
-    /// plot or the plot is hidden (another tab), so it never describes a plot out of sight.
+    /// Enables drag/zoom, a read-out in `readout` of the curve point nearest the mouse with the
+    /// axes' units ("Slip ratio s = 0.25, Drawbar pull F_x = 120 N — β = 0°"; plot_readout.h),
+    /// cleared when the mouse leaves the plot or the plot is hidden (another tab), and a legend
+    /// the user can drag, hide and put back under the axes (plot_legend.h).
     static void makeInteractive(QCustomPlot* plot, QLabel* readout);
     void storeSettings();
     /// The panel's settings with `changes` over them, for applySettings: an object of some keys

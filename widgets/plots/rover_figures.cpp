@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "widgets/plots/figures.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/sweep_plot.h"
 
 namespace terra::ui {
@@ -369,15 +370,14 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     }
     plot.xAxis->setRange(x0, x1);
     plot.yAxis->setRange(y0, y1);
-    plot.replot();  // lays out the axis rect: the scale ratio needs its size in pixels
+    layOutLegend(plot);  // under the axes before they are measured
+    plot.replot();       // lays out the axis rect: the scale ratio needs its size in pixels
     if ((x1 - x0) / std::max(plot.axisRect()->width(), 1) >=
         (y1 - y0) / std::max(plot.axisRect()->height(), 1)) {
         plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
     } else {
         plot.xAxis->setScaleRatio(plot.yAxis, 1.0);
     }
-    // Bottom right: the labels of the soils sit at the top-left corners of their areas.
-    plot.axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
     if (!t.rows.empty()) {
         setRoverTopViewPose(plot, robot, t, std::min(row, t.rows.size() - 1));
     } else {
