@@ -12,6 +12,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QScrollArea>
+#include <QSignalSpy>
 #include <QSlider>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -21,11 +22,14 @@
 #include <QUndoStack>
 #include <functional>
 
+#include "core/io/atomic_file.h"
+#include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/editors/validated_spin_box.h"
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/experiment_actions.h"
+#include "widgets/panels/global_sensitivity_panel.h"
 
 namespace terra::app {
 namespace {
@@ -264,6 +268,49 @@ TEST(MainWindow, CtrlZWorksWithTheCursorInAField) {
     QTest::keyClick(phi, Qt::Key_Z, Qt::ControlModifier);
     EXPECT_DOUBLE_EQ(phi->value(), 33.0);
     EXPECT_EQ(document->undoStack()->index(), 1);
+}
+
+// Issue 27: a project saved with 100,000 global-sensitivity samples started a 1.8 M-evaluation
+// study as soon as its tab was opened.
+TEST(MainWindow, OpeningAProjectWithAHeavyStudyComputesNothingUntilAsked) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("heavy.terra");
+    {
+        Studio studio;
+        QString error;
+        ASSERT_TRUE(studio.window.document()->save(path, &error)) << error.toStdString();
+    }
+    std::string text;
+    ASSERT_FALSE(io::readFile(path.toStdString(), text));
+    nlohmann::json project = nlohmann::json::parse(text);
+    project::GlobalSensitivityPanelSettings heavy;
+    heavy.samples = 100000;
+    project["panels"]["global-sensitivity"] = project::toJson(heavy);
+    ASSERT_FALSE(io::writeFileAtomically(path.toStdString(), project.dump(1)));
+
+    Studio studio;
+    ASSERT_TRUE(studio.window.openProject(path, true));
+    auto* panel = studio.window.findChild<ui::GlobalSensitivityPanel*>();
+    ASSERT_NE(panel, nullptr);
+    EXPECT_EQ(panel->plannedEvaluations(), 1800000u);  // 100,000 × (4 + 2) × 3 slips
+    QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
+    studio.window.showPanel("global-sensitivity");
+    settle(500);
+    EXPECT_EQ(busy.count(), 0) << "the study started by itself";
+    EXPECT_FALSE(panel->isBusy());
+    EXPECT_FALSE(panel->indices().has_value());
+    EXPECT_TRUE(panel->statusText().startsWith("Not computed"))
+        << panel->statusText().toStdString();
+    EXPECT_TRUE(panel->statusText().contains("press Compute"));
+
+    // Asked, it runs.
+    panel->compute();
+    ASSERT_TRUE(busy.wait(5000));
+    EXPECT_TRUE(panel->isBusy());
+    QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+    panel->cancelRunning();
+    ASSERT_TRUE(shown.wait(60000));
+    EXPECT_EQ(panel->completion(), ui::Completion::kCancelled);
 }
 
 }  // namespace

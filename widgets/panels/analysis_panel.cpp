@@ -85,20 +85,22 @@ void AnalysisPanel::showEvent(QShowEvent* event) {
     if (deferred_) scheduleUpdate();
 }
 
-void AnalysisPanel::start() {
+bool AnalysisPanel::start() {
     // A hidden tab of a shown window waits until it is shown: the visible panel gets the cores.
     if (!isVisible() && window()->isVisible()) {
         deferred_ = true;
-        return;
+        return false;
     }
     deferred_ = false;
-    if (watcher_.isRunning()) return;  // finished() restarts with the newest state
+    if (watcher_.isRunning()) return true;  // finished() restarts with the newest state
+    if (!requested_ && !startsByItself()) return false;
+    requested_ = false;
     Job job;
     try {
         job = makeJob();
     } catch (const std::exception& e) {
         emit failed(QString::fromUtf8(e.what()));
-        return;
+        return false;
     }
     const int revision = revision_;
     cancel_ = std::make_shared<std::atomic<bool>>(false);
@@ -115,6 +117,7 @@ void AnalysisPanel::start() {
         out.cancelled = cancel->load();
         return out;
     }));
+    return true;
 }
 
 void AnalysisPanel::finished() {
@@ -123,7 +126,7 @@ void AnalysisPanel::finished() {
         // Stale. A computation that was let run to the end (see scheduleUpdate) is shown as an
         // intermediate frame; a cancelled one is dropped. Either way the newest state follows.
         if (!outcome.cancelled && outcome.error.isEmpty()) presentOutcome(outcome);
-        start();
+        if (!start()) emit busyChanged(false);  // waiting (hidden, or not by itself): not busy
         return;
     }
     emit busyChanged(false);

@@ -53,8 +53,12 @@ public:
     /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
     /// work per update, the rest runs on workers.
     double lastPresentMs() const { return last_present_ms_; }
-    /// Starts a computation now (the identification panel's "Fit"; also for tests).
-    void recompute() { scheduleUpdate(); }
+    /// Starts a computation now (the identification panel's "Fit"; also for tests), even one that
+    /// does not start by itself (startsByItself()).
+    void recompute() {
+        requested_ = true;
+        scheduleUpdate();
+    }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
     void cancelRunning();
     /// Whether a result is on screen, and how complete it is (a cancelled run's is partial).
@@ -87,6 +91,10 @@ protected:
     virtual Job makeJob() = 0;
     /// Shows a result (GUI thread); replots.
     virtual void present(const std::any& result) = 0;
+    /// Whether an update nobody asked for (the panel's first show, a project edit) may start now,
+    /// asked just before it would. A panel whose computation can be heavy says no, and shows why
+    /// ("not computed: press Compute"); recompute() starts regardless.
+    virtual bool startsByItself() { return true; }
 
     /// How complete the result being presented is, when the result knows better than the cancel
     /// flag (a run that diverged, or completed before the cancel arrived): call in present(),
@@ -122,7 +130,7 @@ private:
     };
     /// Longest time the screen may go without a new result while edits keep arriving [ms].
     static constexpr qint64 kMaxFrameGapMs = 150;
-    void start();
+    bool start();  // true when a computation runs after it
     void finished();
     void presentOutcome(const Outcome& outcome);
 
@@ -133,6 +141,7 @@ private:
     bool start_queued_ = false;
     bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
+    bool requested_ = false;  // recompute() asked for the next computation
     QElapsedTimer since_edit_;
     QElapsedTimer since_shown_;  // since the last present()
     double last_latency_ms_ = 0.0;

@@ -24,6 +24,7 @@
 #include "core/project/panels.h"
 #include "core/soil/soil_parameters.h"
 #include "widgets/document/project_document.h"
+#include "widgets/plots/figures.h"
 #include "widgets/plots/gsa_figures.h"
 
 namespace terra::ui {
@@ -170,7 +171,45 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
         cancel_->setEnabled(false);
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
     });
-    scheduleUpdate();  // the example study's indices once the panel is first shown
+    // The example study's indices once the panel is first shown, unless the study is heavy then
+    // (startsByItself).
+    scheduleUpdate();
+}
+
+std::size_t GlobalSensitivityPanel::plannedEvaluations() const {
+    if (pages_->currentIndex() == 1) {
+        const analysis::UncertaintyBandSettings s = bandSettings();
+        return s.samples * static_cast<std::size_t>(s.slip_count) * s.study.slip_angles_deg.size();
+    }
+    const analysis::GlobalSensitivitySettings s = indexSettings();
+    const std::size_t d =
+        s.study.parameters.size() + (s.study.correlated ? s.study.correlated->keys.size() : 0);
+    const std::size_t runs = s.method == analysis::GsaMethod::kMorris ? d + 1 : d + 2;
+    return s.samples * runs * s.study.slips.size() * s.study.slip_angles_deg.size();
+}
+
+QString GlobalSensitivityPanel::statusText() const { return status_->text(); }
+
+bool GlobalSensitivityPanel::startsByItself() {
+    std::size_t evaluations = 0;
+    try {
+        evaluations = plannedEvaluations();
+    } catch (const std::exception&) {
+        return true;  // the computation reports what is wrong with the settings
+    }
+    if (evaluations <= kAutomaticEvaluations) return true;
+    const QString text = QString(
+                             "Not computed: this study takes %L1 model evaluations — press "
+                             "Compute to run it.")
+                             .arg(evaluations);
+    status_->setText(text);
+    const bool bands = pages_->currentIndex() == 1;
+    if (bands ? !bands_ : !indices_) {
+        QCustomPlot* plot = currentPlot();
+        resetPlot(*plot, "Not computed: press Compute");
+        plot->replot();
+    }
+    return false;
 }
 
 void GlobalSensitivityPanel::showPage(int page) { pages_->setCurrentIndex(page); }
