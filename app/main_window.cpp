@@ -96,14 +96,18 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         tabs_->addTab(scrollable(panel), titles[static_cast<int>(i)]);
         panel->installPlotMenus();
         connect(panel, &ui::AnalysisPanel::exportRequested, this, &MainWindow::exportCurrentPlot);
+        // The status bar speaks of the tab on screen only ("Sensitivity updated…" stayed there
+        // on other tabs); a panel's own status line keeps its news.
         connect(panel, &ui::AnalysisPanel::resultShown, this,
                 [this, panel, title = titles[static_cast<int>(i)]] {
-                    statusBar()->showMessage(panel->resultMessage(title), 5000);
+                    if (panel == currentPanel())
+                        statusBar()->showMessage(panel->resultMessage(title), 5000);
                 });
-        connect(panel, &ui::AnalysisPanel::failed, this, [this](const QString& message) {
-            statusBar()->showMessage("Error: " + message, 8000);
+        connect(panel, &ui::AnalysisPanel::failed, this, [this, panel](const QString& message) {
+            if (panel == currentPanel()) statusBar()->showMessage("Error: " + message, 8000);
         });
     }
+    connect(tabs_, &QTabWidget::currentChanged, statusBar(), &QStatusBar::clearMessage);
     setCentralWidget(tabs_);
 
     auto* tree = new ui::ProjectTree(document_, this);
@@ -173,6 +177,7 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     }
     createMenus();
 
+    adoptPanelSettings();
     connect(document_, &ui::ProjectDocument::modifiedChanged, this, &MainWindow::updateTitle);
     connect(document_, &ui::ProjectDocument::filePathChanged, this, &MainWindow::updateTitle);
     updateTitle();
@@ -229,7 +234,7 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     }
     // The panels taking the file's settings write them back (in their own form, defaults
     // filled in): that is not an edit. The opened project is what is on disk.
-    document_->markUnmodified();
+    adoptPanelSettings();
     addRecent(QFileInfo(path).absoluteFilePath());
     statusBar()->showMessage("Opened " + path, 4000);
     return true;
@@ -238,6 +243,15 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
 void MainWindow::newProject() {
     if (!maybeSave()) return;
     document_->reset(ui::ProjectDocument::defaultProject(locations_));
+    adoptPanelSettings();
+}
+
+void MainWindow::adoptPanelSettings() {
+    // The panels' settings as the project's starting point: storing them again (Run stores the
+    // scenario) or undoing back to it is no change, and leaves no "*".
+    for (ui::AnalysisPanel* panel : panels_)
+        document_->setPanelSettings(panel->name().toStdString(), panel->settings());
+    document_->markUnmodified();
 }
 
 bool MainWindow::save() {

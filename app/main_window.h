@@ -55,6 +55,7 @@ private:
     bool saveTo(const QString& path);
     bool saveAs();
     void newProject();
+    void adoptPanelSettings();
     void exportCurrentPlot();
     void exportCurrentData();
     void addRecent(const QString& path);

@@ -11,9 +11,11 @@
 #include <QDialog>
 #include <QFile>
 #include <QFileDialog>
+#include <QPushButton>
 #include <QScrollArea>
 #include <QSignalSpy>
 #include <QSlider>
+#include <QStatusBar>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -30,6 +32,7 @@
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/global_sensitivity_panel.h"
+#include "widgets/panels/rover_panel.h"
 
 namespace terra::app {
 namespace {
@@ -268,6 +271,64 @@ TEST(MainWindow, CtrlZWorksWithTheCursorInAField) {
     QTest::keyClick(phi, Qt::Key_Z, Qt::ControlModifier);
     EXPECT_DOUBLE_EQ(phi->value(), 33.0);
     EXPECT_EQ(document->undoStack()->index(), 1);
+}
+
+// Issue 27: undoing back to a new project's start kept the "*" of an unsaved change.
+TEST(MainWindow, UndoingBackToANewProjectsStartClearsTheModifiedMark) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* document = w.document();
+    settle(300);  // the panels' first results
+    ASSERT_FALSE(document->isModified());
+    for (const char* panel : {"stresses", "compaction", "sensitivity", "forces"}) {
+        w.showPanel(panel);
+        settle(200);
+    }
+    // Run stores the rover's scenario in the project: the one it had, so no change.
+    w.showPanel("rover");
+    auto* rover = w.findChild<ui::RoverPanel*>();
+    QPushButton* run = nullptr;
+    for (QPushButton* button : rover->findChildren<QPushButton*>()) {
+        if (button->text() == "Run") run = button;
+    }
+    ASSERT_NE(run, nullptr);
+    QSignalSpy shown(rover, &ui::AnalysisPanel::resultShown);
+    run->click();
+    QTest::qWaitFor([rover] { return rover->isBusy(); }, 5000);
+    rover->cancelRunning();
+    ASSERT_TRUE(shown.count() > 0 || shown.wait(60000));
+    EXPECT_FALSE(w.isWindowModified()) << "Run is no edit";
+    w.showPanel("forces");
+    ASSERT_TRUE(document->setSoilValue("phi_deg", 33.0));
+    settle(300);
+    EXPECT_TRUE(w.isWindowModified());
+    document->undoStack()->undo();
+    settle(300);
+    EXPECT_FALSE(document->isModified());
+    EXPECT_FALSE(w.isWindowModified()) << w.windowTitle().toStdString();
+}
+
+// Issue 27: "Sensitivity updated in 55 ms" stayed in the status bar on another tab.
+TEST(MainWindow, TheStatusBarSpeaksOfTheTabOnScreenOnly) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.showPanel("sensitivity");
+    settle(500);
+    ASSERT_TRUE(w.document()->setSoilValue("phi_deg", 31.0));
+    settle(500);
+    EXPECT_TRUE(w.statusBar()->currentMessage().startsWith("Sensitivity updated"))
+        << w.statusBar()->currentMessage().toStdString();
+    w.showPanel("rover");  // runs on request: nothing new to say
+    settle(100);
+    EXPECT_FALSE(w.statusBar()->currentMessage().contains("Sensitivity"))
+        << w.statusBar()->currentMessage().toStdString();
+    // A panel recomputing out of sight (the rover's soil edits do not) says nothing either.
+    w.showPanel("forces");
+    settle(500);
+    ASSERT_TRUE(w.document()->setSoilValue("phi_deg", 30.0));
+    settle(800);
+    EXPECT_FALSE(w.statusBar()->currentMessage().contains("Sensitivity"))
+        << w.statusBar()->currentMessage().toStdString();
 }
 
 // Issue 27: a project saved with 100,000 global-sensitivity samples started a 1.8 M-evaluation
