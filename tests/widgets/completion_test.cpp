@@ -48,7 +48,7 @@ void runAndCancel(AnalysisPanel& panel, const std::function<void()>& start) {
     ASSERT_TRUE(shown.count() > 0 || shown.wait(120000));
 }
 
-TEST(Completion, TheSameWordsForEveryKindOfPartialResult) {
+TEST(PlotCompletionWords, TheSameWordsForEveryKindOfPartialResult) {
     EXPECT_EQ(completionMark(Completion::kComplete), "");
     EXPECT_EQ(completionMark(Completion::kCancelled), "CANCELLED (partial)");
     EXPECT_EQ(markedTitle("sandy loam", Completion::kDiverged), "sandy loam — DIVERGED (partial)");
@@ -59,7 +59,7 @@ TEST(Completion, TheSameWordsForEveryKindOfPartialResult) {
 }
 
 // It showed 100 %, "Global sensitivity updated in 2964 ms" and an unmarked title after a cancel.
-TEST(HonestStates, ACancelledGlobalStudySaysSoInTheBarTheStatusTheTitleAndTheStatusBar) {
+TEST(PanelHonestStates, ACancelledGlobalStudySaysSoInTheBarTheStatusTheTitleAndTheStatusBar) {
     ProjectDocument document;
     test::resetToDefault(document);
     GlobalSensitivityPanel panel(&document);
@@ -96,7 +96,7 @@ TEST(HonestStates, ACancelledGlobalStudySaysSoInTheBarTheStatusTheTitleAndTheSta
 }
 
 // The compaction panel marked its titles; the status bar said "updated" all the same.
-TEST(HonestStates, ACancelledCompactionRunIsMarkedInTheStatusBarLineToo) {
+TEST(PanelHonestStates, ACancelledCompactionRunIsMarkedInTheStatusBarLineToo) {
     ProjectDocument document;
     test::resetToDefault(document);
     CompactionPanel panel(&document, test::resources());
@@ -121,7 +121,7 @@ void editDuration(RoverPanel& panel, double duration_s) {
 
 // After a cancel and Revert, the top view said "not run yet" while the other tabs showed the
 // cancelled run, and exporting the top view wrote a "not run yet" figure.
-TEST(HonestStates, RevertAfterACancelledRoverRunLeavesEveryTabOnThatRun) {
+TEST(PanelHonestStates, RevertAfterACancelledRoverRunLeavesEveryTabOnThatRun) {
     ProjectDocument document;
     test::resetToDefault(document);
     RoverPanel panel(&document, test::resources());

@@ -30,7 +30,7 @@ int decimalsOf(const QString& text) {
     return point < 0 ? 0 : static_cast<int>(text.size() - point - 1);
 }
 
-TEST(NumberFormat, ValuesCarryTheDigitsTheirStdSupports) {
+TEST(PanelNumberFormat, ValuesCarryTheDigitsTheirStdSupports) {
     EXPECT_EQ(formatStd(0.0137), "0.014");
     EXPECT_EQ(formatStd(73.2), "73");
     EXPECT_EQ(formatStd(0.84), "0.84");
@@ -43,7 +43,7 @@ TEST(NumberFormat, ValuesCarryTheDigitsTheirStdSupports) {
     EXPECT_EQ(formatWithStd(-0.0004, 0.19), "0");
 }
 
-TEST(NumberFormat, RoundingNoiseIsZeroAndSmallValuesKeepTheirDigits) {
+TEST(PanelNumberFormat, RoundingNoiseIsZeroAndSmallValuesKeepTheirDigits) {
     EXPECT_EQ(formatNumber(-1.25e-18, 100.0), "0");  // c at its bound of 0 kPa
     EXPECT_EQ(formatNumber(0.0023, 100.0), "0.0023");
     EXPECT_EQ(formatNumber(28.8297394, 60.0), "28.83");
@@ -56,7 +56,7 @@ TEST(NumberFormat, RoundingNoiseIsZeroAndSmallValuesKeepTheirDigits) {
 }
 
 // The fitted parameters' table: each value to the decimal place of its std.
-TEST(NumberFormat, TheIdentifiedParametersShowTheDigitsOfTheirStd) {
+TEST(PanelNumberFormat, TheIdentifiedParametersShowTheDigitsOfTheirStd) {
     ProjectDocument document;
     test::resetToDefault(document);
     IdentificationPanel panel(&document);
@@ -75,7 +75,7 @@ TEST(NumberFormat, TheIdentifiedParametersShowTheDigitsOfTheirStd) {
     EXPECT_GE(checked, 6);
 }
 
-TEST(SpinBox, ASmallValueFromTheModelIsShownNotRoundedAway) {
+TEST(EditorSpinBox, ASmallValueFromTheModelIsShownNotRoundedAway) {
     ProjectDocument document;
     test::resetToDefault(document);
     SoilEditor editor(&document, test::resources());
@@ -86,7 +86,7 @@ TEST(SpinBox, ASmallValueFromTheModelIsShownNotRoundedAway) {
 }
 
 // "c: "c" is not a number" read as if the field were the problem.
-TEST(SpinBox, ARefusedKeystrokeIsNamedAsAKeyOfANamedField) {
+TEST(EditorSpinBox, ARefusedKeystrokeIsNamedAsAKeyOfANamedField) {
     ProjectDocument document;
     test::resetToDefault(document);
     SoilEditor editor(&document, test::resources());
@@ -106,7 +106,7 @@ TEST(SpinBox, ARefusedKeystrokeIsNamedAsAKeyOfANamedField) {
 }
 
 // A refused grouser height stayed under the wheel's fields many edits later.
-TEST(StaleMessages, AnEditorsRefusalGoesAtTheNextEditOfTheProject) {
+TEST(EditorStaleMessages, AnEditorsRefusalGoesAtTheNextEditOfTheProject) {
     ProjectDocument document;
     test::resetToDefault(document);
     WheelEditor editor(&document, test::resources());
@@ -130,7 +130,7 @@ TEST(StaleMessages, AnEditorsRefusalGoesAtTheNextEditOfTheProject) {
     EXPECT_EQ(messageOf(editor), flagged);
 }
 
-TEST(PresetNames, PresetsAreListedByNameAndStoredById) {
+TEST(EditorPresetNames, PresetsAreListedByNameAndStoredById) {
     ProjectDocument document;
     test::resetToDefault(document);
     SoilEditor editor(&document, test::resources());
