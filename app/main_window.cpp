@@ -28,10 +28,12 @@
 #include <cstdio>
 
 #include "widgets/document/project_document.h"
+#include "widgets/document/suggested_paths.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/experiment_actions.h"
+#include "widgets/panels/file_drops.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
@@ -128,39 +130,27 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         editors_);
     scenarios->setWordWrap(true);
     editors_->addWidget(scenarios);
-    auto* test_page = new QWidget(editors_);
-    auto* test_text = new QLabel(
-        "A measured single-wheel test (docs/validation.md): the Forces vs slip panel draws its "
-        "points over the model, gives the errors and calibrates the soil to it.",
-        test_page);
-    test_text->setWordWrap(true);
-    auto* load_test = new QPushButton("Load experiment…", test_page);
-    auto* test_layout = new QVBoxLayout(test_page);
-    test_layout->addWidget(test_text);
-    test_layout->addWidget(load_test);
-    test_layout->addStretch(1);
-    editors_->addWidget(test_page);
-    connect(load_test, &QPushButton::clicked, this, [this] {
-        if (ui::promptLoadExperiment(this, *document_, locations_)) showPanel("forces");
-    });
+    editors_->addWidget(
+        ui::experimentPage(editors_, *document_, locations_, [this] { showPanel("forces"); }));
     connect(tree, &ui::ProjectTree::pageRequested, editors_, &QStackedWidget::setCurrentIndex);
-    connect(load_data, &QPushButton::clicked, this, [this, identification] {
+    connect(load_data, &QPushButton::clicked, this, [this] {
         const QString path =
-            QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
-        if (path.isEmpty()) return;
-        identification->setDataFile(path);
-        showPanel("identification");
+            QFileDialog::getOpenFileName(this, "Load identification data",
+                                         ui::startFolder(document_->filePath()), "CSV (*.csv)");
+        if (!path.isEmpty()) useData(path);
     });
     connect(document_, &ui::ProjectDocument::dataSetsChanged, data_list, [this, data_list] {
         data_list->clear();
         for (const std::string& path : document_->project().data_sets)
             data_list->addItem(QString::fromStdString(path));
     });
+    ui::acceptFileDrops(this, *document_, locations_,
+                        {[this](const QString& path) { return maybeSave() && openProject(path); },
+                         [this](const QString& path) { useData(path); },
+                         [this](const QString& panel) { showPanel(panel); },
+                         [this](const QString& text) { statusBar()->showMessage(text, 8000); }});
     connect(data_list, &QListWidget::itemDoubleClicked, this,
-            [this, identification](QListWidgetItem* item) {
-                identification->setDataFile(item->text());
-                showPanel("identification");
-            });
+            [this](QListWidgetItem* item) { useData(item->text()); });
 
     // Both docks on the left, the tree above the properties: the plots get the width (1024 px
     // screens leave them ~680 px). The properties scroll when the screen is short.
@@ -206,6 +196,11 @@ void MainWindow::fitToScreen() {
     if (!available.contains(frameGeometry().topLeft()) ||
         !available.contains(frameGeometry().bottomRight()))
         move(available.topLeft());
+}
+
+void MainWindow::useData(const QString& path) {
+    findChild<ui::IdentificationPanel*>()->setDataFile(path);
+    showPanel("identification");
 }
 
 void MainWindow::showPanel(const QString& name) {
@@ -273,7 +268,10 @@ bool MainWindow::saveTo(const QString& path) {
 }
 
 bool MainWindow::saveAs() {
-    QString path = QFileDialog::getSaveFileName(this, "Save project", document_->filePath(),
+    QString path = QFileDialog::getSaveFileName(this, "Save project",
+                                                document_->filePath().isEmpty()
+                                                    ? ui::suggestedPath({}, {}, ".terra")
+                                                    : document_->filePath(),
                                                 "TerraStudio project (*.terra)");
     if (path.isEmpty()) return false;
     if (!path.endsWith(".terra")) path += ".terra";

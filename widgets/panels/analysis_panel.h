@@ -61,6 +61,9 @@ public:
     }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
     void cancelRunning();
+    /// What the panel's Run, Fit or Compute button does (the studio's Ctrl+R); a plain recompute
+    /// for the panels that follow the project by themselves.
+    virtual void requestRun() { recompute(); }
     /// Whether a result is on screen, and how complete it is (a cancelled run's is partial).
     bool hasResult() const { return has_result_; }
     Completion completion() const { return completion_; }

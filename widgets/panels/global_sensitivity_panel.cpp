@@ -249,6 +249,10 @@ void GlobalSensitivityPanel::setSource(int source) { source_->setCurrentIndex(so
 
 void GlobalSensitivityPanel::compute() { recompute(); }
 
+void GlobalSensitivityPanel::requestRun() {
+    if (compute_->isEnabled()) compute_->click();
+}
+
 analysis::Inputs GlobalSensitivityPanel::inputs() const {
     analysis::Inputs in = project::inputsOf(document_->project());
     if (source_->currentIndex() == 1 && identification_)

@@ -59,6 +59,8 @@ public:
     void setSource(int source);
     /// Computes the current page.
     void compute();
+    /// Compute (when no study runs).
+    void requestRun() override;
 
     /// Model evaluations the shown page's study takes: Sobol' N (d + 2), Morris r (d + 1) or the
     /// bands' M samples, per slip and slip angle (throws as indexSettings()).

@@ -797,6 +797,14 @@ void IdentificationPanel::setStreamSpeed(double speed) {
     speed_->setCurrentIndex(best);
 }
 
+void IdentificationPanel::requestRun() {
+    if (pages_->currentIndex() == 1) {
+        if (play_->isEnabled()) play();
+    } else if (fit_->isEnabled()) {
+        fit_->click();
+    }
+}
+
 void IdentificationPanel::play() {
     if (playback_->state() == StreamingPlayback::State::kPaused) {
         playback_->resume();

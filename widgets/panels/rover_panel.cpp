@@ -254,6 +254,10 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     showScenarioState();
 }
 
+void RoverPanel::requestRun() {
+    if (run_->isEnabled()) run_->click();
+}
+
 void RoverPanel::drawFigure(std::size_t i) const {
     if (i >= plots_.size() || drawn_[i]) return;
     plotRoverFigure(*plots_[i], result_.series, roverFigures()[i].key, title_);

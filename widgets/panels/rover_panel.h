@@ -64,6 +64,8 @@ public:
     /// The scenario of the shown result (robot geometry and soils of the top view).
     const scenario::Scenario& shownScenario() const { return shown_; }
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
+    /// Run (when no run goes on).
+    void requestRun() override;
     QCustomPlot* currentPlot() const override;
     Table currentTable() const override { return result_.series; }
     nlohmann::json settings() const override;
