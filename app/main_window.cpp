@@ -28,10 +28,12 @@
 #include <cstdio>
 
 #include "widgets/document/project_document.h"
+#include "widgets/document/suggested_paths.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/experiment_actions.h"
+#include "widgets/panels/file_drops.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
@@ -96,15 +98,18 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         tabs_->addTab(scrollable(panel), titles[static_cast<int>(i)]);
         panel->installPlotMenus();
         connect(panel, &ui::AnalysisPanel::exportRequested, this, &MainWindow::exportCurrentPlot);
+        // The status bar speaks of the tab on screen only ("Sensitivity updated…" stayed there
+        // on other tabs); a panel's own status line keeps its news.
         connect(panel, &ui::AnalysisPanel::resultShown, this,
-                [this, title = titles[static_cast<int>(i)]](double ms) {
-                    statusBar()->showMessage(
-                        QString("%1 updated in %2 ms").arg(title).arg(ms, 0, 'f', 0), 5000);
+                [this, panel, title = titles[static_cast<int>(i)]] {
+                    if (panel == currentPanel())
+                        statusBar()->showMessage(panel->resultMessage(title), 5000);
                 });
-        connect(panel, &ui::AnalysisPanel::failed, this, [this](const QString& message) {
-            statusBar()->showMessage("Error: " + message, 8000);
+        connect(panel, &ui::AnalysisPanel::failed, this, [this, panel](const QString& message) {
+            if (panel == currentPanel()) statusBar()->showMessage("Error: " + message, 8000);
         });
     }
+    connect(tabs_, &QTabWidget::currentChanged, statusBar(), &QStatusBar::clearMessage);
     setCentralWidget(tabs_);
 
     auto* tree = new ui::ProjectTree(document_, this);
@@ -125,39 +130,27 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         editors_);
     scenarios->setWordWrap(true);
     editors_->addWidget(scenarios);
-    auto* test_page = new QWidget(editors_);
-    auto* test_text = new QLabel(
-        "A measured single-wheel test (docs/validation.md): the Forces vs slip panel draws its "
-        "points over the model, gives the errors and calibrates the soil to it.",
-        test_page);
-    test_text->setWordWrap(true);
-    auto* load_test = new QPushButton("Load experiment…", test_page);
-    auto* test_layout = new QVBoxLayout(test_page);
-    test_layout->addWidget(test_text);
-    test_layout->addWidget(load_test);
-    test_layout->addStretch(1);
-    editors_->addWidget(test_page);
-    connect(load_test, &QPushButton::clicked, this, [this] {
-        if (ui::promptLoadExperiment(this, *document_, locations_)) showPanel("forces");
-    });
+    editors_->addWidget(
+        ui::experimentPage(editors_, *document_, locations_, [this] { showPanel("forces"); }));
     connect(tree, &ui::ProjectTree::pageRequested, editors_, &QStackedWidget::setCurrentIndex);
-    connect(load_data, &QPushButton::clicked, this, [this, identification] {
+    connect(load_data, &QPushButton::clicked, this, [this] {
         const QString path =
-            QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
-        if (path.isEmpty()) return;
-        identification->setDataFile(path);
-        showPanel("identification");
+            QFileDialog::getOpenFileName(this, "Load identification data",
+                                         ui::startFolder(document_->filePath()), "CSV (*.csv)");
+        if (!path.isEmpty()) useData(path);
     });
     connect(document_, &ui::ProjectDocument::dataSetsChanged, data_list, [this, data_list] {
         data_list->clear();
         for (const std::string& path : document_->project().data_sets)
             data_list->addItem(QString::fromStdString(path));
     });
+    ui::acceptFileDrops(this, *document_, locations_,
+                        {[this](const QString& path) { return maybeSave() && openProject(path); },
+                         [this](const QString& path) { useData(path); },
+                         [this](const QString& panel) { showPanel(panel); },
+                         [this](const QString& text) { statusBar()->showMessage(text, 8000); }});
     connect(data_list, &QListWidget::itemDoubleClicked, this,
-            [this, identification](QListWidgetItem* item) {
-                identification->setDataFile(item->text());
-                showPanel("identification");
-            });
+            [this](QListWidgetItem* item) { useData(item->text()); });
 
     // Both docks on the left, the tree above the properties: the plots get the width (1024 px
     // screens leave them ~680 px). The properties scroll when the screen is short.
@@ -174,6 +167,7 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     }
     createMenus();
 
+    adoptPanelSettings();
     connect(document_, &ui::ProjectDocument::modifiedChanged, this, &MainWindow::updateTitle);
     connect(document_, &ui::ProjectDocument::filePathChanged, this, &MainWindow::updateTitle);
     updateTitle();
@@ -204,6 +198,11 @@ void MainWindow::fitToScreen() {
         move(available.topLeft());
 }
 
+void MainWindow::useData(const QString& path) {
+    findChild<ui::IdentificationPanel*>()->setDataFile(path);
+    showPanel("identification");
+}
+
 void MainWindow::showPanel(const QString& name) {
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         if (panels_[i]->name() == name) tabs_->setCurrentIndex(static_cast<int>(i));
@@ -230,7 +229,7 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     }
     // The panels taking the file's settings write them back (in their own form, defaults
     // filled in): that is not an edit. The opened project is what is on disk.
-    document_->markUnmodified();
+    adoptPanelSettings();
     addRecent(QFileInfo(path).absoluteFilePath());
     statusBar()->showMessage("Opened " + path, 4000);
     return true;
@@ -239,6 +238,15 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
 void MainWindow::newProject() {
     if (!maybeSave()) return;
     document_->reset(ui::ProjectDocument::defaultProject(locations_));
+    adoptPanelSettings();
+}
+
+void MainWindow::adoptPanelSettings() {
+    // The panels' settings as the project's starting point: storing them again (Run stores the
+    // scenario) or undoing back to it is no change, and leaves no "*".
+    for (ui::AnalysisPanel* panel : panels_)
+        document_->setPanelSettings(panel->name().toStdString(), panel->settings());
+    document_->markUnmodified();
 }
 
 bool MainWindow::save() {
@@ -260,7 +268,10 @@ bool MainWindow::saveTo(const QString& path) {
 }
 
 bool MainWindow::saveAs() {
-    QString path = QFileDialog::getSaveFileName(this, "Save project", document_->filePath(),
+    QString path = QFileDialog::getSaveFileName(this, "Save project",
+                                                document_->filePath().isEmpty()
+                                                    ? ui::suggestedPath({}, {}, ".terra")
+                                                    : document_->filePath(),
                                                 "TerraStudio project (*.terra)");
     if (path.isEmpty()) return false;
     if (!path.endsWith(".terra")) path += ".terra";

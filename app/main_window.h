@@ -55,6 +55,9 @@ private:
     bool saveTo(const QString& path);
     bool saveAs();
     void newProject();
+    /// The identification panel's data (a CSV chosen, listed or dropped), the panel on screen.
+    void useData(const QString& path);
+    void adoptPanelSettings();
     void exportCurrentPlot();
     void exportCurrentData();
     void addRecent(const QString& path);

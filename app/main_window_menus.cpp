@@ -19,6 +19,8 @@
 #include "app/main_window.h"
 #include "core/common/build_info.h"
 #include "widgets/document/project_document.h"
+#include "widgets/document/suggested_paths.h"
+#include "widgets/editors/field_shortcuts.h"
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/panels/experiment_actions.h"
@@ -51,8 +53,9 @@ void MainWindow::createMenus() {
         file, "&Open…", {keys(Qt::CTRL | Qt::Key_O)}, "action.open",
         [this] {
             if (!maybeSave()) return;
-            const QString path = QFileDialog::getOpenFileName(this, "Open project", {},
-                                                              "TerraStudio project (*.terra)");
+            const QString path = QFileDialog::getOpenFileName(
+                this, "Open project", ui::startFolder(document_->filePath()),
+                "TerraStudio project (*.terra)");
             if (!path.isEmpty()) openProject(path);
         },
         true);
@@ -86,6 +89,13 @@ void MainWindow::createMenus() {
     bar->addSeparator();
     bar->addActions({undo, redo});
 
+    // The tab's Run, Fit or Compute (the live panels recompute): one key for every panel.
+    QMenu* run = menuBar()->addMenu("&Run");
+    add(run, "&Run / Fit / Compute the tab", {keys(Qt::CTRL | Qt::Key_R), keys(Qt::Key_F5)},
+        "action.run", [this] {
+            if (ui::AnalysisPanel* panel = currentPanel()) panel->requestRun();
+        });
+
     QMenu* view = menuBar()->addMenu("&View");
     for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
     view->addSeparator();
@@ -93,6 +103,8 @@ void MainWindow::createMenus() {
         add(view, tabs_->tabText(i), {QKeySequence(Qt::CTRL | (Qt::Key_1 + i))},
             QString("action.panel%1").arg(i + 1), [this, i] { tabs_->setCurrentIndex(i); });
     }
+
+    ui::passWindowShortcutsThroughFields(this);  // Ctrl+E from a field exports, as the guide says
 
     QMenu* help = menuBar()->addMenu("&Help");
     add(help, "&User guide", {keys(Qt::Key_F1)}, "action.help", [this] { showHelp(false); });
@@ -127,13 +139,27 @@ void MainWindow::showHelp(bool shortcuts) {
     help_->activateWindow();
 }
 
+namespace {
+
+/// "rover-path", "forces-Fx_N-vs-slip": the tab and the plot on screen, for a file name.
+QString plotName(const ui::AnalysisPanel& panel) {
+    for (const auto& [name, plot] : panel.plots()) {
+        if (plot != panel.currentPlot()) continue;
+        return name.startsWith(panel.name()) ? name : panel.name() + "-" + name;
+    }
+    return panel.name();
+}
+
+}  // namespace
+
 void MainWindow::exportCurrentPlot() {
     ui::AnalysisPanel* panel = currentPanel();
     if (!panel) return;
-    const QString suggested = QDir::home().filePath(panel->name() + ".png");
+    const QString suggested = ui::suggestedPath(document_->filePath(), plotName(*panel), ".png");
     QStringList written;
     if (ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(),
                                            suggested, &written)) {
+        ui::rememberFolder(written.front());
         statusBar()->showMessage("Exported " + written.join(" and "), 8000);
     }
 }
@@ -142,8 +168,10 @@ void MainWindow::exportCurrentData() {
     ui::AnalysisPanel* panel = currentPanel();
     if (!panel) return;
     const QString path = QFileDialog::getSaveFileName(
-        this, "Export data", QDir::home().filePath(panel->name() + ".csv"), "CSV (*.csv)");
+        this, "Export data", ui::suggestedPath(document_->filePath(), plotName(*panel), ".csv"),
+        "CSV (*.csv)");
     if (path.isEmpty()) return;
+    ui::rememberFolder(path);
     QString error;
     if (!ui::exportTable(panel->currentTable(), path, &error)) {
         QMessageBox::warning(this, "Export failed", error);
@@ -153,6 +181,7 @@ void MainWindow::exportCurrentData() {
 }
 
 void MainWindow::addRecent(const QString& path) {
+    ui::rememberFolder(path);  // the next Open, Save As or Export starts there
     QSettings settings;
     QStringList recent = settings.value("recentFiles").toStringList();
     recent.removeAll(path);

@@ -9,23 +9,39 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QDialog>
+#include <QDir>
+#include <QDropEvent>
 #include <QFile>
 #include <QFileDialog>
+#include <QFileInfo>
+#include <QKeyEvent>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QPushButton>
 #include <QScrollArea>
+#include <QSignalSpy>
 #include <QSlider>
+#include <QStatusBar>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTimer>
 #include <QUndoStack>
+#include <QUrl>
 #include <functional>
 
+#include "core/io/atomic_file.h"
+#include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/editors/validated_spin_box.h"
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/experiment_actions.h"
+#include "widgets/panels/global_sensitivity_panel.h"
+#include "widgets/panels/identification_panel.h"
+#include "widgets/panels/rover_panel.h"
 
 namespace terra::app {
 namespace {
@@ -174,6 +190,8 @@ TEST(MainWindow, EveryShortcutOfTheUserGuideBelongsToOneAction) {
                                                          {"Ctrl+5", "action.panel5"},
                                                          {"Ctrl+6", "action.panel6"},
                                                          {"Ctrl+7", "action.panel7"},
+                                                         {"Ctrl+R", "action.run"},
+                                                         {"F5", "action.run"},
                                                          {"F1", "action.help"},
                                                          {"Ctrl+/", "action.shortcuts"}};
     for (const auto& [key, name] : guide) {
@@ -264,6 +282,251 @@ TEST(MainWindow, CtrlZWorksWithTheCursorInAField) {
     QTest::keyClick(phi, Qt::Key_Z, Qt::ControlModifier);
     EXPECT_DOUBLE_EQ(phi->value(), 33.0);
     EXPECT_EQ(document->undoStack()->index(), 1);
+}
+
+// Issue 27: Ctrl+E did nothing with the cursor in a field (the field took it: end of line), and
+// Export suggested ~/forces.png whatever the project; Save opened in the installed experiments.
+/// A field with X11's key bindings: it keeps Ctrl+E (end of line) for itself, as QLineEdit does
+/// under xcb. The offscreen platform's bindings do not, so the test brings them.
+class X11EndOfLine : public QObject {
+public:
+    using QObject::QObject;
+    bool eventFilter(QObject*, QEvent* event) override {
+        if (event->type() != QEvent::ShortcutOverride) return false;
+        auto* key = static_cast<QKeyEvent*>(event);
+        if (key->keyCombination() != QKeyCombination(Qt::ControlModifier, Qt::Key_E)) return false;
+        event->accept();  // the field takes the key: no shortcut fires
+        return true;
+    }
+};
+
+TEST(MainWindow, CtrlEFromAFieldExportsIntoTheProjectsFolderUnderItsName) {
+    QTemporaryDir dir;
+    Studio studio;
+    MainWindow& w = studio.window;
+    QString error;
+    ASSERT_TRUE(w.document()->save(dir.filePath("field7.terra"), &error)) << error.toStdString();
+    w.showPanel("forces");
+    settle(300);
+    ui::ValidatedSpinBox* phi = w.findChild<ui::SoilEditor*>()->spinBox("phi_deg");
+    phi->setFocus();
+    ASSERT_TRUE(QTest::qWaitFor([&] { return phi->hasFocus(); }, 2000));
+    X11EndOfLine x11;
+    phi->installEventFilter(&x11);
+    phi->findChild<QLineEdit*>()->installEventFilter(&x11);
+    bool seen = false;
+    QString suggested;
+    onNextDialog(
+        [&suggested](QWidget* dialog) {
+            EXPECT_EQ(dialog->windowTitle(), "Export plot");
+            if (auto* path = dialog->findChild<QLineEdit*>("export.path")) suggested = path->text();
+        },
+        &seen);
+    QTest::keyClick(phi, Qt::Key_E, Qt::ControlModifier);
+    EXPECT_TRUE(seen) << "Ctrl+E from a field opened no export dialog";
+    EXPECT_TRUE(suggested.startsWith(QDir(dir.path()).filePath("field7-forces-")))
+        << suggested.toStdString();
+    EXPECT_TRUE(suggested.endsWith(".png")) << suggested.toStdString();
+    activate(w);
+
+    // Save As starts in the project's folder.
+    seen = false;
+    QString folder;
+    onNextDialog(
+        [&folder](QWidget* dialog) {
+            if (auto* files = qobject_cast<QFileDialog*>(dialog))
+                folder = files->directory().absolutePath();
+        },
+        &seen);
+    QTest::keyClick(phi, Qt::Key_S, Qt::ControlModifier | Qt::ShiftModifier);
+    EXPECT_TRUE(seen);
+    EXPECT_EQ(folder, QDir(dir.path()).absolutePath());
+}
+
+// Issue 27: no key for Run, Fit or Compute.
+TEST(MainWindow, CtrlRRunsTheTabsComputation) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.showPanel("rover");
+    settle(100);
+    auto* rover = w.findChild<ui::RoverPanel*>();
+    QSignalSpy busy(rover, &ui::AnalysisPanel::busyChanged);
+    QSignalSpy shown(rover, &ui::AnalysisPanel::resultShown);
+    QTest::keyClick(&w, Qt::Key_R, Qt::ControlModifier);
+    ASSERT_TRUE(busy.count() > 0 || busy.wait(5000)) << "Ctrl+R did not run the scenario";
+    rover->cancelRunning();
+    ASSERT_TRUE(shown.count() > 0 || shown.wait(60000));
+}
+
+/// Drops `path` onto the window as a file manager would; whether the drag was accepted.
+bool dropOnto(QWidget& window, const QString& path) {
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(path)});
+    const QPoint at = window.rect().center();
+    QDragEnterEvent enter(at, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&window, &enter);
+    if (!enter.isAccepted()) return false;
+    QDropEvent drop(at, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&window, &drop);
+    return true;
+}
+
+// Issue 27: no drag and drop of files.
+TEST(MainWindow, DroppedFilesAreTakenForWhatTheyAre) {
+    QTemporaryDir dir;
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* document = w.document();
+    const QString shipped = TERRA_RESOURCE_DIR;
+    // A soil and a wheel file: the project's, one undo step each.
+    EXPECT_TRUE(dropOnto(w, shipped + "/soils/clayey-soil.json"));
+    EXPECT_EQ(document->project().soil.name, "clayey soil");
+    EXPECT_TRUE(dropOnto(w, shipped + "/wheels/B.json"));
+    EXPECT_EQ(document->project().wheel.name, "wheel B");
+    EXPECT_EQ(document->undoStack()->count(), 2);
+    // Identification data (no load_N column): the identification panel's, on screen.
+    const QString data = dir.filePath("drive.csv");
+    {
+        QFile file(data);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        file.write("slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.1,20,1,58,0.5\n");
+    }
+    EXPECT_TRUE(dropOnto(w, data));
+    auto* identification = w.findChild<ui::IdentificationPanel*>();
+    EXPECT_EQ(identification->settings()["csv"], data.toStdString());
+    EXPECT_EQ(w.findChild<QTabWidget*>()->currentIndex(), 4);
+    // A measured test (a load_N column): loaded, the project's setup kept ("No").
+    bool asked = false;
+    onNextDialog(
+        [](QWidget* dialog) {
+            if (auto* box = qobject_cast<QMessageBox*>(dialog))
+                box->button(QMessageBox::No)->click();
+        },
+        &asked);
+    EXPECT_TRUE(dropOnto(w, shipped + "/experiments/ding2011-smooth-hit-lss1-80N.csv"));
+    EXPECT_TRUE(asked) << "the test's setup was not offered";
+    EXPECT_NE(document->experiment(), nullptr);
+    EXPECT_EQ(document->project().wheel.name, "wheel B");
+    activate(w);
+    // A project: opened.
+    QString error;
+    const QString project = dir.filePath("p.terra");
+    ASSERT_TRUE(document->save(project, &error)) << error.toStdString();
+    ASSERT_TRUE(document->setLoad(70.0));
+    ASSERT_TRUE(document->save(project, &error));
+    document->reset(ui::ProjectDocument::defaultProject(resources()));
+    EXPECT_TRUE(dropOnto(w, project));
+    EXPECT_EQ(document->filePath(), QFileInfo(project).absoluteFilePath());
+    EXPECT_DOUBLE_EQ(document->project().conditions.load_n, 70.0);
+    // Anything else is refused at the drag.
+    const QString notes = dir.filePath("notes.txt");
+    {
+        QFile file(notes);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        file.write("hello\n");
+    }
+    EXPECT_FALSE(dropOnto(w, notes));
+}
+
+// Issue 27: undoing back to a new project's start kept the "*" of an unsaved change.
+TEST(MainWindow, UndoingBackToANewProjectsStartClearsTheModifiedMark) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* document = w.document();
+    settle(300);  // the panels' first results
+    ASSERT_FALSE(document->isModified());
+    for (const char* panel : {"stresses", "compaction", "sensitivity", "forces"}) {
+        w.showPanel(panel);
+        settle(200);
+    }
+    // Run stores the rover's scenario in the project: the one it had, so no change.
+    w.showPanel("rover");
+    auto* rover = w.findChild<ui::RoverPanel*>();
+    QPushButton* run = nullptr;
+    for (QPushButton* button : rover->findChildren<QPushButton*>()) {
+        if (button->text() == "Run") run = button;
+    }
+    ASSERT_NE(run, nullptr);
+    QSignalSpy shown(rover, &ui::AnalysisPanel::resultShown);
+    run->click();
+    QTest::qWaitFor([rover] { return rover->isBusy(); }, 5000);
+    rover->cancelRunning();
+    ASSERT_TRUE(shown.count() > 0 || shown.wait(60000));
+    EXPECT_FALSE(w.isWindowModified()) << "Run is no edit";
+    w.showPanel("forces");
+    ASSERT_TRUE(document->setSoilValue("phi_deg", 33.0));
+    settle(300);
+    EXPECT_TRUE(w.isWindowModified());
+    document->undoStack()->undo();
+    settle(300);
+    EXPECT_FALSE(document->isModified());
+    EXPECT_FALSE(w.isWindowModified()) << w.windowTitle().toStdString();
+}
+
+// Issue 27: "Sensitivity updated in 55 ms" stayed in the status bar on another tab.
+TEST(MainWindow, TheStatusBarSpeaksOfTheTabOnScreenOnly) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.showPanel("sensitivity");
+    settle(500);
+    ASSERT_TRUE(w.document()->setSoilValue("phi_deg", 31.0));
+    settle(500);
+    EXPECT_TRUE(w.statusBar()->currentMessage().startsWith("Sensitivity updated"))
+        << w.statusBar()->currentMessage().toStdString();
+    w.showPanel("rover");  // runs on request: nothing new to say
+    settle(100);
+    EXPECT_FALSE(w.statusBar()->currentMessage().contains("Sensitivity"))
+        << w.statusBar()->currentMessage().toStdString();
+    // A panel recomputing out of sight (the rover's soil edits do not) says nothing either.
+    w.showPanel("forces");
+    settle(500);
+    ASSERT_TRUE(w.document()->setSoilValue("phi_deg", 30.0));
+    settle(800);
+    EXPECT_FALSE(w.statusBar()->currentMessage().contains("Sensitivity"))
+        << w.statusBar()->currentMessage().toStdString();
+}
+
+// Issue 27: a project saved with 100,000 global-sensitivity samples started a 1.8 M-evaluation
+// study as soon as its tab was opened.
+TEST(MainWindow, OpeningAProjectWithAHeavyStudyComputesNothingUntilAsked) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("heavy.terra");
+    {
+        Studio studio;
+        QString error;
+        ASSERT_TRUE(studio.window.document()->save(path, &error)) << error.toStdString();
+    }
+    std::string text;
+    ASSERT_FALSE(io::readFile(path.toStdString(), text));
+    nlohmann::json project = nlohmann::json::parse(text);
+    project::GlobalSensitivityPanelSettings heavy;
+    heavy.samples = 100000;
+    project["panels"]["global-sensitivity"] = project::toJson(heavy);
+    ASSERT_FALSE(io::writeFileAtomically(path.toStdString(), project.dump(1)));
+
+    Studio studio;
+    ASSERT_TRUE(studio.window.openProject(path, true));
+    auto* panel = studio.window.findChild<ui::GlobalSensitivityPanel*>();
+    ASSERT_NE(panel, nullptr);
+    EXPECT_EQ(panel->plannedEvaluations(), 1800000u);  // 100,000 × (4 + 2) × 3 slips
+    QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
+    studio.window.showPanel("global-sensitivity");
+    settle(500);
+    EXPECT_EQ(busy.count(), 0) << "the study started by itself";
+    EXPECT_FALSE(panel->isBusy());
+    EXPECT_FALSE(panel->indices().has_value());
+    EXPECT_TRUE(panel->statusText().startsWith("Not computed"))
+        << panel->statusText().toStdString();
+    EXPECT_TRUE(panel->statusText().contains("press Compute"));
+
+    // Asked, it runs.
+    panel->compute();
+    ASSERT_TRUE(busy.wait(5000));
+    EXPECT_TRUE(panel->isBusy());
+    QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+    panel->cancelRunning();
+    ASSERT_TRUE(shown.wait(60000));
+    EXPECT_EQ(panel->completion(), ui::Completion::kCancelled);
 }
 
 }  // namespace

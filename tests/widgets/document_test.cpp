@@ -150,6 +150,14 @@ TEST(ProjectDocument, PanelSettingsChangeMarksTheProjectModifiedUntilSaved) {
     const auto loaded = ProjectDocument::load(dir.filePath("p.terra"));
     ASSERT_TRUE(loaded.ok()) << loaded.message();
     EXPECT_EQ(loaded->panels["rover"], edited);
+
+    // Set back to what was saved: no change left, no "*" (issue 27).
+    document.setPanelSettings("rover", {{"scenario", "pulse-steering"}});
+    EXPECT_TRUE(document.isModified());
+    document.setPanelSettings("rover", edited);
+    EXPECT_FALSE(document.isModified());
+    ASSERT_EQ(modified.count(), 4);
+    EXPECT_FALSE(modified.at(3).at(0).toBool());
 }
 
 }  // namespace

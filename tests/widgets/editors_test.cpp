@@ -343,7 +343,9 @@ TEST(ProjectTree, AnEditedSoilIsSaidToBeEditedOnce) {
     ProjectTree tree(&document);
     QTreeWidgetItem* soil = tree.topLevelItem(ProjectTree::kSoil);
     ASSERT_NE(soil, nullptr);
-    EXPECT_EQ(soil->text(1), QString::fromStdString(document.project().soil_preset));
+    // A preset by its name, not its file id (issue 27); the id is in the tooltip.
+    EXPECT_EQ(soil->text(1), "sandy loam");
+    EXPECT_TRUE(soil->toolTip(1).contains("sandy-loam")) << soil->toolTip(1).toStdString();
     ASSERT_TRUE(document.setSoilValue("phi_deg", 35.0));
     ASSERT_TRUE(document.project().soil_preset.empty());
     const QString name = QString::fromStdString(document.project().soil.name);

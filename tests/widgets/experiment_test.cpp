@@ -7,6 +7,7 @@
 #include <qcustomplot.h>
 
 #include <QFileInfo>
+#include <QLabel>
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -346,6 +347,17 @@ TEST(ForcesPanel, CalibratesOffTheGuiThreadImprovesTheMetricsAndUndoRestoresTheS
     EXPECT_LT(rmse_after, 0.5 * rmse_before);
     EXPECT_LT(cal.after->metrics[io::kExpSinkage]->rmse,
               dialog->result()->before.metrics[io::kExpSinkage]->rmse);
+    // The status in a user's words, as rich text (issue 27: Ceres' "|cost_change|/cost: … <= …"
+    // was shown, and its "<=" made Qt show the line breaks as a raw "<br>").
+    const QString status = dialog->statusText();
+    EXPECT_TRUE(status.contains("converged")) << status.toStdString();
+    for (const char* optimizer : {"cost_change", "CONVERGENCE", "tolerance", "<="})
+        EXPECT_FALSE(status.contains(optimizer)) << optimizer << ": " << status.toStdString();
+    bool rich = false;
+    for (const QLabel* label : dialog->findChildren<QLabel*>()) {
+        if (label->text() == status) rich = label->textFormat() == Qt::RichText;
+    }
+    EXPECT_TRUE(rich);
     // Before and after side by side; the seven parameters with their std.
     const QTableWidget& metrics = *dialog->metricsTable();
     ASSERT_GE(metrics.rowCount(), 3);
@@ -355,9 +367,15 @@ TEST(ForcesPanel, CalibratesOffTheGuiThreadImprovesTheMetricsAndUndoRestoresTheS
     const QTableWidget& parameters = *dialog->parameterTable();
     ASSERT_EQ(parameters.rowCount(), 7);
     EXPECT_EQ(parameters.item(5, 0)->text(), "φ [deg]");
+    // φ to the decimal place of its std's second digit (issue 27): within half that place.
+    const double phi_std = number(parameters, 5, 2);
+    EXPECT_GT(phi_std, 0.0);
+    const QString phi_std_text = parameters.item(5, 2)->text();
+    const double place = std::pow(
+        10.0,
+        -(phi_std_text.contains('.') ? phi_std_text.size() - phi_std_text.indexOf('.') - 1 : 0));
     EXPECT_NEAR(number(parameters, 5, 1), cal.report.parameters[identification::kPhi] * 180 / M_PI,
-                1e-3);
-    EXPECT_GT(number(parameters, 5, 2), 0.0);  // a std
+                0.5 * place + 1e-12);
     EXPECT_NEAR(number(parameters, 5, 3), 31.9, 1e-9);
 
     // Applied: one undo step, the soil named as calibrated, the panel's metrics those of `after`.

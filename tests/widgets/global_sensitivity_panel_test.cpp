@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <QSignalSpy>
+#include <QTest>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/project/panels.h"
+#include "widgets/plots/figures.h"
 #include "widgets_test_support.h"
 
 namespace terra::ui {
@@ -117,9 +119,10 @@ TEST(GlobalSensitivityPanel, CancelStopsTheStudyAndTheNextOneRuns) {
     ProjectDocument document;
     test::resetToDefault(document);
     GlobalSensitivityPanel panel(&document);
-    panel.setSamples(1 << 16);  // long enough to be cancelled
+    panel.setSamples(1 << 16);  // long enough to be cancelled (and too long to start by itself)
     panel.show();
     QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
+    panel.compute();
     ASSERT_TRUE(busy.wait(5000));
     panel.cancelRunning();
     ASSERT_TRUE(test::waitForResult(panel, 30000));
@@ -129,6 +132,30 @@ TEST(GlobalSensitivityPanel, CancelStopsTheStudyAndTheNextOneRuns) {
     panel.compute();
     ASSERT_TRUE(test::waitForResult(panel));
     EXPECT_EQ(panel.indices()->status(), gsa::StudyStatus::kCompleted);
+}
+
+// Issue 27: a project's 100,000 samples (1.8 M model evaluations) started on the first show.
+TEST(GlobalSensitivityPanel, AHeavyStudyWaitsForComputeAndSaysSo) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    GlobalSensitivityPanel panel(&document);
+    panel.resize(1000, 600);
+    panel.applySettings({{"samples", 100000}});
+    EXPECT_EQ(panel.plannedEvaluations(), 100000u * 6u * 3u);
+    QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
+    panel.show();
+    QTest::qWait(300);
+    EXPECT_EQ(busy.count(), 0) << "the study started by itself";
+    EXPECT_FALSE(panel.indices().has_value());
+    EXPECT_TRUE(panel.statusText().contains("1,800,000 model evaluations"))
+        << panel.statusText().toStdString();
+    EXPECT_EQ(plotTitle(*panel.currentPlot()), "Not computed: press Compute");
+    // Asked, it runs (cancelled here: what it computed is kept).
+    panel.compute();
+    ASSERT_TRUE(busy.wait(5000));
+    panel.cancelRunning();
+    ASSERT_TRUE(test::waitForResult(panel, 60000));
+    EXPECT_EQ(panel.indices()->status(), gsa::StudyStatus::kCancelled);
 }
 
 TEST(GlobalSensitivityPanel, IdentifiedCovarianceIsASource) {

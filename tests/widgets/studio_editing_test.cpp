@@ -81,7 +81,8 @@ TEST(EditedSoil, IsNamedAsEditedInTheEditorPlotExportAndFile) {
     document.undoStack()->undo();
     EXPECT_EQ(document.project().soil.name, "sandy loam");
     EXPECT_EQ(document.project().soil_preset, "sandy-loam");
-    EXPECT_EQ(combo->currentText(), "sandy-loam");
+    EXPECT_EQ(combo->currentText(), "sandy loam");  // the preset's name; its id is the data
+    EXPECT_EQ(combo->currentData().toString(), "sandy-loam");
 
     // A name the user types is what the soil is called.
     auto* name = editor.findChild<QLineEdit*>("soil.name");
@@ -125,7 +126,7 @@ TEST(ValidatedField, OutOfRangeTextStaysWholeAndNamesTheRange) {
     phi->selectAll();
     QTest::keyClicks(phi, "abc");
     EXPECT_EQ(phi->value(), 29.0);
-    EXPECT_TRUE(messageOf(editor).contains("not a number")) << messageOf(editor).toStdString();
+    EXPECT_TRUE(messageOf(editor).contains("takes a number")) << messageOf(editor).toStdString();
     EXPECT_TRUE(messageOf(editor).contains("[0, 60)")) << messageOf(editor).toStdString();
     EXPECT_EQ(document.undoStack()->count(), 0);
 }

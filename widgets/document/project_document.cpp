@@ -291,16 +291,18 @@ void ProjectDocument::setPanelSettings(const std::string& panel, const nlohmann:
     if (project_.panels.contains(panel) && project_.panels[panel] == settings) return;
     project_.panels[panel] = settings;
     // Not undoable, but saved with the project (an edited scenario lives here): unsaved, it must
-    // make the close ask and the autosave run like any other change.
+    // make the close ask and the autosave run like any other change. Settings stored again as they
+    // were saved (Run stores the scenario chosen; a control set back) are no change.
     const bool was_modified = isModified();
-    settings_modified_ = true;
-    if (!was_modified) emit modifiedChanged(true);
+    settings_modified_ = project_.panels != saved_panels_;
+    if (isModified() != was_modified) emit modifiedChanged(isModified());
     emit panelSettingsChanged();
 }
 
 void ProjectDocument::reset(const Project& project, const QString& file_path) {
     project_ = project;
     settings_modified_ = false;
+    saved_panels_ = project_.panels;
     undo_->clear();
     undo_->setClean();
     file_path_ = file_path;
@@ -317,6 +319,7 @@ void ProjectDocument::reset(const Project& project, const QString& file_path) {
 void ProjectDocument::markUnmodified() {
     const bool was_modified = isModified();
     settings_modified_ = false;
+    saved_panels_ = project_.panels;
     undo_->setClean();
     if (was_modified) emit modifiedChanged(false);
 }
@@ -333,6 +336,7 @@ bool ProjectDocument::save(const QString& path, QString* error) {
     }
     if (!path.endsWith(".autosave")) {
         const bool settings_were_modified = std::exchange(settings_modified_, false);
+        saved_panels_ = project_.panels;
         undo_->setClean();
         if (settings_were_modified && !isModified()) emit modifiedChanged(false);
         file_path_ = path;

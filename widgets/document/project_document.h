@@ -127,7 +127,8 @@ private:
     QUndoStack* undo_;
     int revision_ = 0;
     int gesture_ = 0;                 // commands of different gestures never merge
-    bool settings_modified_ = false;  // panel settings changed since the last save/reset
+    bool settings_modified_ = false;  // panel settings differ from saved_panels_
+    nlohmann::json saved_panels_;  // the panel settings at the last save, reset or markUnmodified
     QString file_path_;
 };
 

@@ -46,11 +46,13 @@ QString notPresetLabel(const std::string& name) {
 
 void ProjectTree::refresh() {
     const Project& p = document_->project();
-    items_[kSoil]->setText(1, p.soil_preset.empty() ? notPresetLabel(p.soil.name)
-                                                    : QString::fromStdString(p.soil_preset));
-    items_[kWheel]->setText(1, p.wheel_preset.empty() ? notPresetLabel(p.wheel.name)
-                                                      : QString::fromStdString(p.wheel_preset));
-    for (const int row : {kSoil, kWheel}) items_[row]->setToolTip(1, items_[row]->text(1));
+    // A preset by its name ("sandy loam"), its file id ("sandy-loam") in the tooltip.
+    auto label = [](const std::string& preset, const std::string& name) {
+        if (preset.empty()) return notPresetLabel(name);
+        return QString::fromStdString(name.empty() ? preset : name);
+    };
+    items_[kSoil]->setText(1, label(p.soil_preset, p.soil.name));
+    items_[kWheel]->setText(1, label(p.wheel_preset, p.wheel.name));
     items_[kConditions]->setText(1, QString("W = %1 N").arg(p.conditions.load_n));
     qDeleteAll(items_[kDataSets]->takeChildren());
     for (const std::string& path : p.data_sets) {
@@ -84,6 +86,11 @@ void ProjectTree::refresh() {
     for (QTreeWidgetItemIterator it(this); *it; ++it) {
         (*it)->setToolTip(0, (*it)->text(0));
         (*it)->setToolTip(1, (*it)->text(1));
+    }
+    for (const auto& [row, preset] : {std::pair{kSoil, p.soil_preset}, {kWheel, p.wheel_preset}}) {
+        if (!preset.empty())
+            items_[row]->setToolTip(
+                1, items_[row]->text(1) + " (preset " + QString::fromStdString(preset) + ")");
     }
     expandAll();
     resizeColumnToContents(0);

@@ -17,10 +17,15 @@
 #include <optional>
 
 #include "widgets/document/project_document.h"
+#include "widgets/editors/preset_names.h"
 #include "widgets/editors/validated_spin_box.h"
 
 namespace terra::ui {
 namespace {
+
+void silenceFields(QWidget* editor) {
+    for (QWidget* field : editor->findChildren<QWidget*>()) field->blockSignals(true);
+}
 
 int decimalsFor(const Range& range) {
     const double span = range.high - range.low;
@@ -74,10 +79,17 @@ namespace {
 QComboBox* presetBox(const io::PresetLocations& locations, const char* kind, QWidget* parent) {
     auto* box = new QComboBox(parent);
     box->addItem("(custom)", QString());
-    for (const std::string& name : io::presetNames(locations, kind)) {
-        box->addItem(QString::fromStdString(name), QString::fromStdString(name));
-    }
+    addPresetItems(box, locations, kind);  // "sandy loam", not "sandy-loam"
     return box;
+}
+
+/// An editor's message line describes its last refused edit: any later edit of the project
+/// makes it stale (a grouser error stayed many edits later), unless a field still shows bad text.
+void clearStaleMessage(QLabel* message, const QWidget* editor) {
+    for (const QWidget* field : editor->findChildren<QWidget*>()) {
+        if (!field->property("invalidMessage").toString().isEmpty()) return;
+    }
+    message->clear();
 }
 
 /// Selects the preset, or the first item named after the custom soil or wheel ("sandy loam
@@ -204,8 +216,12 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         if (auto soil = io::resolveSoil(locations_, name)) document_->setSoil(*soil, name);
     });
     connect(document_, &ProjectDocument::soilChanged, this, &SoilEditor::refresh);
+    connect(document_, &ProjectDocument::changed, message_,
+            [this] { clearStaleMessage(message_, this); });
     refresh();
 }
+
+SoilEditor::~SoilEditor() { silenceFields(this); }
 
 ValidatedSpinBox* SoilEditor::spinBox(const std::string& key) const {
     const auto it = fields_.find(key);
@@ -303,8 +319,12 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
         if (auto wheel = io::resolveWheel(locations_, name)) document_->setWheel(*wheel, name);
     });
     connect(document_, &ProjectDocument::wheelChanged, this, &WheelEditor::refresh);
+    connect(document_, &ProjectDocument::changed, message_,
+            [this] { clearStaleMessage(message_, this); });
     refresh();
 }
+
+WheelEditor::~WheelEditor() { silenceFields(this); }
 
 ValidatedSpinBox* WheelEditor::spinBox(const std::string& key) const {
     const auto it = fields_.find(key);
@@ -356,8 +376,12 @@ ConditionsEditor::ConditionsEditor(ProjectDocument* document, QWidget* parent)
         slip_angles_->setModified(false);
     });
     connect(document_, &ProjectDocument::conditionsChanged, this, &ConditionsEditor::refresh);
+    connect(document_, &ProjectDocument::changed, message_,
+            [this] { clearStaleMessage(message_, this); });
     refresh();
 }
+
+ConditionsEditor::~ConditionsEditor() { silenceFields(this); }
 
 std::optional<std::vector<double>> ConditionsEditor::checkSlipAngles() {
     const FieldInfo& field = analysis::slipAnglesField();

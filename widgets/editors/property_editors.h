@@ -49,6 +49,9 @@ class SoilEditor : public QWidget {
 public:
     SoilEditor(ProjectDocument* document, const io::PresetLocations& locations,
                QWidget* parent = nullptr);
+    /// Its fields stop talking to the document first: ~QWidget hides them, and a field with
+    /// typed text commits it on losing the focus, into an editor half destroyed.
+    ~SoilEditor() override;
     /// The spin box of a field key ("phi_deg"), for tests and for focusing from the tree.
     ValidatedSpinBox* spinBox(const std::string& key) const;
     QSlider* slider(const std::string& key) const;
@@ -68,6 +71,9 @@ class WheelEditor : public QWidget {
 public:
     WheelEditor(ProjectDocument* document, const io::PresetLocations& locations,
                 QWidget* parent = nullptr);
+    /// Its fields stop talking to the document first: ~QWidget hides them, and a field with
+    /// typed text commits it on losing the focus, into an editor half destroyed.
+    ~WheelEditor() override;
     /// The spin box of a wheel field key ("r_m", "grouser_count", …), for tests.
     ValidatedSpinBox* spinBox(const std::string& key) const;
     /// The line that says whether the lug model acts on this wheel, and how.
@@ -87,6 +93,9 @@ class ConditionsEditor : public QWidget {
     Q_OBJECT
 public:
     explicit ConditionsEditor(ProjectDocument* document, QWidget* parent = nullptr);
+    /// Its fields stop talking to the document first: ~QWidget hides them, and a field with
+    /// typed text commits it on losing the focus, into an editor half destroyed.
+    ~ConditionsEditor() override;
     ValidatedSpinBox* loadBox() const { return load_; }
     QLineEdit* slipAnglesEdit() const { return slip_angles_; }
 

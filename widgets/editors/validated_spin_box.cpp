@@ -6,13 +6,19 @@
 #include <QPalette>
 #include <QSignalBlocker>
 #include <QTimer>
+#include <algorithm>
 #include <cmath>
 
 namespace terra::ui {
 
 ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, const Range& range,
                                    int decimals, QWidget* parent)
-    : QDoubleSpinBox(parent), name_(name), unit_(unit), range_(range) {
+    : QDoubleSpinBox(parent),
+      name_(name),
+      label_(unit.isEmpty() ? name : QString("%1 [%2]").arg(name, unit)),
+      unit_(unit),
+      base_decimals_(decimals),
+      range_(range) {
     setDecimals(decimals);
     const double step = std::pow(10.0, -decimals);
     // Open ends: the nearest value the box can show inside the range.
@@ -37,15 +43,37 @@ ValidatedSpinBox::ValidatedSpinBox(const QString& name, const QString& unit, con
 ValidatedSpinBox::ValidatedSpinBox(const FieldInfo& field, int decimals, QWidget* parent)
     : ValidatedSpinBox(QString::fromUtf8(field.symbol), QString::fromStdString(field.displayUnit()),
                        field.range, decimals, parent) {
+    const QString label = QString::fromUtf8(field.label);
+    label_ = label.left(1).toUpper() + label.mid(1) + " " +
+             QString::fromStdString(field.symbolWithUnit());
     setToolTip(QString("%1 — %2 Allowed: %3")
                    .arg(QString::fromUtf8(field.label), QString::fromUtf8(field.description),
                         QString::fromStdString(field.range.describe())));
 }
 
+namespace {
+
+/// Decimals that show `value` exactly (to 1e-9 relative) from `least` up to `most`; failing that,
+/// to two significant digits (within the same bounds).
+int decimalsShowing(double value, int least, int most) {
+    if (value == 0.0 || !std::isfinite(value)) return least;
+    for (int d = least; d <= most; ++d) {
+        const double scale = std::pow(10.0, d);
+        if (std::abs(std::round(value * scale) / scale - value) <= 1e-9 * std::abs(value)) return d;
+    }
+    const int leading = static_cast<int>(std::floor(std::log10(std::abs(value))));
+    return std::clamp(1 - leading, least, most);
+}
+
+}  // namespace
+
 void ValidatedSpinBox::setCommittedValue(double value) {
     const bool had_message = !valid_ || !property("rejectedMessage").toString().isEmpty();
     {
         const QSignalBlocker block(this);
+        const int decimals = decimalsShowing(value, base_decimals_, kMaxDecimals);
+        if (decimals != this->decimals()) setDecimals(decimals);
+        last_text_ = textFromValue(value);
         setValue(value);
         committed_ = this->value();
         flag(true, {});
@@ -119,12 +147,14 @@ QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
                                      unit_.isEmpty() ? QString() : " " + unit_);
     if (state == QValidator::Acceptable ||
         (!specialValueText().isEmpty() && text == specialValueText())) {
+        last_text_ = number;
         flag(true, {});
         return state;
     }
     if (parsed) {
         // Out of range: keep the whole text on screen ("75", not the "7" a refused keystroke
         // leaves), flagged with the range; it is never committed (revertIfInvalid()).
+        last_text_ = number;
         flag(false, QString("%1 = %2 %3 is outside the allowed range %4")
                         .arg(name_, QString::number(value), unit_,
                              QString::fromStdString(range_.describe()))
@@ -133,13 +163,26 @@ QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
     }
     if (number.isEmpty() || number == "-" || number == "+" || number.endsWith('e') ||
         number.endsWith('E') || number == locale().decimalPoint()) {
+        last_text_ = number;
         flag(true, {});  // the start of a number: wait for the rest
         return QValidator::Intermediate;
     }
     if (!specialValueText().isEmpty() && specialValueText().startsWith(number)) return state;
-    // Not a number: the keystroke is refused, and the field says why (it used to do nothing).
+    // Not a number: the keystroke is refused, and the field says why (it used to do nothing). The
+    // message names the field by its label and the key as a key: "c: \"c\" is not a number" in
+    // the cohesion field read as if the field were not a number.
+    qsizetype head = 0, tail = 0;
+    while (head < number.size() && head < last_text_.size() && number[head] == last_text_[head])
+        ++head;
+    while (tail < number.size() - head && tail < last_text_.size() - head &&
+           number[number.size() - 1 - tail] == last_text_[last_text_.size() - 1 - tail])
+        ++tail;
+    const QString typed = number.mid(head, number.size() - head - tail);
+    const QString refused = typed.isEmpty() ? number : typed;
     auto* self = const_cast<ValidatedSpinBox*>(this);
-    const QString message = QString("%1: \"%2\" is not a number (%3)").arg(name_, number, allowed);
+    const QString message =
+        QString("%1 takes a number: the %2 \"%3\" was not accepted (%4)")
+            .arg(label_, refused.size() == 1 ? "key" : "text", refused, allowed);
     self->setProperty("rejectedMessage", message);
     emit self->messageChanged(message);
     return QValidator::Invalid;

@@ -32,8 +32,11 @@ public:
 
     QValidator::State validate(QString& text, int& pos) const override;
 
-    /// Shows a value that came from the model, without emitting valueChanged.
+    /// Shows a value that came from the model, without emitting valueChanged: with more decimals
+    /// than the box's own when it needs them (c = 0.0023 kPa was shown as "0.00"), at most
+    /// kMaxDecimals, to two significant digits when it cannot be shown exactly.
     void setCommittedValue(double value);
+    static constexpr int kMaxDecimals = 6;
 
     /// Quiet time after the last keystroke before typed text is committed [ms].
     static constexpr int kDebounceMs = 300;
@@ -61,7 +64,10 @@ private:
     void flag(bool valid, const QString& message) const;
 
     QString name_;
+    QString label_;  // "Cohesion c [kPa]" for a field's box: who the messages speak of
     QString unit_;
+    int base_decimals_ = 2;
+    mutable QString last_text_;  // the last text accepted while typing (a refused key is the rest)
     Range range_;
     mutable bool valid_ = true;
     double committed_ = 0.0;

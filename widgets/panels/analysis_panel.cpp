@@ -2,46 +2,18 @@
 
 #include <qcustomplot.h>
 
-#include <QEvent>
 #include <QLabel>
-#include <QPointer>
+#include <QProgressBar>
 #include <QShowEvent>
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
 #include "widgets/document/project_document.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_menu.h"
+#include "widgets/plots/plot_readout.h"
 
 namespace terra::ui {
-namespace {
-
-/// "Drawbar pull F_x = 120 N" from an axis label "Drawbar pull F_x [N]" and a coordinate.
-QString readoutPart(const QString& label, double value) {
-    const QString name = label.section(" [", 0, 0);
-    QString unit = label.section(" [", 1).section(']', 0, 0);
-    if (unit == "-") unit.clear();
-    return QString("%1 = %2%3")
-        .arg(name)
-        .arg(value, 0, 'g', 4)
-        .arg(unit.isEmpty() ? "" : " " + unit);
-}
-
-/// Clears a read-out when its plot stops being under the mouse or on screen.
-class ReadoutReset : public QObject {
-public:
-    ReadoutReset(QLabel* readout, QObject* parent) : QObject(parent), readout_(readout) {}
-    bool eventFilter(QObject* watched, QEvent* event) override {
-        if (event->type() == QEvent::Leave || event->type() == QEvent::Hide) {
-            if (readout_) readout_->clear();
-        }
-        return QObject::eventFilter(watched, event);
-    }
-
-private:
-    QPointer<QLabel> readout_;
-};
-
-}  // namespace
 
 AnalysisPanel::AnalysisPanel(ProjectDocument* document, const QString& name, QWidget* parent)
     : QWidget(parent), document_(document), name_(name) {
@@ -76,6 +48,31 @@ void AnalysisPanel::cancelRunning() {
     if (cancel_) cancel_->store(true);
 }
 
+QString AnalysisPanel::resultMessage(const QString& tab) const {
+    if (completion_ == Completion::kComplete)
+        return QString("%1 updated in %2 ms").arg(tab).arg(last_latency_ms_, 0, 'f', 0);
+    return QString("%1: %2 after %3 ms — what was computed is shown")
+        .arg(tab, completionMark(completion_))
+        .arg(last_latency_ms_, 0, 'f', 0);
+}
+
+QString AnalysisPanel::markedStatus(const QString& text) const {
+    const QString mark = completionMark(completion_);
+    if (mark.isEmpty()) return text;
+    return text.isEmpty() ? "<b>" + mark + "</b>" : "<b>" + mark + "</b> — " + text;
+}
+
+void AnalysisPanel::trackProgress(QProgressBar* bar) {
+    progress_bar_ = bar;
+    bar->setObjectName("panel.progress");
+    bar->setRange(0, 100);
+    connect(this, &AnalysisPanel::busyChanged, bar, [bar](bool busy) {
+        if (!busy) return;
+        bar->setValue(0);
+        bar->setFormat(progressFormat(Completion::kComplete));
+    });
+}
+
 void AnalysisPanel::installPlotMenus() {
     for (const auto& [name, plot] : plots()) {
         installPlotMenu(*plot,
@@ -88,20 +85,22 @@ void AnalysisPanel::showEvent(QShowEvent* event) {
     if (deferred_) scheduleUpdate();
 }
 
-void AnalysisPanel::start() {
+bool AnalysisPanel::start() {
     // A hidden tab of a shown window waits until it is shown: the visible panel gets the cores.
     if (!isVisible() && window()->isVisible()) {
         deferred_ = true;
-        return;
+        return false;
     }
     deferred_ = false;
-    if (watcher_.isRunning()) return;  // finished() restarts with the newest state
+    if (watcher_.isRunning()) return true;  // finished() restarts with the newest state
+    if (!requested_ && !startsByItself()) return false;
+    requested_ = false;
     Job job;
     try {
         job = makeJob();
     } catch (const std::exception& e) {
         emit failed(QString::fromUtf8(e.what()));
-        return;
+        return false;
     }
     const int revision = revision_;
     cancel_ = std::make_shared<std::atomic<bool>>(false);
@@ -118,6 +117,7 @@ void AnalysisPanel::start() {
         out.cancelled = cancel->load();
         return out;
     }));
+    return true;
 }
 
 void AnalysisPanel::finished() {
@@ -126,7 +126,7 @@ void AnalysisPanel::finished() {
         // Stale. A computation that was let run to the end (see scheduleUpdate) is shown as an
         // intermediate frame; a cancelled one is dropped. Either way the newest state follows.
         if (!outcome.cancelled && outcome.error.isEmpty()) presentOutcome(outcome);
-        start();
+        if (!start()) emit busyChanged(false);  // waiting (hidden, or not by itself): not busy
         return;
     }
     emit busyChanged(false);
@@ -135,6 +135,11 @@ void AnalysisPanel::finished() {
         return;
     }
     presentOutcome(outcome);
+    if (progress_bar_) {
+        // Only a complete result is 100 %: a partial one stays where it stopped and says why.
+        if (completion_ == Completion::kComplete) progress_bar_->setValue(100);
+        progress_bar_->setFormat(progressFormat(completion_));
+    }
     last_latency_ms_ = static_cast<double>(since_edit_.nsecsElapsed()) / 1e6;
     emit resultShown(last_latency_ms_);
 }
@@ -142,7 +147,9 @@ void AnalysisPanel::finished() {
 void AnalysisPanel::presentOutcome(const Outcome& outcome) {
     QElapsedTimer drawing;
     drawing.start();
-    present(outcome.value);
+    completion_ = outcome.cancelled ? Completion::kCancelled : Completion::kComplete;
+    present(outcome.value);  // may refine completion_ from the result's own status
+    has_result_ = true;
     last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
     since_shown_.start();
 }
@@ -152,14 +159,8 @@ void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     // The read-out's text must never widen the panel (a scroll bar would come and go with the
     // mouse): with an explicit minimum, the layout may shrink it below its text when room is short.
     if (readout->minimumWidth() == 0) readout->setMinimumWidth(120);
-    plot->setMouseTracking(true);
-    QObject::connect(plot, &QCustomPlot::mouseMove, readout, [plot, readout](QMouseEvent* event) {
-        const double x = plot->xAxis->pixelToCoord(event->position().x());
-        const double y = plot->yAxis->pixelToCoord(event->position().y());
-        readout->setText(readoutPart(plot->xAxis->label(), x) + ",  " +
-                         readoutPart(plot->yAxis->label(), y));
-    });
-    plot->installEventFilter(new ReadoutReset(readout, plot));
+    installReadout(*plot, readout);
+    installLegendControls(*plot);
     // Double-click: back to the whole data.
     QObject::connect(plot, &QCustomPlot::mouseDoubleClick, plot, [plot](QMouseEvent*) {
         plot->rescaleAxes();

@@ -5,7 +5,10 @@
 /// result of the newest state (by revision). An edit asks the running computation to cancel and
 /// drops its result, unless nothing new has been drawn for kMaxFrameGapMs: then it runs to the end
 /// and is shown as an intermediate frame before the newest state is computed, so that a continuous
-/// drag keeps the plot moving. A run the user cancels shows what it computed. Reports the time
+/// drag keeps the plot moving. A run the user cancels shows what it computed, and every panel says
+/// so the same way (completion.h): its progress bar stays where the run stopped ("8 %
+/// (cancelled)"), its status line and plot titles carry "CANCELLED (partial)", and so do the
+/// studio's status bar (resultMessage()) and the exported figures (their titles). Reports the time
 /// from the edit to the repainted plot.
 
 #include <QElapsedTimer>
@@ -19,9 +22,11 @@
 #include <vector>
 
 #include "core/common/table.h"
+#include "widgets/plots/completion.h"
 
 class QCustomPlot;
 class QLabel;
+class QProgressBar;
 
 namespace terra::ui {
 
@@ -48,10 +53,27 @@ public:
     /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
     /// work per update, the rest runs on workers.
     double lastPresentMs() const { return last_present_ms_; }
-    /// Starts a computation now (the identification panel's "Fit"; also for tests).
-    void recompute() { scheduleUpdate(); }
+    /// Starts a computation now (the identification panel's "Fit"; also for tests), even one that
+    /// does not start by itself (startsByItself()).
+    void recompute() {
+        requested_ = true;
+        scheduleUpdate();
+    }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
     void cancelRunning();
+    /// What the panel's Run, Fit or Compute button does (the studio's Ctrl+R); a plain recompute
+    /// for the panels that follow the project by themselves.
+    virtual void requestRun() { recompute(); }
+    /// Whether a result is on screen, and how complete it is (a cancelled run's is partial).
+    bool hasResult() const { return has_result_; }
+    Completion completion() const { return completion_; }
+    /// The studio's status-bar line about the result on screen, for the tab titled `tab`:
+    /// "Global sensitivity updated in 120 ms", or "Global sensitivity: CANCELLED (partial) after
+    /// 2964 ms — what was computed is shown".
+    QString resultMessage(const QString& tab) const;
+    /// `text` for the panel's status line, led by the mark of a partial result in bold
+    /// ("<b>CANCELLED (partial)</b> — 1024 model evaluations"); as is when complete.
+    QString markedStatus(const QString& text) const;
     /// Gives every plot of plots() the right-click menu (plot_menu.h): "Export plot…" emits
     /// exportRequested(), "Copy data" copies currentTable().
     void installPlotMenus();
@@ -72,14 +94,28 @@ protected:
     virtual Job makeJob() = 0;
     /// Shows a result (GUI thread); replots.
     virtual void present(const std::any& result) = 0;
+    /// Whether an update nobody asked for (the panel's first show, a project edit) may start now,
+    /// asked just before it would. A panel whose computation can be heavy says no, and shows why
+    /// ("not computed: press Compute"); recompute() starts regardless.
+    virtual bool startsByItself() { return true; }
+
+    /// How complete the result being presented is, when the result knows better than the cancel
+    /// flag (a run that diverged, or completed before the cancel arrived): call in present(),
+    /// before drawing. Before present() it is kCancelled when the run saw its cancel flag.
+    void setCompletion(Completion completion) { completion_ = completion; }
+    /// The panel's progress bar, kept honest here for every panel: 0 % when a run starts, 100 %
+    /// only when the result shown is complete, else where it stopped with the reason
+    /// ("8 % (cancelled)").
+    void trackProgress(QProgressBar* bar);
 
     /// Recompute after the current event (coalescing a burst of edits).
     void scheduleUpdate();
     /// Whether project edits recompute automatically (false: only recompute()).
     void setLive(bool live) { live_ = live; }
-    /// Enables drag/zoom and a read-out of the mouse position in `readout`, with the axes' units
-    /// ("Slip ratio s = 0.25, Drawbar pull F_x = 120 N"); it is cleared when the mouse leaves the
-    /// plot or the plot is hidden (another tab), so it never describes a plot out of sight.
+    /// Enables drag/zoom, a read-out in `readout` of the curve point nearest the mouse with the
+    /// axes' units ("Slip ratio s = 0.25, Drawbar pull F_x = 120 N — β = 0°"; plot_readout.h),
+    /// cleared when the mouse leaves the plot or the plot is hidden (another tab), and a legend
+    /// the user can drag, hide and put back under the axes (plot_legend.h).
     static void makeInteractive(QCustomPlot* plot, QLabel* readout);
     void storeSettings();
     /// The panel's settings with `changes` over them, for applySettings: an object of some keys
@@ -97,7 +133,7 @@ private:
     };
     /// Longest time the screen may go without a new result while edits keep arriving [ms].
     static constexpr qint64 kMaxFrameGapMs = 150;
-    void start();
+    bool start();  // true when a computation runs after it
     void finished();
     void presentOutcome(const Outcome& outcome);
 
@@ -108,10 +144,14 @@ private:
     bool start_queued_ = false;
     bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
+    bool requested_ = false;  // recompute() asked for the next computation
     QElapsedTimer since_edit_;
     QElapsedTimer since_shown_;  // since the last present()
     double last_latency_ms_ = 0.0;
     double last_present_ms_ = 0.0;
+    bool has_result_ = false;
+    Completion completion_ = Completion::kComplete;
+    QProgressBar* progress_bar_ = nullptr;
 };
 
 }  // namespace terra::ui

@@ -14,11 +14,13 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <QtConcurrent/QtConcurrentRun>
+#include <functional>
 
 #include "core/identification/parameters.h"
 #include "core/project/project.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/experiment_overlay.h"
+#include "widgets/plots/number_format.h"
 
 namespace terra::ui {
 namespace {
@@ -54,6 +56,33 @@ void setupTable(QTableWidget* table, const QStringList& headers) {
     table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
 }
 
+/// The solver's termination in a user's words: Ceres' "CONVERGENCE: Function tolerance reached.
+/// |cost_change|/cost: 1.2e-07 <= 1e-06" was shown as it came.
+QString solverOutcome(const std::string& termination) {
+    const auto has = [&termination](const char* text) {
+        return termination.find(text) != std::string::npos;
+    };
+    if (termination.rfind("CONVERGENCE", 0) == 0) {
+        if (has("every parameter is held")) return "nothing to fit (every parameter is held)";
+        if (has("Gradient tolerance")) return "converged (the slope vanished at the minimum)";
+        if (has("Parameter tolerance")) return "converged (the parameters stopped moving)";
+        if (has("Function tolerance")) return "converged (the fit stopped improving)";
+        return "converged";
+    }
+    if (termination.rfind("NO_CONVERGENCE", 0) == 0)
+        return "stopped at its iteration limit before converging (usable; check the errors)";
+    if (termination.rfind("USER_", 0) == 0) return "stopped";
+    if (has("cannot be evaluated")) return "failed: the model cannot be evaluated at the solution";
+    return "the solver failed";
+}
+
+/// The size of a parameter's values: its box bound (identification/parameters.h), user unit.
+double parameterScale(std::size_t i) {
+    const id::ParameterBounds bounds;
+    return std::max(std::abs(bounds.lower[i]), std::abs(bounds.upper[i])) *
+           id::parameterInfo()[i].to_user;
+}
+
 }  // namespace
 
 CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
@@ -81,6 +110,7 @@ CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
     progress_->setRange(0, 100);
     progress_->setValue(0);
     status_ = new QLabel(this);
+    status_->setTextFormat(Qt::RichText);  // an unescaped "<=" made Qt show the "<br>" as text
     status_->setWordWrap(true);
     status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     metrics_ = new QTableWidget(0, 3, this);
@@ -268,9 +298,9 @@ void CalibrationDialog::showResult() {
             }
         }
         lines << QString("Calibrated on %1: %2, χ² = %3.")
-                     .arg(fitted.join(", "))
-                     .arg(QString::fromStdString(cal.report.termination))
-                     .arg(cal.report.chi2, 0, 'g', 4);
+                     .arg(fitted.join(", ").toHtmlEscaped(),
+                          solverOutcome(cal.report.termination).toHtmlEscaped(),
+                          formatNumber(cal.report.chi2));
     } else {
         lines << "<b>Calibration failed:</b> " +
                      QString::fromStdString(cal.report.message.empty()
@@ -300,6 +330,15 @@ void CalibrationDialog::showResult() {
             "The points the calibration did not use, predicted by the calibrated soil");
     }
     using Metric = std::optional<analysis::ChannelMetrics>;
+    // An error beside the row's largest is shown to that one's precision: 4.945e-15 mm is 0.
+    const auto row_scale = [](const Metric* const* columns, int count,
+                              double (*of)(const Metric&)) {
+        double scale = 0.0;
+        for (int col = 0; col < count; ++col) {
+            if (*columns[col]) scale = std::max(scale, std::abs(of(*columns[col])));
+        }
+        return scale;
+    };
     for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
         const auto& before = r.before.metrics[c];
         if (!before) continue;
@@ -309,27 +348,28 @@ void CalibrationDialog::showResult() {
                                    held_out ? &(*cal.held_out_before)[c] : &none,
                                    held_out ? &(*cal.held_out)[c] : &none};
         const QString name = channelLabel(channel).section(' ', 0, 0);
-        const std::pair<QString,
-                        QString (*)(io::ExperimentChannel, const analysis::ChannelMetrics&)>
-            rows[] = {{name + " RMSE",
-                       [](io::ExperimentChannel ch, const analysis::ChannelMetrics& m) {
-                           return channelValue(ch, m.rmse);
-                       }},
-                      {name + " MAE",
-                       [](io::ExperimentChannel ch, const analysis::ChannelMetrics& m) {
-                           return channelValue(ch, m.mae);
-                       }},
-                      {name + " max rel. error",
-                       [](io::ExperimentChannel, const analysis::ChannelMetrics& m) {
-                           return relativeError(m.max_rel_error);
-                       }}};
+        const int count = held_out ? 4 : 2;
+        const double rmse_scale =
+            row_scale(columns, count, [](const Metric& m) { return m->rmse; });
+        const double mae_scale = row_scale(columns, count, [](const Metric& m) { return m->mae; });
+        const std::pair<QString, std::function<QString(const analysis::ChannelMetrics&)>> rows[] = {
+            {name + " RMSE",
+             [&](const analysis::ChannelMetrics& m) {
+                 return channelValue(channel, m.rmse, rmse_scale);
+             }},
+            {name + " MAE",
+             [&](const analysis::ChannelMetrics& m) {
+                 return channelValue(channel, m.mae, mae_scale);
+             }},
+            {name + " max rel. error",
+             [](const analysis::ChannelMetrics& m) { return relativeError(m.max_rel_error); }}};
         for (const auto& [label, format] : rows) {
             const int row = metrics_->rowCount();
             metrics_->insertRow(row);
             metrics_->setItem(row, 0, cell(label));
-            for (int col = 0; col < (held_out ? 4 : 2); ++col) {
+            for (int col = 0; col < count; ++col) {
                 const Metric& m = *columns[col];
-                metrics_->setItem(row, col + 1, cell(m ? format(channel, *m) : QString()));
+                metrics_->setItem(row, col + 1, cell(m ? format(*m) : QString()));
             }
         }
     }
@@ -342,27 +382,27 @@ void CalibrationDialog::showResult() {
         const QString label =
             QString::fromUtf8(info.symbol) + (unit == "-" ? "" : " [" + unit + "]");
         const double value = cal.report.parameters[i] * info.to_user;
+        // The digits the std supports; without one, rounding noise as 0 (c = −1.25e-18 kPa).
+        const double sd =
+            cal.report.uncertainty.computed ? cal.report.uncertainty.std[i] * info.to_user : 0.0;
+        const QString shown =
+            sd > 0.0 ? formatWithStd(value, sd) : formatNumber(value, parameterScale(i), 5);
         const int row = parameters_->rowCount();
         parameters_->insertRow(row);
         parameters_->setItem(row, 0, cell(label, QString::fromUtf8(info.name)));
-        parameters_->setItem(
-            row, 1,
-            cell(QString::number(value, 'g', 5) + (cal.report.at_bound[i] ? " (at bound)" : "")));
-        parameters_->setItem(
-            row, 2,
-            cell(cal.report.uncertainty.computed
-                     ? QString::number(cal.report.uncertainty.std[i] * info.to_user, 'g', 3)
-                     : QString::fromUtf8("–")));
-        parameters_->setItem(row, 3, cell(QString::number(cal.prior[i] * info.to_user, 'g', 5)));
+        parameters_->setItem(row, 1, cell(shown + (cal.report.at_bound[i] ? " (at bound)" : "")));
+        parameters_->setItem(row, 2, cell(formatStd(sd)));
+        parameters_->setItem(row, 3,
+                             cell(formatNumber(cal.prior[i] * info.to_user, parameterScale(i), 5)));
     }
     if (cal.n1) {
         const int row = parameters_->rowCount();
         parameters_->insertRow(row);
         parameters_->setItem(row, 0, cell("n₁", "n1"));
-        parameters_->setItem(row, 1, cell(QString::number(*cal.n1, 'g', 5)));
+        const double sd = cal.n1_std ? *cal.n1_std : 0.0;
         parameters_->setItem(
-            row, 2,
-            cell(cal.n1_std ? QString::number(*cal.n1_std, 'g', 3) : QString::fromUtf8("–")));
+            row, 1, cell(sd > 0.0 ? formatWithStd(*cal.n1, sd) : formatNumber(*cal.n1, 1.0, 5)));
+        parameters_->setItem(row, 2, cell(formatStd(sd)));
         parameters_->setItem(row, 3, cell("0"));
     }
 }

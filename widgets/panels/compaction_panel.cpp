@@ -289,6 +289,7 @@ AnalysisPanel::Job CompactionPanel::makeJob() {
 
 void CompactionPanel::present(const std::any& value) {
     shown_ = std::any_cast<Shown>(value);
+    setCompletion(compactionCompletion(shown_.result));
     {
         const QSignalBlocker block(shown_pass_);
         const int keep = shown_pass_->currentIndex();
@@ -337,9 +338,8 @@ QString CompactionPanel::summaryText() const {
     const analysis::CompactionResult& r = shown_.result;
     QStringList parts;
     if (!r.ok()) {
-        parts << QString("<b>%1</b>: %2 — the passes before are shown.")
-                     .arg(compactionStatus(r).section(' ', 0, 0),
-                          QString::fromStdString(r.message).toHtmlEscaped());
+        parts << markedStatus(QString::fromStdString(r.message).toHtmlEscaped() +
+                              "; the passes before are shown.");
     }
     if (!r.profile) {
         parts << "No profile: no σ_pc, no risk (choose a profile).";

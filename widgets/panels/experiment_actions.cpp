@@ -3,8 +3,11 @@
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QLabel>
 #include <QMessageBox>
+#include <QPushButton>
 #include <QUndoStack>
+#include <QVBoxLayout>
 #include <algorithm>
 
 #include "widgets/document/project_document.h"
@@ -89,6 +92,32 @@ bool promptLoadExperiment(QWidget* parent, ProjectDocument& document,
         parent, "Load experiment", start,
         "Measured tests (*.csv *.json);;CSV (*.csv);;Sidecar JSON (*.json)");
     if (path.isEmpty()) return false;
+    return loadExperimentAsking(parent, document, locations, path);
+}
+
+QWidget* experimentPage(QWidget* parent, ProjectDocument& document,
+                        const io::PresetLocations& locations, std::function<void()> loaded) {
+    auto* page = new QWidget(parent);
+    auto* text = new QLabel(
+        "A measured single-wheel test (docs/validation.md): the Forces vs slip panel draws its "
+        "points over the model, gives the errors and calibrates the soil to it.",
+        page);
+    text->setWordWrap(true);
+    auto* load = new QPushButton("Load experiment…", page);
+    auto* layout = new QVBoxLayout(page);
+    layout->addWidget(text);
+    layout->addWidget(load);
+    layout->addStretch(1);
+    QObject::connect(load, &QPushButton::clicked, page,
+                     [page, &document, locations, loaded = std::move(loaded)] {
+                         if (promptLoadExperiment(page->window(), document, locations) && loaded)
+                             loaded();
+                     });
+    return page;
+}
+
+bool loadExperimentAsking(QWidget* parent, ProjectDocument& document,
+                          const io::PresetLocations& locations, const QString& path) {
     const Result<io::Experiment> read = io::readExperiment(path.toStdString());
     if (!read) {
         QMessageBox::warning(parent, "Cannot load experiment",

@@ -6,6 +6,7 @@
 /// the rig on the rig's wheel. The test and the setup are one undo step.
 
 #include <QString>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -47,5 +48,15 @@ bool loadExperiment(ProjectDocument& document, const QString& path,
 /// True when a test was loaded.
 bool promptLoadExperiment(QWidget* parent, ProjectDocument& document,
                           const io::PresetLocations& locations);
+
+/// The project tree's "Measured test" page: what a test is for, and Load experiment…
+/// (promptLoadExperiment), then `loaded`.
+QWidget* experimentPage(QWidget* parent, ProjectDocument& document,
+                        const io::PresetLocations& locations, std::function<void()> loaded);
+
+/// The same for the test at `path` (a file dropped on the window): reads it, asks about its
+/// setup, loads it. True when a test was loaded.
+bool loadExperimentAsking(QWidget* parent, ProjectDocument& document,
+                          const io::PresetLocations& locations, const QString& path);
 
 }  // namespace terra::ui

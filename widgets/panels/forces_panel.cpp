@@ -22,6 +22,7 @@
 
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
+#include "widgets/editors/preset_names.h"
 #include "widgets/panels/calibration_dialog.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/reference_overlay.h"
@@ -470,11 +471,12 @@ void ForcesPanel::fillCompareMenu() {
     if (!locations_) return;
     menu->addSection("Soil preset");
     for (const std::string& preset : io::presetNames(*locations_, "soils")) {
-        QAction* action = menu->addAction(QString::fromStdString(preset), this, [this, preset] {
-            QString error;
-            if (!compareWithPreset(preset, &error))
-                compare_label_->setText("<b>Cannot compare:</b> " + error.toHtmlEscaped());
-        });
+        QAction* action =
+            menu->addAction(presetDisplayName(*locations_, "soils", preset), this, [this, preset] {
+                QString error;
+                if (!compareWithPreset(preset, &error))
+                    compare_label_->setText("<b>Cannot compare:</b> " + error.toHtmlEscaped());
+            });
         action->setObjectName(QString::fromStdString("forces.compare_preset." + preset));
     }
 }

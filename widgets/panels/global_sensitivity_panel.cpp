@@ -24,6 +24,7 @@
 #include "core/project/panels.h"
 #include "core/soil/soil_parameters.h"
 #include "widgets/document/project_document.h"
+#include "widgets/plots/figures.h"
 #include "widgets/plots/gsa_figures.h"
 
 namespace terra::ui {
@@ -108,7 +109,7 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
     cancel_ = new QPushButton("Cancel", this);
     cancel_->setEnabled(false);
     progress_ = new QProgressBar(this);
-    progress_->setRange(0, 100);
+    trackProgress(progress_);
     status_ = new QLabel(this);
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
@@ -158,7 +159,6 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
         cancel_->setEnabled(busy);
         if (busy) {
             fraction_->store(0.0);
-            progress_->setValue(0);
             progress_timer_->start();
             status_->setText("Computing…");
         } else {
@@ -171,7 +171,45 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
         cancel_->setEnabled(false);
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
     });
-    scheduleUpdate();  // the example study's indices once the panel is first shown
+    // The example study's indices once the panel is first shown, unless the study is heavy then
+    // (startsByItself).
+    scheduleUpdate();
+}
+
+std::size_t GlobalSensitivityPanel::plannedEvaluations() const {
+    if (pages_->currentIndex() == 1) {
+        const analysis::UncertaintyBandSettings s = bandSettings();
+        return s.samples * static_cast<std::size_t>(s.slip_count) * s.study.slip_angles_deg.size();
+    }
+    const analysis::GlobalSensitivitySettings s = indexSettings();
+    const std::size_t d =
+        s.study.parameters.size() + (s.study.correlated ? s.study.correlated->keys.size() : 0);
+    const std::size_t runs = s.method == analysis::GsaMethod::kMorris ? d + 1 : d + 2;
+    return s.samples * runs * s.study.slips.size() * s.study.slip_angles_deg.size();
+}
+
+QString GlobalSensitivityPanel::statusText() const { return status_->text(); }
+
+bool GlobalSensitivityPanel::startsByItself() {
+    std::size_t evaluations = 0;
+    try {
+        evaluations = plannedEvaluations();
+    } catch (const std::exception&) {
+        return true;  // the computation reports what is wrong with the settings
+    }
+    if (evaluations <= kAutomaticEvaluations) return true;
+    const QString text = QString(
+                             "Not computed: this study takes %L1 model evaluations — press "
+                             "Compute to run it.")
+                             .arg(evaluations);
+    status_->setText(text);
+    const bool bands = pages_->currentIndex() == 1;
+    if (bands ? !bands_ : !indices_) {
+        QCustomPlot* plot = currentPlot();
+        resetPlot(*plot, "Not computed: press Compute");
+        plot->replot();
+    }
+    return false;
 }
 
 void GlobalSensitivityPanel::showPage(int page) { pages_->setCurrentIndex(page); }
@@ -210,6 +248,10 @@ void GlobalSensitivityPanel::setIdentification(const identification::DecoupledPa
 void GlobalSensitivityPanel::setSource(int source) { source_->setCurrentIndex(source); }
 
 void GlobalSensitivityPanel::compute() { recompute(); }
+
+void GlobalSensitivityPanel::requestRun() {
+    if (compute_->isEnabled()) compute_->click();
+}
 
 analysis::Inputs GlobalSensitivityPanel::inputs() const {
     analysis::Inputs in = project::inputsOf(document_->project());
@@ -294,7 +336,14 @@ AnalysisPanel::Job GlobalSensitivityPanel::makeJob() {
 
 void GlobalSensitivityPanel::present(const std::any& value) {
     const auto& computed = std::any_cast<const Computed&>(value);
-    progress_->setValue(100);
+    // The study's own status (it knows whether it ran to the end), not the cancel flag alone.
+    const gsa::StudyStatus status =
+        computed.indices
+            ? computed.indices->status()
+            : (computed.bands ? computed.bands->bands.status : gsa::StudyStatus::kCompleted);
+    setCompletion(status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
+                                                         : Completion::kComplete);
+    progress_->setValue(static_cast<int>(100.0 * fraction_->load()));  // where it stopped
     if (computed.indices) indices_ = computed.indices;
     if (computed.bands) bands_ = computed.bands;
     QString message;
@@ -311,7 +360,7 @@ void GlobalSensitivityPanel::present(const std::any& value) {
         if (!computed.bands->bands.message.empty())
             message += "; " + QString::fromStdString(computed.bands->bands.message);
     }
-    status_->setText(message);
+    status_->setText(markedStatus(message.toHtmlEscaped()));
     redraw();
 }
 
@@ -323,10 +372,15 @@ void GlobalSensitivityPanel::redraw() {
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
             .arg(slip_angle_->value());
+    // Each page's title says whether its own study was cancelled (the other page's may not be).
+    auto marked = [&title](gsa::StudyStatus status) {
+        return markedTitle(title, status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
+                                                                         : Completion::kComplete);
+    };
     if (indices_ && output < indices_->outputs().size())
-        plotGlobalIndices(*indices_plot_, *indices_, output, 0, title);
+        plotGlobalIndices(*indices_plot_, *indices_, output, 0, marked(indices_->status()));
     if (bands_ && output < bands_->bands.outputs.size())
-        plotUncertaintyBands(*bands_plot_, *bands_, output, 0, title);
+        plotUncertaintyBands(*bands_plot_, *bands_, output, 0, marked(bands_->bands.status));
 }
 
 std::vector<std::pair<QString, QCustomPlot*>> GlobalSensitivityPanel::plots() const {

@@ -6,7 +6,10 @@
 /// bands" page shows Monte Carlo percentile bands of an output against slip around the project
 /// soil's curve. The uncertain parameters are the ranges the user ticks in the table, or the
 /// identified soil's covariance (from the identification panel's last fit). Computed on "Compute"
-/// off the GUI thread (core/analysis/global_sensitivity.h), with progress and cancel.
+/// off the GUI thread (core/analysis/global_sensitivity.h), with progress and cancel. A study of
+/// at most kAutomaticEvaluations model evaluations (the example study's 18,432) also computes when
+/// the panel is first shown; a larger one (a project saved with 100,000 samples: 1.8 M) waits for
+/// Compute and says so, so opening a project never starts a long study by itself.
 
 #include <atomic>
 #include <memory>
@@ -31,6 +34,9 @@ namespace terra::ui {
 class GlobalSensitivityPanel : public AnalysisPanel {
     Q_OBJECT
 public:
+    /// The most model evaluations a study may take to start without Compute (about 1 s here).
+    static constexpr std::size_t kAutomaticEvaluations = 50000;
+
     explicit GlobalSensitivityPanel(ProjectDocument* document, QWidget* parent = nullptr);
 
     /// What the last computation gave (empty before one finished).
@@ -53,6 +59,14 @@ public:
     void setSource(int source);
     /// Computes the current page.
     void compute();
+    /// Compute (when no study runs).
+    void requestRun() override;
+
+    /// Model evaluations the shown page's study takes: Sobol' N (d + 2), Morris r (d + 1) or the
+    /// bands' M samples, per slip and slip angle (throws as indexSettings()).
+    std::size_t plannedEvaluations() const;
+    /// The status line ("Not computed: … press Compute", the evaluations, an error).
+    QString statusText() const;
 
     /// The settings the controls make (throws std::invalid_argument for unreadable slips).
     analysis::GlobalSensitivitySettings indexSettings() const;
@@ -67,6 +81,8 @@ public:
 protected:
     Job makeJob() override;
     void present(const std::any& result) override;
+    /// Only a study of at most kAutomaticEvaluations; a larger one shows "not computed".
+    bool startsByItself() override;
 
 private:
     analysis::StudyDefinition definition() const;

@@ -32,7 +32,9 @@
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
+#include "widgets/editors/preset_names.h"
 #include "widgets/plots/figures.h"
+#include "widgets/plots/number_format.h"
 
 namespace terra::ui {
 namespace {
@@ -57,6 +59,12 @@ std::vector<std::string> priorItems(const QString& text) {
 }
 
 QString number(double value, int digits = 4) { return QString::number(value, 'g', digits); }
+
+/// The size of a field's values: what rounding noise is measured against (formatNumber).
+double scaleOf(const FieldInfo& field) {
+    const double high = std::max(std::abs(field.range.low), std::abs(field.range.high));
+    return std::isfinite(high) ? high : 1.0;
+}
 
 // Channel names of the data files ("Fx_N") in a text for a person: their symbols, as the tabs
 // and the other panels show them.
@@ -128,9 +136,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     parameters_->horizontalHeaderItem(5)->setToolTip(
         "The project soil the synthetic data were made from (none for a CSV)");
     prior_soil_ = new QComboBox(this);
-    prior_soil_->addItem("none");
-    for (const std::string& name : io::presetNames(presetLocations(), "soils"))
-        prior_soil_->addItem(QString::fromStdString(name));
+    prior_soil_->addItem("none", QString());
+    addPresetItems(prior_soil_, presetLocations(), "soils");  // "sandy loam", data "sandy-loam"
     prior_soil_->setToolTip(
         "Gaussian priors centred on a soil preset: ±0.1 a₀, a₁; ±50 % K_s, c (at least 1 kPa), K; "
         "±0.2 n; ±5° φ (docs/identification.md, Priors)");
@@ -323,7 +330,7 @@ QString IdentificationPanel::fitReport() const { return report_->text(); }
 
 void IdentificationPanel::setFitOptions(const QString& prior_soil, const QString& prior_items,
                                         const QString& validation, const QString& loss) {
-    const int soil = prior_soil_->findText(prior_soil);
+    const int soil = prior_soil_->findData(prior_soil);
     prior_soil_->setCurrentIndex(prior_soil.isEmpty() || soil < 0 ? 0 : soil);
     prior_items_->setText(prior_items);
     if (const int i = validation_->findData(validation); i >= 0) validation_->setCurrentIndex(i);
@@ -423,11 +430,11 @@ nlohmann::json IdentificationPanel::settings() const {
     s.three_loads = three_loads_->isChecked();
     s.page = pages_->currentIndex() == 1 ? "streaming" : "fit";
     s.stream_csv = stream_source_->currentIndex() == 1 ? stream_file_->text().toStdString() : "";
-    s.stream_second_soil = second_soil_->currentText().toStdString();
+    s.stream_second_soil = second_soil_->currentData().toString().toStdString();
     s.stream_noise_percent = stream_noise_->value();
     s.stream_speed = speed_->currentData().toDouble();
     s.stream_skip_bad_rows = skip_bad_rows_->isChecked();
-    s.prior_soil = prior_soil_->currentIndex() > 0 ? prior_soil_->currentText().toStdString() : "";
+    s.prior_soil = prior_soil_->currentData().toString().toStdString();
     s.prior_items = prior_items_->text().toStdString();
     s.validation = validation_->currentData().toString().toStdString();
     s.loss = loss_->currentData().toString().toStdString();
@@ -460,7 +467,7 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
     settings.refine = refine_->isChecked();
     if (settings.refine) {
         if (prior_soil_->currentIndex() > 0)
-            settings.prior_soil_name = prior_soil_->currentText().toStdString();
+            settings.prior_soil_name = prior_soil_->currentData().toString().toStdString();
         settings.prior_items = priorItems(prior_items_->text());
         const QString validation = validation_->currentData().toString();
         if (validation == "holdout") settings.holdout_fraction = kHoldoutFraction;
@@ -525,26 +532,35 @@ void IdentificationPanel::present(const std::any& value) {
         auto* name = new QTableWidgetItem(QString::fromStdString(field.symbolWithUnit()));
         name->setToolTip(QString::fromUtf8(field.description));
         parameters_->setItem(row, 0, name);
-        parameters_->setItem(row, 1, new QTableWidgetItem(number(t.rows[0][i], 5)));
-        QString std_text = "–";
+        // The value to the digits its std supports; without one, to 5 digits with rounding
+        // noise as 0 (a c at its bound of 0 read "-1.25e-18").
+        double sd = 0.0;
         for (std::size_t c = fields.size(); c < t.columns.size(); ++c) {
-            if (t.columns[c] == std::string(field.key) + "_std") std_text = number(t.rows[0][c], 3);
+            if (t.columns[c] == std::string(field.key) + "_std") sd = t.rows[0][c];
         }
-        parameters_->setItem(row, 2, new QTableWidgetItem(std_text));
+        const double value = t.rows[0][i];
+        parameters_->setItem(
+            row, 1,
+            new QTableWidgetItem(sd > 0.0 ? formatWithStd(value, sd)
+                                          : formatNumber(value, scaleOf(field), 5)));
+        parameters_->setItem(row, 2, new QTableWidgetItem(formatStd(sd)));
         QString prior = "–", ratio = "–";
         if (const auto full = analysis::fullParameterOf(field); report && full) {
             const identification::PriorComparison& c =
                 report->prior[static_cast<std::size_t>(*full)];
             if (c.active) {
-                prior = number(c.prior_mean / field.to_si) + " ± " +
-                        number(c.prior_std / field.to_si, 3);
+                // As the user gave it ("12 ± 2"), rounding noise of the unit conversion dropped.
+                prior = formatNumber(c.prior_mean / field.to_si, scaleOf(field)) + " ± " +
+                        formatNumber(c.prior_std / field.to_si);
                 ratio = QString::number(c.std_ratio, 'f', 2);
             }
         }
         parameters_->setItem(row, 3, new QTableWidgetItem(prior));
         parameters_->setItem(row, 4, new QTableWidgetItem(ratio));
         parameters_->setItem(
-            row, 5, new QTableWidgetItem(synthetic ? number(field.userValue(truth), 5) : "–"));
+            row, 5,
+            new QTableWidgetItem(synthetic ? formatNumber(field.userValue(truth), scaleOf(field), 5)
+                                           : "–"));
     }
     QStringList lines;
     lines << QString::fromStdString(result_.start_description).toHtmlEscaped();
@@ -580,7 +596,8 @@ void IdentificationPanel::present(const std::any& value) {
                 const auto full = analysis::fullParameterOf(f);
                 values << QString("%1 = %2")
                               .arg(QString::fromUtf8(f.symbol))
-                              .arg(number(p[static_cast<std::size_t>(*full)] / f.to_si));
+                              .arg(formatNumber(p[static_cast<std::size_t>(*full)] / f.to_si,
+                                                scaleOf(f)));
             }
             (void)fields;
             return values.join(", ");
@@ -630,10 +647,8 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
         "A synthetic drive over a soil border (the true border is drawn as a grey dashed line), "
         "or a recorded CSV (slip, entry_angle_deg, Fx_N, Fz_N, My_Nm; time_s for pacing)");
     second_soil_ = new QComboBox(page);
-    for (const std::string& name : io::presetNames(presetLocations(), "soils")) {
-        second_soil_->addItem(QString::fromStdString(name));
-    }
-    if (const int i = second_soil_->findText("clayey-soil"); i >= 0)
+    addPresetItems(second_soil_, presetLocations(), "soils");
+    if (const int i = second_soil_->findData("clayey-soil"); i >= 0)
         second_soil_->setCurrentIndex(i);
     second_soil_->setToolTip("The soil the synthetic drive crosses into");
     stream_noise_ = new QDoubleSpinBox(page);
@@ -768,7 +783,7 @@ void IdentificationPanel::showPage(int page) { pages_->setCurrentIndex(page == 1
 void IdentificationPanel::setStreamSource(const QString& csv_path, const QString& second_soil) {
     stream_file_->setText(csv_path);
     stream_source_->setCurrentIndex(csv_path.isEmpty() ? 0 : 1);
-    if (const int i = second_soil_->findText(second_soil); i >= 0) second_soil_->setCurrentIndex(i);
+    if (const int i = second_soil_->findData(second_soil); i >= 0) second_soil_->setCurrentIndex(i);
     updateStreamControls();
 }
 
@@ -780,6 +795,14 @@ void IdentificationPanel::setStreamSpeed(double speed) {
             best = i;
     }
     speed_->setCurrentIndex(best);
+}
+
+void IdentificationPanel::requestRun() {
+    if (pages_->currentIndex() == 1) {
+        if (play_->isEnabled()) play();
+    } else if (fit_->isEnabled()) {
+        fit_->click();
+    }
 }
 
 void IdentificationPanel::play() {
@@ -828,7 +851,7 @@ analysis::StreamingSettings IdentificationPanel::streamSettings() const {
         settings.csv = stream_file_->text().trimmed().toStdString();
         settings.skip_bad_rows = skip_bad_rows_->isChecked();
     }
-    settings.second_soil = second_soil_->currentText().toStdString();
+    settings.second_soil = second_soil_->currentData().toString().toStdString();
     settings.noise_percent = stream_noise_->value();
     return settings;
 }

@@ -90,6 +90,8 @@ public:
     // Streaming playback (the "Streaming playback" page).
     /// Shows the batch-fit page (0) or the streaming page (1).
     void showPage(int page);
+    /// Fit on the batch page (as the button: priors checked first), Play on the streaming page.
+    void requestRun() override;
     /// Plays the chosen source at the chosen speed (a running playback starts over; a paused
     /// one resumes).
     void play();

@@ -125,7 +125,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     cancel_ = new QPushButton("Cancel", this);
     cancel_->setEnabled(false);
     progress_ = new QProgressBar(this);
-    progress_->setRange(0, 100);
+    trackProgress(progress_);
     status_ = new QLabel(this);
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
@@ -236,16 +236,12 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         cancel_->setEnabled(busy);
         edit_->setEnabled(!busy);
         if (busy) {
-            progress_->setValue(0);
-            progress_->setFormat("%p %");
             status_->setText("Running…");
             // The plots of the previous run are not this run's: say so in their titles (they
             // used to keep "… completed" while the new run went on).
             if (!title_.isEmpty()) {
-                title_ = QString("%1 — previous run; running %2…")
-                             .arg(QString::fromStdString(shown_name_), scenario_->currentText());
-                for (QCustomPlot* plot : plots_) setPlotTitle(*plot, title_);
-                setPlotTitle(*top_view_, title_);
+                retitle(QString("%1 — previous run; running %2…")
+                            .arg(QString::fromStdString(shown_name_), scenario_->currentText()));
             }
         }
     });
@@ -256,6 +252,10 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
     });
     showScenarioState();
+}
+
+void RoverPanel::requestRun() {
+    if (run_->isEnabled()) run_->click();
 }
 
 void RoverPanel::drawFigure(std::size_t i) const {
@@ -372,11 +372,36 @@ QString soilsOf(const scenario::Scenario& scenario) {
 
 }  // namespace
 
+void RoverPanel::retitle(const QString& title) {
+    title_ = title;
+    for (QCustomPlot* plot : plots_) setPlotTitle(*plot, title_);  // undrawn ones take title_
+    setPlotTitle(*top_view_, title_);
+}
+
 void RoverPanel::previewScenario() {
     if (isBusy()) return;
     const std::string name = currentName();
     const QString shown = QString::fromStdString(name) + (isEdited() ? " (edited)" : "");
-    if (!result_.series.rows.empty() && QString::fromStdString(shown_name_) == shown) return;
+    if (!result_.series.rows.empty()) {
+        // A run is on screen: every tab keeps showing it (the top view too, so that an export of
+        // any tab is that run), titled with its own status, and says when the scenario chosen
+        // since (another one, an edit, a revert) is not the one it ran.
+        const QString run_title = roverTitle(shown_name_, result_.status);
+        if (currentJson() == shown_json_) {
+            retitle(run_title);
+            status_->setText(summaryText());
+            return;
+        }
+        retitle(QString("%1; now %2: press Run").arg(run_title, shown));
+        status_->setText(QString("Shown: the run of %1 — %2. The scenario is now %3: press Run "
+                                 "to run it.")
+                             .arg(QString::fromStdString(shown_name_).toHtmlEscaped(),
+                                  completion() == Completion::kComplete
+                                      ? QString("completed")
+                                      : "<b>" + completionMark(completion()) + "</b>",
+                                  shown.toHtmlEscaped()));
+        return;
+    }
     auto loaded = isEdited() ? parseScenarioText(QString::fromStdString(edits_[name].dump()), name,
                                                  locations_)
                              : scenario::resolveScenario(locations_, name);
@@ -400,6 +425,8 @@ AnalysisPanel::Job RoverPanel::makeJob() {
                                                  locations_)
                              : scenario::resolveScenario(locations_, name);
     if (!loaded) throw std::invalid_argument(loaded.message());
+    pending_name_ = name + (isEdited() ? " (edited)" : "");
+    pending_json_ = currentJson();
     analysis::RoverSettings settings;
     settings.scenario = name;
     settings.loaded = *loaded;
@@ -423,16 +450,9 @@ void RoverPanel::present(const std::any& value) {
     auto result = std::any_cast<analysis::RoverResult>(value);
     shown_ = std::move(result.scenario);
     result_ = std::move(result.run);
-    shown_name_ = currentName() + (isEdited() ? " (edited)" : "");
-    // Only a completed run is 100 %: a cancelled or diverged one stays where it stopped.
-    if (result_.status == scenario::RunResult::Status::kCompleted) {
-        progress_->setValue(100);
-        progress_->setFormat("%p %");
-    } else {
-        progress_->setFormat(result_.status == scenario::RunResult::Status::kCancelled
-                                 ? "%p % (cancelled)"
-                                 : "%p % (diverged)");
-    }
+    shown_name_ = pending_name_;
+    shown_json_ = pending_json_;
+    setCompletion(roverCompletion(result_.status));
     title_ = roverTitle(shown_name_, result_.status);
     const Table& t = result_.series;
     drawn_.assign(plots_.size(), false);
@@ -453,12 +473,15 @@ void RoverPanel::present(const std::any& value) {
         status_->setText("No output: " + QString::fromStdString(result_.message));
         return;
     }
+    status_->setText(summaryText());
+}
+
+QString RoverPanel::summaryText() const {
     const auto& s = result_.summary;
-    const char* status[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
-    status_->setText(
-        QString("%1 on %9 — %2 s simulated, final pose x = %3 m, y = %4 m, yaw = %5°, distance "
-                "%6 m, motor energy %7 J%8")
-            .arg(status[static_cast<int>(result_.status)])
+    const QString body =
+        QString(
+            "on %8 — %1 s simulated, final pose x = %2 m, y = %3 m, yaw = %4°, distance "
+            "%5 m, motor energy %6 J%7")
             .arg(s.duration_s, 0, 'f', 2)
             .arg(s.x_m, 0, 'f', 3)
             .arg(s.y_m, 0, 'f', 3)
@@ -467,7 +490,8 @@ void RoverPanel::present(const std::any& value) {
             .arg(s.energy_j, 0, 'f', 1)
             .arg(result_.message.empty() ? QString()
                                          : ". " + QString::fromStdString(result_.message))
-            .arg(soilsOf(shown_).toHtmlEscaped()));
+            .arg(soilsOf(shown_).toHtmlEscaped());
+    return completion() == Completion::kComplete ? "Completed " + body : markedStatus(body);
 }
 
 QString RoverPanel::timeLabel() const {

@@ -64,6 +64,8 @@ public:
     /// The scenario of the shown result (robot geometry and soils of the top view).
     const scenario::Scenario& shownScenario() const { return shown_; }
     std::vector<std::pair<QString, QCustomPlot*>> plots() const override;
+    /// Run (when no run goes on).
+    void requestRun() override;
     QCustomPlot* currentPlot() const override;
     Table currentTable() const override { return result_.series; }
     nlohmann::json settings() const override;
@@ -104,6 +106,10 @@ private:
     /// drawn when their tab is first shown (or exported), not all in present(): drawing the eleven
     /// plots of a 6001-row run at once held the GUI thread 63–203 ms (docs/performance.md).
     void drawFigure(std::size_t i) const;
+    /// The status line of the run on screen ("Completed on …" or "CANCELLED (partial) — on …").
+    QString summaryText() const;
+    /// Retitles every tab (figures and top view) with `title`: they show the same run.
+    void retitle(const QString& title);
 
     io::PresetLocations locations_;
     QComboBox* scenario_;
@@ -128,7 +134,10 @@ private:
     nlohmann::json edits_ = nlohmann::json::object();  // scenario name → edited JSON
     scenario::RunResult result_;
     scenario::Scenario shown_;
-    std::string shown_name_;
+    std::string shown_name_;     // "straight (edited)": the scenario of the run on screen
+    nlohmann::json shown_json_;  // and its JSON, to tell whether the current one is another
+    std::string pending_name_;   // of the run going on (makeJob)
+    nlohmann::json pending_json_;
 };
 
 }  // namespace terra::ui

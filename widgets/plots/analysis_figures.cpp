@@ -18,6 +18,7 @@
 #include "core/analysis/traction.h"
 #include "core/analysis/validation.h"
 #include "widgets/plots/compaction_figures.h"
+#include "widgets/plots/completion.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/gsa_figures.h"
 #include "widgets/plots/identification_figures.h"
@@ -159,7 +160,10 @@ QString analysisTitle(const std::string& type, const std::optional<std::string>&
         const auto& s = std::any_cast<const analysis::SensitivitySettings&>(settings);
         text += QString(", β = %1°").arg(s.slip_angles_deg.front());
     }
-    return text;
+    // A study stopped by Ctrl-C keeps what it computed (a refused one has no figure to mark).
+    return outcome.status == analysis::Outcome::Status::kCancelled
+               ? markedTitle(text, Completion::kCancelled)
+               : text;
 }
 
 }  // namespace terra::ui

@@ -140,14 +140,17 @@ QColor riskBandColor(analysis::Risk risk) {
     return QColor(214, 39, 40, 45);
 }
 
+Completion compactionCompletion(const analysis::CompactionResult& result) {
+    if (result.ok()) return Completion::kComplete;
+    return result.message.rfind("cancelled", 0) == 0 ? Completion::kCancelled : Completion::kFailed;
+}
+
 QString compactionStatus(const analysis::CompactionResult& result) {
-    if (result.ok()) return {};
-    return result.message.rfind("cancelled", 0) == 0 ? "CANCELLED (partial)" : "FAILED (partial)";
+    return completionMark(compactionCompletion(result));
 }
 
 QString compactionTitle(const QString& title, const analysis::CompactionResult& result) {
-    const QString status = compactionStatus(result);
-    return status.isEmpty() ? title : title + " — " + status;
+    return markedTitle(title, compactionCompletion(result));
 }
 
 void plotCompactionProfile(QCustomPlot& plot, const analysis::CompactionResult& result, int pass,

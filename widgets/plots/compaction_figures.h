@@ -10,6 +10,7 @@
 #include <QString>
 
 #include "core/analysis/compaction.h"
+#include "widgets/plots/completion.h"
 
 class QCustomPlot;
 
@@ -18,6 +19,9 @@ namespace terra::ui {
 /// Translucent fills of the risk bands (green ≤ 0.5 σ_pc, yellow ≤ 1.1 σ_pc, red above), behind
 /// the curves.
 QColor riskBandColor(analysis::Risk risk);
+
+/// How complete a run is: cancelled, or failed part way (the passes before the stop are kept).
+Completion compactionCompletion(const analysis::CompactionResult& result);
 
 /// "" for a completed run; "CANCELLED (partial)" or "FAILED (partial)" otherwise (the passes
 /// before the stop are kept and drawn).

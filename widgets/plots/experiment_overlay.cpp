@@ -7,6 +7,8 @@
 #include <limits>
 #include <map>
 
+#include "widgets/plots/number_format.h"
+
 namespace terra::ui {
 namespace {
 
@@ -52,10 +54,10 @@ QString channelLabel(io::ExperimentChannel channel) {
     return {};
 }
 
-QString channelValue(io::ExperimentChannel channel, double value_si) {
-    const bool mm = channel == io::kExpSinkage;
+QString channelValue(io::ExperimentChannel channel, double value_si, double scale_si) {
+    const double factor = channel == io::kExpSinkage ? 1e3 : 1.0;  // m → mm
     const QString unit = channelLabel(channel).section('[', 1).section(']', 0, 0);
-    return QString("%1 %2").arg(QString::number(mm ? value_si * 1e3 : value_si, 'g', 4), unit);
+    return QString("%1 %2").arg(formatNumber(value_si * factor, scale_si * factor), unit);
 }
 
 QString relativeError(double fraction) {

@@ -33,8 +33,9 @@ std::optional<io::ExperimentChannel> measuredChannel(const std::string& column);
 /// "h [mm]", "F_s [N]" (the side force), "F_z [N]".
 QString channelLabel(io::ExperimentChannel channel);
 /// A value of the channel (SI) in its display unit with the unit, 4 significant digits:
-/// "5.656 N", "6.021 mm".
-QString channelValue(io::ExperimentChannel channel, double value_si);
+/// "5.656 N", "6.021 mm"; "0 mm" for rounding noise next to values of size `scale_si` (an error
+/// of 4.945e-15 mm beside one of 2 mm: number_format.h).
+QString channelValue(io::ExperimentChannel channel, double value_si, double scale_si = 0.0);
 /// A relative error in percent, one decimal ("84.0 %"); "–" for NaN (no measured value ≠ 0).
 QString relativeError(double fraction);
 

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "core/soil/soil_parameters.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_theme.h"
 #include "widgets/plots/sweep_plot.h"
 
@@ -66,7 +67,7 @@ const char* stressLabel(const std::string& stress) {
     return "τ_l";
 }
 
-/// Puts the legend back inside the axis rect (where placeLegend() moves it between corners).
+/// Puts the legend back inside the axis rect (layOutLegend() of plot_legend.h places it after).
 void legendInside(QCustomPlot& plot) {
     QCPLayoutInset* inset = plot.axisRect()->insetLayout();
     if (inset->elementCount() > 0 && inset->elementAt(0) == plot.legend) return;
@@ -79,20 +80,15 @@ void legendInside(QCustomPlot& plot) {
 
 }  // namespace
 
-// For a legend too big to sit on the curves (the eight entries of all four stresses covered σ).
+// Pairs in a row (the exact and quadratic of one stress) read better than the width's fill.
 void legendBelow(QCustomPlot& plot, int columns) {
-    if (plot.legend->layout()) plot.legend->layout()->take(plot.legend);
-    plot.plotLayout()->simplify();
-    const int row = plot.plotLayout()->rowCount();
-    plot.plotLayout()->addElement(row, 0, plot.legend);
-    plot.plotLayout()->setRowStretchFactor(row, 0.001);
-    plot.legend->setWrap(columns);
-    plot.legend->setFillOrder(QCPLayoutGrid::foColumnsFirst);
-    plot.legend->setMargins(QMargins(6, 2, 6, 2));
+    setLegendColumns(plot, columns);
+    layOutLegend(plot);
 }
 
 void resetPlot(QCustomPlot& plot, const QString& title) {
     legendInside(plot);
+    setLegendColumns(plot, 0);  // the next figure's own
     plot.clearGraphs();
     plot.clearItems();
     plot.clearPlottables();

@@ -25,8 +25,9 @@ void setPlotTitle(QCustomPlot& plot, const QString& title);
 /// The title resetPlot() set ("" without one).
 QString plotTitle(const QCustomPlot& plot);
 
-/// Puts the legend under the axis rect (in column 0 of the plot's layout), `columns` entries a
-/// row: off the data. resetPlot() puts it back inside.
+/// Puts the legend under the axes (where layOutLegend() of plot_legend.h puts every legend),
+/// at most `columns` entries a row, fewer when the width takes fewer. resetPlot() forgets the
+/// column count.
 void legendBelow(QCustomPlot& plot, int columns);
 
 /// One stress ("sigma", "tau", "tau_t", "tau_l") over θ: exact solid, quadratic dashed, with the

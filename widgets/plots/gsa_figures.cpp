@@ -10,6 +10,7 @@
 #include "core/common/units.h"
 #include "core/soil/soil_parameters.h"
 #include "widgets/plots/figures.h"
+#include "widgets/plots/plot_legend.h"
 
 namespace terra::ui {
 namespace {
@@ -132,22 +133,18 @@ void plotGlobalIndices(QCustomPlot& plot, const analysis::GlobalSensitivityResul
             if (k == 0) ticker->addTick(centre, QString("s = %1").arg(grid.slips[s]));
         }
     }
-    // Two entries (S1 and ST of a parameter) per legend row, in a band above the bars.
+    // The legend under the axes (plot_legend.h): it covered the K and c bars inside them.
     plot.legend->setVisible(true);
-    plot.legend->setFillOrder(QCPLayoutGrid::foRowsFirst);
-    plot.legend->setWrap(2);
     plot.rescaleAxes();
     plot.xAxis->setRange(0.5, static_cast<double>(slips) + 0.5);
-    const double legend_band = 0.1 * static_cast<double>(d) + 0.05;  // share of the data's span
     if (sobol) {
         // Indices live in [0, 1]; estimates and whiskers may stray a little outside it.
         const QCPRange r = plot.yAxis->range();
-        const double low = std::min(0.0, r.lower) - 0.05, high = std::max(1.0, r.upper) + 0.05;
-        plot.yAxis->setRange(low, high + legend_band * (high - low));
+        plot.yAxis->setRange(std::min(0.0, r.lower) - 0.05, std::max(1.0, r.upper) + 0.05);
     } else {
-        const QCPRange r = plot.yAxis->range();
-        plot.yAxis->setRange(0.0, 1.1 * r.upper * (1.0 + legend_band));
+        plot.yAxis->setRange(0.0, 1.1 * plot.yAxis->range().upper);
     }
+    layOutLegend(plot);
     plot.replot();
 }
 
@@ -202,6 +199,7 @@ void plotUncertaintyBands(QCustomPlot& plot, const analysis::UncertaintyBandResu
     plot.legend->setVisible(true);
     plot.rescaleAxes();
     plot.yAxis->scaleRange(1.1);
+    layOutLegend(plot);
     plot.replot();
 }
 

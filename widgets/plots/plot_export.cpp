@@ -8,6 +8,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_theme.h"
 
 namespace terra::ui {
@@ -55,6 +56,16 @@ bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& opt
         }
     } screen{plot, !options.screen_colours && followsPalette(plot)};
     if (screen.relight) applyPlotTheme(plot, PlotTheme::light());
+    // The legend where the screen has it (dragged, hidden or under the axes), its columns fitted
+    // to the export's width as they are to the screen's; the screen's layout comes back after.
+    struct ScreenLegend {
+        QCustomPlot& plot;
+        ~ScreenLegend() {
+            layOutLegend(plot);
+            plot.replot(QCustomPlot::rpQueuedReplot);
+        }
+    } legend{plot};
+    layOutLegend(plot, options.width);
     if (suffix == "png") {
         ok = plot.savePng(temporary, options.width, options.height, options.scale, -1, options.dpi);
     } else if (suffix == "svg") {

@@ -22,7 +22,9 @@ struct ExportOptions {
     bool screen_colours = false;
 };
 
-/// Format from the suffix (.png, .svg, .pdf); false and `error` when unknown or not written.
+/// Format from the suffix (.png, .svg, .pdf); false and `error` when unknown or not written. The
+/// legend is where the screen shows it (plot_legend.h): under the axes with its columns fitted to
+/// the export's width, or at the same place in the axes after a drag, or hidden.
 bool exportPlot(QCustomPlot& plot, const QString& path, const ExportOptions& options,
                 QString* error);
 

@@ -7,6 +7,7 @@
 #include <QMenu>
 
 #include "core/io/csv.h"
+#include "widgets/plots/plot_legend.h"
 
 namespace terra::ui {
 
@@ -27,6 +28,17 @@ QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* pare
             ->setObjectName("plot.copy_data");
     }
     menu->addSeparator();
+    QAction* legend =
+        menu->addAction("Show legend", [p](bool shown) { setLegendShown(*p, shown); });
+    legend->setObjectName("plot.legend");
+    legend->setCheckable(true);
+    legend->setChecked(legendShown(plot));
+    legend->setEnabled(p->legend != nullptr);
+    QAction* below = menu->addAction("Legend under the plot", [p] { resetLegendPlacement(*p); });
+    below->setObjectName("plot.legend_below");
+    below->setToolTip(
+        "Back to its place under the axes, off the data (drag the legend to move it)");
+    below->setEnabled(legendMoved(plot));
     menu->addAction("Reset view",
                     [p] {
                         p->rescaleAxes();

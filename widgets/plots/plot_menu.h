@@ -1,7 +1,8 @@
 #pragma once
 /// @file plot_menu.h
-/// The right-click menu of the studio's plots: export, copy the image, copy the data (CSV text)
-/// and reset the view (the whole data, as a double-click does).
+/// The right-click menu of the studio's plots: export, copy the image, copy the data (CSV text),
+/// show or hide the legend and put it back under the axes after a drag (plot_legend.h), and reset
+/// the view (the whole data, as a double-click does).
 
 #include <functional>
 
@@ -20,7 +21,8 @@ struct PlotMenuHooks {
 };
 
 /// Builds the menu (actions named "plot.export", "plot.copy_image", "plot.copy_data",
-/// "plot.reset_view"); the caller shows or inspects it.
+/// "plot.legend" (checkable), "plot.legend_below", "plot.reset_view"); the caller shows or
+/// inspects it.
 QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* parent);
 
 /// Shows makePlotMenu() on a right click of the plot.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "widgets/plots/figures.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/sweep_plot.h"
 
 namespace terra::ui {
@@ -230,10 +231,23 @@ void setRoverTimeCursor(QCustomPlot& plot, const Table& t, const std::string& ke
     line->point2->setCoords(time, 1.0);
 }
 
+Completion roverCompletion(scenario::RunResult::Status status) {
+    switch (status) {
+        case scenario::RunResult::Status::kCompleted:
+            return Completion::kComplete;
+        case scenario::RunResult::Status::kCancelled:
+            return Completion::kCancelled;
+        case scenario::RunResult::Status::kDiverged:
+            break;
+    }
+    return Completion::kDiverged;
+}
+
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status) {
-    const char* text[] = {"completed", "CANCELLED (partial)", "DIVERGED (partial)"};
-    return QString("%1 — %2").arg(QString::fromStdString(scenario_name),
-                                  text[static_cast<int>(status)]);
+    const QString name = QString::fromStdString(scenario_name);
+    const Completion completion = roverCompletion(status);
+    return completion == Completion::kComplete ? name + " — completed"
+                                               : markedTitle(name, completion);
 }
 
 RoverPose roverPoseAt(const Table& t, std::size_t row) {
@@ -356,15 +370,14 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     }
     plot.xAxis->setRange(x0, x1);
     plot.yAxis->setRange(y0, y1);
-    plot.replot();  // lays out the axis rect: the scale ratio needs its size in pixels
+    layOutLegend(plot);  // under the axes before they are measured
+    plot.replot();       // lays out the axis rect: the scale ratio needs its size in pixels
     if ((x1 - x0) / std::max(plot.axisRect()->width(), 1) >=
         (y1 - y0) / std::max(plot.axisRect()->height(), 1)) {
         plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
     } else {
         plot.xAxis->setScaleRatio(plot.yAxis, 1.0);
     }
-    // Bottom right: the labels of the soils sit at the top-left corners of their areas.
-    plot.axisRect()->insetLayout()->setInsetAlignment(0, Qt::AlignBottom | Qt::AlignRight);
     if (!t.rows.empty()) {
         setRoverTopViewPose(plot, robot, t, std::min(row, t.rows.size() - 1));
     } else {

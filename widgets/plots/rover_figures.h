@@ -16,6 +16,7 @@
 #include "core/dynamics/robot.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario.h"
+#include "widgets/plots/completion.h"
 
 class QCustomPlot;
 
@@ -44,6 +45,9 @@ void plotRoverFigure(QCustomPlot& plot, const Table& series, const std::string& 
 /// row outside the series.
 void setRoverTimeCursor(QCustomPlot& plot, const Table& series, const std::string& key,
                         std::size_t row);
+
+/// How complete a run is (completion.h): cancelled and diverged runs keep their steps.
+Completion roverCompletion(scenario::RunResult::Status status);
 
 /// "pulse-steering — completed" (or "CANCELLED (partial)", "DIVERGED (partial)").
 QString roverTitle(const std::string& scenario_name, scenario::RunResult::Status status);

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "widgets/plots/plot_export.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_theme.h"
 
 namespace terra::ui {
@@ -87,28 +88,7 @@ void fitSweepAxes(QCustomPlot& plot, bool replot) {
     if (replot) plot.replot();
 }
 
-void placeLegend(QCustomPlot& plot) {
-    const QCPRange x = plot.xAxis->range(), y = plot.yAxis->range();
-    // Corners: (right, top), (left, top), (right, bottom), (left, bottom); the legend covers
-    // roughly 30 % × 35 % of the axes.
-    const Qt::Alignment corners[] = {Qt::AlignRight | Qt::AlignTop, Qt::AlignLeft | Qt::AlignTop,
-                                     Qt::AlignRight | Qt::AlignBottom,
-                                     Qt::AlignLeft | Qt::AlignBottom};
-    int counts[4] = {0, 0, 0, 0};
-    for (int g = 0; g < plot.graphCount(); ++g) {
-        for (auto it = plot.graph(g)->data()->constBegin(); it != plot.graph(g)->data()->constEnd();
-             ++it) {
-            const double u = (it->key - x.lower) / x.size(), v = (it->value - y.lower) / y.size();
-            const bool right = u > 0.7, left = u<0.3, top = v> 0.65, bottom = v < 0.35;
-            if (right && top) ++counts[0];
-            if (left && top) ++counts[1];
-            if (right && bottom) ++counts[2];
-            if (left && bottom) ++counts[3];
-        }
-    }
-    const int best = static_cast<int>(std::min_element(counts, counts + 4) - counts);
-    plot.axisRect()->insetLayout()->setInsetAlignment(0, corners[best]);
-}
+void placeLegend(QCustomPlot& plot) { layOutLegend(plot); }
 
 bool exportPng(QCustomPlot& plot, const QString& path, int width, int height, QString* error) {
     ExportOptions options;  // atomic: temporary file, then rename (plot_export.cpp)

@@ -37,11 +37,12 @@ void plotSweep(QCustomPlot& plot, const Table& table, const SweepQuantity& quant
                const QString& title, bool replot = true);
 
 /// Fits the axes to the graphs (a quantity held constant is not zoomed into rounding noise), puts
-/// the legend where it covers the least data (placeLegend) and replots (unless `replot` is
-/// false): after graphs were added.
+/// the legend off the data (placeLegend) and replots (unless `replot` is false): after graphs
+/// were added.
 void fitSweepAxes(QCustomPlot& plot, bool replot = true);
 
-/// Puts the legend in the corner of the axis rect that covers the fewest data points.
+/// Puts the legend off the data: under the axes, or where the user dragged it (layOutLegend of
+/// plot_legend.h).
 void placeLegend(QCustomPlot& plot);
 
 /// Writes the plot as PNG of `width` × `height` pixels; false (and `error`) on failure.

@@ -1,0 +1,196 @@
+// Issue 27, item 4 (plots), on the forces panel as a person uses it (offscreen): the legend sits
+// off the data by default and never widens the plot, a drag moves it (without panning the axes)
+// and it stays there through a redraw, the plot menu hides and shows it, an export lays it out
+// the same way, and the read-out names the curve point nearest the mouse, not the mouse position.
+#include <gtest/gtest.h>
+#include <qcustomplot.h>
+
+#include <QAction>
+#include <QLabel>
+#include <QMenu>
+#include <QTemporaryDir>
+#include <QTest>
+#include <memory>
+
+#include "widgets/panels/forces_panel.h"
+#include "widgets/plots/plot_export.h"
+#include "widgets/plots/plot_menu.h"
+#include "widgets_test_support.h"
+
+namespace terra::ui {
+namespace {
+
+/// The forces panel shown with its result, and its drawbar-pull plot laid out on screen.
+struct Shown {
+    Shown() {
+        test::resetToDefault(document);
+        panel = std::make_unique<ForcesPanel>(&document);
+        panel->resize(1000, 640);
+        panel->show();
+        EXPECT_TRUE(test::waitForResult(*panel));
+        plot = panel->currentPlot();
+        plot->replot();
+    }
+    ProjectDocument document;
+    std::unique_ptr<ForcesPanel> panel;
+    QCustomPlot* plot = nullptr;
+};
+
+QAction* menuAction(QCustomPlot& plot, const QString& name, std::unique_ptr<QMenu>& holder) {
+    holder.reset(makePlotMenu(plot, {}, nullptr));
+    return holder->findChild<QAction*>(name);
+}
+
+/// Drags with the left button from `from` to `to` through the plot's own events.
+void drag(QCustomPlot& plot, QPoint from, QPoint to) {
+    QTest::mousePress(&plot, Qt::LeftButton, {}, from);
+    QTest::mouseMove(&plot, (from + to) / 2);
+    QTest::mouseMove(&plot, to);
+    QTest::mouseRelease(&plot, Qt::LeftButton, {}, to);
+    plot.replot();
+}
+
+// The six β curves' legend sat in a corner of the axes, over measured points and curves.
+TEST(PlotLegend, SitsOffTheDataByDefaultAndNeverWidensThePlot) {
+    Shown s;
+    QCustomPlot& plot = *s.plot;
+    ASSERT_TRUE(plot.legend->visible());
+    ASSERT_EQ(plot.legend->itemCount(), 6);
+    EXPECT_FALSE(plot.legend->outerRect().intersects(plot.axisRect()->rect()));
+    // Narrow (a 1024 px screen, docks open): fewer entries a row, still within the plot.
+    plot.resize(360, 400);
+    plot.replot();
+    EXPECT_LE(plot.legend->outerRect().width(), plot.width());
+    EXPECT_LE(static_cast<QWidget&>(plot).minimumSizeHint().width(), 360);
+    EXPECT_FALSE(plot.legend->outerRect().intersects(plot.axisRect()->rect()));
+}
+
+TEST(PlotLegend, ADragMovesItWithoutPanningAndItStaysThroughARedraw) {
+    Shown s;
+    QCustomPlot& plot = *s.plot;
+    const QCPRange x = plot.xAxis->range(), y = plot.yAxis->range();
+    const QRect axes = plot.axisRect()->rect();
+    // Into the axes, near their top-left corner.
+    drag(plot, plot.legend->outerRect().center(), axes.topLeft() + QPoint(80, 60));
+    QRect at = plot.legend->outerRect();
+    EXPECT_TRUE(plot.axisRect()->rect().contains(at)) << "inside the axes";
+    EXPECT_EQ(plot.xAxis->range(), x) << "the drag did not pan";
+    EXPECT_EQ(plot.yAxis->range(), y);
+    // Once inside, it follows the mouse pixel for pixel.
+    const QPoint delta(120, 70);
+    drag(plot, at.center(), at.center() + delta);
+    EXPECT_NEAR(plot.legend->outerRect().left(), at.left() + delta.x(), 1);
+    EXPECT_NEAR(plot.legend->outerRect().top(), at.top() + delta.y(), 1);
+    at = plot.legend->outerRect();
+    // An edit redraws the figure: the legend stays where the user left it.
+    ASSERT_TRUE(s.document.setSoilValue("phi_deg", 31.0));
+    ASSERT_TRUE(test::waitForResult(*s.panel));
+    plot.replot();
+    EXPECT_EQ(plot.legend->outerRect().topLeft(), at.topLeft());
+    // "Legend under the plot" puts it back off the data.
+    std::unique_ptr<QMenu> menu;
+    QAction* below = menuAction(plot, "plot.legend_below", menu);
+    ASSERT_NE(below, nullptr);
+    EXPECT_TRUE(below->isEnabled());
+    below->trigger();
+    plot.replot();
+    EXPECT_FALSE(plot.legend->outerRect().intersects(plot.axisRect()->rect()));
+}
+
+TEST(PlotLegend, ThePlotMenuHidesAndShowsItThroughRedraws) {
+    Shown s;
+    QCustomPlot& plot = *s.plot;
+    std::unique_ptr<QMenu> menu;
+    QAction* legend = menuAction(plot, "plot.legend", menu);
+    ASSERT_NE(legend, nullptr);
+    EXPECT_TRUE(legend->isCheckable());
+    EXPECT_TRUE(legend->isChecked());
+    legend->trigger();
+    plot.replot();
+    EXPECT_FALSE(plot.legend->visible());
+    const QRect axes_with_legend = plot.axisRect()->rect();
+    ASSERT_TRUE(s.document.setSoilValue("phi_deg", 31.0));
+    ASSERT_TRUE(test::waitForResult(*s.panel));
+    plot.replot();
+    EXPECT_FALSE(plot.legend->visible()) << "hidden through a redraw";
+    EXPECT_GE(plot.axisRect()->rect().height(), axes_with_legend.height())
+        << "a hidden legend leaves its row to the axes";
+    legend = menuAction(plot, "plot.legend", menu);
+    EXPECT_FALSE(legend->isChecked());
+    legend->trigger();
+    plot.replot();
+    EXPECT_TRUE(plot.legend->visible());
+}
+
+// An export lays the legend out for its own width and leaves the screen's layout as it was.
+TEST(PlotLegend, AnExportKeepsTheScreensPlacement) {
+    Shown s;
+    QCustomPlot& plot = *s.plot;
+    QTemporaryDir dir;
+    const QRect axes = plot.axisRect()->rect();
+    drag(plot, plot.legend->outerRect().center(), axes.topLeft() + QPoint(80, 60));
+    const QRect before = plot.legend->outerRect();
+    const QCPLayoutInset* inset = plot.axisRect()->insetLayout();
+    ASSERT_EQ(inset->elementAt(0), plot.legend);
+    const QRectF fraction = inset->insetRect(0);
+    QString error;
+    ExportOptions options;
+    options.width = 1600;
+    options.height = 900;
+    ASSERT_TRUE(exportPlot(plot, dir.filePath("fx.png"), options, &error)) << error.toStdString();
+    plot.replot();
+    EXPECT_EQ(inset->insetRect(0), fraction) << "the same place in the axes in the export";
+    EXPECT_EQ(plot.legend->outerRect(), before);
+    QImage image(dir.filePath("fx.png"));
+    EXPECT_EQ(image.size(), QSize(1600, 900));
+}
+
+// The read-out showed the mouse position ("s = 0.3012"), between the curves.
+TEST(PlotReadout, NamesTheNearestCurvePointWithItsUnits) {
+    Shown s;
+    QCustomPlot& plot = *s.plot;
+    ASSERT_EQ(plot.yAxis->label(), "Drawbar pull F_x [N]");
+    // Pointed 4 px right of and 3 px below the 30th point of the first curve (β = 0°).
+    const auto pointed = plot.graph(0)->data()->at(30);
+    const QPoint at(qRound(plot.xAxis->coordToPixel(pointed->key)) + 4,
+                    qRound(plot.yAxis->coordToPixel(pointed->value)) + 3);
+    // The nearest drawn point of any curve, by brute force.
+    const QCPGraph* nearest = nullptr;
+    double key = 0, value = 0, best = 1e300;
+    for (int g = 0; g < plot.graphCount(); ++g) {
+        for (auto it = plot.graph(g)->data()->constBegin(); it != plot.graph(g)->data()->constEnd();
+             ++it) {
+            const double dx = plot.xAxis->coordToPixel(it->key) - at.x();
+            const double dy = plot.yAxis->coordToPixel(it->value) - at.y();
+            if (dx * dx + dy * dy < best) {
+                best = dx * dx + dy * dy;
+                nearest = plot.graph(g);
+                key = it->key;
+                value = it->value;
+            }
+        }
+    }
+    ASSERT_NE(nearest, nullptr);
+    ASSERT_LE(best, 26.0) << "the point pointed at or one as near";
+    QTest::mouseMove(&plot, at);
+    QLabel* readout = nullptr;
+    for (QLabel* label : s.panel->findChildren<QLabel*>()) {
+        if (label->text().startsWith("Slip ratio")) readout = label;
+    }
+    ASSERT_NE(readout, nullptr);
+    const QString expected = QString("Slip ratio s = %1,  Drawbar pull F_x = %2 N  — %3")
+                                 .arg(key, 0, 'g', 4)
+                                 .arg(value, 0, 'g', 4)
+                                 .arg(nearest->name());
+    EXPECT_EQ(readout->text(), expected);
+    // A ring marks the point read.
+    bool ring = false;
+    for (int i = 0; i < plot.itemCount(); ++i) {
+        auto* tracer = qobject_cast<QCPItemTracer*>(plot.item(i));
+        if (tracer && tracer->position->coords() == QPointF(key, value)) ring = true;
+    }
+    EXPECT_TRUE(ring);
+}
+
+}  // namespace
+}  // namespace terra::ui
