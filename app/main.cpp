@@ -79,6 +79,7 @@ int runHeadless(int argc, char** argv) {
     addValidateCommand(app, locations);
     addCompactionCommand(app, locations);
     addTractionCommand(app, locations);
+    addFieldCommand(app, locations);
     makeOptionsStrict(app);
     // CLI11 answers an unknown first word with "A subcommand is required": name it instead.
     if (const std::string problem = unknownSubcommand(app, argc, argv); !problem.empty()) {

@@ -27,4 +27,7 @@ void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations);
 /// `traction`: the best slip for a soil (core/analysis/traction.h).
 void addTractionCommand(CLI::App& app, const io::PresetLocations& locations);
 
+/// `field`: what a field file holds (core/field/field_summary.h).
+void addFieldCommand(CLI::App& app, const io::PresetLocations& locations);
+
 }  // namespace terra::app
