@@ -1,6 +1,7 @@
 // `terrastudio field`: what a field file holds before any wheel drives on it — extent, heights,
 // slopes and the area of each soil class — and the slope map (core/field/field_summary.h;
 // docs/field.md).
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -8,21 +9,51 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "core/analysis/traversability.h"
 #include "core/common/range.h"
+#include "core/io/csv.h"
 #include "core/io/field_json.h"
+#include "core/io/json_reader.h"
 #include "core/io/raster_io.h"
+#include "core/scenario/scenario_json.h"
 
 namespace terra::app {
 namespace {
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 struct FieldOptions {
     std::string file;
     bool json = false;
     std::string out;
     std::string slope_map;
+    std::string traversability;
+    std::string robot = "default";
+    std::optional<int> headings;
+    std::optional<double> cell_m;
 };
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+// The settings keys the flags set, and the flags' names for the reader's messages.
+const std::vector<std::pair<std::string, std::string>>& flagNames() {
+    static const std::vector<std::pair<std::string, std::string>> names{{"headings", "--headings"},
+                                                                        {"cell_m", "--cell"}};
+    return names;
+}
+
+void printTraversability(const analysis::TraversabilityResult& r) {
+    std::cout << "traversability for " << formatNumber(r.robot_mass_kg) << " kg on " << r.grid.cols
+              << " x " << r.grid.rows << " cells of " << formatNumber(r.grid.cell_m) << " m ("
+              << r.curves << " slip curves):\n";
+    std::cout << "  heading [deg]  stalled cells  braking cells  largest slip\n";
+    for (const analysis::HeadingMap& m : r.headings) {
+        const double hi = m.slip.valueRange().second;
+        char line[160];
+        std::snprintf(line, sizeof line, "  %13s  %13zu  %13zu  %12s\n",
+                      fixed(m.heading_rad * kDeg, 1).c_str(), m.stalled, m.braking,
+                      std::isnan(hi) ? "-" : fixed(hi, 3).c_str());
+        std::cout << line;
+    }
+}
 
 void printText(const field::FieldSummary& s) {
     std::cout << (s.name.empty() ? "field" : s.name) << ": " << formatNumber(s.x_max_m - s.x_min_m)
@@ -74,10 +105,18 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--out", o.out, "Write the summary to this file instead of stdout");
     cmd->add_option("--slope-map", o.slope_map,
                     "Write the steepest slope [deg] at the height map's cells (.asc or .csv)");
+    cmd->add_option("--traversability", o.traversability,
+                    "Write the traversability map before driving: .csv (x_m, y_m, heading_deg, "
+                    "grade_deg, slip, status per cell and heading) or .asc (the largest slip "
+                    "over the headings; no data where every heading stalls)");
+    cmd->add_option("--robot", o.robot, "The robot of --traversability (default: default)");
+    cmd->add_option("--headings", o.headings, "Headings of --traversability (default 8)");
+    cmd->add_option("--cell", o.cell_m, "Cell of --traversability [m] (default: the height map's)");
     cmd->callback([options, &locations] {
         const FieldOptions& o = *options;
         refuseInputAsOutput("--out", o.out, {{"field", o.file}});
         refuseInputAsOutput("--slope-map", o.slope_map, {{"field", o.file}});
+        refuseInputAsOutput("--traversability", o.traversability, {{"field", o.file}});
         Result<io::FieldFile> file = io::loadField(o.file, locations);
         if (!file) throw InputError(file.message());
         const field::FieldSummary summary = field::summarize(file->map, file->labels);
@@ -88,16 +127,47 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
                     io::writeRaster(o.slope_map, *slope, "slope_deg"))
                 throw std::runtime_error(*error);
         }
+        std::optional<analysis::TraversabilityResult> trav;
+        if (!o.traversability.empty()) {
+            Result<dynamics::RobotParameters> robot = scenario::resolveRobot(locations, o.robot);
+            if (!robot) throw InputError("--robot: " + robot.message());
+            nlohmann::json object = nlohmann::json::object();
+            if (o.headings) object["headings"] = *o.headings;
+            if (o.cell_m) object["cell_m"] = *o.cell_m;
+            std::vector<Issue> issues;
+            io::ObjectReader reader(object, issues);
+            analysis::TraversabilitySettings settings;
+            analysis::readTraversabilitySettings(reader, settings);
+            reader.finish();
+            if (!issues.empty()) {
+                nameFlags(issues, flagNames());
+                throw InputError(formatIssues(issues));
+            }
+            trav = analysis::computeTraversability(file->map, *robot, settings);
+            const bool asc = std::filesystem::path(o.traversability).extension() == ".asc";
+            if (asc) {
+                if (std::optional<std::string> error =
+                        io::writeRaster(o.traversability, trav->worst_slip, "slip"))
+                    throw std::runtime_error(*error);
+            } else {
+                writeOutput(o.traversability,
+                            io::toCsv(analysis::traversabilityTable(*trav, file->map)));
+            }
+        }
         if (o.json) {
-            writeOutput(o.out, io::toJson(summary).dump(2) + "\n");
+            nlohmann::json j = io::toJson(summary);
+            if (trav) j["traversability"] = analysis::toJson(*trav);
+            writeOutput(o.out, j.dump(2) + "\n");
         } else if (!o.out.empty()) {
             std::ostringstream text;
             std::streambuf* old = std::cout.rdbuf(text.rdbuf());
             printText(summary);
+            if (trav) printTraversability(*trav);
             std::cout.rdbuf(old);
             writeOutput(o.out, text.str());
         } else {
             printText(summary);
+            if (trav) printTraversability(*trav);
         }
     });
 }

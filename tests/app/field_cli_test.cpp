@@ -58,6 +58,35 @@ TEST(FieldCli, SlopeMapOfTheSlopedField) {
     EXPECT_GT(largest, plane_deg + 1.0);
 }
 
+// The traversability table: one row per cell and heading with the interface's columns; the JSON
+// counts agree with the table's statuses; a bad --headings is named with its range.
+TEST(FieldCli, TraversabilityTableAndSummaryAgree) {
+    terra::testing::TempDir dir;
+    const std::string csv = (dir.path() / "t.csv").string();
+    const CliRun r =
+        run("field " + kFields + "sloped-wet/field.json --robot wheel-b --headings 4 " +
+            "--cell 2 --traversability " + csv + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json out = json::parse(r.out)["traversability"];
+    EXPECT_EQ(out["cells"], 30 * 20);
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "x_m,y_m,heading_deg,grade_deg,slip,status");
+    int rows = 0, stalled_uphill = 0;
+    while (std::getline(in, line)) {
+        ++rows;
+        if (line.find(",0,") != std::string::npos && line.back() == '1') ++stalled_uphill;
+    }
+    EXPECT_EQ(rows, 30 * 20 * 4);
+    EXPECT_EQ(out["headings"][0]["stalled"].get<int>(), stalled_uphill);
+    const CliRun bad =
+        run("field " + kFields + "sloped-wet/field.json --traversability " + csv + " --headings 0");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--headings"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("[1, 360]"), std::string::npos) << bad.err;
+}
+
 TEST(FieldCli, BadFieldsAreNamed) {
     terra::testing::TempDir dir;
     std::ofstream(dir.path() / "c.asc") << "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\n"

@@ -1,0 +1,248 @@
+#include "core/analysis/traversability.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/analysis/traction.h"
+#include "core/common/range.h"
+#include "core/common/units.h"
+#include "core/contact/contact_parameters.h"
+#include "core/field/field_summary.h"
+#include "core/io/json_reader.h"
+
+namespace terra::analysis {
+
+namespace {
+
+const Range kSlipRange{0.0, 0.99};
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Loads are binned to this fraction of the level-ground load (T3): 0.25 %.
+constexpr double kLoadBin = 0.0025;
+
+std::vector<Issue> settingsIssues(const TraversabilitySettings& s) {
+    std::vector<Issue> issues;
+    if (s.headings < 1 || s.headings > 360)
+        issues.push_back({"headings", std::to_string(s.headings) + " is outside [1, 360]"});
+    if (s.cell_m) checkRange(issues, "cell_m", *s.cell_m, {0.0, 100.0, true, false}, "m");
+    checkRange(issues, "slip_min", s.slip_min, kSlipRange);
+    checkRange(issues, "slip_max", s.slip_max, kSlipRange);
+    if (issues.empty() && !(s.slip_min < s.slip_max))
+        issues.push_back({"slip_max", formatNumber(s.slip_max) +
+                                          " must be above slip_min = " + formatNumber(s.slip_min)});
+    if (s.curve_points < 10 || s.curve_points > 5000)
+        issues.push_back(
+            {"curve_points", std::to_string(s.curve_points) + " is outside [10, 5000]"});
+    return issues;
+}
+
+// The F_x(s) curve of one soil at one load (T2), on evenly spaced slips.
+struct Curve {
+    std::vector<double> slip, fx;  // only points with an equilibrium
+};
+
+// The slip needed for the pull `pull_n` on a curve: the first crossing, interpolated (T2).
+std::pair<TraverseStatus, double> slipFor(const Curve& c, double pull_n, double slip_min) {
+    if (c.slip.empty()) return {TraverseStatus::kStall, kNaN};
+    if (pull_n <= c.fx.front()) {
+        if (pull_n < 0.0) return {TraverseStatus::kBraking, kNaN};
+        return {TraverseStatus::kOk, slip_min};  // at most s_min (a bound)
+    }
+    for (std::size_t i = 1; i < c.fx.size(); ++i) {
+        if (c.fx[i] >= pull_n) {
+            const double t = (pull_n - c.fx[i - 1]) / (c.fx[i] - c.fx[i - 1]);
+            return {TraverseStatus::kOk, c.slip[i - 1] + t * (c.slip[i] - c.slip[i - 1])};
+        }
+    }
+    return {TraverseStatus::kStall, kNaN};
+}
+
+}  // namespace
+
+const char* statusName(TraverseStatus status) {
+    switch (status) {
+        case TraverseStatus::kOk:
+            return "ok";
+        case TraverseStatus::kStall:
+            return "stall";
+        case TraverseStatus::kBraking:
+            return "braking";
+    }
+    return "?";
+}
+
+void readTraversabilitySettings(io::ObjectReader& r, TraversabilitySettings& out) {
+    r.integer("headings", out.headings, 1, 360);
+    double cell = 0.0;
+    if (r.number("cell_m", cell, {0.0, 100.0, true, false}, "m")) out.cell_m = cell;
+    r.number("slip_min", out.slip_min, kSlipRange);
+    r.number("slip_max", out.slip_max, kSlipRange);
+    r.integer("curve_points", out.curve_points, 10, 5000);
+    r.boolean("quadratic", out.quadratic);
+    readModelChoices(r, out.model);
+    for (Issue& issue : settingsIssues(out)) {
+        if (issue.where == "slip_max") r.report(issue.where, std::move(issue.message));
+    }
+}
+
+nlohmann::json toJson(const TraversabilitySettings& s) {
+    nlohmann::json out{{"headings", s.headings},
+                       {"slip_min", s.slip_min},
+                       {"slip_max", s.slip_max},
+                       {"curve_points", s.curve_points},
+                       {"quadratic", s.quadratic}};
+    if (s.cell_m) out["cell_m"] = *s.cell_m;
+    writeModelChoices(s.model, out);
+    return out;
+}
+
+TraversabilityResult computeTraversability(const field::FieldMap& field,
+                                           const dynamics::RobotParameters& robot,
+                                           const TraversabilitySettings& s,
+                                           const Control& control) {
+    if (std::vector<Issue> issues = settingsIssues(s); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
+    if (std::vector<Issue> issues = wheel::validate(robot.wheel); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
+    const field::FieldSummary extent = field::summarize(field);
+    if (!(extent.x_max_m > extent.x_min_m))
+        throw std::invalid_argument(
+            "the field has no map (height, classes or parameters) to cover");
+    TraversabilityResult out;
+    out.robot_mass_kg = robot.totalMass();
+    const double cell = s.cell_m       ? *s.cell_m
+                        : field.height ? field.height->cell_m
+                                       : (extent.class_cell_m > 0 ? extent.class_cell_m : 1.0);
+    const int cols =
+        std::max(1, static_cast<int>(std::ceil((extent.x_max_m - extent.x_min_m) / cell - 1e-9)));
+    const int rows =
+        std::max(1, static_cast<int>(std::ceil((extent.y_max_m - extent.y_min_m) / cell - 1e-9)));
+    out.grid = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell);
+    out.worst_slip = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell, kNaN);
+    out.stall_share = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell);
+    for (int h = 0; h < s.headings; ++h) {
+        HeadingMap m;
+        m.heading_rad = 2.0 * std::numbers::pi * h / s.headings;
+        m.slip = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell, kNaN);
+        m.status = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell);
+        out.headings.push_back(std::move(m));
+    }
+
+    // T1: one wheel's share of the weight; T3: curves per soil and load bin.
+    const double level_load = out.robot_mass_kg * units::kGravity / dynamics::kWheelCount;
+    const double bin = kLoadBin * level_load;
+    TractionSettings ts;
+    ts.slip_min = s.slip_min;
+    ts.slip_max = s.slip_max;
+    ts.model = s.model;
+    const contact::ContactModel model =
+        s.quadratic ? contact::ContactModel::kQuadratic : contact::ContactModel::kFull;
+    std::map<std::vector<double>, int> soil_ids;
+    std::vector<contact::ContactParameters<double>> soil_params;
+    std::map<std::pair<int, long>, Curve> curves;
+    const auto curveFor = [&](int soil_id, long load_bin) -> const Curve& {
+        auto [it, added] = curves.try_emplace({soil_id, load_bin});
+        if (added) {
+            for (int i = 0; i < s.curve_points; ++i) {
+                const double slip =
+                    s.slip_min + (s.slip_max - s.slip_min) * i / (s.curve_points - 1);
+                const TractionPoint p =
+                    tractionPoint(soil_params[soil_id], load_bin * bin, slip, ts, model);
+                if (!p.ok) continue;
+                it->second.slip.push_back(slip);
+                it->second.fx.push_back(p.fx_n);
+            }
+        }
+        return it->second;
+    };
+
+    for (int row = 0; row < rows; ++row) {
+        if (control.cancelled()) {
+            out.cancelled = true;
+            break;
+        }
+        for (int col = 0; col < cols; ++col) {
+            const double x = out.grid.centreX(col), y = out.grid.centreY(row);
+            out.grid.value(col, row) = field.slopeAt(x, y) * 180.0 / std::numbers::pi;
+            const soil::SoilParameters soil = field.soilAt(x, y);
+            std::vector<double> key;
+            for (const soil::SoilField& f : soil::soilFields()) key.push_back(soil.*f.member);
+            auto [id, added] = soil_ids.try_emplace(key, static_cast<int>(soil_params.size()));
+            if (added) soil_params.push_back(contact::makeContactParameters(soil, robot.wheel));
+            int stalls = 0;
+            double worst = kNaN;
+            for (HeadingMap& m : out.headings) {
+                const field::LocalSlope slope = field.slopeUnder(x, y, m.heading_rad);
+                const double load =
+                    level_load * std::cos(slope.grade_rad) * std::cos(slope.cross_rad);
+                const double pull = level_load * std::sin(slope.grade_rad);
+                const long load_bin = std::max(1L, std::lround(load / bin));
+                // The pull scaled to the bin's load (F_x ∝ W to first order; T3).
+                const auto [status, slip] = slipFor(curveFor(id->second, load_bin),
+                                                    pull * (load_bin * bin) / load, s.slip_min);
+                m.status.value(col, row) = static_cast<double>(status);
+                m.slip.value(col, row) = slip;
+                if (status == TraverseStatus::kStall) {
+                    ++m.stalled;
+                    ++stalls;
+                } else if (status == TraverseStatus::kBraking) {
+                    ++m.braking;
+                } else if (std::isnan(worst) || slip > worst) {
+                    worst = slip;
+                }
+            }
+            out.worst_slip.value(col, row) = worst;
+            out.stall_share.value(col, row) = static_cast<double>(stalls) / s.headings;
+        }
+        control.report(static_cast<double>(row + 1) / rows);
+    }
+    out.curves = static_cast<int>(curves.size());
+    return out;
+}
+
+nlohmann::json toJson(const TraversabilityResult& r) {
+    nlohmann::json headings = nlohmann::json::array();
+    double max_slip = kNaN;
+    for (const HeadingMap& m : r.headings) {
+        const auto [lo, hi] = m.slip.valueRange();
+        (void)lo;
+        headings.push_back(
+            {{"heading_deg", m.heading_rad * 180.0 / std::numbers::pi},
+             {"stalled", m.stalled},
+             {"braking", m.braking},
+             {"max_slip", std::isnan(hi) ? nlohmann::json(nullptr) : nlohmann::json(hi)}});
+        if (!std::isnan(hi) && (std::isnan(max_slip) || hi > max_slip)) max_slip = hi;
+    }
+    std::size_t stall_cells = 0;
+    for (double v : r.stall_share.values) stall_cells += v > 0.0 ? 1 : 0;
+    return {{"cells", r.grid.values.size()},
+            {"cell_m", r.grid.cell_m},
+            {"headings", headings},
+            {"stall_cells", stall_cells},
+            {"max_slip", std::isnan(max_slip) ? nlohmann::json(nullptr) : nlohmann::json(max_slip)},
+            {"robot_mass_kg", r.robot_mass_kg},
+            {"curves", r.curves},
+            {"cancelled", r.cancelled}};
+}
+
+Table traversabilityTable(const TraversabilityResult& r, const field::FieldMap& field) {
+    Table t;
+    t.columns = {"x_m", "y_m", "heading_deg", "grade_deg", "slip", "status"};
+    for (int row = 0; row < r.grid.rows; ++row) {
+        for (int col = 0; col < r.grid.cols; ++col) {
+            const double x = r.grid.centreX(col), y = r.grid.centreY(row);
+            for (const HeadingMap& m : r.headings) {
+                t.rows.push_back(
+                    {x, y, m.heading_rad * 180.0 / std::numbers::pi,
+                     field.slopeUnder(x, y, m.heading_rad).grade_rad * 180.0 / std::numbers::pi,
+                     m.slip.value(col, row), m.status.value(col, row)});
+            }
+        }
+    }
+    return t;
+}
+
+}  // namespace terra::analysis

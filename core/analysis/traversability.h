@@ -1,0 +1,78 @@
+#pragma once
+/// @file traversability.h
+/// The traversability map of a field, made before driving (docs/field.md, "Traversability";
+/// issue 23, item 4): for every cell and heading, the slip a robot's wheels need to hold a steady
+/// speed there, and where they cannot (a stall). The robot's weight is shared by its four wheels;
+/// on the grade θ_g and cross slope θ_c under the heading (F3) each wheel carries
+/// W = m g cos θ_g cos θ_c / 4 and must pull F_x = m g sin θ_g / 4 (T1); the slip is the
+/// smallest s in [s_min, s_max] with F_x(s; soil, W) = that pull (T2).
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/analysis/analysis.h"
+#include "core/dynamics/robot.h"
+#include "core/field/field_map.h"
+#include "core/field/raster.h"
+
+namespace terra::analysis {
+
+struct TraversabilitySettings {
+    int headings = 8;              ///< headings evenly from 0 (along +x), counter-clockwise
+    std::optional<double> cell_m;  ///< the map's cell [m]; empty: the height map's (or 1 m)
+    double slip_min = 0.01;        ///< the slips searched [-]
+    double slip_max = 0.9;
+    int curve_points = 200;  ///< slips of each F_x(s) curve the search interpolates
+    bool quadratic = true;   ///< the quadratic closed form (the rover's), else full model
+    ModelChoices model;
+};
+
+/// "headings" [1, 360], "cell_m" (0, 100], "slip_min", "slip_max" (0 < min < max < 1),
+/// "curve_points" [10, 5000], "quadratic" and the model choices.
+void readTraversabilitySettings(io::ObjectReader& r, TraversabilitySettings& out);
+nlohmann::json toJson(const TraversabilitySettings& settings);
+
+/// What a wheel can do on a cell under a heading.
+enum class TraverseStatus : std::uint8_t {
+    kOk = 0,       ///< a slip in [s_min, s_max] gives the pull
+    kStall = 1,    ///< no slip gives it: the robot stalls (or slides back)
+    kBraking = 2,  ///< downhill: even s_min pulls more than needed; the wheels must brake
+};
+const char* statusName(TraverseStatus status);
+
+/// One heading's maps on the cells of `TraversabilityResult::grid`.
+struct HeadingMap {
+    double heading_rad = 0.0;
+    field::Raster slip;    ///< the slip needed; NaN where not kOk
+    field::Raster status;  ///< TraverseStatus as a number
+    std::size_t stalled = 0, braking = 0;
+};
+
+struct TraversabilityResult {
+    field::Raster grid;  ///< the cells (values: the steepest slope [deg], F2)
+    std::vector<HeadingMap> headings;
+    /// Per cell over the headings: the largest slip needed (NaN: every heading stalls or brakes)
+    /// and the share of headings that stall.
+    field::Raster worst_slip, stall_share;
+    double robot_mass_kg = 0.0;
+    int curves = 0;  ///< F_x(s) curves computed (one per soil and load bin)
+    bool cancelled = false;
+};
+
+/// Throws std::invalid_argument for invalid settings or a robot whose wheel is invalid.
+TraversabilityResult computeTraversability(const field::FieldMap& field,
+                                           const dynamics::RobotParameters& robot,
+                                           const TraversabilitySettings& settings = {},
+                                           const Control& control = {});
+
+/// {"cells", "cell_m", "headings": [{"heading_deg", "stalled", "braking", "max_slip"}],
+///  "stall_cells" (cells where some heading stalls), "max_slip", "robot_mass_kg", "curves",
+///  "cancelled"}.
+nlohmann::json toJson(const TraversabilityResult& result);
+/// One row per cell and heading: x_m, y_m, heading_deg, grade_deg, slip, status.
+Table traversabilityTable(const TraversabilityResult& result, const field::FieldMap& field);
+
+}  // namespace terra::analysis
