@@ -354,8 +354,10 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     const auto fields = analysis::identifiedFields();
     if (!o.json) {
         std::cout << "sample  time_s";
+        // j_max is held by the streaming estimator: no column of it.
         for (const analysis::IdentifiedField& field : fields) {
-            if (analysis::fullParameterOf(field))
+            const auto k = analysis::fullParameterOf(field);
+            if (k && *k != identification::kJmax)
                 std::cout << ' ' << std::setw(8) << field.key << ' ' << std::setw(8) << "±std";
         }
         std::cout << "     nis   cusum\n";
@@ -382,7 +384,7 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         if (u.estimated) {
             for (const analysis::IdentifiedField& field : fields) {
                 const auto k = analysis::fullParameterOf(field);
-                if (!k) continue;
+                if (!k || *k == identification::kJmax) continue;
                 std::cout << ' ' << std::setw(8)
                           << fixed(field.userValue(frame.parameters), decimals(field)) << ' '
                           << std::setw(8)

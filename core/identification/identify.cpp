@@ -693,8 +693,9 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
         const std::array<int, kChannelCount> counts = measuredValueCounts(data, setup.value());
         const int residuals = std::accumulate(counts.begin(), counts.end(), 0);
         int free = 0, priors = 0;
+        const std::array<std::optional<double>, kP> held = heldValues(o);
         for (int k = 0; k < kP; ++k) {
-            if (o.fixed[k]) continue;
+            if (held[k]) continue;
             ++free;
             priors += o.priors[k] ? 1 : 0;
         }
