@@ -782,12 +782,21 @@ double relativeDistance(const ParameterVector& a, const ParameterVector& b) {
 }
 
 std::vector<Minimum> distinctMinima(const std::vector<Minimum>& minima, double tolerance) {
+    // Two minima that differ only in j_max and have one χ² (to 1e-9 of it) are one: a limit beyond
+    // every shear deformation the data reach changes nothing, so j_max wanders on that plateau.
+    const auto same = [tolerance](const Minimum& a, const Minimum& b) {
+        if (relativeDistance(a.parameters, b.parameters) <= tolerance) return true;
+        ParameterVector a_rest = a.parameters, b_rest = b.parameters;
+        a_rest[kJmax] = b_rest[kJmax] = 0.0;
+        return relativeDistance(a_rest, b_rest) <= tolerance &&
+               std::abs(a.chi2 - b.chi2) <=
+                   1e-9 * std::max({std::abs(a.chi2), std::abs(b.chi2), 1.0});
+    };
     std::vector<Minimum> out;
     for (const Minimum& m : minima) {
-        bool same = false;
-        for (const Minimum& kept : out)
-            same |= relativeDistance(m.parameters, kept.parameters) <= tolerance;
-        if (!same) out.push_back(m);
+        bool seen = false;
+        for (const Minimum& kept : out) seen |= same(m, kept);
+        if (!seen) out.push_back(m);
     }
     return out;
 }

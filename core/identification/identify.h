@@ -252,7 +252,8 @@ double relativeDistance(const ParameterVector& a, const ParameterVector& b);
 
 /// The minima of `minima` that are distinct, in order: one is dropped when its relative distance
 /// (relativeDistance) to one kept before it is at most `tolerance` (1 %: values that print the
-/// same to 3 digits are one minimum found from several starts).
+/// same to 3 digits are one minimum found from several starts), or when only its j_max differs
+/// and its χ² is the same (to 1e-9 relative): j_max on the plateau beyond the data's reach.
 std::vector<Minimum> distinctMinima(const std::vector<Minimum>& minima, double tolerance = 0.01);
 
 /// Runs the identification. Bad options or data give kInvalidInput with the issues (no throw);

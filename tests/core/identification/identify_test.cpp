@@ -446,6 +446,19 @@ TEST(Minima, TheSameMinimumFromSeveralStartsIsListedOnce) {
     ParameterVector limited = a;
     limited[kJmax] = 0.02;
     EXPECT_TRUE(std::isinf(relativeDistance(a, limited)));  // a limit against none
+    // j_max on the plateau beyond the data's reach (56 and 36 mm, one χ², seen on one noisy
+    // load): one minimum; a j_max that changes χ² is another.
+    std::vector<Minimum> plateau(3);
+    plateau[0].parameters = plateau[1].parameters = plateau[2].parameters = limited;
+    plateau[0].parameters[kJmax] = 0.056;
+    plateau[1].parameters[kJmax] = 0.036;
+    plateau[2].parameters[kJmax] = 0.012;
+    plateau[0].chi2 = plateau[1].chi2 = 268.25;
+    plateau[2].chi2 = 271.5;
+    const std::vector<Minimum> kept = distinctMinima(plateau);
+    ASSERT_EQ(kept.size(), 2u);
+    EXPECT_EQ(kept[0].parameters[kJmax], 0.056);
+    EXPECT_EQ(kept[1].parameters[kJmax], 0.012);
 }
 
 TEST(Priors, ParseUserItemsInUserUnits) {
