@@ -65,7 +65,7 @@ soil::SoilParameters soilOf(const Soil& s) {
 }
 ParameterVector truthOf(const ContactParameters<double>& p) {
     return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
+            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m,  p.max_shear_deformation_m};
 }
 
 DataSet sweeps(const ContactParameters<double>& soil, std::vector<double> loads, double noise,
@@ -99,7 +99,8 @@ ParameterVector thesisGuess() {
             t.n0,
             t.cohesion_pa,
             t.friction_angle_rad,
-            t.shear_modulus_m};
+            t.shear_modulus_m,
+            t.max_shear_deformation_m};
 }
 
 void thesis() {

@@ -81,10 +81,10 @@ struct IdentifyOptions {
     bool json = false;
     bool skip_bad_rows = false;
     bool refine = analysis::IdentificationSettings{}.refine;
-    std::vector<std::string> fix;    // key=value, identified_parameters.h keys
-    std::vector<std::string> noise;  // fx=, fz=, my= noise levels for the refinement weights
-    std::optional<double> jmax_m;
-    std::string stream;  // --stream FILE: one estimate per sample
+    std::vector<std::string> fix;     // key=value, identified_parameters.h keys
+    std::vector<std::string> noise;   // fx=, fz=, my= noise levels for the refinement weights
+    std::optional<std::string> jmax;  // --jmax VALUE (held) or "fit" (identified)
+    std::string stream;               // --stream FILE: one estimate per sample
     std::size_t window = identification::StreamingEstimatorOptions{}.window;
     // The full model's global identification (core/identification/identify.h).
     std::vector<std::string> prior;  // name=mean±std items, or one soil preset/file
@@ -98,6 +98,32 @@ struct IdentifyOptions {
 };
 
 const Range kHoldoutRange{0.0, 1.0, true, true};
+
+// --jmax: a value in metres (held; the soil field's range) or "fit" (identified).
+struct JmaxChoice {
+    std::optional<double> value_m;
+    bool fit = false;
+};
+JmaxChoice parseJmax(const std::optional<std::string>& text) {
+    JmaxChoice out;
+    if (!text) return out;
+    if (*text == "fit") {
+        out.fit = true;
+        return out;
+    }
+    double value = 0.0;
+    const soil::SoilField& field = *soil::findSoilField("jmax_m");
+    if (!parseStrictNumber(*text, value)) {
+        throw InputError("--jmax " + *text + ": expected a length in m within [" +
+                         formatNumber(field.range.low) + ", " + formatNumber(field.range.high) +
+                         "], or 'fit' to identify it");
+    }
+    std::vector<Issue> issues;
+    checkRange(issues, "--jmax", value, field.range, field.displayUnit());
+    if (!issues.empty()) throw InputError(formatIssues(issues));
+    out.value_m = value;
+    return out;
+}
 const Range kFoldsRange{2.0, 1000.0};
 const Range kStartsRange{0.0, 100000.0};
 
@@ -252,7 +278,7 @@ std::string shown(const analysis::IdentifiedField& field, double si,
 // fit's j_max) with "posterior" in the soil file's keys and units, written atomically.
 void saveSoil(const IdentifyOptions& o, const analysis::IdentificationResult& result,
               const soil::SoilParameters& base, const wheel::WheelParameters& wheel) {
-    const double jmax = o.jmax_m.value_or(std::numeric_limits<double>::infinity());
+    const double jmax = parseJmax(o.jmax).value_m.value_or(std::numeric_limits<double>::infinity());
     Result<soil::SoilParameters> soil = analysis::identifiedSoilFile(result, base, wheel, jmax);
     if (!soil) throw std::runtime_error("--save-soil " + o.save_soil + ": " + soil.message());
     soil::SoilParameters s = soil.value();
@@ -289,13 +315,9 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     settings.skip_bad_rows = o.skip_bad_rows;
     settings.options.window = o.window;
     settings.options.fit.load_n = o.load_n;
-    if (o.jmax_m) {
-        std::vector<Issue> issues;
-        const soil::SoilField& jmax = *soil::findSoilField("jmax_m");
-        checkRange(issues, "--jmax", *o.jmax_m, jmax.range, jmax.displayUnit());
-        if (!issues.empty()) throw InputError(formatIssues(issues));
-        settings.options.fit.max_shear_deformation_m = *o.jmax_m;
-    }
+    const JmaxChoice jmax = parseJmax(o.jmax);
+    if (jmax.fit) throw InputError("--jmax fit does not apply to --stream: give a value");
+    if (jmax.value_m) settings.options.fit.max_shear_deformation_m = *jmax.value_m;
     if (o.load_n) {
         std::vector<Issue> issues;
         const FieldInfo& load = contact::loadField();
@@ -332,8 +354,10 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     const auto fields = analysis::identifiedFields();
     if (!o.json) {
         std::cout << "sample  time_s";
+        // j_max is held by the streaming estimator: no column of it.
         for (const analysis::IdentifiedField& field : fields) {
-            if (analysis::fullParameterOf(field))
+            const auto k = analysis::fullParameterOf(field);
+            if (k && *k != identification::kJmax)
                 std::cout << ' ' << std::setw(8) << field.key << ' ' << std::setw(8) << "±std";
         }
         std::cout << "     nis   cusum\n";
@@ -360,7 +384,7 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
         if (u.estimated) {
             for (const analysis::IdentifiedField& field : fields) {
                 const auto k = analysis::fullParameterOf(field);
-                if (!k) continue;
+                if (!k || *k == identification::kJmax) continue;
                 std::cout << ' ' << std::setw(8)
                           << fixed(field.userValue(frame.parameters), decimals(field)) << ' '
                           << std::setw(8)
@@ -477,7 +501,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             const std::string jmax = formatNumber(soil.max_shear_deformation_m);
             std::cerr << "note: made with the soil's j_max = " << jmax
                       << " m (Eq. 2.16): identify these data with --jmax " << jmax
-                      << " (identify's model has no j_max unless given)\n";
+                      << ", or identify j_max with --jmax fit (identify's model has no j_max "
+                         "unless given)\n";
         }
         if (out.cancelled) exitCancelled(cancellation, "synth " + note);
     });
@@ -543,9 +568,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                   "Write the identified soil to this soil file (k_c = 0, k_phi = Ks), with its "
                   "posterior (mean and covariance in the soil file's keys) for traction, bands "
                   "and gsa --posterior");
-    i->add_option("--jmax", identify->jmax_m,
-                  "Full model: the model's j_max [m] (default: none; a setting of the model, not "
-                  "taken from --guess)");
+    i->add_option("--jmax", identify->jmax,
+                  "Full model: the model's j_max [m] held at this value, or 'fit' to identify it "
+                  "as an eighth parameter (with a prior of 20 ± 20 mm when the data do not "
+                  "determine it; --prior jmax_m=MEAN±STD gives another); default: none, not "
+                  "taken from --guess");
     i->callback([identify, refine = i->get_option("--refine"), &locations] {
         const IdentifyOptions& o = *identify;
         if (o.data.empty() == o.stream.empty())
@@ -584,7 +611,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         }
         const bool global_flags = !o.prior.empty() || o.holdout || o.folds || o.starts ||
                                   o.load_n || o.loss != "l2" || o.profile;
-        if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax_m || global_flags)) {
+        if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax || global_flags)) {
             throw InputError(
                 "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss, --load and "
                 "--profile belong to the full model (drop --no-refine)");
@@ -607,13 +634,9 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         settings.sigma_fx_n = noise.fx.absolute;
         settings.sigma_fz_n = noise.fz.absolute;
         settings.sigma_my_nm = noise.my.absolute;
-        if (o.jmax_m) {
-            std::vector<Issue> issues;
-            const soil::SoilField& jmax = *soil::findSoilField("jmax_m");
-            checkRange(issues, "--jmax", *o.jmax_m, jmax.range, jmax.displayUnit());
-            if (!issues.empty()) throw InputError(formatIssues(issues));
-            settings.max_shear_deformation_m = *o.jmax_m;
-        }
+        const JmaxChoice jmax = parseJmax(o.jmax);
+        settings.max_shear_deformation_m = jmax.value_m;
+        settings.fit_max_shear_deformation = jmax.fit;
         const SignalCancellation cancellation;
         TerminalProgress progress("identify");
         analysis::IdentificationResult result;
@@ -663,7 +686,12 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                 std::optional<double> sd;
                 if (uncertainty && uncertainty->computed && full)
                     sd = uncertainty->std[static_cast<std::size_t>(*full)];
-                std::cout << (column % 3 == 0 ? "  " : "   ") << shown(field, p.*field.member, sd)
+                const bool limit = full == identification::kJmax;
+                if (limit && !o.refine) continue;  // the decoupled model has no j_max
+                std::string text = shown(field, p.*field.member, sd);
+                if (limit && !std::isfinite(p.*field.member)) text = "j_max = none";
+                if (limit && !jmax.fit) text += " (held)";
+                std::cout << (column % 3 == 0 ? "  " : "   ") << text
                           << (column % 3 == 2 ? "\n" : "");
                 ++column;
             }

@@ -127,7 +127,8 @@ void printHuman(const analysis::ValidationResult& r, const analysis::Inputs& in)
             out << "FAILED: " << c.report.message << '\n';
         } else {
             out << c.report.termination << '\n';
-            for (int k = 0; k < identification::kFullParameterCount; ++k) {
+            // The calibration holds j_max at the soil's (the shear limit is the soil file's).
+            for (int k = 0; k < identification::kJmax; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const identification::ParameterInfo& info = identification::parameterInfo()[i];
                 const std::string unit = std::string(info.unit) == "-" ? "" : info.unit;

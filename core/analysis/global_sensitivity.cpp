@@ -636,6 +636,10 @@ soil::SoilParameters identifiedSoil(const soil::SoilParameters& base,
     s.friction_angle_rad = p.friction_angle_rad;
     s.shear_modulus_m = p.shear_modulus_m;
     s.frictional_modulus = p.pressure_modulus - base.cohesive_modulus / wheel.width_m;
+    // A finite j_max is the fit's (identified or held); +inf is also the decoupled fit's "not
+    // seen", which keeps the base's.
+    if (std::isfinite(p.max_shear_deformation_m))
+        s.max_shear_deformation_m = p.max_shear_deformation_m;
     return s;
 }
 
@@ -651,8 +655,8 @@ CorrelatedParameters correlatedFromIdentification(const identification::Decouple
     }
     const soil::SoilParameters soil = identifiedSoil(base, wheel, p);
     // The soil field carrying each refined parameter (K_s through k_φ, k_c fixed).
-    static const std::array<const char*, kFullParameterCount> kKeys{"a0",    "a1",      "kphi", "n",
-                                                                    "c_kPa", "phi_deg", "K_m"};
+    static const std::array<const char*, kFullParameterCount> kKeys{
+        "a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m", "jmax_m"};
     CorrelatedParameters out;
     std::vector<std::size_t> used;
     std::vector<double> sd;

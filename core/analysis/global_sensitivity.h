@@ -156,7 +156,8 @@ Outcome uncertaintyBandOutcome(UncertaintyBandResult result);
 AnalysisType uncertaintyBandType();
 
 /// The soil an identification found: `base` with a₀, a₁, n, c, φ, K set to the identified
-/// values and k_φ = K_s − k_c/b (k_c kept, b the wheel's width; Eq. 2.9).
+/// values and k_φ = K_s − k_c/b (k_c kept, b the wheel's width; Eq. 2.9), and j_max the fit's
+/// when finite (else the base's).
 soil::SoilParameters identifiedSoil(const soil::SoilParameters& base,
                                     const wheel::WheelParameters& wheel,
                                     const identification::DecoupledParameters& identified);

@@ -44,6 +44,7 @@ id::DecoupledParameters decoupledOf(const id::ParameterVector& p) {
     out.cohesion_pa = p[id::kC];
     out.friction_angle_rad = p[id::kPhi];
     out.shear_modulus_m = p[id::kK];
+    out.max_shear_deformation_m = p[id::kJmax];
     return out;
 }
 
@@ -146,6 +147,9 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
     const soil::SoilField* jmax = soil::findSoilField("jmax_m");
     double value = 0.0;
     if (r.field(*jmax, value)) out.max_shear_deformation_m = value;
+    r.boolean("fit_jmax", out.fit_max_shear_deformation);
+    if (out.fit_max_shear_deformation && out.max_shear_deformation_m)
+        r.report("fit_jmax", "give jmax_m (held) or fit_jmax (identified), not both");
 
     if (r.texts("priors", out.prior_items)) {
         for (const std::string& item : out.prior_items) {
@@ -228,6 +232,7 @@ id::IdentifyOptions identifyOptions(const IdentificationSettings& s,
     o.priors = priorsOf(s, wheel);
     o.load_n = s.load_n;
     o.max_shear_deformation_m = jmax;
+    o.fit_max_shear_deformation = s.fit_max_shear_deformation;
     o.noise = {s.sigma_fx_n, s.sigma_fz_n, s.sigma_my_nm, 0.0};
     o.loss = s.loss;
     o.starts = s.starts;
@@ -256,6 +261,7 @@ nlohmann::json toJson(const IdentificationSettings& s) {
         out["noise"] = {{"Fx_N", s.sigma_fx_n}, {"Fz_N", s.sigma_fz_n}, {"My_Nm", s.sigma_my_nm}};
     }
     if (s.max_shear_deformation_m) out["jmax_m"] = *s.max_shear_deformation_m;
+    if (s.fit_max_shear_deformation) out["fit_jmax"] = true;
     if (!s.prior_items.empty()) out["priors"] = s.prior_items;
     if (!s.prior_soil_name.empty()) out["prior_soil"] = s.prior_soil_name;
     if (s.loss != id::Loss::kSquared) out["loss"] = lossName(s.loss);
@@ -437,7 +443,8 @@ Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& resu
     flat.cohesive_modulus = 0.0;  // K_s wholly in k_φ: the soil is the identified one on any b
     flat.profile.reset();
     soil::SoilParameters soil = identifiedSoil(flat, wheel, result.identified);
-    soil.max_shear_deformation_m = jmax;
+    // The global identification's j_max is the model's (identified, or held at `jmax`).
+    soil.max_shear_deformation_m = result.report ? result.identified.max_shear_deformation_m : jmax;
     // A parameter that ended on a bound of the fit which is also its field's (c = 0) may lie a
     // rounding outside it (−2e−17 kPa from the solver's coordinates): put it on the bound.
     for (const soil::SoilField& field : soil::soilFields()) {

@@ -78,8 +78,11 @@ struct IdentificationSettings {
     std::vector<std::pair<std::string, double>> fixed;
     /// Refinement only: noise levels weighting the residuals [N, N, N·m]; 0: estimated.
     double sigma_fx_n = 0.0, sigma_fz_n = 0.0, sigma_my_nm = 0.0;
-    /// The forward model's j_max [m] (a setting, not identified); empty: the inputs' soil's.
+    /// The forward model's j_max [m] (held); empty: the inputs' soil's (synthetic data) or none.
     std::optional<double> max_shear_deformation_m;
+    /// Full model: identify j_max as an eighth parameter (`--jmax fit`, "fit_jmax": true; with a
+    /// prior when the data do not determine it, IdentifyOptions::fit_max_shear_deformation).
+    bool fit_max_shear_deformation = false;
     /// Full model: profile-likelihood intervals (Δχ² = 9, profile_interval.h) of the parameters
     /// in a flagged trade-off or at a bound (`--profile`; costs up to 10 refinements per side).
     bool profile = false;
@@ -87,7 +90,8 @@ struct IdentificationSettings {
 
 /// "csv" (relative to the context's directory, read at once: a bad file is a problem of the
 /// settings), "skip_bad_rows", "noise_percent", "seed", "loads_N", "slip_count", "refine",
-/// "fix" ({key: value}), "noise" ({"Fx_N", "Fz_N", "My_Nm"}), "jmax_m", and for the full model
+/// "fix" ({key: value}), "noise" ({"Fx_N", "Fz_N", "My_Nm"}), "jmax_m", "fit_jmax" (true:
+/// identify j_max), and for the full model
 /// "priors" (["phi_deg=30±5", …]), "prior_soil" (a preset or file, PriorSpreads), "loss" ("l2",
 /// "huber", "cauchy"), "holdout" (fraction), "folds", "starts" (design points), "load_N",
 /// "profile" (true: profile-likelihood intervals of the flagged parameters).
@@ -155,7 +159,8 @@ nlohmann::json toJson(const IdentificationResult& result);
 /// The soil an identification found, as `identify --save-soil` writes it: `base` (its γ, which
 /// the wheel data do not see) with a₀, a₁, n, n₁, c, φ, K identified, k_c = 0 and k_φ = K_s (so
 /// that K_s = k_c/b + k_φ is the identified one on any width: a test at one width sees only
-/// K_s), and j_max as given (the fit's model's; +inf: none). Issues name the identified values
+/// K_s), and j_max the global identification's (identified, or the value it held), else (the
+/// decoupled fit) `max_shear_deformation_m` (+inf: none). Issues name the identified values
 /// that are outside a soil field's range (soil::validate).
 Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& result,
                                                 const soil::SoilParameters& base,
@@ -164,8 +169,8 @@ Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& resu
 
 /// The identification's posterior in the soil file's keys and units, the form `traction
 /// --posterior`, `bands --posterior` and a study's "correlated" group read: {"parameters":
-/// ["a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"] (the free ones), "mean": [the values
-/// of `soil`, identifiedSoilFile's], "covariance": [[…]]}. K_s is carried by k_φ (k_c = 0 in
+/// ["a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m", "jmax_m"] (the free ones), "mean": [the
+/// values of `soil`, identifiedSoilFile's], "covariance": [[…]]}. K_s is carried by k_φ (k_c = 0 in
 /// that soil, so Var k_φ = Var K_s), n₀ by n; the units are the identification's (kPa/m^n is
 /// kN/m^(n+2)), so the numbers equal covarianceJson's. A parameter that ended at a bound of the
 /// fit is held there (left out; the others' covariance is conditional on it, the Schur

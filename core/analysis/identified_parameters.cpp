@@ -17,7 +17,7 @@ IdentifiedField make(FieldInfo info, double DecoupledParameters::*member) {
 
 // Ranges: the widest the identification can return (the bounds of the decoupled fit and the
 // refinement, decoupled_fit.h and full_fit.cpp).
-const std::array<IdentifiedField, 8> kFields{{
+const std::array<IdentifiedField, 9> kFields{{
     make({"a0",
           "-",
           "a₀",
@@ -81,10 +81,18 @@ const std::array<IdentifiedField, 8> kFields{{
           "metres.",
           {0.0, 0.5}},
          &DecoupledParameters::shear_modulus_m),
+    make({"jmax_m",
+          "m",
+          "j_max",
+          "shear deformation limit",
+          "j_max of j = min(j, j_max) (Eq. 2.16), in metres: identified by `--jmax fit`, else the "
+          "value the model held (+inf, null in JSON: no limit).",
+          {1e-4, 1.0}},
+         &DecoupledParameters::max_shear_deformation_m),
 }};
 
 // The refinement's parameters (full_fit.h order) and their fields.
-constexpr std::array<std::pair<identification::FullParameter, int>, 7> kFull{{
+constexpr std::array<std::pair<identification::FullParameter, int>, 8> kFull{{
     {identification::kA0, 0},
     {identification::kA1, 1},
     {identification::kKs, 2},
@@ -92,6 +100,7 @@ constexpr std::array<std::pair<identification::FullParameter, int>, 7> kFull{{
     {identification::kC, 5},
     {identification::kPhi, 6},
     {identification::kK, 7},
+    {identification::kJmax, 8},
 }};
 
 }  // namespace
@@ -125,7 +134,8 @@ DecoupledParameters identifiedOf(const soil::SoilParameters& soil,
             .n1 = soil.sinkage_exponent_slip,
             .cohesion_pa = soil.cohesion_pa,
             .friction_angle_rad = soil.friction_angle_rad,
-            .shear_modulus_m = soil.shear_modulus_m};
+            .shear_modulus_m = soil.shear_modulus_m,
+            .max_shear_deformation_m = soil.max_shear_deformation_m};
 }
 
 }  // namespace terra::analysis

@@ -1,7 +1,7 @@
 #pragma once
 /// @file identified_parameters.h
 /// The field table of the identified soil parameters (core/common/field.h): a₀, a₁, K_s, n₀, n₁,
-/// c, φ, K with their display units (kPa/m^n, kPa, deg). The identification's tables, the
+/// c, φ, K, j_max with their display units (kPa/m^n, kPa, deg). The identification's tables, the
 /// command line's output (`identify`, JSON and text), the studio's parameter table and the
 /// streaming figures read it. (identification::parameterInfo names the same parameters for the
 /// solver, in SI: two tables of one vocabulary, issue 26.)
@@ -20,7 +20,7 @@ namespace terra::analysis {
 
 using IdentifiedField = Field<identification::DecoupledParameters>;
 
-/// a0, a1, Ks_kPa, n0, n1, c_kPa, phi_deg, K_m.
+/// a0, a1, Ks_kPa, n0, n1, c_kPa, phi_deg, K_m, jmax_m.
 std::span<const IdentifiedField> identifiedFields();
 /// The field with this key, or nullptr.
 const IdentifiedField* findIdentifiedField(std::string_view key);

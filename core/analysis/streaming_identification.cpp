@@ -194,8 +194,13 @@ StreamFrame StreamingRun::push(const id::Sample& sample, double time_s) {
 Table framesTable(const std::vector<StreamFrame>& frames) {
     Table t;
     t.columns = {"sample", "time_s", "estimated"};
-    for (const IdentifiedField& field : identifiedFields()) t.columns.emplace_back(field.key);
-    for (int k = 0; k < id::kFullParameterCount; ++k)
+    // The streaming estimator holds j_max at its options' value: no column of it.
+    const auto streamed = [](const IdentifiedField& field) {
+        return fullParameterOf(field) != id::kJmax;
+    };
+    for (const IdentifiedField& field : identifiedFields())
+        if (streamed(field)) t.columns.emplace_back(field.key);
+    for (int k = 0; k < id::kJmax; ++k)
         t.columns.push_back(std::string(fieldOf(static_cast<id::FullParameter>(k)).key) + "_std");
     for (const char* c : {"nis", "cusum", "used", "change_at", "Fx_N", "Fx_predicted_N"})
         t.columns.emplace_back(c);
@@ -203,9 +208,11 @@ Table framesTable(const std::vector<StreamFrame>& frames) {
     for (const StreamFrame& f : frames) {
         const id::StreamEstimate& u = f.estimate;
         std::vector<double> row{static_cast<double>(u.index), f.time_s, u.estimated ? 1.0 : 0.0};
-        for (const IdentifiedField& field : identifiedFields())
-            row.push_back(u.estimated ? field.toUser(f.parameters.*field.member) : nan);
-        for (int k = 0; k < id::kFullParameterCount; ++k) {
+        for (const IdentifiedField& field : identifiedFields()) {
+            if (streamed(field))
+                row.push_back(u.estimated ? field.toUser(f.parameters.*field.member) : nan);
+        }
+        for (int k = 0; k < id::kJmax; ++k) {
             const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
             row.push_back(u.estimated ? u.std[static_cast<std::size_t>(k)] / field.to_si : nan);
         }

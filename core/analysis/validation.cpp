@@ -597,7 +597,8 @@ nlohmann::json toJson(const ValidationResult& r) {
     if (!rep.issues.empty()) cal["issues"] = formatIssues(rep.issues);
     if (rep.usable()) {
         nlohmann::json params = nlohmann::json::object();
-        for (int k = 0; k < id::kFullParameterCount; ++k) {
+        // j_max is held at the soil's (never calibrated): the seven parameters.
+        for (int k = 0; k < id::kJmax; ++k) {
             const id::ParameterInfo& info = id::parameterInfo()[static_cast<std::size_t>(k)];
             const auto i = static_cast<std::size_t>(k);
             params[info.name] = {{"value", rep.parameters[i] * info.to_user},
@@ -699,7 +700,7 @@ Outcome validationOutcome(ValidationResult result) {
             }
             Table parameters;
             std::vector<double> row;
-            for (int k = 0; k < id::kFullParameterCount; ++k) {
+            for (int k = 0; k < id::kJmax; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const id::ParameterInfo& info = id::parameterInfo()[i];
                 parameters.columns.insert(parameters.columns.end(),

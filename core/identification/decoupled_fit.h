@@ -4,6 +4,7 @@
 /// lsqcurvefit: step I fits P_I = {a₀, a₁} to F_x (Eq. 4.12), step II P_II = {K_s, n₀, n₁} to F_z
 /// (Eq. 4.17) with P_I fixed, step III P_III = {c, φ, K} to M_y (Eq. 4.18) with P_I fixed.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct DecoupledParameters {
     double cohesion_pa = 3.5e3;          ///< c [Pa]
     double friction_angle_rad = 0.4014;  ///< φ [rad] (23°)
     double shear_modulus_m = 0.2;        ///< K [m]
+    /// j_max [m] (Eq. 2.16) of the model the parameters were fitted with, +inf for none:
+    /// identified by `identify --jmax fit`, else the value it was held at (the decoupled steps
+    /// never see it).
+    double max_shear_deformation_m = std::numeric_limits<double>::infinity();
 };
 
 /// Bounds of steps II and III (chapter 5; step I is unbounded in the thesis, here a₀ ∈ [0, 1],

@@ -10,14 +10,15 @@
 namespace terra::identification {
 namespace {
 
-ParameterVector toVector(const DecoupledParameters& p) {
+ParameterVector toVector(const DecoupledParameters& p, double max_shear_deformation_m) {
     return {p.a0,
             p.a1,
             p.pressure_modulus,
             p.n0,
             p.cohesion_pa,
             p.friction_angle_rad,
-            p.shear_modulus_m};
+            p.shear_modulus_m,
+            max_shear_deformation_m};
 }
 
 // RMS of each channel's decoupled-model residual: a noise estimate when none is given.
@@ -73,9 +74,10 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     objective.sigma = {level(options.sigma_fx, rms[0], 1e-6), level(options.sigma_fz, rms[1], 1e-6),
                        level(options.sigma_my, rms[2], 1e-8), 1.0};
     objective.fixed = options.fixed;
+    objective.fixed[kJmax] = true;  // a setting of this refinement, never estimated
     const std::vector<std::size_t> all = detail::allSamples(model.size());
     const detail::FitProblem problem(objective, all);
-    const ParameterVector u0 = toSolver(toVector(start));
+    const ParameterVector u0 = toSolver(toVector(start, options.max_shear_deformation_m));
     std::vector<double> u(u0.begin(), u0.end());
     const auto begin = std::chrono::steady_clock::now();
     const detail::BoxSummary summary =
@@ -103,7 +105,7 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     if (!summary.usable) return result;
 
     int free = 0;
-    for (bool f : options.fixed) free += !f;
+    for (bool f : objective.fixed) free += !f;
     const int residuals = problem.dataResiduals();
     if (free == 0 || residuals <= free) {
         result.uncertainty.flags.push_back(

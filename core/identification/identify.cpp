@@ -19,6 +19,7 @@ using detail::FitProblem;
 using detail::Objective;
 using Clock = std::chrono::steady_clock;
 constexpr int kP = kFullParameterCount;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -90,6 +91,14 @@ double distance(const std::vector<double>& a, const std::vector<double>& b,
     return d;
 }
 
+// The values parameters are held at: the options' `fixed`, and j_max at
+// max_shear_deformation_m unless it is identified.
+std::array<std::optional<double>, kP> heldValues(const IdentifyOptions& o) {
+    std::array<std::optional<double>, kP> held = o.fixed;
+    if (!o.fit_max_shear_deformation && !held[kJmax]) held[kJmax] = o.max_shear_deformation_m;
+    return held;
+}
+
 struct Local {
     std::size_t start = 0;  // index into the report's starts
     std::vector<double> u;
@@ -105,6 +114,8 @@ public:
         report_.setup =
             setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip)
                 .value();
+        fixed_ = heldValues(o);
+        report_.setup.max_shear_deformation_free = !fixed_[kJmax].has_value();
         model_.emplace(data, wheel, report_.setup);
         objective_.model = &*model_;
         provisional_ = provisionalNoise(*model_, o.noise);
@@ -114,7 +125,7 @@ public:
         objective_.loss_scale = o.loss_scale;
         objective_.bounds = o.bounds;
         for (int k = 0; k < kP; ++k) {
-            objective_.fixed[k] = o.fixed[k].has_value();
+            objective_.fixed[k] = fixed_[k].has_value();
             if (!objective_.fixed[k]) ++free_;
         }
         all_ = detail::allSamples(model_->size());
@@ -154,9 +165,8 @@ private:
     // Applies held values and the bounds to a start.
     ParameterVector admissible(ParameterVector p) const {
         for (int k = 0; k < kP; ++k) {
-            p[k] = options_.fixed[k]
-                       ? *options_.fixed[k]
-                       : std::clamp(p[k], options_.bounds.lower[k], options_.bounds.upper[k]);
+            p[k] = fixed_[k] ? *fixed_[k]
+                             : std::clamp(p[k], options_.bounds.lower[k], options_.bounds.upper[k]);
         }
         return p;
     }
@@ -429,6 +439,8 @@ private:
             }
             if (distinct) report_.ambiguity.push_back(m);
         }
+        // Starts that met the same other minimum (refined apart, within rounding) are one.
+        report_.ambiguity = distinctMinima(report_.ambiguity);
         for (int k = 0; k < kP; ++k) {
             if (!options_.priors[k] || objective_.fixed[k]) continue;
             PriorComparison& c = report_.prior[k];
@@ -497,6 +509,7 @@ private:
 
     const DataSet& data_;
     const IdentifyOptions& options_;
+    std::array<std::optional<double>, kP> fixed_{};
     IdentificationReport& report_;
     wheel::WheelParameters wheel_;
     std::optional<ObservationModel> model_;
@@ -585,6 +598,14 @@ void holdout(const DataSet& data, const wheel::WheelParameters& wheel,
     h.computed = h.samples > 0;
 }
 
+// Whether a fit with j_max free determined it: a covariance, j_max inside its bounds, and its
+// std below half its value (a limit the data reach; beyond the largest shear deformation they
+// reach, the fit is flat in j_max and its std grows without bound).
+bool shearLimitSeen(const IdentificationReport& r) {
+    return r.uncertainty.computed && !r.at_bound[kJmax] && std::isfinite(r.parameters[kJmax]) &&
+           r.uncertainty.std[kJmax] < 0.5 * r.parameters[kJmax];
+}
+
 }  // namespace
 
 std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& wheel,
@@ -603,7 +624,12 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
                                                     " must be below upper " +
                                                     formatNumber(o.bounds.upper[k] * to_user)});
         }
-        if (o.fixed[k]) {
+        if (o.fixed[k] && k == kJmax) {
+            if (!(*o.fixed[k] > 0.0)) {  // +inf: no limit
+                issues.push_back({"fix.jmax_m", "= " + formatNumber(*o.fixed[k]) +
+                                                    " m is not a length > 0 (+inf: no limit)"});
+            }
+        } else if (o.fixed[k]) {
             checkRange(issues, "fix." + name, *o.fixed[k] * to_user,
                        {o.bounds.lower[k] * to_user, o.bounds.upper[k] * to_user}, info[k].unit);
         }
@@ -614,7 +640,15 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
                        {0.0, 1e12, true, false}, info[k].unit);
         }
     }
-    for (int k : {kKs, kK}) {
+    if (o.fit_max_shear_deformation && o.fixed[kJmax]) {
+        issues.push_back({"fix.jmax_m", "j_max is both held (fixed) and identified: choose one"});
+    }
+    if (!o.fit_max_shear_deformation && !(o.max_shear_deformation_m > 0.0)) {
+        issues.push_back(
+            {"max_shear_deformation_m", "= " + formatNumber(o.max_shear_deformation_m) +
+                                            " m is not a length > 0 (+inf: no limit)"});
+    }
+    for (int k : {kKs, kK, kJmax}) {
         if (!(o.bounds.lower[k] > 0)) {
             issues.push_back(
                 {std::string("bounds.") + info[k].name, "the lower bound must be > 0"});
@@ -626,7 +660,9 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
     }
     for (const Start& start : o.starts) {
         for (int k = 0; k < kP; ++k) {
-            if (!std::isfinite(start.parameters[k])) {
+            // j_max = +inf is a start without a limit (a soil without one).
+            if (!std::isfinite(start.parameters[k]) &&
+                !(k == kJmax && start.parameters[k] == kInfinity)) {
                 issues.push_back({"starts." + start.label + "." + info[k].name,
                                   "= " + formatNumber(start.parameters[k]) + " is not finite"});
             }
@@ -657,8 +693,9 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
         const std::array<int, kChannelCount> counts = measuredValueCounts(data, setup.value());
         const int residuals = std::accumulate(counts.begin(), counts.end(), 0);
         int free = 0, priors = 0;
+        const std::array<std::optional<double>, kP> held = heldValues(o);
         for (int k = 0; k < kP; ++k) {
-            if (o.fixed[k]) continue;
+            if (held[k]) continue;
             ++free;
             priors += o.priors[k] ? 1 : 0;
         }
@@ -699,13 +736,69 @@ IdentificationReport identify(const DataSet& data, const wheel::WheelParameters&
         return report;
     }
     Search(data, wheel, options, report).run();
+    IdentifyOptions with_prior = options;
+    if (report.usable() && options.fit_max_shear_deformation && !options.priors[kJmax] &&
+        !shearLimitSeen(report)) {
+        // The data do not determine j_max (a limit beyond every shear deformation they reach
+        // changes nothing, and near it the fit is flat): the estimate is then the prior's.
+        const ParameterVector unseen = report.parameters;
+        with_prior.priors[kJmax] = kDefaultShearLimitPrior;
+        const IdentifyTiming first = report.timing;
+        report = IdentificationReport{};
+        Search(data, wheel, with_prior, report).run();
+        report.timing.screening_ms += first.screening_ms;
+        report.timing.descent_ms += first.descent_ms;
+        report.timing.refinement_ms += first.refinement_ms;
+        report.timing.covariance_ms += first.covariance_ms;
+        report.shear_limit_prior = true;
+        report.uncertainty.flags.push_back(
+            "jmax_m: the data do not determine j_max (without a prior it ended at " +
+            formatNumber(roundSignificant(unseen[kJmax] * 1e3, 3)) +
+            " mm, unresolved): estimated with the prior " +
+            formatNumber(kDefaultShearLimitPrior.mean * 1e3) + " ± " +
+            formatNumber(kDefaultShearLimitPrior.std * 1e3) +
+            " mm (give your own with --prior jmax_m=MEAN±STD, or hold it with --jmax)");
+    }
     if (report.usable() && (options.holdout_fraction > 0 || options.folds >= 2)) {
         const auto start = Clock::now();
-        holdout(data, wheel, options, report);
+        holdout(data, wheel, with_prior, report);
         report.timing.holdout_ms = millisecondsSince(start);
     }
     report.timing.total_ms = millisecondsSince(begin);
     return report;
+}
+
+double relativeDistance(const ParameterVector& a, const ParameterVector& b) {
+    const DesignBox box;
+    double d = 0.0;
+    for (int k = 0; k < kP; ++k) {
+        if (a[k] == b[k]) continue;
+        const double floor = (k == kA0 || k == kA1 || k == kC) ? box.upper[k] - box.lower[k] : 0.0;
+        const double scale = std::max({std::abs(a[k]), std::abs(b[k]), floor});
+        d = std::max(d,
+                     std::isfinite(scale) && scale > 0 ? std::abs(a[k] - b[k]) / scale : kInfinity);
+    }
+    return d;
+}
+
+std::vector<Minimum> distinctMinima(const std::vector<Minimum>& minima, double tolerance) {
+    // Two minima that differ only in j_max and have one χ² (to 1e-9 of it) are one: a limit beyond
+    // every shear deformation the data reach changes nothing, so j_max wanders on that plateau.
+    const auto same = [tolerance](const Minimum& a, const Minimum& b) {
+        if (relativeDistance(a.parameters, b.parameters) <= tolerance) return true;
+        ParameterVector a_rest = a.parameters, b_rest = b.parameters;
+        a_rest[kJmax] = b_rest[kJmax] = 0.0;
+        return relativeDistance(a_rest, b_rest) <= tolerance &&
+               std::abs(a.chi2 - b.chi2) <=
+                   1e-9 * std::max({std::abs(a.chi2), std::abs(b.chi2), 1.0});
+    };
+    std::vector<Minimum> out;
+    for (const Minimum& m : minima) {
+        bool seen = false;
+        for (const Minimum& kept : out) seen |= same(m, kept);
+        if (!seen) out.push_back(m);
+    }
+    return out;
 }
 
 std::vector<Prediction> predictAll(const DataSet& data, const wheel::WheelParameters& wheel,

@@ -50,9 +50,10 @@ struct Start {
 
 /// The box the space-filling design covers (solver coordinates are sampled uniformly, i.e. K_s
 /// and K log-uniformly). It spans the presets of resources/soils with margin.
+/// j_max (when identified) is sampled in 3 mm … 0.3 m.
 struct DesignBox {
-    ParameterVector lower{0.0, 0.0, 1e5, 0.1, 0.0, 0.0873, 0.002};
-    ParameterVector upper{0.6, 0.6, 1e7, 1.7, 3e4, 0.785, 0.1};
+    ParameterVector lower{0.0, 0.0, 1e5, 0.1, 0.0, 0.0873, 0.002, 0.003};
+    ParameterVector upper{0.6, 0.6, 1e7, 1.7, 3e4, 0.785, 0.1, 0.3};
 };
 
 /// Options of identify(). Every field has a usable default: identify(data, wheel) works.
@@ -61,8 +62,13 @@ struct IdentifyOptions {
     DataSource source = DataSource::kAuto;
     /// W [N] of every sample without a W_N cell.
     std::optional<double> load_n;
-    /// j_max of the model [m] (Eq. 2.16; a setting of the model, not identified).
+    /// j_max of the model [m] (Eq. 2.16), +inf for none: the value it is held at unless
+    /// `fit_max_shear_deformation`.
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    /// Identify j_max as an eighth parameter (bounds.lower/upper[kJmax], 1 mm … 1 m). When the
+    /// data do not determine it (shearLimitSeen), the fit is redone with the prior
+    /// kDefaultShearLimitPrior (unless priors[kJmax] gives one) and a flag says so.
+    bool fit_max_shear_deformation = false;
     /// n₁ of Ding's slip-sinkage exponent N = n + n₁ s (docs/model.md, "Slip-sinkage"), held at
     /// this value (not estimated: a caller profiles it); 0, the default, is the thesis model.
     double sinkage_exponent_slip = 0.0;
@@ -225,15 +231,30 @@ struct IdentificationReport {
 
     std::vector<StartReport> starts;
     /// Other minima within the ambiguity threshold (and distinct: some parameter more than three
-    /// std away); empty when the answer is unique.
+    /// std away from the best, and from each other by distinctMinima); empty when the answer is
+    /// unique.
     std::vector<Minimum> ambiguity;
     double ambiguity_delta_chi2 = 0.0;  ///< the threshold used
     std::vector<Minimum> minima;        ///< every distinct minimum refined, best first
 
     std::array<PriorComparison, kFullParameterCount> prior{};
+    /// j_max was identified but the data did not determine it: the fit was redone with the
+    /// prior kDefaultShearLimitPrior (a flag says so).
+    bool shear_limit_prior = false;
     HoldoutReport holdout;
     IdentifyTiming timing;
 };
+
+/// Relative distance of two parameter vectors: max over the parameters of |a − b| / scale, scale
+/// the larger of |a|, |b| and the parameter's floor (the design box's width for those that may
+/// be 0: a₀, a₁, c); 0 when equal (held +inf included).
+double relativeDistance(const ParameterVector& a, const ParameterVector& b);
+
+/// The minima of `minima` that are distinct, in order: one is dropped when its relative distance
+/// (relativeDistance) to one kept before it is at most `tolerance` (1 %: values that print the
+/// same to 3 digits are one minimum found from several starts), or when only its j_max differs
+/// and its χ² is the same (to 1e-9 relative): j_max on the plateau beyond the data's reach.
+std::vector<Minimum> distinctMinima(const std::vector<Minimum>& minima, double tolerance = 0.01);
 
 /// Runs the identification. Bad options or data give kInvalidInput with the issues (no throw);
 /// an invalid wheel throws std::invalid_argument (an API misuse).

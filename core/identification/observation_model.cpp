@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/common/range.h"
+#include "core/common/scalar.h"
 #include "core/contact/sinkage.h"
 #include "core/contact/wheel_forces.h"
 
@@ -32,7 +33,7 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
             T(0.0),
             p[kA0],
             p[kA1],
-            setup.max_shear_deformation_m,
+            scalarValue(p[kJmax]),
             wheel.lugShearOffset()};
 }
 
@@ -205,55 +206,90 @@ Prediction ObservationModel::predict(std::size_t i, const ParameterVector& p) co
     return out;
 }
 
+// ∂(F_x, F_z, M_y)/∂ln j_max at θ_f by a central difference: the forces are continuously
+// differentiable in j_max (the integrand is continuous across the limit's kink, and the
+// quadrature is split there, kinks.h), so a step of 1e-4 in ln j_max is accurate to ~1e-8.
+std::array<double, 3> ObservationModel::shearLimitDerivative(std::size_t i,
+                                                             const ParameterVector& p,
+                                                             double entry_angle_rad) const {
+    constexpr double kStep = 1e-4;
+    std::array<double, 3> out{};
+    if (!std::isfinite(p[kJmax])) return out;
+    ParameterVector up = p, down = p;
+    up[kJmax] = p[kJmax] * std::exp(kStep);
+    down[kJmax] = p[kJmax] * std::exp(-kStep);
+    const Sample& s = samples_[i];
+    const contact::WheelForces<double> a =
+        forcesAt(contactParameters(up, wheel_, setup_), s, entry_angle_rad);
+    const contact::WheelForces<double> b =
+        forcesAt(contactParameters(down, wheel_, setup_), s, entry_angle_rad);
+    out = {(a.fx - b.fx) / (2 * kStep), (a.fz - b.fz) / (2 * kStep), (a.my - b.my) / (2 * kStep)};
+    return out;
+}
+
 bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelValues& sigma,
                                  double* r, double* jacobian) const {
     constexpr int n = kFullParameterCount;
+    constexpr int nj = kJetParameterCount;  // j_max's column: shearLimitDerivative
     const std::array<bool, kChannelCount> active = channels(i);
     const Sample& s = samples_[i];
     ChannelValues value{};
     std::array<std::array<double, n>, kChannelCount> derivative{};
-    if (!jacobian) {
-        ParameterVector p{};
+    ParameterVector p{};
+    {
         const auto physical = toPhysical(u);
         std::copy(physical.begin(), physical.end(), p.begin());
+    }
+    if (!jacobian) {
         const Prediction prediction = predict(i, p);
         if (!prediction.ok) return false;
         value = prediction.values;
     } else if (setup_.source == DataSource::kEntryAngle) {
-        using J = ceres::Jet<double, n>;
+        using J = ceres::Jet<double, nj>;
         std::array<J, n> uj;
-        for (int k = 0; k < n; ++k) uj[k] = J(u[k], k);
+        for (int k = 0; k < n; ++k) uj[k] = k < nj ? J(u[k], k) : J(u[k]);
         const contact::WheelForces<J> f = forcesAt(
             contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(s.entry_angle_rad));
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
+        const std::array<double, 3> limit = setup_.max_shear_deformation_free
+                                                ? shearLimitDerivative(i, p, s.entry_angle_rad)
+                                                : std::array<double, 3>{};
         for (int c = 0; c < 3; ++c) {
             value[c] = channel[c]->a;
-            for (int k = 0; k < n; ++k) derivative[c][k] = channel[c]->v[k];
+            for (int k = 0; k < nj; ++k) derivative[c][k] = channel[c]->v[k];
+            derivative[c][kJmax] = limit[c];
         }
     } else {
         // θ_f(u) from F_z(θ_f, u) = W, then one Jet over (u, θ_f): the total derivative of a
         // channel y is ∂y/∂u + ∂y/∂θ_f · dθ_f/du, dθ_f/du = −(∂F_z/∂u)/(∂F_z/∂θ_f).
-        ParameterVector p{};
-        const auto physical = toPhysical(u);
-        std::copy(physical.begin(), physical.end(), p.begin());
         const std::optional<double> root = solveEntryAngle(contactParameters(p, wheel_, setup_), s,
                                                            setup_.loads_n[i], last_entry_angle_[i]);
         if (!root) return false;
         last_entry_angle_[i] = *root;
-        using J = ceres::Jet<double, n + 1>;
+        using J = ceres::Jet<double, nj + 1>;
         std::array<J, n> uj;
-        for (int k = 0; k < n; ++k) uj[k] = J(u[k], k);
+        for (int k = 0; k < n; ++k) uj[k] = k < nj ? J(u[k], k) : J(u[k]);
         const contact::WheelForces<J> f =
-            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, n));
-        const double dfz_dtheta = f.fz.v[n];
+            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, nj));
+        const double dfz_dtheta = f.fz.v[nj];
         if (!(dfz_dtheta > 0.0)) return false;
-        std::array<double, n> dtheta{};
-        for (int k = 0; k < n; ++k) dtheta[k] = -f.fz.v[k] / dfz_dtheta;
+        std::array<double, n> partial_fz{};
+        std::array<std::array<double, n>, 3> partial{};
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
+        const std::array<double, 3> limit = setup_.max_shear_deformation_free
+                                                ? shearLimitDerivative(i, p, *root)
+                                                : std::array<double, 3>{};
+        for (int c = 0; c < 3; ++c) {
+            for (int k = 0; k < nj; ++k) partial[c][k] = channel[c]->v[k];
+            partial[c][kJmax] = limit[c];
+        }
+        partial_fz = partial[1];
+        std::array<double, n> dtheta{};
+        for (int k = 0; k < n; ++k) dtheta[k] = -partial_fz[k] / dfz_dtheta;
         for (int c = 0; c < 3; ++c) {
             value[c] = channel[c]->a;
             for (int k = 0; k < n; ++k)
-                derivative[c][k] = channel[c]->v[k] + channel[c]->v[n] * dtheta[k];
+                derivative[c][k] = partial[c][k] + channel[c]->v[nj] * dtheta[k];
         }
         const double r_m = wheel_.radius_m;
         value[kSinkageChannel] = r_m * (1.0 - std::cos(*root));

@@ -45,7 +45,11 @@ struct ModelSetup {
     DataSource source = DataSource::kEntryAngle;  ///< resolved: kEntryAngle or kLoad
     std::array<bool, kChannelCount> channels{};   ///< the residual channels
     std::vector<double> loads_n;  ///< W per sample: the F_z measurement (entry angle) or the load
-    double max_shear_deformation_m = 0.0;  ///< j_max of the model [m] (+inf for none)
+    /// j_max [m] (+inf for none) of the options: the model takes it from the parameters
+    /// (kJmax), this is what a caller held it at.
+    double max_shear_deformation_m = 0.0;
+    /// j_max is estimated: the Jacobian gets its column (a central difference; zero when held).
+    bool max_shear_deformation_free = false;
     /// n₁ of Ding's slip-dependent exponent N = n + n₁ s (docs/model.md, "Slip-sinkage"), held
     /// fixed (not estimated); 0: the thesis model's constant n.
     double sinkage_exponent_slip = 0.0;
@@ -92,6 +96,9 @@ public:
                    double* jacobian) const;
 
 private:
+    std::array<double, 3> shearLimitDerivative(std::size_t i, const ParameterVector& p,
+                                               double entry_angle_rad) const;
+
     std::vector<Sample> samples_;
     wheel::WheelParameters wheel_;
     ModelSetup setup_;

@@ -1,5 +1,6 @@
 #include "core/identification/parameters.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/common/quoted.h"
@@ -17,6 +18,7 @@ const std::array<ParameterInfo, kFullParameterCount>& parameterInfo() {
         {"c_kPa", "kPa", "c", 1e-3},
         {"phi_deg", "deg", "φ", 180.0 / 3.14159265358979323846},
         {"K_m", "m", "K", 1.0},
+        {"jmax_m", "m", "j_max", 1.0},
     }};
     return table;
 }
@@ -29,11 +31,12 @@ std::optional<FullParameter> findParameter(const std::string& name) {
 }
 
 ParameterVector toSolver(const ParameterVector& p) {
-    return {p[kA0], p[kA1], std::log(p[kKs]), p[kN], p[kC] * 1e-3, p[kPhi], std::log(p[kK])};
+    const double jmax = std::min(std::log(p[kJmax]), kNoShearLimitSolver);
+    return {p[kA0], p[kA1], std::log(p[kKs]), p[kN], p[kC] * 1e-3, p[kPhi], std::log(p[kK]), jmax};
 }
 
 ParameterVector physicalPerSolver(const ParameterVector& p) {
-    return {1.0, 1.0, p[kKs], 1.0, 1e3, 1.0, p[kK]};
+    return {1.0, 1.0, p[kKs], 1.0, 1e3, 1.0, p[kK], std::isfinite(p[kJmax]) ? p[kJmax] : 0.0};
 }
 
 ParameterVector fromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel) {
@@ -43,7 +46,8 @@ ParameterVector fromSoil(const soil::SoilParameters& soil, const wheel::WheelPar
             soil.sinkage_exponent,
             soil.cohesion_pa,
             soil.friction_angle_rad,
-            soil.shear_modulus_m};
+            soil.shear_modulus_m,
+            soil.max_shear_deformation_m};
 }
 
 Priors priorsFromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
@@ -69,8 +73,8 @@ std::vector<Issue> parsePriorItem(const std::string& item, Priors& priors) {
     const std::string name = item.substr(0, equals), value = item.substr(equals + 1);
     const std::optional<FullParameter> k = findParameter(name);
     if (!k) {
-        return {{where,
-                 "unknown parameter '" + name + "' (allowed: a0, a1, Ks, n, c_kPa, phi_deg, K_m)"}};
+        return {{where, "unknown parameter '" + name +
+                            "' (allowed: a0, a1, Ks, n, c_kPa, phi_deg, K_m, jmax_m)"}};
     }
     constexpr std::size_t width = 2;  // "±" (two bytes in UTF-8) or "+-"
     std::size_t split = value.find("±");

@@ -1,11 +1,13 @@
 #pragma once
 /// @file parameters.h
-/// The seven parameters that the full-model identification estimates, θ = (a₀, a₁, K_s, n, c, φ,
-/// K) (thesis Eqs. 2.9, 2.17, 2.18, 2.20, 2.21), their names and user units, bounds, the solver's
+/// The parameters that the full-model identification estimates, θ = (a₀, a₁, K_s, n, c, φ, K)
+/// (thesis Eqs. 2.9, 2.17, 2.18, 2.20, 2.21) and the shear limit j_max (Eq. 2.16; held at a value,
+/// +inf for none, unless identified), their names and user units, bounds, the solver's
 /// coordinates, and Gaussian priors.
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -16,20 +18,27 @@
 namespace terra::identification {
 
 /// The parameters, in this order everywhere (arrays of kFullParameterCount).
-enum FullParameter { kA0, kA1, kKs, kN, kC, kPhi, kK, kFullParameterCount };
+enum FullParameter { kA0, kA1, kKs, kN, kC, kPhi, kK, kJmax, kFullParameterCount };
 
-/// Parameter values in SI: a₀ [-], a₁ [-], K_s [Pa/m^n], n [-], c [Pa], φ [rad], K [m].
+/// The parameters the model differentiates exactly (ceres::Jet): all but j_max, whose column is
+/// a central difference (the contact model takes j_max as a plain double: it moves where the
+/// integrand has a kink, contact_parameters.h).
+constexpr int kJetParameterCount = kJmax;
+
+/// Parameter values in SI: a₀ [-], a₁ [-], K_s [Pa/m^n], n [-], c [Pa], φ [rad], K [m],
+/// j_max [m] (+inf: no limit).
 using ParameterVector = std::array<double, kFullParameterCount>;
 
 /// How a parameter is shown and entered (files, flags, screen).
 struct ParameterInfo {
-    const char* name;    ///< JSON/flag key: "a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m"
-    const char* unit;    ///< user unit: "-", "-", "kPa/m^n", "-", "kPa", "deg", "m"
-    const char* symbol;  ///< "a₀", "a₁", "K_s", "n", "c", "φ", "K"
+    const char*
+        name;  ///< JSON/flag key: "a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m", "jmax_m"
+    const char* unit;    ///< user unit: "-", "-", "kPa/m^n", "-", "kPa", "deg", "m", "m"
+    const char* symbol;  ///< "a₀", "a₁", "K_s", "n", "c", "φ", "K", "j_max"
     double to_user;      ///< user value = SI value × to_user
 };
 
-/// The table of the seven parameters, in FullParameter order.
+/// The table of the eight parameters, in FullParameter order.
 const std::array<ParameterInfo, kFullParameterCount>& parameterInfo();
 
 /// The index of the parameter with this name ("phi_deg"), or nullopt.
@@ -37,19 +46,28 @@ std::optional<FullParameter> findParameter(const std::string& name);
 
 /// Box bounds of the estimate, SI. The defaults are wide enough for every preset in resources/soils
 /// (K_s 0.10–6.2 MPa/m^n, n 0.11–1.6, c 1–69 kPa, φ 6–34°, K 6–30 mm) and keep the model inside
-/// its domain (n > 0, K > 0, θ_m = (a₀ + a₁ s) θ_f inside the contact).
+/// its domain (n > 0, K > 0, θ_m = (a₀ + a₁ s) θ_f inside the contact). j_max, when identified,
+/// lies in 1 mm … 1 m: beyond the largest shear deformation of a wheel test (r (θ_f − θ_r) plus
+/// the slip's share, well under 1 m) a limit changes nothing.
 struct ParameterBounds {
-    ParameterVector lower{0.0, -1.0, 1e4, 0.05, 0.0, 0.0, 1e-4};
-    ParameterVector upper{1.0, 1.0, 5e7, 2.0, 2e5, 1.047, 0.5};
+    ParameterVector lower{0.0, -1.0, 1e4, 0.05, 0.0, 0.0, 1e-4, 1e-3};
+    ParameterVector upper{1.0, 1.0, 5e7, 2.0, 2e5, 1.047, 0.5, 1.0};
 };
 
-/// The solver's coordinates u: K_s and K are fitted as ln K_s, ln K (they span decades, and σ ∝
-/// K_s, τ depends on j/K: their valleys are straight in the logarithms), c in kPa, the rest as they
-/// are.
+/// The solver coordinate ln j_max that stands for "no limit" (j_max = +inf): ln(1e6 m), a limit
+/// no wheel reaches, so that a held j_max = +inf is a finite coordinate (Ceres refuses non-finite
+/// parameter values); toPhysical maps it (and above) back to +inf exactly.
+constexpr double kNoShearLimitSolver = 13.815510557964274;
+
+/// The solver's coordinates u: K_s, K and j_max are fitted as ln K_s, ln K, ln j_max (they span
+/// decades, and σ ∝ K_s, τ depends on j/K: their valleys are straight in the logarithms), c in
+/// kPa, the rest as they are. ln j_max ≥ kNoShearLimitSolver is j_max = +inf.
 template <typename T>
 std::array<T, kFullParameterCount> toPhysical(const T* u) {
     using std::exp;
-    return {u[kA0], u[kA1], exp(u[kKs]), u[kN], u[kC] * 1e3, u[kPhi], exp(u[kK])};
+    const T jmax = u[kJmax] >= T(kNoShearLimitSolver) ? T(std::numeric_limits<double>::infinity())
+                                                      : T(exp(u[kJmax]));
+    return {u[kA0], u[kA1], exp(u[kKs]), u[kN], u[kC] * 1e3, u[kPhi], exp(u[kK]), jmax};
 }
 
 /// The inverse of toPhysical.
@@ -58,7 +76,8 @@ ParameterVector toSolver(const ParameterVector& physical);
 /// d(physical)/d(u) of each parameter (toPhysical is diagonal).
 ParameterVector physicalPerSolver(const ParameterVector& physical);
 
-/// The parameters of a soil on a wheel: K_s = k_c/b + k_φ (Eq. 2.9), n = n₀ (n₁ is not estimated).
+/// The parameters of a soil on a wheel: K_s = k_c/b + k_φ (Eq. 2.9), n = n₀ (n₁ is not estimated),
+/// its j_max (+inf: none).
 ParameterVector fromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel);
 
 /// A Gaussian prior on one parameter, SI: the estimate is penalised by ((θ − mean)/std)².
@@ -83,7 +102,12 @@ struct PriorSpreads {
     double k_relative = 0.5;     ///< K: ±50 %
 };
 
-/// Priors centred on a soil preset on this wheel with the given spreads.
+/// The prior of j_max when it is identified and the data do not determine it: 20 ± 20 mm (the
+/// presets of resources/soils have 9–20 mm; the spread keeps a limit anywhere from a few mm to a
+/// few cm plausible).
+constexpr GaussianPrior kDefaultShearLimitPrior{0.02, 0.02};
+
+/// Priors centred on a soil preset on this wheel with the given spreads (none on j_max).
 Priors priorsFromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
                       const PriorSpreads& spreads = {});
 

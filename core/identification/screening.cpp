@@ -129,7 +129,7 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
                                            J(0.0),
                                            J(p[kA0]),
                                            J(p[kA1]),
-                                           model.setup().max_shear_deformation_m,
+                                           p[kJmax],
                                            wheel_.lugShearOffset()};
     out.rows.clear();
     out.y.clear();
@@ -166,7 +166,7 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
     addPrior(kKs, 0, kModulusUnit);
     addPrior(kC, 1, kCohesionUnit);
     out.nonlinear_prior = 0.0;
-    for (int k : {kA0, kA1, kN, kK}) {
+    for (int k : {kA0, kA1, kN, kK, kJmax}) {
         if (priors[k] && !fixed[k])
             out.nonlinear_prior += std::pow((p[k] - priors[k]->mean) / priors[k]->std, 2);
     }
@@ -229,9 +229,10 @@ public:
     explicit Cost(const LinearProjection& projection) : projection_(projection) {
         const Objective& o = projection_.objective_;
         for (int k : {kKs, kC}) alpha_priors_ += o.priors[k] && !o.fixed[k];
-        for (int k : {kA0, kA1, kN, kK}) {
+        for (int k : {kA0, kA1, kN, kK, kJmax}) {
             if (o.priors[k] && !o.fixed[k]) nonlinear_priors_.push_back(k);
         }
+        shear_limit_ = !o.fixed[kJmax];
         set_num_residuals(projection_.data_rows_ + alpha_priors_ +
                           static_cast<int>(nonlinear_priors_.size()));
         mutable_parameter_block_sizes()->push_back(kFullParameterCount);
@@ -276,9 +277,31 @@ public:
                                                J(0.0),
                                                J(u[kA0], 0),
                                                J(u[kA1], 1),
-                                               model.setup().max_shear_deformation_m,
+                                               p[kJmax],
                                                projection_.wheel_.lugShearOffset()};
-        Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m, 4);
+        // With j_max free, its column ∂F/∂ln j_max (at the projected α) is a central difference
+        // (the contact model takes j_max as a plain double; observation_model.h).
+        const int columns = shear_limit_ ? 5 : 4;
+        Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m, columns);
+        contact::ContactParameters<double> up{}, down{};
+        constexpr double kStep = 1e-4;
+        if (shear_limit_) {
+            up = {projection_.wheel_.radius_m,
+                  projection_.wheel_.width_m,
+                  u[kN],
+                  model.setup().sinkage_exponent_slip,
+                  l.alpha(0) * kModulusUnit,
+                  l.alpha(1) * kCohesionUnit,
+                  std::atan2(l.alpha(2), l.alpha(0)),
+                  std::exp(u[kK]),
+                  0.0,
+                  u[kA0],
+                  u[kA1],
+                  p[kJmax] * std::exp(kStep),
+                  projection_.wheel_.lugShearOffset()};
+            down = up;
+            down.max_shear_deformation_m = p[kJmax] * std::exp(-kStep);
+        }
         int row = 0;
         for (std::size_t i : projection_.samples_) {
             const Sample& s = model.sample(i);
@@ -286,11 +309,21 @@ public:
                                                 J(s.entry_angle_rad), J(0.0), std::nullopt};
             const contact::WheelForces<J> f = contact::computeForces(cp, op);
             const J* channel[3] = {&f.fx, &f.fz, &f.my};
+            std::array<double, 3> limit{};
+            if (shear_limit_) {
+                const contact::OperatingPoint<double> od{s.slip, s.slip_angle_rad.value_or(0.0),
+                                                         s.entry_angle_rad, 0.0, std::nullopt};
+                const contact::WheelForces<double> a = contact::computeForces(up, od);
+                const contact::WheelForces<double> b = contact::computeForces(down, od);
+                limit = {(a.fx - b.fx) / (2 * kStep), (a.fz - b.fz) / (2 * kStep),
+                         (a.my - b.my) / (2 * kStep)};
+            }
             const auto active = model.channels(i);
             for (int c = 0; c < 3; ++c) {
                 if (!active[c]) continue;
                 const double w = 1.0 / projection_.objective_.sigma[c];
                 for (int k = 0; k < 4; ++k) d(row, k) = channel[c]->v[k] * w;
+                if (shear_limit_) d(row, 4) = limit[c] * w;
                 ++row;
             }
         }
@@ -312,9 +345,9 @@ public:
                 qr.householderQ() * Eigen::MatrixXd::Identity(m, columns.cols());
             d -= q * (q.transpose() * d);
         }
-        static constexpr int kColumn[4] = {kA0, kA1, kN, kK};
+        static constexpr int kColumn[5] = {kA0, kA1, kN, kK, kJmax};
         for (int r = 0; r < m; ++r) {
-            for (int k = 0; k < 4; ++k) jac[r * kP + kColumn[k]] = d(r, k);
+            for (int k = 0; k < columns; ++k) jac[r * kP + kColumn[k]] = d(r, k);
         }
         const ParameterVector slope = physicalPerSolver(p);
         for (std::size_t t = 0; t < nonlinear_priors_.size(); ++t) {
@@ -331,6 +364,7 @@ private:
     mutable bool cached_ok_ = false;
     int alpha_priors_ = 0;
     std::vector<int> nonlinear_priors_;
+    bool shear_limit_ = false;  // j_max free: a fifth column
 };
 
 ceres::CostFunction* LinearProjection::costFunction() const { return new Cost(*this); }
@@ -339,7 +373,7 @@ std::vector<ParameterVector> haltonDesign(int count,
                                           const std::array<bool, kFullParameterCount>& vary,
                                           const DesignBox& box, const ParameterVector& base,
                                           std::uint64_t seed) {
-    static constexpr unsigned kPrimes[kFullParameterCount] = {2, 3, 5, 7, 11, 13, 17};
+    static constexpr unsigned kPrimes[kFullParameterCount] = {2, 3, 5, 7, 11, 13, 17, 19};
     boost::random::mt19937_64 engine(seed);
     boost::random::uniform_real_distribution<double> uniform(0.0, 1.0);
     ParameterVector shift{};

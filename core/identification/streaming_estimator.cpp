@@ -403,6 +403,11 @@ StreamingEstimator::StreamingEstimator(const wheel::WheelParameters& wheel,
     s.options = std::move(options);
     s.options.fit.holdout_fraction = 0.0;
     s.options.fit.folds = 0;
+    // The streaming estimate holds j_max at the options' value (its recursive update has no
+    // shear-limit column).
+    if (!s.options.fit.fixed[kJmax])
+        s.options.fit.fixed[kJmax] = s.options.fit.max_shear_deformation_m;
+    s.options.fit.fit_max_shear_deformation = false;
     s.source = s.options.fit.source;
     s.sigma = s.options.fit.noise;
     const ParameterVector lo = toSolver(s.options.fit.bounds.lower),

@@ -43,6 +43,9 @@ void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
     r.text("prior_items", out.prior_items);
     r.choiceName("validation", out.validation, {"none", "holdout", "folds"});
     r.choiceName("loss", out.loss, {"l2", "huber", "cauchy"});
+    r.text("wheel", out.wheel);
+    r.choiceName("jmax", out.jmax, {"auto", "none", "fixed", "fit"});
+    r.number("jmax_mm", out.jmax_mm, {0.1, 1000.0}, "mm");
 }
 
 void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
@@ -119,7 +122,10 @@ nlohmann::json toJson(const IdentificationPanelSettings& s) {
             {"prior_soil", s.prior_soil},
             {"prior_items", s.prior_items},
             {"validation", s.validation},
-            {"loss", s.loss}};
+            {"loss", s.loss},
+            {"wheel", s.wheel},
+            {"jmax", s.jmax},
+            {"jmax_mm", s.jmax_mm}};
 }
 
 nlohmann::json toJson(const RoverPanelSettings& s) {

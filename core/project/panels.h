@@ -58,6 +58,13 @@ struct IdentificationPanelSettings {
     std::string prior_items;          ///< "phi_deg=30±5, c_kPa=2±1" (parsePriorItem items)
     std::string validation = "none";  ///< none, holdout (20 % of the samples) or folds (5)
     std::string loss = "l2";          ///< l2, huber or cauchy
+    /// The fit's wheel: "" the data's when they name one (a sidecar JSON beside the CSV), else
+    /// the project's; "project"; or a wheel preset's name.
+    std::string wheel;
+    /// j_max of the fit: auto (the project soil's for synthetic data, none for a CSV), none,
+    /// fixed (at jmax_mm) or fit (identified).
+    std::string jmax = "auto";
+    double jmax_mm = 20.0;
 };
 
 /// "global-sensitivity": the page shown, the study's method, grid and sample sizes (the ranges

@@ -309,14 +309,21 @@ def identify(data, wheel, soil="sandy-loam", **settings):
     a dict of those columns as arrays, or None for synthetic data made from `soil`
     (noise_percent, seed, loads_N, slip_count). Other settings as a run script's identification
     (refine, fix, noise, skip_bad_rows, jmax_m, priors, loss, holdout, folds, starts, load_N,
-    profile).
+    profile). jmax_m: j_max [m] held at that value, or "fit" to identify it as an eighth
+    parameter (``identify --jmax fit``; with a prior of 20 ± 20 mm when the data do not
+    determine it, and a flag that says so).
 
-    Returns every key of ``terrastudio identify --json`` (the parameters a0, ..., K_m, "std",
+    Returns every key of ``terrastudio identify --json`` (the parameters a0, ..., K_m, jmax_m, "std",
     "flags", "covariance", "prior", "holdout", "ambiguity", "steps", "samples", ...; a test
     compares them) and "parameters" ({name: value}, with "*_std"), "curves" ({column: array}),
     "usable", "notes", "message".
     """
     progress = settings.pop("progress", None)
+    if isinstance(settings.get("jmax_m"), str):
+        if settings["jmax_m"] != "fit":
+            raise ValueError(f"jmax_m: {settings['jmax_m']!r} is neither a length in m nor 'fit'")
+        del settings["jmax_m"]
+        settings["fit_jmax"] = True
     columns = None
     if isinstance(data, dict):
         columns = data

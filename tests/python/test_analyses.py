@@ -115,10 +115,34 @@ def test_identify_returns_what_the_command_line_prints(tmp_path, cli):
         _same(out[key], value, key)
     assert out["covariance"]["parameters"] == ["a0", "a1", "Ks_kPa", "n0", "c_kPa", "phi_deg",
                                                "K_m"]
+    assert out["jmax_m"] == 0.02 and out["std"]["jmax_m"] == 0.0  # held
     assert out["holdout"]["samples"] == 45
     # The held-out step says what it did (it was an empty line).
     held = [n for n in out["notes"] if n.startswith("held-out")]
     assert held and "45 samples predicted" in held[0], out["notes"]
+
+
+def test_identify_fits_jmax_as_the_command_line_does(tmp_path, cli):
+    # Issue 25, item 3: j_max identified (`--jmax fit`, jmax_m="fit"): the same JSON, j_max in
+    # the covariance, and near the 20 mm the data were made with (sandy loam's j_max).
+    data = tmp_path / "data.csv"
+    made = cli("synth", "--soil", SOIL, "--wheel", WHEEL, "--load", "30,58.86,90", "--noise",
+               "fx=1%,fz=1%,my=1%", "--out", data)
+    assert made.returncode == 0, made.stderr
+    printed = cli("identify", "--data", data, "--wheel", WHEEL, "--jmax", "fit", "--json")
+    assert printed.returncode == 0, printed.stderr
+    expected = json.loads(printed.stdout)
+    out = ts.identify(data, WHEEL, jmax_m="fit")
+    for step in expected["steps"] + out["steps"]:
+        del step["time_ms"]
+    for key, value in expected.items():
+        assert key in out, key
+        _same(out[key], value, key)
+    assert out["covariance"]["parameters"][-1] == "jmax_m"
+    assert abs(out["jmax_m"] - 0.02) < 3 * out["std"]["jmax_m"]
+    assert not out["adequacy"]["flag"]
+    with pytest.raises(ValueError, match="jmax_m"):
+        ts.identify(data, WHEEL, jmax_m="yes")
 
 
 def test_identify_bad_data():

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QDoubleSpinBox>
+#include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRegularExpression>
@@ -432,6 +434,103 @@ TEST(IdentificationPanel, ApplyingTheIdentifiedSoilIsOneUndoStep) {
     document.undoStack()->undo();
     EXPECT_EQ(io::toJson(document.project().soil).dump(), before);
     EXPECT_EQ(document.project().soil_preset, "sandy-loam");
+}
+
+// Issue 25, item 6: data from wheel A beside a sidecar that names wheel A, in a project whose
+// wheel is B (r = 0.135 m, b = 0.165 m). The panel states the data's wheel and fits with it: the
+// answer is the data's soil within three std (with B it missed: φ = 17°, a₁ < 0). Choosing the
+// project's wheel instead is stated as "not the data's". Without a sidecar the project's wheel is
+// the default, and the panel says so.
+TEST(IdentificationPanel, FitsWithTheDataWheelAndSaysWhich) {
+    QTemporaryDir dir;
+    const std::string csv = clayCsv(dir);  // wheel A
+    ProjectDocument document;
+    test::resetToDefault(document);
+    auto b = io::resolveWheel(test::resources(), "B");
+    ASSERT_TRUE(b);
+    ASSERT_TRUE(document.setWheel(b.value(), "B"));
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}});
+    panel.setDataFile(QString::fromStdString(csv));
+    EXPECT_FALSE(panel.dataWheel().has_value());
+    EXPECT_EQ(panel.chosenWheel().radius_m, 0.135);
+    EXPECT_TRUE(panel.wheelDescription().contains("the project's wheel (the data name no wheel)"))
+        << panel.wheelDescription().toStdString();
+    auto* note = panel.findChild<QLabel*>("identification.wheel_note");
+    ASSERT_NE(note, nullptr);
+    EXPECT_EQ(note->text(), panel.wheelDescription());
+
+    // The sidecar names wheel A (r = 0.092 m, b = 0.107 m): it becomes the default.
+    std::ofstream(dir.filePath("clay.json").toStdString())
+        << R"({"format": "terrastudio-experiment", "format_version": 1,
+               "wheel": {"name": "A", "r_m": 0.092, "b_m": 0.107}})";
+    panel.setDataFile("");
+    panel.setDataFile(QString::fromStdString(csv));
+    ASSERT_TRUE(panel.dataWheel().has_value());
+    EXPECT_EQ(panel.chosenWheel().radius_m, 0.092);
+    EXPECT_EQ(panel.chosenWheel().width_m, 0.107);
+    EXPECT_TRUE(panel.wheelDescription().contains("the data's wheel (clay.json)"))
+        << panel.wheelDescription().toStdString();
+    EXPECT_EQ(note->text(), panel.wheelDescription());
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().report && panel.result().report->usable());
+    EXPECT_EQ(panel.fitWheel().radius_m, 0.092);
+    const Table& t = panel.result().parameters;
+    EXPECT_NEAR(t.rows[0][t.column("phi_deg")], 13.0, 3.0 * t.rows[0][t.column("phi_deg_std")]);
+    EXPECT_NEAR(t.rows[0][t.column("c_kPa")], 4.14, 3.0 * t.rows[0][t.column("c_kPa_std")]);
+    EXPECT_TRUE(panel.fitReport().contains("Adequacy: the residuals look like noise"))
+        << panel.fitReport().toStdString();
+
+    panel.setWheelChoice("project");
+    EXPECT_EQ(panel.chosenWheel().radius_m, 0.135);
+    EXPECT_TRUE(panel.wheelDescription().contains("not the data's"))
+        << panel.wheelDescription().toStdString();
+    const nlohmann::json saved = panel.settings();
+    EXPECT_EQ(saved["wheel"], "project");
+}
+
+// Issue 25, items 3 and 6: synthetic data of sandy loam (j_max = 20 mm) fitted with j_max none
+// are flagged as a systematic misfit; with j_max identified, the table shows j_max near 20 mm
+// and the residuals are noise again.
+TEST(IdentificationPanel, OffersTheShearLimitAndShowsTheAdequacyFlag) {
+    ProjectDocument document;
+    test::resetToDefault(document);  // sandy loam (j_max = 20 mm), wheel A
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}, {"noise_percent", 1.0}});
+    auto* value = panel.findChild<QDoubleSpinBox*>("identification.jmax_value");
+    ASSERT_NE(value, nullptr);
+    panel.setShearLimit("none");
+    EXPECT_FALSE(value->isEnabled());
+    EXPECT_TRUE(std::isinf(*panel.fitSettings().max_shear_deformation_m));
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().report && panel.result().report->usable());
+    EXPECT_TRUE(panel.result().report->adequacy.flag);
+    EXPECT_TRUE(panel.fitReport().contains("Systematic misfit")) << panel.fitReport().toStdString();
+
+    panel.setShearLimit("fixed", 15.0);
+    EXPECT_TRUE(value->isEnabled());
+    EXPECT_DOUBLE_EQ(*panel.fitSettings().max_shear_deformation_m, 0.015);
+    panel.setShearLimit("fit");
+    EXPECT_TRUE(panel.fitSettings().fit_max_shear_deformation);
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const auto& report = *panel.result().report;
+    ASSERT_TRUE(report.usable());
+    EXPECT_FALSE(report.adequacy.flag);
+    const double jmax = report.parameters[identification::kJmax];
+    EXPECT_NEAR(jmax, 0.02, 3.0 * report.uncertainty.std[identification::kJmax]);
+    int row = -1;
+    for (int r = 0; r < 9; ++r) {
+        if (panel.parameterCell(r, 0).startsWith("j_max")) row = r;
+    }
+    ASSERT_GE(row, 0);
+    EXPECT_EQ(panel.parameterCell(row, 5), "0.02");  // the truth: the project's soil
+    EXPECT_NE(panel.parameterCell(row, 2), "–");     // a std
+    EXPECT_TRUE(panel.fitReport().contains("Adequacy: the residuals look like noise"));
+    const nlohmann::json saved = panel.settings();
+    EXPECT_EQ(saved["jmax"], "fit");
 }
 
 TEST(IdentificationStreaming, SettingsRoundTrip) {

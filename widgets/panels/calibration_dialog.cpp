@@ -375,7 +375,7 @@ void CalibrationDialog::showResult() {
     }
     parameters_->setRowCount(0);
     if (!usable) return;
-    for (int k = 0; k < id::kFullParameterCount; ++k) {
+    for (int k = 0; k < id::kJmax; ++k) {  // j_max is held at the soil's, not calibrated
         const auto i = static_cast<std::size_t>(k);
         const id::ParameterInfo& info = id::parameterInfo()[i];
         const QString unit = QString::fromUtf8(info.unit);

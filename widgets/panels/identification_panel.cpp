@@ -16,6 +16,7 @@
 #include <QLineEdit>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -29,6 +30,7 @@
 #include "core/identification/data_set.h"
 #include "core/identification/observation_model.h"
 #include "core/identification/parameters.h"
+#include "core/io/experiment.h"
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
@@ -159,6 +161,33 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     loss_->setToolTip(
         "The loss of the fit: least squares, or a robust loss (Huber, Cauchy) that limits the pull "
         "of outliers");
+    wheel_ = new QComboBox(this);
+    wheel_->setObjectName("identification.wheel");
+    wheel_->setToolTip(
+        "The wheel the model is fitted with (its r and b enter every force): the data's when a "
+        "sidecar JSON beside the CSV names one, else the project's, or a preset");
+    wheel_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    wheel_->setMinimumContentsLength(14);
+    wheel_note_ = new QLabel(this);
+    wheel_note_->setObjectName("identification.wheel_note");
+    wheel_note_->setWordWrap(true);
+    jmax_mode_ = new QComboBox(this);
+    jmax_mode_->setObjectName("identification.jmax");
+    jmax_mode_->addItem("j_max: auto", "auto");
+    jmax_mode_->addItem("j_max: none", "none");
+    jmax_mode_->addItem("j_max: fixed", "fixed");
+    jmax_mode_->addItem("j_max: fit", "fit");
+    jmax_mode_->setToolTip(
+        "The shear limit j_max of the model (Eq. 2.16): auto (the project soil's for synthetic "
+        "data, none for a CSV), none, fixed at the value beside, or identified as an eighth "
+        "parameter (with a prior of 20 ± 20 mm when the data do not determine it)");
+    jmax_value_ = new QDoubleSpinBox(this);
+    jmax_value_->setObjectName("identification.jmax_value");
+    jmax_value_->setRange(0.1, 1000.0);
+    jmax_value_->setDecimals(1);
+    jmax_value_->setSuffix(" mm");
+    jmax_value_->setValue(project::IdentificationPanelSettings{}.jmax_mm);
+    jmax_value_->setToolTip("j_max held by 'j_max: fixed' [mm]");
     start_ = new QLabel(this);
     start_->setWordWrap(true);
     // The CSV before a fit: its first rows, what is read of it and what will be fitted.
@@ -192,7 +221,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     apply_ = new QPushButton("Apply identified soil to project", this);
     apply_->setToolTip(
         "Replace the project's soil by the identified parameters (a₀, a₁, K_s, n, n₁, c, φ, K); "
-        "k_c : k_φ, γ and j_max stay the project soil's. Edit ▸ Undo restores the soil");
+        "k_c : k_φ and γ stay the project soil's, and j_max unless the fit held or identified "
+        "one. Edit ▸ Undo restores the soil");
     apply_->setEnabled(false);
 
     auto* fit_page = new QWidget(this);
@@ -216,6 +246,13 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         combo->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
         combo->setMinimumContentsLength(12);  // the longest item ("clayey-soil", "hold-out 20%")
     }
+    // The wheel and j_max on a row of their own, with the sentence that says which wheel.
+    auto* model_row = new QHBoxLayout;
+    model_row->addWidget(new QLabel("Wheel:", this));
+    model_row->addWidget(wheel_);
+    model_row->addWidget(jmax_mode_);
+    model_row->addWidget(jmax_value_);
+    model_row->addWidget(wheel_note_, 1);
     auto* start_row = new QHBoxLayout;
     start_row->addWidget(start_, 1);
     start_row->addWidget(fit_);
@@ -243,6 +280,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     fit_layout->setContentsMargins(0, 0, 0, 0);
     fit_layout->addLayout(bar);
     fit_layout->addLayout(options);
+    fit_layout->addLayout(model_row);
     fit_layout->addLayout(start_row);
     fit_layout->addWidget(splitter, 1);
     auto* bottom = new QHBoxLayout;
@@ -284,19 +322,20 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         storeSettings();
         recompute();
     });
-    for (QComboBox* combo : {prior_soil_, validation_, loss_}) {
+    for (QComboBox* combo : {prior_soil_, validation_, loss_, wheel_, jmax_mode_}) {
         connect(combo, &QComboBox::currentIndexChanged, this, [this] { updateFitControls(); });
     }
+    connect(document_, &ProjectDocument::wheelChanged, this, [this] { updateWheelChoices(); });
     connect(prior_items_, &QLineEdit::textChanged, this, [this] { updateFitControls(); });
     connect(refine_, &QCheckBox::toggled, this, [this] {
         updateFitControls();
         updateDataPreview();  // the full model and the decoupled fit read other columns
     });
     connect(file_, &QLineEdit::textChanged, this, [this] {
-        updateFitControls();
+        updateWheelChoices();
         updateDataPreview();
     });
-    updateFitControls();
+    updateWheelChoices();
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         fit_->setEnabled(!busy);
         if (busy) status_->setText("Fitting…");
@@ -360,6 +399,7 @@ std::optional<soil::SoilParameters> IdentificationPanel::identifiedSoil() const 
     p[identification::kC] = d.cohesion_pa;
     p[identification::kPhi] = d.friction_angle_rad;
     p[identification::kK] = d.shear_modulus_m;
+    p[identification::kJmax] = d.max_shear_deformation_m;
     const soil::SoilParameters& base = document_->project().soil;
     soil::SoilParameters soil;
     try {
@@ -367,6 +407,9 @@ std::optional<soil::SoilParameters> IdentificationPanel::identifiedSoil() const 
     } catch (const std::invalid_argument&) {
         return std::nullopt;  // the project's soil has K_s ≤ 0 on that wheel: no k_c : k_φ
     }
+    // j_max is the fit's when the fit identified it or held one the user chose.
+    if (result_.report && fit_jmax_mode_ != "auto")
+        soil.max_shear_deformation_m = d.max_shear_deformation_m;
     if (fit_source_ == "synthetic") {
         std::string name = base.name;
         const std::string suffix = kIdentifiedSuffix.toStdString();
@@ -396,7 +439,96 @@ void IdentificationPanel::updateFitControls() {
     const bool synthetic = file_->text().trimmed().isEmpty();
     noise_->setEnabled(synthetic);
     three_loads_->setEnabled(synthetic);
+    jmax_mode_->setEnabled(global);
+    jmax_value_->setEnabled(global && jmax_mode_->currentData().toString() == "fixed");
     start_->setText(startDescription());
+    wheel_note_->setText(wheelDescription());
+}
+
+void IdentificationPanel::updateWheelChoices() {
+    // The data's wheel: named by a sidecar JSON beside the CSV (core/io/experiment.h's
+    // metadata, "wheel"); a sidecar that is not one names none.
+    data_wheel_.reset();
+    data_wheel_source_.clear();
+    const QString csv = file_->text().trimmed();
+    if (!csv.isEmpty()) {
+        const QFileInfo info(csv);
+        const QString sidecar = info.absolutePath() + "/" + info.completeBaseName() + ".json";
+        QFile file(sidecar);
+        if (file.open(QIODevice::ReadOnly)) {
+            const Result<io::ExperimentMetadata> metadata =
+                io::parseExperimentMetadata(file.readAll().toStdString(), sidecar.toStdString());
+            if (metadata && metadata.value().wheel) {
+                data_wheel_ = metadata.value().wheel;
+                data_wheel_source_ = QFileInfo(sidecar).fileName();
+            }
+        }
+    }
+    const QString previous = wheel_->currentData().toString();
+    {
+        const QSignalBlocker block(wheel_);
+        wheel_->clear();
+        const QString project = QString::fromStdString(document_->project().wheel.name);
+        wheel_->addItem(data_wheel_
+                            ? QString("data's: %1").arg(QString::fromStdString(data_wheel_->name))
+                            : QString("project's: %1").arg(project),
+                        QString());
+        wheel_->addItem(QString("project's: %1").arg(project), "project");
+        addPresetItems(wheel_, presetLocations(), "wheels");
+        const int index = wheel_->findData(previous);
+        wheel_->setCurrentIndex(index >= 0 ? index : 0);
+    }
+    updateFitControls();
+}
+
+void IdentificationPanel::setWheelChoice(const QString& choice) {
+    const int index = wheel_->findData(choice);
+    wheel_->setCurrentIndex(index >= 0 ? index : 0);
+    updateFitControls();
+}
+
+wheel::WheelParameters IdentificationPanel::chosenWheel() const {
+    const QString choice = wheel_->currentData().toString();
+    if (choice.isEmpty() && data_wheel_) return *data_wheel_;
+    if (choice.isEmpty() || choice == "project") return document_->project().wheel;
+    const Result<wheel::WheelParameters> preset =
+        io::resolveWheel(presetLocations(), choice.toStdString());
+    return preset ? preset.value() : document_->project().wheel;
+}
+
+QString IdentificationPanel::wheelDescription() const {
+    const wheel::WheelParameters w = chosenWheel();
+    QString text = QString("Fitting with wheel %1 (r = %2 m, b = %3 m)")
+                       .arg(QString::fromStdString(w.name))
+                       .arg(number(w.radius_m))
+                       .arg(number(w.width_m));
+    const QString choice = wheel_->currentData().toString();
+    const bool synthetic = file_->text().trimmed().isEmpty();
+    if (choice.isEmpty() && data_wheel_) {
+        text += QString(": the data's wheel (%1)").arg(data_wheel_source_);
+    } else if (choice.isEmpty()) {
+        text += synthetic ? QString(": the project's wheel (the synthetic data are made with it)")
+                          : QString(": the project's wheel (the data name no wheel)");
+    } else if (choice == "project") {
+        text += ": the project's wheel, chosen";
+        if (data_wheel_) {
+            text += QString(" — <b>not the data's</b> (%1)")
+                        .arg(QString::fromStdString(data_wheel_->name).toHtmlEscaped());
+        }
+    } else {
+        text += ": a preset, chosen";
+        if (data_wheel_) {
+            text += QString(" — <b>not the data's</b> (%1)")
+                        .arg(QString::fromStdString(data_wheel_->name).toHtmlEscaped());
+        }
+    }
+    return text + ".";
+}
+
+void IdentificationPanel::setShearLimit(const QString& mode, double jmax_mm) {
+    if (const int i = jmax_mode_->findData(mode); i >= 0) jmax_mode_->setCurrentIndex(i);
+    jmax_value_->setValue(jmax_mm);
+    updateFitControls();
 }
 
 void IdentificationPanel::setDataFile(const QString& path) {
@@ -438,6 +570,9 @@ nlohmann::json IdentificationPanel::settings() const {
     s.prior_items = prior_items_->text().toStdString();
     s.validation = validation_->currentData().toString().toStdString();
     s.loss = loss_->currentData().toString().toStdString();
+    s.wheel = wheel_->currentData().toString().toStdString();
+    s.jmax = jmax_mode_->currentData().toString().toStdString();
+    s.jmax_mm = jmax_value_->value();
     return project::toJson(s);
 }
 
@@ -458,6 +593,8 @@ void IdentificationPanel::applySettings(const nlohmann::json& json) {
     skip_bad_rows_->setChecked(s.stream_skip_bad_rows);
     setFitOptions(QString::fromStdString(s.prior_soil), QString::fromStdString(s.prior_items),
                   QString::fromStdString(s.validation), QString::fromStdString(s.loss));
+    setWheelChoice(QString::fromStdString(s.wheel));
+    setShearLimit(QString::fromStdString(s.jmax), s.jmax_mm);
 }
 
 analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
@@ -474,6 +611,11 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
         if (validation == "folds") settings.folds = kFolds;
         settings.loss = analysis::lossFromName(loss_->currentData().toString().toStdString())
                             .value_or(identification::Loss::kSquared);
+        const QString jmax = jmax_mode_->currentData().toString();
+        if (jmax == "none")
+            settings.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+        if (jmax == "fixed") settings.max_shear_deformation_m = jmax_value_->value() * 1e-3;
+        settings.fit_max_shear_deformation = jmax == "fit";
     }
     if (three_loads_->isChecked() && settings.csv.empty()) {
         const double w = document_->project().conditions.load_n;
@@ -483,8 +625,10 @@ analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
 }
 
 AnalysisPanel::Job IdentificationPanel::makeJob() {
-    const analysis::Inputs inputs = project::inputsOf(document_->project());
+    analysis::Inputs inputs = project::inputsOf(document_->project());
+    inputs.wheel = chosenWheel();  // the wheel the panel states (synthetic data are made on it)
     pending_wheel_ = inputs.wheel;
+    pending_jmax_mode_ = refine_->isChecked() ? jmax_mode_->currentData().toString() : "auto";
     analysis::IdentificationSettings settings = fitSettings();
     return [inputs, settings](const std::atomic<bool>& cancel) mutable -> std::any {
         if (!settings.prior_soil_name.empty()) {  // read on the worker, not the GUI thread
@@ -499,6 +643,7 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
 void IdentificationPanel::present(const std::any& value) {
     result_ = std::any_cast<analysis::IdentificationResult>(value);
     fit_wheel_ = pending_wheel_;
+    fit_jmax_mode_ = pending_jmax_mode_;
     fit_source_ =
         file_->text().isEmpty() ? QString("synthetic") : QFileInfo(file_->text()).fileName();
     apply_->setEnabled(identifiedSoil().has_value());
@@ -521,7 +666,7 @@ void IdentificationPanel::present(const std::any& value) {
     const Project& project = document_->project();
     // The truth column is the project's soil only for data synthesised from it.
     const bool synthetic = file_->text().isEmpty();
-    const auto truth = analysis::identifiedOf(project.soil, project.wheel);
+    const auto truth = analysis::identifiedOf(project.soil, fit_wheel_);
     const identification::IdentificationReport* report =
         result_.report ? &*result_.report : nullptr;
     const auto fields = analysis::identifiedFields();
@@ -541,8 +686,9 @@ void IdentificationPanel::present(const std::any& value) {
         const double value = t.rows[0][i];
         parameters_->setItem(
             row, 1,
-            new QTableWidgetItem(sd > 0.0 ? formatWithStd(value, sd)
-                                          : formatNumber(value, scaleOf(field), 5)));
+            new QTableWidgetItem(std::isinf(value) ? QString("none")  // j_max: no limit
+                                 : sd > 0.0        ? formatWithStd(value, sd)
+                                                   : formatNumber(value, scaleOf(field), 5)));
         parameters_->setItem(row, 2, new QTableWidgetItem(formatStd(sd)));
         QString prior = "–", ratio = "–";
         if (const auto full = analysis::fullParameterOf(field); report && full) {
@@ -559,8 +705,10 @@ void IdentificationPanel::present(const std::any& value) {
         parameters_->setItem(row, 4, new QTableWidgetItem(ratio));
         parameters_->setItem(
             row, 5,
-            new QTableWidgetItem(synthetic ? formatNumber(field.userValue(truth), scaleOf(field), 5)
-                                           : "–"));
+            new QTableWidgetItem(!synthetic ? QString("–")
+                                 : std::isinf(field.userValue(truth))
+                                     ? QString("none")
+                                     : formatNumber(field.userValue(truth), scaleOf(field), 5)));
     }
     QStringList lines;
     lines << QString::fromStdString(result_.start_description).toHtmlEscaped();
@@ -617,6 +765,17 @@ void IdentificationPanel::present(const std::any& value) {
                              .arg(number(m.delta_chi2, 3))
                              .arg(answer(m.parameters));
             }
+        }
+        if (report->adequacy.flag) {
+            lines
+                << QString(
+                       "<b>Systematic misfit</b> (adequacy p = %1): the residuals follow slip, so "
+                       "the estimate is biased and its std too small (the note below says "
+                       "where; a shear limit? try j_max: fit).")
+                       .arg(number(report->adequacy.p, 2));
+        } else {
+            lines << QString("Adequacy: the residuals look like noise (smallest p = %1).")
+                         .arg(number(report->adequacy.p, 2));
         }
         for (const auto& flag : report->uncertainty.flags)
             lines << QString::fromStdString(flag).toHtmlEscaped();

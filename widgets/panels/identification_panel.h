@@ -19,6 +19,12 @@
 /// the file has them, the columns found and ignored, the rows read and every bad row by line, and
 /// the channels the fit will compare (core/identification/observation_model.h's setupModel, the
 /// same choice as the fit's), or why it cannot fit the file.
+///
+/// The fit's wheel is chosen and stated (issue 25, item 6): the data's wheel when a sidecar JSON
+/// beside the CSV names one (core/io/experiment.h's metadata), else the project's, or a preset;
+/// the line under the options says which wheel and why. j_max is auto (the project soil's for
+/// synthetic data, none for a CSV), none, fixed or identified, and the report says whether the
+/// residuals are noise (the adequacy check) and lists the distinct other minima only.
 
 #include "core/analysis/identification.h"
 #include "core/analysis/streaming_identification.h"
@@ -67,12 +73,25 @@ public:
     /// validation ("none", "holdout", "folds"), loss ("l2", "huber", "cauchy").
     void setFitOptions(const QString& prior_soil, const QString& prior_items,
                        const QString& validation, const QString& loss);
+    /// The fit's wheel: "" (the data's when they name one, else the project's), "project" or a
+    /// wheel preset's name.
+    void setWheelChoice(const QString& choice);
+    /// The wheel the next fit uses and the visible sentence that says which and why.
+    wheel::WheelParameters chosenWheel() const;
+    QString wheelDescription() const;
+    /// The wheel the data name (a sidecar JSON beside the CSV), if any.
+    const std::optional<wheel::WheelParameters>& dataWheel() const { return data_wheel_; }
+    /// The wheel of the fit on screen.
+    const wheel::WheelParameters& fitWheel() const { return fit_wheel_; }
+    /// j_max of the fit: "auto", "none", "fixed" (at jmax_mm) or "fit".
+    void setShearLimit(const QString& mode, double jmax_mm = 20.0);
     /// The parameter table's text (row, column), for tests.
     QString parameterCell(int row, int column) const;
     /// The parameter table's header text of a column, for tests.
     QString parameterHeader(int column) const;
     /// The shown fit as a soil for the project: the identified a₀, a₁, K_s, n (n₀), n₁, c, φ, K
-    /// on the wheel the fit used, with k_c : k_φ, γ and j_max of the project's soil
+    /// on the wheel the fit used, with k_c : k_φ and γ of the project's soil (j_max too unless
+    /// the fit held or identified one)
     /// (analysis::soilFromParameters: K_s = k_c/b + k_φ is the identified one on that wheel);
     /// named "<soil> (identified)" for synthetic data, "identified from <file>" for a CSV. Empty
     /// without a usable fit or when the result is not a valid soil.
@@ -121,6 +140,7 @@ private:
     void buildStreamingPage(QWidget* page);
     void updateFitControls();
     void updateDataPreview();
+    void updateWheelChoices();
     void showFrames(const std::vector<StreamFrame>& frames);
     void playbackStateChanged(StreamingPlayback::State state);
     void updateStreamControls();
@@ -140,12 +160,20 @@ private:
     QPushButton* apply_;
     wheel::WheelParameters pending_wheel_;  // of the job last started
     wheel::WheelParameters fit_wheel_;      // of the result on screen
+    QString pending_jmax_mode_ = "auto";    // of the job last started
+    QString fit_jmax_mode_ = "auto";        // of the result on screen
     QString fit_source_;                    // "synthetic" or the CSV's file name
     QComboBox* prior_soil_;
     QLineEdit* prior_items_;
     QComboBox* validation_;
     QComboBox* loss_;
     QLabel* start_;
+    QComboBox* wheel_;
+    QLabel* wheel_note_;
+    QComboBox* jmax_mode_;
+    QDoubleSpinBox* jmax_value_;
+    std::optional<wheel::WheelParameters> data_wheel_;  // named by the CSV's sidecar
+    QString data_wheel_source_;                         // that sidecar's file name
     QTabWidget* side_tabs_;  ///< "Parameters", "Data preview" (shown for a CSV)
     QGroupBox* preview_box_;
     QLabel* preview_;

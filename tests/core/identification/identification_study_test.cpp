@@ -37,7 +37,7 @@ ContactParameters<double> soilFor(const std::string& name, double r, double b) {
 
 std::array<double, kFullParameterCount> truthOf(const ContactParameters<double>& p) {
     return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
+            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m,  p.max_shear_deformation_m};
 }
 
 std::array<double, kFullParameterCount> values(const DecoupledParameters& p) {
@@ -47,7 +47,8 @@ std::array<double, kFullParameterCount> values(const DecoupledParameters& p) {
             p.n0,
             p.cohesion_pa,
             p.friction_angle_rad,
-            p.shear_modulus_m};
+            p.shear_modulus_m,
+            p.max_shear_deformation_m};
 }
 
 SyntheticSpec sweep(std::vector<double> loads, double relative_noise, std::uint64_t seed) {
@@ -79,7 +80,7 @@ TEST_P(NoiseFreeRecovery, RefinementReturnsEveryParameterToOneMillionth) {
     const auto got = values(result.parameters);
     const auto decoupled = values(start.parameters);
     std::printf("| %s | %s |", c.soil, c.wheel);
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         EXPECT_NEAR(got[k], truth[k], 1e-6 * std::abs(truth[k])) << fullParameterNames()[k];
         std::printf(" %.4g → %.7g |", decoupled[k], got[k]);
     }
@@ -123,7 +124,7 @@ Coverage coverageStudy(const std::vector<double>& loads) {
         for (const std::string& flag : r.uncertainty.flags) {
             if (flag.find("c and phi") != std::string::npos)
                 cphi = flagged[kC] = flagged[kPhi] = true;
-            for (int k = 0; k < kFullParameterCount; ++k) {  // "X and Y ...", "X ended at ..."
+            for (int k = 0; k < kJmax; ++k) {  // "X and Y ...", "X ended at ..."
                 const std::string name = fullParameterNames()[k];
                 if (flag.rfind(name + " ", 0) == 0 ||
                     flag.find(" and " + name + " ") != std::string::npos) {
@@ -133,7 +134,7 @@ Coverage coverageStudy(const std::vector<double>& loads) {
         }
         cov.cphi_flagged += cphi;
         const auto got = values(r.parameters);
-        for (int k = 0; k < kFullParameterCount; ++k) {
+        for (int k = 0; k < kJmax; ++k) {
             const double err = got[k] - truth[k];
             cov.sum[k] += err / truth[k];
             cov.sum2[k] += err * err / (truth[k] * truth[k]);
@@ -152,7 +153,7 @@ void print(const char* label, const Coverage& cov) {
         "std "
         "| truth within 3 std |\n",
         label, cov.runs, cov.cphi_flagged);
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         const double mean = cov.sum[k] / cov.runs;
         std::printf("| %s | %+.2f %% | %.2f %% | %.2f %% | %d / %d |\n", fullParameterNames()[k],
                     100 * mean, 100 * std::sqrt(cov.sum2[k] / cov.runs),
@@ -165,7 +166,7 @@ TEST(NoisyIdentification, SingleLoadFlagsCohesionAndFriction) {
     print("single load 58.86 N", cov);
     ASSERT_EQ(cov.runs, 20);
     EXPECT_GE(cov.cphi_flagged, 18);  // the data cannot separate c and φ: say so
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         if (cov.judged[k] == 0) continue;
         EXPECT_GE(cov.covered[k], 0.9 * cov.judged[k]) << fullParameterNames()[k];
     }
@@ -176,7 +177,7 @@ TEST(NoisyIdentification, ThreeLoadsDetermineEveryParameterWithHonestErrors) {
     print("three loads 30, 58.86, 90 N", cov);
     ASSERT_EQ(cov.runs, 20);
     EXPECT_LE(cov.cphi_flagged, 2);
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         EXPECT_GE(cov.judged[k], 12) << fullParameterNames()[k];  // Ks–n is flagged in a few runs
         EXPECT_GE(cov.covered[k], 0.9 * cov.judged[k]) << fullParameterNames()[k];
     }

@@ -13,10 +13,10 @@
 
 namespace terra::identification::testing {
 
-/// The seven identified parameters (a₀, a₁, K_s, n, c, φ, K) of the soil-on-wheel `p`, in SI.
+/// The identified parameters (a₀, a₁, K_s, n, c, φ, K, j_max) of the soil-on-wheel `p`, in SI.
 inline ParameterVector truthOf(const contact::ContactParameters<double>& p) {
     return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m};
+            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m,  p.max_shear_deformation_m};
 }
 
 /// Noise-free sweeps s = 0 : 0.05 : 0.75 of `soil` at each load as a robot sees them: W per

@@ -62,6 +62,7 @@ IdentifyOptions optionsFor(const ContactParameters<double>& soil) {
 void expectWithinStd(const IdentificationReport& r, const ParameterVector& truth, double n_std) {
     ASSERT_TRUE(r.uncertainty.computed);
     for (int k = 0; k < kFullParameterCount; ++k) {
+        if (r.parameters[k] == truth[k]) continue;  // held at the truth (j_max: +inf too)
         EXPECT_LE(std::abs(r.parameters[k] - truth[k]), n_std * r.uncertainty.std[k])
             << parameterInfo()[k].name << " = " << r.parameters[k] << ", truth " << truth[k]
             << ", std " << r.uncertainty.std[k];
@@ -111,7 +112,7 @@ TEST(Identify, NoiseFreeThesisDataGiveTheTruthWithoutAGuess) {
     const IdentificationReport r = identify(data, kWheelA, optionsFor(soils::sandyLoam()));
     ASSERT_TRUE(r.usable()) << r.message;
     const ParameterVector truth = truthOf(soils::sandyLoam());
-    for (int k = 0; k < kFullParameterCount; ++k)
+    for (int k = 0; k < kJmax; ++k)
         EXPECT_NEAR(r.parameters[k], truth[k], 1e-6 * std::abs(truth[k]))
             << parameterInfo()[k].name;
 }
@@ -127,7 +128,7 @@ TEST(Identify, NoiseFreeFromTheLoadAloneGivesTheTruth) {
         EXPECT_EQ(r.setup.source, DataSource::kLoad);
         EXPECT_FALSE(r.setup.channels[kFzChannel]);
         const ParameterVector truth = truthOf(c.soil);
-        for (int k = 0; k < kFullParameterCount; ++k) {
+        for (int k = 0; k < kJmax; ++k) {
             EXPECT_NEAR(r.parameters[k], truth[k], 1e-6 * std::abs(truth[k]))
                 << c.name << ": " << parameterInfo()[k].name;
         }
@@ -143,7 +144,7 @@ TEST(Identify, MeasuredSinkageIsAChannelOfTheLoadModel) {
     ASSERT_TRUE(r.usable()) << r.message;
     EXPECT_TRUE(r.setup.channels[kSinkageChannel]);
     const ParameterVector truth = truthOf(soils::sandyLoam());
-    for (int k = 0; k < kFullParameterCount; ++k)
+    for (int k = 0; k < kJmax; ++k)
         EXPECT_NEAR(r.parameters[k], truth[k], 1e-5 * std::abs(truth[k]))
             << parameterInfo()[k].name;
 }
@@ -158,10 +159,10 @@ TEST(Identify, ThreeSigmaIntervalsCoverTheTruthInNineOfTenRuns) {
         const IdentificationReport r = identify(data, kWheelA, optionsFor(soils::sandyLoam()));
         ASSERT_TRUE(r.usable() && r.uncertainty.computed) << seed;
         ++runs;
-        for (int k = 0; k < kFullParameterCount; ++k)
+        for (int k = 0; k < kJmax; ++k)
             covered[k] += std::abs(r.parameters[k] - truth[k]) <= 3.0 * r.uncertainty.std[k];
     }
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         std::printf("%s covered %d / %d\n", parameterInfo()[k].name, covered[k], runs);
         EXPECT_GE(covered[k], 18) << parameterInfo()[k].name;
     }
@@ -184,7 +185,7 @@ TEST(Identify, APriorStaysWhereOneLoadCannotSee) {
     ASSERT_TRUE(three.usable());
     EXPECT_LT(three.prior[kC].std_ratio, 0.3);
     EXPECT_LT(three.prior[kKs].std_ratio, 0.3);
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         EXPECT_TRUE(three.prior[k].active);
         EXPECT_NEAR(three.prior[k].shift_in_prior_std,
                     (three.parameters[k] - o.priors[k]->mean) / o.priors[k]->std, 1e-12);
@@ -219,7 +220,7 @@ TEST(Identify, AmbiguousMinimaAreReportedWithBothAnswers) {
             EXPECT_NEAR(chi2(m.parameters) - best, m.delta_chi2, 1e-6 * r.chi2);
             EXPECT_LE(m.delta_chi2, r.ambiguity_delta_chi2);
             bool distinct = false;
-            for (int k = 0; k < kFullParameterCount; ++k)
+            for (int k = 0; k < kJmax; ++k)
                 distinct |= std::abs(m.parameters[k] - r.parameters[k]) > 3 * r.uncertainty.std[k];
             EXPECT_TRUE(distinct);
         }
@@ -253,6 +254,79 @@ TEST(Identify, TheTrendTestFlagsAMissingShearLimitAndNotTheRightModel) {
     }
     EXPECT_EQ(flagged_right, 0);
     EXPECT_EQ(flagged_wrong, 10);
+}
+
+TEST(Identify, AShearLimitTheDataReachIsIdentified) {
+    // Issue 25, item 3: the README tour's data (sandy loam, j_max = 20 mm, three loads, 1 %
+    // noise) identified with j_max as an eighth parameter: every parameter, j_max among them,
+    // within three std of the truth, and the residuals are noise again. Five seeds, and the same
+    // from the load alone (the sinkage measured, no θ_f).
+    const ParameterVector truth = truthOf(soils::sandyLoam());
+    ASSERT_EQ(truth[kJmax], 0.02);
+    IdentifyOptions o;
+    o.fit_max_shear_deformation = true;
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+        const DataSet data = sweeps(soils::sandyLoam(), {30.0, 58.86, 90.0}, 0.01, seed);
+        const IdentificationReport r = identify(data, kWheelA, o);
+        ASSERT_TRUE(r.usable()) << seed << ": " << r.message;
+        EXPECT_FALSE(r.shear_limit_prior) << seed;
+        EXPECT_EQ(r.free_parameters, 8);
+        expectWithinStd(r, truth, 3.0);
+        EXPECT_LT(r.uncertainty.std[kJmax], 0.2 * truth[kJmax]) << seed;
+        EXPECT_FALSE(r.adequacy.flag) << seed << ": p = " << r.adequacy.p;
+    }
+    DataSet load = testing::fromLoad(soils::sandyLoam(), {30.0, 58.86, 90.0});
+    const IdentificationReport r = identify(load, kWheelA, o);
+    ASSERT_TRUE(r.usable()) << r.message;
+    EXPECT_NEAR(r.parameters[kJmax], truth[kJmax], 1e-4 * truth[kJmax]);  // noise-free
+    EXPECT_NEAR(r.parameters[kPhi], truth[kPhi], 1e-4 * truth[kPhi]);
+}
+
+TEST(Identify, AShearLimitTheDataCannotSeeComesFromItsPrior) {
+    // Sandy loam without a limit, slips up to 0.3 only: the shear deformation stays small, a
+    // limit beyond it changes nothing, so j_max is the prior's (and the output says so), while
+    // the other parameters keep the truth within three std.
+    const ContactParameters<double> soil = soils::sandyLoam(INFINITY);
+    SyntheticSpec spec;
+    for (int i = 0; i <= 20; ++i) spec.slips.push_back(0.3 * i / 20.0);
+    spec.loads_n = {30.0, 58.86, 90.0};
+    spec.noise.fx.relative = spec.noise.fz.relative = spec.noise.my.relative = 0.01;
+    spec.seed = 4;
+    const DataSet data = synthesize(soil, spec).data;
+    IdentifyOptions o;
+    o.fit_max_shear_deformation = true;
+    const IdentificationReport r = identify(data, kWheelA, o);
+    ASSERT_TRUE(r.usable()) << r.message;
+    EXPECT_TRUE(r.shear_limit_prior);
+    ASSERT_TRUE(r.prior[kJmax].active);
+    EXPECT_EQ(r.prior[kJmax].prior_mean, kDefaultShearLimitPrior.mean);
+    bool said = false;
+    for (const std::string& flag : r.uncertainty.flags)
+        said |= flag.find("do not determine j_max") != std::string::npos;
+    EXPECT_TRUE(said);
+    ParameterVector truth = truthOf(soil);
+    truth[kJmax] = r.parameters[kJmax];  // no truth to compare: the prior's estimate
+    expectWithinStd(r, truth, 3.0);
+    // A limit the data cannot see: at or beyond the largest shear deformation they reach.
+    IdentifyOptions held;
+    held.max_shear_deformation_m = r.parameters[kJmax];
+    const IdentificationReport same = identify(data, kWheelA, held);
+    EXPECT_NEAR(same.chi2, r.chi2, 0.05 * r.chi2);
+}
+
+TEST(Identify, ShearLimitOptionsAreChecked) {
+    const DataSet data = sweeps(soils::sandyLoam(), {58.86}, 0.0, 1, 10);
+    IdentifyOptions o;
+    o.fit_max_shear_deformation = true;
+    o.fixed[kJmax] = 0.02;
+    IdentificationReport r = identify(data, kWheelA, o);
+    EXPECT_EQ(r.status, IdentifyStatus::kInvalidInput);
+    EXPECT_NE(r.message.find("fix.jmax_m"), std::string::npos) << r.message;
+    IdentifyOptions bad;
+    bad.max_shear_deformation_m = -0.01;
+    r = identify(data, kWheelA, bad);
+    EXPECT_EQ(r.status, IdentifyStatus::kInvalidInput);
+    EXPECT_NE(r.message.find("max_shear_deformation_m"), std::string::npos) << r.message;
 }
 
 TEST(Identify, HeldOutErrorsMatchTheNoiseOnlyForTheRightModel) {
@@ -304,7 +378,7 @@ TEST(Identify, FixedParametersAndStartsAreReported) {
     o.fixed[kA0] = 0.2;
     o.fixed[kA1] = 0.3;
     o.design_points = 8;
-    o.starts = {{"guess", ParameterVector{0.2, 0.3, 1e6, 0.5, 3e3, 0.4, 0.02}}};
+    o.starts = {{"guess", ParameterVector{0.2, 0.3, 1e6, 0.5, 3e3, 0.4, 0.02, INFINITY}}};
     const IdentificationReport r = identify(data, kWheelA, o);
     ASSERT_TRUE(r.usable());
     EXPECT_EQ(r.parameters[kA0], 0.2);
@@ -322,7 +396,7 @@ TEST(Identify, InvalidInputIsReportedNotThrown) {
     o.folds = 1;
     o.priors[kPhi] = GaussianPrior{0.5, -1.0};
     o.fixed[kN] = 5.0;
-    o.starts = {{"guess", ParameterVector{0.2, 0.3, NAN, 0.5, 3e3, 0.4, 0.02}}};
+    o.starts = {{"guess", ParameterVector{0.2, 0.3, NAN, 0.5, 3e3, 0.4, 0.02, INFINITY}}};
     const IdentificationReport r = identify(data, kWheelA, o);
     EXPECT_EQ(r.status, IdentifyStatus::kInvalidInput);
     const std::string all = r.message;
@@ -344,6 +418,47 @@ TEST(Identify, CancelKeepsWhatWasFound) {
     const IdentificationReport r = identify(data, kWheelA, o);
     EXPECT_EQ(r.status, IdentifyStatus::kCancelled);
     EXPECT_FALSE(r.usable());
+}
+
+TEST(Minima, TheSameMinimumFromSeveralStartsIsListedOnce) {
+    // Issue 25, item 6: the studio listed one solution three times. Three starts that met one
+    // minimum (apart by rounding of the refinement, 1e-5 relative; c = 0 against 1e-9 Pa at its
+    // bound) and a second minimum 10 % away in φ: two minima, in order.
+    ParameterVector a = truthOf(soils::sandyLoam(INFINITY));
+    a[kC] = 0.0;  // at its bound
+    ParameterVector a_again = a, a_zero = a, b = a;
+    for (double& v : a_again) v *= 1.0 + 1e-5;
+    a_zero[kC] = 1e-9;
+    b[kPhi] *= 1.1;
+    const ParameterVector a_at_bound = a;
+    std::vector<Minimum> minima(5);
+    minima[0].parameters = a_zero;
+    minima[1].parameters = a_again;
+    minima[2].parameters = b;
+    minima[3].parameters = a_at_bound;
+    minima[4].parameters = b;
+    const std::vector<Minimum> distinct = distinctMinima(minima);
+    ASSERT_EQ(distinct.size(), 2u);
+    EXPECT_EQ(distinct[0].parameters[kC], 1e-9);
+    EXPECT_EQ(distinct[1].parameters[kPhi], b[kPhi]);
+    EXPECT_EQ(relativeDistance(a, a), 0.0);
+    EXPECT_NEAR(relativeDistance(a, b), 0.1 / 1.1, 1e-12);  // |Δφ| / the larger φ
+    ParameterVector limited = a;
+    limited[kJmax] = 0.02;
+    EXPECT_TRUE(std::isinf(relativeDistance(a, limited)));  // a limit against none
+    // j_max on the plateau beyond the data's reach (56 and 36 mm, one χ², seen on one noisy
+    // load): one minimum; a j_max that changes χ² is another.
+    std::vector<Minimum> plateau(3);
+    plateau[0].parameters = plateau[1].parameters = plateau[2].parameters = limited;
+    plateau[0].parameters[kJmax] = 0.056;
+    plateau[1].parameters[kJmax] = 0.036;
+    plateau[2].parameters[kJmax] = 0.012;
+    plateau[0].chi2 = plateau[1].chi2 = 268.25;
+    plateau[2].chi2 = 271.5;
+    const std::vector<Minimum> kept = distinctMinima(plateau);
+    ASSERT_EQ(kept.size(), 2u);
+    EXPECT_EQ(kept[0].parameters[kJmax], 0.056);
+    EXPECT_EQ(kept[1].parameters[kJmax], 0.012);
 }
 
 TEST(Priors, ParseUserItemsInUserUnits) {

@@ -55,7 +55,7 @@ TEST(LuggedIdentification, TheFitFromTheLoadRecoversTheSoilWithTheLuggedWheel) {
     const IdentificationReport r = identify(data, luggedWheelA(), o);
     ASSERT_TRUE(r.usable()) << r.message;
     const ParameterVector truth = truthOf(soil);
-    for (int k = 0; k < kFullParameterCount; ++k)
+    for (int k = 0; k < kJmax; ++k)
         EXPECT_NEAR(r.parameters[k], truth[k], 1e-4 * std::abs(truth[k]))
             << parameterInfo()[k].name;
     // The same data with the wheel taken as smooth (λ_s = 0): a far worse fit at the same noise.

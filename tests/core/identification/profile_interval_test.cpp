@@ -42,7 +42,7 @@ TEST(ProfileInterval, EqualsTheLinearisedThreeSigmaIntervalWhereChiSquaredIsQuad
     std::array<bool, kFullParameterCount> which{};
     which[kN] = which[kC] = which[kPhi] = true;
     const auto intervals = profileIntervals(data, kWheelA, options(), fit, which);
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         const ProfileInterval& i = intervals[k];
         EXPECT_EQ(i.computed, which[k]) << parameterInfo()[k].name;
         if (!which[k]) continue;

@@ -69,7 +69,7 @@ struct Band {
 void judge(const StreamEstimate& e, const ParameterVector& truth, Band& band) {
     if (!e.estimated) return;
     ++band.judged;
-    for (int k = 0; k < kFullParameterCount; ++k)
+    for (int k = 0; k < kJmax; ++k)
         band.outside[k] += std::abs(e.parameters[k] - truth[k]) > 3.0 * e.std[k];
     if (e.channels > 0) band.nis += e.nis / e.channels, ++band.nis_count;
 }
@@ -87,7 +87,7 @@ TEST(StreamingEstimator, NoFalseAlarmInFiveThousandSamplesOfOneSoilAndHonestBand
         EXPECT_EQ(e.estimated, i + 1 >= options().init_samples) << i;
         if (i >= 300) judge(e, truth, band);  // settled: after six load changes
     }
-    for (int k = 0; k < kFullParameterCount; ++k) {
+    for (int k = 0; k < kJmax; ++k) {
         // 3σ bands: 0.27 % outside for a consistent estimate; allow 1 %.
         EXPECT_LE(band.outside[k], band.judged / 100) << parameterInfo()[k].name;
     }
@@ -123,7 +123,7 @@ TEST(StreamingEstimator, SoilBorderIsConfirmedWithinTenSamples) {
         if (i >= border + 200) judge(last, truth, band);
     }
     EXPECT_EQ(changes, 1);
-    for (int k = 0; k < kFullParameterCount; ++k)
+    for (int k = 0; k < kJmax; ++k)
         EXPECT_LE(band.outside[k], band.judged / 100) << parameterInfo()[k].name;
     EXPECT_NEAR(last.parameters[kPhi], 13.0 * kDeg, 3.0 * last.std[kPhi]);
 }
