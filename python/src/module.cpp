@@ -4,6 +4,7 @@
 
 #include "core/common/build_info.h"
 #include "python/src/analyses_binding.h"
+#include "python/src/field_binding.h"
 #include "python/src/forces_binding.h"
 #include "python/src/inputs_binding.h"
 #include "python/src/studies_binding.h"
@@ -15,4 +16,5 @@ PYBIND11_MODULE(_core, m) {
     terra::python::bindForces(m);
     terra::python::bindAnalyses(m);
     terra::python::bindStudies(m);
+    terra::python::bindField(m);
 }

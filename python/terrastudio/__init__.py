@@ -41,6 +41,7 @@ __all__ = [
     "stresses",
     "sweep",
     "traction",
+    "field",
     "wheel",
 ]
 
@@ -299,6 +300,20 @@ def traction(soil="sandy-loam", wheel="A", load_N=None, slip_angle_deg=0.0, *,
     if out["status"] != "completed":
         raise RuntimeError(out["message"])
     return out["documents"][""]
+
+
+def field(path, *, traversability=None):
+    """A field file's summary (docs/field.md; ``terrastudio field --json``): "name", "extent_m",
+    "height_m", "max_slope_deg", "mean_slope_deg", "classes", "parameters".
+
+    traversability: None, or a dict of its settings ({"robot": "default", "headings": 8,
+    "cell_m": ..., "slip_min", "slip_max", "curve_points", "quadratic"}): adds "traversability"
+    with the JSON's counts and the maps as arrays, the northern row first: "slip" and "status"
+    (one rows x cols array per heading; status 0 ok, 1 stall, 2 braking), "worst_slip",
+    "stall_share", "slope_deg", with the cell centres "x_m", "y_m" and "heading_deg".
+    Raises ValueError naming the file's or the setting's problem.
+    """
+    return _core._field(os.fspath(path), traversability)
 
 
 def identify(data, wheel, soil="sandy-loam", **settings):

@@ -113,6 +113,9 @@ def traction(
     posterior: str | os.PathLike[str] | Mapping[str, Any] | None = None,
     **settings: Any,
 ) -> dict[str, Any]: ...
+def field(
+    path: str | os.PathLike[str], *, traversability: Mapping[str, Any] | None = None
+) -> dict[str, Any]: ...
 def identify(
     data: str | os.PathLike[str] | Mapping[str, ArrayLike] | None,
     wheel: WheelSpec,
