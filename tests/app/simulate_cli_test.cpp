@@ -196,10 +196,11 @@ TEST(SimulateCli, ComparesTheControllers) {
 TEST(SimulateCli, ControllerOverrideAndBadSlip) {
     const fs::path dir = outDir("controller");
     const SimRun r = simulate(
-        "--scenario straight --duration 1 --controller fixed-slip --slip 0.3 "
+        "--scenario straight --duration 2 --controller fixed-slip --slip 0.3 "
         "--json --out " +
         dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Tracking is counted after the first second of the run.
     EXPECT_TRUE(nlohmann::json::parse(r.out)["slip_tracking_rms"].is_number());
     const SimRun bad = simulate("--scenario straight --slip 1.5 --out " + dir.string());
     EXPECT_EQ(bad.exit_code, 2);

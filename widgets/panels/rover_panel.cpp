@@ -122,6 +122,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     duration_->setToolTip("Simulated time (edits the scenario's duration_s)");
     duration_->setKeyboardTracking(false);
     controller_ = new QComboBox(this);
+    controller_->setObjectName("rover.controller");
     for (const std::string& name : scenario::controllerNames())
         controller_->addItem(QString::fromStdString(name));
     controller_->setToolTip(
@@ -129,6 +130,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         "optimal (streaming estimate) or oracle set-point (edits the scenario's controller; "
         "docs/traction.md)");
     slip_set_ = new QDoubleSpinBox(this);
+    slip_set_->setObjectName("rover.slip");
     slip_set_->setRange(0.01, 0.95);
     slip_set_->setDecimals(3);
     slip_set_->setSingleStep(0.01);
