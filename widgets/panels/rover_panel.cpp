@@ -189,8 +189,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         }
     });
 
-    // Two rows: what runs, then running it. One row needed ~1000 px, more than a 1024 px screen
-    // leaves the panel.
+    // Rows: what runs, how the wheels are driven, then running it. One row needed ~1000 px, more
+    // than a 1024 px screen leaves the panel.
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Scenario:", this));
     bar->addWidget(scenario_, 1);
@@ -199,10 +199,14 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     bar->addWidget(edited_label_);
     bar->addWidget(new QLabel("Duration:", this));
     bar->addWidget(duration_);
-    bar->addWidget(new QLabel("Controller:", this));
-    bar->addWidget(controller_);
-    bar->addWidget(new QLabel("Slip:", this));
-    bar->addWidget(slip_set_);
+    // How the wheels are driven, on a row of its own (on the first one the panel no longer fits
+    // 1024 px: tests/app/main_window_test.cpp).
+    auto* control_bar = new QHBoxLayout;
+    control_bar->addWidget(new QLabel("Controller:", this));
+    control_bar->addWidget(controller_);
+    control_bar->addWidget(new QLabel("Slip set-point:", this));
+    control_bar->addWidget(slip_set_);
+    control_bar->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
     run_bar->addWidget(cancel_);
@@ -210,6 +214,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     run_bar->addWidget(readout_, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
+    layout->addLayout(control_bar);
     layout->addLayout(run_bar);
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
