@@ -2,8 +2,10 @@
 // with both contact models, a single step split into its parts, and the cost against the step.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <stdexcept>
 
+#include "core/analysis/rover.h"
 #include "core/contact/quadratic_model.h"
 #include "core/dynamics/rover.h"
 #include "core/dynamics/wheel_contact.h"
@@ -72,6 +74,40 @@ void BM_ChassisAdvance(benchmark::State& state) {
     for (auto _ : state) rover.advance(1e-3);
 }
 BENCHMARK(BM_ChassisAdvance);
+
+// The closed loop's cost (docs/traction.md, docs/performance.md "Rover"): 20 s of straight towing
+// on sandy loam (quadratic model, the cheapest rover: the largest relative overhead) under each
+// controller. Arg 0: controller (0 constant-speed, 1 fixed-slip, 2 oracle, 3 optimal); arg 1:
+// with (1) or without (0) the streaming identifier on the front-left wheel, which the optimal
+// controller needs and which costs the same under any controller.
+void BM_ClosedLoop(benchmark::State& state) {
+    auto loaded = scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "straight");
+    if (!loaded) throw std::runtime_error(loaded.message());
+    scenario::Scenario s = loaded.value();
+    s.duration_s = 20.0;
+    s.options.contact.model = contact::ContactModel::kQuadratic;
+    s.drawbar_load.force_n = scenario::Signal::constant(1.0);
+    s.drawbar_load.per_speed_n_s_m = 60.0;
+    constexpr std::array<scenario::ControllerType, 4> kTypes{
+        scenario::ControllerType::kConstantSpeed, scenario::ControllerType::kFixedSlip,
+        scenario::ControllerType::kOracle, scenario::ControllerType::kOptimal};
+    s.controller.type = kTypes[static_cast<std::size_t>(state.range(0))];
+    if (state.range(1) == 1) s.streaming = scenario::StreamingHook{};
+    scenario::RunOptions options;
+    options.slip_planner = analysis::tractionPlanner();
+    for (auto _ : state) {
+        scenario::RunResult r = scenario::runScenario(s, options);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+}
+BENCHMARK(BM_ClosedLoop)
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({0, 1})
+    ->Args({3, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 // One wheel's contact evaluation at the straight-line operating point.
 void BM_WheelContact(benchmark::State& state) {

@@ -9,6 +9,7 @@
 #include "app/cli/signals.h"
 #include "core/analysis/rover.h"
 #include "core/common/range.h"
+#include "core/io/atomic_file.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
 
@@ -22,7 +23,75 @@ struct SimulateOptions {
     std::optional<double> duration_s;
     std::optional<double> time_step_s;
     std::optional<std::string> model;
+    std::optional<std::string> controller;
+    std::optional<double> slip;
+    bool compare = false;
 };
+
+// One row of the comparison (docs/traction.md §6).
+struct ComparisonRow {
+    std::string controller;
+    scenario::RunResult run;
+    double mean_pull_n = 0.0;  // drawbar work / distance
+};
+
+nlohmann::json comparisonJson(const std::vector<ComparisonRow>& rows, double oracle_pull) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const ComparisonRow& row : rows) {
+        const scenario::Summary& m = row.run.summary;
+        const scenario::TractionMetrics& t = row.run.traction;
+        auto optional = [](const std::optional<double>& v) {
+            return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+        };
+        out.push_back(
+            {{"controller", row.controller},
+             {"status", row.run.status == scenario::RunResult::Status::kCompleted
+                            ? "completed"
+                            : "not completed"},
+             {"distance_m", m.distance_m},
+             {"energy_per_m_J", optional(m.energy_per_m_j)},
+             {"mean_efficiency", optional(m.mean_efficiency)},
+             {"energy_per_drawbar_work", t.drawbar_work_j > 0.0
+                                             ? nlohmann::json(t.drive_energy_j / t.drawbar_work_j)
+                                             : nlohmann::json(nullptr)},
+             {"mean_drawbar_N", row.mean_pull_n},
+             {"drawbar_vs_oracle", oracle_pull > 0.0 ? nlohmann::json(row.mean_pull_n / oracle_pull)
+                                                     : nlohmann::json(nullptr)},
+             {"slip_tracking_rms", optional(m.slip_tracking_rms)},
+             {"settling_time_s", optional(t.settling_time_s)},
+             {"rut_depth_m",
+              t.rear_sinkage_count > 0
+                  ? nlohmann::json(t.rear_sinkage_sum_m / static_cast<double>(t.rear_sinkage_count))
+                  : nlohmann::json(nullptr)}});
+    }
+    return out;
+}
+
+void printComparison(const nlohmann::json& table, const std::string& name) {
+    std::cout << name << ": controllers compared\n"
+              << "controller       distance_m  energy_J/m  energy/work  efficiency  drawbar_N  "
+                 "vs_oracle  slip_rms  settling_s  rut_mm\n";
+    auto cell = [](const nlohmann::json& v, int decimals, double scale = 1.0) {
+        return v.is_number() ? fixed(v.get<double>() * scale, decimals) : std::string("-");
+    };
+    for (const nlohmann::json& row : table) {
+        std::string line = row["controller"].get<std::string>();
+        line.resize(15, ' ');
+        auto column = [&line](const std::string& text, std::size_t width) {
+            line += std::string(width > text.size() ? width - text.size() : 1, ' ') + text;
+        };
+        column(cell(row["distance_m"], 3), 12);
+        column(cell(row["energy_per_m_J"], 2), 12);
+        column(cell(row["energy_per_drawbar_work"], 2), 13);
+        column(cell(row["mean_efficiency"], 4), 12);
+        column(cell(row["mean_drawbar_N"], 3), 11);
+        column(cell(row["drawbar_vs_oracle"], 3), 11);
+        column(cell(row["slip_tracking_rms"], 4), 10);
+        column(cell(row["settling_time_s"], 2), 12);
+        column(cell(row["rut_depth_m"], 2, 1000.0), 8);
+        std::cout << line << '\n';
+    }
+}
 
 void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const std::string& out) {
     const scenario::Summary& m = r.summary;
@@ -39,6 +108,60 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
               << fixed(m.dissipated_j, 3) << " J)\n"
               << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
               << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv") << '\n';
+}
+
+// --compare: the scenario under each controller, one after the other.
+void compare(analysis::RoverSettings settings, const SimulateOptions& o) {
+    const SignalCancellation cancellation;
+    std::vector<ComparisonRow> rows;
+    std::string name;
+    for (const std::string& type : scenario::controllerNames()) {
+        settings.controller = scenario::controllerFromName(type);
+        analysis::Control run;
+        run.cancel = cancellation.flag();
+        TerminalProgress progress("simulate " + type);
+        run.progress = progress.callback();
+        analysis::RoverResult rover;
+        try {
+            rover = analysis::runRover(settings, run);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(std::string(o.scenario) + ": " + e.what());
+        }
+        progress.finish();
+        const std::filesystem::path dir = std::filesystem::path(o.out) / type;
+        if (const auto error = scenario::writeResults(rover.run, rover.scenario, dir))
+            throw std::runtime_error(*error);
+        name = rover.scenario.name;
+        ComparisonRow row{type, std::move(rover.run)};
+        const double distance = row.run.summary.distance_m;
+        row.mean_pull_n = distance > 0.0 ? row.run.traction.drawbar_work_j / distance : 0.0;
+        if (row.run.status == scenario::RunResult::Status::kCancelled) {
+            exitCancelled(cancellation, row.run.message + " by " + cancellation.signalName() +
+                                            "; partial results written to " + dir.string());
+        }
+        rows.push_back(std::move(row));
+    }
+    double oracle_pull = 0.0;
+    for (const ComparisonRow& row : rows)
+        if (row.controller == "oracle") oracle_pull = row.mean_pull_n;
+    const nlohmann::json table = comparisonJson(rows, oracle_pull);
+    if (const auto error = io::writeFileAtomically(std::filesystem::path(o.out) / "comparison.json",
+                                                   table.dump(2) + "\n")) {
+        throw std::runtime_error(*error);
+    }
+    if (o.json) {
+        std::cout << table.dump(2) << '\n';
+    } else {
+        printComparison(table, name);
+        std::cout << "wrote " << o.out << "/comparison.json and " << o.out
+                  << "/<controller>/{timeseries.csv, summary.json}\n";
+    }
+    for (const ComparisonRow& row : rows) {
+        if (row.run.status == scenario::RunResult::Status::kDiverged) {
+            std::cerr << "error: " << row.controller << ": " << row.run.message << '\n';
+            throw CLI::RuntimeError(kFailure);
+        }
+    }
 }
 
 }  // namespace
@@ -58,6 +181,14 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--step", options->time_step_s, "Override the scenario's time step [s]");
     cmd->add_option("--model", options->model, "Override the contact model: full or quadratic")
         ->check(CLI::IsMember({"full", "quadratic"}));
+    cmd->add_option("--controller", options->controller,
+                    "Override the controller: constant-speed, fixed-slip, optimal or oracle "
+                    "(docs/traction.md)")
+        ->check(CLI::IsMember(scenario::controllerNames()));
+    cmd->add_option("--slip", options->slip, "Override the controller's fixed slip set-point");
+    cmd->add_flag("--compare", options->compare,
+                  "Run every controller on the scenario; write OUT/<controller>/ and "
+                  "OUT/comparison.json, print the comparison table");
     cmd->callback([options, &locations] {
         const SimulateOptions& o = *options;
         for (const char* file : {"timeseries.csv", "summary.json", "streaming.csv"}) {
@@ -76,13 +207,22 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
             settings.model = *o.model == "quadratic" ? contact::ContactModel::kQuadratic
                                                      : contact::ContactModel::kFull;
         }
+        if (o.controller) settings.controller = scenario::controllerFromName(*o.controller);
+        settings.slip = o.slip;
         std::vector<Issue> issues;
+        if (o.slip) checkRange(issues, "--slip", *o.slip, scenario::kControllerRanges.slip);
+        if (o.compare && o.controller)
+            issues.push_back({"--compare", "runs every controller: drop --controller"});
         if (o.duration_s)
             checkRange(issues, "--duration", *o.duration_s, scenario::kDurationRange, "s");
         if (o.time_step_s)
             checkRange(issues, "--step", *o.time_step_s, scenario::kTimeStepRange, "s");
         if (!issues.empty()) throw InputError(formatIssues(issues));
 
+        if (o.compare) {
+            compare(settings, o);
+            return;
+        }
         const SignalCancellation cancellation;
         analysis::Control run;
         run.cancel = cancellation.flag();

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/analysis/registry.h"
+#include "core/analysis/traction.h"
 #include "core/common/units.h"
 #include "core/scenario/scenario_json.h"
 
@@ -46,6 +47,10 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
                 r.report(issue.where, issue.message);
         }
     }
+    std::string controller;
+    if (r.choiceName("controller", controller, scenario::controllerNames()))
+        out.controller = scenario::controllerFromName(controller);
+    if (r.number("slip", value, scenario::kControllerRanges.slip)) out.slip = value;
     contact::ContactModel model = contact::ContactModel::kFull;
     if (r.choice<contact::ContactModel>("model", model,
                                         {{"full", contact::ContactModel::kFull},
@@ -70,6 +75,11 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
     }
     if (settings.model) s.options.contact.model = *settings.model;
+    if (settings.controller) s.controller.type = *settings.controller;
+    if (settings.slip &&
+        checkRange(issues, "slip", *settings.slip, scenario::kControllerRanges.slip)) {
+        s.controller.slip = *settings.slip;
+    }
     // The overrides together with the scenario's own values (a --duration below the step).
     if (issues.empty() && (settings.duration_s || settings.time_step_s))
         issues = scenario::validate(s);
@@ -84,12 +94,35 @@ const std::vector<std::string>& roverFigureKeys() {
     return keys;
 }
 
+scenario::SlipPlanner tractionPlanner() {
+    return [](const scenario::SlipPlanRequest& request) -> std::optional<double> {
+        Inputs inputs;
+        inputs.soil = request.soil;
+        inputs.wheel = request.wheel;
+        inputs.conditions.load_n = request.load_n;
+        inputs.conditions.quadratic = request.model == contact::ContactModel::kQuadratic;
+        TractionSettings settings;
+        settings.objective = request.objective == scenario::SlipObjective::kDrawbar
+                                 ? TractionObjective::kDrawbar
+                                 : TractionObjective::kEfficiency;
+        settings.slip_min = request.slip_min;
+        settings.slip_max = request.slip_max;
+        settings.curve_points = 30;
+        try {
+            return computeTraction(inputs, settings).optimal_slip;
+        } catch (const std::invalid_argument&) {
+            return std::nullopt;  // an estimate outside the soil's ranges: keep the set-point
+        }
+    };
+}
+
 RoverResult runRover(const RoverSettings& settings, const Control& control) {
     RoverResult out;
     out.scenario = roverScenario(settings);
     scenario::RunOptions options;
     options.cancel = control.cancel;
     options.progress = control.progress;
+    options.slip_planner = tractionPlanner();
     out.run = scenario::runScenario(out.scenario, options);
     return out;
 }

@@ -25,10 +25,15 @@ struct RoverSettings {
     std::optional<double> duration_s;   ///< overrides the scenario's duration [s]
     std::optional<double> time_step_s;  ///< overrides its time step [s]
     std::optional<contact::ContactModel> model;  ///< overrides its contact model
+    /// Overrides its controller's type (docs/traction.md §5), e.g. to compare controllers on one
+    /// scenario; the controller's other settings stay the scenario's.
+    std::optional<scenario::ControllerType> controller;
+    std::optional<double> slip;  ///< overrides the controller's fixed set-point [-]
 };
 
 /// "scenario" (required; relative files against the context's directory, resolved at once),
-/// "duration_s", "time_step_s", "model" (full, quadratic).
+/// "duration_s", "time_step_s", "model" (full, quadratic), "controller" (constant-speed,
+/// fixed-slip, optimal, oracle), "slip".
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);
 
 /// The scenario with the overrides applied; throws std::invalid_argument when it is not
@@ -43,8 +48,12 @@ struct RoverResult {
     scenario::RunResult run;
 };
 
-/// Runs it (progress and cancel from `control`). Throws std::invalid_argument when the robot
-/// cannot be set up (scenario::runScenario).
+/// s* by computeTraction (docs/traction.md §1) with the quadratic model on a 30-slip curve: the
+/// optimal and oracle controllers' planner.
+scenario::SlipPlanner tractionPlanner();
+
+/// Runs it (progress and cancel from `control`; the slip planner is tractionPlanner()). Throws
+/// std::invalid_argument when the robot cannot be set up (scenario::runScenario).
 RoverResult runRover(const RoverSettings& settings, const Control& control = {});
 
 /// A run's summary as a one-row table for expectations: every number of the summary JSON

@@ -50,10 +50,7 @@ StaticCorner staticCorner(const contact::ContactParameters<double>& params,
 // The static load of corner i (0, 1 front; 2, 3 rear): the weight shared by the axles as the
 // composite centre of mass lies between them.
 double staticLoad(const RobotParameters& robot, const RoverOptions& options, int i) {
-    const double mass = robot.totalMass();
-    const double com_x = robot.com_forward_m * (robot.chassis_mass_kg / mass);
-    const double front_share = (0.5 * robot.wheelbase_m + com_x) / robot.wheelbase_m;
-    return 0.5 * mass * options.gravity_m_s2 * (i < 2 ? front_share : 1.0 - front_share);
+    return staticCornerLoad(robot, options.gravity_m_s2, i);
 }
 
 // ω Δt < 2 (√(ζ² + 1) − ζ): the stability bound of the semi-implicit Euler step on
@@ -66,6 +63,13 @@ double oscillatorStep(double stiffness, double damping, double inertia, double& 
 }
 
 }  // namespace
+
+double staticCornerLoad(const RobotParameters& robot, double gravity_m_s2, int corner) {
+    const double mass = robot.totalMass();
+    const double com_x = robot.com_forward_m * (robot.chassis_mass_kg / mass);
+    const double front_share = (0.5 * robot.wheelbase_m + com_x) / robot.wheelbase_m;
+    return 0.5 * mass * gravity_m_s2 * (corner < 2 ? front_share : 1.0 - front_share);
+}
 
 StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain,
                             const RoverOptions& options) {
@@ -149,6 +153,7 @@ struct Rover::Impl {
     std::array<btVector3, kWheelCount> wheel_force;   // on the spin link, world frame [N]
     std::array<btVector3, kWheelCount> wheel_moment;  // on the spin link, world frame [N·m]
     double soil_power = 0.0;                          // W into the soil
+    double drawbar_n = 0.0;                           // towed load on the chassis [N]
 
     RoverState state;
     // The ledger's kinetic and potential energy are computed when asked for (energy()), not at
@@ -410,6 +415,13 @@ void Rover::advance(double dt_s) {
     // 1. Free step of the articulated body (Featherstone's algorithm, Bullet): gravity and the
     //    soil's forces and moments on the wheel links, joints unactuated; v += a dt.
     body.addBaseForce(body.getBaseMass() * gravity);
+    // The towed implement pulls the chassis back along its heading, horizontally.
+    btVector3 pull_direction(0, 0, 0);
+    if (m.drawbar_n != 0.0) {
+        const btVector3 heading = m.basis().getColumn(0);
+        pull_direction = btVector3(heading.x(), heading.y(), 0.0).normalized();
+        body.addBaseForce(-m.drawbar_n * pull_direction);
+    }
     for (int i = 0; i < kWheelCount; ++i) {
         body.addLinkForce(spinLink(i), m.wheel_force[i] + mw * gravity);
         body.addLinkTorque(spinLink(i), m.wheel_moment[i]);
@@ -457,7 +469,43 @@ void Rover::advance(double dt_s) {
             (m.commands[i].steer_angle_rad - steer) / dt_s - body.getJointVel(steerLink(i));
         momentum += (it * steer_change[i]) * z + (iw * spin_change[i]) * a;
     }
-    const btVector3 omega_change = -(composite.inverse() * momentum);
+    btVector3 omega_change = -(composite.inverse() * momentum);
+    // Motor torque limits: a spin servo that would need more than τ_max dt is held at that impulse
+    // λ̄_i, and its rate change follows from it, I_w Δω_i = λ̄_i − I_w â_i·ΔΩ; substituted into the
+    // momentum balance (I_C − Σ_clamped I_w â_i â_iᵀ) ΔΩ = −(Σ_free … + Σ_clamped λ̄_i â_i). The
+    // set of clamped servos grows until no free one exceeds its limit (at most four passes).
+    if (std::isfinite(m.options.max_motor_torque_nm)) {
+        const double limit = m.options.max_motor_torque_nm * dt_s;
+        std::array<bool, kWheelCount> clamped{};
+        std::array<double, kWheelCount> held{};
+        for (int pass = 0; pass < kWheelCount; ++pass) {
+            bool grown = false;
+            for (int i = 0; i < kWheelCount; ++i) {
+                const double impulse = iw * (axles[i].dot(omega_change) + spin_change[i]);
+                if (!clamped[i] && std::abs(impulse) > limit) {
+                    clamped[i] = true;
+                    held[i] = std::copysign(limit, impulse);
+                    grown = true;
+                }
+            }
+            if (!grown) break;
+            btMatrix3x3 reduced = composite;
+            btVector3 rhs = momentum;
+            for (int i = 0; i < kWheelCount; ++i) {
+                if (!clamped[i]) continue;
+                const btVector3& a = axles[i];
+                reduced = reduced -
+                          btMatrix3x3(iw * a.x() * a.x(), iw * a.x() * a.y(), iw * a.x() * a.z(),
+                                      iw * a.y() * a.x(), iw * a.y() * a.y(), iw * a.y() * a.z(),
+                                      iw * a.z() * a.x(), iw * a.z() * a.y(), iw * a.z() * a.z());
+                rhs += (held[i] - iw * spin_change[i]) * a;
+            }
+            omega_change = -(reduced.inverse() * rhs);
+        }
+        for (int i = 0; i < kWheelCount; ++i) {
+            if (clamped[i]) spin_change[i] = held[i] / iw - axles[i].dot(omega_change);
+        }
+    }
     body.setBaseOmega(body.getBaseOmega() + omega_change);
     body.setBaseVel(body.getBaseVel() - omega_change.cross(com - base));
     double motor_work = 0.0, steering_work = 0.0;
@@ -476,12 +524,26 @@ void Rover::advance(double dt_s) {
     // 3. Positions from the new velocities (semi-implicit Euler; Bullet's quaternion update).
     body.stepPositionsMultiDof(dt_s);
 
+    if (m.drawbar_n != 0.0) {
+        // F v dt with the step's new velocity: the displacement the semi-implicit step takes.
+        m.energy.drawbar_work_j += m.drawbar_n * body.getBaseVel().dot(pull_direction) * dt_s;
+    }
     m.energy.motor_work_j += motor_work + steering_work;
     m.energy.steering_work_j += steering_work;
     m.energy.dissipated_j += m.soil_power * dt_s;
     m.state.time_s += dt_s;
     m.readBodyState();
     m.energy_current = false;
+}
+
+void Rover::setCommands(const Commands& commands) { impl_->commands = commands; }
+
+void Rover::setDrawbarLoad(double force_n) {
+    if (!(force_n >= 0.0) || !std::isfinite(force_n)) {
+        throw std::invalid_argument("Rover::setDrawbarLoad: force_n = " + formatNumber(force_n) +
+                                    " must be finite and >= 0");
+    }
+    impl_->drawbar_n = force_n;
 }
 
 const RoverState& Rover::state() const { return impl_->state; }

@@ -10,6 +10,7 @@
 /// and its reasons: docs/dynamics.md. Bullet types stay in rover.cpp.
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -38,6 +39,9 @@ struct InitialState {
 struct RoverOptions {
     ContactOptions contact;
     double gravity_m_s2 = 9.81;  ///< the thesis's g
+    /// |τ| ≤ this for each spin servo [N·m] (a drive motor's torque limit); +inf: the ideal servo
+    /// that always reaches its commanded rate (the thesis's robot, and every constant-speed run).
+    double max_motor_torque_nm = std::numeric_limits<double>::infinity();
 };
 
 /// One wheel at one instant (the quantities the forces of the coming step were computed from).
@@ -76,6 +80,9 @@ struct EnergyLedger {
     /// Current kinetic energy of every body: chassis, the wheels' translation, spin and steering.
     double kinetic_j = 0.0;
     double potential_j = 0.0;  ///< current Σ m g z of every body
+    /// ∫ F_d v dt: the work done against the drawbar load (Rover::setDrawbarLoad) [J]; part of
+    /// the balance motor = dissipated + drawbar + ΔE_kinetic + ΔE_potential.
+    double drawbar_work_j = 0.0;
     double initial_kinetic_j = 0.0;
     double initial_potential_j = 0.0;
 };
@@ -99,6 +106,10 @@ struct StepLimit {
 /// The StepLimit of the robot on every soil of the terrain, at its static corner loads (the
 /// entry-angle estimator at s = 0, as the Rover's start). A soil that cannot carry a corner load
 /// has no bound (the Rover refuses to start on it). max_step_s is +inf when no soil gives one.
+/// The static vertical load of corner `corner` [N]: the weight shared by the axles as the
+/// composite centre of mass lies between them (what the Rover starts from).
+double staticCornerLoad(const RobotParameters& robot, double gravity_m_s2, int corner);
+
 StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain,
                             const RoverOptions& options);
 
@@ -118,6 +129,12 @@ public:
     /// Applies the forces of the last evaluate(), drives the joints toward its commands and
     /// advances the robot by dt [s].
     void advance(double dt_s);
+    /// Replaces the commands of the last evaluate() (a controller that decides from the state
+    /// evaluate() computed); the forces stay those of evaluate().
+    void setCommands(const Commands& commands);
+    /// The towed implement's pull from the next advance() on [N], ≥ 0: a horizontal force on the
+    /// chassis' centre of mass, against its heading (0 by default). Its work is in the ledger.
+    void setDrawbarLoad(double force_n);
     /// evaluate() then advance().
     void step(double dt_s, const Commands& commands) {
         evaluate(commands);

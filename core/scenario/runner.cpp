@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -68,8 +69,9 @@ bool finite(const dynamics::RoverState& s) {
 // (energy − dissipated − ΔE_kinetic − ΔE_potential) over the motors' work, or, when the motors
 // delivered nothing or took energy in (braking, or a diverged run), over the largest of the
 // other terms: the balance reported is always the one computed.
-double energyBalanceError(double energy, double dissipated, double kinetic, double potential) {
-    const double residual = energy - dissipated - kinetic - potential;
+double energyBalanceError(double energy, double dissipated, double kinetic, double potential,
+                          double drawbar = 0.0) {
+    const double residual = energy - dissipated - kinetic - potential - drawbar;
     const double scale = energy > 0.0 ? energy
                                       : std::max({std::abs(energy), std::abs(dissipated),
                                                   std::abs(kinetic) + std::abs(potential)});
@@ -124,8 +126,10 @@ public:
     std::string check(const dynamics::EnergyLedger& e) const {
         const double kinetic = e.kinetic_j - e.initial_kinetic_j;
         const double potential = e.potential_j - e.initial_potential_j;
-        const double residual = e.motor_work_j - e.dissipated_j - kinetic - potential;
-        const double error = energyBalanceError(e.motor_work_j, e.dissipated_j, kinetic, potential);
+        const double residual =
+            e.motor_work_j - e.dissipated_j - kinetic - potential - e.drawbar_work_j;
+        const double error = energyBalanceError(e.motor_work_j, e.dissipated_j, kinetic, potential,
+                                                e.drawbar_work_j);
         if (std::abs(residual) > energy_floor_ && std::abs(error) > 0.5) {
             return "the energy balance is off by " +
                    formatNumber(roundSignificant(100.0 * error, 3)) + " % (" +
@@ -141,9 +145,10 @@ private:
 // The streaming identifier of one wheel, fed with noisy samples at its own rate.
 class StreamingFeed {
 public:
-    StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt)
+    StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt,
+                  const identification::StreamingOptions& options = {})
         : hook_(hook),
-          identifier_(wheel),
+          identifier_(wheel, options),
           random_(hook.seed),
           every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
         table_.columns = {"t_s",  "slip",  "theta_f_deg",    "Fx_N",
@@ -153,17 +158,36 @@ public:
                           "soil"};
     }
 
-    void observe(long step, const dynamics::RoverState& state) {
-        if (step % every_ != 0) return;
+    // With `estimates` (a closed-loop run) the sample's slip, load and M_y are the observer's,
+    // θ_f and F_x the sinkage sensor's and hub load cell's noisy readings; without, the noisy
+    // truth as before.
+    std::optional<identification::StreamUpdate> observe(long step,
+                                                        const dynamics::RoverState& state,
+                                                        const Estimates* estimates = nullptr) {
+        if (step % every_ != 0) return std::nullopt;
         const dynamics::WheelState& w = state.wheels[hook_.wheel];
-        if (!w.contact.in_contact || w.contact.sunk) return;
+        if (!w.contact.in_contact || w.contact.sunk) return std::nullopt;
         identification::Sample sample;
-        sample.slip = std::clamp(w.contact.slip + noise(hook_.slip_noise), -0.98, 0.98);
-        sample.entry_angle_rad =
-            std::clamp(w.contact.entry_angle_rad + noise(hook_.entry_angle_noise_rad), 1e-3, 1.5);
-        sample.fx_n = w.contact.forces.fx + noise(hook_.force_noise_n);
-        sample.fz_n = w.contact.forces.fz + noise(hook_.force_noise_n);
-        sample.my_nm = w.contact.forces.my + noise(hook_.torque_noise_nm);
+        if (estimates != nullptr) {
+            const int i = hook_.wheel;
+            // Only a wheel that drives and grips: not before the first second (spin-up), not
+            // spinning in place (ŝ > 0.9, a stalled robot at the command's floor).
+            if (state.time_s < 1.0 || !(estimates->slip[i] > 0.0 && estimates->slip[i] < 0.9))
+                return std::nullopt;
+            sample.slip = std::clamp(estimates->slip[i], -0.98, 0.98);
+            sample.entry_angle_rad = std::clamp(
+                w.contact.entry_angle_rad + noise(hook_.entry_angle_noise_rad), 1e-3, 1.5);
+            sample.fx_n = w.contact.forces.fx + noise(hook_.force_noise_n);
+            sample.fz_n = estimates->load_n[i];
+            sample.my_nm = estimates->resistance_nm[i];
+        } else {
+            sample.slip = std::clamp(w.contact.slip + noise(hook_.slip_noise), -0.98, 0.98);
+            sample.entry_angle_rad = std::clamp(
+                w.contact.entry_angle_rad + noise(hook_.entry_angle_noise_rad), 1e-3, 1.5);
+            sample.fx_n = w.contact.forces.fx + noise(hook_.force_noise_n);
+            sample.fz_n = w.contact.forces.fz + noise(hook_.force_noise_n);
+            sample.my_nm = w.contact.forces.my + noise(hook_.torque_noise_nm);
+        }
         sample.time_s = state.time_s;
         const identification::StreamUpdate u = identifier_.push(sample);
         const auto& p = u.parameters;
@@ -172,7 +196,10 @@ public:
              sample.fz_n, sample.my_nm, u.estimated ? 1.0 : 0.0, p.pressure_modulus, p.n0,
              p.cohesion_pa, units::radToDeg(p.friction_angle_rad), p.shear_modulus_m, p.a0, p.a1,
              u.residual_score, u.change_detected ? 1.0 : 0.0, static_cast<double>(w.soil_index)});
+        return u;
     }
+
+    int wheel() const { return hook_.wheel; }
 
     Table take() { return std::move(table_); }
 
@@ -187,6 +214,216 @@ private:
     Table table_;
 };
 
+// The identifier's parameters of a soil on this wheel (K_s = k_c/b + k_φ, Eq. 2.9).
+identification::DecoupledParameters decoupledOf(const soil::SoilParameters& soil,
+                                                const wheel::WheelParameters& wheel) {
+    identification::DecoupledParameters p;
+    p.pressure_modulus = soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus;
+    p.n0 = soil.sinkage_exponent;
+    p.n1 = soil.sinkage_exponent_slip;
+    p.cohesion_pa = soil.cohesion_pa;
+    p.friction_angle_rad = soil.friction_angle_rad;
+    p.shear_modulus_m = soil.shear_modulus_m;
+    p.a0 = soil.max_stress_a0;
+    p.a1 = soil.max_stress_a1;
+    return p;
+}
+
+// The soil the streaming identifier's estimate describes (K_s = k_c/b + k_φ taken as k_φ with
+// k_c = 0, which gives the same σ on this wheel; j_max unknown: none).
+soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p) {
+    soil::SoilParameters soil;
+    soil.name = "streaming estimate";
+    soil.cohesive_modulus = 0.0;
+    soil.frictional_modulus = p.pressure_modulus;
+    soil.sinkage_exponent = p.n0;
+    soil.sinkage_exponent_slip = p.n1;
+    soil.cohesion_pa = p.cohesion_pa;
+    soil.friction_angle_rad = p.friction_angle_rad;
+    soil.shear_modulus_m = p.shear_modulus_m;
+    soil.max_stress_a0 = p.a0;
+    soil.max_stress_a1 = p.a1;
+    return soil;
+}
+
+// The closed loop of a slip controller (docs/traction.md §4–§5): at every control tick the
+// observer reads the sensors, each wheel gets its set-point (fixed, planned on the streaming
+// estimate, or the oracle's for the soil under it) and the PI its command.
+class ClosedLoop {
+public:
+    ClosedLoop(const Scenario& scenario, const SlipPlanner& planner, double dt,
+               const dynamics::RoverState& start)
+        : scenario_(scenario),
+          spec_(scenario.controller),
+          planner_(planner),
+          shear_radius_m_(scenario.robot.wheel.radius_m + scenario.robot.wheel.lugShearOffset()),
+          every_(std::max<long>(1, std::lround(spec_.interval_s / dt))),
+          observer_(scenario.robot, spec_.sensors, scenario.options.gravity_m_s2,
+                    static_cast<double>(every_) * dt, start, scenario.initial.speed_m_s),
+          controller_(spec_, shear_radius_m_) {
+        if ((spec_.type == ControllerType::kOptimal || spec_.type == ControllerType::kOracle) &&
+            !planner_) {
+            throw std::invalid_argument(std::string("controller.type = ") +
+                                        controllerName(spec_.type) +
+                                        " needs a slip planner (analysis::runRover passes "
+                                        "computeTraction)");
+        }
+        set_points_.fill(spec_.slip);
+        applied_.fill(spec_.slip);
+        for (int i = 0; i < dynamics::kWheelCount; ++i) {
+            static_load_n_[i] =
+                dynamics::staticCornerLoad(scenario.robot, scenario.options.gravity_m_s2, i);
+        }
+        oracle_.resize(static_cast<std::size_t>(scenario.terrain.soilCount()) *
+                       dynamics::kWheelCount);
+    }
+
+    // The first commands: rolling at the set-point's rate for the initial speed.
+    dynamics::Commands initial(dynamics::Commands commands) const {
+        for (auto& c : commands) {
+            c.spin_rate_rad_s =
+                std::clamp(scenario_.initial.speed_m_s / (shear_radius_m_ * (1.0 - spec_.slip)),
+                           spec_.min_spin_rate_rad_s, spec_.max_spin_rate_rad_s);
+        }
+        return commands;
+    }
+
+    bool tick(long step) const { return step % every_ == 0; }
+
+    // A control tick on the state evaluate() just computed: new spin commands.
+    void control(const dynamics::RoverState& state, double drawbar_n,
+                 dynamics::Commands& commands) {
+        const Estimates& est = observer_.update(state, drawbar_n);
+        const double dt = static_cast<double>(every_) * scenario_.time_step_s;
+        // optimal: the square-wave dither that keeps the identifier's samples informative.
+        double dither = 0.0;
+        if (spec_.type == ControllerType::kOptimal && spec_.dither > 0.0) {
+            const double phase = std::fmod(state.time_s / spec_.dither_period_s, 1.0);
+            dither = phase < 0.5 ? spec_.dither : -spec_.dither;
+        }
+        for (int i = 0; i < dynamics::kWheelCount; ++i) {
+            if (spec_.type == ControllerType::kOracle)
+                set_points_[i] = oracle(i, state.wheels[i].soil_index);
+            applied_[i] = std::clamp(set_points_[i] + dither, 0.01, 0.95);
+            omega_[i] = controller_.command(i, applied_[i], est, dt);
+            commands[i].spin_rate_rad_s = omega_[i];
+            if (state.time_s >= 1.0) {
+                const double e = state.wheels[i].contact.slip - applied_[i];
+                metrics_.slip_error_sq_sum += e * e;
+                ++metrics_.slip_error_count;
+            }
+        }
+        watchBorder(state);
+    }
+
+    // A streaming update (optimal): plan on the first estimate, and again once the window holds
+    // enough samples of the new soil after a confirmed change.
+    void streamed(const identification::StreamUpdate& u, int wheel) {
+        if (spec_.type != ControllerType::kOptimal) return;
+        if (u.change_detected) awaiting_ = true;
+        const bool first = !planned_ && u.estimated;
+        const bool after_change = awaiting_ && u.estimated &&
+                                  u.window_size >= static_cast<std::size_t>(spec_.replan_samples);
+        if (!first && !after_change) return;
+        if (const std::optional<double> s =
+                plan(soilOfEstimate(u.parameters), static_load_n_[wheel])) {
+            set_points_.fill(*s);
+            planned_ = true;
+            awaiting_ = false;
+        }
+    }
+
+    void apply(dynamics::Commands& commands) const {
+        for (int i = 0; i < dynamics::kWheelCount; ++i) commands[i].spin_rate_rad_s = omega_[i];
+    }
+
+    const Estimates& estimates() const { return observer_.estimates(); }
+    /// The planned set-points (without the dither) and the applied ones.
+    const std::array<double, dynamics::kWheelCount>& setPoints() const { return set_points_; }
+    const std::array<double, dynamics::kWheelCount>& applied() const { return applied_; }
+    TractionMetrics& metrics() { return metrics_; }
+
+    // The settling time: from the border to the start of the last stretch within tolerance.
+    void finish() {
+        if (metrics_.border_time_s && settled_from_)
+            metrics_.settling_time_s = *settled_from_ - *metrics_.border_time_s;
+    }
+
+private:
+    std::optional<double> plan(const soil::SoilParameters& soil, double load_n) const {
+        SlipPlanRequest request;
+        request.soil = soil;
+        request.wheel = scenario_.robot.wheel;
+        request.load_n = load_n;
+        request.objective = spec_.objective;
+        request.slip_min = spec_.slip_min;
+        request.slip_max = spec_.slip_max;
+        request.model = scenario_.options.contact.model;  // the model the rover drives on
+        std::optional<double> s = planner_(request);
+        if (s) s = std::clamp(*s, spec_.slip_min, spec_.slip_max);
+        return s;
+    }
+
+    // The oracle's set-point for wheel i on soil `soil_index` (planned once per soil and wheel;
+    // the previous set-point where the soil cannot carry the wheel).
+    double oracle(int i, int soil_index) {
+        std::optional<double>& cached =
+            oracle_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
+        if (!cached) {
+            cached = plan(scenario_.terrain.soil(soil_index), static_load_n_[i]);
+            if (!cached) cached = set_points_[i];
+        }
+        return *cached;
+    }
+
+    // The front-left wheel's first soil change, and when its set-point settles at the oracle's
+    // for the new soil (optimal and oracle).
+    void watchBorder(const dynamics::RoverState& state) {
+        if (spec_.type != ControllerType::kOptimal && spec_.type != ControllerType::kOracle) return;
+        const int soil = state.wheels[dynamics::kFrontLeft].soil_index;
+        if (!start_soil_) start_soil_ = soil;
+        if (!metrics_.border_time_s) {
+            if (soil == *start_soil_) return;
+            metrics_.border_time_s = state.time_s;
+            border_soil_ = soil;
+        }
+        const double target = oracle(dynamics::kFrontLeft, border_soil_);
+        const bool near = std::abs(set_points_[dynamics::kFrontLeft] - target) <= kSettleTolerance;
+        if (!near) {
+            settled_from_.reset();
+        } else if (!settled_from_) {
+            settled_from_ = state.time_s;
+        }
+    }
+
+    const Scenario& scenario_;
+    ControllerSpec spec_;
+    SlipPlanner planner_;
+    double shear_radius_m_;
+    long every_;
+    Observer observer_;
+    SlipController controller_;
+    std::array<double, dynamics::kWheelCount> set_points_{};
+    std::array<double, dynamics::kWheelCount> applied_{};  // with the dither
+    std::array<double, dynamics::kWheelCount> omega_{};
+    std::array<double, dynamics::kWheelCount> static_load_n_{};
+    std::optional<int> start_soil_;
+    std::vector<std::optional<double>> oracle_;
+    bool planned_ = false, awaiting_ = false;
+    int border_soil_ = 0;
+    std::optional<double> settled_from_;
+    TractionMetrics metrics_;
+};
+
+std::vector<std::string> closedLoopColumns() {
+    std::vector<std::string> c{"drawbar_N", "speed_est_m_s"};
+    for (const char* w : dynamics::kCornerNames) {
+        for (const char* name : {"slip_set", "slip_plan", "slip_est", "torque_Nm"})
+            c.push_back(std::string(w) + "_" + name);
+    }
+    return c;
+}
+
 }  // namespace
 
 RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
@@ -195,13 +432,57 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     const long output_every = std::max<long>(1, std::lround(scenario.output_interval_s / dt));
     const long progress_every = std::max<long>(1, steps / 100);
 
-    dynamics::Rover rover(scenario.robot, scenario.terrain, scenario.options, scenario.initial,
-                          scenario.commandsAt(0.0));
+    const ControllerSpec& control = scenario.controller;
+    const bool closed = control.closedLoop();
+    dynamics::RoverOptions rover_options = scenario.options;
+    if (closed) rover_options.max_motor_torque_nm = control.max_torque_nm;
+    std::optional<StreamingHook> hook = scenario.streaming;
+    // The optimal set-point needs a soil estimate: the default hook when the scenario has none.
+    if (control.type == ControllerType::kOptimal && !hook) hook = StreamingHook{};
+    if (closed && hook) hook->from_observer = true;
+
+    dynamics::Commands first = scenario.commandsAt(0.0);
+    std::optional<ClosedLoop> loop;
+    if (closed) {
+        // The start state only matters for the observer's first reading; the rover takes the
+        // controller's first commands.
+        dynamics::RoverState start;
+        loop.emplace(scenario, options.slip_planner, dt, start);
+        first = loop->initial(first);
+    }
+    dynamics::Rover rover(scenario.robot, scenario.terrain, rover_options, scenario.initial, first);
     std::optional<StreamingFeed> feed;
-    if (scenario.streaming) feed.emplace(*scenario.streaming, scenario.robot.wheel, dt);
+    if (hook) {
+        identification::StreamingOptions streaming;
+        // A closed-loop robot starts from the soil it expects (the map's base soil): at a single
+        // load and a narrow band of slip the window cannot tell K_s from n (docs/traction.md §6),
+        // and the thesis's generic first guess leaves the fit at its bounds.
+        if (closed) streaming.initial = decoupledOf(scenario.terrain.base, scenario.robot.wheel);
+        feed.emplace(*hook, scenario.robot.wheel, dt, streaming);
+    }
+    const bool loaded = scenario.drawbar_load.active();
+    double drawbar_n = 0.0;
 
     RunResult result;
     result.series.columns = seriesColumns();
+    if (closed) {
+        for (std::string& c : closedLoopColumns()) result.series.columns.push_back(std::move(c));
+    }
+    TractionMetrics metrics;
+    auto closedRow = [&](std::vector<double> row) {
+        if (closed) {
+            const Estimates& est = loop->estimates();
+            row.push_back(drawbar_n);
+            row.push_back(est.speed_m_s);
+            for (int i = 0; i < dynamics::kWheelCount; ++i) {
+                row.push_back(loop->applied()[i]);
+                row.push_back(loop->setPoints()[i]);
+                row.push_back(est.slip[i]);
+                row.push_back(est.torque_nm[i]);
+            }
+        }
+        return row;
+    };
     Summary& sum = result.summary;
     DivergenceWatch watch(scenario, rover.state());
     // Said with a divergence: whether the step is above the vertical modes' bound or, below it,
@@ -223,17 +504,31 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         // Time from the step count (no accumulated rounding): bit-identical reruns and exact
         // signal switching times.
         const double t = static_cast<double>(step) * dt;
-        const dynamics::Commands commands = scenario.commandsAt(t);
-        watch.commanded(commands);
+        dynamics::Commands commands = scenario.commandsAt(t);
+        if (loop) loop->apply(commands);
+        if (loaded) {
+            drawbar_n = std::max(0.0, scenario.drawbar_load.force_n.at(t)) +
+                        scenario.drawbar_load.per_speed_n_s_m *
+                            std::max(0.0, rover.state().forward_speed_m_s);
+            rover.setDrawbarLoad(drawbar_n);
+        }
         const dynamics::RoverState& state = rover.evaluate(commands);
+        if (loop && loop->tick(step) && step < steps) {
+            loop->control(state, drawbar_n, commands);
+            rover.setCommands(commands);
+        }
+        watch.commanded(commands);
         if (!finite(state)) {
             result.status = RunResult::Status::kDiverged;
             result.message = "the simulation diverged at t = " + formatNumber(t) + " s";
             break;
         }
         if (step % output_every == 0 || step == steps)
-            result.series.rows.push_back(seriesRow(state));
-        if (feed) feed->observe(step, state);
+            result.series.rows.push_back(closedRow(seriesRow(state)));
+        if (feed) {
+            const auto update = feed->observe(step, state, loop ? &loop->estimates() : nullptr);
+            if (update && loop) loop->streamed(*update, feed->wheel());
+        }
         if (step == steps) break;
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
             result.status = RunResult::Status::kCancelled;
@@ -245,6 +540,14 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             sum.mean_slip[i] += c.slip;
             sum.max_sinkage_m = std::max(sum.max_sinkage_m, c.sinkage_m);
             sum.sunk_steps += c.sunk ? 1 : 0;
+            if (c.in_contact) {
+                metrics.wheel_output_j += c.forces.fx * state.wheels[i].forward_speed_m_s * dt;
+                metrics.wheel_input_j += c.forces.my * state.wheels[i].spin_rate_rad_s * dt;
+            }
+            if (i >= dynamics::kRearLeft) {
+                metrics.rear_sinkage_sum_m += c.sinkage_m;
+                ++metrics.rear_sinkage_count;
+            }
         }
         rover.advance(dt);
         // The state every step (cheap); the energy ledger every 100 steps (it sums every body).
@@ -252,7 +555,7 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         if (diverged.empty() && (step + 1) % 100 == 0) diverged = watch.check(rover.energy());
         if (!diverged.empty()) {
             ++step;
-            result.series.rows.push_back(seriesRow(rover.state()));
+            result.series.rows.push_back(closedRow(seriesRow(rover.state())));
             result.status = RunResult::Status::kDiverged;
             result.message = "the simulation diverged at t = " +
                              formatNumber(roundSignificant(rover.state().time_s, 6)) +
@@ -278,9 +581,28 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     sum.dissipated_j = e.dissipated_j;
     sum.kinetic_change_j = e.kinetic_j - e.initial_kinetic_j;
     sum.potential_change_j = e.potential_j - e.initial_potential_j;
-    sum.energy_balance_error = energyBalanceError(sum.energy_j, sum.dissipated_j,
-                                                  sum.kinetic_change_j, sum.potential_change_j);
+    sum.energy_balance_error =
+        energyBalanceError(sum.energy_j, sum.dissipated_j, sum.kinetic_change_j,
+                           sum.potential_change_j, e.drawbar_work_j);
     if (feed) result.streaming = feed->take();
+    if (loop) {
+        loop->finish();
+        const TractionMetrics& m = loop->metrics();
+        metrics.slip_error_sq_sum = m.slip_error_sq_sum;
+        metrics.slip_error_count = m.slip_error_count;
+        metrics.border_time_s = m.border_time_s;
+        metrics.settling_time_s = m.settling_time_s;
+        if (m.slip_error_count > 0) {
+            sum.slip_tracking_rms =
+                std::sqrt(m.slip_error_sq_sum / static_cast<double>(m.slip_error_count));
+        }
+    }
+    metrics.drive_energy_j = e.motor_work_j - e.steering_work_j;
+    metrics.drawbar_work_j = e.drawbar_work_j;
+    if (sum.distance_m > 1e-6) sum.energy_per_m_j = metrics.drive_energy_j / sum.distance_m;
+    if (metrics.wheel_input_j > 0.0)
+        sum.mean_efficiency = metrics.wheel_output_j / metrics.wheel_input_j;
+    result.traction = metrics;
     return result;
 }
 
@@ -312,6 +634,12 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
         {"model",
          scenario.options.contact.model == contact::ContactModel::kFull ? "full" : "quadratic"}};
     j["energy_balance_error"] = s.energy_balance_error;
+    auto optional = [](const std::optional<double>& v) {
+        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    j["energy_per_m_J"] = optional(s.energy_per_m_j);
+    j["mean_efficiency"] = optional(s.mean_efficiency);
+    j["slip_tracking_rms"] = optional(s.slip_tracking_rms);
     if (std::abs(s.energy_balance_error) > kEnergyBalanceTolerance) {
         j["warning"] = "the energy balance is off by " +
                        formatNumber(roundSignificant(100.0 * s.energy_balance_error, 3)) +

@@ -26,6 +26,9 @@ struct RunOptions {
     std::function<void(double)> progress;
     /// Polled every step; when it becomes true the run stops and keeps what it has.
     const std::atomic<bool>* cancel = nullptr;
+    /// s* for the optimal and oracle controllers (analysis::runRover passes computeTraction).
+    /// Those controllers refuse to run without it.
+    SlipPlanner slip_planner;
 };
 
 /// What a run produced, summed up (the summary JSON of docs/dynamics.md).
@@ -46,6 +49,14 @@ struct Summary {
     double max_sinkage_m = 0.0;
     int sunk_steps = 0;  ///< wheel-steps with θ_f clamped at 90°
     long steps = 0;
+    /// The spin motors' work per metre of the centre of mass' path [J/m] (none before it moved).
+    std::optional<double> energy_per_m_j;
+    /// The wheels' tractive efficiency over the run, ∫ Σ F_x v_x dt / ∫ Σ M_y ω dt [-]
+    /// (docs/traction.md §1 as an energy ratio).
+    std::optional<double> mean_efficiency;
+    /// RMS of s − s_set over the wheels at the control ticks after the first second [-]; only a
+    /// slip controller has a set-point.
+    std::optional<double> slip_tracking_rms;
 };
 
 struct RunResult {
@@ -58,7 +69,8 @@ struct RunResult {
     std::string message;
     Table series;  ///< one row per output interval (columns: docs/dynamics.md)
     Summary summary;
-    Table streaming;  ///< streaming identification updates (empty without the hook)
+    Table streaming;           ///< streaming identification updates (empty without the hook)
+    TractionMetrics traction;  ///< the drive's energy, efficiency, tracking and settling
     bool usable() const { return series.rows.size() > 1; }
 };
 

@@ -63,6 +63,8 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
                                      " must be < y_max_m = " + formatNumber(p.y_max_m)});
         }
     }
+    for (Issue& issue : validate(s.controller, s.drawbar_load, prefix))
+        issues.push_back(std::move(issue));
     checkRange(issues, prefix + "initial.speed_m_s", s.initial.speed_m_s, {0.0, 100.0}, "m/s");
     // A step the dynamics cannot take stably sent the robot 150 m and flipped it, reported as a
     // completed run (issue 28): refused here, with the largest stable step named.

@@ -15,6 +15,7 @@
 #include "core/dynamics/rover.h"
 #include "core/dynamics/terrain.h"
 #include "core/scenario/signal.h"
+#include "core/scenario/traction_control.h"
 
 namespace terra::scenario {
 
@@ -35,6 +36,10 @@ struct StreamingHook {
     double force_noise_n = 0.5;             ///< of F_x and F_z [N]
     double torque_noise_nm = 0.05;          ///< of M_y [N·m]
     unsigned seed = 1;                      ///< noise seed (runs repeat bit for bit)
+    /// The samples' slip, load and M_y: the noisy truth (false; constant-speed runs by default)
+    /// or the observer's estimates ŝ, Ŵ and τ − I_w ω̇ (true; always with a closed-loop
+    /// controller, whose optimal set-point is planned on what this identifier finds).
+    bool from_observer = false;
 };
 
 /// Allowed simulated time [s]: up to a day.
@@ -59,6 +64,10 @@ struct Scenario {
     double time_step_s = 1e-3;        ///< fixed physics step [s]
     double output_interval_s = 0.01;  ///< time-series row spacing [s] (a multiple of the step)
     std::optional<StreamingHook> streaming;
+    /// How the wheels are driven (default: the ω(t) above, as the thesis).
+    ControllerSpec controller;
+    /// The towed implement's pull on the chassis (default none).
+    DrawbarLoad drawbar_load;
 
     /// Every wheel's command at time t [s].
     dynamics::Commands commandsAt(double t_s) const;

@@ -220,6 +220,63 @@ dynamics::RobotParameters readRobot(ObjectReader& r, const io::PresetLocations& 
     return robot;
 }
 
+const Range kDrawbarForceRange{0.0, 1e5};
+const Range kDrawbarPerSpeedRange{0.0, 1e5};
+
+// "controller": {"type": constant-speed|fixed-slip|optimal|oracle, "slip", "objective",
+// "slip_min", "slip_max", "max_torque_Nm", "max_omega_rad_s", "min_omega_rad_s", "kp", "ki_per_s",
+// "interval_s", "replan_samples", "sensors": {...}} (docs/traction.md §5).
+void readController(ObjectReader& r, ControllerSpec& out) {
+    if (!r.has("controller")) {
+        r.allow("controller");
+        return;
+    }
+    ObjectReader c = r.object("controller");
+    if (!c.isObject()) return;
+    std::string type = controllerName(out.type);
+    if (c.choiceName("type", type, controllerNames(), Presence::kRequired))
+        out.type = *controllerFromName(type);
+    const ControllerRanges& range = kControllerRanges;
+    c.number("slip", out.slip, range.slip);
+    c.choice<SlipObjective>(
+        "objective", out.objective,
+        {{"efficiency", SlipObjective::kEfficiency}, {"drawbar", SlipObjective::kDrawbar}});
+    c.number("slip_min", out.slip_min, range.slip);
+    c.number("slip_max", out.slip_max, range.slip);
+    c.number("max_torque_Nm", out.max_torque_nm, range.torque, "N·m");
+    c.number("max_omega_rad_s", out.max_spin_rate_rad_s, range.spin_rate, "rad/s");
+    c.number("min_omega_rad_s", out.min_spin_rate_rad_s, range.min_spin_rate, "rad/s");
+    c.number("kp", out.kp, range.gain);
+    c.number("ki_per_s", out.ki_per_s, range.gain, "1/s");
+    c.number("interval_s", out.interval_s, range.interval, "s");
+    c.integer("replan_samples", out.replan_samples, 1, 10000);
+    c.number("dither", out.dither, {0.0, 0.3});
+    c.number("dither_period_s", out.dither_period_s, {0.01, 1000.0}, "s");
+    if (c.has("sensors")) {
+        ObjectReader n = c.object("sensors");
+        if (n.isObject()) {
+            SensorSpec& s = out.sensors;
+            const Range noise{0.0, 100.0};
+            n.number("encoder_noise_rad_s", s.encoder_noise_rad_s, noise, "rad/s");
+            n.number("torque_noise_Nm", s.torque_noise_nm, noise, "N·m");
+            n.number("accel_noise_m_s2", s.accel_noise_m_s2, noise, "m/s²");
+            n.number("accel_bias_m_s2", s.accel_bias_m_s2, {-10.0, 10.0}, "m/s²");
+            n.number("gyro_noise_rad_s", s.gyro_noise_rad_s, noise, "rad/s");
+            n.number("gnss_rate_Hz", s.gnss_rate_hz, {0.0, 100.0}, "Hz");
+            n.number("gnss_speed_noise_m_s", s.gnss_speed_noise_m_s, noise, "m/s");
+            n.number("filter_time_constant_s", s.filter_time_constant_s, {0.01, 100.0}, "s");
+            n.number("sinkage_noise_m", s.sinkage_noise_m, {0.0, 0.1}, "m");
+            n.number("hub_force_noise_N", s.hub_force_noise_n, {0.0, 1e4}, "N");
+            std::uint64_t seed = s.seed;
+            if (n.integer("seed", seed, 0, 4294967295u)) s.seed = static_cast<unsigned>(seed);
+        }
+        n.finish();
+    } else {
+        c.allow("sensors");
+    }
+    c.finish();
+}
+
 }  // namespace
 
 Result<dynamics::RobotParameters> robotFromJson(const json& object, const std::string& where,
@@ -379,11 +436,30 @@ Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
             h.number("torque_noise_Nm", hook.torque_noise_nm, {0.0, 1e4}, "N·m");
             std::uint64_t seed = hook.seed;
             if (h.integer("seed", seed, 0, 4294967295u)) hook.seed = static_cast<unsigned>(seed);
+            std::string samples = hook.from_observer ? "observer" : "truth";
+            if (h.choiceName("samples", samples, {"truth", "observer"}))
+                hook.from_observer = samples == "observer";
             s.streaming = hook;
         }
         h.finish();
     } else {
         r.allow("streaming");
+    }
+
+    readController(r, s.controller);
+    if (r.has("drawbar_load")) {
+        ObjectReader d = r.object("drawbar_load");
+        if (d.isObject()) {
+            if (const std::optional<Signal> force =
+                    readSignal(d, "force_N", kDrawbarForceRange, "N", 1.0)) {
+                s.drawbar_load.force_n = *force;
+            }
+            d.number("per_speed_N_s_m", s.drawbar_load.per_speed_n_s_m, kDrawbarPerSpeedRange,
+                     "N·s/m");
+        }
+        d.finish();
+    } else {
+        r.allow("drawbar_load");
     }
 
     if (r.issues().size() == before) {

@@ -33,6 +33,7 @@ __all__ = [
     "presets",
     "run",
     "simulate",
+    "compare_controllers",
     "sobol",
     "sobol_design",
     "sobol_indices",
@@ -360,7 +361,8 @@ def identify(data, wheel, soil="sandy-loam", **settings):
 
 def simulate(scenario="straight", **settings):
     """A rover scenario run (thesis chapter 3): a preset name (presets("scenarios")) or a file;
-    duration_s, time_step_s and model override the scenario's. Returns {"summary": {...},
+    duration_s, time_step_s, model, controller ("constant-speed", "fixed-slip", "optimal",
+    "oracle") and slip (the fixed set-point) override the scenario's (docs/traction.md). Returns {"summary": {...},
     "timeseries": {column: array}, "status", "message", "notes"} (and "streaming" when the
     scenario identifies the soil as it drives).
     """
@@ -373,6 +375,24 @@ def simulate(scenario="straight", **settings):
     summary = [v for k, v in documents.items() if "summary" in k]
     result["summary"] = summary[0] if summary else result.get("summary")
     return result
+
+
+def compare_controllers(scenario, **settings):
+    """The scenario under each controller (docs/traction.md, section 6): a list of one dict per
+    controller with "controller", "status", "distance_m", "energy_per_m_J", "mean_efficiency",
+    "slip_tracking_rms" and "mean_slip" from its summary (settings as for simulate, without
+    controller)."""
+    if "controller" in settings:
+        raise ValueError("compare_controllers runs every controller: drop controller=")
+    rows = []
+    for controller in ("constant-speed", "fixed-slip", "optimal", "oracle"):
+        summary = simulate(scenario, controller=controller, **settings)["summary"]
+        row = {"controller": controller}
+        for key in ("status", "distance_m", "energy_per_m_J", "mean_efficiency",
+                    "slip_tracking_rms", "mean_slip"):
+            row[key] = summary.get(key)
+        rows.append(row)
+    return rows
 
 
 def _read_profile(name):

@@ -123,6 +123,9 @@ def identify(
     **settings: Any,
 ) -> dict[str, Any]: ...
 def simulate(scenario: str | os.PathLike[str] = "straight", **settings: Any) -> dict[str, Any]: ...
+def compare_controllers(
+    scenario: str | os.PathLike[str], **settings: Any
+) -> list[dict[str, Any]]: ...
 def sobol(
     soil: SoilSpec,
     wheel: WheelSpec,

@@ -169,3 +169,44 @@ TEST(SimulateCli, CtrlCStopsAndStillWritesWhatWasComputed) {
 }
 
 }  // namespace
+
+TEST(SimulateCli, ComparesTheControllers) {
+    const fs::path dir = outDir("compare");
+    const SimRun r = simulate(
+        "--scenario traction-load-change --duration 2 --compare --json --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto table = nlohmann::json::parse(r.out);
+    ASSERT_EQ(table.size(), 4u);
+    const char* names[] = {"constant-speed", "fixed-slip", "optimal", "oracle"};
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(table[i]["controller"], names[i]);
+        // Each run's own summary beside the table, with the figures the table took from it.
+        std::ifstream in(dir / names[i] / "summary.json");
+        const auto summary = nlohmann::json::parse(in);
+        EXPECT_EQ(summary["energy_per_m_J"], table[i]["energy_per_m_J"]);
+        EXPECT_EQ(summary["slip_tracking_rms"], table[i]["slip_tracking_rms"]);
+    }
+    EXPECT_TRUE(table[0]["slip_tracking_rms"].is_null());  // constant speed has no set-point
+    EXPECT_DOUBLE_EQ(table[3]["drawbar_vs_oracle"].get<double>(), 1.0);
+    std::ifstream file(dir / "comparison.json");
+    EXPECT_EQ(nlohmann::json::parse(file), table);
+    fs::remove_all(dir);
+}
+
+TEST(SimulateCli, ControllerOverrideAndBadSlip) {
+    const fs::path dir = outDir("controller");
+    const SimRun r = simulate(
+        "--scenario straight --duration 2 --controller fixed-slip --slip 0.3 "
+        "--json --out " +
+        dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Tracking is counted after the first second of the run.
+    EXPECT_TRUE(nlohmann::json::parse(r.out)["slip_tracking_rms"].is_number());
+    const SimRun bad = simulate("--scenario straight --slip 1.5 --out " + dir.string());
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--slip"), std::string::npos) << bad.err;
+    const SimRun unknown =
+        simulate("--scenario straight --controller cruise --out " + dir.string());
+    EXPECT_EQ(unknown.exit_code, 2);
+    fs::remove_all(dir);
+}

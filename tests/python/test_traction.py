@@ -34,3 +34,25 @@ def test_a_posterior_file_gives_a_robust_slip(tmp_path, cli):
 def test_a_cap_no_slip_meets_raises():
     with pytest.raises(RuntimeError, match="sinkage"):
         ts.traction("sandy-loam", "A", max_sinkage_m=1e-4)
+
+
+def test_simulate_takes_a_controller_and_the_summary_has_its_metrics():
+    fixed = ts.simulate("traction-load-change", duration_s=4.0, controller="fixed-slip", slip=0.2)
+    assert fixed["status"] == "completed"
+    summary = fixed["summary"]
+    # The set-point of every wheel is the one asked for, all along.
+    for wheel in ("FL", "FR", "RL", "RR"):
+        assert set(fixed["timeseries"][wheel + "_slip_set"]) == {0.2}
+    assert summary["slip_tracking_rms"] > 0.0
+    assert summary["energy_per_m_J"] == pytest.approx(summary["energy_J"] / summary["distance_m"])
+    plain = ts.simulate("traction-load-change", duration_s=4.0, controller="constant-speed")
+    assert plain["summary"]["slip_tracking_rms"] is None
+    assert "FL_slip_set" not in plain["timeseries"]
+
+
+def test_compare_controllers_runs_each_one():
+    rows = ts.compare_controllers("traction-load-change", duration_s=2.0)
+    assert [r["controller"] for r in rows] == ["constant-speed", "fixed-slip", "optimal", "oracle"]
+    assert all(r["status"] == "completed" for r in rows)
+    with pytest.raises(ValueError, match="controller"):
+        ts.compare_controllers("traction-load-change", controller="oracle")

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QSignalSpy>
 #include <QSlider>
 #include <cmath>
@@ -249,6 +251,45 @@ TEST(RoverPanelEditing, ValidEditChangesTheRunAndIsKeptInTheProject) {
     reopened.revertScenario();
     EXPECT_FALSE(reopened.isEdited());
     EXPECT_EQ(nlohmann::json::parse(reopened.scenarioText().toStdString())["duration_s"], 60);
+}
+
+TEST(RoverPanelEditing, ControllerFieldsEditTheScenarioAndRunIt) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "straight"}});
+    auto* controller = panel.findChild<QComboBox*>("rover.controller");
+    auto* slip = panel.findChild<QDoubleSpinBox*>("rover.slip");
+    ASSERT_NE(controller, nullptr);
+    ASSERT_NE(slip, nullptr);
+    // The straight scenario has no controller: constant speed, no set-point to edit.
+    EXPECT_EQ(controller->currentText(), "constant-speed");
+    EXPECT_FALSE(slip->isEnabled());
+    EXPECT_FALSE(panel.isEdited());
+
+    controller->setCurrentText("fixed-slip");
+    slip->setValue(0.3);
+    EXPECT_TRUE(panel.isEdited());
+    EXPECT_TRUE(slip->isEnabled());
+    auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
+    EXPECT_EQ(json["controller"]["type"], "fixed-slip");
+    EXPECT_EQ(json["controller"]["slip"], 0.3);
+    EXPECT_EQ(document.project().panels.at("rover")["edited"]["straight"]["controller"]["slip"],
+              0.3);
+
+    // The run holds that set-point (the series has the controller's columns).
+    json["duration_s"] = 0.5;
+    QString error;
+    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error))
+        << error.toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    for (double set : panel.result().series.values("FL_slip_set")) EXPECT_EQ(set, 0.3);
+
+    // Revert: the file again, and the fields show it.
+    panel.revertScenario();
+    EXPECT_EQ(controller->currentText(), "constant-speed");
+    EXPECT_FALSE(slip->isEnabled());
 }
 
 }  // namespace

@@ -121,6 +121,21 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     duration_->setSuffix(" s");
     duration_->setToolTip("Simulated time (edits the scenario's duration_s)");
     duration_->setKeyboardTracking(false);
+    controller_ = new QComboBox(this);
+    controller_->setObjectName("rover.controller");
+    for (const std::string& name : scenario::controllerNames())
+        controller_->addItem(QString::fromStdString(name));
+    controller_->setToolTip(
+        "How the wheels are driven: the scenario's wheel speeds, or slip held at a fixed, "
+        "optimal (streaming estimate) or oracle set-point (edits the scenario's controller; "
+        "docs/traction.md)");
+    slip_set_ = new QDoubleSpinBox(this);
+    slip_set_->setObjectName("rover.slip");
+    slip_set_->setRange(0.01, 0.95);
+    slip_set_->setDecimals(3);
+    slip_set_->setSingleStep(0.01);
+    slip_set_->setToolTip("Slip set-point of fixed-slip; optimal's until its first soil estimate");
+    slip_set_->setKeyboardTracking(false);
     run_ = new QPushButton("Run", this);
     cancel_ = new QPushButton("Cancel", this);
     cancel_->setEnabled(false);
@@ -174,8 +189,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         }
     });
 
-    // Two rows: what runs, then running it. One row needed ~1000 px, more than a 1024 px screen
-    // leaves the panel.
+    // Rows: what runs, how the wheels are driven, then running it. One row needed ~1000 px, more
+    // than a 1024 px screen leaves the panel.
     auto* bar = new QHBoxLayout;
     bar->addWidget(new QLabel("Scenario:", this));
     bar->addWidget(scenario_, 1);
@@ -184,6 +199,14 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     bar->addWidget(edited_label_);
     bar->addWidget(new QLabel("Duration:", this));
     bar->addWidget(duration_);
+    // How the wheels are driven, on a row of its own (on the first one the panel no longer fits
+    // 1024 px: tests/app/main_window_test.cpp).
+    auto* control_bar = new QHBoxLayout;
+    control_bar->addWidget(new QLabel("Controller:", this));
+    control_bar->addWidget(controller_);
+    control_bar->addWidget(new QLabel("Slip set-point:", this));
+    control_bar->addWidget(slip_set_);
+    control_bar->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
     run_bar->addWidget(cancel_);
@@ -191,6 +214,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     run_bar->addWidget(readout_, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
+    layout->addLayout(control_bar);
     layout->addLayout(run_bar);
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
@@ -209,6 +233,10 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         if (!setScenarioText(QString::fromStdString(json.dump(2)), &error))
             status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
     });
+    connect(controller_, &QComboBox::currentTextChanged, this,
+            [this](const QString& type) { setControllerValue("type", type.toStdString()); });
+    connect(slip_set_, &QDoubleSpinBox::valueChanged, this,
+            [this](double slip) { setControllerValue("slip", slip); });
     connect(scrubber_, &QSlider::valueChanged, this, &RoverPanel::scrubTo);
     connect(play_, &QPushButton::toggled, this, [this](bool on) {
         if (on && scrubber_->value() >= scrubber_->maximum()) scrubber_->setValue(0);
@@ -339,6 +367,22 @@ void RoverPanel::storeEdit(const nlohmann::json& json) {
     showScenarioState();
 }
 
+void RoverPanel::setControllerValue(const std::string& key, const nlohmann::json& value) {
+    nlohmann::json json = currentJson();
+    if (!json.is_object()) return;
+    nlohmann::json controller = json.value("controller", nlohmann::json::object());
+    if (!controller.is_object()) return;  // the reader names the problem at Run
+    if (controller.value(key, nlohmann::json()) == value) return;
+    // The default (constant speed) of a scenario without a controller stays without one.
+    if (key == "type" && value == "constant-speed" && !json.contains("controller")) return;
+    controller[key] = value;
+    if (!controller.contains("type")) controller["type"] = controller_->currentText().toStdString();
+    json["controller"] = controller;
+    QString error;
+    if (!setScenarioText(QString::fromStdString(json.dump(2)), &error))
+        status_->setText("<b>Error:</b> " + error.toHtmlEscaped());
+}
+
 void RoverPanel::revertScenario() {
     edits_.erase(currentName());
     storeSettings();
@@ -353,6 +397,21 @@ void RoverPanel::showScenarioState() {
     const QSignalBlocker block(duration_);
     if (json.is_object() && json.contains("duration_s") && json["duration_s"].is_number()) {
         duration_->setValue(json["duration_s"].get<double>());
+    }
+    {
+        const QSignalBlocker block_type(controller_);
+        const QSignalBlocker block_slip(slip_set_);
+        const scenario::ControllerSpec defaults;
+        std::string type = scenario::controllerName(defaults.type);
+        double slip = defaults.slip;
+        if (json.is_object() && json.contains("controller") && json["controller"].is_object()) {
+            const nlohmann::json& c = json["controller"];
+            if (c.contains("type") && c["type"].is_string()) type = c["type"].get<std::string>();
+            if (c.contains("slip") && c["slip"].is_number()) slip = c["slip"].get<double>();
+        }
+        controller_->setCurrentText(QString::fromStdString(type));
+        slip_set_->setValue(slip);
+        slip_set_->setEnabled(type == "fixed-slip" || type == "optimal");
     }
     previewScenario();
 }

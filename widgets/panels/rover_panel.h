@@ -102,6 +102,8 @@ private:
     /// and which soils it runs on (a scenario brings its own; the project's soil is not used).
     void previewScenario();
     void storeEdit(const nlohmann::json& json);
+    /// Sets `key` of the scenario's "controller" object to `value` (an edit, as the duration).
+    void setControllerValue(const std::string& key, const nlohmann::json& value);
     /// Draws figure i of roverFigures() if the shown run has not been drawn on it yet. Figures are
     /// drawn when their tab is first shown (or exported), not all in present(): drawing the eleven
     /// plots of a 6001-row run at once held the GUI thread 63–203 ms (docs/performance.md).
@@ -117,6 +119,8 @@ private:
     QPushButton* revert_;
     QLabel* edited_label_;
     QDoubleSpinBox* duration_;
+    QComboBox* controller_;     // the scenario's "controller" type (docs/traction.md §5)
+    QDoubleSpinBox* slip_set_;  // and its fixed set-point "slip"
     QPushButton* run_;
     QPushButton* cancel_;
     QProgressBar* progress_;

@@ -1,0 +1,197 @@
+#include "core/scenario/traction_control.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace terra::scenario {
+namespace {
+
+struct NamedController {
+    ControllerType type;
+    const char* name;
+};
+constexpr std::array<NamedController, 4> kControllers{
+    {{ControllerType::kConstantSpeed, "constant-speed"},
+     {ControllerType::kFixedSlip, "fixed-slip"},
+     {ControllerType::kOptimal, "optimal"},
+     {ControllerType::kOracle, "oracle"}}};
+
+// Below this rim speed the slip is not defined (0/0): the wheel counts as not slipping [m/s].
+constexpr double kStillRim = 1e-3;
+
+}  // namespace
+
+const char* controllerName(ControllerType type) {
+    for (const NamedController& c : kControllers)
+        if (c.type == type) return c.name;
+    return "?";
+}
+
+std::optional<ControllerType> controllerFromName(const std::string& name) {
+    for (const NamedController& c : kControllers)
+        if (name == c.name) return c.type;
+    return std::nullopt;
+}
+
+const std::vector<std::string>& controllerNames() {
+    static const std::vector<std::string> names{"constant-speed", "fixed-slip", "optimal",
+                                                "oracle"};
+    return names;
+}
+
+Observer::Observer(const dynamics::RobotParameters& robot, const SensorSpec& sensors,
+                   double gravity_m_s2, double interval_s, const dynamics::RoverState& start,
+                   double initial_speed_m_s)
+    : robot_(robot),
+      sensors_(sensors),
+      interval_s_(interval_s),
+      shear_radius_m_(robot.wheel.radius_m + robot.wheel.lugShearOffset()),
+      random_(sensors.seed) {
+    // The hubs about the composite centre of mass (chassis COM x-offset weighted by its mass).
+    const double com_x = robot.com_forward_m * robot.chassis_mass_kg / robot.totalMass();
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        static_load_n_[i] = dynamics::staticCornerLoad(robot, gravity_m_s2, i);
+        hub_x_m_[i] = (i < 2 ? 0.5 : -0.5) * robot.wheelbase_m - com_x;
+        hub_y_m_[i] = (i % 2 == 0 ? 0.5 : -0.5) * robot.track_m;
+    }
+    if (sensors.gnss_rate_hz > 0.0) {
+        gnss_every_ = std::max<long>(1, std::lround(1.0 / (sensors.gnss_rate_hz * interval_s)));
+    }
+    // The robot knows it starts as told (at rest, or at the scenario's initial speed).
+    est_.speed_m_s = initial_speed_m_s;
+    previous_speed_m_s_ = start.forward_speed_m_s;
+    est_.load_n = static_load_n_;
+    for (int i = 0; i < dynamics::kWheelCount; ++i)
+        est_.spin_rate_rad_s[i] = start.wheels[i].spin_rate_rad_s;
+}
+
+double Observer::measure(double truth, double sigma) {
+    return sigma > 0.0 ? truth + sigma * normal_(random_) : truth;
+}
+
+const Estimates& Observer::update(const dynamics::RoverState& truth, double drawbar_n) {
+    const double dt = interval_s_;
+    // IMU: forward acceleration (finite difference of the true speed over the tick) with bias
+    // and noise; yaw rate with noise.
+    const double true_accel = first_ ? 0.0 : (truth.forward_speed_m_s - previous_speed_m_s_) / dt;
+    previous_speed_m_s_ = truth.forward_speed_m_s;
+    const double accel = measure(true_accel, sensors_.accel_noise_m_s2) + sensors_.accel_bias_m_s2;
+    est_.yaw_rate_rad_s = measure(truth.angular_velocity_rad_s[2], sensors_.gyro_noise_rad_s);
+    est_.accel_m_s2 = accel - bias_estimate_m_s2_;
+    // Complementary filter, second order: integrate the IMU; at each GNSS fix pull the speed
+    // toward the fix with gain 2ζω_c Δt_g and the bias with ω_c² Δt_g (ζ = 1): IMU at high
+    // frequency, GNSS at low, crossover ω_c = 1/τ (docs/traction.md §4).
+    if (!first_) est_.speed_m_s += est_.accel_m_s2 * dt;
+    ++ticks_;
+    if (gnss_every_ > 0 && ticks_ % gnss_every_ == 0) {
+        const double fix = measure(truth.forward_speed_m_s, sensors_.gnss_speed_noise_m_s);
+        const double fix_dt = static_cast<double>(gnss_every_) * dt;
+        const double wc = 1.0 / sensors_.filter_time_constant_s;
+        const double innovation = fix - est_.speed_m_s;
+        est_.speed_m_s += std::min(1.0, 2.0 * wc * fix_dt) * innovation;
+        bias_estimate_m_s2_ -= wc * wc * fix_dt * innovation;
+    }
+    // Loads: static share plus the longitudinal transfer of the forces at the ground against the
+    // inertia and the pull acting at the centre of mass' height, (m a + F_d) h / L.
+    const double height =
+        robot_.com_height_m * robot_.chassis_mass_kg / robot_.totalMass() + robot_.wheel.radius_m;
+    const double transfer =
+        (robot_.totalMass() * est_.accel_m_s2 + drawbar_n) * height / robot_.wheelbase_m;
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        const dynamics::WheelState& w = truth.wheels[i];
+        const double previous_rate = est_.spin_rate_rad_s[i];
+        const double rate = measure(w.spin_rate_rad_s, sensors_.encoder_noise_rad_s);
+        est_.spin_rate_rad_s[i] = rate;
+        const double delta = w.steer_angle_rad;  // the steering encoder (taken as exact)
+        // Hub velocity v + ψ̇ ẑ × arm, along the steered wheel's heading.
+        const double vx = est_.speed_m_s - est_.yaw_rate_rad_s * hub_y_m_[i];
+        const double vy = est_.yaw_rate_rad_s * hub_x_m_[i];
+        est_.hub_speed_m_s[i] = vx * std::cos(delta) + vy * std::sin(delta);
+        const double rim = shear_radius_m_ * rate;
+        est_.slip[i] =
+            rim > kStillRim ? std::clamp(1.0 - est_.hub_speed_m_s[i] / rim, -1.0, 1.0) : 0.0;
+        est_.load_n[i] = std::max(0.0, static_load_n_[i] + (i < 2 ? -0.5 : 0.5) * transfer);
+        est_.torque_nm[i] = measure(w.motor_torque_nm, sensors_.torque_noise_nm);
+        est_.resistance_nm[i] =
+            est_.torque_nm[i] -
+            (first_ ? 0.0 : robot_.wheel_spin_inertia_kg_m2 * (rate - previous_rate) / dt);
+    }
+    first_ = false;
+    return est_;
+}
+
+SlipController::SlipController(const ControllerSpec& spec, double shear_radius_m)
+    : spec_(spec), shear_radius_m_(shear_radius_m) {}
+
+double SlipController::command(int wheel, double set_point, const Estimates& est, double dt_s) {
+    const double feed_forward =
+        std::max(0.0, est.hub_speed_m_s[wheel]) / (shear_radius_m_ * (1.0 - set_point));
+    const double error = set_point - est.slip[wheel];
+    double& integral = integral_[wheel];
+    const double raw = feed_forward * (1.0 + spec_.kp * error + integral);
+    const double out = std::clamp(raw, spec_.min_spin_rate_rad_s, spec_.max_spin_rate_rad_s);
+    // Conditional integration (anti-windup): no integration that would push further into the
+    // output clamps or further against a motor at its torque limit.
+    const bool torque_limited = std::abs(est.torque_nm[wheel]) >= 0.98 * spec_.max_torque_nm;
+    const bool pushing_up = error > 0.0;
+    const bool saturated_up = raw >= spec_.max_spin_rate_rad_s || torque_limited;
+    const bool saturated_down = raw <= spec_.min_spin_rate_rad_s;
+    if (!((pushing_up && saturated_up) || (!pushing_up && saturated_down)))
+        integral += spec_.ki_per_s * error * dt_s;
+    return out;
+}
+
+std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
+                            const std::string& prefix) {
+    std::vector<Issue> issues;
+    const std::string c = prefix + "controller.";
+    const ControllerRanges& r = kControllerRanges;
+    checkRange(issues, c + "slip", spec.slip, r.slip);
+    checkRange(issues, c + "slip_min", spec.slip_min, r.slip);
+    checkRange(issues, c + "slip_max", spec.slip_max, r.slip);
+    if (!(spec.slip_min < spec.slip_max)) {
+        issues.push_back(
+            {c + "slip_max", formatNumber(spec.slip_max) +
+                                 " must be above slip_min = " + formatNumber(spec.slip_min)});
+    }
+    checkRange(issues, c + "max_torque_Nm", spec.max_torque_nm, r.torque, "N·m");
+    checkRange(issues, c + "max_omega_rad_s", spec.max_spin_rate_rad_s, r.spin_rate, "rad/s");
+    checkRange(issues, c + "min_omega_rad_s", spec.min_spin_rate_rad_s, r.min_spin_rate, "rad/s");
+    if (spec.min_spin_rate_rad_s >= spec.max_spin_rate_rad_s) {
+        issues.push_back({c + "min_omega_rad_s", formatNumber(spec.min_spin_rate_rad_s) +
+                                                     " must be below max_omega_rad_s = " +
+                                                     formatNumber(spec.max_spin_rate_rad_s)});
+    }
+    checkRange(issues, c + "kp", spec.kp, r.gain);
+    checkRange(issues, c + "ki_per_s", spec.ki_per_s, r.gain, "1/s");
+    checkRange(issues, c + "interval_s", spec.interval_s, r.interval, "s");
+    checkRange(issues, c + "dither", spec.dither, {0.0, 0.3});
+    checkRange(issues, c + "dither_period_s", spec.dither_period_s, {0.01, 1000.0}, "s");
+    if (spec.replan_samples < 1 || spec.replan_samples > 10000) {
+        issues.push_back(
+            {c + "replan_samples", std::to_string(spec.replan_samples) + " is outside [1, 10000]"});
+    }
+    const SensorSpec& s = spec.sensors;
+    const std::string n = c + "sensors.";
+    const Range noise{0.0, 100.0};
+    checkRange(issues, n + "encoder_noise_rad_s", s.encoder_noise_rad_s, noise, "rad/s");
+    checkRange(issues, n + "torque_noise_Nm", s.torque_noise_nm, noise, "N·m");
+    checkRange(issues, n + "accel_noise_m_s2", s.accel_noise_m_s2, noise, "m/s²");
+    checkRange(issues, n + "accel_bias_m_s2", s.accel_bias_m_s2, {-10.0, 10.0}, "m/s²");
+    checkRange(issues, n + "gyro_noise_rad_s", s.gyro_noise_rad_s, noise, "rad/s");
+    checkRange(issues, n + "gnss_rate_Hz", s.gnss_rate_hz, {0.0, 100.0}, "Hz");
+    checkRange(issues, n + "gnss_speed_noise_m_s", s.gnss_speed_noise_m_s, noise, "m/s");
+    checkRange(issues, n + "filter_time_constant_s", s.filter_time_constant_s, {0.01, 100.0}, "s");
+    checkRange(issues, n + "sinkage_noise_m", s.sinkage_noise_m, {0.0, 0.1}, "m");
+    checkRange(issues, n + "hub_force_noise_N", s.hub_force_noise_n, {0.0, 1e4}, "N");
+    if (s.gnss_rate_hz > 0.0 && spec.interval_s > 0.0 && 1.0 / s.gnss_rate_hz < spec.interval_s) {
+        issues.push_back({n + "gnss_rate_Hz", formatNumber(s.gnss_rate_hz) +
+                                                  " Hz is faster than the control rate " +
+                                                  formatNumber(1.0 / spec.interval_s) + " Hz"});
+    }
+    checkRange(issues, prefix + "drawbar_load.per_speed_N_s_m", load.per_speed_n_s_m, {0.0, 1e5},
+               "N·s/m");
+    return issues;
+}
+
+}  // namespace terra::scenario

@@ -1,0 +1,203 @@
+#pragma once
+/// @file traction_control.h
+/// Predictive traction control in the rover (docs/traction.md §4–§6): what a robot measures
+/// (encoders, motor torques, an IMU, GNSS at a few Hz, all with seeded noise), the observer that
+/// turns it into ground speed, per-wheel slip ŝ = 1 − v̂_hub/(r ω) and wheel loads, and the
+/// per-wheel slip controller (PI with anti-windup, feed-forward ω = v̂_hub / (r (1 − s_set)),
+/// under the motors' torque limit) with its set-point: fixed, optimal from the streaming soil
+/// estimate, or the oracle's from the true soil.
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/common/issue.h"
+#include "core/common/range.h"
+#include "core/contact/contact_parameters.h"
+#include "core/dynamics/robot.h"
+#include "core/dynamics/rover.h"
+#include "core/scenario/signal.h"
+#include "core/soil/soil_parameters.h"
+
+namespace terra::scenario {
+
+/// How each wheel's spin rate is chosen.
+enum class ControllerType {
+    kConstantSpeed,  ///< the scenario's ω(t) per wheel, ideal servos (the thesis; the default)
+    kFixedSlip,      ///< slip held at a fixed set-point (tractor practice, 8–16 %)
+    kOptimal,        ///< s* of the streaming identifier's soil estimate, re-planned on a change
+    kOracle,         ///< s* of the true soil under each wheel (cached per soil patch)
+};
+const char* controllerName(ControllerType type);
+/// "constant-speed", "fixed-slip", "optimal", "oracle"; nullopt for anything else.
+std::optional<ControllerType> controllerFromName(const std::string& name);
+const std::vector<std::string>& controllerNames();
+
+/// What s* maximises (analysis::TractionObjective, without including analysis/).
+enum class SlipObjective { kEfficiency, kDrawbar };
+
+/// The robot's sensors. Noise is Gaussian, standard deviations; the seed makes runs repeat.
+struct SensorSpec {
+    double encoder_noise_rad_s = 0.002;   ///< ω per wheel [rad/s]
+    double torque_noise_nm = 0.02;        ///< motor torque (from the current) per wheel [N·m]
+    double accel_noise_m_s2 = 0.02;       ///< IMU forward acceleration [m/s²]
+    double accel_bias_m_s2 = 0.01;        ///< its constant bias [m/s²] (what GNSS corrects)
+    double gyro_noise_rad_s = 0.002;      ///< IMU yaw rate [rad/s]
+    double gnss_rate_hz = 5.0;            ///< GNSS speed fixes per second; 0: no GNSS
+    double gnss_speed_noise_m_s = 0.003;  ///< GNSS (Doppler) ground speed [m/s]
+    double filter_time_constant_s = 1.0;  ///< complementary filter crossover 1/ω_c [s]
+    double sinkage_noise_m = 0.0005;      ///< θ_f from a sinkage sensor, as h [m]
+    double hub_force_noise_n = 0.2;       ///< F_x from a hub load cell [N]
+    unsigned seed = 1;
+};
+
+/// The scenario's "controller" object (docs/traction.md §5).
+struct ControllerSpec {
+    ControllerType type = ControllerType::kConstantSpeed;
+    double slip = 0.15;  ///< fixed-slip set-point; optimal's until its first estimate [-]
+    SlipObjective objective = SlipObjective::kEfficiency;
+    double slip_min = 0.05;  ///< planned set-points are kept in [slip_min, slip_max] [-]
+    double slip_max = 0.7;
+    double max_torque_nm = 4.0;        ///< each drive motor's torque limit [N·m]
+    double max_spin_rate_rad_s = 4.0;  ///< each drive motor's speed limit [rad/s]
+    /// Start-up floor of the command [rad/s]: at rest the feed-forward is 0 and the slip of a
+    /// barely turning wheel jumps between 0 and 1; the wheel turns at least this fast.
+    double min_spin_rate_rad_s = 0.2;
+    double kp = 0.2;           ///< proportional gain [per unit slip, relative to ω_ff]
+    double ki_per_s = 0.5;     ///< integral gain [1/s per unit slip, relative to ω_ff]
+    double interval_s = 0.01;  ///< control period [s] (100 Hz)
+    /// optimal: samples of the new soil in the identifier's window before re-planning after a
+    /// confirmed change (the estimate of the old soil is no plan for the new one).
+    int replan_samples = 20;
+    /// optimal: a square wave of ± this added to the planned set-point [-] (period
+    /// `dither_period_s`): persistent excitation, without which every sample of the identifier's
+    /// window sits at one slip and the slip-dependent parameters are not identifiable.
+    double dither = 0.1;
+    double dither_period_s = 4.0;  ///< [s]
+    SensorSpec sensors;
+
+    bool closedLoop() const { return type != ControllerType::kConstantSpeed; }
+};
+
+/// Allowed ranges of the controller's fields (the JSON reader and validate() name them).
+struct ControllerRanges {
+    Range slip{0.0, 0.95, true, false};  ///< (0, 0.95]
+    Range torque{0.0, 1e4, false, true};
+    Range spin_rate{0.0, 1000.0, false, true};
+    Range min_spin_rate{0.0, 100.0};
+    Range gain{0.0, 100.0};
+    Range interval{1e-4, 1.0};
+};
+inline const ControllerRanges kControllerRanges{};
+
+/// The towed implement: F_d(t) = force(t) + per_speed × v [N], v the forward speed (≥ 0).
+struct DrawbarLoad {
+    Signal force_n = Signal::constant(0.0);  ///< [N], ≥ 0
+    double per_speed_n_s_m = 0.0;            ///< [N·s/m], ≥ 0
+    bool active() const {
+        return per_speed_n_s_m != 0.0 || force_n.kind != Signal::Kind::kConstant ||
+               force_n.value != 0.0;
+    }
+};
+
+/// A slip to plan: s* for this soil, wheel and load (docs/traction.md §1).
+struct SlipPlanRequest {
+    soil::SoilParameters soil;
+    wheel::WheelParameters wheel;
+    double load_n = 0.0;
+    SlipObjective objective = SlipObjective::kEfficiency;
+    double slip_min = 0.05, slip_max = 0.7;
+    contact::ContactModel model = contact::ContactModel::kQuadratic;
+};
+/// s*, or nullopt when the soil cannot carry the load. analysis::runRover passes
+/// computeTraction (core/scenario may not include analysis/).
+using SlipPlanner = std::function<std::optional<double>(const SlipPlanRequest&)>;
+
+/// What the observer believes at one control tick.
+struct Estimates {
+    double speed_m_s = 0.0;       ///< v̂ of the centre of mass along the heading [m/s]
+    double yaw_rate_rad_s = 0.0;  ///< measured ψ̇ [rad/s]
+    double accel_m_s2 = 0.0;      ///< measured forward acceleration minus the estimated bias
+    std::array<double, dynamics::kWheelCount> spin_rate_rad_s{};  ///< encoders [rad/s]
+    std::array<double, dynamics::kWheelCount> hub_speed_m_s{};    ///< v̂_hub [m/s]
+    std::array<double, dynamics::kWheelCount> slip{};             ///< ŝ [-]
+    std::array<double, dynamics::kWheelCount> load_n{};           ///< Ŵ [N]
+    std::array<double, dynamics::kWheelCount> torque_nm{};        ///< measured motor torque
+    std::array<double, dynamics::kWheelCount> resistance_nm{};  ///< M̂_y = τ − I_w ω̇ [N·m]
+};
+
+/// The simulated sensors and the observer (docs/traction.md §4). update() is called at every
+/// control tick with the true state; it draws the measurements and updates the estimates.
+class Observer {
+public:
+    Observer(const dynamics::RobotParameters& robot, const SensorSpec& sensors, double gravity_m_s2,
+             double interval_s, const dynamics::RoverState& start, double initial_speed_m_s);
+
+    /// `drawbar_n`: the hitch load cell's reading (the implement's pull) [N].
+    const Estimates& update(const dynamics::RoverState& truth, double drawbar_n);
+    const Estimates& estimates() const { return est_; }
+    /// A noisy reading of the true value, σ = `sigma` (for the identifier's measured channels).
+    double measure(double truth, double sigma);
+
+private:
+    dynamics::RobotParameters robot_;
+    SensorSpec sensors_;
+    double interval_s_;
+    double shear_radius_m_;
+    std::array<double, dynamics::kWheelCount> static_load_n_{};
+    std::array<double, dynamics::kWheelCount> hub_x_m_{}, hub_y_m_{};  // from the composite COM
+    std::mt19937_64 random_;
+    std::normal_distribution<double> normal_{0.0, 1.0};
+    Estimates est_;
+    double previous_speed_m_s_ = 0.0;  // truth, for the IMU's acceleration
+    double bias_estimate_m_s2_ = 0.0;
+    long ticks_ = 0;
+    long gnss_every_ = 0;  // ticks between GNSS fixes; 0: none
+    bool first_ = true;
+};
+
+/// The per-wheel slip controller: ω_cmd = sat[ω_min, ω_max](ω_ff (1 + k_p e + I)), e = s_set − ŝ,
+/// I ← I + k_i e Δt, ω_ff = v̂_hub / (r_s (1 − s_set)) (Eq. 2.1 solved for ω). The gains are
+/// relative to ω_ff, so the loop's gain does not grow as the robot slows (∂s/∂ω = (1 − s)/ω).
+/// The integral is updated only when that does not push further into a saturation (conditional
+/// integration: the output clamps, or a motor at its torque limit).
+class SlipController {
+public:
+    SlipController(const ControllerSpec& spec, double shear_radius_m);
+    /// The spin rate to command for wheel `wheel` until the next tick [rad/s].
+    double command(int wheel, double set_point, const Estimates& est, double dt_s);
+    void reset(int wheel) { integral_[wheel] = 0.0; }
+
+private:
+    ControllerSpec spec_;
+    double shear_radius_m_;
+    std::array<double, dynamics::kWheelCount> integral_{};
+};
+
+/// The drive's figures of merit of a run (summary.json and the comparison table).
+struct TractionMetrics {
+    double drive_energy_j = 0.0;     ///< ∫ Σ τ ω dt of the spin motors [J]
+    double wheel_output_j = 0.0;     ///< ∫ Σ F_x v_x dt [J]
+    double wheel_input_j = 0.0;      ///< ∫ Σ M_y ω dt [J]
+    double drawbar_work_j = 0.0;     ///< ∫ F_d v dt [J]
+    double slip_error_sq_sum = 0.0;  ///< Σ (s − s_set)² over wheel-ticks
+    long slip_error_count = 0;
+    double rear_sinkage_sum_m = 0.0;  ///< Σ h of the rear wheels over steps (the rut)
+    long rear_sinkage_count = 0;
+    /// After the first soil change under the front-left wheel: when it happened and how long its
+    /// set-point took to come within kSettleTolerance of the oracle's for the new soil, for good
+    /// (optimal and oracle controllers; the oracle's own is 0).
+    std::optional<double> border_time_s;
+    std::optional<double> settling_time_s;
+};
+/// |s_set − s*_oracle| within which a set-point counts as settled [-].
+inline constexpr double kSettleTolerance = 0.03;
+
+/// Every problem of the controller and the drawbar load (names under `prefix`).
+std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
+                            const std::string& prefix = {});
+
+}  // namespace terra::scenario

@@ -1,0 +1,257 @@
+// The closed loop in the rover (docs/traction.md §4–§5): the observer against the truth it does
+// not see, the slip controllers against their set-points, the motor torque limit, the drawbar
+// load's work in the energy balance, and the constant-speed default untouched. The set-points
+// here come from a stand-in planner (a fixed slip per soil name): what is tested is the loop, not
+// computeTraction (tests/core/analysis/traction_control_run_test.cpp runs the real one).
+#include "core/scenario/traction_control.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "core/io/parameters_json.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
+
+namespace terra::scenario {
+namespace {
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+// The straight-line scenario on sandy loam (quadratic model: fast), towing an implement whose
+// pull grows with speed, so that every slip set-point has a steady speed.
+Scenario towing(ControllerType type, double duration_s = 12.0) {
+    Result<Scenario> s = resolveScenario(kLocations, "straight");
+    EXPECT_TRUE(s.ok()) << s.message();
+    Scenario out = s.value();
+    out.duration_s = duration_s;
+    out.drawbar_load.force_n = Signal::constant(0.5);
+    out.drawbar_load.per_speed_n_s_m = 100.0;
+    out.controller.type = type;
+    out.controller.slip = 0.5;
+    return out;
+}
+
+// A stand-in for computeTraction: 0.55 on sandy loam, 0.6 on anything else (slips where the
+// thesis's soils give wheel A a positive drawbar pull at its load).
+std::optional<double> standInPlanner(const SlipPlanRequest& request) {
+    return request.soil.name == "sandy loam" ? 0.55 : 0.6;
+}
+
+RunResult run(const Scenario& s) {
+    RunOptions options;
+    options.slip_planner = standInPlanner;
+    return runScenario(s, options);
+}
+
+// The values of a column over the rows with t ≥ from_s.
+std::vector<double> after(const RunResult& r, const std::string& column, double from_s) {
+    std::vector<double> out;
+    const std::size_t t = r.series.column("t_s"), c = r.series.column(column);
+    for (const auto& row : r.series.rows)
+        if (row[t] >= from_s) out.push_back(row[c]);
+    return out;
+}
+
+double mean(const std::vector<double>& v) {
+    return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
+
+double rmsDifference(const std::vector<double>& a, const std::vector<double>& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+    return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+// How far the slip of each wheel may sit from its set-point on average once settled: the
+// observer's speed error (a few mm/s against ~5 cm/s of rim speed) shifts ŝ by ~0.02 at most.
+constexpr double kSlipHeld = 0.02;
+
+TEST(TractionControl, FixedSlipHoldsItsSetPointOnUniformSoil) {
+    const Scenario s = towing(ControllerType::kFixedSlip);
+    const RunResult r = run(s);
+    ASSERT_EQ(r.status, RunResult::Status::kCompleted) << r.message;
+    for (const char* w : dynamics::kCornerNames) {
+        const std::vector<double> slip = after(r, std::string(w) + "_slip", 6.0);
+        EXPECT_NEAR(mean(slip), 0.5, kSlipHeld) << w;
+        for (double set : after(r, std::string(w) + "_slip_set", 0.0)) EXPECT_EQ(set, 0.5);
+    }
+    ASSERT_TRUE(r.summary.slip_tracking_rms.has_value());
+    EXPECT_LT(*r.summary.slip_tracking_rms, 0.05);
+    // Moving at the speed where the implement's pull meets the wheels' drawbar pull.
+    EXPECT_GT(r.summary.distance_m, 0.1);
+}
+
+TEST(TractionControl, OracleHoldsThePlannedSlipOfTheSoilUnderEachWheel) {
+    const RunResult r = run(towing(ControllerType::kOracle));
+    ASSERT_EQ(r.status, RunResult::Status::kCompleted) << r.message;
+    for (const char* w : dynamics::kCornerNames) {
+        for (double set : after(r, std::string(w) + "_slip_set", 0.5)) EXPECT_EQ(set, 0.55) << w;
+        EXPECT_NEAR(mean(after(r, std::string(w) + "_slip", 6.0)), 0.55, kSlipHeld) << w;
+    }
+}
+
+TEST(TractionControl, OracleSwitchesAtTheBorderAndHasNoSettlingDelay) {
+    Scenario s = towing(ControllerType::kOracle, 20.0);
+    soil::SoilParameters clay = s.terrain.base;
+    clay.name = "clayey soil";
+    s.terrain.patches.push_back({clay, 0.5});
+    const RunResult r = run(s);
+    ASSERT_EQ(r.status, RunResult::Status::kCompleted) << r.message;
+    ASSERT_TRUE(r.traction.border_time_s.has_value());
+    // The front-left hub crosses x = 0.5 m at the border time (it starts 0.25 m ahead of the
+    // centre of mass), and its set-point changes at the same control tick.
+    const std::size_t t = r.series.column("t_s"), x = r.series.column("x_m");
+    for (const auto& row : r.series.rows) {
+        if (row[t] + 0.011 < *r.traction.border_time_s) EXPECT_LT(row[x] + 0.25, 0.5 + 1e-3);
+    }
+    ASSERT_TRUE(r.traction.settling_time_s.has_value());
+    EXPECT_EQ(*r.traction.settling_time_s, 0.0);
+}
+
+TEST(TractionControl, ObserverTracksTheTruthItDoesNotSee) {
+    const Scenario s = towing(ControllerType::kFixedSlip);
+    const RunResult r = run(s);
+    const std::vector<double> speed = after(r, "forward_m_s", 2.0);
+    const std::vector<double> estimate = after(r, "speed_est_m_s", 2.0);
+    // GNSS speed σ = 3 mm/s at 5 Hz through a filter of 1 s: the estimate's error stays below σ.
+    const double sigma = SensorSpec{}.gnss_speed_noise_m_s;
+    EXPECT_LT(rmsDifference(speed, estimate), sigma);
+    for (const char* w : dynamics::kCornerNames) {
+        const auto slip = after(r, std::string(w) + "_slip", 2.0);
+        const auto slip_est = after(r, std::string(w) + "_slip_est", 2.0);
+        // ŝ = 1 − v̂/(rω): a speed error δv moves it by δv/(rω); with δv below σ and the state
+        // up to one control tick older than the row's, within 1.5 σ/(r ω̄).
+        const double rim =
+            s.robot.wheel.radius_m * mean(after(r, std::string(w) + "_omega_rad_s", 2.0));
+        EXPECT_LT(rmsDifference(slip, slip_est), 1.5 * sigma / rim) << w;
+    }
+}
+
+TEST(TractionControl, WithoutGnssTheAccelerometerBiasMakesTheSpeedDrift) {
+    Scenario s = towing(ControllerType::kFixedSlip);
+    s.controller.sensors.gnss_rate_hz = 0.0;
+    s.controller.sensors.accel_bias_m_s2 = 0.01;
+    const RunResult r = run(s);
+    const std::vector<double> speed = after(r, "forward_m_s", 10.0);
+    const std::vector<double> estimate = after(r, "speed_est_m_s", 10.0);
+    // Integrating a 0.01 m/s² bias for 10 s: about 0.1 m/s off.
+    EXPECT_GT(std::abs(mean(estimate) - mean(speed)), 0.05);
+}
+
+TEST(TractionControl, MotorTorqueLimitIsRespected) {
+    Result<Scenario> loaded = resolveScenario(kLocations, "straight");
+    ASSERT_TRUE(loaded.ok());
+    const Scenario& s = loaded.value();
+    constexpr double kLimit = 1.0;  // N·m, above the rolling resistance's M_y (≈ 0.15 N·m)
+    dynamics::RoverOptions options = s.options;
+    options.max_motor_torque_nm = kLimit;
+    dynamics::Commands commands = s.commandsAt(0.0);
+    for (auto& c : commands) c.spin_rate_rad_s = 0.0;
+    dynamics::Rover limited(s.robot, s.terrain, options, s.initial, commands);
+    dynamics::Rover ideal(s.robot, s.terrain, s.options, s.initial, commands);
+    for (auto& c : commands) c.spin_rate_rad_s = 3.0;  // a jump the limit cannot follow
+    constexpr int kSteps = 10;
+    double largest_ideal = 0.0;
+    for (int step = 0; step < kSteps; ++step) {
+        limited.step(1e-3, commands);
+        ideal.step(1e-3, commands);
+        for (int i = 0; i < dynamics::kWheelCount; ++i) {
+            EXPECT_LE(std::abs(limited.state().wheels[i].motor_torque_nm), kLimit * (1 + 1e-12));
+            largest_ideal =
+                std::max(largest_ideal, std::abs(ideal.state().wheels[i].motor_torque_nm));
+        }
+    }
+    EXPECT_GT(largest_ideal, 3.0 * kLimit);  // the ideal servo takes the jump in one step
+    // The limited wheels spin up at most at τ_max / I_w (less the soil's resistance): after ten
+    // steps they are still short of the command, and turning.
+    const double bound = kSteps * 1e-3 * kLimit / s.robot.wheel_spin_inertia_kg_m2;
+    ASSERT_LT(bound, 3.0);
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        EXPECT_LT(limited.state().wheels[i].spin_rate_rad_s, bound * 1.01);
+        EXPECT_GT(limited.state().wheels[i].spin_rate_rad_s, 0.0);
+    }
+}
+
+TEST(TractionControl, DrawbarWorkClosesTheEnergyBalance) {
+    Scenario s = towing(ControllerType::kConstantSpeed, 8.0);
+    s.drawbar_load.per_speed_n_s_m = 0.0;
+    s.drawbar_load.force_n = Signal::constant(1.0);
+    const RunResult r = run(s);
+    ASSERT_EQ(r.status, RunResult::Status::kCompleted);
+    // A constant force along a straight path: its work is F × the distance.
+    EXPECT_NEAR(r.traction.drawbar_work_j, 1.0 * r.summary.distance_m,
+                1e-3 * r.traction.drawbar_work_j);
+    EXPECT_LT(std::abs(r.summary.energy_balance_error), 1e-3);
+    // The same run without the pull drives farther.
+    Scenario free = s;
+    free.drawbar_load = {};
+    EXPECT_GT(run(free).summary.distance_m, r.summary.distance_m);
+}
+
+TEST(TractionControl, ConstantSpeedIgnoresTheControllerSettings) {
+    Scenario plain = towing(ControllerType::kConstantSpeed, 3.0);
+    plain.drawbar_load = {};
+    Scenario tuned = plain;
+    tuned.controller.slip = 0.5;
+    tuned.controller.kp = 9.0;
+    tuned.controller.max_torque_nm = 0.01;
+    const RunResult a = runScenario(plain);
+    const RunResult b = runScenario(tuned);
+    EXPECT_EQ(a.series.columns, b.series.columns);
+    EXPECT_EQ(a.series.rows, b.series.rows);
+    EXPECT_FALSE(a.summary.slip_tracking_rms.has_value());
+    // Energy per metre: the drive motors' work over the path (nothing steers here).
+    ASSERT_TRUE(a.summary.energy_per_m_j.has_value());
+    EXPECT_DOUBLE_EQ(*a.summary.energy_per_m_j, a.summary.energy_j / a.summary.distance_m);
+    // No column of the closed loop is added to a constant-speed run.
+    EXPECT_THROW(a.series.column("FL_slip_set"), std::out_of_range);
+}
+
+TEST(TractionControl, OptimalAndOracleNeedAPlanner) {
+    EXPECT_THROW(runScenario(towing(ControllerType::kOracle, 1.0)), std::invalid_argument);
+}
+
+nlohmann::json withController(const nlohmann::json& controller) {
+    nlohmann::json j = nlohmann::json::parse(R"({
+        "duration_s": 1, "time_step_s": 0.001, "terrain": "sandy-loam",
+        "wheels": {"all": {"omega_rad_s": 0.4}}})");
+    j["controller"] = controller;
+    return j;
+}
+
+TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
+    auto message = [](const nlohmann::json& j) {
+        return scenarioFromJson(j, "x.json", kLocations).message();
+    };
+    EXPECT_NE(message(withController({{"type", "cruise"}})).find("controller.type"),
+              std::string::npos);
+    EXPECT_NE(message(withController({{"type", "cruise"}})).find("oracle"), std::string::npos);
+    const std::string slip = message(withController({{"type", "fixed-slip"}, {"slip", 1.5}}));
+    EXPECT_NE(slip.find("controller.slip"), std::string::npos) << slip;
+    EXPECT_NE(slip.find("0.95"), std::string::npos) << slip;
+    EXPECT_NE(message(withController({{"slip", 0.2}})).find("controller.type"), std::string::npos);
+    EXPECT_NE(message(withController({{"type", "oracle"}, {"gain", 1}})).find("controller.gain"),
+              std::string::npos);
+    nlohmann::json load = withController({{"type", "fixed-slip"}});
+    load["drawbar_load"] = {{"force_N", -1}};
+    EXPECT_NE(message(load).find("drawbar_load.force_N"), std::string::npos) << message(load);
+
+    nlohmann::json good = withController(
+        {{"type", "optimal"}, {"slip", 0.2}, {"max_torque_Nm", 3}, {"sensors", {{"seed", 7}}}});
+    good["drawbar_load"] = {
+        {"force_N", {{"type", "step"}, {"value", 1}, {"amplitude", 2}, {"start_s", 5}}},
+        {"per_speed_N_s_m", 50}};
+    const Result<Scenario> s = scenarioFromJson(good, "x.json", kLocations);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(s->controller.type, ControllerType::kOptimal);
+    EXPECT_EQ(s->controller.slip, 0.2);
+    EXPECT_EQ(s->controller.max_torque_nm, 3.0);
+    EXPECT_EQ(s->controller.sensors.seed, 7u);
+    EXPECT_EQ(s->drawbar_load.force_n.at(6.0), 3.0);
+    EXPECT_EQ(s->drawbar_load.per_speed_n_s_m, 50.0);
+}
+
+}  // namespace
+}  // namespace terra::scenario
