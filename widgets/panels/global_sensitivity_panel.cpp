@@ -382,7 +382,8 @@ void GlobalSensitivityPanel::redraw() {
     const std::size_t output = static_cast<std::size_t>(std::max(0, output_->currentIndex()));
     const Project& p = document_->project();
     const QString title =
-        QString("%1, %2, W = %3 N, β = %4°")
+        // Two lines: on one, a ~400 px plot (1024×700) cut the title at both ends.
+        QString("%1, %2\nW = %3 N, β = %4°")
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
             .arg(slip_angle_->value());

@@ -98,7 +98,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     setLive(false);
     file_ = new QLineEdit(this);
     file_->setPlaceholderText("synthesise from the project's soil (or choose a CSV)");
-    file_->setMinimumWidth(220);
+    file_->setMinimumWidth(180);  // the first row fits 700 px (1024×700, Compact layout)
     auto* browse = new QPushButton("Load CSV…", this);
     noise_ = new QDoubleSpinBox(this);
     noise_->setRange(0.0, 20.0);
