@@ -6,7 +6,6 @@
 #include <QCloseEvent>
 #include <QDir>
 #include <QDockWidget>
-#include <QEventLoop>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
@@ -25,8 +24,8 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <QVBoxLayout>
-#include <cstdio>
 
+#include "core/project/results.h"
 #include "widgets/document/project_document.h"
 #include "widgets/document/suggested_paths.h"
 #include "widgets/editors/project_tree.h"
@@ -70,18 +69,16 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     : QMainWindow(parent), locations_(locations), document_(new ui::ProjectDocument(this)) {
     document_->reset(ui::ProjectDocument::defaultProject(locations_));
 
-    tabs_ = new QTabWidget(this);
-    tabs_->setDocumentMode(true);
-    auto* identification = new ui::IdentificationPanel(document_, tabs_);
-    auto* global = new ui::GlobalSensitivityPanel(document_, tabs_);
-    auto* forces = new ui::ForcesPanel(document_, tabs_);
+    auto* identification = new ui::IdentificationPanel(document_, this);
+    auto* global = new ui::GlobalSensitivityPanel(document_, this);
+    auto* forces = new ui::ForcesPanel(document_, this);
     forces->setPresetLocations(locations_);  // "Compare with…" lists the soil presets
     panels_ = {forces,
-               new ui::StressPanel(document_, tabs_),
-               new ui::CompactionPanel(document_, locations_, tabs_),
-               new ui::SensitivityPanel(document_, tabs_),
+               new ui::StressPanel(document_, this),
+               new ui::CompactionPanel(document_, locations_, this),
+               new ui::SensitivityPanel(document_, this),
                identification,
-               new ui::RoverPanel(document_, locations_, tabs_),
+               new ui::RoverPanel(document_, locations_, this),
                global};
     const QStringList titles{"Forces vs slip", "Stresses",       "Compaction",        "Sensitivity",
                              "Identification", "Rover scenario", "Global sensitivity"};
@@ -91,14 +88,31 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         if (r.report && r.report->usable())
             global->setIdentification(r.identified, r.report->uncertainty);
     });
+    // Every analysis is a dock (View ▸ Layout): torn off, put beside another or tabbed with it.
+    panel_area_ = new QMainWindow(this);
+    panel_area_->setObjectName("panel_area");
+    panel_area_->setWindowFlags(Qt::Widget);
+    panel_area_->setDockOptions(QMainWindow::AllowNestedDocks | QMainWindow::AllowTabbedDocks |
+                                QMainWindow::AnimatedDocks | QMainWindow::GroupedDragging);
+    panel_area_->setTabPosition(Qt::AllDockWidgetAreas, QTabWidget::North);
+    setCentralWidget(panel_area_);
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
         // A panel whose controls need more room than a small screen leaves scrolls instead of
         // widening the window past the screen (the window was ≥ 1497 px wide).
-        tabs_->addTab(scrollable(panel), titles[static_cast<int>(i)]);
+        QDockWidget* d = dock(panel_area_, titles[static_cast<int>(i)], "panel." + panel->name(),
+                              scrollable(panel));
+        panel_docks_.push_back(d);
+        // The panel brought to front or clicked is the one Run, Export and the status bar mean.
+        connect(d, &QDockWidget::visibilityChanged, this, [this, panel](bool visible) {
+            if (visible) setCurrentPanel(panel);
+        });
         panel->installPlotMenus();
-        connect(panel, &ui::AnalysisPanel::exportRequested, this, &MainWindow::exportCurrentPlot);
-        // The status bar speaks of the tab on screen only ("Sensitivity updated…" stayed there
+        connect(panel, &ui::AnalysisPanel::exportRequested, this, [this, panel] {
+            setCurrentPanel(panel);
+            exportCurrentPlot();
+        });
+        // The status bar speaks of the panel in use only ("Sensitivity updated…" stayed there
         // on other tabs); a panel's own status line keeps its news.
         connect(panel, &ui::AnalysisPanel::resultShown, this,
                 [this, panel, title = titles[static_cast<int>(i)]] {
@@ -109,8 +123,12 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
             if (panel == currentPanel()) statusBar()->showMessage("Error: " + message, 8000);
         });
     }
-    connect(tabs_, &QTabWidget::currentChanged, statusBar(), &QStatusBar::clearMessage);
-    setCentralWidget(tabs_);
+    connect(qApp, &QApplication::focusChanged, this, [this](QWidget*, QWidget* now) {
+        for (ui::AnalysisPanel* panel : panels_) {
+            if (now && panel->isAncestorOf(now)) setCurrentPanel(panel);
+        }
+    });
+    current_ = panels_.front();
 
     auto* tree = new ui::ProjectTree(document_, this);
     editors_ = new QStackedWidget(this);
@@ -152,15 +170,8 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     connect(data_list, &QListWidget::itemDoubleClicked, this,
             [this](QListWidgetItem* item) { useData(item->text()); });
 
-    // Both docks on the left, the tree above the properties: the plots get the width (1024 px
-    // screens leave them ~680 px). The properties scroll when the screen is short.
-    auto* project_dock = dock(this, "Project", "project_dock", tree);
-    auto* properties_dock = dock(this, "Properties", "properties_dock", scrollable(editors_));
-    addDockWidget(Qt::LeftDockWidgetArea, project_dock);
-    addDockWidget(Qt::LeftDockWidgetArea, properties_dock);
-    splitDockWidget(project_dock, properties_dock, Qt::Vertical);
-    resizeDocks({project_dock}, {330}, Qt::Horizontal);
-    resizeDocks({project_dock, properties_dock}, {170, 500}, Qt::Vertical);
+    project_dock_ = dock(this, "Project", "project_dock", tree);
+    properties_dock_ = dock(this, "Properties", "properties_dock", scrollable(editors_));
     for (QTabWidget* tabs : findChildren<QTabWidget*>()) {
         tabs->setUsesScrollButtons(true);  // tabs that do not fit scroll, never widen the window
         tabs->setElideMode(Qt::ElideNone);
@@ -179,8 +190,11 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     resize(1440, 860);
     const QSettings settings;
     restoreGeometry(settings.value("window/geometry").toByteArray());
-    restoreState(settings.value("window/state").toByteArray());
     fitToScreen();
+    // The arrangement the user left, if this studio wrote it; else the one for the screen.
+    applyLayout(layoutForScreen());
+    restoreState(settings.value("window/state").toByteArray(), kLayoutVersion);
+    panel_area_->restoreState(settings.value("window/panels").toByteArray(), kLayoutVersion);
     QTimer::singleShot(0, this, &MainWindow::offerRecovery);
 }
 
@@ -205,13 +219,26 @@ void MainWindow::useData(const QString& path) {
 
 void MainWindow::showPanel(const QString& name) {
     for (std::size_t i = 0; i < panels_.size(); ++i) {
-        if (panels_[i]->name() == name) tabs_->setCurrentIndex(static_cast<int>(i));
+        if (panels_[i]->name() != name) continue;
+        panel_docks_[i]->show();
+        panel_docks_[i]->raise();  // the front tab of its group
+        setCurrentPanel(panels_[i]);
     }
 }
 
-ui::AnalysisPanel* MainWindow::currentPanel() const {
-    const int i = tabs_->currentIndex();
-    return i < 0 ? nullptr : panels_[static_cast<std::size_t>(i)];
+void MainWindow::setCurrentPanel(ui::AnalysisPanel* panel) {
+    if (panel == current_) return;
+    current_ = panel;
+    statusBar()->clearMessage();
+}
+
+QString MainWindow::currentPanelName() const { return current_ ? current_->name() : QString(); }
+
+QDockWidget* MainWindow::panelDock(const QString& name) const {
+    for (std::size_t i = 0; i < panels_.size(); ++i) {
+        if (panels_[i]->name() == name) return panel_docks_[i];
+    }
+    return nullptr;
 }
 
 bool MainWindow::openProject(const QString& path, bool quiet) {
@@ -222,6 +249,8 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
                                  QString::fromStdString(project.message()));
         return false;
     }
+    // What runs for the project being closed is dropped, never shown over the opened one.
+    for (ui::AnalysisPanel* panel : panels_) panel->discardRunning();
     document_->reset(*project, QFileInfo(path).absoluteFilePath());
     for (ui::AnalysisPanel* panel : panels_) {
         const std::string name = panel->name().toStdString();
@@ -231,7 +260,30 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     // filled in): that is not an edit. The opened project is what is on disk.
     adoptPanelSettings();
     addRecent(QFileInfo(path).absoluteFilePath());
-    statusBar()->showMessage("Opened " + path, 4000);
+    // The results saved beside it, shown where the inputs are unchanged: nothing is recomputed.
+    QStringList shown;
+    const std::filesystem::path results_path =
+        project::resultsPathFor(QFileInfo(path).absoluteFilePath().toStdString());
+    if (std::filesystem::exists(results_path)) {
+        const Result<project::SavedResults> results = project::loadResults(results_path);
+        for (std::size_t i = 0; results && i < panels_.size(); ++i) {
+            const auto saved = results->panels.find(panels_[i]->name().toStdString());
+            if (saved != results->panels.end() && panels_[i]->restoreResult(saved->second))
+                shown << panel_docks_[i]->windowTitle();
+        }
+        if (!results) {
+            statusBar()->showMessage("Opened " + path +
+                                         "; its saved results cannot be read and are not shown: " +
+                                         QString::fromStdString(results.message()),
+                                     8000);
+            return true;
+        }
+    }
+    statusBar()->showMessage(
+        shown.isEmpty()
+            ? "Opened " + path
+            : QString("Opened %1 with its saved results (%2)").arg(path, shown.join(", ")),
+        6000);
     return true;
 }
 
@@ -263,6 +315,19 @@ bool MainWindow::saveTo(const QString& path) {
     }
     QFile::remove(autosavePath());
     addRecent(document_->filePath());
+    // The results on screen beside the project (core/project/results.h), so that reopening it
+    // shows them; a failure here loses no input, so it is said and the project stays saved.
+    project::SavedResults results;
+    for (ui::AnalysisPanel* panel : panels_) {
+        if (auto saved = panel->savedResult()) results.panels[panel->name().toStdString()] = *saved;
+    }
+    if (const auto failed =
+            project::saveResults(project::resultsPathFor(path.toStdString()), results)) {
+        statusBar()->showMessage("Saved " + document_->filePath() +
+                                     "; its results were not: " + QString::fromStdString(*failed),
+                                 8000);
+        return true;
+    }
     statusBar()->showMessage("Saved " + document_->filePath(), 4000);
     return true;
 }
@@ -295,7 +360,8 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     QFile::remove(autosavePath());
     QSettings settings;
     settings.setValue("window/geometry", saveGeometry());
-    settings.setValue("window/state", saveState());
+    settings.setValue("window/state", saveState(kLayoutVersion));
+    settings.setValue("window/panels", panel_area_->saveState(kLayoutVersion));
     event->accept();
 }
 
@@ -336,61 +402,6 @@ void MainWindow::offerRecovery() {
         }
     }
     QFile::remove(path);
-}
-
-int MainWindow::takeScreenshots(const QString& dir) {
-    QDir().mkpath(dir);
-    QFile::remove(autosavePath());
-    int failures = 0;
-    for (int i = 0; i < tabs_->count(); ++i) {
-        tabs_->setCurrentIndex(i);
-        ui::AnalysisPanel* panel = panels_[static_cast<std::size_t>(i)];
-        if (panel) {
-            QEventLoop loop;
-            QTimer::singleShot(60000, &loop, &QEventLoop::quit);
-            connect(panel, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
-            connect(panel, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
-            const bool on_request = panel->name() == "identification" || panel->name() == "rover";
-            if (on_request || panel->isBusy() || panel->lastLatencyMs() == 0.0) {
-                if (on_request) panel->recompute();
-                loop.exec();
-            }
-        }
-        QEventLoop settle;
-        QTimer::singleShot(300, &settle, &QEventLoop::quit);
-        settle.exec();
-        const QString name = panel ? panel->name() : QString("panel%1").arg(i);
-        const QString path = dir + "/studio-" + name + ".png";
-        if (!grab().save(path)) ++failures;
-        std::printf("wrote %s\n", qPrintable(path));
-    }
-    // "Compare with…" (docs/images/studio-compare.png): the soil pinned, φ edited to 35°, then
-    // the edit undone and the comparison cleared, so the project ends as it began.
-    if (auto* forces = dynamic_cast<ui::ForcesPanel*>(panels_.front())) {
-        tabs_->setCurrentIndex(0);
-        auto waitForResult = [forces] {
-            QEventLoop loop;
-            QTimer::singleShot(60000, &loop, &QEventLoop::quit);
-            connect(forces, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
-            connect(forces, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
-            loop.exec();
-        };
-        forces->pinReference();
-        waitForResult();
-        const int steps = document_->undoStack()->index();
-        document_->setSoilValue("phi_deg", 35.0);
-        waitForResult();
-        QEventLoop settle;
-        QTimer::singleShot(300, &settle, &QEventLoop::quit);
-        settle.exec();
-        const QString path = dir + "/studio-compare.png";
-        if (!grab().save(path)) ++failures;
-        std::printf("wrote %s\n", qPrintable(path));
-        document_->undoStack()->setIndex(steps);
-        forces->clearComparison();
-    }
-    document_->undoStack()->setClean();
-    return failures == 0 ? 0 : 1;
 }
 
 }  // namespace terra::app

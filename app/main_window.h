@@ -9,8 +9,8 @@
 
 #include "core/io/parameters_json.h"
 
+class QDockWidget;
 class QStackedWidget;
-class QTabWidget;
 class QMenu;
 class QTimer;
 
@@ -33,6 +33,27 @@ public:
     /// Shows the panel with this name ("forces", "stresses", "compaction", "sensitivity",
     /// "identification", "global-sensitivity", "rover").
     void showPanel(const QString& name);
+    /// The name of the panel the user works in (the one shown or clicked last), "" for none.
+    QString currentPanelName() const;
+    /// The dock holding the panel with this name, nullptr for none.
+    QDockWidget* panelDock(const QString& name) const;
+    /// The main window (the central widget) whose docks are the panels.
+    QMainWindow* panelArea() const { return panel_area_; }
+
+    /// The arrangements of View ▸ Layout. Each panel is a dock (tear it off, drag it beside
+    /// another, tab it); these put them back in order.
+    enum class Layout {
+        kDefault,     ///< project and properties left, the panels tabbed: 1366×768 and up
+        kCompact,     ///< a narrower column, a short tree: 1024×700
+        kSideBySide,  ///< the current panel and the next one beside each other
+        kTiled,       ///< every panel on screen at once, in two rows
+    };
+    void applyLayout(Layout layout);
+    /// The version of the saved window state (QSettings "window/state" and "window/panels", the
+    /// panels' arrangement): a state of another
+    /// version (older studios had fixed tabs) is ignored and the layout for the screen applied.
+    static constexpr int kLayoutVersion = 2;
+
     /// Where the crash-recovery copy of the open project is kept.
     static QString autosavePath();
     /// Waits for each analysis panel's result, grabs the window showing it into
@@ -65,13 +86,24 @@ private:
     void updateTitle();
     void autosave();
     void offerRecovery();
-    ui::AnalysisPanel* currentPanel() const;
+    ui::AnalysisPanel* currentPanel() const { return current_; }
+    void setCurrentPanel(ui::AnalysisPanel* panel);
+    /// The layout that fits the window's screen: compact below 1366×768.
+    Layout layoutForScreen() const;
 
     io::PresetLocations locations_;
     ui::ProjectDocument* document_;
-    QTabWidget* tabs_;
     QStackedWidget* editors_;
     std::vector<ui::AnalysisPanel*> panels_;
+    std::vector<QDockWidget*> panel_docks_;  // panel_docks_[i] holds panels_[i]
+    QDockWidget* project_dock_ = nullptr;
+    QDockWidget* properties_dock_ = nullptr;
+    ui::AnalysisPanel* current_ = nullptr;
+    /// The panels' docks live in a main window of their own, the central widget: the window's
+    /// width changes go to the panels, never to the project and properties column (without a
+    /// central widget QMainWindow split a 1024 px window half and half).
+    QMainWindow* panel_area_ = nullptr;
+    int last_window_width_ = 0;  // the project and properties docks' [px]; 0: not yet laid out
     QMenu* recent_menu_ = nullptr;
     QTimer* autosave_timer_;
     ui::HelpDialog* help_ = nullptr;

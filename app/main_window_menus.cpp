@@ -97,12 +97,28 @@ void MainWindow::createMenus() {
         });
 
     QMenu* view = menuBar()->addMenu("&View");
-    for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
-    view->addSeparator();
-    for (int i = 0; i < tabs_->count() && i < 9; ++i) {
-        add(view, tabs_->tabText(i), {QKeySequence(Qt::CTRL | (Qt::Key_1 + i))},
-            QString("action.panel%1").arg(i + 1), [this, i] { tabs_->setCurrentIndex(i); });
+    // Ctrl+1 … Ctrl+7 bring a panel to front (shown again if its dock was closed).
+    for (std::size_t i = 0; i < panels_.size() && i < 9; ++i) {
+        const QString name = panels_[i]->name();
+        add(view, panel_docks_[i]->windowTitle(),
+            {QKeySequence(Qt::CTRL | (Qt::Key_1 + static_cast<int>(i)))},
+            QString("action.panel%1").arg(i + 1), [this, name] { showPanel(name); });
     }
+    view->addSeparator();
+    QMenu* layout = view->addMenu("&Layout");
+    add(layout, "&Default (1366×768 and up)", {keys(Qt::CTRL | Qt::SHIFT | Qt::Key_0)},
+        "action.layout_default", [this] { applyLayout(Layout::kDefault); });
+    add(layout, "&Compact (1024×700)", {}, "action.layout_compact",
+        [this] { applyLayout(Layout::kCompact); });
+    add(layout, "&Side by side", {}, "action.layout_side_by_side",
+        [this] { applyLayout(Layout::kSideBySide); });
+    add(layout, "&Tile all panels", {}, "action.layout_tiled",
+        [this] { applyLayout(Layout::kTiled); });
+    QMenu* shown = view->addMenu("&Panels and panes");
+    shown->addAction(project_dock_->toggleViewAction());
+    shown->addAction(properties_dock_->toggleViewAction());
+    shown->addSeparator();
+    for (QDockWidget* d : panel_docks_) shown->addAction(d->toggleViewAction());
 
     ui::passWindowShortcutsThroughFields(this);  // Ctrl+E from a field exports, as the guide says
 

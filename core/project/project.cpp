@@ -76,6 +76,53 @@ Result<Project> loadProject(const std::filesystem::path& path,
         });
 }
 
+namespace {
+
+/// Applies `convert` to every file name of the project (empty names are left alone).
+template <typename Convert>
+Project convertPaths(Project project, Convert convert) {
+    auto one = [&convert](std::string& path) {
+        if (!path.empty()) path = convert(std::filesystem::path(path)).generic_string();
+    };
+    for (std::string& path : project.data_sets) one(path);
+    for (std::string& path : project.scenarios) one(path);
+    one(project.experiment);
+    if (project.panels.contains("identification") && project.panels["identification"].is_object()) {
+        nlohmann::json& panel = project.panels["identification"];
+        for (const char* key : {"csv", "stream_csv"}) {
+            if (!panel.contains(key) || !panel[key].is_string()) continue;
+            std::string path = panel[key].get<std::string>();
+            one(path);
+            panel[key] = path;
+        }
+    }
+    return project;
+}
+
+/// Whether `path` (absolute, normalised) lies inside `dir` (absolute, normalised).
+bool isInside(const std::filesystem::path& path, const std::filesystem::path& dir) {
+    const std::filesystem::path rel = path.lexically_relative(dir);
+    return !rel.empty() && *rel.begin() != "..";
+}
+
+}  // namespace
+
+Project withRelativePaths(const Project& project, const std::filesystem::path& project_dir) {
+    const std::filesystem::path dir = std::filesystem::absolute(project_dir).lexically_normal();
+    return convertPaths(project, [&dir](const std::filesystem::path& path) {
+        if (path.is_relative()) return path;  // already relative to the project
+        const std::filesystem::path normal = path.lexically_normal();
+        return isInside(normal, dir) ? normal.lexically_relative(dir) : path;
+    });
+}
+
+Project withAbsolutePaths(const Project& project, const std::filesystem::path& project_dir) {
+    const std::filesystem::path dir = std::filesystem::absolute(project_dir).lexically_normal();
+    return convertPaths(project, [&dir](const std::filesystem::path& path) {
+        return path.is_absolute() ? path : (dir / path).lexically_normal();
+    });
+}
+
 analysis::Inputs inputsOf(const Project& project) {
     return {project.soil, project.wheel, project.conditions};
 }

@@ -56,6 +56,16 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
 Result<Project> loadProject(const std::filesystem::path& path,
                             const io::PresetLocations* locations = nullptr);
 
+/// The project with every file it names (data sets, scenarios, the experiment, the
+/// identification panel's "csv" and "stream_csv") that lies inside `project_dir` written relative
+/// to it ("data/run1.csv"), so that the project's folder can be moved or shared as a whole. Files
+/// elsewhere (installed presets, another disk) stay absolute. For writing a .terra file.
+Project withRelativePaths(const Project& project, const std::filesystem::path& project_dir);
+
+/// The project with every relative file name (above) resolved against `project_dir`; absolute
+/// names, as older studios wrote them, are kept. For reading a .terra file.
+Project withAbsolutePaths(const Project& project, const std::filesystem::path& project_dir);
+
 /// What the project's analyses read: its soil, wheel and conditions.
 analysis::Inputs inputsOf(const Project& project);
 

@@ -5,11 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <QAbstractButton>
+#include <QAbstractSpinBox>
 #include <QAction>
 #include <QApplication>
 #include <QComboBox>
 #include <QDialog>
 #include <QDir>
+#include <QDockWidget>
 #include <QDropEvent>
 #include <QFile>
 #include <QFileDialog>
@@ -20,9 +23,12 @@
 #include <QMimeData>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScrollBar>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QStatusBar>
+#include <QTabBar>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -33,6 +39,7 @@
 #include <functional>
 
 #include "core/io/atomic_file.h"
+#include "core/io/table_json.h"
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/property_editors.h"
@@ -82,6 +89,40 @@ struct Studio {
     QAction* action(const QString& name) { return window.findChild<QAction*>(name); }
 };
 
+const char* const kPanels[] = {"forces",         "stresses", "compaction",        "sensitivity",
+                               "identification", "rover",    "global-sensitivity"};
+
+/// The panel at the window's size: no sideways scroll bar, and every control and plot on it at
+/// least its minimum size hint (the Prior field was squeezed to ~30 px, the Fit button clipped).
+void expectFits(MainWindow& w, const QString& name) {
+    w.showPanel(name);
+    settle(300);
+    QDockWidget* dock = w.panelDock(name);
+    ASSERT_NE(dock, nullptr) << name.toStdString();
+    auto* area = qobject_cast<QScrollArea*>(dock->widget());
+    ASSERT_NE(area, nullptr) << name.toStdString();
+    EXPECT_LE(area->widget()->minimumSizeHint().width(), area->viewport()->width())
+        << name.toStdString();
+    EXPECT_FALSE(area->horizontalScrollBar()->isVisible()) << name.toStdString();
+    for (QWidget* control : area->widget()->findChildren<QWidget*>()) {
+        const bool key = qobject_cast<QAbstractButton*>(control) ||
+                         qobject_cast<QLineEdit*>(control) || qobject_cast<QComboBox*>(control) ||
+                         qobject_cast<QAbstractSpinBox*>(control);
+        if (!key || !control->isVisible() || qobject_cast<QLineEdit*>(control->parent())) continue;
+        if (qobject_cast<QTabBar*>(control->parent())) continue;  // a tab bar's scroll arrows
+        if (qobject_cast<QAbstractSpinBox*>(control->parent()) ||
+            qobject_cast<QComboBox*>(control->parent()))
+            continue;  // the line edit inside a spin box or a combo box
+        const QSize hint = control->minimumSizeHint();
+        EXPECT_GE(control->width(), hint.width())
+            << name.toStdString() << ": " << control->metaObject()->className() << " "
+            << control->objectName().toStdString() << " \""
+            << control->property("text").toString().toStdString() << "\"";
+        EXPECT_GE(control->height(), hint.height())
+            << name.toStdString() << ": " << control->objectName().toStdString();
+    }
+}
+
 TEST(MainWindow, FitsA1024x700Screen) {
     Studio studio;
     MainWindow& w = studio.window;
@@ -92,11 +133,10 @@ TEST(MainWindow, FitsA1024x700Screen) {
     settle();
     EXPECT_EQ(w.size(), QSize(1024, 700));
     // Every panel at that size, and the controls one edits with, are on screen in the window.
-    auto* tabs = w.findChild<QTabWidget*>();
-    for (int i = 0; i < tabs->count(); ++i) {
-        tabs->setCurrentIndex(i);
+    for (const char* name : kPanels) {
+        w.showPanel(name);
         settle(20);
-        EXPECT_EQ(w.size(), QSize(1024, 700)) << i;
+        EXPECT_EQ(w.size(), QSize(1024, 700)) << name;
     }
     auto* soil = w.findChild<ui::SoilEditor*>();
     ASSERT_NE(soil, nullptr);
@@ -121,21 +161,21 @@ TEST(MainWindow, NoPanelScrollsSidewaysAt1024x700) {
     ASSERT_TRUE(read.ok());
     const ui::ExperimentSetup setup = ui::experimentSetup(*read, resources());
     ASSERT_TRUE(ui::loadExperiment(*w.document(), test, &setup));
+    w.applyLayout(MainWindow::Layout::kCompact);
     w.resize(1024, 700);
     settle();
-    auto* tabs = w.findChild<QTabWidget*>();
-    for (int i = 0; i < tabs->count(); ++i) {
-        tabs->setCurrentIndex(i);
-        settle(300);
-        auto* area = qobject_cast<QScrollArea*>(tabs->widget(i));
-        ASSERT_NE(area, nullptr) << i;
-        EXPECT_LE(area->widget()->minimumSizeHint().width(), area->viewport()->width())
-            << tabs->tabText(i).toStdString();
-        // TERRA_SCREENSHOT_DIR=DIR: each tab at 1024×700 saved as DIR/1024x700-<tab>.png, to look
-        // at what a small screen shows (clipping is judged by eye there).
-        if (const QString dir = qEnvironmentVariable("TERRA_SCREENSHOT_DIR"); !dir.isEmpty())
-            w.grab().save(dir + "/1024x700-" + QString::number(i) + ".png");
+    for (const char* name : kPanels) {
+        expectFits(w, name);
     }
+    // The second pages: streaming playback, uncertainty bands.
+    auto* identification = w.findChild<ui::IdentificationPanel*>();
+    identification->applySettings({{"page", "streaming"}});
+    expectFits(w, "identification");
+    identification->applySettings({{"page", "fit"}});
+    auto* global = w.findChild<ui::GlobalSensitivityPanel*>();
+    global->applySettings({{"page", "bands"}});
+    expectFits(w, "global-sensitivity");
+    global->applySettings({{"page", "indices"}});
 }
 
 TEST(MainWindow, OpenedProjectIsUnmodified) {
@@ -213,12 +253,11 @@ TEST(MainWindow, ShortcutsWorkFromTheKeyboard) {
     Studio studio;
     MainWindow& w = studio.window;
     auto* document = w.document();
-    auto* tabs = w.findChild<QTabWidget*>();
 
     QTest::keyClick(&w, Qt::Key_2, Qt::ControlModifier);
-    EXPECT_EQ(tabs->currentIndex(), 1);
+    EXPECT_EQ(w.currentPanelName(), "stresses");
     QTest::keyClick(&w, Qt::Key_1, Qt::ControlModifier);
-    EXPECT_EQ(tabs->currentIndex(), 0);
+    EXPECT_EQ(w.currentPanelName(), "forces");
 
     ASSERT_TRUE(document->setLoad(70.0));
     QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier);
@@ -398,7 +437,7 @@ TEST(MainWindow, DroppedFilesAreTakenForWhatTheyAre) {
     EXPECT_TRUE(dropOnto(w, data));
     auto* identification = w.findChild<ui::IdentificationPanel*>();
     EXPECT_EQ(identification->settings()["csv"], data.toStdString());
-    EXPECT_EQ(w.findChild<QTabWidget*>()->currentIndex(), 4);
+    EXPECT_EQ(w.currentPanelName(), "identification");
     // A measured test (a load_N column): loaded, the project's setup kept ("No").
     bool asked = false;
     onNextDialog(
@@ -516,7 +555,8 @@ TEST(MainWindow, OpeningAProjectWithAHeavyStudyComputesNothingUntilAsked) {
     QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
     studio.window.showPanel("global-sensitivity");
     settle(500);
-    EXPECT_EQ(busy.count(), 0) << "the study started by itself";
+    // (A study of the project before, running when it was opened, ends: busy false.)
+    EXPECT_FALSE(busy.contains(QList<QVariant>{true})) << "the study started by itself";
     EXPECT_FALSE(panel->isBusy());
     EXPECT_FALSE(panel->indices().has_value());
     EXPECT_TRUE(panel->statusText().startsWith("Not computed"))
@@ -531,6 +571,183 @@ TEST(MainWindow, OpeningAProjectWithAHeavyStudyComputesNothingUntilAsked) {
     panel->cancelRunning();
     ASSERT_TRUE(shown.wait(60000));
     EXPECT_EQ(panel->completion(), ui::Completion::kCancelled);
+}
+
+// Issue 27: the analyses were fixed tabs; now each is a dock, and the arrangement the user made
+// comes back with the window (QSettings, versioned).
+TEST(MainWindow, PanelDocksAreArrangedAndTheLayoutComesBack) {
+    QSettings().remove("window");
+    {
+        Studio studio;
+        MainWindow& w = studio.window;
+        QDockWidget* forces = w.panelDock("forces");
+        QDockWidget* stresses = w.panelDock("stresses");
+        ASSERT_NE(forces, nullptr);
+        ASSERT_NE(stresses, nullptr);
+        // Default: the panels tabbed together, one on screen.
+        w.applyLayout(MainWindow::Layout::kDefault);
+        settle();
+        EXPECT_EQ(w.panelArea()->tabifiedDockWidgets(forces).size(), 6u);
+        // Side by side: forces and stresses both on screen, beside each other.
+        w.showPanel("forces");
+        studio.action("action.layout_side_by_side")->trigger();
+        settle();
+        EXPECT_FALSE(forces->visibleRegion().isEmpty());
+        EXPECT_FALSE(stresses->visibleRegion().isEmpty());
+        EXPECT_LT(forces->geometry().right(), stresses->geometry().left());
+        EXPECT_EQ(w.currentPanelName(), "forces");
+        // Tiled: every panel on screen.
+        studio.action("action.layout_tiled")->trigger();
+        settle();
+        for (const char* name : kPanels)
+            EXPECT_FALSE(w.panelDock(name)->visibleRegion().isEmpty()) << name;
+        // Torn off: the rover floats in its own window. Closing keeps the arrangement.
+        w.applyLayout(MainWindow::Layout::kSideBySide);
+        w.panelDock("rover")->setFloating(true);
+        settle();
+        w.close();
+    }
+    Studio studio;
+    MainWindow& w = studio.window;
+    settle();
+    EXPECT_TRUE(w.panelDock("rover")->isFloating());
+    EXPECT_LT(w.panelDock("forces")->geometry().right(),
+              w.panelDock("stresses")->geometry().left());
+    // A state of another version (older studios' tabs) is not applied; Default puts all back.
+    EXPECT_FALSE(w.panelArea()->restoreState(
+        w.panelArea()->saveState(MainWindow::kLayoutVersion - 1), MainWindow::kLayoutVersion));
+    studio.action("action.layout_default")->trigger();
+    settle();
+    EXPECT_FALSE(w.panelDock("rover")->isFloating());
+    EXPECT_EQ(w.panelArea()->tabifiedDockWidgets(w.panelDock("forces")).size(), 6u);
+    QSettings().remove("window");
+}
+
+// Issue 27: the .terra file stored absolute paths, so a project folder could not be moved.
+TEST(MainWindow, AProjectFolderCanBeMoved) {
+    QTemporaryDir root;
+    ASSERT_TRUE(QDir(root.path()).mkpath("field/data"));
+    const QString data = root.filePath("field/data/drive.csv");
+    {
+        QFile file(data);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        file.write("slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n0.1,20,1,58,0.5\n");
+    }
+    {
+        Studio studio;
+        MainWindow& w = studio.window;
+        ASSERT_TRUE(w.document()->addDataSet(data.toStdString()));
+        auto* panel = w.findChild<ui::IdentificationPanel*>();
+        panel->setDataFile(data);
+        w.document()->setPanelSettings("identification", panel->settings());
+        QString error;
+        ASSERT_TRUE(w.document()->save(root.filePath("field/p.terra"), &error))
+            << error.toStdString();
+    }
+    std::string text;
+    ASSERT_FALSE(io::readFile(root.filePath("field/p.terra").toStdString(), text));
+    EXPECT_EQ(text.find(root.path().toStdString()), std::string::npos) << text;
+    ASSERT_TRUE(QDir(root.path()).rename("field", "moved"));
+
+    Studio studio;
+    MainWindow& w = studio.window;
+    ASSERT_TRUE(w.openProject(root.filePath("moved/p.terra"), true));
+    const QString moved = QFileInfo(root.filePath("moved/data/drive.csv")).absoluteFilePath();
+    ASSERT_EQ(w.document()->project().data_sets.size(), 1u);
+    EXPECT_EQ(QString::fromStdString(w.document()->project().data_sets[0]), moved);
+    EXPECT_EQ(QString::fromStdString(
+                  w.findChild<ui::IdentificationPanel*>()->settings()["csv"].get<std::string>()),
+              moved);
+}
+
+// Issue 27: reopening a project showed none of its results; a global study had to run again.
+TEST(MainWindow, AReopenedProjectShowsItsSavedResultsWithoutComputing) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("study.terra");
+    Table computed;
+    {
+        Studio studio;
+        MainWindow& w = studio.window;
+        auto* panel = w.findChild<ui::GlobalSensitivityPanel*>();
+        panel->setSamples(64);
+        w.showPanel("global-sensitivity");
+        QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+        panel->compute();
+        ASSERT_TRUE(shown.wait(60000));
+        while (panel->isBusy()) ASSERT_TRUE(shown.wait(60000));
+        ASSERT_TRUE(panel->indices().has_value());
+        computed = panel->currentTable();
+        QString error;
+        ASSERT_TRUE(w.document()->save(path, &error)) << error.toStdString();
+        studio.action("action.save")->trigger();  // saves to the project's path, results too
+        ASSERT_TRUE(QFileInfo::exists(path + ".results"));
+        EXPECT_FALSE(QFileInfo::exists(dir.filePath(".study.terra.results.tmp")));
+    }
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* panel = w.findChild<ui::GlobalSensitivityPanel*>();
+    // The panel was in front when the last window closed: it may have started its own first
+    // study already; that one is dropped, and nothing starts after the opening.
+    ASSERT_TRUE(w.openProject(path, true));
+    EXPECT_TRUE(w.statusBar()->currentMessage().contains("saved results"))
+        << w.statusBar()->currentMessage().toStdString();
+    QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
+    w.showPanel("global-sensitivity");
+    settle(500);
+    auto started = [&busy] {
+        int n = 0;
+        for (const QList<QVariant>& arguments : busy) n += arguments.at(0).toBool() ? 1 : 0;
+        return n;
+    };
+    EXPECT_EQ(started(), 0) << "a computation started on opening";
+    EXPECT_FALSE(panel->isBusy());
+    ASSERT_TRUE(panel->indices().has_value());
+    EXPECT_TRUE(panel->showsSavedResult());
+    EXPECT_EQ(io::toJson(panel->currentTable()), io::toJson(computed));
+    EXPECT_TRUE(panel->statusText().contains("Saved with the project"))
+        << panel->statusText().toStdString();
+    // Other panels shown meanwhile change nothing of it; an input edit recomputes it.
+    w.showPanel("forces");
+    settle(200);
+    w.showPanel("global-sensitivity");
+    settle(300);
+    EXPECT_EQ(started(), 0);
+    EXPECT_TRUE(panel->showsSavedResult());
+    // Changed inputs: Compute runs the study again (it waits for Compute, as always).
+    ASSERT_TRUE(w.document()->setSoilValue("phi_deg", 31.0));
+    panel->compute();
+    ASSERT_TRUE(busy.wait(5000)) << "the changed inputs were not computed";
+    EXPECT_FALSE(panel->showsSavedResult());
+    QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+    ASSERT_TRUE(shown.wait(60000));
+}
+
+// A results file from other inputs (the project edited elsewhere) is not shown.
+TEST(MainWindow, SavedResultsOfOtherInputsAreNotShown) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("p.terra");
+    {
+        Studio studio;
+        auto* panel = studio.window.findChild<ui::GlobalSensitivityPanel*>();
+        panel->setSamples(64);
+        studio.window.showPanel("global-sensitivity");
+        QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+        panel->compute();
+        ASSERT_TRUE(shown.wait(60000));
+        while (panel->isBusy()) ASSERT_TRUE(shown.wait(60000));
+        QString error;
+        ASSERT_TRUE(studio.window.document()->save(path, &error));
+        studio.action("action.save")->trigger();
+    }
+    std::string text;
+    ASSERT_FALSE(io::readFile(path.toStdString(), text));
+    nlohmann::json project = nlohmann::json::parse(text);
+    project["conditions"]["load_N"] = 70.0;
+    ASSERT_FALSE(io::writeFileAtomically(path.toStdString(), project.dump(1)));
+    Studio studio;
+    auto* panel = studio.window.findChild<ui::GlobalSensitivityPanel*>();
+    ASSERT_TRUE(studio.window.openProject(path, true));
+    EXPECT_FALSE(panel->showsSavedResult());
 }
 
 }  // namespace

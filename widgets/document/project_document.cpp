@@ -254,7 +254,7 @@ ProjectDocument::ExperimentState ProjectDocument::readExperiment(const std::stri
     ExperimentState state{path, nullptr, {}};
     if (path.empty()) return state;
     QString resolved = QString::fromStdString(path);
-    // A hand-written relative path is relative to the .terra file (the studio stores absolute).
+    // A relative path is relative to the .terra file (load() resolves those of the file).
     if (QFileInfo(resolved).isRelative() && !file_path_.isEmpty())
         resolved = QFileInfo(file_path_).dir().filePath(resolved);
     Result<io::Experiment> read = io::readExperiment(resolved.toStdString());
@@ -325,8 +325,13 @@ void ProjectDocument::markUnmodified() {
 }
 
 bool ProjectDocument::save(const QString& path, QString* error) {
-    QSaveFile file(path);
-    const std::string text = toJson(project_).dump(2) + "\n";
+    QSaveFile file(path);  // a temporary file, renamed over the old one on commit()
+    // Files inside the project's folder are written relative to it: the folder can be moved.
+    const std::string text =
+        toJson(project::withRelativePaths(
+                   project_, QFileInfo(path).absoluteDir().absolutePath().toStdString()))
+            .dump(2) +
+        "\n";
     if (!file.open(QIODevice::WriteOnly) ||
         file.write(text.data(), static_cast<qint64>(text.size())) !=
             static_cast<qint64>(text.size()) ||
@@ -346,7 +351,10 @@ bool ProjectDocument::save(const QString& path, QString* error) {
 }
 
 Result<Project> ProjectDocument::load(const QString& path, const io::PresetLocations* locations) {
-    return project::loadProject(path.toStdString(), locations);
+    Result<Project> project = project::loadProject(path.toStdString(), locations);
+    if (!project) return project;
+    return project::withAbsolutePaths(*project,
+                                      QFileInfo(path).absoluteDir().absolutePath().toStdString());
 }
 
 Project ProjectDocument::defaultProject(const io::PresetLocations& locations) {

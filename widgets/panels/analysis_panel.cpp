@@ -8,6 +8,7 @@
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
+#include "core/io/parameters_json.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_menu.h"
@@ -46,6 +47,11 @@ void AnalysisPanel::scheduleUpdate() {
 
 void AnalysisPanel::cancelRunning() {
     if (cancel_) cancel_->store(true);
+}
+
+void AnalysisPanel::discardRunning() {
+    if (cancel_) cancel_->store(true);
+    first_shown_revision_ = ++revision_;
 }
 
 QString AnalysisPanel::resultMessage(const QString& tab) const {
@@ -93,8 +99,13 @@ bool AnalysisPanel::start() {
     }
     deferred_ = false;
     if (watcher_.isRunning()) return true;  // finished() restarts with the newest state
+    if (!requested_ && !restored_hash_.empty()) {
+        // A saved result is on screen: computed again only when the inputs changed since.
+        if (inputsHash() == restored_hash_) return false;
+    }
     if (!requested_ && !startsByItself()) return false;
     requested_ = false;
+    restored_hash_.clear();
     Job job;
     try {
         job = makeJob();
@@ -103,12 +114,14 @@ bool AnalysisPanel::start() {
         return false;
     }
     const int revision = revision_;
+    const std::string hash = inputsHash();
     cancel_ = std::make_shared<std::atomic<bool>>(false);
     auto cancel = cancel_;
     emit busyChanged(true);
-    watcher_.setFuture(QtConcurrent::run([job, revision, cancel]() {
+    watcher_.setFuture(QtConcurrent::run([job, revision, cancel, hash]() {
         Outcome out;
         out.revision = revision;
+        out.inputs_hash = hash;
         try {
             out.value = job(*cancel);
         } catch (const std::exception& e) {
@@ -125,7 +138,9 @@ void AnalysisPanel::finished() {
     if (outcome.revision != revision_) {
         // Stale. A computation that was let run to the end (see scheduleUpdate) is shown as an
         // intermediate frame; a cancelled one is dropped. Either way the newest state follows.
-        if (!outcome.cancelled && outcome.error.isEmpty()) presentOutcome(outcome);
+        if (!outcome.cancelled && outcome.error.isEmpty() &&
+            outcome.revision >= first_shown_revision_)
+            presentOutcome(outcome);
         if (!start()) emit busyChanged(false);  // waiting (hidden, or not by itself): not busy
         return;
     }
@@ -148,10 +163,36 @@ void AnalysisPanel::presentOutcome(const Outcome& outcome) {
     QElapsedTimer drawing;
     drawing.start();
     completion_ = outcome.cancelled ? Completion::kCancelled : Completion::kComplete;
+    presented_hash_ = outcome.inputs_hash;
     present(outcome.value);  // may refine completion_ from the result's own status
     has_result_ = true;
     last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
     since_shown_.start();
+}
+
+nlohmann::json AnalysisPanel::resultInputs() const {
+    const project::Project& p = document_->project();
+    return {{"soil", io::toJson(p.soil)},
+            {"wheel", io::toJson(p.wheel)},
+            {"conditions", analysis::toJson(p.conditions)},
+            {"settings", settings()}};
+}
+
+void AnalysisPanel::showSaved(const std::any& value, const std::string& hash, bool partial) {
+    // Whatever was queued for the project's opening is not needed while the inputs hash the same,
+    // and a computation still running (the panel's first result, from before the project was
+    // opened) is stale: it is dropped, never drawn over the saved result.
+    deferred_ = false;
+    discardRunning();
+    restored_hash_ = hash;
+    presented_hash_ = hash;
+    completion_ = partial ? Completion::kCancelled : Completion::kComplete;
+    present(value);
+    has_result_ = true;
+    if (progress_bar_) {
+        progress_bar_->setValue(completion_ == Completion::kComplete ? 100 : 0);
+        progress_bar_->setFormat(progressFormat(completion_));
+    }
 }
 
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {

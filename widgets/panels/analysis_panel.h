@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/common/table.h"
+#include "core/project/results.h"
 #include "widgets/plots/completion.h"
 
 class QCustomPlot;
@@ -61,6 +62,9 @@ public:
     }
     /// Asks the running computation to stop; it shows what it has (cancelled runs keep results).
     void cancelRunning();
+    /// Stops the running computation and never shows its result, even as an intermediate frame
+    /// (a project is being opened: the result is of the project before).
+    void discardRunning();
     /// What the panel's Run, Fit or Compute button does (the studio's Ctrl+R); a plain recompute
     /// for the panels that follow the project by themselves.
     virtual void requestRun() { recompute(); }
@@ -78,6 +82,19 @@ public:
     /// exportRequested(), "Copy data" copies currentTable().
     void installPlotMenus();
 
+    /// The result on screen for the project's results file (core/project/results.h), with the
+    /// hash of the inputs that produced it; std::nullopt when there is none or the panel does not
+    /// save its results (its computations are quick: it computes them again when shown).
+    virtual std::optional<project::SavedResult> savedResult() const { return std::nullopt; }
+    /// Shows a saved result when the panel's inputs still hash as those that produced it, without
+    /// computing; false (nothing changed) when they differ or the result cannot be read.
+    virtual bool restoreResult(const project::SavedResult&) { return false; }
+    /// Whether the result on screen is a saved one shown by restoreResult (nothing recomputed
+    /// since).
+    bool showsSavedResult() const { return !restored_hash_.empty(); }
+    /// The hash of what the panel's next computation would read (resultInputs()).
+    std::string inputsHash() const { return project::inputsHash(resultInputs()); }
+
 signals:
     void resultShown(double latency_ms);  ///< a new result is on screen, after the given time [ms]
     void failed(const QString& message);
@@ -94,6 +111,16 @@ protected:
     virtual Job makeJob() = 0;
     /// Shows a result (GUI thread); replots.
     virtual void present(const std::any& result) = 0;
+    /// What the panel's result depends on, hashed to tell whether a saved result still holds: by
+    /// default the project's soil, wheel and conditions and the panel's settings.
+    virtual nlohmann::json resultInputs() const;
+    /// The inputs' hash of the result being presented (in present()), or of the one on screen.
+    const std::string& presentedInputsHash() const { return presented_hash_; }
+    /// Shows `value` (what makeJob's job returns) as a result saved for inputs hashing `hash`,
+    /// partial or not, without computing; the pending automatic update is dropped while the
+    /// inputs keep that hash.
+    void showSaved(const std::any& value, const std::string& hash, bool partial);
+
     /// Whether an update nobody asked for (the panel's first show, a project edit) may start now,
     /// asked just before it would. A panel whose computation can be heavy says no, and shows why
     /// ("not computed: press Compute"); recompute() starts regardless.
@@ -129,7 +156,8 @@ private:
         int revision = 0;
         std::any value;
         QString error;
-        bool cancelled = false;  ///< the job saw its cancel flag set (its value may be partial)
+        bool cancelled = false;   ///< the job saw its cancel flag set (its value may be partial)
+        std::string inputs_hash;  ///< of what the job read
     };
     /// Longest time the screen may go without a new result while edits keep arriving [ms].
     static constexpr qint64 kMaxFrameGapMs = 150;
@@ -141,6 +169,7 @@ private:
     QFutureWatcher<Outcome> watcher_;
     std::shared_ptr<std::atomic<bool>> cancel_;
     int revision_ = 0;
+    int first_shown_revision_ = 0;  // results of older revisions are never shown (discardRunning)
     bool start_queued_ = false;
     bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
@@ -152,6 +181,8 @@ private:
     bool has_result_ = false;
     Completion completion_ = Completion::kComplete;
     QProgressBar* progress_bar_ = nullptr;
+    std::string presented_hash_;
+    std::string restored_hash_;  // the saved result's, while it is on screen
 };
 
 }  // namespace terra::ui

@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "core/io/csv.h"
+#include "core/io/parameters_json.h"
 #include "core/project/panels.h"
 #include "core/soil/soil_parameters.h"
 #include "widgets/document/project_document.h"
@@ -80,6 +81,16 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
         parameters_->setCellWidget(i, kLowColumn, rangeBox(field, row.low, parameters_));
         parameters_->setCellWidget(i, kHighColumn, rangeBox(field, row.high, parameters_));
     }
+    // Never narrower than its spin boxes: at 1024×700 the stretched columns cut "1212.0000".
+    int box = 0, label = 0;
+    for (int i = 0; i < parameters_->rowCount(); ++i) {
+        label = std::max(
+            label, parameters_->fontMetrics().horizontalAdvance(parameters_->item(i, 0)->text()) +
+                       40);  // and the check box
+        for (int column : {kLowColumn, kHighColumn})
+            box = std::max(box, parameters_->cellWidget(i, column)->minimumSizeHint().width());
+    }
+    parameters_->setMinimumWidth(label + 2 * box + 2 * parameters_->frameWidth() + 8);
     source_ = new QComboBox(this);
     source_->addItem("Ranges of the table");
     source_->addItem("Identified soil's covariance");
@@ -344,7 +355,10 @@ void GlobalSensitivityPanel::present(const std::any& value) {
     setCompletion(status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
                                                          : Completion::kComplete);
     progress_->setValue(static_cast<int>(100.0 * fraction_->load()));  // where it stopped
-    if (computed.indices) indices_ = computed.indices;
+    if (computed.indices) {
+        indices_ = computed.indices;
+        indices_hash_ = presentedInputsHash();
+    }
     if (computed.bands) bands_ = computed.bands;
     QString message;
     if (computed.indices) {
@@ -368,7 +382,8 @@ void GlobalSensitivityPanel::redraw() {
     const std::size_t output = static_cast<std::size_t>(std::max(0, output_->currentIndex()));
     const Project& p = document_->project();
     const QString title =
-        QString("%1, %2, W = %3 N, β = %4°")
+        // Two lines: on one, a ~400 px plot (1024×700) cut the title at both ends.
+        QString("%1, %2\nW = %3 N, β = %4°")
             .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
             .arg(p.conditions.load_n)
             .arg(slip_angle_->value());
@@ -427,6 +442,55 @@ void GlobalSensitivityPanel::applySettings(const nlohmann::json& json) {
     samples_->setValue(settings->samples);
     band_samples_->setValue(settings->band_samples);
     seed_->setValue(static_cast<int>(settings->seed));
+}
+
+nlohmann::json GlobalSensitivityPanel::resultInputs() const {
+    const analysis::Inputs in = inputs();
+    nlohmann::json varied = nlohmann::json::array();
+    for (int i = 0; i < parameters_->rowCount(); ++i) {
+        if (parameters_->item(i, 0)->checkState() != Qt::Checked) continue;
+        varied.push_back(
+            {parameters_->item(i, 0)->data(Qt::UserRole).toString().toStdString(),
+             static_cast<QDoubleSpinBox*>(parameters_->cellWidget(i, kLowColumn))->value(),
+             static_cast<QDoubleSpinBox*>(parameters_->cellWidget(i, kHighColumn))->value()});
+    }
+    nlohmann::json study = settings();
+    for (const char* shown : {"page", "output", "band_samples"}) study.erase(shown);
+    return {{"soil", io::toJson(in.soil)},
+            {"wheel", io::toJson(in.wheel)},
+            {"conditions", analysis::toJson(in.conditions)},
+            {"source", source_->currentIndex()},
+            {"varied", varied},
+            {"study", study}};
+}
+
+std::optional<project::SavedResult> GlobalSensitivityPanel::savedResult() const {
+    if (!indices_ || indices_hash_.empty()) return std::nullopt;
+    project::SavedResult saved;
+    saved.inputs_hash = indices_hash_;
+    saved.partial = indices_->status() == gsa::StudyStatus::kCancelled;
+    saved.summary =
+        QString("%1 model evaluations")
+            .arg(indices_->sobol ? indices_->sobol->evaluations : indices_->morris->evaluations)
+            .toStdString();
+    saved.result = project::savedJson(*indices_);
+    saved.tables.push_back({"indices", std::nullopt, indices_->table()});
+    return saved;
+}
+
+bool GlobalSensitivityPanel::restoreResult(const project::SavedResult& saved) {
+    if (saved.inputs_hash != inputsHash()) return false;
+    Result<analysis::GlobalSensitivityResult> read =
+        project::globalSensitivityResultFromJson(saved.result, "global-sensitivity");
+    if (!read) return false;
+    pages_->setCurrentIndex(0);
+    showSaved(Computed{std::move(read.value()), std::nullopt}, saved.inputs_hash, saved.partial);
+    indices_hash_ = saved.inputs_hash;
+    progress_->setValue(saved.partial ? 0 : 100);
+    status_->setText(
+        markedStatus(QString("Saved with the project (%1); not recomputed — Compute runs it again.")
+                         .arg(QString::fromStdString(saved.summary).toHtmlEscaped())));
+    return true;
 }
 
 }  // namespace terra::ui

@@ -77,8 +77,15 @@ public:
     Table currentTable() const override;
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
+    /// The indices on screen (not the bands: 256 samples redraw quickly), for the project's
+    /// results file; restoreResult shows them again when the study's inputs are unchanged.
+    std::optional<project::SavedResult> savedResult() const override;
+    bool restoreResult(const project::SavedResult& saved) override;
 
 protected:
+    /// The inputs (soil, wheel, conditions, or the identified soil), the parameters varied with
+    /// their ranges, the method, slips, slip angle, samples and seed: not the page or output shown.
+    nlohmann::json resultInputs() const override;
     Job makeJob() override;
     void present(const std::any& result) override;
     /// Only a study of at most kAutomaticEvaluations; a larger one shows "not computed".
@@ -109,6 +116,7 @@ private:
     QTimer* progress_timer_;
     std::shared_ptr<std::atomic<double>> fraction_;
     std::optional<analysis::GlobalSensitivityResult> indices_;
+    std::string indices_hash_;  // of the inputs the indices were computed from
     std::optional<analysis::UncertaintyBandResult> bands_;
     // The identification's estimate and uncertainty (setIdentification), if any.
     std::optional<std::pair<identification::DecoupledParameters, identification::Uncertainty>>

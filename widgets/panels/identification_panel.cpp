@@ -100,7 +100,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     setLive(false);
     file_ = new QLineEdit(this);
     file_->setPlaceholderText("synthesise from the project's soil (or choose a CSV)");
-    file_->setMinimumWidth(220);
+    file_->setMinimumWidth(180);  // the first row fits 700 px (1024×700, Compact layout)
     auto* browse = new QPushButton("Load CSV…", this);
     noise_ = new QDoubleSpinBox(this);
     noise_->setRange(0.0, 20.0);
@@ -232,16 +232,19 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     bar->addWidget(new QLabel("Noise:", this));
     bar->addWidget(noise_);
     bar->addWidget(three_loads_);
-    // The fit's options on a second row, so that neither row forces a wide window.
+    // The fit's options on two rows, so that no row forces a wide window and the prior's text
+    // keeps room to be read (one row squeezed it to ~30 px at 1024×700): the method, validation
+    // and loss; then the prior.
     auto* options = new QHBoxLayout;
     options->addWidget(refine_);
-    options->addWidget(new QLabel("Prior:", this));
-    options->addWidget(prior_soil_);
-    options->addWidget(prior_items_, 1);
     options->addWidget(validation_);
     options->addWidget(loss_);
-    // Fit at the end of the line that says what it starts from: the options row then fits the
-    // panel on a 1024 px screen (it needed 816 px with Fit and full-width combos).
+    options->addStretch(1);
+    auto* prior_row = new QHBoxLayout;
+    prior_row->addWidget(new QLabel("Prior:", this));
+    prior_row->addWidget(prior_soil_);
+    prior_row->addWidget(prior_items_, 1);
+    prior_items_->setMinimumWidth(180);  // "phi_deg=30±5, c_kPa=2±1" readable
     for (QComboBox* combo : {prior_soil_, validation_}) {
         combo->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
         combo->setMinimumContentsLength(12);  // the longest item ("clayey-soil", "hold-out 20%")
@@ -281,6 +284,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     fit_layout->addLayout(bar);
     fit_layout->addLayout(options);
     fit_layout->addLayout(model_row);
+    fit_layout->addLayout(prior_row);
     fit_layout->addLayout(start_row);
     fit_layout->addWidget(splitter, 1);
     auto* bottom = new QHBoxLayout;
@@ -849,15 +853,19 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     replot_timer_->setSingleShot(true);
     replot_timer_->setInterval(40);
 
+    // The source on two rows (one made the page scroll sideways at 1024×700): what is played,
+    // then the CSV's file.
     auto* source_row = new QHBoxLayout;
     source_row->addWidget(new QLabel("Source:", page));
     source_row->addWidget(stream_source_);
     source_row->addWidget(second_soil_);
     source_row->addWidget(stream_noise_);
-    source_row->addWidget(stream_file_, 1);
-    source_row->addWidget(stream_browse_);
-    source_row->addWidget(skip_bad_rows_);
     source_row->addStretch(1);
+    auto* file_row = new QHBoxLayout;
+    file_row->addWidget(stream_file_, 1);
+    file_row->addWidget(stream_browse_);
+    file_row->addWidget(skip_bad_rows_);
+    stream_file_->setMinimumWidth(180);
     auto* play_row = new QHBoxLayout;
     play_row->addWidget(new QLabel("Speed:", page));
     play_row->addWidget(speed_);
@@ -874,6 +882,7 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     auto* layout = new QVBoxLayout(page);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addLayout(source_row);
+    layout->addLayout(file_row);
     layout->addLayout(play_row);
     // On a line of its own: beside the controls it made the page 786 px wide (1024 px screens).
     layout->addWidget(position_text_);

@@ -113,5 +113,27 @@ TEST(ProjectFile, DuplicatedKeysInTheFileAreErrors) {
     EXPECT_TRUE(contains(parsed.message(), "duplicated key \"load_N\" in conditions"));
 }
 
+// Issue 27: the .terra file stored absolute paths, so a project folder could not be moved.
+TEST(ProjectFile, PathsInsideTheProjectFolderAreWrittenRelative) {
+    Project p = sandyLoam();
+    p.data_sets = {"/home/ana/field/data/run1.csv", "/opt/terra/share/drive.csv"};
+    p.experiment = "/home/ana/field/tests/ding.csv";
+    p.panels["identification"] = json{{"csv", "/home/ana/field/data/run1.csv"}, {"stream_csv", ""}};
+    const Project written = withRelativePaths(p, "/home/ana/field");
+    EXPECT_EQ(written.data_sets[0], "data/run1.csv");
+    EXPECT_EQ(written.data_sets[1], "/opt/terra/share/drive.csv");  // outside: kept
+    EXPECT_EQ(written.experiment, "tests/ding.csv");
+    EXPECT_EQ(written.panels["identification"]["csv"], "data/run1.csv");
+    EXPECT_EQ(written.panels["identification"]["stream_csv"], "");
+    // Read from the folder's new place, relative names follow it; absolute ones stay.
+    const Project moved = withAbsolutePaths(written, "/mnt/usb/field");
+    EXPECT_EQ(moved.data_sets[0], "/mnt/usb/field/data/run1.csv");
+    EXPECT_EQ(moved.data_sets[1], "/opt/terra/share/drive.csv");
+    EXPECT_EQ(moved.experiment, "/mnt/usb/field/tests/ding.csv");
+    EXPECT_EQ(moved.panels["identification"]["csv"], "/mnt/usb/field/data/run1.csv");
+    // A sibling folder with the same prefix is not inside.
+    EXPECT_EQ(withRelativePaths(p, "/home/ana/fie").data_sets[0], "/home/ana/field/data/run1.csv");
+}
+
 }  // namespace
 }  // namespace terra::project

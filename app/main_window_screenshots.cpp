@@ -1,0 +1,87 @@
+// The main window's screenshots (`terrastudio gui --screenshots DIR`: the GUI smoke test and
+// docs/images; main_window.h). Split from main_window.cpp to keep each file small.
+#include <QDir>
+#include <QEventLoop>
+#include <QFile>
+#include <QTimer>
+#include <QUndoStack>
+#include <cstdio>
+
+#include "app/main_window.h"
+#include "widgets/document/project_document.h"
+#include "widgets/panels/analysis_panel.h"
+#include "widgets/panels/forces_panel.h"
+
+namespace terra::app {
+
+int MainWindow::takeScreenshots(const QString& dir) {
+    QDir().mkpath(dir);
+    QFile::remove(autosavePath());
+    int failures = 0;
+    for (std::size_t i = 0; i < panels_.size(); ++i) {
+        ui::AnalysisPanel* panel = panels_[i];
+        showPanel(panel->name());
+        if (panel) {
+            QEventLoop loop;
+            QTimer::singleShot(60000, &loop, &QEventLoop::quit);
+            connect(panel, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+            connect(panel, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+            const bool on_request = panel->name() == "identification" || panel->name() == "rover";
+            if (on_request || panel->isBusy() || panel->lastLatencyMs() == 0.0) {
+                if (on_request) panel->recompute();
+                loop.exec();
+            }
+        }
+        QEventLoop settle;
+        QTimer::singleShot(300, &settle, &QEventLoop::quit);
+        settle.exec();
+        const QString name = panel->name();
+        const QString path = dir + "/studio-" + name + ".png";
+        if (!grab().save(path)) ++failures;
+        std::printf("wrote %s\n", qPrintable(path));
+    }
+    // "Compare with…" (docs/images/studio-compare.png): the soil pinned, φ edited to 35°, then
+    // the edit undone and the comparison cleared, so the project ends as it began.
+    if (auto* forces = dynamic_cast<ui::ForcesPanel*>(panels_.front())) {
+        showPanel(forces->name());
+        auto waitForResult = [forces] {
+            QEventLoop loop;
+            QTimer::singleShot(60000, &loop, &QEventLoop::quit);
+            connect(forces, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+            connect(forces, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+            loop.exec();
+        };
+        forces->pinReference();
+        waitForResult();
+        const int steps = document_->undoStack()->index();
+        document_->setSoilValue("phi_deg", 35.0);
+        waitForResult();
+        QEventLoop settle;
+        QTimer::singleShot(300, &settle, &QEventLoop::quit);
+        settle.exec();
+        const QString path = dir + "/studio-compare.png";
+        if (!grab().save(path)) ++failures;
+        std::printf("wrote %s\n", qPrintable(path));
+        document_->undoStack()->setIndex(steps);
+        forces->clearComparison();
+    }
+    // The docks (docs/images/studio-side-by-side.png): forces and stresses side by side, then
+    // every panel tiled; the layout for the screen afterwards.
+    auto grabLayout = [&](Layout layout, const QString& file) {
+        showPanel("forces");
+        applyLayout(layout);
+        QEventLoop settle;
+        QTimer::singleShot(1500, &settle, &QEventLoop::quit);  // the panels shown compute
+        settle.exec();
+        const QString path = dir + "/" + file;
+        if (!grab().save(path)) ++failures;
+        std::printf("wrote %s\n", qPrintable(path));
+    };
+    grabLayout(Layout::kSideBySide, "studio-side-by-side.png");
+    grabLayout(Layout::kTiled, "studio-tiled.png");
+    applyLayout(layoutForScreen());
+    document_->undoStack()->setClean();
+    return failures == 0 ? 0 : 1;
+}
+
+}  // namespace terra::app

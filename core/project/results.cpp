@@ -1,0 +1,335 @@
+#include "core/project/results.h"
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/io/atomic_file.h"
+#include "core/io/json_reader.h"
+
+namespace terra::project {
+namespace {
+
+using nlohmann::json;
+
+// JSON has no NaN or infinity: a non-finite value (a constant output's undefined index) is null.
+json number(double v) {
+    if (!std::isfinite(v)) return nullptr;
+    return v;
+}
+
+double numberOf(const json& v) {
+    return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+}
+
+json tableJson(const Table& table) {
+    json rows = json::array();
+    for (const std::vector<double>& row : table.rows) {
+        json r = json::array();
+        for (double v : row) r.push_back(number(v));
+        rows.push_back(std::move(r));
+    }
+    json out{{"columns", table.columns}, {"rows", std::move(rows)}};
+    if (!table.label_column.empty()) {
+        out["label_column"] = table.label_column;
+        out["labels"] = table.labels;
+    }
+    return out;
+}
+
+Table tableFrom(const json& j) {
+    Table t;
+    t.columns = j.at("columns").get<std::vector<std::string>>();
+    for (const json& row : j.at("rows")) {
+        std::vector<double> r;
+        for (const json& v : row) r.push_back(numberOf(v));
+        if (r.size() != t.columns.size())
+            throw std::invalid_argument("a row has " + std::to_string(r.size()) + " values for " +
+                                        std::to_string(t.columns.size()) + " columns");
+        t.rows.push_back(std::move(r));
+    }
+    if (j.contains("label_column")) {
+        t.label_column = j.at("label_column").get<std::string>();
+        t.labels = j.at("labels").get<std::vector<std::string>>();
+    }
+    return t;
+}
+
+json matrixJson(const Eigen::MatrixXd& m) {
+    json rows = json::array();
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+        json row = json::array();
+        for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(number(m(i, j)));
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+
+Eigen::MatrixXd matrixFrom(const json& j) {
+    const auto rows = static_cast<Eigen::Index>(j.size());
+    const auto cols = rows == 0 ? Eigen::Index{0} : static_cast<Eigen::Index>(j.front().size());
+    Eigen::MatrixXd m(rows, cols);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+        const json& row = j[static_cast<std::size_t>(i)];
+        if (static_cast<Eigen::Index>(row.size()) != cols)
+            throw std::invalid_argument("matrix rows of different lengths");
+        for (Eigen::Index c = 0; c < cols; ++c)
+            m(i, c) = numberOf(row[static_cast<std::size_t>(c)]);
+    }
+    return m;
+}
+
+json vectorJson(const Eigen::VectorXd& v) {
+    json out = json::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(number(v(i)));
+    return out;
+}
+
+Eigen::VectorXd vectorFrom(const json& j) {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
+    for (std::size_t i = 0; i < j.size(); ++i) v(static_cast<Eigen::Index>(i)) = numberOf(j[i]);
+    return v;
+}
+
+constexpr const char* kStatus[] = {"completed", "cancelled", "too many failures"};
+
+gsa::StudyStatus statusFrom(const std::string& text) {
+    for (int i = 0; i < 3; ++i) {
+        if (text == kStatus[i]) return static_cast<gsa::StudyStatus>(i);
+    }
+    throw std::invalid_argument("unknown status \"" + text + "\"");
+}
+
+json failuresJson(const std::vector<gsa::FailureCounts>& failures) {
+    json out = json::array();
+    for (const gsa::FailureCounts& f : failures)
+        out.push_back({f.no_equilibrium, f.load_not_matched, f.invalid_soil, f.non_finite});
+    return out;
+}
+
+std::vector<gsa::FailureCounts> failuresFrom(const json& j) {
+    std::vector<gsa::FailureCounts> out;
+    for (const json& f : j) {
+        out.push_back({f.at(0).get<std::size_t>(), f.at(1).get<std::size_t>(),
+                       f.at(2).get<std::size_t>(), f.at(3).get<std::size_t>()});
+    }
+    return out;
+}
+
+/// The parts both study kinds share.
+template <typename Study>
+json commonJson(const Study& s) {
+    std::vector<std::string> outputs;
+    for (gsa::Output o : s.outputs) outputs.emplace_back(gsa::outputName(o));
+    json grid{{"slips", s.grid.slips},
+              {"slip_angles_rad", s.grid.slip_angles_rad},
+              {"entry_angle_rad", s.grid.entry_angle_rad}};
+    if (s.grid.load_n) grid["load_n"] = *s.grid.load_n;
+    return {{"status", kStatus[static_cast<int>(s.status)]},
+            {"message", s.message},
+            {"parameters", s.parameters},
+            {"outputs", outputs},
+            {"grid", grid},
+            {"failures", failuresJson(s.failures)},
+            {"evaluations", s.evaluations}};
+}
+
+template <typename Study>
+void readCommon(const json& j, Study& s) {
+    s.status = statusFrom(j.at("status").get<std::string>());
+    s.message = j.at("message").get<std::string>();
+    s.parameters = j.at("parameters").get<std::vector<std::string>>();
+    for (const std::string& name : j.at("outputs").get<std::vector<std::string>>()) {
+        const std::optional<gsa::Output> o = gsa::findOutput(name);
+        if (!o) throw std::invalid_argument("unknown output \"" + name + "\"");
+        s.outputs.push_back(*o);
+    }
+    const json& grid = j.at("grid");
+    s.grid.slips = grid.at("slips").get<std::vector<double>>();
+    s.grid.slip_angles_rad = grid.at("slip_angles_rad").get<std::vector<double>>();
+    s.grid.entry_angle_rad = grid.at("entry_angle_rad").get<double>();
+    s.grid.load_n = grid.contains("load_n") ? std::optional<double>(grid.at("load_n").get<double>())
+                                            : std::nullopt;
+    s.failures = failuresFrom(j.at("failures"));
+    s.evaluations = j.at("evaluations").get<std::size_t>();
+}
+
+}  // namespace
+
+bool SavedResult::operator==(const SavedResult& other) const {
+    auto tables_json = [](const SavedResult& r) {
+        json out = json::array();
+        for (const analysis::NamedTable& t : r.tables) out.push_back({t.name, tableJson(t.table)});
+        return out;
+    };
+    return inputs_hash == other.inputs_hash && partial == other.partial &&
+           summary == other.summary && result == other.result &&
+           tables_json(*this) == tables_json(other);
+}
+
+std::string inputsHash(const json& inputs) {
+    // FNV-1a, 64 bits: fast, stable across platforms; not for security, only to notice a change.
+    std::uint64_t h = 14695981039346656037ull;
+    for (const char c : inputs.dump()) {
+        h ^= static_cast<unsigned char>(c);
+        h *= 1099511628211ull;
+    }
+    char text[17];
+    std::snprintf(text, sizeof text, "%016" PRIx64, h);
+    return text;
+}
+
+std::filesystem::path resultsPathFor(const std::filesystem::path& project_file) {
+    std::filesystem::path out = project_file;
+    out += ".results";
+    return out;
+}
+
+json toJson(const SavedResults& results) {
+    json panels = json::object();
+    for (const auto& [name, r] : results.panels) {
+        json tables = json::array();
+        for (const analysis::NamedTable& t : r.tables)
+            tables.push_back({{"name", t.name}, {"table", tableJson(t.table)}});
+        panels[name] = {{"inputs_hash", r.inputs_hash},
+                        {"partial", r.partial},
+                        {"summary", r.summary},
+                        {"result", r.result},
+                        {"tables", std::move(tables)}};
+    }
+    return {{"format", kResultsFormat}, {"version", kResultsVersion}, {"panels", panels}};
+}
+
+Result<SavedResults> savedResultsFromJson(const json& j, const std::string& where) {
+    if (!j.is_object() || j.value("format", std::string()) != kResultsFormat)
+        return std::vector<Issue>{{where, "not TerraStudio results (\"format\": \"" +
+                                              std::string(kResultsFormat) + "\")"}};
+    if (j.value("version", 0) != kResultsVersion)
+        return std::vector<Issue>{{where + ": version",
+                                   "results of another version (this "
+                                   "studio reads version " +
+                                       std::to_string(kResultsVersion) +
+                                       "): they will be computed again"}};
+    SavedResults out;
+    std::vector<Issue> issues;
+    if (!j.contains("panels") || !j["panels"].is_object())
+        return std::vector<Issue>{{where + ": panels", "missing or not an object"}};
+    for (const auto& [name, p] : j["panels"].items()) {
+        try {
+            SavedResult r;
+            r.inputs_hash = p.at("inputs_hash").get<std::string>();
+            r.partial = p.at("partial").get<bool>();
+            r.summary = p.at("summary").get<std::string>();
+            r.result = p.at("result");
+            for (const json& t : p.at("tables"))
+                r.tables.push_back(
+                    {t.at("name").get<std::string>(), std::nullopt, tableFrom(t.at("table"))});
+            out.panels[name] = std::move(r);
+        } catch (const std::exception& e) {
+            issues.push_back({where + ": panels." + name, e.what()});
+        }
+    }
+    if (!issues.empty()) return issues;
+    return out;
+}
+
+Result<SavedResults> loadResults(const std::filesystem::path& path) {
+    return io::readJsonFileWith<SavedResults>(path,
+                                              [](const json& document, const std::string& source) {
+                                                  return savedResultsFromJson(document, source);
+                                              });
+}
+
+std::optional<std::string> saveResults(const std::filesystem::path& path,
+                                       const SavedResults& results) {
+    if (results.panels.empty()) {
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
+        return std::nullopt;
+    }
+    return io::writeFileAtomically(path, toJson(results).dump(1) + "\n");
+}
+
+json savedJson(const analysis::GlobalSensitivityResult& result) {
+    if (result.sobol) {
+        const gsa::SobolStudyResult& s = *result.sobol;
+        json out = commonJson(s);
+        out["method"] = "sobol";
+        out["base_samples"] = s.base_samples;
+        out["dropped_samples"] = s.dropped_samples;
+        out["S1"] = matrixJson(s.indices.first_order);
+        out["ST"] = matrixJson(s.indices.total);
+        out["S1_conf"] = matrixJson(s.indices.first_order_conf);
+        out["ST_conf"] = matrixJson(s.indices.total_conf);
+        out["mean"] = vectorJson(s.indices.mean);
+        out["variance"] = vectorJson(s.indices.variance);
+        out["samples_used"] = s.indices.samples_used;
+        out["constant"] = s.indices.constant;
+        return out;
+    }
+    const gsa::MorrisStudyResult& m = *result.morris;
+    json out = commonJson(m);
+    out["method"] = "morris";
+    out["dropped_trajectories"] = m.dropped_trajectories;
+    out["mu"] = matrixJson(m.indices.mu);
+    out["mu_star"] = matrixJson(m.indices.mu_star);
+    out["sigma"] = matrixJson(m.indices.sigma);
+    out["mu_star_conf"] = matrixJson(m.indices.mu_star_conf);
+    out["trajectories_used"] = m.indices.trajectories_used;
+    return out;
+}
+
+Result<analysis::GlobalSensitivityResult> globalSensitivityResultFromJson(
+    const json& j, const std::string& where) {
+    try {
+        analysis::GlobalSensitivityResult out;
+        const std::string method = j.at("method").get<std::string>();
+        if (method == "sobol") {
+            gsa::SobolStudyResult s;
+            readCommon(j, s);
+            s.base_samples = j.at("base_samples").get<std::size_t>();
+            s.dropped_samples = j.at("dropped_samples").get<std::vector<std::size_t>>();
+            s.indices.first_order = matrixFrom(j.at("S1"));
+            s.indices.total = matrixFrom(j.at("ST"));
+            s.indices.first_order_conf = matrixFrom(j.at("S1_conf"));
+            s.indices.total_conf = matrixFrom(j.at("ST_conf"));
+            s.indices.mean = vectorFrom(j.at("mean"));
+            s.indices.variance = vectorFrom(j.at("variance"));
+            s.indices.samples_used = j.at("samples_used").get<std::vector<std::size_t>>();
+            s.indices.constant = j.at("constant").get<std::vector<bool>>();
+            out.method = analysis::GsaMethod::kSobol;
+            out.sobol = std::move(s);
+        } else if (method == "morris") {
+            gsa::MorrisStudyResult m;
+            readCommon(j, m);
+            m.dropped_trajectories = j.at("dropped_trajectories").get<std::vector<std::size_t>>();
+            m.indices.mu = matrixFrom(j.at("mu"));
+            m.indices.mu_star = matrixFrom(j.at("mu_star"));
+            m.indices.sigma = matrixFrom(j.at("sigma"));
+            m.indices.mu_star_conf = matrixFrom(j.at("mu_star_conf"));
+            m.indices.trajectories_used = j.at("trajectories_used").get<std::vector<std::size_t>>();
+            out.method = analysis::GsaMethod::kMorris;
+            out.morris = std::move(m);
+        } else {
+            return std::vector<Issue>{
+                {where + ".method", "\"" + method + "\" is not sobol or morris"}};
+        }
+        // The indices must fit the grid: parameters × (outputs × points) in every matrix.
+        const std::size_t rows = out.parameters().size();
+        const std::size_t cols = out.outputs().size() * out.grid().size();
+        const Eigen::MatrixXd& check =
+            out.sobol ? out.sobol->indices.first_order : out.morris->indices.mu_star;
+        const std::vector<std::size_t>& used =
+            out.sobol ? out.sobol->indices.samples_used : out.morris->indices.trajectories_used;
+        if (out.status() != gsa::StudyStatus::kTooManyFailures &&
+            (static_cast<std::size_t>(check.rows()) != rows ||
+             static_cast<std::size_t>(check.cols()) != cols || used.size() != cols))
+            return std::vector<Issue>{{where, "the indices do not match the parameters and grid"}};
+        return out;
+    } catch (const std::exception& e) {
+        return std::vector<Issue>{{where, e.what()}};
+    }
+}
+
+}  // namespace terra::project
