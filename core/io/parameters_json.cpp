@@ -206,7 +206,9 @@ json toJson(const soil::SoilParameters& soil) {
         if (!field.required) {
             const bool unset =
                 std::isinf(value) ||
-                (field.member == &soil::SoilParameters::sinkage_exponent_slip && value == 0.0);
+                ((field.member == &soil::SoilParameters::sinkage_exponent_slip ||
+                  field.member == &soil::SoilParameters::slip_sinkage_coefficient) &&
+                 value == 0.0);
             if (unset) continue;
         }
         out[field.key] = value;
