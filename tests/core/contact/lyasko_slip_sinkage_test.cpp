@@ -93,7 +93,9 @@ TEST(LyaskoSlipSinkage, SinkageGrowsWithSlip) {
         const double s = 0.05 * k;
         const SinkageSolution a = solveEntryAngle(p, problemAt(s, 58.86));
         ASSERT_TRUE(a.ok()) << "s = " << s << ": " << a.message;
-        if (k > 0) EXPECT_GT(a.sinkage_m, previous) << "s = " << s;
+        if (k > 0) {
+            EXPECT_GT(a.sinkage_m, previous) << "s = " << s;
+        }
         previous = a.sinkage_m;
     }
     // And through the service of `terrastudio wheel --load`, from the soil's field.
