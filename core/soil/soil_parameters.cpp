@@ -116,8 +116,8 @@ const std::array<SoilField, 12> kFields{{
           "-",
           "S",
           "slip-sinkage coefficient",
-          "S of Lyasko's slip sinkage h = h₀ (1 + S s) at driving slip s (docs/model.md, Eq. "
-          "S.1): the wheel digs itself in below its load-bearing sinkage h₀. Changes the sinkage "
+          "S of Lyasko's slip sinkage h = h₀ (1 + S s) at driving slip s, h₀ the sinkage of Eq. "
+          "2.12 (docs/model.md, Eq. S.1): the wheel digs itself in below h₀. Changes the sinkage "
           "only, not the forces; 0 (absent) is the thesis model. Dimensionless.",
           {0.0, 10.0}},
          &SoilParameters::slip_sinkage_coefficient, false),
