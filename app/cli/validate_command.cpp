@@ -24,6 +24,7 @@ struct ValidateOptions {
     bool json = false;
     bool calibrate = false;
     bool fit_n1 = false;
+    bool fit_slip_sinkage = false;
     std::string fit_slips;
     std::vector<std::string> noise;  // CHANNEL=SIGMA
     std::string save_soil;
@@ -146,6 +147,13 @@ void printHuman(const analysis::ValidationResult& r, const analysis::Inputs& in)
                 if (c.n1_std) out << " ± " << formatNumber(roundSignificant(*c.n1_std, 3));
                 out << "   (thesis model: 0; from the profile of chi2 over n1)\n";
             }
+            if (c.slip_sinkage) {
+                out << "  slip_sinkage = " << formatNumber(roundSignificant(*c.slip_sinkage, 4));
+                if (c.slip_sinkage_std)
+                    out << " ± " << formatNumber(roundSignificant(*c.slip_sinkage_std, 3));
+                out << "   (thesis model: 0; Lyasko's S of h = h0 (1 + S s), from the profile of "
+                       "chi2 over S)\n";
+            }
             for (const std::string& flag : c.report.uncertainty.flags)
                 out << "  note: " << flag << '\n';
             printRun(out, *c.after, true);
@@ -191,13 +199,17 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_flag("--fit-n1", o->fit_n1,
                   "With --calibrate: fit n1 of the slip-sinkage exponent N = n + n1 s too "
                   "(docs/model.md, Slip-sinkage)");
+    cmd->add_flag("--fit-slip-sinkage", o->fit_slip_sinkage,
+                  "With --calibrate: fit S of Lyasko's slip sinkage h = h0 (1 + S s) too "
+                  "(docs/model.md, Slip sinkage); not with --fit-n1");
     cmd->add_option("--save-soil", o->save_soil,
                     "With --calibrate: write the calibrated soil as a soil file");
     cmd->callback([o, &locations] {
-        if (!o->calibrate &&
-            (!o->fit_slips.empty() || !o->noise.empty() || !o->save_soil.empty() || o->fit_n1))
+        if (!o->calibrate && (!o->fit_slips.empty() || !o->noise.empty() || !o->save_soil.empty() ||
+                              o->fit_n1 || o->fit_slip_sinkage))
             throw InputError(
-                "--fit-slips, --noise, --fit-n1 and --save-soil belong to --calibrate");
+                "--fit-slips, --noise, --fit-n1, --fit-slip-sinkage and --save-soil belong to "
+                "--calibrate");
         Result<io::Experiment> read = io::readExperiment(o->experiments);
         if (!read) throw InputError(read.message());
         const io::Experiment& experiment = read.value();
@@ -235,6 +247,7 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
         settings.data = experiment;
         settings.calibrate = o->calibrate;
         settings.fit_n1 = o->fit_n1;
+        settings.fit_slip_sinkage = o->fit_slip_sinkage;
         if (!o->fit_slips.empty()) settings.fit_slips = parseValues(o->fit_slips, "--fit-slips");
         parseNoise(o->noise, settings);
         analysis::ValidationResult result;

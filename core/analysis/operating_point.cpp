@@ -70,7 +70,7 @@ PointResult evaluatePoint(const contact::ContactParameters<double>& p, const Poi
     }
     out.entry_angle_deg = roundSignificant(units::radToDeg(theta_f));
     out.exit_angle_deg = roundSignificant(units::radToDeg(op.exit_angle_rad));
-    out.sinkage_m = p.radius_m * (1.0 - std::cos(theta_f));
+    out.sinkage_m = contact::slipSinkage(p.radius_m, theta_f, op.slip, p.slip_sinkage_coefficient);
     return out;
 }
 

@@ -25,7 +25,7 @@ struct PointResult {
     contact::WheelForces<double> forces;
     double entry_angle_deg = 0.0;  ///< θ_f used
     double exit_angle_deg = 0.0;   ///< θ_r used (≥ −θ_f)
-    double sinkage_m = 0.0;        ///< h = r (1 − cos θ_f)
+    double sinkage_m = 0.0;  ///< h = r (1 − cos θ_f), × (1 + S s) with slip sinkage (Eq. S.1)
     bool solved_from_load = false;
     std::string failure;        ///< non-empty: no equilibrium, or F_z = W not reproducible
     std::string status = "ok";  ///< ok, no-equilibrium, load-not-matched

@@ -64,10 +64,9 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
         // Given angles as typed (25, not 25.000000000000004); a solved θ_f keeps every digit, so
         // that the row reproduces its forces exactly. No negative zeros anywhere in the row.
         const double theta_f_deg = spec.load_n ? units::radToDeg(theta_f) : deg(theta_f);
-        std::vector<double> values{
-            deg(beta), s,    theta_f_deg, deg(theta_r), p.radius_m * (1.0 - std::cos(theta_f)),
-            f.fx,      f.fy, f.fz,        f.mx,         f.my,
-            f.mz,      f.fb, f.fs};
+        const double h = contact::slipSinkage(p.radius_m, theta_f, s, p.slip_sinkage_coefficient);
+        std::vector<double> values{deg(beta), s,    theta_f_deg, deg(theta_r), h,    f.fx, f.fy,
+                                   f.fz,      f.mx, f.my,        f.mz,         f.fb, f.fs};
         for (double& v : values) v = v == 0.0 ? 0.0 : v;
         rows.push_back({std::move(values), {}});
         done();

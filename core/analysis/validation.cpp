@@ -161,55 +161,72 @@ id::DataSet fitData(const std::vector<PointComparison>& points, std::vector<std:
     return data;
 }
 
-// n₁ of N = n + n₁ s by its profile: χ²(n₁) is the identification's minimum with n₁ held (its
-// priors included), over a coarse grid, then golden-section search in the best grid cell; the
-// std from the curvature of χ² at the minimum (Δχ² = 1). The noise levels are held at the n₁ = 0
-// fit's where they would be estimated, so that the χ² of different n₁ compare.
-void profileN1(const id::DataSet& data, const wheel::WheelParameters& wheel,
-               id::IdentifyOptions options, Calibration& cal) {
-    options.sinkage_exponent_slip = 0.0;
+// A setting of the identification's model held fixed in each fit and found by its profile: n₁ of
+// N = n + n₁ s, or S of the slip sinkage h = h₀ (1 + S s).
+struct ProfiledSetting {
+    const char* name;  // in messages: "n1", "S"
+    double id::IdentifyOptions::*member;
+    double low, high, step;  // the coarse grid
+    double h;                // the step of the curvature's central differences
+    double floor;            // the lowest value the model takes (the field's range)
+};
+
+struct ProfileResult {
+    std::optional<double> value, std;
+    std::vector<std::pair<double, double>> profile;
+};
+
+// The setting by its profile: χ²(x) is the identification's minimum with x held (its priors
+// included), over a coarse grid, then golden-section search in the best grid cell; the std from
+// the curvature of χ² at the minimum (Δχ² = 1). The noise levels are held at the x = 0 fit's
+// where they would be estimated, so that the χ² of different x compare.
+ProfileResult profileSetting(const id::DataSet& data, const wheel::WheelParameters& wheel,
+                             id::IdentifyOptions options, const ProfiledSetting& setting,
+                             Calibration& cal) {
+    ProfileResult out;
+    options.*setting.member = 0.0;
     const id::IdentificationReport first = id::identify(data, wheel, options);
     // A channel interpolated with its noise estimated: the levels the profile would hold are
     // meaningless (the calibration is refused with this report's flags).
     if (!first.usable() ||
         std::any_of(first.interpolated.begin(), first.interpolated.end(), std::identity{})) {
         cal.report = first;
-        return;
+        return out;
     }
     options.noise = first.noise;
-    // The profile's fits start where the n₁ = 0 fit ended (and from the given soil): n₁ moves
-    // the minimum continuously, so the space-filling design is not needed again.
-    options.starts.push_back({"the n1 = 0 fit", first.parameters});
+    // The profile's fits start where the x = 0 fit ended (and from the given soil): x moves the
+    // minimum continuously, so the space-filling design is not needed again.
+    options.starts.push_back({std::string("the ") + setting.name + " = 0 fit", first.parameters});
     options.design_points = 0;
     options.descents = 2;
-    auto chi2 = [&](double n1) {
+    auto chi2 = [&](double x) {
         id::IdentifyOptions o = options;
-        o.sinkage_exponent_slip = n1;
+        o.*setting.member = x;
         id::IdentificationReport r = id::identify(data, wheel, o);
         const double value = r.usable() ? r.chi2 : std::numeric_limits<double>::infinity();
-        cal.n1_profile.emplace_back(n1, value);
+        out.profile.emplace_back(x, value);
         return std::pair{value, std::move(r)};
     };
-    // n₁ in [−0.6, 0.8], step 0.2, then refined: N = n + n₁ s stays inside n's range [0.1, 2]
-    // over the slips of a test for the usual n ≈ 0.5–1.2.
-    constexpr double kLow = -0.6, kHigh = 0.8, kStep = 0.2;
-    double best_n1 = 0.0, best = std::numeric_limits<double>::infinity();
-    for (int k = 0; k <= 7; ++k) {
-        const double n1 = kLow + kStep * k;
-        const double value = chi2(n1).first;
+    const double low = setting.low, high = setting.high, step = setting.step;
+    const int cells = static_cast<int>(std::lround((high - low) / step));
+    double best_x = 0.0, best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= cells; ++k) {
+        const double x = low + step * k;
+        const double value = chi2(x).first;
         if (value < best) {
             best = value;
-            best_n1 = n1;
+            best_x = x;
         }
     }
     if (!std::isfinite(best)) {
         cal.report = first;
         cal.report.status = id::IdentifyStatus::kFailed;
-        cal.report.message = "no n1 in [-0.6, 0.8] gave a usable fit";
-        return;
+        cal.report.message = std::string("no ") + setting.name + " in [" + formatNumber(low) +
+                             ", " + formatNumber(high) + "] gave a usable fit";
+        return out;
     }
     // Golden section on [best − step, best + step] within [low, high]: 14 steps shrink it 850×.
-    double a = std::max(kLow, best_n1 - kStep), b = std::min(kHigh, best_n1 + kStep);
+    double a = std::max(low, best_x - step), b = std::min(high, best_x + step);
     const double g = (std::sqrt(5.0) - 1.0) / 2.0;
     double x1 = b - g * (b - a), x2 = a + g * (b - a);
     double f1 = chi2(x1).first, f2 = chi2(x2).first;
@@ -228,16 +245,27 @@ void profileN1(const id::DataSet& data, const wheel::WheelParameters& wheel,
             f2 = chi2(x2).first;
         }
     }
-    const double n1 = f1 < f2 ? x1 : x2;
-    auto [value, report] = chi2(n1);
-    cal.n1 = n1;
+    const double x = f1 < f2 ? x1 : x2;
+    auto [value, report] = chi2(x);
+    out.value = x;
     cal.report = std::move(report);
-    // Curvature by central differences, h = 0.02.
-    constexpr double h = 0.02;
-    const double up = chi2(n1 + h).first, down = chi2(n1 - h).first;
-    const double curvature = (up - 2.0 * value + down) / (h * h);
-    if (std::isfinite(curvature) && curvature > 0.0) cal.n1_std = std::sqrt(2.0 / curvature);
+    // Curvature by central differences (one-sided steps stay inside the setting's range: S ≥ 0).
+    const double h = setting.h;
+    const double centre = std::max(x, setting.floor + h);
+    const double mid = centre == x ? value : chi2(centre).first;
+    const double up = chi2(centre + h).first, down = chi2(centre - h).first;
+    const double curvature = (up - 2.0 * mid + down) / (h * h);
+    if (std::isfinite(curvature) && curvature > 0.0) out.std = std::sqrt(2.0 / curvature);
+    return out;
 }
+
+// n₁ in [−0.6, 0.8], step 0.2, then refined: N = n + n₁ s stays inside n's range [0.1, 2] over
+// the slips of a test for the usual n ≈ 0.5–1.2.
+constexpr ProfiledSetting kN1Profile{
+    "n1", &id::IdentifyOptions::sinkage_exponent_slip, -0.6, 0.8, 0.2, 0.02, -1.0};
+// S in [0, 10] (the field's range), step 1: the tests' sinkage grows 2–4× from s = 0 to 0.6.
+constexpr ProfiledSetting kSlipSinkageProfile{
+    "S", &id::IdentifyOptions::slip_sinkage_coefficient, 0.0, 10.0, 1.0, 0.05, 0.0};
 
 }  // namespace
 
@@ -276,6 +304,14 @@ void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
     r.boolean("fit_n1", out.fit_n1);
     if (out.fit_n1 && !out.calibrate) {
         r.report("fit_n1", "belongs to the calibration: add \"calibrate\": true");
+    }
+    r.boolean("fit_slip_sinkage", out.fit_slip_sinkage);
+    if (out.fit_slip_sinkage && !out.calibrate) {
+        r.report("fit_slip_sinkage", "belongs to the calibration: add \"calibrate\": true");
+    }
+    if (out.fit_slip_sinkage && out.fit_n1) {
+        r.report("fit_slip_sinkage",
+                 "fit one slip-sinkage model at a time: fit_n1 or fit_slip_sinkage, not both");
     }
     if (r.has("noise")) {
         io::ObjectReader noise = r.object("noise");
@@ -410,7 +446,8 @@ ValidationRun predictExperiment(const Inputs& in, const io::Experiment& experime
 
 soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
                                         const wheel::WheelParameters& wheel,
-                                        const id::ParameterVector& p, double n1) {
+                                        const id::ParameterVector& p, double n1,
+                                        double slip_sinkage) {
     soil::SoilParameters out = prior;
     const double ks_prior = prior.cohesive_modulus / wheel.width_m + prior.frictional_modulus;
     if (!(ks_prior > 0.0)) {
@@ -424,6 +461,7 @@ soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
     out.max_stress_a1 = p[id::kA1];
     out.sinkage_exponent = p[id::kN];
     out.sinkage_exponent_slip = n1;
+    out.slip_sinkage_coefficient = slip_sinkage;
     out.cohesion_pa = p[id::kC];
     out.friction_angle_rad = p[id::kPhi];
     out.shear_modulus_m = p[id::kK];
@@ -453,6 +491,11 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
                          })) {
             issues.push_back({"fit_slips", formatNumber(slip) + " is not a slip of the test"});
         }
+    }
+    if (s.fit_n1 && s.fit_slip_sinkage) {
+        issues.push_back({"fit_slip_sinkage",
+                          "fit one slip-sinkage model at a time: fit_n1 or fit_slip_sinkage, "
+                          "not both"});
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 
@@ -495,6 +538,11 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
         out.notes.push_back(
             "calibration: n1 is not fitted (add fit_n1): the calibrated soil's n1 is 0");
     }
+    if (in.soil.slip_sinkage_coefficient != 0.0 && !s.fit_slip_sinkage) {
+        out.notes.push_back(
+            "calibration: the slip-sinkage coefficient S is not fitted (add fit_slip_sinkage): "
+            "the calibrated soil's S is 0");
+    }
     id::IdentifyOptions options;
     options.source = id::DataSource::kLoad;
     options.max_shear_deformation_m = in.soil.max_shear_deformation_m;
@@ -512,10 +560,18 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
     if (cal.channels.empty()) {
         cal.report.status = id::IdentifyStatus::kInvalidInput;
         cal.report.message = "no channel to fit (Fx_N, My_Nm or sinkage_m)";
-    } else if (!s.fit_n1) {
-        cal.report = id::identify(data, in.wheel, options);
+    } else if (s.fit_n1) {
+        ProfileResult n1 = profileSetting(data, in.wheel, options, kN1Profile, cal);
+        cal.n1 = n1.value;
+        cal.n1_std = n1.std;
+        cal.n1_profile = std::move(n1.profile);
+    } else if (s.fit_slip_sinkage) {
+        ProfileResult slip = profileSetting(data, in.wheel, options, kSlipSinkageProfile, cal);
+        cal.slip_sinkage = slip.value;
+        cal.slip_sinkage_std = slip.std;
+        cal.slip_sinkage_profile = std::move(slip.profile);
     } else {
-        profileN1(data, in.wheel, options, cal);
+        cal.report = id::identify(data, in.wheel, options);
     }
     if (cal.report.status == id::IdentifyStatus::kNotConverged) {
         // The solver stopped on its iteration budget: its point is no minimum, and the soil made
@@ -548,8 +604,8 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
         }
     }
     if (cal.report.usable()) {
-        cal.soil =
-            soilFromParameters(in.soil, in.wheel, cal.report.parameters, cal.n1.value_or(0.0));
+        cal.soil = soilFromParameters(in.soil, in.wheel, cal.report.parameters,
+                                      cal.n1.value_or(0.0), cal.slip_sinkage.value_or(0.0));
         if (const std::vector<Issue> bad = soil::validate(cal.soil); !bad.empty()) {
             cal.report.status = id::IdentifyStatus::kFailed;
             cal.report.message = "the calibrated soil is not a valid soil: " + formatIssues(bad);
@@ -620,6 +676,22 @@ nlohmann::json toJson(const ValidationResult& r) {
                      {"chi2", std::isfinite(chi2) ? nlohmann::json(chi2) : nlohmann::json()}});
             }
             cal["n1_profile"] = profile;
+        }
+        if (c.slip_sinkage) {
+            params["slip_sinkage"] = {
+                {"value", *c.slip_sinkage},
+                {"std",
+                 c.slip_sinkage_std ? nlohmann::json(*c.slip_sinkage_std) : nlohmann::json()},
+                {"prior", 0.0},
+                {"at_bound", *c.slip_sinkage <= kSlipSinkageProfile.low ||
+                                 *c.slip_sinkage >= kSlipSinkageProfile.high}};
+            nlohmann::json profile = nlohmann::json::array();
+            for (const auto& [value, chi2] : c.slip_sinkage_profile) {
+                profile.push_back(
+                    {{"slip_sinkage", value},
+                     {"chi2", std::isfinite(chi2) ? nlohmann::json(chi2) : nlohmann::json()}});
+            }
+            cal["slip_sinkage_profile"] = profile;
         }
         cal["parameters"] = params;
         cal["termination"] = rep.termination;
@@ -715,6 +787,12 @@ Outcome validationOutcome(ValidationResult result) {
             if (c.n1) {
                 parameters.columns.insert(parameters.columns.end(), {"n1", "n1_std", "n1_prior"});
                 row.insert(row.end(), {*c.n1, c.n1_std.value_or(kNaN), 0.0});
+            }
+            if (c.slip_sinkage) {
+                parameters.columns.insert(
+                    parameters.columns.end(),
+                    {"slip_sinkage", "slip_sinkage_std", "slip_sinkage_prior"});
+                row.insert(row.end(), {*c.slip_sinkage, c.slip_sinkage_std.value_or(kNaN), 0.0});
             }
             parameters.rows.push_back(std::move(row));
             out.tables.push_back({"parameters", "-parameters", std::move(parameters)});

@@ -38,13 +38,17 @@ struct ValidationSettings {
     /// Calibration only: fit n₁ of the slip-sinkage exponent N = n + n₁ s too (docs/model.md,
     /// "Slip-sinkage"), by profiling χ² over n₁; false: n₁ = 0, the thesis model.
     bool fit_n1 = false;
+    /// Calibration only: fit S of Lyasko's slip sinkage h = h₀ (1 + S s) too (docs/model.md, "Slip
+    /// sinkage", Eq. S.1), by profiling χ² over S ∈ [0, 10]; false: S = 0, the thesis model. Not
+    /// with fit_n1 (one slip-sinkage model at a time).
+    bool fit_slip_sinkage = false;
     /// Compute ValidationRun::curves (the model lines of the validation figures). The studio's
     /// forces panel draws its own sweeps at the test's loads and turns this off.
     bool curves = true;
 };
 
 /// "experiments" (required; relative to the context's directory, read at once), "calibrate",
-/// "fit_slips", "noise" ({"Fx_N", "My_Nm", "sinkage_m"}), "fit_n1".
+/// "fit_slips", "noise" ({"Fx_N", "My_Nm", "sinkage_m"}), "fit_n1", "fit_slip_sinkage".
 void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
                             ValidationSettings& out);
 
@@ -95,6 +99,10 @@ struct Calibration {
     /// std from the profile's curvature (Δχ² = 1), and the profile (n₁, χ²) evaluated.
     std::optional<double> n1, n1_std;
     std::vector<std::pair<double, double>> n1_profile;
+    /// With fit_slip_sinkage: S at the minimum of the profile χ²(S), its std (Δχ² = 1) and the
+    /// profile (S, χ²), as for n₁.
+    std::optional<double> slip_sinkage, slip_sinkage_std;
+    std::vector<std::pair<double, double>> slip_sinkage_profile;
     std::optional<ValidationRun> after;  ///< every point with the calibrated soil
     /// Held-out points only (when fit_slips leaves some out): with the given and the calibrated
     /// soil.
@@ -119,11 +127,12 @@ ValidationRun predictExperiment(const Inputs& inputs, const io::Experiment& expe
 
 /// The soil whose parameters on `wheel` are `p` (identify.h's θ): a₀, a₁, n, c, φ, K taken over,
 /// n₁ as given (the identification's model), and k_c, k_φ both scaled by K_s(p)/K_s(prior) so that
-/// K_s = k_c/b + k_φ is p's on this wheel width (only K_s is seen by a test at one width). The
-/// rest (γ, j_max) as `prior`'s.
+/// K_s = k_c/b + k_φ is p's on this wheel width (only K_s is seen by a test at one width), S of
+/// the slip sinkage (Eq. S.1) as given. The rest (γ, j_max) as `prior`'s.
 soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
                                         const wheel::WheelParameters& wheel,
-                                        const identification::ParameterVector& p, double n1 = 0.0);
+                                        const identification::ParameterVector& p, double n1 = 0.0,
+                                        double slip_sinkage = 0.0);
 
 /// Throws std::invalid_argument for invalid inputs or settings (a fit slip that is not in the
 /// test); a test that cannot be read is a problem of the settings (read before).

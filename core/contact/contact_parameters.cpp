@@ -34,7 +34,8 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
             .max_stress_a0 = soil.max_stress_a0,
             .max_stress_a1 = soil.max_stress_a1,
             .max_shear_deformation_m = soil.max_shear_deformation_m,
-            .lug_shear_offset_m = wheel.lugShearOffset()};
+            .lug_shear_offset_m = wheel.lugShearOffset(),
+            .slip_sinkage_coefficient = soil.slip_sinkage_coefficient};
 }
 
 void requireValid(const OperatingPoint<double>& op) {

@@ -49,6 +49,9 @@ struct ContactParameters {
     /// j₀ [m]: shear deformation the soil already carries from earlier passes, added to the
     /// magnitude of Eq. 2.15 before the j_max limit (Eq. 2.16). 0: untouched soil.
     double shear_offset_m = 0.0;
+    /// S [-]: Lyasko's slip-sinkage coefficient (soil_parameters.h; docs/model.md, Eq. S.1). It
+    /// scales the reported sinkage only (slipSinkage() in sinkage.h), never a stress. 0: off.
+    double slip_sinkage_coefficient = 0.0;
 
     /// Whether earlier passes are remembered (a reload branch or a rut).
     bool remembers() const { return reload_depth_m > 0.0 || rut_depth_m > 0.0; }
@@ -77,7 +80,8 @@ struct ContactParameters {
                 .rut_depth_m = rut_depth_m,
                 .reload_depth_m = reload_depth_m,
                 .reload_modulus_pa_m = reload_modulus_pa_m,
-                .shear_offset_m = shear_offset_m};
+                .shear_offset_m = shear_offset_m,
+                .slip_sinkage_coefficient = slip_sinkage_coefficient};
     }
 };
 

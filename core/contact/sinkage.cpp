@@ -242,7 +242,8 @@ SinkageSolution solveEntryAngle(const ContactParameters<double>& p,
                         problem.load_n, guess, evaluations);
     out.evaluations = evaluations;
     out.exit_angle_rad = operatingPoint(problem, out.entry_angle_rad).exit_angle_rad;
-    out.sinkage_m = p.radius_m * (1.0 - std::cos(out.entry_angle_rad));
+    out.sinkage_m =
+        slipSinkage(p.radius_m, out.entry_angle_rad, problem.slip, p.slip_sinkage_coefficient);
     return out;
 }
 

@@ -4,6 +4,7 @@
 /// entry-angle estimator of section 2.6.1 — the θ_f at which F_z(θ_f) = W — solved with a
 /// bracketing root finder (Boost's TOMS 748) instead of the thesis's step-until-equal loop.
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -12,6 +13,23 @@
 #include "core/contact/wheel_forces.h"
 
 namespace terra::contact {
+
+/// Lyasko's slip-sinkage factor 1 + S s for driving slip s > 0, 1 when towed or braking
+/// (Lyasko 2010; docs/model.md, "Slip sinkage", Eq. S.1). Exactly 1 when S = 0.
+inline double slipSinkageFactor(double slip, double slip_sinkage_coefficient) {
+    if (slip_sinkage_coefficient == 0.0 || !(slip > 0.0)) return 1.0;
+    return 1.0 + slip_sinkage_coefficient * slip;
+}
+
+/// h [m]: the sinkage of a wheel at entry angle θ_f and slip s. h₀ = r (1 − cos θ_f) (Eq. 2.12) is
+/// the load-bearing sinkage; Lyasko's slip sinkage adds the rut the slipping wheel digs below it,
+/// h = h₀ (1 + S s) (Eq. S.1, slipSinkageFactor()). S = 0 (the thesis model) returns h₀ exactly.
+inline double slipSinkage(double radius_m, double entry_angle_rad, double slip,
+                          double slip_sinkage_coefficient) {
+    const double h0 = radius_m * (1.0 - std::cos(entry_angle_rad));
+    if (slip_sinkage_coefficient == 0.0) return h0;
+    return h0 * slipSinkageFactor(slip, slip_sinkage_coefficient);
+}
 
 /// Which force model computes F_z.
 enum class ContactModel {
@@ -44,9 +62,11 @@ struct SinkageSolution {
         kLoadNotMatched,
     };
     Status status = Status::kConverged;
-    double entry_angle_rad = 0.0;   ///< θ_f (or θ_s for static sinkage) [rad]
-    double exit_angle_rad = 0.0;    ///< θ_r [rad]
-    double sinkage_m = 0.0;         ///< h = r (1 − cos θ_f) [m] (Eq. 2.12)
+    double entry_angle_rad = 0.0;  ///< θ_f (or θ_s for static sinkage) [rad]
+    double exit_angle_rad = 0.0;   ///< θ_r [rad]
+    /// h [m]: r (1 − cos θ_f) (Eq. 2.12); for an entry-angle solve with slip sinkage on,
+    /// slipSinkage() (Eq. S.1)
+    double sinkage_m = 0.0;
     double vertical_force_n = 0.0;  ///< F_z at the solution [N]
     int evaluations = 0;            ///< model evaluations spent
     std::string message;            ///< why it failed, for the user

@@ -119,7 +119,8 @@ bool contactOf(const Prepared& prep, std::size_t i, ContactParameters<double>& p
          .max_stress_a0 = s.max_stress_a0,
          .max_stress_a1 = s.max_stress_a1,
          .max_shear_deformation_m = s.max_shear_deformation_m,
-         .lug_shear_offset_m = prep.lug_shear_offset_m};
+         .lug_shear_offset_m = prep.lug_shear_offset_m,
+         .slip_sinkage_coefficient = s.slip_sinkage_coefficient};
     return true;
 }
 
@@ -274,7 +275,7 @@ SampleStatus evaluateSample(const Prepared& prep, const ModelOptions& options, s
                      ? contact::computeForces(p, op, options.bulldozing, options.integration)
                      : contact::computeQuadraticForces(p, op, options.bulldozing);
     out.entry = theta_f, out.exit = theta_r;
-    out.sinkage = p.radius_m * (1.0 - std::cos(theta_f));
+    out.sinkage = contact::slipSinkage(p.radius_m, theta_f, s, p.slip_sinkage_coefficient);
     const contact::WheelForces<double>& f = out.forces;
     for (double v : {f.fx, f.fy, f.fz, f.mx, f.my, f.mz, f.fb, f.fs, out.sinkage}) {
         if (!std::isfinite(v)) return SampleStatus::kNonFinite;

@@ -111,9 +111,9 @@ public:
     Search(const DataSet& data, const wheel::WheelParameters& wheel, const IdentifyOptions& o,
            IdentificationReport& report)
         : data_(data), options_(o), report_(report), wheel_(wheel) {
-        report_.setup =
-            setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip)
-                .value();
+        report_.setup = setupModel(data, o.source, o.load_n, o.max_shear_deformation_m,
+                                   o.sinkage_exponent_slip, o.slip_sinkage_coefficient)
+                            .value();
         fixed_ = heldValues(o);
         report_.setup.max_shear_deformation_free = !fixed_[kJmax].has_value();
         model_.emplace(data, wheel, report_.setup);
@@ -570,7 +570,7 @@ void holdout(const DataSet& data, const wheel::WheelParameters& wheel,
         const ObservationModel model(
             held, wheel,
             setupModel(held, report.setup.source, options.load_n, options.max_shear_deformation_m,
-                       options.sinkage_exponent_slip)
+                       options.sinkage_exponent_slip, options.slip_sinkage_coefficient)
                 .value());
         for (std::size_t i = 0; i < held.samples.size(); ++i) {
             if (!predictions[i].ok) {
@@ -682,7 +682,8 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
         issues.push_back({"holdout", "give a holdout fraction or a number of folds, not both"});
     }
     const Result<ModelSetup> setup =
-        setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip);
+        setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip,
+                   o.slip_sinkage_coefficient);
     if (!setup) {
         const std::vector<Issue>& more = setup.issues();
         issues.insert(issues.end(), more.begin(), more.end());
@@ -805,7 +806,7 @@ std::vector<Prediction> predictAll(const DataSet& data, const wheel::WheelParame
                                    const ParameterVector& p, const IdentifyOptions& options) {
     const Result<ModelSetup> setup =
         setupModel(data, options.source, options.load_n, options.max_shear_deformation_m,
-                   options.sinkage_exponent_slip);
+                   options.sinkage_exponent_slip, options.slip_sinkage_coefficient);
     if (!setup) throw std::invalid_argument(setup.message());
     const ObservationModel model(data, wheel, setup.value());
     std::vector<Prediction> out;

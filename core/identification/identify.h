@@ -72,6 +72,9 @@ struct IdentifyOptions {
     /// n₁ of Ding's slip-sinkage exponent N = n + n₁ s (docs/model.md, "Slip-sinkage"), held at
     /// this value (not estimated: a caller profiles it); 0, the default, is the thesis model.
     double sinkage_exponent_slip = 0.0;
+    /// S of Lyasko's slip sinkage h = h₀ (1 + S s) (docs/model.md, Eq. S.1), held at this value
+    /// (a caller profiles it, as validate --calibrate --fit-slip-sinkage does); 0: the thesis.
+    double slip_sinkage_coefficient = 0.0;
     /// Noise std per channel [N, N, N·m, m]; ≤ 0: estimated from the residuals of the fit.
     ChannelValues noise{};
     /// Parameters held at a value (SI) instead of estimated.

@@ -82,7 +82,8 @@ const std::array<const char*, kChannelCount>& channelNames() {
 }
 
 Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
-                              double max_shear_deformation_m, double sinkage_exponent_slip) {
+                              double max_shear_deformation_m, double sinkage_exponent_slip,
+                              double slip_sinkage_coefficient) {
     std::vector<Issue> issues;
     if (data.samples.empty()) return std::vector<Issue>{{"data", "no samples"}};
     if (load_n) checkRange(issues, "load_N", *load_n, {0.0, 1e7, true, false}, "N");
@@ -96,6 +97,7 @@ Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optio
     ModelSetup setup;
     setup.max_shear_deformation_m = max_shear_deformation_m;
     setup.sinkage_exponent_slip = sinkage_exponent_slip;
+    setup.slip_sinkage_coefficient = slip_sinkage_coefficient;
     setup.source = source == DataSource::kAuto
                        ? (columns.entry_angle ? DataSource::kEntryAngle : DataSource::kLoad)
                        : source;
@@ -202,7 +204,9 @@ Prediction ObservationModel::predict(std::size_t i, const ParameterVector& p) co
     const contact::WheelForces<double> f = forcesAt(cp, s, theta);
     out.ok = true;
     out.entry_angle_rad = theta;
-    out.values = {f.fx, f.fz, f.my, wheel_.radius_m * (1.0 - std::cos(theta))};
+    out.values = {
+        f.fx, f.fz, f.my,
+        contact::slipSinkage(wheel_.radius_m, theta, s.slip, setup_.slip_sinkage_coefficient)};
     return out;
 }
 
@@ -292,9 +296,13 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
                 derivative[c][k] = partial[c][k] + channel[c]->v[nj] * dtheta[k];
         }
         const double r_m = wheel_.radius_m;
-        value[kSinkageChannel] = r_m * (1.0 - std::cos(*root));
+        value[kSinkageChannel] =
+            contact::slipSinkage(r_m, *root, s.slip, setup_.slip_sinkage_coefficient);
+        // dh/dθ_f of Eq. S.1: the slip factor 1 + S s is a constant of the sample (exactly 1, and
+        // so no change to the thesis model's derivative, when S = 0).
+        const double factor = contact::slipSinkageFactor(s.slip, setup_.slip_sinkage_coefficient);
         for (int k = 0; k < n; ++k)
-            derivative[kSinkageChannel][k] = r_m * std::sin(*root) * dtheta[k];
+            derivative[kSinkageChannel][k] = factor * r_m * std::sin(*root) * dtheta[k];
     }
     int row = 0;
     for (int c = 0; c < kChannelCount; ++c) {

@@ -9,7 +9,8 @@
 ///   the root of F_z(θ_f, θ) = W (section 2.6.1) inside every residual, differentiated exactly by
 ///   the implicit function theorem, dθ_f/dθ = −(∂F_z/∂θ)/(∂F_z/∂θ_f), with ∂F_z/∂θ and
 ///   ∂F_z/∂θ_f from one ceres::Jet evaluation at the root. F_z = W there by construction, so the
-///   channels are F_x, M_y and the sinkage h = r (1 − cos θ_f) (Eq. 2.12) when measured.
+///   channels are F_x, M_y and the sinkage h = r (1 − cos θ_f) (Eq. 2.12; times 1 + S s with
+///   Lyasko's slip sinkage, Eq. S.1) when measured.
 /// θ_r = 0 as in Table 5.2.
 
 #include <array>
@@ -53,6 +54,9 @@ struct ModelSetup {
     /// n₁ of Ding's slip-dependent exponent N = n + n₁ s (docs/model.md, "Slip-sinkage"), held
     /// fixed (not estimated); 0: the thesis model's constant n.
     double sinkage_exponent_slip = 0.0;
+    /// S of Lyasko's slip sinkage h = r (1 − cos θ_f)(1 + S s) (docs/model.md, Eq. S.1), held
+    /// fixed (a caller profiles it); 0: the thesis model's h. It scales the sinkage channel only.
+    double slip_sinkage_coefficient = 0.0;
     std::string description;  ///< "entry angle; channels Fx_N, Fz_N, My_Nm"
 };
 
@@ -61,7 +65,8 @@ struct ModelSetup {
 /// load, F_x, M_y and the sinkage are. Issues name what is missing (no θ_f and no load, no
 /// channel).
 Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
-                              double max_shear_deformation_m, double sinkage_exponent_slip = 0.0);
+                              double max_shear_deformation_m, double sinkage_exponent_slip = 0.0,
+                              double slip_sinkage_coefficient = 0.0);
 
 /// The model's prediction for one sample.
 struct Prediction {

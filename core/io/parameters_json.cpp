@@ -204,9 +204,10 @@ json toJson(const soil::SoilParameters& soil) {
     for (const soil::SoilField& field : soil::soilFields()) {
         const double value = soil::userValue(soil, field);
         if (!field.required) {
-            const bool unset =
-                std::isinf(value) ||
-                (field.member == &soil::SoilParameters::sinkage_exponent_slip && value == 0.0);
+            const bool unset = std::isinf(value) ||
+                               ((field.member == &soil::SoilParameters::sinkage_exponent_slip ||
+                                 field.member == &soil::SoilParameters::slip_sinkage_coefficient) &&
+                                value == 0.0);
             if (unset) continue;
         }
         out[field.key] = value;

@@ -20,7 +20,7 @@ SoilField make(FieldInfo info, double SoilParameters::*member, bool required = t
     return field;
 }
 
-const std::array<SoilField, 11> kFields{{
+const std::array<SoilField, 12> kFields{{
     make({"n",
           "-",
           "n",
@@ -112,6 +112,15 @@ const std::array<SoilField, 11> kFields{{
           "4.17); 0 keeps n constant. Dimensionless.",
           {-1.0, 1.0}},
          &SoilParameters::sinkage_exponent_slip, false),
+    make({"slip_sinkage",
+          "-",
+          "S",
+          "slip-sinkage coefficient",
+          "S of Lyasko's slip sinkage h = h₀ (1 + S s) at driving slip s, h₀ the sinkage of Eq. "
+          "2.12 (docs/model.md, Eq. S.1): the wheel digs itself in below h₀. Changes the sinkage "
+          "only, not the forces; 0 (absent) is the thesis model. Dimensionless.",
+          {0.0, 10.0}},
+         &SoilParameters::slip_sinkage_coefficient, false),
 }};
 
 }  // namespace

@@ -34,6 +34,10 @@ struct SoilParameters {
     double max_stress_a1 = 0.3;           ///< a₁ [-] of Eq. 2.18
     /// j_max [m]: shear deformation limit of a smooth wheel (Eq. 2.16); +inf = no limit.
     double max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    /// S [-]: slip-sinkage coefficient of Lyasko's h = h₀ (1 + S s) (Lyasko 2010; docs/model.md,
+    /// "Slip sinkage", Eq. S.1): the rut the slipping wheel digs below its load-bearing sinkage
+    /// h₀ = r (1 − cos θ_f). It changes the reported sinkage only, never θ_f or a force. 0: off.
+    double slip_sinkage_coefficient = 0.0;
     /// The layers below the surface, for compaction (soil_profile.h); empty: none given.
     std::optional<SoilProfile> profile;
 
@@ -47,7 +51,7 @@ struct SoilParameters {
 /// validation, the command-line overrides (--set) and the studio's soil editor.
 using SoilField = Field<SoilParameters>;
 
-/// The field table (n, c, φ, k_c, k_φ, K, γ, a₀, a₁, j_max, n₁).
+/// The field table (n, c, φ, k_c, k_φ, K, γ, a₀, a₁, j_max, n₁, S).
 std::span<const SoilField> soilFields();
 
 /// The field of the table with this key, or nullptr.

@@ -158,3 +158,19 @@ def test_invalid_soil_samples_can_be_flagged():
                     invalid_soil="flag")
     assert out["ok"].tolist() == [True, False]
     assert ts.STATUS[out["status"][1]] == "soil outside its allowed range"
+
+
+def test_lyasko_slip_sinkage_scales_the_sinkage_only(cli, tmp_path):
+    # S of h = h0 (1 + S s) (docs/model.md, Eq. S.1) from the soil's field: with S = 2 the sinkage
+    # at s = 0.5 is twice the thesis model's, at s = 0 the same, and no force moves.
+    slips = np.array([0.0, 0.5])
+    off = ts.forces(SOIL, WHEEL, slip=slips, load_N=58.86)
+    on = ts.forces(ts.soil(SOIL, slip_sinkage=2.0), WHEEL, slip=slips, load_N=58.86)
+    np.testing.assert_allclose(on["sinkage_m"], off["sinkage_m"] * np.array([1.0, 2.0]),
+                               rtol=1e-15)
+    for name in ("Fx_N", "Fz_N", "My_Nm", "entry_angle_deg"):
+        np.testing.assert_array_equal(on[name], off[name], err_msg=name)
+    rows = cli_batch(cli, tmp_path, ["slip", "load_N"], [(0.5, 58.86)], "--set", "slip_sinkage=2")
+    np.testing.assert_allclose(float(rows[0]["sinkage_m"]), on["sinkage_m"][1], rtol=1e-9)
+    with pytest.raises(ValueError, match=r"slip_sinkage.*12.*allowed range \[0, 10\]"):
+        ts.soil(SOIL, slip_sinkage=12.0)

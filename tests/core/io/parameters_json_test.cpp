@@ -212,11 +212,13 @@ TEST(SoilJson, RoundTripKeepsOptionalFields) {
     soil.source = "test";
     soil.sinkage_exponent = 0.9;
     soil.sinkage_exponent_slip = 0.1;
+    soil.slip_sinkage_coefficient = 2.5;
     soil.max_shear_deformation_m = 0.015;
     soil.max_stress_a0 = 0.25;
     soil.max_stress_a1 = -0.35;
     const json written = toJson(soil);
     EXPECT_DOUBLE_EQ(written.at("n1").get<double>(), 0.1);
+    EXPECT_DOUBLE_EQ(written.at("slip_sinkage").get<double>(), 2.5);
     EXPECT_DOUBLE_EQ(written.at("jmax_m").get<double>(), 0.015);
     EXPECT_DOUBLE_EQ(written.at("c_kPa").get<double>(), 1.7);    // 1700 Pa in kPa
     EXPECT_DOUBLE_EQ(written.at("kphi").get<double>(), 1515.0);  // 1.515e6 in kN/m^(n+2)
@@ -244,12 +246,14 @@ TEST(SoilJson, UnsetOptionalFieldsAreLeftOut) {
     soil.name = "defaults";
     const json written = toJson(soil);
     EXPECT_FALSE(written.contains("n1"));
+    EXPECT_FALSE(written.contains("slip_sinkage"));  // S = 0: off, and no key (files unchanged)
     EXPECT_FALSE(written.contains("jmax_m"));
     EXPECT_FALSE(written.contains("source"));  // empty source
     const Result<soil::SoilParameters> again = soilFromJson(written, "");
     ASSERT_TRUE(again.ok()) << again.message();
     EXPECT_EQ(again->max_shear_deformation_m, kInf);
     EXPECT_EQ(again->sinkage_exponent_slip, 0.0);
+    EXPECT_EQ(again->slip_sinkage_coefficient, 0.0);
 }
 
 TEST(WheelJson, RoundTrip) {
@@ -382,7 +386,9 @@ TEST(SoilJson, OutOfRangeValuesNameFieldValueAndRange) {
                           Case{"n", 0.0, "0 is outside the allowed range [0.1, 2]"},
                           Case{"K_m", 0.0, "0 is outside the allowed range [1e-04, 0.5] m"},
                           Case{"c_kPa", -0.5, "-0.5 is outside the allowed range [0, 200] kPa"},
-                          Case{"jmax_m", 0.0, "0 is outside the allowed range [1e-04, 1] m"}}) {
+                          Case{"jmax_m", 0.0, "0 is outside the allowed range [1e-04, 1] m"},
+                          Case{"slip_sinkage", -0.5, "-0.5 is outside the allowed range [0, 10]"},
+                          Case{"slip_sinkage", 12.0, "12 is outside the allowed range [0, 10]"}}) {
         json j = sandyLoamJson();
         j[c.key] = c.value;
         const Result<soil::SoilParameters> soil = soilFromJson(j, "f.json");

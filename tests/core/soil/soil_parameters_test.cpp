@@ -42,13 +42,13 @@ const Issue* issueAt(const std::vector<Issue>& issues, const std::string& where)
     return nullptr;
 }
 
-TEST(SoilFields, TableHoldsTheElevenDocumentedKeys) {
+TEST(SoilFields, TableHoldsTheTwelveDocumentedKeys) {
     std::set<std::string> required, optional;
     for (const SoilField& f : soilFields()) (f.required ? required : optional).insert(f.key);
-    EXPECT_EQ(soilFields().size(), 11u);
+    EXPECT_EQ(soilFields().size(), 12u);
     EXPECT_EQ(required,
               (std::set<std::string>{"n", "c_kPa", "phi_deg", "kc", "kphi", "K_m", "gamma_kN_m3"}));
-    EXPECT_EQ(optional, (std::set<std::string>{"a0", "a1", "jmax_m", "n1"}));
+    EXPECT_EQ(optional, (std::set<std::string>{"a0", "a1", "jmax_m", "n1", "slip_sinkage"}));
 }
 
 TEST(SoilFields, FindByKey) {
@@ -72,6 +72,7 @@ TEST(SoilFields, ConvertFileUnitsToSi) {
     EXPECT_EQ(toSi("a0", 0.2), 0.2);
     EXPECT_EQ(toSi("a1", -0.3), -0.3);
     EXPECT_EQ(toSi("n1", 0.1), 0.1);
+    EXPECT_EQ(toSi("slip_sinkage", 2.5), 2.5);
 }
 
 TEST(SoilFields, FieldsWriteTheirOwnMember) {
