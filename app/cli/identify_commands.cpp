@@ -598,7 +598,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (!o.guess.empty()) {
             names.soil = o.guess;
             guess_soil = names.soilParameters(locations);
-            guess = analysis::identifiedOf(*guess_soil, inputs.wheel);
+            guess = identification::decoupledOf(*guess_soil, inputs.wheel);
         }
         if (streaming) {
             runStream(o, inputs, guess_soil);

@@ -624,25 +624,6 @@ AnalysisType uncertaintyBandType() {
         uncertaintyBandOutcome);
 }
 
-soil::SoilParameters identifiedSoil(const soil::SoilParameters& base,
-                                    const wheel::WheelParameters& wheel,
-                                    const identification::DecoupledParameters& p) {
-    soil::SoilParameters s = base;
-    s.max_stress_a0 = p.a0;
-    s.max_stress_a1 = p.a1;
-    s.sinkage_exponent = p.n0;
-    s.sinkage_exponent_slip = p.n1;
-    s.cohesion_pa = p.cohesion_pa;
-    s.friction_angle_rad = p.friction_angle_rad;
-    s.shear_modulus_m = p.shear_modulus_m;
-    s.frictional_modulus = p.pressure_modulus - base.cohesive_modulus / wheel.width_m;
-    // A finite j_max is the fit's (identified or held); +inf is also the decoupled fit's "not
-    // seen", which keeps the base's.
-    if (std::isfinite(p.max_shear_deformation_m))
-        s.max_shear_deformation_m = p.max_shear_deformation_m;
-    return s;
-}
-
 CorrelatedParameters correlatedFromIdentification(const identification::DecoupledParameters& p,
                                                   const identification::Uncertainty& u,
                                                   const soil::SoilParameters& base,
@@ -653,7 +634,7 @@ CorrelatedParameters correlatedFromIdentification(const identification::Decouple
             "the identification has no covariance (rank deficient: " +
             std::string(u.flags.empty() ? "see its flags" : u.flags.front()) + ")");
     }
-    const soil::SoilParameters soil = identifiedSoil(base, wheel, p);
+    const soil::SoilParameters soil = identification::soilOf(base, wheel, p);
     // The soil field carrying each refined parameter (K_s through k_φ, k_c fixed).
     static const std::array<const char*, kFullParameterCount> kKeys{
         "a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m", "jmax_m"};

@@ -19,6 +19,7 @@
 #include "core/gsa/uncertainty_bands.h"
 #include "core/gsa/wheel_studies.h"
 #include "core/identification/full_fit.h"
+#include "core/identification/soil_conversion.h"
 
 namespace terra::analysis {
 
@@ -154,13 +155,6 @@ UncertaintyBandResult computeUncertaintyBands(const Inputs& inputs,
 /// Table "bands" (main).
 Outcome uncertaintyBandOutcome(UncertaintyBandResult result);
 AnalysisType uncertaintyBandType();
-
-/// The soil an identification found: `base` with a₀, a₁, n, c, φ, K set to the identified
-/// values and k_φ = K_s − k_c/b (k_c kept, b the wheel's width; Eq. 2.9), and j_max the fit's
-/// when finite (else the base's).
-soil::SoilParameters identifiedSoil(const soil::SoilParameters& base,
-                                    const wheel::WheelParameters& wheel,
-                                    const identification::DecoupledParameters& identified);
 
 /// The identification's posterior as a correlated group in soil file units: the parameters with
 /// a standard deviation (not fixed), K_s carried by k_φ (k_c fixed, so Var k_φ = Var K_s), with

@@ -442,7 +442,7 @@ Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& resu
     soil::SoilParameters flat = base;
     flat.cohesive_modulus = 0.0;  // K_s wholly in k_φ: the soil is the identified one on any b
     flat.profile.reset();
-    soil::SoilParameters soil = identifiedSoil(flat, wheel, result.identified);
+    soil::SoilParameters soil = identification::soilOf(flat, wheel, result.identified);
     // The global identification's j_max is the model's (identified, or held at `jmax`).
     soil.max_shear_deformation_m = result.report ? result.identified.max_shear_deformation_m : jmax;
     // A parameter that ended on a bound of the fit which is also its field's (c = 0) may lie a

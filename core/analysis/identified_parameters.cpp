@@ -125,17 +125,4 @@ std::optional<identification::FullParameter> fullParameterOf(const IdentifiedFie
     return std::nullopt;
 }
 
-DecoupledParameters identifiedOf(const soil::SoilParameters& soil,
-                                 const wheel::WheelParameters& wheel) {
-    return {.a0 = soil.max_stress_a0,
-            .a1 = soil.max_stress_a1,
-            .pressure_modulus = soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus,
-            .n0 = soil.sinkage_exponent,
-            .n1 = soil.sinkage_exponent_slip,
-            .cohesion_pa = soil.cohesion_pa,
-            .friction_angle_rad = soil.friction_angle_rad,
-            .shear_modulus_m = soil.shear_modulus_m,
-            .max_shear_deformation_m = soil.max_shear_deformation_m};
-}
-
 }  // namespace terra::analysis

@@ -13,6 +13,7 @@
 #include "core/common/field.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
+#include "core/identification/soil_conversion.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
@@ -28,10 +29,5 @@ const IdentifiedField* findIdentifiedField(std::string_view key);
 const IdentifiedField& fieldOf(identification::FullParameter parameter);
 /// The refinement's parameter of a field; empty for n1 (not refined).
 std::optional<identification::FullParameter> fullParameterOf(const IdentifiedField& field);
-
-/// The soil's own values of the identified parameters on this wheel (K_s = k_c/b + k_φ,
-/// Eq. 2.9): the truth of synthetic data, or a starting guess.
-identification::DecoupledParameters identifiedOf(const soil::SoilParameters& soil,
-                                                 const wheel::WheelParameters& wheel);
 
 }  // namespace terra::analysis

@@ -57,8 +57,8 @@ StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec) {
     for (std::size_t i = 0; i < samples.size(); ++i)
         samples[i].time_s = static_cast<double>(i) * spec.sample_period_s;
     out.data.samples = std::move(samples);
-    out.truth = {{0, identifiedOf(spec.first, spec.wheel)},
-                 {*out.true_border, identifiedOf(spec.second, spec.wheel)}};
+    out.truth = {{0, identification::decoupledOf(spec.first, spec.wheel)},
+                 {*out.true_border, identification::decoupledOf(spec.second, spec.wheel)}};
     const auto percent = static_cast<int>(std::lround(spec.noise_relative * 100.0));
     out.description =
         spec.first.name + " → " + spec.second.name + ", " + std::to_string(percent) + " % noise";

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/identification/soil_conversion.h"
 #include "core/identification/streaming.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
@@ -214,36 +216,16 @@ private:
     Table table_;
 };
 
-// The identifier's parameters of a soil on this wheel (K_s = k_c/b + k_φ, Eq. 2.9).
-identification::DecoupledParameters decoupledOf(const soil::SoilParameters& soil,
-                                                const wheel::WheelParameters& wheel) {
-    identification::DecoupledParameters p;
-    p.pressure_modulus = soil.cohesive_modulus / wheel.width_m + soil.frictional_modulus;
-    p.n0 = soil.sinkage_exponent;
-    p.n1 = soil.sinkage_exponent_slip;
-    p.cohesion_pa = soil.cohesion_pa;
-    p.friction_angle_rad = soil.friction_angle_rad;
-    p.shear_modulus_m = soil.shear_modulus_m;
-    p.a0 = soil.max_stress_a0;
-    p.a1 = soil.max_stress_a1;
-    return p;
-}
-
-// The soil the streaming identifier's estimate describes (K_s = k_c/b + k_φ taken as k_φ with
-// k_c = 0, which gives the same σ on this wheel; j_max unknown: none).
-soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p) {
-    soil::SoilParameters soil;
-    soil.name = "streaming estimate";
-    soil.cohesive_modulus = 0.0;
-    soil.frictional_modulus = p.pressure_modulus;
-    soil.sinkage_exponent = p.n0;
-    soil.sinkage_exponent_slip = p.n1;
-    soil.cohesion_pa = p.cohesion_pa;
-    soil.friction_angle_rad = p.friction_angle_rad;
-    soil.shear_modulus_m = p.shear_modulus_m;
-    soil.max_stress_a0 = p.a0;
-    soil.max_stress_a1 = p.a1;
-    return soil;
+// The soil the streaming identifier's estimate describes: K_s carried by k_φ with k_c = 0, which
+// gives the same σ on this wheel; j_max unknown: none.
+soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p,
+                                    const wheel::WheelParameters& wheel) {
+    soil::SoilParameters base;
+    base.name = "streaming estimate";
+    base.cohesive_modulus = 0.0;
+    identification::DecoupledParameters estimate = p;
+    estimate.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    return identification::soilOf(base, wheel, estimate);
 }
 
 // The closed loop of a slip controller (docs/traction.md §4–§5): at every control tick the
@@ -326,7 +308,7 @@ public:
                                   u.window_size >= static_cast<std::size_t>(spec_.replan_samples);
         if (!first && !after_change) return;
         if (const std::optional<double> s =
-                plan(soilOfEstimate(u.parameters), static_load_n_[wheel])) {
+                plan(soilOfEstimate(u.parameters, scenario_.robot.wheel), static_load_n_[wheel])) {
             set_points_.fill(*s);
             planned_ = true;
             awaiting_ = false;
@@ -457,7 +439,12 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         // A closed-loop robot starts from the soil it expects (the map's base soil): at a single
         // load and a narrow band of slip the window cannot tell K_s from n (docs/traction.md §6),
         // and the thesis's generic first guess leaves the fit at its bounds.
-        if (closed) streaming.initial = decoupledOf(scenario.terrain.base, scenario.robot.wheel);
+        if (closed) {
+            // The streaming estimator never sees j_max: its start carries none.
+            streaming.initial =
+                identification::decoupledOf(scenario.terrain.base, scenario.robot.wheel);
+            streaming.initial.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+        }
         feed.emplace(*hook, scenario.robot.wheel, dt, streaming);
     }
     const bool loaded = scenario.drawbar_load.active();

@@ -267,7 +267,7 @@ void GlobalSensitivityPanel::requestRun() {
 analysis::Inputs GlobalSensitivityPanel::inputs() const {
     analysis::Inputs in = project::inputsOf(document_->project());
     if (source_->currentIndex() == 1 && identification_)
-        in.soil = analysis::identifiedSoil(in.soil, in.wheel, identification_->first);
+        in.soil = identification::soilOf(in.soil, in.wheel, identification_->first);
     return in;
 }
 

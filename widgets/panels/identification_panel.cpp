@@ -670,7 +670,7 @@ void IdentificationPanel::present(const std::any& value) {
     const Project& project = document_->project();
     // The truth column is the project's soil only for data synthesised from it.
     const bool synthetic = file_->text().isEmpty();
-    const auto truth = analysis::identifiedOf(project.soil, fit_wheel_);
+    const auto truth = identification::decoupledOf(project.soil, fit_wheel_);
     const identification::IdentificationReport* report =
         result_.report ? &*result_.report : nullptr;
     const auto fields = analysis::identifiedFields();

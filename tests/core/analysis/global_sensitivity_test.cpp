@@ -266,7 +266,7 @@ TEST(Posterior, CovarianceInFileUnitsWithKsCarriedByKphi) {
     EXPECT_NEAR(c.covariance[1][2], -0.8 * 0.2 * sd_phi_deg, 1e-12);
     EXPECT_NEAR(c.covariance[2][0], 0.3 * sd_phi_deg * 50.0, 1e-9);
     // The identified soil is the nominal one: its K_s is the identified value.
-    const soil::SoilParameters soil = identifiedSoil(in.soil, in.wheel, p);
+    const soil::SoilParameters soil = identification::soilOf(in.soil, in.wheel, p);
     EXPECT_NEAR(soil.cohesive_modulus / in.wheel.width_m + soil.frictional_modulus, 1.6e6, 1e-6);
     u.computed = false;
     EXPECT_THROW(correlatedFromIdentification(p, u, in.soil, in.wheel), std::invalid_argument);
