@@ -502,7 +502,7 @@ wheel::WheelParameters IdentificationPanel::chosenWheel() const {
 
 QString IdentificationPanel::wheelDescription() const {
     const wheel::WheelParameters w = chosenWheel();
-    QString text = QString("Fitting with wheel %1 (r = %2 m, b = %3 m)")
+    QString text = QString("Fitting with %1 (r = %2 m, b = %3 m)")
                        .arg(QString::fromStdString(w.name))
                        .arg(number(w.radius_m))
                        .arg(number(w.width_m));
