@@ -40,51 +40,51 @@ const std::vector<std::pair<std::string, std::string>>& flagNames() {
     return names;
 }
 
-void printTraversability(const analysis::TraversabilityResult& r) {
-    std::cout << "traversability for " << formatNumber(r.robot_mass_kg) << " kg on " << r.grid.cols
-              << " x " << r.grid.rows << " cells of " << formatNumber(r.grid.cell_m) << " m ("
-              << r.curves << " slip curves):\n";
-    std::cout << "  heading [deg]  stalled cells  braking cells  largest slip\n";
+void printTraversability(std::ostream& out, const analysis::TraversabilityResult& r) {
+    out << "traversability for " << formatNumber(r.robot_mass_kg) << " kg on " << r.grid.cols
+        << " x " << r.grid.rows << " cells of " << formatNumber(r.grid.cell_m) << " m (" << r.curves
+        << " slip curves):\n";
+    out << "  heading [deg]  stalled cells  braking cells  largest slip\n";
     for (const analysis::HeadingMap& m : r.headings) {
         const double hi = m.slip.valueRange().second;
         char line[160];
         std::snprintf(line, sizeof line, "  %13s  %13zu  %13zu  %12s\n",
                       fixed(m.heading_rad * kDeg, 1).c_str(), m.stalled, m.braking,
                       std::isnan(hi) ? "-" : fixed(hi, 3).c_str());
-        std::cout << line;
+        out << line;
     }
 }
 
-void printText(const field::FieldSummary& s) {
-    std::cout << (s.name.empty() ? "field" : s.name) << ": " << formatNumber(s.x_max_m - s.x_min_m)
-              << " x " << formatNumber(s.y_max_m - s.y_min_m) << " m (x " << formatNumber(s.x_min_m)
-              << " to " << formatNumber(s.x_max_m) << ", y " << formatNumber(s.y_min_m) << " to "
-              << formatNumber(s.y_max_m) << ")\n";
+void printText(std::ostream& out, const field::FieldSummary& s) {
+    out << (s.name.empty() ? "field" : s.name) << ": " << formatNumber(s.x_max_m - s.x_min_m)
+        << " x " << formatNumber(s.y_max_m - s.y_min_m) << " m (x " << formatNumber(s.x_min_m)
+        << " to " << formatNumber(s.x_max_m) << ", y " << formatNumber(s.y_min_m) << " to "
+        << formatNumber(s.y_max_m) << ")\n";
     if (s.height_min_m) {
-        std::cout << "height " << fixed(*s.height_min_m, 3) << " to " << fixed(*s.height_max_m, 3)
-                  << " m on " << formatNumber(s.height_cell_m) << " m cells; slope max "
-                  << fixed(s.max_slope_rad * kDeg, 2) << " deg, mean "
-                  << fixed(s.mean_slope_rad * kDeg, 2) << " deg\n";
+        out << "height " << fixed(*s.height_min_m, 3) << " to " << fixed(*s.height_max_m, 3)
+            << " m on " << formatNumber(s.height_cell_m) << " m cells; slope max "
+            << fixed(s.max_slope_rad * kDeg, 2) << " deg, mean "
+            << fixed(s.mean_slope_rad * kDeg, 2) << " deg\n";
     } else {
-        std::cout << "flat (no height map)\n";
+        out << "flat (no height map)\n";
     }
     if (!s.classes.empty()) {
-        std::cout << "soil classes on " << formatNumber(s.class_cell_m) << " m cells:\n";
-        std::cout << "  code  label                 soil                              profile"
-                     "                area [m2]   share\n";
+        out << "soil classes on " << formatNumber(s.class_cell_m) << " m cells:\n";
+        out << "  code  label                 soil                              profile"
+               "                area [m2]   share\n";
         for (const field::ClassArea& c : s.classes) {
             char line[256];
             std::snprintf(line, sizeof line, "  %4d  %-20s  %-32s  %-20s  %9s  %5s %%\n", c.code,
                           c.label.c_str(), c.soil.c_str(),
                           c.profile.empty() ? "-" : c.profile.c_str(), fixed(c.area_m2, 1).c_str(),
                           fixed(c.share * 100.0, 1).c_str());
-            std::cout << line;
+            out << line;
         }
     }
     if (!s.parameters.empty()) {
-        std::cout << "parameter rasters:";
-        for (const std::string& p : s.parameters) std::cout << ' ' << p;
-        std::cout << '\n';
+        out << "parameter rasters:";
+        for (const std::string& p : s.parameters) out << ' ' << p;
+        out << '\n';
     }
 }
 
@@ -158,16 +158,11 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
             nlohmann::json j = io::toJson(summary);
             if (trav) j["traversability"] = analysis::toJson(*trav);
             writeOutput(o.out, j.dump(2) + "\n");
-        } else if (!o.out.empty()) {
-            std::ostringstream text;
-            std::streambuf* old = std::cout.rdbuf(text.rdbuf());
-            printText(summary);
-            if (trav) printTraversability(*trav);
-            std::cout.rdbuf(old);
-            writeOutput(o.out, text.str());
         } else {
-            printText(summary);
-            if (trav) printTraversability(*trav);
+            std::ostringstream text;
+            printText(text, summary);
+            if (trav) printTraversability(text, *trav);
+            writeOutput(o.out, text.str());
         }
     });
 }

@@ -107,27 +107,31 @@ TraversabilityResult computeTraversability(const field::FieldMap& field,
         throw std::invalid_argument(formatIssues(issues));
     if (std::vector<Issue> issues = wheel::validate(robot.wheel); !issues.empty())
         throw std::invalid_argument(formatIssues(issues));
-    const field::FieldSummary extent = field::summarize(field);
-    if (!(extent.x_max_m > extent.x_min_m))
+    const std::optional<std::array<double, 4>> box = field::extent(field);
+    if (!box)
         throw std::invalid_argument(
             "the field has no map (height, classes or parameters) to cover");
+    const auto [x_min, y_min, x_max, y_max] = *box;
     TraversabilityResult out;
     out.robot_mass_kg = robot.totalMass();
-    const double cell = s.cell_m       ? *s.cell_m
-                        : field.height ? field.height->cell_m
-                                       : (extent.class_cell_m > 0 ? extent.class_cell_m : 1.0);
-    const int cols =
-        std::max(1, static_cast<int>(std::ceil((extent.x_max_m - extent.x_min_m) / cell - 1e-9)));
-    const int rows =
-        std::max(1, static_cast<int>(std::ceil((extent.y_max_m - extent.y_min_m) / cell - 1e-9)));
-    out.grid = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell);
-    out.worst_slip = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell, kNaN);
-    out.stall_share = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell);
+    const double cell = s.cell_m           ? *s.cell_m
+                        : field.height     ? field.height->cell_m
+                        : field.soil_class ? field.soil_class->cell_m
+                                           : 1.0;
+    const int cols = std::max(1, static_cast<int>(std::ceil((x_max - x_min) / cell - 1e-9)));
+    const int rows = std::max(1, static_cast<int>(std::ceil((y_max - y_min) / cell - 1e-9)));
+    // Every map of the result on the same cells.
+    const auto blank = [&](double fill) {
+        return field::makeRaster(cols, rows, x_min, y_min, cell, fill);
+    };
+    out.grid = blank(0.0);
+    out.worst_slip = blank(kNaN);
+    out.stall_share = blank(0.0);
     for (int h = 0; h < s.headings; ++h) {
         HeadingMap m;
         m.heading_rad = 2.0 * std::numbers::pi * h / s.headings;
-        m.slip = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell, kNaN);
-        m.status = field::makeRaster(cols, rows, extent.x_min_m, extent.y_min_m, cell);
+        m.slip = blank(kNaN);
+        m.status = blank(0.0);
         out.headings.push_back(std::move(m));
     }
 

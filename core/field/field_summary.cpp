@@ -6,19 +6,33 @@
 
 namespace terra::field {
 
+std::optional<std::array<double, 4>> extent(const FieldMap& field) {
+    std::optional<std::array<double, 4>> box;
+    const auto extend = [&](const Raster& r) {
+        if (!box) {
+            box = {r.x_min_m, r.y_min_m, r.xMax(), r.yMax()};
+            return;
+        }
+        auto& b = *box;
+        b = {std::min(b[0], r.x_min_m), std::min(b[1], r.y_min_m), std::max(b[2], r.xMax()),
+             std::max(b[3], r.yMax())};
+    };
+    if (field.height) extend(*field.height);
+    if (field.soil_class) extend(*field.soil_class);
+    for (const ParameterRaster& p : field.parameters) extend(p.raster);
+    return box;
+}
+
 FieldSummary summarize(const FieldMap& field, const std::map<int, std::string>& labels) {
     FieldSummary s;
     s.name = field.name;
-    bool any = false;
-    const auto extend = [&](const Raster& r) {
-        s.x_min_m = any ? std::min(s.x_min_m, r.x_min_m) : r.x_min_m;
-        s.y_min_m = any ? std::min(s.y_min_m, r.y_min_m) : r.y_min_m;
-        s.x_max_m = any ? std::max(s.x_max_m, r.xMax()) : r.xMax();
-        s.y_max_m = any ? std::max(s.y_max_m, r.yMax()) : r.yMax();
-        any = true;
-    };
+    if (const std::optional<std::array<double, 4>> box = extent(field)) {
+        s.x_min_m = (*box)[0];
+        s.y_min_m = (*box)[1];
+        s.x_max_m = (*box)[2];
+        s.y_max_m = (*box)[3];
+    }
     if (field.height) {
-        extend(*field.height);
         s.height_cell_m = field.height->cell_m;
         const auto [lo, hi] = field.height->valueRange();
         s.height_min_m = lo;
@@ -33,7 +47,6 @@ FieldSummary summarize(const FieldMap& field, const std::map<int, std::string>& 
     }
     if (field.soil_class) {
         const Raster& c = *field.soil_class;
-        extend(c);
         s.class_cell_m = c.cell_m;
         std::map<int, std::size_t> counts;
         std::size_t total = 0;
@@ -55,10 +68,7 @@ FieldSummary summarize(const FieldMap& field, const std::map<int, std::string>& 
             s.classes.push_back(a);
         }
     }
-    for (const ParameterRaster& p : field.parameters) {
-        s.parameters.emplace_back(p.field->key);
-        extend(p.raster);
-    }
+    for (const ParameterRaster& p : field.parameters) s.parameters.emplace_back(p.field->key);
     return s;
 }
 

@@ -3,6 +3,7 @@
 /// What a field holds, before any wheel drives on it (docs/field.md, "Summary"): its extent,
 /// height range and slopes, and the area of each soil class.
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,6 +35,10 @@ struct FieldSummary {
     std::vector<ClassArea> classes;                  ///< by code
     std::vector<std::string> parameters;             ///< soil-file keys given as rasters
 };
+
+/// The extent [x_min, y_min, x_max, y_max] of a field's maps [m]: the union of its height,
+/// class and parameter rasters; none without any map.
+std::optional<std::array<double, 4>> extent(const FieldMap& field);
 
 /// The summary of a field; `labels` are the legend's labels by code (io::FieldFile::labels).
 FieldSummary summarize(const FieldMap& field, const std::map<int, std::string>& labels = {});

@@ -51,9 +51,9 @@ std::optional<CellIndex> Raster::cellAt(double x_m, double y_m) const {
     if (!(x_m >= x_min_m && x_m < xMax() && y_m >= y_min_m && y_m < yMax())) return std::nullopt;
     CellIndex c;
     c.col = std::min(static_cast<int>(std::floor((x_m - x_min_m) / cell_m)), cols - 1);
+    // y just above y_min can round to row == rows (x near x_max likewise): the clamps keep the
+    // point on the raster.
     c.row = std::min(static_cast<int>(std::floor((yMax() - y_m) / cell_m)), rows - 1);
-    // y just above y_min can round to row == rows; the clamp keeps it on the raster.
-    c.row = std::max(c.row, 0);
     return c;
 }
 

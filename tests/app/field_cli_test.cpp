@@ -5,7 +5,9 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "../core/test_temp_dir.h"
 #include "cli_runner.h"
@@ -76,7 +78,12 @@ TEST(FieldCli, TraversabilityTableAndSummaryAgree) {
     int rows = 0, stalled_uphill = 0;
     while (std::getline(in, line)) {
         ++rows;
-        if (line.find(",0,") != std::string::npos && line.back() == '1') ++stalled_uphill;
+        // x_m, y_m, heading_deg, grade_deg, slip, status: heading 0 and status 1 (stall).
+        std::vector<std::string> cells;
+        std::stringstream row(line);
+        for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+        ASSERT_EQ(cells.size(), 6u) << line;
+        if (cells[2] == "0" && cells[5] == "1") ++stalled_uphill;
     }
     EXPECT_EQ(rows, 30 * 20 * 4);
     EXPECT_EQ(out["headings"][0]["stalled"].get<int>(), stalled_uphill);
