@@ -111,7 +111,11 @@ TraversabilityResult computeTraversability(const field::FieldMap& field,
     if (!box)
         throw std::invalid_argument(
             "the field has no map (height, classes or parameters) to cover");
-    const auto [x_min, y_min, x_max, y_max] = *box;
+    // Plain names, not a structured binding: clang 14 (the CI's check) cannot capture a binding.
+    const double x_min = (*box)[0];
+    const double y_min = (*box)[1];
+    const double x_max = (*box)[2];
+    const double y_max = (*box)[3];
     TraversabilityResult out;
     out.robot_mass_kg = robot.totalMass();
     const double cell = s.cell_m           ? *s.cell_m
