@@ -46,7 +46,7 @@ nlohmann::json settingsObject(const CompactionOptions& o) {
 }
 
 // The settings keys the flags set, and the flags' names for the reader's messages.
-const std::vector<std::pair<std::string, std::string>>& flagNames() {
+const std::vector<std::pair<std::string, std::string>>& compactionFlagNames() {
     static const std::vector<std::pair<std::string, std::string>> names{
         {"slip_angle_deg", "--slip-angle"},
         {"slip", "--slip"},
@@ -170,7 +170,7 @@ void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations) {
         analysis::readCompactionSettings(reader, settings, &locations, here);
         reader.finish();
         if (!issues.empty()) {
-            nameFlags(issues, flagNames());
+            nameFlags(issues, compactionFlagNames());
             throw InputError(formatIssues(issues));
         }
         settings.model = o.model.choices();

@@ -34,7 +34,7 @@ struct FieldOptions {
 };
 
 // The settings keys the flags set, and the flags' names for the reader's messages.
-const std::vector<std::pair<std::string, std::string>>& flagNames() {
+const std::vector<std::pair<std::string, std::string>>& fieldFlagNames() {
     static const std::vector<std::pair<std::string, std::string>> names{{"headings", "--headings"},
                                                                         {"cell_m", "--cell"}};
     return names;
@@ -140,7 +140,7 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
             analysis::readTraversabilitySettings(reader, settings);
             reader.finish();
             if (!issues.empty()) {
-                nameFlags(issues, flagNames());
+                nameFlags(issues, fieldFlagNames());
                 throw InputError(formatIssues(issues));
             }
             trav = analysis::computeTraversability(file->map, *robot, settings);

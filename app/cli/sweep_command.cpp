@@ -22,7 +22,10 @@ std::string defaultGrid() {
 
 std::string joined(const std::vector<double>& values) {
     std::string text;
-    for (double v : values) text += (text.empty() ? "" : ",") + formatNumber(v);
+    for (double v : values) {
+        if (!text.empty()) text += ',';
+        text += formatNumber(v);
+    }
     return text;
 }
 

@@ -42,7 +42,7 @@ nlohmann::json settingsObject(const TractionOptions& o) {
 }
 
 // The settings keys the flags set, and the flags' names for the reader's messages.
-const std::vector<std::pair<std::string, std::string>>& flagNames() {
+const std::vector<std::pair<std::string, std::string>>& tractionFlagNames() {
     static const std::vector<std::pair<std::string, std::string>> names{
         {"slip_angle_deg", "--slip-angle"}, {"objective", "--objective"},
         {"max_sinkage_m", "--max-sinkage"}, {"slip_min", "--slip-min"},
@@ -138,7 +138,7 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
         analysis::readTractionSettings(reader, settings, std::filesystem::current_path());
         reader.finish();
         if (!issues.empty()) {
-            nameFlags(issues, flagNames());
+            nameFlags(issues, tractionFlagNames());
             throw InputError(formatIssues(issues));
         }
         settings.model = o.model.choices();

@@ -23,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using terra::test::CliRun;
 using terra::test::run;
+using terra::test::readText;
 
 class BadNumbers : public ::testing::Test {
 protected:
@@ -130,11 +131,6 @@ TEST_F(BadNumbers, AbsurdMagnitudesAreOutsideThePhysicalRanges) {
 // Every numeric value of the shipped soil, wheel, robot, scenarios and script, replaced in turn by
 // a number a double cannot hold (1e999, -1e999) or by a subnormal one (1e-320): exit 2, and the
 // message names the file with line and column, the key path, the value and the field's range.
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // The paths of the numbers in `j` ("a.b", "a[2]"), as the messages spell them.
 void numberPaths(const nlohmann::json& j, const std::string& path, std::vector<std::string>& out) {
     if (j.is_number()) out.push_back(path);

@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace terra::test {
 
@@ -39,5 +41,30 @@ inline CliRun run(const std::string& arguments) {
     std::filesystem::remove(err_path);
     return r;
 }
+
+/// The whole text of a file ("" when it cannot be read).
+inline std::string readText(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+/// The lines of `text`, without their line ends (\n or \r\n).
+inline std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        out.push_back(line);
+    }
+    return out;
+}
+
+inline bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+/// The shipped Ding et al. (2011) smooth-wheel test at 80 N (resources/experiments).
+inline const std::string kDing =
+    std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-hit-lss1-80N.csv";
 
 }  // namespace terra::test

@@ -18,10 +18,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using terra::test::CliRun;
 using terra::test::run;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::test::contains;
 
 json compaction(const std::string& flags) {
     const CliRun r = run("compaction " + flags + " --json");

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 
 using terra::test::CliRun;
 using terra::test::run;
+using terra::test::readText;
 
 struct Csv {
     std::vector<std::string> columns;
@@ -58,11 +59,6 @@ Csv parseCsv(const std::string& text) {
         header = false;
     }
     return csv;
-}
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
 }
 
 // φ and γ over ranges at s = 0.3, β = 0: F_x does not depend on γ there (bulldozing acts

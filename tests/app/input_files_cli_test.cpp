@@ -27,9 +27,7 @@ using namespace std::chrono_literals;
 using terra::test::CliProcess;
 using terra::test::CliRun;
 using terra::test::run;
-
-const std::string kDing =
-    std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-hit-lss1-80N.csv";
+using terra::test::kDing;
 
 class InputFiles : public ::testing::Test {
 protected:

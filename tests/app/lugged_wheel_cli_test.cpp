@@ -21,13 +21,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using terra::test::CliRun;
 using terra::test::run;
-
-const std::string kDing =
-    std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-hit-lss1-80N.csv";
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::test::kDing;
+using terra::test::contains;
 
 class LuggedWheelCli : public ::testing::Test {
 protected:

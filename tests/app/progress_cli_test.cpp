@@ -24,6 +24,9 @@
 
 namespace {
 
+using terra::test::readText;
+using terra::test::lines;
+
 namespace fs = std::filesystem;
 
 struct TerminalRun {
@@ -31,11 +34,6 @@ struct TerminalRun {
     std::string out;     ///< stdout (a file)
     std::string err;     ///< what the terminal showed (the pty turns "\n" into "\r\n")
 };
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // `terrastudio ARGUMENTS...` with stderr on a new pseudo-terminal and stdout in a file. `on_output`
 // sees the terminal's text so far after each read and may signal the process (once it returns
@@ -82,16 +80,6 @@ TerminalRun runOnTerminal(const std::vector<std::string>& arguments, const fs::p
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = readText(out_file);
     return r;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        out.push_back(line);
-    }
-    return out;
 }
 
 class Progress : public ::testing::Test {

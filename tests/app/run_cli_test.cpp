@@ -18,11 +18,7 @@ namespace fs = std::filesystem;
 
 using terra::test::CliRun;
 using terra::test::run;
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using terra::test::readText;
 
 class RunCommand : public ::testing::Test {
 protected:

@@ -24,6 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using terra::test::CliProcess;
+using terra::test::lines;
+using terra::test::readText;
 
 class Signals : public ::testing::Test {
 protected:
@@ -47,18 +49,6 @@ protected:
     }
     fs::path dir_;
 };
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 std::set<std::string> listing(const fs::path& dir) {
     std::set<std::string> names;

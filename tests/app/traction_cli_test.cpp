@@ -12,10 +12,7 @@ namespace {
 using nlohmann::json;
 using terra::test::CliRun;
 using terra::test::run;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::test::contains;
 
 TEST(TractionCli, TheJsonHasTheInterfacesKeysAndSStarIsTheCurvesBest) {
     const CliRun r =

@@ -21,14 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using terra::test::CliRun;
+using terra::test::contains;
+using terra::test::kDing;
 using terra::test::run;
-
-const std::string kDing =
-    std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-hit-lss1-80N.csv";
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // The `wheel --load` prediction at one point (the forward model the validation must reuse).
 json wheelAt(const std::string& soil, double load, double slip) {

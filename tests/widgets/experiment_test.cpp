@@ -34,12 +34,7 @@ const double kDrawbarPull[] = {-6.5, 11.0, 14.5, 15.0, 15.0, 15.0};  // [N]
 const double kIssueModel[] = {-9.0, 1.8, 9.2, 14.4, 18.2, 22.9};
 constexpr double kIssueRounding = 0.06;  // the issue's values have one decimal [N]
 
-QCustomPlot* namedPlot(ForcesPanel& panel, const QString& name) {
-    for (const auto& [n, plot] : panel.plots()) {
-        if (n == name) return plot;
-    }
-    return nullptr;
-}
+using test::namedPlot;
 
 QCPGraph* graphNamed(QCustomPlot& plot, const QString& prefix) {
     for (int g = 0; g < plot.graphCount(); ++g) {

@@ -30,12 +30,7 @@
 namespace terra::ui {
 namespace {
 
-QCustomPlot* namedPlot(ForcesPanel& panel, const QString& name) {
-    for (const auto& [n, plot] : panel.plots()) {
-        if (n == name) return plot;
-    }
-    return nullptr;
-}
+using test::namedPlot;
 
 std::vector<QCPGraph*> graphsNamed(QCustomPlot& plot, const QString& object_name) {
     std::vector<QCPGraph*> out;

@@ -97,12 +97,7 @@ TEST(ForcesPanel, EditingTheSoilUpdatesModelAndPlotAndUndoRestoresBoth) {
     EXPECT_DOUBLE_EQ(fx->graph(0)->data()->at(50)->value, after);
 }
 
-QCustomPlot* namedPlot(ForcesPanel& panel, const QString& name) {
-    for (const auto& [n, plot] : panel.plots()) {
-        if (n == name) return plot;
-    }
-    return nullptr;
-}
+using test::namedPlot;
 
 // Sandy loam of Table 2.1 and wheel A, typed here (not read from the preset files).
 constexpr double kRadius = 0.092, kWidth = 0.107, kN = 0.7, kKc = 5.3e3, kKphi = 1.515e6;

@@ -5,6 +5,7 @@
 #include "core/io/parameters_json.h"
 #include "widgets/document/project_document.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/panels/forces_panel.h"
 
 namespace terra::ui::test {
 
@@ -19,6 +20,14 @@ inline bool waitForResult(AnalysisPanel& panel, int timeout_ms = 30000) {
 /// A document on sandy loam and wheel A, clean.
 inline void resetToDefault(ProjectDocument& document) {
     document.reset(ProjectDocument::defaultProject(resources()));
+}
+
+/// The forces panel's plot named `name` (its figure id), or nullptr.
+inline QCustomPlot* namedPlot(ForcesPanel& panel, const QString& name) {
+    for (const auto& [n, plot] : panel.plots()) {
+        if (n == name) return plot;
+    }
+    return nullptr;
 }
 
 }  // namespace terra::ui::test
