@@ -22,8 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using terra::test::CliRun;
-using terra::test::run;
 using terra::test::readText;
+using terra::test::run;
 
 class BadNumbers : public ::testing::Test {
 protected:

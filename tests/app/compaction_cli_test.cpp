@@ -17,8 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using terra::test::CliRun;
-using terra::test::run;
 using terra::test::contains;
+using terra::test::run;
 
 json compaction(const std::string& flags) {
     const CliRun r = run("compaction " + flags + " --json");

@@ -25,8 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using terra::test::CliRun;
-using terra::test::run;
 using terra::test::readText;
+using terra::test::run;
 
 struct Csv {
     std::vector<std::string> columns;

@@ -26,8 +26,8 @@ namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using terra::test::CliProcess;
 using terra::test::CliRun;
-using terra::test::run;
 using terra::test::kDing;
+using terra::test::run;
 
 class InputFiles : public ::testing::Test {
 protected:

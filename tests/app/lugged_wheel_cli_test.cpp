@@ -20,9 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using terra::test::CliRun;
-using terra::test::run;
-using terra::test::kDing;
 using terra::test::contains;
+using terra::test::kDing;
+using terra::test::run;
 
 class LuggedWheelCli : public ::testing::Test {
 protected:

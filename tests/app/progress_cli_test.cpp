@@ -24,8 +24,8 @@
 
 namespace {
 
-using terra::test::readText;
 using terra::test::lines;
+using terra::test::readText;
 
 namespace fs = std::filesystem;
 

@@ -11,8 +11,8 @@ namespace {
 
 using nlohmann::json;
 using terra::test::CliRun;
-using terra::test::run;
 using terra::test::contains;
+using terra::test::run;
 
 TEST(TractionCli, TheJsonHasTheInterfacesKeysAndSStarIsTheCurvesBest) {
     const CliRun r =
