@@ -335,7 +335,9 @@ public:
         if (spec_.type != ControllerType::kOptimal) return;
         if (u.change_detected) {
             // Where the change began: the odometer less the samples since its first far-off one.
-            const double lag = u.change_at ? static_cast<double>(u.index - *u.change_at) : 0.0;
+            const double lag = u.change_at && *u.change_at <= u.index
+                                   ? static_cast<double>(u.index - *u.change_at)
+                                   : 0.0;
             segments_.push_back(
                 {odometer_m_ - lag * sample_interval_s_ * std::max(0.0, estimates().speed_m_s),
                  std::nullopt});

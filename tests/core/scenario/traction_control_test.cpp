@@ -268,12 +268,19 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
     EXPECT_NE(message(withController({{"slip", 0.2}})).find("controller.type"), std::string::npos);
     EXPECT_NE(message(withController({{"type", "oracle"}, {"gain", 1}})).find("controller.gain"),
               std::string::npos);
+    const std::string replan =
+        message(withController({{"type", "optimal"}, {"replan_interval_s", 0.01}}));
+    EXPECT_NE(replan.find("controller.replan_interval_s"), std::string::npos) << replan;
+    EXPECT_NE(replan.find("[0.1, 10000]"), std::string::npos) << replan;
     nlohmann::json load = withController({{"type", "fixed-slip"}});
     load["drawbar_load"] = {{"force_N", -1}};
     EXPECT_NE(message(load).find("drawbar_load.force_N"), std::string::npos) << message(load);
 
-    nlohmann::json good = withController(
-        {{"type", "optimal"}, {"slip", 0.2}, {"max_torque_Nm", 3}, {"sensors", {{"seed", 7}}}});
+    nlohmann::json good = withController({{"type", "optimal"},
+                                          {"slip", 0.2},
+                                          {"max_torque_Nm", 3},
+                                          {"replan_interval_s", 2},
+                                          {"sensors", {{"seed", 7}}}});
     good["drawbar_load"] = {
         {"force_N", {{"type", "step"}, {"value", 1}, {"amplitude", 2}, {"start_s", 5}}},
         {"per_speed_N_s_m", 50}};
@@ -282,6 +289,7 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
     EXPECT_EQ(s->controller.type, ControllerType::kOptimal);
     EXPECT_EQ(s->controller.slip, 0.2);
     EXPECT_EQ(s->controller.max_torque_nm, 3.0);
+    EXPECT_EQ(s->controller.replan_interval_s, 2.0);
     EXPECT_EQ(s->controller.sensors.seed, 7u);
     EXPECT_EQ(s->drawbar_load.force_n.at(6.0), 3.0);
     EXPECT_EQ(s->drawbar_load.per_speed_n_s_m, 50.0);
