@@ -11,6 +11,7 @@
 #include "widgets/document/project_document.h"
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/panels/forces_panel.h"
+#include "widgets/panels/rover_panel.h"
 
 namespace terra::app {
 
@@ -64,6 +65,43 @@ int MainWindow::takeScreenshots(const QString& dir) {
         std::printf("wrote %s\n", qPrintable(path));
         document_->undoStack()->setIndex(steps);
         forces->clearComparison();
+    }
+    // Traction control (docs/traction.md §7): the controllers compared on traction-border (cut
+    // to 20 s), the optimal controller's run in the slip-control, efficiency and energy figures,
+    // and the comparison table; then the edit reverted and the scenario shown before restored.
+    for (ui::AnalysisPanel* panel : panels_) {
+        auto* rover = dynamic_cast<ui::RoverPanel*>(panel);
+        if (!rover) continue;
+        showPanel(rover->name());
+        const nlohmann::json before = rover->settings();
+        rover->applySettings({{"scenario", "traction-border"}});
+        auto json = nlohmann::json::parse(rover->scenarioText().toStdString());
+        json["duration_s"] = 20.0;
+        QString error;
+        if (!rover->setScenarioText(QString::fromStdString(json.dump(2)), &error)) {
+            ++failures;
+            break;
+        }
+        QEventLoop loop;
+        QTimer::singleShot(120000, &loop, &QEventLoop::quit);
+        connect(rover, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+        connect(rover, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+        rover->requestComparison();
+        loop.exec();
+        for (const char* tab : {"Slip control", "Efficiency", "Energy", "Comparison"}) {
+            rover->showTab(tab);
+            QEventLoop settle;
+            QTimer::singleShot(300, &settle, &QEventLoop::quit);
+            settle.exec();
+            const QString path =
+                dir + "/studio-rover-" + QString(tab).toLower().replace(' ', '-') + ".png";
+            if (!grab().save(path)) ++failures;
+            std::printf("wrote %s\n", qPrintable(path));
+        }
+        rover->showTab("Top view");
+        rover->revertScenario();
+        rover->applySettings(before);
+        break;
     }
     // The docks (docs/images/studio-side-by-side.png): forces and stresses side by side, then
     // every panel tiled; the layout for the screen afterwards.

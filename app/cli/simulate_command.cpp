@@ -28,45 +28,6 @@ struct SimulateOptions {
     bool compare = false;
 };
 
-// One row of the comparison (docs/traction.md §6).
-struct ComparisonRow {
-    std::string controller;
-    scenario::RunResult run;
-    double mean_pull_n = 0.0;  // drawbar work / distance
-};
-
-nlohmann::json comparisonJson(const std::vector<ComparisonRow>& rows, double oracle_pull) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const ComparisonRow& row : rows) {
-        const scenario::Summary& m = row.run.summary;
-        const scenario::TractionMetrics& t = row.run.traction;
-        auto optional = [](const std::optional<double>& v) {
-            return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-        };
-        out.push_back(
-            {{"controller", row.controller},
-             {"status", row.run.status == scenario::RunResult::Status::kCompleted
-                            ? "completed"
-                            : "not completed"},
-             {"distance_m", m.distance_m},
-             {"energy_per_m_J", optional(m.energy_per_m_j)},
-             {"mean_efficiency", optional(m.mean_efficiency)},
-             {"energy_per_drawbar_work", t.drawbar_work_j > 0.0
-                                             ? nlohmann::json(t.drive_energy_j / t.drawbar_work_j)
-                                             : nlohmann::json(nullptr)},
-             {"mean_drawbar_N", row.mean_pull_n},
-             {"drawbar_vs_oracle", oracle_pull > 0.0 ? nlohmann::json(row.mean_pull_n / oracle_pull)
-                                                     : nlohmann::json(nullptr)},
-             {"slip_tracking_rms", optional(m.slip_tracking_rms)},
-             {"settling_time_s", optional(t.settling_time_s)},
-             {"rut_depth_m",
-              t.rear_sinkage_count > 0
-                  ? nlohmann::json(t.rear_sinkage_sum_m / static_cast<double>(t.rear_sinkage_count))
-                  : nlohmann::json(nullptr)}});
-    }
-    return out;
-}
-
 void printComparison(const nlohmann::json& table, const std::string& name) {
     std::cout << name << ": controllers compared\n"
               << "controller       distance_m  energy_J/m  energy/work  efficiency  drawbar_N  "
@@ -113,7 +74,7 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
 // --compare: the scenario under each controller, one after the other.
 void compare(analysis::RoverSettings settings, const SimulateOptions& o) {
     const SignalCancellation cancellation;
-    std::vector<ComparisonRow> rows;
+    std::vector<analysis::ControllerRun> rows;
     std::string name;
     for (const std::string& type : scenario::controllerNames()) {
         settings.controller = scenario::controllerFromName(type);
@@ -132,19 +93,14 @@ void compare(analysis::RoverSettings settings, const SimulateOptions& o) {
         if (const auto error = scenario::writeResults(rover.run, rover.scenario, dir))
             throw std::runtime_error(*error);
         name = rover.scenario.name;
-        ComparisonRow row{type, std::move(rover.run)};
-        const double distance = row.run.summary.distance_m;
-        row.mean_pull_n = distance > 0.0 ? row.run.traction.drawbar_work_j / distance : 0.0;
+        analysis::ControllerRun row{type, std::move(rover.run)};
         if (row.run.status == scenario::RunResult::Status::kCancelled) {
             exitCancelled(cancellation, row.run.message + " by " + cancellation.signalName() +
                                             "; partial results written to " + dir.string());
         }
         rows.push_back(std::move(row));
     }
-    double oracle_pull = 0.0;
-    for (const ComparisonRow& row : rows)
-        if (row.controller == "oracle") oracle_pull = row.mean_pull_n;
-    const nlohmann::json table = comparisonJson(rows, oracle_pull);
+    const nlohmann::json table = analysis::controllerComparison(rows);
     if (const auto error = io::writeFileAtomically(std::filesystem::path(o.out) / "comparison.json",
                                                    table.dump(2) + "\n")) {
         throw std::runtime_error(*error);
@@ -156,7 +112,7 @@ void compare(analysis::RoverSettings settings, const SimulateOptions& o) {
         std::cout << "wrote " << o.out << "/comparison.json and " << o.out
                   << "/<controller>/{timeseries.csv, summary.json}\n";
     }
-    for (const ComparisonRow& row : rows) {
+    for (const analysis::ControllerRun& row : rows) {
         if (row.run.status == scenario::RunResult::Status::kDiverged) {
             std::cerr << "error: " << row.controller << ": " << row.run.message << '\n';
             throw CLI::RuntimeError(kFailure);

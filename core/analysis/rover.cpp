@@ -88,10 +88,50 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
 }
 
 const std::vector<std::string>& roverFigureKeys() {
-    static const std::vector<std::string> keys{"path",     "yaw",      "velocities", "slip",
-                                               "steering", "wheel-vx", "wheel-vy",   "drawbar-pull",
-                                               "load",     "sinkage",  "top-view"};
+    static const std::vector<std::string> keys{
+        "path",         "yaw",  "velocities", "slip",         "steering",   "wheel-vx", "wheel-vy",
+        "drawbar-pull", "load", "sinkage",    "slip-control", "efficiency", "energy",   "top-view"};
     return keys;
+}
+
+nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs) {
+    auto meanPull = [](const scenario::RunResult& r) {
+        const double distance = r.summary.distance_m;
+        return distance > 0.0 ? r.traction.drawbar_work_j / distance : 0.0;
+    };
+    double oracle_pull = 0.0;
+    for (const ControllerRun& row : runs)
+        if (row.controller == "oracle") oracle_pull = meanPull(row.run);
+    auto optional = [](const std::optional<double>& v) {
+        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    nlohmann::json out = nlohmann::json::array();
+    for (const ControllerRun& row : runs) {
+        const scenario::Summary& m = row.run.summary;
+        const scenario::TractionMetrics& t = row.run.traction;
+        const double pull = meanPull(row.run);
+        out.push_back(
+            {{"controller", row.controller},
+             {"status", row.run.status == scenario::RunResult::Status::kCompleted
+                            ? "completed"
+                            : "not completed"},
+             {"distance_m", m.distance_m},
+             {"energy_per_m_J", optional(m.energy_per_m_j)},
+             {"mean_efficiency", optional(m.mean_efficiency)},
+             {"energy_per_drawbar_work", t.drawbar_work_j > 0.0
+                                             ? nlohmann::json(t.drive_energy_j / t.drawbar_work_j)
+                                             : nlohmann::json(nullptr)},
+             {"mean_drawbar_N", pull},
+             {"drawbar_vs_oracle",
+              oracle_pull > 0.0 ? nlohmann::json(pull / oracle_pull) : nlohmann::json(nullptr)},
+             {"slip_tracking_rms", optional(m.slip_tracking_rms)},
+             {"settling_time_s", optional(t.settling_time_s)},
+             {"rut_depth_m",
+              t.rear_sinkage_count > 0
+                  ? nlohmann::json(t.rear_sinkage_sum_m / static_cast<double>(t.rear_sinkage_count))
+                  : nlohmann::json(nullptr)}});
+    }
+    return out;
 }
 
 scenario::SlipPlanner tractionPlanner() {

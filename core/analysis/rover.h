@@ -66,6 +66,19 @@ Table roverSummaryTable(const RoverResult& result);
 /// diverged run is a failure, a cancelled one cancelled; both keep their partial tables.
 Outcome roverOutcome(RoverResult result);
 
+/// One controller's run of a comparison (docs/traction.md §6).
+struct ControllerRun {
+    std::string controller;  ///< controllerName()
+    scenario::RunResult run;
+};
+
+/// The comparison table (comparison.json, the studio's table): per run "controller", "status",
+/// "distance_m", "energy_per_m_J", "mean_efficiency", "energy_per_drawbar_work" (drive work over
+/// the implement's work), "mean_drawbar_N" (the implement's work over the distance),
+/// "drawbar_vs_oracle" (over the oracle run's; null without one), "slip_tracking_rms",
+/// "settling_time_s", "rut_depth_m"; null where a figure is not defined.
+nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs);
+
 AnalysisType roverType();
 
 }  // namespace terra::analysis

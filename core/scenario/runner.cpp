@@ -232,6 +232,9 @@ soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p
 // observer reads the sensors, each wheel gets its set-point (fixed, planned on the streaming
 // estimate, or the oracle's for the soil under it) and the PI its command.
 class ClosedLoop {
+    // How far below the slip the speed limit allows the dither's upper half stays [-].
+    static constexpr double kReachMargin = 0.02;
+
 public:
     ClosedLoop(const Scenario& scenario, const SlipPlanner& planner, double dt,
                const dynamics::RoverState& start)
@@ -255,6 +258,7 @@ public:
         for (int i = 0; i < dynamics::kWheelCount; ++i) {
             static_load_n_[i] =
                 dynamics::staticCornerLoad(scenario.robot, scenario.options.gravity_m_s2, i);
+            hub_x_m_[i] = (i < 2 ? 0.5 : -0.5) * scenario.robot.wheelbase_m;
         }
         oracle_.resize(static_cast<std::size_t>(scenario.terrain.soilCount()) *
                        dynamics::kWheelCount);
@@ -283,10 +287,21 @@ public:
             const double phase = std::fmod(state.time_s / spec_.dither_period_s, 1.0);
             dither = phase < 0.5 ? spec_.dither : -spec_.dither;
         }
+        if (spec_.type == ControllerType::kOptimal) followSegments(est, dt);
         for (int i = 0; i < dynamics::kWheelCount; ++i) {
             if (spec_.type == ControllerType::kOracle)
                 set_points_[i] = oracle(i, state.wheels[i].soil_index);
-            applied_[i] = std::clamp(set_points_[i] + dither, 0.01, 0.95);
+            double set = set_points_[i] + dither;
+            if (dither > 0.0) {
+                // The upper half of the dither only as far as the motor's speed limit lets the
+                // wheel slip at the hub's speed (Eq. 2.1: s = 1 − v_hub / (r_s ω_max)), never below
+                // the plan: a set-point the wheel cannot reach is tracking error, not excitation.
+                const double reachable =
+                    1.0 - est.hub_speed_m_s[i] / (shear_radius_m_ * spec_.max_spin_rate_rad_s) -
+                    kReachMargin;
+                set = std::max(set_points_[i], std::min(set, reachable));
+            }
+            applied_[i] = std::clamp(set, 0.01, 0.95);
             omega_[i] = controller_.command(i, applied_[i], est, dt);
             commands[i].spin_rate_rad_s = omega_[i];
             if (state.time_s >= 1.0) {
@@ -298,21 +313,41 @@ public:
         watchBorder(state);
     }
 
-    // A streaming update (optimal): plan on the first estimate, and again once the window holds
-    // enough samples of the new soil after a confirmed change.
-    void streamed(const identification::StreamUpdate& u, int wheel) {
-        if (spec_.type != ControllerType::kOptimal) return;
-        if (u.change_detected) awaiting_ = true;
-        const bool first = !planned_ && u.estimated;
-        const bool after_change = awaiting_ && u.estimated &&
-                                  u.window_size >= static_cast<std::size_t>(spec_.replan_samples);
-        if (!first && !after_change) return;
-        if (const std::optional<double> s =
-                plan(soilOfEstimate(u.parameters, scenario_.robot.wheel), static_load_n_[wheel])) {
-            set_points_.fill(*s);
-            planned_ = true;
-            awaiting_ = false;
+    // The identifier's sampling (optimal): its period [s], its window's length, and its wheel.
+    void streaming(double interval_s, std::size_t window, int wheel) {
+        sample_interval_s_ = interval_s;
+        wheel_ = wheel;
+        // A usable estimate: `replan_samples` of its soil and, with a dither, one dither period
+        // of them (both halves of the square wave), as far as the window holds.
+        std::size_t needed = static_cast<std::size_t>(spec_.replan_samples);
+        if (spec_.dither > 0.0) {
+            needed = std::max(needed, static_cast<std::size_t>(
+                                          std::ceil(spec_.dither_period_s / interval_s - 1e-9)));
         }
+        usable_samples_ = std::min(needed, window);
+    }
+
+    // A streaming update (optimal, docs/traction.md §5): the estimate of the soil under the
+    // identifier's wheel is planned on once the window is usable, then every replan_interval_s;
+    // a confirmed change opens a new stretch of soil, planned on once the window is usable again.
+    // Each wheel takes a stretch's plan, at its own estimated load, once it has reached it.
+    void streamed(const identification::StreamUpdate& u, double time_s) {
+        if (spec_.type != ControllerType::kOptimal) return;
+        if (u.change_detected) {
+            // Where the change began: the odometer less the samples since its first far-off one.
+            const double lag = u.change_at && *u.change_at <= u.index
+                                   ? static_cast<double>(u.index - *u.change_at)
+                                   : 0.0;
+            segments_.push_back(
+                {odometer_m_ - lag * sample_interval_s_ * std::max(0.0, estimates().speed_m_s),
+                 std::nullopt});
+            last_plan_s_.reset();
+        }
+        if (!u.estimated || u.window_size < usable_samples_) return;
+        if (last_plan_s_ && time_s < *last_plan_s_ + spec_.replan_interval_s) return;
+        segments_.back().soil = soilOfEstimate(u.parameters, scenario_.robot.wheel);
+        ++segments_.back().revision;
+        last_plan_s_ = time_s;
     }
 
     void apply(dynamics::Commands& commands) const {
@@ -344,6 +379,31 @@ private:
         std::optional<double> s = planner_(request);
         if (s) s = std::clamp(*s, spec_.slip_min, spec_.slip_max);
         return s;
+    }
+
+    // optimal: the odometer (the estimated speed integrated), each wheel's stretch of soil, and
+    // a new plan for a wheel that reached another stretch or whose stretch has a new estimate.
+    // A wheel ρ_x behind the identifier's reaches a change ρ_x after it; its load is the mean of
+    // its estimated load Ŵ_i since its last plan.
+    void followSegments(const Estimates& est, double dt) {
+        odometer_m_ += std::max(0.0, est.speed_m_s) * dt;
+        for (int i = 0; i < dynamics::kWheelCount; ++i) {
+            load_sum_n_[i] += est.load_n[i];
+            ++load_count_[i];
+            const double behind = hub_x_m_[wheel_] - hub_x_m_[i];
+            std::size_t k = 0;
+            while (k + 1 < segments_.size() && odometer_m_ >= segments_[k + 1].start_m + behind)
+                ++k;
+            const Segment& segment = segments_[k];
+            if (!segment.soil) continue;  // not yet planned: the wheel keeps its set-point
+            if (k == wheel_segment_[i] && segment.revision == wheel_revision_[i]) continue;
+            const double load = load_sum_n_[i] / static_cast<double>(load_count_[i]);
+            if (const std::optional<double> s = plan(*segment.soil, load)) set_points_[i] = *s;
+            wheel_segment_[i] = k;
+            wheel_revision_[i] = segment.revision;
+            load_sum_n_[i] = 0.0;
+            load_count_[i] = 0;
+        }
     }
 
     // The oracle's set-point for wheel i on soil `soil_index` (planned once per soil and wheel;
@@ -391,14 +451,31 @@ private:
     std::array<double, dynamics::kWheelCount> static_load_n_{};
     std::optional<int> start_soil_;
     std::vector<std::optional<double>> oracle_;
-    bool planned_ = false, awaiting_ = false;
+    // optimal: stretches of soil between confirmed changes along the odometer, each with the
+    // latest usable estimate of its soil (none before the first).
+    struct Segment {
+        double start_m = 0.0;
+        std::optional<soil::SoilParameters> soil;
+        int revision = 0;
+    };
+    std::vector<Segment> segments_{Segment{}};
+    std::array<std::size_t, dynamics::kWheelCount> wheel_segment_{};
+    std::array<int, dynamics::kWheelCount> wheel_revision_{};
+    std::array<double, dynamics::kWheelCount> load_sum_n_{};
+    std::array<long, dynamics::kWheelCount> load_count_{};
+    std::array<double, dynamics::kWheelCount> hub_x_m_{};
+    double odometer_m_ = 0.0;
+    double sample_interval_s_ = 0.1;
+    std::size_t usable_samples_ = 1;
+    int wheel_ = dynamics::kFrontLeft;
+    std::optional<double> last_plan_s_;
     int border_soil_ = 0;
     std::optional<double> settled_from_;
     TractionMetrics metrics_;
 };
 
 std::vector<std::string> closedLoopColumns() {
-    std::vector<std::string> c{"drawbar_N", "speed_est_m_s"};
+    std::vector<std::string> c{"drawbar_N", "speed_est_m_s", "drive_energy_J"};
     for (const char* w : dynamics::kCornerNames) {
         for (const char* name : {"slip_set", "slip_plan", "slip_est", "torque_Nm"})
             c.push_back(std::string(w) + "_" + name);
@@ -446,6 +523,7 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             streaming.initial.max_shear_deformation_m = std::numeric_limits<double>::infinity();
         }
         feed.emplace(*hook, scenario.robot.wheel, dt, streaming);
+        if (loop) loop->streaming(hook->interval_s, streaming.window, hook->wheel);
     }
     const bool loaded = scenario.drawbar_load.active();
     double drawbar_n = 0.0;
@@ -461,6 +539,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             const Estimates& est = loop->estimates();
             row.push_back(drawbar_n);
             row.push_back(est.speed_m_s);
+            const dynamics::EnergyLedger& e = rover.energy();
+            row.push_back(e.motor_work_j - e.steering_work_j);
             for (int i = 0; i < dynamics::kWheelCount; ++i) {
                 row.push_back(loop->applied()[i]);
                 row.push_back(loop->setPoints()[i]);
@@ -514,7 +594,7 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             result.series.rows.push_back(closedRow(seriesRow(state)));
         if (feed) {
             const auto update = feed->observe(step, state, loop ? &loop->estimates() : nullptr);
-            if (update && loop) loop->streamed(*update, feed->wheel());
+            if (update && loop) loop->streamed(*update, state.time_s);
         }
         if (step == steps) break;
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {

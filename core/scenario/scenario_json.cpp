@@ -225,7 +225,8 @@ const Range kDrawbarPerSpeedRange{0.0, 1e5};
 
 // "controller": {"type": constant-speed|fixed-slip|optimal|oracle, "slip", "objective",
 // "slip_min", "slip_max", "max_torque_Nm", "max_omega_rad_s", "min_omega_rad_s", "kp", "ki_per_s",
-// "interval_s", "replan_samples", "sensors": {...}} (docs/traction.md §5).
+// "interval_s", "replan_samples", "replan_interval_s", "dither", "dither_period_s", "sensors":
+// {...}} (docs/traction.md §5).
 void readController(ObjectReader& r, ControllerSpec& out) {
     if (!r.has("controller")) {
         r.allow("controller");
@@ -250,6 +251,7 @@ void readController(ObjectReader& r, ControllerSpec& out) {
     c.number("ki_per_s", out.ki_per_s, range.gain, "1/s");
     c.number("interval_s", out.interval_s, range.interval, "s");
     c.integer("replan_samples", out.replan_samples, 1, 10000);
+    c.number("replan_interval_s", out.replan_interval_s, range.replan_interval, "s");
     c.number("dither", out.dither, {0.0, 0.3});
     c.number("dither_period_s", out.dither_period_s, {0.01, 1000.0}, "s");
     if (c.has("sensors")) {

@@ -165,6 +165,7 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
     checkRange(issues, c + "kp", spec.kp, r.gain);
     checkRange(issues, c + "ki_per_s", spec.ki_per_s, r.gain, "1/s");
     checkRange(issues, c + "interval_s", spec.interval_s, r.interval, "s");
+    checkRange(issues, c + "replan_interval_s", spec.replan_interval_s, r.replan_interval, "s");
     checkRange(issues, c + "dither", spec.dither, {0.0, 0.3});
     checkRange(issues, c + "dither_period_s", spec.dither_period_s, {0.01, 1000.0}, "s");
     if (spec.replan_samples < 1 || spec.replan_samples > 10000) {

@@ -69,9 +69,14 @@ struct ControllerSpec {
     double kp = 0.2;           ///< proportional gain [per unit slip, relative to ω_ff]
     double ki_per_s = 0.5;     ///< integral gain [1/s per unit slip, relative to ω_ff]
     double interval_s = 0.01;  ///< control period [s] (100 Hz)
-    /// optimal: samples of the new soil in the identifier's window before re-planning after a
-    /// confirmed change (the estimate of the old soil is no plan for the new one).
+    /// optimal: samples of a soil in the identifier's window before its estimate is planned on
+    /// (the first plan, and the first after a confirmed change: the estimate of the old soil is
+    /// no plan for the new one). With a dither the window must also span one dither period
+    /// (both halves of the square wave), capped at the window's length.
     int replan_samples = 20;
+    /// optimal: once planned, the set-points are re-planned on the current estimate this often
+    /// [s] (the estimate keeps improving as the window fills; a first plan is never final).
+    double replan_interval_s = 4.0;
     /// optimal: a square wave of ± this added to the planned set-point [-] (period
     /// `dither_period_s`): persistent excitation, without which every sample of the identifier's
     /// window sits at one slip and the slip-dependent parameters are not identifiable.
@@ -90,6 +95,7 @@ struct ControllerRanges {
     Range min_spin_rate{0.0, 100.0};
     Range gain{0.0, 100.0};
     Range interval{1e-4, 1.0};
+    Range replan_interval{0.1, 1e4};  ///< optimal's re-planning period [s]
 };
 inline const ControllerRanges kControllerRanges{};
 

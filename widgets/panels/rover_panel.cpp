@@ -7,6 +7,7 @@
 #include <QDoubleSpinBox>
 #include <QFontDatabase>
 #include <QHBoxLayout>
+#include <QHeaderView>
 #include <QLabel>
 #include <QPlainTextEdit>
 #include <QPointer>
@@ -14,6 +15,7 @@
 #include <QPushButton>
 #include <QSlider>
 #include <QTabWidget>
+#include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
 #include <filesystem>
@@ -30,6 +32,12 @@ namespace terra::ui {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The result of "Compare controllers": the chosen controller's run and the table.
+struct Comparison {
+    std::optional<analysis::RoverResult> shown;
+    nlohmann::json table;
+};
 
 /// The file of a scenario preset, or empty.
 fs::path presetFile(const io::PresetLocations& locations, const std::string& name) {
@@ -137,6 +145,12 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     slip_set_->setToolTip("Slip set-point of fixed-slip; optimal's until its first soil estimate");
     slip_set_->setKeyboardTracking(false);
     run_ = new QPushButton("Run", this);
+    compare_ = new QPushButton("Compare controllers", this);
+    compare_->setObjectName("rover.compare");
+    compare_->setToolTip(
+        "Run the scenario under each controller (constant-speed, fixed-slip, optimal, oracle) and "
+        "show the comparison table; the figures show the chosen controller's run "
+        "(docs/traction.md §6)");
     cancel_ = new QPushButton("Cancel", this);
     cancel_->setEnabled(false);
     progress_ = new QProgressBar(this);
@@ -178,9 +192,17 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         if (!figure.thesis.isEmpty())
             tabs_->setTabToolTip(tabs_->count() - 1, "Thesis " + figure.thesis);
     }
+    // The comparison of the controllers, after the figures.
+    comparison_table_ = new QTableWidget(tabs_);
+    comparison_table_->setObjectName("rover.comparison");
+    comparison_table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    comparison_table_->verticalHeader()->setVisible(false);
+    tabs_->addTab(comparison_table_, "Comparison");
+    tabs_->setTabToolTip(tabs_->count() - 1,
+                         "The controllers compared on this scenario (Compare controllers)");
     drawn_.assign(plots_.size(), true);  // nothing to draw yet
     connect(tabs_, &QTabWidget::currentChanged, this, [this](int index) {
-        if (index <= 0) return;
+        if (index <= 0 || static_cast<std::size_t>(index) > plots_.size()) return;
         const auto i = static_cast<std::size_t>(index - 1);
         if (drawn_[i]) {
             plots_[i]->replot(QCustomPlot::rpQueuedReplot);  // its cursor may have moved
@@ -209,6 +231,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     control_bar->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
+    run_bar->addWidget(compare_);
     run_bar->addWidget(cancel_);
     run_bar->addWidget(progress_, 1);
     run_bar->addWidget(readout_, 1);
@@ -253,6 +276,12 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     });
     connect(run_, &QPushButton::clicked, this, [this] {
         storeSettings();
+        compare_next_ = false;
+        recompute();
+    });
+    connect(compare_, &QPushButton::clicked, this, [this] {
+        storeSettings();
+        compare_next_ = true;
         recompute();
     });
     connect(cancel_, &QPushButton::clicked, this, [this] {
@@ -261,6 +290,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     });
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         run_->setEnabled(!busy);
+        compare_->setEnabled(!busy);
         cancel_->setEnabled(busy);
         edit_->setEnabled(!busy);
         if (busy) {
@@ -275,6 +305,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     });
     connect(this, &AnalysisPanel::failed, this, [this](const QString& m) {
         run_->setEnabled(true);
+        compare_->setEnabled(true);
         cancel_->setEnabled(false);
         edit_->setEnabled(true);
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
@@ -284,6 +315,10 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
 
 void RoverPanel::requestRun() {
     if (run_->isEnabled()) run_->click();
+}
+
+void RoverPanel::requestComparison() {
+    if (compare_->isEnabled()) compare_->click();
 }
 
 void RoverPanel::drawFigure(std::size_t i) const {
@@ -307,7 +342,7 @@ std::vector<std::pair<QString, QCustomPlot*>> RoverPanel::plots() const {
 
 QCustomPlot* RoverPanel::currentPlot() const {
     const int i = tabs_->currentIndex();
-    if (i <= 0) return top_view_;
+    if (i <= 0 || static_cast<std::size_t>(i) > plots_.size()) return top_view_;
     drawFigure(static_cast<std::size_t>(i - 1));
     return plots_[static_cast<std::size_t>(i - 1)];
 }
@@ -490,23 +525,58 @@ AnalysisPanel::Job RoverPanel::makeJob() {
     settings.scenario = name;
     settings.loaded = *loaded;
     QPointer<QProgressBar> bar = progress_;
-    return [settings, bar](const std::atomic<bool>& cancel) -> std::any {
-        analysis::Control control{&cancel};
-        control.progress = [bar](double fraction) {
-            QMetaObject::invokeMethod(
-                bar,
-                [bar, fraction] {
-                    if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
-                },
-                Qt::QueuedConnection);
+    auto progress = [bar](double fraction) {
+        QMetaObject::invokeMethod(
+            bar,
+            [bar, fraction] {
+                if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
+            },
+            Qt::QueuedConnection);
+    };
+    if (!std::exchange(compare_next_, false)) {
+        return [settings, progress](const std::atomic<bool>& cancel) -> std::any {
+            analysis::Control control{&cancel};
+            control.progress = progress;
+            // The scenario travels with its result: the top view needs its robot and soils.
+            return analysis::runRover(settings, control);
         };
-        // The scenario travels with its result: the top view needs its robot and soils.
-        return analysis::runRover(settings, control);
+    }
+    // Every controller in turn, each a quarter of the bar; a cancelled run ends the comparison
+    // with the runs so far (the cancelled one marked "not completed").
+    return [settings, progress](const std::atomic<bool>& cancel) -> std::any {
+        Comparison out;
+        const scenario::ControllerType chosen = settings.loaded->controller.type;
+        const std::vector<std::string>& names = scenario::controllerNames();
+        std::vector<analysis::ControllerRun> runs;
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            analysis::RoverSettings one = settings;
+            one.controller = scenario::controllerFromName(names[k]);
+            analysis::Control control{&cancel};
+            const double share = 1.0 / static_cast<double>(names.size());
+            control.progress = [progress, k, share](double fraction) {
+                progress((static_cast<double>(k) + fraction) * share);
+            };
+            analysis::RoverResult result = analysis::runRover(one, control);
+            const bool cancelled = result.run.status == scenario::RunResult::Status::kCancelled;
+            runs.push_back({names[k], result.run});
+            if (*one.controller == chosen || !out.shown) out.shown = std::move(result);
+            if (cancelled) break;
+        }
+        out.table = analysis::controllerComparison(runs);
+        return out;
     };
 }
 
 void RoverPanel::present(const std::any& value) {
-    auto result = std::any_cast<analysis::RoverResult>(value);
+    analysis::RoverResult result;
+    const auto* compared = std::any_cast<Comparison>(&value);
+    if (compared) {
+        result = *compared->shown;
+        comparison_ = compared->table;
+        showComparison();
+    } else {
+        result = std::any_cast<analysis::RoverResult>(value);
+    }
     shown_ = std::move(result.scenario);
     result_ = std::move(result.run);
     shown_name_ = pending_name_;
@@ -532,7 +602,93 @@ void RoverPanel::present(const std::any& value) {
         status_->setText("No output: " + QString::fromStdString(result_.message));
         return;
     }
+    if (compared) {
+        status_->setText(
+            QString("Compared the %1 controllers (Comparison tab); the figures show %2 "
+                    "— ")
+                .arg(comparison_.size())
+                .arg(scenario::controllerName(shown_.controller.type)) +
+            summaryText());
+        return;
+    }
     status_->setText(summaryText());
+}
+
+void RoverPanel::showComparison() {
+    struct ColumnSpec {
+        const char* key;
+        const char* header;
+        int decimals;
+        double scale;
+    };
+    static const ColumnSpec kColumns[] = {
+        {"distance_m", "distance\n[m]", 3, 1.0},
+        {"energy_per_m_J", "energy\n[J/m]", 2, 1.0},
+        {"energy_per_drawbar_work", "energy /\ndrawbar work", 2, 1.0},
+        {"mean_efficiency", "mean η", 4, 1.0},
+        {"mean_drawbar_N", "drawbar\n[N]", 3, 1.0},
+        {"drawbar_vs_oracle", "drawbar /\noracle's", 3, 1.0},
+        {"slip_tracking_rms", "slip\nRMS", 4, 1.0},
+        {"settling_time_s", "settling\n[s]", 2, 1.0},
+        {"rut_depth_m", "rut\n[mm]", 2, 1e3},
+    };
+    QStringList headers{"controller"};
+    for (const ColumnSpec& c : kColumns) headers << QString::fromUtf8(c.header);
+    comparison_table_->clear();
+    comparison_table_->setColumnCount(static_cast<int>(headers.size()));
+    comparison_table_->setHorizontalHeaderLabels(headers);
+    comparison_table_->setRowCount(static_cast<int>(comparison_.size()));
+    int r = 0;
+    for (const nlohmann::json& row : comparison_) {
+        QString name = QString::fromStdString(row.value("controller", std::string()));
+        if (row.value("status", std::string()) != "completed") name += " (not completed)";
+        comparison_table_->setItem(r, 0, new QTableWidgetItem(name));
+        int c = 1;
+        for (const ColumnSpec& spec : kColumns) {
+            const nlohmann::json& v = row[spec.key];
+            // Not defined (no set-point, no border, no oracle run): a dash, never "nan".
+            auto* item = new QTableWidgetItem(
+                v.is_number() ? QString::number(v.get<double>() * spec.scale, 'f', spec.decimals)
+                              : QString("–"));
+            item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+            comparison_table_->setItem(r, c++, item);
+        }
+        ++r;
+    }
+    comparison_table_->resizeColumnsToContents();
+    comparison_table_->resizeRowsToContents();
+}
+
+Table RoverPanel::comparisonAsTable() const {
+    Table t;
+    t.label_column = "controller";
+    t.columns = {"distance_m",        "energy_per_m_J",  "energy_per_drawbar_work",
+                 "mean_efficiency",   "mean_drawbar_N",  "drawbar_vs_oracle",
+                 "slip_tracking_rms", "settling_time_s", "rut_depth_m"};
+    for (const nlohmann::json& row : comparison_) {
+        t.labels.push_back(row.value("controller", std::string()));
+        std::vector<double> values;
+        for (const std::string& key : t.columns) {
+            const nlohmann::json& v = row[key];
+            values.push_back(v.is_number() ? v.get<double>() : std::nan(""));
+        }
+        t.rows.push_back(std::move(values));
+    }
+    return t;
+}
+
+bool RoverPanel::showTab(const QString& label) {
+    for (int i = 0; i < tabs_->count(); ++i) {
+        if (tabs_->tabText(i) == label) {
+            tabs_->setCurrentIndex(i);
+            return true;
+        }
+    }
+    return false;
+}
+
+Table RoverPanel::currentTable() const {
+    return tabs_->currentWidget() == comparison_table_ ? comparisonAsTable() : result_.series;
 }
 
 QString RoverPanel::summaryText() const {

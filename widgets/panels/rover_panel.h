@@ -23,6 +23,7 @@ class QProgressBar;
 class QPushButton;
 class QSlider;
 class QTabWidget;
+class QTableWidget;
 class QTimer;
 
 namespace terra::ui {
@@ -67,7 +68,8 @@ public:
     /// Run (when no run goes on).
     void requestRun() override;
     QCustomPlot* currentPlot() const override;
-    Table currentTable() const override { return result_.series; }
+    /// The time series; on the comparison's tab the comparison table.
+    Table currentTable() const override;
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
 
@@ -84,6 +86,19 @@ public:
     QCustomPlot* topView() const { return top_view_; }
     QSlider* scrubber() const { return scrubber_; }
     QString timeLabel() const;
+    /// Runs the scenario under every controller (docs/traction.md §6) off the GUI thread, then
+    /// shows the run of the chosen controller and the comparison table (when no run goes on).
+    void requestComparison();
+    QPushButton* compareButton() const { return compare_; }
+    /// The comparison of the last "Compare controllers" (rows of controllerComparison; an
+    /// empty array before one), and its tab.
+    const nlohmann::json& comparison() const { return comparison_; }
+    QTableWidget* comparisonTable() const { return comparison_table_; }
+    /// Shows the tab labelled `label` ("Top view", a figure's tab, "Comparison"); false when
+    /// there is none.
+    bool showTab(const QString& label);
+    /// The comparison as a table: the controller as the label, one column per figure.
+    Table comparisonAsTable() const;
     /// Shows row `row` of the series in the top view (redraw only).
     void scrubTo(int row);
 
@@ -112,6 +127,8 @@ private:
     QString summaryText() const;
     /// Retitles every tab (figures and top view) with `title`: they show the same run.
     void retitle(const QString& title);
+    /// Fills the comparison's tab from comparison_.
+    void showComparison();
 
     io::PresetLocations locations_;
     QComboBox* scenario_;
@@ -122,6 +139,7 @@ private:
     QComboBox* controller_;     // the scenario's "controller" type (docs/traction.md §5)
     QDoubleSpinBox* slip_set_;  // and its fixed set-point "slip"
     QPushButton* run_;
+    QPushButton* compare_;
     QPushButton* cancel_;
     QProgressBar* progress_;
     QLabel* status_;
@@ -135,6 +153,9 @@ private:
     QLabel* time_;
     QPushButton* play_;
     QTimer* player_;
+    QTableWidget* comparison_table_;
+    nlohmann::json comparison_ = nlohmann::json::array();
+    bool compare_next_ = false;                        // the next job compares the controllers
     nlohmann::json edits_ = nlohmann::json::object();  // scenario name → edited JSON
     scenario::RunResult result_;
     scenario::Scenario shown_;

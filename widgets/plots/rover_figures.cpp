@@ -60,16 +60,22 @@ struct Line {
     QString label;
 };
 
-void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines,
-               const QString& y_label, const QString& title, double min_span, double factor = 1.0,
-               bool include_zero = false) {
+/// Clears the plot for a figure against time; false (empty axes drawn) when the series has fewer
+/// than two rows.
+bool startTimePlot(QCustomPlot& plot, const Table& t, const QString& y_label,
+                   const QString& title) {
     resetRoverPlot(plot, title);
     plot.xAxis->setLabel("Time t [s]");
     plot.yAxis->setLabel(y_label);
-    if (t.rows.size() < 2) {
-        plot.replot();
-        return;
-    }
+    if (t.rows.size() >= 2) return true;
+    plot.replot();
+    return false;
+}
+
+void timeLines(QCustomPlot& plot, const Table& t, const std::vector<Line>& lines,
+               const QString& y_label, const QString& title, double min_span, double factor = 1.0,
+               bool include_zero = false) {
+    if (!startTimePlot(plot, t, y_label, title)) return;
     const QVector<double> time = column(t, "t_s");
     int i = 0;
     for (const Line& line : lines) {
@@ -149,6 +155,123 @@ QCPCurve* findCurve(QCustomPlot& plot, const QString& name) {
     return nullptr;
 }
 
+bool hasColumn(const Table& t, const std::string& name) {
+    return std::find(t.columns.begin(), t.columns.end(), name) != t.columns.end();
+}
+
+/// Σ over the wheels of column `a` × column `b` in one row ("Fx_N" × "vx_m_s": the wheels' output
+/// power; "My_Nm" × "omega_rad_s": their input power) [W].
+double wheelPower(const Table& t, const std::vector<double>& row, const char* a, const char* b) {
+    double sum = 0.0;
+    for (const char* w : dynamics::kCornerNames) {
+        const std::string p = std::string(w) + "_";
+        sum += row[t.column(p + a)] * row[t.column(p + b)];
+    }
+    return sum;
+}
+
+// The slip controller at work (docs/traction.md §5): each wheel's true slip s and, in a
+// closed-loop run, the set-point s* its PI tracks (with the optimal controller's dither), the
+// same colour dashed. A constant-speed run has no set-point: only s.
+void plotSlipControl(QCustomPlot& plot, const Table& t, const QString& title) {
+    if (!startTimePlot(plot, t, "Slip ratio s [-]", title)) return;
+    const QVector<double> time = column(t, "t_s");
+    const bool closed = hasColumn(t, "FL_slip_set");
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        const std::string w = dynamics::kCornerNames[i];
+        QCPGraph* s = plot.addGraph();
+        s->setData(time, column(t, w + "_slip"), true);
+        s->setName(QString::fromStdString(w + " s"));
+        s->setPen(QPen(kWheelColors[i], 1.2));
+        if (!closed) continue;
+        QCPGraph* set = plot.addGraph();
+        set->setData(time, column(t, w + "_slip_set"), true);
+        set->setName(QString::fromStdString(w + " s*"));
+        QPen pen(kWheelColors[i].darker(130), 2.0);
+        pen.setStyle(Qt::DashLine);
+        set->setPen(pen);
+    }
+    plot.legend->setVisible(true);
+    finish(plot, 0.02, true);
+}
+
+// η = Σ F_x v_x / Σ M_y ω (docs/traction.md §1, §5's mean_efficiency) over a sliding window of
+// kWindow_s: the ratio of the wheels' output to input work in it. Rows where the wheels take in
+// less than kMinInput_W on average (at rest, braking) draw no point.
+void plotEfficiency(QCustomPlot& plot, const Table& t, const QString& title) {
+    constexpr double kWindow_s = 1.0, kMinInput_W = 1e-3;
+    if (!startTimePlot(plot, t, "Tractive efficiency η [-] (1 s window)", title)) return;
+    const std::size_t tc = t.column("t_s");
+    std::vector<double> output(t.rows.size()), input(t.rows.size());
+    for (std::size_t r = 0; r < t.rows.size(); ++r) {
+        output[r] = wheelPower(t, t.rows[r], "Fx_N", "vx_m_s");
+        input[r] = wheelPower(t, t.rows[r], "My_Nm", "omega_rad_s");
+    }
+    // Trapezoidal integrals, then differences over the window.
+    std::vector<double> out_work(t.rows.size()), in_work(t.rows.size());
+    for (std::size_t r = 1; r < t.rows.size(); ++r) {
+        const double dt = t.rows[r][tc] - t.rows[r - 1][tc];
+        out_work[r] = out_work[r - 1] + 0.5 * (output[r] + output[r - 1]) * dt;
+        in_work[r] = in_work[r - 1] + 0.5 * (input[r] + input[r - 1]) * dt;
+    }
+    QVector<double> time, eta;
+    std::size_t from = 0;
+    for (std::size_t r = 1; r < t.rows.size(); ++r) {
+        while (t.rows[r][tc] - t.rows[from][tc] > kWindow_s) ++from;
+        const double span = t.rows[r][tc] - t.rows[from][tc];
+        const double in = in_work[r] - in_work[from];
+        if (span < 0.5 * kWindow_s || !(in > kMinInput_W * span)) continue;
+        const double value = (out_work[r] - out_work[from]) / in;
+        if (!std::isfinite(value)) continue;
+        time.push_back(t.rows[r][tc]);
+        eta.push_back(value);
+    }
+    QCPGraph* g = plot.addGraph();
+    g->setData(time, eta, true);
+    g->setName("η, all wheels");
+    g->setPen(QPen(kWheelColors[0], 1.8));
+    plot.legend->setVisible(false);
+    finish(plot, 0.02, true);
+}
+
+// The drive motors' work ∫ Σ τ ω dt against time (closed-loop runs record it; a constant-speed
+// run's ideal servos do not, and its wheels' input work ∫ Σ M_y ω dt stands in, labelled so),
+// with the implement's work ∫ F_d v dt when it pulls: the gap is what the drive loses.
+void plotEnergy(QCustomPlot& plot, const Table& t, const QString& title) {
+    if (!startTimePlot(plot, t, "Cumulative work [J]", title)) return;
+    const std::size_t tc = t.column("t_s");
+    const QVector<double> time = column(t, "t_s");
+    QVector<double> drive(time.size()), drawbar(time.size());
+    const bool motors = hasColumn(t, "drive_energy_J");
+    const bool pulled = hasColumn(t, "drawbar_N");
+    for (std::size_t r = 0; r < t.rows.size(); ++r) {
+        const auto& row = t.rows[r];
+        const auto q = static_cast<qsizetype>(r);
+        const double input = wheelPower(t, row, "My_Nm", "omega_rad_s");
+        const double pull_power =
+            pulled ? row[t.column("drawbar_N")] * std::max(0.0, row[t.column("forward_m_s")]) : 0.0;
+        if (r == 0) {
+            drive[q] = motors ? row[t.column("drive_energy_J")] : 0.0;
+            continue;
+        }
+        const double dt = row[tc] - t.rows[r - 1][tc];
+        drive[q] = motors ? row[t.column("drive_energy_J")] : drive[q - 1] + input * dt;
+        drawbar[q] = drawbar[q - 1] + pull_power * dt;
+    }
+    QCPGraph* g = plot.addGraph();
+    g->setData(time, drive, true);
+    g->setName(motors ? "drive motors ∫Στω dt" : "wheels' input ∫ΣM_y ω dt (ideal servos)");
+    g->setPen(QPen(kWheelColors[1], 1.8));
+    if (pulled) {
+        QCPGraph* d = plot.addGraph();
+        d->setData(time, drawbar, true);
+        d->setName("implement ∫F_d v dt");
+        d->setPen(QPen(kWheelColors[2], 1.8));
+    }
+    plot.legend->setVisible(true);
+    finish(plot, 0.1, true);
+}
+
 }  // namespace
 
 const std::vector<RoverFigure>& roverFigures() {
@@ -163,6 +286,9 @@ const std::vector<RoverFigure>& roverFigures() {
         {"drawbar-pull", "Drawbar pull", ""},
         {"load", "Load", ""},
         {"sinkage", "Sinkage", ""},
+        {"slip-control", "Slip control", ""},
+        {"efficiency", "Efficiency", ""},
+        {"energy", "Energy", ""},
     };
     return figures;
 }
@@ -193,6 +319,12 @@ void plotRoverFigure(QCustomPlot& plot, const Table& t, const std::string& key,
         timeLines(plot, t, perWheel("load_N"), "Wheel load [N]", title, 1.0);
     } else if (key == "sinkage") {
         timeLines(plot, t, perWheel("sinkage_m"), "Sinkage h [mm]", title, 0.5, 1e3, true);
+    } else if (key == "slip-control") {
+        plotSlipControl(plot, t, title);
+    } else if (key == "efficiency") {
+        plotEfficiency(plot, t, title);
+    } else if (key == "energy") {
+        plotEnergy(plot, t, title);
     } else {
         throw std::invalid_argument("unknown rover figure \"" + key + "\"");
     }

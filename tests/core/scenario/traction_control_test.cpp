@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
@@ -89,6 +90,39 @@ TEST(TractionControl, OracleHoldsThePlannedSlipOfTheSoilUnderEachWheel) {
     for (const char* w : dynamics::kCornerNames) {
         for (double set : after(r, std::string(w) + "_slip_set", 0.5)) EXPECT_EQ(set, 0.55) << w;
         EXPECT_NEAR(mean(after(r, std::string(w) + "_slip", 6.0)), 0.55, kSlipHeld) << w;
+    }
+}
+
+// The estimate-driven controller (docs/traction.md §5): no plan before the identifier's window
+// holds a usable estimate — one dither period of samples (40 at 10 Hz from t = 1 s, the end of
+// spin-up: the 40th at t = 4.9 s); until then the fixed `slip`. Then each wheel at its plan
+// (the stand-in's 0.6 for any estimated soil), holding it as fixed-slip holds its set-point:
+// the true slip's mean offset from the applied set-point (with the dither) within kSlipHeld.
+TEST(TractionControl, OptimalWaitsForAUsableEstimateThenHoldsItsSetPoint) {
+    Scenario s = towing(ControllerType::kOptimal, 16.0);
+    StreamingHook hook;
+    hook.interval_s = 0.1;
+    s.streaming = hook;
+    const RunResult r = run(s);
+    ASSERT_EQ(r.status, RunResult::Status::kCompleted) << r.message;
+    const std::size_t t = r.series.column("t_s");
+    for (const char* w : dynamics::kCornerNames) {
+        const std::size_t plan = r.series.column(std::string(w) + "_slip_plan");
+        std::optional<double> first_plan_s;
+        for (const auto& row : r.series.rows) {
+            if (row[plan] != 0.5 && !first_plan_s) first_plan_s = row[t];
+            if (row[t] < 4.85) {
+                EXPECT_EQ(row[plan], 0.5) << w << " at t = " << row[t];
+            }
+        }
+        ASSERT_TRUE(first_plan_s.has_value()) << w;
+        EXPECT_LT(*first_plan_s, 6.0) << w;
+        EXPECT_EQ(r.series.rows.back()[plan], 0.6) << w;
+        const std::vector<double> slip = after(r, std::string(w) + "_slip", 8.0);
+        const std::vector<double> set = after(r, std::string(w) + "_slip_set", 8.0);
+        double offset = 0.0;
+        for (std::size_t i = 0; i < slip.size(); ++i) offset += slip[i] - set[i];
+        EXPECT_NEAR(offset / static_cast<double>(slip.size()), 0.0, kSlipHeld) << w;
     }
 }
 
@@ -234,12 +268,19 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
     EXPECT_NE(message(withController({{"slip", 0.2}})).find("controller.type"), std::string::npos);
     EXPECT_NE(message(withController({{"type", "oracle"}, {"gain", 1}})).find("controller.gain"),
               std::string::npos);
+    const std::string replan =
+        message(withController({{"type", "optimal"}, {"replan_interval_s", 0.01}}));
+    EXPECT_NE(replan.find("controller.replan_interval_s"), std::string::npos) << replan;
+    EXPECT_NE(replan.find("[0.1, 10000]"), std::string::npos) << replan;
     nlohmann::json load = withController({{"type", "fixed-slip"}});
     load["drawbar_load"] = {{"force_N", -1}};
     EXPECT_NE(message(load).find("drawbar_load.force_N"), std::string::npos) << message(load);
 
-    nlohmann::json good = withController(
-        {{"type", "optimal"}, {"slip", 0.2}, {"max_torque_Nm", 3}, {"sensors", {{"seed", 7}}}});
+    nlohmann::json good = withController({{"type", "optimal"},
+                                          {"slip", 0.2},
+                                          {"max_torque_Nm", 3},
+                                          {"replan_interval_s", 2},
+                                          {"sensors", {{"seed", 7}}}});
     good["drawbar_load"] = {
         {"force_N", {{"type", "step"}, {"value", 1}, {"amplitude", 2}, {"start_s", 5}}},
         {"per_speed_N_s_m", 50}};
@@ -248,6 +289,7 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
     EXPECT_EQ(s->controller.type, ControllerType::kOptimal);
     EXPECT_EQ(s->controller.slip, 0.2);
     EXPECT_EQ(s->controller.max_torque_nm, 3.0);
+    EXPECT_EQ(s->controller.replan_interval_s, 2.0);
     EXPECT_EQ(s->controller.sensors.seed, 7u);
     EXPECT_EQ(s->drawbar_load.force_n.at(6.0), 3.0);
     EXPECT_EQ(s->drawbar_load.per_speed_n_s_m, 50.0);
