@@ -492,7 +492,8 @@ TEST(MainWindow, UndoingBackToANewProjectsStartClearsTheModifiedMark) {
     ASSERT_NE(run, nullptr);
     QSignalSpy shown(rover, &ui::AnalysisPanel::resultShown);
     run->click();
-    QTest::qWaitFor([rover] { return rover->isBusy(); }, 5000);
+    // The run may end before the wait sees it busy: cancelling an ended run is also fine.
+    static_cast<void>(QTest::qWaitFor([rover] { return rover->isBusy(); }, 5000));
     rover->cancelRunning();
     ASSERT_TRUE(shown.count() > 0 || shown.wait(60000));
     EXPECT_FALSE(w.isWindowModified()) << "Run is no edit";

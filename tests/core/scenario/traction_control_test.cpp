@@ -138,7 +138,9 @@ TEST(TractionControl, OracleSwitchesAtTheBorderAndHasNoSettlingDelay) {
     // centre of mass), and its set-point changes at the same control tick.
     const std::size_t t = r.series.column("t_s"), x = r.series.column("x_m");
     for (const auto& row : r.series.rows) {
-        if (row[t] + 0.011 < *r.traction.border_time_s) EXPECT_LT(row[x] + 0.25, 0.5 + 1e-3);
+        if (row[t] + 0.011 < *r.traction.border_time_s) {
+            EXPECT_LT(row[x] + 0.25, 0.5 + 1e-3);
+        }
     }
     ASSERT_TRUE(r.traction.settling_time_s.has_value());
     EXPECT_EQ(*r.traction.settling_time_s, 0.0);
