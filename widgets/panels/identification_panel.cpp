@@ -846,9 +846,8 @@ std::map<std::string, project::SavedResult> IdentificationPanel::savedResults() 
                             .arg(result_.data.samples.size())
                             .arg(result_.fit_time_ms, 0, 'f', 0)
                             .toStdString();
+        // The curves and parameters are tables of the result already: not written twice.
         saved.result = project::savedJson(result_);
-        saved.tables.push_back({"curves", std::nullopt, result_.curves});
-        saved.tables.push_back({"parameters", std::nullopt, result_.parameters});
     }
     // A playback that ended (finished or stopped), not one going on.
     if (!playback_->isActive() && !stream_frames_.empty() && !stream_hash_.empty()) {

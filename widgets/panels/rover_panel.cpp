@@ -596,8 +596,8 @@ std::map<std::string, project::SavedResult> RoverPanel::savedResults() const {
                         .arg(QString::fromStdString(shown_name_))
                         .arg(result_.summary.duration_s, 0, 'f', 2)
                         .toStdString();
+    // The series is in the result already (a table): not written twice (a long run is megabytes).
     saved.result = project::savedJson(project::SavedRoverRun{result_, shown_name_, shown_json_});
-    saved.tables.push_back({"series", std::nullopt, result_.series});
     return {{name().toStdString(), std::move(saved)}};
 }
 
