@@ -27,6 +27,7 @@
 
 #include "core/project/results.h"
 #include "widgets/document/project_document.h"
+#include "widgets/document/saved_results_reader.h"
 #include "widgets/document/suggested_paths.h"
 #include "widgets/editors/project_tree.h"
 #include "widgets/editors/property_editors.h"
@@ -82,12 +83,11 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
                global};
     const QStringList titles{"Forces vs slip", "Stresses",       "Compaction",        "Sensitivity",
                              "Identification", "Rover scenario", "Global sensitivity"};
+    identification_ = identification;
+    global_ = global;
     // The identified soil's covariance feeds the global study's "identified soil" source.
-    connect(identification, &ui::AnalysisPanel::resultShown, global, [identification, global] {
-        const analysis::IdentificationResult& r = identification->result();
-        if (r.report && r.report->usable())
-            global->setIdentification(r.identified, r.report->uncertainty);
-    });
+    connect(identification, &ui::AnalysisPanel::resultShown, this,
+            &MainWindow::shareIdentification);
     // Every analysis is a dock (View ▸ Layout): torn off, put beside another or tabbed with it.
     panel_area_ = new QMainWindow(this);
     panel_area_->setObjectName("panel_area");
@@ -260,35 +260,31 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     // filled in): that is not an edit. The opened project is what is on disk.
     adoptPanelSettings();
     addRecent(QFileInfo(path).absoluteFilePath());
-    // The results saved beside it, shown where the inputs are unchanged: nothing is recomputed.
-    QStringList shown;
-    const std::filesystem::path results_path =
-        project::resultsPathFor(QFileInfo(path).absoluteFilePath().toStdString());
-    if (std::filesystem::exists(results_path)) {
-        const Result<project::SavedResults> results = project::loadResults(results_path);
-        for (std::size_t i = 0; results && i < panels_.size(); ++i) {
-            const auto saved = results->panels.find(panels_[i]->name().toStdString());
-            if (saved != results->panels.end() && panels_[i]->restoreResult(saved->second))
-                shown << panel_docks_[i]->windowTitle();
-        }
-        if (!results) {
-            statusBar()->showMessage("Opened " + path +
-                                         "; its saved results cannot be read and are not shown: " +
-                                         QString::fromStdString(results.message()),
-                                     8000);
-            return true;
-        }
+    // The results saved beside it, read off the GUI thread (a rover run is 10⁵ numbers) and shown
+    // where the inputs are unchanged: nothing is recomputed, and nothing starts meanwhile.
+    const int opening = ++opening_;
+    const QString results_path = QString::fromStdString(
+        project::resultsPathFor(QFileInfo(path).absoluteFilePath().toStdString()).string());
+    reading_results_ = QFileInfo::exists(results_path);
+    for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(reading_results_);
+    if (!reading_results_) {
+        statusBar()->showMessage("Opened " + path, 6000);
+        return true;
     }
-    statusBar()->showMessage(
-        shown.isEmpty()
-            ? "Opened " + path
-            : QString("Opened %1 with its saved results (%2)").arg(path, shown.join(", ")),
-        6000);
+    statusBar()->showMessage("Opened " + path + "; reading its saved results…");
+    ui::readSavedResults(results_path, this,
+                         [this, opening, path](const Result<project::SavedResults>& results) {
+                             // Another project was opened (or a new one) since: not its results.
+                             if (opening == opening_) showSavedResults(path, results);
+                         });
     return true;
 }
 
 void MainWindow::newProject() {
     if (!maybeSave()) return;
+    ++opening_;  // saved results still being read are of the project before: never shown
+    reading_results_ = false;
+    for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(false);
     document_->reset(ui::ProjectDocument::defaultProject(locations_));
     adoptPanelSettings();
 }
@@ -318,9 +314,7 @@ bool MainWindow::saveTo(const QString& path) {
     // The results on screen beside the project (core/project/results.h), so that reopening it
     // shows them; a failure here loses no input, so it is said and the project stays saved.
     project::SavedResults results;
-    for (ui::AnalysisPanel* panel : panels_) {
-        if (auto saved = panel->savedResult()) results.panels[panel->name().toStdString()] = *saved;
-    }
+    for (ui::AnalysisPanel* panel : panels_) results.panels.merge(panel->savedResults());
     if (const auto failed =
             project::saveResults(project::resultsPathFor(path.toStdString()), results)) {
         statusBar()->showMessage("Saved " + document_->filePath() +

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/io/parameters_json.h"
+#include "core/project/results.h"
 
 class QDockWidget;
 class QStackedWidget;
@@ -16,6 +17,8 @@ class QTimer;
 
 namespace terra::ui {
 class AnalysisPanel;
+class GlobalSensitivityPanel;
+class IdentificationPanel;
 class HelpDialog;
 class ProjectDocument;
 }  // namespace terra::ui
@@ -29,6 +32,9 @@ public:
 
     ui::ProjectDocument* document() const { return document_; }
     /// Opens a project file; false (and a message box unless `quiet`) when it cannot be read.
+    /// Its saved results (NAME.terra.results) are read off the GUI thread afterwards and shown
+    /// where their inputs are unchanged (savedResultsShown() once done); meanwhile no panel
+    /// starts a computation by itself.
     bool openProject(const QString& path, bool quiet = false);
     /// Shows the panel with this name ("forces", "stresses", "compaction", "sensitivity",
     /// "identification", "global-sensitivity", "rover").
@@ -65,6 +71,15 @@ public:
     /// docs/user-guide.md where the program is installed (or built).
     static QString userGuidePath();
 
+signals:
+    /// The opened project's saved results were read and those that hold are shown (the status
+    /// bar says which, and which not and why).
+    void savedResultsShown();
+
+public:
+    /// Whether the opened project's saved results are still being read.
+    bool readingSavedResults() const { return reading_results_; }
+
 protected:
     void closeEvent(QCloseEvent* event) override;
 
@@ -79,6 +94,9 @@ private:
     /// The identification panel's data (a CSV chosen, listed or dropped), the panel on screen.
     void useData(const QString& path);
     void adoptPanelSettings();
+    void showSavedResults(const QString& path, const Result<project::SavedResults>& results);
+    /// The identification's fit as the global study's "identified soil" source.
+    void shareIdentification();
     void exportCurrentPlot();
     void exportCurrentData();
     void addRecent(const QString& path);
@@ -105,6 +123,10 @@ private:
     QMainWindow* panel_area_ = nullptr;
     int last_window_width_ = 0;  // the project and properties docks' [px]; 0: not yet laid out
     QMenu* recent_menu_ = nullptr;
+    ui::IdentificationPanel* identification_ = nullptr;
+    ui::GlobalSensitivityPanel* global_ = nullptr;
+    int opening_ = 0;               // counts openings: results read for an earlier one are dropped
+    bool reading_results_ = false;  // the opened project's saved results are being read
     QTimer* autosave_timer_;
     ui::HelpDialog* help_ = nullptr;
 };

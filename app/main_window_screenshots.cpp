@@ -18,6 +18,12 @@ namespace terra::app {
 int MainWindow::takeScreenshots(const QString& dir) {
     QDir().mkpath(dir);
     QFile::remove(autosavePath());
+    if (readingSavedResults()) {  // a project opened on the command line: its results first
+        QEventLoop loop;
+        QTimer::singleShot(60000, &loop, &QEventLoop::quit);
+        connect(this, &MainWindow::savedResultsShown, &loop, &QEventLoop::quit);
+        loop.exec();
+    }
     int failures = 0;
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
@@ -27,8 +33,12 @@ int MainWindow::takeScreenshots(const QString& dir) {
             QTimer::singleShot(60000, &loop, &QEventLoop::quit);
             connect(panel, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
             connect(panel, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
-            const bool on_request = panel->name() == "identification" || panel->name() == "rover";
-            if (on_request || panel->isBusy() || panel->lastLatencyMs() == 0.0) {
+            // A result saved with the project is shown as it is (a reopened project's screenshots).
+            const bool on_request =
+                (panel->name() == "identification" || panel->name() == "rover") &&
+                !panel->showsSavedResult();
+            if (on_request || panel->isBusy() ||
+                (panel->lastLatencyMs() == 0.0 && !panel->showsSavedResult())) {
                 if (on_request) panel->recompute();
                 loop.exec();
             }

@@ -7,90 +7,19 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/json_reader.h"
+#include "core/project/result_json.h"
 
 namespace terra::project {
 namespace {
 
 using nlohmann::json;
 
-// JSON has no NaN or infinity: a non-finite value (a constant output's undefined index) is null.
-json number(double v) {
-    if (!std::isfinite(v)) return nullptr;
-    return v;
-}
-
-double numberOf(const json& v) {
-    return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
-}
-
-json tableJson(const Table& table) {
-    json rows = json::array();
-    for (const std::vector<double>& row : table.rows) {
-        json r = json::array();
-        for (double v : row) r.push_back(number(v));
-        rows.push_back(std::move(r));
-    }
-    json out{{"columns", table.columns}, {"rows", std::move(rows)}};
-    if (!table.label_column.empty()) {
-        out["label_column"] = table.label_column;
-        out["labels"] = table.labels;
-    }
-    return out;
-}
-
-Table tableFrom(const json& j) {
-    Table t;
-    t.columns = j.at("columns").get<std::vector<std::string>>();
-    for (const json& row : j.at("rows")) {
-        std::vector<double> r;
-        for (const json& v : row) r.push_back(numberOf(v));
-        if (r.size() != t.columns.size())
-            throw std::invalid_argument("a row has " + std::to_string(r.size()) + " values for " +
-                                        std::to_string(t.columns.size()) + " columns");
-        t.rows.push_back(std::move(r));
-    }
-    if (j.contains("label_column")) {
-        t.label_column = j.at("label_column").get<std::string>();
-        t.labels = j.at("labels").get<std::vector<std::string>>();
-    }
-    return t;
-}
-
-json matrixJson(const Eigen::MatrixXd& m) {
-    json rows = json::array();
-    for (Eigen::Index i = 0; i < m.rows(); ++i) {
-        json row = json::array();
-        for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(number(m(i, j)));
-        rows.push_back(std::move(row));
-    }
-    return rows;
-}
-
-Eigen::MatrixXd matrixFrom(const json& j) {
-    const auto rows = static_cast<Eigen::Index>(j.size());
-    const auto cols = rows == 0 ? Eigen::Index{0} : static_cast<Eigen::Index>(j.front().size());
-    Eigen::MatrixXd m(rows, cols);
-    for (Eigen::Index i = 0; i < rows; ++i) {
-        const json& row = j[static_cast<std::size_t>(i)];
-        if (static_cast<Eigen::Index>(row.size()) != cols)
-            throw std::invalid_argument("matrix rows of different lengths");
-        for (Eigen::Index c = 0; c < cols; ++c)
-            m(i, c) = numberOf(row[static_cast<std::size_t>(c)]);
-    }
-    return m;
-}
-
-json vectorJson(const Eigen::VectorXd& v) {
-    json out = json::array();
-    for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(number(v(i)));
-    return out;
-}
-
-Eigen::VectorXd vectorFrom(const json& j) {
-    Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
-    for (std::size_t i = 0; i < j.size(); ++i) v(static_cast<Eigen::Index>(i)) = numberOf(j[i]);
-    return v;
-}
+using saved::matrixFrom;
+using saved::matrixJson;
+using saved::tableFrom;
+using saved::tableJson;
+using saved::vectorFrom;
+using saved::vectorJson;
 
 constexpr const char* kStatus[] = {"completed", "cancelled", "too many failures"};
 
@@ -117,9 +46,9 @@ std::vector<gsa::FailureCounts> failuresFrom(const json& j) {
     return out;
 }
 
-/// The parts both study kinds share.
+/// The parts every study (Sobol', Morris, bands) shares: status, outputs, grid, failures.
 template <typename Study>
-json commonJson(const Study& s) {
+json studyJson(const Study& s) {
     std::vector<std::string> outputs;
     for (gsa::Output o : s.outputs) outputs.emplace_back(gsa::outputName(o));
     json grid{{"slips", s.grid.slips},
@@ -128,18 +57,15 @@ json commonJson(const Study& s) {
     if (s.grid.load_n) grid["load_n"] = *s.grid.load_n;
     return {{"status", kStatus[static_cast<int>(s.status)]},
             {"message", s.message},
-            {"parameters", s.parameters},
             {"outputs", outputs},
             {"grid", grid},
-            {"failures", failuresJson(s.failures)},
-            {"evaluations", s.evaluations}};
+            {"failures", failuresJson(s.failures)}};
 }
 
 template <typename Study>
-void readCommon(const json& j, Study& s) {
+void readStudy(const json& j, Study& s) {
     s.status = statusFrom(j.at("status").get<std::string>());
     s.message = j.at("message").get<std::string>();
-    s.parameters = j.at("parameters").get<std::vector<std::string>>();
     for (const std::string& name : j.at("outputs").get<std::vector<std::string>>()) {
         const std::optional<gsa::Output> o = gsa::findOutput(name);
         if (!o) throw std::invalid_argument("unknown output \"" + name + "\"");
@@ -152,6 +78,21 @@ void readCommon(const json& j, Study& s) {
     s.grid.load_n = grid.contains("load_n") ? std::optional<double>(grid.at("load_n").get<double>())
                                             : std::nullopt;
     s.failures = failuresFrom(j.at("failures"));
+}
+
+/// The parts both index studies share.
+template <typename Study>
+json commonJson(const Study& s) {
+    json out = studyJson(s);
+    out["parameters"] = s.parameters;
+    out["evaluations"] = s.evaluations;
+    return out;
+}
+
+template <typename Study>
+void readCommon(const json& j, Study& s) {
+    readStudy(j, s);
+    s.parameters = j.at("parameters").get<std::vector<std::string>>();
     s.evaluations = j.at("evaluations").get<std::size_t>();
 }
 
@@ -163,8 +104,8 @@ bool SavedResult::operator==(const SavedResult& other) const {
         for (const analysis::NamedTable& t : r.tables) out.push_back({t.name, tableJson(t.table)});
         return out;
     };
-    return inputs_hash == other.inputs_hash && partial == other.partial &&
-           summary == other.summary && result == other.result &&
+    return inputs_hash == other.inputs_hash && version == other.version &&
+           partial == other.partial && summary == other.summary && result == other.result &&
            tables_json(*this) == tables_json(other);
 }
 
@@ -192,11 +133,9 @@ json toJson(const SavedResults& results) {
         json tables = json::array();
         for (const analysis::NamedTable& t : r.tables)
             tables.push_back({{"name", t.name}, {"table", tableJson(t.table)}});
-        panels[name] = {{"inputs_hash", r.inputs_hash},
-                        {"partial", r.partial},
-                        {"summary", r.summary},
-                        {"result", r.result},
-                        {"tables", std::move(tables)}};
+        panels[name] = {{"inputs_hash", r.inputs_hash}, {"version", r.version},
+                        {"partial", r.partial},         {"summary", r.summary},
+                        {"result", r.result},           {"tables", std::move(tables)}};
     }
     return {{"format", kResultsFormat}, {"version", kResultsVersion}, {"panels", panels}};
 }
@@ -205,32 +144,35 @@ Result<SavedResults> savedResultsFromJson(const json& j, const std::string& wher
     if (!j.is_object() || j.value("format", std::string()) != kResultsFormat)
         return std::vector<Issue>{{where, "not TerraStudio results (\"format\": \"" +
                                               std::string(kResultsFormat) + "\")"}};
-    if (j.value("version", 0) != kResultsVersion)
-        return std::vector<Issue>{{where + ": version",
-                                   "results of another version (this "
-                                   "studio reads version " +
-                                       std::to_string(kResultsVersion) +
-                                       "): they will be computed again"}};
-    SavedResults out;
-    std::vector<Issue> issues;
+    const json version = j.contains("version") ? j["version"] : json();
+    if (!version.is_number_integer() || version.get<int>() < 1 ||
+        version.get<int>() > kResultsVersion)
+        return std::vector<Issue>{
+            {where + ": version",
+             version.dump() + " is not a results version this studio reads (1 to " +
+                 std::to_string(kResultsVersion) +
+                 "; a newer studio wrote it?): the results will be computed again"}};
     if (!j.contains("panels") || !j["panels"].is_object())
         return std::vector<Issue>{{where + ": panels", "missing or not an object"}};
+    SavedResults out;
     for (const auto& [name, p] : j["panels"].items()) {
+        // One broken section costs that section only: the others are shown.
         try {
             SavedResult r;
             r.inputs_hash = p.at("inputs_hash").get<std::string>();
             r.partial = p.at("partial").get<bool>();
             r.summary = p.at("summary").get<std::string>();
+            // Version 1 had no section versions: its one section (the global study) is 1.
+            r.version = p.contains("version") ? p.at("version").get<int>() : 1;
             r.result = p.at("result");
             for (const json& t : p.at("tables"))
                 r.tables.push_back(
                     {t.at("name").get<std::string>(), std::nullopt, tableFrom(t.at("table"))});
             out.panels[name] = std::move(r);
         } catch (const std::exception& e) {
-            issues.push_back({where + ": panels." + name, e.what()});
+            out.unreadable.push_back({where + ": panels." + name, e.what()});
         }
     }
-    if (!issues.empty()) return issues;
     return out;
 }
 
@@ -248,7 +190,8 @@ std::optional<std::string> saveResults(const std::filesystem::path& path,
         std::filesystem::remove(path, ignored);
         return std::nullopt;
     }
-    return io::writeFileAtomically(path, toJson(results).dump(1) + "\n");
+    // Compact: a rover run's time series is 10⁵ numbers, one a line with an indent.
+    return io::writeFileAtomically(path, toJson(results).dump() + "\n");
 }
 
 json savedJson(const analysis::GlobalSensitivityResult& result) {
@@ -326,6 +269,50 @@ Result<analysis::GlobalSensitivityResult> globalSensitivityResultFromJson(
             (static_cast<std::size_t>(check.rows()) != rows ||
              static_cast<std::size_t>(check.cols()) != cols || used.size() != cols))
             return std::vector<Issue>{{where, "the indices do not match the parameters and grid"}};
+        return out;
+    } catch (const std::exception& e) {
+        return std::vector<Issue>{{where, e.what()}};
+    }
+}
+
+json savedJson(const analysis::UncertaintyBandResult& result) {
+    const gsa::BandResult& b = result.bands;
+    json out = studyJson(b);
+    out["percentiles"] = b.percentiles;
+    json bands = json::array();
+    for (const Eigen::MatrixXd& m : b.bands) bands.push_back(matrixJson(m));
+    out["bands"] = std::move(bands);
+    out["mean"] = matrixJson(b.mean);
+    out["used"] = b.used;
+    out["nominal"] = matrixJson(result.nominal);
+    return out;
+}
+
+Result<analysis::UncertaintyBandResult> uncertaintyBandsFromJson(const json& j,
+                                                                 const std::string& where) {
+    try {
+        analysis::UncertaintyBandResult out;
+        gsa::BandResult& b = out.bands;
+        readStudy(j, b);
+        b.percentiles = j.at("percentiles").get<std::vector<double>>();
+        for (const json& m : j.at("bands")) b.bands.push_back(matrixFrom(m));
+        b.mean = matrixFrom(j.at("mean"));
+        b.used = j.at("used").get<std::vector<std::size_t>>();
+        out.nominal = matrixFrom(j.at("nominal"));
+        // Every matrix must fit the grid: percentiles × points per output, outputs × points.
+        const auto points = static_cast<Eigen::Index>(b.grid.size());
+        const auto outputs = static_cast<Eigen::Index>(b.outputs.size());
+        bool fits = out.nominal.size() == 0 ||
+                    (out.nominal.rows() == outputs && out.nominal.cols() == points);
+        if (b.usable()) {
+            fits = fits && b.used.size() == b.grid.size() && b.bands.size() == b.outputs.size() &&
+                   b.mean.rows() == outputs && b.mean.cols() == points;
+            for (const Eigen::MatrixXd& m : b.bands)
+                fits = fits && m.rows() == static_cast<Eigen::Index>(b.percentiles.size()) &&
+                       m.cols() == points;
+        }
+        if (!fits)
+            return std::vector<Issue>{{where, "the bands do not match the outputs and grid"}};
         return out;
     } catch (const std::exception& e) {
         return std::vector<Issue>{{where, e.what()}};

@@ -49,11 +49,13 @@
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
+#include "window_test_support.h"
 
 namespace terra::app {
 namespace {
 
-io::PresetLocations resources() { return {{TERRA_RESOURCE_DIR}}; }
+using test::resources;
+using test::Studio;
 
 void settle(int ms = 100) { QTest::qWait(ms); }
 
@@ -78,16 +80,6 @@ void onNextDialog(std::function<void(QWidget*)> check, bool* seen) {
     });
     timer->start();
 }
-
-struct Studio {
-    Studio() : window(resources()) {
-        window.show();
-        window.activateWindow();
-        EXPECT_TRUE(QTest::qWaitForWindowActive(&window));
-    }
-    MainWindow window;
-    QAction* action(const QString& name) { return window.findChild<QAction*>(name); }
-};
 
 const char* const kPanels[] = {"forces",         "stresses", "compaction",        "sensitivity",
                                "identification", "rover",    "global-sensitivity"};
@@ -689,7 +681,9 @@ TEST(MainWindow, AReopenedProjectShowsItsSavedResultsWithoutComputing) {
     auto* panel = w.findChild<ui::GlobalSensitivityPanel*>();
     // The panel was in front when the last window closed: it may have started its own first
     // study already; that one is dropped, and nothing starts after the opening.
+    QSignalSpy restored(&w, &MainWindow::savedResultsShown);
     ASSERT_TRUE(w.openProject(path, true));
+    ASSERT_TRUE(restored.wait(30000));  // read off the GUI thread
     EXPECT_TRUE(w.statusBar()->currentMessage().contains("saved results"))
         << w.statusBar()->currentMessage().toStdString();
     QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
@@ -747,8 +741,13 @@ TEST(MainWindow, SavedResultsOfOtherInputsAreNotShown) {
     ASSERT_FALSE(io::writeFileAtomically(path.toStdString(), project.dump(1)));
     Studio studio;
     auto* panel = studio.window.findChild<ui::GlobalSensitivityPanel*>();
+    QSignalSpy restored(&studio.window, &MainWindow::savedResultsShown);
     ASSERT_TRUE(studio.window.openProject(path, true));
+    ASSERT_TRUE(restored.wait(30000));
     EXPECT_FALSE(panel->showsSavedResult());
+    EXPECT_TRUE(studio.window.statusBar()->currentMessage().contains(
+        "Global sensitivity: its inputs changed"))
+        << studio.window.statusBar()->currentMessage().toStdString();
 }
 
 }  // namespace

@@ -97,6 +97,10 @@ bool AnalysisPanel::start() {
         deferred_ = true;
         return false;
     }
+    if (held_) {
+        deferred_ = true;
+        return false;
+    }
     deferred_ = false;
     if (watcher_.isRunning()) return true;  // finished() restarts with the newest state
     if (!requested_ && !restored_hash_.empty()) {
@@ -193,6 +197,16 @@ void AnalysisPanel::showSaved(const std::any& value, const std::string& hash, bo
         progress_bar_->setValue(completion_ == Completion::kComplete ? 100 : 0);
         progress_bar_->setFormat(progressFormat(completion_));
     }
+}
+
+AnalysisPanel::Restored AnalysisPanel::restoreResult(const std::string&,
+                                                     const project::SavedResult&) {
+    return unreadable("this panel does not save its results");
+}
+
+void AnalysisPanel::holdUpdates(bool hold) {
+    held_ = hold;
+    if (!hold && deferred_) scheduleUpdate();
 }
 
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {

@@ -17,6 +17,7 @@
 #include <any>
 #include <atomic>
 #include <functional>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -82,16 +83,34 @@ public:
     /// exportRequested(), "Copy data" copies currentTable().
     void installPlotMenus();
 
-    /// The result on screen for the project's results file (core/project/results.h), with the
-    /// hash of the inputs that produced it; std::nullopt when there is none or the panel does not
-    /// save its results (its computations are quick: it computes them again when shown).
-    virtual std::optional<project::SavedResult> savedResult() const { return std::nullopt; }
-    /// Shows a saved result when the panel's inputs still hash as those that produced it, without
-    /// computing; false (nothing changed) when they differ or the result cannot be read.
-    virtual bool restoreResult(const project::SavedResult&) { return false; }
+    /// The results on screen for the project's results file (core/project/results.h), by
+    /// section: name() for the panel's main result, "name.part" for another of its results
+    /// (the identification's streaming run, the global study's bands), each with the hash of
+    /// the inputs that produced it. Empty when there is none or the panel does not save its
+    /// results (its computations are quick: it computes them again when shown).
+    virtual std::map<std::string, project::SavedResult> savedResults() const { return {}; }
+    /// What became of a saved section offered to restoreResult.
+    struct Restored {
+        enum class Kind {
+            kShown,          ///< on screen, nothing computed
+            kInputsChanged,  ///< not shown: the panel's inputs differ from those that produced it
+            kUnreadable,     ///< not shown: not a result this studio reads (`message` says why)
+        };
+        Kind kind = Kind::kUnreadable;
+        std::string message;
+        bool shown() const { return kind == Kind::kShown; }
+    };
+    /// Shows a saved section (one of savedResults()' names) when the panel's inputs still hash as
+    /// those that produced it, without computing; else changes nothing and says why. Saved
+    /// results are never shown for other inputs: they are invalidated, not marked stale.
+    virtual Restored restoreResult(const std::string& section, const project::SavedResult& saved);
     /// Whether the result on screen is a saved one shown by restoreResult (nothing recomputed
     /// since).
     bool showsSavedResult() const { return !restored_hash_.empty(); }
+    /// While held, no computation starts by itself (the project's saved results are being read
+    /// off the GUI thread: a panel shown meanwhile must not start what the file may hold); the
+    /// updates asked meanwhile run when released, unless a saved result was shown.
+    void holdUpdates(bool hold);
     /// The hash of what the panel's next computation would read (resultInputs()).
     std::string inputsHash() const { return project::inputsHash(resultInputs()); }
 
@@ -120,6 +139,14 @@ protected:
     /// partial or not, without computing; the pending automatic update is dropped while the
     /// inputs keep that hash.
     void showSaved(const std::any& value, const std::string& hash, bool partial);
+    /// The restoreResult answers a panel gives: shown, inputs changed, unreadable.
+    static Restored restoredShown() { return {Restored::Kind::kShown, {}}; }
+    static Restored inputsChanged() {
+        return {Restored::Kind::kInputsChanged, "its inputs changed since it was computed"};
+    }
+    static Restored unreadable(const std::string& why) {
+        return {Restored::Kind::kUnreadable, why};
+    }
 
     /// Whether an update nobody asked for (the panel's first show, a project edit) may start now,
     /// asked just before it would. A panel whose computation can be heavy says no, and shows why
@@ -174,6 +201,7 @@ private:
     bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
     bool requested_ = false;  // recompute() asked for the next computation
+    bool held_ = false;       // holdUpdates(true)
     QElapsedTimer since_edit_;
     QElapsedTimer since_shown_;  // since the last present()
     double last_latency_ms_ = 0.0;

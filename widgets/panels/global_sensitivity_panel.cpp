@@ -333,6 +333,7 @@ AnalysisPanel::Job GlobalSensitivityPanel::makeJob() {
     auto progress = [fraction](double f) { fraction->store(f); };
     if (pages_->currentIndex() == 1) {
         const analysis::UncertaintyBandSettings s = bandSettings();
+        pending_bands_hash_ = project::inputsHash(bandInputs());
         return [in, s, progress](const std::atomic<bool>& cancel) -> std::any {
             return Computed{std::nullopt,
                             analysis::computeUncertaintyBands(in, s, {&cancel, progress})};
@@ -359,7 +360,10 @@ void GlobalSensitivityPanel::present(const std::any& value) {
         indices_ = computed.indices;
         indices_hash_ = presentedInputsHash();
     }
-    if (computed.bands) bands_ = computed.bands;
+    if (computed.bands) {
+        bands_ = computed.bands;
+        bands_hash_ = pending_bands_hash_;
+    }
     QString message;
     if (computed.indices) {
         message = QString("%1 model evaluations")
@@ -464,33 +468,85 @@ nlohmann::json GlobalSensitivityPanel::resultInputs() const {
             {"study", study}};
 }
 
-std::optional<project::SavedResult> GlobalSensitivityPanel::savedResult() const {
-    if (!indices_ || indices_hash_.empty()) return std::nullopt;
-    project::SavedResult saved;
-    saved.inputs_hash = indices_hash_;
-    saved.partial = indices_->status() == gsa::StudyStatus::kCancelled;
-    saved.summary =
-        QString("%1 model evaluations")
-            .arg(indices_->sobol ? indices_->sobol->evaluations : indices_->morris->evaluations)
-            .toStdString();
-    saved.result = project::savedJson(*indices_);
-    saved.tables.push_back({"indices", std::nullopt, indices_->table()});
-    return saved;
+nlohmann::json GlobalSensitivityPanel::bandInputs() const {
+    nlohmann::json inputs = resultInputs();
+    for (const char* indices_only : {"method", "samples"}) inputs["study"].erase(indices_only);
+    inputs["study"]["band_samples"] = band_samples_->value();
+    return inputs;
 }
 
-bool GlobalSensitivityPanel::restoreResult(const project::SavedResult& saved) {
-    if (saved.inputs_hash != inputsHash()) return false;
+std::map<std::string, project::SavedResult> GlobalSensitivityPanel::savedResults() const {
+    std::map<std::string, project::SavedResult> out;
+    if (indices_ && !indices_hash_.empty()) {
+        project::SavedResult& saved = out[name().toStdString()];
+        saved.inputs_hash = indices_hash_;
+        saved.version = project::kGlobalSensitivityVersion;
+        saved.partial = indices_->status() == gsa::StudyStatus::kCancelled;
+        saved.summary =
+            QString("%1 model evaluations")
+                .arg(indices_->sobol ? indices_->sobol->evaluations : indices_->morris->evaluations)
+                .toStdString();
+        saved.result = project::savedJson(*indices_);
+        saved.tables.push_back({"indices", std::nullopt, indices_->table()});
+    }
+    if (bands_ && !bands_hash_.empty()) {
+        project::SavedResult& saved = out[name().toStdString() + ".bands"];
+        saved.inputs_hash = bands_hash_;
+        saved.version = project::kUncertaintyBandsVersion;
+        saved.partial = bands_->bands.status == gsa::StudyStatus::kCancelled;
+        saved.summary = QString("%1 samples")
+                            .arg(bands_->bands.used.empty() ? 0 : bands_->bands.used.front())
+                            .toStdString();
+        saved.result = project::savedJson(*bands_);
+        saved.tables.push_back({"bands", std::nullopt, bands_->table()});
+    }
+    return out;
+}
+
+AnalysisPanel::Restored GlobalSensitivityPanel::restoreResult(const std::string& section,
+                                                              const project::SavedResult& saved) {
+    const bool bands = section == name().toStdString() + ".bands";
+    if (!bands && section != name().toStdString()) return unreadable("not a section of this panel");
+    if (saved.version !=
+        (bands ? project::kUncertaintyBandsVersion : project::kGlobalSensitivityVersion))
+        return unreadable("saved in form version " + std::to_string(saved.version));
+    if (saved.inputs_hash != project::inputsHash(bands ? bandInputs() : resultInputs()))
+        return inputsChanged();
+    // After showSaved: marked as the saved result's completion ("CANCELLED (partial)").
+    auto status = [this, &saved] {
+        return markedStatus(
+            QString("Saved with the project (%1); not recomputed — Compute runs it again.")
+                .arg(QString::fromStdString(saved.summary).toHtmlEscaped()));
+    };
+    if (bands) {
+        Result<analysis::UncertaintyBandResult> read =
+            project::uncertaintyBandsFromJson(saved.result, section);
+        if (!read) return unreadable(read.message());
+        if (pages_->currentIndex() == 1) {
+            // The page in view: shown as the panel's result (its first show computes nothing).
+            showSaved(Computed{std::nullopt, std::move(read).value()}, inputsHash(), saved.partial);
+            status_->setText(status());
+        } else {
+            bands_ = std::move(read).value();
+            redraw();
+        }
+        bands_hash_ = saved.inputs_hash;
+        return restoredShown();
+    }
     Result<analysis::GlobalSensitivityResult> read =
-        project::globalSensitivityResultFromJson(saved.result, "global-sensitivity");
-    if (!read) return false;
-    pages_->setCurrentIndex(0);
-    showSaved(Computed{std::move(read.value()), std::nullopt}, saved.inputs_hash, saved.partial);
+        project::globalSensitivityResultFromJson(saved.result, section);
+    if (!read) return unreadable(read.message());
+    if (pages_->currentIndex() == 0) {
+        showSaved(Computed{std::move(read).value(), std::nullopt}, saved.inputs_hash,
+                  saved.partial);
+        progress_->setValue(saved.partial ? 0 : 100);
+        status_->setText(status());
+    } else {
+        indices_ = std::move(read).value();
+        redraw();
+    }
     indices_hash_ = saved.inputs_hash;
-    progress_->setValue(saved.partial ? 0 : 100);
-    status_->setText(
-        markedStatus(QString("Saved with the project (%1); not recomputed — Compute runs it again.")
-                         .arg(QString::fromStdString(saved.summary).toHtmlEscaped())));
-    return true;
+    return restoredShown();
 }
 
 }  // namespace terra::ui

@@ -77,10 +77,12 @@ public:
     Table currentTable() const override;
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
-    /// The indices on screen (not the bands: 256 samples redraw quickly), for the project's
-    /// results file; restoreResult shows them again when the study's inputs are unchanged.
-    std::optional<project::SavedResult> savedResult() const override;
-    bool restoreResult(const project::SavedResult& saved) override;
+    /// The indices ("global-sensitivity") and the bands ("global-sensitivity.bands") on screen,
+    /// for the project's results file; restoreResult shows each again when its study's inputs
+    /// are unchanged (the bands': the indices' without the method and samples, with the bands'
+    /// samples).
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
 protected:
     /// The inputs (soil, wheel, conditions, or the identified soil), the parameters varied with
@@ -93,6 +95,7 @@ protected:
 
 private:
     analysis::StudyDefinition definition() const;
+    nlohmann::json bandInputs() const;
     analysis::Inputs inputs() const;
     void redraw();
 
@@ -118,6 +121,8 @@ private:
     std::optional<analysis::GlobalSensitivityResult> indices_;
     std::string indices_hash_;  // of the inputs the indices were computed from
     std::optional<analysis::UncertaintyBandResult> bands_;
+    std::string bands_hash_;          // of the inputs the bands were computed from
+    std::string pending_bands_hash_;  // of the bands being computed (makeJob)
     // The identification's estimate and uncertainty (setIdentification), if any.
     std::optional<std::pair<identification::DecoupledParameters, identification::Uncertainty>>
         identification_;

@@ -33,6 +33,7 @@
 #include "core/io/experiment.h"
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
+#include "core/project/saved_identification.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/preset_names.h"
 #include "widgets/plots/figures.h"
@@ -646,6 +647,7 @@ AnalysisPanel::Job IdentificationPanel::makeJob() {
 
 void IdentificationPanel::present(const std::any& value) {
     result_ = std::any_cast<analysis::IdentificationResult>(value);
+    fit_hash_ = presentedInputsHash();
     fit_wheel_ = pending_wheel_;
     fit_jmax_mode_ = pending_jmax_mode_;
     fit_source_ =
@@ -795,6 +797,126 @@ void IdentificationPanel::present(const std::any& value) {
                      steps.join(";  "));
 }
 
+namespace {
+
+/// A data file's size and modification time: a saved result of a file changed since is not shown.
+nlohmann::json fileStamp(const std::string& path) {
+    if (path.empty()) return nullptr;
+    const QFileInfo info(QString::fromStdString(path));
+    if (!info.exists()) return "missing";
+    return {info.size(), info.lastModified().toMSecsSinceEpoch()};
+}
+
+}  // namespace
+
+nlohmann::json IdentificationPanel::resultInputs() const {
+    nlohmann::json fit = settings();
+    for (const char* other : {"page", "stream_csv", "stream_second_soil", "stream_noise_percent",
+                              "stream_speed", "stream_skip_bad_rows"})
+        fit.erase(other);
+    const Project& p = document_->project();
+    return {{"soil", io::toJson(p.soil)},
+            {"wheel", io::toJson(chosenWheel())},
+            {"conditions", analysis::toJson(p.conditions)},
+            {"fit", fit},
+            {"csv", fileStamp(file_->text().trimmed().toStdString())}};
+}
+
+nlohmann::json IdentificationPanel::streamInputs() const {
+    const Project& p = document_->project();
+    const analysis::StreamingSettings s = streamSettings();
+    return {{"soil", io::toJson(p.soil)},
+            {"wheel", io::toJson(p.wheel)},
+            {"conditions", analysis::toJson(p.conditions)},
+            {"csv", s.csv},
+            {"skip_bad_rows", s.skip_bad_rows},
+            {"second_soil", s.second_soil},
+            {"noise_percent", s.noise_percent},
+            {"csv_stamp", fileStamp(s.csv)}};
+}
+
+std::map<std::string, project::SavedResult> IdentificationPanel::savedResults() const {
+    std::map<std::string, project::SavedResult> out;
+    if (hasResult() && !fit_hash_.empty() && result_.message.empty()) {
+        project::SavedResult& saved = out[name().toStdString()];
+        saved.inputs_hash = fit_hash_;
+        saved.version = project::kIdentificationVersion;
+        saved.partial = completion() != Completion::kComplete;
+        saved.summary = QString("%1 samples, fitted in %2 ms")
+                            .arg(result_.data.samples.size())
+                            .arg(result_.fit_time_ms, 0, 'f', 0)
+                            .toStdString();
+        // The curves and parameters are tables of the result already: not written twice.
+        saved.result = project::savedJson(result_);
+    }
+    // A playback that ended (finished or stopped), not one going on.
+    if (!playback_->isActive() && !stream_frames_.empty() && !stream_hash_.empty()) {
+        project::SavedResult& saved = out[name().toStdString() + ".streaming"];
+        saved.inputs_hash = stream_hash_;
+        saved.version = project::kStreamingVersion;
+        saved.partial = stream_stopped_;
+        saved.summary = QString("%1 of %2 samples played")
+                            .arg(stream_frames_.size())
+                            .arg(stream_count_)
+                            .toStdString();
+        project::SavedStream stream;
+        stream.frames = stream_frames_;
+        stream.sample_count = stream_count_;
+        stream.true_border = stream_border_;
+        stream.description = stream_description_.toStdString();
+        for (const QString& w : stream_warnings_) stream.warnings.push_back(w.toStdString());
+        stream.truth = stream_truth_;
+        stream.stopped = stream_stopped_;
+        saved.result = project::savedJson(stream);
+        saved.tables.push_back({"frames", std::nullopt, analysis::framesTable(stream_frames_)});
+    }
+    return out;
+}
+
+AnalysisPanel::Restored IdentificationPanel::restoreResult(const std::string& section,
+                                                           const project::SavedResult& saved) {
+    if (section == name().toStdString() + ".streaming") {
+        if (saved.version != project::kStreamingVersion)
+            return unreadable("saved in form version " + std::to_string(saved.version));
+        if (saved.inputs_hash != project::inputsHash(streamInputs())) return inputsChanged();
+        if (playback_->isActive()) return unreadable("a playback is going on");
+        Result<project::SavedStream> read = project::savedStreamFromJson(saved.result, section);
+        if (!read) return unreadable(read.message());
+        project::SavedStream stream = std::move(read).value();
+        stream_count_ = stream.sample_count;
+        stream_border_ = stream.true_border;
+        stream_description_ = QString::fromStdString(stream.description);
+        stream_warnings_.clear();
+        for (const std::string& w : stream.warnings) stream_warnings_ << QString::fromStdString(w);
+        stream_truth_ = std::move(stream.truth);
+        stream_stopped_ = stream.stopped;
+        stream_hash_ = saved.inputs_hash;
+        resetStreamFigures(stream_count_);
+        stream_frames_ = std::move(stream.frames);
+        stream_figures_->append(stream_frames_);
+        stream_figures_->replot();
+        updatePosition();
+        stream_status_->setText("Saved with the project (not played again): " +
+                                streamSummary(!stream_stopped_));
+        return restoredShown();
+    }
+    if (section != name().toStdString()) return unreadable("not a section of this panel");
+    if (saved.version != project::kIdentificationVersion)
+        return unreadable("saved in form version " + std::to_string(saved.version));
+    if (saved.inputs_hash != inputsHash()) return inputsChanged();
+    Result<analysis::IdentificationResult> read =
+        project::identificationResultFromJson(saved.result, section);
+    if (!read) return unreadable(read.message());
+    // The fit's wheel and j_max mode are the ones the controls give now: the inputs hash the same.
+    pending_wheel_ = chosenWheel();
+    pending_jmax_mode_ = refine_->isChecked() ? jmax_mode_->currentData().toString() : "auto";
+    showSaved(std::move(read).value(), saved.inputs_hash, saved.partial);
+    status_->setText(
+        markedStatus(QString("Saved with the project (%1); not fitted again — Fit runs it again.")
+                         .arg(QString::fromStdString(saved.summary).toHtmlEscaped())));
+    return restoredShown();
+}
+
 // --- Streaming playback -------------------------------------------------------------------------
 
 IdentificationPanel::~IdentificationPanel() {
@@ -912,27 +1034,20 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
         updatePosition();
         stream_figures_->replot();
     });
-    connect(
-        playback_, &StreamingPlayback::sourceReady, this,
-        [this](const StreamSource& source, std::size_t count) {
-            stream_count_ = count;
-            stream_border_ = source.true_border;
-            stream_description_ = QString::fromStdString(source.description);
-            stream_warnings_.clear();
-            for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
-            stream_frames_.clear();
-            stream_frames_.reserve(count);
-            stream_figures_->reset(
-                source.truth.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"),
-                count, stream_border_,
-                identification::StreamingEstimatorOptions{}.change_threshold);
-            stream_figures_->setTruth(source.truth);
-            position_->setRange(0, static_cast<int>(count));
-            position_->setValue(0);
-            position_->setFormat("%v / %m samples");
-            stream_figures_->replot();
-            updatePosition();
-        });
+    connect(playback_, &StreamingPlayback::sourceReady, this,
+            [this](const StreamSource& source, std::size_t count) {
+                stream_count_ = count;
+                stream_border_ = source.true_border;
+                stream_description_ = QString::fromStdString(source.description);
+                stream_warnings_.clear();
+                for (const auto& w : source.warnings) stream_warnings_ << QString::fromStdString(w);
+                stream_truth_ = source.truth;
+                stream_hash_ = pending_stream_hash_;
+                stream_stopped_ = false;
+                resetStreamFigures(count);
+                stream_figures_->replot();
+                updatePosition();
+            });
     connect(playback_, &StreamingPlayback::framesReady, this, &IdentificationPanel::showFrames);
     connect(playback_, &StreamingPlayback::stateChanged, this,
             &IdentificationPanel::playbackStateChanged);
@@ -998,6 +1113,8 @@ void IdentificationPanel::play() {
     // figures were cleared).
     if (playback_->isActive()) playback_->stop();
     storeSettings();
+    pending_stream_hash_ = project::inputsHash(streamInputs());
+    stream_hash_.clear();  // nothing of a run is saved until its data are ready
     stream_frames_.clear();
     stream_count_ = 0;
     stream_border_.reset();
@@ -1091,13 +1208,30 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
         emit playbackEnded(state);
         return;
     }
+    stream_stopped_ = state != State::kFinished;
+    stream_status_->setText(streamSummary(state == State::kFinished));
+    emit playbackEnded(state);
+}
+
+void IdentificationPanel::resetStreamFigures(std::size_t count) {
+    stream_frames_.clear();
+    stream_frames_.reserve(count);
+    stream_figures_->reset(
+        stream_truth_.empty() ? QString("Estimates") : QString("Estimates (dotted: truth)"), count,
+        stream_border_, identification::StreamingEstimatorOptions{}.change_threshold);
+    stream_figures_->setTruth(stream_truth_);
+    position_->setRange(0, static_cast<int>(count));
+    position_->setValue(0);
+    position_->setFormat("%v / %m samples");
+}
+
+QString IdentificationPanel::streamSummary(bool finished) const {
     QStringList changes;
     for (std::size_t c : stream_figures_->changePoints()) changes << QString::number(c);
-    QString text = state == State::kFinished
-                       ? QString("Finished: %1 samples").arg(stream_frames_.size())
-                       : QString("Stopped after %1 of %2 samples")
-                             .arg(stream_frames_.size())
-                             .arg(stream_count_);
+    QString text = finished ? QString("Finished: %1 samples").arg(stream_frames_.size())
+                            : QString("Stopped after %1 of %2 samples")
+                                  .arg(stream_frames_.size())
+                                  .arg(stream_count_);
     if (!stream_description_.isEmpty())
         text += QString(" (%1)").arg(stream_description_.toHtmlEscaped());
     text += changes.isEmpty() ? QString("; no change of soil detected")
@@ -1124,8 +1258,7 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
                     .arg(stream_warnings_.size())
                     .arg(stream_warnings_.mid(0, 3).join("; ").toHtmlEscaped());
     }
-    stream_status_->setText(text);
-    emit playbackEnded(state);
+    return text;
 }
 
 }  // namespace terra::ui

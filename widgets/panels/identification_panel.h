@@ -105,6 +105,13 @@ public:
     Table currentTable() const override;
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
+    /// The batch fit ("identification") and the last streaming playback that ended
+    /// ("identification.streaming") on screen, for the project's results file; restoreResult
+    /// shows each again, without fitting or playing, when its inputs are unchanged (the fit's:
+    /// the soil, the fit's wheel, the conditions, the fit's options and the CSV's size and
+    /// time; the playback's: the soil, wheel, load, its source and noise).
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
     // Streaming playback (the "Streaming playback" page).
     /// Shows the batch-fit page (0) or the streaming page (1).
@@ -131,6 +138,7 @@ public:
 protected:
     Job makeJob() override;
     void present(const std::any& result) override;
+    nlohmann::json resultInputs() const override;
 
 signals:
     /// The streaming playback ended: finished, stopped or failed (StreamingPlayback::State).
@@ -145,6 +153,12 @@ private:
     void playbackStateChanged(StreamingPlayback::State state);
     void updateStreamControls();
     void updatePosition();
+    /// What the streaming playback's result depends on (not its speed).
+    nlohmann::json streamInputs() const;
+    /// The streaming page's status line once a playback ended (finished or stopped).
+    QString streamSummary(bool finished) const;
+    /// Starts the streaming figures over for a source of `count` samples.
+    void resetStreamFigures(std::size_t count);
 
     QTabWidget* pages_;
     QLineEdit* file_;
@@ -204,6 +218,11 @@ private:
     std::vector<StreamFrame> stream_frames_;  // of the run on screen
     QString stream_description_;
     QStringList stream_warnings_;
+    std::vector<std::pair<std::size_t, identification::DecoupledParameters>> stream_truth_;
+    bool stream_stopped_ = false;      // the playback on screen was stopped before its end
+    std::string stream_hash_;          // of the inputs of the playback on screen
+    std::string pending_stream_hash_;  // of the playback being started (play())
+    std::string fit_hash_;             // of the inputs of the fit on screen
 };
 
 }  // namespace terra::ui

@@ -24,6 +24,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/json.h"
 #include "core/project/panels.h"
+#include "core/project/saved_rover.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/rover_figures.h"
@@ -735,6 +736,46 @@ void RoverPanel::scrubTo(int row) {
                            static_cast<std::size_t>(row));
         if (tabs_->currentWidget() == plots_[i]) plots_[i]->replot(QCustomPlot::rpQueuedReplot);
     }
+}
+
+// --- Saved with the project (core/project/saved_rover.h) ---------------------------------------
+
+nlohmann::json RoverPanel::resultInputs() const { return {{"scenario", currentJson()}}; }
+
+std::map<std::string, project::SavedResult> RoverPanel::savedResults() const {
+    if (!hasResult() || isBusy() || result_.series.rows.empty() || shown_json_.is_null()) return {};
+    project::SavedResult saved;
+    saved.inputs_hash = project::inputsHash({{"scenario", shown_json_}});
+    saved.version = project::kRoverVersion;
+    saved.partial = result_.status != scenario::RunResult::Status::kCompleted;
+    saved.summary = QString("%1, %2 s simulated")
+                        .arg(QString::fromStdString(shown_name_))
+                        .arg(result_.summary.duration_s, 0, 'f', 2)
+                        .toStdString();
+    // The series is in the result already (a table): not written twice (a long run is megabytes).
+    saved.result = project::savedJson(project::SavedRoverRun{result_, shown_name_, shown_json_});
+    return {{name().toStdString(), std::move(saved)}};
+}
+
+AnalysisPanel::Restored RoverPanel::restoreResult(const std::string& section,
+                                                  const project::SavedResult& saved) {
+    if (section != name().toStdString()) return unreadable("not a section of this panel");
+    if (saved.version != project::kRoverVersion)
+        return unreadable("saved in form version " + std::to_string(saved.version));
+    if (saved.inputs_hash != inputsHash()) return inputsChanged();
+    Result<project::SavedRoverRun> read = project::savedRoverRunFromJson(saved.result, section);
+    if (!read) return unreadable(read.message());
+    project::SavedRoverRun run = std::move(read).value();
+    // The scenario as it ran, for the top view's robot and soils (no simulation: a parse).
+    auto scenario =
+        parseScenarioText(QString::fromStdString(run.scenario.dump()), currentName(), locations_);
+    if (!scenario) return unreadable("its scenario: " + scenario.message());
+    pending_name_ = run.scenario_name;
+    pending_json_ = run.scenario;
+    showSaved(analysis::RoverResult{std::move(scenario).value(), std::move(run.run)},
+              saved.inputs_hash, saved.partial);
+    status_->setText("Saved with the project (not run again). " + status_->text());
+    return restoredShown();
 }
 
 }  // namespace terra::ui

@@ -102,9 +102,17 @@ public:
     /// Shows row `row` of the series in the top view (redraw only).
     void scrubTo(int row);
 
+    /// The run on screen ("rover": its series, summary and scenario) for the project's results
+    /// file; restoreResult shows it again, without running, when the current scenario's JSON is
+    /// the one it ran.
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
+
 protected:
     Job makeJob() override;
     void present(const std::any& result) override;
+    /// The scenario's JSON (edited or the file's): all a run depends on.
+    nlohmann::json resultInputs() const override;
 
 private slots:
     void editScenario();

@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "core/io/atomic_file.h"
 #include "core/io/table_json.h"
 #include "core/project/project.h"
+#include "core/project/result_json.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::project {
@@ -69,14 +73,100 @@ TEST(SavedResults, WhatIsWrittenReadsBackTheSame) {
     EXPECT_FALSE(std::filesystem::exists(path));
 }
 
-TEST(SavedResults, BrokenOrForeignSidecarsAreReportedNotShown) {
+TEST(SavedResults, ForeignOrNewerSidecarsAreRefusedWithTheReason) {
     EXPECT_FALSE(savedResultsFromJson(json{{"format", "terrastudio-project"}}, "x").ok());
-    EXPECT_FALSE(savedResultsFromJson(json{{"format", kResultsFormat}, {"version", 99}}, "x").ok());
-    const Result<SavedResults> broken = savedResultsFromJson(
-        json{{"format", kResultsFormat}, {"version", 1}, {"panels", {{"rover", {{"x", 1}}}}}},
-        "p.terra.results");
-    ASSERT_FALSE(broken.ok());
-    EXPECT_NE(broken.message().find("panels.rover"), std::string::npos) << broken.message();
+    const Result<SavedResults> newer =
+        savedResultsFromJson(json{{"format", kResultsFormat}, {"version", 99}}, "p.terra.results");
+    ASSERT_FALSE(newer.ok());
+    EXPECT_NE(newer.message().find("p.terra.results: version"), std::string::npos)
+        << newer.message();
+    EXPECT_NE(newer.message().find("99"), std::string::npos) << newer.message();
+    EXPECT_FALSE(
+        savedResultsFromJson(json{{"format", kResultsFormat}, {"version", "2"}}, "x").ok());
+}
+
+// A damaged section costs that section only: the others read, the damaged one is named.
+TEST(SavedResults, ABrokenSectionIsListedAndTheOthersRead) {
+    SavedResults results;
+    SavedResult& good = results.panels["identification"];
+    good.inputs_hash = "00000000000000aa";
+    good.version = 3;
+    good.summary = "20 samples";
+    good.result = json{{"x", 1.5}};
+    json document = toJson(results);
+    document["panels"]["rover"] = {{"inputs_hash", "1"}, {"partial", "no"}};
+    const Result<SavedResults> read = savedResultsFromJson(document, "p.terra.results");
+    ASSERT_TRUE(read.ok()) << read.message();
+    ASSERT_EQ(read->panels.size(), 1u);
+    EXPECT_EQ(read->panels.at("identification"), good);
+    ASSERT_EQ(read->unreadable.size(), 1u);
+    EXPECT_EQ(read->unreadable[0].where, "p.terra.results: panels.rover");
+}
+
+// A file cut short by a crash elsewhere (not by the atomic save) is refused with its position.
+TEST(SavedResults, ACorruptFileIsRefusedWithItsLine) {
+    SavedResults results;
+    results.panels["rover"].result = json{{"series", std::vector<double>(50, 1.25)}};
+    const testing::TempDir dir;
+    const std::filesystem::path path = dir.path() / "p.terra.results";
+    ASSERT_FALSE(saveResults(path, results));
+    std::string text;
+    ASSERT_FALSE(io::readFile(path, text));
+    ASSERT_FALSE(io::writeFileAtomically(path, text.substr(0, text.size() / 2)));
+    const Result<SavedResults> read = loadResults(path);
+    ASSERT_FALSE(read.ok());
+    EXPECT_NE(read.message().find("p.terra.results:1"), std::string::npos) << read.message();
+}
+
+// Version 1 (the global study alone, no section versions) reads as version 2.
+TEST(SavedResults, AVersionOneFileStillReads) {
+    const json v1{{"format", kResultsFormat},
+                  {"version", 1},
+                  {"panels",
+                   {{"global-sensitivity",
+                     {{"inputs_hash", "0123456789abcdef"},
+                      {"partial", false},
+                      {"summary", "512 model evaluations"},
+                      {"result", {{"method", "sobol"}}},
+                      {"tables", json::array()}}}}}};
+    const Result<SavedResults> read = savedResultsFromJson(v1, "old.terra.results");
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->panels.at("global-sensitivity").version, kGlobalSensitivityVersion);
+    EXPECT_TRUE(read->unreadable.empty());
+}
+
+TEST(SavedResults, NumbersKeepTheirInfinitiesAndStrangersAreRefused) {
+    EXPECT_EQ(saved::number(std::numeric_limits<double>::infinity()), "inf");
+    EXPECT_EQ(saved::numberOf(json("-inf")), -std::numeric_limits<double>::infinity());
+    EXPECT_TRUE(std::isnan(saved::numberOf(json(nullptr))));
+    EXPECT_EQ(saved::numberOf(json(2.5)), 2.5);
+    EXPECT_THROW(saved::numberOf(json("nan")), std::invalid_argument);
+    EXPECT_THROW(saved::numberOf(json(true)), std::invalid_argument);
+    EXPECT_THROW(saved::arrayFrom<3>(json{1.0, 2.0}), std::invalid_argument);
+}
+
+TEST(UncertaintyBandsRoundTrip, ReadsBackToTheSameBands) {
+    analysis::UncertaintyBandSettings s;
+    s.samples = 32;
+    s.slip_count = 4;
+    s.study.outputs = {"Fx_N", "sinkage_m"};
+    s.study.threads = 1;
+    const analysis::UncertaintyBandResult computed =
+        analysis::computeUncertaintyBands(sandyLoam(), s);
+    ASSERT_TRUE(computed.bands.usable());
+    const json saved = savedJson(computed);
+    const Result<analysis::UncertaintyBandResult> read =
+        uncertaintyBandsFromJson(json::parse(saved.dump()), "bands");
+    ASSERT_TRUE(read.ok()) << read.message();
+    // The same table (every percentile, mean, sample count and nominal value).
+    EXPECT_EQ(io::toJson(read->table()), io::toJson(computed.table()));
+    EXPECT_EQ(read->nominal, computed.nominal);
+    EXPECT_EQ(read->bands.used, computed.bands.used);
+    EXPECT_EQ(savedJson(*read), saved);
+    // Bands that do not fit the grid are refused.
+    json bad = saved;
+    bad["percentiles"] = {50.0};
+    EXPECT_FALSE(uncertaintyBandsFromJson(bad, "bands").ok());
 }
 
 class GlobalStudyRoundTrip : public ::testing::TestWithParam<analysis::GsaMethod> {};

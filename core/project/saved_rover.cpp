@@ -1,0 +1,131 @@
+#include "core/project/saved_rover.h"
+
+#include <stdexcept>
+
+#include "core/project/result_json.h"
+
+namespace terra::project {
+namespace {
+
+using nlohmann::json;
+using saved::number;
+using saved::numberAt;
+using saved::optionalAt;
+using saved::optionalJson;
+using saved::readKey;
+
+constexpr const char* kStatus[] = {"completed", "cancelled", "diverged"};
+
+json summaryJson(const scenario::Summary& s) {
+    return {{"duration_s", number(s.duration_s)},
+            {"x_m", number(s.x_m)},
+            {"y_m", number(s.y_m)},
+            {"yaw_rad", number(s.yaw_rad)},
+            {"distance_m", number(s.distance_m)},
+            {"mean_slip", saved::arrayJson(s.mean_slip)},
+            {"energy_j", number(s.energy_j)},
+            {"dissipated_j", number(s.dissipated_j)},
+            {"kinetic_change_j", number(s.kinetic_change_j)},
+            {"potential_change_j", number(s.potential_change_j)},
+            {"energy_balance_error", number(s.energy_balance_error)},
+            {"max_sinkage_m", number(s.max_sinkage_m)},
+            {"sunk_steps", s.sunk_steps},
+            {"steps", s.steps},
+            {"energy_per_m_j", optionalJson(s.energy_per_m_j)},
+            {"mean_efficiency", optionalJson(s.mean_efficiency)},
+            {"slip_tracking_rms", optionalJson(s.slip_tracking_rms)}};
+}
+
+scenario::Summary summaryFrom(const json& j) {
+    scenario::Summary s;
+    s.duration_s = numberAt(j, "duration_s");
+    s.x_m = numberAt(j, "x_m");
+    s.y_m = numberAt(j, "y_m");
+    s.yaw_rad = numberAt(j, "yaw_rad");
+    s.distance_m = numberAt(j, "distance_m");
+    s.mean_slip = saved::arrayFrom<dynamics::kWheelCount>(j.at("mean_slip"));
+    s.energy_j = numberAt(j, "energy_j");
+    s.dissipated_j = numberAt(j, "dissipated_j");
+    s.kinetic_change_j = numberAt(j, "kinetic_change_j");
+    s.potential_change_j = numberAt(j, "potential_change_j");
+    s.energy_balance_error = numberAt(j, "energy_balance_error");
+    s.max_sinkage_m = numberAt(j, "max_sinkage_m");
+    s.sunk_steps = j.at("sunk_steps").get<int>();
+    s.steps = j.at("steps").get<long>();
+    s.energy_per_m_j = optionalAt(j, "energy_per_m_j");
+    s.mean_efficiency = optionalAt(j, "mean_efficiency");
+    s.slip_tracking_rms = optionalAt(j, "slip_tracking_rms");
+    return s;
+}
+
+json tractionJson(const scenario::TractionMetrics& t) {
+    return {{"drive_energy_j", number(t.drive_energy_j)},
+            {"wheel_output_j", number(t.wheel_output_j)},
+            {"wheel_input_j", number(t.wheel_input_j)},
+            {"drawbar_work_j", number(t.drawbar_work_j)},
+            {"slip_error_sq_sum", number(t.slip_error_sq_sum)},
+            {"slip_error_count", t.slip_error_count},
+            {"rear_sinkage_sum_m", number(t.rear_sinkage_sum_m)},
+            {"rear_sinkage_count", t.rear_sinkage_count},
+            {"border_time_s", optionalJson(t.border_time_s)},
+            {"settling_time_s", optionalJson(t.settling_time_s)}};
+}
+
+scenario::TractionMetrics tractionFrom(const json& j) {
+    scenario::TractionMetrics t;
+    t.drive_energy_j = numberAt(j, "drive_energy_j");
+    t.wheel_output_j = numberAt(j, "wheel_output_j");
+    t.wheel_input_j = numberAt(j, "wheel_input_j");
+    t.drawbar_work_j = numberAt(j, "drawbar_work_j");
+    t.slip_error_sq_sum = numberAt(j, "slip_error_sq_sum");
+    t.slip_error_count = j.at("slip_error_count").get<long>();
+    t.rear_sinkage_sum_m = numberAt(j, "rear_sinkage_sum_m");
+    t.rear_sinkage_count = j.at("rear_sinkage_count").get<long>();
+    t.border_time_s = optionalAt(j, "border_time_s");
+    t.settling_time_s = optionalAt(j, "settling_time_s");
+    return t;
+}
+
+}  // namespace
+
+json savedJson(const SavedRoverRun& r) {
+    return {{"status", kStatus[static_cast<int>(r.run.status)]},
+            {"message", r.run.message},
+            {"series", saved::tableJson(r.run.series)},
+            {"summary", summaryJson(r.run.summary)},
+            {"streaming", saved::tableJson(r.run.streaming)},
+            {"traction", tractionJson(r.run.traction)},
+            {"scenario_name", r.scenario_name},
+            {"scenario", r.scenario}};
+}
+
+Result<SavedRoverRun> savedRoverRunFromJson(const json& j, const std::string& where) {
+    try {
+        SavedRoverRun r;
+        const std::string status = j.at("status").get<std::string>();
+        bool known = false;
+        for (int i = 0; i < 3; ++i) {
+            if (status != kStatus[i]) continue;
+            r.run.status = static_cast<scenario::RunResult::Status>(i);
+            known = true;
+        }
+        if (!known)
+            return std::vector<Issue>{{where + ".status", "\"" + status +
+                                                              "\" is not completed, cancelled "
+                                                              "or diverged"}};
+        r.run.message = j.at("message").get<std::string>();
+        r.run.series = readKey(j, "series", saved::tableFrom);
+        r.run.summary = readKey(j, "summary", summaryFrom);
+        r.run.streaming = readKey(j, "streaming", saved::tableFrom);
+        r.run.traction = readKey(j, "traction", tractionFrom);
+        r.scenario_name = j.at("scenario_name").get<std::string>();
+        r.scenario = j.at("scenario");
+        if (!r.scenario.is_object())
+            return std::vector<Issue>{{where + ".scenario", "not a scenario object"}};
+        return r;
+    } catch (const std::exception& e) {
+        return std::vector<Issue>{{where, e.what()}};
+    }
+}
+
+}  // namespace terra::project

@@ -1,0 +1,285 @@
+// Issue 27, item 2, on real widgets (QT_QPA_PLATFORM=offscreen): a project saved after a fit, a
+// streaming playback, a rover run and uncertainty bands reopens in a fresh main window showing
+// each of them (the same tables, the plots drawn) with no computation started; changed settings,
+// a damaged section or a results file of a newer version cost those results only, never the
+// project, and the status bar says why.
+#include <gtest/gtest.h>
+#include <qcustomplot.h>
+
+#include <QFileInfo>
+#include <QSignalSpy>
+#include <QStatusBar>
+#include <QTemporaryDir>
+#include <QTest>
+#include <cstdio>
+
+#include "app/main_window.h"
+#include "core/io/atomic_file.h"
+#include "core/io/table_json.h"
+#include "widgets/document/project_document.h"
+#include "widgets/panels/global_sensitivity_panel.h"
+#include "widgets/panels/identification_panel.h"
+#include "widgets/panels/rover_panel.h"
+#include "window_test_support.h"
+
+namespace terra::app {
+namespace {
+
+using nlohmann::json;
+
+using test::Studio;
+
+bool waitForResult(ui::AnalysisPanel& panel, int timeout_ms = 120000) {
+    QSignalSpy shown(&panel, &ui::AnalysisPanel::resultShown);
+    if (!shown.wait(timeout_ms)) return false;
+    while (panel.isBusy()) {
+        if (!shown.wait(timeout_ms)) return false;
+    }
+    return true;
+}
+
+/// Opens `path` in `studio` and waits until its saved results are read and shown.
+void openAndWait(Studio& studio, const QString& path) {
+    QSignalSpy restored(&studio.window, &MainWindow::savedResultsShown);
+    ASSERT_TRUE(studio.window.openProject(path, true));
+    ASSERT_TRUE(restored.wait(30000)) << "the saved results were never shown";
+}
+
+/// Counts the computations a panel starts (busyChanged(true)).
+struct StartCounter {
+    explicit StartCounter(ui::AnalysisPanel* panel) : spy(panel, &ui::AnalysisPanel::busyChanged) {}
+    int started() const {
+        int n = 0;
+        for (const QList<QVariant>& arguments : spy) n += arguments.at(0).toBool() ? 1 : 0;
+        return n;
+    }
+    QSignalSpy spy;
+};
+
+/// The straight scenario cut to 1.5 s (a quick run with a few hundred rows).
+QString shortStraight(ui::RoverPanel& rover) {
+    json scenario = json::parse(rover.scenarioText().toStdString());
+    scenario["duration_s"] = 1.5;
+    return QString::fromStdString(scenario.dump(2));
+}
+
+/// The points drawn on a plot, over all its graphs.
+int pointsOn(QCustomPlot& plot) {
+    int n = 0;
+    for (int i = 0; i < plot.graphCount(); ++i) n += plot.graph(i)->dataCount();
+    return n;
+}
+
+/// What the first window computed, to compare the reopened one with.
+struct Computed {
+    Table fit_curves, fit_parameters, streamed, rover_series, bands;
+    QString parameter_cell, time_label;
+    std::size_t frames = 0;
+    int fx_points = 0;  // data and fit points drawn on the F_x plot
+    soil::SoilParameters identified_soil;
+};
+
+/// Fits, plays, runs and computes the bands in a fresh window, then saves the project to `path`
+/// (results beside it).
+Computed computeAndSave(const QString& path) {
+    Computed out;
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* identification = studio.panel<ui::IdentificationPanel>();
+    w.showPanel("identification");
+    identification->recompute();
+    EXPECT_TRUE(waitForResult(*identification)) << identification->fitStatus().toStdString();
+    EXPECT_TRUE(identification->result().usable());
+    out.fit_curves = identification->result().curves;
+    out.fit_parameters = identification->result().parameters;
+    out.parameter_cell = identification->parameterCell(0, 1);
+    out.fx_points = pointsOn(*identification->plots().front().second);
+    out.identified_soil = identification->identifiedSoil().value_or(soil::SoilParameters{});
+    // The streaming playback, at full speed.
+    identification->showPage(1);
+    identification->setStreamSource("", "clayey-soil");
+    identification->setStreamSpeed(0.0);
+    QSignalSpy ended(identification, &ui::IdentificationPanel::playbackEnded);
+    identification->play();
+    EXPECT_TRUE(ended.wait(120000)) << identification->streamStatus().toStdString();
+    out.streamed = identification->currentTable();
+    out.frames = identification->streamingFigures().frameCount();
+    identification->showPage(0);
+
+    auto* rover = studio.panel<ui::RoverPanel>();
+    w.showPanel("rover");
+    rover->applySettings({{"scenario", "straight"}});
+    QString error;
+    EXPECT_TRUE(rover->setScenarioText(shortStraight(*rover), &error)) << error.toStdString();
+    rover->recompute();
+    EXPECT_TRUE(waitForResult(*rover));
+    out.rover_series = rover->result().series;
+    out.time_label = rover->timeLabel();
+
+    auto* global = studio.panel<ui::GlobalSensitivityPanel>();
+    global->setSamples(48);
+    global->showPage(1);
+    w.showPanel("global-sensitivity");
+    global->compute();
+    EXPECT_TRUE(waitForResult(*global));
+    EXPECT_TRUE(global->bands().has_value());
+    out.bands = global->currentTable();
+    w.showPanel("forces");
+
+    EXPECT_TRUE(w.document()->save(path, &error)) << error.toStdString();
+    studio.action("action.save")->trigger();  // to the project's path, results beside it
+    EXPECT_TRUE(QFileInfo::exists(path + ".results"));
+    return out;
+}
+
+TEST(SavedResultsWindow, AReopenedProjectShowsItsFitPlaybackRunAndBandsWithoutComputing) {
+    QTemporaryDir dir;
+    // TERRA_KEEP_SAVED_PROJECT=1 keeps the project and its results for screenshots of a reopened
+    // project (scripts/screenshots --project DIR/field.terra).
+    if (qEnvironmentVariableIsSet("TERRA_KEEP_SAVED_PROJECT")) {
+        dir.setAutoRemove(false);
+        std::printf("kept %s\n", qPrintable(dir.filePath("field.terra")));
+    }
+    const QString path = dir.filePath("field.terra");
+    const Computed computed = computeAndSave(path);
+    ASSERT_GT(computed.fit_curves.rows.size(), 10u);
+    ASSERT_GT(computed.rover_series.rows.size(), 10u);
+    ASSERT_GT(computed.frames, 100u);
+
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* identification = studio.panel<ui::IdentificationPanel>();
+    auto* rover = studio.panel<ui::RoverPanel>();
+    auto* global = studio.panel<ui::GlobalSensitivityPanel>();
+    StartCounter fits(identification), runs(rover), studies(global);
+    openAndWait(studio, path);
+    const QString message = w.statusBar()->currentMessage();
+    for (const char* shown : {"Identification", "Identification (streaming)", "Rover scenario",
+                              "Global sensitivity (bands)"})
+        EXPECT_TRUE(message.contains(shown)) << message.toStdString();
+    // The indices the panel showed were computed before the samples changed: not shown (they
+    // are of other settings), and nothing else is refused.
+    EXPECT_TRUE(message.endsWith(
+        "not shown (computed again when asked): Global sensitivity: its inputs changed since it "
+        "was computed"))
+        << message.toStdString();
+    for (const char* name : {"identification", "rover", "global-sensitivity"}) {
+        w.showPanel(name);
+        QTest::qWait(300);
+    }
+
+    // The fit: its data and curves in the plots, its parameters in the table, its soil to apply.
+    EXPECT_TRUE(identification->showsSavedResult());
+    EXPECT_EQ(io::toJson(identification->result().curves), io::toJson(computed.fit_curves));
+    EXPECT_EQ(io::toJson(identification->result().parameters), io::toJson(computed.fit_parameters));
+    EXPECT_EQ(identification->parameterCell(0, 1), computed.parameter_cell);
+    EXPECT_TRUE(identification->fitStatus().contains("Saved with the project"))
+        << identification->fitStatus().toStdString();
+    QCustomPlot* fx = identification->plots().front().second;
+    ASSERT_GE(fx->graphCount(), 2);
+    EXPECT_GE(pointsOn(*fx), static_cast<int>(computed.fit_curves.rows.size()));
+    EXPECT_EQ(pointsOn(*fx), computed.fx_points);
+    const auto soil = identification->identifiedSoil();
+    ASSERT_TRUE(soil.has_value());
+    EXPECT_EQ(soil->friction_angle_rad, computed.identified_soil.friction_angle_rad);
+    EXPECT_EQ(soil->cohesion_pa, computed.identified_soil.cohesion_pa);
+    // The playback: every frame, as the table and the figures hold them.
+    identification->showPage(1);
+    EXPECT_EQ(io::toJson(identification->currentTable()), io::toJson(computed.streamed));
+    EXPECT_EQ(identification->streamingFigures().frameCount(), computed.frames);
+    EXPECT_TRUE(identification->streamStatus().contains("Saved with the project"))
+        << identification->streamStatus().toStdString();
+    EXPECT_TRUE(identification->streamStatus().contains("change of soil at sample"))
+        << identification->streamStatus().toStdString();
+    identification->showPage(0);
+
+    // The rover run: its time series, top view and time label as before.
+    EXPECT_TRUE(rover->showsSavedResult());
+    EXPECT_EQ(io::toJson(rover->currentTable()), io::toJson(computed.rover_series));
+    EXPECT_EQ(rover->timeLabel(), computed.time_label);
+    EXPECT_GT(rover->topView()->plottableCount(), 0);
+    EXPECT_EQ(rover->completion(), ui::Completion::kComplete);
+
+    // The bands, on the page they were computed on.
+    ASSERT_TRUE(global->bands().has_value());
+    EXPECT_EQ(io::toJson(global->currentTable()), io::toJson(computed.bands));
+    EXPECT_TRUE(global->statusText().contains("Saved with the project"))
+        << global->statusText().toStdString();
+
+    EXPECT_EQ(fits.started(), 0) << "a fit started on opening";
+    EXPECT_EQ(runs.started(), 0) << "a rover run started on opening";
+    EXPECT_EQ(studies.started(), 0) << "a global study started on opening";
+}
+
+// The results were computed from other settings than those the project now has: not shown.
+TEST(SavedResultsWindow, ChangedSettingsAreNotShownWithOldResults) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("field.terra");
+    computeAndSave(path);
+    std::string text;
+    ASSERT_FALSE(io::readFile(path.toStdString(), text));
+    json project = json::parse(text);
+    project["panels"]["identification"]["noise_percent"] = 3.5;
+    project["panels"]["rover"]["edited"]["straight"]["duration_s"] = 1.25;
+    ASSERT_FALSE(io::writeFileAtomically(path.toStdString(), project.dump(1)));
+
+    Studio studio;
+    auto* identification = studio.panel<ui::IdentificationPanel>();
+    auto* rover = studio.panel<ui::RoverPanel>();
+    StartCounter fits(identification), runs(rover);
+    openAndWait(studio, path);
+    EXPECT_FALSE(identification->showsSavedResult());
+    EXPECT_FALSE(identification->hasResult());
+    EXPECT_FALSE(rover->showsSavedResult());
+    EXPECT_TRUE(rover->result().series.rows.empty());
+    const QString message = studio.window.statusBar()->currentMessage();
+    EXPECT_TRUE(message.contains("not shown")) << message.toStdString();
+    EXPECT_TRUE(message.contains("Identification: its inputs changed")) << message.toStdString();
+    EXPECT_TRUE(message.contains("Rover scenario: its inputs changed")) << message.toStdString();
+    // The streaming playback's inputs (soil, source) did not change: it is still shown.
+    EXPECT_TRUE(message.contains("Identification (streaming)")) << message.toStdString();
+    EXPECT_GT(identification->streamingFigures().frameCount(), 0u);
+    // Nothing heavy started by itself.
+    QTest::qWait(300);
+    EXPECT_EQ(fits.started(), 0);
+    EXPECT_EQ(runs.started(), 0);
+    EXPECT_EQ(studio.window.document()->project().panels["identification"]["noise_percent"], 3.5);
+}
+
+// A damaged section costs that section; a newer file costs the results, never the project.
+TEST(SavedResultsWindow, ADamagedOrNewerResultsFileNeverLosesTheProject) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("field.terra");
+    computeAndSave(path);
+    const std::string results_path = (path + ".results").toStdString();
+    std::string text;
+    ASSERT_FALSE(io::readFile(results_path, text));
+    json results = json::parse(text);
+    results["panels"]["rover"]["result"]["series"]["rows"][3] = {1.0, "x"};
+    ASSERT_FALSE(io::writeFileAtomically(results_path, results.dump()));
+    {
+        Studio studio;
+        openAndWait(studio, path);
+        EXPECT_TRUE(studio.panel<ui::IdentificationPanel>()->showsSavedResult());
+        EXPECT_FALSE(studio.panel<ui::RoverPanel>()->showsSavedResult());
+        const QString message = studio.window.statusBar()->currentMessage();
+        EXPECT_TRUE(message.contains("Rover scenario: rover: series")) << message.toStdString();
+        EXPECT_EQ(studio.window.document()->filePath(), QFileInfo(path).absoluteFilePath());
+        EXPECT_FALSE(studio.window.document()->isModified());
+    }
+    results["version"] = 7;
+    ASSERT_FALSE(io::writeFileAtomically(results_path, results.dump()));
+    Studio studio;
+    openAndWait(studio, path);
+    EXPECT_FALSE(studio.panel<ui::IdentificationPanel>()->showsSavedResult());
+    const QString message = studio.window.statusBar()->currentMessage();
+    EXPECT_TRUE(message.contains("cannot be read")) << message.toStdString();
+    EXPECT_TRUE(message.contains("version")) << message.toStdString();
+    EXPECT_EQ(studio.window.document()->filePath(), QFileInfo(path).absoluteFilePath());
+    // Saving again with nothing on screen removes the file: no result for these inputs is left.
+    studio.action("action.save")->trigger();
+    EXPECT_FALSE(QFileInfo::exists(QString::fromStdString(results_path)));
+}
+
+}  // namespace
+}  // namespace terra::app

@@ -1,0 +1,30 @@
+#pragma once
+// What the main window's tests share: the resources folder and a shown, active window.
+
+#include <gtest/gtest.h>
+
+#include <QAction>
+#include <QTest>
+
+#include "app/main_window.h"
+
+namespace terra::app::test {
+
+inline io::PresetLocations resources() { return {{TERRA_RESOURCE_DIR}}; }
+
+/// A main window on the repository's resources, shown and active.
+struct Studio {
+    Studio() : window(resources()) {
+        window.show();
+        window.activateWindow();
+        EXPECT_TRUE(QTest::qWaitForWindowActive(&window));
+    }
+    MainWindow window;
+    QAction* action(const QString& name) { return window.findChild<QAction*>(name); }
+    template <typename Panel>
+    Panel* panel() {
+        return window.findChild<Panel*>();
+    }
+};
+
+}  // namespace terra::app::test

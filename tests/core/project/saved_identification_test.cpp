@@ -1,0 +1,176 @@
+// Issue 27: the identification's results saved with a project (core/project/saved_identification.h)
+// read back to the same numbers: the batch fit (curves, parameters, report, the identified soil
+// with j_max = +inf) and a streaming playback's frames; a damaged section is refused by name.
+#include "core/project/saved_identification.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/io/parameters_json.h"
+#include "core/io/table_json.h"
+
+namespace terra::project {
+namespace {
+
+using nlohmann::json;
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+analysis::Inputs sandyLoamOnA() {
+    analysis::Inputs in;
+    in.soil = io::resolveSoil(kLocations, "sandy-loam").value();
+    in.wheel = io::resolveWheel(kLocations, "A").value();
+    return in;
+}
+
+/// Cell by cell: equal, or NaN in both (a reader that turned a number into NaN, or NaN into 0,
+/// fails here).
+void expectSameTable(const Table& read, const Table& written) {
+    ASSERT_EQ(read.columns, written.columns);
+    ASSERT_EQ(read.rows.size(), written.rows.size());
+    for (std::size_t r = 0; r < read.rows.size(); ++r) {
+        for (std::size_t c = 0; c < read.columns.size(); ++c) {
+            const double a = read.rows[r][c], b = written.rows[r][c];
+            EXPECT_EQ(std::isnan(a), std::isnan(b)) << read.columns[c] << " row " << r;
+            if (!std::isnan(b)) {
+                EXPECT_EQ(a, b) << read.columns[c] << " row " << r;
+            }
+        }
+    }
+}
+
+class IdentificationRoundTrip : public ::testing::TestWithParam<bool> {};
+
+TEST_P(IdentificationRoundTrip, ReadsBackToTheSameFitAndReport) {
+    analysis::IdentificationSettings s;
+    s.refine = GetParam();  // the global identification's report, or the decoupled fit alone
+    s.synthetic.slip_count = 20;
+    s.holdout_fraction = GetParam() ? 0.2 : 0.0;
+    const analysis::IdentificationResult computed =
+        analysis::computeIdentification(sandyLoamOnA(), s);
+    ASSERT_TRUE(computed.message.empty()) << computed.message;
+    const json saved = savedJson(computed);
+    // Through text, as the file holds it.
+    const Result<analysis::IdentificationResult> read =
+        identificationResultFromJson(json::parse(saved.dump()), "identification");
+    ASSERT_TRUE(read.ok()) << read.message();
+    // The CLI's JSON report (another writer, every reported number) is the same.
+    EXPECT_EQ(analysis::toJson(*read), analysis::toJson(computed));
+    expectSameTable(read->curves, computed.curves);
+    expectSameTable(read->parameters, computed.parameters);
+    EXPECT_EQ(read->data.samples.size(), computed.data.samples.size());
+    EXPECT_EQ(read->usable(), computed.usable());
+    EXPECT_EQ(read->start_description, computed.start_description);
+    ASSERT_EQ(read->steps().size(), computed.steps().size());
+    for (std::size_t i = 0; i < read->steps().size(); ++i) {
+        EXPECT_EQ(read->steps()[i].name, computed.steps()[i].name);
+        EXPECT_EQ(read->steps()[i].squared_residual_norm,
+                  computed.steps()[i].squared_residual_norm);
+    }
+    // The identified soil, j_max included (+inf without a shear limit, never NaN).
+    const identification::DecoupledParameters& a = read->identified;
+    const identification::DecoupledParameters& b = computed.identified;
+    EXPECT_EQ(a.friction_angle_rad, b.friction_angle_rad);
+    EXPECT_EQ(a.cohesion_pa, b.cohesion_pa);
+    EXPECT_EQ(a.pressure_modulus, b.pressure_modulus);
+    EXPECT_EQ(a.shear_modulus_m, b.shear_modulus_m);
+    EXPECT_FALSE(std::isnan(a.max_shear_deformation_m));
+    EXPECT_EQ(a.max_shear_deformation_m, b.max_shear_deformation_m);
+    ASSERT_EQ(read->report.has_value(), GetParam());
+    if (GetParam()) {
+        // The covariance the global study takes as its "identified soil" source.
+        EXPECT_EQ(analysis::covarianceJson(*read->report),
+                  analysis::covarianceJson(*computed.report));
+        EXPECT_EQ(read->report->holdout.computed, computed.report->holdout.computed);
+        EXPECT_EQ(read->report->adequacy.p, computed.report->adequacy.p);
+    }
+    // Written again, the same document.
+    EXPECT_EQ(savedJson(*read), saved);
+}
+
+INSTANTIATE_TEST_SUITE_P(GlobalAndDecoupled, IdentificationRoundTrip, ::testing::Bool());
+
+TEST(SavedIdentification, NonFiniteNumbersSurviveAndOthersAreRefused) {
+    analysis::IdentificationResult r;
+    r.identified.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+    r.fit.parameters.cohesion_pa = -std::numeric_limits<double>::infinity();
+    r.message = "nothing to fit";  // no curves needed
+    const json saved = savedJson(r);
+    EXPECT_EQ(saved["identified"][8], "inf");
+    const auto read = identificationResultFromJson(json::parse(saved.dump()), "identification");
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->identified.max_shear_deformation_m, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(read->fit.parameters.cohesion_pa, -std::numeric_limits<double>::infinity());
+    // A string that is not an infinity, a missing key, a short list: each refused by name.
+    json bad = saved;
+    bad["identified"][8] = "lots";
+    auto refused = identificationResultFromJson(bad, "identification");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("identified"), std::string::npos) << refused.message();
+    EXPECT_NE(refused.message().find("lots"), std::string::npos) << refused.message();
+    bad = saved;
+    bad.erase("curves");
+    refused = identificationResultFromJson(bad, "identification");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("curves"), std::string::npos) << refused.message();
+    bad = saved;
+    bad["fit"]["parameters"] = {1.0, 2.0};
+    refused = identificationResultFromJson(bad, "identification");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("expected 9 numbers"), std::string::npos) << refused.message();
+}
+
+TEST(SavedIdentification, CurvesThatDoNotMatchTheDataAreRefused) {
+    analysis::IdentificationSettings s;
+    s.refine = false;
+    s.synthetic.slip_count = 10;
+    const analysis::IdentificationResult computed =
+        analysis::computeIdentification(sandyLoamOnA(), s);
+    json saved = savedJson(computed);
+    saved["data"]["samples"].erase(0);
+    const auto refused = identificationResultFromJson(saved, "identification");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("do not match"), std::string::npos) << refused.message();
+}
+
+TEST(SavedStream, FramesReadBackToTheSameTable) {
+    analysis::StreamingSettings s;
+    s.second = io::resolveSoil(kLocations, "clayey-soil").value();
+    const analysis::StreamingResult computed = analysis::computeStreaming(sandyLoamOnA(), s);
+    ASSERT_GT(computed.frames.size(), 100u);
+    SavedStream stream;
+    stream.frames = computed.frames;
+    stream.sample_count = computed.sample_count;
+    stream.true_border = computed.source.true_border;
+    stream.description = computed.source.description;
+    stream.truth = computed.source.truth;
+    stream.stopped = false;
+    const json saved = savedJson(stream);
+    const Result<SavedStream> read = savedStreamFromJson(json::parse(saved.dump()), "streaming");
+    ASSERT_TRUE(read.ok()) << read.message();
+    // framesTable (the panel's table and CSV) of the frames read is the computed one's, NaN
+    // (no estimate yet) where it was NaN and nowhere else.
+    expectSameTable(analysis::framesTable(read->frames), analysis::framesTable(computed.frames));
+    EXPECT_EQ(read->sample_count, computed.sample_count);
+    EXPECT_EQ(read->true_border, computed.source.true_border);
+    ASSERT_EQ(read->truth.size(), computed.source.truth.size());
+    EXPECT_EQ(read->truth.back().first, computed.source.truth.back().first);
+    std::size_t changes = 0;
+    for (const analysis::StreamFrame& f : read->frames) changes += f.estimate.change_detected;
+    EXPECT_EQ(changes, computed.changes.size());
+    EXPECT_EQ(savedJson(*read), saved);
+    // More frames than samples is not a playback.
+    json bad = saved;
+    bad["sample_count"] = 3;
+    EXPECT_FALSE(savedStreamFromJson(bad, "streaming").ok());
+    bad = saved;
+    bad["frames"][5]["estimate"].erase("cusum");
+    const Result<SavedStream> refused = savedStreamFromJson(bad, "streaming");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("frames[5]"), std::string::npos) << refused.message();
+}
+
+}  // namespace
+}  // namespace terra::project

@@ -1,0 +1,96 @@
+// Issue 27: a rover run saved with a project (core/project/saved_rover.h) reads back to the same
+// time series, summary and status; a damaged one is refused by name.
+#include "core/project/saved_rover.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/analysis/rover.h"
+#include "core/io/json.h"
+#include "core/scenario/scenario_json.h"
+
+namespace terra::project {
+namespace {
+
+using nlohmann::json;
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
+    analysis::RoverSettings s;
+    s.scenario = "straight";
+    s.loaded = scenario::resolveScenario(kLocations, s.scenario).value();
+    s.duration_s = 1.0;
+    const analysis::RoverResult computed = analysis::runRover(s);
+    ASSERT_GT(computed.run.series.rows.size(), 5u);
+    const json scenario_json =
+        io::readJsonFile(std::filesystem::path(TERRA_RESOURCE_DIR) / "scenarios/straight.json")
+            .value();
+    const SavedRoverRun run{computed.run, "straight", scenario_json};
+    const json saved = savedJson(run);
+    const Result<SavedRoverRun> read = savedRoverRunFromJson(json::parse(saved.dump()), "rover");
+    ASSERT_TRUE(read.ok()) << read.message();
+    const Table& a = read->run.series;
+    const Table& b = computed.run.series;
+    ASSERT_EQ(a.columns, b.columns);
+    ASSERT_EQ(a.rows.size(), b.rows.size());
+    for (std::size_t r = 0; r < a.rows.size(); ++r) {
+        for (std::size_t c = 0; c < a.columns.size(); ++c) {
+            EXPECT_EQ(std::isnan(a.rows[r][c]), std::isnan(b.rows[r][c])) << a.columns[c];
+            if (!std::isnan(b.rows[r][c])) {
+                EXPECT_EQ(a.rows[r][c], b.rows[r][c]) << a.columns[c];
+            }
+        }
+    }
+    // The summary as `terrastudio run` writes it (another writer): every number the same.
+    const scenario::Scenario& ran = computed.scenario;
+    EXPECT_EQ(scenario::toJson(read->run, ran), scenario::toJson(computed.run, ran));
+    EXPECT_EQ(read->run.status, computed.run.status);
+    EXPECT_EQ(read->scenario_name, "straight");
+    EXPECT_EQ(read->scenario, scenario_json);
+    EXPECT_EQ(read->run.summary.mean_efficiency, computed.run.summary.mean_efficiency);
+    EXPECT_EQ(savedJson(*read), saved);
+}
+
+TEST(SavedRover, ACancelledRunStaysCancelledAndDamageIsNamed) {
+    SavedRoverRun run;
+    run.run.status = scenario::RunResult::Status::kCancelled;
+    run.run.message = "cancelled at t = 0.8 s";
+    run.run.series.columns = {"t_s", "x_m"};
+    run.run.series.rows = {{0.0, 0.0}, {0.1, std::nan("")}};
+    run.run.summary.energy_per_m_j = std::nullopt;
+    run.run.summary.mean_efficiency = 0.42;
+    run.scenario_name = "straight (edited)";
+    run.scenario = json{{"duration_s", 2.0}};
+    const json saved = savedJson(run);
+    const Result<SavedRoverRun> read = savedRoverRunFromJson(json::parse(saved.dump()), "rover");
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->run.status, scenario::RunResult::Status::kCancelled);
+    EXPECT_EQ(read->run.message, run.run.message);
+    EXPECT_TRUE(std::isnan(read->run.series.rows[1][1]));
+    EXPECT_EQ(read->run.series.rows[1][0], 0.1);
+    EXPECT_FALSE(read->run.summary.energy_per_m_j.has_value());
+    EXPECT_EQ(read->run.summary.mean_efficiency, 0.42);
+
+    json bad = saved;
+    bad["status"] = "exploded";
+    Result<SavedRoverRun> refused = savedRoverRunFromJson(bad, "rover");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("exploded"), std::string::npos) << refused.message();
+    bad = saved;
+    bad["series"]["rows"][1] = {0.2};
+    refused = savedRoverRunFromJson(bad, "rover");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("series"), std::string::npos) << refused.message();
+    EXPECT_NE(refused.message().find("1 values for 2 columns"), std::string::npos)
+        << refused.message();
+    bad = saved;
+    bad["summary"]["x_m"] = "far";
+    refused = savedRoverRunFromJson(bad, "rover");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("summary: x_m"), std::string::npos) << refused.message();
+}
+
+}  // namespace
+}  // namespace terra::project
