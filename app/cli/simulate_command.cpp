@@ -147,7 +147,9 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
                   "OUT/comparison.json, print the comparison table");
     cmd->callback([options, &locations] {
         const SimulateOptions& o = *options;
-        for (const char* file : {"timeseries.csv", "summary.json", "streaming.csv"}) {
+        std::vector<std::string> outputs{"timeseries.csv", "summary.json", "streaming.csv"};
+        outputs.insert(outputs.end(), scenario::kMapFiles.begin(), scenario::kMapFiles.end());
+        for (const std::string& file : outputs) {
             refuseInputAsOutput("--out", std::filesystem::path(o.out) / file,
                                 {{"--scenario", o.scenario}});
         }
