@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/compaction/footprint.h"
 #include "core/compaction/passes.h"
+#include "core/compaction/stress_at_depth.h"
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
@@ -197,6 +199,18 @@ TEST(FieldRover, StraightPassLeavesTheSingleWheelRutAndTheRearWheelIsPassTwo) {
         ++checked;
     }
     EXPECT_GE(checked, 10);
+    // The largest σ_z at the risk depth (0.3 m) under the front wheel's centre line: the
+    // footprint of the solved pass, propagated with ν = 5 (no profile gives one), within 2 %.
+    ASSERT_EQ(run.terrain->cells().stressDepths(), std::vector<double>{0.3});
+    const double nu = run.s.terrain.base.profile ? 0.0 : compaction::kDefaultConcentration;
+    if (nu > 0.0) {
+        const compaction::StressPropagation propagation(
+            compaction::wheelFootprint(pass1.params, pass1.op), nu);
+        const double sigma = compaction::maxVerticalStress(propagation, 0.0, 0.3);
+        const field::CellState* c = cellAt(*run.terrain, 0.5 * (x_rear + x_front), y);
+        ASSERT_NE(c, nullptr);
+        EXPECT_NEAR(c->max_stress_pa[0], sigma, 0.02 * sigma);
+    }
 
     // The rear wheel on pass two: its sinkage below the untouched surface and its forces.
     ASSERT_EQ(rear.passes_before, 1);
