@@ -532,11 +532,21 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
             precompression[static_cast<std::size_t>(i)] = soil::precompressionStress(*layer);
     }
     field::Raster& risk = maps.compaction_risk;
+    // When every soil has σ_pc (or none has) the cells no wheel touched need no soil lookup: their
+    // stress is 0, their risk 0 (or no data).
+    const bool all =
+        std::all_of(precompression.begin(), precompression.end(), [](double p) { return p > 0.0; });
+    const bool none = std::none_of(precompression.begin(), precompression.end(),
+                                   [](double p) { return p > 0.0; });
     for (int row = 0; row < risk.rows; ++row) {
         for (int col = 0; col < risk.cols; ++col) {
+            double& v = risk.value(col, row);
+            if (none || (all && v == 0.0)) {
+                v = none ? nan : 0.0;
+                continue;
+            }
             const double sigma_pc = precompression[static_cast<std::size_t>(
                 terrain.soilIndexAt(risk.centreX(col), risk.centreY(row)))];
-            double& v = risk.value(col, row);
             v = sigma_pc > 0.0 ? v / sigma_pc : nan;
         }
     }
