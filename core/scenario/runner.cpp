@@ -637,7 +637,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     // meets the stiffer lateral and longitudinal forces of slow driving (docs/dynamics.md).
     auto stepHint = [&] {
         const dynamics::StepLimit limit =
-            dynamics::largestStableStep(scenario.robot, scenario.terrain, scenario.options);
+            field ? dynamics::largestStableStep(scenario.robot, *field, scenario.options)
+                  : dynamics::largestStableStep(scenario.robot, scenario.terrain, scenario.options);
         const double allowed = kStableStepMargin * limit.max_step_s;
         if (dt > allowed) {
             return "the time step " + formatNumber(dt) + " s is above the largest stable step " +
