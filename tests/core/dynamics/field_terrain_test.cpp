@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <nlohmann/json.hpp>
 
 #include "core/compaction/footprint.h"
 #include "core/compaction/passes.h"
@@ -375,6 +376,53 @@ TEST(FieldRover, FieldRunsRepeatBitForBit) {
     EXPECT_EQ(a.maps->passes.rows, 400);
     EXPECT_DOUBLE_EQ(a.maps->passes.cell_m, 0.1);
     EXPECT_GT(a.maps->rut_depth_m.valueRange().second, 0.0);
+}
+
+// The two forms of a field terrain read the same maps: {"field": FILE} and the scenario's own
+// "height", "soils", "legend"; giving both is an error naming the keys.
+TEST(FieldRover, ScenarioReadsAFieldFileOrItsOwnRasters) {
+    const std::string fields = std::string(TERRA_RESOURCE_DIR) + "/fields/sloped-wet/";
+    auto scenarioWith = [](const nlohmann::json& terrain) {
+        return nlohmann::json{{"name", "t"},
+                              {"robot", "default"},
+                              {"duration_s", 1},
+                              {"time_step_s", 0.001},
+                              {"initial", {{"x_m", 10}, {"y_m", 10}}},
+                              {"terrain", terrain},
+                              {"wheels", {{"all", {{"omega_rad_s", 0.4}}}}}};
+    };
+    const Result<scenario::Scenario> by_file = scenario::scenarioFromJson(
+        scenarioWith({{"field", fields + "field.json"}}), "by-file", kLocations);
+    ASSERT_TRUE(by_file.ok()) << by_file.message();
+    const Result<scenario::Scenario> inline_maps = scenario::scenarioFromJson(
+        scenarioWith(
+            {{"height", fields + "height.asc"},
+             {"soils", fields + "soil-classes.asc"},
+             {"legend", {{"1", "sandy-loam"}, {"2", "lean-clay-wet"}, {"3", "sandy-loam"}}},
+             {"cell_m", 0.05},
+             {"repeated_passes", false}}),
+        "inline", kLocations);
+    ASSERT_TRUE(inline_maps.ok()) << inline_maps.message();
+    for (const scenario::Scenario* s : {&by_file.value(), &inline_maps.value()}) {
+        ASSERT_TRUE(s->field);
+        EXPECT_EQ(s->soilCount(), 4);  // the base soil, then classes 1, 2, 3
+        EXPECT_EQ(s->soil(2).name, s->field->legend.at(2).name);
+        EXPECT_EQ(s->field->height->values, by_file.value().field->height->values);
+    }
+    EXPECT_EQ(inline_maps.value().field_options.cell_m, 0.05);
+    EXPECT_FALSE(inline_maps.value().field_options.repeated_passes);
+    // Without "soil" the base soil is the lowest class's.
+    EXPECT_EQ(inline_maps.value().terrain.base.name, inline_maps.value().soil(1).name);
+
+    const Result<scenario::Scenario> both = scenario::scenarioFromJson(
+        scenarioWith({{"field", fields + "field.json"}, {"height", fields + "height.asc"}}), "both",
+        kLocations);
+    ASSERT_FALSE(both.ok());
+    EXPECT_NE(both.message().find("terrain.height"), std::string::npos) << both.message();
+    const Result<scenario::Scenario> bad_cell = scenario::scenarioFromJson(
+        scenarioWith({{"field", fields + "field.json"}, {"cell_m", 0}}), "bad", kLocations);
+    ASSERT_FALSE(bad_cell.ok());
+    EXPECT_NE(bad_cell.message().find("terrain.cell_m"), std::string::npos) << bad_cell.message();
 }
 
 }  // namespace
