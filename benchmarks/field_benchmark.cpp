@@ -5,10 +5,17 @@
 //   terra_benchmarks --benchmark_filter=Field
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <cmath>
 #include <random>
+#include <stdexcept>
 
+#include "core/dynamics/field_terrain.h"
+#include "core/dynamics/rover.h"
 #include "core/field/cell_grid.h"
 #include "core/io/field_json.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
 
 namespace {
 
@@ -79,3 +86,83 @@ void FieldTouchContactCells(benchmark::State& state) {
 BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 
 }  // namespace
+
+// The rover on a field (issue 23's figure; docs/performance.md, "Rover on a field"): the default
+// 4-wheel robot drives 20 s straight up a 50 m × 20 m field of 2 cm cells (height: a 2 % grade
+// with a 5 cm swell; classes: sandy loam with a clayey strip) at 1 ms steps, quadratic contact.
+// Arg: 0 the same run on today's flat patch terrain; 1 the field, every wheel on untouched soil
+// (repeated_passes off); 2 the field with the memory (rear wheels in the front ruts: their
+// contact is integrated, the quadratic model has no reload branch); 3 as 2 without the stress at
+// depth. Counters: real-time factor, bytes of cell state, cells touched.
+scenario::Scenario fieldRun(int kind) {
+    auto loaded = scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "straight");
+    if (!loaded) throw std::runtime_error(loaded.message());
+    scenario::Scenario s = loaded.value();
+    s.duration_s = 20.0;
+    s.options.contact.model = contact::ContactModel::kQuadratic;
+    s.initial = {2.0, 10.0, 0.0, 0.0};
+    for (auto& w : s.wheels) w.spin_rate_rad_s = scenario::Signal::constant(1.0);
+    if (kind == 0) return s;
+    static const std::shared_ptr<const field::FieldMap> map = [] {
+        auto m = std::make_shared<field::FieldMap>();
+        constexpr double kCell = 0.02;
+        m->height = field::makeRaster(2500, 1000, 0.0, 0.0, kCell);
+        m->soil_class = field::makeRaster(2500, 1000, 0.0, 0.0, kCell);
+        for (int row = 0; row < 1000; ++row) {
+            for (int col = 0; col < 2500; ++col) {
+                const double x = m->height->centreX(col), y = m->height->centreY(row);
+                m->height->value(col, row) =
+                    0.02 * x + 0.05 * std::sin(0.5 * x) * std::cos(0.3 * y);
+                m->soil_class->value(col, row) = y > 9.5 && y < 9.7 ? 2 : 1;
+            }
+        }
+        auto soils = io::PresetLocations{{TERRA_RESOURCE_DIR}};
+        m->base = io::resolveSoil(soils, "sandy-loam").value();
+        m->legend[1] = m->base;
+        m->legend[2] = io::resolveSoil(soils, "clayey-soil").value();
+        return m;
+    }();
+    s.field = map;
+    s.terrain.base = map->base;
+    s.field_options.cell_m = 0.02;
+    s.field_options.repeated_passes = kind >= 2;
+    if (kind == 3) s.field_options.stress_depths_m.clear();
+    return s;
+}
+
+void RoverOnField(benchmark::State& state) {
+    const scenario::Scenario s = fieldRun(static_cast<int>(state.range(0)));
+    double wall = 0.0, loop = 0.0;
+    long cells = 0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        scenario::RunResult r = scenario::runScenario(s);
+        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (r.status != scenario::RunResult::Status::kCompleted)
+            state.SkipWithError(r.message.c_str());
+        // The stepping loop's own time (the summary's factor), without the maps of the run.
+        loop += s.duration_s / r.summary.real_time_factor.value_or(0.0);
+        cells = r.summary.cells_touched.value_or(0);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+    const double n = static_cast<double>(state.iterations());
+    state.counters["real_time_factor"] = s.duration_s * n / wall;
+    state.counters["loop_real_time_factor"] = s.duration_s * n / loop;
+    state.counters["maps_ms"] = 1e3 * (wall - loop) / n;
+    state.counters["cells_touched"] = static_cast<double>(cells);
+    if (s.field) {
+        // The memory of the same run: its tiles (CellGrid::stateBytes).
+        dynamics::FieldTerrain terrain(s.field, s.robot, s.field_options);
+        dynamics::Rover rover(s.robot, terrain, s.options, s.initial, s.commandsAt(0.0));
+        for (int k = 0; k < 20000; ++k) rover.step(1e-3, s.commandsAt(0.0));
+        terrain.finish();
+        state.counters["cell_state_bytes"] = static_cast<double>(terrain.cells().stateBytes());
+    }
+}
+BENCHMARK(RoverOnField)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);

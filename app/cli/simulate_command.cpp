@@ -1,6 +1,7 @@
 // terrastudio simulate: run a rover scenario (docs/dynamics.md), write the time series and the
 // summary, with a progress bar on a terminal; Ctrl-C, SIGTERM and SIGHUP stop it and it still
 // writes.
+#include <cmath>
 #include <iostream>
 
 #include "app/cli/cli_support.h"
@@ -66,9 +67,24 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
         std::cout << " " << dynamics::kCornerNames[i] << " " << fixed(m.mean_slip[i], 4);
     }
     std::cout << "\n  motor energy " << fixed(m.energy_j, 3) << " J (into the soil "
-              << fixed(m.dissipated_j, 3) << " J)\n"
-              << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
-              << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv") << '\n';
+              << fixed(m.dissipated_j, 3) << " J)\n";
+    if (r.maps && m.cells_touched) {
+        const auto [rut_min, rut_max] = r.maps->rut_depth_m.valueRange();
+        const auto [risk_min, risk_max] = r.maps->compaction_risk.valueRange();
+        (void)rut_min, (void)risk_min;
+        std::cout << "  field        " << *m.cells_touched << " cells of "
+                  << formatNumber(r.maps->passes.cell_m) << " m touched, deepest rut "
+                  << fixed(1000.0 * rut_max, 2) << " mm, largest risk at "
+                  << formatNumber(r.maps->risk_depth_m) << " m "
+                  << (std::isnan(risk_max) ? std::string("(no profile)") : fixed(risk_max, 3))
+                  << '\n';
+    }
+    std::cout << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
+              << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv");
+    if (r.maps) {
+        for (const char* name : scenario::kMapFiles) std::cout << ", " << out << "/" << name;
+    }
+    std::cout << '\n';
 }
 
 // --compare: the scenario under each controller, one after the other.
@@ -147,7 +163,9 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
                   "OUT/comparison.json, print the comparison table");
     cmd->callback([options, &locations] {
         const SimulateOptions& o = *options;
-        for (const char* file : {"timeseries.csv", "summary.json", "streaming.csv"}) {
+        std::vector<std::string> outputs{"timeseries.csv", "summary.json", "streaming.csv"};
+        outputs.insert(outputs.end(), scenario::kMapFiles.begin(), scenario::kMapFiles.end());
+        for (const std::string& file : outputs) {
             refuseInputAsOutput("--out", std::filesystem::path(o.out) / file,
                                 {{"--scenario", o.scenario}});
         }

@@ -50,7 +50,7 @@ struct CompactionSettings {
     static std::vector<double> defaultDepths();
 };
 
-inline constexpr double kDefaultConcentration = 5.0;  ///< ν: Söhne's "normal" soil
+using compaction::kDefaultConcentration;  ///< ν: Söhne's "normal" soil
 
 /// Reads "slip", "slip_angle_deg", "concentration", "depths_m", "passes", "width" (uniform,
 /// parabolic), "risk_stress" (sigma_z, sigma_1), "reload_k0_kPa_m", "reload_Au_kPa_m2",

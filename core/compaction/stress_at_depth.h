@@ -22,6 +22,9 @@
 
 namespace terra::compaction {
 
+/// ν when neither the user nor the soil layer gives one: Söhne's "normal" soil.
+inline constexpr double kDefaultConcentration = 5.0;
+
 /// A force on the soil at a point of its surface (or of a rut's surface).
 struct PointLoad {
     Eigen::Vector3d position;  ///< S [m]: x forward, y left, z depth below the untouched surface

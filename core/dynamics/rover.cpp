@@ -73,6 +73,11 @@ double staticCornerLoad(const RobotParameters& robot, double gravity_m_s2, int c
 
 StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain,
                             const RoverOptions& options) {
+    return largestStableStep(robot, PatchTerrain(terrain), options);
+}
+
+StepLimit largestStableStep(const RobotParameters& robot, const TerrainModel& terrain,
+                            const RoverOptions& options) {
     StepLimit out;
     out.max_step_s = std::numeric_limits<double>::infinity();
     // The body about its composite centre of mass (chassis frame at mid-wheelbase on the hubs'
@@ -132,7 +137,8 @@ StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain
 
 struct Rover::Impl {
     RobotParameters robot;
-    Terrain terrain;
+    std::unique_ptr<TerrainModel> owned_terrain;  // the patch terrain of the Terrain constructor
+    TerrainModel* terrain = nullptr;
     RoverOptions options;
     std::vector<contact::ContactParameters<double>> soils;  // per terrain soil index
 
@@ -162,6 +168,33 @@ struct Rover::Impl {
     mutable bool energy_current = false;
 
     btMatrix3x3 basis() const { return btMatrix3x3(body->getWorldToBaseRot().inverse()); }
+
+    // The untouched surface under a hub (docs/field.md, F4–F6).
+    struct Ground {
+        double x = 0.0, y = 0.0;          // the contact point c on the map [m]
+        btVector3 normal{0.0, 0.0, 1.0};  // n at c
+        double distance = 0.0;            // D = n · (hub − c) [m]
+    };
+    Ground groundUnder(const btVector3& hub) const {
+        Ground g;
+        g.x = hub.x(), g.y = hub.y();
+        std::array<double, 2> slope = terrain->gradientAt(g.x, g.y);
+        if (slope[0] == 0.0 && slope[1] == 0.0) {
+            // Flat here: n = up and c right below the hub (bit for bit the flat rover).
+            g.distance = hub.z() - terrain->heightAt(g.x, g.y);
+            return g;
+        }
+        // F4: n = (−z_x, −z_y, 1)/√(1 + |∇z|²) below the hub; F5: c = hub − D n on the tangent
+        // plane, where the surface is sampled again (the foot moves by D sin α ≈ r sin α).
+        btVector3 n = btVector3(-slope[0], -slope[1], 1.0).normalized();
+        const double d0 = n.z() * (hub.z() - terrain->heightAt(g.x, g.y));
+        g.x = hub.x() - d0 * n.x();
+        g.y = hub.y() - d0 * n.y();
+        slope = terrain->gradientAt(g.x, g.y);
+        g.normal = btVector3(-slope[0], -slope[1], 1.0).normalized();
+        g.distance = g.normal.dot(hub - btVector3(g.x, g.y, terrain->heightAt(g.x, g.y)));
+        return g;
+    }
 
     // The steered wheel's axle (spin axis) in the world.
     static btVector3 axle(const btMatrix3x3& basis, double steer_rad) {
@@ -227,13 +260,25 @@ struct Rover::Impl {
 
 Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOptions& options,
              const InitialState& initial, const Commands& initial_commands)
+    : Rover(robot, std::make_unique<PatchTerrain>(terrain), nullptr, options, initial,
+            initial_commands) {}
+
+Rover::Rover(const RobotParameters& robot, TerrainModel& terrain, const RoverOptions& options,
+             const InitialState& initial, const Commands& initial_commands)
+    : Rover(robot, nullptr, &terrain, options, initial, initial_commands) {}
+
+Rover::Rover(const RobotParameters& robot, std::unique_ptr<TerrainModel> owned,
+             TerrainModel* terrain_model, const RoverOptions& options, const InitialState& initial,
+             const Commands& initial_commands)
     : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     if (const auto issues = validate(robot, "robot."); !issues.empty()) {
         throw std::invalid_argument(formatIssues(issues));
     }
     m.robot = robot;
-    m.terrain = terrain;
+    m.owned_terrain = std::move(owned);
+    m.terrain = m.owned_terrain ? m.owned_terrain.get() : terrain_model;
+    const TerrainModel& terrain = *m.terrain;
     m.options = options;
     for (int i = 0; i < terrain.soilCount(); ++i) {
         m.soils.push_back(contact::makeContactParameters(terrain.soil(i), robot.wheel));
@@ -265,6 +310,8 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
         const btVector3& h = hub_geometric[i];
         const int soil = terrain.soilIndexAt(initial.x_m + c0 * h.x() - s0 * h.y(),
                                              initial.y_m + s0 * h.x() + c0 * h.y());
+        // (on a slope the corner's footprint moves by < r sin α: the soil is looked up at the
+        // corner's map position)
         const StaticCorner corner =
             staticCorner(m.soils[soil], terrain.soil(soil), load, robot, options);
         const contact::SinkageSolution& solution = corner.solution;
@@ -302,11 +349,27 @@ Rover::Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOp
     m.body->setUseGyroTerm(true);
     m.body->setMaxCoordinateVelocity(1e6);  // no clamp of joint rates (default 100 rad/s)
 
-    const btQuaternion heading(btVector3(0, 0, 1), initial.yaw_rad);
-    const btMatrix3x3 start_basis(heading);
-    const double hub_z = r - mean_sinkage;
-    // The hubs' plane sits at hub_z; the base origin is the chassis centre of mass.
-    m.body->setBasePos(btVector3(initial.x_m, initial.y_m, hub_z) + start_basis * chassis_com);
+    btQuaternion heading(btVector3(0, 0, 1), initial.yaw_rad);
+    btMatrix3x3 start_basis(heading);
+    const std::array<double, 2> slope = terrain.gradientAt(initial.x_m, initial.y_m);
+    if (slope[0] == 0.0 && slope[1] == 0.0) {
+        const double hub_z = terrain.heightAt(initial.x_m, initial.y_m) + r - mean_sinkage;
+        // The hubs' plane sits at hub_z; the base origin is the chassis centre of mass.
+        m.body->setBasePos(btVector3(initial.x_m, initial.y_m, hub_z) + start_basis * chassis_com);
+    } else {
+        // On a slope (F9): the body's z along the surface normal n at (x, y), its x the heading
+        // projected on the tangent plane, the hubs' plane r − h̄ above the surface along n.
+        const btVector3 n = btVector3(-slope[0], -slope[1], 1.0).normalized();
+        const btVector3 along(c0, s0, 0.0);
+        const btVector3 x_b = (along - along.dot(n) * n).normalized();
+        const btVector3 y_b = n.cross(x_b);
+        start_basis =
+            btMatrix3x3(x_b.x(), y_b.x(), n.x(), x_b.y(), y_b.y(), n.y(), x_b.z(), y_b.z(), n.z());
+        start_basis.getRotation(heading);
+        const btVector3 ground(initial.x_m, initial.y_m,
+                               terrain.heightAt(initial.x_m, initial.y_m));
+        m.body->setBasePos(ground + (r - mean_sinkage) * n + start_basis * chassis_com);
+    }
     m.body->setWorldToBaseRot(heading.inverse());
     m.body->setBaseVel(start_basis * btVector3(initial.speed_m_s, 0, 0));
     m.body->setBaseOmega(zero);
@@ -342,7 +405,6 @@ const RoverState& Rover::evaluate(const Commands& commands) {
     const btVector3 base = m.body->getBasePos();
     const btVector3 v = m.body->getBaseVel();
     const btVector3 w = m.body->getBaseOmega();
-    const btVector3 up(0, 0, 1);
     const double r = m.robot.wheel.radius_m;
     // The slip is defined on the shearing radius r_s = r + λ_s h_g (docs/model.md, "Lugs"); r
     // for a smooth wheel.
@@ -361,21 +423,42 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         const btVector3 omega =
             w + m.body->getJointVel(steerLink(i)) * basis.getColumn(2) +
             m.body->getJointVel(spinLink(i)) * (basis * btVector3(-sin_steer, cos_steer, 0.0));
-        // Wheel frame of section 2.2.1 on the flat surface: x the steered wheel's heading
-        // projected on the ground, z up, y = z × x.
+        // The ground under the wheel (docs/field.md, F4–F6): the untouched surface's normal n,
+        // the contact point c at the foot of the perpendicular from the hub on the tangent plane
+        // (one re-sample there), and the hub's distance D from that plane; on flat ground n = up,
+        // c is below the hub and D = hub.z − z(c), exactly as before.
+        const Impl::Ground ground = m.groundUnder(hub);
+        const btVector3& n = ground.normal;
+        // Wheel frame of section 2.2.1 on the local surface (F5): x the steered wheel's heading
+        // projected on the tangent plane, z = n, y = z × x.
         const btVector3 heading = basis * btVector3(cos_steer, sin_steer, 0.0);
-        btVector3 x_w(heading.x(), heading.y(), 0.0);
+        btVector3 x_w = heading - heading.dot(n) * n;
         x_w.normalize();
-        const btVector3 y_w = up.cross(x_w);
+        const btVector3 y_w = n.cross(x_w);
 
         WheelKinematics k;
         k.forward_speed_m_s = hub_velocity.dot(x_w);
         k.lateral_speed_m_s = hub_velocity.dot(y_w);
         // The rim speed from the wheel body's own spin (joint rate plus the chassis' pitch).
         k.rim_speed_m_s = shear_radius * omega.dot(y_w);
-        k.sinkage_m = r - hub.z();
-        ws.soil_index = m.terrain.soilIndexAt(hub.x(), hub.y());
-        ws.contact = evaluateContact(m.soils[ws.soil_index], k, m.options.contact);
+        // h = r − D below the untouched surface (F6); in an earlier rut the contact starts at its
+        // bottom z_p and meets the remembered soil (Wong's reload law, docs/compaction.md R1–R3).
+        const double depth = r - ground.distance;
+        ws.soil_index = m.terrain->soilIndexAt(ground.x, ground.y);
+        const compaction::TrackMemory* memory = m.terrain->memoryUnder(i, ground.x, ground.y);
+        ws.passes_before = memory ? memory->passes : 0;
+        const contact::ContactParameters<double>* soil = &m.soils[ws.soil_index];
+        contact::ContactParameters<double> on_track;
+        if (memory == nullptr || memory->untouched()) {
+            k.sinkage_m = depth;
+            ws.contact = evaluateContact(*soil, k, m.options.contact);
+        } else {
+            on_track = compaction::onTrack(*soil, *memory, m.terrain->reloadLaw());
+            soil = &on_track;
+            k.sinkage_m = depth - memory->rut_depth_m;
+            ws.contact = evaluateContact(on_track, k, m.options.contact);
+            ws.contact.sinkage_m = depth;
+        }
         ws.forward_speed_m_s = k.forward_speed_m_s;
         ws.lateral_speed_m_s = k.lateral_speed_m_s;
         ws.steer_angle_rad = steer;
@@ -384,12 +467,25 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         const contact::WheelForces<double>& f = ws.contact.forces;
         // Damping only while in contact, and the soil can only push (F ≥ 0).
         ws.load_n =
-            ws.contact.in_contact ? std::max(0.0, f.fz - m.damping[i] * hub_velocity.z()) : 0.0;
+            ws.contact.in_contact ? std::max(0.0, f.fz - m.damping[i] * hub_velocity.dot(n)) : 0.0;
         // Soil on the wheel body: forces at the hub, the resistance torque −M_y about the axle
-        // (Eq. 2.34), and M_x, M_z, which the joints pass on to the chassis.
-        m.wheel_force[i] = f.fx * x_w + f.fs * y_w + ws.load_n * up;
-        m.wheel_moment[i] = f.mx * x_w - f.my * y_w + f.mz * up;
-        m.soil_power -= m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega);
+        // (Eq. 2.34), and M_x, M_z, which the joints pass on to the chassis (F7).
+        m.wheel_force[i] = f.fx * x_w + f.fs * y_w + ws.load_n * n;
+        m.wheel_moment[i] = f.mx * x_w - f.my * y_w + f.mz * n;
+        const double power = -(m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega));
+        m.soil_power += power;
+        if (memory != nullptr || m.owned_terrain == nullptr) {
+            WheelImprint imprint;
+            imprint.in_contact = ws.contact.in_contact;
+            imprint.soil_index = ws.soil_index;
+            imprint.depth_m = depth;
+            imprint.load_n = ws.load_n;
+            imprint.power_w = power;
+            imprint.params = *soil;
+            imprint.op = {ws.contact.slip, ws.contact.slip_angle_rad, ws.contact.entry_angle_rad,
+                          ws.contact.exit_angle_rad, std::nullopt};
+            m.terrain->imprint(i, imprint);
+        }
     }
     m.readBodyState();
     return m.state;
@@ -531,6 +627,7 @@ void Rover::advance(double dt_s) {
     m.energy.motor_work_j += motor_work + steering_work;
     m.energy.steering_work_j += steering_work;
     m.energy.dissipated_j += m.soil_power * dt_s;
+    m.terrain->advanced(dt_s);
     m.state.time_s += dt_s;
     m.readBodyState();
     m.energy_current = false;

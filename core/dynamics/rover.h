@@ -46,8 +46,12 @@ struct RoverOptions {
 
 /// One wheel at one instant (the quantities the forces of the coming step were computed from).
 struct WheelState {
-    WheelContact contact;          ///< s, β, θ_f, h and the model's forces (wheel frame)
-    int soil_index = 0;            ///< Terrain::soilIndexAt of the hub
+    /// s, β, θ_f, h and the model's forces (wheel frame: x along the steered heading on the
+    /// local surface, z its normal; docs/field.md F5). h is the rim's depth below the untouched
+    /// surface (in an earlier rut: the rut's depth plus the depth below its bottom).
+    WheelContact contact;
+    int soil_index = 0;            ///< TerrainModel::soilIndexAt of the contact point
+    int passes_before = 0;         ///< wheels that had passed on the soil under it before [-]
     double load_n = 0.0;           ///< vertical force applied: F_z plus damping, ≥ 0 [N]
     double spin_rate_rad_s = 0.0;  ///< ω [rad/s]: the spin joint's rate (wheel vs. chassis)
     double steer_angle_rad = 0.0;  ///< δ [rad]: the steering joint's angle
@@ -112,6 +116,9 @@ double staticCornerLoad(const RobotParameters& robot, double gravity_m_s2, int c
 
 StepLimit largestStableStep(const RobotParameters& robot, const Terrain& terrain,
                             const RoverOptions& options);
+/// The same over every soil of any terrain (a field's legend).
+StepLimit largestStableStep(const RobotParameters& robot, const TerrainModel& terrain,
+                            const RoverOptions& options);
 
 class Rover {
 public:
@@ -119,6 +126,12 @@ public:
     /// corner loads). Throws std::invalid_argument for invalid parameters or when a corner load has
     /// no equilibrium on the soil under it.
     Rover(const RobotParameters& robot, const Terrain& terrain, const RoverOptions& options,
+          const InitialState& initial, const Commands& initial_commands);
+    /// The same on any terrain (a field: docs/field.md), which the caller keeps alive while the
+    /// rover runs and which the rover tells what each wheel did. On a slope the robot starts with
+    /// its body along the surface's tangent plane at (x, y), the hubs at the static sinkage along
+    /// the normal (F9).
+    Rover(const RobotParameters& robot, TerrainModel& terrain, const RoverOptions& options,
           const InitialState& initial, const Commands& initial_commands);
     ~Rover();
     Rover(const Rover&) = delete;
@@ -147,6 +160,10 @@ public:
     double verticalDamping() const;
 
 private:
+    Rover(const RobotParameters& robot, std::unique_ptr<TerrainModel> owned, TerrainModel* terrain,
+          const RoverOptions& options, const InitialState& initial,
+          const Commands& initial_commands);
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

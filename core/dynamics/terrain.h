@@ -1,13 +1,20 @@
 #pragma once
 /// @file terrain.h
-/// Flat deformable terrain made of soil patches: a base soil everywhere, overridden by
-/// axis-aligned rectangles (the last listed patch that contains a point wins), so a scenario can
-/// cross from sandy loam into clayey soil. The surface is the plane z = 0.
+/// What the rover drives on. `TerrainModel` is what a wheel asks of the ground at every step
+/// (docs/field.md, "The rover on a field"): the untouched surface's height and gradient, the soil,
+/// and the memory of earlier passes under the wheel; it is told what the wheel did there. Two
+/// kinds: `PatchTerrain`, the flat plane z = 0 of soil patches (a base soil everywhere, overridden
+/// by axis-aligned rectangles, the last listed patch that contains a point winning) that
+/// remembers nothing, and `FieldTerrain` (field_terrain.h), a field map with its cell memory.
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "core/compaction/track_memory.h"
+#include "core/contact/contact_parameters.h"
+#include "core/contact/wheel_forces.h"
 #include "core/soil/soil_parameters.h"
 
 namespace terra::dynamics {
@@ -42,6 +49,66 @@ struct Terrain {
         return index == 0 ? base : patches[index - 1].soil;
     }
     int soilCount() const { return static_cast<int>(patches.size()) + 1; }
+};
+
+/// What one wheel did to the ground in one evaluation (Rover::evaluate), for a terrain that
+/// remembers: the contact as it was solved there.
+struct WheelImprint {
+    bool in_contact = false;
+    int soil_index = 0;
+    double depth_m = 0.0;  ///< the rim's lowest point below the untouched surface [m] (F6)
+    double load_n = 0.0;   ///< W along the surface normal [N]
+    double power_w = 0.0;  ///< power into the soil [W]
+    contact::ContactParameters<double> params;  ///< the soil's, with the memory used (if any)
+    contact::OperatingPoint<double> op{};       ///< s, β, θ_f, θ_r of the contact
+};
+
+/// The ground as a wheel meets it. Coordinates are the world's: x, y on the map, z up.
+class TerrainModel {
+public:
+    virtual ~TerrainModel() = default;
+
+    virtual int soilCount() const = 0;
+    /// The soil of index `index` (0 ≤ index < soilCount()).
+    virtual const soil::SoilParameters& soil(int index) const = 0;
+    /// Index of the soil at (x, y).
+    virtual int soilIndexAt(double x_m, double y_m) const = 0;
+    /// z [m] of the untouched surface at (x, y).
+    virtual double heightAt(double x_m, double y_m) const = 0;
+    /// ∇z = (∂z/∂x, ∂z/∂y) [-] of the untouched surface at (x, y).
+    virtual std::array<double, 2> gradientAt(double x_m, double y_m) const = 0;
+
+    /// The memory of the soil that wheel `wheel` (0…3) stands on, its contact point at (x, y), as
+    /// the soil was when the wheel arrived there; nullptr when the wheel meets untouched soil (and
+    /// always on a terrain that remembers nothing). Called once per wheel per evaluation, before
+    /// imprint().
+    virtual const compaction::TrackMemory* memoryUnder(int wheel, double x_m, double y_m) {
+        (void)wheel, (void)x_m, (void)y_m;
+        return nullptr;
+    }
+    /// The reload law that memoryUnder's memories are met with.
+    virtual compaction::ReloadLaw reloadLaw() const { return {}; }
+    /// What wheel `wheel` did at the contact memoryUnder was last asked about.
+    virtual void imprint(int wheel, const WheelImprint& imprint) { (void)wheel, (void)imprint; }
+    /// dt [s] passed with the forces of the last imprints (Rover::advance).
+    virtual void advanced(double dt_s) { (void)dt_s; }
+};
+
+/// The flat patch terrain of a Terrain: the plane z = 0, nothing remembered (today's rover).
+class PatchTerrain final : public TerrainModel {
+public:
+    explicit PatchTerrain(Terrain terrain) : terrain_(std::move(terrain)) {}
+    int soilCount() const override { return terrain_.soilCount(); }
+    const soil::SoilParameters& soil(int index) const override { return terrain_.soil(index); }
+    int soilIndexAt(double x_m, double y_m) const override {
+        return terrain_.soilIndexAt(x_m, y_m);
+    }
+    double heightAt(double, double) const override { return 0.0; }
+    std::array<double, 2> gradientAt(double, double) const override { return {0.0, 0.0}; }
+    const Terrain& terrain() const { return terrain_; }
+
+private:
+    Terrain terrain_;
 };
 
 }  // namespace terra::dynamics

@@ -40,7 +40,9 @@ WheelContact evaluateContact(const contact::ContactParameters<double>& p, const 
         std::min(contact::clampedExitAngle(options.exit_angle_rad, c.entry_angle_rad), 0.0);
     const contact::OperatingPoint<double> op{c.slip, c.slip_angle_rad, c.entry_angle_rad,
                                              c.exit_angle_rad, std::nullopt};
-    c.forces = options.model == contact::ContactModel::kFull
+    // A remembered track is always integrated: the quadratic closed form has no reload branch
+    // (compaction::solvePass does the same).
+    c.forces = options.model == contact::ContactModel::kFull || p.remembers()
                    ? contact::computeForces(p, op, options.bulldozing, options.integration)
                    : contact::computeQuadraticForces(p, op, options.bulldozing);
     const double sign =

@@ -96,17 +96,17 @@ public:
         const CellKey lo = keyAt(x_min_m, y_min_m);
         const CellKey hi =
             keyAt(std::nextafter(x_max_m, x_min_m), std::nextafter(y_max_m, y_min_m));
-        Raster r =
-            makeRaster(static_cast<int>(hi.ix - lo.ix + 1), static_cast<int>(hi.iy - lo.iy + 1),
-                       x_origin_m_ + lo.ix * cell_m_, y_origin_m_ + lo.iy * cell_m_, cell_m_);
+        // Every cell takes the virgin value, then the allocated tiles' cells inside the box are
+        // written: the cost grows with the area driven on, not with the box.
         const CellState virgin;
-        for (int row = 0; row < r.rows; ++row) {
-            const std::int64_t iy = hi.iy - row;
-            for (int col = 0; col < r.cols; ++col) {
-                const CellState* s = find(CellKey{lo.ix + col, iy});
-                r.value(col, row) = value(s != nullptr ? *s : virgin);
-            }
-        }
+        Raster r = makeRaster(static_cast<int>(hi.ix - lo.ix + 1),
+                              static_cast<int>(hi.iy - lo.iy + 1), x_origin_m_ + lo.ix * cell_m_,
+                              y_origin_m_ + lo.iy * cell_m_, cell_m_, value(virgin));
+        forEachCell([&](CellKey key, const CellState& state) {
+            if (key.ix < lo.ix || key.ix > hi.ix || key.iy < lo.iy || key.iy > hi.iy) return;
+            r.value(static_cast<int>(key.ix - lo.ix), static_cast<int>(hi.iy - key.iy)) =
+                value(state);
+        });
         return r;
     }
 

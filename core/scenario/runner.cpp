@@ -1,6 +1,7 @@
 #include "core/scenario/runner.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -8,10 +9,13 @@
 
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/field/field_summary.h"
 #include "core/identification/soil_conversion.h"
 #include "core/identification/streaming.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
+#include "core/io/raster_io.h"
+#include "core/soil/soil_profile.h"
 
 namespace terra::scenario {
 namespace {
@@ -85,8 +89,13 @@ double energyBalanceError(double energy, double dissipated, double kinetic, doub
 // flipped it and reported negative motor energy as a completed run).
 class DivergenceWatch {
 public:
-    DivergenceWatch(const Scenario& scenario, const dynamics::RoverState& start)
-        : z0_(start.position_m[2]),
+    DivergenceWatch(const Scenario& scenario, const dynamics::RoverState& start,
+                    const dynamics::TerrainModel* terrain = nullptr)
+        : terrain_(terrain),
+          z0_(start.position_m[2] -
+              (terrain ? terrain->heightAt(start.position_m[0], start.position_m[1]) : 0.0)),
+          z_start_(start.position_m[2]),
+          gravity_(scenario.options.gravity_m_s2),
           radius_(scenario.robot.wheel.radius_m),
           shear_radius_(scenario.robot.wheel.radius_m + scenario.robot.wheel.lugShearOffset()),
           fastest_(scenario.initial.speed_m_s),
@@ -103,7 +112,11 @@ public:
     std::string check(const dynamics::RoverState& s) const {
         constexpr double kTipped = 60.0 * units::kPi / 180.0;
         const double speed = std::hypot(s.velocity_m_s[0], s.velocity_m_s[1], s.velocity_m_s[2]);
-        const double speed_bound = 2.0 * fastest_ + 0.5;
+        double speed_bound = 2.0 * fastest_ + 0.5;
+        // On a field gravity drives the robot too: at most the speed of a free fall through the
+        // height it lost since the start.
+        if (terrain_ != nullptr && s.position_m[2] < z_start_)
+            speed_bound += std::sqrt(2.0 * gravity_ * (z_start_ - s.position_m[2]));
         if (speed > speed_bound) {
             return "the speed " + formatNumber(roundSignificant(speed, 3)) +
                    " m/s is beyond what the wheels drive (rims at most " +
@@ -114,7 +127,9 @@ public:
                    formatNumber(roundSignificant(units::radToDeg(s.roll_rad), 3)) + "°, pitch " +
                    formatNumber(roundSignificant(units::radToDeg(s.pitch_rad), 3)) + "°)";
         }
-        const double rise = s.position_m[2] - z0_;
+        // Above the ground under the centre of mass (a field's surface rises and falls).
+        const double ground = terrain_ ? terrain_->heightAt(s.position_m[0], s.position_m[1]) : 0.0;
+        const double rise = s.position_m[2] - ground - z0_;
         if (rise > 1.0 || rise < -radius_) {
             return "the robot " + std::string(rise > 0.0 ? "left the ground" : "sank through it") +
                    " (its centre of mass moved " + formatNumber(roundSignificant(rise, 3)) +
@@ -141,7 +156,8 @@ public:
     }
 
 private:
-    double z0_, radius_, shear_radius_, fastest_, energy_floor_;
+    const dynamics::TerrainModel* terrain_;
+    double z0_, z_start_, gravity_, radius_, shear_radius_, fastest_, energy_floor_;
 };
 
 // The streaming identifier of one wheel, fed with noisy samples at its own rate.
@@ -260,8 +276,7 @@ public:
                 dynamics::staticCornerLoad(scenario.robot, scenario.options.gravity_m_s2, i);
             hub_x_m_[i] = (i < 2 ? 0.5 : -0.5) * scenario.robot.wheelbase_m;
         }
-        oracle_.resize(static_cast<std::size_t>(scenario.terrain.soilCount()) *
-                       dynamics::kWheelCount);
+        oracle_.resize(static_cast<std::size_t>(scenario.soilCount()) * dynamics::kWheelCount);
     }
 
     // The first commands: rolling at the set-point's rate for the initial speed.
@@ -412,7 +427,7 @@ private:
         std::optional<double>& cached =
             oracle_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
         if (!cached) {
-            cached = plan(scenario_.terrain.soil(soil_index), static_load_n_[i]);
+            cached = plan(scenario_.soil(soil_index), static_load_n_[i]);
             if (!cached) cached = set_points_[i];
         }
         return *cached;
@@ -483,6 +498,61 @@ std::vector<std::string> closedLoopColumns() {
     return c;
 }
 
+// The maps of a field run over the field's extent (or the cells touched, for a field without
+// rasters), on the memory's cells.
+FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
+    const field::CellGrid& cells = terrain.cells();
+    std::array<double, 4> box{0.0, 0.0, cells.cellSize(), cells.cellSize()};
+    if (const auto e = field::extent(terrain.map())) {
+        box = *e;
+    } else if (const auto [lo, hi] = cells.touchedBounds(); hi.ix >= lo.ix) {
+        const double h = cells.cellSize();
+        box = {cells.xOrigin() + lo.ix * h, cells.yOrigin() + lo.iy * h,
+               cells.xOrigin() + (hi.ix + 1) * h, cells.yOrigin() + (hi.iy + 1) * h};
+    }
+    FieldMaps maps;
+    maps.rut_depth_m =
+        cells.toRaster(box[0], box[1], box[2], box[3],
+                       [](const field::CellState& c) { return c.track.rut_depth_m; });
+    maps.passes = cells.toRaster(box[0], box[1], box[2], box[3], [](const field::CellState& c) {
+        return static_cast<double>(c.track.passes);
+    });
+    maps.compaction_risk = cells.toRaster(
+        box[0], box[1], box[2], box[3],
+        [](const field::CellState& c) { return static_cast<double>(c.max_stress_pa[0]); });
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double>& depths = cells.stressDepths();
+    maps.risk_depth_m = depths.empty() ? nan : depths.front();
+    // σ_pc at the risk depth of each soil: its profile's layer there, or none.
+    std::vector<double> precompression(static_cast<std::size_t>(terrain.soilCount()), nan);
+    for (int i = 0; i < terrain.soilCount(); ++i) {
+        const soil::SoilParameters& soil = terrain.soil(i);
+        if (depths.empty() || !soil.profile) continue;
+        if (const soil::SoilLayer* layer = soil.profile->layerAt(depths.front()))
+            precompression[static_cast<std::size_t>(i)] = soil::precompressionStress(*layer);
+    }
+    field::Raster& risk = maps.compaction_risk;
+    // When every soil has σ_pc (or none has) the cells no wheel touched need no soil lookup: their
+    // stress is 0, their risk 0 (or no data).
+    const bool all =
+        std::all_of(precompression.begin(), precompression.end(), [](double p) { return p > 0.0; });
+    const bool none = std::none_of(precompression.begin(), precompression.end(),
+                                   [](double p) { return p > 0.0; });
+    for (int row = 0; row < risk.rows; ++row) {
+        for (int col = 0; col < risk.cols; ++col) {
+            double& v = risk.value(col, row);
+            if (none || (all && v == 0.0)) {
+                v = none ? nan : 0.0;
+                continue;
+            }
+            const double sigma_pc = precompression[static_cast<std::size_t>(
+                terrain.soilIndexAt(risk.centreX(col), risk.centreY(row)))];
+            v = sigma_pc > 0.0 ? v / sigma_pc : nan;
+        }
+    }
+    return maps;
+}
+
 }  // namespace
 
 RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
@@ -509,7 +579,18 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         loop.emplace(scenario, options.slip_planner, dt, start);
         first = loop->initial(first);
     }
-    dynamics::Rover rover(scenario.robot, scenario.terrain, rover_options, scenario.initial, first);
+    // A field: its terrain, which the rover tells every wheel's passage (docs/field.md).
+    std::unique_ptr<dynamics::FieldTerrain> field;
+    if (scenario.field) {
+        field = std::make_unique<dynamics::FieldTerrain>(scenario.field, scenario.robot,
+                                                         scenario.field_options);
+    }
+    const std::unique_ptr<dynamics::Rover> rover_on =
+        field ? std::make_unique<dynamics::Rover>(scenario.robot, *field, rover_options,
+                                                  scenario.initial, first)
+              : std::make_unique<dynamics::Rover>(scenario.robot, scenario.terrain, rover_options,
+                                                  scenario.initial, first);
+    dynamics::Rover& rover = *rover_on;
     std::optional<StreamingFeed> feed;
     if (hook) {
         identification::StreamingOptions streaming;
@@ -551,12 +632,13 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         return row;
     };
     Summary& sum = result.summary;
-    DivergenceWatch watch(scenario, rover.state());
+    DivergenceWatch watch(scenario, rover.state(), field.get());
     // Said with a divergence: whether the step is above the vertical modes' bound or, below it,
     // meets the stiffer lateral and longitudinal forces of slow driving (docs/dynamics.md).
     auto stepHint = [&] {
         const dynamics::StepLimit limit =
-            dynamics::largestStableStep(scenario.robot, scenario.terrain, scenario.options);
+            field ? dynamics::largestStableStep(scenario.robot, *field, scenario.options)
+                  : dynamics::largestStableStep(scenario.robot, scenario.terrain, scenario.options);
         const double allowed = kStableStepMargin * limit.max_step_s;
         if (dt > allowed) {
             return "the time step " + formatNumber(dt) + " s is above the largest stable step " +
@@ -566,6 +648,7 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
                " s (docs/dynamics.md, \"Step size and stability\")";
     };
     std::array<double, 2> last_xy{rover.state().position_m[0], rover.state().position_m[1]};
+    const auto wall_start = std::chrono::steady_clock::now();
     long step = 0;
     for (;; ++step) {
         // Time from the step count (no accumulated rounding): bit-identical reruns and exact
@@ -636,6 +719,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             options.progress(static_cast<double>(step + 1) / static_cast<double>(steps));
         }
     }
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     const dynamics::RoverState& final_state = rover.state();
     sum.steps = step;
     sum.duration_s = static_cast<double>(step) * dt;
@@ -670,6 +755,12 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     if (metrics.wheel_input_j > 0.0)
         sum.mean_efficiency = metrics.wheel_output_j / metrics.wheel_input_j;
     result.traction = metrics;
+    if (wall_s > 0.0 && sum.duration_s > 0.0) sum.real_time_factor = sum.duration_s / wall_s;
+    if (field) {
+        field->finish();
+        sum.cells_touched = field->cellsTouched();
+        result.maps = fieldMaps(*field);
+    }
     return result;
 }
 
@@ -707,6 +798,14 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
     j["energy_per_m_J"] = optional(s.energy_per_m_j);
     j["mean_efficiency"] = optional(s.mean_efficiency);
     j["slip_tracking_rms"] = optional(s.slip_tracking_rms);
+    j["real_time_factor"] = optional(s.real_time_factor);
+    if (s.cells_touched) j["cells_touched"] = *s.cells_touched;
+    if (result.maps) {
+        j["risk_depth_m"] = result.maps->risk_depth_m;
+        const auto [lo, hi] = result.maps->rut_depth_m.valueRange();
+        (void)lo;
+        j["max_rut_depth_m"] = hi;
+    }
     if (std::abs(s.energy_balance_error) > kEnergyBalanceTolerance) {
         j["warning"] = "the energy balance is off by " +
                        formatNumber(roundSignificant(100.0 * s.energy_balance_error, 3)) +
@@ -729,9 +828,26 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
         std::filesystem::remove(stale, ec);
         if (ec) return "cannot remove the earlier " + stale.string() + ": " + ec.message();
     }
+    // Maps of an earlier field run would pass for this run's likewise.
+    if (!result.maps) {
+        for (const char* name : kMapFiles) {
+            std::filesystem::remove(directory / name, ec);
+            if (ec)
+                return "cannot remove the earlier " + (directory / name).string() + ": " +
+                       ec.message();
+        }
+    }
     if (auto error =
             io::writeFileAtomically(directory / "timeseries.csv", io::toCsv(result.series))) {
         return error;
+    }
+    if (result.maps) {
+        const FieldMaps& m = *result.maps;
+        const std::array<const field::Raster*, 3> rasters{&m.rut_depth_m, &m.passes,
+                                                          &m.compaction_risk};
+        for (std::size_t i = 0; i < rasters.size(); ++i) {
+            if (auto error = io::writeRaster(directory / kMapFiles[i], *rasters[i])) return error;
+        }
     }
     if (!result.streaming.columns.empty()) {
         if (auto error =

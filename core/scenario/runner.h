@@ -14,6 +14,7 @@
 
 #include "core/common/table.h"
 #include "core/dynamics/rover.h"
+#include "core/field/raster.h"
 #include "core/scenario/scenario.h"
 
 namespace terra::scenario {
@@ -57,6 +58,22 @@ struct Summary {
     /// RMS of s − s_set over the wheels at the control ticks after the first second [-]; only a
     /// slip controller has a set-point.
     std::optional<double> slip_tracking_rms;
+    /// Simulated time over the wall-clock time of the stepping loop [-] (measured: it varies from
+    /// run to run, unlike everything else here).
+    std::optional<double> real_time_factor;
+    /// A field run: the cells at least one wheel passed over (docs/field.md, F10).
+    std::optional<long> cells_touched;
+};
+
+/// The maps a field run leaves (docs/field.md, "Maps of a drive"), on the memory's cells over the
+/// field's extent (ESRI ASCII grids in writeResults).
+struct FieldMaps {
+    field::Raster rut_depth_m;  ///< z_p [m]: the rut after the elastic rebound (R2); 0 untouched
+    field::Raster passes;       ///< wheels that passed [-]
+    /// The largest σ_z at `risk_depth_m` over σ_pc of the cell's soil there [-] (> 1.1: red,
+    /// Terranimo's bands); NaN (no data) where the soil has no profile reaching that depth.
+    field::Raster compaction_risk;
+    double risk_depth_m = 0.0;
 };
 
 struct RunResult {
@@ -69,8 +86,9 @@ struct RunResult {
     std::string message;
     Table series;  ///< one row per output interval (columns: docs/dynamics.md)
     Summary summary;
-    Table streaming;           ///< streaming identification updates (empty without the hook)
-    TractionMetrics traction;  ///< the drive's energy, efficiency, tracking and settling
+    Table streaming;                ///< streaming identification updates (empty without the hook)
+    TractionMetrics traction;       ///< the drive's energy, efficiency, tracking and settling
+    std::optional<FieldMaps> maps;  ///< a field run's maps
     bool usable() const { return series.rows.size() > 1; }
 };
 
@@ -82,8 +100,12 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options = {});
 /// energy_J and the rest, with "status" and "scenario".
 nlohmann::json toJson(const RunResult& result, const Scenario& scenario);
 
-/// Writes timeseries.csv, summary.json (and streaming.csv) into `directory` (created), each
-/// atomically. An error message, or nothing.
+/// The names of a field run's maps in the output directory.
+inline constexpr std::array<const char*, 3> kMapFiles{"rut_depth_m.asc", "passes.asc",
+                                                      "compaction_risk.asc"};
+
+/// Writes timeseries.csv, summary.json (and streaming.csv; a field run's kMapFiles) into
+/// `directory` (created), each atomically. An error message, or nothing.
 std::optional<std::string> writeResults(const RunResult& result, const Scenario& scenario,
                                         const std::filesystem::path& directory);
 

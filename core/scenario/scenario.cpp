@@ -1,6 +1,7 @@
 #include "core/scenario/scenario.h"
 
 #include <cmath>
+#include <iterator>
 
 #include "core/common/range.h"
 #include "core/dynamics/rover.h"
@@ -27,6 +28,16 @@ dynamics::Commands Scenario::commandsAt(double t_s) const {
     return commands;
 }
 
+int Scenario::soilCount() const {
+    return field ? static_cast<int>(field->legend.size()) + 1 : terrain.soilCount();
+}
+
+const soil::SoilParameters& Scenario::soil(int index) const {
+    if (!field) return terrain.soil(index);
+    if (index == 0) return field->base;
+    return std::next(field->legend.begin(), index - 1)->second;
+}
+
 std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     std::vector<Issue> issues = dynamics::validate(s.robot, prefix + "robot.");
     checkRange(issues, prefix + "duration_s", s.duration_s, kDurationRange, "s");
@@ -47,6 +58,16 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     }
     for (Issue& issue : soil::validate(s.terrain.base, prefix + "terrain.soil."))
         issues.push_back(std::move(issue));
+    if (s.field) {
+        for (const auto& [code, soil] : s.field->legend) {
+            for (Issue& issue :
+                 soil::validate(soil, prefix + "terrain.legend." + std::to_string(code) + ".soil."))
+                issues.push_back(std::move(issue));
+        }
+        if (!s.field->parameters.empty())
+            issues.push_back(
+                {prefix + "terrain.parameters", "parameter rasters are not read by the rover yet"});
+    }
     for (std::size_t i = 0; i < s.terrain.patches.size(); ++i) {
         const std::string at = prefix + "terrain.patches[" + std::to_string(i) + "].";
         for (Issue& issue : soil::validate(s.terrain.patches[i].soil, at + "soil."))
@@ -70,7 +91,10 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     // completed run (issue 28): refused here, with the largest stable step named.
     if (issues.empty()) {
         const dynamics::StepLimit limit =
-            dynamics::largestStableStep(s.robot, s.terrain, s.options);
+            s.field
+                ? dynamics::largestStableStep(
+                      s.robot, dynamics::FieldTerrain(s.field, s.robot, s.field_options), s.options)
+                : dynamics::largestStableStep(s.robot, s.terrain, s.options);
         const double allowed = kStableStepMargin * limit.max_step_s;
         if (std::isfinite(allowed) && s.time_step_s > allowed) {
             const Range range{kTimeStepRange.low, floorSignificant(allowed, 2)};

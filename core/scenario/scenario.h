@@ -5,12 +5,14 @@
 /// resources/scenarios/*.json, format in docs/dynamics.md (scenario_json.h reads them).
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/common/issue.h"
 #include "core/common/range.h"
+#include "core/dynamics/field_terrain.h"
 #include "core/dynamics/robot.h"
 #include "core/dynamics/rover.h"
 #include "core/dynamics/terrain.h"
@@ -57,6 +59,11 @@ struct Scenario {
     std::string description;
     dynamics::RobotParameters robot;
     dynamics::Terrain terrain;
+    /// A field (docs/field.md, "Field scenarios"): the robot drives on its surface and soils and
+    /// the cells remember every pass; `terrain.base` is then the field's base soil and its patches
+    /// are not used. Empty: the flat patches of `terrain`.
+    std::shared_ptr<const field::FieldMap> field;
+    dynamics::FieldTerrainOptions field_options;
     dynamics::InitialState initial;
     dynamics::RoverOptions options;
     std::array<WheelInputs, dynamics::kWheelCount> wheels;
@@ -71,6 +78,10 @@ struct Scenario {
 
     /// Every wheel's command at time t [s].
     dynamics::Commands commandsAt(double t_s) const;
+    /// The soils the robot can meet, indexed as the rover's WheelState::soil_index: the patch
+    /// terrain's (base, then the patches), or the field's (base, then the legend by code).
+    int soilCount() const;
+    const soil::SoilParameters& soil(int index) const;
 };
 
 /// Every problem of a scenario built in code (the JSON reader reports the same with file paths).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -10,6 +11,9 @@
 #include "core/common/quoted.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
+#include "core/io/atomic_file.h"
+#include "core/io/csv.h"
+#include "core/io/field_json.h"
 #include "core/io/json.h"
 
 namespace terra::scenario {
@@ -146,11 +150,142 @@ void readTerrainSoil(ObjectReader& r, const std::string& key, const io::PresetLo
     }
 }
 
+// The keys of a field terrain (docs/field.md, "Field scenarios").
+bool isFieldTerrain(const json& value) {
+    return value.is_object() && (value.contains("height") || value.contains("soils") ||
+                                 value.contains("legend") || value.contains("field"));
+}
+
+// A field terrain: {"height", "soils", "legend", "soil"} (rasters relative to the scenario) or
+// {"field": FIELD.json}, with the memory's options. The maps are read by the field files' reader
+// (io::fieldFromJson), with the scenario's key "soils" for its "soil_classes".
+void readFieldTerrain(ObjectReader& r, const io::PresetLocations& locations,
+                      const fs::path& base_dir, Scenario& s) {
+    const json& value = *r.value("terrain");
+    ObjectReader t = r.object("terrain");
+    const std::string where = t.where("");
+    Result<io::FieldFile> file = std::vector<Issue>{};
+    if (value.contains("field")) {
+        std::string path;
+        t.text("field", path, Presence::kRequired);
+        for (const char* key : {"height", "soils", "legend", "soil"}) {
+            if (value.contains(key)) {
+                t.allow(key);
+                t.report(key, "give the maps either in the scenario or in \"field\", not both");
+            }
+        }
+        const fs::path located =
+            fs::path(path).is_relative() && !base_dir.empty() ? base_dir / path : fs::path(path);
+        file = io::loadField(located, locations);
+    } else {
+        json field = json::object();
+        for (const auto& [from, to] :
+             std::initializer_list<std::pair<const char*, const char*>>{{"height", "height"},
+                                                                        {"soils", "soil_classes"},
+                                                                        {"legend", "legend"},
+                                                                        {"soil", "soil"},
+                                                                        {"name", "name"}}) {
+            if (value.contains(from)) field[to] = value.at(from);
+            t.allow(from);
+        }
+        // Without "soil", the soil outside the class map is the lowest class's.
+        if (!field.contains("soil") && field.contains("legend") && field["legend"].is_object() &&
+            !field["legend"].empty()) {
+            const json* lowest = nullptr;
+            double lowest_code = std::numeric_limits<double>::infinity();
+            for (const auto& [code, entry] : field["legend"].items()) {
+                double c = 0.0;
+                if (io::parseNumber(code, c) && c < lowest_code) lowest_code = c, lowest = &entry;
+            }
+            if (lowest != nullptr)
+                field["soil"] =
+                    lowest->is_object() && lowest->contains("soil") ? lowest->at("soil") : *lowest;
+        }
+        if (!field.contains("soils") && !field.contains("soil_classes") &&
+            !field.contains("soil")) {
+            t.report("soils",
+                     "missing: a field terrain needs \"soils\" and \"legend\" (or "
+                     "\"soil\" for one soil everywhere)");
+        }
+        file = io::fieldFromJson(field, where.empty() ? "terrain" : where, base_dir, locations);
+    }
+    if (!file) {
+        for (Issue issue : file.issues()) {
+            // The scenario's names for the field file's keys.
+            for (std::string* text : {&issue.where, &issue.message}) {
+                for (std::size_t at = text->find("soil_classes"); at != std::string::npos;
+                     at = text->find("soil_classes", at))
+                    text->replace(at, 12, "soils");
+            }
+            t.issues().push_back(std::move(issue));
+        }
+    } else {
+        io::FieldFile f = std::move(file).value();
+        // The maps must cover the same ground (F1: a wheel reads both at one point).
+        if (f.map.height && f.map.soil_class) {
+            const field::Raster& h = *f.map.height;
+            const field::Raster& c = *f.map.soil_class;
+            auto box = [](const field::Raster& m) {
+                return "[" + formatNumber(m.x_min_m) + ", " + formatNumber(m.y_min_m) + "] to [" +
+                       formatNumber(m.xMax()) + ", " + formatNumber(m.yMax()) + "] m";
+            };
+            const double tolerance = 1e-6 * std::max(h.cell_m, c.cell_m);
+            if (std::abs(h.x_min_m - c.x_min_m) > tolerance ||
+                std::abs(h.y_min_m - c.y_min_m) > tolerance ||
+                std::abs(h.xMax() - c.xMax()) > tolerance ||
+                std::abs(h.yMax() - c.yMax()) > tolerance) {
+                t.report("soils", "covers " + box(c) + ", the height map " + box(h) +
+                                      ": the maps must cover the same ground");
+            }
+        }
+        // ESRI ASCII grids carry their coordinate system in a .prj beside them: two that differ
+        // put the maps in different places.
+        if (!value.contains("field") && value.contains("height") && value.contains("soils") &&
+            value["height"].is_string() && value["soils"].is_string()) {
+            auto prj = [&](const std::string& path) {
+                fs::path p = fs::path(path).is_relative() && !base_dir.empty() ? base_dir / path
+                                                                               : fs::path(path);
+                p.replace_extension(".prj");
+                std::string text;
+                std::error_code ec;
+                if (fs::is_regular_file(p, ec)) io::readFile(p, text);
+                while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+                    text.pop_back();
+                return text;
+            };
+            const std::string height_prj = prj(value["height"].get<std::string>());
+            const std::string soils_prj = prj(value["soils"].get<std::string>());
+            if (!height_prj.empty() && !soils_prj.empty() && height_prj != soils_prj) {
+                t.report("soils", "its coordinate system (.prj) differs from the height map's");
+            }
+        }
+        if (!f.map.parameters.empty()) {
+            t.report("parameters", "parameter rasters are not read by the rover yet (" +
+                                       std::string(f.map.parameters.front().field->key) +
+                                       "); give the soil by class");
+        }
+        s.terrain.base = f.map.base;
+        s.field = std::make_shared<const field::FieldMap>(std::move(f.map));
+    }
+    dynamics::FieldTerrainOptions& o = s.field_options;
+    t.boolean("repeated_passes", o.repeated_passes);
+    t.boolean("shear_memory", o.law.shear_memory);
+    t.number("cell_m", o.cell_m, {0.001, 100.0}, "m");
+    double risk_depth = o.stress_depths_m.front();
+    if (t.number("risk_depth_m", risk_depth, {0.01, 10.0}, "m")) o.stress_depths_m = {risk_depth};
+    t.number("concentration", o.concentration, {2.0, 12.0, true, false});
+    t.finish();
+}
+
 dynamics::Terrain readTerrain(ObjectReader& r, const io::PresetLocations& locations,
-                              const fs::path& base_dir) {
+                              const fs::path& base_dir, Scenario& s) {
     dynamics::Terrain terrain;
     const json* value =
         r.value("terrain", Presence::kRequired, "a soil name or {\"soil\", \"patches\"}");
+    if (value != nullptr && isFieldTerrain(*value)) {
+        readFieldTerrain(r, locations, base_dir, s);
+        return s.terrain;
+    }
     if (value == nullptr) return terrain;
     if (value->is_string()) {
         readTerrainSoil(r, "terrain", locations, base_dir, terrain.base);
@@ -372,7 +507,7 @@ Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
         r.allow("initial");
     }
 
-    s.terrain = readTerrain(r, locations, base_dir);
+    s.terrain = readTerrain(r, locations, base_dir, s);
 
     // Wheels: "all" first, then per-wheel overrides of either input.
     const Range spin_range{0.0, 1000.0};

@@ -1,0 +1,108 @@
+#pragma once
+/// @file field_terrain.h
+/// The rover's ground on a field (docs/field.md, "The rover on a field"): the field map's
+/// surface (bilinear height and gradient, F1–F2) and soils (class 0 = the base soil, then the
+/// legend's classes in ascending code), and the cell grid's memory of every wheel that passed.
+/// Each wheel reads the memory of the cell under its contact point as the cell was when the wheel
+/// arrived there, and writes its passage back once, when it leaves the cell (F10–F11): the track
+/// memory after one more pass (compaction::afterPass), the largest slip, the energy it lost there
+/// and the largest vertical stress at the grid's depths.
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/compaction/track_memory.h"
+#include "core/dynamics/robot.h"
+#include "core/dynamics/terrain.h"
+#include "core/field/cell_grid.h"
+#include "core/field/field_map.h"
+
+namespace terra::dynamics {
+
+/// Wong's reload law with the rut and the reload branch, without the shear memory.
+inline compaction::ReloadLaw noShearMemory() {
+    compaction::ReloadLaw law;
+    law.shear_memory = false;
+    return law;
+}
+
+/// How a field remembers.
+struct FieldTerrainOptions {
+    /// The wheels meet the memory of earlier passes (Wong's reload law, the rut, the shear);
+    /// false: every wheel meets untouched soil, as on the patch terrain (the memory is still
+    /// written, so the maps are drawn either way).
+    bool repeated_passes = true;
+    /// k₀, A_u and whether shear is carried (docs/compaction.md R1). The shear memory is off by
+    /// default here (docs/field.md, F11): its offset j₀ makes F_x jump at s = 0 (the shear's
+    /// magnitude starts at τ(j₀) while its direction follows the slip), which the explicit step
+    /// turns into chatter of the 4WD robot, whose wheels run near s = 0 once the rear ones push.
+    compaction::ReloadLaw law = noShearMemory();
+    /// Cell side of the memory [m]; 0: the finest cell of the field's rasters.
+    double cell_m = 0.0;
+    /// Depths [m] where each cell keeps its largest σ_z (at most field::kMaxStressDepths);
+    /// empty: no stress at depth is computed.
+    std::vector<double> stress_depths_m{0.3};
+    /// ν for the stress at depth; 0: the layer's own ν at each depth, else 5 (Söhne's "normal").
+    double concentration = 0.0;
+};
+
+class FieldTerrain final : public TerrainModel {
+public:
+    /// Throws std::invalid_argument for a field the rover cannot drive on: parameter rasters
+    /// (not read by the rover yet), or a cell size out of CellGrid's range.
+    FieldTerrain(std::shared_ptr<const field::FieldMap> map, const RobotParameters& robot,
+                 FieldTerrainOptions options = {});
+
+    int soilCount() const override { return static_cast<int>(soils_.size()); }
+    const soil::SoilParameters& soil(int index) const override {
+        return soils_[static_cast<std::size_t>(index)];
+    }
+    int soilIndexAt(double x_m, double y_m) const override;
+    double heightAt(double x_m, double y_m) const override { return map_->heightAt(x_m, y_m); }
+    std::array<double, 2> gradientAt(double x_m, double y_m) const override;
+
+    const compaction::TrackMemory* memoryUnder(int wheel, double x_m, double y_m) override;
+    compaction::ReloadLaw reloadLaw() const override { return options_.law; }
+    void imprint(int wheel, const WheelImprint& imprint) override;
+    void advanced(double dt_s) override;
+
+    /// Writes every wheel's open passage to its cell (the end of a run).
+    void finish();
+
+    const field::FieldMap& map() const { return *map_; }
+    const field::CellGrid& cells() const { return cells_; }
+    const FieldTerrainOptions& options() const { return options_; }
+    /// Cells that at least one wheel passed over.
+    long cellsTouched() const { return cells_touched_; }
+
+private:
+    // One wheel's passage over one cell (F10): opened when the wheel's contact point enters the
+    // cell, written back when it leaves it by more than a quarter cell.
+    struct Passage {
+        bool open = false;
+        field::CellKey key;
+        compaction::TrackMemory before;  // the cell's memory when the wheel arrived
+        bool contacted = false;
+        int soil_index = 0;
+        double max_depth_m = 0.0;
+        double max_slip = 0.0;
+        double energy_j = 0.0;
+        double last_power_w = 0.0;
+        contact::ContactParameters<double> params;  // at the deepest point
+        contact::OperatingPoint<double> op{};       // at the deepest point
+    };
+    void commit(Passage& passage);
+    double stressAt(const Passage& passage, double depth_m) const;
+
+    std::shared_ptr<const field::FieldMap> map_;
+    FieldTerrainOptions options_;
+    wheel::WheelParameters wheel_;
+    std::vector<soil::SoilParameters> soils_;  // 0: base, then the legend
+    std::vector<int> codes_;                   // the legend's codes, ascending
+    field::CellGrid cells_;
+    std::array<Passage, kWheelCount> passages_{};
+    long cells_touched_ = 0;
+};
+
+}  // namespace terra::dynamics

@@ -1,0 +1,429 @@
+// The rover on a field (docs/field.md, "The rover on a field"): a flat field is today's patch
+// terrain bit for bit; a straight pass leaves the single-wheel pass model's rut and the rear wheel
+// in the front rut is its two-pass case (core/compaction, solved on its own); on a uniform slope
+// the robot's steady slip is where the wheel model's pull carries the slope (an independent
+// bisection); a slope steeper than the soil can carry stalls the robot; runs repeat bit for bit.
+#include "core/dynamics/field_terrain.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "core/compaction/footprint.h"
+#include "core/compaction/passes.h"
+#include "core/compaction/stress_at_depth.h"
+#include "core/io/parameters_json.h"
+#include "core/scenario/runner.h"
+#include "core/scenario/scenario_json.h"
+
+namespace terra::dynamics {
+namespace {
+
+const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+
+scenario::Scenario shipped(const std::string& name, double duration_s) {
+    Result<scenario::Scenario> s = scenario::resolveScenario(kLocations, name);
+    EXPECT_TRUE(s.ok()) << s.message();
+    scenario::Scenario out = s.value();
+    out.duration_s = duration_s;
+    return out;
+}
+
+// A flat field of one soil everywhere (no rasters): the field's form of a patch terrain.
+std::shared_ptr<const field::FieldMap> uniformField(const soil::SoilParameters& soil) {
+    auto map = std::make_shared<field::FieldMap>();
+    map->base = soil;
+    return map;
+}
+
+// A field whose class raster puts `patch` at x ≥ x_border (cells 0.5 m wide, edges on x_border)
+// and `base` elsewhere: the soil-border scenario as a map.
+std::shared_ptr<const field::FieldMap> borderField(const soil::SoilParameters& base,
+                                                   const soil::SoilParameters& patch,
+                                                   double x_border) {
+    auto map = std::make_shared<field::FieldMap>();
+    map->base = base;
+    map->soil_class = field::makeRaster(80, 40, x_border - 10.0, -10.0, 0.5);
+    for (int row = 0; row < map->soil_class->rows; ++row)
+        for (int col = 0; col < map->soil_class->cols; ++col)
+            map->soil_class->value(col, row) = map->soil_class->centreX(col) < x_border ? 1 : 2;
+    map->legend[1] = base;
+    map->legend[2] = patch;
+    return map;
+}
+
+// A plane rising along x at tan α (and along y at tan β), 1 m cells over [−20, 60] × [−20, 20].
+std::shared_ptr<const field::FieldMap> slopedField(const soil::SoilParameters& soil,
+                                                   double alpha_rad, double beta_rad = 0.0) {
+    auto map = std::make_shared<field::FieldMap>();
+    map->base = soil;
+    map->height = field::makeRaster(80, 40, -20.0, -20.0, 1.0);
+    for (int row = 0; row < map->height->rows; ++row)
+        for (int col = 0; col < map->height->cols; ++col)
+            map->height->value(col, row) = std::tan(alpha_rad) * map->height->centreX(col) +
+                                           std::tan(beta_rad) * map->height->centreY(row);
+    return map;
+}
+
+void expectSameSeries(const scenario::RunResult& a, const scenario::RunResult& b,
+                      bool skip_soil_index) {
+    ASSERT_EQ(a.series.columns, b.series.columns);
+    ASSERT_EQ(a.series.rows.size(), b.series.rows.size());
+    for (std::size_t c = 0; c < a.series.columns.size(); ++c) {
+        const std::string& name = a.series.columns[c];
+        if (skip_soil_index && name.size() > 5 && name.substr(name.size() - 5) == "_soil") continue;
+        for (std::size_t r = 0; r < a.series.rows.size(); ++r) {
+            ASSERT_EQ(a.series.rows[r][c], b.series.rows[r][c]) << name << " row " << r;
+        }
+    }
+}
+
+double last(const scenario::RunResult& r, const std::string& column) {
+    return r.series.rows.back()[r.series.column(column)];
+}
+
+// (a) of the brief: the patch scenarios on a flat grid with the memory off are today's runs, bit
+// for bit (the local frame reduces exactly to the flat one: n = up, D = hub z).
+TEST(FieldRover, FlatFieldIsThePatchTerrainBitForBit) {
+    for (const char* name : {"straight", "pulse-steering"}) {
+        scenario::Scenario patch = shipped(name, 6.0);
+        scenario::Scenario field = patch;
+        field.field = uniformField(patch.terrain.base);
+        field.field_options.repeated_passes = false;
+        const scenario::RunResult a = scenario::runScenario(patch);
+        const scenario::RunResult b = scenario::runScenario(field);
+        SCOPED_TRACE(name);
+        expectSameSeries(a, b, false);
+        EXPECT_EQ(a.summary.energy_j, b.summary.energy_j);
+        EXPECT_FALSE(a.maps);
+        ASSERT_TRUE(b.maps);
+        EXPECT_GT(*b.summary.cells_touched, 0);
+    }
+    // The border as a class map: the same physics, only the soil's index differs (0/1 on the
+    // patches, 1/2 for the legend's classes).
+    scenario::Scenario patch = shipped("soil-border", 50.0);
+    patch.streaming.reset();
+    ASSERT_EQ(patch.terrain.patches.size(), 1u);
+    scenario::Scenario field = patch;
+    field.field = borderField(patch.terrain.base, patch.terrain.patches[0].soil,
+                              patch.terrain.patches[0].x_min_m);
+    field.field_options.repeated_passes = false;
+    const scenario::RunResult a = scenario::runScenario(patch);
+    const scenario::RunResult b = scenario::runScenario(field);
+    ASSERT_GT(a.summary.x_m, 1.0);  // every wheel crossed the border
+    expectSameSeries(a, b, true);
+    EXPECT_EQ(last(a, "FL_soil"), 1.0);
+    EXPECT_EQ(last(b, "FL_soil"), 2.0);
+}
+
+// The cell of a wheel's track at x: the wheels' centre lines (y = ±track/2) lie on cell edges, so
+// of the two cells beside y the one the wheel passed (or nullptr).
+const field::CellState* cellAt(const FieldTerrain& t, double x, double y) {
+    const double h = t.cells().cellSize();
+    const field::CellState* best = nullptr;
+    for (double dy : {-0.3 * h, 0.3 * h}) {
+        const field::CellState* c = t.cells().find(x, y + dy);
+        if (c != nullptr && (best == nullptr || c->track.passes > best->track.passes)) best = c;
+    }
+    return best;
+}
+
+// One straight run on a flat uniform field with the memory on, driven by hand so the terrain's
+// cells can be read afterwards.
+struct StraightOnField {
+    scenario::Scenario s;
+    std::unique_ptr<FieldTerrain> terrain;
+    RoverState end;
+};
+
+// The shipped straight run, its wheels at 1.5 rad/s (0.14 m/s) so that the front wheels' track
+// is longer than the wheelbase within seconds.
+StraightOnField driveStraight(double duration_s, double cell_m) {
+    StraightOnField out;
+    out.s = shipped("straight", duration_s);
+    for (auto& w : out.s.wheels) w.spin_rate_rad_s = scenario::Signal::constant(1.5);
+    out.s.options.contact.model = contact::ContactModel::kFull;
+    FieldTerrainOptions options;
+    options.cell_m = cell_m;
+    out.terrain =
+        std::make_unique<FieldTerrain>(uniformField(out.s.terrain.base), out.s.robot, options);
+    Rover rover(out.s.robot, *out.terrain, out.s.options, out.s.initial, out.s.commandsAt(0.0));
+    const long steps = std::lround(duration_s / out.s.time_step_s);
+    for (long k = 0; k < steps; ++k) rover.step(out.s.time_step_s, out.s.commandsAt(0.0));
+    out.end = rover.evaluate(out.s.commandsAt(0.0));
+    out.terrain->finish();
+    return out;
+}
+
+// The wheel's instant as a pass of core/compaction: the load is the model's own F_z (the rover's
+// load adds the vertical damper's force, which is not the soil's).
+compaction::PassConditions conditionsOf(const WheelState& w) {
+    compaction::PassConditions c;
+    c.load_n = w.contact.forces.fz;
+    c.slip = w.contact.slip;
+    c.exit = {contact::ExitCondition::Kind::kAngle, 0.0};
+    c.model = contact::ContactModel::kFull;
+    return c;
+}
+
+// A straight pass leaves the single-wheel pass model's rut, and the rear wheel, in the front
+// wheel's rut, meets the two-pass case: core/compaction solves both on their own from the loads
+// and slips the run ended with.
+TEST(FieldRover, StraightPassLeavesTheSingleWheelRutAndTheRearWheelIsPassTwo) {
+    const StraightOnField run = driveStraight(14.0, 0.02);
+    const WheelState& front = run.end.wheels[kFrontLeft];
+    const WheelState& rear = run.end.wheels[kRearLeft];
+    const auto params = contact::makeContactParameters(run.s.terrain.base, run.s.robot.wheel);
+    const compaction::ReloadLaw law = run.terrain->reloadLaw();
+    ASSERT_FALSE(law.shear_memory);  // the rover's default (docs/field.md, F11)
+    const compaction::PassConditions front_c = conditionsOf(front);
+    const compaction::SolvedPass pass1 =
+        compaction::solvePass(params, compaction::TrackMemory{}, law, front_c);
+    ASSERT_TRUE(pass1.ok) << pass1.message;
+    const compaction::TrackMemory after1 =
+        compaction::rememberPass({}, law, params, front_c, pass1);
+
+    // The front wheel's cells between the two axles at the end: passed once.
+    const double y = 0.5 * run.s.robot.track_m;
+    const double x_front = run.end.position_m[0] + 0.5 * run.s.robot.wheelbase_m;
+    const double x_rear = run.end.position_m[0] - 0.5 * run.s.robot.wheelbase_m;
+    ASSERT_GT(x_rear, 0.7);  // the rear wheels are past the front wheels' start and transient
+    int checked = 0;
+    for (double x = x_rear + 0.1; x < x_front - 0.1; x += 0.02) {
+        const field::CellState* c = cellAt(*run.terrain, x, y);
+        ASSERT_NE(c, nullptr);
+        EXPECT_EQ(c->track.passes, 1) << x;
+        EXPECT_NEAR(c->track.rut_depth_m, after1.rut_depth_m, 0.01 * after1.rut_depth_m) << x;
+        EXPECT_NEAR(c->track.max_sinkage_m, after1.max_sinkage_m, 0.01 * after1.max_sinkage_m);
+        ++checked;
+    }
+    EXPECT_GE(checked, 10);
+    // The largest σ_z at the risk depth (0.3 m) under the front wheel's centre line: the
+    // footprint of the solved pass, propagated with ν = 5 (no profile gives one), within 2 %.
+    ASSERT_EQ(run.terrain->cells().stressDepths(), std::vector<double>{0.3});
+    const double nu = run.s.terrain.base.profile ? 0.0 : compaction::kDefaultConcentration;
+    if (nu > 0.0) {
+        const compaction::StressPropagation propagation(
+            compaction::wheelFootprint(pass1.params, pass1.op), nu);
+        const double sigma = compaction::maxVerticalStress(propagation, 0.0, 0.3);
+        const field::CellState* c = cellAt(*run.terrain, 0.5 * (x_rear + x_front), y);
+        ASSERT_NE(c, nullptr);
+        EXPECT_NEAR(c->max_stress_pa[0], sigma, 0.02 * sigma);
+    }
+
+    // The rear wheel on pass two: its sinkage below the untouched surface and its forces.
+    ASSERT_EQ(rear.passes_before, 1);
+    const compaction::PassConditions rear_c = conditionsOf(rear);
+    const compaction::SolvedPass pass2 = compaction::solvePass(params, after1, law, rear_c);
+    ASSERT_TRUE(pass2.ok) << pass2.message;
+    EXPECT_NEAR(rear.contact.sinkage_m, pass2.sinkage_m, 0.01 * pass2.sinkage_m);
+    EXPECT_NEAR(rear.contact.forces.fx, pass2.forces.fx, 0.02 * std::abs(pass1.forces.fx) + 0.05);
+    EXPECT_NEAR(rear.contact.forces.my, pass2.forces.my, 0.02 * std::abs(pass2.forces.my));
+    // Pass two sinks less into the rut than pass one did into untouched soil (R2).
+    EXPECT_LT(rear.contact.sinkage_m - after1.rut_depth_m, pass1.sinkage_m);
+
+    // Behind the rear wheel: two passes, and the rut the second one leaves.
+    const compaction::TrackMemory after2 =
+        compaction::rememberPass(after1, law, params, rear_c, pass2);
+    const field::CellState* behind = cellAt(*run.terrain, x_rear - 0.3, y);
+    ASSERT_NE(behind, nullptr);
+    EXPECT_EQ(behind->track.passes, 2);
+    EXPECT_NEAR(behind->track.rut_depth_m, after2.rut_depth_m, 0.01 * after2.rut_depth_m);
+}
+
+// Passes are counted once per wheel and cell, not per step: along a straight 2 cm track every
+// cell the four wheels crossed has two passes (front, then rear), whatever the cell size.
+TEST(FieldRover, EachWheelCountsOnePassPerCell) {
+    for (double cell : {0.02, 0.05}) {
+        const StraightOnField run = driveStraight(12.0, cell);
+        const double y = 0.5 * run.s.robot.track_m;
+        const double x_rear = run.end.position_m[0] - 0.5 * run.s.robot.wheelbase_m;
+        ASSERT_GT(x_rear, 0.5);
+        // From the front wheels' start (x = L/2) to the rear wheels' contact at the end.
+        for (double x = 0.5 * run.s.robot.wheelbase_m + 0.5 * cell; x < x_rear - 0.05; x += cell) {
+            const field::CellState* c = cellAt(*run.terrain, x, y);
+            ASSERT_NE(c, nullptr);
+            EXPECT_EQ(c->track.passes, 2) << "cell " << cell << " x " << x;
+            EXPECT_GT(c->max_slip, 0.0f);
+            EXPECT_GT(c->energy_j, 0.0f);
+            EXPECT_GT(c->max_stress_pa[0], 0.0f);
+        }
+        // Off the tracks nothing was touched.
+        const field::CellState* between = cellAt(*run.terrain, x_rear - 0.1, 0.0);
+        EXPECT_TRUE(between == nullptr || between->track.passes == 0);
+    }
+}
+
+// The wheel model on its own: drawbar pull F_x at slip s and load W (the quadratic model, as
+// the run below), solved for its sinkage.
+double pull(const scenario::Scenario& s, double load_n, double slip) {
+    const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    compaction::PassConditions c;
+    c.load_n = load_n;
+    c.slip = slip;
+    c.exit = {contact::ExitCondition::Kind::kAngle, 0.0};
+    c.model = s.options.contact.model;
+    const compaction::SolvedPass p = compaction::solvePass(params, {}, {}, c);
+    EXPECT_TRUE(p.ok) << p.message;
+    return p.forces.fx;
+}
+
+// On a uniform slope α uphill the four wheels carry m g cos α along the normal and pull
+// m g sin α along the slope; the robot's steady slip is where the wheel model, at the loads the
+// run found, pulls that much (an independent bisection on the model).
+TEST(FieldRover, SteadySlipUpASlopeIsWhereThePullCarriesTheSlope) {
+    scenario::Scenario s = shipped("straight", 25.0);
+    const double alpha = 4.0 * M_PI / 180.0;
+    s.field = slopedField(s.terrain.base, alpha);
+    s.field_options.repeated_passes = false;
+    const scenario::RunResult r = scenario::runScenario(s);
+    ASSERT_EQ(r.status, scenario::RunResult::Status::kCompleted) << r.message;
+    const double weight = s.robot.totalMass() * s.options.gravity_m_s2;
+    double normal = 0.0;
+    std::array<double, kWheelCount> loads{};
+    for (int i = 0; i < kWheelCount; ++i) {
+        loads[i] = last(r, std::string(kCornerNames[i]) + "_load_N");
+        normal += loads[i];
+    }
+    EXPECT_NEAR(normal, weight * std::cos(alpha), 2e-3 * weight);
+    // The pitch follows the slope, and the robot climbed: z rose by x tan α.
+    // The pitch follows the slope, to the rear wheels' deeper sinkage under the load moved to them
+    // (≈ 1 mm over the 0.5 m wheelbase).
+    EXPECT_NEAR(last(r, "pitch_deg"), -4.0, 0.15);
+    EXPECT_NEAR(r.summary.potential_change_j / (weight * r.summary.x_m), std::tan(alpha), 2e-3);
+
+    // Bisection: Σ F_x(s, W_i) = m g sin α.
+    auto excess = [&](double slip) {
+        double sum = 0.0;
+        for (double w : loads) sum += pull(s, w, slip);
+        return sum - weight * std::sin(alpha);
+    };
+    double lo = 0.0, hi = 0.95;
+    ASSERT_LT(excess(lo), 0.0);
+    ASSERT_GT(excess(hi), 0.0);
+    for (int k = 0; k < 40; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (excess(mid) > 0.0 ? hi : lo) = mid;
+    }
+    const double slip = 0.5 * (lo + hi);
+    for (const char* w : kCornerNames) EXPECT_NEAR(last(r, std::string(w) + "_slip"), slip, 3e-3);
+    // The mean wheel of the issue (m g sin α / 4 at m g cos α / 4) is near too: the load moves
+    // to the rear axle on the slope, the pulls about balance.
+    const double quarter = 0.25 * weight;
+    double mlo = 0.0, mhi = 0.95;
+    for (int k = 0; k < 40; ++k) {
+        const double mid = 0.5 * (mlo + mhi);
+        (pull(s, quarter * std::cos(alpha), mid) > quarter * std::sin(alpha) ? mhi : mlo) = mid;
+    }
+    EXPECT_NEAR(last(r, "FL_slip"), 0.5 * (mlo + mhi), 0.01);
+}
+
+// A slope steeper than the soil can carry: the largest pull of the wheel model (over slip, at
+// the robot's load along the normal) is below m g sin α; the robot stalls, its wheels spin.
+TEST(FieldRover, ASlopeSteeperThanTheSoilCarriesStallsTheRobot) {
+    scenario::Scenario s = shipped("straight", 12.0);
+    const double weight = s.robot.totalMass() * s.options.gravity_m_s2;
+    // The steepest slope the model carries: tan α* = max_s F_x(s, W cos α*) / (W cos α*) per
+    // wheel, found by fixed point (the pull's ratio barely depends on the load).
+    double alpha_max = 0.0;
+    for (int it = 0; it < 5; ++it) {
+        const double w = 0.25 * weight * std::cos(alpha_max);
+        double best = 0.0;
+        for (double slip = 0.05; slip <= 0.951; slip += 0.05)
+            best = std::max(best, pull(s, w, slip));
+        alpha_max = std::atan(best / w);
+    }
+    ASSERT_GT(alpha_max, 0.02);
+    for (const double factor : {0.6, 1.4}) {
+        scenario::Scenario on = s;
+        on.field = slopedField(s.terrain.base, factor * alpha_max);
+        on.field_options.repeated_passes = false;
+        const scenario::RunResult r = scenario::runScenario(on);
+        SCOPED_TRACE(factor);
+        ASSERT_NE(r.status, scenario::RunResult::Status::kDiverged) << r.message;
+        const double commanded = s.robot.wheel.radius_m * 0.4 * on.duration_s;
+        if (factor < 1.0) {
+            EXPECT_GT(r.summary.x_m, 0.2 * commanded);
+        } else {
+            // Stalled or sliding back, the wheels spinning on the spot.
+            EXPECT_LT(r.summary.x_m, 0.05 * commanded);
+            EXPECT_GT(last(r, "FL_slip"), 0.9);
+        }
+    }
+}
+
+// The shipped field scenario, twice: the same maps bit for bit (and the same series).
+TEST(FieldRover, FieldRunsRepeatBitForBit) {
+    const scenario::Scenario s = shipped("field-slope-wet", 8.0);
+    ASSERT_TRUE(s.field);
+    const scenario::RunResult a = scenario::runScenario(s);
+    const scenario::RunResult b = scenario::runScenario(s);
+    ASSERT_EQ(a.status, scenario::RunResult::Status::kCompleted) << a.message;
+    ASSERT_TRUE(a.maps && b.maps);
+    expectSameSeries(a, b, false);
+    for (const auto& [x, y] : {std::pair{&a.maps->rut_depth_m, &b.maps->rut_depth_m},
+                               std::pair{&a.maps->passes, &b.maps->passes},
+                               std::pair{&a.maps->compaction_risk, &b.maps->compaction_risk}}) {
+        ASSERT_EQ(x->values.size(), y->values.size());
+        EXPECT_EQ(
+            std::memcmp(x->values.data(), y->values.data(), x->values.size() * sizeof(double)), 0);
+    }
+    EXPECT_EQ(*a.summary.cells_touched, *b.summary.cells_touched);
+    // The maps span the field's extent on the memory's 0.1 m cells.
+    EXPECT_EQ(a.maps->passes.cols, 600);
+    EXPECT_EQ(a.maps->passes.rows, 400);
+    EXPECT_DOUBLE_EQ(a.maps->passes.cell_m, 0.1);
+    EXPECT_GT(a.maps->rut_depth_m.valueRange().second, 0.0);
+}
+
+// The two forms of a field terrain read the same maps: {"field": FILE} and the scenario's own
+// "height", "soils", "legend"; giving both is an error naming the keys.
+TEST(FieldRover, ScenarioReadsAFieldFileOrItsOwnRasters) {
+    const std::string fields = std::string(TERRA_RESOURCE_DIR) + "/fields/sloped-wet/";
+    auto scenarioWith = [](const nlohmann::json& terrain) {
+        return nlohmann::json{{"name", "t"},
+                              {"robot", "default"},
+                              {"duration_s", 1},
+                              {"time_step_s", 0.001},
+                              {"initial", {{"x_m", 10}, {"y_m", 10}}},
+                              {"terrain", terrain},
+                              {"wheels", {{"all", {{"omega_rad_s", 0.4}}}}}};
+    };
+    const Result<scenario::Scenario> by_file = scenario::scenarioFromJson(
+        scenarioWith({{"field", fields + "field.json"}}), "by-file", kLocations);
+    ASSERT_TRUE(by_file.ok()) << by_file.message();
+    const Result<scenario::Scenario> inline_maps = scenario::scenarioFromJson(
+        scenarioWith(
+            {{"height", fields + "height.asc"},
+             {"soils", fields + "soil-classes.asc"},
+             {"legend", {{"1", "sandy-loam"}, {"2", "lean-clay-wet"}, {"3", "sandy-loam"}}},
+             {"cell_m", 0.05},
+             {"repeated_passes", false}}),
+        "inline", kLocations);
+    ASSERT_TRUE(inline_maps.ok()) << inline_maps.message();
+    for (const scenario::Scenario* s : {&by_file.value(), &inline_maps.value()}) {
+        ASSERT_TRUE(s->field);
+        EXPECT_EQ(s->soilCount(), 4);  // the base soil, then classes 1, 2, 3
+        EXPECT_EQ(s->soil(2).name, s->field->legend.at(2).name);
+        EXPECT_EQ(s->field->height->values, by_file.value().field->height->values);
+    }
+    EXPECT_EQ(inline_maps.value().field_options.cell_m, 0.05);
+    EXPECT_FALSE(inline_maps.value().field_options.repeated_passes);
+    // Without "soil" the base soil is the lowest class's.
+    EXPECT_EQ(inline_maps.value().terrain.base.name, inline_maps.value().soil(1).name);
+
+    const Result<scenario::Scenario> both = scenario::scenarioFromJson(
+        scenarioWith({{"field", fields + "field.json"}, {"height", fields + "height.asc"}}), "both",
+        kLocations);
+    ASSERT_FALSE(both.ok());
+    EXPECT_NE(both.message().find("terrain.height"), std::string::npos) << both.message();
+    const Result<scenario::Scenario> bad_cell = scenario::scenarioFromJson(
+        scenarioWith({{"field", fields + "field.json"}, {"cell_m", 0}}), "bad", kLocations);
+    ASSERT_FALSE(bad_cell.ok());
+    EXPECT_NE(bad_cell.message().find("terrain.cell_m"), std::string::npos) << bad_cell.message();
+}
+
+}  // namespace
+}  // namespace terra::dynamics
