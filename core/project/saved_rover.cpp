@@ -33,7 +33,9 @@ json summaryJson(const scenario::Summary& s) {
             {"steps", s.steps},
             {"energy_per_m_j", optionalJson(s.energy_per_m_j)},
             {"mean_efficiency", optionalJson(s.mean_efficiency)},
-            {"slip_tracking_rms", optionalJson(s.slip_tracking_rms)}};
+            {"slip_tracking_rms", optionalJson(s.slip_tracking_rms)},
+            {"real_time_factor", optionalJson(s.real_time_factor)},
+            {"cells_touched", s.cells_touched ? json(*s.cells_touched) : json(nullptr)}};
 }
 
 scenario::Summary summaryFrom(const json& j) {
@@ -55,6 +57,10 @@ scenario::Summary summaryFrom(const json& j) {
     s.energy_per_m_j = optionalAt(j, "energy_per_m_j");
     s.mean_efficiency = optionalAt(j, "mean_efficiency");
     s.slip_tracking_rms = optionalAt(j, "slip_tracking_rms");
+    // Both keys came with the field rover: a file written before them has neither.
+    s.real_time_factor = optionalAt(j, "real_time_factor");
+    if (const std::optional<double> cells = optionalAt(j, "cells_touched"))
+        s.cells_touched = static_cast<long>(*cells);
     return s;
 }
 

@@ -107,7 +107,7 @@ TEST(StressAtDepth, AHorizontalPointLoadWithNuThreeIsCerrutisVerticalStress) {
     // Cerruti: σ_z = 3 H x z² / (2π R⁵), whatever Poisson's ratio.
     const double h = 1000.0;
     const StressPropagation propagation({{{0.0, 0.0, 0.0}, {h, 0.0, 0.0}}}, 3.0);
-    for (const Eigen::Vector3d p :
+    for (const Eigen::Vector3d& p :
          {Eigen::Vector3d{0.1, 0.05, 0.2}, Eigen::Vector3d{-0.3, 0.1, 0.25},
           Eigen::Vector3d{0.02, -0.2, 0.5}}) {
         const double r = p.norm();
