@@ -1243,12 +1243,13 @@ QString IdentificationPanel::streamSummary(bool finished) const {
         for (const char* key : {"phi_deg", "c_kPa", "K_m"}) {
             const analysis::IdentifiedField& f = *analysis::findIdentifiedField(key);
             const auto full = analysis::fullParameterOf(f);
+            // Rounded to the std's second digit, as the batch fit's table (no "5.72e-18 ± 0.4").
+            const double sd = stream_frames_.back().estimate.std[static_cast<std::size_t>(*full)] /
+                              f.to_si;
             values << QString("%1 = %2 ± %3 %4")
                           .arg(QString::fromUtf8(f.symbol))
-                          .arg(f.userValue(p), 0, 'g', 3)
-                          .arg(stream_frames_.back().estimate.std[static_cast<std::size_t>(*full)] /
-                                   f.to_si,
-                               0, 'g', 2)
+                          .arg(formatWithStd(f.userValue(p), sd))
+                          .arg(formatStd(sd))
                           .arg(QString::fromStdString(f.displayUnit()));
         }
         text += ". Last estimate ± std: " + values.join(", ");
