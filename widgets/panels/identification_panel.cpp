@@ -1244,8 +1244,8 @@ QString IdentificationPanel::streamSummary(bool finished) const {
             const analysis::IdentifiedField& f = *analysis::findIdentifiedField(key);
             const auto full = analysis::fullParameterOf(f);
             // Rounded to the std's second digit, as the batch fit's table (no "5.72e-18 ± 0.4").
-            const double sd = stream_frames_.back().estimate.std[static_cast<std::size_t>(*full)] /
-                              f.to_si;
+            const double sd =
+                stream_frames_.back().estimate.std[static_cast<std::size_t>(*full)] / f.to_si;
             values << QString("%1 = %2 ± %3 %4")
                           .arg(QString::fromUtf8(f.symbol))
                           .arg(formatWithStd(f.userValue(p), sd))
