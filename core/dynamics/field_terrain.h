@@ -59,6 +59,7 @@ public:
         return soils_[static_cast<std::size_t>(index)];
     }
     int soilIndexAt(double x_m, double y_m) const override;
+    bool remembers() const override { return true; }
     double heightAt(double x_m, double y_m) const override { return map_->heightAt(x_m, y_m); }
     std::array<double, 2> gradientAt(double x_m, double y_m) const override;
 

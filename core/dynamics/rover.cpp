@@ -474,7 +474,7 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         m.wheel_moment[i] = f.mx * x_w - f.my * y_w + f.mz * n;
         const double power = -(m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega));
         m.soil_power += power;
-        if (memory != nullptr || m.owned_terrain == nullptr) {
+        if (m.terrain->remembers()) {
             WheelImprint imprint;
             imprint.in_contact = ws.contact.in_contact;
             imprint.soil_index = ws.soil_index;

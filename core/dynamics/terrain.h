@@ -78,6 +78,9 @@ public:
     /// ∇z = (∂z/∂x, ∂z/∂y) [-] of the untouched surface at (x, y).
     virtual std::array<double, 2> gradientAt(double x_m, double y_m) const = 0;
 
+    /// Whether the terrain keeps what the wheels did (imprint() is then called for every wheel at
+    /// every evaluation; a terrain that remembers nothing is spared building the imprints).
+    virtual bool remembers() const { return false; }
     /// The memory of the soil that wheel `wheel` (0…3) stands on, its contact point at (x, y), as
     /// the soil was when the wheel arrived there; nullptr when the wheel meets untouched soil (and
     /// always on a terrain that remembers nothing). Called once per wheel per evaluation, before
