@@ -19,7 +19,7 @@ namespace {
 using gsa::testing::kDeg;
 using gsa::testing::reference;
 
-Inputs sandyLoamOnA() {
+Inputs tableSandyLoamOnA() {
     Inputs in;
     in.soil = gsa::testing::sandyLoam();
     in.wheel = gsa::testing::wheelA();
@@ -62,7 +62,7 @@ TEST(GlobalSensitivity, ParameterWithoutEffectHasZeroIndicesAndOneParameterCarri
     s.study.outputs = {"Fx_N"};
     s.samples = 512;
     s.resamples = 200;
-    const GlobalSensitivityResult r = computeGlobalSensitivity(sandyLoamOnA(), s);
+    const GlobalSensitivityResult r = computeGlobalSensitivity(tableSandyLoamOnA(), s);
     ASSERT_EQ(r.status(), gsa::StudyStatus::kCompleted) << r.message();
     const gsa::SobolIndices& x = r.sobol->indices;
     // γ: f(A) and f(AB_γ) are the same numbers, so Jansen's S_T is 0 exactly; S_1 within its
@@ -87,7 +87,7 @@ TEST(GlobalSensitivity, SumsOfIndicesBracketOneAndTheSeedReproduces) {
     s.study.slips = {0.2, 0.5};
     s.samples = 256;
     s.resamples = 200;
-    const GlobalSensitivityResult r = computeGlobalSensitivity(sandyLoamOnA(), s);
+    const GlobalSensitivityResult r = computeGlobalSensitivity(tableSandyLoamOnA(), s);
     ASSERT_EQ(r.status(), gsa::StudyStatus::kCompleted) << r.message();
     const gsa::SobolIndices& x = r.sobol->indices;
     for (Eigen::Index c = 0; c < x.first_order.cols(); ++c) {
@@ -95,10 +95,10 @@ TEST(GlobalSensitivity, SumsOfIndicesBracketOneAndTheSeedReproduces) {
         EXPECT_LE(x.first_order.col(c).sum(), 1.0 + conf1) << c;
         EXPECT_GE(x.total.col(c).sum(), 1.0 - conft) << c;
     }
-    const GlobalSensitivityResult again = computeGlobalSensitivity(sandyLoamOnA(), s);
+    const GlobalSensitivityResult again = computeGlobalSensitivity(tableSandyLoamOnA(), s);
     EXPECT_EQ(again.table().rows, r.table().rows);
     s.study.seed = 2;
-    EXPECT_NE(computeGlobalSensitivity(sandyLoamOnA(), s).table().rows, r.table().rows);
+    EXPECT_NE(computeGlobalSensitivity(tableSandyLoamOnA(), s).table().rows, r.table().rows);
 }
 
 TEST(GlobalSensitivity, MorrisGivesNoEffectToAParameterWithout) {
@@ -108,7 +108,7 @@ TEST(GlobalSensitivity, MorrisGivesNoEffectToAParameterWithout) {
                           {"gamma_kN_m3", gsa::Uniform{10.0, 20.0}}};
     s.study.slips = {0.3};
     s.samples = 20;
-    const GlobalSensitivityResult r = computeGlobalSensitivity(sandyLoamOnA(), s);
+    const GlobalSensitivityResult r = computeGlobalSensitivity(tableSandyLoamOnA(), s);
     ASSERT_EQ(r.status(), gsa::StudyStatus::kCompleted) << r.message();
     EXPECT_EQ(r.morris->indices.mu_star(1, 0), 0.0);
     EXPECT_GT(r.morris->indices.mu_star(0, 0), 1.0);  // φ over 15°: newtons of F_x
@@ -119,7 +119,7 @@ TEST(GlobalSensitivity, CancelKeepsWhatWasComputed) {
     GlobalSensitivitySettings s;
     s.samples = 64;
     std::atomic<bool> cancel{true};
-    const GlobalSensitivityResult r = computeGlobalSensitivity(sandyLoamOnA(), s, {&cancel});
+    const GlobalSensitivityResult r = computeGlobalSensitivity(tableSandyLoamOnA(), s, {&cancel});
     EXPECT_EQ(r.status(), gsa::StudyStatus::kCancelled);
     EXPECT_EQ(globalSensitivityOutcome(r).status, Outcome::Status::kCancelled);
 }
@@ -129,10 +129,10 @@ TEST(GlobalSensitivity, ProgressIsReportedUpToOne) {
     s.samples = 64;
     double last = 0.0;
     int calls = 0;
-    computeGlobalSensitivity(sandyLoamOnA(), s, {nullptr, [&](double f) {
-                                                     last = f;
-                                                     ++calls;
-                                                 }});
+    computeGlobalSensitivity(tableSandyLoamOnA(), s, {nullptr, [&](double f) {
+                                                          last = f;
+                                                          ++calls;
+                                                      }});
     EXPECT_GT(calls, 1);
     EXPECT_DOUBLE_EQ(last, 1.0);
 }
@@ -192,7 +192,7 @@ TEST(UncertaintyBands, NominalIsTheContactModelAndTheBandsEncloseIt) {
     s.study.slips = {0.1, 0.3, 0.6};
     s.study.slip_angles_deg = {5.0};
     s.samples = 256;
-    const Inputs in = sandyLoamOnA();
+    const Inputs in = tableSandyLoamOnA();
     const UncertaintyBandResult r = computeUncertaintyBands(in, s);
     ASSERT_TRUE(r.bands.usable()) << r.bands.message;
     const Table t = r.table();
@@ -223,7 +223,7 @@ TEST(UncertaintyBands, DefaultSlipsFollowTheConditions) {
     s.study.parameters = {{"phi_deg", gsa::Uniform{27.0, 31.0}}};
     s.samples = 16;
     s.slip_count = 5;
-    Inputs in = sandyLoamOnA();
+    Inputs in = tableSandyLoamOnA();
     in.conditions.slip_max = 0.8;
     const UncertaintyBandResult r = computeUncertaintyBands(in, s);
     ASSERT_EQ(r.bands.grid.slips.size(), 5u);
@@ -251,7 +251,7 @@ TEST(Posterior, CovarianceInFileUnitsWithKsCarriedByKphi) {
     u.correlation[identification::kC][identification::kPhi] = -0.8;
     u.correlation[identification::kKs][identification::kPhi] = 0.3;
     u.correlation[identification::kPhi][identification::kKs] = 0.3;
-    const Inputs in = sandyLoamOnA();
+    const Inputs in = tableSandyLoamOnA();
     const CorrelatedParameters c = correlatedFromIdentification(p, u, in.soil, in.wheel);
     // FullParameter order: K_s (as k_φ), c, φ.
     ASSERT_EQ(c.keys, (std::vector<std::string>{"kphi", "c_kPa", "phi_deg"}));
@@ -279,7 +279,7 @@ TEST(Posterior, BandsFromAPosteriorRun) {
         CorrelatedParameters{{"phi_deg", "c_kPa"}, {29.0, 1.7}, {{1.0, -0.16}, {-0.16, 0.04}}};
     s.study.slips = {0.2, 0.5};
     s.samples = 128;
-    const UncertaintyBandResult r = computeUncertaintyBands(sandyLoamOnA(), s);
+    const UncertaintyBandResult r = computeUncertaintyBands(tableSandyLoamOnA(), s);
     ASSERT_TRUE(r.bands.usable()) << r.bands.message;
     EXPECT_EQ(r.bands.used.front(), 128u);
 }

@@ -9,11 +9,12 @@
 #include "core/analysis/validation.h"
 #include "core/common/units.h"
 #include "core/io/parameters_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::analysis {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 constexpr double kTrueS = 3.0;
 constexpr double kSigmaFxN = 0.5, kSigmaMyNm = 0.1, kSigmaSinkageM = 3e-4;

@@ -17,18 +17,14 @@
 #include "core/analysis/validation.h"
 #include "core/common/units.h"
 #include "core/io/parameters_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::analysis {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
-Inputs sandyLoamOnA() {
-    Inputs in;
-    in.soil = io::resolveSoil(kLocations, "sandy-loam").value();
-    in.wheel = io::resolveWheel(kLocations, "A").value();
-    return in;
-}
+using terra::testing::sandyLoamOnA;
 
 // Tables 2.4 and 2.5 of the thesis (sandy loam, Table 2.3's point, θ_m = 15°, no j_max; τ_l RMSE
 // 0.2121 per erratum E11 of docs/model.md).

@@ -14,11 +14,12 @@
 #include "core/dynamics/rover.h"
 #include "core/io/parameters_json.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::analysis {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 // The time after the border within which the optimal controller plans on the new soil
 // (docs/traction.md §6): the identifier needs a few samples far off to confirm the change

@@ -6,10 +6,11 @@
 #include <numbers>
 
 #include "core/contact/contact_parameters.h"
+#include "tests/core/test_support.h"
 
 namespace terra::contact::testing {
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
+using terra::testing::kDeg;
 inline constexpr double kRadiusA = 0.092;  // [m]
 inline constexpr double kWidthA = 0.107;   // [m]
 

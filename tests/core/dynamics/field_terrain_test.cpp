@@ -17,11 +17,12 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::dynamics {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 scenario::Scenario shipped(const std::string& name, double duration_s) {
     Result<scenario::Scenario> s = scenario::resolveScenario(kLocations, name);

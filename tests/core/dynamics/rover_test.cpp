@@ -11,11 +11,12 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::dynamics {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 // The shipped straight-line scenario, shortened: the transient from rest settles in ~2 s.
 scenario::Scenario straight(double duration_s = 8.0) {

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "tests/core/test_support.h"
+
 namespace terra::field {
 namespace {
 
-constexpr double kExact = 1e-12;
+using terra::testing::kExact;
 
 Raster plane(double a, double b, double c) {
     Raster r = makeRaster(40, 30, 0.0, 0.0, 0.5);

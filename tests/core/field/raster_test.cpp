@@ -5,10 +5,12 @@
 #include <cmath>
 #include <random>
 
+#include "tests/core/test_support.h"
+
 namespace terra::field {
 namespace {
 
-constexpr double kExact = 1e-12;  // [m] or [-]: exact arithmetic up to rounding
+using terra::testing::kExact;
 
 // A raster of f at the cell centres.
 template <typename F>

@@ -10,10 +10,11 @@
 #include "core/gsa/batch.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
+#include "tests/core/test_support.h"
 
 namespace terra::gsa::testing {
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
+using terra::testing::kDeg;
 
 inline soil::SoilParameters sandyLoam() {
     soil::SoilParameters s;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/gsa/sobol_sequence.h"
+#include "tests/core/test_support.h"
 
 namespace terra::gsa {
 namespace {
@@ -16,14 +17,7 @@ namespace {
 // Φ from the error function (std::erfc), independent of Boost.Math's quantile used by the code.
 double phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
-std::string messageOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "(no exception)";
-}
+using terra::testing::messageOf;
 
 TEST(ParameterSpace, UniformIsAffine) {
     ParameterSpace space;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tests/core/gsa/gsa_test_support.h"
+#include "tests/core/test_support.h"
 
 namespace terra::gsa {
 namespace {
@@ -32,14 +33,7 @@ std::vector<std::pair<double, double>> gaussNodes(double low, double high) {
     return out;
 }
 
-std::string messageOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "(no exception)";
-}
+using terra::testing::messageOf;
 
 WheelStudy twoParameterStudy() {
     WheelStudy study;

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "tests/core/test_support.h"
+
 namespace terra::identification {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using terra::testing::kDeg;
 
 TEST(DataSet, ReadsNamedColumnsInAnyOrderAndIgnoresExtras) {
     const std::string text =

@@ -8,12 +8,14 @@
 #include "core/identification/decoupled_model.h"
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
+#include "tests/core/test_support.h"
 
 namespace terra::identification {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
+using terra::testing::kDeg;
+using testing::kWheelA;
 
 TEST(DecoupledModel, HatCoefficientsAreTheIntegralsOfTheHat) {
     // A = ∫ hat cos, B = ∫ hat sin, C = ∫ hat over [θ_r, θ_f] (Eqs. 4.5–4.7 with E5), checked by

@@ -7,25 +7,19 @@
 
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
+#include "tests/core/test_support.h"
 
 namespace terra::identification {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
+using terra::testing::kDeg;
+using testing::kWheelA;
 // Sandy loam of Table 2.1 on wheel A: K_s = 5.3e3/0.107 + 1.515e6 Pa/m^n.
 const std::array<double, kFullParameterCount> kTruth{
     0.2, 0.3, 5.3e3 / 0.107 + 1.515e6, 0.7, 1700.0, 29.0 * kDeg, 0.025};
 
-std::array<double, kFullParameterCount> values(const DecoupledParameters& p) {
-    return {p.a0,
-            p.a1,
-            p.pressure_modulus,
-            p.n0,
-            p.cohesion_pa,
-            p.friction_angle_rad,
-            p.shear_modulus_m};
-}
+using testing::valuesOf;
 
 DataSet sandyLoamData(std::vector<double> loads, double noise, std::uint64_t seed) {
     SyntheticSpec spec;
@@ -56,7 +50,7 @@ TEST(RefineFullModel, RecoversEveryParameterOnNoiseFreeSingleLoadData) {
     const DecoupledFit start = fitDecoupled(data, kWheelA, DecoupledParameters{});
     const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(0.0));
     ASSERT_TRUE(result.report.usable) << result.report.termination;
-    const auto got = values(result.parameters);
+    const auto got = valuesOf(result.parameters);
     for (int k = 0; k < kJmax; ++k) {
         EXPECT_NEAR(got[k], kTruth[k], 1e-7 * std::abs(kTruth[k])) << fullParameterNames()[k];
     }
@@ -69,7 +63,7 @@ TEST(RefineFullModel, NoisyMultiLoadEstimatesLieWithinTheirStandardDeviations) {
     const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(noise));
     ASSERT_TRUE(result.report.usable) << result.report.termination;
     ASSERT_TRUE(result.uncertainty.computed);
-    const auto got = values(result.parameters);
+    const auto got = valuesOf(result.parameters);
     for (int k = 0; k < kJmax; ++k) {
         EXPECT_GT(result.uncertainty.std[k], 0.0) << fullParameterNames()[k];
         EXPECT_LT(std::abs(got[k] - kTruth[k]), 5.0 * result.uncertainty.std[k])

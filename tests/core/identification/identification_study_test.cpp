@@ -13,6 +13,7 @@
 #include "core/identification/full_fit.h"
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
 
 namespace terra::identification {
 namespace {
@@ -35,21 +36,9 @@ ContactParameters<double> soilFor(const std::string& name, double r, double b) {
     return soils::thesisSoil(0.5, 4.14, 13.0, 13.2, 692.2, 0.01, 13.24, 0.009, r, b);
 }
 
-std::array<double, kFullParameterCount> truthOf(const ContactParameters<double>& p) {
-    return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
-            p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m,  p.max_shear_deformation_m};
-}
+using testing::truthOf;
 
-std::array<double, kFullParameterCount> values(const DecoupledParameters& p) {
-    return {p.a0,
-            p.a1,
-            p.pressure_modulus,
-            p.n0,
-            p.cohesion_pa,
-            p.friction_angle_rad,
-            p.shear_modulus_m,
-            p.max_shear_deformation_m};
-}
+using testing::valuesOf;
 
 SyntheticSpec sweep(std::vector<double> loads, double relative_noise, std::uint64_t seed) {
     SyntheticSpec spec;
@@ -77,8 +66,8 @@ TEST_P(NoiseFreeRecovery, RefinementReturnsEveryParameterToOneMillionth) {
     const RefineResult result = refineFullModel(data, wheel, start.parameters, options);
     ASSERT_TRUE(result.report.usable) << result.report.termination;
     const auto truth = truthOf(soil);
-    const auto got = values(result.parameters);
-    const auto decoupled = values(start.parameters);
+    const auto got = valuesOf(result.parameters);
+    const auto decoupled = valuesOf(start.parameters);
     std::printf("| %s | %s |", c.soil, c.wheel);
     for (int k = 0; k < kJmax; ++k) {
         EXPECT_NEAR(got[k], truth[k], 1e-6 * std::abs(truth[k])) << fullParameterNames()[k];
@@ -133,7 +122,7 @@ Coverage coverageStudy(const std::vector<double>& loads) {
             }
         }
         cov.cphi_flagged += cphi;
-        const auto got = values(r.parameters);
+        const auto got = valuesOf(r.parameters);
         for (int k = 0; k < kJmax; ++k) {
             const double err = got[k] - truth[k];
             cov.sum[k] += err / truth[k];

@@ -8,6 +8,7 @@
 
 #include "core/contact/contact_parameters.h"
 #include "core/identification/data_set.h"
+#include "core/identification/decoupled_fit.h"
 #include "core/identification/parameters.h"
 #include "core/identification/synthetic.h"
 
@@ -17,6 +18,21 @@ namespace terra::identification::testing {
 inline ParameterVector truthOf(const contact::ContactParameters<double>& p) {
     return {p.max_stress_a0, p.max_stress_a1,      p.pressure_modulus, p.sinkage_exponent,
             p.cohesion_pa,   p.friction_angle_rad, p.shear_modulus_m,  p.max_shear_deformation_m};
+}
+
+/// Wheel A of the thesis (Table 5.1).
+inline const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
+
+/// The decoupled parameters in the order of `truthOf` (n as n₀).
+inline ParameterVector valuesOf(const DecoupledParameters& p) {
+    return {p.a0,
+            p.a1,
+            p.pressure_modulus,
+            p.n0,
+            p.cohesion_pa,
+            p.friction_angle_rad,
+            p.shear_modulus_m,
+            p.max_shear_deformation_m};
 }
 
 /// Noise-free sweeps s = 0 : 0.05 : 0.75 of `soil` at each load as a robot sees them: W per

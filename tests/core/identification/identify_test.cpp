@@ -13,6 +13,7 @@
 #include "core/io/parameters_json.h"
 #include "tests/core/contact/test_soils.h"
 #include "tests/core/identification/identification_test_support.h"
+#include "tests/core/test_support.h"
 
 namespace terra::identification {
 namespace {
@@ -21,9 +22,9 @@ using testing::truthOf;
 
 using contact::ContactParameters;
 namespace soils = contact::testing;
-constexpr double kDeg = std::numbers::pi / 180.0;
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
-const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
+using terra::testing::kDeg;
+using terra::testing::kLocations;
+using testing::kWheelA;
 const wheel::WheelParameters kWheelB{"B", "", 0.135, 0.165};
 
 ContactParameters<double> clayOnB() {

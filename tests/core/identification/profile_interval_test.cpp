@@ -18,7 +18,7 @@ namespace {
 using testing::truthOf;
 
 namespace soils = contact::testing;
-const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
+using testing::kWheelA;
 
 DataSet sweeps(std::vector<double> loads, std::uint64_t seed, int slips) {
     SyntheticSpec spec;

@@ -20,7 +20,7 @@ using testing::fromLoad;
 using testing::truthOf;
 
 namespace soils = contact::testing;
-const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
+using testing::kWheelA;
 
 TEST(SlipSinkage, AtOneSlipN1IsTheConstantExponentNPlusN1S) {
     const contact::ContactParameters<double> soil = soils::sandyLoam();

@@ -14,6 +14,7 @@
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
 #include "tests/core/identification/identification_test_support.h"
+#include "tests/core/test_support.h"
 
 namespace terra::identification {
 namespace {
@@ -21,8 +22,8 @@ namespace {
 using testing::truthOf;
 
 namespace soils = contact::testing;
-constexpr double kDeg = std::numbers::pi / 180.0;
-const wheel::WheelParameters kWheelA{"A", "", soils::kRadiusA, soils::kWidthA};
+using terra::testing::kDeg;
+using testing::kWheelA;
 // 1 % of the largest |F_x|, |F_z|, |M_y| of sandy loam's sweeps at 30–90 N [N, N, N·m].
 constexpr std::array<double, 3> kNoise{0.136, 0.90, 0.0195};
 
@@ -52,7 +53,7 @@ std::vector<Sample> drive(const contact::ContactParameters<double>& soil, int bl
     return out;
 }
 
-StreamingEstimatorOptions options() {
+StreamingEstimatorOptions estimatorOptions() {
     StreamingEstimatorOptions o;
     o.fit.max_shear_deformation_m = 0.02;  // both soils' j_max here (a setting of the model)
     return o;
@@ -77,14 +78,14 @@ void judge(const StreamEstimate& e, const ParameterVector& truth, Band& band) {
 TEST(StreamingEstimator, NoFalseAlarmInFiveThousandSamplesOfOneSoilAndHonestBands) {
     const std::vector<Sample> samples = drive(soils::sandyLoam(), 100, 1);
     ASSERT_EQ(samples.size(), 5000u);
-    StreamingEstimator estimator(kWheelA, options());
+    StreamingEstimator estimator(kWheelA, estimatorOptions());
     const ParameterVector truth = truthOf(soils::sandyLoam());
     Band band;
     for (std::size_t i = 0; i < samples.size(); ++i) {
         const StreamEstimate e = estimator.push(samples[i]);
         ASSERT_EQ(e.index, i);
         EXPECT_FALSE(e.change_detected) << "false alarm at sample " << i;
-        EXPECT_EQ(e.estimated, i + 1 >= options().init_samples) << i;
+        EXPECT_EQ(e.estimated, i + 1 >= estimatorOptions().init_samples) << i;
         if (i >= 300) judge(e, truth, band);  // settled: after six load changes
     }
     for (int k = 0; k < kJmax; ++k) {
@@ -104,7 +105,7 @@ TEST(StreamingEstimator, SoilBorderIsConfirmedWithinTenSamples) {
     const contact::ContactParameters<double> clay = soils::clayeySoil(0.02);
     const std::vector<Sample> second = drive(clay, 8, 3);
     samples.insert(samples.end(), second.begin(), second.end());
-    StreamingEstimator estimator(kWheelA, options());
+    StreamingEstimator estimator(kWheelA, estimatorOptions());
     const ParameterVector truth = truthOf(clay);
     int changes = 0;
     Band band;
@@ -157,7 +158,7 @@ void expectOneBorder(const std::vector<Sample>& first, const std::vector<Sample>
     std::vector<Sample> samples = first;
     samples.insert(samples.end(), second.begin(), second.end());
     const std::size_t border = first.size();
-    StreamingEstimator estimator(kWheelA, options());
+    StreamingEstimator estimator(kWheelA, estimatorOptions());
     int changes = 0;
     StreamEstimate last;
     for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -196,20 +197,20 @@ TEST(StreamingEstimator, MonotoneSweepsPerLoadBorderPlacedAndNoFalseChange) {
 TEST(StreamingEstimator, ALoneOutlierIsNeitherAChangeNorUsed) {
     std::vector<Sample> samples = drive(soils::sandyLoam(), 4, 4);
     samples[120].fz_n *= 3.0;
-    StreamingEstimator estimator(kWheelA, options());
+    StreamingEstimator estimator(kWheelA, estimatorOptions());
     for (std::size_t i = 0; i < samples.size(); ++i) {
         const StreamEstimate e = estimator.push(samples[i]);
         EXPECT_FALSE(e.change_detected) << i;
         if (i == 120) {
             EXPECT_FALSE(e.used);
             EXPECT_GT(e.nis, 100.0);
-            EXPECT_LE(e.cusum, options().max_step_evidence);
+            EXPECT_LE(e.cusum, estimatorOptions().max_step_evidence);
         }
     }
 }
 
 TEST(StreamingEstimator, GivenNoiseLevelsAreKept) {
-    StreamingEstimatorOptions o = options();
+    StreamingEstimatorOptions o = estimatorOptions();
     o.fit.noise = {kNoise[0], kNoise[1], kNoise[2], 0.0};
     StreamingEstimator estimator(kWheelA, o);
     for (const Sample& s : drive(soils::sandyLoam(), 1, 5)) estimator.push(s);

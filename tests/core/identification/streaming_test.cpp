@@ -6,12 +6,13 @@
 
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
+#include "tests/core/identification/identification_test_support.h"
 
 namespace terra::identification {
 namespace {
 
 namespace soils = contact::testing;
-const wheel::WheelParameters kWheelA{"A", "", soils::kRadiusA, soils::kWidthA};
+using testing::kWheelA;
 
 // A robot's slip wanders: the sweep's samples in a scrambled (but fixed) order, with 1 % noise.
 std::vector<Sample> stream(const contact::ContactParameters<double>& soil, std::uint64_t seed) {

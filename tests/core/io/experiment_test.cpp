@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/io/parameters_json.h"
+#include "tests/core/test_support.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
@@ -13,9 +14,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::testing::contains;
 
 TEST(ExperimentCsv, AnySubsetOfChannelsEmptyCellsAreNotMeasured) {
     const std::string text =

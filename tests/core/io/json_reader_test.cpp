@@ -10,15 +10,14 @@
 #include <limits>
 
 #include "core/common/units.h"
+#include "tests/core/test_support.h"
 
 namespace terra::io {
 namespace {
 
 using nlohmann::json;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::testing::contains;
 
 TEST(ObjectReader, ReadsTypedFieldsWithDefaultsForAbsentOnes) {
     const json j = json::parse(R"({"n": 3, "x": 0.5, "on": true, "name": "a", "mode": "fast",

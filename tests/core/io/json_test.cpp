@@ -8,14 +8,14 @@
 #include <cmath>
 #include <limits>
 
+#include "tests/core/test_support.h"
+
 namespace terra::io {
 namespace {
 
 using nlohmann::json;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::testing::contains;
 
 TEST(StrictJson, ValidTextReadsAsNlohmannReadsIt) {
     const std::string text =

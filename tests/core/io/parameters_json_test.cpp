@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/contact/contact_parameters.h"
+#include "tests/core/test_support.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::io {
@@ -29,9 +30,7 @@ const fs::path kSoilDir = fs::path(TERRA_RESOURCE_DIR) / "soils";
 const fs::path kWheelDir = fs::path(TERRA_RESOURCE_DIR) / "wheels";
 const fs::path kData = fs::path(TERRA_TEST_DATA_DIR);
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::testing::contains;
 
 std::vector<fs::path> jsonFiles(const fs::path& dir) {
     std::vector<fs::path> files;

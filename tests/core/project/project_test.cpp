@@ -6,17 +6,16 @@
 
 #include "core/io/json.h"
 #include "core/project/panels.h"
+#include "tests/core/test_support.h"
 
 namespace terra::project {
 namespace {
 
 using nlohmann::json;
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::testing::contains;
 
 Project sandyLoam() {
     Project p;

@@ -11,6 +11,7 @@
 #include "core/io/table_json.h"
 #include "core/project/project.h"
 #include "core/project/result_json.h"
+#include "tests/core/test_support.h"
 #include "tests/core/test_temp_dir.h"
 
 namespace terra::project {
@@ -18,13 +19,9 @@ namespace {
 
 using nlohmann::json;
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
-analysis::Inputs sandyLoam() {
-    return {io::resolveSoil(kLocations, "sandy-loam").value(),
-            io::resolveWheel(kLocations, "A").value(),
-            {}};
-}
+using terra::testing::sandyLoamOnA;
 
 TEST(SavedResults, TheInputsHashIsStableAndChangesWithTheInputs) {
     const json inputs{{"soil", {{"phi_deg", 30.0}}}, {"samples", 1024}};
@@ -152,7 +149,7 @@ TEST(UncertaintyBandsRoundTrip, ReadsBackToTheSameBands) {
     s.study.outputs = {"Fx_N", "sinkage_m"};
     s.study.threads = 1;
     const analysis::UncertaintyBandResult computed =
-        analysis::computeUncertaintyBands(sandyLoam(), s);
+        analysis::computeUncertaintyBands(sandyLoamOnA(), s);
     ASSERT_TRUE(computed.bands.usable());
     const json saved = savedJson(computed);
     const Result<analysis::UncertaintyBandResult> read =
@@ -180,7 +177,7 @@ TEST_P(GlobalStudyRoundTrip, ReadsBackToTheSameIndices) {
     s.study.outputs = {"Fx_N", "sinkage_m"};
     s.study.threads = 1;
     const analysis::GlobalSensitivityResult computed =
-        analysis::computeGlobalSensitivity(sandyLoam(), s);
+        analysis::computeGlobalSensitivity(sandyLoamOnA(), s);
     const json saved = savedJson(computed);
     const Result<analysis::GlobalSensitivityResult> read =
         globalSensitivityResultFromJson(json::parse(saved.dump()), "result");

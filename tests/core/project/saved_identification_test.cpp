@@ -10,20 +10,16 @@
 
 #include "core/io/parameters_json.h"
 #include "core/io/table_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::project {
 namespace {
 
 using nlohmann::json;
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
-analysis::Inputs sandyLoamOnA() {
-    analysis::Inputs in;
-    in.soil = io::resolveSoil(kLocations, "sandy-loam").value();
-    in.wheel = io::resolveWheel(kLocations, "A").value();
-    return in;
-}
+using terra::testing::sandyLoamOnA;
 
 /// Cell by cell: equal, or NaN in both (a reader that turned a number into NaN, or NaN into 0,
 /// fails here).

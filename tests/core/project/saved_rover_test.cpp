@@ -9,13 +9,14 @@
 #include "core/analysis/rover.h"
 #include "core/io/json.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::project {
 namespace {
 
 using nlohmann::json;
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
     analysis::RoverSettings s;

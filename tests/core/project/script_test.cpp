@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/analysis/stresses.h"
+#include "tests/core/test_support.h"
 
 namespace terra::project {
 namespace {
@@ -14,15 +15,13 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 Result<Script> read(const json& script) {
     return scriptFromJson(script, "s.json", kLocations, TERRA_RESOURCE_DIR "/scripts");
 }
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using terra::testing::contains;
 
 TEST(Script, ShippedScriptsRead) {
     int count = 0;

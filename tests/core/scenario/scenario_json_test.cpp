@@ -6,10 +6,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include "tests/core/test_support.h"
+
 namespace terra::scenario {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 nlohmann::json minimal() {
     return nlohmann::json::parse(R"({

@@ -14,11 +14,12 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::scenario {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 // The straight-line scenario on sandy loam (quadratic model: fast), towing an implement whose
 // pull grows with speed, so that every slip set-point has a steady speed.
