@@ -7,7 +7,7 @@
 namespace terra::gsa {
 namespace {
 
-std::size_t checkedDimension(const ParameterSpace& space) {
+std::size_t checkedSequenceDimension(const ParameterSpace& space) {
     if (space.dimension() == 0) throw std::invalid_argument("parameters: no parameter to vary");
     return 2 * space.dimension();
 }
@@ -18,7 +18,7 @@ SaltelliDesign::SaltelliDesign(ParameterSpace space, std::size_t base_samples, s
     : space_(std::move(space)),
       base_samples_(base_samples),
       seed_(seed),
-      sequence_(checkedDimension(space_), seed) {
+      sequence_(checkedSequenceDimension(space_), seed) {
     if (base_samples < 2) {
         throw std::invalid_argument("samples = " + std::to_string(base_samples) +
                                     " is outside the allowed range [2, inf)");

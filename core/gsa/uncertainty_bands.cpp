@@ -11,8 +11,6 @@
 namespace terra::gsa {
 namespace {
 
-constexpr std::size_t kChunkEvaluations = 16384;  // as the Sobol' study (wheel_studies.cpp)
-
 std::size_t checkedDimension(const ParameterSpace& space) {
     if (space.dimension() == 0) throw std::invalid_argument("parameters: no parameter to vary");
     return space.dimension();

@@ -10,10 +10,6 @@
 namespace terra::gsa {
 namespace {
 
-// A chunk of about this many model evaluations: large enough to keep every thread busy, small
-// enough for the memory of a 10⁷-evaluation study to stay that of one chunk plus the outputs.
-constexpr std::size_t kChunkEvaluations = 16384;
-
 constexpr auto kNotEvaluated = static_cast<std::uint8_t>(SampleStatus::kNotEvaluated);
 constexpr auto kOk = static_cast<std::uint8_t>(SampleStatus::kOk);
 

@@ -157,6 +157,11 @@ private:
     WheelStudy study_;
 };
 
+/// Model evaluations per chunk of the studies (Sobol', Morris, bands) when the caller sets none:
+/// large enough to keep every thread busy, small enough for the memory of a 10⁷-evaluation study
+/// to stay that of one chunk plus the outputs.
+inline constexpr std::size_t kChunkEvaluations = 16384;
+
 /// Evaluates design rows [0, rows) through `target` in chunks of about `chunk_rows` rows (rounded
 /// to a multiple of `row_multiple`), with overall progress and the cancel flag: after a cancel
 /// the remaining rows are marked kNotEvaluated. `rows_of(begin, end)` returns the design's rows.
