@@ -88,34 +88,32 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
 }
 
 // --compare: the scenario under each controller, one after the other.
-void compare(analysis::RoverSettings settings, const SimulateOptions& o) {
+void compare(const analysis::RoverSettings& settings, const SimulateOptions& o) {
     const SignalCancellation cancellation;
-    std::vector<analysis::ControllerRun> rows;
     std::string name;
-    for (const std::string& type : scenario::controllerNames()) {
-        settings.controller = scenario::controllerFromName(type);
-        analysis::Control run;
-        run.cancel = cancellation.flag();
-        TerminalProgress progress("simulate " + type);
-        run.progress = progress.callback();
-        analysis::RoverResult rover;
-        try {
-            rover = analysis::runRover(settings, run);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(std::string(o.scenario) + ": " + e.what());
-        }
-        progress.finish();
-        const std::filesystem::path dir = std::filesystem::path(o.out) / type;
-        if (const auto error = scenario::writeResults(rover.run, rover.scenario, dir))
-            throw std::runtime_error(*error);
-        name = rover.scenario.name;
-        analysis::ControllerRun row{type, std::move(rover.run)};
-        if (row.run.status == scenario::RunResult::Status::kCancelled) {
-            exitCancelled(cancellation, row.run.message + " by " + cancellation.signalName() +
-                                            "; partial results written to " + dir.string());
-        }
-        rows.push_back(std::move(row));
+    analysis::Control control;
+    control.cancel = cancellation.flag();
+    TerminalProgress progress("simulate --compare");
+    control.progress = progress.callback();
+    std::vector<analysis::ControllerRun> rows;
+    try {
+        rows = analysis::compareControllers(
+            settings, control, [&](const std::string& type, analysis::RoverResult& rover) {
+                const std::filesystem::path dir = std::filesystem::path(o.out) / type;
+                if (const auto error = scenario::writeResults(rover.run, rover.scenario, dir))
+                    throw std::runtime_error(*error);
+                name = rover.scenario.name;
+                if (rover.run.status == scenario::RunResult::Status::kCancelled) {
+                    progress.finish();
+                    exitCancelled(cancellation, rover.run.message + " by " +
+                                                    cancellation.signalName() +
+                                                    "; partial results written to " + dir.string());
+                }
+            });
+    } catch (const std::invalid_argument& e) {
+        throw InputError(std::string(o.scenario) + ": " + e.what());
     }
+    progress.finish();
     const nlohmann::json table = analysis::controllerComparison(rows);
     if (const auto error = io::writeFileAtomically(std::filesystem::path(o.out) / "comparison.json",
                                                    table.dump(2) + "\n")) {

@@ -110,6 +110,9 @@ nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs) {
         const scenario::Summary& m = row.run.summary;
         const scenario::TractionMetrics& t = row.run.traction;
         const double pull = meanPull(row.run);
+        nlohmann::json mean_slip;
+        for (std::size_t i = 0; i < dynamics::kWheelCount; ++i)
+            mean_slip[dynamics::kCornerNames[i]] = m.mean_slip[i];
         out.push_back(
             {{"controller", row.controller},
              {"status", row.run.status == scenario::RunResult::Status::kCompleted
@@ -124,6 +127,7 @@ nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs) {
              {"mean_drawbar_N", pull},
              {"drawbar_vs_oracle",
               oracle_pull > 0.0 ? nlohmann::json(pull / oracle_pull) : nlohmann::json(nullptr)},
+             {"mean_slip", mean_slip},
              {"slip_tracking_rms", optional(m.slip_tracking_rms)},
              {"settling_time_s", optional(t.settling_time_s)},
              {"rut_depth_m",
@@ -132,6 +136,30 @@ nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs) {
                   : nlohmann::json(nullptr)}});
     }
     return out;
+}
+
+std::vector<ControllerRun> compareControllers(
+    const RoverSettings& settings, const Control& control,
+    const std::function<void(const std::string&, RoverResult&)>& on_run) {
+    const std::vector<std::string>& names = scenario::controllerNames();
+    const double share = 1.0 / static_cast<double>(names.size());
+    std::vector<ControllerRun> runs;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        RoverSettings one = settings;
+        one.controller = scenario::controllerFromName(names[k]);
+        Control run_control{control.cancel};
+        if (control.progress) {
+            run_control.progress = [&control, k, share](double fraction) {
+                control.report((static_cast<double>(k) + fraction) * share);
+            };
+        }
+        RoverResult result = runRover(one, run_control);
+        const bool cancelled = result.run.status == scenario::RunResult::Status::kCancelled;
+        runs.push_back({names[k], result.run});
+        if (on_run) on_run(names[k], result);
+        if (cancelled) break;
+    }
+    return runs;
 }
 
 scenario::SlipPlanner tractionPlanner() {

@@ -5,6 +5,7 @@
 /// The studio's rover panel, `terrastudio simulate` and a script's "rover" analysis. The
 /// scenario brings its own robot and soils: a project's soil, wheel and conditions do not apply.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,9 +76,19 @@ struct ControllerRun {
 /// The comparison table (comparison.json, the studio's table): per run "controller", "status",
 /// "distance_m", "energy_per_m_J", "mean_efficiency", "energy_per_drawbar_work" (drive work over
 /// the implement's work), "mean_drawbar_N" (the implement's work over the distance),
-/// "drawbar_vs_oracle" (over the oracle run's; null without one), "slip_tracking_rms",
+/// "drawbar_vs_oracle" (over the oracle run's; null without one), "mean_slip" ({FL, FR, RL, RR}
+/// as the summary's), "slip_tracking_rms",
 /// "settling_time_s", "rut_depth_m"; null where a figure is not defined.
 nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs);
+
+/// Runs `settings`'s scenario under every controller in turn (scenario::controllerNames()), each
+/// an equal share of `control`'s progress. `on_run`, when set, sees each finished run (with its
+/// scenario) before the next starts and may move from it; the CLI writes its files there, the
+/// studio keeps the run it shows. A cancelled run ends the comparison: the runs so far are
+/// returned, the cancelled one last. Throws std::invalid_argument as runRover does.
+std::vector<ControllerRun> compareControllers(
+    const RoverSettings& settings, const Control& control = {},
+    const std::function<void(const std::string& controller, RoverResult& result)>& on_run = {});
 
 AnalysisType roverType();
 

@@ -8,6 +8,7 @@
 
 #include "core/analysis/identification.h"
 #include "core/analysis/registry.h"
+#include "core/analysis/rover.h"
 #include "core/analysis/stresses.h"
 #include "core/identification/data_set.h"
 #include "core/io/json_reader.h"
@@ -127,11 +128,35 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
     return out;
 }
 
+// The scenario under every controller: the comparison table of `simulate --compare --json`.
+py::object compareControllers(const py::dict& settings, const py::object& progress) {
+    const nlohmann::json settings_json = toJson(settings);
+    std::vector<Issue> issues;
+    io::ObjectReader r(settings_json, issues);
+    analysis::RoverSettings rover;
+    analysis::readRoverSettings(r, analysis::ReadContext{&presetLocations(), {}}, rover);
+    r.finish();
+    if (!issues.empty()) raiseIssues(issues);
+    if (rover.controller) {
+        throw std::invalid_argument(
+            "controller: compare_controllers runs every controller; drop controller=");
+    }
+    const nlohmann::json table = runInterruptible(
+        [&](const WorkControl& work) {
+            return analysis::controllerComparison(
+                analysis::compareControllers(rover, analysis::Control{work.cancel, work.progress}));
+        },
+        progress);
+    return fromJson(table);
+}
+
 }  // namespace
 
 void bindAnalyses(py::module_& m) {
     m.def("_run", &run, py::arg("type"), py::arg("soil"), py::arg("wheel"), py::arg("conditions"),
           py::arg("settings"), py::arg("data") = py::none(), py::arg("progress") = py::none());
+    m.def("_compare_controllers", &compareControllers, py::arg("settings"),
+          py::arg("progress") = py::none());
     m.def(
         "analyses",
         []() {

@@ -377,22 +377,16 @@ def simulate(scenario="straight", **settings):
     return result
 
 
-def compare_controllers(scenario, **settings):
-    """The scenario under each controller (docs/traction.md, section 6): a list of one dict per
-    controller with "controller", "status", "distance_m", "energy_per_m_J", "mean_efficiency",
-    "slip_tracking_rms" and "mean_slip" from its summary (settings as for simulate, without
-    controller)."""
-    if "controller" in settings:
-        raise ValueError("compare_controllers runs every controller: drop controller=")
-    rows = []
-    for controller in ("constant-speed", "fixed-slip", "optimal", "oracle"):
-        summary = simulate(scenario, controller=controller, **settings)["summary"]
-        row = {"controller": controller}
-        for key in ("status", "distance_m", "energy_per_m_J", "mean_efficiency",
-                    "slip_tracking_rms", "mean_slip"):
-            row[key] = summary.get(key)
-        rows.append(row)
-    return rows
+def compare_controllers(scenario, *, progress=None, **settings):
+    """The scenario under each controller in turn (docs/traction.md, section 6): the comparison
+    table of `terrastudio simulate --compare --json`, a list of one dict per controller with
+    "controller", "status", "distance_m", "energy_per_m_J", "mean_efficiency",
+    "energy_per_drawbar_work", "mean_drawbar_N", "drawbar_vs_oracle", "mean_slip" (per wheel),
+    "slip_tracking_rms",
+    "settling_time_s" and "rut_depth_m" (None where a figure is not defined). Settings as for
+    simulate, without controller; progress as forces(); Ctrl-C stops it."""
+    settings["scenario"] = os.fspath(scenario)
+    return _core._compare_controllers(settings, progress)
 
 
 def _read_profile(name):

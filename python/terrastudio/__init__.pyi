@@ -124,7 +124,10 @@ def identify(
 ) -> dict[str, Any]: ...
 def simulate(scenario: str | os.PathLike[str] = "straight", **settings: Any) -> dict[str, Any]: ...
 def compare_controllers(
-    scenario: str | os.PathLike[str], **settings: Any
+    scenario: str | os.PathLike[str],
+    *,
+    progress: Callable[[float], object] | None = None,
+    **settings: Any,
 ) -> list[dict[str, Any]]: ...
 def sobol(
     soil: SoilSpec,

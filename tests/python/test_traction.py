@@ -50,9 +50,17 @@ def test_simulate_takes_a_controller_and_the_summary_has_its_metrics():
     assert "FL_slip_set" not in plain["timeseries"]
 
 
-def test_compare_controllers_runs_each_one():
+def test_compare_controllers_is_the_command_lines_table(cli, tmp_path):
     rows = ts.compare_controllers("traction-load-change", duration_s=2.0)
     assert [r["controller"] for r in rows] == ["constant-speed", "fixed-slip", "optimal", "oracle"]
     assert all(r["status"] == "completed" for r in rows)
+    run = cli("simulate", "--scenario", "traction-load-change", "--duration", 2, "--compare",
+              "--json", "--out", tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert rows == json.loads(run.stdout)
+    # One row against a run of its own: the energy per metre of that controller's summary.
+    fixed = ts.simulate("traction-load-change", duration_s=2.0, controller="fixed-slip")
+    assert rows[1]["energy_per_m_J"] == fixed["summary"]["energy_per_m_J"]
+    assert rows[1]["distance_m"] == fixed["summary"]["distance_m"]
     with pytest.raises(ValueError, match="controller"):
         ts.compare_controllers("traction-load-change", controller="oracle")

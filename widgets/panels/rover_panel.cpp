@@ -547,22 +547,12 @@ AnalysisPanel::Job RoverPanel::makeJob() {
     return [settings, progress](const std::atomic<bool>& cancel) -> std::any {
         Comparison out;
         const scenario::ControllerType chosen = settings.loaded->controller.type;
-        const std::vector<std::string>& names = scenario::controllerNames();
-        std::vector<analysis::ControllerRun> runs;
-        for (std::size_t k = 0; k < names.size(); ++k) {
-            analysis::RoverSettings one = settings;
-            one.controller = scenario::controllerFromName(names[k]);
-            analysis::Control control{&cancel};
-            const double share = 1.0 / static_cast<double>(names.size());
-            control.progress = [progress, k, share](double fraction) {
-                progress((static_cast<double>(k) + fraction) * share);
-            };
-            analysis::RoverResult result = analysis::runRover(one, control);
-            const bool cancelled = result.run.status == scenario::RunResult::Status::kCancelled;
-            runs.push_back({names[k], result.run});
-            if (*one.controller == chosen || !out.shown) out.shown = std::move(result);
-            if (cancelled) break;
-        }
+        const std::vector<analysis::ControllerRun> runs = analysis::compareControllers(
+            settings, analysis::Control{&cancel, progress},
+            [&](const std::string& name, analysis::RoverResult& result) {
+                if (scenario::controllerFromName(name) == chosen || !out.shown)
+                    out.shown = std::move(result);
+            });
         out.table = analysis::controllerComparison(runs);
         return out;
     };
