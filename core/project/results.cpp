@@ -109,16 +109,29 @@ bool SavedResult::operator==(const SavedResult& other) const {
            tables_json(*this) == tables_json(other);
 }
 
-std::string inputsHash(const json& inputs) {
-    // FNV-1a, 64 bits: fast, stable across platforms; not for security, only to notice a change.
+namespace {
+
+// FNV-1a, 64 bits: fast, stable across platforms; not for security, only to notice a change.
+std::string fnv1a(std::string_view bytes) {
     std::uint64_t h = 14695981039346656037ull;
-    for (const char c : inputs.dump()) {
+    for (const char c : bytes) {
         h ^= static_cast<unsigned char>(c);
         h *= 1099511628211ull;
     }
     char text[17];
     std::snprintf(text, sizeof text, "%016" PRIx64, h);
     return text;
+}
+
+}  // namespace
+
+std::string inputsHash(const json& inputs) { return fnv1a(inputs.dump()); }
+
+json fileStamp(const std::filesystem::path& path) {
+    if (path.empty()) return nullptr;
+    std::string bytes;
+    if (io::readFile(path, bytes)) return "missing";  // an error message: not readable
+    return fnv1a(bytes);
 }
 
 std::filesystem::path resultsPathFor(const std::filesystem::path& project_file) {

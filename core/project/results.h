@@ -60,6 +60,12 @@ struct SavedResults {
 /// hash on every machine and run (nlohmann::json orders object keys).
 std::string inputsHash(const nlohmann::json& inputs);
 
+/// What a saved result's inputs hold of a data file: null for no file (an empty name), "missing"
+/// for a file that cannot be read, else inputsHash of its bytes. The content, not the name or
+/// the time stamp: moving or copying the project's folder keeps its results, an edited file
+/// does not.
+nlohmann::json fileStamp(const std::filesystem::path& path);
+
 /// The sidecar of a project file: "field/p.terra" → "field/p.terra.results".
 std::filesystem::path resultsPathFor(const std::filesystem::path& project_file);
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QDir>
 #include <QFileInfo>
 #include <QSignalSpy>
 #include <QStatusBar>
@@ -14,6 +15,8 @@
 #include <cstdio>
 
 #include "app/main_window.h"
+#include "core/identification/data_set.h"
+#include "core/identification/synthetic.h"
 #include "core/io/atomic_file.h"
 #include "core/io/table_json.h"
 #include "widgets/document/project_document.h"
@@ -244,6 +247,63 @@ TEST(SavedResultsWindow, ChangedSettingsAreNotShownWithOldResults) {
     EXPECT_EQ(fits.started(), 0);
     EXPECT_EQ(runs.started(), 0);
     EXPECT_EQ(studio.window.document()->project().panels["identification"]["noise_percent"], 3.5);
+}
+
+// Issue 27, item 5: a project folder moved as a whole keeps the fit of its data file (the saved
+// result names the file by its content, not its path); an edited data file does not.
+TEST(SavedResultsWindow, AMovedProjectFolderKeepsTheFitOfItsDataFile) {
+    QTemporaryDir root;
+    ASSERT_TRUE(QDir(root.path()).mkpath("before/data"));
+    identification::SyntheticSpec spec;
+    for (int i = 0; i <= 15; ++i) spec.slips.push_back(0.05 * i);
+    const contact::ContactParameters<double> soil = analysis::Inputs{
+        io::resolveSoil(test::resources(), "sandy-loam").value(),
+        io::resolveWheel(test::resources(), "A").value(),
+        {}}.contact();
+    const std::string csv = identification::toCsv(identification::synthesize(soil, spec).data);
+    const QString before = root.filePath("before/field.terra");
+    ASSERT_FALSE(io::writeFileAtomically(root.filePath("before/data/run.csv").toStdString(), csv));
+    std::vector<std::string> fitted_curves;
+    {
+        Studio studio;
+        auto* identification = studio.panel<ui::IdentificationPanel>();
+        studio.window.showPanel("identification");
+        identification->setDataFile(root.filePath("before/data/run.csv"));
+        identification->recompute();
+        ASSERT_TRUE(waitForResult(*identification));
+        ASSERT_TRUE(identification->result().usable()) << identification->fitStatus().toStdString();
+        QString error;
+        ASSERT_TRUE(studio.window.document()->save(before, &error)) << error.toStdString();
+        studio.action("action.save")->trigger();
+        ASSERT_TRUE(QFileInfo::exists(before + ".results"));
+        fitted_curves.push_back(io::toJson(identification->result().curves).dump());
+    }
+    ASSERT_TRUE(QDir(root.path()).rename("before", "after"));
+    const QString after = root.filePath("after/field.terra");
+    {
+        Studio studio;
+        auto* identification = studio.panel<ui::IdentificationPanel>();
+        StartCounter fits(identification);
+        openAndWait(studio, after);
+        studio.window.showPanel("identification");
+        QTest::qWait(300);
+        EXPECT_TRUE(identification->showsSavedResult())
+            << studio.window.statusBar()->currentMessage().toStdString();
+        EXPECT_EQ(io::toJson(identification->result().curves).dump(), fitted_curves.front());
+        EXPECT_EQ(fits.started(), 0);
+    }
+    // The same name, other data (one value changed): the saved fit is not shown.
+    std::string edited = csv;
+    const std::size_t last_digit = edited.find_last_of("0123456789");
+    edited[last_digit] = edited[last_digit] == '1' ? '2' : '1';
+    ASSERT_FALSE(
+        io::writeFileAtomically(root.filePath("after/data/run.csv").toStdString(), edited));
+    Studio studio;
+    auto* identification = studio.panel<ui::IdentificationPanel>();
+    openAndWait(studio, after);
+    EXPECT_FALSE(identification->showsSavedResult());
+    const QString message = studio.window.statusBar()->currentMessage();
+    EXPECT_TRUE(message.contains("Identification: its inputs changed")) << message.toStdString();
 }
 
 // A damaged section costs that section; a newer file costs the results, never the project.

@@ -797,29 +797,18 @@ void IdentificationPanel::present(const std::any& value) {
                      steps.join(";  "));
 }
 
-namespace {
-
-/// A data file's size and modification time: a saved result of a file changed since is not shown.
-nlohmann::json fileStamp(const std::string& path) {
-    if (path.empty()) return nullptr;
-    const QFileInfo info(QString::fromStdString(path));
-    if (!info.exists()) return "missing";
-    return {info.size(), info.lastModified().toMSecsSinceEpoch()};
-}
-
-}  // namespace
-
 nlohmann::json IdentificationPanel::resultInputs() const {
+    // The data file by its content, not its name: moving the project's folder keeps the result.
     nlohmann::json fit = settings();
-    for (const char* other : {"page", "stream_csv", "stream_second_soil", "stream_noise_percent",
-                              "stream_speed", "stream_skip_bad_rows"})
+    for (const char* other : {"csv", "page", "stream_csv", "stream_second_soil",
+                              "stream_noise_percent", "stream_speed", "stream_skip_bad_rows"})
         fit.erase(other);
     const Project& p = document_->project();
     return {{"soil", io::toJson(p.soil)},
             {"wheel", io::toJson(chosenWheel())},
             {"conditions", analysis::toJson(p.conditions)},
             {"fit", fit},
-            {"csv", fileStamp(file_->text().trimmed().toStdString())}};
+            {"csv", project::fileStamp(file_->text().trimmed().toStdString())}};
 }
 
 nlohmann::json IdentificationPanel::streamInputs() const {
@@ -828,11 +817,10 @@ nlohmann::json IdentificationPanel::streamInputs() const {
     return {{"soil", io::toJson(p.soil)},
             {"wheel", io::toJson(p.wheel)},
             {"conditions", analysis::toJson(p.conditions)},
-            {"csv", s.csv},
             {"skip_bad_rows", s.skip_bad_rows},
             {"second_soil", s.second_soil},
             {"noise_percent", s.noise_percent},
-            {"csv_stamp", fileStamp(s.csv)}};
+            {"csv_stamp", project::fileStamp(s.csv)}};
 }
 
 std::map<std::string, project::SavedResult> IdentificationPanel::savedResults() const {

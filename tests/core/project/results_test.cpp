@@ -23,6 +23,24 @@ using terra::testing::kLocations;
 
 using terra::testing::sandyLoamOnA;
 
+// A data file is known by its bytes: the same bytes elsewhere are the same inputs, one byte
+// changed is not, a missing file and no file are each their own stamp.
+TEST(SavedResults, AFileStampIsItsContentNotItsPath) {
+    const testing::TempDir dir;
+    const std::string text = "slip,Fx_N\n0.1,3.25\n0.2,5.5\n";
+    ASSERT_FALSE(io::writeFileAtomically(dir.path() / "a.csv", text));
+    std::filesystem::create_directories(dir.path() / "moved");
+    ASSERT_FALSE(io::writeFileAtomically(dir.path() / "moved" / "b.csv", text));
+    ASSERT_FALSE(io::writeFileAtomically(dir.path() / "c.csv", "slip,Fx_N\n0.1,3.25\n0.2,5.6\n"));
+    EXPECT_EQ(fileStamp(dir.path() / "a.csv"), fileStamp(dir.path() / "moved" / "b.csv"));
+    EXPECT_NE(fileStamp(dir.path() / "a.csv"), fileStamp(dir.path() / "c.csv"));
+    EXPECT_EQ(fileStamp(dir.path() / "none.csv"), "missing");
+    EXPECT_TRUE(fileStamp("").is_null());
+    // FNV-1a of the bytes, as inputsHash of a JSON text: the empty file's is the offset basis.
+    ASSERT_FALSE(io::writeFileAtomically(dir.path() / "empty.csv", ""));
+    EXPECT_EQ(fileStamp(dir.path() / "empty.csv"), "cbf29ce484222325");
+}
+
 TEST(SavedResults, TheInputsHashIsStableAndChangesWithTheInputs) {
     const json inputs{{"soil", {{"phi_deg", 30.0}}}, {"samples", 1024}};
     EXPECT_EQ(inputsHash(inputs), inputsHash(json::parse(inputs.dump())));
