@@ -201,4 +201,61 @@ TEST(TractionControlRun, RearWheelsTakeTheNewPlanAtTheBorder) {
 }
 
 }  // namespace
+// The slope scenario (docs/traction.md §6, "Slope"): up 3 % with the implement, a wheel must pull
+// (m g sin α + F₀)/4 at rest. Below the slip s_eq where the model's F_x reaches that, a slip
+// controller cannot accelerate the robot: it slows until its command sits at the motors' start-up
+// floor and crawls there at s_eq, whatever its set-point. s_eq from the wheel model by bisection
+// (load m g cos α / 4), against the run's slip; the oracle's set-point lies above it and climbs.
+TEST(TractionControlRun, OnTheSlopeASetPointBelowTheSlipItNeedsCrawlsAtTheFloor) {
+    RoverSettings fixed;
+    fixed.scenario = "traction-slope";
+    Result<scenario::Scenario> loaded = scenario::resolveScenario(kLocations, fixed.scenario);
+    ASSERT_TRUE(loaded.ok()) << loaded.message();
+    fixed.loaded = loaded.value();
+    fixed.controller = scenario::ControllerType::kFixedSlip;
+    const scenario::Scenario& s = *fixed.loaded;
+    const double alpha = std::atan(0.03), g = s.options.gravity_m_s2;
+    const double weight = s.robot.totalMass() * g;
+    const double load = weight * std::cos(alpha) / 4.0;
+    const double pull = (weight * std::sin(alpha) + s.drawbar_load.force_n.value) / 4.0;
+    Inputs in;
+    in.soil = io::resolveSoil(kLocations, "sandy-loam").value();
+    in.wheel = s.robot.wheel;
+    in.conditions.quadratic = true;
+    auto fx = [&](double slip) {
+        return tractionPoint(in.contact(), load, slip, TractionSettings{},
+                             contact::ContactModel::kQuadratic)
+            .fx_n;
+    };
+    double lo = 0.05, hi = 0.95;  // F_x grows with slip here
+    ASSERT_LT(fx(lo), pull);
+    ASSERT_GT(fx(hi), pull);
+    for (int i = 0; i < 60; ++i) (fx(0.5 * (lo + hi)) < pull ? lo : hi) = 0.5 * (lo + hi);
+    const double s_eq = 0.5 * (lo + hi);
+    ASSERT_LT(s.controller.slip, s_eq);  // the scenario's fixed set-point cannot carry the slope
+
+    const RoverResult crawl = runRover(fixed);
+    ASSERT_EQ(crawl.run.status, scenario::RunResult::Status::kCompleted) << crawl.run.message;
+    const Table& t = crawl.run.series;
+    const std::size_t time = t.column("t_s"), slip = t.column("FL_slip"),
+                      omega = t.column("FL_omega_rad_s"), speed = t.column("vx_m_s");
+    // Means over the last 10 s (the wheels cross a 0.1 m cell of the front ruts every ~12 s: a
+    // short blip of slip and ω there).
+    double n = 0, mean_slip = 0, mean_omega = 0, mean_speed = 0;
+    for (const auto& row : t.rows) {
+        if (row[time] < 30.0) continue;
+        ++n, mean_slip += row[slip], mean_omega += row[omega], mean_speed += row[speed];
+    }
+    ASSERT_GT(n, 100);
+    EXPECT_NEAR(mean_slip / n, s_eq, 0.01);
+    EXPECT_NEAR(mean_omega / n, s.controller.min_spin_rate_rad_s, 0.01);
+    EXPECT_LT(mean_speed / n, 0.015);
+    RoverSettings oracle = fixed;
+    oracle.controller = scenario::ControllerType::kOracle;
+    const RoverResult climb = runRover(oracle);
+    EXPECT_GT(lastSetPointOn(climb.run, 1), s_eq);  // soil 1: the legend's class 1
+    EXPECT_GT(climb.run.summary.distance_m, 2.0);
+    EXPECT_LT(crawl.run.summary.distance_m, 0.5);
+}
+
 }  // namespace terra::analysis
