@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "benchmarks/benchmark_support.h"
 #include "core/gsa/batch.h"
 #include "core/gsa/uncertainty_bands.h"
 #include "core/gsa/wheel_studies.h"
@@ -16,7 +17,7 @@
 namespace {
 
 using namespace terra::gsa;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using terra::benchmarks::kDeg;
 
 terra::soil::SoilParameters sandyLoamPreset() {
     return terra::io::resolveSoil(terra::io::PresetLocations{{TERRA_RESOURCE_DIR}}, "sandy-loam")

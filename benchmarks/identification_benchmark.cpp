@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "benchmarks/benchmark_support.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
 #include "core/identification/identify.h"
@@ -17,13 +18,10 @@ namespace {
 
 using namespace terra;
 using namespace terra::identification;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using terra::benchmarks::kDeg;
 const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
 
-contact::ContactParameters<double> sandyLoam() {
-    return {0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * kDeg, 0.025,
-            15.2e3, 0.2,   0.3, 0.02};
-}
+using terra::benchmarks::sandyLoam;
 
 // 91 samples in all: one load, or three loads (30 + 30 + 31 slips).
 DataSet data(int loads, double relative_noise) {

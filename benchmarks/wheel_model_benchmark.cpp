@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include "benchmarks/benchmark_support.h"
 #include "core/analysis/sweep.h"
 #include "core/contact/quadratic_model.h"
 #include "core/contact/sinkage.h"
@@ -12,13 +13,10 @@
 namespace {
 
 using namespace terra::contact;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using terra::benchmarks::kDeg;
 
 // Table 2.1 sandy loam / clayey soil on wheel A (Table 2.2), Table 2.6 j_max.
-ContactParameters<double> sandyLoam() {
-    return {0.092,  0.107, 0.7, 0.0, 5.3e3 / 0.107 + 1.515e6, 1.7e3, 29.0 * kDeg, 0.025,
-            15.2e3, 0.2,   0.3, 0.02};
-}
+using terra::benchmarks::sandyLoam;
 ContactParameters<double> clayeySoil() {
     return {0.092,   0.107, 0.5, 0.0,  13.2e3 / 0.107 + 692.2e3, 4.14e3, 13.0 * kDeg, 0.01,
             13.24e3, 0.2,   0.3, 0.009};
