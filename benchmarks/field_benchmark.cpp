@@ -4,7 +4,9 @@
 // for all of its terrain work at a 1 ms step.
 //   terra_benchmarks --benchmark_filter=Field
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -93,7 +95,8 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // Arg: 0 the same run on today's flat patch terrain; 1 the field, every wheel on untouched soil
 // (repeated_passes off); 2 the field with the memory (rear wheels in the front ruts: their
 // contact is integrated, the quadratic model has no reload branch); 3 as 2 without the stress at
-// depth. Counters: real-time factor, bytes of cell state, cells touched.
+// depth. Second arg: the step in ms; third: 1 for the implicit integrator (docs/dynamics.md,
+// "Integrators"). Counters: real-time factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
     auto loaded = scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "straight");
     if (!loaded) throw std::runtime_error(loaded.message());
@@ -130,8 +133,18 @@ scenario::Scenario fieldRun(int kind) {
     return s;
 }
 
+// The field run of `kind` at the step and integrator of the benchmark's 2nd and 3rd argument.
+scenario::Scenario fieldRun(const benchmark::State& state) {
+    scenario::Scenario s = fieldRun(static_cast<int>(state.range(0)));
+    s.time_step_s = 1e-3 * static_cast<double>(state.range(1));
+    s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
+    s.options.integrator =
+        state.range(2) == 1 ? dynamics::Integrator::kImplicit : dynamics::Integrator::kExplicit;
+    return s;
+}
+
 void RoverOnField(benchmark::State& state) {
-    const scenario::Scenario s = fieldRun(static_cast<int>(state.range(0)));
+    const scenario::Scenario s = fieldRun(state);
     double wall = 0.0, loop = 0.0;
     long cells = 0;
     for (auto _ : state) {
@@ -154,15 +167,60 @@ void RoverOnField(benchmark::State& state) {
         // The memory of the same run: its tiles (CellGrid::stateBytes).
         dynamics::FieldTerrain terrain(s.field, s.robot, s.field_options);
         dynamics::Rover rover(s.robot, terrain, s.options, s.initial, s.commandsAt(0.0));
-        for (int k = 0; k < 20000; ++k) rover.step(1e-3, s.commandsAt(0.0));
+        const long steps = std::lround(s.duration_s / s.time_step_s);
+        for (long k = 0; k < steps; ++k) rover.step(s.time_step_s, s.commandsAt(0.0));
         terrain.finish();
         state.counters["cell_state_bytes"] = static_cast<double>(terrain.cells().stateBytes());
     }
 }
 BENCHMARK(RoverOnField)
-    ->Arg(0)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(3)
+    ->Args({0, 1, 0})
+    ->Args({1, 1, 0})
+    ->Args({2, 1, 0})
+    ->Args({3, 1, 0})
+    ->Args({0, 10, 1})
+    ->Args({1, 10, 1})
+    ->Args({2, 10, 1})
+    ->Args({0, 20, 1})
+    ->Args({1, 20, 1})
+    ->Args({2, 20, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
+
+// A 1-hour mission on the 2 cm field (issue 23: ≤ 4 s wall, ≤ 200 MB): the robot circles on
+// the field (front wheels steered 4°: a circle of ≈ 7 m radius, ≈ 4 laps in the hour, so from
+// the second lap on every wheel is in a remembered cell), at the step and integrator of the 2nd
+// and 3rd argument, with the memory (kind 2). One run: wall time, the loop's real-time factor,
+// and the process's peak resident memory (getrusage; it includes the field's rasters, built
+// once for all the benchmarks of this program, and the run's maps).
+void RoverFieldMission(benchmark::State& state) {
+    scenario::Scenario s = fieldRun(state);
+    s.duration_s = 3600.0;
+    s.output_interval_s = 1.0;
+    s.initial = {25.0, 3.0, 0.0, 0.0};
+    for (int i = 0; i < 2; ++i)
+        s.wheels[i].steer_angle_rad = scenario::Signal::constant(4.0 * M_PI / 180.0);
+    double wall = 0.0, loop = 0.0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        scenario::RunResult r = scenario::runScenario(s);
+        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (r.status != scenario::RunResult::Status::kCompleted)
+            state.SkipWithError(r.message.c_str());
+        loop += s.duration_s / r.summary.real_time_factor.value_or(0.0);
+        state.counters["cells_touched"] = static_cast<double>(r.summary.cells_touched.value_or(0));
+        state.counters["distance_m"] = r.summary.distance_m;
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+    const double n = static_cast<double>(state.iterations());
+    state.counters["wall_s"] = wall / n;
+    state.counters["loop_real_time_factor"] = s.duration_s * n / loop;
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+BENCHMARK(RoverFieldMission)
+    ->Args({2, 10, 1})
+    ->Args({2, 20, 1})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
