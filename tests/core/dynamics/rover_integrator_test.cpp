@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "core/dynamics/rover.h"
 #include "core/io/parameters_json.h"
@@ -165,6 +167,44 @@ TEST(RoverIntegrator, TheImplicitStepNeedsTheIdealServos) {
     Commands commands{};
     EXPECT_THROW(Rover(s.value().robot, s.value().terrain, options, {}, commands),
                  std::invalid_argument);
+}
+
+// The scenario keys: strict names, and the implicit step refused with a closed-loop controller.
+TEST(RoverIntegrator, TheScenarioKeysAreReadStrictly) {
+    const nlohmann::json minimal = nlohmann::json::parse(R"({
+        "duration_s": 1, "time_step_s": 0.03, "terrain": "sandy-loam",
+        "wheels": {"all": {"omega_rad_s": 0.4}}})");
+    // 30 ms: above the explicit step's bound (8 ms on sandy loam), accepted with "implicit".
+    nlohmann::json good = minimal;
+    good["integrator"] = "implicit";
+    good["reload_contact"] = "closed-form";
+    const Result<scenario::Scenario> s = scenario::scenarioFromJson(good, "x.json", kLocations);
+    ASSERT_TRUE(s.ok()) << s.message();
+    EXPECT_EQ(s.value().options.integrator, Integrator::kImplicit);
+    EXPECT_TRUE(s.value().options.contact.closed_form_reload);
+    nlohmann::json explicit_step = minimal;
+    explicit_step["integrator"] = "explicit";
+    const Result<scenario::Scenario> refused =
+        scenario::scenarioFromJson(explicit_step, "x.json", kLocations);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("x.json: time_step_s"), std::string::npos);
+
+    const std::pair<const char*, const char*> bad[] = {
+        {R"({"integrator": "rk4"})", "x.json: integrator: \"rk4\" is not one of"},
+        {R"({"integrator": 1})", "x.json: integrator"},
+        {R"({"reload_contact": "quadratic"})", "x.json: reload_contact"},
+        {R"({"integrator": "implicit", "controller": {"type": "fixed-slip", "slip": 0.3,
+             "max_torque_Nm": 4, "max_omega_rad_s": 4}})",
+         "integrator: \"implicit\" needs the ideal spin servos"},
+    };
+    for (const auto& [patch, expected] : bad) {
+        nlohmann::json j = minimal;
+        j.merge_patch(nlohmann::json::parse(patch));
+        const Result<scenario::Scenario> r = scenario::scenarioFromJson(j, "x.json", kLocations);
+        ASSERT_FALSE(r.ok()) << patch;
+        EXPECT_NE(r.message().find(expected), std::string::npos)
+            << patch << "\n  gave: " << r.message();
+    }
 }
 
 }  // namespace
