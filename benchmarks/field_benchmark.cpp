@@ -4,9 +4,13 @@
 // for all of its terrain work at a 1 ms step.
 //   terra_benchmarks --benchmark_filter=Field
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
+#include <memory>
 #include <random>
 #include <stdexcept>
 
@@ -93,7 +97,10 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // Arg: 0 the same run on today's flat patch terrain; 1 the field, every wheel on untouched soil
 // (repeated_passes off); 2 the field with the memory (rear wheels in the front ruts: their
 // contact is integrated, the quadratic model has no reload branch); 3 as 2 without the stress at
-// depth. Counters: real-time factor, bytes of cell state, cells touched.
+// depth; 4 as 2 with the quadratic closed form's reload branch in the ruts; 5 as 4 without the
+// stress at depth. Second arg: the step in
+// ms; third: 1 for the implicit integrator (docs/dynamics.md, "Integrators"). Counters: real-time
+// factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
     auto loaded = scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "straight");
     if (!loaded) throw std::runtime_error(loaded.message());
@@ -126,12 +133,29 @@ scenario::Scenario fieldRun(int kind) {
     s.terrain.base = map->base;
     s.field_options.cell_m = 0.02;
     s.field_options.repeated_passes = kind >= 2;
-    if (kind == 3) s.field_options.stress_depths_m.clear();
+    if (kind == 3 || kind == 5) s.field_options.stress_depths_m.clear();
+    s.options.contact.closed_form_reload = kind >= 4;
+    return s;
+}
+
+double cpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The field run of `kind` at the step and integrator of the benchmark's 2nd and 3rd argument.
+scenario::Scenario fieldRun(const benchmark::State& state) {
+    scenario::Scenario s = fieldRun(static_cast<int>(state.range(0)));
+    s.time_step_s = 1e-3 * static_cast<double>(state.range(1));
+    s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
+    s.options.integrator =
+        state.range(2) == 1 ? dynamics::Integrator::kImplicit : dynamics::Integrator::kExplicit;
     return s;
 }
 
 void RoverOnField(benchmark::State& state) {
-    const scenario::Scenario s = fieldRun(static_cast<int>(state.range(0)));
+    const scenario::Scenario s = fieldRun(state);
     double wall = 0.0, loop = 0.0;
     long cells = 0;
     for (auto _ : state) {
@@ -150,19 +174,84 @@ void RoverOnField(benchmark::State& state) {
     state.counters["loop_real_time_factor"] = s.duration_s * n / loop;
     state.counters["maps_ms"] = 1e3 * (wall - loop) / n;
     state.counters["cells_touched"] = static_cast<double>(cells);
-    if (s.field) {
-        // The memory of the same run: its tiles (CellGrid::stateBytes).
-        dynamics::FieldTerrain terrain(s.field, s.robot, s.field_options);
-        dynamics::Rover rover(s.robot, terrain, s.options, s.initial, s.commandsAt(0.0));
-        for (int k = 0; k < 20000; ++k) rover.step(1e-3, s.commandsAt(0.0));
-        terrain.finish();
-        state.counters["cell_state_bytes"] = static_cast<double>(terrain.cells().stateBytes());
+    // The rover's own stepping loop again, outside the runner (no series rows, no divergence
+    // watch, no maps), timed in CPU seconds: the real-time factor the load of a shared machine
+    // does not move (wall ≈ CPU on an idle one). On the field, also the memory
+    // (CellGrid::stateBytes).
+    std::unique_ptr<dynamics::FieldTerrain> terrain;
+    if (s.field)
+        terrain = std::make_unique<dynamics::FieldTerrain>(s.field, s.robot, s.field_options);
+    std::unique_ptr<dynamics::Rover> rover =
+        terrain ? std::make_unique<dynamics::Rover>(s.robot, *terrain, s.options, s.initial,
+                                                    s.commandsAt(0.0))
+                : std::make_unique<dynamics::Rover>(s.robot, s.terrain, s.options, s.initial,
+                                                    s.commandsAt(0.0));
+    const long steps = std::lround(s.duration_s / s.time_step_s);
+    const double cpu_start = cpuSeconds();
+    for (long k = 0; k < steps; ++k) rover->step(s.time_step_s, s.commandsAt(0.0));
+    state.counters["cpu_real_time_factor"] = s.duration_s / (cpuSeconds() - cpu_start);
+    if (terrain) {
+        terrain->finish();
+        state.counters["cell_state_bytes"] = static_cast<double>(terrain->cells().stateBytes());
     }
 }
 BENCHMARK(RoverOnField)
-    ->Arg(0)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(3)
+    ->Args({0, 1, 0})
+    ->Args({1, 1, 0})
+    ->Args({2, 1, 0})
+    ->Args({3, 1, 0})
+    ->Args({0, 10, 1})
+    ->Args({1, 10, 1})
+    ->Args({2, 10, 1})
+    ->Args({4, 10, 1})
+    ->Args({0, 20, 1})
+    ->Args({1, 20, 1})
+    ->Args({2, 20, 1})
+    ->Args({4, 20, 1})
+    ->Args({5, 20, 1})
+    ->Args({4, 40, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
+
+// A 1-hour mission on the 2 cm field (issue 23: ≤ 4 s wall, ≤ 200 MB): the robot circles on
+// the field (front wheels steered 4°: a circle of ≈ 7 m radius, ≈ 4 laps in the hour, so from
+// the second lap on every wheel is in a remembered cell), at the step and integrator of the 2nd
+// and 3rd argument, with the memory (kind 2 or 4: first argument). One run: wall time, the loop's
+// real-time factor, and the process's peak resident memory (getrusage; it includes the field's
+// rasters, built once for all the benchmarks of this program, and the run's maps).
+void RoverFieldMission(benchmark::State& state) {
+    scenario::Scenario s = fieldRun(state);
+    s.duration_s = 3600.0;
+    s.output_interval_s = 1.0;
+    s.initial = {25.0, 3.0, 0.0, 0.0};
+    for (int i = 0; i < 2; ++i)
+        s.wheels[i].steer_angle_rad = scenario::Signal::constant(4.0 * M_PI / 180.0);
+    double wall = 0.0, loop = 0.0, cpu = 0.0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = cpuSeconds();
+        scenario::RunResult r = scenario::runScenario(s);
+        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        cpu += cpuSeconds() - cpu_start;
+        if (r.status != scenario::RunResult::Status::kCompleted)
+            state.SkipWithError(r.message.c_str());
+        loop += s.duration_s / r.summary.real_time_factor.value_or(0.0);
+        state.counters["cells_touched"] = static_cast<double>(r.summary.cells_touched.value_or(0));
+        state.counters["distance_m"] = r.summary.distance_m;
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+    const double n = static_cast<double>(state.iterations());
+    state.counters["wall_s"] = wall / n;
+    state.counters["cpu_s"] = cpu / n;
+    state.counters["loop_real_time_factor"] = s.duration_s * n / loop;
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+BENCHMARK(RoverFieldMission)
+    ->Args({2, 20, 1})
+    ->Args({4, 20, 1})
+    ->Args({5, 20, 1})
+    ->Args({4, 40, 1})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);

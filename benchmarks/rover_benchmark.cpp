@@ -75,6 +75,43 @@ void BM_ChassisAdvance(benchmark::State& state) {
 }
 BENCHMARK(BM_ChassisAdvance);
 
+// The implicit integrator (docs/dynamics.md, "Integrators"): one step and its parts, at its step.
+// Arg: 0 a whole step (evaluate with the contact Jacobians, 16 contact evaluations; advance with
+// the 6 × 6 correction and the steering stop), 1 evaluate alone, 2 advance alone.
+void BM_ImplicitRoverStep(benchmark::State& state) {
+    scenario::Scenario s = pulseSteering(contact::ContactModel::kQuadratic, 1.0, 0.02);
+    s.options.integrator = dynamics::Integrator::kImplicit;
+    dynamics::Rover rover(s.robot, s.terrain, s.options, s.initial, s.commandsAt(0.0));
+    const dynamics::Commands commands = s.commandsAt(0.0);
+    for (int i = 0; i < 150; ++i) rover.step(0.02, commands);  // settle
+    for (auto _ : state) {
+        if (state.range(0) == 0) rover.step(0.02, commands);
+        if (state.range(0) == 1) rover.evaluate(commands);
+        if (state.range(0) == 2) rover.advance(0.02);
+    }
+}
+BENCHMARK(BM_ImplicitRoverStep)->Arg(0)->Arg(1)->Arg(2);
+
+// 60 s of pulse steering with the implicit integrator at 10, 20 and 40 ms (quadratic contact):
+// the thesis's scenario at ≥ 1000× real time.
+void BM_PulseSteeringImplicit(benchmark::State& state) {
+    const double dt = static_cast<double>(state.range(0)) * 1e-3;
+    scenario::Scenario s = pulseSteering(contact::ContactModel::kQuadratic, 60.0, dt);
+    s.options.integrator = dynamics::Integrator::kImplicit;
+    for (auto _ : state) {
+        scenario::RunResult r = scenario::runScenario(s);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+    state.counters["real_time_factor"] = benchmark::Counter(
+        60.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PulseSteeringImplicit)
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+
 // The closed loop's cost (docs/traction.md, docs/performance.md "Rover"): 20 s of straight towing
 // on sandy loam (quadratic model, the cheapest rover: the largest relative overhead) under each
 // controller. Arg 0: controller (0 constant-speed, 1 fixed-slip, 2 oracle, 3 optimal); arg 1:

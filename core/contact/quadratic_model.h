@@ -190,24 +190,60 @@ QuadraticStress<T> fitQuadraticStress(const StressField<T>& field) {
             detail::fitRegion(field, theta_m, field.exitAngle(), at_m)};
 }
 
+namespace detail {
+
+// The lug model weights the shear stresses with ρ = r_s/r as the full model does (wheel_forces.h,
+// evaluatePiece); the parabolas are linear in their coefficients.
+template <typename T>
+void weightShear(const StressField<T>& field, QuadraticRegion<T>& region) {
+    const T& rho = field.shearRadiusRatio();
+    for (Parabola<T>* parabola : {&region.tau_t, &region.tau_l}) {
+        parabola->a *= rho, parabola->b *= rho, parabola->c *= rho;
+    }
+}
+
+// One region from θ_m to its end, on a remembered track split at the reload law's kink θ_k
+// (docs/model.md, "The quadratic reload branch", Q1–Q3): the parabola through θ_m, the middle
+// and θ_k, then the one through θ_k, the middle and the end, each in x measured from its own start.
+template <typename T>
+void addRememberedRegion(const StressField<T>& field, const T& theta_m, const T& end,
+                         const StressSample<T>& at_m, double kink, ForceSums<T>& sums) {
+    const bool split = std::isfinite(kink) && (kink - theta_m) * (end - kink) > 0.0;
+    const T k = split ? T(kink) : end;
+    QuadraticRegion<T> near = fitRegion(field, theta_m, k, at_m);
+    if (field.lugged()) weightShear(field, near);
+    addRegion(near, theta_m, sums);
+    if (!split) return;
+    QuadraticRegion<T> far = fitRegion(field, k, end, field.at(k));
+    if (field.lugged()) weightShear(field, far);
+    addRegion(far, k, sums);
+}
+
+}  // namespace detail
+
 /// F̃_x, F̃_y, F̃_z, M̃_x, M̃_y, M̃_z (Eqs. 2.41–2.46 corrected) plus F_b and F_s, without numerical
-/// integration.
+/// integration. On a remembered track (ContactParameters::remembers()) σ has the reload law's kink
+/// where the elastic reload meets the virgin curve (docs/compaction.md, R1): each region is then
+/// split there and fitted piece by piece (docs/model.md, "The quadratic reload branch"), two
+/// stress evaluations more per split region.
 template <typename T>
 WheelForces<T> computeQuadraticForces(const ContactParameters<T>& p, const OperatingPoint<T>& op,
                                       BulldozingModel bulldozing = BulldozingModel::kBekker) {
     const StressField<T> field(p, op);
+    detail::ForceSums<T> sums;
+    if (field.remembers()) {
+        const T& theta_m = field.maxStressAngle();
+        const StressSample<T> at_m = field.at(theta_m);
+        const std::array<double, 2> kinks = detail::reloadKinks(field);
+        detail::addRememberedRegion(field, theta_m, field.entryAngle(), at_m, kinks[0], sums);
+        detail::addRememberedRegion(field, theta_m, field.exitAngle(), at_m, kinks[1], sums);
+        return assembleForces(p, op, sums, bulldozing);
+    }
     QuadraticStress<T> q = fitQuadraticStress(field);
     if (field.lugged()) {
-        // The lug model weights the shear stresses with ρ = r_s/r as the full model does
-        // (wheel_forces.h, evaluatePiece); the parabolas are linear in their coefficients.
-        const T& rho = field.shearRadiusRatio();
-        for (QuadraticRegion<T>* region : {&q.front, &q.rear}) {
-            for (Parabola<T>* parabola : {&region->tau_t, &region->tau_l}) {
-                parabola->a *= rho, parabola->b *= rho, parabola->c *= rho;
-            }
-        }
+        detail::weightShear(field, q.front);
+        detail::weightShear(field, q.rear);
     }
-    detail::ForceSums<T> sums;
     detail::addRegion(q.front, q.max_stress_angle, sums);
     detail::addRegion(q.rear, q.max_stress_angle, sums);
     return assembleForces(p, op, sums, bulldozing);

@@ -2,6 +2,7 @@
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -61,6 +62,21 @@ double oscillatorStep(double stiffness, double damping, double inertia, double& 
     zeta = damping / (2.0 * std::sqrt(stiffness * inertia));
     return 2.0 * (std::sqrt(zeta * zeta + 1.0) - zeta) / omega;
 }
+
+Eigen::Vector3d toEigen(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+btVector3 toBullet(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+// [a]×: the matrix of a × (·).
+Eigen::Matrix3d crossMatrix(const btVector3& a) {
+    Eigen::Matrix3d m;
+    m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+    return m;
+}
+
+// The forward-difference step of the implicit integrator's contact Jacobians, relative to the
+// speed (or sinkage) it perturbs: far above the quadrature's 1e-7 relative tolerance (the
+// integrated contact), far below the scales on which the forces bend (slip, β, θ_f).
+constexpr double kJacobianStep = 1e-3;
 
 }  // namespace
 
@@ -161,6 +177,11 @@ struct Rover::Impl {
     double soil_power = 0.0;                          // W into the soil
     double drawbar_n = 0.0;                           // towed load on the chassis [N]
 
+    // The implicit integrator (Integrator::kImplicit): per wheel, what evaluate() found of the
+    // soil's force on the hub (world frame) against the hub's velocity and position.
+    std::array<Eigen::Matrix3d, kWheelCount> force_by_velocity;  // ∂F/∂v_hub [N·s/m]
+    std::array<Eigen::Matrix3d, kWheelCount> force_by_position;  // ∂F/∂x_hub [N/m]
+
     RoverState state;
     // The ledger's kinetic and potential energy are computed when asked for (energy()), not at
     // every step: the runner reads them once.
@@ -194,6 +215,141 @@ struct Rover::Impl {
         g.normal = btVector3(-slope[0], -slope[1], 1.0).normalized();
         g.distance = g.normal.dot(hub - btVector3(g.x, g.y, terrain->heightAt(g.x, g.y)));
         return g;
+    }
+
+    // ∂F/∂v_hub and ∂F/∂x_hub of wheel i (docs/dynamics.md, "Integrators", I2): the force
+    // (F_x, F_s, load) in the wheel frame R = [x_w y_w n] by forward differences of the contact
+    // in v_x, v_y and the sinkage h (h = r − n·(hub − c), so ∂h/∂x_hub = −n), and the corner's
+    // damper −c n nᵀ; the load's parts only while the soil pushes (load > 0).
+    void contactJacobians(int i, const contact::ContactParameters<double>& soil,
+                          const WheelKinematics& k, const WheelState& ws, const btVector3& x_w,
+                          const btVector3& y_w, const btVector3& n) {
+        force_by_velocity[i].setZero();
+        force_by_position[i].setZero();
+        if (!ws.contact.in_contact) return;
+        const bool pushing = ws.load_n > 0.0;
+        auto forces = [&](const contact::WheelForces<double>& f) {
+            return Eigen::Vector3d(f.fx, f.fs, pushing ? f.fz : 0.0);
+        };
+        const Eigen::Vector3d f0 = forces(ws.contact.forces);
+        auto derivative = [&](WheelKinematics q, double WheelKinematics::*of, double delta) {
+            q.*of += delta;
+            return Eigen::Vector3d((forces(evaluateContact(soil, q, options.contact).forces) - f0) /
+                                   delta);
+        };
+        const double dv =
+            kJacobianStep * std::max({std::abs(k.forward_speed_m_s), std::abs(k.rim_speed_m_s),
+                                      options.contact.regularisation_speed_m_s});
+        Eigen::Matrix3d local;
+        local.col(0) = derivative(k, &WheelKinematics::forward_speed_m_s, dv);
+        local.col(1) = derivative(k, &WheelKinematics::lateral_speed_m_s, dv);
+        local.col(2) = Eigen::Vector3d(0.0, 0.0, pushing ? -damping[i] : 0.0);
+        const Eigen::Vector3d by_sinkage =
+            derivative(k, &WheelKinematics::sinkage_m, kJacobianStep * k.sinkage_m);
+        Eigen::Matrix3d frame;
+        frame.col(0) = toEigen(x_w);
+        frame.col(1) = toEigen(y_w);
+        frame.col(2) = toEigen(n);
+        force_by_velocity[i] = frame * local * frame.transpose();
+        force_by_position[i] = -(frame * by_sinkage) * toEigen(n).transpose();
+    }
+
+    // The composite's twist: its centre of mass' velocity and the chassis' angular velocity.
+    Eigen::Matrix<double, 6, 1> twist() const {
+        const btVector3 w = body->getBaseOmega();
+        Eigen::Matrix<double, 6, 1> out;
+        out << toEigen(body->getBaseVel() + w.cross(basis() * com_in_base)), toEigen(w);
+        return out;
+    }
+
+    // The linearly implicit step (docs/dynamics.md, "Integrators", I1–I4). With the ideal servos
+    // the robot moves over a step as one rigid body of mass m and inertia I_C about its centre of
+    // mass, whose twist v (the centre of mass' velocity, the angular velocity) the explicit step
+    // and the servos took from v_n to v_e = v_n + Δ_e. With the soil's forces at the step's end,
+    // F(x_n + Δt v_n+1, v_n+1) ≈ F_n + J_x Δt v_n+1 + J_v Δ, the change is Δ of
+    //   (M − Δt J_v − Δt² J_x) Δ = M Δ_e + Δt² J_x v_n,   M = diag(m 1, I_C),
+    // with J = Σ_i G_iᵀ ∂F_i G_i, G_i = [1, −[a_i]×] (v_hub = V + Ω × a_i, a_i from the centre of
+    // mass to hub i); solved as the correction δ = Δ − Δ_e of
+    //   (M − J′) δ = J′ Δ_e + Δt² J_x v_n,   J′ = Δt J_v + Δt² J_x,
+    // without the steering servos' share of Δ_e on the right (the chassis' reaction to a one-step
+    // steering swing, several rad/s for that step alone, far outside the forces' linear range: it
+    // stays explicit, as before). The correction's impulse P = M δ is the soil's: its work
+    // P · (v_n + v_n+1)/2 leaves the soil's ledger; the spin servos hold the wheels' rates
+    // against the chassis' change of Ω with I_w â_i·δΩ more, at their commanded rate.
+    void implicitCorrection(double dt, const Eigen::Matrix<double, 6, 1>& twist_before,
+                            const btVector3& steering_omega, const btMatrix3x3& composite,
+                            const std::array<btVector3, kWheelCount>& axles, double& motor_work) {
+        btMultiBody& b = *body;
+        const btVector3 base = b.getBasePos();
+        const btVector3 com_arm = basis() * com_in_base;
+        const btVector3 com = base + com_arm;
+        const btVector3 w1 = b.getBaseOmega();
+        const Eigen::Matrix<double, 6, 1> twist_explicit = twist();
+        Eigen::Matrix<double, 6, 6> mass = Eigen::Matrix<double, 6, 6>::Zero();
+        mass.topLeftCorner<3, 3>().diagonal().setConstant(total_mass);
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) mass(3 + r, 3 + c) = composite[r][c];
+        }
+        Eigen::Matrix<double, 6, 6> by_velocity = Eigen::Matrix<double, 6, 6>::Zero();
+        Eigen::Matrix<double, 6, 6> by_position = Eigen::Matrix<double, 6, 6>::Zero();
+        const btMatrix3x3 rotation = basis();
+        for (int i = 0; i < kWheelCount; ++i) {
+            Eigen::Matrix<double, 3, 6> g;
+            g.leftCols<3>().setIdentity();
+            g.rightCols<3>() = -crossMatrix(base + rotation * hubs[i] - com);
+            by_velocity += g.transpose() * force_by_velocity[i] * g;
+            by_position += g.transpose() * force_by_position[i] * g;
+        }
+        const Eigen::Matrix<double, 6, 6> stiffness = dt * by_velocity + dt * dt * by_position;
+        Eigen::Matrix<double, 6, 1> change = twist_explicit - twist_before;
+        change.tail<3>() -= toEigen(steering_omega);
+        const Eigen::Matrix<double, 6, 1> rhs =
+            stiffness * change + dt * dt * (by_position * twist_before);
+        const Eigen::Matrix<double, 6, 1> correction = (mass - stiffness).partialPivLu().solve(rhs);
+        const Eigen::Matrix<double, 6, 1> next = twist_explicit + correction;
+        const Eigen::Matrix<double, 6, 1> impulse = mass * correction;
+        energy.dissipated_j -= impulse.dot(0.5 * (twist_before + next));
+        const btVector3 omega = toBullet(next.tail<3>());
+        const btVector3 omega_change = omega - w1;
+        for (int i = 0; i < kWheelCount; ++i) {
+            const double spin_impulse = robot.wheel_spin_inertia_kg_m2 * axles[i].dot(omega_change);
+            motor_work += spin_impulse * b.getJointVel(spinLink(i));
+            state.wheels[i].motor_torque_nm += spin_impulse / dt;
+        }
+        b.setBaseOmega(omega);
+        b.setBaseVel(toBullet(next.head<3>()) - omega.cross(com_arm));
+    }
+
+    // The implicit integrator's steering servos stop every wheel at its commanded angle at the
+    // step's end (docs/dynamics.md, "Integrators", I5): the steering rates go to 0 by the same
+    // exact, internal impulses as the servos' (the momentum balance of advance(), with the spin
+    // rates held), so the chassis' reaction to a swing acts over the step that makes it and the
+    // next contact does not see it. At 5–6 ms a 10° one-step swing otherwise turned the chassis at
+    // 20°/s into the next step, where the saturated lateral forces (β ≈ −75°) kept a yaw error.
+    void stopSteering(const btMatrix3x3& composite, double& motor_work, double& steering_work) {
+        btMultiBody& b = *body;
+        const btMatrix3x3 rotation = basis();
+        const btVector3 z = rotation.getColumn(2);
+        const double it = wheel_transverse_inertia, iw = robot.wheel_spin_inertia_kg_m2;
+        btVector3 momentum(0, 0, 0);
+        std::array<double, kWheelCount> rate{};
+        for (int i = 0; i < kWheelCount; ++i) {
+            rate[i] = b.getJointVel(steerLink(i));
+            momentum -= (it * rate[i]) * z;
+        }
+        if (momentum.isZero()) return;
+        const btVector3 omega_change = -(composite.inverse() * momentum);
+        const btVector3 com_arm = rotation * com_in_base;
+        b.setBaseOmega(b.getBaseOmega() + omega_change);
+        b.setBaseVel(b.getBaseVel() - omega_change.cross(com_arm));
+        for (int i = 0; i < kWheelCount; ++i) {
+            const double steer_impulse = it * (z.dot(omega_change) - rate[i]);
+            const double spin_impulse =
+                iw * axle(rotation, b.getJointPos(steerLink(i))).dot(omega_change);
+            b.setJointVel(steerLink(i), 0.0);
+            steering_work += steer_impulse * 0.5 * rate[i];
+            motor_work += spin_impulse * b.getJointVel(spinLink(i));
+        }
     }
 
     // The steered wheel's axle (spin axis) in the world.
@@ -274,6 +430,12 @@ Rover::Rover(const RobotParameters& robot, std::unique_ptr<TerrainModel> owned,
     Impl& m = *impl_;
     if (const auto issues = validate(robot, "robot."); !issues.empty()) {
         throw std::invalid_argument(formatIssues(issues));
+    }
+    if (options.integrator == Integrator::kImplicit && std::isfinite(options.max_motor_torque_nm)) {
+        throw std::invalid_argument(
+            "Rover: the implicit integrator needs the ideal spin servos (max_motor_torque_nm = "
+            "+inf), got max_motor_torque_nm = " +
+            formatNumber(options.max_motor_torque_nm));
     }
     m.robot = robot;
     m.owned_terrain = std::move(owned);
@@ -474,6 +636,9 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         m.wheel_moment[i] = f.mx * x_w - f.my * y_w + f.mz * n;
         const double power = -(m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega));
         m.soil_power += power;
+        if (m.options.integrator == Integrator::kImplicit) {
+            m.contactJacobians(i, *soil, k, ws, x_w, y_w, n);
+        }
         if (m.terrain->remembers()) {
             WheelImprint imprint;
             imprint.in_contact = ws.contact.in_contact;
@@ -507,6 +672,10 @@ void Rover::advance(double dt_s) {
         spin_before[i] = body.getJointVel(spinLink(i));
         steer_before[i] = body.getJointVel(steerLink(i));
     }
+    const bool implicit = m.options.integrator == Integrator::kImplicit;
+    // The implicit integrator's twist at the step's start (v_n).
+    Eigen::Matrix<double, 6, 1> twist_before;
+    if (implicit) twist_before = m.twist();
 
     // 1. Free step of the articulated body (Featherstone's algorithm, Bullet): gravity and the
     //    soil's forces and moments on the wheel links, joints unactuated; v += a dt.
@@ -616,9 +785,18 @@ void Rover::advance(double dt_s) {
         steering_work += steer_impulse * 0.5 * (steer_before[i] + body.getJointVel(steerLink(i)));
         m.state.wheels[i].motor_torque_nm = spin_impulse / dt_s;
     }
+    if (implicit) {
+        // The steering servos' share of the chassis' change of Ω (the momentum balance above,
+        // linear in the servos' rate changes).
+        btVector3 steering(0, 0, 0);
+        for (int i = 0; i < kWheelCount; ++i) steering += (it * steer_change[i]) * z;
+        const btVector3 steering_omega = -(composite.inverse() * steering);
+        m.implicitCorrection(dt_s, twist_before, steering_omega, composite, axles, motor_work);
+    }
 
     // 3. Positions from the new velocities (semi-implicit Euler; Bullet's quaternion update).
     body.stepPositionsMultiDof(dt_s);
+    if (implicit) m.stopSteering(composite, motor_work, steering_work);
 
     if (m.drawbar_n != 0.0) {
         // F v dt with the step's new velocity: the displacement the semi-implicit step takes.

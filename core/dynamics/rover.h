@@ -35,6 +35,20 @@ struct InitialState {
     double speed_m_s = 0.0;  ///< forward speed of the chassis [m/s]
 };
 
+/// How Rover::advance integrates the robot over one step (docs/dynamics.md, "Integrators").
+enum class Integrator {
+    /// Semi-implicit Euler with the soil's forces and moments of the step's start (the thesis's
+    /// scenarios at 1 ms; stable up to dynamics::largestStableStep, accurate to ≈ 2 ms at the
+    /// thesis's 2 cm/s, where the slip and slip-angle forces are stiff).
+    kExplicit,
+    /// Linearly implicit (Rosenbrock–Euler) in the body's velocity: the same step, then the body's
+    /// twist is corrected by (M − Δt J_v − Δt² J_x)⁻¹, with J_v, J_x the soil forces' Jacobians in
+    /// the hubs' velocities (slip, slip angle, vertical damping) and positions (sinkage), taken by
+    /// forward differences of the contact at every step. Needs the ideal spin servos
+    /// (max_motor_torque_nm = +inf): a torque-limited wheel's spin is not in the correction.
+    kImplicit,
+};
+
 /// Simulation options.
 struct RoverOptions {
     ContactOptions contact;
@@ -42,6 +56,7 @@ struct RoverOptions {
     /// |τ| ≤ this for each spin servo [N·m] (a drive motor's torque limit); +inf: the ideal servo
     /// that always reaches its commanded rate (the thesis's robot, and every constant-speed run).
     double max_motor_torque_nm = std::numeric_limits<double>::infinity();
+    Integrator integrator = Integrator::kExplicit;
 };
 
 /// One wheel at one instant (the quantities the forces of the coming step were computed from).

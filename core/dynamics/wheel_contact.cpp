@@ -40,11 +40,12 @@ WheelContact evaluateContact(const contact::ContactParameters<double>& p, const 
         std::min(contact::clampedExitAngle(options.exit_angle_rad, c.entry_angle_rad), 0.0);
     const contact::OperatingPoint<double> op{c.slip, c.slip_angle_rad, c.entry_angle_rad,
                                              c.exit_angle_rad, std::nullopt};
-    // A remembered track is always integrated: the quadratic closed form has no reload branch
-    // (compaction::solvePass does the same).
-    c.forces = options.model == contact::ContactModel::kFull || p.remembers()
-                   ? contact::computeForces(p, op, options.bulldozing, options.integration)
-                   : contact::computeQuadraticForces(p, op, options.bulldozing);
+    // A remembered track is integrated unless the closed form's reload branch is asked for
+    // (compaction::solvePass integrates it too).
+    const bool integrate = options.model == contact::ContactModel::kFull ||
+                           (p.remembers() && !options.closed_form_reload);
+    c.forces = integrate ? contact::computeForces(p, op, options.bulldozing, options.integration)
+                         : contact::computeQuadraticForces(p, op, options.bulldozing);
     const double sign =
         std::clamp(c.slip_angle_rad / options.slip_angle_regularisation_rad, -1.0, 1.0);
     c.forces.fs = c.forces.fy - sign * c.forces.fb;

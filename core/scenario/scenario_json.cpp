@@ -491,6 +491,11 @@ Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
     r.choice<contact::BulldozingModel>("bulldozing", s.options.contact.bulldozing,
                                        {{"bekker", contact::BulldozingModel::kBekker},
                                         {"hegedus", contact::BulldozingModel::kHegedus}});
+    r.choice<bool>("reload_contact", s.options.contact.closed_form_reload,
+                   {{"integrated", false}, {"closed-form", true}});
+    r.choice<dynamics::Integrator>("integrator", s.options.integrator,
+                                   {{"explicit", dynamics::Integrator::kExplicit},
+                                    {"implicit", dynamics::Integrator::kImplicit}});
     const FieldInfo& exit = contact::exitAngleField();
     r.field(exit, s.options.contact.exit_angle_rad);
 
