@@ -85,7 +85,8 @@ nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs);
 /// an equal share of `control`'s progress. `on_run`, when set, sees each finished run (with its
 /// scenario) before the next starts and may move from it; the CLI writes its files there, the
 /// studio keeps the run it shows. A cancelled run ends the comparison: the runs so far are
-/// returned, the cancelled one last. Throws std::invalid_argument as runRover does.
+/// returned, the cancelled one last. Throws std::invalid_argument as runRover does; an exception
+/// from `on_run` ends the comparison and propagates (the runs so far are dropped).
 std::vector<ControllerRun> compareControllers(
     const RoverSettings& settings, const Control& control = {},
     const std::function<void(const std::string& controller, RoverResult& result)>& on_run = {});

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <mutex>
 
 #include "core/io/atomic_file.h"
 #include "core/io/json_reader.h"
@@ -129,9 +131,36 @@ std::string inputsHash(const json& inputs) { return fnv1a(inputs.dump()); }
 
 json fileStamp(const std::filesystem::path& path) {
     if (path.empty()) return nullptr;
+    // The panels ask on every change of their settings: a file is read again only when its size
+    // or time changed (a file edited within the clock's resolution and to the same size would
+    // keep its old hash: the name, size and time are then all that tells it).
+    struct Seen {
+        std::uintmax_t size;
+        std::filesystem::file_time_type time;
+        std::string hash;
+    };
+    static std::mutex mutex;
+    static std::map<std::string, Seen> seen;
+    std::error_code size_error, time_error;
+    const std::uintmax_t size = std::filesystem::file_size(path, size_error);
+    const std::filesystem::file_time_type time = std::filesystem::last_write_time(path, time_error);
+    const bool stat_ok = !size_error && !time_error;
+    const std::string key = std::filesystem::absolute(path).lexically_normal().string();
+    if (stat_ok) {
+        const std::lock_guard lock(mutex);
+        const auto it = seen.find(key);
+        if (it != seen.end() && it->second.size == size && it->second.time == time)
+            return it->second.hash;
+    }
     std::string bytes;
     if (io::readFile(path, bytes)) return "missing";  // an error message: not readable
-    return fnv1a(bytes);
+    std::string hash = fnv1a(bytes);
+    if (stat_ok) {
+        const std::lock_guard lock(mutex);
+        if (seen.size() > 64) seen.clear();  // a few data files per session, never a leak
+        seen[key] = {size, time, hash};
+    }
+    return hash;
 }
 
 std::filesystem::path resultsPathFor(const std::filesystem::path& project_file) {

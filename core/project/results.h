@@ -63,7 +63,8 @@ std::string inputsHash(const nlohmann::json& inputs);
 /// What a saved result's inputs hold of a data file: null for no file (an empty name), "missing"
 /// for a file that cannot be read, else inputsHash of its bytes. The content, not the name or
 /// the time stamp: moving or copying the project's folder keeps its results, an edited file
-/// does not.
+/// does not. The hash is remembered per file, size and modification time, so asking again
+/// without a change reads nothing (thread-safe).
 nlohmann::json fileStamp(const std::filesystem::path& path);
 
 /// The sidecar of a project file: "field/p.terra" → "field/p.terra.results".

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/analysis/rover.h"
 #include "core/analysis/traction.h"
@@ -200,12 +202,58 @@ TEST(TractionControlRun, RearWheelsTakeTheNewPlanAtTheBorder) {
     EXPECT_GT(on_clay(lastSetPointOn(r.run, 1, "RL")), kBorderEfficiency);
 }
 
-}  // namespace
+// compareControllers: every controller in turn, each a quarter of the progress, its runs in
+// controllerNames() order with their own results; a cancel ends the comparison at the run it
+// stopped, which comes last.
+TEST(CompareControllers, RunsEachControllerInTurnAndStopsAtACancel) {
+    RoverSettings settings = border(scenario::ControllerType::kOracle);
+    settings.controller.reset();
+    settings.duration_s = 1.0;
+    std::vector<double> fractions;
+    std::vector<std::string> seen;
+    const std::vector<ControllerRun> runs = compareControllers(
+        settings, Control{nullptr, [&](double f) { fractions.push_back(f); }},
+        [&](const std::string& name, RoverResult& result) {
+            seen.push_back(name);
+            EXPECT_EQ(result.scenario.controller.type, scenario::controllerFromName(name));
+        });
+    ASSERT_EQ(runs.size(), 4u);
+    EXPECT_EQ(seen, scenario::controllerNames());
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        EXPECT_EQ(runs[k].controller, scenario::controllerNames()[k]);
+        EXPECT_EQ(runs[k].run.status, scenario::RunResult::Status::kCompleted);
+    }
+    ASSERT_FALSE(fractions.empty());
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_GT(fractions.front(), 0.0);
+    EXPECT_LE(fractions.back(), 1.0);
+    EXPECT_GT(fractions.back(), 0.75);
+
+    const std::atomic<bool> cancel{true};
+    seen.clear();
+    const std::vector<ControllerRun> stopped =
+        compareControllers(settings, Control{&cancel},
+                           [&](const std::string& name, RoverResult&) { seen.push_back(name); });
+    ASSERT_EQ(stopped.size(), 1u);
+    EXPECT_EQ(stopped.front().controller, scenario::controllerNames().front());
+    EXPECT_EQ(stopped.front().run.status, scenario::RunResult::Status::kCancelled);
+    EXPECT_EQ(seen.size(), 1u);
+}
+
 // The slope scenario (docs/traction.md §6, "Slope"): up 3 % with the implement, a wheel must pull
 // (m g sin α + F₀)/4 at rest. Below the slip s_eq where the model's F_x reaches that, a slip
 // controller cannot accelerate the robot: it slows until its command sits at the motors' start-up
 // floor and crawls there at s_eq, whatever its set-point. s_eq from the wheel model by bisection
 // (load m g cos α / 4), against the run's slip; the oracle's set-point lies above it and climbs.
+// What the crawl is held to: its mean slip and spin rate over the last 10 s (the wheels cross a
+// remembered 0.1 m cell every ~12 s, a short blip of each), its speed, and the distances that
+// tell crawling from climbing in the 40 s.
+constexpr double kCrawlSlipTolerance = 0.01;   // [-]
+constexpr double kCrawlOmegaTolerance = 0.01;  // [rad/s]
+constexpr double kCrawlSpeed = 0.015;          // [m/s]
+constexpr double kClimbDistance = 2.0;         // [m]
+constexpr double kCrawlDistance = 0.5;         // [m]
+
 TEST(TractionControlRun, OnTheSlopeASetPointBelowTheSlipItNeedsCrawlsAtTheFloor) {
     RoverSettings fixed;
     fixed.scenario = "traction-slope";
@@ -239,23 +287,22 @@ TEST(TractionControlRun, OnTheSlopeASetPointBelowTheSlipItNeedsCrawlsAtTheFloor)
     const Table& t = crawl.run.series;
     const std::size_t time = t.column("t_s"), slip = t.column("FL_slip"),
                       omega = t.column("FL_omega_rad_s"), speed = t.column("vx_m_s");
-    // Means over the last 10 s (the wheels cross a 0.1 m cell of the front ruts every ~12 s: a
-    // short blip of slip and ω there).
     double n = 0, mean_slip = 0, mean_omega = 0, mean_speed = 0;
     for (const auto& row : t.rows) {
         if (row[time] < 30.0) continue;
         ++n, mean_slip += row[slip], mean_omega += row[omega], mean_speed += row[speed];
     }
     ASSERT_GT(n, 100);
-    EXPECT_NEAR(mean_slip / n, s_eq, 0.01);
-    EXPECT_NEAR(mean_omega / n, s.controller.min_spin_rate_rad_s, 0.01);
-    EXPECT_LT(mean_speed / n, 0.015);
+    EXPECT_NEAR(mean_slip / n, s_eq, kCrawlSlipTolerance);
+    EXPECT_NEAR(mean_omega / n, s.controller.min_spin_rate_rad_s, kCrawlOmegaTolerance);
+    EXPECT_LT(mean_speed / n, kCrawlSpeed);
     RoverSettings oracle = fixed;
     oracle.controller = scenario::ControllerType::kOracle;
     const RoverResult climb = runRover(oracle);
     EXPECT_GT(lastSetPointOn(climb.run, 1), s_eq);  // soil 1: the legend's class 1
-    EXPECT_GT(climb.run.summary.distance_m, 2.0);
-    EXPECT_LT(crawl.run.summary.distance_m, 0.5);
+    EXPECT_GT(climb.run.summary.distance_m, kClimbDistance);
+    EXPECT_LT(crawl.run.summary.distance_m, kCrawlDistance);
 }
 
+}  // namespace
 }  // namespace terra::analysis

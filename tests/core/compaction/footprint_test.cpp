@@ -22,7 +22,7 @@ struct Solved {
     contact::WheelForces<double> forces;
 };
 
-Solved solve(const contact::ContactParameters<double>& p, double slip, double beta_deg) {
+Solved solveFootprint(const contact::ContactParameters<double>& p, double slip, double beta_deg) {
     contact::EntryAngleProblem problem;
     problem.load_n = kLoad;
     problem.slip = slip;
@@ -43,7 +43,7 @@ TEST(Footprint, TheLoadsSumToTheWheelsForces) {
     // Σ F on the soil is the reaction of the adaptive integrator's forces (a different rule).
     for (const double slip : {0.0, 0.2, 0.6}) {
         for (const double beta : {0.0, 10.0}) {
-            const Solved w = solve(contact::testing::sandyLoam(), slip, beta);
+            const Solved w = solveFootprint(contact::testing::sandyLoam(), slip, beta);
             for (const WidthProfile width : {WidthProfile::kUniform, WidthProfile::kParabolic}) {
                 const Eigen::Vector3d sum = total(wheelFootprint(w.p, w.op, {width, 10, 7}));
                 EXPECT_NEAR(sum.z(), kLoad, 2e-3 * kLoad) << slip << " " << beta;
@@ -55,7 +55,7 @@ TEST(Footprint, TheLoadsSumToTheWheelsForces) {
 }
 
 TEST(Footprint, UniformAcrossTheWidthOrParabolic) {
-    const Solved w = solve(contact::testing::sandyLoam(), 0.2, 0.0);
+    const Solved w = solveFootprint(contact::testing::sandyLoam(), 0.2, 0.0);
     const std::vector<PointLoad> uniform =
         wheelFootprint(w.p, w.op, {WidthProfile::kUniform, 10, 7});
     const std::vector<PointLoad> parabolic =
@@ -86,7 +86,7 @@ TEST(Footprint, UniformAcrossTheWidthOrParabolic) {
 TEST(Footprint, EveryPlaneBelowTheWheelCarriesItsLoad) {
     // Vertical equilibrium of the issue: ∫σ_z dA at a depth equals the wheel's load within 1 %.
     using boost::math::quadrature::gauss_kronrod;
-    const Solved w = solve(contact::testing::sandyLoam(), 0.3, 5.0);
+    const Solved w = solveFootprint(contact::testing::sandyLoam(), 0.3, 5.0);
     const StressPropagation propagation(wheelFootprint(w.p, w.op), 5.0);
     for (const double z : {0.1, 0.3, 0.6}) {
         // ∫∫ σ_z dx dy over the plane, x and y mapped from (−1, 1) by t/(1 − t²).
@@ -110,7 +110,7 @@ TEST(Footprint, EveryPlaneBelowTheWheelCarriesItsLoad) {
 
 TEST(Footprint, LoadsSitOnTheRimBelowTheRutsBottom) {
     contact::ContactParameters<double> p = contact::testing::sandyLoam();
-    const Solved w = solve(p, 0.2, 0.0);
+    const Solved w = solveFootprint(p, 0.2, 0.0);
     p.rut_depth_m = 0.01;
     for (const PointLoad& l : wheelFootprint(p, w.op)) {
         // The rim point at θ with x = r sin θ lies r (cos θ − cos θ_f) below the rut's bottom.

@@ -14,7 +14,7 @@ namespace {
 using testing::kDeg;
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
-OperatingPoint<double> point(double s, double beta_deg, double theta_f_deg = 30.0) {
+OperatingPoint<double> slipAnglePoint(double s, double beta_deg, double theta_f_deg = 30.0) {
     return {s, beta_deg * kDeg, theta_f_deg * kDeg, 0.0, std::nullopt};
 }
 
@@ -22,7 +22,7 @@ TEST(StressField, NoShearAtTheFrontEdge) {
     // j(θ_f) = 0 by Eq. 2.14, so τ = 0 at the entry point whatever the slip (Eq. 2.20).
     for (double s : {0.0, 0.3, -0.4}) {
         for (double beta : {0.0, 12.0}) {
-            const StressField<double> field(testing::sandyLoam(), point(s, beta));
+            const StressField<double> field(testing::sandyLoam(), slipAnglePoint(s, beta));
             const StressSample<double> front = field.at(30.0 * kDeg);
             EXPECT_EQ(front.tau, 0.0) << "s = " << s << ", beta = " << beta;
             EXPECT_EQ(front.sigma, 0.0);
@@ -34,7 +34,7 @@ TEST(StressField, NoShearAtTheFrontEdge) {
 TEST(StressField, NormalStressFollowsBekkerInFrontOfThetaM) {
     // Eq. 2.17 front branch, by hand: K_s r^n (cos θ − cos θ_f)^n.
     const ContactParameters<double> p = testing::sandyLoam();
-    const StressField<double> field(p, point(0.3, 0.0));
+    const StressField<double> field(p, slipAnglePoint(0.3, 0.0));
     const double theta = 25.0 * kDeg;
     const double expected = (5.3e3 / 0.107 + 1.515e6) *
                             std::pow(0.092 * (std::cos(theta) - std::cos(30.0 * kDeg)), 0.7);
@@ -42,7 +42,7 @@ TEST(StressField, NormalStressFollowsBekkerInFrontOfThetaM) {
 }
 
 TEST(StressField, NormalStressIsContinuousAndPeaksAtThetaM) {
-    const StressField<double> field(testing::sandyLoam(), point(0.3, 0.0));
+    const StressField<double> field(testing::sandyLoam(), slipAnglePoint(0.3, 0.0));
     const double theta_m = field.maxStressAngle();
     EXPECT_NEAR(theta_m, (0.2 + 0.3 * 0.3) * 30.0 * kDeg, 1e-15);  // Eq. 2.18
     const double at = field.at(theta_m).sigma;
@@ -55,7 +55,7 @@ TEST(StressField, NormalStressIsContinuousAndPeaksAtThetaM) {
 TEST(StressField, ShearIsColinearWithShearVelocity) {
     // Eq. 2.22: (τ_t, τ_l) ∥ (1 − κ cos θ, κ tan β), with |(τ_t, τ_l)| = τ.
     const double s = 0.2, beta = 20.0 * kDeg;
-    const StressField<double> field(testing::sandyLoam(kNoLimit), point(s, 20.0));
+    const StressField<double> field(testing::sandyLoam(kNoLimit), slipAnglePoint(s, 20.0));
     const double theta = 10.0 * kDeg;
     const StressSample<double> st = field.at(theta);
     const double vt = 1.0 - (1.0 - s) * std::cos(theta), vl = (1.0 - s) * std::tan(beta);
@@ -66,7 +66,7 @@ TEST(StressField, ShearIsColinearWithShearVelocity) {
 
 TEST(StressField, ShearDeformationMatchesEq214) {
     const double s = 0.3, beta = 12.0 * kDeg, tf = 30.0 * kDeg, r = 0.092, theta = 5.0 * kDeg;
-    const StressField<double> field(testing::sandyLoam(kNoLimit), point(s, 12.0));
+    const StressField<double> field(testing::sandyLoam(kNoLimit), slipAnglePoint(s, 12.0));
     const StressSample<double> st = field.at(theta);
     const double jt = r * ((tf - theta) - (1 - s) * (std::sin(tf) - std::sin(theta)));
     const double jl = r * (1 - s) * (tf - theta) * std::tan(beta);
@@ -80,7 +80,7 @@ TEST(StressField, ShearDeformationMatchesEq214) {
 
 TEST(StressField, ShearLimitCapsDeformation) {
     // With j_max (Eq. 2.16) the deformation never exceeds the limit; far from θ_f it saturates.
-    const StressField<double> field(testing::sandyLoam(0.002), point(0.9, 0.0));
+    const StressField<double> field(testing::sandyLoam(0.002), slipAnglePoint(0.9, 0.0));
     EXPECT_DOUBLE_EQ(field.at(0.0).shear, 0.002);
     const StressSample<double> st = field.at(0.0);
     EXPECT_NEAR(st.tau, 1.7e3 * (1 - std::exp(-0.002 / 0.025)), 1e-9);  // σ(θ_r) = 0
@@ -90,12 +90,12 @@ TEST(StressField, BrakingUsesTheSkidKinematics) {
     // docs/model.md, Slip: κ = 1/(1 + s) for −1 < s < 0; near θ_f the soil moves faster than the
     // rim, so the tangential shear stress opposes rotation (negative).
     const double s = -0.5;
-    const StressField<double> field(testing::sandyLoam(kNoLimit), point(s, 0.0));
+    const StressField<double> field(testing::sandyLoam(kNoLimit), slipAnglePoint(s, 0.0));
     EXPECT_DOUBLE_EQ(field.velocityRatio(), 2.0);
     EXPECT_LT(field.at(0.0).tau_t, 0.0);
     // The slip → 0 limits from both sides agree.
-    const StressField<double> plus(testing::sandyLoam(), point(1e-9, 5.0));
-    const StressField<double> minus(testing::sandyLoam(), point(-1e-9, 5.0));
+    const StressField<double> plus(testing::sandyLoam(), slipAnglePoint(1e-9, 5.0));
+    const StressField<double> minus(testing::sandyLoam(), slipAnglePoint(-1e-9, 5.0));
     const double theta = 12.0 * kDeg;
     EXPECT_NEAR(plus.at(theta).tau_t, minus.at(theta).tau_t, 1e-6 * plus.at(theta).tau_t);
     EXPECT_NEAR(plus.at(theta).sigma, minus.at(theta).sigma, 1e-6 * plus.at(theta).sigma);
@@ -104,7 +104,7 @@ TEST(StressField, BrakingUsesTheSkidKinematics) {
 TEST(StressField, StagnationPointTakesTheDrivingDirection) {
     // s = 0, β = 0: the shear velocity vanishes at θ = 0; the one-sided limit (+1, 0)
     // (docs/model.md, Stagnation point).
-    OperatingPoint<double> op = point(0.0, 0.0);
+    OperatingPoint<double> op = slipAnglePoint(0.0, 0.0);
     op.exit_angle_rad = -5.0 * kDeg;
     const StressField<double> field(testing::sandyLoam(), op);
     const StressSample<double> st = field.at(0.0);

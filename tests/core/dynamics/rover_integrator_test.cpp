@@ -16,18 +16,19 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::dynamics {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 // The goal of issue 23: the fast run within 1 % of the 1 ms reference.
 constexpr double kGoal = 0.01;
 // The implicit step the fast mode is shown at.
 constexpr double kFastStep = 0.02;  // [s]
 
-scenario::Scenario shipped(const std::string& name, Integrator integrator, double step_s) {
+scenario::Scenario shippedWith(const std::string& name, Integrator integrator, double step_s) {
     Result<scenario::Scenario> s = scenario::resolveScenario(kLocations, name);
     EXPECT_TRUE(s.ok()) << s.message();
     scenario::Scenario out = s.value();
@@ -86,9 +87,9 @@ double relative(double fast, double reference) {
 void expectWithinGoal(const std::string& name) {
     SCOPED_TRACE(name);
     const scenario::RunResult ref =
-        scenario::runScenario(shipped(name, Integrator::kExplicit, 1e-3));
+        scenario::runScenario(shippedWith(name, Integrator::kExplicit, 1e-3));
     const scenario::RunResult fast =
-        scenario::runScenario(shipped(name, Integrator::kImplicit, kFastStep));
+        scenario::runScenario(shippedWith(name, Integrator::kImplicit, kFastStep));
     ASSERT_EQ(ref.status, scenario::RunResult::Status::kCompleted) << ref.message;
     ASSERT_EQ(fast.status, scenario::RunResult::Status::kCompleted) << fast.message;
     ASSERT_DOUBLE_EQ(fast.summary.duration_s, ref.summary.duration_s);
@@ -118,9 +119,9 @@ TEST(RoverIntegrator, PulseSteeringAtTwentyMillisecondsEndsWithinOnePercentOfThe
 
 TEST(RoverIntegrator, PulseSteeringFollowsTheReferenceSeries) {
     const scenario::RunResult ref =
-        scenario::runScenario(shipped("pulse-steering", Integrator::kExplicit, 1e-3));
+        scenario::runScenario(shippedWith("pulse-steering", Integrator::kExplicit, 1e-3));
     const scenario::RunResult fast =
-        scenario::runScenario(shipped("pulse-steering", Integrator::kImplicit, kFastStep));
+        scenario::runScenario(shippedWith("pulse-steering", Integrator::kImplicit, kFastStep));
     // Position and heading over the whole run; the speed after the start (its first 0.1 s is
     // the slip transient from rest, which a 20 ms step resolves in a few steps only).
     for (const char* column : {"x_m", "y_m", "yaw_deg"}) {
@@ -131,8 +132,8 @@ TEST(RoverIntegrator, PulseSteeringFollowsTheReferenceSeries) {
 TEST(RoverIntegrator, SmallStepsAgreeWithTheExplicitStep) {
     // Both integrators are first order and share the explicit step: at 0.5 ms they must agree
     // far closer than either does with a 10 ms step.
-    scenario::Scenario e = shipped("pulse-steering", Integrator::kExplicit, 5e-4);
-    scenario::Scenario i = shipped("pulse-steering", Integrator::kImplicit, 5e-4);
+    scenario::Scenario e = shippedWith("pulse-steering", Integrator::kExplicit, 5e-4);
+    scenario::Scenario i = shippedWith("pulse-steering", Integrator::kImplicit, 5e-4);
     e.duration_s = i.duration_s = 20.0;
     const scenario::RunResult a = scenario::runScenario(e);
     const scenario::RunResult b = scenario::runScenario(i);
@@ -143,8 +144,8 @@ TEST(RoverIntegrator, SmallStepsAgreeWithTheExplicitStep) {
 
 TEST(RoverIntegrator, StaysStableWhereTheExplicitStepDiverges) {
     // 20 ms: twice the explicit step's vertical bound on sandy loam (docs/dynamics.md, 10 ms).
-    scenario::Scenario e = shipped("straight", Integrator::kExplicit, 0.02);
-    scenario::Scenario i = shipped("straight", Integrator::kImplicit, 0.02);
+    scenario::Scenario e = shippedWith("straight", Integrator::kExplicit, 0.02);
+    scenario::Scenario i = shippedWith("straight", Integrator::kImplicit, 0.02);
     e.duration_s = i.duration_s = 20.0;
     const scenario::RunResult exploded = scenario::runScenario(e);
     const scenario::RunResult held = scenario::runScenario(i);
@@ -152,7 +153,7 @@ TEST(RoverIntegrator, StaysStableWhereTheExplicitStepDiverges) {
     ASSERT_EQ(held.status, scenario::RunResult::Status::kCompleted) << held.message;
     EXPECT_LT(std::abs(held.summary.energy_balance_error), kGoal);
     // The steady state is the explicit 1 ms run's: the same speed from the same slip.
-    scenario::Scenario r = shipped("straight", Integrator::kExplicit, 1e-3);
+    scenario::Scenario r = shippedWith("straight", Integrator::kExplicit, 1e-3);
     r.duration_s = 20.0;
     const scenario::RunResult ref = scenario::runScenario(r);
     EXPECT_LT(relative(held.summary.x_m, ref.summary.x_m), 0.02);

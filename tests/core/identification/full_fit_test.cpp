@@ -32,7 +32,7 @@ DataSet sandyLoamData(std::vector<double> loads, double noise, std::uint64_t see
     return synthesize(contact::testing::sandyLoam(), spec).data;
 }
 
-RefineOptions optionsFor(double noise) {
+RefineOptions refineOptionsFor(double noise) {
     RefineOptions o;
     o.max_shear_deformation_m = 0.02;  // the forward model's j_max (Table 2.6)
     if (noise > 0) {
@@ -48,7 +48,8 @@ TEST(RefineFullModel, RecoversEveryParameterOnNoiseFreeSingleLoadData) {
     // truth.
     const DataSet data = sandyLoamData({58.86}, 0.0, 1);
     const DecoupledFit start = fitDecoupled(data, kWheelA, DecoupledParameters{});
-    const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(0.0));
+    const RefineResult result =
+        refineFullModel(data, kWheelA, start.parameters, refineOptionsFor(0.0));
     ASSERT_TRUE(result.report.usable) << result.report.termination;
     const auto got = valuesOf(result.parameters);
     for (int k = 0; k < kJmax; ++k) {
@@ -60,7 +61,8 @@ TEST(RefineFullModel, NoisyMultiLoadEstimatesLieWithinTheirStandardDeviations) {
     const double noise = 0.02;  // [N]; M_y noise 0.002 N·m
     const DataSet data = sandyLoamData({30.0, 58.86, 90.0}, noise, 11);
     const DecoupledFit start = fitDecoupled(data, kWheelA, DecoupledParameters{});
-    const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(noise));
+    const RefineResult result =
+        refineFullModel(data, kWheelA, start.parameters, refineOptionsFor(noise));
     ASSERT_TRUE(result.report.usable) << result.report.termination;
     ASSERT_TRUE(result.uncertainty.computed);
     const auto got = valuesOf(result.parameters);
@@ -80,7 +82,8 @@ TEST(RefineFullModel, SingleLoadNoiseCannotSeparateCohesionAndFriction) {
     // Issue #3: with noise and one load only c + σ tan φ is identified; say so.
     const DataSet data = sandyLoamData({58.86}, 0.02, 5);
     const DecoupledFit start = fitDecoupled(data, kWheelA, DecoupledParameters{});
-    const RefineResult result = refineFullModel(data, kWheelA, start.parameters, optionsFor(0.02));
+    const RefineResult result =
+        refineFullModel(data, kWheelA, start.parameters, refineOptionsFor(0.02));
     bool flagged = false;
     for (const std::string& flag : result.uncertainty.flags) {
         flagged |= flag.find("c and phi") != std::string::npos &&
@@ -94,7 +97,7 @@ TEST(RefineFullModel, FixedParametersKeepTheirValues) {
     DecoupledParameters start = fitDecoupled(data, kWheelA, DecoupledParameters{}).parameters;
     start.a0 = 0.2;
     start.a1 = 0.3;
-    RefineOptions options = optionsFor(0.0);
+    RefineOptions options = refineOptionsFor(0.0);
     options.fixed[kA0] = options.fixed[kA1] = true;
     const RefineResult result = refineFullModel(data, kWheelA, start, options);
     EXPECT_EQ(result.parameters.a0, 0.2);
