@@ -14,8 +14,8 @@ def test_a_mission_runs_from_python():
     summary = out["summary"]
     assert summary["mission_completed"] is False  # the duration ran out first
     assert summary["mission_time_s"] is None
-    # Two 16 m lanes joined by a half circle of 1.5 m (M6).
-    assert math.isclose(summary["path_length_m"], 32.0 + math.pi * 1.5, rel_tol=1e-5)
+    # Two 16 m lanes joined by a half circle of 1.5 m (M6; its chords 0.5 mm shorter).
+    assert math.isclose(summary["path_length_m"], 32.0 + math.pi * 1.5, abs_tol=1e-3)
     assert 5.0 < summary["path_progress_m"] < 16.0
     series = out["timeseries"]
     # The time series carries the path columns: still on the lane at y = 0.3 m, heading +x.
