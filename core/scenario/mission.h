@@ -2,10 +2,9 @@
 /// @file mission.h
 /// Missions on a field (issue 23, item 3; docs/field.md, "Missions"): a path — waypoints, or
 /// repeated parallel lanes joined by headland turns — followed by a pure-pursuit path controller
-/// whose curvature the 4WS geometry turns into each wheel's steering angle and speed (M1–M5).
+/// whose curvature the 4WS geometry turns into each wheel's steering angle and speed (M1–M9).
 
 #include <Eigen/Core>
-#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,8 +58,8 @@ struct MissionRanges {
     Range length{0.1, 1e5};               ///< a lane [m]
     Range spacing{0.05, 1e4};             ///< [m]
     Range turn_radius{0.05, 1e4};         ///< [m]
-    int max_count = 1000;                 ///< lanes
-    std::size_t max_waypoints = 100000;   ///<
+    int max_count = 1000;                 ///< lanes at most
+    std::size_t max_waypoints = 100000;   ///< waypoints at most
 };
 inline const MissionRanges kMissionRanges{};
 
