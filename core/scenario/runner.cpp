@@ -493,7 +493,7 @@ private:
 };
 
 // A mission's path controller (docs/field.md, "Missions"): at every tick the pure pursuit's
-// curvature for the robot's centre, turned into each wheel's steering angle and speed (M1–M5).
+// curvature for the robot's centre, turned into each wheel's steering angle and speed (M1–M9).
 class MissionFollower {
     // The forward speed from which the crab angle counts in full (M9) [m/s].
     static constexpr double kCourseSpeed = 0.01;
