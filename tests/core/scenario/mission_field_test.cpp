@@ -11,11 +11,12 @@
 #include "core/scenario/mission.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::scenario {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 Scenario shipped(const std::string& name) {
     Result<Scenario> s = resolveScenario(kLocations, name);

@@ -14,12 +14,12 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::scenario {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
-constexpr double kPi = std::numbers::pi;
+using terra::testing::kLocations;
 
 dynamics::RobotParameters defaultRobot() {
     Result<dynamics::RobotParameters> robot = resolveRobot(kLocations, "default");
@@ -130,15 +130,15 @@ TEST(FourWheelSteering, EveryWheelTurnsAboutOneCentre) {
 TEST(MissionPath, LanesAndTheirTurns) {
     LanesSpec lanes;
     lanes.start_m = {1.0, 2.0};
-    lanes.heading_rad = kPi / 2.0;  // along +y; later lanes to the left, towards −x
+    lanes.heading_rad = std::numbers::pi / 2.0;  // along +y; later lanes to the left, towards −x
     lanes.length_m = 10.0;
     lanes.spacing_m = 4.0;
     lanes.count = 3;
     lanes.turn_radius_m = 1.5;
     const Path path = Path::ofLanes(lanes);
-    const double expected = 3 * 10.0 + 2 * (kPi * 1.5 + 4.0 - 3.0);
+    const double expected = 3 * 10.0 + 2 * (std::numbers::pi * 1.5 + 4.0 - 3.0);
     const double chord = 2.0 * std::acos(1.0 - 5e-4 / 1.5);
-    const double shortfall = 2.0 * kPi / chord * 1.5 * std::pow(chord, 3) / 24.0;
+    const double shortfall = 2.0 * std::numbers::pi / chord * 1.5 * std::pow(chord, 3) / 24.0;
     EXPECT_NEAR(path.length(), expected - shortfall, 0.1 * shortfall);
     EXPECT_NEAR(shortfall, 1e-3, 1e-4);
     EXPECT_NEAR(path.points().front().x(), 1.0, 1e-12);
@@ -147,7 +147,7 @@ TEST(MissionPath, LanesAndTheirTurns) {
     EXPECT_NEAR(path.points().back().x(), 1.0 - 8.0, 1e-9);
     EXPECT_NEAR(path.points().back().y(), 12.0, 1e-9);
     // Mid-lane points lie on the lanes' lines.
-    const double turn = kPi * 1.5 + 1.0;
+    const double turn = std::numbers::pi * 1.5 + 1.0;
     EXPECT_NEAR(path.at(5.0).x(), 1.0, 1e-9);
     EXPECT_NEAR(path.at(10.0 + turn + 5.0).x(), -3.0, 1e-9);
     EXPECT_NEAR(path.at(10.0 + turn + 5.0).y(), 7.0, 0.6 * shortfall);  // one turn's shortfall
@@ -229,7 +229,7 @@ TEST(MissionRover, ConvergesToAStraightLine) {
         }
     }
     const double overshoot = *std::max_element(e.begin(), e.end());
-    EXPECT_NEAR(overshoot, 0.3 * std::exp(-kPi), 0.002);
+    EXPECT_NEAR(overshoot, 0.3 * std::exp(-std::numbers::pi), 0.002);
 }
 
 // A headland turn of R = 2 m between two lanes: pure pursuit has no steady error on a circle
@@ -250,7 +250,7 @@ TEST(MissionRover, FollowsAHeadlandTurnOfItsRadius) {
     ASSERT_EQ(r.status, RunResult::Status::kCompleted) << r.message;
     ASSERT_TRUE(r.summary.mission && r.summary.mission->completed);
     const std::vector<double> s = column(r, "path_s_m"), x = column(r, "x_m"), y = column(r, "y_m");
-    const double turn_start = 3.0, turn_length = kPi * 2.0;
+    const double turn_start = 3.0, turn_length = std::numbers::pi * 2.0;
     double worst = 0.0;
     int samples = 0;
     for (std::size_t k = 0; k < s.size(); ++k) {
