@@ -255,3 +255,40 @@ BENCHMARK(RoverFieldMission)
     ->Args({4, 40, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
+
+namespace {
+
+// A mission run (issue 23, item 3; docs/performance.md, "Missions"): the shipped missions, whole.
+// Arg: 0 mission-controlled-traffic (two 16 m lanes and a U-turn, constant speed, 0.1 m cells);
+// 1 mission-slope-lanes (three 20 m lanes across the sloped field with a fixed-slip controller).
+// Counters: the real-time factor of the whole run and of its stepping loop, the simulated time
+// the mission took, its path length.
+void MissionOnField(benchmark::State& state) {
+    const char* name = state.range(0) == 0 ? "mission-controlled-traffic" : "mission-slope-lanes";
+    auto loaded = scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, name);
+    if (!loaded) throw std::runtime_error(loaded.message());
+    const scenario::Scenario s = loaded.value();
+    double wall = 0.0, loop = 0.0, simulated = 0.0, path = 0.0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        scenario::RunResult r = scenario::runScenario(s);
+        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (r.status != scenario::RunResult::Status::kCompleted || !r.summary.mission ||
+            !r.summary.mission->completed) {
+            state.SkipWithError("the mission did not complete");
+            break;
+        }
+        simulated = r.summary.duration_s;
+        path = r.summary.mission->path_length_m;
+        loop += simulated / r.summary.real_time_factor.value_or(0.0);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+    const double n = static_cast<double>(state.iterations());
+    state.counters["real_time_factor"] = simulated * n / wall;
+    state.counters["loop_real_time_factor"] = simulated * n / loop;
+    state.counters["mission_s"] = simulated;
+    state.counters["path_m"] = path;
+}
+BENCHMARK(MissionOnField)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace

@@ -79,6 +79,16 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
                   << (std::isnan(risk_max) ? std::string("(no profile)") : fixed(risk_max, 3))
                   << '\n';
     }
+    if (m.mission) {
+        const scenario::MissionOutcome& mission = *m.mission;
+        std::cout << "  mission      "
+                  << (mission.completed ? "completed at t = " + fixed(*mission.time_s, 2) + " s"
+                                        : std::string("not completed"))
+                  << ", " << fixed(mission.progress_m, 2) << " of "
+                  << fixed(mission.path_length_m, 2) << " m of path, off it by "
+                  << fixed(100.0 * mission.error_rms_m, 1) << " cm RMS, "
+                  << fixed(100.0 * mission.error_max_m, 1) << " cm at most\n";
+    }
     std::cout << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
               << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv");
     if (r.maps) {

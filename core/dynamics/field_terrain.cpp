@@ -64,6 +64,11 @@ std::array<double, 2> FieldTerrain::gradientAt(double x_m, double y_m) const {
 const compaction::TrackMemory* FieldTerrain::memoryUnder(int wheel, double x_m, double y_m) {
     Passage& p = passages_[static_cast<std::size_t>(wheel)];
     const field::CellKey key = cells_.keyAt(x_m, y_m);
+    // F12: the step to this point belongs to the passage open before it (the one it may leave),
+    // as the energy of the steps in the margin does.
+    std::optional<std::array<double, 2>>& last = last_contact_[static_cast<std::size_t>(wheel)];
+    if (p.open && last) p.travel_m += std::hypot(x_m - (*last)[0], y_m - (*last)[1]);
+    last = std::array<double, 2>{x_m, y_m};
     if (p.open && (key.ix != p.key.ix || key.iy != p.key.iy)) {
         // F10: the wheel leaves its cell only once its contact point is a quarter cell beyond
         // the cell's edges, so a wheel that stands or turns on an edge is one passage, not many.
@@ -147,6 +152,7 @@ void FieldTerrain::commit(Passage& p) {
                                        std::max(0.0, p.max_depth_m), n, exit_shear);
     cell.max_slip = std::max(cell.max_slip, static_cast<float>(p.max_slip));
     cell.energy_j += static_cast<float>(p.energy_j);
+    cell.travel_m += static_cast<float>(p.travel_m);
     const std::vector<double>& depths = cells_.stressDepths();
     for (std::size_t k = 0; k < depths.size(); ++k) {
         double sigma = 0.0;

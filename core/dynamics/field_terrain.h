@@ -10,6 +10,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/compaction/track_memory.h"
@@ -89,6 +90,7 @@ private:
         double max_depth_m = 0.0;
         double max_slip = 0.0;
         double energy_j = 0.0;
+        double travel_m = 0.0;  // the contact point's path while the passage is open
         double last_power_w = 0.0;
         contact::ContactParameters<double> params;  // at the deepest point
         contact::OperatingPoint<double> op{};       // at the deepest point
@@ -103,6 +105,8 @@ private:
     std::vector<int> codes_;                   // the legend's codes, ascending
     field::CellGrid cells_;
     std::array<Passage, kWheelCount> passages_{};
+    // Each wheel's last contact point (the passage's travel; F12).
+    std::array<std::optional<std::array<double, 2>>, kWheelCount> last_contact_{};
     long cells_touched_ = 0;
 };
 

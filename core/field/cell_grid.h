@@ -29,6 +29,9 @@ struct CellState {
     std::array<float, kMaxStressDepths> max_stress_pa{};
     float max_slip = 0.0f;  ///< largest |s| of a wheel over the cell [-]
     float energy_j = 0.0f;  ///< energy the wheels lost in the soil of the cell [J]
+    /// The distance the wheels' contact points travelled while their passages were open [m]
+    /// (docs/field.md F12: energy_j / travel_m is the energy lost per metre there).
+    float travel_m = 0.0f;
 };
 
 /// A cell's integer position: column ix and row iy counted east and north from the origin.
@@ -40,7 +43,7 @@ struct CellKey {
 /// Cells of side `cell_m` from the origin (x₀, y₀), unbounded in every direction.
 class CellGrid {
 public:
-    /// Cells per tile side: 32 × 32 cells (64 KiB of state) per tile.
+    /// Cells per tile side: 32 × 32 cells (72 KiB of state) per tile.
     static constexpr int kTileCells = 32;
 
     /// Throws std::invalid_argument when cell_m is not in (0, 100] m, the origin is not finite,

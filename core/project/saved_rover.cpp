@@ -16,6 +16,30 @@ using saved::readKey;
 
 constexpr const char* kStatus[] = {"completed", "cancelled", "diverged"};
 
+json missionJson(const std::optional<scenario::MissionOutcome>& m) {
+    if (!m) return nullptr;
+    return {{"completed", m->completed},
+            {"path_length_m", number(m->path_length_m)},
+            {"progress_m", number(m->progress_m)},
+            {"error_rms_m", number(m->error_rms_m)},
+            {"error_max_m", number(m->error_max_m)},
+            {"time_s", optionalJson(m->time_s)}};
+}
+
+std::optional<scenario::MissionOutcome> missionFrom(const json& j) {
+    // A file written before missions has no key; a run without a mission null.
+    if (!j.contains("mission") || j.at("mission").is_null()) return std::nullopt;
+    const json& m = j.at("mission");
+    scenario::MissionOutcome o;
+    o.completed = m.at("completed").get<bool>();
+    o.path_length_m = numberAt(m, "path_length_m");
+    o.progress_m = numberAt(m, "progress_m");
+    o.error_rms_m = numberAt(m, "error_rms_m");
+    o.error_max_m = numberAt(m, "error_max_m");
+    o.time_s = optionalAt(m, "time_s");
+    return o;
+}
+
 json summaryJson(const scenario::Summary& s) {
     return {{"duration_s", number(s.duration_s)},
             {"x_m", number(s.x_m)},
@@ -35,7 +59,8 @@ json summaryJson(const scenario::Summary& s) {
             {"mean_efficiency", optionalJson(s.mean_efficiency)},
             {"slip_tracking_rms", optionalJson(s.slip_tracking_rms)},
             {"real_time_factor", optionalJson(s.real_time_factor)},
-            {"cells_touched", s.cells_touched ? json(*s.cells_touched) : json(nullptr)}};
+            {"cells_touched", s.cells_touched ? json(*s.cells_touched) : json(nullptr)},
+            {"mission", missionJson(s.mission)}};
 }
 
 scenario::Summary summaryFrom(const json& j) {
@@ -61,6 +86,7 @@ scenario::Summary summaryFrom(const json& j) {
     s.real_time_factor = optionalAt(j, "real_time_factor");
     if (const std::optional<double> cells = optionalAt(j, "cells_touched"))
         s.cells_touched = static_cast<long>(*cells);
+    s.mission = missionFrom(j);
     return s;
 }
 

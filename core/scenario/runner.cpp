@@ -291,9 +291,10 @@ public:
 
     bool tick(long step) const { return step % every_ == 0; }
 
-    // A control tick on the state evaluate() just computed: new spin commands.
-    void control(const dynamics::RoverState& state, double drawbar_n,
-                 dynamics::Commands& commands) {
+    // A control tick on the state evaluate() just computed: new spin commands, each at most
+    // `demand`'s (a mission's wheel speeds; docs/field.md M7) when given.
+    void control(const dynamics::RoverState& state, double drawbar_n, dynamics::Commands& commands,
+                 const dynamics::Commands* demand = nullptr) {
         const Estimates& est = observer_.update(state, drawbar_n);
         const double dt = static_cast<double>(every_) * scenario_.time_step_s;
         // optimal: the square-wave dither that keeps the identifier's samples informative.
@@ -317,7 +318,9 @@ public:
                 set = std::max(set_points_[i], std::min(set, reachable));
             }
             applied_[i] = std::clamp(set, 0.01, 0.95);
-            omega_[i] = controller_.command(i, applied_[i], est, dt);
+            omega_[i] =
+                demand ? controller_.command(i, applied_[i], est, dt, (*demand)[i].spin_rate_rad_s)
+                       : controller_.command(i, applied_[i], est, dt);
             commands[i].spin_rate_rad_s = omega_[i];
             if (state.time_s >= 1.0) {
                 const double e = state.wheels[i].contact.slip - applied_[i];
@@ -489,6 +492,91 @@ private:
     TractionMetrics metrics_;
 };
 
+// A mission's path controller (docs/field.md, "Missions"): at every tick the pure pursuit's
+// curvature for the robot's centre, turned into each wheel's steering angle and speed (M1–M9).
+class MissionFollower {
+    // The forward speed from which the crab angle counts in full (M9) [m/s].
+    static constexpr double kCourseSpeed = 0.01;
+
+public:
+    MissionFollower(const Scenario& scenario, double dt)
+        : robot_(scenario.robot),
+          spec_(*scenario.mission),
+          pursuit_(Path::ofMission(spec_), spec_.lookahead_m,
+                   maxCurvature(scenario.robot, spec_.max_steer_rad)),
+          every_(std::max<long>(1, std::lround(spec_.interval_s / dt))),
+          // The centre between the axles lies com_x behind the composite centre of mass.
+          com_x_m_(robot_.com_forward_m * robot_.chassis_mass_kg / robot_.totalMass()) {
+        outcome_.path_length_m = pursuit_.path().length();
+        steer(Eigen::Vector2d(scenario.initial.x_m, scenario.initial.y_m), scenario.initial.yaw_rad,
+              scenario.initial.yaw_rad);
+    }
+
+    bool tick(long step) const { return step % every_ == 0; }
+
+    // A tick on the state evaluate() just computed.
+    void control(const dynamics::RoverState& state) {
+        const Eigen::Vector2d com(state.position_m[0], state.position_m[1]);
+        const double yaw = state.yaw_rad;
+        // M9: the course, the heading plus the crab angle β of the centre's velocity (the centre
+        // lies com_x behind the centre of mass: its lateral speed is less ψ̇ com_x), faded in
+        // from rest to kCourseSpeed, below which β is the angle of a barely moving robot.
+        double direction = yaw;
+        if (spec_.follow_course && state.forward_speed_m_s > 0.0) {
+            const double lateral =
+                state.lateral_speed_m_s - state.angular_velocity_rad_s[2] * com_x_m_;
+            const double weight = std::min(1.0, state.forward_speed_m_s / kCourseSpeed);
+            direction += weight * std::atan2(lateral, state.forward_speed_m_s);
+        }
+        const PursuitStep& step = steer(com, yaw, direction);
+        const double e = step.projection.error_m;
+        error_sq_sum_ += e * e;
+        ++error_count_;
+        outcome_.error_max_m = std::max(outcome_.error_max_m, std::abs(e));
+        if (step.done && !outcome_.completed) {
+            outcome_.completed = true;
+            outcome_.time_s = state.time_s;
+        }
+    }
+
+    const dynamics::Commands& commands() const { return commands_; }
+    bool done() const { return outcome_.completed; }
+    // The time series' columns: path_s_m, path_error_m, curvature_1_m.
+    std::array<double, 3> row() const {
+        return {last_.projection.s_m, last_.projection.error_m, last_.curvature_1_m};
+    }
+
+    MissionOutcome outcome() const {
+        MissionOutcome o = outcome_;
+        o.progress_m = std::min(pursuit_.progress(), o.path_length_m);
+        if (error_count_ > 0)
+            o.error_rms_m = std::sqrt(error_sq_sum_ / static_cast<double>(error_count_));
+        return o;
+    }
+
+private:
+    // The centre between the axles from the centre of mass at heading `yaw`; α measured from
+    // `direction` (the heading, or the course: M9).
+    const PursuitStep& steer(const Eigen::Vector2d& com, double yaw, double direction) {
+        const Eigen::Vector2d centre =
+            com - com_x_m_ * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+        last_ = pursuit_.update(centre, direction);
+        commands_ = fourWheelSteering(robot_, last_.curvature_1_m, spec_.speed_m_s);
+        return last_;
+    }
+
+    dynamics::RobotParameters robot_;
+    MissionSpec spec_;
+    PurePursuit pursuit_;
+    long every_;
+    double com_x_m_;
+    PursuitStep last_;
+    dynamics::Commands commands_{};
+    MissionOutcome outcome_;
+    double error_sq_sum_ = 0.0;
+    long error_count_ = 0;
+};
+
 std::vector<std::string> closedLoopColumns() {
     std::vector<std::string> c{"drawbar_N", "speed_est_m_s", "drive_energy_J"};
     for (const char* w : dynamics::kCornerNames) {
@@ -517,10 +605,20 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
     maps.passes = cells.toRaster(box[0], box[1], box[2], box[3], [](const field::CellState& c) {
         return static_cast<double>(c.track.passes);
     });
+    // F11–F12: no data where no wheel passed (a cell of a touched tile that none crossed).
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    maps.slip = cells.toRaster(box[0], box[1], box[2], box[3], [nan](const field::CellState& c) {
+        return c.track.passes > 0 ? static_cast<double>(c.max_slip) : nan;
+    });
+    maps.energy_per_m_j =
+        cells.toRaster(box[0], box[1], box[2], box[3], [nan](const field::CellState& c) {
+            return c.track.passes > 0 && c.travel_m > 0.0f
+                       ? static_cast<double>(c.energy_j) / static_cast<double>(c.travel_m)
+                       : nan;
+        });
     maps.compaction_risk = cells.toRaster(
         box[0], box[1], box[2], box[3],
         [](const field::CellState& c) { return static_cast<double>(c.max_stress_pa[0]); });
-    const double nan = std::numeric_limits<double>::quiet_NaN();
     const std::vector<double>& depths = cells.stressDepths();
     maps.risk_depth_m = depths.empty() ? nan : depths.front();
     // σ_pc at the risk depth of each soil: its profile's layer there, or none.
@@ -571,6 +669,12 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     if (closed && hook) hook->from_observer = true;
 
     dynamics::Commands first = scenario.commandsAt(0.0);
+    // A mission steers and drives the wheels from its path (docs/field.md, "Missions").
+    std::optional<MissionFollower> mission;
+    if (scenario.mission) {
+        mission.emplace(scenario, dt);
+        first = mission->commands();
+    }
     std::optional<ClosedLoop> loop;
     if (closed) {
         // The start state only matters for the observer's first reading; the rover takes the
@@ -614,6 +718,10 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     if (closed) {
         for (std::string& c : closedLoopColumns()) result.series.columns.push_back(std::move(c));
     }
+    if (mission) {
+        for (const char* c : {"path_s_m", "path_error_m", "curvature_1_m"})
+            result.series.columns.emplace_back(c);
+    }
     TractionMetrics metrics;
     auto closedRow = [&](std::vector<double> row) {
         if (closed) {
@@ -628,6 +736,9 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
                 row.push_back(est.slip[i]);
                 row.push_back(est.torque_nm[i]);
             }
+        }
+        if (mission) {
+            for (double v : mission->row()) row.push_back(v);
         }
         return row;
     };
@@ -654,7 +765,7 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         // Time from the step count (no accumulated rounding): bit-identical reruns and exact
         // signal switching times.
         const double t = static_cast<double>(step) * dt;
-        dynamics::Commands commands = scenario.commandsAt(t);
+        dynamics::Commands commands = mission ? mission->commands() : scenario.commandsAt(t);
         if (loop) loop->apply(commands);
         if (loaded) {
             drawbar_n = std::max(0.0, scenario.drawbar_load.force_n.at(t)) +
@@ -663,23 +774,37 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
             rover.setDrawbarLoad(drawbar_n);
         }
         const dynamics::RoverState& state = rover.evaluate(commands);
-        if (loop && loop->tick(step) && step < steps) {
-            loop->control(state, drawbar_n, commands);
-            rover.setCommands(commands);
+        bool commanded = false;
+        if (mission && mission->tick(step) && step < steps) {
+            mission->control(state);
+            // The mission's steering; its wheel speeds unless a slip controller drives them (it
+            // keeps each wheel at or below them: M7).
+            for (int i = 0; i < dynamics::kWheelCount; ++i) {
+                commands[i].steer_angle_rad = mission->commands()[i].steer_angle_rad;
+                if (!loop) commands[i].spin_rate_rad_s = mission->commands()[i].spin_rate_rad_s;
+            }
+            commanded = true;
         }
+        if (loop && loop->tick(step) && step < steps) {
+            loop->control(state, drawbar_n, commands, mission ? &mission->commands() : nullptr);
+            commanded = true;
+        }
+        if (commanded) rover.setCommands(commands);
+        // A mission ends the run when the robot has passed its path's end.
+        const bool last = step == steps || (mission && mission->done());
         watch.commanded(commands);
         if (!finite(state)) {
             result.status = RunResult::Status::kDiverged;
             result.message = "the simulation diverged at t = " + formatNumber(t) + " s";
             break;
         }
-        if (step % output_every == 0 || step == steps)
+        if (step % output_every == 0 || last)
             result.series.rows.push_back(closedRow(seriesRow(state)));
         if (feed) {
             const auto update = feed->observe(step, state, loop ? &loop->estimates() : nullptr);
             if (update && loop) loop->streamed(*update, state.time_s);
         }
-        if (step == steps) break;
+        if (last) break;
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
             result.status = RunResult::Status::kCancelled;
             result.message = "cancelled at t = " + formatNumber(t) + " s";
@@ -755,6 +880,7 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     if (metrics.wheel_input_j > 0.0)
         sum.mean_efficiency = metrics.wheel_output_j / metrics.wheel_input_j;
     result.traction = metrics;
+    if (mission) sum.mission = mission->outcome();
     if (wall_s > 0.0 && sum.duration_s > 0.0) sum.real_time_factor = sum.duration_s / wall_s;
     if (field) {
         field->finish();
@@ -800,6 +926,15 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
     j["slip_tracking_rms"] = optional(s.slip_tracking_rms);
     j["real_time_factor"] = optional(s.real_time_factor);
     if (s.cells_touched) j["cells_touched"] = *s.cells_touched;
+    if (s.mission) {
+        const MissionOutcome& m = *s.mission;
+        j["mission_completed"] = m.completed;
+        j["mission_time_s"] = m.time_s ? nlohmann::json(*m.time_s) : nlohmann::json(nullptr);
+        j["path_length_m"] = m.path_length_m;
+        j["path_progress_m"] = m.progress_m;
+        j["path_error_rms_m"] = m.error_rms_m;
+        j["path_error_max_m"] = m.error_max_m;
+    }
     if (result.maps) {
         j["risk_depth_m"] = result.maps->risk_depth_m;
         const auto [lo, hi] = result.maps->rut_depth_m.valueRange();
@@ -843,8 +978,8 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
     }
     if (result.maps) {
         const FieldMaps& m = *result.maps;
-        const std::array<const field::Raster*, 3> rasters{&m.rut_depth_m, &m.passes,
-                                                          &m.compaction_risk};
+        const std::array<const field::Raster*, kMapFiles.size()> rasters{
+            &m.rut_depth_m, &m.passes, &m.compaction_risk, &m.slip, &m.energy_per_m_j};
         for (std::size_t i = 0; i < rasters.size(); ++i) {
             if (auto error = io::writeRaster(directory / kMapFiles[i], *rasters[i])) return error;
         }

@@ -63,6 +63,8 @@ struct Summary {
     std::optional<double> real_time_factor;
     /// A field run: the cells at least one wheel passed over (docs/field.md, F10).
     std::optional<long> cells_touched;
+    /// A mission run: whether and when the path's end was reached, how closely it was followed.
+    std::optional<MissionOutcome> mission;
 };
 
 /// The maps a field run leaves (docs/field.md, "Maps of a drive"), on the memory's cells over the
@@ -74,6 +76,11 @@ struct FieldMaps {
     /// Terranimo's bands); NaN (no data) where the soil has no profile reaching that depth.
     field::Raster compaction_risk;
     double risk_depth_m = 0.0;
+    /// The largest |s| of the wheels that passed (F11) [-]; NaN (no data) where none did.
+    field::Raster slip;
+    /// The energy the wheels lost into the soil there per metre their contact points travelled
+    /// over it, E / d (F12) [J/m]; NaN (no data) where no wheel passed.
+    field::Raster energy_per_m_j;
 };
 
 struct RunResult {
@@ -101,8 +108,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options = {});
 nlohmann::json toJson(const RunResult& result, const Scenario& scenario);
 
 /// The names of a field run's maps in the output directory.
-inline constexpr std::array<const char*, 3> kMapFiles{"rut_depth_m.asc", "passes.asc",
-                                                      "compaction_risk.asc"};
+inline constexpr std::array<const char*, 5> kMapFiles{
+    "rut_depth_m.asc", "passes.asc", "compaction_risk.asc", "slip.asc", "energy_per_m_J.asc"};
 
 /// Writes timeseries.csv, summary.json (and streaming.csv; a field run's kMapFiles) into
 /// `directory` (created), each atomically. An error message, or nothing.

@@ -86,6 +86,10 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     }
     for (Issue& issue : validate(s.controller, s.drawbar_load, prefix))
         issues.push_back(std::move(issue));
+    if (s.mission) {
+        for (Issue& issue : validate(*s.mission, s.robot, prefix + "mission."))
+            issues.push_back(std::move(issue));
+    }
     checkRange(issues, prefix + "initial.speed_m_s", s.initial.speed_m_s, {0.0, 100.0}, "m/s");
     const bool implicit = s.options.integrator == dynamics::Integrator::kImplicit;
     if (implicit && s.controller.closedLoop()) {

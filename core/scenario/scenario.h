@@ -16,6 +16,7 @@
 #include "core/dynamics/robot.h"
 #include "core/dynamics/rover.h"
 #include "core/dynamics/terrain.h"
+#include "core/scenario/mission.h"
 #include "core/scenario/signal.h"
 #include "core/scenario/traction_control.h"
 
@@ -75,6 +76,10 @@ struct Scenario {
     ControllerSpec controller;
     /// The towed implement's pull on the chassis (default none).
     DrawbarLoad drawbar_load;
+    /// A path to follow (docs/field.md, "Missions"): the path controller then steers every wheel
+    /// and sets its speed (the `wheels` signals are not used); a slip controller keeps each wheel
+    /// at or below that speed. The run ends when the robot passes the path's end.
+    std::optional<MissionSpec> mission;
 
     /// Every wheel's command at time t [s].
     dynamics::Commands commandsAt(double t_s) const;

@@ -414,6 +414,79 @@ void readController(ObjectReader& r, ControllerSpec& out) {
     c.finish();
 }
 
+// "mission": {"waypoints": [[x, y], ...] | "lanes": {"start", "heading_deg", "length_m",
+// "spacing_m", "count", "turn_radius_m", "side"}, "speed_m_s", "lookahead_m", "max_steer_deg",
+// "interval_s", "steer_by": "course" | "heading"} (docs/field.md, "Missions").
+std::optional<MissionSpec> readMission(ObjectReader& r) {
+    if (!r.has("mission")) {
+        r.allow("mission");
+        return std::nullopt;
+    }
+    ObjectReader m = r.object("mission");
+    if (!m.isObject()) return std::nullopt;
+    const std::size_t before = m.issues().size();
+    MissionSpec mission;
+    const MissionRanges& range = kMissionRanges;
+    if (m.has("waypoints") == m.has("lanes")) {
+        m.allow("waypoints");
+        m.allow("lanes");
+        m.report("", "give either \"waypoints\": [[x, y], ...] or \"lanes\": {...} (one of them)");
+    } else if (const json* points = m.array("waypoints")) {
+        if (points->size() < 2 || points->size() > range.max_waypoints) {
+            m.report("waypoints", "holds " + std::to_string(points->size()) +
+                                      " points; allowed [2, " +
+                                      std::to_string(range.max_waypoints) + "] points [x, y]");
+        }
+        for (std::size_t i = 0; i < points->size(); ++i) {
+            const std::string at = "waypoints[" + std::to_string(i) + "]";
+            const json& p = (*points)[i];
+            if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+                m.report(at, "expected a point [x_m, y_m], got " + io::describeJson(p));
+                continue;
+            }
+            const Eigen::Vector2d xy(p[0].get<double>(), p[1].get<double>());
+            std::vector<Issue> issues;
+            for (int k = 0; k < 2; ++k) {
+                if (!checkRange(issues, "", xy[k], range.coordinate, "m"))
+                    m.report(at + "[" + std::to_string(k) + "]", issues.back().message);
+            }
+            mission.waypoints.push_back(xy);
+        }
+    } else if (m.has("lanes")) {
+        ObjectReader l = m.object("lanes");
+        if (l.isObject()) {
+            LanesSpec lanes;
+            std::vector<double> start;
+            if (l.numbers("start", start, range.coordinate, "m", 2, 2, Presence::kRequired))
+                lanes.start_m = {start[0], start[1]};
+            double heading_deg = 0.0;
+            if (l.number("heading_deg", heading_deg, {-360.0, 360.0}, "deg", Presence::kRequired))
+                lanes.heading_rad = units::degToRad(heading_deg);
+            l.number("length_m", lanes.length_m, range.length, "m", Presence::kRequired);
+            l.number("spacing_m", lanes.spacing_m, range.spacing, "m", Presence::kRequired);
+            l.integer("count", lanes.count, 1, range.max_count, Presence::kRequired);
+            l.number("turn_radius_m", lanes.turn_radius_m, range.turn_radius, "m",
+                     Presence::kRequired);
+            std::string side = "left";
+            if (l.choiceName("side", side, {"left", "right"})) lanes.to_left = side == "left";
+            mission.lanes = lanes;
+        }
+        l.finish();
+    }
+    m.number("speed_m_s", mission.speed_m_s, range.speed, "m/s", Presence::kRequired);
+    m.number("lookahead_m", mission.lookahead_m, range.lookahead, "m");
+    double max_steer_deg = units::radToDeg(mission.max_steer_rad);
+    if (m.number("max_steer_deg", max_steer_deg, range.max_steer_deg, "deg"))
+        mission.max_steer_rad = units::degToRad(max_steer_deg);
+    m.number("interval_s", mission.interval_s, range.interval, "s");
+    std::string steer_by = mission.follow_course ? "course" : "heading";
+    if (m.choiceName("steer_by", steer_by, {"course", "heading"}))
+        mission.follow_course = steer_by == "course";
+    m.finish();
+    if (m.issues().size() != before) return std::nullopt;
+    return mission;
+}
+
 }  // namespace
 
 Result<dynamics::RobotParameters> robotFromJson(const json& object, const std::string& where,
@@ -518,7 +591,15 @@ Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
     const Range spin_range{0.0, 1000.0};
     const Range steer_range{-60.0, 60.0};
     const json* wheels = r.value("wheels");
-    if (wheels == nullptr || !wheels->is_object()) {
+    // A mission's path controller drives the wheels: signals beside it would be ignored.
+    const bool mission = r.has("mission");
+    if (mission) {
+        if (wheels != nullptr) {
+            r.report("wheels",
+                     "not used with a \"mission\" (its path controller steers and drives every "
+                     "wheel): remove it");
+        }
+    } else if (wheels == nullptr || !wheels->is_object()) {
         r.report("wheels",
                  "missing; expected {\"all\": {\"omega_rad_s\": ..., \"steer_deg\": ...}, "
                  "\"FL\": {...}, ...}");
@@ -589,6 +670,7 @@ Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
     }
 
     readController(r, s.controller);
+    s.mission = readMission(r);
     if (r.has("drawbar_load")) {
         ObjectReader d = r.object("drawbar_load");
         if (d.isObject()) {

@@ -123,18 +123,21 @@ const Estimates& Observer::update(const dynamics::RoverState& truth, double draw
 SlipController::SlipController(const ControllerSpec& spec, double shear_radius_m)
     : spec_(spec), shear_radius_m_(shear_radius_m) {}
 
-double SlipController::command(int wheel, double set_point, const Estimates& est, double dt_s) {
+double SlipController::command(int wheel, double set_point, const Estimates& est, double dt_s,
+                               double max_rate_rad_s) {
     const double feed_forward =
         std::max(0.0, est.hub_speed_m_s[wheel]) / (shear_radius_m_ * (1.0 - set_point));
     const double error = set_point - est.slip[wheel];
     double& integral = integral_[wheel];
     const double raw = feed_forward * (1.0 + spec_.kp * error + integral);
-    const double out = std::clamp(raw, spec_.min_spin_rate_rad_s, spec_.max_spin_rate_rad_s);
+    const double ceiling =
+        std::max(spec_.min_spin_rate_rad_s, std::min(spec_.max_spin_rate_rad_s, max_rate_rad_s));
+    const double out = std::clamp(raw, spec_.min_spin_rate_rad_s, ceiling);
     // Conditional integration (anti-windup): no integration that would push further into the
     // output clamps or further against a motor at its torque limit.
     const bool torque_limited = std::abs(est.torque_nm[wheel]) >= 0.98 * spec_.max_torque_nm;
     const bool pushing_up = error > 0.0;
-    const bool saturated_up = raw >= spec_.max_spin_rate_rad_s || torque_limited;
+    const bool saturated_up = raw >= ceiling || torque_limited;
     const bool saturated_down = raw <= spec_.min_spin_rate_rad_s;
     if (!((pushing_up && saturated_up) || (!pushing_up && saturated_down)))
         integral += spec_.ki_per_s * error * dt_s;

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
@@ -173,8 +174,11 @@ private:
 class SlipController {
 public:
     SlipController(const ControllerSpec& spec, double shear_radius_m);
-    /// The spin rate to command for wheel `wheel` until the next tick [rad/s].
-    double command(int wheel, double set_point, const Estimates& est, double dt_s);
+    /// The spin rate to command for wheel `wheel` until the next tick [rad/s], at most
+    /// `max_rate_rad_s` (a mission's speed for the wheel; never below the start-up floor), which
+    /// counts as a saturation for the anti-windup as the motor's own limit does.
+    double command(int wheel, double set_point, const Estimates& est, double dt_s,
+                   double max_rate_rad_s = std::numeric_limits<double>::infinity());
     void reset(int wheel) { integral_[wheel] = 0.0; }
 
 private:

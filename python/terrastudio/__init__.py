@@ -364,7 +364,9 @@ def simulate(scenario="straight", **settings):
     duration_s, time_step_s, model, controller ("constant-speed", "fixed-slip", "optimal",
     "oracle") and slip (the fixed set-point) override the scenario's (docs/traction.md). Returns {"summary": {...},
     "timeseries": {column: array}, "status", "message", "notes"} (and "streaming" when the
-    scenario identifies the soil as it drives).
+    scenario identifies the soil as it drives). A mission scenario (docs/field.md, "Missions")
+    runs the same way: its summary has "mission_completed", "path_error_rms_m" and the rest, its
+    time series "path_s_m", "path_error_m" and "curvature_1_m".
     """
     settings["scenario"] = os.fspath(scenario)
     out = run("rover", **settings)

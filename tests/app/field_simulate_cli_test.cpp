@@ -67,7 +67,8 @@ TEST(FieldSimulateCli, WritesTheMapsAndTheSummarysFieldKeys) {
     const double distance = j["distance_m"].get<double>();
     EXPECT_GE(j["cells_touched"].get<long>(), 4 * static_cast<long>(distance / 0.1));
     EXPECT_GT(j["max_rut_depth_m"].get<double>(), 0.0);
-    for (const char* name : {"rut_depth_m.asc", "passes.asc", "compaction_risk.asc"}) {
+    for (const char* name : {"rut_depth_m.asc", "passes.asc", "compaction_risk.asc", "slip.asc",
+                             "energy_per_m_J.asc"}) {
         const std::string text = readText(out / name);
         // The field's extent (60 m × 40 m from the origin) on the memory's 0.1 m cells.
         EXPECT_EQ(text.rfind("ncols 600\nnrows 400\nxllcorner 0\nyllcorner 0\ncellsize 0.1\n", 0),
@@ -79,7 +80,58 @@ TEST(FieldSimulateCli, WritesTheMapsAndTheSummarysFieldKeys) {
         terra::test::run("simulate --scenario straight --duration 1 --out " + out.string());
     ASSERT_EQ(again.exit_code, 0) << again.err;
     EXPECT_FALSE(fs::exists(out / "passes.asc"));
+    EXPECT_FALSE(fs::exists(out / "energy_per_m_J.asc"));
     fs::remove_all(out);
+}
+
+// A mission scenario from the command line: the summary's mission keys and the path columns; a
+// bad mission is exit 2 naming the key and its range, and writes nothing.
+TEST(FieldSimulateCli, MissionsRunAndBadOnesAreNamed) {
+    const fs::path out = tempDir("mission");
+    const auto r = terra::test::run(
+        "simulate --scenario mission-controlled-traffic --duration 3 "
+        "--out " +
+        out.string() + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["mission_completed"], false);  // 3 s of a 37 m path
+    EXPECT_TRUE(j["mission_time_s"].is_null());
+    EXPECT_NEAR(j["path_length_m"].get<double>(), 32.0 + 1.5 * M_PI, 1e-3);
+    EXPECT_GT(j["path_progress_m"].get<double>(), 1.0);
+    EXPECT_LT(j["path_error_max_m"].get<double>(), 0.02);
+    EXPECT_NE(readText(out / "timeseries.csv").find("path_s_m,path_error_m,curvature_1_m"),
+              std::string::npos);
+    EXPECT_TRUE(fs::exists(out / "slip.asc"));
+    fs::remove_all(out);
+
+    struct Case {
+        const char* mission;
+        const char* expected;
+    };
+    const Case cases[] = {
+        {R"({"lanes": {"start": [0, 0], "heading_deg": 0, "length_m": 5, "spacing_m": 2,
+             "count": 2, "turn_radius_m": 1.5}, "speed_m_s": 0.5})",
+         "mission.lanes.turn_radius_m: 1.5 m is more than half the spacing (2 m): the turn would "
+         "overshoot the next lane; allowed range [0.05, 1] m"},
+        {R"({"waypoints": [[0, 0], [1, 0]], "speed_m_s": 20})",
+         "mission.speed_m_s: 20 is outside the allowed range (0, 10] m/s"},
+        {R"({"waypoints": [[0, 0], [1, 0]], "speed_m_s": 0.5, "lookahead_m": -1})",
+         "mission.lookahead_m"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.mission);
+        const fs::path dir = tempDir("badmission");
+        write(dir / "scenario.json", std::string(R"({"name": "m", "duration_s": 1,
+            "time_step_s": 0.001, "terrain": "sandy-loam", "mission": )") +
+                                         c.mission + "}");
+        const auto bad =
+            terra::test::run("simulate --scenario " + (dir / "scenario.json").string() + " --out " +
+                             (dir / "out").string());
+        EXPECT_EQ(bad.exit_code, 2) << bad.err;
+        EXPECT_NE(bad.err.find(c.expected), std::string::npos) << bad.err;
+        EXPECT_FALSE(fs::exists(dir / "out" / "summary.json"));
+        fs::remove_all(dir);
+    }
 }
 
 TEST(FieldSimulateCli, BadRastersAreRefusedByName) {

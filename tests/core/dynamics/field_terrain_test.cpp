@@ -366,7 +366,9 @@ TEST(FieldRover, FieldRunsRepeatBitForBit) {
     expectSameSeries(a, b, false);
     for (const auto& [x, y] : {std::pair{&a.maps->rut_depth_m, &b.maps->rut_depth_m},
                                std::pair{&a.maps->passes, &b.maps->passes},
-                               std::pair{&a.maps->compaction_risk, &b.maps->compaction_risk}}) {
+                               std::pair{&a.maps->compaction_risk, &b.maps->compaction_risk},
+                               std::pair{&a.maps->slip, &b.maps->slip},
+                               std::pair{&a.maps->energy_per_m_j, &b.maps->energy_per_m_j}}) {
         ASSERT_EQ(x->values.size(), y->values.size());
         EXPECT_EQ(
             std::memcmp(x->values.data(), y->values.data(), x->values.size() * sizeof(double)), 0);

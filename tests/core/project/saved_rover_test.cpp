@@ -54,6 +54,31 @@ TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
     EXPECT_EQ(savedJson(*read), saved);
 }
 
+// A mission run's outcome (docs/field.md, "Missions") reads back with the rest of the summary.
+TEST(SavedRover, AMissionRunKeepsItsOutcome) {
+    analysis::RoverSettings s;
+    s.scenario = "mission-controlled-traffic";
+    s.loaded = scenario::resolveScenario(kLocations, s.scenario).value();
+    s.duration_s = 1.0;
+    const analysis::RoverResult computed = analysis::runRover(s);
+    ASSERT_TRUE(computed.run.summary.mission);
+    const SavedRoverRun run{computed.run, s.scenario, json::object()};
+    const Result<SavedRoverRun> read =
+        savedRoverRunFromJson(json::parse(savedJson(run).dump()), "rover");
+    ASSERT_TRUE(read.ok()) << read.message();
+    ASSERT_TRUE(read->run.summary.mission);
+    EXPECT_EQ(read->run.summary.mission->progress_m, computed.run.summary.mission->progress_m);
+    EXPECT_FALSE(read->run.summary.mission->time_s);
+    // The summary's mission keys as `terrastudio simulate` writes them (the maps are not saved).
+    const json a = scenario::toJson(read->run, computed.scenario);
+    const json b = scenario::toJson(computed.run, computed.scenario);
+    for (const char* key : {"mission_completed", "mission_time_s", "path_length_m",
+                            "path_progress_m", "path_error_rms_m", "path_error_max_m"}) {
+        ASSERT_TRUE(b.contains(key)) << key;
+        EXPECT_EQ(a.at(key), b.at(key)) << key;
+    }
+}
+
 TEST(SavedRover, ACancelledRunStaysCancelledAndDamageIsNamed) {
     SavedRoverRun run;
     run.run.status = scenario::RunResult::Status::kCancelled;

@@ -82,6 +82,39 @@ TEST(ScenarioJson, BadFilesNameTheField) {
                        "wheel_mass_kg": 1, "wheelbase_m": 0.5, "track_m": 0.4}})",
          "robot.chassis_mass_kg"},
         {R"({"streaming": {"wheel": "XX"}})", "streaming.wheel"},
+        // Missions (docs/field.md, "Missions"): the wheel signals give way to the path.
+        {R"({"mission": {"waypoints": [[0, 0], [1, 0]], "speed_m_s": 0.5}})",
+         "x.json: wheels: not used with a \"mission\""},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0]], "speed_m_s": 0.5}})",
+         "mission.waypoints: holds 1 points"},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0], [1, "a"]], "speed_m_s": 0.5}})",
+         "mission.waypoints[1]: expected a point"},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0], [2e6, 0]], "speed_m_s": 0.5}})",
+         "mission.waypoints[1][0]"},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0], [1, 0]], "speed_m_s": 0}})",
+         "mission.speed_m_s"},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0], [1, 0]]}})",
+         "mission.speed_m_s: missing"},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0], [1, 0]], "speed_m_s": 0.5,
+                                         "lookahead_m": 0}})",
+         "mission.lookahead_m"},
+        {R"({"wheels": null, "mission": {"waypoints": [[0, 0], [1, 0]], "speed_m_s": 0.5,
+                                         "lookahed_m": 1}})",
+         "mission.lookahed_m: unknown key"},
+        {R"({"wheels": null, "mission": {"speed_m_s": 0.5}})", "mission: give either"},
+        {R"({"wheels": null, "mission": {"speed_m_s": 0.5, "lanes": {"start": [0, 0],
+             "heading_deg": 0, "length_m": 10, "spacing_m": 2, "count": 3, "turn_radius_m": 1.5}}})",
+         "mission.lanes.turn_radius_m: 1.5 m is more than half the spacing"},
+        {R"({"wheels": null, "mission": {"speed_m_s": 0.5, "lanes": {"start": [0, 0],
+             "heading_deg": 0, "length_m": 10, "spacing_m": 2, "count": 0, "turn_radius_m": 1}}})",
+         "mission.lanes.count"},
+        {R"({"wheels": null, "mission": {"speed_m_s": 0.5, "lanes": {"start": [0],
+             "heading_deg": 0, "length_m": 10, "spacing_m": 2, "count": 2, "turn_radius_m": 1}}})",
+         "mission.lanes.start"},
+        {R"({"wheels": null, "mission": {"speed_m_s": 0.5, "lanes": {"start": [0, 0],
+             "heading_deg": 0, "length_m": 10, "spacing_m": 2, "count": 2, "turn_radius_m": 1,
+             "side": "up"}}})",
+         "mission.lanes.side"},
     };
     for (const BadCase& c : cases) {
         nlohmann::json j = minimal();
@@ -93,6 +126,36 @@ TEST(ScenarioJson, BadFilesNameTheField) {
         // Each problem once, even when it sits under "all" and applies to four wheels.
         EXPECT_EQ(s.message().find(c.expected), s.message().rfind(c.expected)) << s.message();
     }
+}
+
+TEST(ScenarioJson, MissionReadsWaypointsOrLanes) {
+    nlohmann::json j = minimal();
+    j.erase("wheels");
+    j["mission"] = nlohmann::json::parse(R"({"lanes": {"start": [1, 2], "heading_deg": 90,
+        "length_m": 10, "spacing_m": 3, "count": 4, "turn_radius_m": 1.5, "side": "right"},
+        "speed_m_s": 0.4, "lookahead_m": 0.8, "max_steer_deg": 30, "interval_s": 0.02,
+        "steer_by": "heading"})");
+    const Result<Scenario> s = scenarioFromJson(j, "x.json", kLocations);
+    ASSERT_TRUE(s.ok()) << s.message();
+    ASSERT_TRUE(s->mission && s->mission->lanes);
+    const LanesSpec& l = *s->mission->lanes;
+    EXPECT_EQ(l.start_m, Eigen::Vector2d(1.0, 2.0));
+    EXPECT_NEAR(l.heading_rad, M_PI / 2.0, 1e-15);
+    EXPECT_EQ(l.count, 4);
+    EXPECT_FALSE(l.to_left);
+    EXPECT_EQ(s->mission->speed_m_s, 0.4);
+    EXPECT_EQ(s->mission->lookahead_m, 0.8);
+    EXPECT_NEAR(s->mission->max_steer_rad, M_PI / 6.0, 1e-15);
+    EXPECT_EQ(s->mission->interval_s, 0.02);
+    EXPECT_FALSE(s->mission->follow_course);
+    j["mission"] = nlohmann::json::parse(R"({"waypoints": [[0, 0], [4, 1], [8, 0]],
+        "speed_m_s": 0.4})");
+    const Result<Scenario> w = scenarioFromJson(j, "x.json", kLocations);
+    ASSERT_TRUE(w.ok()) << w.message();
+    ASSERT_EQ(w->mission->waypoints.size(), 3u);
+    EXPECT_EQ(w->mission->waypoints[1], Eigen::Vector2d(4.0, 1.0));
+    EXPECT_FALSE(w->mission->lanes);
+    EXPECT_TRUE(w->mission->follow_course);  // the default (M9)
 }
 
 TEST(ScenarioJson, MissingAndBrokenFiles) {
