@@ -107,7 +107,9 @@ TEST(MissionField, LanesGiveOnePassPerWheelAcrossEachLane) {
         if (lane >= 0 && lane < 3 && std::abs(y - 1.6 * lane) < 0.4) {
             in_lane[lane] += n;
             // The tracks lie half the 0.4 m track beside the lane's line.
-            if (n > 0.0) EXPECT_NEAR(std::abs(y - 1.6 * lane), 0.2, 0.05) << "lane " << lane;
+            if (n > 0.0) {
+                EXPECT_NEAR(std::abs(y - 1.6 * lane), 0.2, 0.05) << "lane " << lane;
+            }
         } else {
             between += n;
         }
