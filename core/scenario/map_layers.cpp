@@ -10,12 +10,12 @@
 namespace terra::scenario {
 namespace {
 
-constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
 
 // Label and unit of a run's map from its key: the maps this code knows by name, else the key's
 // words with its unit suffix read off ("energy_J_m" → "energy", J/m), so that a map added to
 // FieldMaps is listed before anyone names it here.
-void describe(const std::string& key, const FieldMaps& maps, MapLayer& layer) {
+void describeRunMap(const std::string& key, const FieldMaps& maps, MapLayer& layer) {
     if (key == "rut_depth_m") {
         layer.label = "rut depth";
         layer.unit = "m";
@@ -86,7 +86,7 @@ std::vector<MapLayer> mapLayers(const Scenario& scenario, const FieldMaps* maps)
             MapLayer layer;
             layer.key = key;
             layer.timed = true;
-            describe(key, *maps, layer);
+            describeRunMap(key, *maps, layer);
             out.push_back(std::move(layer));
         }
     }
@@ -207,7 +207,7 @@ field::Raster mapAt(const FieldMaps& maps, const std::string& key, double t_s,
         const std::int64_t at = local(h.cell[i]);
         if (at < 0) continue;
         const double final_value = final_map->values[static_cast<std::size_t>(h.cell[i])];
-        out.values[static_cast<std::size_t>(at)] = std::isnan(final_value) ? kNan : 0.0;
+        out.values[static_cast<std::size_t>(at)] = std::isnan(final_value) ? kNoData : 0.0;
     }
     for (std::size_t i = 0; i < h.size() && h.time_s[i] <= t_s; ++i) {
         const std::int64_t at = local(h.cell[i]);
@@ -232,7 +232,7 @@ field::Raster coarsen(const field::Raster& r, int max_side, LayerKind kind) {
     out.x_min_m = r.x_min_m;
     out.y_min_m = r.yMax() - out.rows * out.cell_m;  // north edges stay aligned
     out.values.assign(static_cast<std::size_t>(out.cols) * static_cast<std::size_t>(out.rows),
-                      kNan);
+                      kNoData);
     for (int orow = 0; orow < out.rows; ++orow) {
         const int r0 = orow * k, r1 = std::min(r.rows, r0 + k);
         for (int ocol = 0; ocol < out.cols; ++ocol) {
