@@ -11,14 +11,15 @@
 #include <map>
 
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::scenario {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using terra::testing::kLocations;
+constexpr double kEndOfRun = std::numeric_limits<double>::infinity();
 
-Scenario shipped(const std::string& name, double duration_s) {
+Scenario shippedScenario(const std::string& name, double duration_s) {
     Result<Scenario> s = resolveScenario(kLocations, name);
     EXPECT_TRUE(s.ok()) << s.message();
     Scenario out = s.value();
@@ -28,21 +29,21 @@ Scenario shipped(const std::string& name, double duration_s) {
 
 // The shipped field run cut to 20 s: the rear wheels reach the front ruts after ≈ 11 s (0.5 m
 // wheelbase at ≈ 0.045 m/s), so cells are passed once and twice.
-const RunResult& fieldRun() {
-    static const RunResult run = runScenario(shipped("field-slope-wet", 20.0));
+const RunResult& fieldRun20s() {
+    static const RunResult run = runScenario(shippedScenario("field-slope-wet", 20.0));
     return run;
 }
 
-CellWindow whole(const field::Raster& r) { return {0, 0, r.cols, r.rows}; }
+CellWindow wholeWindow(const field::Raster& r) { return {0, 0, r.cols, r.rows}; }
 
-bool same(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
+bool sameOrBothNan(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
 TEST(MapLayers, AFieldListsItsMapsAndItsRunsMapsAPatchScenarioNone) {
-    const Scenario field = shipped("field-slope-wet", 20.0);
+    const Scenario field = shippedScenario("field-slope-wet", 20.0);
     std::vector<std::string> keys;
     for (const MapLayer& l : mapLayers(field, nullptr)) keys.push_back(l.key);
     EXPECT_EQ(keys, (std::vector<std::string>{"height", "soil_classes"}));
-    const std::vector<MapLayer> all = mapLayers(field, &*fieldRun().maps);
+    const std::vector<MapLayer> all = mapLayers(field, &*fieldRun20s().maps);
     keys.clear();
     for (const MapLayer& l : all) keys.push_back(l.key);
     // The run's maps are those writeResults writes as files, in their order.
@@ -59,11 +60,11 @@ TEST(MapLayers, AFieldListsItsMapsAndItsRunsMapsAPatchScenarioNone) {
     EXPECT_NE(all[4].label.find("0.3 m"), std::string::npos) << all[4].label;
     EXPECT_EQ(layerRaster(field, nullptr, "height"), &*field.field->height);
     EXPECT_EQ(layerRaster(field, nullptr, "rut_depth_m"), nullptr);
-    EXPECT_TRUE(mapLayers(shipped("straight", 1.0), nullptr).empty());
+    EXPECT_TRUE(mapLayers(shippedScenario("straight", 1.0), nullptr).empty());
 }
 
 TEST(MapLayers, EveryPassageIsRecordedOnceInTimeOrder) {
-    const FieldMaps& maps = *fieldRun().maps;
+    const FieldMaps& maps = *fieldRun20s().maps;
     const MapHistory& h = maps.history;
     ASSERT_GT(h.size(), 20u);
     // Each passage adds one to its cell's count: the passes map (summed from the cell grid) holds
@@ -82,17 +83,17 @@ TEST(MapLayers, EveryPassageIsRecordedOnceInTimeOrder) {
 }
 
 TEST(MapLayers, AtTheEndEveryMapIsTheFinalMapAndBeforeAnyPassageUntouched) {
-    const FieldMaps& maps = *fieldRun().maps;
+    const FieldMaps& maps = *fieldRun20s().maps;
     const double end = maps.history.time_s.back();
     for (const auto& [key, raster] : mapRasters(maps)) {
         SCOPED_TRACE(key);
-        const field::Raster last = mapAt(maps, key, end, whole(*raster));
+        const field::Raster last = mapAt(maps, key, end, wholeWindow(*raster));
         ASSERT_EQ(last.values.size(), raster->values.size());
         long differ = 0;
         for (std::size_t i = 0; i < last.values.size(); ++i)
-            differ += same(last.values[i], raster->values[i]) ? 0 : 1;
+            differ += sameOrBothNan(last.values[i], raster->values[i]) ? 0 : 1;
         EXPECT_EQ(differ, 0);
-        const field::Raster first = mapAt(maps, key, 0.0, whole(*raster));
+        const field::Raster first = mapAt(maps, key, 0.0, wholeWindow(*raster));
         for (std::size_t i = 0; i < first.values.size(); ++i) {
             // Untouched soil: 0, or no data where the final map has none.
             ASSERT_TRUE(std::isnan(raster->values[i]) ? std::isnan(first.values[i])
@@ -103,7 +104,7 @@ TEST(MapLayers, AtTheEndEveryMapIsTheFinalMapAndBeforeAnyPassageUntouched) {
 }
 
 TEST(MapLayers, BetweenPassagesACellShowsTheCountAndRutOfThePassagesSoFar) {
-    const FieldMaps& maps = *fieldRun().maps;
+    const FieldMaps& maps = *fieldRun20s().maps;
     const MapHistory& h = maps.history;
     // The passages of each cell, by time.
     std::map<std::int32_t, std::vector<std::size_t>> by_cell;
@@ -116,7 +117,8 @@ TEST(MapLayers, BetweenPassagesACellShowsTheCountAndRutOfThePassagesSoFar) {
         const field::Raster& full = maps.passes;
         const CellWindow one{cell % full.cols, cell / full.cols, 1, 1};
         EXPECT_EQ(mapAt(maps, "passes", t_mid, one).values[0], 1.0);
-        EXPECT_EQ(mapAt(maps, "passes", kInf, one).values[0], static_cast<double>(passages.size()));
+        EXPECT_EQ(mapAt(maps, "passes", kEndOfRun, one).values[0],
+                  static_cast<double>(passages.size()));
         // The rut after the first passage: the front wheel's, no deeper than the final one.
         const double rut_mid = mapAt(maps, "rut_depth_m", t_mid, one).values[0];
         EXPECT_GT(rut_mid, 0.0);
@@ -126,7 +128,7 @@ TEST(MapLayers, BetweenPassagesACellShowsTheCountAndRutOfThePassagesSoFar) {
     EXPECT_GT(checked, 3);
     // Cells with a rut grow in number as the run goes on.
     auto rutted = [&](double t) {
-        const field::Raster r = mapAt(maps, "rut_depth_m", t, whole(maps.rut_depth_m));
+        const field::Raster r = mapAt(maps, "rut_depth_m", t, wholeWindow(maps.rut_depth_m));
         return std::count_if(r.values.begin(), r.values.end(), [](double v) { return v > 0.0; });
     };
     EXPECT_EQ(rutted(0.0), 0);
@@ -135,8 +137,8 @@ TEST(MapLayers, BetweenPassagesACellShowsTheCountAndRutOfThePassagesSoFar) {
 }
 
 TEST(MapLayers, CroppedMapsDrawTheSameAsTheWholeOnes) {
-    const Scenario field = shipped("field-slope-wet", 20.0);
-    const RunResult& run = fieldRun();
+    const Scenario field = shippedScenario("field-slope-wet", 20.0);
+    const RunResult& run = fieldRun20s();
     const FieldMaps& maps = *run.maps;
     const std::array<double, 4> box = drivenArea(field, run.series);
     const CellWindow window = windowOver(maps.rut_depth_m, box[0], box[1], box[2], box[3]);
@@ -147,15 +149,17 @@ TEST(MapLayers, CroppedMapsDrawTheSameAsTheWholeOnes) {
     const FieldMaps cropped = cropMaps(maps, window);
     // Every passage happened inside the driven area.
     EXPECT_EQ(cropped.history.size(), maps.history.size());
-    for (double t : {0.0, 7.5, 13.0, kInf}) {
+    for (double t : {0.0, 7.5, 13.0, kEndOfRun}) {
         for (const auto& [key, raster] : mapRasters(maps)) {
             const field::Raster a = mapAt(maps, key, t, window);
-            const field::Raster b = mapAt(cropped, key, t, whole(*mapRasters(cropped)[0].second));
+            const field::Raster b =
+                mapAt(cropped, key, t, wholeWindow(*mapRasters(cropped)[0].second));
             ASSERT_EQ(a.values.size(), b.values.size());
             EXPECT_EQ(a.x_min_m, b.x_min_m);
             EXPECT_EQ(a.y_min_m, b.y_min_m);
             for (std::size_t i = 0; i < a.values.size(); ++i)
-                ASSERT_TRUE(same(a.values[i], b.values[i])) << key << " t " << t << " cell " << i;
+                ASSERT_TRUE(sameOrBothNan(a.values[i], b.values[i]))
+                    << key << " t " << t << " cell " << i;
         }
     }
 }
@@ -177,9 +181,9 @@ TEST(MapLayers, AWindowHoldsTheCellsOfItsBoxAtTheirPlaces) {
         for (int col = 0; col < c.cols; ++col)
             EXPECT_EQ(c.value(col, row), r.nearest(c.centreX(col), c.centreY(row)));
     }
-    EXPECT_TRUE(windowOver(r, 0.0, 0.0, 10.0, 10.0).empty());    // misses the raster
-    EXPECT_TRUE(windowOver(r, 0.0, 0.0, kInf, 10.0).empty());    // not finite
-    const CellWindow all = windowOver(r, -1e6, -1e6, 1e6, 1e6);  // clipped to it
+    EXPECT_TRUE(windowOver(r, 0.0, 0.0, 10.0, 10.0).empty());       // misses the raster
+    EXPECT_TRUE(windowOver(r, 0.0, 0.0, kEndOfRun, 10.0).empty());  // not finite
+    const CellWindow all = windowOver(r, -1e6, -1e6, 1e6, 1e6);     // clipped to it
     EXPECT_EQ(all.cols, 10);
     EXPECT_EQ(all.rows, 5);
 }
@@ -217,8 +221,8 @@ TEST(MapLayers, ALargeRasterIsCoarsenedKeepingAOneCellRut) {
 }
 
 TEST(MapLayers, ALayerViewIsTheBoxOfTheMapAtTimeT) {
-    const Scenario field = shipped("field-slope-wet", 20.0);
-    const RunResult& run = fieldRun();
+    const Scenario field = shippedScenario("field-slope-wet", 20.0);
+    const RunResult& run = fieldRun20s();
     const FieldMaps& maps = *run.maps;
     const std::array<double, 4> box = drivenArea(field, run.series);
     for (const MapLayer& layer : mapLayers(field, &maps)) {
@@ -238,7 +242,7 @@ TEST(MapLayers, ALayerViewIsTheBoxOfTheMapAtTimeT) {
                                         windowOver(*raster, x - 1e-9, y - 1e-9, x + 1e-9, y + 1e-9))
                                       .values[0]
                                 : raster->nearest(x, y);
-                ASSERT_TRUE(same(view.value(col, row), expected)) << col << ", " << row;
+                ASSERT_TRUE(sameOrBothNan(view.value(col, row), expected)) << col << ", " << row;
             }
         }
     }
