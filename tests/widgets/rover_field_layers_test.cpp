@@ -7,6 +7,7 @@
 
 #include <QComboBox>
 #include <QElapsedTimer>
+#include <QLabel>
 #include <QSignalSpy>
 #include <QSlider>
 #include <algorithm>
@@ -97,6 +98,11 @@ TEST(RoverFieldLayers, AFieldShowsItsSoilMapBeforeItRunsAndTheRunsMapsAfter) {
     // the wet hollow's centre (32, 22) is class 2, index 1 (docs/field.md, "Shipped fields").
     ASSERT_EQ(loaded.field->classAt(27.5, 22.0), 1);
     EXPECT_EQ(drawnAt(panel, {27.5, 22.0}), 0.0);
+    // The status names the field's soils by their legend labels (not only the base soil).
+    bool said = false;
+    for (QLabel* label : panel.findChildren<QLabel*>())
+        said = said || label->text().contains("wet hollow: lean clay");
+    EXPECT_TRUE(said);
 
     ASSERT_TRUE(runField(panel, 20.0));
     const scenario::RunResult& run = panel.result();

@@ -552,7 +552,7 @@ void RoverPanel::previewScenario() {
     previewing_ = true;
     listLayers(preview_, nullptr);
     status_->setText(QString("Runs on the scenario's own soils (not the project's): %1. Press Run.")
-                         .arg(soilsOf(*loaded).toHtmlEscaped()));
+                         .arg(soilsOf(preview_).toHtmlEscaped()));
 }
 
 void RoverPanel::editScenario() {
