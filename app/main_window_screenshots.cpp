@@ -95,11 +95,11 @@ int MainWindow::takeScreenshots(const QString& dir) {
             break;
         }
         // Starts the rover's computation with `start` and waits for its result (2 min at most).
-        auto runAndWait = [this, rover](void (ui::RoverPanel::*start)()) {
+        auto runAndWait = [rover](void (ui::RoverPanel::*start)()) {
             QEventLoop loop;
             QTimer::singleShot(120000, &loop, &QEventLoop::quit);
-            connect(rover, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
-            connect(rover, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+            QObject::connect(rover, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+            QObject::connect(rover, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
             (rover->*start)();
             loop.exec();
         };
