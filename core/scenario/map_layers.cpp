@@ -12,9 +12,7 @@ namespace {
 
 constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
 
-// Label and unit of a run's map from its key: the maps this code knows by name, else the key's
-// words with its unit suffix read off ("energy_J_m" → "energy", J/m), so that a map added to
-// FieldMaps is listed before anyone names it here.
+// Label and unit of a run's map from its key (runMapLayer).
 void describeRunMap(const std::string& key, const FieldMaps& maps, MapLayer& layer) {
     if (key == "rut_depth_m") {
         layer.label = "rut depth";
@@ -59,6 +57,14 @@ void describeRunMap(const std::string& key, const FieldMaps& maps, MapLayer& lay
 
 }  // namespace
 
+MapLayer runMapLayer(const std::string& key, const FieldMaps& maps) {
+    MapLayer layer;
+    layer.key = key;
+    layer.timed = true;
+    describeRunMap(key, maps, layer);
+    return layer;
+}
+
 std::vector<MapLayer> mapLayers(const Scenario& scenario, const FieldMaps* maps) {
     std::vector<MapLayer> out;
     if (scenario.field && scenario.field->height) {
@@ -83,11 +89,7 @@ std::vector<MapLayer> mapLayers(const Scenario& scenario, const FieldMaps* maps)
     }
     if (maps != nullptr) {
         for (const auto& [key, raster] : mapRasters(*maps)) {
-            MapLayer layer;
-            layer.key = key;
-            layer.timed = true;
-            describeRunMap(key, *maps, layer);
-            out.push_back(std::move(layer));
+            out.push_back(runMapLayer(key, *maps));
         }
     }
     return out;

@@ -42,6 +42,12 @@ struct MapLayer {
 /// left, in its order). None for a patch scenario without a run's maps.
 std::vector<MapLayer> mapLayers(const Scenario& scenario, const FieldMaps* maps);
 
+/// A run's map `key` as a layer (timed, kContinuous) with its label and unit: the maps known by
+/// name ("rut_depth_m": rut depth, m; "passes": wheel passes, -; "compaction_risk": the risk at
+/// `maps.risk_depth_m`, -), else the key's words with its unit suffix read off ("energy_J_m":
+/// energy, J/m; "max_slip": max slip, -), so that a map added to FieldMaps is listed at once.
+MapLayer runMapLayer(const std::string& key, const FieldMaps& maps);
+
 /// The raster of layer `key`, the field's or the run's; nullptr when there is none.
 const field::Raster* layerRaster(const Scenario& scenario, const FieldMaps* maps,
                                  const std::string& key);

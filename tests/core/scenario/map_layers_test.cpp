@@ -63,6 +63,21 @@ TEST(MapLayers, AFieldListsItsMapsAndItsRunsMapsAPatchScenarioNone) {
     EXPECT_TRUE(mapLayers(shippedScenario("straight", 1.0), nullptr).empty());
 }
 
+// A map another change adds to FieldMaps (slip, energy) is listed with a label and unit read off
+// its key before anyone names it.
+TEST(MapLayers, AMapNotKnownByNameTakesItsLabelAndUnitFromItsKey) {
+    const FieldMaps maps;
+    const MapLayer energy = runMapLayer("energy_J_m", maps);
+    EXPECT_EQ(energy.label, "energy");
+    EXPECT_EQ(energy.unit, "J/m");
+    EXPECT_TRUE(energy.timed);
+    EXPECT_EQ(runMapLayer("energy_J_m2", maps).unit, "J/m²");
+    EXPECT_EQ(runMapLayer("max_slip", maps).label, "max slip");
+    EXPECT_EQ(runMapLayer("max_slip", maps).unit, "-");
+    EXPECT_EQ(runMapLayer("rut_depth_m", maps).label, "rut depth");
+    EXPECT_EQ(runMapLayer("rut_depth_m", maps).unit, "m");
+}
+
 TEST(MapLayers, EveryPassageIsRecordedOnceInTimeOrder) {
     const FieldMaps& maps = *fieldRun20s().maps;
     const MapHistory& h = maps.history;
