@@ -20,12 +20,17 @@ using nlohmann::json;
 
 using terra::testing::kLocations;
 
-TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
+/// A shipped scenario run for `duration_s`.
+analysis::RoverResult runShipped(const std::string& name, double duration_s) {
     analysis::RoverSettings s;
-    s.scenario = "straight";
+    s.scenario = name;
     s.loaded = scenario::resolveScenario(kLocations, s.scenario).value();
-    s.duration_s = 1.0;
-    const analysis::RoverResult computed = analysis::runRover(s);
+    s.duration_s = duration_s;
+    return analysis::runRover(s);
+}
+
+TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
+    const analysis::RoverResult computed = runShipped("straight", 1.0);
     ASSERT_GT(computed.run.series.rows.size(), 5u);
     const json scenario_json =
         io::readJsonFile(std::filesystem::path(TERRA_RESOURCE_DIR) / "scenarios/straight.json")
@@ -99,11 +104,7 @@ TEST(SavedRover, ACancelledRunStaysCancelledAndDamageIsNamed) {
 // saves them): read back, every raster and every passage is the same, so the studio draws the
 // layers and scrubs them without running again. A file from before (no "maps") reads without.
 TEST(SavedRover, AFieldRunKeepsItsMapsAndTheirHistory) {
-    analysis::RoverSettings s;
-    s.scenario = "field-slope-wet";
-    s.loaded = scenario::resolveScenario(kLocations, s.scenario).value();
-    s.duration_s = 14.0;
-    const analysis::RoverResult computed = analysis::runRover(s);
+    const analysis::RoverResult computed = runShipped("field-slope-wet", 14.0);
     ASSERT_TRUE(computed.run.maps);
     SavedRoverRun run{computed.run, "field-slope-wet", json::object()};
     const std::array<double, 4> box = scenario::drivenArea(computed.scenario, run.run.series);
