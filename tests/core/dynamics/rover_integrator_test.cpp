@@ -16,11 +16,12 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::dynamics {
 namespace {
 
-const io::PresetLocations kLocations{{TERRA_RESOURCE_DIR}};
+using terra::testing::kLocations;
 
 // The goal of issue 23: the fast run within 1 % of the 1 ms reference.
 constexpr double kGoal = 0.01;
