@@ -3,9 +3,11 @@
 #include <QDir>
 #include <QEventLoop>
 #include <QFile>
+#include <QSlider>
 #include <QTimer>
 #include <QUndoStack>
 #include <cstdio>
+#include <utility>
 
 #include "app/main_window.h"
 #include "widgets/document/project_document.h"
@@ -92,24 +94,47 @@ int MainWindow::takeScreenshots(const QString& dir) {
             ++failures;
             break;
         }
-        QEventLoop loop;
-        QTimer::singleShot(120000, &loop, &QEventLoop::quit);
-        connect(rover, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
-        connect(rover, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
-        rover->requestComparison();
-        loop.exec();
-        for (const char* tab : {"Slip control", "Efficiency", "Energy", "Comparison"}) {
-            rover->showTab(tab);
+        // Starts the rover's computation with `start` and waits for its result (2 min at most).
+        auto runAndWait = [rover](void (ui::RoverPanel::*start)()) {
+            QEventLoop loop;
+            QTimer::singleShot(120000, &loop, &QEventLoop::quit);
+            QObject::connect(rover, &ui::AnalysisPanel::resultShown, &loop, &QEventLoop::quit);
+            QObject::connect(rover, &ui::AnalysisPanel::failed, &loop, &QEventLoop::quit);
+            (rover->*start)();
+            loop.exec();
+        };
+        // The window as it settled, into dir/name.
+        auto grabAs = [&](const QString& name) {
             QEventLoop settle;
             QTimer::singleShot(300, &settle, &QEventLoop::quit);
             settle.exec();
-            const QString path =
-                dir + "/studio-rover-" + QString(tab).toLower().replace(' ', '-') + ".png";
+            const QString path = dir + "/" + name;
             if (!grab().save(path)) ++failures;
             std::printf("wrote %s\n", qPrintable(path));
+        };
+        runAndWait(&ui::RoverPanel::requestComparison);
+        for (const char* tab : {"Slip control", "Efficiency", "Energy", "Comparison"}) {
+            rover->showTab(tab);
+            grabAs("studio-rover-" + QString(tab).toLower().replace(' ', '-') + ".png");
         }
         rover->showTab("Top view");
         rover->revertScenario();
+        // A field run with its layers (docs/user-guide.md, "Field layers"): the shipped sloped
+        // field, the ruts at the end and a third of the way, the soil classes, the compaction risk.
+        rover->applySettings({{"scenario", "field-slope-wet"}});
+        runAndWait(&ui::RoverPanel::requestRun);
+        const int last = rover->scrubber()->maximum();
+        const std::pair<const char*, int> shots[] = {{"rut_depth_m", last},
+                                                     {"rut_depth_m", last / 3},
+                                                     {"soil_classes", last},
+                                                     {"compaction_risk", last}};
+        for (const auto& [layer, row] : shots) {
+            rover->chooseLayer(layer);
+            rover->scrubber()->setValue(row);
+            grabAs("studio-rover-field-" + QString(layer).replace('_', '-') +
+                   (row == last ? QString() : QString("-scrubbed")) + ".png");
+        }
+        rover->chooseLayer("rut_depth_m");
         rover->applySettings(before);
         break;
     }

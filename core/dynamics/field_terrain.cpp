@@ -103,6 +103,9 @@ void FieldTerrain::imprint(int wheel, const WheelImprint& imprint) {
 }
 
 void FieldTerrain::advanced(double dt_s) {
+    // Summed as the rover sums its own clock (state.time_s += dt), so that a passage's time is
+    // bit for bit the time of the series' row it was written in.
+    time_s_ += dt_s;
     for (Passage& p : passages_) {
         if (p.open) p.energy_j += p.last_power_w * dt_s;
     }
@@ -162,6 +165,10 @@ void FieldTerrain::commit(Passage& p) {
             sigma = 0.0;
         }
         cell.max_stress_pa[k] = std::max(cell.max_stress_pa[k], static_cast<float>(sigma));
+    }
+    if (options_.record_passages) {
+        const auto wheel = static_cast<int>(&p - passages_.data());
+        log_.push_back(CellPassage{time_s_, p.key, wheel, cell});
     }
 }
 

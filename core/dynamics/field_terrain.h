@@ -46,6 +46,20 @@ struct FieldTerrainOptions {
     std::vector<double> stress_depths_m{0.3};
     /// ν for the stress at depth; 0: the layer's own ν at each depth, else 5 (Söhne's "normal").
     double concentration = 0.0;
+    /// Keep every passage written (FieldTerrain::passages): when and where, and the cell after
+    /// it, so that the maps can be drawn as they were at any time (the studio's time scrub).
+    /// 88 bytes a passage.
+    bool record_passages = false;
+};
+
+/// One wheel's passage as it was written to its cell (F10).
+struct CellPassage {
+    /// The rover's time when the wheel left the cell (or the run ended with the wheel on it) [s]:
+    /// the sum of the steps the terrain was told of, as the rover's own clock.
+    double time_s = 0.0;
+    field::CellKey key;
+    int wheel = 0;
+    field::CellState after;  ///< the cell's state once the passage was written
 };
 
 class FieldTerrain final : public TerrainModel {
@@ -77,6 +91,9 @@ public:
     const FieldTerrainOptions& options() const { return options_; }
     /// Cells that at least one wheel passed over.
     long cellsTouched() const { return cells_touched_; }
+    /// Every passage written, in the order written (time non-decreasing), when
+    /// options().record_passages; empty otherwise.
+    const std::vector<CellPassage>& passages() const { return log_; }
 
 private:
     // One wheel's passage over one cell (F10): opened when the wheel's contact point enters the
@@ -108,6 +125,8 @@ private:
     // Each wheel's last contact point (the passage's travel; F12).
     std::array<std::optional<std::array<double, 2>>, kWheelCount> last_contact_{};
     long cells_touched_ = 0;
+    double time_s_ = 0.0;  // the sum of the steps advanced() was told of
+    std::vector<CellPassage> log_;
 };
 
 }  // namespace terra::dynamics

@@ -118,6 +118,102 @@ scenario::TractionMetrics tractionFrom(const json& j) {
     return t;
 }
 
+std::vector<double> numbersFrom(const json& j) {
+    if (!j.is_array()) throw std::invalid_argument("expected an array of numbers");
+    std::vector<double> out;
+    out.reserve(j.size());
+    for (const json& v : j) out.push_back(saved::numberOf(v));
+    return out;
+}
+
+json numbersJson(const std::vector<double>& values) {
+    json out = json::array();
+    for (double v : values) out.push_back(number(v));
+    return out;
+}
+
+json rasterJson(const field::Raster& r) {
+    return {{"cols", r.cols},
+            {"rows", r.rows},
+            {"x_min_m", number(r.x_min_m)},
+            {"y_min_m", number(r.y_min_m)},
+            {"cell_m", number(r.cell_m)},
+            {"values", numbersJson(r.values)}};
+}
+
+field::Raster rasterFrom(const json& j) {
+    field::Raster r;
+    r.cols = j.at("cols").get<int>();
+    r.rows = j.at("rows").get<int>();
+    r.x_min_m = numberAt(j, "x_min_m");
+    r.y_min_m = numberAt(j, "y_min_m");
+    r.cell_m = numberAt(j, "cell_m");
+    r.values = readKey(j, "values", numbersFrom);
+    if (r.cols < 0 || r.rows < 0 ||
+        r.values.size() != static_cast<std::size_t>(r.cols) * static_cast<std::size_t>(r.rows))
+        throw std::invalid_argument(std::to_string(r.values.size()) + " values for " +
+                                    std::to_string(r.cols) + " × " + std::to_string(r.rows) +
+                                    " cells");
+    return r;
+}
+
+// A field run's maps: the rasters by key (mapRasters) and the history.
+json mapsJson(const scenario::FieldMaps& m) {
+    json rasters = json::object();
+    for (const auto& [key, raster] : scenario::mapRasters(m)) rasters[key] = rasterJson(*raster);
+    json values = json::object();
+    for (const auto& [key, v] : m.history.values) values[key] = numbersJson(v);
+    return {{"risk_depth_m", number(m.risk_depth_m)},
+            {"rasters", std::move(rasters)},
+            {"history",
+             {{"time_s", numbersJson(m.history.time_s)},
+              {"cell", m.history.cell},
+              {"values", std::move(values)}}}};
+}
+
+scenario::FieldMaps mapsFrom(const json& j) {
+    scenario::FieldMaps m;
+    m.risk_depth_m = numberAt(j, "risk_depth_m");
+    const json& rasters = j.at("rasters");
+    std::size_t cells = 0;
+    bool first = true;
+    // A map this version draws but the file does not hold (saved before it existed) stays empty:
+    // the studio lists no layer without cells.
+    for (const auto& [key, raster] : scenario::mapRasters(m)) {
+        if (!rasters.contains(key)) continue;
+        *raster = readKey(rasters, key.c_str(), rasterFrom);
+        const std::size_t n = raster->values.size();
+        if (!first && n != cells)
+            throw std::invalid_argument("rasters: " + key + " holds " + std::to_string(n) +
+                                        " cells, the others " + std::to_string(cells));
+        cells = n, first = false;
+    }
+    const json& h = j.at("history");
+    scenario::MapHistory& out = m.history;
+    out.time_s = readKey(h, "time_s", numbersFrom);
+    out.cell = h.at("cell").get<std::vector<std::int32_t>>();
+    if (out.cell.size() != out.time_s.size())
+        throw std::invalid_argument("history: " + std::to_string(out.cell.size()) + " cells for " +
+                                    std::to_string(out.time_s.size()) + " times");
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (out.cell[i] < 0 || static_cast<std::size_t>(out.cell[i]) >= cells)
+            throw std::invalid_argument("history: cell " + std::to_string(out.cell[i]) +
+                                        " is outside the maps' " + std::to_string(cells) +
+                                        " cells");
+        if (i > 0 && !(out.time_s[i] >= out.time_s[i - 1]))
+            throw std::invalid_argument("history: the times are not in order at passage " +
+                                        std::to_string(i));
+    }
+    for (const auto& [key, values] : h.at("values").items()) {
+        out.values[key] = numbersFrom(values);
+        if (out.values[key].size() != out.size())
+            throw std::invalid_argument("history: " + key + " holds " +
+                                        std::to_string(out.values[key].size()) + " values for " +
+                                        std::to_string(out.size()) + " passages");
+    }
+    return m;
+}
+
 }  // namespace
 
 json savedJson(const SavedRoverRun& r) {
@@ -128,7 +224,8 @@ json savedJson(const SavedRoverRun& r) {
             {"streaming", saved::tableJson(r.run.streaming)},
             {"traction", tractionJson(r.run.traction)},
             {"scenario_name", r.scenario_name},
-            {"scenario", r.scenario}};
+            {"scenario", r.scenario},
+            {"maps", r.run.maps ? mapsJson(*r.run.maps) : json(nullptr)}};
 }
 
 Result<SavedRoverRun> savedRoverRunFromJson(const json& j, const std::string& where) {
@@ -150,6 +247,8 @@ Result<SavedRoverRun> savedRoverRunFromJson(const json& j, const std::string& wh
         r.run.summary = readKey(j, "summary", summaryFrom);
         r.run.streaming = readKey(j, "streaming", saved::tableFrom);
         r.run.traction = readKey(j, "traction", tractionFrom);
+        // A patch run, or a file written before field runs kept their maps: none.
+        if (j.contains("maps") && !j["maps"].is_null()) r.run.maps = readKey(j, "maps", mapsFrom);
         r.scenario_name = j.at("scenario_name").get<std::string>();
         r.scenario = j.at("scenario");
         if (!r.scenario.is_object())

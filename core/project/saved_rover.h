@@ -3,7 +3,9 @@
 /// A rover run in a project's results file (core/project/results.h): the time series the rover
 /// panel plots (every column, every row), the summary, the traction metrics, the streaming
 /// table, the status and message of the run, and the scenario it ran (its name as shown and its
-/// JSON, from which the top view draws the robot and its soils). Read back to the same numbers.
+/// JSON, from which the top view draws the robot and its soils); a field run's maps and their
+/// history as the run holds them (the rover panel crops them to the driven area first,
+/// scenario::cropMaps). Read back to the same numbers.
 
 #include <nlohmann/json.hpp>
 #include <string>

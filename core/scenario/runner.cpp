@@ -586,6 +586,59 @@ std::vector<std::string> closedLoopColumns() {
     return c;
 }
 
+// σ_pc at the compaction risk's depth (the grid's first stress depth) of each soil of the terrain:
+// its profile's layer there, or NaN (no profile reaching that depth, or no stress depth).
+std::vector<double> precompressionBySoil(const dynamics::FieldTerrain& terrain) {
+    const std::vector<double>& depths = terrain.cells().stressDepths();
+    std::vector<double> precompression(static_cast<std::size_t>(terrain.soilCount()),
+                                       std::numeric_limits<double>::quiet_NaN());
+    for (int i = 0; i < terrain.soilCount(); ++i) {
+        const soil::SoilParameters& soil = terrain.soil(i);
+        if (depths.empty() || !soil.profile) continue;
+        if (const soil::SoilLayer* layer = soil.profile->layerAt(depths.front()))
+            precompression[static_cast<std::size_t>(i)] = soil::precompressionStress(*layer);
+    }
+    return precompression;
+}
+
+// The history of the maps (MapHistory): each recorded passage inside the maps with the value of
+// every map at its cell after it, by the same rules as fieldMaps.
+MapHistory mapHistory(const dynamics::FieldTerrain& terrain, const FieldMaps& maps,
+                      const std::vector<double>& precompression) {
+    MapHistory h;
+    const std::vector<dynamics::CellPassage>& log = terrain.passages();
+    const field::CellGrid& cells = terrain.cells();
+    const field::Raster& grid = maps.rut_depth_m;  // every map has this geometry
+    std::vector<double>& rut = h.values["rut_depth_m"];
+    std::vector<double>& passes = h.values["passes"];
+    std::vector<double>& risk = h.values["compaction_risk"];
+    std::vector<double>& slip = h.values["slip"];
+    std::vector<double>& energy = h.values["energy_per_m_J"];
+    for (std::vector<double>* v : {&h.time_s, &rut, &passes, &risk, &slip, &energy})
+        v->reserve(log.size());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    h.cell.reserve(log.size());
+    for (const dynamics::CellPassage& p : log) {
+        const double x = cells.centreX(p.key.ix), y = cells.centreY(p.key.iy);
+        const std::optional<field::CellIndex> at = grid.cellAt(x, y);
+        if (!at) continue;  // driven off the maps: not drawn on them either
+        h.time_s.push_back(p.time_s);
+        h.cell.push_back(static_cast<std::int32_t>(at->row * grid.cols + at->col));
+        rut.push_back(p.after.track.rut_depth_m);
+        passes.push_back(static_cast<double>(p.after.track.passes));
+        const double sigma_pc = precompression[static_cast<std::size_t>(terrain.soilIndexAt(x, y))];
+        risk.push_back(sigma_pc > 0.0 ? static_cast<double>(p.after.max_stress_pa[0]) / sigma_pc
+                                      : nan);
+        // F11–F12 as fieldMaps draws them, after this passage.
+        slip.push_back(p.after.track.passes > 0 ? static_cast<double>(p.after.max_slip) : nan);
+        energy.push_back(p.after.track.passes > 0 && p.after.travel_m > 0.0f
+                             ? static_cast<double>(p.after.energy_j) /
+                                   static_cast<double>(p.after.travel_m)
+                             : nan);
+    }
+    return h;
+}
+
 // The maps of a field run over the field's extent (or the cells touched, for a field without
 // rasters), on the memory's cells.
 FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
@@ -620,15 +673,8 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
         box[0], box[1], box[2], box[3],
         [](const field::CellState& c) { return static_cast<double>(c.max_stress_pa[0]); });
     const std::vector<double>& depths = cells.stressDepths();
-    maps.risk_depth_m = depths.empty() ? nan : depths.front();
-    // σ_pc at the risk depth of each soil: its profile's layer there, or none.
-    std::vector<double> precompression(static_cast<std::size_t>(terrain.soilCount()), nan);
-    for (int i = 0; i < terrain.soilCount(); ++i) {
-        const soil::SoilParameters& soil = terrain.soil(i);
-        if (depths.empty() || !soil.profile) continue;
-        if (const soil::SoilLayer* layer = soil.profile->layerAt(depths.front()))
-            precompression[static_cast<std::size_t>(i)] = soil::precompressionStress(*layer);
-    }
+    maps.risk_depth_m = depths.empty() ? std::numeric_limits<double>::quiet_NaN() : depths.front();
+    const std::vector<double> precompression = precompressionBySoil(terrain);
     field::Raster& risk = maps.compaction_risk;
     // When every soil has σ_pc (or none has) the cells no wheel touched need no soil lookup: their
     // stress is 0, their risk 0 (or no data).
@@ -648,6 +694,7 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
             v = sigma_pc > 0.0 ? v / sigma_pc : nan;
         }
     }
+    maps.history = mapHistory(terrain, maps, precompression);
     return maps;
 }
 
@@ -686,8 +733,12 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     // A field: its terrain, which the rover tells every wheel's passage (docs/field.md).
     std::unique_ptr<dynamics::FieldTerrain> field;
     if (scenario.field) {
+        // Every passage is kept for the maps' history (MapHistory: 88 bytes a passage while the
+        // run goes on, 36 in the result).
+        dynamics::FieldTerrainOptions field_options = scenario.field_options;
+        field_options.record_passages = true;
         field = std::make_unique<dynamics::FieldTerrain>(scenario.field, scenario.robot,
-                                                         scenario.field_options);
+                                                         std::move(field_options));
     }
     const std::unique_ptr<dynamics::Rover> rover_on =
         field ? std::make_unique<dynamics::Rover>(scenario.robot, *field, rover_options,
@@ -950,6 +1001,32 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
     return j;
 }
 
+namespace {
+
+// The one list of a run's maps, in kMapFiles' order (for both constnesses of mapRasters).
+template <typename Maps>
+auto namedRasters(Maps& maps) {
+    const std::array rasters{&maps.rut_depth_m, &maps.passes, &maps.compaction_risk, &maps.slip,
+                             &maps.energy_per_m_j};
+    static_assert(rasters.size() == kMapFiles.size(), "a map for each of kMapFiles");
+    std::vector<std::pair<std::string, typename decltype(rasters)::value_type>> out;
+    for (std::size_t i = 0; i < rasters.size(); ++i) {
+        const std::string file = kMapFiles[i];
+        out.emplace_back(file.substr(0, file.rfind('.')), rasters[i]);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, const field::Raster*>> mapRasters(const FieldMaps& maps) {
+    return namedRasters(maps);
+}
+
+std::vector<std::pair<std::string, field::Raster*>> mapRasters(FieldMaps& maps) {
+    return namedRasters(maps);
+}
+
 std::optional<std::string> writeResults(const RunResult& result, const Scenario& scenario,
                                         const std::filesystem::path& directory) {
     std::error_code ec;
@@ -977,11 +1054,8 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
         return error;
     }
     if (result.maps) {
-        const FieldMaps& m = *result.maps;
-        const std::array<const field::Raster*, kMapFiles.size()> rasters{
-            &m.rut_depth_m, &m.passes, &m.compaction_risk, &m.slip, &m.energy_per_m_j};
-        for (std::size_t i = 0; i < rasters.size(); ++i) {
-            if (auto error = io::writeRaster(directory / kMapFiles[i], *rasters[i])) return error;
+        for (const auto& [stem, raster] : mapRasters(*result.maps)) {
+            if (auto error = io::writeRaster(directory / (stem + ".asc"), *raster)) return error;
         }
     }
     if (!result.streaming.columns.empty()) {

@@ -6,11 +6,15 @@
 
 #include <array>
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/common/table.h"
 #include "core/dynamics/rover.h"
@@ -67,6 +71,19 @@ struct Summary {
     std::optional<MissionOutcome> mission;
 };
 
+/// The maps of a drive as they grew (docs/field.md, "The maps over time"): every passage written
+/// to a cell inside the maps, in the order written, with the value each map took there after it.
+/// mapAt (core/scenario/map_layers.h) draws a map as it was at a time t from it.
+struct MapHistory {
+    std::vector<double> time_s;      ///< when each passage was written [s], non-decreasing
+    std::vector<std::int32_t> cell;  ///< its cell in the maps' rasters: row × cols + col
+    /// A map's key (mapRasters) → its value at that cell after each passage. A map without an
+    /// entry is drawn from its final value at the passages' times (mapAt).
+    std::map<std::string, std::vector<double>> values;
+
+    std::size_t size() const { return time_s.size(); }
+};
+
 /// The maps a field run leaves (docs/field.md, "Maps of a drive"), on the memory's cells over the
 /// field's extent (ESRI ASCII grids in writeResults).
 struct FieldMaps {
@@ -81,6 +98,7 @@ struct FieldMaps {
     /// The energy the wheels lost into the soil there per metre their contact points travelled
     /// over it, E / d (F12) [J/m]; NaN (no data) where no wheel passed.
     field::Raster energy_per_m_j;
+    MapHistory history;  ///< how the maps grew (the studio's time scrub)
 };
 
 struct RunResult {
@@ -110,6 +128,12 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario);
 /// The names of a field run's maps in the output directory.
 inline constexpr std::array<const char*, 5> kMapFiles{
     "rut_depth_m.asc", "passes.asc", "compaction_risk.asc", "slip.asc", "energy_per_m_J.asc"};
+
+/// A field run's maps by name, in kMapFiles' order: the key is the file's stem ("rut_depth_m").
+/// What writeResults writes and the studio's layer chooser lists (core/scenario/map_layers.h): a
+/// map added to FieldMaps is added here.
+std::vector<std::pair<std::string, const field::Raster*>> mapRasters(const FieldMaps& maps);
+std::vector<std::pair<std::string, field::Raster*>> mapRasters(FieldMaps& maps);
 
 /// Writes timeseries.csv, summary.json (and streaming.csv; a field run's kMapFiles) into
 /// `directory` (created), each atomically. An error message, or nothing.

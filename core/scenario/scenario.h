@@ -5,6 +5,7 @@
 /// resources/scenarios/*.json, format in docs/dynamics.md (scenario_json.h reads them).
 
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -65,6 +66,8 @@ struct Scenario {
     /// are not used. Empty: the flat patches of `terrain`.
     std::shared_ptr<const field::FieldMap> field;
     dynamics::FieldTerrainOptions field_options;
+    /// The field legend's labels by class code ("wet hollow"), for drawing its soil map.
+    std::map<int, std::string> field_labels;
     dynamics::InitialState initial;
     dynamics::RoverOptions options;
     std::array<WheelInputs, dynamics::kWheelCount> wheels;

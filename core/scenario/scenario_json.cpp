@@ -265,6 +265,7 @@ void readFieldTerrain(ObjectReader& r, const io::PresetLocations& locations,
                                        "); give the soil by class");
         }
         s.terrain.base = f.map.base;
+        s.field_labels = f.labels;
         s.field = std::make_shared<const field::FieldMap>(std::move(f.map));
     }
     dynamics::FieldTerrainOptions& o = s.field_options;

@@ -18,7 +18,10 @@
 #include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "core/analysis/rover.h"
 #include "core/io/atomic_file.h"
@@ -26,6 +29,7 @@
 #include "core/project/panels.h"
 #include "core/project/saved_rover.h"
 #include "core/scenario/scenario_json.h"
+#include "widgets/plots/field_layers.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/rover_figures.h"
 
@@ -176,10 +180,22 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     play_->setEnabled(false);
     player_ = new QTimer(this);
     player_->setInterval(40);
+    layer_label_ = new QLabel("Layer:", view_page);
+    layer_ = new QComboBox(view_page);
+    layer_->setObjectName("rover.layer");
+    layer_->setSizeAdjustPolicy(QComboBox::AdjustToContents);
+    layer_->setToolTip(
+        "The field map drawn under the track: the field's height and soil classes, or a map the "
+        "run left (rut depth, passes, compaction risk, ...) as it was at the time shown "
+        "(docs/user-guide.md, \"Field layers\")");
+    layer_label_->setVisible(false);  // a field's: listLayers shows them
+    layer_->setVisible(false);
     auto* scrub_bar = new QHBoxLayout;
     scrub_bar->addWidget(play_);
     scrub_bar->addWidget(scrubber_, 1);
     scrub_bar->addWidget(time_);
+    scrub_bar->addWidget(layer_label_);
+    scrub_bar->addWidget(layer_);
     auto* view_layout = new QVBoxLayout(view_page);
     view_layout->setContentsMargins(0, 0, 0, 0);
     view_layout->addWidget(top_view_, 1);
@@ -262,6 +278,11 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     connect(slip_set_, &QDoubleSpinBox::valueChanged, this,
             [this](double slip) { setControllerValue("slip", slip); });
     connect(scrubber_, &QSlider::valueChanged, this, &RoverPanel::scrubTo);
+    connect(layer_, &QComboBox::currentIndexChanged, this, [this] {
+        const QString key = layerKey();
+        layer_choice_ = key.isEmpty() ? "none" : key.toStdString();
+        drawLayer();
+    });
     connect(play_, &QPushButton::toggled, this, [this](bool on) {
         if (on && scrubber_->value() >= scrubber_->maximum()) scrubber_->setValue(0);
         on ? player_->start() : player_->stop();
@@ -456,6 +477,21 @@ namespace {
 
 /// "sandy loam; patches: clay, wet sand" — the soils a scenario drives on.
 QString soilsOf(const scenario::Scenario& scenario) {
+    if (scenario.field) {
+        // "the field Sloped field with a wet hollow (field: sandy loam; wet hollow: lean clay)".
+        QStringList classes;
+        for (const auto& [code, soil] : scenario.field->legend) {
+            const auto label = scenario.field_labels.find(code);
+            const QString name = QString::fromStdString(soil.name);
+            classes << (label != scenario.field_labels.end() && !label->second.empty() &&
+                                label->second != soil.name
+                            ? QString::fromStdString(label->second) + ": " + name
+                            : name);
+        }
+        const QString field = QString::fromStdString(scenario.field->name);
+        return (field.isEmpty() ? QString("a field") : "the field " + field) +
+               (classes.isEmpty() ? QString() : " (" + classes.join("; ") + ")");
+    }
     QString text = QString::fromStdString(scenario.terrain.base.name);
     QStringList patches;
     for (const dynamics::SoilPatch& patch : scenario.terrain.patches)
@@ -463,6 +499,16 @@ QString soilsOf(const scenario::Scenario& scenario) {
     patches.removeDuplicates();
     if (!patches.isEmpty()) text += "; patches: " + patches.join(", ");
     return text;
+}
+
+/// ", 92 cells touched, deepest rut 4.52 mm" for a field run (its maps), else "".
+QString fieldSummary(const scenario::RunResult& run) {
+    if (!run.maps || !run.summary.cells_touched) return {};
+    const auto [lo, hi] = run.maps->rut_depth_m.valueRange();
+    (void)lo;
+    return QString(", %1 cells touched, deepest rut %2 mm")
+        .arg(*run.summary.cells_touched)
+        .arg(std::isfinite(hi) ? hi * 1e3 : 0.0, 0, 'f', 2);
 }
 
 }  // namespace
@@ -502,8 +548,11 @@ void RoverPanel::previewScenario() {
                              : scenario::resolveScenario(locations_, name);
     if (!loaded) return;  // Run says what is wrong
     plotRoverTopView(*top_view_, *loaded, Table{}, 0, shown + " — not run yet: soils and start");
+    preview_ = std::move(loaded).value();
+    previewing_ = true;
+    listLayers(preview_, nullptr);
     status_->setText(QString("Runs on the scenario's own soils (not the project's): %1. Press Run.")
-                         .arg(soilsOf(*loaded).toHtmlEscaped()));
+                         .arg(soilsOf(preview_).toHtmlEscaped()));
 }
 
 void RoverPanel::editScenario() {
@@ -584,6 +633,9 @@ void RoverPanel::present(const std::any& value) {
         scrubber_->setPageStep(std::max(1, last / 60));  // Page Up/Down: 1/60 of the run
         scrubber_->setValue(std::max(last, 0));
     }
+    previewing_ = false;
+    preview_ = {};
+    listLayers(shown_, result_.maps ? &*result_.maps : nullptr);
     scrubber_->setEnabled(last > 0);
     play_->setEnabled(last > 0);
     time_->setText(timeLabel());
@@ -687,7 +739,7 @@ QString RoverPanel::summaryText() const {
     const QString body =
         QString(
             "on %8 — %1 s simulated, final pose x = %2 m, y = %3 m, yaw = %4°, distance "
-            "%5 m, motor energy %6 J%7")
+            "%5 m, motor energy %6 J%9%7")
             .arg(s.duration_s, 0, 'f', 2)
             .arg(s.x_m, 0, 'f', 3)
             .arg(s.y_m, 0, 'f', 3)
@@ -696,7 +748,8 @@ QString RoverPanel::summaryText() const {
             .arg(s.energy_j, 0, 'f', 1)
             .arg(result_.message.empty() ? QString()
                                          : ". " + QString::fromStdString(result_.message))
-            .arg(soilsOf(shown_).toHtmlEscaped());
+            .arg(soilsOf(shown_).toHtmlEscaped())
+            .arg(fieldSummary(result_));
     return completion() == Completion::kComplete ? "Completed " + body : markedStatus(body);
 }
 
@@ -716,6 +769,7 @@ void RoverPanel::scrubTo(int row) {
         scrubber_->setValue(row);  // comes back here through valueChanged
         return;
     }
+    scrubLayer();  // before the pose, which replots
     setRoverTopViewPose(*top_view_, shown_.robot, result_.series, static_cast<std::size_t>(row));
     time_->setText(timeLabel());
     // The time plots' cursors follow; only the plot in view is redrawn now (the others when their
@@ -726,6 +780,111 @@ void RoverPanel::scrubTo(int row) {
                            static_cast<std::size_t>(row));
         if (tabs_->currentWidget() == plots_[i]) plots_[i]->replot(QCustomPlot::rpQueuedReplot);
     }
+}
+
+// --- Field layers (core/scenario/map_layers.h, widgets/plots/field_layers.h) -------------------
+
+const scenario::Scenario& RoverPanel::layerScenario() const {
+    return previewing_ ? preview_ : shown_;
+}
+
+const scenario::FieldMaps* RoverPanel::layerMaps() const {
+    return !previewing_ && result_.maps ? &*result_.maps : nullptr;
+}
+
+QString RoverPanel::layerKey() const { return layer_->currentData().toString(); }
+
+bool RoverPanel::chooseLayer(const QString& key) {
+    const int i = layer_->findData(key.isEmpty() ? QString("none") : key);
+    if (i < 0) return false;
+    layer_->setCurrentIndex(i);
+    return true;
+}
+
+void RoverPanel::listLayers(const scenario::Scenario& scenario, const scenario::FieldMaps* maps) {
+    const QSignalBlocker block(layer_);
+    layers_ = scenario::mapLayers(scenario, maps);
+    // A map without cells (a saved run from before that map existed) has nothing to draw.
+    layers_.erase(std::remove_if(layers_.begin(), layers_.end(),
+                                 [&](const scenario::MapLayer& layer) {
+                                     const field::Raster* r =
+                                         scenario::layerRaster(scenario, maps, layer.key);
+                                     return r == nullptr || r->values.empty();
+                                 }),
+                  layers_.end());
+    layer_->clear();
+    layer_->addItem("none", QString("none"));
+    for (const scenario::MapLayer& layer : layers_)
+        layer_->addItem(QString::fromStdString(layer.label), QString::fromStdString(layer.key));
+    int chosen = layer_->findData(QString::fromStdString(layer_choice_));
+    for (const char* fallback : {"rut_depth_m", "soil_classes", "height"}) {
+        if (chosen < 0) chosen = layer_->findData(QString(fallback));
+    }
+    layer_->setCurrentIndex(std::max(chosen, 0));
+    layer_label_->setVisible(!layers_.empty());
+    layer_->setVisible(!layers_.empty());
+    drawLayer();
+}
+
+void RoverPanel::drawLayer() {
+    const int i = layer_->currentIndex() - 1;
+    if (i < 0 || static_cast<std::size_t>(i) >= layers_.size()) {
+        if (topViewLayer(*top_view_) == nullptr) return;
+        const int width = top_view_->axisRect()->width();
+        removeTopViewLayer(*top_view_);
+        refitTopView(width);
+        return;
+    }
+    const scenario::MapLayer& layer = layers_[static_cast<std::size_t>(i)];
+    const scenario::Scenario& s = layerScenario();
+    const scenario::FieldMaps* maps = layerMaps();
+    if (layer.timed) {
+        // The driven area: where the run's maps can differ from untouched soil, and what a saved
+        // run keeps of them.
+        layer_box_ = scenario::drivenArea(s, previewing_ ? Table{} : result_.series);
+    } else {
+        // The field's own maps under everything in view, a view's width beyond each side so that
+        // a little panning does not show their edge.
+        const QCPRange x = top_view_->xAxis->range(), y = top_view_->yAxis->range();
+        layer_box_ = {x.lower - x.size(), y.lower - y.size(), x.upper + x.size(),
+                      y.upper + y.size()};
+    }
+    const int width = top_view_->axisRect()->width();
+    const field::Raster final_view = scenario::layerView(s, maps, layer, layer_box_);
+    layer_display_ = layerDisplay(layer, final_view);
+    const bool scrubbed = layer.timed && !previewing_ && !result_.series.rows.empty();
+    drawTopViewLayer(
+        *top_view_, layer, layer_display_,
+        scrubbed ? scenario::layerView(s, maps, layer, layer_box_, scrubTime()) : final_view);
+    refitTopView(width);
+}
+
+void RoverPanel::refitTopView(int width_before) {
+    top_view_->replot();  // lays out the axes with or without the layer's colour scale
+    if (top_view_->axisRect()->width() == width_before) return;  // the user's zoom stays
+    // A colour scale took width from the axes (or gave it back): the driven area again, with
+    // equal scales on x and y.
+    const auto [x0, y0, x1, y1] =
+        scenario::drivenArea(layerScenario(), previewing_ ? Table{} : result_.series);
+    fitEqualScales(*top_view_, x0, y0, x1, y1);
+    top_view_->replot();
+}
+
+void RoverPanel::scrubLayer() {
+    const int i = layer_->currentIndex() - 1;
+    if (i < 0 || static_cast<std::size_t>(i) >= layers_.size() || previewing_) return;
+    const scenario::MapLayer& layer = layers_[static_cast<std::size_t>(i)];
+    if (!layer.timed) return;
+    updateTopViewLayer(
+        *top_view_, layer_display_,
+        scenario::layerView(layerScenario(), layerMaps(), layer, layer_box_, scrubTime()));
+}
+
+double RoverPanel::scrubTime() const {
+    const Table& t = result_.series;
+    const auto row = static_cast<std::size_t>(scrubber_->value());
+    if (row >= t.rows.size()) return std::numeric_limits<double>::infinity();
+    return t.rows[row][t.column("t_s")];
 }
 
 // --- Saved with the project (core/project/saved_rover.h) ---------------------------------------
@@ -743,7 +902,16 @@ std::map<std::string, project::SavedResult> RoverPanel::savedResults() const {
                         .arg(result_.summary.duration_s, 0, 'f', 2)
                         .toStdString();
     // The series is in the result already (a table): not written twice (a long run is megabytes).
-    saved.result = project::savedJson(project::SavedRoverRun{result_, shown_name_, shown_json_});
+    project::SavedRoverRun run{result_, shown_name_, shown_json_};
+    if (run.run.maps) {
+        // A field run's maps over the driven area, the part the top view draws them on: the
+        // rest of the field is untouched soil (and a 2,500 × 1,000 raster would be megabytes).
+        const std::array<double, 4> box = scenario::drivenArea(shown_, result_.series);
+        const scenario::CellWindow window =
+            scenario::windowOver(run.run.maps->rut_depth_m, box[0], box[1], box[2], box[3]);
+        run.run.maps = scenario::cropMaps(*run.run.maps, window);
+    }
+    saved.result = project::savedJson(run);
     return {{name().toStdString(), std::move(saved)}};
 }
 

@@ -4,15 +4,20 @@
 /// (checked by the core scenario parser) or just its duration, run it off the GUI thread with a
 /// progress bar and cancel, and see the path, yaw, velocities, per-wheel slip, steering and forces
 /// (widgets/plots/rover_figures.h), and a top-down view of the robot on its soil patches with a
-/// time scrubber that only redraws. A cancelled run keeps and shows what it computed, marked as
-/// such. Edited scenarios are kept in the project (the panel's settings, "edited": {name: JSON}).
+/// time scrubber that only redraws. On a field (docs/field.md) the top view draws a layer under the
+/// track, chosen from the field's maps and the run's (height, soil classes, rut depth, passes,
+/// compaction risk, ...: scenario::mapLayers), the run's maps as they were at the scrubbed time. A
+/// cancelled run keeps and shows what it computed, marked as such. Edited scenarios are kept in the
+/// project (the panel's settings, "edited": {name: JSON}).
 
 #include <QDialog>
 #include <optional>
 
 #include "core/io/parameters_json.h"
+#include "core/scenario/map_layers.h"
 #include "core/scenario/runner.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/plots/field_layers.h"
 
 class QComboBox;
 class QDialogButtonBox;
@@ -86,6 +91,13 @@ public:
     QCustomPlot* topView() const { return top_view_; }
     QSlider* scrubber() const { return scrubber_; }
     QString timeLabel() const;
+    /// The layer under the top view: "none", then scenario::mapLayers of the scenario shown (a
+    /// run's, or the chosen scenario's before a run); the item data holds the layer's key.
+    QComboBox* layerChooser() const { return layer_; }
+    /// Chooses the layer `key` ("" or "none": no layer); false when the chooser has no such layer.
+    bool chooseLayer(const QString& key);
+    /// The key of the layer drawn ("" for none).
+    QString layerKey() const;
     /// Runs the scenario under every controller (docs/traction.md §6) off the GUI thread, then
     /// shows the run of the chosen controller and the comparison table (when no run goes on).
     void requestComparison();
@@ -137,6 +149,22 @@ private:
     void retitle(const QString& title);
     /// Fills the comparison's tab from comparison_.
     void showComparison();
+    /// Fills the layer chooser with the layers of `scenario` (and of `maps`, a run's), keeps the
+    /// chosen layer when it is still there (else a run's rut depth, else the soil classes), and
+    /// draws it.
+    void listLayers(const scenario::Scenario& scenario, const scenario::FieldMaps* maps);
+    /// Draws the chosen layer under the top view at the scrubbed time, or removes it.
+    void drawLayer();
+    /// The chosen layer at the scrubbed time (a map of the drive only), then the robot's pose.
+    void scrubLayer();
+    /// The scenario and maps the layers come from: the run's, or the previewed scenario's.
+    const scenario::Scenario& layerScenario() const;
+    const scenario::FieldMaps* layerMaps() const;
+    /// Frames the driven area again when the axes' width changed from `width_before` [px] (a
+    /// colour scale came or went); replots.
+    void refitTopView(int width_before);
+    /// t [s] of the scrubbed row; +∞ without a run.
+    double scrubTime() const;
 
     io::PresetLocations locations_;
     QComboBox* scenario_;
@@ -161,6 +189,14 @@ private:
     QLabel* time_;
     QPushButton* play_;
     QTimer* player_;
+    QLabel* layer_label_;
+    QComboBox* layer_;
+    std::vector<scenario::MapLayer> layers_;  // of the chooser's items after "none"
+    std::string layer_choice_;                // the user's choice, kept across runs
+    bool previewing_ = false;                 // layers from preview_ (no run on screen)
+    scenario::Scenario preview_;
+    LayerDisplay layer_display_;         // colours and scale of the layer drawn
+    std::array<double, 4> layer_box_{};  // the area it is drawn over [m]
     QTableWidget* comparison_table_;
     nlohmann::json comparison_ = nlohmann::json::array();
     bool compare_next_ = false;                        // the next job compares the controllers

@@ -117,15 +117,6 @@ void markRedZone(QCustomPlot& plot, double depth_m) {
     label->setColor(kRedLineColor);
 }
 
-/// The colour scales plotCompactionMap added (layout elements resetPlot() does not clear).
-void removeColorScales(QCustomPlot& plot) {
-    for (int i = plot.plotLayout()->elementCount() - 1; i >= 0; --i) {
-        if (auto* scale = qobject_cast<QCPColorScale*>(plot.plotLayout()->elementAt(i)))
-            plot.plotLayout()->remove(scale);
-    }
-    plot.plotLayout()->simplify();
-}
-
 }  // namespace
 
 QColor riskBandColor(analysis::Risk risk) {

@@ -106,6 +106,14 @@ void resetPlot(QCustomPlot& plot, const QString& title) {
     followPalette(plot);  // frame colours of the palette on screen; exports stay light
 }
 
+void removeColorScales(QCustomPlot& plot) {
+    for (int i = plot.plotLayout()->elementCount() - 1; i >= 0; --i) {
+        if (auto* scale = qobject_cast<QCPColorScale*>(plot.plotLayout()->elementAt(i)))
+            plot.plotLayout()->remove(scale);
+    }
+    plot.plotLayout()->simplify();
+}
+
 QString plotTitle(const QCustomPlot& plot) {
     if (plot.plotLayout()->rowCount() < 2) return {};
     auto* title = qobject_cast<QCPTextElement*>(plot.plotLayout()->element(0, 0));

@@ -19,6 +19,10 @@ namespace terra::ui {
 /// Clears graphs, items and the title row, then sets a new title.
 void resetPlot(QCustomPlot& plot, const QString& title);
 
+/// Removes the colour scales a figure added beside its axes (layout elements resetPlot() does not
+/// clear).
+void removeColorScales(QCustomPlot& plot);
+
 /// Changes the title resetPlot() set, keeping what the plot shows (replots); no-op without one.
 void setPlotTitle(QCustomPlot& plot, const QString& title);
 

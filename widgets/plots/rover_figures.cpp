@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/scenario/map_layers.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/plot_legend.h"
 #include "widgets/plots/sweep_plot.h"
@@ -50,6 +51,7 @@ void finish(QCustomPlot& plot, double min_span, bool include_zero = false) {
 /// resetPlot, and undoes what the top view changes beyond it (a plot is reused for every figure
 /// in headless runs): the grid's layer.
 void resetRoverPlot(QCustomPlot& plot, const QString& title) {
+    removeColorScales(plot);  // a field layer's (field_layers.h)
     resetPlot(plot, title);
     plot.xAxis->grid()->setLayer("grid");
     plot.yAxis->grid()->setLayer("grid");
@@ -420,13 +422,7 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     plot.yAxis->setLabel("y [m]");
     const dynamics::RobotParameters& robot = scenario.robot;
     // The view: the path (or the start) with a margin of the robot's size.
-    double x0 = scenario.initial.x_m, x1 = x0, y0 = scenario.initial.y_m, y1 = y0;
-    if (!t.rows.empty()) {
-        for (double x : t.values("x_m")) x0 = std::min(x0, x), x1 = std::max(x1, x);
-        for (double y : t.values("y_m")) y0 = std::min(y0, y), y1 = std::max(y1, y);
-    }
-    const double margin = 0.6 * (robot.wheelbase_m + robot.track_m) + 2.0 * robot.wheel.radius_m;
-    x0 -= margin, x1 += margin, y0 -= margin, y1 += margin;
+    const auto [x0, y0, x1, y1] = scenario::drivenArea(scenario, t);
 
     // Soils: the base soil is a rectangle under everything (not the axis rect's background, which
     // the plot theme owns), patches are rectangles on it; infinite sides are clipped to a large
@@ -443,7 +439,9 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
     base_label->setPositionAlignment(Qt::AlignLeft | Qt::AlignTop);
     base_label->position->setType(QCPItemPosition::ptAxisRectRatio);
     base_label->position->setCoords(0.01, 0.01);
-    base_label->setText(QString::fromStdString(scenario.terrain.base.name));
+    // A field's soils vary across it (its soil layer shows them): its name, not the base soil's.
+    base_label->setText(
+        QString::fromStdString(scenario.field ? scenario.field->name : scenario.terrain.base.name));
     base_label->setFont(QFont("sans", 10, QFont::Bold));
     base_label->setClipToAxisRect(true);
     for (std::size_t i = 0; i < scenario.terrain.patches.size(); ++i) {
@@ -500,6 +498,15 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
         start->setName("start of the centre of mass");
         plot.legend->setVisible(true);
     }
+    fitEqualScales(plot, x0, y0, x1, y1);
+    if (!t.rows.empty()) {
+        setRoverTopViewPose(plot, robot, t, std::min(row, t.rows.size() - 1));
+    } else {
+        plot.replot();
+    }
+}
+
+void fitEqualScales(QCustomPlot& plot, double x0, double y0, double x1, double y1) {
     plot.xAxis->setRange(x0, x1);
     plot.yAxis->setRange(y0, y1);
     layOutLegend(plot);  // under the axes before they are measured
@@ -509,11 +516,6 @@ void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, con
         plot.yAxis->setScaleRatio(plot.xAxis, 1.0);
     } else {
         plot.xAxis->setScaleRatio(plot.yAxis, 1.0);
-    }
-    if (!t.rows.empty()) {
-        setRoverTopViewPose(plot, robot, t, std::min(row, t.rows.size() - 1));
-    } else {
-        plot.replot();
     }
 }
 

@@ -73,6 +73,10 @@ std::array<QPointF, dynamics::kWheelCount> hubPositions(const dynamics::RobotPar
 void plotRoverTopView(QCustomPlot& plot, const scenario::Scenario& scenario, const Table& series,
                       std::size_t row, const QString& title);
 
+/// Shows [x0, x1] × [y0, y1] with equal scales on x and y: the axis with room to spare widens
+/// around its centre. Replots once to measure the axes; the caller replots after.
+void fitEqualScales(QCustomPlot& plot, double x0, double y0, double x1, double y1);
+
 /// Moves the robot of a plot drawn by plotRoverTopView to row `row` and replots; nothing is
 /// recomputed. No-op when the plot holds no robot or the row is out of range.
 void setRoverTopViewPose(QCustomPlot& plot, const dynamics::RobotParameters& robot,

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "core/analysis/rover.h"
 #include "core/io/json.h"
+#include "core/scenario/map_layers.h"
 #include "core/scenario/scenario_json.h"
 #include "tests/core/test_support.h"
 
@@ -18,12 +20,17 @@ using nlohmann::json;
 
 using terra::testing::kLocations;
 
-TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
+/// A shipped scenario run for `duration_s`.
+analysis::RoverResult runShipped(const std::string& name, double duration_s) {
     analysis::RoverSettings s;
-    s.scenario = "straight";
+    s.scenario = name;
     s.loaded = scenario::resolveScenario(kLocations, s.scenario).value();
-    s.duration_s = 1.0;
-    const analysis::RoverResult computed = analysis::runRover(s);
+    s.duration_s = duration_s;
+    return analysis::runRover(s);
+}
+
+TEST(SavedRover, ARunReadsBackToTheSameSeriesAndSummary) {
+    const analysis::RoverResult computed = runShipped("straight", 1.0);
     ASSERT_GT(computed.run.series.rows.size(), 5u);
     const json scenario_json =
         io::readJsonFile(std::filesystem::path(TERRA_RESOURCE_DIR) / "scenarios/straight.json")
@@ -116,6 +123,62 @@ TEST(SavedRover, ACancelledRunStaysCancelledAndDamageIsNamed) {
     refused = savedRoverRunFromJson(bad, "rover");
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.message().find("summary: x_m"), std::string::npos) << refused.message();
+}
+
+// A field run keeps its maps and their history (cropped to the driven area, as the rover panel
+// saves them): read back, every raster and every passage is the same, so the studio draws the
+// layers and scrubs them without running again. A file from before (no "maps") reads without.
+TEST(SavedRover, AFieldRunKeepsItsMapsAndTheirHistory) {
+    const analysis::RoverResult computed = runShipped("field-slope-wet", 14.0);
+    ASSERT_TRUE(computed.run.maps);
+    SavedRoverRun run{computed.run, "field-slope-wet", json::object()};
+    const std::array<double, 4> box = scenario::drivenArea(computed.scenario, run.run.series);
+    run.run.maps = scenario::cropMaps(
+        *computed.run.maps,
+        scenario::windowOver(computed.run.maps->rut_depth_m, box[0], box[1], box[2], box[3]));
+    const scenario::FieldMaps& maps = *run.run.maps;
+    ASSERT_GT(maps.history.size(), 10u);
+    const json saved = savedJson(run);
+    const Result<SavedRoverRun> read = savedRoverRunFromJson(json::parse(saved.dump()), "rover");
+    ASSERT_TRUE(read.ok()) << read.message();
+    ASSERT_TRUE(read->run.maps);
+    const scenario::FieldMaps& back = *read->run.maps;
+    const auto a = scenario::mapRasters(maps), b = scenario::mapRasters(back);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t m = 0; m < a.size(); ++m) {
+        const field::Raster &x = *a[m].second, &y = *b[m].second;
+        EXPECT_EQ(std::tie(x.cols, x.rows, x.x_min_m, x.y_min_m, x.cell_m),
+                  std::tie(y.cols, y.rows, y.x_min_m, y.y_min_m, y.cell_m))
+            << a[m].first;
+        ASSERT_EQ(x.values.size(), y.values.size());
+        for (std::size_t i = 0; i < x.values.size(); ++i) {
+            ASSERT_TRUE(std::isnan(x.values[i]) ? std::isnan(y.values[i])
+                                                : x.values[i] == y.values[i])
+                << a[m].first << " " << i;
+        }
+    }
+    EXPECT_EQ(back.history.time_s, maps.history.time_s);
+    EXPECT_EQ(back.history.cell, maps.history.cell);
+    EXPECT_EQ(back.history.values, maps.history.values);
+    EXPECT_EQ(back.risk_depth_m, maps.risk_depth_m);
+
+    json old = saved;
+    old.erase("maps");
+    const Result<SavedRoverRun> before = savedRoverRunFromJson(old, "rover");
+    ASSERT_TRUE(before.ok()) << before.message();
+    EXPECT_FALSE(before->run.maps);
+    json bad = saved;
+    bad["maps"]["history"]["cell"][0] = 1 << 30;
+    Result<SavedRoverRun> refused = savedRoverRunFromJson(bad, "rover");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("maps: history: cell 1073741824 is outside"),
+              std::string::npos)
+        << refused.message();
+    bad = saved;
+    bad["maps"]["rasters"]["passes"]["values"].erase(0);
+    refused = savedRoverRunFromJson(bad, "rover");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("passes"), std::string::npos) << refused.message();
 }
 
 }  // namespace
