@@ -647,7 +647,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError(e.what());
         }
         progress.finish();
-        if (result.message == "cancelled") {
+        if (result.cancelled) {
             exitCancelled(cancellation, "identify cancelled by " + cancellation.signalName() +
                                             ": nothing written (a fit stopped halfway has no "
                                             "result; docs/cli.md, \"Stopping a long command\")");

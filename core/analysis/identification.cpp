@@ -620,6 +620,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         }
         if (r.status == id::IdentifyStatus::kCancelled) {
             out.message = "cancelled";
+            out.cancelled = true;
             return out;
         }
         p = decoupledOf(r.parameters);
@@ -711,7 +712,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
 Outcome identificationOutcome(IdentificationResult result) {
     Outcome out;
     if (!result.message.empty()) {
-        out.status = Outcome::Status::kFailed;
+        out.status = result.cancelled ? Outcome::Status::kCancelled : Outcome::Status::kFailed;
         out.message = result.message;
     }
     out.tables.push_back({"parameters", "-parameters", result.parameters});

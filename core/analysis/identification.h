@@ -121,7 +121,10 @@ struct IdentificationResult {
     /// Profile-likelihood intervals (settings.profile; `computed` false for the others).
     std::array<identification::ProfileInterval, identification::kFullParameterCount> profile{};
     double profile_time_ms = 0.0;
-    std::string message;             ///< non-empty: there was nothing to fit (see data_issues)
+    std::string message;  ///< non-empty: there was nothing to fit (see data_issues)
+    /// Stopped by the cancel flag before a result (then `message` says "cancelled"): the one
+    /// field callers test, never the message's words.
+    bool cancelled = false;
     std::vector<Issue> data_issues;  ///< why the data could not be read
 
     /// What the fit started from, for a person: "global search (64 design points)", "+ guess …",

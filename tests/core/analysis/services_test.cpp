@@ -3,6 +3,7 @@
 // its defaults, names its tables).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 #include "core/analysis/forces.h"
@@ -153,6 +154,22 @@ TEST(IdentificationService, RefinedFitOfNoiseFreeDataReturnsTheSoil) {
     IdentificationSettings fixed = s;
     fixed.fixed = {{"n1", 0.1}};  // not a refined parameter
     EXPECT_THROW(computeIdentification(in, fixed), std::invalid_argument);
+}
+
+// A fit stopped by the cancel flag says so in its own field, and its outcome is "cancelled", not
+// "failed" (issue 26, item 4: callers test the status, not the message's words).
+TEST(IdentificationService, ACancelledFitIsMarkedCancelledNotFailed) {
+    IdentificationSettings s;
+    s.synthetic.noise_percent = 0.0;
+    const std::atomic<bool> cancel{true};
+    IdentificationResult r = computeIdentification(sandyLoamOnA(), s, Control{&cancel});
+    EXPECT_TRUE(r.cancelled);
+    EXPECT_FALSE(r.usable());
+    const Outcome cancelled = identificationOutcome(std::move(r));
+    EXPECT_EQ(cancelled.status, Outcome::Status::kCancelled);
+    const IdentificationResult done = computeIdentification(sandyLoamOnA(), s);
+    EXPECT_FALSE(done.cancelled);
+    EXPECT_EQ(identificationOutcome(done).status, Outcome::Status::kCompleted);
 }
 
 TEST(StreamingService, ComputedFramesFindTheSyntheticBorder) {
