@@ -10,17 +10,6 @@
 namespace terra::identification {
 namespace {
 
-ParameterVector toVector(const DecoupledParameters& p, double max_shear_deformation_m) {
-    return {p.a0,
-            p.a1,
-            p.pressure_modulus,
-            p.n0,
-            p.cohesion_pa,
-            p.friction_angle_rad,
-            p.shear_modulus_m,
-            max_shear_deformation_m};
-}
-
 // RMS of each channel's decoupled-model residual: a noise estimate when none is given.
 std::array<double, 3> decoupledResidualRms(const DataSet& data, const wheel::WheelParameters& w,
                                            const DecoupledParameters& p) {
@@ -77,7 +66,7 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     objective.fixed[kJmax] = true;  // a setting of this refinement, never estimated
     const std::vector<std::size_t> all = detail::allSamples(model.size());
     const detail::FitProblem problem(objective, all);
-    const ParameterVector u0 = toSolver(toVector(start, options.max_shear_deformation_m));
+    const ParameterVector u0 = toSolver(parameterVector(start, options.max_shear_deformation_m));
     std::vector<double> u(u0.begin(), u0.end());
     const auto begin = std::chrono::steady_clock::now();
     const detail::BoxSummary summary =
@@ -119,6 +108,17 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
                                 options.bound_correlation_flag)
             .uncertainty;
     return result;
+}
+
+ParameterVector parameterVector(const DecoupledParameters& p, double max_shear_deformation_m) {
+    return {p.a0,
+            p.a1,
+            p.pressure_modulus,
+            p.n0,
+            p.cohesion_pa,
+            p.friction_angle_rad,
+            p.shear_modulus_m,
+            max_shear_deformation_m};
 }
 
 }  // namespace terra::identification

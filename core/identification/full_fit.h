@@ -54,6 +54,10 @@ struct RefineResult {
     Uncertainty uncertainty;
 };
 
+/// The decoupled parameters as the full model's vector (parameters.h's order, SI; n as n₀), with
+/// `max_shear_deformation_m` as j_max.
+ParameterVector parameterVector(const DecoupledParameters& p, double max_shear_deformation_m);
+
 /// Refines `start` (typically the decoupled estimate) on the data set. Throws
 /// std::invalid_argument for an empty data set or invalid wheel.
 RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& wheel,

@@ -9,6 +9,7 @@
 #include "core/contact/contact_parameters.h"
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
+#include "core/identification/full_fit.h"
 #include "core/identification/parameters.h"
 #include "core/identification/synthetic.h"
 
@@ -25,14 +26,7 @@ inline const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
 
 /// The decoupled parameters in the order of `truthOf` (n as n₀).
 inline ParameterVector valuesOf(const DecoupledParameters& p) {
-    return {p.a0,
-            p.a1,
-            p.pressure_modulus,
-            p.n0,
-            p.cohesion_pa,
-            p.friction_angle_rad,
-            p.shear_modulus_m,
-            p.max_shear_deformation_m};
+    return parameterVector(p, p.max_shear_deformation_m);
 }
 
 /// Noise-free sweeps s = 0 : 0.05 : 0.75 of `soil` at each load as a robot sees them: W per
