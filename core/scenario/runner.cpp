@@ -601,6 +601,18 @@ std::vector<double> precompressionBySoil(const dynamics::FieldTerrain& terrain) 
     return precompression;
 }
 
+// F11–F12 of a cell: the largest |s| of the wheels that passed, and the energy lost there per
+// metre travelled over it; no data (NaN) where no wheel passed.
+double cellSlip(const field::CellState& c) {
+    return c.track.passes > 0 ? static_cast<double>(c.max_slip)
+                              : std::numeric_limits<double>::quiet_NaN();
+}
+double cellEnergyPerMetre(const field::CellState& c) {
+    return c.track.passes > 0 && c.travel_m > 0.0f
+               ? static_cast<double>(c.energy_j) / static_cast<double>(c.travel_m)
+               : std::numeric_limits<double>::quiet_NaN();
+}
+
 // The history of the maps (MapHistory): each recorded passage inside the maps with the value of
 // every map at its cell after it, by the same rules as fieldMaps.
 MapHistory mapHistory(const dynamics::FieldTerrain& terrain, const FieldMaps& maps,
@@ -629,12 +641,8 @@ MapHistory mapHistory(const dynamics::FieldTerrain& terrain, const FieldMaps& ma
         const double sigma_pc = precompression[static_cast<std::size_t>(terrain.soilIndexAt(x, y))];
         risk.push_back(sigma_pc > 0.0 ? static_cast<double>(p.after.max_stress_pa[0]) / sigma_pc
                                       : nan);
-        // F11–F12 as fieldMaps draws them, after this passage.
-        slip.push_back(p.after.track.passes > 0 ? static_cast<double>(p.after.max_slip) : nan);
-        energy.push_back(p.after.track.passes > 0 && p.after.travel_m > 0.0f
-                             ? static_cast<double>(p.after.energy_j) /
-                                   static_cast<double>(p.after.travel_m)
-                             : nan);
+        slip.push_back(cellSlip(p.after));
+        energy.push_back(cellEnergyPerMetre(p.after));
     }
     return h;
 }
@@ -659,22 +667,15 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
         return static_cast<double>(c.track.passes);
     });
     // F11–F12: no data where no wheel passed (a cell of a touched tile that none crossed).
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    maps.slip = cells.toRaster(box[0], box[1], box[2], box[3], [nan](const field::CellState& c) {
-        return c.track.passes > 0 ? static_cast<double>(c.max_slip) : nan;
-    });
-    maps.energy_per_m_j =
-        cells.toRaster(box[0], box[1], box[2], box[3], [nan](const field::CellState& c) {
-            return c.track.passes > 0 && c.travel_m > 0.0f
-                       ? static_cast<double>(c.energy_j) / static_cast<double>(c.travel_m)
-                       : nan;
-        });
+    maps.slip = cells.toRaster(box[0], box[1], box[2], box[3], cellSlip);
+    maps.energy_per_m_j = cells.toRaster(box[0], box[1], box[2], box[3], cellEnergyPerMetre);
     maps.compaction_risk = cells.toRaster(
         box[0], box[1], box[2], box[3],
         [](const field::CellState& c) { return static_cast<double>(c.max_stress_pa[0]); });
     const std::vector<double>& depths = cells.stressDepths();
     maps.risk_depth_m = depths.empty() ? std::numeric_limits<double>::quiet_NaN() : depths.front();
     const std::vector<double> precompression = precompressionBySoil(terrain);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     field::Raster& risk = maps.compaction_risk;
     // When every soil has σ_pc (or none has) the cells no wheel touched need no soil lookup: their
     // stress is 0, their risk 0 (or no data).
