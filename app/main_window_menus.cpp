@@ -87,7 +87,24 @@ void MainWindow::createMenus() {
     redo->setObjectName("action.redo");
     edit->addActions({undo, redo});
     bar->addSeparator();
-    bar->addActions({undo, redo});
+    // The toolbar's own Undo and Redo: short names that keep the toolbar's width, the step they
+    // would undo or redo in the tooltip (the Edit menu's entries name it, as Qt's do).
+    QUndoStack* stack = document_->undoStack();
+    auto* bar_undo = bar->addAction("Undo", stack, &QUndoStack::undo);
+    bar_undo->setObjectName("action.toolbar_undo");
+    auto* bar_redo = bar->addAction("Redo", stack, &QUndoStack::redo);
+    bar_redo->setObjectName("action.toolbar_redo");
+    const auto sync = [stack, bar_undo, bar_redo] {
+        bar_undo->setEnabled(stack->canUndo());
+        bar_redo->setEnabled(stack->canRedo());
+        bar_undo->setToolTip(stack->canUndo() ? "Undo " + stack->undoText() + " (Ctrl+Z)"
+                                              : "Nothing to undo");
+        bar_redo->setToolTip(stack->canRedo() ? "Redo " + stack->redoText() + " (Ctrl+Shift+Z)"
+                                              : "Nothing to redo");
+    };
+    connect(stack, &QUndoStack::indexChanged, this, sync);
+    connect(stack, &QUndoStack::cleanChanged, this, sync);
+    sync();
 
     // The tab's Run, Fit or Compute (the live panels recompute): one key for every panel.
     QMenu* run = menuBar()->addMenu("&Run");

@@ -27,6 +27,7 @@
 #include <QSettings>
 #include <QSignalSpy>
 #include <QSlider>
+#include <QStackedWidget>
 #include <QStatusBar>
 #include <QTabBar>
 #include <QTabWidget>
@@ -34,6 +35,7 @@
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTimer>
+#include <QToolBar>
 #include <QUndoStack>
 #include <QUrl>
 #include <functional>
@@ -168,6 +170,74 @@ TEST(MainWindow, NoPanelScrollsSidewaysAt1024x700) {
     global->applySettings({{"page", "bands"}});
     expectFits(w, "global-sensitivity");
     global->applySettings({{"page", "indices"}});
+}
+
+// The Properties pane at 1024×700 in the compact layout: every page (soil, wheel, conditions,
+// data sets, scenarios, experiment) fits the pane's width — no sideways scroll bar (the soil
+// page's sliders once pushed it out by a few pixels).
+TEST(MainWindow, PropertiesPaneDoesNotScrollSidewaysAt1024x700) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.applyLayout(MainWindow::Layout::kCompact);
+    w.resize(1024, 700);
+    settle();
+    QDockWidget* dock = w.findChild<QDockWidget*>("properties_dock");
+    ASSERT_NE(dock, nullptr);
+    auto* area = qobject_cast<QScrollArea*>(dock->widget());
+    ASSERT_NE(area, nullptr);
+    auto* pages = qobject_cast<QStackedWidget*>(area->widget());
+    ASSERT_NE(pages, nullptr);
+    for (int i = 0; i < pages->count(); ++i) {
+        pages->setCurrentIndex(i);
+        settle(50);
+        const QWidget* page = pages->widget(i);
+        EXPECT_LE(page->minimumSizeHint().width(), area->viewport()->width())
+            << page->metaObject()->className();
+        EXPECT_FALSE(area->horizontalScrollBar()->isVisible()) << page->metaObject()->className();
+    }
+    // The soil page's sliders are still there to drag at that width.
+    pages->setCurrentIndex(0);
+    settle(50);
+    auto* soil = w.findChild<ui::SoilEditor*>();
+    ASSERT_NE(soil, nullptr);
+    EXPECT_TRUE(soil->slider("phi_deg")->isVisible());
+    EXPECT_GE(soil->slider("phi_deg")->width(), 40);
+}
+
+// The toolbar's Undo and Redo keep their short names (the step they would undo is in their
+// tooltip and in the Edit menu), so the toolbar does not change width with every edit.
+TEST(MainWindow, ToolbarUndoRedoKeepShortNames) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* document = w.document();
+    ASSERT_TRUE(document->setSoilValue("phi_deg", 35.0));
+    settle(20);
+    QToolBar* bar = w.findChild<QToolBar*>("main_toolbar");
+    ASSERT_NE(bar, nullptr);
+    QAction* undo = nullptr;
+    QAction* redo = nullptr;
+    for (QAction* a : bar->actions()) {
+        if (a->objectName() == "action.toolbar_undo") undo = a;
+        if (a->objectName() == "action.toolbar_redo") redo = a;
+    }
+    ASSERT_NE(undo, nullptr);
+    ASSERT_NE(redo, nullptr);
+    EXPECT_EQ(undo->text(), "Undo");
+    EXPECT_TRUE(undo->isEnabled());
+    EXPECT_FALSE(redo->isEnabled());
+    EXPECT_TRUE(undo->toolTip().contains("35")) << undo->toolTip().toStdString();
+    undo->trigger();
+    settle(20);
+    EXPECT_EQ(redo->text(), "Redo");
+    EXPECT_TRUE(redo->isEnabled());
+    EXPECT_FALSE(undo->isEnabled());
+    EXPECT_TRUE(redo->toolTip().contains("35")) << redo->toolTip().toStdString();
+    EXPECT_NE(document->project().soil.friction_angle_rad, 35.0 * M_PI / 180.0);
+    redo->trigger();
+    settle(20);
+    EXPECT_NEAR(document->project().soil.friction_angle_rad, 35.0 * M_PI / 180.0, 1e-12);
+    // The Edit menu's entries keep naming the step, as Qt's undo actions do.
+    EXPECT_TRUE(studio.action("action.undo")->text().contains("35"));
 }
 
 TEST(MainWindow, OpenedProjectIsUnmodified) {

@@ -154,11 +154,13 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
     passUndoShortcuts(name_);
     message_ = messageLabel(this);
     auto* grid = new QGridLayout;
-    grid->addWidget(new QLabel("<b>Soil preset</b>", this), 0, 0);
-    grid->addWidget(preset_, 0, 1, 1, 2);
-    grid->addWidget(new QLabel("Name", this), 1, 0);
-    grid->addWidget(name_, 1, 1, 1, 2);
-    int row = 2;
+    // The preset box on its own row, the pane's whole width: beside the labels' column it made the
+    // pane wider than the compact layout's 280 px (a sideways scroll bar at 1024×700).
+    grid->addWidget(new QLabel("<b>Soil preset</b>", this), 0, 0, 1, 3);
+    grid->addWidget(preset_, 1, 0, 1, 3);
+    grid->addWidget(new QLabel("Name", this), 2, 0);
+    grid->addWidget(name_, 2, 1, 1, 2);
+    int row = 3;
     for (const soil::SoilField& field : soil::soilFields()) {
         const bool jmax = std::string(field.key) == "jmax_m";
         auto* box = new ValidatedSpinBox(field, decimalsFor(field.range), this);
@@ -171,7 +173,7 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         auto* slider = new QSlider(Qt::Horizontal, this);
         slider->setObjectName(QString("soil.") + field.key + ".slider");
         slider->setRange(0, SliderScale::forBox(*box).steps);
-        slider->setMinimumWidth(60);
+        slider->setMinimumWidth(40);  // enough to drag; the compact pane is 280 px
         auto* label = new QLabel(
             QString("%1 [%2]").arg(QString::fromUtf8(field.symbol), QString::fromUtf8(field.unit)),
             this);
@@ -202,6 +204,7 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
     }
     grid->setColumnStretch(2, 1);
     auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(6, 6, 6, 6);
     layout->addLayout(grid);
     layout->addWidget(message_);
     layout->addStretch(1);
@@ -283,6 +286,8 @@ WheelEditor::WheelEditor(ProjectDocument* document, const io::PresetLocations& l
     lug_summary_->setObjectName("wheel.lug_summary");
     lug_summary_->setWordWrap(true);
     auto* form = new QFormLayout(this);
+    // A label too long for the pane's width goes above its field, not past the pane's edge.
+    form->setRowWrapPolicy(QFormLayout::WrapLongRows);
     form->addRow("<b>Wheel preset</b>", preset_);
     auto label = [](const FieldInfo& f) {
         const QString text = QString::fromUtf8(f.label);
