@@ -4,7 +4,10 @@
 /// editors (right), menus, toolbar, status bar, recent files, layout in QSettings, autosave and
 /// the ask-before-losing-changes rule. Everything it shows lives in widgets/.
 
+#include <QFutureWatcher>
 #include <QMainWindow>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/io/parameters_json.h"
@@ -75,10 +78,20 @@ signals:
     /// The opened project's saved results were read and those that hold are shown (the status
     /// bar says which, and which not and why).
     void savedResultsShown();
+    /// A save's results sidecar (NAME.terra.results) was written off the GUI thread: `error` is
+    /// empty, or says why it was not (the project itself was saved).
+    void resultsSaved(const QString& path, const QString& error);
 
 public:
     /// Whether the opened project's saved results are still being read.
     bool readingSavedResults() const { return reading_results_; }
+    /// Whether a save's results are still being written.
+    bool writingResults() const { return writing_results_ != nullptr; }
+    /// Waits for a save's results still being written (opening a project, quitting and a next
+    /// save do; a test may). Returns at once when none is.
+    void finishWritingResults();
+
+    ~MainWindow() override;
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -89,6 +102,8 @@ private:
     bool maybeSave();
     bool save();
     bool saveTo(const QString& path);
+    /// The results write of the last save is done: the status bar says so, resultsSaved().
+    void resultsWritten();
     bool saveAs();
     void newProject();
     /// The identification panel's data (a CSV chosen, listed or dropped), the panel on screen.
@@ -127,6 +142,9 @@ private:
     ui::GlobalSensitivityPanel* global_ = nullptr;
     int opening_ = 0;               // counts openings: results read for an earlier one are dropped
     bool reading_results_ = false;  // the opened project's saved results are being read
+    /// The results sidecar being written off the GUI thread by the last save (nullptr: none).
+    QFutureWatcher<std::optional<std::string>>* writing_results_ = nullptr;
+    QString writing_results_path_;  // the project whose results it writes
     QTimer* autosave_timer_;
     ui::HelpDialog* help_ = nullptr;
 };

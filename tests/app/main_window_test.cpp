@@ -43,6 +43,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/table_json.h"
 #include "core/project/panels.h"
+#include "core/project/results.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/property_editors.h"
 #include "widgets/editors/validated_spin_box.h"
@@ -742,9 +743,15 @@ TEST(MainWindow, AReopenedProjectShowsItsSavedResultsWithoutComputing) {
         computed = panel->currentTable();
         QString error;
         ASSERT_TRUE(w.document()->save(path, &error)) << error.toStdString();
-        studio.action("action.save")->trigger();  // saves to the project's path, results too
+        // Save writes the project, then its results off the GUI thread: Save is back before
+        // they are written; closing the window right away waits for them.
+        studio.action("action.save")->trigger();
+        EXPECT_TRUE(w.writingResults());
+        EXPECT_TRUE(w.close());
+        EXPECT_FALSE(w.writingResults());
         ASSERT_TRUE(QFileInfo::exists(path + ".results"));
         EXPECT_FALSE(QFileInfo::exists(dir.filePath(".study.terra.results.tmp")));
+        EXPECT_TRUE(project::loadResults((path + ".results").toStdString()).ok());
     }
     Studio studio;
     MainWindow& w = studio.window;
@@ -802,7 +809,7 @@ TEST(MainWindow, SavedResultsOfOtherInputsAreNotShown) {
         while (panel->isBusy()) ASSERT_TRUE(shown.wait(60000));
         QString error;
         ASSERT_TRUE(studio.window.document()->save(path, &error));
-        studio.action("action.save")->trigger();
+        EXPECT_EQ(studio.saveAndWaitForResults(), QString());
     }
     std::string text;
     ASSERT_FALSE(io::readFile(path.toStdString(), text));

@@ -130,7 +130,8 @@ Computed computeAndSave(const QString& path) {
     w.showPanel("forces");
 
     EXPECT_TRUE(w.document()->save(path, &error)) << error.toStdString();
-    studio.action("action.save")->trigger();  // to the project's path, results beside it
+    EXPECT_EQ(studio.saveAndWaitForResults(),
+              QString());  // to the project's path, results beside it
     EXPECT_TRUE(QFileInfo::exists(path + ".results"));
     return out;
 }
@@ -274,7 +275,7 @@ TEST(SavedResultsWindow, AMovedProjectFolderKeepsTheFitOfItsDataFile) {
         ASSERT_TRUE(identification->result().usable()) << identification->fitStatus().toStdString();
         QString error;
         ASSERT_TRUE(studio.window.document()->save(before, &error)) << error.toStdString();
-        studio.action("action.save")->trigger();
+        EXPECT_EQ(studio.saveAndWaitForResults(), QString());
         ASSERT_TRUE(QFileInfo::exists(before + ".results"));
         fitted_curves.push_back(io::toJson(identification->result().curves).dump());
     }
@@ -337,7 +338,7 @@ TEST(SavedResultsWindow, ADamagedOrNewerResultsFileNeverLosesTheProject) {
     EXPECT_TRUE(message.contains("version")) << message.toStdString();
     EXPECT_EQ(studio.window.document()->filePath(), QFileInfo(path).absoluteFilePath());
     // Saving again with nothing on screen removes the file: no result for these inputs is left.
-    studio.action("action.save")->trigger();
+    EXPECT_EQ(studio.saveAndWaitForResults(), QString());
     EXPECT_FALSE(QFileInfo::exists(QString::fromStdString(results_path)));
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <QAction>
+#include <QSignalSpy>
 #include <QTest>
 
 #include "app/main_window.h"
@@ -24,6 +25,14 @@ struct Studio {
     template <typename Panel>
     Panel* panel() {
         return window.findChild<Panel*>();
+    }
+    /// File ▸ Save, as a user presses it, then waits for its results to be written (off the GUI
+    /// thread): what that write reported, empty when it succeeded.
+    QString saveAndWaitForResults() {
+        QSignalSpy saved(&window, &MainWindow::resultsSaved);
+        action("action.save")->trigger();
+        if (saved.isEmpty()) EXPECT_TRUE(saved.wait(30000)) << "the results were not written";
+        return saved.isEmpty() ? QString("not written") : saved.front().at(1).toString();
     }
 };
 
