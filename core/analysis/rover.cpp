@@ -1,16 +1,104 @@
 #include "core/analysis/rover.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "core/analysis/registry.h"
 #include "core/analysis/traction.h"
 #include "core/common/units.h"
+#include "core/io/json_reader.h"
+#include "core/io/parameters_json.h"
 #include "core/scenario/scenario_json.h"
 
 namespace terra::analysis {
+
+namespace {
+
+/// A soil or wheel given as a preset name, a file (relative to the context's directory) or an
+/// object, as the other analyses' settings take them.
+template <typename T, typename FromJson, typename Resolve>
+std::optional<T> readPresetOrObject(io::ObjectReader& r, const ReadContext& context,
+                                    const nlohmann::json& value, const std::string& key,
+                                    FromJson from_json, Resolve resolve) {
+    if (value.is_object()) {
+        Result<T> read = from_json(value, r.pathOf(key));
+        if (read) return read.value();
+        for (const Issue& issue : read.issues()) r.report(key, issue.message);
+        return std::nullopt;
+    }
+    if (!value.is_string()) {
+        r.report(key,
+                 "expected a preset name, a file or an object, not " + io::describeJson(value));
+        return std::nullopt;
+    }
+    std::string name = value.get<std::string>();
+    if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
+        !context.base_dir.empty())
+        name = (context.base_dir / name).string();
+    if (context.locations == nullptr) return std::nullopt;
+    Result<T> read = resolve(*context.locations, name);
+    if (read) return read.value();
+    r.report(key, read.message());
+    return std::nullopt;
+}
+
+/// The soil a "soils" key names in `s`: "base", a field's class code, a patch terrain's patch
+/// number (from 1); nullptr with the reason in `why`.
+soil::SoilParameters* soilOf(scenario::Scenario& s, const std::shared_ptr<field::FieldMap>& field,
+                             const std::string& key, std::string& why) {
+    if (key == "base") return field ? &field->base : &s.terrain.base;
+    int number = 0;
+    const char* end = key.data() + key.size();
+    const auto [last, error] = std::from_chars(key.data(), end, number);
+    const bool whole = error == std::errc() && last == end;
+    if (field) {
+        if (whole) {
+            if (const auto it = field->legend.find(number); it != field->legend.end())
+                return &it->second;
+        }
+        std::string codes;
+        for (const auto& entry : field->legend)
+            codes += (codes.empty() ? "" : ", ") + std::to_string(entry.first);
+        why = "the field has no soil class '" + key + "': \"base\" or one of its classes " +
+              (codes.empty() ? "(none)" : codes);
+        return nullptr;
+    }
+    const int patches = static_cast<int>(s.terrain.patches.size());
+    if (whole && number >= 1 && number <= patches)
+        return &s.terrain.patches[static_cast<std::size_t>(number - 1)].soil;
+    why = "the scenario has no soil '" + key + "': \"base\"" +
+          (patches > 0 ? " or a patch number from 1 to " + std::to_string(patches) : "");
+    return nullptr;
+}
+
+/// The study's overrides of the robot and the soils (RoverSettings) applied to `s`.
+void applyOverrides(const RoverSettings& settings, scenario::Scenario& s,
+                    std::vector<Issue>& issues) {
+    if (settings.chassis_mass_kg) s.robot.chassis_mass_kg = *settings.chassis_mass_kg;
+    if (settings.wheel) s.robot.wheel = *settings.wheel;
+    if (settings.soils.empty()) return;
+    // A field is shared between runs: the run with other soils gets a copy of it.
+    std::shared_ptr<field::FieldMap> copy =
+        s.field ? std::make_shared<field::FieldMap>(*s.field) : nullptr;
+    for (const auto& [key, soil] : settings.soils) {
+        std::string why;
+        soil::SoilParameters* target = soilOf(s, copy, key, why);
+        if (target == nullptr) {
+            issues.push_back({"soils." + key, why});
+            continue;
+        }
+        std::optional<soil::SoilProfile> profile = target->profile;
+        *target = soil;
+        if (!target->profile) target->profile = std::move(profile);
+    }
+    if (copy) s.field = std::move(copy);
+}
+
+}  // namespace
 
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out) {
     if (r.text("scenario", out.scenario, io::Presence::kRequired)) {
@@ -51,6 +139,37 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
     if (r.choiceName("controller", controller, scenario::controllerNames()))
         out.controller = scenario::controllerFromName(controller);
     if (r.number("slip", value, scenario::kControllerRanges.slip)) out.slip = value;
+    if (const dynamics::RobotField* mass = findField(dynamics::robotFields(), "chassis_mass_kg")) {
+        double kg = 0.0;
+        if (r.field(*mass, kg)) out.chassis_mass_kg = kg;
+    }
+    if (const nlohmann::json* wheel = r.value("wheel")) {
+        out.wheel = readPresetOrObject<wheel::WheelParameters>(r, context, *wheel, "wheel",
+                                                               io::wheelFromJson, io::resolveWheel);
+    }
+    if (const nlohmann::json* soils = r.value("soils")) {
+        if (!soils->is_object()) {
+            r.report("soils",
+                     "expected an object of soils by \"base\", class code or patch "
+                     "number, not " +
+                         io::describeJson(*soils));
+        } else {
+            for (const auto& [key, value] : soils->items()) {
+                if (auto soil = readPresetOrObject<soil::SoilParameters>(
+                        r, context, value, "soils." + key, io::soilFromJson, io::resolveSoil))
+                    out.soils[key] = *soil;
+            }
+        }
+    }
+    // The overrides against the scenario they change (a class the field does not have, a wheel
+    // too wide for the track), while the file's position is at hand.
+    if (out.loaded && (out.chassis_mass_kg || out.wheel || !out.soils.empty())) {
+        scenario::Scenario s = *out.loaded;
+        std::vector<Issue> issues;
+        applyOverrides(out, s, issues);
+        if (issues.empty()) issues = scenario::validate(s);
+        for (const Issue& issue : issues) r.report(issue.where, issue.message);
+    }
     contact::ContactModel model = contact::ContactModel::kFull;
     if (r.choice<contact::ContactModel>("model", model,
                                         {{"full", contact::ContactModel::kFull},
@@ -80,8 +199,11 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         checkRange(issues, "slip", *settings.slip, scenario::kControllerRanges.slip)) {
         s.controller.slip = *settings.slip;
     }
-    // The overrides together with the scenario's own values (a --duration below the step).
-    if (issues.empty() && (settings.duration_s || settings.time_step_s))
+    applyOverrides(settings, s, issues);
+    // The overrides together with the scenario's own values (a --duration below the step, a
+    // wheel too wide for the track).
+    if (issues.empty() && (settings.duration_s || settings.time_step_s ||
+                           settings.chassis_mass_kg || settings.wheel || !settings.soils.empty()))
         issues = scenario::validate(s);
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     return s;

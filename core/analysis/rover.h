@@ -6,6 +6,7 @@
 /// scenario brings its own robot and soils: a project's soil, wheel and conditions do not apply.
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,11 +31,19 @@ struct RoverSettings {
     /// scenario; the controller's other settings stay the scenario's.
     std::optional<scenario::ControllerType> controller;
     std::optional<double> slip;  ///< overrides the controller's fixed set-point [-]
+    /// The robot and its soils changed for one run of a study of many missions (docs/field.md,
+    /// "Mission studies"): the chassis mass [kg], the wheel of all four corners, and soils by
+    /// "base", a field's class code ("2") or a patch terrain's patch number ("1", from 1). A
+    /// soil given without a profile keeps the profile of the soil it replaces.
+    std::optional<double> chassis_mass_kg;
+    std::optional<wheel::WheelParameters> wheel;
+    std::map<std::string, soil::SoilParameters> soils;
 };
 
 /// "scenario" (required; relative files against the context's directory, resolved at once),
 /// "duration_s", "time_step_s", "model" (full, quadratic), "controller" (constant-speed,
-/// fixed-slip, optimal, oracle), "slip".
+/// fixed-slip, optimal, oracle), "slip", "chassis_mass_kg", "wheel" (a preset, a file or a wheel
+/// object) and "soils" ({"base" | CODE | PATCH: a preset, a file or a soil object}).
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);
 
 /// The scenario with the overrides applied; throws std::invalid_argument when it is not
