@@ -178,6 +178,21 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
     }
 }
 
+std::vector<std::pair<std::string, soil::SoilParameters>> overridableSoils(
+    const scenario::Scenario& s) {
+    std::vector<std::pair<std::string, soil::SoilParameters>> out;
+    if (s.field) {
+        out.emplace_back("base", s.field->base);
+        for (const auto& [code, soil] : s.field->legend)
+            out.emplace_back(std::to_string(code), soil);
+        return out;
+    }
+    out.emplace_back("base", s.terrain.base);
+    for (std::size_t i = 0; i < s.terrain.patches.size(); ++i)
+        out.emplace_back(std::to_string(i + 1), s.terrain.patches[i].soil);
+    return out;
+}
+
 scenario::Scenario roverScenario(const RoverSettings& settings) {
     if (!settings.loaded) {
         throw std::invalid_argument("scenario '" + settings.scenario + "' is not resolved");

@@ -46,6 +46,12 @@ struct RoverSettings {
 /// object) and "soils" ({"base" | CODE | PATCH: a preset, a file or a soil object}).
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);
 
+/// The soils a run's "soils" override can replace, by its keys: "base", then a field's class
+/// codes ("1", "2", …) or a patch terrain's patch numbers ("1", …), each with its soil as the
+/// scenario has it (a study draws its variations around these).
+std::vector<std::pair<std::string, soil::SoilParameters>> overridableSoils(
+    const scenario::Scenario& scenario);
+
 /// The scenario with the overrides applied; throws std::invalid_argument when it is not
 /// resolved or an override is out of range.
 scenario::Scenario roverScenario(const RoverSettings& settings);

@@ -12,6 +12,7 @@
 #include "core/analysis/stresses.h"
 #include "core/identification/data_set.h"
 #include "core/io/json_reader.h"
+#include "core/scenario/scenario_json.h"
 #include "python/src/convert.h"
 #include "python/src/interruptible.h"
 
@@ -150,9 +151,19 @@ py::object compareControllers(const py::dict& settings, const py::object& progre
     return fromJson(table);
 }
 
+// The soils a mission study can vary, by the keys of the rover's "soils" override.
+py::dict scenarioSoils(const std::string& name) {
+    Result<scenario::Scenario> loaded = scenario::resolveScenario(presetLocations(), name);
+    if (!loaded) raiseIssues(loaded.issues());
+    py::dict out;
+    for (auto& [key, soil] : analysis::overridableSoils(loaded.value())) out[py::str(key)] = soil;
+    return out;
+}
+
 }  // namespace
 
 void bindAnalyses(py::module_& m) {
+    m.def("_scenario_soils", &scenarioSoils, py::arg("scenario"));
     m.def("_run", &run, py::arg("type"), py::arg("soil"), py::arg("wheel"), py::arg("conditions"),
           py::arg("settings"), py::arg("data") = py::none(), py::arg("progress") = py::none());
     m.def("_compare_controllers", &compareControllers, py::arg("settings"),

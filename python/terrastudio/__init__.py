@@ -34,6 +34,9 @@ __all__ = [
     "run",
     "simulate",
     "compare_controllers",
+    "mission_cases",
+    "mission_study",
+    "scenario_soils",
     "sobol",
     "sobol_design",
     "sobol_indices",
@@ -366,8 +369,11 @@ def simulate(scenario="straight", **settings):
     "timeseries": {column: array}, "status", "message", "notes"} (and "streaming" when the
     scenario identifies the soil as it drives). A mission scenario (docs/field.md, "Missions")
     runs the same way: its summary has "mission_completed", "path_error_rms_m" and the rest, its
-    time series "path_s_m", "path_error_m" and "curvature_1_m".
+    time series "path_s_m", "path_error_m" and "curvature_1_m". chassis_mass_kg, wheel (Wheel,
+    preset or dict) and soils ({"base" | class code | patch number: Soil, preset or dict}) change
+    the robot and its soils (docs/field.md, "Mission studies").
     """
+    settings = _override_json(settings)
     settings["scenario"] = os.fspath(scenario)
     out = run("rover", **settings)
     result = {"status": out["status"], "message": out["message"], "notes": out["notes"]}
@@ -389,6 +395,130 @@ def compare_controllers(scenario, *, progress=None, **settings):
     simulate, without controller; progress as forces(); Ctrl-C stops it."""
     settings["scenario"] = os.fspath(scenario)
     return _core._compare_controllers(settings, progress)
+
+
+def scenario_soils(scenario):
+    """The soils a mission study can vary (docs/field.md, "Mission studies"): {key: Soil} by the
+    keys of simulate()'s soils= override — "base", then a field's class codes ("1", "2", ...) or
+    a patch terrain's patch numbers ("1", ...)."""
+    return _core._scenario_soils(os.fspath(scenario))
+
+
+def _override_json(case):
+    """A case's overrides as the rover's settings take them: Soil and Wheel objects as dicts."""
+    out = dict(case)
+    if isinstance(out.get("wheel"), Wheel):
+        out["wheel"] = out["wheel"].to_dict()
+    if "soils" in out:
+        out["soils"] = {str(k): (v.to_dict() if isinstance(v, Soil) else v)
+                        for k, v in out["soils"].items()}
+    return out
+
+
+def _mission(settings):
+    """One case of a mission study: its summary, status and message (runs where it is called:
+    locally, or on a Dask worker)."""
+    out = run("rover", **settings)
+    summary = [v for k, v in out["documents"].items() if "summary" in k]
+    row = dict(summary[0]) if summary else {}
+    # The wall-clock speed is measured, not computed: it differs between runs and machines.
+    row.pop("real_time_factor", None)
+    row["status"] = out["status"]
+    row["message"] = out["message"]
+    return row
+
+
+def mission_cases(scenario, samples, *, soil_spread=None, chassis_mass_kg=None, wheels=None,
+                  seed=1):
+    """Cases for mission_study() drawn at random (numpy's PCG64 with `seed`: the same cases on
+    every machine). soil_spread: {soil field key: std in its unit} (soil_fields(): "phi_deg",
+    "c_kPa", "K_m", "n", ...): each of the scenario's soils (scenario_soils()) gets an independent
+    Gaussian draw around its own value per case, redrawn until the field's range holds (20 tries,
+    then the range's nearest end); chassis_mass_kg: (low, high) drawn uniformly; wheels: a list
+    of Wheels or presets, one drawn per case. Returns a list of `samples` dicts of overrides."""
+    samples = int(samples)
+    if samples < 1:
+        raise ValueError(f"samples: {samples} is not at least 1")
+    rng = np.random.Generator(np.random.PCG64(int(seed)))
+    nominal = scenario_soils(scenario) if soil_spread else {}
+    fields = {f["key"]: f for f in soil_fields()} if soil_spread else {}
+    for key in soil_spread or {}:
+        if key not in fields:
+            raise ValueError(f"soil_spread: '{key}' is not a soil field ({', '.join(fields)})")
+    if chassis_mass_kg is not None:
+        mass_low, mass_high = (float(v) for v in chassis_mass_kg)
+        if not 0.0 < mass_low <= mass_high:
+            raise ValueError(
+                f"chassis_mass_kg: ({mass_low}, {mass_high}) is not 0 < low <= high")
+    choices = [_as_wheel(w) for w in wheels] if wheels else None
+    cases = []
+    for _ in range(samples):
+        case = {}
+        if soil_spread:
+            soils = {}
+            for key, base in nominal.items():
+                values = base.to_dict()
+                for name, std in soil_spread.items():
+                    field = fields[name]
+                    low, high = field["low"], field["high"]
+                    centre = float(values[name]) if name in values else float(base[name])
+                    value = centre
+                    for _try in range(20):
+                        value = centre + float(std) * rng.standard_normal()
+                        if low <= value <= high:
+                            break
+                    else:
+                        value = min(max(value, low), high)
+                    values[name] = value
+                values["name"] = f"{values.get('name', key)} (drawn)"
+                soils[key] = values
+            case["soils"] = soils
+        if chassis_mass_kg is not None:
+            case["chassis_mass_kg"] = float(rng.uniform(mass_low, mass_high))
+        if choices:
+            case["wheel"] = choices[int(rng.integers(len(choices)))].to_dict()
+        cases.append(case)
+    return cases
+
+
+def mission_study(scenario, cases, *, client=None, threads=1, progress=None, **settings):
+    """Many runs of one rover or mission scenario (docs/field.md, "Mission studies"), one per
+    case: a dict of overrides — chassis_mass_kg, wheel (Wheel, preset or dict), soils ({"base" |
+    class code | patch number: Soil, preset or dict}) — on top of `settings` (simulate()'s:
+    duration_s, time_step_s, model, controller, slip). mission_cases() draws such cases.
+    client: None (here, `threads` cases at a time) or a dask.distributed Client (one task per
+    case on its workers). Every case is a pure function of its inputs, so the results are the
+    same bit for bit wherever they run. progress: None or a callable(fraction), called as cases
+    finish (here only). Returns one dict per case, in order: the run's summary (simulate()'s
+    "summary" without the measured real_time_factor) with "status" and "message"."""
+    base = dict(settings)
+    base["scenario"] = os.fspath(scenario)
+    runs = []
+    for i, case in enumerate(cases):
+        if not isinstance(case, dict):
+            raise ValueError(f"cases[{i}]: expected a dict of overrides, not {type(case).__name__}")
+        runs.append({**base, **_override_json(case)})
+    if client is not None:
+        from ._dask import run_missions
+
+        return run_missions(client, runs)
+    threads = max(1, int(threads))
+    results = [None] * len(runs)
+    if threads == 1:
+        for i, one in enumerate(runs):
+            results[i] = _mission(one)
+            if progress is not None:
+                progress((i + 1) / len(runs))
+        return results
+    from concurrent.futures import ThreadPoolExecutor, as_completed
+
+    with ThreadPoolExecutor(max_workers=threads) as pool:
+        futures = {pool.submit(_mission, one): i for i, one in enumerate(runs)}
+        for done, future in enumerate(as_completed(futures), start=1):
+            results[futures[future]] = future.result()
+            if progress is not None:
+                progress(done / len(runs))
+    return results
 
 
 def _read_profile(name):

@@ -129,6 +129,25 @@ def compare_controllers(
     progress: Callable[[float], object] | None = None,
     **settings: Any,
 ) -> list[dict[str, Any]]: ...
+def scenario_soils(scenario: str | os.PathLike[str]) -> dict[str, Soil]: ...
+def mission_cases(
+    scenario: str | os.PathLike[str],
+    samples: int,
+    *,
+    soil_spread: Mapping[str, float] | None = None,
+    chassis_mass_kg: tuple[float, float] | None = None,
+    wheels: Sequence[Wheel | str] | None = None,
+    seed: int = 1,
+) -> list[dict[str, Any]]: ...
+def mission_study(
+    scenario: str | os.PathLike[str],
+    cases: Sequence[Mapping[str, Any]],
+    *,
+    client: Any = None,
+    threads: int = 1,
+    progress: Callable[[float], object] | None = None,
+    **settings: Any,
+) -> list[dict[str, Any]]: ...
 def sobol(
     soil: SoilSpec,
     wheel: WheelSpec,

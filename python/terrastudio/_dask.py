@@ -1,4 +1,5 @@
-"""Global sensitivity studies on a Dask cluster (docs/python.md, "Studies on a cluster").
+"""Global sensitivity studies and mission studies on a Dask cluster (docs/python.md, "Studies on
+a cluster"; docs/field.md, "Mission studies").
 
 The design's rows are cut into chunks of whole base samples (trajectories for Morris); each
 worker rebuilds the study from its arguments (soils and wheels travel as their exact doubles),
@@ -63,3 +64,16 @@ def run_on(client, kind, arguments, plan, chunks, threads):
     ]
     parts = client.gather(futures)
     return plan.gather(parts, threads)
+
+
+def run_mission(settings):
+    """One case of a mission study on a worker (terrastudio.mission_study)."""
+    from . import _mission
+
+    return _mission(settings)
+
+
+def run_missions(client, runs):
+    """Each case as one task on the client's workers, the summaries gathered in case order."""
+    futures = [client.submit(run_mission, one, pure=False) for one in runs]
+    return client.gather(futures)

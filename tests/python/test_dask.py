@@ -104,3 +104,16 @@ def test_misaligned_chunks_and_inputs_give_the_same_numbers():
     a = ts.sobol_indices(parameters, y, samples=64, seed=1, resamples=50)
     b = ts.sobol_indices(parameters, misaligned(y), samples=64, seed=1, resamples=50)
     np.testing.assert_array_equal(a["S1"], b["S1"])
+
+
+def test_a_mission_study_on_two_workers_is_bit_identical(client):
+    # Soils drawn from their spread, chassis masses and two wheels (docs/field.md, "Mission
+    # studies"): each case one task; the summaries are the local ones bit for bit.
+    cases = ts.mission_cases("field-slope-wet", 3, soil_spread={"phi_deg": 2.0, "c_kPa": 0.3},
+                             chassis_mass_kg=(18.0, 26.0), wheels=["A", "B"], seed=7)
+    local = ts.mission_study("field-slope-wet", cases, duration_s=4.0, model="quadratic")
+    remote = ts.mission_study("field-slope-wet", cases, client=client, duration_s=4.0,
+                              model="quadratic")
+    assert remote == local
+    assert all(row["status"] == "completed" for row in local)
+    assert len({row["energy_J"] for row in local}) == 3  # three different missions
