@@ -406,6 +406,10 @@ id::StreamEstimate estimateFrom(const json& j) {
 
 }  // namespace
 
+json savedJson(const id::IdentificationReport& report) { return reportJson(report); }
+
+id::IdentificationReport identificationReportFromJson(const json& j) { return reportFrom(j); }
+
 json savedJson(const analysis::IdentificationResult& r) {
     json profile = json::array();
     for (const id::ProfileInterval& p : r.profile) profile.push_back(profileJson(p));

@@ -28,6 +28,13 @@ nlohmann::json savedJson(const analysis::IdentificationResult& result);
 Result<analysis::IdentificationResult> identificationResultFromJson(const nlohmann::json& json,
                                                                     const std::string& where);
 
+/// The global identification's report in full (estimate, uncertainty, priors, held-out error,
+/// ambiguity, adequacy, steps): a part of savedJson(IdentificationResult), and of the
+/// calibration's result (saved_validation.h). Throws std::invalid_argument (or nlohmann's type
+/// error) for anything else.
+nlohmann::json savedJson(const identification::IdentificationReport& report);
+identification::IdentificationReport identificationReportFromJson(const nlohmann::json& json);
+
 /// A streaming playback as shown: its frames, the change points and the source's sample count.
 struct SavedStream {
     std::vector<analysis::StreamFrame> frames;
