@@ -7,9 +7,12 @@
 #include <qcustomplot.h>
 
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
+#include <QLineEdit>
 #include <QSignalSpy>
 #include <QStatusBar>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <cstdio>
@@ -18,8 +21,12 @@
 #include "core/identification/data_set.h"
 #include "core/identification/synthetic.h"
 #include "core/io/atomic_file.h"
+#include "core/io/experiment.h"
 #include "core/io/table_json.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/calibration_dialog.h"
+#include "widgets/panels/experiment_actions.h"
+#include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
@@ -305,6 +312,94 @@ TEST(SavedResultsWindow, AMovedProjectFolderKeepsTheFitOfItsDataFile) {
     EXPECT_FALSE(identification->showsSavedResult());
     const QString message = studio.window.statusBar()->currentMessage();
     EXPECT_TRUE(message.contains("Identification: its inputs changed")) << message.toStdString();
+}
+
+// Issue 27, item 2: a calibration to the project's measured test reopens in its dialog with the
+// same tables and settings, fitted zero times and applicable; applied and saved, it reopens as
+// applied; the test's data edited, it is not shown.
+TEST(SavedResultsWindow, ACalibrationReopensWithoutFittingAgain) {
+    QTemporaryDir dir;
+    const QString source = TERRA_RESOURCE_DIR "/experiments/ding2011-smooth-hit-lss1-80N";
+    const QString test = dir.filePath("ding2011-smooth-hit-lss1-80N.csv");
+    ASSERT_TRUE(QFile::copy(source + ".csv", test));
+    ASSERT_TRUE(QFile::copy(source + ".json", dir.filePath("ding2011-smooth-hit-lss1-80N.json")));
+    const QString path = dir.filePath("calibrated.terra");
+    auto texts = [](const QTableWidget& table) {
+        QStringList out;
+        for (int r = 0; r < table.rowCount(); ++r)
+            for (int c = 0; c < table.columnCount(); ++c)
+                out << (table.item(r, c) ? table.item(r, c)->text() : QString());
+        return out;
+    };
+    QStringList metrics, parameters;
+    {
+        Studio studio;
+        const Result<io::Experiment> read = io::readExperiment(test.toStdString());
+        ASSERT_TRUE(read.ok()) << read.message();
+        const ui::ExperimentSetup setup = ui::experimentSetup(*read, test::resources());
+        ASSERT_TRUE(ui::loadExperiment(*studio.window.document(), test, &setup));
+        auto* forces = studio.panel<ui::ForcesPanel>();
+        ui::CalibrationDialog* dialog = forces->openCalibration();
+        ASSERT_NE(dialog, nullptr);
+        dialog->setOptions(1.0, 0.0, 1.0, false);
+        dialog->setFitSlips("0, 0.2, 0.6");
+        QSignalSpy done(dialog, &ui::CalibrationDialog::calibrationFinished);
+        ASSERT_TRUE(dialog->start());
+        ASSERT_TRUE(done.wait(120000));
+        ASSERT_TRUE(dialog->canApply());
+        metrics = texts(*dialog->metricsTable());
+        parameters = texts(*dialog->parameterTable());
+        ASSERT_EQ(dialog->metricsTable()->columnCount(), 5);  // with the held-out columns
+        QString error;
+        ASSERT_TRUE(studio.window.document()->save(path, &error)) << error.toStdString();
+        EXPECT_EQ(studio.saveAndWaitForResults(), QString());
+    }
+    {
+        Studio studio;
+        openAndWait(studio, path);
+        const QString message = studio.window.statusBar()->currentMessage();
+        EXPECT_TRUE(message.contains("Forces vs slip (calibration)")) << message.toStdString();
+        EXPECT_FALSE(message.contains("not shown")) << message.toStdString();
+        ui::CalibrationDialog* dialog = studio.panel<ui::ForcesPanel>()->calibrationDialog();
+        ASSERT_NE(dialog, nullptr);
+        ASSERT_TRUE(dialog->result().has_value());  // without a Calibrate: nothing ran
+        EXPECT_FALSE(dialog->isRunning());
+        EXPECT_EQ(texts(*dialog->metricsTable()), metrics);
+        EXPECT_EQ(texts(*dialog->parameterTable()), parameters);
+        EXPECT_EQ(dialog->findChild<QLineEdit*>("fit_slips")->text(), "0, 0.2, 0.6");
+        EXPECT_TRUE(dialog->statusText().contains("Saved with the project"))
+            << dialog->statusText().toStdString();
+        // It applies the same calibrated soil as the fit did.
+        ASSERT_TRUE(dialog->canApply());
+        const soil::SoilParameters calibrated = dialog->result()->calibration->soil;
+        ASSERT_TRUE(dialog->apply());
+        EXPECT_EQ(studio.window.document()->project().soil.friction_angle_rad,
+                  calibrated.friction_angle_rad);
+        EXPECT_EQ(studio.saveAndWaitForResults(), QString());
+    }
+    {
+        Studio studio;
+        openAndWait(studio, path);
+        ui::CalibrationDialog* dialog = studio.panel<ui::ForcesPanel>()->calibrationDialog();
+        ASSERT_NE(dialog, nullptr);
+        ASSERT_TRUE(dialog->result().has_value());
+        EXPECT_FALSE(dialog->canApply());  // applied already: the project's soil is its result
+        EXPECT_TRUE(dialog->statusText().contains("Applied")) << dialog->statusText().toStdString();
+    }
+    // Other data under the same name: the calibration is not one of this test.
+    std::string csv;
+    ASSERT_FALSE(io::readFile(test.toStdString(), csv));
+    const std::size_t last_digit = csv.find_last_of("123456789");
+    csv[last_digit] = csv[last_digit] == '1' ? '2' : '1';
+    ASSERT_FALSE(io::writeFileAtomically(test.toStdString(), csv));
+    Studio studio;
+    openAndWait(studio, path);
+    ui::CalibrationDialog* dialog = studio.panel<ui::ForcesPanel>()->calibrationDialog();
+    EXPECT_TRUE(dialog == nullptr || !dialog->result().has_value());
+    const QString message = studio.window.statusBar()->currentMessage();
+    EXPECT_TRUE(
+        message.contains("Forces vs slip (calibration): its wheel, test or settings changed"))
+        << message.toStdString();
 }
 
 // A damaged section costs that section; a newer file costs the results, never the project.

@@ -17,7 +17,9 @@
 #include <functional>
 
 #include "core/identification/parameters.h"
+#include "core/io/parameters_json.h"
 #include "core/project/project.h"
+#include "core/project/saved_validation.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/experiment_overlay.h"
 #include "widgets/plots/number_format.h"
@@ -230,6 +232,7 @@ bool CalibrationDialog::start() {
     const analysis::Inputs inputs = project::inputsOf(document_->project());
     const analysis::ValidationSettings s = *typed;
     started_revision_ = document_->revision();
+    started_settings_ = controlSettings();
     applied_ = false;
     status_shows_result_ = false;
     cancel_flag_ = std::make_shared<std::atomic<bool>>(false);
@@ -277,6 +280,7 @@ void CalibrationDialog::finished() {
     } else {
         result_ = out.result;
         result_revision_ = started_revision_;
+        result_settings_ = started_settings_;
         progress_->setValue(100);
         showResult();
     }
@@ -460,6 +464,97 @@ bool CalibrationDialog::apply() {
                          " (Edit ▸ Undo restores the previous one).");
     updateButtons();
     return applied;
+}
+
+nlohmann::json CalibrationDialog::controlSettings() const {
+    return {{"noise_Fx_N", fx_noise_->value()},
+            {"noise_My_Nm", my_noise_->value()},
+            {"noise_sinkage_mm", sinkage_noise_->value()},
+            {"fit_n1", fit_n1_->isChecked()},
+            {"fit_slips", fit_slips_->text().trimmed().toStdString()}};
+}
+
+nlohmann::json CalibrationDialog::calibrationInputs(const soil::SoilParameters& given,
+                                                    const nlohmann::json& settings) const {
+    const io::Experiment* test = document_->experiment();
+    return {{"soil", io::toJson(given)},
+            {"wheel", io::toJson(document_->project().wheel)},
+            {"test", test ? project::fileStamp(test->source) : nlohmann::json()},
+            {"settings", settings}};
+}
+
+std::optional<project::SavedResult> CalibrationDialog::savedResult() const {
+    if (isRunning() || !result_ || !result_->calibration) return std::nullopt;
+    project::SavedResult saved;
+    saved.version = project::kCalibrationVersion;
+    saved.inputs_hash =
+        project::inputsHash(calibrationInputs(result_->before.soil, result_settings_));
+    saved.summary = "calibrated to " +
+                    QFileInfo(QString::fromStdString(result_->source)).fileName().toStdString();
+    saved.result = {{"calibration", project::savedJson(*result_)}, {"settings", result_settings_}};
+    return saved;
+}
+
+namespace {
+
+/// A soil's JSON without its name: "sandy loam (calibrated)" is the calibrated soil applied.
+nlohmann::json unnamed(soil::SoilParameters soil) {
+    soil.name.clear();
+    return io::toJson(soil);
+}
+
+}  // namespace
+
+CalibrationDialog::RestoreAnswer CalibrationDialog::restore(const project::SavedResult& saved,
+                                                            std::string* why) {
+    const auto refuse = [why](RestoreAnswer answer, const std::string& reason) {
+        if (why) *why = reason;
+        return answer;
+    };
+    if (isRunning()) return refuse(RestoreAnswer::kUnreadable, "a calibration is running");
+    if (saved.version != project::kCalibrationVersion)
+        return refuse(RestoreAnswer::kUnreadable,
+                      "saved in form version " + std::to_string(saved.version));
+    if (!saved.result.is_object() || !saved.result.contains("calibration") ||
+        !saved.result.contains("settings") || !saved.result["settings"].is_object())
+        return refuse(RestoreAnswer::kUnreadable, "no calibration or settings");
+    Result<analysis::ValidationResult> read =
+        project::validationResultFromJson(saved.result["calibration"], "calibration");
+    if (!read) return refuse(RestoreAnswer::kUnreadable, read.message());
+    if (!read->calibration) return refuse(RestoreAnswer::kUnreadable, "not a calibration");
+    const nlohmann::json& settings = saved.result["settings"];
+    if (saved.inputs_hash != project::inputsHash(calibrationInputs(read->before.soil, settings)))
+        return refuse(RestoreAnswer::kInputsChanged, "its wheel, test or settings changed");
+    const nlohmann::json soil = unnamed(document_->project().soil);
+    const bool given = soil == unnamed(read->before.soil);
+    const bool applied = soil == unnamed(read->calibration->soil);
+    if (!given && !applied)
+        return refuse(RestoreAnswer::kInputsChanged,
+                      "the project's soil is neither its given nor its calibrated soil");
+    try {
+        fx_noise_->setValue(settings.at("noise_Fx_N").get<double>());
+        my_noise_->setValue(settings.at("noise_My_Nm").get<double>());
+        sinkage_noise_->setValue(settings.at("noise_sinkage_mm").get<double>());
+        fit_n1_->setChecked(settings.at("fit_n1").get<bool>());
+        fit_slips_->setText(QString::fromStdString(settings.at("fit_slips").get<std::string>()));
+    } catch (const std::exception& e) {
+        return refuse(RestoreAnswer::kUnreadable, std::string("settings: ") + e.what());
+    }
+    result_ = std::move(read).value();
+    result_settings_ = settings;
+    // Applicable while the project keeps the given soil; applied already otherwise.
+    applied_ = applied && !given;
+    result_revision_ = applied_ ? -1 : document_->revision();
+    progress_->setValue(100);
+    showResult();
+    status_->setText("Saved with the project; not calibrated again (Calibrate runs it again).<br>" +
+                     status_->text());
+    if (applied_)
+        status_->setText("Applied: the project's soil is this calibration's.<br>" +
+                         status_->text());
+    status_shows_result_ = !applied_;
+    updateButtons();
+    return RestoreAnswer::kShown;
 }
 
 QString CalibrationDialog::statusText() const { return status_->text(); }

@@ -17,6 +17,7 @@
 #include <optional>
 
 #include "core/analysis/validation.h"
+#include "core/project/results.h"
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -60,6 +61,17 @@ public:
     /// Puts the calibrated soil into the project (one undo step "Calibrate soil to <test>").
     bool apply();
 
+    /// The last finished calibration for the project's results file (core/project/results.h,
+    /// section "forces.calibration"): the result, the settings it ran with, and the hash of its
+    /// inputs (the given soil, the wheel, the test's content, those settings). Empty without one.
+    std::optional<project::SavedResult> savedResult() const;
+    /// Shows a saved calibration without fitting again, its settings in the controls, when the
+    /// project's wheel and test are those it was fitted to and the project's soil is its given
+    /// soil (it can be applied) or its calibrated soil (it was applied); else changes nothing
+    /// and says why (the panel's Restored answers).
+    enum class RestoreAnswer { kShown, kInputsChanged, kUnreadable };
+    RestoreAnswer restore(const project::SavedResult& saved, std::string* why = nullptr);
+
     QString statusText() const;
     /// The metrics table (rows: channel × RMSE, MAE, max rel. error; columns: metric, given soil,
     /// calibrated, and with held-out points: held out with the given soil, held out calibrated) and
@@ -79,6 +91,12 @@ private:
     };
     void finished();
     void showResult();
+    /// The controls' settings (noise levels, n₁, fit slips) as saved with a result.
+    nlohmann::json controlSettings() const;
+    /// What a calibration's result depends on: the given soil, the wheel, the test's content,
+    /// the settings.
+    nlohmann::json calibrationInputs(const soil::SoilParameters& given,
+                                     const nlohmann::json& settings) const;
     void updateButtons();
 
     ProjectDocument* document_;
@@ -98,6 +116,8 @@ private:
     QFutureWatcher<Outcome> watcher_;
     std::shared_ptr<std::atomic<bool>> cancel_flag_;
     std::optional<analysis::ValidationResult> result_;
+    /// The settings the running or last calibration started with (savedResult's inputs).
+    nlohmann::json started_settings_, result_settings_;
     int started_revision_ = -1;  ///< the document's revision the running or last fit is of
     int result_revision_ = -1;
     bool applied_ = false;

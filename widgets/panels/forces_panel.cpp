@@ -345,6 +345,33 @@ void ForcesPanel::present(const std::any& value) {
 
 namespace terra::ui {
 
+std::map<std::string, project::SavedResult> ForcesPanel::savedResults() const {
+    std::map<std::string, project::SavedResult> out;
+    if (calibration_) {
+        if (std::optional<project::SavedResult> saved = calibration_->savedResult())
+            out[name().toStdString() + ".calibration"] = std::move(*saved);
+    }
+    return out;
+}
+
+AnalysisPanel::Restored ForcesPanel::restoreResult(const std::string& section,
+                                                   const project::SavedResult& saved) {
+    if (section != name().toStdString() + ".calibration")
+        return unreadable("not a section of this panel");
+    CalibrationDialog* dialog = openCalibration();
+    if (!dialog) return inputsChanged();  // the project has no test now
+    std::string why;
+    switch (dialog->restore(saved, &why)) {
+        case CalibrationDialog::RestoreAnswer::kShown:
+            return restoredShown();
+        case CalibrationDialog::RestoreAnswer::kInputsChanged:
+            return {Restored::Kind::kInputsChanged, why};
+        case CalibrationDialog::RestoreAnswer::kUnreadable:
+            break;
+    }
+    return unreadable(why);
+}
+
 CalibrationDialog* ForcesPanel::openCalibration() {
     if (!document_->experiment()) return nullptr;
     if (!calibration_) {

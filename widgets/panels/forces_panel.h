@@ -84,6 +84,10 @@ public:
     /// {"plot": name of the shown plot (plots())}: a project reopens on the same tab.
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
+    /// The calibration dialog's last result ("forces.calibration"; the sweeps are quick and
+    /// computed again).
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
 protected:
     Job makeJob() override;
