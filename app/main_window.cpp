@@ -41,6 +41,7 @@
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
+#include "widgets/plots/export_dialog.h"
 
 namespace terra::app {
 namespace {
@@ -365,6 +366,7 @@ bool MainWindow::saveAs() {
                                                 "TerraStudio project (*.terra)");
     if (path.isEmpty()) return false;
     if (!path.endsWith(".terra")) path += ".terra";
+    if (!ui::offerMissingFolder(this, path)) return false;  // declined: nothing saved
     return saveTo(path);
 }
 

@@ -204,8 +204,12 @@ void MainWindow::exportCurrentData() {
         this, "Export data", ui::suggestedPath(document_->filePath(), plotName(*panel), ".csv"),
         "CSV (*.csv)");
     if (path.isEmpty()) return;
-    ui::rememberFolder(path);
     QString error;
+    if (!ui::offerMissingFolder(this, path, &error)) {
+        if (!error.isEmpty()) statusBar()->showMessage("Not exported: " + error, 8000);
+        return;
+    }
+    ui::rememberFolder(path);
     if (!ui::exportTable(panel->currentTable(), path, &error)) {
         QMessageBox::warning(this, "Export failed", error);
         return;

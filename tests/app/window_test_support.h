@@ -31,7 +31,9 @@ struct Studio {
     QString saveAndWaitForResults() {
         QSignalSpy saved(&window, &MainWindow::resultsSaved);
         action("action.save")->trigger();
-        if (saved.isEmpty()) EXPECT_TRUE(saved.wait(30000)) << "the results were not written";
+        if (saved.isEmpty()) {
+            EXPECT_TRUE(saved.wait(30000)) << "the results were not written";
+        }
         return saved.isEmpty() ? QString("not written") : saved.front().at(1).toString();
     }
 };

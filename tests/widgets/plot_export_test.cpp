@@ -4,14 +4,24 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QAbstractButton>
+#include <QApplication>
 #include <QFile>
+#include <QFileInfo>
 #include <QImage>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QPointer>
 #include <QRegularExpression>
 #include <QSvgRenderer>
 #include <QTemporaryDir>
+#include <QTimer>
+#include <functional>
+#include <memory>
 
 #include "core/analysis/forces.h"
 #include "core/project/project.h"
+#include "widgets/plots/export_dialog.h"
 #include "widgets/plots/sweep_plot.h"
 #include "widgets_test_support.h"
 
@@ -101,6 +111,64 @@ TEST_F(PlotExport, CsvHoldsThePlottedTableAndBadRequestsFailCleanly) {
     EXPECT_FALSE(exportPlot(plot_, dir_.filePath("missing/dir/fx.png"), {}, &error));
     EXPECT_FALSE(exportPlot(plot_, dir_.filePath("fx2.png"), {5, 5, 96, 1.0}, &error));
     EXPECT_FALSE(QFile::exists(dir_.filePath("fx2.png")));
+}
+
+}  // namespace
+}  // namespace terra::ui
+
+namespace terra::ui {
+namespace {
+
+/// Every `interval_ms`, hands the modal widget on top to `act` (once per distinct widget) until
+/// `act` returns true; for dialogs that open one after another (a dialog, then its question).
+void driveModals(std::function<bool(QWidget*)> act) {
+    auto* timer = new QTimer;
+    timer->setInterval(20);
+    auto last = std::make_shared<QPointer<QWidget>>();
+    QObject::connect(timer, &QTimer::timeout, [timer, act, last] {
+        QWidget* modal = QApplication::activeModalWidget();
+        if (!modal || modal == last->data()) return;
+        *last = modal;
+        if (act(modal)) {
+            timer->stop();
+            timer->deleteLater();
+        }
+    });
+    timer->start();
+}
+
+// Issue 27, item 5: an export into a folder that does not exist offers to create it ("cannot
+// write" was all it said); declined, the dialog comes back with its path; accepted, the folder is
+// made and the plot and its CSV written there.
+TEST_F(PlotExport, AMissingFolderIsOfferedToBeCreated) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("figures/2026/forces.png");
+    QStringList seen;
+    int questions = 0;
+    driveModals([&](QWidget* modal) {
+        if (auto* dialog = qobject_cast<ExportDialog*>(modal)) {
+            seen << "dialog";
+            dialog->findChild<QLineEdit*>("export.path")->setText(path);
+            QMetaObject::invokeMethod(dialog, &QDialog::accept, Qt::QueuedConnection);
+            return false;
+        }
+        if (auto* box = qobject_cast<QMessageBox*>(modal)) {
+            seen << "question";
+            EXPECT_TRUE(box->text().contains("does not exist")) << box->text().toStdString();
+            // The first time No (back to the dialog), the second time Yes.
+            QAbstractButton* button =
+                box->button(++questions == 1 ? QMessageBox::No : QMessageBox::Yes);
+            QMetaObject::invokeMethod(button, &QAbstractButton::click, Qt::QueuedConnection);
+            return questions == 2;
+        }
+        return false;
+    });
+    QStringList written;
+    ASSERT_TRUE(ExportDialog::exportWithDialog(nullptr, plot_, table_, "forces.png", &written));
+    EXPECT_EQ(seen, (QStringList{"dialog", "question", "dialog", "question"}));
+    EXPECT_EQ(written, (QStringList{path, dir.filePath("figures/2026/forces.csv")}));
+    EXPECT_TRUE(QImage(path).width() > 0);
+    EXPECT_TRUE(QFileInfo::exists(dir.filePath("figures/2026/forces.csv")));
 }
 
 }  // namespace

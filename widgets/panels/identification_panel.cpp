@@ -721,9 +721,18 @@ void IdentificationPanel::present(const std::any& value) {
     if (report) {
         lines << QString("Data: %1.")
                      .arg(withSymbols(QString::fromStdString(report->setup.description)));
-        lines << QString("Gradient norm %1, Newton decrement %2 (≪ 1 at a minimum).")
-                     .arg(number(report->gradient_norm, 2))
-                     .arg(number(report->newton_decrement, 2));
+        // The Newton decrement gᵀH⁻¹g in a user's words: what one more step would still gain in
+        // χ², against the change of 1 that is one σ (the gradient norm stays in the JSON report).
+        if (report->newton_decrement < 0.1)
+            lines << QString(
+                "At a minimum: one more step would lower χ² by less than 0.1 (a "
+                "change of 1 is one σ).");
+        else
+            lines << QString(
+                         "Not clearly at a minimum: one more step would still lower χ² by "
+                         "%1 (a change of 1 is one σ); fit again, or fix or give priors to "
+                         "the parameters the data do not determine.")
+                         .arg(number(report->newton_decrement, 2));
         if (report->holdout.computed) {
             QStringList channels;
             for (int c = 0; c < identification::kChannelCount; ++c) {

@@ -2,6 +2,7 @@
 
 #include <QCheckBox>
 #include <QDialogButtonBox>
+#include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -70,10 +71,37 @@ ExportOptions ExportDialog::options() const {
 
 bool ExportDialog::writeCsv() const { return csv_->isChecked(); }
 
+bool offerMissingFolder(QWidget* parent, const QString& file_path, QString* error) {
+    const QString folder = QFileInfo(file_path).absolutePath();
+    if (QFileInfo(folder).isDir()) return true;
+    const auto answer = QMessageBox::question(
+        parent, "Create the folder?",
+        QString("The folder %1 does not exist. Create it?").arg(QDir::toNativeSeparators(folder)),
+        QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes);
+    if (answer != QMessageBox::Yes) {
+        if (error) *error = "the folder " + folder + " does not exist";
+        return false;
+    }
+    if (!QDir().mkpath(folder)) {
+        if (error) *error = "cannot create the folder " + folder;
+        return false;
+    }
+    return true;
+}
+
 bool ExportDialog::exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table,
                                     const QString& suggested_path, QStringList* written) {
     ExportDialog dialog(suggested_path, parent);
-    if (dialog.exec() != QDialog::Accepted) return false;
+    for (;;) {
+        if (dialog.exec() != QDialog::Accepted) return false;
+        QString error;
+        if (offerMissingFolder(parent, dialog.path(), &error)) break;
+        if (error.startsWith("cannot")) {
+            QMessageBox::warning(parent, "Export failed", error);
+            return false;
+        }
+        // Declined: back to the dialog, its path kept, to choose another folder.
+    }
     QString error;
     bool ok = exportPlot(plot, dialog.path(), dialog.options(), &error);
     if (ok && written) written->append(dialog.path());

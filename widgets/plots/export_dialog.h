@@ -14,6 +14,11 @@ class QSpinBox;
 
 namespace terra::ui {
 
+/// The folder of `file_path`, made when it is missing and the user agrees ("The folder … does not
+/// exist. Create it?"). True when the folder exists (or was made); false when the user declined
+/// or it could not be made (`error` says which).
+bool offerMissingFolder(QWidget* parent, const QString& file_path, QString* error = nullptr);
+
 class ExportDialog : public QDialog {
     Q_OBJECT
 public:
@@ -23,8 +28,10 @@ public:
     ExportOptions options() const;
     bool writeCsv() const;
 
-    /// Asks, then writes the plot (and its data as CSV beside it). Returns false when cancelled or
-    /// failed (the failure is shown to the user); `written` gets the files written.
+    /// Asks, then writes the plot (and its data as CSV beside it). A folder that does not exist is
+    /// offered to be created; declined, the dialog comes back to change the path. Returns false
+    /// when cancelled or failed (the failure is shown to the user); `written` gets the files
+    /// written.
     static bool exportWithDialog(QWidget* parent, QCustomPlot& plot, const Table& table,
                                  const QString& suggested_path, QStringList* written = nullptr);
 
