@@ -16,6 +16,7 @@
 #include "app/cli/signals.h"
 #include "core/analysis/identification.h"
 #include "core/analysis/identified_parameters.h"
+#include "core/analysis/registry.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -97,8 +98,6 @@ struct IdentifyOptions {
     std::string save_soil;         // --save-soil OUT.json: the soil with its posterior
 };
 
-const Range kHoldoutRange{0.0, 1.0, true, true};
-
 // --jmax: a value in metres (held; the soil field's range) or "fit" (identified).
 struct JmaxChoice {
     std::optional<double> value_m;
@@ -124,70 +123,111 @@ JmaxChoice parseJmax(const std::optional<std::string>& text) {
     out.value_m = value;
     return out;
 }
-const Range kFoldsRange{2.0, 1000.0};
-const Range kStartsRange{0.0, 100000.0};
-
-// --prior items: NAME=MEAN±STD (or +-) in the units of parameterInfo(), or one soil (preset or
-// JSON file) whose values become the means with the spreads of PriorSpreads.
-void parsePriors(const std::vector<std::string>& items, const io::PresetLocations& locations,
-                 analysis::IdentificationSettings& settings) {
-    refuseRepeatedKeys("--prior", items);
-    std::vector<Issue> issues;
-    for (const std::string& item : items) {
+// The flags as the identification's settings object (the keys of IdentificationSettings::
+// visitFields), read by its own reader: the ranges, kinds and their messages are the reader's,
+// named here by the flags (flagNames). What is left to the flags: the forms of their values
+// (NAME=VALUE items, "fit"), a key given twice, and a second soil given to --prior. --data is
+// not a key of the object: the fit reads the file (its FILE:LINE issues, the rows skipped).
+nlohmann::json settingsObject(const IdentifyOptions& o,
+                              std::vector<std::pair<std::string, std::string>>& flag_names) {
+    nlohmann::json s = nlohmann::json::object();
+    if (o.skip_bad_rows) s["skip_bad_rows"] = true;
+    s["refine"] = o.refine;
+    refuseRepeatedKeys("--prior", o.prior);
+    std::vector<std::string> items;
+    for (const std::string& item : o.prior) {
         if (item.find('=') != std::string::npos) {
-            identification::Priors scratch;
-            for (const Issue& issue : identification::parsePriorItem(item, scratch))
-                issues.push_back({"--prior", issue.where + ": " + issue.message});
-            settings.prior_items.push_back(item);
-            continue;
-        }
-        if (settings.prior_soil) {
-            issues.push_back({"--prior " + item, "a second soil prior (after " +
-                                                     settings.prior_soil_name +
-                                                     "); give one soil and NAME=MEAN±STD items"});
-            continue;
-        }
-        ModelOptions names;
-        names.soil = item;
-        try {
-            settings.prior_soil = names.soilParameters(locations);
-            settings.prior_soil_name = item;
-        } catch (const InputError& e) {
-            issues.push_back({"--prior " + item,
-                              std::string("neither NAME=MEAN±STD (e.g. phi_deg=30±5, names a0, a1, "
-                                          "Ks, n, c_kPa, phi_deg, K_m) nor a soil: ") +
-                                  e.what()});
+            items.push_back(item);
+        } else if (s.contains("prior_soil")) {
+            throw InputError("--prior " + item + ": a second soil prior (after " +
+                             s["prior_soil"].get<std::string>() +
+                             "); give one soil and NAME=MEAN±STD items");
+        } else {
+            s["prior_soil"] = item;
+            flag_names.emplace_back("prior_soil", "--prior " + item);
         }
     }
-    if (!issues.empty()) throw InputError(formatIssues(issues));
+    if (!items.empty()) s["priors"] = items;
+    if (o.holdout) s["holdout"] = *o.holdout;
+    if (o.folds) s["folds"] = *o.folds;
+    if (o.starts) s["starts"] = *o.starts;
+    s["loss"] = o.loss;
+    if (o.load_n) s["load_N"] = *o.load_n;
+    if (o.profile) s["profile"] = true;
+    // --fix a0=0.2: a key of the identified parameters and a value in its unit.
+    refuseRepeatedKeys("--fix", o.fix);
+    for (const std::string& item : o.fix) {
+        const auto equals = item.find('=');
+        double value = 0.0;
+        if (equals == std::string::npos || !parseStrictNumber(item.substr(equals + 1), value))
+            throw InputError("--fix " + item + ": expected NAME=VALUE (keys of the output)");
+        s["fix"][item.substr(0, equals)] = value;
+    }
+    // --noise fx=0.1: σ of a channel [N, N·m].
+    refuseRepeatedKeys("--noise", o.noise);
+    const std::map<std::string, std::string> channels{
+        {"fx", "Fx_N"}, {"fz", "Fz_N"}, {"my", "My_Nm"}};
+    for (const std::string& item : o.noise) {
+        const auto equals = item.find('=');
+        const auto channel =
+            equals == std::string::npos ? channels.end() : channels.find(item.substr(0, equals));
+        double value = 0.0;
+        if (channel == channels.end() || !parseStrictNumber(item.substr(equals + 1), value))
+            throw InputError("--noise " + item + ": expected fx|fz|my=SIGMA (N, N·m)");
+        s["noise"][channel->second] = value;
+    }
+    // --jmax VALUE (held) or "fit" (identified).
+    if (o.jmax && *o.jmax == "fit") {
+        s["fit_jmax"] = true;
+    } else if (o.jmax) {
+        double value = 0.0;
+        if (!parseStrictNumber(*o.jmax, value))
+            throw InputError("--jmax " + *o.jmax +
+                             ": expected a length in m, or 'fit' to "
+                             "identify it");
+        s["jmax_m"] = value;
+    }
+    return s;
 }
 
-// The global identification's options from the flags (checked: exit 2 names the flag, the
-// value and the allowed range).
-void applyGlobalOptions(const IdentifyOptions& o, const io::PresetLocations& locations,
-                        analysis::IdentificationSettings& settings) {
+// The settings keys the flags set, and the flags' names for the reader's messages.
+std::vector<std::pair<std::string, std::string>> identifyFlagNames() {
+    return {{"skip_bad_rows", "--skip-bad-rows"},
+            {"refine", "--refine"},
+            {"priors", "--prior"},  // "prior_soil": "--prior SOIL", by settingsObject
+            {"holdout", "--holdout"},
+            {"folds", "--folds"},
+            {"starts", "--starts"},
+            {"loss", "--loss"},
+            {"load_N", "--load"},
+            {"profile", "--profile"},
+            {"fix.", "--fix "},
+            {"fix", "--fix"},
+            {"noise.Fx_N", "--noise fx"},
+            {"noise.Fz_N", "--noise fz"},
+            {"noise.My_Nm", "--noise my"},
+            {"noise", "--noise"},
+            {"jmax_m", "--jmax"},
+            {"fit_jmax", "--jmax fit"}};
+}
+
+// The identification's settings of the flags, read by its reader (exit 2 names the flag, the
+// value and what is allowed, in the reader's words).
+analysis::IdentificationSettings identifySettings(const IdentifyOptions& o,
+                                                  const io::PresetLocations& locations) {
+    std::vector<std::pair<std::string, std::string>> names = identifyFlagNames();
+    const nlohmann::json object = settingsObject(o, names);
     std::vector<Issue> issues;
-    if (o.holdout) checkRange(issues, "--holdout", *o.holdout, kHoldoutRange);
-    if (o.folds) checkRange(issues, "--folds", *o.folds, kFoldsRange);
-    if (o.holdout && o.folds)
-        issues.push_back({"--holdout", "give --holdout FRACTION or --folds K, not both"});
-    if (o.starts) checkRange(issues, "--starts", *o.starts, kStartsRange);
-    const auto loss = analysis::lossFromName(o.loss);
-    if (!loss) {
-        issues.push_back({"--loss", "'" + o.loss + "' is not a loss; allowed: l2, huber, cauchy"});
+    io::ObjectReader reader(object, issues);
+    analysis::IdentificationSettings settings;
+    analysis::readIdentificationSettings(reader, {&locations, {}}, settings);
+    reader.finish();
+    if (!issues.empty()) {
+        nameFlags(issues, names);
+        throw InputError(formatIssues(issues));
     }
-    if (o.load_n) {
-        const FieldInfo& load = contact::loadField();
-        checkRange(issues, "--load", *o.load_n, load.range, load.displayUnit());
-    }
-    if (!issues.empty()) throw InputError(formatIssues(issues));
-    parsePriors(o.prior, locations, settings);
-    settings.holdout_fraction = o.holdout.value_or(0.0);
-    settings.folds = o.folds.value_or(0);
-    if (o.starts) settings.design_points = *o.starts;
-    settings.loss = *loss;
-    settings.load_n = o.load_n;
-    settings.profile = o.profile;
+    settings.csv = o.data;
+    return settings;
 }
 
 // The same for a person.
@@ -277,8 +317,10 @@ std::string shown(const analysis::IdentifiedField& field, double si,
 // --save-soil OUT.json: the identified soil as a soil file (`base`'s γ; k_c = 0, k_φ = K_s; the
 // fit's j_max) with "posterior" in the soil file's keys and units, written atomically.
 void saveSoil(const IdentifyOptions& o, const analysis::IdentificationResult& result,
-              const soil::SoilParameters& base, const wheel::WheelParameters& wheel) {
-    const double jmax = parseJmax(o.jmax).value_m.value_or(std::numeric_limits<double>::infinity());
+              const soil::SoilParameters& base, const wheel::WheelParameters& wheel,
+              const analysis::IdentificationSettings& settings) {
+    const double jmax =
+        settings.max_shear_deformation_m.value_or(std::numeric_limits<double>::infinity());
     Result<soil::SoilParameters> soil = analysis::identifiedSoilFile(result, base, wheel, jmax);
     if (!soil) throw std::runtime_error("--save-soil " + o.save_soil + ": " + soil.message());
     soil::SoilParameters s = soil.value();
@@ -414,38 +456,6 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
     }
     std::cout.flush();
     if (result.cancelled) exitCancelled(cancellation, note);
-}
-
-// --fix a0=0.2,a1=0.3: identified_parameters.h keys, values in their units.
-std::vector<std::pair<std::string, double>> parseFixes(const std::vector<std::string>& items) {
-    std::vector<std::string> keys;
-    for (const analysis::IdentifiedField& field : analysis::identifiedFields()) {
-        if (analysis::fullParameterOf(field)) keys.emplace_back(field.key);
-    }
-    std::string list;
-    for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
-    std::vector<std::pair<std::string, double>> out;
-    std::vector<Issue> issues;
-    refuseRepeatedKeys("--fix", items);
-    for (const std::string& item : items) {
-        const auto equals = item.find('=');
-        const std::string key = item.substr(0, equals);
-        double value = 0.0;
-        if (equals == std::string::npos || !parseStrictNumber(item.substr(equals + 1), value)) {
-            issues.push_back({"--fix " + item, "expected NAME=VALUE, NAME one of " + list});
-        } else if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
-            const std::string near = nearestName(key, keys);
-            issues.push_back(
-                {"--fix " + key, "not a refined parameter (" + list + ")" +
-                                     (near.empty() ? "" : "; did you mean " + near + "?")});
-        } else {
-            const analysis::IdentifiedField& field = *analysis::findIdentifiedField(key);
-            if (checkRange(issues, "--fix " + key, value, field.range, field.displayUnit()))
-                out.emplace_back(key, value);
-        }
-    }
-    if (!issues.empty()) throw InputError(formatIssues(issues));
-    return out;
 }
 
 }  // namespace
@@ -616,27 +626,12 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                 "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss, --load and "
                 "--profile belong to the full model (drop --no-refine)");
         }
-        analysis::IdentificationSettings settings;
-        settings.csv = o.data;
-        settings.skip_bad_rows = o.skip_bad_rows;
+        analysis::IdentificationSettings settings = identifySettings(o, locations);
         settings.guess = guess;
-        settings.refine = o.refine;
-        if (o.refine) {
-            applyGlobalOptions(o, locations, settings);
-            if (guess_soil) {
-                settings.starts.push_back(
-                    {"guess " + o.guess, identification::fromSoil(*guess_soil, inputs.wheel)});
-            }
+        if (o.refine && guess_soil) {
+            settings.starts.push_back(
+                {"guess " + o.guess, identification::fromSoil(*guess_soil, inputs.wheel)});
         }
-        settings.fixed = parseFixes(o.fix);
-        identification::NoiseSpec noise;
-        parseNoise(o.noise, noise);
-        settings.sigma_fx_n = noise.fx.absolute;
-        settings.sigma_fz_n = noise.fz.absolute;
-        settings.sigma_my_nm = noise.my.absolute;
-        const JmaxChoice jmax = parseJmax(o.jmax);
-        settings.max_shear_deformation_m = jmax.value_m;
-        settings.fit_max_shear_deformation = jmax.fit;
         const SignalCancellation cancellation;
         TerminalProgress progress("identify");
         analysis::IdentificationResult result;
@@ -690,7 +685,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                 if (limit && !o.refine) continue;  // the decoupled model has no j_max
                 std::string text = shown(field, p.*field.member, sd);
                 if (limit && !std::isfinite(p.*field.member)) text = "j_max = none";
-                if (limit && !jmax.fit) text += " (held)";
+                if (limit && !settings.fit_max_shear_deformation) text += " (held)";
                 std::cout << (column % 3 == 0 ? "  " : "   ") << text
                           << (column % 3 == 2 ? "\n" : "");
                 ++column;
@@ -710,7 +705,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         if (!result.usable())
             throw std::runtime_error("the fit did not converge to a usable solution");
         if (!o.save_soil.empty())
-            saveSoil(o, result, guess_soil.value_or(soil::SoilParameters{}), inputs.wheel);
+            saveSoil(o, result, guess_soil.value_or(soil::SoilParameters{}), inputs.wheel,
+                     settings);
     });
 }
 

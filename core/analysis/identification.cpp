@@ -16,18 +16,13 @@
 #include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
 #include "core/identification/synthetic.h"
+#include "core/io/declared_json.h"
 #include "core/io/parameters_json.h"
 
 namespace terra::analysis {
 namespace {
 
 namespace id = identification;
-
-const Range kNoisePercent{0.0, 100.0};
-const Range kSigma{0.0, 1e6};
-const Range kHoldout{0.0, 1.0, true, true};
-constexpr int kMaxFolds = 1000;
-constexpr int kMaxDesignPoints = 100000;
 
 // A measured value, or NaN when the data set does not carry the channel.
 double measuredOr(bool measured, double value) {
@@ -89,21 +84,45 @@ void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationR
 
 }  // namespace
 
+void readFixedParameters(io::ObjectReader& r, const char* key,
+                         std::vector<std::pair<std::string, double>>& out) {
+    if (!r.has(key)) {
+        r.allow(key);
+        return;
+    }
+    io::ObjectReader fix = r.object(key);
+    for (const IdentifiedField& field : identifiedFields()) {
+        if (!fullParameterOf(field)) continue;  // n1 is not refined
+        double value = 0.0;
+        if (fix.number(field.key, value, field.range, field.displayUnit()))
+            out.emplace_back(field.key, value);
+    }
+    fix.finish();
+}
+
+nlohmann::json fixedParametersJson(const std::vector<std::pair<std::string, double>>& fixed) {
+    if (fixed.empty()) return nullptr;
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : fixed) out[key] = value;
+    return out;
+}
+
+std::vector<Issue> identificationRuleIssues(const IdentificationSettings& s) {
+    std::vector<Issue> issues;
+    if (s.fit_max_shear_deformation && s.max_shear_deformation_m)
+        issues.push_back({"fit_jmax", "give jmax_m (held) or fit_jmax (identified), not both"});
+    if (s.holdout_fraction != 0.0 && s.folds != 0)
+        issues.push_back({"holdout", "give a holdout fraction or folds, not both"});
+    return issues;
+}
+
 void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
                                 IdentificationSettings& out) {
-    r.boolean("skip_bad_rows", out.skip_bad_rows);
-    if (r.text("csv", out.csv) && !out.csv.empty()) {
-        std::filesystem::path path(out.csv);
-        if (path.is_relative() && !context.base_dir.empty()) path = context.base_dir / path;
-        out.csv = path.string();
-        // "refine" is read first (below) when present, so that a file without an entry angle
-        // is read as the full model reads it.
-        bool refine = out.refine;
-        if (r.has("refine")) r.boolean("refine", refine);
-        out.refine = refine;
-        auto read =
-            id::readDataSet(path, out.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop,
-                            refine ? id::ColumnNeeds::kFullModel : id::ColumnNeeds::kDecoupled);
+    io::readFields(r, out, context.base_dir);
+    if (!out.csv.empty() && r.has("csv")) {
+        // Read as the fit will use it: the full model reads a file without an entry angle.
+        auto read = id::readDataSet(
+            out.csv, out.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop, needsOf(out));
         if (!read) {
             for (const Issue& issue : read.issues())
                 r.report("csv", issue.where + ": " + issue.message);
@@ -115,51 +134,13 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
                 out.data_warnings.push_back(issue.where + ": " + issue.message);
         }
     }
-    r.number("noise_percent", out.synthetic.noise_percent, kNoisePercent, "%");
-    r.integer("seed", out.synthetic.seed, 0, std::numeric_limits<std::uint64_t>::max());
-    const FieldInfo& load = contact::loadField();
-    r.numbers("loads_N", out.synthetic.loads_n, load.range, load.displayUnit(), 1);
-    const FieldInfo& count = slipCountField();
-    r.integer(count.key, out.synthetic.slip_count, static_cast<int>(count.range.low),
-              static_cast<int>(count.range.high));
-    r.boolean("refine", out.refine);
-    if (r.has("fix")) {
-        io::ObjectReader fix = r.object("fix");
-        for (const IdentifiedField& field : identifiedFields()) {
-            if (!fullParameterOf(field)) continue;  // n1 is not refined
-            double value = 0.0;
-            if (fix.number(field.key, value, field.range, field.displayUnit()))
-                out.fixed.emplace_back(field.key, value);
-        }
-        fix.finish();
-    } else {
-        r.allow("fix");
+    for (const Issue& issue : identificationRuleIssues(out)) r.report(issue.where, issue.message);
+    for (const std::string& item : out.prior_items) {
+        id::Priors scratch;
+        for (const Issue& issue : id::parsePriorItem(item, scratch))
+            r.report("priors", issue.where + ": " + issue.message);
     }
-    if (r.has("noise")) {
-        io::ObjectReader noise = r.object("noise");
-        noise.number("Fx_N", out.sigma_fx_n, kSigma, "N");
-        noise.number("Fz_N", out.sigma_fz_n, kSigma, "N");
-        noise.number("My_Nm", out.sigma_my_nm, kSigma, "N·m");
-        noise.finish();
-    } else {
-        r.allow("noise");
-    }
-    const soil::SoilField* jmax = soil::findSoilField("jmax_m");
-    double value = 0.0;
-    if (r.field(*jmax, value)) out.max_shear_deformation_m = value;
-    r.boolean("fit_jmax", out.fit_max_shear_deformation);
-    if (out.fit_max_shear_deformation && out.max_shear_deformation_m)
-        r.report("fit_jmax", "give jmax_m (held) or fit_jmax (identified), not both");
-
-    if (r.texts("priors", out.prior_items)) {
-        for (const std::string& item : out.prior_items) {
-            id::Priors scratch;
-            for (const Issue& issue : id::parsePriorItem(item, scratch))
-                r.report("priors", issue.where + ": " + issue.message);
-        }
-    }
-    if (r.text("prior_soil", out.prior_soil_name) && !out.prior_soil_name.empty() &&
-        context.locations != nullptr) {
+    if (!out.prior_soil_name.empty() && context.locations != nullptr) {
         std::string name = out.prior_soil_name;
         if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
             !context.base_dir.empty()) {
@@ -172,20 +153,6 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
             r.report("prior_soil", soil.message());
         }
     }
-    std::string loss;
-    if (r.text("loss", loss)) {
-        if (const auto l = lossFromName(loss)) {
-            out.loss = *l;
-        } else {
-            r.report("loss", quoteText(loss) + " is not a loss (l2, huber, cauchy)");
-        }
-    }
-    r.number("holdout", out.holdout_fraction, kHoldout);
-    r.integer("folds", out.folds, 0, kMaxFolds);
-    r.integer("starts", out.design_points, 0, kMaxDesignPoints);
-    r.boolean("profile", out.profile);
-    double load_n = 0.0;
-    if (r.number("load_N", load_n, load.range, load.displayUnit())) out.load_n = load_n;
 }
 
 std::optional<id::Loss> lossFromName(const std::string& name) {
@@ -233,7 +200,7 @@ id::IdentifyOptions identifyOptions(const IdentificationSettings& s,
     o.load_n = s.load_n;
     o.max_shear_deformation_m = jmax;
     o.fit_max_shear_deformation = s.fit_max_shear_deformation;
-    o.noise = {s.sigma_fx_n, s.sigma_fz_n, s.sigma_my_nm, 0.0};
+    o.noise = {s.noise.fx_n, s.noise.fz_n, s.noise.my_nm, 0.0};
     o.loss = s.loss;
     o.starts = s.starts;
     o.design_points = s.design_points;
@@ -248,30 +215,7 @@ id::IdentifyOptions identifyOptions(const IdentificationSettings& s,
     return o;
 }
 
-nlohmann::json toJson(const IdentificationSettings& s) {
-    nlohmann::json out{{"csv", s.csv},
-                       {"noise_percent", s.synthetic.noise_percent},
-                       {"seed", s.synthetic.seed},
-                       {"slip_count", s.synthetic.slip_count},
-                       {"refine", s.refine}};
-    if (s.skip_bad_rows) out["skip_bad_rows"] = true;
-    if (!s.synthetic.loads_n.empty()) out["loads_N"] = s.synthetic.loads_n;
-    for (const auto& [key, value] : s.fixed) out["fix"][key] = value;
-    if (s.sigma_fx_n > 0 || s.sigma_fz_n > 0 || s.sigma_my_nm > 0) {
-        out["noise"] = {{"Fx_N", s.sigma_fx_n}, {"Fz_N", s.sigma_fz_n}, {"My_Nm", s.sigma_my_nm}};
-    }
-    if (s.max_shear_deformation_m) out["jmax_m"] = *s.max_shear_deformation_m;
-    if (s.fit_max_shear_deformation) out["fit_jmax"] = true;
-    if (!s.prior_items.empty()) out["priors"] = s.prior_items;
-    if (!s.prior_soil_name.empty()) out["prior_soil"] = s.prior_soil_name;
-    if (s.loss != id::Loss::kSquared) out["loss"] = lossName(s.loss);
-    if (s.holdout_fraction > 0) out["holdout"] = s.holdout_fraction;
-    if (s.folds > 0) out["folds"] = s.folds;
-    if (s.design_points != id::IdentifyOptions{}.design_points) out["starts"] = s.design_points;
-    if (s.load_n) out["load_N"] = *s.load_n;
-    if (s.profile) out["profile"] = true;
-    return out;
-}
+nlohmann::json toJson(const IdentificationSettings& s) { return io::fieldsToJson(s); }
 
 namespace {
 
@@ -560,28 +504,9 @@ bool IdentificationResult::usable() const {
 
 IdentificationResult computeIdentification(const Inputs& in, const IdentificationSettings& s,
                                            const Control& control) {
-    std::vector<Issue> issues;
-    checkRange(issues, "noise_percent", s.synthetic.noise_percent, kNoisePercent, "%");
-    for (const auto& [key, value] : s.fixed) {
-        const IdentifiedField* field = findIdentifiedField(key);
-        if (field == nullptr || !fullParameterOf(*field)) {
-            issues.push_back({"fix", quoteText(key) + " is not a refined parameter"});
-        } else {
-            checkRange(issues, "fix " + key, value, field->range, field->displayUnit());
-        }
-    }
-    if (s.holdout_fraction != 0.0) checkRange(issues, "holdout", s.holdout_fraction, kHoldout);
-    if (s.folds != 0 && (s.folds < 2 || s.folds > kMaxFolds)) {
-        issues.push_back({"folds", std::to_string(s.folds) + " is outside the allowed range [2, " +
-                                       std::to_string(kMaxFolds) + "] (0: none)"});
-    }
-    if (s.holdout_fraction != 0.0 && s.folds != 0)
-        issues.push_back({"holdout", "give a holdout fraction or folds, not both"});
-    if (s.design_points < 0 || s.design_points > kMaxDesignPoints) {
-        issues.push_back({"starts", std::to_string(s.design_points) +
-                                        " is outside the allowed range [0, " +
-                                        std::to_string(kMaxDesignPoints) + "]"});
-    }
+    // The reader's checks, in its words, for settings built in code (a panel's, Python's).
+    std::vector<Issue> issues = io::fieldIssues(s);
+    for (Issue& issue : identificationRuleIssues(s)) issues.push_back(std::move(issue));
     if (!s.prior_soil_name.empty() && !s.prior_soil)
         issues.push_back({"prior_soil", quoteText(s.prior_soil_name) + " is not resolved"});
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));

@@ -15,13 +15,17 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/analysis/conditions.h"
 #include "core/analysis/identified_parameters.h"
+#include "core/common/declared_fields.h"
+#include "core/contact/operating_fields.h"
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/full_fit.h"
@@ -42,6 +46,20 @@ struct SyntheticSource {
     /// Largest slip of the synthetic sweeps: beyond it the entry angle barely changes with
     /// slip and adds nothing to the fit.
     static constexpr double kMaxSlip = 0.9;
+
+    /// Its keys, in the identification's object (core/common/declared_fields.h).
+    template <typename Visitor>
+    void visitFields(Visitor& v);
+};
+
+/// Noise levels weighting the refinement's residuals; 0: estimated from the residuals.
+struct NoiseLevels {
+    double fx_n = 0.0;   ///< σ of F_x [N]
+    double fz_n = 0.0;   ///< σ of F_z [N]
+    double my_nm = 0.0;  ///< σ of M_y [N·m]
+
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
 struct IdentificationSettings {
@@ -76,9 +94,10 @@ struct IdentificationSettings {
     /// Refinement only: parameters kept at a value, by field key (identified_parameters.h) with
     /// the value in the field's unit.
     std::vector<std::pair<std::string, double>> fixed;
-    /// Refinement only: noise levels weighting the residuals [N, N, N·m]; 0: estimated.
-    double sigma_fx_n = 0.0, sigma_fz_n = 0.0, sigma_my_nm = 0.0;
-    /// The forward model's j_max [m] (held); empty: the inputs' soil's (synthetic data) or none.
+    /// Refinement only: noise levels weighting the residuals; 0: estimated.
+    NoiseLevels noise;
+    /// The forward model's j_max [m] (held); empty: the inputs' soil's (synthetic data) or none;
+    /// +inf (code only, never written): none, whatever the data.
     std::optional<double> max_shear_deformation_m;
     /// Full model: identify j_max as an eighth parameter (`--jmax fit`, "fit_jmax": true; with a
     /// prior when the data do not determine it, IdentifyOptions::fit_max_shear_deformation).
@@ -86,17 +105,102 @@ struct IdentificationSettings {
     /// Full model: profile-likelihood intervals (Δχ² = 9, profile_interval.h) of the parameters
     /// in a flagged trade-off or at a bound (`--profile`; costs up to 10 refinements per side).
     bool profile = false;
+
+    /// Its file keys, one line each (core/common/declared_fields.h): what the reader, toJson,
+    /// the command line's flags and the panel's saved state are made from. The data, the
+    /// resolved prior soil, the decoupled fit's guess and extra starts are not file keys.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// "csv" (relative to the context's directory, read at once: a bad file is a problem of the
-/// settings), "skip_bad_rows", "noise_percent", "seed", "loads_N", "slip_count", "refine",
-/// "fix" ({key: value}), "noise" ({"Fx_N", "Fz_N", "My_Nm"}), "jmax_m", "fit_jmax" (true:
-/// identify j_max), and for the full model
-/// "priors" (["phi_deg=30±5", …]), "prior_soil" (a preset or file, PriorSpreads), "loss" ("l2",
-/// "huber", "cauchy"), "holdout" (fraction), "folds", "starts" (design points), "load_N",
-/// "profile" (true: profile-likelihood intervals of the flagged parameters).
+/// Reads "fix" ({key: value}, the refined parameters' keys of identified_parameters.h in their
+/// units), reporting an unknown key with the nearest one and a value outside its field's range.
+void readFixedParameters(io::ObjectReader& r, const char* key,
+                         std::vector<std::pair<std::string, double>>& out);
+/// "fix" as JSON; null when empty.
+nlohmann::json fixedParametersJson(const std::vector<std::pair<std::string, double>>& fixed);
+
+/// The σ ranges of the noise levels [N, N, N·m] and of the synthetic noise [%].
+inline constexpr Range kNoiseLevelRange{0.0, 1e6};
+inline constexpr Range kNoisePercentRange{0.0, 100.0};
+
+template <typename Visitor>
+void SyntheticSource::visitFields(Visitor& v) {
+    const FieldInfo& load = contact::loadField();
+    v(fields::number("noise_percent", noise_percent, kNoisePercentRange, "%",
+                     "synthetic data: noise σ of F_x, F_z, M_y as % of each channel's largest "
+                     "value (Eq. 5.1)"));
+    v(fields::integer("seed", seed, 0, std::numeric_limits<std::uint64_t>::max(),
+                      "synthetic data: the random seed"));
+    v(fields::numbers("loads_N", loads_n, load.range, "N",
+                      "synthetic data: W [N], one slip sweep each; absent: the conditions' load",
+                      1));
+    v(fields::integer("slip_count", slip_count, static_cast<int>(slipCountField().range.low),
+                      static_cast<int>(slipCountField().range.high),
+                      "synthetic data: slips 0 … min(slip_max, 0.9) of each sweep"));
+}
+
+template <typename Visitor>
+void NoiseLevels::visitFields(Visitor& v) {
+    v(fields::number("Fx_N", fx_n, kNoiseLevelRange, "N", "σ of F_x; 0: estimated"));
+    v(fields::number("Fz_N", fz_n, kNoiseLevelRange, "N", "σ of F_z; 0: estimated"));
+    v(fields::number("My_Nm", my_nm, kNoiseLevelRange, "N·m", "σ of M_y; 0: estimated"));
+}
+
+template <typename Visitor>
+void IdentificationSettings::visitFields(Visitor& v) {
+    using identification::Loss;
+    v(fields::path("csv", csv,
+                   "data set CSV (data_set.h columns), read at once; empty: synthetic data from "
+                   "the inputs' soil"));
+    v(fields::flag("skip_bad_rows", skip_bad_rows,
+                   "true: bad rows of the CSV are skipped (listed); false: they stop the read"));
+    v(fields::members(synthetic));
+    v(fields::flag("refine", refine,
+                   "true: the global identification on the full model; false: the decoupled "
+                   "three-step fit alone"));
+    v(fields::custom("fix", fixed, "object", "{refined parameter key: value in its unit}",
+                     "refinement: parameters kept at a value", readFixedParameters,
+                     fixedParametersJson));
+    v(fields::object("noise", noise, "refinement: noise levels weighting the residuals"));
+    v(fields::field(*soil::findSoilField("jmax_m"), max_shear_deformation_m,
+                    std::numeric_limits<double>::infinity()));
+    v(fields::flag("fit_jmax", fit_max_shear_deformation,
+                   "full model: identify j_max as an eighth parameter (not with jmax_m)"));
+    v(fields::texts("priors", prior_items,
+                    "full model: Gaussian priors NAME=MEAN±STD in the parameters' units"));
+    v(fields::text("prior_soil", prior_soil_name,
+                   "full model: priors centred on this soil (preset or JSON file)"));
+    v(fields::choice("loss", loss,
+                     {{"l2", Loss::kSquared},
+                      {"huber", Loss::kHuber},
+                      {"cauchy", Loss::kCauchy},
+                      {"squared", Loss::kSquared, true}},
+                     "full model: the loss (huber, cauchy: robust to outliers)"));
+    v(fields::number("holdout", holdout_fraction, {0.0, 1.0, true, true}, "",
+                     "full model: held-out error, this fraction of the samples predicted from a "
+                     "fit without them",
+                     0.0));
+    v(fields::integer("folds", folds, 2, 1000,
+                      "full model: held-out error by k-fold cross-validation", 0));
+    v(fields::integer("starts", design_points, 0, 100000,
+                      "full model: points of the space-filling design of starts"));
+    v(fields::field(contact::loadField(), load_n));
+    v(fields::flag("profile", profile,
+                   "full model: profile-likelihood intervals of the flagged parameters"));
+}
+
+/// The keys of IdentificationSettings::visitFields, read strictly (io::readFields), then what a
+/// field list cannot say: "csv" is read at once (relative to the context's directory; a bad
+/// file is a problem of the settings, read as the full model or the decoupled fit reads it),
+/// "priors" items are parsed, "prior_soil" is resolved (a preset, or a file relative to the
+/// context's directory), and the pairs that exclude each other (identificationRuleIssues).
 void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
                                 IdentificationSettings& out);
+/// The rules between keys: "jmax_m" or "fit_jmax", "holdout" or "folds", not both.
+std::vector<Issue> identificationRuleIssues(const IdentificationSettings& settings);
+/// The settings' file keys (io::fieldsToJson): a default value is written, an empty optional or
+/// list is left out.
 nlohmann::json toJson(const IdentificationSettings& settings);
 
 struct IdentificationResult {

@@ -1,10 +1,12 @@
 #include "core/project/panels.h"
 
+#include <algorithm>
 #include <limits>
 #include <type_traits>
 
 #include "core/contact/operating_fields.h"
 #include "core/gsa/wheel_target.h"
+#include "core/io/declared_json.h"
 #include "core/scenario/scenario_json.h"
 
 namespace terra::project {
@@ -27,25 +29,34 @@ void readPanelSettings(ObjectReader& r, SensitivityPanelSettings& out) {
     r.choiceName("plot", out.plot, {"Fx", "Fs", "tornado"});
 }
 
+std::vector<std::string> splitPriorItems(const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const std::string item = text.substr(begin, comma - begin);
+        const std::size_t first = item.find_first_not_of(" \t");
+        if (first != std::string::npos)
+            out.push_back(item.substr(first, item.find_last_not_of(" \t") - first + 1));
+        begin = comma + 1;
+    }
+    return out;
+}
+
+void readOldPriorItems(ObjectReader& r, const char* key, analysis::IdentificationSettings& fit) {
+    std::string text;
+    if (r.text(key, text)) fit.prior_items = splitPriorItems(text);
+}
+
+void readOldValidation(ObjectReader& r, const char* key, analysis::IdentificationSettings& fit) {
+    std::string validation;
+    if (!r.choiceName(key, validation, {"none", "holdout", "folds"})) return;
+    fit.holdout_fraction = validation == "holdout" ? kPanelHoldoutFraction : 0.0;
+    fit.folds = validation == "folds" ? kPanelFolds : 0;
+}
+
 void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
-    const Range percent{0.0, 100.0};
-    r.text("csv", out.csv);
-    r.number("noise_percent", out.noise_percent, percent, "%");
-    r.boolean("refine", out.refine);
-    r.boolean("three_loads", out.three_loads);
-    r.choiceName("page", out.page, {"fit", "streaming"});
-    r.text("stream_csv", out.stream_csv);
-    r.text("stream_second_soil", out.stream_second_soil);
-    r.number("stream_noise_percent", out.stream_noise_percent, percent, "%");
-    r.number("stream_speed", out.stream_speed, {0.0, 1000.0});
-    r.boolean("stream_skip_bad_rows", out.stream_skip_bad_rows);
-    r.text("prior_soil", out.prior_soil);
-    r.text("prior_items", out.prior_items);
-    r.choiceName("validation", out.validation, {"none", "holdout", "folds"});
-    r.choiceName("loss", out.loss, {"l2", "huber", "cauchy"});
-    r.text("wheel", out.wheel);
-    r.choiceName("jmax", out.jmax, {"auto", "none", "fixed", "fit"});
-    r.number("jmax_mm", out.jmax_mm, {0.1, 1000.0}, "mm");
+    io::readFields(r, out);
 }
 
 void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
@@ -108,25 +119,7 @@ nlohmann::json toJson(const SensitivityPanelSettings& s) {
     return out;
 }
 
-nlohmann::json toJson(const IdentificationPanelSettings& s) {
-    return {{"csv", s.csv},
-            {"noise_percent", s.noise_percent},
-            {"refine", s.refine},
-            {"three_loads", s.three_loads},
-            {"page", s.page},
-            {"stream_csv", s.stream_csv},
-            {"stream_second_soil", s.stream_second_soil},
-            {"stream_noise_percent", s.stream_noise_percent},
-            {"stream_speed", s.stream_speed},
-            {"stream_skip_bad_rows", s.stream_skip_bad_rows},
-            {"prior_soil", s.prior_soil},
-            {"prior_items", s.prior_items},
-            {"validation", s.validation},
-            {"loss", s.loss},
-            {"wheel", s.wheel},
-            {"jmax", s.jmax},
-            {"jmax_mm", s.jmax_mm}};
-}
+nlohmann::json toJson(const IdentificationPanelSettings& s) { return io::fieldsToJson(s); }
 
 nlohmann::json toJson(const RoverPanelSettings& s) {
     return {{"scenario", s.scenario}, {"edited", s.edited}};

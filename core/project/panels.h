@@ -2,8 +2,10 @@
 /// @file panels.h
 /// What each studio panel saves in a .terra file's "panels" object: the settings of its
 /// analysis and what it shows (a tab, a page). Read strictly like the rest of the file, so a
-/// project never opens half-understood. The stresses and compaction panels store their
-/// analysis's own settings struct; the others a struct of their controls.
+/// project never opens half-understood. The stresses, compaction, sensitivity and
+/// identification panels store their analysis's own settings struct (the identification's read
+/// and written by its declared field list, core/common/declared_fields.h); the forces,
+/// global-sensitivity and rover panels a struct of their controls.
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -15,6 +17,7 @@
 #include "core/analysis/sensitivity.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
+#include "core/common/declared_fields.h"
 #include "core/io/json_reader.h"
 #include "core/io/parameters_json.h"
 
@@ -41,11 +44,22 @@ struct SensitivityPanelSettings {
     std::string plot = "Fx";
 };
 
-/// "identification": the batch fit's settings and the streaming playback's, by their keys.
+/// The held-out choices of the identification panel: "hold out 20 %" (~1 in 5 samples
+/// predicted) and 5 folds.
+inline constexpr double kPanelHoldoutFraction = 0.2;
+inline constexpr int kPanelFolds = 5;
+
+/// "identification": the batch fit's settings (the analysis's own struct, read and written by
+/// its field list: "csv", "noise_percent", "refine", "priors", "prior_soil", "loss",
+/// "holdout", "folds", …) and what only the panel has (the streaming playback's, the wheel
+/// chosen, the j_max mode). Projects written before the panel stored the struct (keys
+/// "prior_items", a text of items, and "validation", none/holdout/folds) still open: both keys
+/// are read, never written.
 struct IdentificationPanelSettings {
-    std::string csv;  ///< data of the batch fit; empty: synthetic
-    double noise_percent = analysis::SyntheticSource{}.noise_percent;
-    bool refine = analysis::IdentificationSettings{}.refine;
+    /// The fit's settings as the panel's controls show them. Its j_max is not used: the panel's
+    /// `jmax` mode (with `jmax_mm`) says it, since "none" is no file value; nor its synthetic
+    /// loads (`three_loads` makes them from the project's load at the fit).
+    analysis::IdentificationSettings fit;
     bool three_loads = true;   ///< synthesise at ½W, W, 1½W (one load cannot separate c and φ)
     std::string page = "fit";  ///< fit or streaming
     std::string stream_csv;    ///< empty: a synthetic drive over a soil border
@@ -53,11 +67,6 @@ struct IdentificationPanelSettings {
     double stream_noise_percent = analysis::StreamingSettings{}.noise_percent;
     double stream_speed = 1.0;  ///< sample time per wall time; 0: as fast as possible
     bool stream_skip_bad_rows = analysis::StreamingSettings{}.skip_bad_rows;
-    // The global fit's options (core/analysis/identification.h).
-    std::string prior_soil;           ///< soil preset the priors are centred on; empty: none
-    std::string prior_items;          ///< "phi_deg=30±5, c_kPa=2±1" (parsePriorItem items)
-    std::string validation = "none";  ///< none, holdout (20 % of the samples) or folds (5)
-    std::string loss = "l2";          ///< l2, huber or cauchy
     /// The fit's wheel: "" the data's when they name one (a sidecar JSON beside the CSV), else
     /// the project's; "project"; or a wheel preset's name.
     std::string wheel;
@@ -65,7 +74,44 @@ struct IdentificationPanelSettings {
     /// fixed (at jmax_mm) or fit (identified).
     std::string jmax = "auto";
     double jmax_mm = 20.0;
+
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
+
+/// The old keys of IdentificationPanelSettings: "prior_items" ("phi_deg=30±5, c_kPa=2±1") and
+/// "validation" (none, holdout, folds), read into the fit's settings.
+void readOldPriorItems(io::ObjectReader& r, const char* key, analysis::IdentificationSettings& fit);
+void readOldValidation(io::ObjectReader& r, const char* key, analysis::IdentificationSettings& fit);
+/// "phi_deg=30±5, c_kPa=2±1" → its items.
+std::vector<std::string> splitPriorItems(const std::string& text);
+
+template <typename Visitor>
+void IdentificationPanelSettings::visitFields(Visitor& v) {
+    const auto never = [](const analysis::IdentificationSettings&) { return nlohmann::json(); };
+    v(fields::members(fit));
+    v(fields::custom("prior_items", fit, "string", "NAME=MEAN±STD items, comma-separated",
+                     "(old form of priors)", readOldPriorItems, never));
+    v(fields::custom("validation", fit, "name", "none, holdout, folds",
+                     "(old form of holdout and folds)", readOldValidation, never));
+    v(fields::flag("three_loads", three_loads, "synthesise at ½W, W, 1½W"));
+    v(fields::choice("page", page, {{"fit", std::string("fit")}, {"streaming", "streaming"}},
+                     "the page shown"));
+    v(fields::text("stream_csv", stream_csv, "streaming: the data; empty: synthetic"));
+    v(fields::text("stream_second_soil", stream_second_soil,
+                   "streaming: the soil after the border"));
+    v(fields::number("stream_noise_percent", stream_noise_percent, {0.0, 100.0}, "%",
+                     "streaming: synthetic noise"));
+    v(fields::number("stream_speed", stream_speed, {0.0, 1000.0}, "",
+                     "streaming: sample time per wall time; 0: as fast as possible"));
+    v(fields::flag("stream_skip_bad_rows", stream_skip_bad_rows, "streaming: skip bad rows"));
+    v(fields::text("wheel", wheel, "the fit's wheel: \"\", \"project\" or a preset"));
+    v(fields::choice(
+        "jmax", jmax,
+        {{"auto", std::string("auto")}, {"none", "none"}, {"fixed", "fixed"}, {"fit", "fit"}},
+        "j_max of the fit"));
+    v(fields::number("jmax_mm", jmax_mm, {0.1, 1000.0}, "mm", "j_max held by \"fixed\""));
+}
 
 /// "global-sensitivity": the page shown, the study's method, grid and sample sizes (the ranges
 /// of its parameter table are not saved: they start from docs/sensitivity.md's example).

@@ -430,7 +430,7 @@ TEST_F(IdentifyCli, BadFlagValuesExitTwoNamingFlagValueAndRange) {
         {"--holdout 1.5", {"--holdout", "1.5", "(0, 1)"}},
         {"--holdout 0", {"--holdout", "0", "(0, 1)"}},
         {"--folds 1", {"--folds", "1", "[2, 1000]"}},
-        {"--holdout 0.2 --folds 3", {"--holdout", "--folds"}},
+        {"--holdout 0.2 --folds 3", {"--holdout", "folds, not both"}},
         {"--loss l1", {"--loss", "l1", "l2, huber, cauchy"}},
         {"--starts -3", {"--starts", "-3"}},
         {"--load -5", {"--load", "-5"}},

@@ -308,6 +308,35 @@ TEST(IdentificationPanel, BatchFitOfACsvDoesNotDependOnTheProjectSoil) {
     EXPECT_TRUE(panel.fitReport().contains("Ambiguity"));
 }
 
+// The panel saves the analysis's settings struct (its keys: "priors", "folds", "loss", …) and
+// still opens a project saved before it did ("prior_items" text, "validation" name): the fit it
+// runs is the same either way.
+TEST(IdentificationPanel, SavesTheFitsSettingsStructAndOpensTheOldKeys) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true},
+                         {"prior_items", "phi_deg=30±5, c_kPa=2±1"},
+                         {"validation", "folds"},
+                         {"loss", "huber"}});
+    const analysis::IdentificationSettings fit = panel.fitSettings();
+    EXPECT_EQ(fit.prior_items, (std::vector<std::string>{"phi_deg=30±5", "c_kPa=2±1"}));
+    EXPECT_EQ(fit.folds, project::kPanelFolds);
+    EXPECT_EQ(fit.holdout_fraction, 0.0);
+    EXPECT_EQ(fit.loss, identification::Loss::kHuber);
+    const nlohmann::json saved = panel.settings();
+    EXPECT_EQ(saved["priors"], nlohmann::json({"phi_deg=30±5", "c_kPa=2±1"}));
+    EXPECT_EQ(saved["folds"], project::kPanelFolds);
+    EXPECT_EQ(saved["loss"], "huber");
+    EXPECT_FALSE(saved.contains("prior_items"));
+    EXPECT_FALSE(saved.contains("validation"));
+
+    IdentificationPanel reopened(&document);
+    reopened.applySettings(saved);
+    EXPECT_EQ(reopened.settings(), saved);
+    EXPECT_EQ(analysis::toJson(reopened.fitSettings()), analysis::toJson(fit));
+}
+
 // Prior against posterior, the held-out error and the ambiguity line, as the panel shows them.
 TEST(IdentificationPanel, ShowsPriorAgainstPosteriorAndTheHeldOutError) {
     QTemporaryDir dir;

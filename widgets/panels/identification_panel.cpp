@@ -44,21 +44,9 @@ namespace {
 
 const char* kChannels[] = {"Fx_N", "Fz_N", "My_Nm"};
 const char* kChannelSymbols[] = {"F_x [N]", "F_z [N]", "M_y [N·m]"};
-constexpr double kHoldoutFraction = 0.2;  // "hold out 20 %": ~1 in 5 samples predicted
-constexpr int kFolds = 5;
 
 io::PresetLocations presetLocations() {
     return io::PresetLocations::standard(QCoreApplication::applicationDirPath().toStdString());
-}
-
-// "phi_deg=30±5, c_kPa=2±1" → its items.
-std::vector<std::string> priorItems(const QString& text) {
-    std::vector<std::string> out;
-    for (const QString& item : text.split(',', Qt::SkipEmptyParts)) {
-        const QString trimmed = item.trimmed();
-        if (!trimmed.isEmpty()) out.push_back(trimmed.toStdString());
-    }
-    return out;
 }
 
 QString number(double value, int digits = 4) { return QString::number(value, 'g', digits); }
@@ -106,14 +94,14 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     noise_ = new QDoubleSpinBox(this);
     noise_->setRange(0.0, 20.0);
     noise_->setSuffix(" %");
-    noise_->setValue(project::IdentificationPanelSettings{}.noise_percent);
+    noise_->setValue(project::IdentificationPanelSettings{}.fit.synthetic.noise_percent);
     noise_->setToolTip(
         "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     refine_ = new QCheckBox("Full model (global search)", this);
     refine_->setToolTip(
         "On: the global identification on the full model (no start needed; std, priors, held-out "
         "error, ambiguity). Off: the thesis's decoupled three-step fit from fixed guesses");
-    refine_->setChecked(project::IdentificationPanelSettings{}.refine);
+    refine_->setChecked(project::IdentificationPanelSettings{}.fit.refine);
     three_loads_ = new QCheckBox("Synthesise at ½W, W, 1½W", this);
     three_loads_->setChecked(true);
     three_loads_->setToolTip(
@@ -314,7 +302,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         if (refine_->isChecked()) {
             std::vector<Issue> issues;
             identification::Priors scratch;
-            for (const std::string& item : priorItems(prior_items_->text())) {
+            for (const std::string& item :
+                 project::splitPriorItems(prior_items_->text().toStdString())) {
                 const auto bad = identification::parsePriorItem(item, scratch);
                 issues.insert(issues.end(), bad.begin(), bad.end());
             }
@@ -359,7 +348,7 @@ QString IdentificationPanel::startDescription() const {
                        .arg(identification::IdentifyOptions{}.design_points);
     QStringList prior;
     if (prior_soil_->currentIndex() > 0) prior << prior_soil_->currentText() + " preset";
-    for (const std::string& item : priorItems(prior_items_->text()))
+    for (const std::string& item : project::splitPriorItems(prior_items_->text().toStdString()))
         prior << QString::fromStdString(item);
     text += prior.isEmpty() ? QString("; no prior") : "; prior: " + prior.join(" + ");
     text += file_->text().trimmed().isEmpty()
@@ -559,11 +548,19 @@ Table IdentificationPanel::currentTable() const {
     return analysis::framesTable(stream_frames_);
 }
 
-nlohmann::json IdentificationPanel::settings() const {
+project::IdentificationPanelSettings IdentificationPanel::panelSettings() const {
     project::IdentificationPanelSettings s;
-    s.csv = file_->text().toStdString();
-    s.noise_percent = noise_->value();
-    s.refine = refine_->isChecked();
+    analysis::IdentificationSettings& fit = s.fit;
+    fit.csv = file_->text().toStdString();
+    fit.synthetic.noise_percent = noise_->value();
+    fit.refine = refine_->isChecked();
+    fit.prior_soil_name = prior_soil_->currentData().toString().toStdString();
+    fit.prior_items = project::splitPriorItems(prior_items_->text().toStdString());
+    const QString validation = validation_->currentData().toString();
+    if (validation == "holdout") fit.holdout_fraction = project::kPanelHoldoutFraction;
+    if (validation == "folds") fit.folds = project::kPanelFolds;
+    fit.loss = analysis::lossFromName(loss_->currentData().toString().toStdString())
+                   .value_or(identification::Loss::kSquared);
     s.three_loads = three_loads_->isChecked();
     s.page = pages_->currentIndex() == 1 ? "streaming" : "fit";
     s.stream_csv = stream_source_->currentIndex() == 1 ? stream_file_->text().toStdString() : "";
@@ -571,24 +568,23 @@ nlohmann::json IdentificationPanel::settings() const {
     s.stream_noise_percent = stream_noise_->value();
     s.stream_speed = speed_->currentData().toDouble();
     s.stream_skip_bad_rows = skip_bad_rows_->isChecked();
-    s.prior_soil = prior_soil_->currentData().toString().toStdString();
-    s.prior_items = prior_items_->text().toStdString();
-    s.validation = validation_->currentData().toString().toStdString();
-    s.loss = loss_->currentData().toString().toStdString();
     s.wheel = wheel_->currentData().toString().toStdString();
     s.jmax = jmax_mode_->currentData().toString().toStdString();
     s.jmax_mm = jmax_value_->value();
-    return project::toJson(s);
+    return s;
 }
+
+nlohmann::json IdentificationPanel::settings() const { return project::toJson(panelSettings()); }
 
 void IdentificationPanel::applySettings(const nlohmann::json& json) {
     const auto settings =
         project::panelSettingsFromJson<project::IdentificationPanelSettings>(withChanges(json));
     if (!settings) return;  // projects are checked when opened: only a program error lands here
     const project::IdentificationPanelSettings& s = *settings;
-    file_->setText(QString::fromStdString(s.csv));
-    noise_->setValue(s.noise_percent);
-    refine_->setChecked(s.refine);
+    const analysis::IdentificationSettings& fit = s.fit;
+    file_->setText(QString::fromStdString(fit.csv));
+    noise_->setValue(fit.synthetic.noise_percent);
+    refine_->setChecked(fit.refine);
     three_loads_->setChecked(s.three_loads);
     showPage(s.page == "streaming" ? 1 : 0);
     setStreamSource(QString::fromStdString(s.stream_csv),
@@ -596,33 +592,36 @@ void IdentificationPanel::applySettings(const nlohmann::json& json) {
     stream_noise_->setValue(s.stream_noise_percent);
     setStreamSpeed(s.stream_speed);
     skip_bad_rows_->setChecked(s.stream_skip_bad_rows);
-    setFitOptions(QString::fromStdString(s.prior_soil), QString::fromStdString(s.prior_items),
-                  QString::fromStdString(s.validation), QString::fromStdString(s.loss));
+    QStringList items;
+    for (const std::string& item : fit.prior_items) items << QString::fromStdString(item);
+    const QString validation = fit.folds > 0                ? "folds"
+                               : fit.holdout_fraction > 0.0 ? "holdout"
+                                                            : "none";
+    setFitOptions(QString::fromStdString(fit.prior_soil_name), items.join(", "), validation,
+                  analysis::lossName(fit.loss));
     setWheelChoice(QString::fromStdString(s.wheel));
     setShearLimit(QString::fromStdString(s.jmax), s.jmax_mm);
 }
 
 analysis::IdentificationSettings IdentificationPanel::fitSettings() const {
-    analysis::IdentificationSettings settings;
+    const project::IdentificationPanelSettings panel = panelSettings();
+    analysis::IdentificationSettings settings = panel.fit;
     settings.csv = file_->text().trimmed().toStdString();
-    settings.synthetic.noise_percent = noise_->value();
-    settings.refine = refine_->isChecked();
     if (settings.refine) {
-        if (prior_soil_->currentIndex() > 0)
-            settings.prior_soil_name = prior_soil_->currentData().toString().toStdString();
-        settings.prior_items = priorItems(prior_items_->text());
-        const QString validation = validation_->currentData().toString();
-        if (validation == "holdout") settings.holdout_fraction = kHoldoutFraction;
-        if (validation == "folds") settings.folds = kFolds;
-        settings.loss = analysis::lossFromName(loss_->currentData().toString().toStdString())
-                            .value_or(identification::Loss::kSquared);
-        const QString jmax = jmax_mode_->currentData().toString();
-        if (jmax == "none")
+        if (panel.jmax == "none")
             settings.max_shear_deformation_m = std::numeric_limits<double>::infinity();
-        if (jmax == "fixed") settings.max_shear_deformation_m = jmax_value_->value() * 1e-3;
-        settings.fit_max_shear_deformation = jmax == "fit";
+        if (panel.jmax == "fixed") settings.max_shear_deformation_m = panel.jmax_mm * 1e-3;
+        settings.fit_max_shear_deformation = panel.jmax == "fit";
+    } else {
+        // The decoupled fit has none of the full model's options.
+        const analysis::IdentificationSettings defaults;
+        settings.prior_soil_name = defaults.prior_soil_name;
+        settings.prior_items = defaults.prior_items;
+        settings.holdout_fraction = defaults.holdout_fraction;
+        settings.folds = defaults.folds;
+        settings.loss = defaults.loss;
     }
-    if (three_loads_->isChecked() && settings.csv.empty()) {
+    if (panel.three_loads && settings.csv.empty()) {
         const double w = document_->project().conditions.load_n;
         settings.synthetic.loads_n = {0.5 * w, w, 1.5 * w};
     }

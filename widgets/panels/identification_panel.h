@@ -28,6 +28,7 @@
 
 #include "core/analysis/identification.h"
 #include "core/analysis/streaming_identification.h"
+#include "core/project/panels.h"
 #include "widgets/analyses/streaming_playback.h"
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/plots/identification_figures.h"
@@ -145,6 +146,8 @@ signals:
     void playbackEnded(terra::ui::StreamingPlayback::State state);
 
 private:
+    /// What the controls show, as the project stores it (core/project/panels.h).
+    project::IdentificationPanelSettings panelSettings() const;
     void buildStreamingPage(QWidget* page);
     void updateFitControls();
     void updateDataPreview();
