@@ -15,12 +15,12 @@ using testing::kDeg;
 
 constexpr double kAgreement = 1e-8;  // relative, fast integrator vs adaptive reference
 
-struct Case {
+struct SoilCase {
     const char* soil;
     ContactParameters<double> params;
 };
 
-std::vector<Case> thesisSoils() {
+std::vector<SoilCase> thesisSoils() {
     return {{"sandy loam", testing::sandyLoam()},
             {"dry sand", testing::drySand()},
             {"clayey soil", testing::clayeySoil()},
@@ -39,7 +39,7 @@ double relativeError(const WheelForces<double>& a, const WheelForces<double>& b)
 }
 
 TEST(WheelForces, AgreesWithAdaptiveTanhSinhAndGaussKronrod) {
-    for (const Case& c : thesisSoils()) {
+    for (const SoilCase& c : thesisSoils()) {
         for (double s : {0.0, 0.05, 0.3, 0.9, -0.2, -0.7}) {
             for (double beta : {0.0, 5.0, 30.0}) {
                 for (double theta_f : {8.0, 30.0, 60.0}) {
@@ -62,7 +62,7 @@ TEST(WheelForces, AgreesWithAdaptiveTanhSinhAndGaussKronrod) {
 }
 
 TEST(WheelForces, NoLateralForceOrMomentsWithoutSlipAngle) {
-    for (const Case& c : thesisSoils()) {
+    for (const SoilCase& c : thesisSoils()) {
         for (double s : {0.0, 0.4, -0.3}) {
             const OperatingPoint<double> op{s, 0.0, 25.0 * kDeg, 0.0, std::nullopt};
             const auto f = computeForces(c.params, op);

@@ -62,7 +62,9 @@ TEST(SavedCalibration, ReadsBackToTheSameCalibrationWithHeldOutPoints) {
     for (std::size_t r = 0; r < a.rows.size(); ++r) {
         for (std::size_t c = 0; c < a.columns.size(); ++c) {
             EXPECT_EQ(std::isnan(a.rows[r][c]), std::isnan(b.rows[r][c]));
-            if (!std::isnan(b.rows[r][c])) EXPECT_EQ(a.rows[r][c], b.rows[r][c]);
+            if (!std::isnan(b.rows[r][c])) {
+                EXPECT_EQ(a.rows[r][c], b.rows[r][c]);
+            }
         }
     }
     EXPECT_EQ(io::toJson(read->calibration->soil), io::toJson(computed.calibration->soil));
