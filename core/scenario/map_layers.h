@@ -70,13 +70,14 @@ struct ColorStop {
     Rgb color;
 };
 
-/// The colours of a continuous layer along `scale`, one palette for the studio and the PNG maps,
-/// each sequential from light to dark (lightness falls monotonically along it): the height as
-/// the land (green low, light, brown high); a rut from an ochre that stands out of a light soil
-/// to a dark brown; passes in blues; the compaction risk in Terranimo's bands (green ≤ 0.5,
-/// yellow to orange ≤ 1.1, red to dark red above; the band edges at 0.5 and 1.1 of the scale's
-/// values, whatever its range); any other map (slip, energy per metre) light yellow to dark
-/// purple. Interpolated linearly in RGB between the stops (colorAt).
+/// The colours of a continuous layer along `scale`, one palette for the studio and the PNG maps:
+/// the height as the land (green low, light, brown high); the compaction risk in Terranimo's
+/// bands (green ≤ 0.5, yellow to orange ≤ 1.1, red to dark red above; the band edges at 0.5 and
+/// 1.1 of the scale's values, whatever its range); the other maps of a drive sequential from
+/// light to dark, every channel falling along the scale so that lightness does too (not
+/// perceptually uniform): a rut from an ochre that stands out of a light soil to a dark brown,
+/// passes in blues, any other map (slip, energy per metre) light yellow to dark purple.
+/// Interpolated linearly in RGB between the stops (colorAt).
 std::vector<ColorStop> layerColors(const MapLayer& layer, const LayerScale& scale);
 
 /// The colour at `fraction` ∈ [0, 1] of `stops` (ascending): linear in RGB between the two

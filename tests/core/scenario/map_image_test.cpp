@@ -120,6 +120,28 @@ TEST(MapImage, EachMapIsAPngWithThePalettesColoursAndALegend) {
     EXPECT_EQ(centre(risk, 3, 1)[3], 0);
 }
 
+// The maps of a drive other than the risk darken along their scale: the relative luminance
+// (sRGB decoded to linear light, ITU-R BT.709 weights) falls at every step.
+TEST(MapImage, TheSequentialPalettesDarkenAlongTheScale) {
+    const auto linear = [](double c) {
+        c /= 255.0;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    for (const char* key : {"rut_depth_m", "passes", "slip", "energy_per_m_J"}) {
+        MapLayer layer;
+        layer.key = key;
+        const std::vector<ColorStop> stops = layerColors(layer, LayerScale{});
+        double previous = 2.0;
+        for (int i = 0; i <= 100; ++i) {
+            const Rgb c = colorAt(stops, i / 100.0);
+            const double y = 0.2126 * linear(c.r) + 0.7152 * linear(c.g) + 0.0722 * linear(c.b);
+            EXPECT_LE(y, previous) << key << " at " << i << " %";
+            previous = y;
+        }
+        EXPECT_LT(previous, 0.1) << key;  // dark at the end
+    }
+}
+
 TEST(MapImage, AWideMapIsOnePixelPerCellAndALongOneStaysBounded) {
     const MapImageLayout wide = mapImageLayout(2500, 1000);
     EXPECT_EQ(wide.cell_px, 1);
