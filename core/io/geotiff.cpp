@@ -147,7 +147,7 @@ TiffHandle openMemory(TiffMemoryFile& file, const char* mode) {
     TIFFOpenOptions* options = TIFFOpenOptionsAlloc();
     TIFFOpenOptionsSetErrorHandlerExtR(options, collectError, &file);
     TIFFOpenOptionsSetWarningHandlerExtR(options, ignoreWarning, nullptr);
-    TIFF* tif = TIFFClientOpenExt("memory", mode, &file, readProc, writeProc, seekProc, closeProc,
+    TIFF* tif = TIFFClientOpenExt("libtiff", mode, &file, readProc, writeProc, seekProc, closeProc,
                                   sizeProc, mapProc, unmapProc, options);
     TIFFOpenOptionsFree(options);
     return TiffHandle(tif);
