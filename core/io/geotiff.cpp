@@ -31,7 +31,7 @@ constexpr ttag_t kGeoKeyDirectoryTag = 34735;
 constexpr ttag_t kGeoDoubleParamsTag = 34736;
 constexpr ttag_t kGeoAsciiParamsTag = 34737;
 
-// TiffGeoKeys (GeoTIFF 1.1, section 7.5) and their values read here.
+// GeoKeys (GeoTIFF 1.1, section 7.5) and their values read here.
 constexpr int kModelTypeKey = 1024;   // 1 projected, 2 geographic, 3 geocentric
 constexpr int kRasterTypeKey = 1025;  // 1 PixelIsArea, 2 PixelIsPoint
 constexpr int kGeographicTypeKey = 2048;
@@ -130,6 +130,7 @@ int collectError(TIFF*, void* user_data, const char* module, const char* format,
     char text[512];
     std::vsnprintf(text, sizeof text, format, args);
     std::string& errors = static_cast<TiffMemoryFile*>(user_data)->errors;
+    if (errors.size() > 1000) return 1;  // a broken file's first complaints say enough
     if (!errors.empty()) errors += "; ";
     errors += (module != nullptr && *module != '\0') ? std::string(module) + ": " + text : text;
     return 1;  // handled: nothing printed to stderr
@@ -247,7 +248,7 @@ double sampleAt(const unsigned char* p, TiffSampleType t) {
     return t.bits == 16 ? load(std::uint16_t{}) : load(std::uint32_t{});
 }
 
-// The TiffGeoKeys with their value in the directory itself (location 0), by key id.
+// The GeoKeys with their value in the directory itself (location 0), by key id.
 struct TiffGeoKeys {
     std::optional<int> model_type, raster_type, geographic, projected, linear_units;
 };

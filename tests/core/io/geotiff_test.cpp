@@ -362,6 +362,30 @@ TEST(GeoTiff, RefusesWhatAFieldCannotUse) {
     }
 }
 
+// A file cut short anywhere (a copy interrupted, a download broken) is an error naming it, or —
+// when only what follows the pixels and the georeferencing is lost (the software's name, the
+// no-data text) — the same raster; never a crash or garbage.
+TEST(GeoTiff, AFileCutShortIsRefusedOrComplete) {
+    field::Raster r = field::makeRaster(40, 30, 0.0, 0.0, 1.0);
+    for (std::size_t k = 0; k < r.values.size(); ++k) r.values[k] = std::cos(0.1 * k);
+    const std::string whole = toGeoTiff(r).value();
+    int refused = 0;
+    for (std::size_t n = 0; n < whole.size(); n += 13) {
+        Result<field::Raster> cut = parseGeoTiff(std::string_view(whole).substr(0, n), "cut.tif");
+        if (!cut) {
+            ++refused;
+            EXPECT_TRUE(contains(cut.message(), "cut.tif: ")) << cut.message();
+        } else {
+            EXPECT_EQ(cut->values, r.values) << "cut at " << n << " of " << whole.size();
+            EXPECT_EQ(cut->x_min_m, 0.0);
+            EXPECT_EQ(cut->y_min_m, 0.0);
+            EXPECT_EQ(cut->cell_m, 1.0);
+        }
+    }
+    EXPECT_GT(refused, static_cast<int>(whole.size() / 13) - 5);  // all but the last few bytes
+    EXPECT_TRUE(parseGeoTiff(whole, "whole.tif"));
+}
+
 // The "a coordinate system that differs from the other map": named with both files and
 // codes.
 TEST(GeoTiff, AFieldRefusesRastersInTwoCoordinateSystems) {
