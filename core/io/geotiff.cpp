@@ -130,7 +130,7 @@ int collectError(TIFF*, void* user_data, const char* module, const char* format,
     char text[512];
     std::vsnprintf(text, sizeof text, format, args);
     std::string& errors = static_cast<TiffMemoryFile*>(user_data)->errors;
-    if (errors.size() > 1000) return 1;  // a broken file's first complaints say enough
+    if (errors.size() > 300) return 1;  // a broken file's first complaints say enough
     if (!errors.empty()) errors += "; ";
     errors += (module != nullptr && *module != '\0') ? std::string(module) + ": " + text : text;
     return 1;  // handled: nothing printed to stderr
