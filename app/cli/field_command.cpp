@@ -103,12 +103,13 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
                   "JSON: name, extent_m, height_m, max_slope_deg, mean_slope_deg, classes, "
                   "parameters");
     cmd->add_option("--out", o.out, "Write the summary to this file instead of stdout");
-    cmd->add_option("--slope-map", o.slope_map,
-                    "Write the steepest slope [deg] at the height map's cells (.asc or .csv)");
+    cmd->add_option(
+        "--slope-map", o.slope_map,
+        "Write the steepest slope [deg] at the height map's cells (.asc, .csv or .tif)");
     cmd->add_option("--traversability", o.traversability,
                     "Write the traversability map before driving: .csv (x_m, y_m, heading_deg, "
-                    "grade_deg, slip, status per cell and heading) or .asc (the largest slip "
-                    "over the headings; no data where every heading stalls)");
+                    "grade_deg, slip, status per cell and heading) or .asc/.tif (the largest "
+                    "slip over the headings; no data where every heading stalls)");
     cmd->add_option("--robot", o.robot, "The robot of --traversability (default: default)");
     cmd->add_option("--headings", o.headings, "Headings of --traversability (default 8)");
     cmd->add_option("--cell", o.cell_m, "Cell of --traversability [m] (default: the height map's)");
@@ -144,8 +145,8 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
                 throw InputError(formatIssues(issues));
             }
             trav = analysis::computeTraversability(file->map, *robot, settings);
-            const bool asc = std::filesystem::path(o.traversability).extension() == ".asc";
-            if (asc) {
+            const std::string ext = std::filesystem::path(o.traversability).extension().string();
+            if (ext == ".asc" || ext == ".tif" || ext == ".tiff") {
                 if (std::optional<std::string> error =
                         io::writeRaster(o.traversability, trav->worst_slip, "slip"))
                     throw std::runtime_error(*error);

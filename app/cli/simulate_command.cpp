@@ -92,7 +92,8 @@ void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const
     std::cout << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
               << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv");
     if (r.maps) {
-        for (const char* name : scenario::kMapFiles) std::cout << ", " << out << "/" << name;
+        for (const std::string& name : scenario::mapFileNames())
+            std::cout << ", " << out << "/" << name;
     }
     std::cout << '\n';
 }
@@ -172,7 +173,7 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->callback([options, &locations] {
         const SimulateOptions& o = *options;
         std::vector<std::string> outputs{"timeseries.csv", "summary.json", "streaming.csv"};
-        outputs.insert(outputs.end(), scenario::kMapFiles.begin(), scenario::kMapFiles.end());
+        for (const std::string& name : scenario::mapFileNames()) outputs.push_back(name);
         for (const std::string& file : outputs) {
             refuseInputAsOutput("--out", std::filesystem::path(o.out) / file,
                                 {{"--scenario", o.scenario}});

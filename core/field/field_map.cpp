@@ -169,4 +169,13 @@ std::vector<Issue> validate(const FieldMap& field) {
     return issues;
 }
 
+std::optional<int> epsgCode(const FieldMap& field) {
+    if (field.height && field.height->epsg) return field.height->epsg;
+    if (field.soil_class && field.soil_class->epsg) return field.soil_class->epsg;
+    for (const ParameterRaster& p : field.parameters) {
+        if (p.raster.epsg) return p.raster.epsg;
+    }
+    return std::nullopt;
+}
+
 }  // namespace terra::field

@@ -57,6 +57,11 @@ struct FieldMap {
     soil::SoilParameters soilAt(double x_m, double y_m) const;
 };
 
+/// The EPSG code of the field's coordinate system: the first of its rasters (height, soil
+/// classes, parameters) that names one (a GeoTIFF's; the field reader refuses rasters that name
+/// different ones, core/io/field_json.h), or none.
+std::optional<int> epsgCode(const FieldMap& field);
+
 /// Every problem of a field, each naming the raster ("soil_classes", "parameters.phi_deg"), the
 /// cell (col, row) and the value with the allowed range: a class code that is not a whole
 /// number or has no legend entry (with its cell count), a parameter value outside its field's

@@ -27,6 +27,9 @@ struct Raster {
     double y_min_m = 0.0;        ///< [m] south edge
     double cell_m = 1.0;         ///< [m] square cell side
     std::vector<double> values;  ///< rows × cols, row-major from the north; NaN: no data
+    /// The EPSG code of the coordinate system the file names (a GeoTIFF's ProjectedCSTypeGeoKey);
+    /// none for ESRI ASCII grids, CSV and a GeoTIFF without one (docs/field.md, "Raster files").
+    std::optional<int> epsg;
 
     double xMax() const { return x_min_m + cols * cell_m; }
     double yMax() const { return y_min_m + rows * cell_m; }

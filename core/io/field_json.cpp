@@ -31,16 +31,42 @@ void reportAll(ObjectReader& r, const std::string& key, const std::vector<Issue>
         r.report(key, (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
 }
 
+// A raster of the field that names its coordinate system (a GeoTIFF's EPSG code).
+struct RasterCrs {
+    std::string where;  // "field.json: height"
+    std::string key;    // "height", "parameters.c_kPa"
+    std::string file;
+    int epsg = 0;
+};
+
 std::optional<field::Raster> readRasterAt(ObjectReader& r, const std::string& key,
-                                          const fs::path& base_dir, Presence presence) {
+                                          const fs::path& base_dir, Presence presence,
+                                          std::vector<RasterCrs>& crs) {
     std::string path;
     if (!r.text(key, path, presence)) return std::nullopt;
-    Result<field::Raster> raster = readRaster(beside(path, base_dir));
+    const fs::path file = beside(path, base_dir);
+    Result<field::Raster> raster = readRaster(file);
     if (!raster) {
         reportAll(r, key, raster.issues());
         return std::nullopt;
     }
+    if (raster->epsg) crs.push_back({r.where(key), r.pathOf(key), file.string(), *raster->epsg});
     return std::move(raster).value();
+}
+
+// The issue's "a coordinate system that differs from the other map": every raster naming a code
+// other than the first one's, with both files and codes.
+void checkOneCrs(const std::vector<RasterCrs>& crs, std::vector<Issue>& issues) {
+    for (const RasterCrs& c : crs) {
+        if (c.epsg == crs.front().epsg) continue;
+        issues.push_back(
+            {c.where, c.file + " is in EPSG:" + std::to_string(c.epsg) + ", but " +
+                          crs.front().key + " (" + crs.front().file +
+                          ") is in EPSG:" + std::to_string(crs.front().epsg) +
+                          ": a field's rasters must share one coordinate system (reproject one "
+                          "with gdalwarp -t_srs EPSG:" +
+                          std::to_string(crs.front().epsg) + ")"});
+    }
 }
 
 // A soil: a preset name or file, or an inline object; its "profile" likewise.
@@ -111,11 +137,12 @@ Result<FieldFile> fieldFromJson(const json& json_value, const std::string& where
     FieldFile file;
     r.text("name", file.map.name);
     r.text("source", file.source);
-    file.map.height = readRasterAt(r, "height", base_dir, Presence::kOptional);
+    std::vector<RasterCrs> crs;
+    file.map.height = readRasterAt(r, "height", base_dir, Presence::kOptional, crs);
     if (std::optional<soil::SoilParameters> base =
             readSoilAt(r, "soil", base_dir, locations, Presence::kRequired))
         file.map.base = *base;
-    file.map.soil_class = readRasterAt(r, "soil_classes", base_dir, Presence::kOptional);
+    file.map.soil_class = readRasterAt(r, "soil_classes", base_dir, Presence::kOptional, crs);
     if (r.has("legend")) {
         const json* legend_value = r.value("legend");
         if (legend_value != nullptr && !legend_value->is_object()) {
@@ -161,12 +188,13 @@ Result<FieldFile> fieldFromJson(const json& json_value, const std::string& where
                 continue;
             }
             if (std::optional<field::Raster> raster =
-                    readRasterAt(params, key, base_dir, Presence::kRequired))
+                    readRasterAt(params, key, base_dir, Presence::kRequired, crs))
                 file.map.parameters.push_back({f, std::move(*raster)});
         }
     }
     params.finish();
     r.finish();
+    checkOneCrs(crs, issues);
     if (issues.empty()) {
         for (Issue& issue : field::validate(file.map)) {
             issue.where = where + ": " + issue.where;

@@ -11,6 +11,7 @@
 #include "core/common/range.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
+#include "core/io/geotiff.h"
 
 namespace terra::io {
 
@@ -275,16 +276,17 @@ std::string toRasterCsv(const field::Raster& r, const std::string& value_column)
 Result<field::Raster> readRaster(const std::filesystem::path& path,
                                  const std::string& value_column) {
     const std::string ext = lower(path.extension().string());
-    if (ext != ".asc" && ext != ".csv") {
-        return std::vector<Issue>{
-            {path.string(),
-             "raster files are read as ESRI ASCII grid (.asc) or CSV (.csv); '" +
-                 path.extension().string() +
-                 "' is neither (convert a GeoTIFF with gdal_translate -of AAIGrid)"}};
+    const bool tiff = ext == ".tif" || ext == ".tiff";
+    if (ext != ".asc" && ext != ".csv" && !tiff) {
+        return std::vector<Issue>{{path.string(),
+                                   "raster files are read as ESRI ASCII grid (.asc), CSV (.csv) or "
+                                   "GeoTIFF (.tif, .tiff); '" +
+                                       path.extension().string() + "' is none of them"}};
     }
     std::string text;
     if (std::optional<std::string> error = readFile(path, text))
         return std::vector<Issue>{{path.string(), *error}};
+    if (tiff) return parseGeoTiff(text, path.string());
     return ext == ".asc" ? parseAsciiGrid(text, path.string())
                          : parseRasterCsv(text, path.string(), value_column);
 }
@@ -293,8 +295,13 @@ std::optional<std::string> writeRaster(const std::filesystem::path& path,
                                        const field::Raster& raster,
                                        const std::string& value_column) {
     const std::string ext = lower(path.extension().string());
+    if (ext == ".tif" || ext == ".tiff") {
+        Result<std::string> bytes = toGeoTiff(raster);
+        if (!bytes) return path.string() + ": " + bytes.message();
+        return writeFileAtomically(path, *bytes);
+    }
     if (ext != ".asc" && ext != ".csv")
-        return path.string() + ": rasters are written as .asc or .csv";
+        return path.string() + ": rasters are written as .asc, .csv, .tif or .tiff";
     return writeFileAtomically(
         path, ext == ".asc" ? toAsciiGrid(raster) : toRasterCsv(raster, value_column));
 }

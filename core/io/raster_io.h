@@ -1,9 +1,9 @@
 #pragma once
 /// @file raster_io.h
 /// Rasters in files (docs/field.md, "Raster files"): ESRI ASCII grid (.asc, the plain-text
-/// format every GIS reads and writes) and CSV (cell centres as x_m, y_m, value rows on a regular
-/// grid, any missing cell without data). Problems come back with file:line; nothing throws.
-/// Writing is atomic.
+/// format every GIS reads and writes), CSV (cell centres as x_m, y_m, value rows on a regular
+/// grid, any missing cell without data) and single-band GeoTIFF (.tif, .tiff: core/io/geotiff.h).
+/// Problems come back with file:line; nothing throws. Writing is atomic.
 
 #include <filesystem>
 #include <optional>
@@ -31,11 +31,12 @@ Result<field::Raster> parseRasterCsv(const std::string& text, const std::string&
 /// south.
 std::string toRasterCsv(const field::Raster& raster, const std::string& value_column = "value");
 
-/// A raster file by its extension: .asc (ESRI ASCII grid) or .csv. Any other extension (a
-/// GeoTIFF among them) is an error naming the ones read.
+/// A raster file by its extension: .asc (ESRI ASCII grid), .csv or .tif/.tiff (GeoTIFF). Any
+/// other extension is an error naming the ones read.
 Result<field::Raster> readRaster(const std::filesystem::path& path,
                                  const std::string& value_column = {});
-/// Writes .asc or .csv atomically; the error message, or nothing on success.
+/// Writes .asc, .csv or .tif/.tiff (Float64 GeoTIFF) atomically; the error message, or nothing
+/// on success.
 std::optional<std::string> writeRaster(const std::filesystem::path& path,
                                        const field::Raster& raster,
                                        const std::string& value_column = "value");

@@ -31,6 +31,11 @@ void describeRunMap(const std::string& key, const FieldMaps& maps, MapLayer& lay
         layer.unit = "-";
         return;
     }
+    if (key == "energy_per_m_J") {  // J per metre travelled (F12), not J
+        layer.label = "energy per metre";
+        layer.unit = "J/m";
+        return;
+    }
     // Longest first: "_J_m" before "_m".
     static const std::array<std::pair<const char*, const char*>, 9> kSuffixes{{{"_J_m2", "J/m²"},
                                                                                {"_J_m", "J/m"},
@@ -63,6 +68,59 @@ MapLayer runMapLayer(const std::string& key, const FieldMaps& maps) {
     layer.timed = true;
     describeRunMap(key, maps, layer);
     return layer;
+}
+
+LayerScale layerScale(const MapLayer& layer, const field::Raster& final_view) {
+    LayerScale d;
+    d.clear_zero = layer.timed;
+    const auto [lo, hi] = final_view.valueRange();
+    const bool any = std::isfinite(lo) && std::isfinite(hi);
+    d.unit = layer.unit;
+    if (layer.unit == "m" && layer.timed && (!any || std::max(std::abs(lo), std::abs(hi)) < 0.1)) {
+        d.factor = 1e3;
+        d.unit = "mm";
+    }
+    d.lower = any ? lo * d.factor : 0.0;
+    d.upper = any ? hi * d.factor : 1.0;
+    if (layer.timed) d.lower = std::min(d.lower, 0.0);  // untouched soil is the scale's start
+    if (layer.key == "compaction_risk") d.upper = std::max(d.upper, 1.5);
+    if (!(d.upper > d.lower)) d.upper = d.lower + 1.0;
+    d.title = layer.label;
+    if (layer.kind == LayerKind::kContinuous && !d.unit.empty()) d.title += " [" + d.unit + "]";
+    return d;
+}
+
+std::vector<ColorStop> layerColors(const MapLayer& layer, const LayerScale& scale) {
+    if (layer.key == "height")
+        return {{0.0, {70, 120, 70}}, {0.5, {215, 205, 140}}, {1.0, {140, 95, 60}}};
+    if (layer.key == "rut_depth_m") return {{0.0, {225, 160, 75}}, {1.0, {60, 30, 10}}};
+    if (layer.key == "passes") return {{0.0, {190, 215, 240}}, {1.0, {20, 60, 140}}};
+    if (layer.key == "compaction_risk") {
+        const double span = std::max(scale.upper - scale.lower, 1e-9);
+        const double green = (0.5 - scale.lower) / span, yellow = (1.1 - scale.lower) / span;
+        constexpr double kEdge = 1e-4;  // a step between bands, not a blend
+        return {{0.0, {215, 240, 205}},  {green - kEdge, {60, 160, 60}},
+                {green, {245, 215, 60}}, {yellow - kEdge, {235, 175, 30}},
+                {yellow, {220, 60, 45}}, {1.0, {130, 20, 20}}};
+    }
+    return {{0.0, {250, 240, 200}}, {1.0, {80, 30, 110}}};
+}
+
+Rgb colorAt(const std::vector<ColorStop>& stops, double fraction) {
+    if (stops.empty()) throw std::invalid_argument("colorAt: no colour stops");
+    const double f = std::clamp(std::isnan(fraction) ? 0.0 : fraction, 0.0, 1.0);
+    if (f <= stops.front().at) return stops.front().color;
+    for (std::size_t i = 1; i < stops.size(); ++i) {
+        const ColorStop& a = stops[i - 1];
+        const ColorStop& b = stops[i];
+        if (f > b.at) continue;
+        const double u = b.at > a.at ? (f - a.at) / (b.at - a.at) : 1.0;
+        const auto mix = [u](std::uint8_t p, std::uint8_t q) {
+            return static_cast<std::uint8_t>(std::lround(p + u * (q - p)));
+        };
+        return {mix(a.color.r, b.color.r), mix(a.color.g, b.color.g), mix(a.color.b, b.color.b)};
+    }
+    return stops.back().color;
 }
 
 std::vector<MapLayer> mapLayers(const Scenario& scenario, const FieldMaps* maps) {
@@ -129,13 +187,14 @@ CellWindow windowOver(const field::Raster& r, double x_min_m, double y_min_m, do
 }
 
 field::Raster crop(const field::Raster& r, const CellWindow& w) {
-    if (w.empty()) return field::Raster{0, 0, r.x_min_m, r.y_min_m, r.cell_m, {}};
+    if (w.empty()) return field::Raster{0, 0, r.x_min_m, r.y_min_m, r.cell_m, {}, r.epsg};
     if (w.col < 0 || w.row < 0 || w.col + w.cols > r.cols || w.row + w.rows > r.rows)
         throw std::invalid_argument("crop: the window is not inside the raster");
     field::Raster out;
     out.cols = w.cols;
     out.rows = w.rows;
     out.cell_m = r.cell_m;
+    out.epsg = r.epsg;
     out.x_min_m = r.x_min_m + w.col * r.cell_m;
     out.y_min_m = r.yMax() - (w.row + w.rows) * r.cell_m;
     out.values.resize(static_cast<std::size_t>(w.cols) * static_cast<std::size_t>(w.rows));
@@ -258,10 +317,11 @@ field::Raster coarsen(const field::Raster& r, int max_side, LayerKind kind) {
 field::Raster layerView(const Scenario& scenario, const FieldMaps* maps, const MapLayer& layer,
                         const std::array<double, 4>& box_m, double t_s, int max_side) {
     const field::Raster* raster = layerRaster(scenario, maps, layer.key);
-    if (raster == nullptr) return field::Raster{0, 0, 0.0, 0.0, 1.0, {}};
+    if (raster == nullptr) return field::Raster{0, 0, 0.0, 0.0, 1.0, {}, std::nullopt};
     const CellWindow window = windowOver(*raster, box_m[0], box_m[1], box_m[2], box_m[3]);
     if (window.empty())
-        return field::Raster{0, 0, raster->x_min_m, raster->y_min_m, raster->cell_m, {}};
+        return field::Raster{0,  0,           raster->x_min_m, raster->y_min_m, raster->cell_m,
+                             {}, raster->epsg};
     field::Raster view = layer.timed && maps != nullptr ? mapAt(*maps, layer.key, t_s, window)
                                                         : crop(*raster, window);
     return coarsen(view, max_side, layer.kind);

@@ -7,6 +7,7 @@
 /// than a screen shows, so that a 2,500 × 1,000 raster is drawn in milliseconds.
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <utility>
@@ -37,6 +38,53 @@ struct MapLayer {
     std::vector<std::pair<int, std::string>> classes;
 };
 
+/// How a continuous layer's values are shown, by the studio's colour scale and by a map's PNG
+/// (core/scenario/map_image.h): its values times `factor` on a scale titled `title` over
+/// [lower, upper] (the final map's range, so that the colours hold while the time is scrubbed).
+struct LayerScale {
+    double factor = 1.0;  ///< SI → the scale's unit (1000 for a rut depth in mm)
+    std::string unit;     ///< "mm", "m", "-"
+    std::string title;    ///< "rut depth [mm]"
+    double lower = 0.0;   ///< the scale's start, in its unit
+    double upper = 1.0;   ///< the scale's end, in its unit
+    /// A map of the drive: the studio leaves cells at 0 (untouched soil) clear, so the ground
+    /// shows.
+    bool clear_zero = false;
+};
+
+/// The scale of `layer` given its final map (or view of it): rut depths below 0.1 m in mm, the
+/// range of the values (a map that is 0 everywhere gets [0, 1]; a map of the drive starts at 0,
+/// untouched soil), the compaction risk on at least [0, 1.5] (Terranimo's bands at 0.5 and 1.1
+/// stay where they belong).
+LayerScale layerScale(const MapLayer& layer, const field::Raster& final_view);
+
+/// A colour, 0–255 per channel.
+struct Rgb {
+    std::uint8_t r = 0, g = 0, b = 0;
+    bool operator==(const Rgb&) const = default;
+};
+
+/// The colour at `at` ∈ [0, 1] along a scale (0: its lower end).
+struct ColorStop {
+    double at = 0.0;
+    Rgb color;
+};
+
+/// The colours of a continuous layer along `scale`, one palette for the studio and the PNG maps:
+/// the height as the land (green low, light, brown high); the compaction risk in Terranimo's
+/// bands (green ≤ 0.5, yellow to orange ≤ 1.1, red to dark red above; the band edges at 0.5 and
+/// 1.1 of the scale's values, whatever its range); the other maps of a drive sequential from
+/// light to dark, every channel falling along the scale so that lightness does too (not
+/// perceptually uniform): a rut from an ochre that stands out of a light soil to a dark brown,
+/// passes in blues, any other map (slip, energy per metre) light yellow to dark purple.
+/// Interpolated linearly in RGB between the stops (colorAt).
+std::vector<ColorStop> layerColors(const MapLayer& layer, const LayerScale& scale);
+
+/// The colour at `fraction` ∈ [0, 1] of `stops` (ascending): linear in RGB between the two
+/// stops around it, rounded to the nearest integer; clamped to the end stops outside [0, 1] and
+/// beyond the first and last stop. Throws std::invalid_argument for no stops.
+Rgb colorAt(const std::vector<ColorStop>& stops, double fraction);
+
 /// The layers of a scenario and its run, data-driven: "height" when the field has a height map,
 /// "soil_classes" when it has a class map, then every map of `maps` (mapRasters: whatever the run
 /// left, in its order). None for a patch scenario without a run's maps.
@@ -44,8 +92,9 @@ std::vector<MapLayer> mapLayers(const Scenario& scenario, const FieldMaps* maps)
 
 /// A run's map `key` as a layer (timed, kContinuous) with its label and unit: the maps known by
 /// name ("rut_depth_m": rut depth, m; "passes": wheel passes, -; "compaction_risk": the risk at
-/// `maps.risk_depth_m`, -), else the key's words with its unit suffix read off ("energy_J_m":
-/// energy, J/m; "max_slip": max slip, -), so that a map added to FieldMaps is listed at once.
+/// `maps.risk_depth_m`, -; "energy_per_m_J": energy per metre, J/m), else the key's words with its
+/// unit suffix read off ("energy_J_m": energy, J/m; "max_slip": max slip, -), so that a map added
+/// to FieldMaps is listed at once.
 MapLayer runMapLayer(const std::string& key, const FieldMaps& maps);
 
 /// The raster of layer `key`, the field's or the run's; nullptr when there is none.

@@ -15,6 +15,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/raster_io.h"
+#include "core/scenario/map_image.h"
 #include "core/soil/soil_profile.h"
 
 namespace terra::scenario {
@@ -696,6 +697,9 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
         }
     }
     maps.history = mapHistory(terrain, maps, precompression);
+    // The maps lie in the field's coordinate system (their GeoTIFFs say so).
+    const std::optional<int> epsg = field::epsgCode(terrain.map());
+    for (const auto& entry : mapRasters(maps)) entry.second->epsg = epsg;
     return maps;
 }
 
@@ -1020,6 +1024,16 @@ auto namedRasters(Maps& maps) {
 
 }  // namespace
 
+std::vector<std::string> mapFileNames() {
+    std::vector<std::string> names;
+    for (const char* file : kMapFiles) {
+        const std::string name = file;
+        const std::string stem = name.substr(0, name.rfind('.'));
+        for (const char* extension : kMapFormats) names.push_back(stem + extension);
+    }
+    return names;
+}
+
 std::vector<std::pair<std::string, const field::Raster*>> mapRasters(const FieldMaps& maps) {
     return namedRasters(maps);
 }
@@ -1043,7 +1057,7 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
     }
     // Maps of an earlier field run would pass for this run's likewise.
     if (!result.maps) {
-        for (const char* name : kMapFiles) {
+        for (const std::string& name : mapFileNames()) {
             std::filesystem::remove(directory / name, ec);
             if (ec)
                 return "cannot remove the earlier " + (directory / name).string() + ": " +
@@ -1057,7 +1071,9 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
     if (result.maps) {
         for (const auto& [stem, raster] : mapRasters(*result.maps)) {
             if (auto error = io::writeRaster(directory / (stem + ".asc"), *raster)) return error;
+            if (auto error = io::writeRaster(directory / (stem + ".tif"), *raster)) return error;
         }
+        if (auto error = writeMapPngs(*result.maps, directory)) return error;
     }
     if (!result.streaming.columns.empty()) {
         if (auto error =

@@ -129,13 +129,22 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario);
 inline constexpr std::array<const char*, 5> kMapFiles{
     "rut_depth_m.asc", "passes.asc", "compaction_risk.asc", "slip.asc", "energy_per_m_J.asc"};
 
+/// The formats every map is written in, side by side as DIR/<key><extension>: ESRI ASCII grid,
+/// GeoTIFF (Float64, core/io/geotiff.h) and a PNG picture with its legend
+/// (core/scenario/map_image.h).
+inline constexpr std::array<const char*, 3> kMapFormats{".asc", ".tif", ".png"};
+
+/// Every file of a field run's maps, map by map in kMapFiles' order, each in kMapFormats' order
+/// ("rut_depth_m.asc", "rut_depth_m.tif", "rut_depth_m.png", "passes.asc", …).
+std::vector<std::string> mapFileNames();
+
 /// A field run's maps by name, in kMapFiles' order: the key is the file's stem ("rut_depth_m").
 /// What writeResults writes and the studio's layer chooser lists (core/scenario/map_layers.h): a
 /// map added to FieldMaps is added here.
 std::vector<std::pair<std::string, const field::Raster*>> mapRasters(const FieldMaps& maps);
 std::vector<std::pair<std::string, field::Raster*>> mapRasters(FieldMaps& maps);
 
-/// Writes timeseries.csv, summary.json (and streaming.csv; a field run's kMapFiles) into
+/// Writes timeseries.csv, summary.json (and streaming.csv; a field run's mapFileNames) into
 /// `directory` (created), each atomically. An error message, or nothing.
 std::optional<std::string> writeResults(const RunResult& result, const Scenario& scenario,
                                         const std::filesystem::path& directory);

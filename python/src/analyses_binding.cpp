@@ -2,6 +2,7 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <any>
 #include <string>
 #include <vector>
@@ -74,6 +75,25 @@ identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_r
     return read->data;
 }
 
+// A field run's maps (docs/python.md, "Maps"): name → {"values": rows × cols array from the
+// north row, NaN where no data; "x0_m", "y0_m": the south-west corner; "cell_m"; "epsg"}.
+py::dict mapsToDict(const scenario::FieldMaps& maps) {
+    py::dict out;
+    for (const auto& [key, raster] : scenario::mapRasters(maps)) {
+        py::array_t<double> values(
+            {static_cast<py::ssize_t>(raster->rows), static_cast<py::ssize_t>(raster->cols)});
+        std::copy(raster->values.begin(), raster->values.end(), values.mutable_data());
+        py::dict map;
+        map["values"] = values;
+        map["x0_m"] = raster->x_min_m;
+        map["y0_m"] = raster->y_min_m;
+        map["cell_m"] = raster->cell_m;
+        map["epsg"] = raster->epsg ? py::object(py::int_(*raster->epsg)) : py::object(py::none());
+        out[py::str(key)] = map;
+    }
+    return out;
+}
+
 py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
              const wheel::WheelParameters& wheel, const py::dict& conditions,
              const py::dict& settings, py::object data, const py::object& progress) {
@@ -120,6 +140,10 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
         out["entry_angle_deg"] = stresses->entry_angle_deg;
         out["max_stress_angle_deg"] = stresses->max_stress_angle_deg;
         if (!stresses->message.empty()) out["message"] = stresses->message;
+    }
+    if (const auto* rover = std::any_cast<analysis::RoverResult>(&outcome.result);
+        rover != nullptr && rover->run.maps) {
+        out["maps"] = mapsToDict(*rover->run.maps);
     }
     if (const auto* fit = std::any_cast<analysis::IdentificationResult>(&outcome.result)) {
         out["usable"] = fit->usable();

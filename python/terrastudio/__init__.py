@@ -369,14 +369,21 @@ def simulate(scenario="straight", **settings):
     "timeseries": {column: array}, "status", "message", "notes"} (and "streaming" when the
     scenario identifies the soil as it drives). A mission scenario (docs/field.md, "Missions")
     runs the same way: its summary has "mission_completed", "path_error_rms_m" and the rest, its
-    time series "path_s_m", "path_error_m" and "curvature_1_m". chassis_mass_kg, wheel (Wheel,
-    preset or dict) and soils ({"base" | class code | patch number: Soil, preset or dict}) change
-    the robot and its soils (docs/field.md, "Mission studies").
+    time series "path_s_m", "path_error_m" and "curvature_1_m". A field scenario's result has
+    "maps" too (docs/python.md, "A field run's maps"): map name ("rut_depth_m", "passes",
+    "compaction_risk", "slip", "energy_per_m_J") -> {"values": rows x cols array, row 0 the
+    northern one, NaN where no data; "x0_m", "y0_m": the south-west corner; "cell_m"; "epsg":
+    the field's EPSG code or None}, the values `terrastudio simulate --out DIR` writes as
+    DIR/<name>.asc, .tif and .png. chassis_mass_kg, wheel
+    (Wheel, preset or dict) and soils ({"base" | class code | patch number: Soil, preset or dict})
+    change the robot and its soils (docs/field.md, "Mission studies").
     """
     settings = _override_json(settings)
     settings["scenario"] = os.fspath(scenario)
     out = run("rover", **settings)
     result = {"status": out["status"], "message": out["message"], "notes": out["notes"]}
+    if "maps" in out:
+        result["maps"] = out["maps"]
     for name, table in out["tables"].items():
         result[name] = table
     documents = out["documents"]

@@ -75,12 +75,27 @@ TEST(FieldSimulateCli, WritesTheMapsAndTheSummarysFieldKeys) {
                   0u)
             << name << ": " << text.substr(0, 80);
     }
+    // Beside each grid its GeoTIFF (little-endian TIFF) and PNG picture, and the run lists them.
+    const auto listed =
+        terra::test::run("simulate --scenario field-slope-wet --duration 1 --out " + out.string());
+    ASSERT_EQ(listed.exit_code, 0) << listed.err;
+    for (const char* stem :
+         {"rut_depth_m", "passes", "compaction_risk", "slip", "energy_per_m_J"}) {
+        const std::string stem_path = (out / stem).string();
+        EXPECT_EQ(readText(out / (std::string(stem) + ".tif")).substr(0, 4),
+                  std::string("II*\0", 4))
+            << stem;
+        EXPECT_EQ(readText(out / (std::string(stem) + ".png")).substr(0, 8), "\x89PNG\r\n\x1a\n")
+            << stem;
+        for (const char* ext : {".asc", ".tif", ".png"})
+            EXPECT_NE(listed.out.find(stem_path + ext), std::string::npos) << listed.out;
+    }
     // A patch scenario in the same folder afterwards leaves no maps of the field run behind.
     const auto again =
         terra::test::run("simulate --scenario straight --duration 1 --out " + out.string());
     ASSERT_EQ(again.exit_code, 0) << again.err;
-    EXPECT_FALSE(fs::exists(out / "passes.asc"));
-    EXPECT_FALSE(fs::exists(out / "energy_per_m_J.asc"));
+    for (const char* name : {"passes.asc", "energy_per_m_J.asc", "passes.tif", "slip.png"})
+        EXPECT_FALSE(fs::exists(out / name)) << name;
     fs::remove_all(out);
 }
 

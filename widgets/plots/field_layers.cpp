@@ -13,42 +13,19 @@ namespace {
 
 const char* const kClassEntryName = "field layer class";
 
-QCPColorGradient gradientOf(std::initializer_list<std::pair<double, QColor>> stops) {
+// The colours of a continuous layer (scenario::layerColors, shared with the maps' PNGs).
+QCPColorGradient gradientFor(const scenario::MapLayer& layer, const LayerDisplay& display) {
+    scenario::LayerScale scale;
+    scale.lower = display.lower;
+    scale.upper = display.upper;
     QCPColorGradient g;
     QMap<double, QColor> map;
-    for (const auto& [at, color] : stops) map.insert(at, color);
+    for (const scenario::ColorStop& stop : scenario::layerColors(layer, scale))
+        map.insert(stop.at, QColor(stop.color.r, stop.color.g, stop.color.b));
     g.setColorStops(map);
     g.setColorInterpolation(QCPColorGradient::ciRGB);
     g.setNanHandling(QCPColorGradient::nhTransparent);
     return g;
-}
-
-// The colours of a continuous layer by what it shows: the height as the land (green low, brown
-// high), a rut from light to dark earth, passes in blues, the compaction risk in Terranimo's
-// bands (green ≤ 0.5, yellow ≤ 1.1, red above; darker green for more stress inside the green),
-// any other map on a light-to-dark purple.
-QCPColorGradient gradientFor(const scenario::MapLayer& layer, const LayerDisplay& display) {
-    if (layer.key == "height") {
-        return gradientOf(
-            {{0.0, QColor(70, 120, 70)}, {0.5, QColor(215, 205, 140)}, {1.0, QColor(140, 95, 60)}});
-    }
-    if (layer.key == "rut_depth_m")
-        // From an ochre that stands out of the light soil background to a dark brown.
-        return gradientOf({{0.0, QColor(225, 160, 75)}, {1.0, QColor(60, 30, 10)}});
-    if (layer.key == "passes")
-        return gradientOf({{0.0, QColor(190, 215, 240)}, {1.0, QColor(20, 60, 140)}});
-    if (layer.key == "compaction_risk") {
-        const double span = std::max(display.upper - display.lower, 1e-9);
-        const double green = (0.5 - display.lower) / span, yellow = (1.1 - display.lower) / span;
-        constexpr double kEdge = 1e-4;
-        return gradientOf({{0.0, QColor(215, 240, 205)},
-                           {green - kEdge, QColor(60, 160, 60)},
-                           {green, QColor(245, 215, 60)},
-                           {yellow - kEdge, QColor(235, 175, 30)},
-                           {yellow, QColor(220, 60, 45)},
-                           {1.0, QColor(130, 20, 20)}});
-    }
-    return gradientOf({{0.0, QColor(250, 240, 200)}, {1.0, QColor(80, 30, 110)}});
 }
 
 // The layout cell of the plot's axis rect.
@@ -80,23 +57,14 @@ void fill(QCPColorMap& map, const LayerDisplay& display, const field::Raster& vi
 }  // namespace
 
 LayerDisplay layerDisplay(const scenario::MapLayer& layer, const field::Raster& final_view) {
+    const scenario::LayerScale scale = scenario::layerScale(layer, final_view);
     LayerDisplay d;
-    d.clear_zero = layer.timed;
-    const auto [lo, hi] = final_view.valueRange();
-    const bool any = std::isfinite(lo) && std::isfinite(hi);
-    d.unit = QString::fromStdString(layer.unit);
-    if (layer.unit == "m" && layer.timed && (!any || std::max(std::abs(lo), std::abs(hi)) < 0.1)) {
-        d.factor = 1e3;
-        d.unit = "mm";
-    }
-    d.lower = any ? lo * d.factor : 0.0;
-    d.upper = any ? hi * d.factor : 1.0;
-    if (layer.timed) d.lower = std::min(d.lower, 0.0);  // untouched soil is the scale's start
-    if (layer.key == "compaction_risk") d.upper = std::max(d.upper, 1.5);
-    if (!(d.upper > d.lower)) d.upper = d.lower + 1.0;
-    d.title = QString::fromStdString(layer.label);
-    if (layer.kind == scenario::LayerKind::kContinuous && !d.unit.isEmpty())
-        d.title += " [" + d.unit + "]";
+    d.factor = scale.factor;
+    d.unit = QString::fromStdString(scale.unit);
+    d.title = QString::fromStdString(scale.title);
+    d.lower = scale.lower;
+    d.upper = scale.upper;
+    d.clear_zero = scale.clear_zero;
     return d;
 }
 

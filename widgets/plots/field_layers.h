@@ -31,9 +31,9 @@ struct LayerDisplay {
     bool clear_zero = false;
 };
 
-/// The display of `layer` given its final view (layerView at t = ∞): rut depths below 0.1 m in
-/// mm, the range of the view's values (a map that is 0 everywhere gets [0, 1]), the compaction
-/// risk on at least [0, 1.5] (Terranimo's bands at 0.5 and 1.1 stay where they belong).
+/// The display of `layer` given its final view (layerView at t = ∞): scenario::layerScale (rut
+/// depths below 0.1 m in mm, the range of the view's values, the compaction risk on at least
+/// [0, 1.5]), the one scale the maps' PNGs use too. Its colours are scenario::layerColors.
 LayerDisplay layerDisplay(const scenario::MapLayer& layer, const field::Raster& final_view);
 
 /// The colour of soil class `index` (0-based in the legend's order) on the soil layer.

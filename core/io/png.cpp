@@ -1,0 +1,60 @@
+#include "core/io/png.h"
+
+#include <png.h>
+
+#include <cstring>
+
+#include "core/io/atomic_file.h"
+
+namespace terra::io {
+
+RgbaImage RgbaImage::filled(int width, int height, std::uint8_t r, std::uint8_t g, std::uint8_t b,
+                            std::uint8_t a) {
+    RgbaImage image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(static_cast<std::size_t>(width) * height * 4);
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+        image.pixels[i] = r;
+        image.pixels[i + 1] = g;
+        image.pixels[i + 2] = b;
+        image.pixels[i + 3] = a;
+    }
+    return image;
+}
+
+Result<std::string> toPng(const RgbaImage& image) {
+    const auto fail = [](const std::string& message) {
+        return std::vector<Issue>{{"PNG", message}};
+    };
+    if (image.width < 1 || image.height < 1 ||
+        image.pixels.size() != static_cast<std::size_t>(image.width) * image.height * 4)
+        return fail("a picture of " + std::to_string(image.width) + " × " +
+                    std::to_string(image.height) + " pixels needs width × height × 4 bytes");
+    // libpng's simplified API: the size first, then the bytes.
+    png_image png;
+    std::memset(&png, 0, sizeof png);
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(image.width);
+    png.height = static_cast<png_uint_32>(image.height);
+    png.format = PNG_FORMAT_RGBA;
+    // Speed over size: a field map's five 2,500 × 1,100 pictures encode in 0.2 s of CPU instead
+    // of 0.9 s, 620 kB instead of 160 kB in all (docs/performance.md, "Maps as files").
+    png.flags = PNG_IMAGE_FLAG_FAST;
+    png_alloc_size_t size = 0;
+    if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr))
+        return fail(std::string("libpng: ") + png.message);
+    std::string bytes(size, '\0');
+    if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), 0, nullptr))
+        return fail(std::string("libpng: ") + png.message);
+    bytes.resize(size);
+    return bytes;
+}
+
+std::optional<std::string> writePng(const std::filesystem::path& path, const RgbaImage& image) {
+    Result<std::string> bytes = toPng(image);
+    if (!bytes) return path.string() + ": " + bytes.message();
+    return writeFileAtomically(path, *bytes);
+}
+
+}  // namespace terra::io

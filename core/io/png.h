@@ -1,0 +1,39 @@
+#pragma once
+/// @file png.h
+/// Pictures as PNG files through libpng (docs/field.md, "Maps as files"): 8-bit RGBA, written
+/// into memory and then to disk atomically.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/issue.h"
+
+namespace terra::io {
+
+/// An 8-bit RGBA picture, rows from the top, 4 bytes a pixel (alpha 0: transparent).
+struct RgbaImage {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;  ///< height × width × 4
+
+    /// A picture of `width` × `height` pixels, every one (r, g, b, a).
+    static RgbaImage filled(int width, int height, std::uint8_t r, std::uint8_t g, std::uint8_t b,
+                            std::uint8_t a);
+    std::uint8_t* at(int x, int y) {
+        return &pixels[(static_cast<std::size_t>(y) * width + x) * 4];
+    }
+    const std::uint8_t* at(int x, int y) const {
+        return &pixels[(static_cast<std::size_t>(y) * width + x) * 4];
+    }
+};
+
+/// The picture as PNG bytes (8-bit RGBA, libpng's fast compression), or the error.
+Result<std::string> toPng(const RgbaImage& image);
+
+/// Writes the picture as a PNG file atomically; the error message, or nothing on success.
+std::optional<std::string> writePng(const std::filesystem::path& path, const RgbaImage& image);
+
+}  // namespace terra::io

@@ -1,0 +1,181 @@
+// A run's maps as PNG pictures (core/scenario/map_image.h), decoded here with libpng: the
+// picture's size, a cell's colour against the studio's palette at its value (the stops'
+// numbers written out here, the blend computed by hand), a cell without data transparent, the
+// legend below the map; the scale's ticks and their texts.
+#include "core/scenario/map_image.h"
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "tests/core/test_temp_dir.h"
+
+namespace terra::scenario {
+namespace {
+
+constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
+
+struct Decoded {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;
+    const std::uint8_t* at(int x, int y) const {
+        return &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+    }
+};
+
+Decoded decodePng(const std::filesystem::path& path) {
+    png_image image;
+    std::memset(&image, 0, sizeof image);
+    image.version = PNG_IMAGE_VERSION;
+    Decoded d;
+    if (!png_image_begin_read_from_file(&image, path.c_str())) {
+        ADD_FAILURE() << path << ": " << image.message;
+        return d;
+    }
+    image.format = PNG_FORMAT_RGBA;
+    d.width = static_cast<int>(image.width);
+    d.height = static_cast<int>(image.height);
+    d.rgba.resize(PNG_IMAGE_SIZE(image));
+    if (!png_image_finish_read(&image, nullptr, d.rgba.data(), 0, nullptr))
+        ADD_FAILURE() << path << ": " << image.message;
+    return d;
+}
+
+// The colour expected at a fraction u between two stops (the studio's numbers), ±1 for rounding.
+void expectBlend(const std::uint8_t* p, std::array<double, 3> a, std::array<double, 3> b, double u,
+                 const std::string& what) {
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(p[c], a[c] + u * (b[c] - a[c]), 1.0) << what << " channel " << c;
+    EXPECT_EQ(p[3], 255) << what;
+}
+
+// Five maps of 10 × 4 cells of 0.5 m; the rut from 0 to 9 mm along the first row, a cell
+// without data, the risk with a cell in the yellow and one in the red band.
+FieldMaps smallMaps() {
+    FieldMaps maps;
+    maps.risk_depth_m = 0.3;
+    for (const auto& entry : mapRasters(maps))
+        *entry.second = field::makeRaster(10, 4, 2.0, 3.0, 0.5);
+    for (int col = 0; col < 10; ++col) maps.rut_depth_m.value(col, 0) = 1e-3 * col;
+    maps.rut_depth_m.value(3, 2) = kNoData;
+    maps.compaction_risk.value(1, 1) = 0.8;
+    maps.compaction_risk.value(2, 1) = 1.2;
+    maps.compaction_risk.value(3, 1) = kNoData;
+    return maps;
+}
+
+TEST(MapImage, EachMapIsAPngWithThePalettesColoursAndALegend) {
+    testing::TempDir temp;
+    const FieldMaps maps = smallMaps();
+    ASSERT_FALSE(writeMapPngs(maps, temp.path()));
+    for (const auto& entry : mapRasters(maps))
+        EXPECT_TRUE(std::filesystem::exists(temp.path() / (entry.first + ".png"))) << entry.first;
+
+    const Decoded rut = decodePng(temp.path() / "rut_depth_m.png");
+    // 10 columns scaled up by whole pixels to at least 400: 40 pixels a cell.
+    constexpr int kCell = 40;
+    EXPECT_EQ(rut.width, 10 * kCell);
+    ASSERT_GT(rut.height, 4 * kCell);  // the legend lies below the map
+    const auto centre = [&](const Decoded& d, int col, int row) {
+        return d.at(col * kCell + kCell / 2, row * kCell + kCell / 2);
+    };
+    // The scale is [0, 9] mm: ochre (225, 160, 75) at 0 to dark brown (60, 30, 10) at 9 mm.
+    expectBlend(centre(rut, 0, 0), {225, 160, 75}, {60, 30, 10}, 0.0, "0 mm");
+    expectBlend(centre(rut, 9, 0), {225, 160, 75}, {60, 30, 10}, 1.0, "9 mm");
+    expectBlend(centre(rut, 4, 0), {225, 160, 75}, {60, 30, 10}, 4.0 / 9.0, "4 mm");
+    expectBlend(rut.at(6 * kCell, 0), {225, 160, 75}, {60, 30, 10}, 6.0 / 9.0, "a block's corner");
+    EXPECT_EQ(centre(rut, 3, 2)[3], 0);  // no data: transparent
+    EXPECT_EQ(centre(rut, 3, 1)[3], 255);
+    // The legend: opaque; the colour bar runs from the scale's start to its end colour; the title
+    // and tick values in dark ink.
+    int ink = 0, bar_row = -1;
+    for (int y = 4 * kCell; y < rut.height; ++y) {
+        for (int x = 0; x < rut.width; ++x) {
+            const std::uint8_t* p = rut.at(x, y);
+            EXPECT_EQ(p[3], 255) << x << ", " << y;
+            if (p[0] == 40 && p[1] == 40 && p[2] == 40) ++ink;
+        }
+        const std::uint8_t* mid = rut.at(rut.width / 2, y);
+        if (bar_row < 0 && !(mid[0] == 255 && mid[1] == 255 && mid[2] == 255) && mid[0] != 40)
+            bar_row = y;
+    }
+    EXPECT_GT(ink, 200);  // "rut depth [mm]" and "0 2 4 6 8": hundreds of dots
+    ASSERT_GE(bar_row, 0);
+    int left = 0, right = rut.width - 1;
+    while (rut.at(left, bar_row)[0] == 255) ++left;
+    while (rut.at(right, bar_row)[0] == 255) --right;
+    expectBlend(rut.at(left, bar_row), {225, 160, 75}, {60, 30, 10}, 0.0, "bar start");
+    expectBlend(rut.at(right, bar_row), {225, 160, 75}, {60, 30, 10}, 1.0, "bar end");
+
+    // The compaction risk on [0, 1.5] in Terranimo's bands: 0.8 between yellow (245, 215, 60)
+    // at 0.5 and orange (235, 175, 30) at 1.1; 1.2 between red (220, 60, 45) at 1.1 and dark red
+    // (130, 20, 20) at 1.5.
+    const Decoded risk = decodePng(temp.path() / "compaction_risk.png");
+    expectBlend(centre(risk, 1, 1), {245, 215, 60}, {235, 175, 30}, 0.3 / 0.6, "risk 0.8");
+    expectBlend(centre(risk, 2, 1), {220, 60, 45}, {130, 20, 20}, 0.1 / 0.4, "risk 1.2");
+    expectBlend(centre(risk, 0, 0), {215, 240, 205}, {60, 160, 60}, 0.0, "risk 0");
+    EXPECT_EQ(centre(risk, 3, 1)[3], 0);
+}
+
+// The maps of a drive other than the risk darken along their scale: the relative luminance
+// (sRGB decoded to linear light, ITU-R BT.709 weights) falls at every step.
+TEST(MapImage, TheSequentialPalettesDarkenAlongTheScale) {
+    const auto linear = [](double c) {
+        c /= 255.0;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    for (const char* key : {"rut_depth_m", "passes", "slip", "energy_per_m_J"}) {
+        MapLayer layer;
+        layer.key = key;
+        const std::vector<ColorStop> stops = layerColors(layer, LayerScale{});
+        double previous = 2.0;
+        for (int i = 0; i <= 100; ++i) {
+            const Rgb c = colorAt(stops, i / 100.0);
+            const double y = 0.2126 * linear(c.r) + 0.7152 * linear(c.g) + 0.0722 * linear(c.b);
+            EXPECT_LE(y, previous) << key << " at " << i << " %";
+            previous = y;
+        }
+        EXPECT_LT(previous, 0.1) << key;  // dark at the end
+    }
+}
+
+TEST(MapImage, AWideMapIsOnePixelPerCellAndALongOneStaysBounded) {
+    const MapImageLayout wide = mapImageLayout(2500, 1000);
+    EXPECT_EQ(wide.cell_px, 1);
+    EXPECT_EQ(wide.map_width, 2500);
+    EXPECT_EQ(wide.map_height, 1000);
+    EXPECT_EQ(wide.legend_top, 1000);
+    EXPECT_GT(wide.height, 1000);
+    const MapImageLayout narrow = mapImageLayout(3, 10);
+    EXPECT_EQ(narrow.cell_px, 134);  // ⌈400 / 3⌉
+    EXPECT_EQ(narrow.width, 402);
+    const MapImageLayout thin = mapImageLayout(1, 100000);
+    EXPECT_EQ(thin.cell_px, 1);  // 400 pixels a cell would be 40 million rows
+    EXPECT_EQ(thin.width, kMinMapImageWidth);
+}
+
+TEST(MapImage, TicksAreRoundStepsAndTheRiskBandEdges) {
+    LayerScale rut;
+    rut.lower = 0.0;
+    rut.upper = 9.0;
+    EXPECT_EQ(scaleTicks("rut_depth_m", rut), (std::vector<double>{0, 2, 4, 6, 8}));
+    LayerScale risk;
+    risk.lower = 0.0;
+    risk.upper = 1.5;
+    const std::vector<double> ticks = scaleTicks("compaction_risk", risk);
+    const std::vector<double> expected{0.0, 0.2, 0.5, 0.8, 1.1, 1.4};
+    ASSERT_EQ(ticks.size(), expected.size());
+    for (std::size_t i = 0; i < ticks.size(); ++i) EXPECT_NEAR(ticks[i], expected[i], 1e-12);
+    EXPECT_EQ(tickText(0.5, 0.3), "0.5");
+    EXPECT_EQ(tickText(1.4000000000000001, 0.2), "1.4");
+    EXPECT_EQ(tickText(-1e-17, 0.2), "0.0");
+    EXPECT_EQ(tickText(250, 50), "250");
+    EXPECT_EQ(tickText(2e6, 1e6), "2e+06");
+    EXPECT_EQ(tickText(3e-5, 1e-5), "3e-05");
+}
+
+}  // namespace
+}  // namespace terra::scenario
