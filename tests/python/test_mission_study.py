@@ -78,7 +78,8 @@ def test_the_example_of_docs_field_md_runs(resources, capsys):
     import re
 
     page = open(os.path.join(resources, "..", "docs", "field.md"), encoding="utf-8").read()
-    match = re.search(r"<!-- example: mission-study -->\n```python\n(.*?)```", page, re.S)
+    marker = r"<!-- python example \"mission-study\"[^>]*-->\n```python\n(.*?)```"
+    match = re.search(marker, page, re.S)
     assert match, "the example block of docs/field.md is missing"
     exec(compile(match.group(1), "docs/field.md", "exec"), {})
     lines = capsys.readouterr().out.splitlines()
