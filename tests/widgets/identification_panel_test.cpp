@@ -425,6 +425,40 @@ TEST(IdentificationPanel, TableAndReportShowSymbolsWithUnitsNotFileKeys) {
     EXPECT_TRUE(report.contains("F_x")) << report.toStdString();
 }
 
+// Issue 27, item 3: the batch fit has a Cancel, as every long computation does; a cancelled fit
+// says so the way every panel does ("CANCELLED (partial)"), applies nothing, and keeps no curve
+// of the fit before it on screen.
+TEST(IdentificationPanel, ACancelledFitSaysSoAndShowsNoOlderFit) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.show();
+    panel.applySettings({{"refine", true}});
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().usable());
+    auto* fit = panel.findChild<QPushButton*>("identification.cancel");
+    ASSERT_NE(fit, nullptr);
+    EXPECT_FALSE(fit->isEnabled());  // nothing to cancel
+    QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
+    panel.recompute();
+    if (!panel.isBusy()) ASSERT_TRUE(busy.wait(10000));
+    ASSERT_TRUE(fit->isEnabled());
+    QTest::mouseClick(fit, Qt::LeftButton);
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    EXPECT_TRUE(panel.result().cancelled);
+    EXPECT_EQ(panel.completion(), Completion::kCancelled);
+    EXPECT_TRUE(panel.fitStatus().contains("CANCELLED (partial)"))
+        << panel.fitStatus().toStdString();
+    EXPECT_TRUE(panel.fitStatus().contains("nothing to apply")) << panel.fitStatus().toStdString();
+    EXPECT_FALSE(panel.identifiedSoil().has_value());
+    EXPECT_FALSE(fit->isEnabled());
+    for (const auto& [name, plot] : panel.plots()) {
+        if (name.contains("streaming")) continue;  // the other page's, not the fit's
+        EXPECT_EQ(plot->plottableCount(), 0) << name.toStdString();
+    }
+}
+
 // Issue 12: "Apply identified soil to project" puts the fit into the project as one undo step,
 // and Undo gives the soil back exactly.
 TEST(IdentificationPanel, ApplyingTheIdentifiedSoilIsOneUndoStep) {

@@ -108,6 +108,10 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         "One load cannot separate c and φ when the data are noisy (full_fit.h)");
     fit_ = new QPushButton("Fit", this);
     fit_->setDefault(true);
+    cancel_fit_ = new QPushButton("Cancel", this);
+    cancel_fit_->setObjectName("identification.cancel");
+    cancel_fit_->setEnabled(false);
+    cancel_fit_->setToolTip("Stops the fit: nothing is fitted, the soil is not changed");
     status_ = new QLabel(this);
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
@@ -248,6 +252,7 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
     auto* start_row = new QHBoxLayout;
     start_row->addWidget(start_, 1);
     start_row->addWidget(fit_);
+    start_row->addWidget(cancel_fit_);
     auto* side = new QWidget(this);
     auto* side_layout = new QVBoxLayout(side);
     side_layout->setContentsMargins(0, 0, 0, 0);
@@ -330,12 +335,18 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
         updateDataPreview();
     });
     updateWheelChoices();
+    connect(cancel_fit_, &QPushButton::clicked, this, [this] {
+        status_->setText("Cancelling…");
+        cancelRunning();
+    });
     connect(this, &AnalysisPanel::busyChanged, this, [this](bool busy) {
         fit_->setEnabled(!busy);
+        cancel_fit_->setEnabled(busy);
         if (busy) status_->setText("Fitting…");
     });
     connect(this, &AnalysisPanel::failed, this, [this](const QString& m) {
         fit_->setEnabled(true);
+        cancel_fit_->setEnabled(false);
         status_->setText("<b>Error:</b> " + m.toHtmlEscaped());
     });
 }
@@ -653,6 +664,21 @@ void IdentificationPanel::present(const std::any& value) {
         file_->text().isEmpty() ? QString("synthetic") : QFileInfo(file_->text()).fileName();
     apply_->setEnabled(identifiedSoil().has_value());
     if (result_.message.empty()) side_tabs_->setCurrentIndex(0);  // the fit's parameters
+    if (result_.cancelled) {
+        // As every panel says it (completion.h): cancelled, and what there is of it — nothing.
+        status_->setText(
+            markedStatus("Fit cancelled before it found a minimum: nothing fitted, "
+                         "nothing to apply (Fit runs it again)."));
+        report_->clear();
+        // The previous fit's curves and table are not this one's: cleared, so that the plots,
+        // the table and an export say the same.
+        parameters_->setRowCount(0);
+        for (QCustomPlot* plot : plots_) {
+            plot->clearPlottables();
+            plot->replot();
+        }
+        return;
+    }
     if (!result_.message.empty()) {
         status_->setText(
             "<b>Error:</b> " +

@@ -169,6 +169,7 @@ private:
     QCheckBox* refine_;
     QCheckBox* three_loads_;
     QPushButton* fit_;
+    QPushButton* cancel_fit_;  ///< stops the running fit (it then says so, nothing to apply)
     QLabel* status_;
     QLabel* readout_;
     QTabWidget* tabs_;
