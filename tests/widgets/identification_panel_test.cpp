@@ -152,8 +152,13 @@ TEST(IdentificationStreaming, StopMidRunLeavesAConsistentPanelAndNothingStaleArr
     EXPECT_LT(shown, 202u);
     QTest::qWait(500);  // the worker may finish its sample: it must not reach the screen
     expectOneRunInOrder(panel, shown);
-    EXPECT_TRUE(panel.streamStatus().contains(QString("Stopped after %1 of 202").arg(shown)))
+    EXPECT_TRUE(panel.streamStatus().contains(QString("stopped after %1 of 202").arg(shown)))
         << panel.streamStatus().toStdString();
+    // Marked as every panel marks a cancelled run: the status and the plot's title (issue 27).
+    EXPECT_TRUE(panel.streamStatus().contains("CANCELLED (partial)"))
+        << panel.streamStatus().toStdString();
+    EXPECT_TRUE(panel.streamingFigures().title().endsWith(" — CANCELLED (partial)"))
+        << panel.streamingFigures().title().toStdString();
     EXPECT_TRUE(button(panel, "Play")->isEnabled());
     EXPECT_FALSE(button(panel, "Pause")->isEnabled());
     EXPECT_FALSE(button(panel, "Stop")->isEnabled());
@@ -163,6 +168,7 @@ TEST(IdentificationStreaming, StopMidRunLeavesAConsistentPanelAndNothingStaleArr
     panel.play();
     ASSERT_TRUE(waitForEnd(panel));
     EXPECT_EQ(panel.playback().state(), State::kFinished);
+    EXPECT_FALSE(panel.streamingFigures().title().contains("CANCELLED"));
     expectOneRunInOrder(panel, 202);
 }
 

@@ -21,6 +21,7 @@
 #include "core/project/project.h"
 #include "core/project/saved_validation.h"
 #include "widgets/document/project_document.h"
+#include "widgets/plots/completion.h"
 #include "widgets/plots/experiment_overlay.h"
 #include "widgets/plots/number_format.h"
 
@@ -274,7 +275,9 @@ void CalibrationDialog::finished() {
     const Outcome out = watcher_.result();
     if (out.cancelled) {
         progress_->setFormat("%p % (cancelled)");
-        status_->setText("Cancelled: nothing to apply.");
+        // Marked as every panel marks a cancelled run (completion.h).
+        status_->setText("<b>" + completionMark(Completion::kCancelled) +
+                         "</b> — calibration cancelled: nothing calibrated, nothing to apply.");
     } else if (!out.error.isEmpty()) {
         status_->setText("<b>Error:</b> " + out.error.toHtmlEscaped());
     } else {

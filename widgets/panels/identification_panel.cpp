@@ -916,6 +916,8 @@ AnalysisPanel::Restored IdentificationPanel::restoreResult(const std::string& se
         resetStreamFigures(stream_count_);
         stream_frames_ = std::move(stream.frames);
         stream_figures_->append(stream_frames_);
+        stream_figures_->setCompletion(stream_stopped_ ? Completion::kCancelled
+                                                       : Completion::kComplete);
         stream_figures_->replot();
         updatePosition();
         stream_status_->setText("Saved with the project (not played again): " +
@@ -1231,6 +1233,9 @@ void IdentificationPanel::playbackStateChanged(StreamingPlayback::State state) {
         return;
     }
     stream_stopped_ = state != State::kFinished;
+    stream_figures_->setCompletion(stream_stopped_ ? Completion::kCancelled
+                                                   : Completion::kComplete);
+    stream_figures_->replot();
     stream_status_->setText(streamSummary(state == State::kFinished));
     emit playbackEnded(state);
 }
@@ -1250,8 +1255,10 @@ void IdentificationPanel::resetStreamFigures(std::size_t count) {
 QString IdentificationPanel::streamSummary(bool finished) const {
     QStringList changes;
     for (std::size_t c : stream_figures_->changePoints()) changes << QString::number(c);
+    // A stopped playback is marked as every panel marks a cancelled run (completion.h).
     QString text = finished ? QString("Finished: %1 samples").arg(stream_frames_.size())
-                            : QString("Stopped after %1 of %2 samples")
+                            : QString("<b>%1</b> — stopped after %2 of %3 samples")
+                                  .arg(completionMark(Completion::kCancelled))
                                   .arg(stream_frames_.size())
                                   .arg(stream_count_);
     if (!stream_description_.isEmpty())

@@ -220,6 +220,16 @@ QCPGraph* StreamingFigures::graph(const QString& name) const {
     return name == "current" ? current_ : nullptr;
 }
 
+void StreamingFigures::setCompletion(Completion completion) {
+    if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0)))
+        t->setText(markedTitle(title_, completion));
+}
+
+QString StreamingFigures::title() const {
+    const auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0));
+    return t ? t->text() : QString();
+}
+
 void StreamingFigures::reset(const QString& title, std::size_t sample_count,
                              std::optional<std::size_t> true_border, double threshold) {
     for (auto& [name, g] : graphs_) g->data()->clear();
@@ -231,8 +241,8 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count,
     threshold_ = threshold;
     changes_.clear();
     confirmed_.clear();
-    if (auto* t = qobject_cast<QCPTextElement*>(estimates_->plotLayout()->element(0, 0)))
-        t->setText(title);
+    title_ = title;
+    setCompletion(Completion::kComplete);
     const double upper = std::max<double>(10.0, static_cast<double>(sample_count));
     for (QCPAxisRect* r : rects_)
         r->axis(QCPAxis::atBottom)->setRange(-0.02 * upper - 0.5, 1.02 * upper + 0.5);

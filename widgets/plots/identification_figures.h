@@ -18,6 +18,8 @@ class QCPAxisRect;
 class QCPGraph;
 class QCPTextElement;
 
+#include "widgets/plots/completion.h"
+
 namespace terra::ui {
 
 class StreamingFigures {
@@ -33,6 +35,11 @@ public:
         const std::vector<std::pair<std::size_t, identification::DecoupledParameters>>& truth);
     /// Adds frames (in order). Does not replot.
     void append(const std::vector<StreamFrame>& frames);
+    /// Marks the estimates' title as every panel marks a stopped run ("… — CANCELLED (partial)",
+    /// completion.h), or unmarks it. Does not replot.
+    void setCompletion(Completion completion);
+    /// The estimates figure's title as shown.
+    QString title() const;
     /// Rescales the value axes to the data and replots both figures.
     void replot();
 
@@ -57,6 +64,7 @@ private:
     std::vector<std::pair<QString, QCPGraph*>> graphs_;
     QCPGraph* current_ = nullptr;  // the latest sample, highlighted
     QCPTextElement* current_label_ = nullptr;
+    QString title_;  // as given to reset(), unmarked
     std::size_t frames_ = 0;
     std::size_t sample_count_ = 0;
     double threshold_ = 13.8155;
