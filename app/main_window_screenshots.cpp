@@ -7,12 +7,17 @@
 #include <QTimer>
 #include <QUndoStack>
 #include <cstdio>
+#include <filesystem>
 #include <utility>
 
 #include "app/main_window.h"
+#include "core/io/experiment.h"
 #include "widgets/document/project_document.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/panels/calibration_dialog.h"
+#include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
+#include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
 
 namespace terra::app {
@@ -137,6 +142,75 @@ int MainWindow::takeScreenshots(const QString& dir) {
         rover->chooseLayer("rut_depth_m");
         rover->applySettings(before);
         break;
+    }
+    // The window as it settled, into dir/name (the dialogs below grab themselves).
+    auto grabWidget = [&](QWidget& widget, const QString& name) {
+        QEventLoop settle;
+        QTimer::singleShot(300, &settle, &QEventLoop::quit);
+        settle.exec();
+        const QString path = dir + "/" + name;
+        if (!widget.grab().save(path)) ++failures;
+        std::printf("wrote %s\n", qPrintable(path));
+    };
+    // The streaming playback (docs/images/studio-streaming.png): the synthetic drive over the soil
+    // border played to its end at full speed, then back to the batch fit's page.
+    if (identification_) {
+        showPanel(identification_->name());
+        identification_->showPage(1);
+        identification_->setStreamSpeed(0.0);
+        QEventLoop loop;
+        QTimer::singleShot(120000, &loop, &QEventLoop::quit);
+        connect(identification_, &ui::IdentificationPanel::playbackEnded, &loop, &QEventLoop::quit);
+        identification_->play();
+        loop.exec();
+        grabWidget(*this, "studio-streaming.png");
+        identification_->showPage(0);
+    }
+    // A measured test (docs/images/studio-experiment.png): the Ding et al. 2011 smooth wheel with
+    // its setup, the metrics under the plots; calibrated on every point and on three slips with
+    // the others held out (studio-calibration.png, -calibration-held-out.png), applied
+    // (studio-calibrated.png); then undone, the project as it began.
+    QString test;
+    for (const std::filesystem::path& d : locations_.directories) {
+        const QString candidate = QString::fromStdString(
+            (d / "experiments" / "ding2011-smooth-hit-lss1-80N.csv").string());
+        if (QFile::exists(candidate)) test = candidate;
+    }
+    auto* forces = dynamic_cast<ui::ForcesPanel*>(panels_.front());
+    const Result<io::Experiment> read =
+        test.isEmpty() ? Result<io::Experiment>(std::vector<Issue>{{"experiments", "not found"}})
+                       : io::readExperiment(test.toStdString());
+    if (forces && read) {
+        const int steps = document_->undoStack()->index();
+        const ui::ExperimentSetup setup = ui::experimentSetup(*read, locations_);
+        showPanel(forces->name());
+        QEventLoop shown;
+        QTimer::singleShot(60000, &shown, &QEventLoop::quit);
+        connect(forces, &ui::AnalysisPanel::resultShown, &shown, &QEventLoop::quit);
+        if (ui::loadExperiment(*document_, test, &setup)) shown.exec();
+        grabWidget(*this, "studio-experiment.png");
+        if (ui::CalibrationDialog* dialog = forces->openCalibration()) {
+            dialog->show();
+            auto calibrate = [&](const QString& slips, const QString& file) {
+                dialog->setOptions(1.0, 0.0, 1.0, false);  // the readings' ±1 N, ±1 mm
+                dialog->setFitSlips(slips);
+                QEventLoop fitted;
+                QTimer::singleShot(120000, &fitted, &QEventLoop::quit);
+                connect(dialog, &ui::CalibrationDialog::calibrationFinished, &fitted,
+                        &QEventLoop::quit);
+                if (dialog->start()) fitted.exec();
+                grabWidget(*dialog, file);
+            };
+            calibrate("0, 0.2, 0.6", "studio-calibration-held-out.png");
+            calibrate("", "studio-calibration.png");
+            QEventLoop applied;
+            QTimer::singleShot(60000, &applied, &QEventLoop::quit);
+            connect(forces, &ui::AnalysisPanel::resultShown, &applied, &QEventLoop::quit);
+            if (dialog->apply()) applied.exec();
+            dialog->hide();
+            grabWidget(*this, "studio-calibrated.png");
+        }
+        document_->undoStack()->setIndex(steps);
     }
     // The docks (docs/images/studio-side-by-side.png): forces and stresses side by side, then
     // every panel tiled; the layout for the screen afterwards.
