@@ -35,6 +35,7 @@
 #include "core/project/panels.h"
 #include "core/project/saved_identification.h"
 #include "widgets/document/project_document.h"
+#include "widgets/document/suggested_paths.h"
 #include "widgets/editors/preset_names.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/number_format.h"
@@ -298,8 +299,8 @@ IdentificationPanel::IdentificationPanel(ProjectDocument* document, QWidget* par
 
     connect(apply_, &QPushButton::clicked, this, [this] { applyIdentifiedSoil(); });
     connect(browse, &QPushButton::clicked, this, [this] {
-        const QString path =
-            QFileDialog::getOpenFileName(this, "Load identification data", {}, "CSV (*.csv)");
+        const QString path = QFileDialog::getOpenFileName(
+            this, "Load identification data", startFolder(document_->filePath()), "CSV (*.csv)");
         if (!path.isEmpty()) setDataFile(path);
     });
     connect(fit_, &QPushButton::clicked, this, [this] {
@@ -1043,8 +1044,8 @@ void IdentificationPanel::buildStreamingPage(QWidget* page) {
     connect(stream_source_, &QComboBox::currentIndexChanged, this,
             [this] { updateStreamControls(); });
     connect(stream_browse_, &QPushButton::clicked, this, [this] {
-        const QString path =
-            QFileDialog::getOpenFileName(this, "Play identification data", {}, "CSV (*.csv)");
+        const QString path = QFileDialog::getOpenFileName(
+            this, "Play identification data", startFolder(document_->filePath()), "CSV (*.csv)");
         if (!path.isEmpty()) setStreamSource(path);
     });
     connect(speed_, &QComboBox::currentIndexChanged, this, [this] {
