@@ -146,6 +146,29 @@ BENCHMARK(BM_ClosedLoop)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 
+// The traction-limited mode's cost (docs/traction.md §5, docs/performance.md "The closed loop"):
+// 20 s of traction-slope (a field: the 3 % slope of gentle-slope, the implement) without its
+// streaming identifier, where the mode engages. Arg: 0 constant-speed, 1 fixed-slip (crawls at
+// the floor), 2 fixed-slip traction-limited (stalls, raises its set-point, climbs).
+void BM_TractionLimited(benchmark::State& state) {
+    auto loaded =
+        scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "traction-slope");
+    if (!loaded) throw std::runtime_error(loaded.message());
+    scenario::Scenario s = loaded.value();
+    s.duration_s = 20.0;
+    s.streaming.reset();
+    s.controller.type = state.range(0) == 0 ? scenario::ControllerType::kConstantSpeed
+                                            : scenario::ControllerType::kFixedSlip;
+    s.controller.traction_limited = state.range(0) == 2;
+    scenario::RunOptions options;
+    options.slip_planner = analysis::tractionPlanner();
+    for (auto _ : state) {
+        scenario::RunResult r = scenario::runScenario(s, options);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+}
+BENCHMARK(BM_TractionLimited)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
+
 // One wheel's contact evaluation at the straight-line operating point.
 void BM_WheelContact(benchmark::State& state) {
     const auto model =
