@@ -34,15 +34,19 @@ constexpr double kReplanBound_s = 6.0;
 constexpr double kBorderEfficiency = 0.85;
 constexpr double kUniformEfficiency = 0.9;
 
-RoverSettings border(scenario::ControllerType type) {
+// A shipped scenario, resolved, under its own controller or `type`.
+RoverSettings shipped(const std::string& name,
+                      std::optional<scenario::ControllerType> type = std::nullopt) {
     RoverSettings s;
-    s.scenario = "traction-border";
+    s.scenario = name;
     Result<scenario::Scenario> loaded = scenario::resolveScenario(kLocations, s.scenario);
     EXPECT_TRUE(loaded.ok()) << loaded.message();
     s.loaded = loaded.value();
     s.controller = type;
     return s;
 }
+
+RoverSettings border(scenario::ControllerType type) { return shipped("traction-border", type); }
 
 // s* by a scan of the model at steps of 1e-3 over the controller's range (efficiency).
 double scannedOptimum(const soil::SoilParameters& soil, const scenario::Scenario& s, double load) {
@@ -255,12 +259,7 @@ constexpr double kClimbDistance = 2.0;         // [m]
 constexpr double kCrawlDistance = 0.5;         // [m]
 
 RoverSettings slope(scenario::ControllerType type, bool traction_limited) {
-    RoverSettings s;
-    s.scenario = "traction-slope";
-    Result<scenario::Scenario> loaded = scenario::resolveScenario(kLocations, s.scenario);
-    EXPECT_TRUE(loaded.ok()) << loaded.message();
-    s.loaded = loaded.value();
-    s.controller = type;
+    RoverSettings s = shipped("traction-slope", type);
     s.traction_limited = traction_limited;
     return s;
 }
@@ -404,11 +403,8 @@ TEST(TractionControlRun, TractionLimitedModeNeverEngagesOnUniformFlatSoil) {
 // releases: the set-point is back at the plan at the end, and the plan then carries the robot
 // (it is off the floor). Two switches (one engagement, one release), no chattering.
 TEST(TractionControlRun, TractionLimitedModeDropsBackWhenTheNeedFalls) {
-    RoverSettings settings;
-    settings.scenario = "traction-load-change";
-    Result<scenario::Scenario> loaded = scenario::resolveScenario(kLocations, settings.scenario);
-    ASSERT_TRUE(loaded.ok()) << loaded.message();
-    settings.loaded = loaded.value();
+    RoverSettings settings = shipped("traction-load-change");
+    ASSERT_TRUE(settings.loaded);
     settings.loaded->drawbar_load.force_n.value = 12.0;
     settings.loaded->drawbar_load.force_n.amplitude = -11.5;
     settings.loaded->drawbar_load.force_n.start_s = 25.0;
