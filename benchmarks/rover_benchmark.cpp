@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cstdint>
 #include <stdexcept>
 
 #include "core/analysis/rover.h"
@@ -145,6 +146,33 @@ BENCHMARK(BM_ClosedLoop)
     ->Args({3, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+
+// The traction-limited mode's cost (docs/traction.md §5, docs/performance.md "The closed loop"):
+// 20 s of traction-slope (a field: the 3 % slope of gentle-slope, the implement) without its
+// streaming identifier, where the mode engages. Arg: 0 constant-speed, 1 fixed-slip (crawls at
+// the floor), 2 fixed-slip traction-limited (stalls, raises its set-point, climbs), 3 oracle and
+// 4 oracle traction-limited (its plan is above the need: the same run, so 4 − 3 is the mode's own
+// cost: the supervisor at every control tick and the caps' plans).
+void BM_TractionLimited(benchmark::State& state) {
+    auto loaded =
+        scenario::resolveScenario(io::PresetLocations{{TERRA_RESOURCE_DIR}}, "traction-slope");
+    if (!loaded) throw std::runtime_error(loaded.message());
+    scenario::Scenario s = loaded.value();
+    s.duration_s = 20.0;
+    s.streaming.reset();
+    const std::int64_t arg = state.range(0);
+    s.controller.type = arg == 0   ? scenario::ControllerType::kConstantSpeed
+                        : arg <= 2 ? scenario::ControllerType::kFixedSlip
+                                   : scenario::ControllerType::kOracle;
+    s.controller.traction_limited = arg == 2 || arg == 4;
+    scenario::RunOptions options;
+    options.slip_planner = analysis::tractionPlanner();
+    for (auto _ : state) {
+        scenario::RunResult r = scenario::runScenario(s, options);
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+}
+BENCHMARK(BM_TractionLimited)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // One wheel's contact evaluation at the straight-line operating point.
 void BM_WheelContact(benchmark::State& state) {

@@ -26,6 +26,7 @@ struct SimulateOptions {
     std::optional<std::string> model;
     std::optional<std::string> controller;
     std::optional<double> slip;
+    std::optional<std::string> traction_limited;
     bool compare = false;
 };
 
@@ -167,6 +168,10 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "(docs/traction.md)")
         ->check(CLI::IsMember(scenario::controllerNames()));
     cmd->add_option("--slip", options->slip, "Override the controller's fixed slip set-point");
+    cmd->add_option("--traction-limited", options->traction_limited,
+                    "Override the slip controllers' traction-limited mode: on or off "
+                    "(docs/traction.md)")
+        ->check(CLI::IsMember({"on", "off"}));
     cmd->add_flag("--compare", options->compare,
                   "Run every controller on the scenario; write OUT/<controller>/ and "
                   "OUT/comparison.json, print the comparison table");
@@ -192,6 +197,7 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         }
         if (o.controller) settings.controller = scenario::controllerFromName(*o.controller);
         settings.slip = o.slip;
+        if (o.traction_limited) settings.traction_limited = *o.traction_limited == "on";
         std::vector<Issue> issues;
         if (o.slip) checkRange(issues, "--slip", *o.slip, scenario::kControllerRanges.slip);
         if (o.compare && o.controller)

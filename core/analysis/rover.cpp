@@ -139,6 +139,8 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
     if (r.choiceName("controller", controller, scenario::controllerNames()))
         out.controller = scenario::controllerFromName(controller);
     if (r.number("slip", value, scenario::kControllerRanges.slip)) out.slip = value;
+    bool limited = false;
+    if (r.boolean("traction_limited", limited)) out.traction_limited = limited;
     if (const dynamics::RobotField* mass = findField(dynamics::robotFields(), "chassis_mass_kg")) {
         double kg = 0.0;
         if (r.field(*mass, kg)) out.chassis_mass_kg = kg;
@@ -214,6 +216,7 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         checkRange(issues, "slip", *settings.slip, scenario::kControllerRanges.slip)) {
         s.controller.slip = *settings.slip;
     }
+    if (settings.traction_limited) s.controller.traction_limited = *settings.traction_limited;
     applyOverrides(settings, s, issues);
     // The overrides together with the scenario's own values (a --duration below the step, a
     // wheel too wide for the track).

@@ -38,12 +38,15 @@ struct RoverSettings {
     std::optional<double> chassis_mass_kg;
     std::optional<wheel::WheelParameters> wheel;
     std::map<std::string, soil::SoilParameters> soils;
+    /// Overrides the controller's traction-limited mode (docs/traction.md §5).
+    std::optional<bool> traction_limited;
 };
 
 /// "scenario" (required; relative files against the context's directory, resolved at once),
 /// "duration_s", "time_step_s", "model" (full, quadratic), "controller" (constant-speed,
-/// fixed-slip, optimal, oracle), "slip", "chassis_mass_kg", "wheel" (a preset, a file or a wheel
-/// object) and "soils" ({"base" | CODE | PATCH: a preset, a file or a soil object}).
+/// fixed-slip, optimal, oracle), "slip", "traction_limited" (true, false), "chassis_mass_kg",
+/// "wheel" (a preset, a file or a wheel object) and "soils" ({"base" | CODE | PATCH: a preset, a
+/// file or a soil object}).
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);
 
 /// The soils a run's "soils" override can replace, by its keys: "base", then a field's class

@@ -263,6 +263,10 @@ public:
           observer_(scenario.robot, spec_.sensors, scenario.options.gravity_m_s2,
                     static_cast<double>(every_) * dt, start, scenario.initial.speed_m_s),
           controller_(spec_, shear_radius_m_) {
+        if (spec_.traction_limited) {
+            limiter_.emplace(spec_, scenario.robot.totalMass(),
+                             static_cast<double>(every_) * scenario.time_step_s);
+        }
         if ((spec_.type == ControllerType::kOptimal || spec_.type == ControllerType::kOracle) &&
             !planner_) {
             throw std::invalid_argument(std::string("controller.type = ") +
@@ -278,6 +282,8 @@ public:
             hub_x_m_[i] = (i < 2 ? 0.5 : -0.5) * scenario.robot.wheelbase_m;
         }
         oracle_.resize(static_cast<std::size_t>(scenario.soilCount()) * dynamics::kWheelCount);
+        oracle_cap_.resize(oracle_.size());
+        cap_.fill(spec_.slip_max);
     }
 
     // The first commands: rolling at the set-point's rate for the initial speed.
@@ -305,10 +311,22 @@ public:
             dither = phase < 0.5 ? spec_.dither : -spec_.dither;
         }
         if (spec_.type == ControllerType::kOptimal) followSegments(est, dt);
+        // The traction-limited mode judges the set-points in force since the last tick.
+        if (limiter_)
+            limiter_->update(state.time_s, set_points_, applied_, at_floor_, est, drawbar_n);
         for (int i = 0; i < dynamics::kWheelCount; ++i) {
             if (spec_.type == ControllerType::kOracle)
                 set_points_[i] = oracle(i, state.wheels[i].soil_index);
-            double set = set_points_[i] + dither;
+            // The plan, or above it the traction-limited floor (up to the drawbar-maximising
+            // slip: beyond it more slip pulls less).
+            double effective = set_points_[i];
+            if (limiter_) {
+                if (spec_.type == ControllerType::kOracle)
+                    cap_[i] = oracleCap(i, state.wheels[i].soil_index);
+                effective = limiter_->effective(set_points_[i], cap_[i]);
+            }
+            // Raised, the dither's lower half would give back the pull the robot needs.
+            double set = effective + (effective > set_points_[i] ? std::max(0.0, dither) : dither);
             if (dither > 0.0) {
                 // The upper half of the dither only as far as the motor's speed limit lets the
                 // wheel slip at the hub's speed (Eq. 2.1: s = 1 − v_hub / (r_s ω_max)), never below
@@ -316,13 +334,14 @@ public:
                 const double reachable =
                     1.0 - est.hub_speed_m_s[i] / (shear_radius_m_ * spec_.max_spin_rate_rad_s) -
                     kReachMargin;
-                set = std::max(set_points_[i], std::min(set, reachable));
+                set = std::max(effective, std::min(set, reachable));
             }
             applied_[i] = std::clamp(set, 0.01, 0.95);
             omega_[i] =
                 demand ? controller_.command(i, applied_[i], est, dt, (*demand)[i].spin_rate_rad_s)
                        : controller_.command(i, applied_[i], est, dt);
             commands[i].spin_rate_rad_s = omega_[i];
+            at_floor_[i] = omega_[i] <= spec_.min_spin_rate_rad_s;
             if (state.time_s >= 1.0) {
                 const double e = state.wheels[i].contact.slip - applied_[i];
                 metrics_.slip_error_sq_sum += e * e;
@@ -383,15 +402,23 @@ public:
     void finish() {
         if (metrics_.border_time_s && settled_from_)
             metrics_.settling_time_s = *settled_from_ - *metrics_.border_time_s;
+        if (limiter_) {
+            metrics_.limit_switches = limiter_->switches();
+            metrics_.limited_time_s = limiter_->limitedTime();
+        }
     }
 
 private:
     std::optional<double> plan(const soil::SoilParameters& soil, double load_n) const {
+        return plan(soil, load_n, spec_.objective);
+    }
+    std::optional<double> plan(const soil::SoilParameters& soil, double load_n,
+                               SlipObjective objective) const {
         SlipPlanRequest request;
         request.soil = soil;
         request.wheel = scenario_.robot.wheel;
         request.load_n = load_n;
-        request.objective = spec_.objective;
+        request.objective = objective;
         request.slip_min = spec_.slip_min;
         request.slip_max = spec_.slip_max;
         request.model = scenario_.options.contact.model;  // the model the rover drives on
@@ -418,6 +445,10 @@ private:
             if (k == wheel_segment_[i] && segment.revision == wheel_revision_[i]) continue;
             const double load = load_sum_n_[i] / static_cast<double>(load_count_[i]);
             if (const std::optional<double> s = plan(*segment.soil, load)) set_points_[i] = *s;
+            // The traction-limited mode's cap: the drawbar-maximising slip of the same estimate.
+            if (limiter_)
+                cap_[i] =
+                    plan(*segment.soil, load, SlipObjective::kDrawbar).value_or(spec_.slip_max);
             wheel_segment_[i] = k;
             wheel_revision_[i] = segment.revision;
             load_sum_n_[i] = 0.0;
@@ -433,6 +464,18 @@ private:
         if (!cached) {
             cached = plan(scenario_.soil(soil_index), static_load_n_[i]);
             if (!cached) cached = set_points_[i];
+        }
+        return *cached;
+    }
+
+    // The drawbar-maximising slip of wheel i on soil `soil_index` (the traction-limited mode's
+    // cap under the oracle; planned once per soil and wheel, slip_max where none).
+    double oracleCap(int i, int soil_index) {
+        std::optional<double>& cached =
+            oracle_cap_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
+        if (!cached) {
+            cached = plan(scenario_.soil(soil_index), static_load_n_[i], SlipObjective::kDrawbar)
+                         .value_or(spec_.slip_max);
         }
         return *cached;
     }
@@ -470,6 +513,13 @@ private:
     std::array<double, dynamics::kWheelCount> static_load_n_{};
     std::optional<int> start_soil_;
     std::vector<std::optional<double>> oracle_;
+    // The traction-limited mode (when enabled): its supervisor, each wheel's cap (the
+    // drawbar-maximising slip of its soil, slip_max without one) and whether its last command
+    // sat at the start-up floor.
+    std::optional<TractionLimiter> limiter_;
+    std::vector<std::optional<double>> oracle_cap_;
+    std::array<double, dynamics::kWheelCount> cap_{};
+    std::array<bool, dynamics::kWheelCount> at_floor_{};
     // optimal: stretches of soil between confirmed changes along the odometer, each with the
     // latest usable estimate of its soil (none before the first).
     struct Segment {
@@ -925,6 +975,10 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         metrics.slip_error_count = m.slip_error_count;
         metrics.border_time_s = m.border_time_s;
         metrics.settling_time_s = m.settling_time_s;
+        metrics.limit_switches = m.limit_switches;
+        metrics.limited_time_s = m.limited_time_s;
+        sum.traction_limited_switches = m.limit_switches;
+        sum.traction_limited_s = m.limited_time_s;
         if (m.slip_error_count > 0) {
             sum.slip_tracking_rms =
                 std::sqrt(m.slip_error_sq_sum / static_cast<double>(m.slip_error_count));
@@ -980,6 +1034,8 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
     j["energy_per_m_J"] = optional(s.energy_per_m_j);
     j["mean_efficiency"] = optional(s.mean_efficiency);
     j["slip_tracking_rms"] = optional(s.slip_tracking_rms);
+    if (s.traction_limited_switches) j["traction_limited_switches"] = *s.traction_limited_switches;
+    if (s.traction_limited_s) j["traction_limited_s"] = *s.traction_limited_s;
     j["real_time_factor"] = optional(s.real_time_factor);
     if (s.cells_touched) j["cells_touched"] = *s.cells_touched;
     if (s.mission) {

@@ -62,6 +62,10 @@ struct Summary {
     /// RMS of s − s_set over the wheels at the control ticks after the first second [-]; only a
     /// slip controller has a set-point.
     std::optional<double> slip_tracking_rms;
+    /// The traction-limited mode, when enabled (docs/traction.md §5): its engagements plus
+    /// releases, and the time the set-points ran raised above the plans [s].
+    std::optional<int> traction_limited_switches;
+    std::optional<double> traction_limited_s;
     /// Simulated time over the wall-clock time of the stepping loop [-] (measured: it varies from
     /// run to run, unlike everything else here).
     std::optional<double> real_time_factor;

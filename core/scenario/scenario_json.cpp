@@ -361,8 +361,8 @@ const Range kDrawbarPerSpeedRange{0.0, 1e5};
 
 // "controller": {"type": constant-speed|fixed-slip|optimal|oracle, "slip", "objective",
 // "slip_min", "slip_max", "max_torque_Nm", "max_omega_rad_s", "min_omega_rad_s", "kp", "ki_per_s",
-// "interval_s", "replan_samples", "replan_interval_s", "dither", "dither_period_s", "sensors":
-// {...}} (docs/traction.md §5).
+// "interval_s", "replan_samples", "replan_interval_s", "dither", "dither_period_s",
+// "traction_limited", "limit_margin", "sensors": {...}} (docs/traction.md §5).
 void readController(ObjectReader& r, ControllerSpec& out) {
     if (!r.has("controller")) {
         r.allow("controller");
@@ -390,6 +390,8 @@ void readController(ObjectReader& r, ControllerSpec& out) {
     c.number("replan_interval_s", out.replan_interval_s, range.replan_interval, "s");
     c.number("dither", out.dither, {0.0, 0.3});
     c.number("dither_period_s", out.dither_period_s, {0.01, 1000.0}, "s");
+    c.boolean("traction_limited", out.traction_limited);
+    c.number("limit_margin", out.limit_margin, range.limit_margin);
     if (c.has("sensors")) {
         ObjectReader n = c.object("sensors");
         if (n.isObject()) {

@@ -144,6 +144,124 @@ double SlipController::command(int wheel, double set_point, const Estimates& est
     return out;
 }
 
+TractionLimiter::TractionLimiter(const ControllerSpec& spec, double mass_kg, double interval_s)
+    : spec_(spec),
+      mass_kg_(mass_kg),
+      interval_s_(interval_s),
+      engage_ticks_(std::max<long>(1, std::lround(kEngageTime_s / interval_s))) {}
+
+double TractionLimiter::update(double time_s,
+                               const std::array<double, dynamics::kWheelCount>& planned,
+                               const std::array<double, dynamics::kWheelCount>& applied,
+                               const std::array<bool, dynamics::kWheelCount>& at_floor,
+                               const Estimates& est, double drawbar_n) {
+    const double dt = interval_s_;
+    // P = F_d + m â = ΣF_x − G (the chassis' forward balance), low-passed.
+    const double pull = drawbar_n + mass_kg_ * est.accel_m_s2;
+    if (!pull_started_) {
+        pull_ = pull;
+        hitch_ = drawbar_n;
+        speed_ = est.speed_m_s;
+        pull_started_ = true;
+    } else {
+        const double gain = std::min(1.0, dt / kPullTime_s);
+        pull_ += gain * (pull - pull_);
+        hitch_ += gain * (drawbar_n - hitch_);
+        speed_ += gain * (est.speed_m_s - speed_);
+    }
+    if (time_s < 1.0) return floor_;  // spin-up from rest: every command starts at the floor
+    constexpr double n = dynamics::kWheelCount;
+    double over = 0.0, slip = 0.0, plan = 0.0;
+    bool all_at_floor = true;
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        over += (est.slip[i] - applied[i]) / n;
+        slip += est.slip[i] / n;
+        plan += planned[i] / n;
+        all_at_floor = all_at_floor && at_floor[i];
+    }
+    // Time at the floor: a leaky count (up a tick at the floor, down a tick otherwise) and the
+    // window of every tick since it left 0 — not only those at the floor: the PI drops the
+    // command to the floor when ŝ is high and lifts it when ŝ is low, so the floor's ticks alone
+    // would average the observer's noise into a slip too high (measured: +0.05 on the slope).
+    if (all_at_floor) {
+        ++stall_ticks_;
+    } else if (stall_ticks_ > 0 && --stall_ticks_ == 0) {
+        resetStallWindow();
+    }
+    if (stall_ticks_ > 0) {
+        stall_over_sum_ += over;
+        stall_slip_sum_ += slip;
+        stall_pull_sum_ += pull_;
+        stall_hitch_sum_ += hitch_;
+        stall_speed_sum_ += speed_;
+        ++stall_samples_;
+    }
+    if (stall_ticks_ >= engage_ticks_) {
+        const double samples = static_cast<double>(stall_samples_);
+        if (stall_over_sum_ / samples <= kStallMargin) {
+            // At the floor with the slip at (or below) the set-point: slow, not traction-limited.
+            resetStallWindow();
+            return stepFloor(plan);
+        }
+        // Engage, or raise further while engaged (the need grew): the floor from the applied
+        // set-points' mean toward the slip the robot needs plus the margin.
+        need_ = stall_slip_sum_ / samples;
+        stall_pull_ = stall_pull_sum_ / samples;
+        stall_hitch_ = stall_hitch_sum_ / samples;
+        stall_speed_ = stall_speed_sum_ / samples;
+        if (!engaged()) {
+            ++switches_;
+            double mean_applied = 0.0;
+            for (double a : applied) mean_applied += a / n;
+            floor_ = std::max(floor_, mean_applied);
+        }
+        target_ = std::max(target_, std::min(need_ + spec_.limit_margin, 0.95));
+        at_target_s_ = 0.0;
+        bought_.reset();
+        resetStallWindow();
+    }
+    stepFloor(plan);
+    if (!engaged()) return floor_;
+    if (floor_ != target_) return floor_;
+    at_target_s_ += dt;
+    if (at_target_s_ < kSettleTime_s) return floor_;
+    if (!bought_) {
+        // What the margin bought at the same need: k = (P − P_stall) / (s_floor − s_need), and
+        // the implement's pull per speed it went into, ĉ = ΔF_d / Δv̂.
+        const double gained = pull_ - stall_pull_;
+        const double faster = speed_ - stall_speed_;
+        if (gained >= kMinBoughtPull_n && floor_ > need_ && faster >= kMinFaster_m_s) {
+            bought_ = gained / (floor_ - need_);
+            per_speed_ = (hitch_ - stall_hitch_) / faster;
+        }
+        return floor_;
+    }
+    // Release: the reserve over the need at rest, R = ĉ (v̂ − v̂_stall) + m â, less what the plans
+    // give up, k (s_floor − s̄_plan), is at least the margin's reserve k δ.
+    const double reserve = per_speed_ * (speed_ - stall_speed_) + (pull_ - hitch_);
+    if (reserve >= *bought_ * (floor_ - plan + spec_.limit_margin)) {
+        target_ = 0.0;
+        ++switches_;
+        bought_.reset();
+    }
+    return floor_;
+}
+
+void TractionLimiter::resetStallWindow() {
+    stall_ticks_ = 0;
+    stall_over_sum_ = stall_slip_sum_ = stall_pull_sum_ = stall_hitch_sum_ = stall_speed_sum_ = 0.0;
+    stall_samples_ = 0;
+}
+
+double TractionLimiter::stepFloor(double mean_plan) {
+    // The floor's rate limit.
+    const double step = kRaiseRate_per_s * interval_s_;
+    floor_ = std::abs(target_ - floor_) <= step ? target_
+                                                : floor_ + std::copysign(step, target_ - floor_);
+    if (floor_ > mean_plan) limited_s_ += interval_s_;
+    return floor_;
+}
+
 std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
                             const std::string& prefix) {
     std::vector<Issue> issues;
@@ -171,6 +289,7 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
     checkRange(issues, c + "replan_interval_s", spec.replan_interval_s, r.replan_interval, "s");
     checkRange(issues, c + "dither", spec.dither, {0.0, 0.3});
     checkRange(issues, c + "dither_period_s", spec.dither_period_s, {0.01, 1000.0}, "s");
+    checkRange(issues, c + "limit_margin", spec.limit_margin, r.limit_margin);
     if (spec.replan_samples < 1 || spec.replan_samples > 10000) {
         issues.push_back(
             {c + "replan_samples", std::to_string(spec.replan_samples) + " is outside [1, 10000]"});

@@ -7,6 +7,7 @@
 /// under the motors' torque limit) with its set-point: fixed, optimal from the streaming soil
 /// estimate, or the oracle's from the true soil.
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <limits>
@@ -83,6 +84,13 @@ struct ControllerSpec {
     /// window sits at one slip and the slip-dependent parameters are not identifiable.
     double dither = 0.1;
     double dither_period_s = 4.0;  ///< [s]
+    /// The traction-limited mode (docs/traction.md §5, "Traction-limited"): when the wheels stall
+    /// at the command's floor with their slip above the set-point (the set-point's pull is below
+    /// what the robot needs), every set-point is raised to the slip measured there plus
+    /// `limit_margin`, capped at the drawbar-maximising slip; back to the plan when the hitch pull
+    /// shows the need has fallen. Off by default (a plain slip controller, as before).
+    bool traction_limited = false;
+    double limit_margin = 0.05;  ///< the raise above the slip the robot needs [-]
     SensorSpec sensors;
 
     bool closedLoop() const { return type != ControllerType::kConstantSpeed; }
@@ -96,7 +104,8 @@ struct ControllerRanges {
     Range min_spin_rate{0.0, 100.0};
     Range gain{0.0, 100.0};
     Range interval{1e-4, 1.0};
-    Range replan_interval{0.1, 1e4};  ///< optimal's re-planning period [s]
+    Range replan_interval{0.1, 1e4};            ///< optimal's re-planning period [s]
+    Range limit_margin{0.0, 0.3, true, false};  ///< (0, 0.3]
 };
 inline const ControllerRanges kControllerRanges{};
 
@@ -187,6 +196,77 @@ private:
     std::array<double, dynamics::kWheelCount> integral_{};
 };
 
+/// The traction-limited mode's supervisor (docs/traction.md §5, "Traction-limited"): a floor
+/// s_floor under every wheel's set-point, s_eff,i = max(s_plan,i, min(cap_i, s_floor)).
+/// - Engage: every wheel's command at the start-up floor for kEngageTime_s (a leaky count, from
+///   t = 1 s) with the wheels' mean slip ŝ over the count's window above their mean applied
+///   set-point by kStallMargin: the set-point cannot be held and the robot crawls at the slip it
+///   needs, s_need (that mean ŝ). The floor's target is s_need + `limit_margin`.
+/// - Release: P = F_d + m â (hitch load cell and IMU) is the wheels' pull beyond the slope's
+///   need G, ΣF_x(s) − G, low-passed. Settled (kSettleTime_s at its target), the robot measures
+///   what the margin bought, k = (P − P_stall) / (s_floor − s_need) [N per unit slip], and the
+///   implement's pull per speed it went into, ĉ = (F_d − F_d,stall) / (v̂ − v̂_stall). Its reserve
+///   over the need at rest is then R = ĉ (v̂ − v̂_stall) + m â (k δ when settled); a fall of the
+///   slope's or the implement's static pull speeds the robot up and raises R. The plans carry the
+///   robot with the same reserve once R ≥ k (s_floor − s̄_plan + margin).
+/// - s_floor moves toward its target at kRaiseRate_per_s (no steps, no chattering).
+class TractionLimiter {
+public:
+    static constexpr double kStallMargin = 0.05;      ///< mean ŝ − s_set of a stall [-]
+    static constexpr double kEngageTime_s = 3.0;      ///< at the floor this long (leaky) [s]
+    static constexpr double kSettleTime_s = 5.0;      ///< at the target before a release [s]
+    static constexpr double kRaiseRate_per_s = 0.05;  ///< the floor's rate limit [1/s]
+    static constexpr double kPullTime_s = 2.0;        ///< low-pass of P [s]
+    static constexpr double kMinBoughtPull_n = 0.1;   ///< below: k unknown, no release [N]
+    static constexpr double kMinFaster_m_s = 0.01;    ///< below: ĉ unknown, no release [m/s]
+
+    /// `mass_kg`: the robot's (m in P = F_d + m â); `interval_s`: the control period [s].
+    TractionLimiter(const ControllerSpec& spec, double mass_kg, double interval_s);
+
+    /// One control tick at `time_s`: the planned and applied set-points, whether each command
+    /// sits at its floor, the estimates and the hitch pull [N]. Returns s_floor.
+    double update(double time_s, const std::array<double, dynamics::kWheelCount>& planned,
+                  const std::array<double, dynamics::kWheelCount>& applied,
+                  const std::array<bool, dynamics::kWheelCount>& at_floor, const Estimates& est,
+                  double drawbar_n);
+
+    /// The set-point floor s_floor [-] (0 when the mode is off).
+    double floor() const { return floor_; }
+    /// wheel i's effective set-point: max(plan, min(cap, s_floor)).
+    double effective(double plan, double cap) const {
+        return std::max(plan, std::min(cap, floor_));
+    }
+    bool engaged() const { return target_ > 0.0; }
+    int switches() const { return switches_; }         ///< engagements plus releases
+    double limitedTime() const { return limited_s_; }  ///< time with s_floor above the plans [s]
+
+private:
+    ControllerSpec spec_;
+    double mass_kg_, interval_s_;
+    void resetStallWindow();
+    double stepFloor(double mean_plan);
+
+    double floor_ = 0.0, target_ = 0.0;
+    long engage_ticks_;
+    long stall_ticks_ = 0;  // leaky count of ticks at the floor
+    double stall_over_sum_ = 0.0, stall_slip_sum_ = 0.0, stall_pull_sum_ = 0.0;
+    double stall_hitch_sum_ = 0.0, stall_speed_sum_ = 0.0;
+    long stall_samples_ = 0;
+    double need_ = 0.0;         // s_need
+    double stall_pull_ = 0.0;   // P_stall [N]
+    double stall_hitch_ = 0.0;  // F_d at the stall [N]
+    double stall_speed_ = 0.0;  // v̂ at the stall [m/s]
+    double pull_ = 0.0;         // P low-passed [N]
+    double hitch_ = 0.0;        // F_d low-passed [N]
+    double speed_ = 0.0;        // v̂ low-passed [m/s]
+    double per_speed_ = 0.0;    // ĉ [N·s/m], once settled
+    bool pull_started_ = false;
+    double at_target_s_ = 0.0;      // time at the target since the last engagement [s]
+    std::optional<double> bought_;  // k [N per unit slip], once settled
+    int switches_ = 0;
+    double limited_s_ = 0.0;
+};
+
 /// The drive's figures of merit of a run (summary.json and the comparison table).
 struct TractionMetrics {
     double drive_energy_j = 0.0;     ///< ∫ Σ τ ω dt of the spin motors [J]
@@ -202,6 +282,10 @@ struct TractionMetrics {
     /// (optimal and oracle controllers; the oracle's own is 0).
     std::optional<double> border_time_s;
     std::optional<double> settling_time_s;
+    /// The traction-limited mode (when enabled): engagements plus releases, and the time with a
+    /// raised set-point [s].
+    std::optional<int> limit_switches;
+    std::optional<double> limited_time_s;
 };
 /// |s_set − s*_oracle| within which a set-point counts as settled [-].
 inline constexpr double kSettleTolerance = 0.03;

@@ -50,6 +50,22 @@ def test_simulate_takes_a_controller_and_the_summary_has_its_metrics():
     assert "FL_slip_set" not in plain["timeseries"]
 
 
+def test_simulate_takes_the_traction_limited_mode():
+    # Up the slope the fixed set-point 0.45 stalls at the floor; traction-limited, the set-point
+    # is raised above it once the stall is confirmed (docs/traction.md section 5).
+    limited = ts.simulate("traction-slope", duration_s=15.0, controller="fixed-slip",
+                          traction_limited=True)
+    assert limited["status"] == "completed"
+    assert limited["summary"]["traction_limited_switches"] == 1
+    assert max(limited["timeseries"]["FL_slip_set"]) > 0.5
+    plain = ts.simulate("traction-slope", duration_s=15.0, controller="fixed-slip",
+                        traction_limited=False)
+    assert "traction_limited_switches" not in plain["summary"]
+    assert set(plain["timeseries"]["FL_slip_set"]) == {0.45}
+    with pytest.raises(ValueError, match="traction_limited"):
+        ts.simulate("traction-slope", duration_s=1.0, traction_limited="yes")
+
+
 def test_compare_controllers_is_the_command_lines_table(cli, tmp_path):
     rows = ts.compare_controllers("traction-load-change", duration_s=2.0)
     assert [r["controller"] for r in rows] == ["constant-speed", "fixed-slip", "optimal", "oracle"]

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QSignalSpy>
@@ -260,11 +261,15 @@ TEST(RoverPanelEditing, ControllerFieldsEditTheScenarioAndRunIt) {
     panel.applySettings({{"scenario", "straight"}});
     auto* controller = panel.findChild<QComboBox*>("rover.controller");
     auto* slip = panel.findChild<QDoubleSpinBox*>("rover.slip");
+    auto* limited = panel.findChild<QCheckBox*>("rover.traction_limited");
     ASSERT_NE(controller, nullptr);
     ASSERT_NE(slip, nullptr);
+    ASSERT_NE(limited, nullptr);
     // The straight scenario has no controller: constant speed, no set-point to edit.
     EXPECT_EQ(controller->currentText(), "constant-speed");
     EXPECT_FALSE(slip->isEnabled());
+    EXPECT_FALSE(limited->isEnabled());
+    EXPECT_FALSE(limited->isChecked());
     EXPECT_FALSE(panel.isEdited());
 
     controller->setCurrentText("fixed-slip");
@@ -274,6 +279,11 @@ TEST(RoverPanelEditing, ControllerFieldsEditTheScenarioAndRunIt) {
     auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
     EXPECT_EQ(json["controller"]["type"], "fixed-slip");
     EXPECT_EQ(json["controller"]["slip"], 0.3);
+    EXPECT_FALSE(json["controller"].contains("traction_limited"));
+    EXPECT_TRUE(limited->isEnabled());
+    limited->setChecked(true);
+    json = nlohmann::json::parse(panel.scenarioText().toStdString());
+    EXPECT_EQ(json["controller"]["traction_limited"], true);
     EXPECT_EQ(document.project().panels.at("rover")["edited"]["straight"]["controller"]["slip"],
               0.3);
 
@@ -290,6 +300,7 @@ TEST(RoverPanelEditing, ControllerFieldsEditTheScenarioAndRunIt) {
     panel.revertScenario();
     EXPECT_EQ(controller->currentText(), "constant-speed");
     EXPECT_FALSE(slip->isEnabled());
+    EXPECT_FALSE(limited->isChecked());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <qcustomplot.h>
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
@@ -149,6 +150,12 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     slip_set_->setSingleStep(0.01);
     slip_set_->setToolTip("Slip set-point of fixed-slip; optimal's until its first soil estimate");
     slip_set_->setKeyboardTracking(false);
+    traction_limited_ = new QCheckBox("Traction-limited", this);
+    traction_limited_->setObjectName("rover.traction_limited");
+    traction_limited_->setToolTip(
+        "When the wheels stall with their slip above the set-point (a slope, a heavy implement), "
+        "raise the set-point to the slip the robot needs, up to the drawbar-maximising slip, and "
+        "drop back when the need falls (edits the scenario's controller; docs/traction.md §5)");
     run_ = new QPushButton("Run", this);
     compare_ = new QPushButton("Compare controllers", this);
     compare_->setObjectName("rover.compare");
@@ -245,6 +252,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     control_bar->addWidget(controller_);
     control_bar->addWidget(new QLabel("Slip set-point:", this));
     control_bar->addWidget(slip_set_);
+    control_bar->addWidget(traction_limited_);
     control_bar->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
@@ -277,6 +285,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
             [this](const QString& type) { setControllerValue("type", type.toStdString()); });
     connect(slip_set_, &QDoubleSpinBox::valueChanged, this,
             [this](double slip) { setControllerValue("slip", slip); });
+    connect(traction_limited_, &QCheckBox::toggled, this,
+            [this](bool on) { setControllerValue("traction_limited", on); });
     connect(scrubber_, &QSlider::valueChanged, this, &RoverPanel::scrubTo);
     connect(layer_, &QComboBox::currentIndexChanged, this, [this] {
         const QString key = layerKey();
@@ -458,17 +468,23 @@ void RoverPanel::showScenarioState() {
     {
         const QSignalBlocker block_type(controller_);
         const QSignalBlocker block_slip(slip_set_);
+        const QSignalBlocker block_limited(traction_limited_);
         const scenario::ControllerSpec defaults;
         std::string type = scenario::controllerName(defaults.type);
         double slip = defaults.slip;
+        bool limited = defaults.traction_limited;
         if (json.is_object() && json.contains("controller") && json["controller"].is_object()) {
             const nlohmann::json& c = json["controller"];
             if (c.contains("type") && c["type"].is_string()) type = c["type"].get<std::string>();
             if (c.contains("slip") && c["slip"].is_number()) slip = c["slip"].get<double>();
+            if (c.contains("traction_limited") && c["traction_limited"].is_boolean())
+                limited = c["traction_limited"].get<bool>();
         }
         controller_->setCurrentText(QString::fromStdString(type));
         slip_set_->setValue(slip);
         slip_set_->setEnabled(type == "fixed-slip" || type == "optimal");
+        traction_limited_->setChecked(limited);
+        traction_limited_->setEnabled(type != "constant-speed");
     }
     previewScenario();
 }

@@ -19,6 +19,7 @@
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/plots/field_layers.h"
 
+class QCheckBox;
 class QComboBox;
 class QDialogButtonBox;
 class QDoubleSpinBox;
@@ -172,8 +173,9 @@ private:
     QPushButton* revert_;
     QLabel* edited_label_;
     QDoubleSpinBox* duration_;
-    QComboBox* controller_;     // the scenario's "controller" type (docs/traction.md §5)
-    QDoubleSpinBox* slip_set_;  // and its fixed set-point "slip"
+    QComboBox* controller_;        // the scenario's "controller" type (docs/traction.md §5)
+    QDoubleSpinBox* slip_set_;     // and its fixed set-point "slip"
+    QCheckBox* traction_limited_;  // and its "traction_limited" mode
     QPushButton* run_;
     QPushButton* compare_;
     QPushButton* cancel_;

@@ -34,15 +34,19 @@ constexpr double kReplanBound_s = 6.0;
 constexpr double kBorderEfficiency = 0.85;
 constexpr double kUniformEfficiency = 0.9;
 
-RoverSettings border(scenario::ControllerType type) {
+// A shipped scenario, resolved, under its own controller or `type`.
+RoverSettings shipped(const std::string& name,
+                      std::optional<scenario::ControllerType> type = std::nullopt) {
     RoverSettings s;
-    s.scenario = "traction-border";
+    s.scenario = name;
     Result<scenario::Scenario> loaded = scenario::resolveScenario(kLocations, s.scenario);
     EXPECT_TRUE(loaded.ok()) << loaded.message();
     s.loaded = loaded.value();
     s.controller = type;
     return s;
 }
+
+RoverSettings border(scenario::ControllerType type) { return shipped("traction-border", type); }
 
 // s* by a scan of the model at steps of 1e-3 over the controller's range (efficiency).
 double scannedOptimum(const soil::SoilParameters& soil, const scenario::Scenario& s, double load) {
@@ -254,14 +258,16 @@ constexpr double kCrawlSpeed = 0.015;          // [m/s]
 constexpr double kClimbDistance = 2.0;         // [m]
 constexpr double kCrawlDistance = 0.5;         // [m]
 
-TEST(TractionControlRun, OnTheSlopeASetPointBelowTheSlipItNeedsCrawlsAtTheFloor) {
-    RoverSettings fixed;
-    fixed.scenario = "traction-slope";
-    Result<scenario::Scenario> loaded = scenario::resolveScenario(kLocations, fixed.scenario);
-    ASSERT_TRUE(loaded.ok()) << loaded.message();
-    fixed.loaded = loaded.value();
-    fixed.controller = scenario::ControllerType::kFixedSlip;
-    const scenario::Scenario& s = *fixed.loaded;
+RoverSettings slope(scenario::ControllerType type, bool traction_limited) {
+    RoverSettings s = shipped("traction-slope", type);
+    s.traction_limited = traction_limited;
+    return s;
+}
+
+// The slip at which the wheel model (quadratic, sandy loam, wheel A) pulls what a wheel must on
+// the 3 % slope at rest: (m g sin α + F₀)/4 at the load m g cos α / 4, by bisection (F_x grows
+// with slip there).
+double slopeEquilibriumSlip(const scenario::Scenario& s) {
     const double alpha = std::atan(0.03), g = s.options.gravity_m_s2;
     const double weight = s.robot.totalMass() * g;
     const double load = weight * std::cos(alpha) / 4.0;
@@ -275,33 +281,150 @@ TEST(TractionControlRun, OnTheSlopeASetPointBelowTheSlipItNeedsCrawlsAtTheFloor)
                              contact::ContactModel::kQuadratic)
             .fx_n;
     };
-    double lo = 0.05, hi = 0.95;  // F_x grows with slip here
-    ASSERT_LT(fx(lo), pull);
-    ASSERT_GT(fx(hi), pull);
+    double lo = 0.05, hi = 0.95;
+    EXPECT_LT(fx(lo), pull);
+    EXPECT_GT(fx(hi), pull);
     for (int i = 0; i < 60; ++i) (fx(0.5 * (lo + hi)) < pull ? lo : hi) = 0.5 * (lo + hi);
-    const double s_eq = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+}
+
+// Means over the rows from `from_s` on: the four wheels' slip, the front-left spin rate and the
+// forward speed.
+struct SteadyMeans {
+    double slip = 0.0, omega = 0.0, speed = 0.0;
+    int rows = 0;
+};
+SteadyMeans steadyMeans(const Table& t, double from_s) {
+    SteadyMeans m;
+    const std::size_t time = t.column("t_s"), omega = t.column("FL_omega_rad_s"),
+                      speed = t.column("vx_m_s");
+    for (const auto& row : t.rows) {
+        if (row[time] < from_s) continue;
+        for (const char* w : dynamics::kCornerNames)
+            m.slip += row[t.column(std::string(w) + "_slip")] / 4.0;
+        m.omega += row[omega];
+        m.speed += row[speed];
+        ++m.rows;
+    }
+    m.slip /= m.rows, m.omega /= m.rows, m.speed /= m.rows;
+    return m;
+}
+
+TEST(TractionControlRun, OnTheSlopeASetPointBelowTheSlipItNeedsCrawlsAtTheFloor) {
+    const RoverSettings fixed = slope(scenario::ControllerType::kFixedSlip, false);
+    const scenario::Scenario& s = *fixed.loaded;
+    const double s_eq = slopeEquilibriumSlip(s);
     ASSERT_LT(s.controller.slip, s_eq);  // the scenario's fixed set-point cannot carry the slope
 
     const RoverResult crawl = runRover(fixed);
     ASSERT_EQ(crawl.run.status, scenario::RunResult::Status::kCompleted) << crawl.run.message;
     const Table& t = crawl.run.series;
-    const std::size_t time = t.column("t_s"), slip = t.column("FL_slip"),
-                      omega = t.column("FL_omega_rad_s"), speed = t.column("vx_m_s");
-    double n = 0, mean_slip = 0, mean_omega = 0, mean_speed = 0;
+    const std::size_t time = t.column("t_s"), slip = t.column("FL_slip");
+    double n = 0, mean_slip = 0;
     for (const auto& row : t.rows) {
         if (row[time] < 30.0) continue;
-        ++n, mean_slip += row[slip], mean_omega += row[omega], mean_speed += row[speed];
+        ++n, mean_slip += row[slip];
     }
     ASSERT_GT(n, 100);
+    const SteadyMeans m = steadyMeans(t, 30.0);
     EXPECT_NEAR(mean_slip / n, s_eq, kCrawlSlipTolerance);
-    EXPECT_NEAR(mean_omega / n, s.controller.min_spin_rate_rad_s, kCrawlOmegaTolerance);
-    EXPECT_LT(mean_speed / n, kCrawlSpeed);
+    EXPECT_NEAR(m.omega, s.controller.min_spin_rate_rad_s, kCrawlOmegaTolerance);
+    EXPECT_LT(m.speed, kCrawlSpeed);
+    EXPECT_FALSE(crawl.run.summary.traction_limited_switches);  // the mode is off
     RoverSettings oracle = fixed;
     oracle.controller = scenario::ControllerType::kOracle;
     const RoverResult climb = runRover(oracle);
     EXPECT_GT(lastSetPointOn(climb.run, 1), s_eq);  // soil 1: the legend's class 1
     EXPECT_GT(climb.run.summary.distance_m, kClimbDistance);
     EXPECT_LT(crawl.run.summary.distance_m, kCrawlDistance);
+}
+
+// The traction-limited mode (docs/traction.md §5) on the same slope: the fixed-slip controller
+// stalls at the floor, raises its set-point to the slip it measured there plus the margin, and
+// climbs. Its steady slip (all wheels, the last 10 s) lies the margin above s_eq, the slip the
+// robot needs at rest (bisected on the wheel model, as above), up to the error of the slip it
+// measured at the crawl: there the rim moves r ω_min = 18 mm/s, and the speed estimate's error
+// over the 3 s stall window is about the GNSS's 3 mm/s over √15 fixes, 0.8 mm/s: 0.042 of slip.
+// One engagement, no release (the need does not fall), the set-point raised most of the run.
+constexpr double kCrawlSlipError = 0.045;  // [-]
+
+TEST(TractionControlRun, TractionLimitedModeLiftsTheFixedSlipControllerUpTheSlope) {
+    const RoverSettings settings = slope(scenario::ControllerType::kFixedSlip, true);
+    const scenario::Scenario& s = *settings.loaded;
+    const RoverResult r = runRover(settings);
+    ASSERT_EQ(r.run.status, scenario::RunResult::Status::kCompleted) << r.run.message;
+    const SteadyMeans m = steadyMeans(r.run.series, 30.0);
+    ASSERT_GT(m.rows, 100);
+    EXPECT_NEAR(m.slip, slopeEquilibriumSlip(s) + s.controller.limit_margin, kCrawlSlipError);
+    EXPECT_GT(r.run.summary.distance_m, kClimbDistance);
+    ASSERT_TRUE(r.run.summary.traction_limited_switches);
+    EXPECT_EQ(*r.run.summary.traction_limited_switches, 1);
+    EXPECT_GT(*r.run.summary.traction_limited_s, 30.0);
+    // Never above the cap, the drawbar-maximising slip (at most slip_max).
+    const Table& t = r.run.series;
+    for (const auto& row : t.rows) ASSERT_LE(row[t.column("FL_slip_set")], s.controller.slip_max);
+}
+
+// On uniform flat soil the set-points can be held: the mode never engages, and each controller
+// holds its set-point as without it (traction-border without its clayey patch, 24 s).
+TEST(TractionControlRun, TractionLimitedModeNeverEngagesOnUniformFlatSoil) {
+    for (const scenario::ControllerType type :
+         {scenario::ControllerType::kFixedSlip, scenario::ControllerType::kOptimal}) {
+        RoverSettings settings = border(type);
+        settings.loaded->terrain.patches.clear();
+        settings.duration_s = 24.0;
+        settings.traction_limited = true;
+        const RoverResult r = runRover(settings);
+        ASSERT_EQ(r.run.status, scenario::RunResult::Status::kCompleted) << r.run.message;
+        ASSERT_TRUE(r.run.summary.traction_limited_switches);
+        EXPECT_EQ(*r.run.summary.traction_limited_switches, 0) << controllerName(type);
+        EXPECT_EQ(*r.run.summary.traction_limited_s, 0.0) << controllerName(type);
+        const double dither =
+            type == scenario::ControllerType::kOptimal ? r.scenario.controller.dither : 0.0;
+        const Table& t = r.run.series;
+        const std::size_t tc = t.column("t_s"), set = t.column("FL_slip_set"),
+                          plan = t.column("FL_slip_plan"), slip = t.column("FL_slip");
+        double offset = 0.0;
+        int n = 0;
+        for (const auto& row : t.rows) {
+            if (row[tc] < 10.0) continue;
+            EXPECT_LE(row[set], row[plan] + dither + 1e-12);
+            offset += row[slip] - row[set];
+            ++n;
+        }
+        EXPECT_NEAR(offset / n, 0.0, 0.02) << controllerName(type);
+    }
+}
+
+// The need falls: on flat sandy loam (traction-load-change) under a fixed set-point of 0.55, the
+// implement's static pull steps from 12 N down to 0.5 N at t = 25 s. At 12 N the set-point's pull
+// (4 F_x(0.55) ≈ 8 N) cannot move the robot and the mode engages; once the pull has dropped the
+// robot speeds up, the reserve it measures exceeds what returning to the plan costs, and the mode
+// releases: the set-point is back at the plan at the end, and the plan then carries the robot
+// (it is off the floor). Two switches (one engagement, one release), no chattering.
+TEST(TractionControlRun, TractionLimitedModeDropsBackWhenTheNeedFalls) {
+    RoverSettings settings = shipped("traction-load-change");
+    ASSERT_TRUE(settings.loaded);
+    settings.loaded->drawbar_load.force_n.value = 12.0;
+    settings.loaded->drawbar_load.force_n.amplitude = -11.5;
+    settings.loaded->drawbar_load.force_n.start_s = 25.0;
+    settings.loaded->duration_s = 45.0;
+    settings.slip = 0.55;
+    settings.traction_limited = true;
+    const RoverResult r = runRover(settings);
+    ASSERT_EQ(r.run.status, scenario::RunResult::Status::kCompleted) << r.run.message;
+    ASSERT_TRUE(r.run.summary.traction_limited_switches);
+    EXPECT_EQ(*r.run.summary.traction_limited_switches, 2);
+    const Table& t = r.run.series;
+    const std::size_t tc = t.column("t_s"), set = t.column("FL_slip_set"),
+                      omega = t.column("FL_omega_rad_s");
+    double raised_before = 0.0;
+    for (const auto& row : t.rows)
+        if (row[tc] < 25.0) raised_before = std::max(raised_before, row[set]);
+    EXPECT_GT(raised_before, 0.55 + 0.05);
+    EXPECT_DOUBLE_EQ(t.rows.back()[set], 0.55);
+    const SteadyMeans end = steadyMeans(t, 40.0);
+    EXPECT_GT(end.omega, 2.0 * r.scenario.controller.min_spin_rate_rad_s);
 }
 
 }  // namespace

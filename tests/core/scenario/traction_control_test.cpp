@@ -250,6 +250,79 @@ TEST(TractionControl, OptimalAndOracleNeedAPlanner) {
     EXPECT_THROW(runScenario(towing(ControllerType::kOracle, 1.0)), std::invalid_argument);
 }
 
+// The traction-limited supervisor on synthetic ticks (docs/traction.md §5): four wheels planned
+// at 0.45, stalled at the floor with ŝ = 0.55 from t = 1 s. It engages after kEngageTime_s at
+// the floor, and its floor climbs from the applied 0.45 at kRaiseRate_per_s to 0.55 + margin:
+// (0.6 − 0.45) / 0.05 = 3 s. The wheels then run at 0.6: the robot speeds up from rest to
+// 0.02 m/s and the hitch pull shows what the margin bought (F_d = P from 1 N to 3 N: k = 2 N /
+// 0.05 = 40 N, ĉ = 2 N / 0.02 m/s = 100 N·s/m). The need falls: at 0.06 m/s the reserve
+// R = ĉ v = 6 N is below k (0.6 − 0.45 + 0.05) = 8 N (the plan would give only 2 N of reserve),
+// at 0.1 m/s (10 N) it releases; the floor ramps back under the plan.
+TEST(TractionLimiter, EngagesOnAStallRaisesAtItsRateAndReleasesWhenTheNeedFalls) {
+    ControllerSpec spec;
+    spec.traction_limited = true;
+    spec.limit_margin = 0.05;
+    const double dt = 0.01;
+    TractionLimiter limiter(spec, 20.0, dt);
+    std::array<double, dynamics::kWheelCount> planned{0.45, 0.45, 0.45, 0.45};
+    std::array<double, dynamics::kWheelCount> applied = planned;
+    std::array<bool, dynamics::kWheelCount> floor{true, true, true, true};
+    Estimates est;
+    est.slip.fill(0.55);
+    double t = 0.0;
+    auto tick = [&](double pull_n, double speed_m_s = 0.0) {
+        est.speed_m_s = speed_m_s;
+        limiter.update(t, planned, applied, floor, est, pull_n);
+        for (double& a : applied) a = limiter.effective(0.45, 0.7);
+        t += dt;
+    };
+    // Spin-up (t < 1 s) never counts; then a stall of kEngageTime_s.
+    while (t < 1.0 + TractionLimiter::kEngageTime_s - 1.5 * dt) tick(1.0);
+    EXPECT_FALSE(limiter.engaged());
+    tick(1.0);
+    EXPECT_TRUE(limiter.engaged());
+    EXPECT_EQ(limiter.switches(), 1);
+    // The command leaves the floor; the floor climbs at its rate to 0.6 in 3 s.
+    floor.fill(false);
+    est.slip.fill(0.6);
+    const double engaged_at = t;
+    while (limiter.floor() < 0.6 - 1e-12) tick(1.0);
+    EXPECT_NEAR(t - engaged_at, 0.15 / TractionLimiter::kRaiseRate_per_s, 2.0 * dt);
+    EXPECT_NEAR(limiter.effective(0.45, 0.7), 0.6, 1e-12);
+    EXPECT_EQ(limiter.effective(0.45, 0.58), 0.58);  // the cap
+    EXPECT_EQ(limiter.effective(0.65, 0.7), 0.65);   // a plan above the floor
+    // Settled at 0.02 m/s and 3 N (low-passed: long enough for both to get there).
+    for (int i = 0; i < 3000; ++i) tick(3.0, 0.02);
+    EXPECT_TRUE(limiter.engaged());
+    for (int i = 0; i < 1500; ++i) tick(7.0, 0.06);
+    EXPECT_TRUE(limiter.engaged());  // R = 6 N < 8 N: not yet
+    for (int i = 0; i < 2000 && limiter.engaged(); ++i) tick(11.0, 0.1);
+    EXPECT_FALSE(limiter.engaged());
+    EXPECT_EQ(limiter.switches(), 2);
+    for (int i = 0; i < 400; ++i) tick(11.0, 0.1);
+    EXPECT_DOUBLE_EQ(limiter.effective(0.45, 0.7), 0.45);
+}
+
+// At the floor with the slip at the set-point (a slow robot, not a traction-limited one): the
+// window's mean ŝ − s_set is not above kStallMargin, so it never engages.
+TEST(TractionLimiter, AtTheFloorWithTheSlipAtItsSetPointItDoesNotEngage) {
+    ControllerSpec spec;
+    spec.traction_limited = true;
+    const double dt = 0.01;
+    TractionLimiter limiter(spec, 20.0, dt);
+    const std::array<double, dynamics::kWheelCount> planned{0.45, 0.45, 0.45, 0.45};
+    const std::array<bool, dynamics::kWheelCount> floor{true, true, true, true};
+    Estimates est;
+    // ŝ alternating 0.45 ± 0.1 (the observer's noise at the crawl): mean at the set-point.
+    for (int i = 0; i < 2000; ++i) {
+        est.slip.fill(i % 2 == 0 ? 0.55 : 0.35);
+        limiter.update(0.01 * i, planned, planned, floor, est, 1.0);
+    }
+    EXPECT_FALSE(limiter.engaged());
+    EXPECT_EQ(limiter.switches(), 0);
+    EXPECT_EQ(limiter.limitedTime(), 0.0);
+}
+
 nlohmann::json withController(const nlohmann::json& controller) {
     nlohmann::json j = nlohmann::json::parse(R"({
         "duration_s": 1, "time_step_s": 0.001, "terrain": "sandy-loam",
@@ -275,6 +348,13 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
         message(withController({{"type", "optimal"}, {"replan_interval_s", 0.01}}));
     EXPECT_NE(replan.find("controller.replan_interval_s"), std::string::npos) << replan;
     EXPECT_NE(replan.find("[0.1, 10000]"), std::string::npos) << replan;
+    const std::string limited =
+        message(withController({{"type", "fixed-slip"}, {"traction_limited", "yes"}}));
+    EXPECT_NE(limited.find("controller.traction_limited"), std::string::npos) << limited;
+    const std::string margin =
+        message(withController({{"type", "fixed-slip"}, {"limit_margin", 0}}));
+    EXPECT_NE(margin.find("controller.limit_margin"), std::string::npos) << margin;
+    EXPECT_NE(margin.find("(0, 0.3]"), std::string::npos) << margin;
     nlohmann::json load = withController({{"type", "fixed-slip"}});
     load["drawbar_load"] = {{"force_N", -1}};
     EXPECT_NE(message(load).find("drawbar_load.force_N"), std::string::npos) << message(load);
@@ -294,6 +374,13 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
     EXPECT_EQ(s->controller.max_torque_nm, 3.0);
     EXPECT_EQ(s->controller.replan_interval_s, 2.0);
     EXPECT_EQ(s->controller.sensors.seed, 7u);
+    EXPECT_FALSE(s->controller.traction_limited);  // off unless asked for
+    nlohmann::json on = withController(
+        {{"type", "fixed-slip"}, {"traction_limited", true}, {"limit_margin", 0.08}});
+    const Result<Scenario> limited_on = scenarioFromJson(on, "x.json", kLocations);
+    ASSERT_TRUE(limited_on.ok()) << limited_on.message();
+    EXPECT_TRUE(limited_on->controller.traction_limited);
+    EXPECT_EQ(limited_on->controller.limit_margin, 0.08);
     EXPECT_EQ(s->drawbar_load.force_n.at(6.0), 3.0);
     EXPECT_EQ(s->drawbar_load.per_speed_n_s_m, 50.0);
 }
