@@ -295,3 +295,26 @@ TEST(ForcesPanel, ReportsEditToRepaintLatency) {
 
 }  // namespace
 }  // namespace terra::ui
+
+namespace terra::ui {
+namespace {
+
+// The status line's longest text ("444 points; 156 without equilibrium (the wheel would sink to
+// its axle)") wraps instead of widening the panel: after a calibration it pushed the forces
+// panel into a sideways scroll bar at 1366×768.
+TEST(ForcesPanel, ALongStatusLineDoesNotWidenThePanel) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    ForcesPanel panel(&document);
+    panel.resize(900, 600);
+    panel.show();
+    ASSERT_TRUE(test::waitForResult(panel));
+    const int width = panel.minimumSizeHint().width();
+    ASSERT_TRUE(document.setLoad(2000.0));  // the wheel sinks to its axle at many slips
+    ASSERT_TRUE(test::waitForResult(panel));
+    ASSERT_LT(panel.result().table.rows.size(), 600u);  // points without equilibrium
+    EXPECT_LE(panel.minimumSizeHint().width(), width);
+}
+
+}  // namespace
+}  // namespace terra::ui

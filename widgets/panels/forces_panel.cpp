@@ -78,6 +78,11 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     model_->addItem("Full model (numerical integration)", false);
     model_->addItem("Quadratic approximation (closed form)", true);
     status_ = new QLabel(this);
+    // Its longest text ("444 points; 156 without equilibrium (the wheel would sink to its
+    // axle)") wraps rather than widening the panel into a sideways scroll bar.
+    status_->setWordWrap(true);
+    status_->setMinimumWidth(160);
+    status_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     readout_ = new QLabel(this);
     readout_->setMinimumWidth(260);
     tabs_ = new QTabWidget(this);
