@@ -81,7 +81,7 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     // Its longest text ("444 points; 156 without equilibrium (the wheel would sink to its
     // axle)") wraps rather than widening the panel into a sideways scroll bar.
     status_->setWordWrap(true);
-    status_->setMinimumWidth(160);
+    status_->setMinimumWidth(60);
     status_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     readout_ = new QLabel(this);
     readout_->setMinimumWidth(260);
