@@ -102,8 +102,7 @@ void MainWindow::createMenus() {
         bar_redo->setToolTip(stack->canRedo() ? "Redo " + stack->redoText() + " (Ctrl+Shift+Z)"
                                               : "Nothing to redo");
     };
-    connect(stack, &QUndoStack::indexChanged, this, sync);
-    connect(stack, &QUndoStack::cleanChanged, this, sync);
+    connect(stack, &QUndoStack::indexChanged, this, sync);  // push, undo, redo, clear
     sync();
 
     // The tab's Run, Fit or Compute (the live panels recompute): one key for every panel.
@@ -206,8 +205,8 @@ void MainWindow::exportCurrentData() {
     if (path.isEmpty()) return;
     QString error;
     if (!ui::offerMissingFolder(this, path, &error)) {
-        if (!error.isEmpty()) statusBar()->showMessage("Not exported: " + error, 8000);
-        return;
+        if (!error.isEmpty()) QMessageBox::warning(this, "Export failed", error);
+        return;  // declined: nothing written, nothing to say
     }
     ui::rememberFolder(path);
     if (!ui::exportTable(panel->currentTable(), path, &error)) {

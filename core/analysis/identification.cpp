@@ -141,12 +141,8 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
             r.report("priors", issue.where + ": " + issue.message);
     }
     if (!out.prior_soil_name.empty() && context.locations != nullptr) {
-        std::string name = out.prior_soil_name;
-        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
-            !context.base_dir.empty()) {
-            name = (context.base_dir / name).string();
-        }
-        Result<soil::SoilParameters> soil = io::resolveSoil(*context.locations, name);
+        Result<soil::SoilParameters> soil =
+            io::resolveSoil(*context.locations, context.presetOrFile(out.prior_soil_name));
         if (soil) {
             out.prior_soil = soil.value();  // centred on the wheel when the analysis runs
         } else {

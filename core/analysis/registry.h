@@ -24,6 +24,15 @@ namespace terra::analysis {
 struct ReadContext {
     const io::PresetLocations* locations = nullptr;
     std::filesystem::path base_dir;
+
+    /// A preset name ("sandy-loam") as it is; a relative JSON file ("soils/wet.json") against
+    /// base_dir, the script's directory, so that the io::resolve* functions find it.
+    std::string presetOrFile(std::string name) const {
+        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
+            !base_dir.empty())
+            name = (base_dir / name).string();
+        return name;
+    }
 };
 
 /// One figure an analysis type offers: its key (a script's "plots") and the image it is written

@@ -35,12 +35,8 @@ std::optional<T> readPresetOrObject(io::ObjectReader& r, const ReadContext& cont
                  "expected a preset name, a file or an object, not " + io::describeJson(value));
         return std::nullopt;
     }
-    std::string name = value.get<std::string>();
-    if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
-        !context.base_dir.empty())
-        name = (context.base_dir / name).string();
     if (context.locations == nullptr) return std::nullopt;
-    Result<T> read = resolve(*context.locations, name);
+    Result<T> read = resolve(*context.locations, context.presetOrFile(value.get<std::string>()));
     if (read) return read.value();
     r.report(key, read.message());
     return std::nullopt;
@@ -102,13 +98,9 @@ void applyOverrides(const RoverSettings& settings, scenario::Scenario& s,
 
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out) {
     if (r.text("scenario", out.scenario, io::Presence::kRequired)) {
-        std::string name = out.scenario;
-        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
-            !context.base_dir.empty()) {
-            name = (context.base_dir / name).string();
-        }
         if (context.locations != nullptr) {
-            Result<scenario::Scenario> loaded = scenario::resolveScenario(*context.locations, name);
+            Result<scenario::Scenario> loaded =
+                scenario::resolveScenario(*context.locations, context.presetOrFile(out.scenario));
             if (loaded) {
                 out.loaded = loaded.value();
             } else {

@@ -93,13 +93,9 @@ void readStreamingSettings(io::ObjectReader& r, const ReadContext& context,
         }
     }
     if (r.text("second_soil", out.second_soil) || out.csv.empty()) {
-        std::string name = out.second_soil;
-        if (name.ends_with(".json") && std::filesystem::path(name).is_relative() &&
-            !context.base_dir.empty()) {
-            name = (context.base_dir / name).string();
-        }
         if (context.locations != nullptr) {
-            Result<soil::SoilParameters> soil = io::resolveSoil(*context.locations, name);
+            Result<soil::SoilParameters> soil =
+                io::resolveSoil(*context.locations, context.presetOrFile(out.second_soil));
             if (soil) {
                 out.second = soil.value();
             } else {

@@ -35,13 +35,6 @@ bool hasColumn(const Table& table, const std::string& name) {
     return std::find(table.columns.begin(), table.columns.end(), name) != table.columns.end();
 }
 
-// A preset name or a file relative to the script.
-std::string relativeTo(const fs::path& base_dir, std::string name) {
-    if (name.ends_with(".json") && fs::path(name).is_relative() && !base_dir.empty())
-        name = (base_dir / name).string();
-    return name;
-}
-
 // The soil or wheel at `key`: a preset name or a file (relative to the script).
 template <typename T, typename Resolve>
 std::optional<T> readPreset(ObjectReader& r, const char* key, const std::string& fallback,
@@ -52,7 +45,7 @@ std::optional<T> readPreset(ObjectReader& r, const char* key, const std::string&
         return std::nullopt;
     }
     r.text(key, name);
-    Result<T> resolved = resolve(relativeTo(base_dir, name));
+    Result<T> resolved = resolve(analysis::ReadContext{nullptr, base_dir}.presetOrFile(name));
     if (!resolved) {
         for (const Issue& issue : resolved.issues())
             r.report(key, (issue.where.empty() ? "" : issue.where + ": ") + issue.message);

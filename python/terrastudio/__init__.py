@@ -387,9 +387,7 @@ def simulate(scenario="straight", **settings):
         result["maps"] = out["maps"]
     for name, table in out["tables"].items():
         result[name] = table
-    documents = out["documents"]
-    summary = [v for k, v in documents.items() if "summary" in k]
-    result["summary"] = summary[0] if summary else result.get("summary")
+    result["summary"] = _summary(out) or result.get("summary")
     return result
 
 
@@ -423,12 +421,17 @@ def _override_json(case):
     return out
 
 
+def _summary(out):
+    """A rover run's summary document (run()'s "documents" entry named *summary*), or None."""
+    summary = [v for k, v in out["documents"].items() if "summary" in k]
+    return summary[0] if summary else None
+
+
 def _mission(settings):
     """One case of a mission study: its summary, status and message (runs where it is called:
     locally, or on a Dask worker)."""
     out = run("rover", **settings)
-    summary = [v for k, v in out["documents"].items() if "summary" in k]
-    row = dict(summary[0]) if summary else {}
+    row = dict(_summary(out) or {})
     # The wall-clock speed is measured, not computed: it differs between runs and machines.
     row.pop("real_time_factor", None)
     row["status"] = out["status"]
@@ -469,7 +472,7 @@ def mission_cases(scenario, samples, *, soil_spread=None, chassis_mass_kg=None, 
                 for name, std in soil_spread.items():
                     field = fields[name]
                     low, high = field["low"], field["high"]
-                    centre = float(values[name]) if name in values else float(base[name])
+                    centre = float(base[name])  # in the field's unit, as the spread
                     value = centre
                     for _try in range(20):
                         value = centre + float(std) * rng.standard_normal()
@@ -510,17 +513,10 @@ def mission_study(scenario, cases, *, client=None, threads=1, progress=None, **s
         from ._dask import run_missions
 
         return run_missions(client, runs)
-    threads = max(1, int(threads))
-    results = [None] * len(runs)
-    if threads == 1:
-        for i, one in enumerate(runs):
-            results[i] = _mission(one)
-            if progress is not None:
-                progress((i + 1) / len(runs))
-        return results
     from concurrent.futures import ThreadPoolExecutor, as_completed
 
-    with ThreadPoolExecutor(max_workers=threads) as pool:
+    results = [None] * len(runs)
+    with ThreadPoolExecutor(max_workers=max(1, int(threads))) as pool:
         futures = {pool.submit(_mission, one): i for i, one in enumerate(runs)}
         for done, future in enumerate(as_completed(futures), start=1):
             results[futures[future]] = future.result()

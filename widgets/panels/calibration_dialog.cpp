@@ -508,31 +508,29 @@ nlohmann::json unnamed(soil::SoilParameters soil) {
 
 }  // namespace
 
-CalibrationDialog::RestoreAnswer CalibrationDialog::restore(const project::SavedResult& saved,
-                                                            std::string* why) {
-    const auto refuse = [why](RestoreAnswer answer, const std::string& reason) {
-        if (why) *why = reason;
-        return answer;
+AnalysisPanel::Restored CalibrationDialog::restore(const project::SavedResult& saved) {
+    using Kind = AnalysisPanel::Restored::Kind;
+    const auto refuse = [](Kind kind, const std::string& why) {
+        return AnalysisPanel::Restored{kind, why};
     };
-    if (isRunning()) return refuse(RestoreAnswer::kUnreadable, "a calibration is running");
+    if (isRunning()) return refuse(Kind::kUnreadable, "a calibration is running");
     if (saved.version != project::kCalibrationVersion)
-        return refuse(RestoreAnswer::kUnreadable,
-                      "saved in form version " + std::to_string(saved.version));
+        return refuse(Kind::kUnreadable, "saved in form version " + std::to_string(saved.version));
     if (!saved.result.is_object() || !saved.result.contains("calibration") ||
         !saved.result.contains("settings") || !saved.result["settings"].is_object())
-        return refuse(RestoreAnswer::kUnreadable, "no calibration or settings");
+        return refuse(Kind::kUnreadable, "no calibration or settings");
     Result<analysis::ValidationResult> read =
         project::validationResultFromJson(saved.result["calibration"], "calibration");
-    if (!read) return refuse(RestoreAnswer::kUnreadable, read.message());
-    if (!read->calibration) return refuse(RestoreAnswer::kUnreadable, "not a calibration");
+    if (!read) return refuse(Kind::kUnreadable, read.message());
+    if (!read->calibration) return refuse(Kind::kUnreadable, "not a calibration");
     const nlohmann::json& settings = saved.result["settings"];
     if (saved.inputs_hash != project::inputsHash(calibrationInputs(read->before.soil, settings)))
-        return refuse(RestoreAnswer::kInputsChanged, "its wheel, test or settings changed");
+        return refuse(Kind::kInputsChanged, "its wheel, test or settings changed");
     const nlohmann::json soil = unnamed(document_->project().soil);
     const bool given = soil == unnamed(read->before.soil);
     const bool applied = soil == unnamed(read->calibration->soil);
     if (!given && !applied)
-        return refuse(RestoreAnswer::kInputsChanged,
+        return refuse(Kind::kInputsChanged,
                       "the project's soil is neither its given nor its calibrated soil");
     try {
         fx_noise_->setValue(settings.at("noise_Fx_N").get<double>());
@@ -541,7 +539,7 @@ CalibrationDialog::RestoreAnswer CalibrationDialog::restore(const project::Saved
         fit_n1_->setChecked(settings.at("fit_n1").get<bool>());
         fit_slips_->setText(QString::fromStdString(settings.at("fit_slips").get<std::string>()));
     } catch (const std::exception& e) {
-        return refuse(RestoreAnswer::kUnreadable, std::string("settings: ") + e.what());
+        return refuse(Kind::kUnreadable, std::string("settings: ") + e.what());
     }
     result_ = std::move(read).value();
     result_settings_ = settings;
@@ -557,7 +555,7 @@ CalibrationDialog::RestoreAnswer CalibrationDialog::restore(const project::Saved
                          status_->text());
     status_shows_result_ = !applied_;
     updateButtons();
-    return RestoreAnswer::kShown;
+    return {Kind::kShown, {}};
 }
 
 QString CalibrationDialog::statusText() const { return status_->text(); }

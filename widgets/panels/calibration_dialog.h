@@ -18,6 +18,7 @@
 
 #include "core/analysis/validation.h"
 #include "core/project/results.h"
+#include "widgets/panels/analysis_panel.h"
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -68,9 +69,8 @@ public:
     /// Shows a saved calibration without fitting again, its settings in the controls, when the
     /// project's wheel and test are those it was fitted to and the project's soil is its given
     /// soil (it can be applied) or its calibrated soil (it was applied); else changes nothing
-    /// and says why (the panel's Restored answers).
-    enum class RestoreAnswer { kShown, kInputsChanged, kUnreadable };
-    RestoreAnswer restore(const project::SavedResult& saved, std::string* why = nullptr);
+    /// and says why (the forces panel's answer to AnalysisPanel::restoreResult).
+    AnalysisPanel::Restored restore(const project::SavedResult& saved);
 
     QString statusText() const;
     /// The metrics table (rows: channel × RMSE, MAE, max rel. error; columns: metric, given soil,

@@ -365,16 +365,7 @@ AnalysisPanel::Restored ForcesPanel::restoreResult(const std::string& section,
         return unreadable("not a section of this panel");
     CalibrationDialog* dialog = openCalibration();
     if (!dialog) return inputsChanged();  // the project has no test now
-    std::string why;
-    switch (dialog->restore(saved, &why)) {
-        case CalibrationDialog::RestoreAnswer::kShown:
-            return restoredShown();
-        case CalibrationDialog::RestoreAnswer::kInputsChanged:
-            return {Restored::Kind::kInputsChanged, why};
-        case CalibrationDialog::RestoreAnswer::kUnreadable:
-            break;
-    }
-    return unreadable(why);
+    return dialog->restore(saved);
 }
 
 CalibrationDialog* ForcesPanel::openCalibration() {

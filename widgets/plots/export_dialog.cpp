@@ -78,10 +78,7 @@ bool offerMissingFolder(QWidget* parent, const QString& file_path, QString* erro
         parent, "Create the folder?",
         QString("The folder %1 does not exist. Create it?").arg(QDir::toNativeSeparators(folder)),
         QMessageBox::Yes | QMessageBox::No, QMessageBox::Yes);
-    if (answer != QMessageBox::Yes) {
-        if (error) *error = "the folder " + folder + " does not exist";
-        return false;
-    }
+    if (answer != QMessageBox::Yes) return false;
     if (!QDir().mkpath(folder)) {
         if (error) *error = "cannot create the folder " + folder;
         return false;
@@ -96,7 +93,7 @@ bool ExportDialog::exportWithDialog(QWidget* parent, QCustomPlot& plot, const Ta
         if (dialog.exec() != QDialog::Accepted) return false;
         QString error;
         if (offerMissingFolder(parent, dialog.path(), &error)) break;
-        if (error.startsWith("cannot")) {
+        if (!error.isEmpty()) {
             QMessageBox::warning(parent, "Export failed", error);
             return false;
         }

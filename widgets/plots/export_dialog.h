@@ -16,7 +16,7 @@ namespace terra::ui {
 
 /// The folder of `file_path`, made when it is missing and the user agrees ("The folder … does not
 /// exist. Create it?"). True when the folder exists (or was made); false when the user declined
-/// or it could not be made (`error` says which).
+/// (`error` left empty) or it could not be made (`error` says so).
 bool offerMissingFolder(QWidget* parent, const QString& file_path, QString* error = nullptr);
 
 class ExportDialog : public QDialog {
