@@ -205,8 +205,12 @@ void MainWindow::exportCurrentData() {
     if (path.isEmpty()) return;
     QString error;
     if (!ui::offerMissingFolder(this, path, &error)) {
-        if (!error.isEmpty()) QMessageBox::warning(this, "Export failed", error);
-        return;  // declined: nothing written, nothing to say
+        statusBar()->showMessage(
+            "Not exported: " + (error.isEmpty() ? "the folder " + QFileInfo(path).absolutePath() +
+                                                      " does not exist"
+                                                : error),
+            8000);
+        return;
     }
     ui::rememberFolder(path);
     if (!ui::exportTable(panel->currentTable(), path, &error)) {
