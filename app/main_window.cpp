@@ -168,6 +168,16 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
                         {[this](const QString& path) { return maybeSave() && openProject(path); },
                          [this](const QString& path) { useData(path); },
                          [this](const QString& panel) { showPanel(panel); },
+                         [this](const QString& path) {
+                             findChild<ui::RoverPanel*>()->chooseScenario(path);
+                             showPanel("rover");
+                         },
+                         [this](const QString& path, QString* error) {
+                             if (!findChild<ui::RoverPanel*>()->useRobotFile(path, error))
+                                 return false;
+                             showPanel("rover");
+                             return true;
+                         },
                          [this](const QString& text) { statusBar()->showMessage(text, 8000); }});
     connect(data_list, &QListWidget::itemDoubleClicked, this,
             [this](QListWidgetItem* item) { useData(item->text()); });

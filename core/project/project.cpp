@@ -78,6 +78,19 @@ Result<Project> loadProject(const std::filesystem::path& path,
 
 namespace {
 
+/// A file name in a panel's settings.
+struct PanelFile {
+    const char* panel;
+    const char* key;
+    bool json_only;  ///< a file only when it ends in ".json" (else a preset's name)
+};
+
+/// The panels' files: the identification panel's data, the rover panel's scenario when it is one
+/// of the project's scenario files (a preset is chosen by its name, never a ".json").
+constexpr PanelFile kPanelFiles[] = {{"identification", "csv", false},
+                                     {"identification", "stream_csv", false},
+                                     {"rover", "scenario", true}};
+
 /// Applies `convert` to every file name of the project (empty names are left alone).
 template <typename Convert>
 Project convertPaths(Project project, Convert convert) {
@@ -87,14 +100,26 @@ Project convertPaths(Project project, Convert convert) {
     for (std::string& path : project.data_sets) one(path);
     for (std::string& path : project.scenarios) one(path);
     one(project.experiment);
-    if (project.panels.contains("identification") && project.panels["identification"].is_object()) {
-        nlohmann::json& panel = project.panels["identification"];
-        for (const char* key : {"csv", "stream_csv"}) {
-            if (!panel.contains(key) || !panel[key].is_string()) continue;
-            std::string path = panel[key].get<std::string>();
-            one(path);
-            panel[key] = path;
+    for (const PanelFile& file : kPanelFiles) {
+        if (!project.panels.contains(file.panel) || !project.panels[file.panel].is_object())
+            continue;
+        nlohmann::json& panel = project.panels[file.panel];
+        if (!panel.contains(file.key) || !panel[file.key].is_string()) continue;
+        std::string path = panel[file.key].get<std::string>();
+        if (file.json_only && !path.ends_with(".json")) continue;
+        one(path);
+        panel[file.key] = path;
+    }
+    // The rover panel's edits are kept by scenario: a scenario file's edit by its path.
+    if (project.panels.contains("rover") && project.panels["rover"].is_object() &&
+        project.panels["rover"].contains("edited") && project.panels["rover"]["edited"].is_object()) {
+        nlohmann::json converted = nlohmann::json::object();
+        for (const auto& [name, scenario] : project.panels["rover"]["edited"].items()) {
+            std::string key = name;
+            if (key.ends_with(".json")) one(key);
+            converted[key] = scenario;
         }
+        project.panels["rover"]["edited"] = std::move(converted);
     }
     return project;
 }

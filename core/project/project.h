@@ -57,8 +57,9 @@ Result<Project> loadProject(const std::filesystem::path& path,
                             const io::PresetLocations* locations = nullptr);
 
 /// The project with every file it names (data sets, scenarios, the experiment, the
-/// identification panel's "csv" and "stream_csv") that lies inside `project_dir` written relative
-/// to it ("data/run1.csv"), so that the project's folder can be moved or shared as a whole. Files
+/// identification panel's "csv" and "stream_csv", the rover panel's scenario file and the keys of
+/// its edits of scenario files) that lies inside `project_dir` written relative to it
+/// ("data/run1.csv"), so that the project's folder can be moved or shared as a whole. Files
 /// elsewhere (installed presets, another disk) stay absolute. For writing a .terra file.
 Project withRelativePaths(const Project& project, const std::filesystem::path& project_dir);
 

@@ -534,6 +534,86 @@ TEST(MainWindow, DroppedFilesAreTakenForWhatTheyAre) {
     EXPECT_FALSE(dropOnto(w, notes));
 }
 
+/// Writes `json` to `path`; false when it cannot.
+bool writeJson(const QString& path, const nlohmann::json& json) {
+    QFile file(path);
+    return file.open(QIODevice::WriteOnly) && file.write(QByteArray::fromStdString(json.dump(2))) > 0;
+}
+
+/// The JSON of the shipped file `relative` (under resources/).
+nlohmann::json shippedJson(const QString& relative) {
+    QFile file(QString(TERRA_RESOURCE_DIR) + "/" + relative);
+    EXPECT_TRUE(file.open(QIODevice::ReadOnly)) << relative.toStdString();
+    return nlohmann::json::parse(file.readAll().toStdString());
+}
+
+// Issue 27: a scenario or a robot file could not be dropped.
+TEST(MainWindow, DroppedScenariosAndRobotsGoToTheRoverPanel) {
+    QTemporaryDir dir;
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* document = w.document();
+    auto* rover = w.findChild<ui::RoverPanel*>();
+    // A scenario file: added to the project's scenarios (one undo step) and shown in the panel.
+    nlohmann::json scenario = shippedJson("scenarios/straight.json");
+    scenario["duration_s"] = 3.5;
+    const QString file = dir.filePath("my-run.json");
+    ASSERT_TRUE(writeJson(file, scenario));
+    EXPECT_TRUE(dropOnto(w, file));
+    const std::string absolute = QFileInfo(file).absoluteFilePath().toStdString();
+    EXPECT_EQ(document->project().scenarios, std::vector<std::string>{absolute});
+    EXPECT_EQ(w.currentPanelName(), "rover");
+    EXPECT_EQ(rover->settings()["scenario"], absolute);
+    EXPECT_EQ(nlohmann::json::parse(rover->scenarioText().toStdString())["duration_s"], 3.5);
+    EXPECT_FALSE(rover->isEdited());
+    // Saved and reopened from a moved folder: still the project's and chosen.
+    QString error;
+    const QString project = dir.filePath("p.terra");
+    ASSERT_TRUE(document->save(project, &error)) << error.toStdString();
+    QTemporaryDir moved_parent;
+    const QString moved = moved_parent.filePath("moved");
+    ASSERT_TRUE(QDir().rename(dir.path(), moved));
+    ASSERT_TRUE(w.openProject(moved + "/p.terra"));
+    const std::string moved_file = QFileInfo(moved + "/my-run.json").absoluteFilePath().toStdString();
+    EXPECT_EQ(document->project().scenarios, std::vector<std::string>{moved_file});
+    EXPECT_EQ(rover->settings()["scenario"], moved_file);
+    EXPECT_EQ(nlohmann::json::parse(rover->scenarioText().toStdString())["duration_s"], 3.5);
+    ASSERT_TRUE(QDir().rename(moved, dir.path()));  // the temporary directory removes it
+    document->reset(ui::ProjectDocument::defaultProject(resources()));
+    ASSERT_TRUE(dropOnto(w, file));
+    // Undone: gone from the project and from the chooser, back to a preset.
+    document->undoStack()->undo();
+    EXPECT_TRUE(document->project().scenarios.empty());
+    EXPECT_NE(rover->settings()["scenario"], absolute);
+    EXPECT_FALSE(rover->chooseScenario(QString::fromStdString(absolute)));
+    // A scenario that is not valid: refused at the drop, the field named, nothing added.
+    scenario["duration_s"] = -1;
+    const QString bad = dir.filePath("bad-run.json");
+    ASSERT_TRUE(writeJson(bad, scenario));
+    EXPECT_TRUE(dropOnto(w, bad));  // a scenario by its keys: the drag is accepted
+    EXPECT_TRUE(document->project().scenarios.empty());
+    EXPECT_NE(w.statusBar()->currentMessage().indexOf("duration_s"), -1)
+        << w.statusBar()->currentMessage().toStdString();
+    // A robot file: the current scenario's robot, as an edit of the scenario.
+    ASSERT_TRUE(rover->chooseScenario("straight"));
+    nlohmann::json robot = shippedJson("robots/default.json");
+    robot["chassis_mass_kg"] = 31.0;
+    const QString robot_file = dir.filePath("heavy.json");
+    ASSERT_TRUE(writeJson(robot_file, robot));
+    EXPECT_TRUE(dropOnto(w, robot_file));
+    EXPECT_TRUE(rover->isEdited());
+    EXPECT_EQ(nlohmann::json::parse(rover->scenarioText().toStdString())["robot"],
+              QFileInfo(robot_file).absoluteFilePath().toStdString());
+    rover->revertScenario();
+    // A robot that is not valid: refused, its field named, the scenario unchanged.
+    robot["wheelbase_m"] = -0.5;
+    ASSERT_TRUE(writeJson(robot_file, robot));
+    EXPECT_TRUE(dropOnto(w, robot_file));
+    EXPECT_FALSE(rover->isEdited());
+    EXPECT_NE(w.statusBar()->currentMessage().indexOf("wheelbase_m"), -1)
+        << w.statusBar()->currentMessage().toStdString();
+}
+
 // Issue 27: undoing back to a new project's start kept the "*" of an unsaved change.
 TEST(MainWindow, UndoingBackToANewProjectsStartClearsTheModifiedMark) {
     Studio studio;

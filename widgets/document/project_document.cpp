@@ -75,6 +75,9 @@ void ProjectDocument::notify(Part part) {
         case Part::kDataSets:
             emit dataSetsChanged();
             break;
+        case Part::kScenarios:
+            emit scenariosChanged();
+            break;
         case Part::kExperiment:
             emit experimentChanged();
             break;
@@ -250,6 +253,14 @@ bool ProjectDocument::addDataSet(const std::string& path) {
     return pushField(QString("Add data set"), -1, Part::kDataSets, &project_.data_sets, sets);
 }
 
+bool ProjectDocument::addScenario(const std::string& path) {
+    std::vector<std::string> scenarios = project_.scenarios;
+    if (std::find(scenarios.begin(), scenarios.end(), path) != scenarios.end()) return true;
+    scenarios.push_back(path);
+    return pushField("Add scenario " + QFileInfo(QString::fromStdString(path)).fileName(), -1,
+                     Part::kScenarios, &project_.scenarios, scenarios);
+}
+
 ProjectDocument::ExperimentState ProjectDocument::readExperiment(const std::string& path) const {
     ExperimentState state{path, nullptr, {}};
     if (path.empty()) return state;
@@ -311,7 +322,8 @@ void ProjectDocument::reset(const Project& project, const QString& file_path) {
     experiment_ = readExperiment(project_.experiment);
     emit filePathChanged(file_path_);
     for (Part part :
-         {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets, Part::kExperiment})
+         {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets, Part::kScenarios,
+          Part::kExperiment})
         notify(part);
     emit modifiedChanged(false);
 }

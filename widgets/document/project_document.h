@@ -58,6 +58,10 @@ public:
                  const QString& text = {});
     bool setWheel(const wheel::WheelParameters& wheel, const std::string& preset);
     bool addDataSet(const std::string& path);
+    /// Adds a scenario file (its absolute path) to the project's scenarios, which the rover panel
+    /// lists beside the presets: one undo step "Add scenario <file>"; a path already there pushes
+    /// nothing. The file is not read here (the rover panel reads it when it is chosen).
+    bool addScenario(const std::string& path);
     /// Reads a measured test (core/io/experiment.h: its CSV or its sidecar JSON) and makes it the
     /// project's, stored by its absolute path: one undo step "Load experiment <file>"; an empty
     /// path removes the test ("Remove experiment"). A test that cannot be read pushes nothing:
@@ -97,6 +101,7 @@ signals:
     void wheelChanged();
     void conditionsChanged();
     void dataSetsChanged();
+    void scenariosChanged();  ///< the project's scenario files (addScenario, undo, open)
     void experimentChanged();     ///< the test was loaded, removed, or undone (see experiment())
     void changed();               ///< after any change of the model (revision bumped)
     void panelSettingsChanged();  ///< a panel's settings changed (not a model change)
@@ -104,7 +109,7 @@ signals:
     void filePathChanged(const QString& path);
 
 private:
-    enum class Part { kSoil, kWheel, kConditions, kDataSets, kExperiment };
+    enum class Part { kSoil, kWheel, kConditions, kDataSets, kScenarios, kExperiment };
     /// The project's test path and what reading it gave (undo keeps the read test).
     struct ExperimentState {
         std::string path;

@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "core/io/json.h"
+#include "core/scenario/scenario_json.h"
 #include "widgets/document/project_document.h"
 #include "widgets/panels/experiment_actions.h"
 
@@ -88,6 +89,11 @@ DroppedFile classifyDroppedFile(const QString& path) {
         if (json->contains("data_file")) return DroppedFile::kExperiment;  // a test's sidecar
         if (json->contains("phi_deg") || json->contains("c_kPa")) return DroppedFile::kSoil;
         if (json->contains("r_m")) return DroppedFile::kWheel;
+        // A scenario has its duration and a terrain or robot (docs/dynamics.md, "Scenario"); a
+        // robot its wheelbase and track.
+        if (json->contains("duration_s") && (json->contains("terrain") || json->contains("robot")))
+            return DroppedFile::kScenario;
+        if (json->contains("wheelbase_m") && json->contains("track_m")) return DroppedFile::kRobot;
     }
     return DroppedFile::kUnknown;
 }
@@ -128,6 +134,29 @@ bool dropFile(QWidget* window, ProjectDocument& document, const io::PresetLocati
                 return false;
             }
             report("Wheel " + QString::fromStdString(wheel->name) + " from " + name);
+            return true;
+        }
+        case DroppedFile::kScenario: {
+            const std::string absolute = QFileInfo(path).absoluteFilePath().toStdString();
+            const auto scenario = scenario::loadScenario(absolute, locations);
+            if (!scenario) {
+                report("Cannot use " + name + ": " + QString::fromStdString(scenario.message()));
+                return false;
+            }
+            document.addScenario(absolute);
+            if (actions.show_scenario) actions.show_scenario(QString::fromStdString(absolute));
+            report("Scenario " + name + " added to the project (press Run)");
+            return true;
+        }
+        case DroppedFile::kRobot: {
+            const auto robot = scenario::resolveRobot(locations, path.toStdString());
+            QString error = robot ? QString() : QString::fromStdString(robot.message());
+            if (!robot || !actions.use_robot || !actions.use_robot(path, &error)) {
+                report("Cannot use " + name + ": " + error);
+                return false;
+            }
+            report("Robot " + QString::fromStdString(robot->name) + " from " + name +
+                   " in the scenario (an edit: Revert drops it)");
             return true;
         }
         case DroppedFile::kUnknown:

@@ -6,6 +6,7 @@
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
+#include <QFileInfo>
 #include <QFontDatabase>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -14,6 +15,7 @@
 #include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QSlider>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -30,6 +32,7 @@
 #include "core/project/panels.h"
 #include "core/project/saved_rover.h"
 #include "core/scenario/scenario_json.h"
+#include "widgets/document/project_document.h"
 #include "widgets/plots/field_layers.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/rover_figures.h"
@@ -45,9 +48,11 @@ struct Comparison {
     nlohmann::json table;
 };
 
-/// The file of a scenario preset, or empty.
+/// The file of a scenario: a preset's name, or the path of a scenario file of the project (a
+/// name ending in ".json"); empty when there is none.
 fs::path presetFile(const io::PresetLocations& locations, const std::string& name) {
     std::error_code ec;
+    if (name.ends_with(".json")) return fs::is_regular_file(name, ec) ? fs::path(name) : fs::path();
     for (const fs::path& dir : locations.directories) {
         const fs::path candidate = dir / "scenarios" / (name + ".json");
         if (fs::is_regular_file(candidate, ec)) return candidate;
@@ -267,6 +272,8 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
 
+    listScenarioFiles();
+    connect(document_, &ProjectDocument::scenariosChanged, this, &RoverPanel::listScenarioFiles);
     connect(scenario_, &QComboBox::currentIndexChanged, this, [this] {
         showScenarioState();
         storeSettings();
@@ -379,7 +386,59 @@ QCustomPlot* RoverPanel::currentPlot() const {
     return plots_[static_cast<std::size_t>(i - 1)];
 }
 
-std::string RoverPanel::currentName() const { return scenario_->currentText().toStdString(); }
+std::string RoverPanel::currentName() const {
+    // A scenario file's item holds its path; a preset's is its name.
+    const QVariant path = scenario_->currentData();
+    return (path.isValid() ? path.toString() : scenario_->currentText()).toStdString();
+}
+
+int RoverPanel::scenarioIndex(const std::string& name) const {
+    const QString wanted = QString::fromStdString(name);
+    for (int i = 0; i < scenario_->count(); ++i) {
+        const QVariant path = scenario_->itemData(i);
+        if ((path.isValid() ? path.toString() : scenario_->itemText(i)) == wanted) return i;
+    }
+    return -1;
+}
+
+void RoverPanel::listScenarioFiles() {
+    const std::string current = currentName();
+    const QSignalBlocker block(scenario_);
+    for (int i = scenario_->count() - 1; i >= 0; --i) {
+        if (scenario_->itemData(i).isValid()) scenario_->removeItem(i);
+    }
+    for (const std::string& path : document_->project().scenarios) {
+        const QString file = QString::fromStdString(path);
+        scenario_->addItem(QFileInfo(file).fileName(), file);
+        scenario_->setItemData(scenario_->count() - 1, file, Qt::ToolTipRole);
+    }
+    const int i = scenarioIndex(current);
+    if (i >= 0) {
+        scenario_->setCurrentIndex(i);
+        return;
+    }
+    // The file shown was removed (Add scenario undone): back to the first preset.
+    scenario_->setCurrentIndex(0);
+    showScenarioState();
+    storeSettings();
+}
+
+bool RoverPanel::chooseScenario(const QString& name) {
+    const int i = scenarioIndex(name.toStdString());
+    if (i < 0) return false;
+    scenario_->setCurrentIndex(i);
+    return true;
+}
+
+bool RoverPanel::useRobotFile(const QString& path, QString* error) {
+    nlohmann::json json = currentJson();
+    if (!json.is_object()) {
+        if (error) *error = "the current scenario cannot be read";
+        return false;
+    }
+    json["robot"] = QFileInfo(path).absoluteFilePath().toStdString();
+    return setScenarioText(QString::fromStdString(json.dump(2)), error);
+}
 
 nlohmann::json RoverPanel::settings() const {
     return project::toJson(project::RoverPanelSettings{currentName(), edits_});
@@ -390,7 +449,7 @@ void RoverPanel::applySettings(const nlohmann::json& json) {
         project::panelSettingsFromJson<project::RoverPanelSettings>(withChanges(json));
     if (!settings) return;  // projects are checked when opened: only a program error lands here
     edits_ = settings->edited;
-    const int i = scenario_->findText(QString::fromStdString(settings->scenario));
+    const int i = scenarioIndex(settings->scenario);
     if (i >= 0) scenario_->setCurrentIndex(i);
     showScenarioState();
 }

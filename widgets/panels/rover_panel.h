@@ -86,6 +86,14 @@ public:
     bool setScenarioText(const QString& text, QString* error);
     /// Drops the current scenario's edit (back to the file).
     void revertScenario();
+    /// Shows the scenario `name`: a preset's name, or the path of one of the project's scenario
+    /// files (ProjectDocument::addScenario), which the chooser lists after the presets by file
+    /// name; false when the chooser has no such scenario.
+    bool chooseScenario(const QString& name);
+    /// Makes the robot file at `path` the current scenario's robot: an edit of the scenario
+    /// ("robot": its absolute path), kept in the project and undone by Revert; false and the
+    /// problems in `error` when the scenario would not be valid with it, nothing changed.
+    bool useRobotFile(const QString& path, QString* error);
     bool isEdited() const;
 
     /// The top view and its scrubber: row of the series shown, time label.
@@ -132,6 +140,10 @@ private slots:
 
 private:
     std::string currentName() const;
+    /// The chooser's index of the scenario `name` (a preset's name or a file's path), or -1.
+    int scenarioIndex(const std::string& name) const;
+    /// Lists the project's scenario files after the presets (keeps the choice when it stays).
+    void listScenarioFiles();
     nlohmann::json currentJson() const;  // edited or file JSON (null when unreadable)
     void showScenarioState();
     /// Before a run (or after choosing another scenario): the top view of its soils and start,

@@ -118,7 +118,20 @@ TEST(ProjectFile, PathsInsideTheProjectFolderAreWrittenRelative) {
     p.data_sets = {"/home/ana/field/data/run1.csv", "/opt/terra/share/drive.csv"};
     p.experiment = "/home/ana/field/tests/ding.csv";
     p.panels["identification"] = json{{"csv", "/home/ana/field/data/run1.csv"}, {"stream_csv", ""}};
+    p.scenarios = {"/home/ana/field/runs/a.json"};
+    p.panels["rover"] = json{{"scenario", "/home/ana/field/runs/a.json"},
+                             {"edited", {{"/home/ana/field/runs/a.json", json{{"duration_s", 2}}},
+                                         {"straight", json{{"duration_s", 3}}}}}};
     const Project written = withRelativePaths(p, "/home/ana/field");
+    EXPECT_EQ(written.scenarios[0], "runs/a.json");
+    EXPECT_EQ(written.panels["rover"]["scenario"], "runs/a.json");
+    EXPECT_EQ(written.panels["rover"]["edited"]["runs/a.json"]["duration_s"], 2);
+    EXPECT_EQ(written.panels["rover"]["edited"]["straight"]["duration_s"], 3);  // a preset's name
+    Project preset = p;
+    preset.panels["rover"]["scenario"] = "straight";
+    EXPECT_EQ(withAbsolutePaths(withRelativePaths(preset, "/home/ana/field"), "/mnt/usb/field")
+                  .panels["rover"]["scenario"],
+              "straight");
     EXPECT_EQ(written.data_sets[0], "data/run1.csv");
     EXPECT_EQ(written.data_sets[1], "/opt/terra/share/drive.csv");  // outside: kept
     EXPECT_EQ(written.experiment, "tests/ding.csv");
@@ -130,6 +143,9 @@ TEST(ProjectFile, PathsInsideTheProjectFolderAreWrittenRelative) {
     EXPECT_EQ(moved.data_sets[1], "/opt/terra/share/drive.csv");
     EXPECT_EQ(moved.experiment, "/mnt/usb/field/tests/ding.csv");
     EXPECT_EQ(moved.panels["identification"]["csv"], "/mnt/usb/field/data/run1.csv");
+    EXPECT_EQ(moved.scenarios[0], "/mnt/usb/field/runs/a.json");
+    EXPECT_EQ(moved.panels["rover"]["scenario"], "/mnt/usb/field/runs/a.json");
+    EXPECT_EQ(moved.panels["rover"]["edited"]["/mnt/usb/field/runs/a.json"]["duration_s"], 2);
     // A sibling folder with the same prefix is not inside.
     EXPECT_EQ(withRelativePaths(p, "/home/ana/fie").data_sets[0], "/home/ana/field/data/run1.csv");
 }
