@@ -8,6 +8,7 @@
 #include <qcustomplot.h>
 
 #include <QComboBox>
+#include <QPushButton>
 #include <QSignalSpy>
 #include <QSpinBox>
 #include <QTemporaryDir>
@@ -232,6 +233,41 @@ TEST(CompactionPanel, ACancelledRunSaysSoInTheTitlesAndTheSummary) {
         << plotTitle(*plotNamed(panel, "profile")).toStdString();
     EXPECT_TRUE(plotTitle(*plotNamed(panel, "passes")).endsWith("CANCELLED (partial)"));
     EXPECT_TRUE(panel.summary().contains("CANCELLED")) << panel.summary().toStdString();
+}
+
+// Issue 27: nothing heavy starts by itself on opening. A project may ask for 1000 passes (the
+// panel's box stops at 50): that run waits for Compute; the most the box gives still starts.
+TEST(CompactionPanel, ALongRunFromAProjectWaitsForCompute) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    Project project = document.project();
+    project.panels["compaction"] = {{"passes", 1000}};
+    document.reset(project);
+    CompactionPanel panel(&document, test::resources());
+    panel.applySettings(document.project().panels["compaction"]);
+    QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
+    panel.resize(800, 600);
+    panel.show();
+    EXPECT_FALSE(busy.wait(1000)) << "a 1000-pass run started by itself";
+    EXPECT_FALSE(panel.hasResult());
+    EXPECT_TRUE(panel.computeButton()->isVisible());
+    EXPECT_TRUE(panel.summary().startsWith("Not computed: 1000 passes at 19 depths"))
+        << panel.summary().toStdString();
+    EXPECT_EQ(plotTitle(*plotNamed(panel, "profile")), "Not computed: press Compute");
+    // Compute starts it (cancelled here: the point is that it runs).
+    QSignalSpy shown(&panel, &AnalysisPanel::resultShown);
+    panel.computeButton()->click();
+    ASSERT_TRUE(busy.count() > 0 || busy.wait(5000));
+    panel.cancelRunning();
+    ASSERT_TRUE(shown.count() > 0 || shown.wait(30000));
+    EXPECT_FALSE(panel.computeButton()->isVisible());
+    // 50 passes, the box's largest: starts by itself (50 × 19 ≤ kAutomaticPassDepths).
+    static_assert(CompactionPanel::kMaxPasses * 19 <= CompactionPanel::kAutomaticPassDepths);
+    busy.clear();
+    panel.applySettings({{"passes", CompactionPanel::kMaxPasses}});
+    EXPECT_TRUE(busy.count() > 0 || busy.wait(5000)) << "50 passes did not start by itself";
+    panel.cancelRunning();
+    EXPECT_TRUE(test::waitForResult(panel));
 }
 
 }  // namespace

@@ -448,7 +448,9 @@ TEST(IdentificationPanel, ACancelledFitSaysSoAndShowsNoOlderFit) {
     EXPECT_FALSE(fit->isEnabled());  // nothing to cancel
     QSignalSpy busy(&panel, &AnalysisPanel::busyChanged);
     panel.recompute();
-    if (!panel.isBusy()) ASSERT_TRUE(busy.wait(10000));
+    if (!panel.isBusy()) {
+        ASSERT_TRUE(busy.wait(10000));
+    }
     ASSERT_TRUE(fit->isEnabled());
     QTest::mouseClick(fit, Qt::LeftButton);
     ASSERT_TRUE(test::waitForResult(panel, 120000));

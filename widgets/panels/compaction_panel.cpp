@@ -6,6 +6,7 @@
 #include <QDoubleSpinBox>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QPushButton>
 #include <QSignalBlocker>
 #include <QSpinBox>
 #include <QTabWidget>
@@ -17,6 +18,7 @@
 #include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/compaction_figures.h"
+#include "widgets/plots/figures.h"
 
 namespace terra::ui {
 namespace {
@@ -108,6 +110,9 @@ CompactionPanel::CompactionPanel(ProjectDocument* document, io::PresetLocations 
         "parabolic (compliant tyre)");
     readout_ = new QLabel(this);
     summary_ = new QLabel(this);
+    compute_ = new QPushButton("Compute", this);
+    compute_->setToolTip("Run this compaction study (Ctrl+R)");
+    compute_->hide();
     summary_->setObjectName("compaction.summary");
     summary_->setTextFormat(Qt::RichText);
     summary_->setWordWrap(true);
@@ -157,7 +162,10 @@ CompactionPanel::CompactionPanel(ProjectDocument* document, io::PresetLocations 
     layout->addLayout(bar);
     layout->addLayout(soil_bar);
     layout->addWidget(tabs_, 1);
-    layout->addWidget(summary_);
+    auto* summary_bar = new QHBoxLayout;
+    summary_bar->addWidget(summary_, 1);
+    summary_bar->addWidget(compute_);
+    layout->addLayout(summary_bar);
 
     for (QDoubleSpinBox* box : {slip_, slip_angle_})
         connect(box, &QDoubleSpinBox::valueChanged, this, &CompactionPanel::edited);
@@ -166,6 +174,7 @@ CompactionPanel::CompactionPanel(ProjectDocument* document, io::PresetLocations 
     for (QComboBox* box : {profile_, concentration_, width_})
         connect(box, &QComboBox::currentIndexChanged, this, &CompactionPanel::edited);
     connect(shown_pass_, &QComboBox::currentIndexChanged, this, &CompactionPanel::drawProfile);
+    connect(compute_, &QPushButton::clicked, this, &CompactionPanel::recompute);
     connect(this, &AnalysisPanel::failed, summary_,
             [this](const QString& m) { summary_->setText("<b>Error:</b> " + m.toHtmlEscaped()); });
     scheduleUpdate();
@@ -287,7 +296,26 @@ AnalysisPanel::Job CompactionPanel::makeJob() {
     };
 }
 
+bool CompactionPanel::startsByItself() {
+    const analysis::CompactionSettings s = current();
+    const std::size_t work = static_cast<std::size_t>(s.passes) * s.depths_m.size();
+    if (work <= static_cast<std::size_t>(kAutomaticPassDepths)) return true;
+    summary_->setText(QString("Not computed: %1 passes at %2 depths is a long run — press Compute "
+                              "(Ctrl+R) to run it.")
+                          .arg(s.passes)
+                          .arg(s.depths_m.size()));
+    compute_->show();
+    if (!hasResult()) {
+        for (const auto& [name, plot] : plots()) {
+            resetPlot(*plot, "Not computed: press Compute");
+            plot->replot();
+        }
+    }
+    return false;
+}
+
 void CompactionPanel::present(const std::any& value) {
+    compute_->hide();
     shown_ = std::any_cast<Shown>(value);
     setCompletion(compactionCompletion(shown_.result));
     {

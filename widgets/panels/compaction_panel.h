@@ -17,6 +17,7 @@
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
+class QPushButton;
 class QSpinBox;
 class QTabWidget;
 
@@ -29,6 +30,11 @@ public:
     static constexpr int kMapXPoints = 120;
     static constexpr int kMapZPoints = 60;
     static constexpr int kMaxPasses = 50;  ///< the passes box's range (a project may give more)
+    /// The largest run that starts by itself, in passes × depths (a pass's cost grows with the
+    /// depths): the most the panel's own controls give, 50 passes at the default 19 depths, with
+    /// a margin. A project may ask for up to 1000 passes at 2000 depths (minutes): that run waits
+    /// for Compute (Ctrl+R), as the global sensitivity's large studies do.
+    static constexpr int kAutomaticPassDepths = 1000;
 
     CompactionPanel(ProjectDocument* document, io::PresetLocations locations,
                     QWidget* parent = nullptr);
@@ -53,10 +59,14 @@ public:
     void showPass(int pass);
     /// The results line under the plots (red zone, rut, bulk density per layer).
     QString summary() const;
+    /// Shown with the "Not computed" line when a run is too large to start by itself.
+    QPushButton* computeButton() const { return compute_; }
 
 protected:
     Job makeJob() override;
     void present(const std::any& result) override;
+    /// Only a run of at most kAutomaticPassDepths; a larger one shows "Not computed".
+    bool startsByItself() override;
 
 private:
     struct Shown {
@@ -89,6 +99,7 @@ private:
     QCustomPlot* passes_plot_;
     QLabel* readout_;
     QLabel* summary_;
+    QPushButton* compute_;
     analysis::CompactionSettings applied_;  // what the project gave beyond the controls (depths, …)
     Shown shown_;
 };
