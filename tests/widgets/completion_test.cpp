@@ -8,9 +8,11 @@
 #include <qcustomplot.h>
 
 #include <QElapsedTimer>
+#include <QFile>
 #include <QLabel>
 #include <QProgressBar>
 #include <QSignalSpy>
+#include <QTemporaryDir>
 #include <QTest>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -19,6 +21,7 @@
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/rover_panel.h"
 #include "widgets/plots/figures.h"
+#include "widgets/plots/plot_export.h"
 #include "widgets_test_support.h"
 
 namespace terra::ui {
@@ -150,6 +153,21 @@ TEST(PanelHonestStates, RevertAfterACancelledRoverRunLeavesEveryTabOnThatRun) {
         EXPECT_TRUE(title.contains("press Run")) << name.toStdString();
     }
     EXPECT_TRUE(labelSays(panel, "CANCELLED (partial)"));
+    // And so do the exported files: the top view as SVG (its title is text there) and as PDF.
+    QTemporaryDir dir;
+    QString error;
+    ASSERT_TRUE(exportPlot(*panel.topView(), dir.filePath("top.svg"), {}, &error))
+        << error.toStdString();
+    QFile svg(dir.filePath("top.svg"));
+    ASSERT_TRUE(svg.open(QIODevice::ReadOnly));
+    const QString written = QString::fromUtf8(svg.readAll());
+    EXPECT_TRUE(written.contains("CANCELLED (partial)"));
+    EXPECT_FALSE(written.contains("not run yet"));
+    ASSERT_TRUE(exportPlot(*panel.topView(), dir.filePath("top.pdf"), {}, &error))
+        << error.toStdString();
+    QFile pdf(dir.filePath("top.pdf"));
+    ASSERT_TRUE(pdf.open(QIODevice::ReadOnly));
+    EXPECT_TRUE(pdf.read(5) == "%PDF-");
 
     // Back to the edit that ran: the titles are the run's own again.
     editDuration(panel, 40.0);
