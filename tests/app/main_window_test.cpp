@@ -464,6 +464,60 @@ TEST(MainWindow, CtrlRRunsTheTabsComputation) {
     ASSERT_TRUE(shown.count() > 0 || shown.wait(60000));
 }
 
+// Ctrl+R was tested on the rover only: it runs every tab's computation, from a field too.
+TEST(MainWindow, CtrlRRunsEveryTabsComputationFromAField) {
+    QTemporaryDir dir;
+    Studio studio;
+    MainWindow& w = studio.window;
+    // Identification data, so that the identification tab's Fit has something to fit.
+    const QString data = dir.filePath("drive.csv");
+    {
+        QFile file(data);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        file.write("slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n");
+        for (int i = 1; i <= 9; ++i)
+            file.write(QString("%1,%2,%3,58.86,%4\n")
+                           .arg(0.1 * i)
+                           .arg(18 + i)
+                           .arg(4 + 2 * i)
+                           .arg(0.4 + 0.1 * i)
+                           .toUtf8());
+    }
+    w.findChild<ui::IdentificationPanel*>()->setDataFile(data);
+    ui::ValidatedSpinBox* phi = w.findChild<ui::SoilEditor*>()->spinBox("phi_deg");
+    ASSERT_NE(phi, nullptr);
+    for (const char* name : {"forces", "stresses", "compaction", "sensitivity",
+                             "global-sensitivity", "identification"}) {
+        w.showPanel(name);
+        settle(200);
+        ui::AnalysisPanel* panel = nullptr;
+        for (auto* p : w.findChildren<ui::AnalysisPanel*>()) {
+            if (p->name() == name) panel = p;
+        }
+        ASSERT_NE(panel, nullptr) << name;
+        // Its own first result (the identification computes on Fit only) is done.
+        ASSERT_TRUE(QTest::qWaitFor(
+            [panel, name] {
+                return !panel->isBusy() &&
+                       (panel->hasResult() || std::string(name) == "identification");
+            },
+            60000))
+            << name;
+        QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
+        QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+        activate(w);
+        phi->setFocus();  // from a field, as the guide promises
+        ASSERT_TRUE(QApplication::focusWidget() == phi ||
+                    phi->isAncestorOf(QApplication::focusWidget()))
+            << name;
+        QTest::keyClick(QApplication::focusWidget(), Qt::Key_R, Qt::ControlModifier);
+        EXPECT_TRUE(busy.count() > 0 || shown.count() > 0 || busy.wait(5000))
+            << "Ctrl+R did not run " << name;
+        panel->cancelRunning();
+        EXPECT_TRUE(shown.count() > 0 || shown.wait(60000)) << name;
+    }
+}
+
 /// Drops `path` onto the window as a file manager would; whether the drag was accepted.
 bool dropOnto(QWidget& window, const QString& path) {
     QMimeData mime;

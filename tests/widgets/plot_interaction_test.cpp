@@ -1,4 +1,5 @@
-// Issue 27, item 4 (plots), on the forces panel as a person uses it (offscreen): the legend sits
+// Issue 27, item 4 (plots), on the forces panel as a person uses it (offscreen; every other
+// panel's legends too, at the end): the legend sits
 // off the data by default and never widens the plot, a drag moves it (without panning the axes)
 // and it stays there through a redraw, the plot menu hides and shows it, an export lays it out
 // the same way, and the read-out names the curve point nearest the mouse, not the mouse position.
@@ -8,11 +9,22 @@
 #include <QAction>
 #include <QLabel>
 #include <QMenu>
+#include <QSignalSpy>
+#include <QStackedWidget>
 #include <QTemporaryDir>
 #include <QTest>
+#include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
 
+#include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/forces_panel.h"
+#include "widgets/panels/global_sensitivity_panel.h"
+#include "widgets/panels/rover_panel.h"
+#include "widgets/panels/sensitivity_panel.h"
+#include "widgets/panels/stress_panel.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_export.h"
 #include "widgets/plots/plot_menu.h"
 #include "widgets_test_support.h"
@@ -143,6 +155,73 @@ TEST(PlotLegend, AnExportKeepsTheScreensPlacement) {
     EXPECT_EQ(plot.legend->outerRect(), before);
     QImage image(dir.filePath("fx.png"));
     EXPECT_EQ(image.size(), QSize(1600, 900));
+}
+
+/// Every plot of `panel` with a legend, laid out at a 1024 px screen's plot size: the legend is
+/// off the data by default, a drag puts it inside the axes, and the plot menu hides it.
+void expectLegendsBehave(AnalysisPanel& panel, int* legends) {
+    for (const auto& [name, plot] : panel.plots()) {
+        // Its tab in front (a plot on a hidden tab gets no mouse events).
+        for (QWidget* page = plot; page->parentWidget() != nullptr; page = page->parentWidget()) {
+            if (auto* stack = qobject_cast<QStackedWidget*>(page->parentWidget()))
+                stack->setCurrentWidget(page);
+        }
+        plot->resize(700, 460);
+        plot->replot();
+        if (!plot->legend || !plot->legend->visible() || plot->legend->itemCount() == 0) continue;
+        ++*legends;
+        const std::string where = panel.name().toStdString() + "/" + name.toStdString();
+        EXPECT_FALSE(plot->legend->outerRect().intersects(plot->axisRect()->rect())) << where;
+        EXPECT_LE(plot->legend->outerRect().width(), plot->width()) << where;
+        const QRect axes = plot->axisRect()->rect();
+        drag(*plot, plot->legend->outerRect().center(), axes.topLeft() + QPoint(40, 30));
+        EXPECT_TRUE(axes.contains(plot->legend->outerRect().topLeft())) << where;
+        EXPECT_TRUE(legendMoved(*plot)) << where;
+        std::unique_ptr<QMenu> menu;
+        QAction* shown = menuAction(*plot, "plot.legend", menu);
+        ASSERT_NE(shown, nullptr) << where;
+        shown->trigger();
+        plot->replot();
+        EXPECT_FALSE(plot->legend->visible()) << where;
+        shown->trigger();  // back as it was, under the axes
+        resetLegendPlacement(*plot);
+        plot->replot();
+        EXPECT_TRUE(plot->legend->visible()) << where;
+    }
+}
+
+// Legend behaviour was tested on the forces panel only: every panel's legends now.
+TEST(PlotLegend, EveryPanelsLegendsSitOffTheDataMoveAndHide) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    int legends = 0;
+    // Each made just before it is shown, so that its first result comes after the wait begins.
+    const std::vector<std::function<std::unique_ptr<AnalysisPanel>()>> makers = {
+        [&] { return std::make_unique<StressPanel>(&document); },
+        [&] { return std::make_unique<SensitivityPanel>(&document); },
+        [&] { return std::make_unique<CompactionPanel>(&document, test::resources()); },
+        [&] { return std::make_unique<GlobalSensitivityPanel>(&document); }};
+    for (const auto& make : makers) {
+        const std::unique_ptr<AnalysisPanel> panel = make();
+        panel->resize(1000, 640);
+        panel->show();
+        ASSERT_TRUE(test::waitForResult(*panel, 60000)) << panel->name().toStdString();
+        expectLegendsBehave(*panel, &legends);
+    }
+    // The rover, on a 3 s run of the straight scenario.
+    RoverPanel rover(&document, test::resources());
+    rover.applySettings({{"scenario", "straight"}});
+    auto json = nlohmann::json::parse(rover.scenarioText().toStdString());
+    json["duration_s"] = 3.0;
+    QString error;
+    ASSERT_TRUE(rover.setScenarioText(QString::fromStdString(json.dump()), &error))
+        << error.toStdString();
+    rover.resize(1000, 640);
+    rover.show();
+    rover.recompute();
+    ASSERT_TRUE(test::waitForResult(rover, 60000));
+    expectLegendsBehave(rover, &legends);
+    EXPECT_GE(legends, 15) << "too few legends were seen for the test to mean much";
 }
 
 // The read-out showed the mouse position ("s = 0.3012"), between the curves.
