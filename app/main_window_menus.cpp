@@ -43,6 +43,9 @@ void MainWindow::createMenus() {
                    const QString& name, auto slot, bool toolbar = false) {
         QAction* action = menu->addAction(text, this, slot);
         action->setShortcuts(shortcuts);
+        // Also from a panel or plot torn off into a window of its own (a floating dock); a modal
+        // dialog still blocks them (Qt's application shortcuts respect modality).
+        action->setShortcutContext(Qt::ApplicationShortcut);
         action->setObjectName(name);
         if (toolbar) bar->addAction(action);
         return action;
@@ -85,6 +88,7 @@ void MainWindow::createMenus() {
     QAction* redo = document_->undoStack()->createRedoAction(this, "&Redo");
     redo->setShortcuts({keys(Qt::CTRL | Qt::SHIFT | Qt::Key_Z), keys(Qt::CTRL | Qt::Key_Y)});
     redo->setObjectName("action.redo");
+    for (QAction* action : {undo, redo}) action->setShortcutContext(Qt::ApplicationShortcut);
     edit->addActions({undo, redo});
     bar->addSeparator();
     // The toolbar's own Undo and Redo: short names that keep the toolbar's width, the step they

@@ -13,6 +13,7 @@
 #include <QDialog>
 #include <QDir>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QDropEvent>
 #include <QFile>
 #include <QFileDialog>
@@ -50,6 +51,7 @@
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/global_sensitivity_panel.h"
+#include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
 #include "window_test_support.h"
@@ -462,6 +464,52 @@ TEST(MainWindow, CtrlRRunsTheTabsComputation) {
     ASSERT_TRUE(busy.count() > 0 || busy.wait(5000)) << "Ctrl+R did not run the scenario";
     rover->cancelRunning();
     ASSERT_TRUE(shown.count() > 0 || shown.wait(60000));
+}
+
+// Ctrl+E did nothing in a panel torn off into a window of its own (a floating dock), from a field
+// or not; Ctrl+R neither.
+TEST(MainWindow, ShortcutsWorkInATornOffPanel) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.showPanel("compaction");
+    settle(300);
+    auto* panel = w.findChild<ui::CompactionPanel*>();
+    QDockWidget* dock = nullptr;
+    for (QDockWidget* d : w.findChildren<QDockWidget*>()) {
+        if (d->widget() != nullptr && d->widget()->isAncestorOf(panel)) dock = d;
+    }
+    if (dock == nullptr) {
+        for (QDockWidget* d : w.findChildren<QDockWidget*>()) {
+            if (d->widget() == panel) dock = d;
+        }
+    }
+    ASSERT_NE(dock, nullptr);
+    dock->setFloating(true);
+    dock->show();
+    activate(*dock);
+    ASSERT_TRUE(dock->isWindow());
+    auto* slip = panel->findChild<QDoubleSpinBox*>();
+    ASSERT_NE(slip, nullptr);
+    slip->setFocus();
+    ASSERT_TRUE(QTest::qWaitFor([&] { return slip->hasFocus(); }, 2000));
+    X11EndOfLine x11;
+    slip->installEventFilter(&x11);
+    slip->findChild<QLineEdit*>()->installEventFilter(&x11);
+    bool seen = false;
+    onNextDialog([](QWidget* dialog) { EXPECT_EQ(dialog->windowTitle(), "Export plot"); }, &seen);
+    QTest::keyClick(slip, Qt::Key_E, Qt::ControlModifier);
+    EXPECT_TRUE(seen) << "Ctrl+E in a floating panel opened no export dialog";
+    activate(*dock);
+    slip->setFocus();
+    ASSERT_TRUE(QTest::qWaitFor([&] { return slip->hasFocus(); }, 2000));
+    static_cast<void>(QTest::qWaitFor([panel] { return !panel->isBusy(); }, 30000));
+    QSignalSpy busy(panel, &ui::AnalysisPanel::busyChanged);
+    QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+    QTest::keyClick(slip, Qt::Key_R, Qt::ControlModifier);
+    EXPECT_TRUE(busy.count() > 0 || shown.count() > 0 || busy.wait(5000))
+        << "Ctrl+R in a floating panel ran nothing";
+    EXPECT_TRUE(shown.count() > 0 || shown.wait(30000));
+    dock->setFloating(false);
 }
 
 // Ctrl+R was tested on the rover only: it runs every tab's computation, from a field too.

@@ -3,6 +3,7 @@
 #include <QAbstractSpinBox>
 #include <QAction>
 #include <QApplication>
+#include <QDockWidget>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QPlainTextEdit>
@@ -36,7 +37,7 @@ public:
         if (event->type() != QEvent::ShortcutOverride || !window_ || !isTextField(watched))
             return false;
         const auto* widget = static_cast<QWidget*>(watched);
-        if (widget->window() != window_) return false;  // a dialog's fields keep their keys
+        if (!inWindow(*widget)) return false;  // a dialog's fields keep their keys
         const auto* key = static_cast<QKeyEvent*>(event);
         if (isEditingKey(*key)) return false;
         const QKeySequence sequence(key->keyCombination());
@@ -50,6 +51,17 @@ public:
     }
 
 private:
+    /// In the window, or in one of its docks torn off into a window of its own.
+    bool inWindow(const QWidget& widget) const {
+        const QWidget* top = widget.window();
+        if (top == window_) return true;
+        if (!qobject_cast<const QDockWidget*>(top)) return false;
+        for (const QWidget* w = top->parentWidget(); w != nullptr; w = w->parentWidget()) {
+            if (w == window_) return true;
+        }
+        return false;
+    }
+
     QPointer<QWidget> window_;
 };
 

@@ -5,7 +5,8 @@
 /// Plot) did nothing from a field, and a file name typed next went into the field. A key that
 /// one of the window's actions owns now goes to the action, except the keys a field edits with:
 /// undo and redo (the fields pass them on themselves when nothing is typed, validated_spin_box.h),
-/// cut, copy, paste and select all.
+/// cut, copy, paste and select all. The same in a dock of the window torn off into a window of its
+/// own (the window's actions are application shortcuts, main_window_menus.cpp).
 
 class QWidget;
 
