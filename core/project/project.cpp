@@ -112,7 +112,8 @@ Project convertPaths(Project project, Convert convert) {
     }
     // The rover panel's edits are kept by scenario: a scenario file's edit by its path.
     if (project.panels.contains("rover") && project.panels["rover"].is_object() &&
-        project.panels["rover"].contains("edited") && project.panels["rover"]["edited"].is_object()) {
+        project.panels["rover"].contains("edited") &&
+        project.panels["rover"]["edited"].is_object()) {
         nlohmann::json converted = nlohmann::json::object();
         for (const auto& [name, scenario] : project.panels["rover"]["edited"].items()) {
             std::string key = name;

@@ -49,9 +49,9 @@
 #include "widgets/editors/property_editors.h"
 #include "widgets/editors/validated_spin_box.h"
 #include "widgets/help/help_dialog.h"
+#include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/global_sensitivity_panel.h"
-#include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
 #include "window_test_support.h"
@@ -639,7 +639,8 @@ TEST(MainWindow, DroppedFilesAreTakenForWhatTheyAre) {
 /// Writes `json` to `path`; false when it cannot.
 bool writeJson(const QString& path, const nlohmann::json& json) {
     QFile file(path);
-    return file.open(QIODevice::WriteOnly) && file.write(QByteArray::fromStdString(json.dump(2))) > 0;
+    return file.open(QIODevice::WriteOnly) &&
+           file.write(QByteArray::fromStdString(json.dump(2))) > 0;
 }
 
 /// The JSON of the shipped file `relative` (under resources/).
@@ -676,7 +677,8 @@ TEST(MainWindow, DroppedScenariosAndRobotsGoToTheRoverPanel) {
     const QString moved = moved_parent.filePath("moved");
     ASSERT_TRUE(QDir().rename(dir.path(), moved));
     ASSERT_TRUE(w.openProject(moved + "/p.terra"));
-    const std::string moved_file = QFileInfo(moved + "/my-run.json").absoluteFilePath().toStdString();
+    const std::string moved_file =
+        QFileInfo(moved + "/my-run.json").absoluteFilePath().toStdString();
     EXPECT_EQ(document->project().scenarios, std::vector<std::string>{moved_file});
     EXPECT_EQ(rover->settings()["scenario"], moved_file);
     EXPECT_EQ(nlohmann::json::parse(rover->scenarioText().toStdString())["duration_s"], 3.5);

@@ -1,8 +1,8 @@
 // Issue 27, item 4 (plots), on the forces panel as a person uses it (offscreen; every other
-// panel's legends too, at the end): the legend sits
-// off the data by default and never widens the plot, a drag moves it (without panning the axes)
-// and it stays there through a redraw, the plot menu hides and shows it, an export lays it out
-// the same way, and the read-out names the curve point nearest the mouse, not the mouse position.
+// panel's legends too, at the end): the legend sits off the data by default and never widens the
+// plot, a drag moves it (without panning the axes) and it stays there through a redraw, the plot
+// menu hides and shows it, an export lays it out the same way, and the read-out names the curve
+// point nearest the mouse, not the mouse position.
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
@@ -24,8 +24,8 @@
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
-#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_export.h"
+#include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_menu.h"
 #include "widgets_test_support.h"
 

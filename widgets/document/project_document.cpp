@@ -321,9 +321,8 @@ void ProjectDocument::reset(const Project& project, const QString& file_path) {
     // (experimentError()); the project opens all the same.
     experiment_ = readExperiment(project_.experiment);
     emit filePathChanged(file_path_);
-    for (Part part :
-         {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets, Part::kScenarios,
-          Part::kExperiment})
+    for (Part part : {Part::kSoil, Part::kWheel, Part::kConditions, Part::kDataSets,
+                      Part::kScenarios, Part::kExperiment})
         notify(part);
     emit modifiedChanged(false);
 }

@@ -101,7 +101,7 @@ signals:
     void wheelChanged();
     void conditionsChanged();
     void dataSetsChanged();
-    void scenariosChanged();  ///< the project's scenario files (addScenario, undo, open)
+    void scenariosChanged();      ///< the project's scenario files (addScenario, undo, open)
     void experimentChanged();     ///< the test was loaded, removed, or undone (see experiment())
     void changed();               ///< after any change of the model (revision bumped)
     void panelSettingsChanged();  ///< a panel's settings changed (not a model change)

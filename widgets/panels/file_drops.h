@@ -20,16 +20,7 @@ namespace terra::ui {
 
 class ProjectDocument;
 
-enum class DroppedFile {
-    kProject,
-    kExperiment,
-    kData,
-    kSoil,
-    kWheel,
-    kScenario,
-    kRobot,
-    kUnknown
-};
+enum class DroppedFile { kProject, kExperiment, kData, kSoil, kWheel, kScenario, kRobot, kUnknown };
 
 /// What the file at `path` is, by its suffix and its first line or keys (not read whole).
 DroppedFile classifyDroppedFile(const QString& path);
@@ -43,7 +34,7 @@ struct DropActions {
     std::function<void(const QString& path)> show_scenario;
     /// Makes the robot file at `path` the current scenario's robot; false and why in `error`.
     std::function<bool(const QString& path, QString* error)> use_robot;
-    std::function<void(const QString& message)> report;     ///< the status bar
+    std::function<void(const QString& message)> report;  ///< the status bar
 };
 
 /// Handles one dropped file; false (and `report` says why) when it was not taken.

@@ -120,8 +120,9 @@ TEST(ProjectFile, PathsInsideTheProjectFolderAreWrittenRelative) {
     p.panels["identification"] = json{{"csv", "/home/ana/field/data/run1.csv"}, {"stream_csv", ""}};
     p.scenarios = {"/home/ana/field/runs/a.json"};
     p.panels["rover"] = json{{"scenario", "/home/ana/field/runs/a.json"},
-                             {"edited", {{"/home/ana/field/runs/a.json", json{{"duration_s", 2}}},
-                                         {"straight", json{{"duration_s", 3}}}}}};
+                             {"edited",
+                              {{"/home/ana/field/runs/a.json", json{{"duration_s", 2}}},
+                               {"straight", json{{"duration_s", 3}}}}}};
     const Project written = withRelativePaths(p, "/home/ana/field");
     EXPECT_EQ(written.scenarios[0], "runs/a.json");
     EXPECT_EQ(written.panels["rover"]["scenario"], "runs/a.json");
