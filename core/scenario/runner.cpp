@@ -1087,7 +1087,26 @@ std::vector<std::string> mapFileNames() {
         const std::string stem = name.substr(0, name.rfind('.'));
         for (const char* extension : kMapFormats) names.push_back(stem + extension);
     }
+    names.emplace_back(kMapTableFile);
     return names;
+}
+
+Table touchedCells(const FieldMaps& maps) {
+    const auto rasters = mapRasters(maps);
+    Table table;
+    table.columns = {"x_m", "y_m"};
+    for (const auto& [key, raster] : rasters) table.columns.push_back(key);
+    const field::Raster& passes = maps.passes;
+    for (int row = 0; row < passes.rows; ++row) {
+        for (int col = 0; col < passes.cols; ++col) {
+            const double passed = passes.value(col, row);
+            if (!(passed > 0.0)) continue;  // never touched, or no data (NaN)
+            std::vector<double> values{passes.centreX(col), passes.centreY(row)};
+            for (const auto& [key, raster] : rasters) values.push_back(raster->value(col, row));
+            table.rows.push_back(std::move(values));
+        }
+    }
+    return table;
 }
 
 std::vector<std::pair<std::string, const field::Raster*>> mapRasters(const FieldMaps& maps) {
@@ -1130,6 +1149,10 @@ std::optional<std::string> writeResults(const RunResult& result, const Scenario&
             if (auto error = io::writeRaster(directory / (stem + ".tif"), *raster)) return error;
         }
         if (auto error = writeMapPngs(*result.maps, directory)) return error;
+        if (auto error = io::writeFileAtomically(directory / kMapTableFile,
+                                                 io::toCsv(touchedCells(*result.maps)))) {
+            return error;
+        }
     }
     if (!result.streaming.columns.empty()) {
         if (auto error =

@@ -138,9 +138,20 @@ inline constexpr std::array<const char*, 5> kMapFiles{
 /// (core/scenario/map_image.h).
 inline constexpr std::array<const char*, 3> kMapFormats{".asc", ".tif", ".png"};
 
+/// The maps as one table of the cells a wheel passed, beside the rasters: DIR/maps.csv.
+inline constexpr const char* kMapTableFile = "maps.csv";
+
 /// Every file of a field run's maps, map by map in kMapFiles' order, each in kMapFormats' order
-/// ("rut_depth_m.asc", "rut_depth_m.tif", "rut_depth_m.png", "passes.asc", …).
+/// ("rut_depth_m.asc", "rut_depth_m.tif", "rut_depth_m.png", "passes.asc", …), then
+/// kMapTableFile.
 std::vector<std::string> mapFileNames();
+
+/// The cells a wheel passed (passes > 0), one row each, north to south and west to east: x_m and
+/// y_m of the cell's centre, then every map of mapRasters by its key ("rut_depth_m", "passes",
+/// …). A field's maps cover all of it (50 m × 20 m on 2 cm cells: 2.5 million cells, most never
+/// touched), so the table keeps only the cells with something to say; the rasters have the rest
+/// (0 there). What writeResults writes as kMapTableFile.
+Table touchedCells(const FieldMaps& maps);
 
 /// A field run's maps by name, in kMapFiles' order: the key is the file's stem ("rut_depth_m").
 /// What writeResults writes and the studio's layer chooser lists (core/scenario/map_layers.h): a

@@ -416,8 +416,7 @@ TEST(TractionControlRun, TractionLimitedModeDropsBackWhenTheNeedFalls) {
     ASSERT_TRUE(r.run.summary.traction_limited_switches);
     EXPECT_EQ(*r.run.summary.traction_limited_switches, 2);
     const Table& t = r.run.series;
-    const std::size_t tc = t.column("t_s"), set = t.column("FL_slip_set"),
-                      omega = t.column("FL_omega_rad_s");
+    const std::size_t tc = t.column("t_s"), set = t.column("FL_slip_set");
     double raised_before = 0.0;
     for (const auto& row : t.rows)
         if (row[tc] < 25.0) raised_before = std::max(raised_before, row[set]);

@@ -63,6 +63,36 @@ TEST(MapLayers, AFieldListsItsMapsAndItsRunsMapsAPatchScenarioNone) {
     EXPECT_TRUE(mapLayers(shippedScenario("straight", 1.0), nullptr).empty());
 }
 
+// Issue 23 item 4: the maps also as CSV. maps.csv holds every cell a wheel passed, and only
+// those, with each map's value there: checked against the rasters cell by cell.
+TEST(MapLayers, TheMapTableHasEveryPassedCellWithEachMapsValue) {
+    const FieldMaps& maps = *fieldRun20s().maps;
+    const Table table = touchedCells(maps);
+    ASSERT_EQ(table.columns,
+              (std::vector<std::string>{"x_m", "y_m", "rut_depth_m", "passes", "compaction_risk",
+                                        "slip", "energy_per_m_J"}));
+    std::size_t passed = 0;
+    for (double p : maps.passes.values) passed += p > 0.0 ? 1 : 0;
+    ASSERT_GT(passed, 10u);
+    ASSERT_EQ(table.rows.size(), passed);
+    std::size_t twice = 0;
+    for (const auto& row : table.rows) {
+        const auto cell = maps.passes.cellAt(row[0], row[1]);
+        ASSERT_TRUE(cell.has_value());
+        EXPECT_GT(row[3], 0.0);
+        twice += row[3] >= 2.0 ? 1 : 0;
+        const field::Raster* rasters[] = {&maps.rut_depth_m, &maps.passes, &maps.compaction_risk,
+                                          &maps.slip, &maps.energy_per_m_j};
+        for (std::size_t i = 0; i < std::size(rasters); ++i) {
+            EXPECT_TRUE(sameOrBothNan(row[2 + i], rasters[i]->nearest(row[0], row[1])))
+                << table.columns[2 + i] << " at " << row[0] << ", " << row[1];
+        }
+    }
+    EXPECT_GT(twice, 0u) << "the rear wheels in the front ruts: cells passed twice";
+    // The file list the CLI writes and cleans ends with it.
+    EXPECT_EQ(mapFileNames().back(), "maps.csv");
+}
+
 // A map another change adds to FieldMaps (slip, energy) is listed with a label and unit read off
 // its key before anyone names it.
 TEST(MapLayers, AMapNotKnownByNameTakesItsLabelAndUnitFromItsKey) {
