@@ -109,7 +109,8 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--traversability", o.traversability,
                     "Write the traversability map before driving: .csv (x_m, y_m, heading_deg, "
                     "grade_deg, slip, status per cell and heading) or .asc/.tif (the largest "
-                    "slip over the headings; no data where every heading stalls)");
+                    "slip over the headings; no data where every heading stalls) or .png (that "
+                    "map as a picture with its legend, stalling cells darkest)");
     cmd->add_option("--robot", o.robot, "The robot of --traversability (default: default)");
     cmd->add_option("--headings", o.headings, "Headings of --traversability (default 8)");
     cmd->add_option("--cell", o.cell_m, "Cell of --traversability [m] (default: the height map's)");
@@ -149,6 +150,10 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
             if (ext == ".asc" || ext == ".tif" || ext == ".tiff") {
                 if (std::optional<std::string> error =
                         io::writeRaster(o.traversability, trav->worst_slip, "slip"))
+                    throw std::runtime_error(*error);
+            } else if (ext == ".png") {
+                if (std::optional<std::string> error =
+                        io::writePng(o.traversability, analysis::traversabilityImage(*trav)))
                     throw std::runtime_error(*error);
             } else {
                 writeOutput(o.traversability,

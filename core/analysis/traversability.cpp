@@ -13,6 +13,8 @@
 #include "core/contact/contact_parameters.h"
 #include "core/field/field_summary.h"
 #include "core/io/json_reader.h"
+#include "core/scenario/map_image.h"
+#include "core/scenario/map_layers.h"
 
 namespace terra::analysis {
 
@@ -251,6 +253,22 @@ Table traversabilityTable(const TraversabilityResult& r, const field::FieldMap& 
         }
     }
     return t;
+}
+
+io::RgbaImage traversabilityImage(const TraversabilityResult& result) {
+    field::Raster slip = result.worst_slip;
+    for (std::size_t i = 0; i < slip.values.size(); ++i) {
+        // No slip holds the speed on any heading: the worst there is.
+        if (std::isnan(slip.values[i]) && !std::isnan(result.grid.values[i])) slip.values[i] = 1.0;
+    }
+    scenario::MapLayer layer;
+    layer.key = "slip";
+    layer.label = "largest slip needed (1 is a stall)";  // the PNG font has no "," or "="
+    layer.unit = "-";
+    scenario::LayerScale scale = scenario::layerScale(layer, slip);
+    scale.lower = 0.0;
+    scale.upper = 1.0;
+    return scenario::renderMap(layer, scale, slip);
 }
 
 }  // namespace terra::analysis

@@ -17,6 +17,7 @@
 #include "core/dynamics/robot.h"
 #include "core/field/field_map.h"
 #include "core/field/raster.h"
+#include "core/io/png.h"
 
 namespace terra::analysis {
 
@@ -74,5 +75,11 @@ TraversabilityResult computeTraversability(const field::FieldMap& field,
 nlohmann::json toJson(const TraversabilityResult& result);
 /// One row per cell and heading: x_m, y_m, heading_deg, grade_deg, slip, status.
 Table traversabilityTable(const TraversabilityResult& result, const field::FieldMap& field);
+
+/// The map of the largest slip needed over the headings as a picture with its legend
+/// (scenario::renderMap, the palette of the run's slip map) on the fixed scale [0, 1]: a cell
+/// where every heading stalls or brakes takes slip 1 (the darkest colour; the title says so), a
+/// cell outside the field's data stays transparent.
+io::RgbaImage traversabilityImage(const TraversabilityResult& result);
 
 }  // namespace terra::analysis

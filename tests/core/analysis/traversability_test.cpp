@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/analysis/traction.h"
 #include "core/common/units.h"
 #include "core/contact/contact_parameters.h"
 #include "core/io/parameters_json.h"
+#include "core/scenario/map_image.h"
+#include "core/scenario/map_layers.h"
 
 namespace terra::analysis {
 namespace {
@@ -103,6 +106,41 @@ TEST(Traversability, TooSteepStalls) {
     const nlohmann::json j = toJson(out);
     EXPECT_EQ(j["headings"][0]["stalled"], 24);
     EXPECT_EQ(j["stall_cells"], 24);
+}
+
+// Issue 23 item 4: the traversability map as a picture with its legend. Each cell's colour is the
+// slip palette's at the cell's largest slip on [0, 1] (scenario::colorAt, computed here); a cell
+// where every heading stalls takes slip 1, the darkest.
+TEST(Traversability, ThePictureColoursEachCellByItsSlipAndStallsDarkest) {
+    const field::FieldMap f = plane(0.6, "dry-sand");
+    TraversabilitySettings s;
+    s.headings = 4;
+    TraversabilityResult out = computeTraversability(f, robot(), s);
+    out.worst_slip.value(4, 2) = std::numeric_limits<double>::quiet_NaN();  // as if all stalled
+    const io::RgbaImage image = traversabilityImage(out);
+    const scenario::MapImageLayout layout = scenario::mapImageLayout(6, 4);
+    ASSERT_EQ(image.width, layout.width);
+    ASSERT_EQ(image.height, layout.height);
+    scenario::MapLayer layer;
+    layer.key = "slip";
+    scenario::LayerScale unit;  // [0, 1]
+    const auto stops = scenario::layerColors(layer, unit);
+    for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 6; ++col) {
+            const double slip = col == 4 && row == 2 ? 1.0 : out.worst_slip.value(col, row);
+            ASSERT_TRUE(std::isfinite(slip));
+            const scenario::Rgb expected = scenario::colorAt(stops, slip);
+            const std::uint8_t* px = image.at(col * layout.cell_px + layout.cell_px / 2,
+                                              row * layout.cell_px + layout.cell_px / 2);
+            EXPECT_EQ(px[0], expected.r) << col << ", " << row;
+            EXPECT_EQ(px[1], expected.g) << col << ", " << row;
+            EXPECT_EQ(px[2], expected.b) << col << ", " << row;
+            EXPECT_EQ(px[3], 255);
+        }
+    }
+    const std::uint8_t* stalled = image.at(4 * layout.cell_px + 1, 2 * layout.cell_px + 1);
+    EXPECT_EQ(stalled[0], stops.back().color.r);
+    EXPECT_EQ(stalled[2], stops.back().color.b);
 }
 
 TEST(Traversability, RefusesBadSettings) {
