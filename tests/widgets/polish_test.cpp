@@ -85,6 +85,26 @@ TEST(EditorSpinBox, ASmallValueFromTheModelIsShownNotRoundedAway) {
     EXPECT_EQ(editor.spinBox("c_kPa")->cleanText(), "1.70");  // the box's own decimals again
 }
 
+// A calibrated k_φ of 2936.28451 showed all five decimals: at most six significant digits, and
+// the document keeps its value (only the text is shorter).
+TEST(EditorSpinBox, AFittedValueShowsNoMoreThanSixSignificantDigits) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    ASSERT_TRUE(document.setSoilValue("kphi", 2936.28451));
+    EXPECT_EQ(editor.spinBox("kphi")->cleanText(), "2936.3");
+    EXPECT_DOUBLE_EQ(document.project().soil.frictional_modulus, 2936.28451e3);
+    emit editor.spinBox("kphi")->editingFinished();  // left without typing: nothing pushed
+    EXPECT_DOUBLE_EQ(document.project().soil.frictional_modulus, 2936.28451e3);
+    EXPECT_EQ(document.undoStack()->count(), 1);
+    ASSERT_TRUE(document.setSoilValue("kphi", 1515.04));  // exact in six digits: shown so
+    EXPECT_EQ(editor.spinBox("kphi")->cleanText(), "1515.04");
+    ASSERT_TRUE(document.setSoilValue("n", 0.8747123));  // the box's four decimals
+    EXPECT_EQ(editor.spinBox("n")->cleanText(), "0.8747");
+    ASSERT_TRUE(document.setSoilValue("c_kPa", 0.00234));  // small: still shown, not "0.00"
+    EXPECT_EQ(editor.spinBox("c_kPa")->cleanText(), "0.00234");
+}
+
 // "c: "c" is not a number" read as if the field were the problem.
 TEST(EditorSpinBox, ARefusedKeystrokeIsNamedAsAKeyOfANamedField) {
     ProjectDocument document;

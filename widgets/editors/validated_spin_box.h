@@ -34,9 +34,12 @@ public:
 
     /// Shows a value that came from the model, without emitting valueChanged: with more decimals
     /// than the box's own when it needs them (c = 0.0023 kPa was shown as "0.00"), at most
-    /// kMaxDecimals, to two significant digits when it cannot be shown exactly.
+    /// kMaxDecimals and kMaxSignificant significant digits, to two significant digits (or the
+    /// box's own decimals) when it cannot be shown exactly within them. Only the text is
+    /// shortened: the model keeps its value.
     void setCommittedValue(double value);
     static constexpr int kMaxDecimals = 6;
+    static constexpr int kMaxSignificant = 6;
 
     /// Quiet time after the last keystroke before typed text is committed [ms].
     static constexpr int kDebounceMs = 300;
