@@ -476,12 +476,8 @@ TEST(MainWindow, ShortcutsWorkInATornOffPanel) {
     auto* panel = w.findChild<ui::CompactionPanel*>();
     QDockWidget* dock = nullptr;
     for (QDockWidget* d : w.findChildren<QDockWidget*>()) {
-        if (d->widget() != nullptr && d->widget()->isAncestorOf(panel)) dock = d;
-    }
-    if (dock == nullptr) {
-        for (QDockWidget* d : w.findChildren<QDockWidget*>()) {
-            if (d->widget() == panel) dock = d;
-        }
+        if (d->widget() == panel || (d->widget() != nullptr && d->widget()->isAncestorOf(panel)))
+            dock = d;
     }
     ASSERT_NE(dock, nullptr);
     dock->setFloating(true);
