@@ -1,10 +1,13 @@
 // The identification panel's preview of a CSV before Fit, on real widgets (offscreen): the first
 // rows as the file has them, the columns found and ignored, the rows read and each bad row by
-// line, and the channels the fit will compare.
+// line, and the channels the fit will compare. The preview is read on a worker (AnalysisRunner):
+// the tests wait for it to be shown.
 #include <gtest/gtest.h>
 
+#include <QSignalSpy>
 #include <QTabWidget>
 #include <QTemporaryDir>
+#include <QTest>
 #include <fstream>
 #include <string>
 
@@ -21,6 +24,13 @@ std::string writeFile(const QTemporaryDir& dir, const char* name, const std::str
     const std::string path = dir.filePath(name).toStdString();
     std::ofstream(path) << text;
     return path;
+}
+
+// Waits until the preview being read on the worker is on screen (true), or times out.
+bool waitForPreview(IdentificationPanel& panel, int timeout_ms = 10000) {
+    if (!panel.dataPreviewReading()) return true;
+    QSignalSpy shown(&panel, &IdentificationPanel::dataPreviewShown);
+    return shown.wait(timeout_ms);
 }
 
 TEST(IdentificationPreview, ShowsRowsColumnsBadRowsByLineAndTheFittedChannels) {
@@ -40,6 +50,7 @@ TEST(IdentificationPreview, ShowsRowsColumnsBadRowsByLineAndTheFittedChannels) {
     IdentificationPanel panel(&document);
     EXPECT_TRUE(panel.dataPreview().isEmpty());  // synthetic data: nothing to preview
     panel.setDataFile(QString::fromStdString(path));
+    ASSERT_TRUE(waitForPreview(panel));
     const QString preview = panel.dataPreview();
     EXPECT_TRUE(
         preview.contains("Columns: slip, entry_angle_deg, Fx_N, Fz_N, My_Nm (ignored: "
@@ -60,6 +71,7 @@ TEST(IdentificationPreview, ShowsRowsColumnsBadRowsByLineAndTheFittedChannels) {
 
     // The decoupled fit reads the same file the same way; its channels are always the three.
     panel.applySettings({{"refine", false}});
+    ASSERT_TRUE(waitForPreview(panel));
     EXPECT_TRUE(panel.dataPreview().contains("Fits: F_x, F_z, M_y (decoupled fit"))
         << panel.dataPreview().toStdString();
 
@@ -80,6 +92,7 @@ TEST(IdentificationPreview, DataWithoutAnEntryAngleFitTheirChannelsFromTheLoad) 
     IdentificationPanel panel(&document);
     panel.applySettings({{"refine", true}});
     panel.setDataFile(QString::fromStdString(path));
+    ASSERT_TRUE(waitForPreview(panel));
     QString preview = panel.dataPreview();
     EXPECT_TRUE(preview.contains("Rows: 3 read")) << preview.toStdString();
     EXPECT_FALSE(preview.contains("bad")) << preview.toStdString();
@@ -87,11 +100,13 @@ TEST(IdentificationPreview, DataWithoutAnEntryAngleFitTheirChannelsFromTheLoad) 
         << preview.toStdString();
     // The decoupled fit needs θ_f and F_z: the preview says so before Fit is pressed.
     panel.applySettings({{"refine", false}});
+    ASSERT_TRUE(waitForPreview(panel));
     preview = panel.dataPreview();
     EXPECT_TRUE(preview.contains("Cannot be fitted: ")) << preview.toStdString();
     EXPECT_TRUE(preview.contains("entry_angle")) << preview.toStdString();
     // A path that is not a file is said to be one.
     panel.setDataFile(dir.filePath("missing.csv"));
+    ASSERT_TRUE(waitForPreview(panel));
     EXPECT_TRUE(panel.dataPreview().startsWith("No such file"))
         << panel.dataPreview().toStdString();
 }
@@ -115,11 +130,50 @@ TEST(IdentificationPreview, IsInFrontUntilAFitIsShownThenTheParametersAre) {
     panel.setDataFile(QString::fromStdString(path));
     EXPECT_TRUE(side->isTabVisible(1));
     EXPECT_EQ(side->currentIndex(), 1);
+    ASSERT_TRUE(waitForPreview(panel));
     EXPECT_TRUE(panel.dataPreview().contains("Rows: 30 read")) << panel.dataPreview().toStdString();
     panel.recompute();
     ASSERT_TRUE(test::waitForResult(panel, 120000));
     EXPECT_EQ(side->currentIndex(), 0);           // the parameters of the fit
     EXPECT_FALSE(panel.dataPreview().isEmpty());  // the preview stays one click away
+}
+
+TEST(IdentificationPreview, IsReadOffTheGuiThreadAndTheNewestFileWins) {
+    QTemporaryDir dir;
+    const std::string first = writeFile(dir, "first.csv",
+                                        "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n"
+                                        "0.1,20,5.5,80,1.2\n"
+                                        "0.2,21,9.5,80,1.6\n");
+    const std::string second = writeFile(dir, "second.csv",
+                                         "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm\n"
+                                         "0.1,20,5.5,80,1.2\n"
+                                         "0.2,21,9.5,80,1.6\n"
+                                         "0.3,22,12,80,1.9\n"
+                                         "0.4,23,14,80,2.1\n");
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    QSignalSpy shown(&panel, &IdentificationPanel::dataPreviewShown);
+    panel.setDataFile(QString::fromStdString(first));
+    // setDataFile returned without reading the file: the worker reads it, the GUI thread shows
+    // it once the event loop hands the result over.
+    EXPECT_TRUE(panel.dataPreviewReading());
+    EXPECT_FALSE(panel.dataPreview().contains("Rows:")) << panel.dataPreview().toStdString();
+    EXPECT_EQ(shown.count(), 0);
+    // Another file before the first is shown: only the newest is ever shown.
+    panel.setDataFile(QString::fromStdString(second));
+    ASSERT_TRUE(waitForPreview(panel));
+    QTest::qWait(50);  // a stale preview would arrive by now
+    EXPECT_EQ(shown.count(), 1);
+    EXPECT_TRUE(panel.dataPreview().contains("Rows: 4 read")) << panel.dataPreview().toStdString();
+    EXPECT_EQ(panel.dataPreviewCell(3, 0), "0.4");
+    // Back to synthetic data while a preview is being read: it is dropped, nothing is shown.
+    panel.setDataFile(QString::fromStdString(first));
+    panel.setDataFile({});
+    QTest::qWait(50);
+    EXPECT_FALSE(panel.dataPreviewReading());
+    EXPECT_EQ(shown.count(), 1);
+    EXPECT_TRUE(panel.dataPreview().isEmpty());
 }
 
 }  // namespace

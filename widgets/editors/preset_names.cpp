@@ -2,6 +2,7 @@
 
 #include <QAbstractItemView>
 #include <QComboBox>
+#include <QCoreApplication>
 #include <cstring>
 
 namespace terra::ui {
@@ -10,6 +11,10 @@ namespace {
 constexpr int kPresetBoxCharacters = 14;  // "sandy loam (edited)" nearly whole
 
 }  // namespace
+
+io::PresetLocations studioPresetLocations() {
+    return io::PresetLocations::standard(QCoreApplication::applicationDirPath().toStdString());
+}
 
 QString presetDisplayName(const io::PresetLocations& locations, const char* kind,
                           const std::string& id) {

@@ -12,6 +12,9 @@ class QComboBox;
 
 namespace terra::ui {
 
+/// Where the running studio finds presets (beside its executable, then the standard places).
+io::PresetLocations studioPresetLocations();
+
 /// The name a preset gives itself (resources/soils/sandy-loam.json: "sandy loam"); the id for a
 /// kind without names or a file that cannot be read. `kind`: "soils", "wheels", ….
 QString presetDisplayName(const io::PresetLocations& locations, const char* kind,

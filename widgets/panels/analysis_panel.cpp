@@ -6,7 +6,6 @@
 #include <QProgressBar>
 #include <QShowEvent>
 #include <QTimer>
-#include <QtConcurrent/QtConcurrentRun>
 
 #include "core/io/parameters_json.h"
 #include "widgets/document/project_document.h"
@@ -18,25 +17,24 @@ namespace terra::ui {
 
 AnalysisPanel::AnalysisPanel(ProjectDocument* document, const QString& name, QWidget* parent)
     : QWidget(parent), document_(document), name_(name) {
-    connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, &AnalysisPanel::finished);
+    // Each ended job: the newest or a superseded one (finished() tells them apart).
+    connect(&runner_, &AnalysisRunner::finished, this, &AnalysisPanel::finished);
+    connect(&runner_, &AnalysisRunner::superseded, this, &AnalysisPanel::finished);
     connect(document_, &ProjectDocument::changed, this, [this] {
         if (live_) scheduleUpdate();
     });
 }
 
-AnalysisPanel::~AnalysisPanel() {
-    if (cancel_) cancel_->store(true);
-    watcher_.waitForFinished();
-}
+AnalysisPanel::~AnalysisPanel() = default;  // the runner cancels its job and waits for it
 
 void AnalysisPanel::scheduleUpdate() {
-    ++revision_;
+    runner_.supersede();
     since_edit_.start();
     // The running result is stale now: cancel it, unless the screen has not changed for
     // kMaxFrameGapMs. Then it finishes and is shown as an intermediate frame, so a continuous drag
     // (edits faster than one computation) still moves the plot instead of starving it.
     const bool starving = !since_shown_.isValid() || since_shown_.elapsed() >= kMaxFrameGapMs;
-    if (cancel_ && !(starving && watcher_.isRunning())) cancel_->store(true);
+    if (!(starving && runner_.isRunning())) runner_.cancel();
     if (start_queued_) return;
     start_queued_ = true;
     QTimer::singleShot(0, this, [this] {
@@ -45,13 +43,11 @@ void AnalysisPanel::scheduleUpdate() {
     });
 }
 
-void AnalysisPanel::cancelRunning() {
-    if (cancel_) cancel_->store(true);
-}
+void AnalysisPanel::cancelRunning() { runner_.cancel(); }
 
 void AnalysisPanel::discardRunning() {
-    if (cancel_) cancel_->store(true);
-    first_shown_revision_ = ++revision_;
+    runner_.cancel();
+    first_shown_revision_ = runner_.supersede();
 }
 
 QString AnalysisPanel::resultMessage(const QString& tab) const {
@@ -102,7 +98,7 @@ bool AnalysisPanel::start() {
         return false;
     }
     deferred_ = false;
-    if (watcher_.isRunning()) return true;  // finished() restarts with the newest state
+    if (runner_.isRunning()) return true;  // finished() restarts with the newest state
     if (!requested_ && !restored_hash_.empty()) {
         // A saved result is on screen: computed again only when the inputs changed since.
         if (inputsHash() == restored_hash_) return false;
@@ -117,29 +113,14 @@ bool AnalysisPanel::start() {
         emit failed(QString::fromUtf8(e.what()));
         return false;
     }
-    const int revision = revision_;
-    const std::string hash = inputsHash();
-    cancel_ = std::make_shared<std::atomic<bool>>(false);
-    auto cancel = cancel_;
+    running_hash_ = inputsHash();
     emit busyChanged(true);
-    watcher_.setFuture(QtConcurrent::run([job, revision, cancel, hash]() {
-        Outcome out;
-        out.revision = revision;
-        out.inputs_hash = hash;
-        try {
-            out.value = job(*cancel);
-        } catch (const std::exception& e) {
-            out.error = QString::fromUtf8(e.what());
-        }
-        out.cancelled = cancel->load();
-        return out;
-    }));
+    runner_.start([job](const analysis::Control& control) { return job(*control.cancel); });
     return true;
 }
 
-void AnalysisPanel::finished() {
-    const Outcome outcome = watcher_.result();
-    if (outcome.revision != revision_) {
+void AnalysisPanel::finished(const AnalysisRunner::Outcome& outcome) {
+    if (outcome.revision != runner_.revision()) {
         // Stale. A computation that was let run to the end (see scheduleUpdate) is shown as an
         // intermediate frame; a cancelled one is dropped. Either way the newest state follows.
         if (!outcome.cancelled && outcome.error.isEmpty() &&
@@ -163,12 +144,12 @@ void AnalysisPanel::finished() {
     emit resultShown(last_latency_ms_);
 }
 
-void AnalysisPanel::presentOutcome(const Outcome& outcome) {
+void AnalysisPanel::presentOutcome(const AnalysisRunner::Outcome& outcome) {
     QElapsedTimer drawing;
     drawing.start();
     completion_ = outcome.cancelled ? Completion::kCancelled : Completion::kComplete;
-    presented_hash_ = outcome.inputs_hash;
-    present(outcome.value);  // may refine completion_ from the result's own status
+    presented_hash_ = running_hash_;  // the job that ended: none starts before it is presented
+    present(outcome.value);           // may refine completion_ from the result's own status
     has_result_ = true;
     last_present_ms_ = static_cast<double>(drawing.nsecsElapsed()) / 1e6;
     since_shown_.start();

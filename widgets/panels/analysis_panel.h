@@ -12,7 +12,6 @@
 /// from the edit to the repainted plot.
 
 #include <QElapsedTimer>
-#include <QFutureWatcher>
 #include <QWidget>
 #include <any>
 #include <atomic>
@@ -24,6 +23,7 @@
 
 #include "core/common/table.h"
 #include "core/project/results.h"
+#include "widgets/panels/analysis_runner.h"
 #include "widgets/plots/completion.h"
 
 class QCustomPlot;
@@ -50,7 +50,7 @@ public:
     virtual nlohmann::json settings() const { return nlohmann::json::object(); }
     virtual void applySettings(const nlohmann::json&) {}
 
-    bool isBusy() const { return watcher_.isRunning(); }
+    bool isBusy() const { return runner_.isRunning(); }
     double lastLatencyMs() const { return last_latency_ms_; }
     /// GUI-thread time of the last present() (drawing the result) [ms]: the GUI thread's only
     /// work per update, the rest runs on workers.
@@ -179,23 +179,15 @@ protected:
     ProjectDocument* document_;
 
 private:
-    struct Outcome {
-        int revision = 0;
-        std::any value;
-        QString error;
-        bool cancelled = false;   ///< the job saw its cancel flag set (its value may be partial)
-        std::string inputs_hash;  ///< of what the job read
-    };
     /// Longest time the screen may go without a new result while edits keep arriving [ms].
     static constexpr qint64 kMaxFrameGapMs = 150;
     bool start();  // true when a computation runs after it
-    void finished();
-    void presentOutcome(const Outcome& outcome);
+    void finished(const AnalysisRunner::Outcome& outcome);
+    void presentOutcome(const AnalysisRunner::Outcome& outcome);
 
     QString name_;
-    QFutureWatcher<Outcome> watcher_;
-    std::shared_ptr<std::atomic<bool>> cancel_;
-    int revision_ = 0;
+    AnalysisRunner runner_;         // the worker plumbing; the revisions are its
+    std::string running_hash_;      // inputs hash of the job running or last ended
     int first_shown_revision_ = 0;  // results of older revisions are never shown (discardRunning)
     bool start_queued_ = false;
     bool deferred_ = false;  // an update waits until the panel is shown

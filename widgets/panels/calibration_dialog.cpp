@@ -8,12 +8,10 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
-#include <QPointer>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <QtConcurrent/QtConcurrentRun>
 #include <functional>
 
 #include "core/identification/parameters.h"
@@ -167,16 +165,15 @@ CalibrationDialog::CalibrationDialog(ProjectDocument* document, QWidget* parent)
     connect(cancel_, &QPushButton::clicked, this, [this] { cancel(); });
     connect(apply_, &QPushButton::clicked, this, [this] { apply(); });
     connect(close, &QDialogButtonBox::rejected, this, &QDialog::reject);
-    connect(&watcher_, &QFutureWatcher<Outcome>::finished, this, &CalibrationDialog::finished);
+    connect(&runner_, &AnalysisRunner::finished, this, &CalibrationDialog::finished);
+    connect(&runner_, &AnalysisRunner::progressed, this,
+            [this](double fraction) { progress_->setValue(static_cast<int>(fraction * 100.0)); });
     // Another soil, wheel or test makes the result one of an earlier project.
     connect(document_, &ProjectDocument::changed, this, [this] { updateButtons(); });
     updateButtons();
 }
 
-CalibrationDialog::~CalibrationDialog() {
-    if (cancel_flag_) cancel_flag_->store(true);
-    watcher_.waitForFinished();
-}
+CalibrationDialog::~CalibrationDialog() = default;  // the runner cancels the fit and waits
 
 QString CalibrationDialog::fitSlipsProblem() const {
     const QString text = fit_slips_->text().trimmed();
@@ -236,43 +233,23 @@ bool CalibrationDialog::start() {
     started_settings_ = controlSettings();
     applied_ = false;
     status_shows_result_ = false;
-    cancel_flag_ = std::make_shared<std::atomic<bool>>(false);
-    auto flag = cancel_flag_;
     progress_->setValue(0);
     progress_->setFormat("%p %");
     status_->setText("Calibrating…");
-    QPointer<QProgressBar> bar = progress_;
-    watcher_.setFuture(QtConcurrent::run([inputs, s, flag, bar] {
-        analysis::Control control{flag.get()};
-        control.progress = [bar](double fraction) {
-            QMetaObject::invokeMethod(
-                bar,
-                [bar, fraction] {
-                    if (bar) bar->setValue(static_cast<int>(fraction * 100.0));
-                },
-                Qt::QueuedConnection);
-        };
-        Outcome out;
-        try {
-            out.result = analysis::computeValidation(inputs, s, control);
-        } catch (const std::exception& e) {
-            out.error = QString::fromUtf8(e.what());
-        }
-        out.cancelled = flag->load();
-        return out;
-    }));
+    runner_.start([inputs, s](const analysis::Control& control) -> std::any {
+        return analysis::computeValidation(inputs, s, control);
+    });
     updateButtons();
     return true;
 }
 
 void CalibrationDialog::cancel() {
-    if (!cancel_flag_ || !isRunning()) return;
-    cancel_flag_->store(true);
+    if (!isRunning()) return;
+    runner_.cancel();
     status_->setText("Cancelling…");
 }
 
-void CalibrationDialog::finished() {
-    const Outcome out = watcher_.result();
+void CalibrationDialog::finished(const AnalysisRunner::Outcome& out) {
     if (out.cancelled) {
         progress_->setFormat("%p % (cancelled)");
         // Marked as every panel marks a cancelled run (completion.h).
@@ -281,7 +258,7 @@ void CalibrationDialog::finished() {
     } else if (!out.error.isEmpty()) {
         status_->setText("<b>Error:</b> " + out.error.toHtmlEscaped());
     } else {
-        result_ = out.result;
+        result_ = std::any_cast<analysis::ValidationResult>(out.value);
         result_revision_ = started_revision_;
         result_settings_ = started_settings_;
         progress_->setValue(100);

@@ -11,14 +11,12 @@
 /// whose project has changed since the fit started (another soil, wheel or test) is not applied.
 
 #include <QDialog>
-#include <QFutureWatcher>
-#include <atomic>
-#include <memory>
 #include <optional>
 
 #include "core/analysis/validation.h"
 #include "core/project/results.h"
 #include "widgets/panels/analysis_panel.h"
+#include "widgets/panels/analysis_runner.h"
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -53,7 +51,7 @@ public:
     bool start();
     /// Asks the running fit to stop; the dialog then says it was cancelled (nothing to apply).
     void cancel();
-    bool isRunning() const { return watcher_.isRunning(); }
+    bool isRunning() const { return runner_.isRunning(); }
     /// The last finished calibration (before/after), if any.
     const std::optional<analysis::ValidationResult>& result() const { return result_; }
     /// Whether the result can be applied: usable, and the project is still the one it was fitted
@@ -84,12 +82,7 @@ signals:
     void calibrationFinished();
 
 private:
-    struct Outcome {
-        std::optional<analysis::ValidationResult> result;
-        QString error;
-        bool cancelled = false;
-    };
-    void finished();
+    void finished(const AnalysisRunner::Outcome& outcome);
     void showResult();
     /// The controls' settings (noise levels, n₁, fit slips) as saved with a result.
     nlohmann::json controlSettings() const;
@@ -113,8 +106,7 @@ private:
     QTableWidget* metrics_;
     QTableWidget* parameters_;
     QPushButton* apply_;
-    QFutureWatcher<Outcome> watcher_;
-    std::shared_ptr<std::atomic<bool>> cancel_flag_;
+    AnalysisRunner runner_;  ///< the fit's worker, cancel flag and progress
     std::optional<analysis::ValidationResult> result_;
     /// The settings the running or last calibration started with (savedResult's inputs).
     nlohmann::json started_settings_, result_settings_;

@@ -14,11 +14,16 @@
 /// and stop; the estimates with ±σ bands, the CUSUM and the confirmed change points grow as it
 /// plays. A CSV that cannot be read is reported with its line numbers.
 ///
-/// A CSV chosen for the batch fit is previewed before Fit (updateDataPreview, a "Data preview"
+/// A CSV chosen for the batch fit is previewed before Fit (data_preview.h, a "Data preview"
 /// tab beside the parameters, in front until a fit is shown): its first rows as
 /// the file has them, the columns found and ignored, the rows read and every bad row by line, and
-/// the channels the fit will compare (core/identification/observation_model.h's setupModel, the
-/// same choice as the fit's), or why it cannot fit the file.
+/// the channels the fit will compare (core/analysis/data_preview.h, read on a worker as the fit
+/// reads it), or why it cannot fit the file.
+///
+/// The panel is a thin composition: the batch fit page (identification_fit_page.h, whose fit
+/// runs through this AnalysisPanel's worker), the streaming page
+/// (identification_streaming_page.h) and the data preview inside the fit page; it keeps the
+/// settings, the saved results and the studio's interface of both pages.
 ///
 /// The fit's wheel is chosen and stated (issue 25, item 6): the data's wheel when a sidecar JSON
 /// beside the CSV names one (core/io/experiment.h's metadata), else the project's, or a preset;
@@ -33,19 +38,12 @@
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/plots/identification_figures.h"
 
-class QCheckBox;
-class QComboBox;
-class QDoubleSpinBox;
-class QLabel;
-class QLineEdit;
-class QProgressBar;
-class QPushButton;
-class QTimer;
 class QTabWidget;
-class QTableWidget;
-class QGroupBox;
 
 namespace terra::ui {
+
+class IdentificationFitPage;
+class IdentificationStreamingPage;
 
 class IdentificationPanel : public AnalysisPanel {
     Q_OBJECT
@@ -53,7 +51,7 @@ public:
     explicit IdentificationPanel(ProjectDocument* document, QWidget* parent = nullptr);
     ~IdentificationPanel() override;  ///< stops the playback and waits for its worker
 
-    const analysis::IdentificationResult& result() const { return result_; }
+    const analysis::IdentificationResult& result() const;
     /// The batch fit's settings as the controls show them (core/analysis/identification.h).
     analysis::IdentificationSettings fitSettings() const;
     /// The streaming playback's settings as the controls show them (the second soil by name).
@@ -61,10 +59,12 @@ public:
     /// Uses this CSV as data (empty: synthesise from the project's soil).
     void setDataFile(const QString& path);
     /// The preview of the batch fit's CSV (plain text of its summary: rows, columns, bad rows by
-    /// line, channels fitted; empty for synthetic data), and its first rows as cells.
+    /// line, channels fitted; empty for synthetic data), and its first rows as cells. It is read
+    /// on a worker: dataPreviewReading() is true until it is shown (dataPreviewShown()).
     QString dataPreview() const;
     QString dataPreviewCell(int row, int column) const;
     QString dataPreviewHeader(int column) const;
+    bool dataPreviewReading() const;
     /// What the next fit starts from, as the panel shows it ("global search …", "prior: …").
     QString startDescription() const;
     /// The batch page's status line and its report (held-out error, ambiguity, gradient norm).
@@ -81,9 +81,9 @@ public:
     wheel::WheelParameters chosenWheel() const;
     QString wheelDescription() const;
     /// The wheel the data name (a sidecar JSON beside the CSV), if any.
-    const std::optional<wheel::WheelParameters>& dataWheel() const { return data_wheel_; }
+    const std::optional<wheel::WheelParameters>& dataWheel() const;
     /// The wheel of the fit on screen.
-    const wheel::WheelParameters& fitWheel() const { return fit_wheel_; }
+    const wheel::WheelParameters& fitWheel() const;
     /// j_max of the fit: "auto", "none", "fixed" (at jmax_mm) or "fit".
     void setShearLimit(const QString& mode, double jmax_mm = 20.0);
     /// The parameter table's text (row, column), for tests.
@@ -128,12 +128,12 @@ public:
     void setStreamSource(const QString& csv_path, const QString& second_soil = "clayey-soil");
     /// 0.1, 1, 10 or 0 (as fast as possible).
     void setStreamSpeed(double speed);
-    const StreamingPlayback& playback() const { return *playback_; }
+    const StreamingPlayback& playback() const;
     /// What the streaming figures hold (frames shown so far, change points found).
-    const StreamingFigures& streamingFigures() const { return *stream_figures_; }
+    const StreamingFigures& streamingFigures() const;
     /// The true border of the synthetic source being played (none for a CSV).
-    std::optional<std::size_t> streamTrueBorder() const { return stream_border_; }
-    std::size_t streamSampleCount() const { return stream_count_; }
+    std::optional<std::size_t> streamTrueBorder() const;
+    std::size_t streamSampleCount() const;
     QString streamStatus() const;
 
 protected:
@@ -144,89 +144,17 @@ protected:
 signals:
     /// The streaming playback ended: finished, stopped or failed (StreamingPlayback::State).
     void playbackEnded(terra::ui::StreamingPlayback::State state);
+    /// The data preview of the batch fit's CSV is on screen (it is read on a worker).
+    void dataPreviewShown();
 
 private:
     /// What the controls show, as the project stores it (core/project/panels.h).
     project::IdentificationPanelSettings panelSettings() const;
-    void buildStreamingPage(QWidget* page);
-    void updateFitControls();
-    void updateDataPreview();
-    void updateWheelChoices();
-    void showFrames(const std::vector<StreamFrame>& frames);
-    void playbackStateChanged(StreamingPlayback::State state);
-    void updateStreamControls();
-    void updatePosition();
-    /// What the streaming playback's result depends on (not its speed).
-    nlohmann::json streamInputs() const;
-    /// The streaming page's status line once a playback ended (finished or stopped).
-    QString streamSummary(bool finished) const;
-    /// Starts the streaming figures over for a source of `count` samples.
-    void resetStreamFigures(std::size_t count);
 
     QTabWidget* pages_;
-    QLineEdit* file_;
-    QDoubleSpinBox* noise_;
-    QCheckBox* refine_;
-    QCheckBox* three_loads_;
-    QPushButton* fit_;
-    QPushButton* cancel_fit_;  ///< stops the running fit (it then says so, nothing to apply)
-    QLabel* status_;
-    QLabel* readout_;
-    QTabWidget* tabs_;
-    std::vector<QCustomPlot*> plots_;
-    QTableWidget* parameters_;
-    QPushButton* apply_;
-    wheel::WheelParameters pending_wheel_;  // of the job last started
-    wheel::WheelParameters fit_wheel_;      // of the result on screen
-    QString pending_jmax_mode_ = "auto";    // of the job last started
-    QString fit_jmax_mode_ = "auto";        // of the result on screen
-    QString fit_source_;                    // "synthetic" or the CSV's file name
-    QComboBox* prior_soil_;
-    QLineEdit* prior_items_;
-    QComboBox* validation_;
-    QComboBox* loss_;
-    QLabel* start_;
-    QComboBox* wheel_;
-    QLabel* wheel_note_;
-    QComboBox* jmax_mode_;
-    QDoubleSpinBox* jmax_value_;
-    std::optional<wheel::WheelParameters> data_wheel_;  // named by the CSV's sidecar
-    QString data_wheel_source_;                         // that sidecar's file name
-    QTabWidget* side_tabs_;  ///< "Parameters", "Data preview" (shown for a CSV)
-    QGroupBox* preview_box_;
-    QLabel* preview_;
-    QTableWidget* preview_rows_;
-    QLabel* report_;
-    analysis::IdentificationResult result_;
-
-    // Streaming page.
-    QComboBox* stream_source_;
-    QComboBox* second_soil_;
-    QDoubleSpinBox* stream_noise_;
-    QLineEdit* stream_file_;
-    QPushButton* stream_browse_;
-    QCheckBox* skip_bad_rows_;
-    QComboBox* speed_;
-    QPushButton* play_;
-    QPushButton* pause_;
-    QPushButton* stop_;
-    QProgressBar* position_;
-    QLabel* position_text_;
-    QLabel* stream_status_;
-    std::vector<QCustomPlot*> stream_plots_;
-    std::unique_ptr<StreamingFigures> stream_figures_;
-    StreamingPlayback* playback_;
-    QTimer* replot_timer_;  // coalesces replots while frames arrive (at most ~25 per second)
-    std::optional<std::size_t> stream_border_;
-    std::size_t stream_count_ = 0;
-    std::vector<StreamFrame> stream_frames_;  // of the run on screen
-    QString stream_description_;
-    QStringList stream_warnings_;
-    std::vector<std::pair<std::size_t, identification::DecoupledParameters>> stream_truth_;
-    bool stream_stopped_ = false;      // the playback on screen was stopped before its end
-    std::string stream_hash_;          // of the inputs of the playback on screen
-    std::string pending_stream_hash_;  // of the playback being started (play())
-    std::string fit_hash_;             // of the inputs of the fit on screen
+    IdentificationFitPage* fit_;
+    IdentificationStreamingPage* streaming_;
+    std::string fit_hash_;  // of the inputs of the fit on screen
 };
 
 }  // namespace terra::ui
