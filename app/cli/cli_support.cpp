@@ -307,13 +307,20 @@ std::filesystem::path executableDirectory() {
     return ec ? std::filesystem::path() : exe.parent_path();
 }
 
-std::string fixed(double value, int decimals) {
-    if (!std::isfinite(value)) return "-";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    std::string text = buffer;
-    if (text[0] == '-' && text.find_first_not_of("0.", 1) == std::string::npos) text.erase(0, 1);
-    return text;
+std::string fixed(double value, int decimals) { return formatFixed(value, decimals); }
+
+void printSummaryRow(std::ostream& out, const analysis::SummaryRow& row) {
+    using Emphasis = analysis::SummaryRow::Emphasis;
+    std::string line = row.emphasis == Emphasis::kNormal ? "  " + row.label : row.label;
+    if (!row.value.empty()) line += ": " + row.value;
+    if (!row.unit.empty()) line += " " + row.unit;
+    if (!row.detail.empty()) line += " (" + row.detail + ")";
+    if (row.emphasis == Emphasis::kHeading && row.value.empty()) line += ":";
+    out << line << '\n';
+}
+
+void printSummary(std::ostream& out, const analysis::Summary& summary) {
+    for (const analysis::SummaryRow& row : summary) printSummaryRow(out, row);
 }
 
 }  // namespace terra::app

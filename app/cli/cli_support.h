@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <optional>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -113,6 +114,12 @@ void writeOutput(const std::string& path, const std::string& content);
 
 /// Directory of the running executable (for finding resources/).
 std::filesystem::path executableDirectory();
+
+/// Prints a result's summary (analysis::Summary) for a person: a heading as "label: value
+/// (detail)" (a trailing ':' when it has no value: its rows follow), a row indented as
+/// "  label: value unit (detail)", a warning unindented as "label: value".
+void printSummaryRow(std::ostream& out, const analysis::SummaryRow& row);
+void printSummary(std::ostream& out, const analysis::Summary& summary);
 
 /// Fixed-width number for human tables; never "-0.000" (a negative zero or a tiny negative value
 /// that rounds to zero prints as "0.000").

@@ -230,90 +230,6 @@ analysis::IdentificationSettings identifySettings(const IdentifyOptions& o,
     return settings;
 }
 
-// The same for a person.
-void printGlobal(const analysis::IdentificationResult& result) {
-    const identification::IdentificationReport& r = *result.report;
-    std::cout << "  started from: " << result.start_description << '\n';
-    std::cout << "  data: " << r.setup.description << "; chi2 = " << roundSignificant(r.chi2, 5)
-              << ", gradient norm = " << roundSignificant(r.gradient_norm, 3)
-              << ", Newton decrement = " << roundSignificant(r.newton_decrement, 3) << '\n';
-    bool header = false;
-    for (int k = 0; k < identification::kFullParameterCount; ++k) {
-        const identification::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
-        if (!c.active) continue;
-        const analysis::IdentifiedField& field =
-            analysis::fieldOf(static_cast<identification::FullParameter>(k));
-        if (!header)
-            std::cout << "  prior -> posterior (shift in prior std, posterior/prior std):\n";
-        header = true;
-        std::cout << "    " << field.symbol << ": "
-                  << roundSignificant(c.prior_mean / field.to_si, 4) << " ± "
-                  << roundSignificant(c.prior_std / field.to_si, 3) << " -> "
-                  << roundSignificant(c.posterior_mean / field.to_si, 4) << " ± "
-                  << roundSignificant(c.posterior_std / field.to_si, 3) << "  ("
-                  << fixed(c.shift_in_prior_std, 2) << ", " << fixed(c.std_ratio, 2) << ")\n";
-    }
-    if (r.holdout.computed) {
-        std::cout << "  held-out RMS (" << r.holdout.samples << " samples, " << r.holdout.folds
-                  << " fold(s)), in noise std:";
-        for (int c = 0; c < identification::kChannelCount; ++c) {
-            if (!r.holdout.channels[static_cast<std::size_t>(c)]) continue;
-            std::cout << ' ' << identification::channelNames()[static_cast<std::size_t>(c)] << ' '
-                      << fixed(r.holdout.rms_over_noise[static_cast<std::size_t>(c)], 2)
-                      << " (in fit "
-                      << fixed(r.holdout.rms_in_fit[static_cast<std::size_t>(c)] /
-                                   r.noise[static_cast<std::size_t>(c)],
-                               2)
-                      << ")";
-        }
-        std::cout << '\n';
-    }
-    bool profile_header = false;
-    for (int k = 0; k < identification::kFullParameterCount; ++k) {
-        const identification::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
-        if (!p.computed) continue;
-        const analysis::IdentifiedField& field =
-            analysis::fieldOf(static_cast<identification::FullParameter>(k));
-        if (!profile_header)
-            std::cout << "  profile-likelihood intervals (delta chi2 = "
-                      << roundSignificant(p.delta_chi2, 3) << ", the 3-std level):\n";
-        profile_header = true;
-        std::cout << "    " << field.symbol << ": " << roundSignificant(p.lower / field.to_si, 4)
-                  << (p.lower_at_bound ? " (bound)" : "") << " .. "
-                  << roundSignificant(p.upper / field.to_si, 4)
-                  << (p.upper_at_bound ? " (bound)" : "")
-                  << (field.displayUnit().empty() ? "" : " " + field.displayUnit()) << '\n';
-    }
-    for (const identification::Minimum& m : r.ambiguity) {
-        std::cout << "  AMBIGUOUS: another minimum with delta chi2 = "
-                  << roundSignificant(m.delta_chi2, 3) << " (threshold "
-                  << roundSignificant(r.ambiguity_delta_chi2, 3) << "):";
-        for (int k = 0; k < identification::kFullParameterCount; ++k) {
-            const analysis::IdentifiedField& field =
-                analysis::fieldOf(static_cast<identification::FullParameter>(k));
-            std::cout << ' ' << field.key << " = "
-                      << roundSignificant(m.parameters[static_cast<std::size_t>(k)] / field.to_si,
-                                          4);
-        }
-        std::cout << '\n';
-    }
-}
-
-// Decimals of an identified parameter in the text output (K_s in kPa/m^n is in the thousands).
-int decimals(const analysis::IdentifiedField& field) {
-    const std::string key = field.key;
-    return key == "Ks_kPa" ? 1 : key == "c_kPa" ? 3 : key == "phi_deg" ? 2 : 4;
-}
-
-// One identified parameter for a human: its symbol, value (and ± std) and unit.
-std::string shown(const analysis::IdentifiedField& field, double si,
-                  const std::optional<double>& std_si = std::nullopt) {
-    std::string text = std::string(field.symbol) + " = " + fixed(field.toUser(si), decimals(field));
-    if (std_si && *std_si > 0) text += " ± " + fixed(*std_si / field.to_si, 4);
-    const std::string unit = field.displayUnit();
-    return unit.empty() ? text : text + " " + unit;
-}
-
 // --save-soil OUT.json: the identified soil as a soil file (`base`'s γ; k_c = 0, k_φ = K_s; the
 // fit's j_max) with "posterior" in the soil file's keys and units, written atomically.
 void saveSoil(const IdentifyOptions& o, const analysis::IdentificationResult& result,
@@ -428,8 +344,9 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
                 const auto k = analysis::fullParameterOf(field);
                 if (!k || *k == identification::kJmax) continue;
                 std::cout << ' ' << std::setw(8)
-                          << fixed(field.userValue(frame.parameters), decimals(field)) << ' '
-                          << std::setw(8)
+                          << fixed(field.userValue(frame.parameters),
+                                   analysis::displayDecimals(field))
+                          << ' ' << std::setw(8)
                           << roundSignificant(u.std[static_cast<std::size_t>(*k)] / field.to_si, 2);
             }
         } else {
@@ -642,7 +559,7 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError(e.what());
         }
         progress.finish();
-        if (result.cancelled) {
+        if (result.status == analysis::Outcome::Status::kCancelled) {
             exitCancelled(cancellation, "identify cancelled by " + cancellation.signalName() +
                                             ": nothing written (a fit stopped halfway has no "
                                             "result; docs/cli.md, \"Stopping a long command\")");
@@ -664,43 +581,10 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             skipped.push_back("skipped " + issue.where + ": " + issue.message);
         printLines(skipped, "");
         printLines(result.warnings, "warning: ");
-        const identification::DecoupledParameters& p = result.identified;
-        const std::optional<identification::Uncertainty> uncertainty =
-            result.report ? std::optional(result.report->uncertainty) : std::nullopt;
-        const std::vector<identification::StepReport> reports = result.steps();
         if (o.json) {
             std::cout << analysis::toJson(result).dump(2) << '\n';
         } else {
-            std::cout << (o.refine ? "full-model identification (global search), "
-                                   : "decoupled identification, ")
-                      << result.data.samples.size() << " samples, " << inputs.wheel.name << "\n";
-            int column = 0;
-            for (const analysis::IdentifiedField& field : analysis::identifiedFields()) {
-                const auto full = analysis::fullParameterOf(field);
-                if (o.refine && !full) continue;  // n1 = 0 after the refinement
-                std::optional<double> sd;
-                if (uncertainty && uncertainty->computed && full)
-                    sd = uncertainty->std[static_cast<std::size_t>(*full)];
-                const bool limit = full == identification::kJmax;
-                if (limit && !o.refine) continue;  // the decoupled model has no j_max
-                std::string text = shown(field, p.*field.member, sd);
-                if (limit && !std::isfinite(p.*field.member)) text = "j_max = none";
-                if (limit && !settings.fit_max_shear_deformation) text += " (held)";
-                std::cout << (column % 3 == 0 ? "  " : "   ") << text
-                          << (column % 3 == 2 ? "\n" : "");
-                ++column;
-            }
-            if (column % 3 != 0) std::cout << '\n';
-            for (const auto& step : reports) {
-                std::cout << "  step " << step.name << ": |r|^2 = " << step.squared_residual_norm
-                          << ", " << fixed(step.wall_time_ms, 2) << " ms, " << step.termination
-                          << '\n';
-            }
-            if (result.report) printGlobal(result);
-            if (uncertainty) {
-                for (const std::string& flag : uncertainty->flags)
-                    std::cout << "  note: " << flag << '\n';
-            }
+            printSummary(std::cout, analysis::identificationSummary(result));
         }
         if (!result.usable())
             throw std::runtime_error("the fit did not converge to a usable solution");

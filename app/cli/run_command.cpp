@@ -108,7 +108,8 @@ project::RunRecord runOne(const project::ScriptAnalysis& a, Writer& writer,
         record.notes = outcome.notes;
         if (outcome.status == analysis::Outcome::Status::kCancelled) {
             record.notes.push_back("cancelled: the rows computed so far");
-        } else if (outcome.status == analysis::Outcome::Status::kFailed) {
+        } else if (outcome.status == analysis::Outcome::Status::kFailed ||
+                   outcome.status == analysis::Outcome::Status::kInvalidInput) {
             record.error = outcome.message.empty() ? "failed" : outcome.message;
         }
         record.outcomes = project::evaluate(a.expectations, outcome);

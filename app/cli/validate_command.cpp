@@ -2,12 +2,14 @@
 // (core/analysis/validation.h, docs/validation.md), optionally calibrated to it first.
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"
 #include "app/cli/signals.h"
+#include "core/analysis/registry.h"
 #include "core/analysis/validation.h"
 #include "core/common/range.h"
 #include "core/io/atomic_file.h"
@@ -30,26 +32,51 @@ struct ValidateOptions {
     std::string save_soil;
 };
 
-void parseNoise(const std::vector<std::string>& items, analysis::ValidationSettings& s) {
-    std::map<std::string, std::size_t> channels{
-        {"Fx_N", io::kExpFx}, {"My_Nm", io::kExpMy}, {"sinkage_m", io::kExpSinkage}};
-    refuseRepeatedKeys("--noise", items);
-    std::vector<Issue> issues;
-    for (const std::string& item : items) {
+// The flags as the validation's settings object (the keys of ValidationSettings::visitFields),
+// read by its own reader: the ranges, the slips of the test and their messages are the reader's,
+// named here by the flags. Left to the flags: the form CHANNEL=SIGMA of --noise and a channel
+// given twice.
+nlohmann::json settingsObject(const ValidateOptions& o) {
+    nlohmann::json s{{"experiments", o.experiments},
+                     {"calibrate", o.calibrate},
+                     {"fit_n1", o.fit_n1},
+                     {"fit_slip_sinkage", o.fit_slip_sinkage}};
+    if (!o.fit_slips.empty()) s["fit_slips"] = parseValues(o.fit_slips, "--fit-slips");
+    refuseRepeatedKeys("--noise", o.noise);
+    for (const std::string& item : o.noise) {
         const auto equals = item.find('=');
-        const auto it = channels.find(item.substr(0, equals));
         double sigma = 0.0;
-        if (equals == std::string::npos || it == channels.end() ||
-            !parseStrictNumber(item.substr(equals + 1), sigma)) {
-            issues.push_back({"--noise " + io::quoteCell(item),
-                              "expected Fx_N=SIGMA, My_Nm=SIGMA or sinkage_m=SIGMA (N, N·m, m)"});
-            continue;
+        if (equals == std::string::npos || !parseStrictNumber(item.substr(equals + 1), sigma)) {
+            throw InputError("--noise " + io::quoteCell(item) +
+                             ": expected Fx_N=SIGMA, My_Nm=SIGMA or sinkage_m=SIGMA (N, N·m, m)");
         }
-        const io::ExperimentColumn& column = io::experimentChannels()[it->second];
-        if (checkRange(issues, "--noise " + it->first, sigma, {0.0, 1e6, true, false}, column.unit))
-            s.noise[it->second] = sigma;
+        s["noise"][item.substr(0, equals)] = sigma;
     }
-    if (!issues.empty()) throw InputError(formatIssues(issues));
+    return s;
+}
+
+// The validation's settings of the flags, read by its reader (exit 2 names the flag, the value
+// and what is allowed, in the reader's words). The test is the one the command has read already.
+analysis::ValidationSettings validateSettings(const ValidateOptions& o,
+                                              const io::Experiment& experiment) {
+    const nlohmann::json object = settingsObject(o);
+    std::vector<Issue> issues;
+    io::ObjectReader reader(object, issues);
+    analysis::ValidationSettings settings;
+    settings.data = experiment;
+    analysis::readValidationSettings(reader, {}, settings);
+    reader.finish();
+    if (!issues.empty()) {
+        nameFlags(issues, {{"experiments", "--experiments"},
+                           {"calibrate", "--calibrate"},
+                           {"fit_slips", "--fit-slips"},
+                           {"noise.", "--noise "},
+                           {"noise", "--noise"},
+                           {"fit_n1", "--fit-n1"},
+                           {"fit_slip_sinkage", "--fit-slip-sinkage"}});
+        throw InputError(formatIssues(issues));
+    }
+    return settings;
 }
 
 std::string cellOf(const std::optional<double>& v, double scale, int decimals) {
@@ -96,75 +123,16 @@ void printRun(std::ostream& out, const analysis::ValidationRun& run, bool with_f
     }
 }
 
-void printMetrics(std::ostream& out, const analysis::ValidationMetrics& metrics,
-                  const std::string& title) {
-    out << title << '\n';
-    for (std::size_t c = 0; c < metrics.size(); ++c) {
-        if (!metrics[c]) continue;
-        const analysis::ChannelMetrics& m = *metrics[c];
-        const double k = displayScale(c);
-        const std::string unit = c == io::kExpSinkage ? "mm" : io::experimentChannels()[c].unit;
-        out << "  " << displayName(c) << ": RMSE " << fixed(m.rmse * k, 3) << ' ' << unit
-            << ", MAE " << fixed(m.mae * k, 3) << ' ' << unit << ", max relative error "
-            << (std::isnan(m.max_rel_error) ? std::string("-")
-                                            : fixed(100.0 * m.max_rel_error, 1) + " %")
-            << " (" << m.count << " points)\n";
-    }
-}
-
-void printHuman(const analysis::ValidationResult& r, const analysis::Inputs& in) {
+// The summary (analysis::validationSummary), the points of each run printed before its metrics.
+void printHuman(const analysis::ValidationResult& r) {
     std::ostringstream out;
-    out << "validation of " << in.soil.name << " on " << in.wheel.name << " against " << r.source
-        << "\n";
-    printRun(out, r.before, false);
-    printMetrics(out, r.before.metrics, "metrics (given soil):");
-    if (r.calibration) {
-        const analysis::Calibration& c = *r.calibration;
-        out << "\ncalibration (identification from the load, " << in.soil.name
-            << " as prior; channels";
-        for (const std::string& ch : c.channels) out << ' ' << ch;
-        out << "): ";
-        if (!c.report.usable()) {
-            out << "FAILED: " << c.report.message << '\n';
-        } else {
-            out << c.report.termination << '\n';
-            // The calibration holds j_max at the soil's (the shear limit is the soil file's).
-            for (int k = 0; k < identification::kJmax; ++k) {
-                const auto i = static_cast<std::size_t>(k);
-                const identification::ParameterInfo& info = identification::parameterInfo()[i];
-                const std::string unit = std::string(info.unit) == "-" ? "" : info.unit;
-                out << "  " << info.name << " = "
-                    << formatNumber(roundSignificant(c.report.parameters[i] * info.to_user, 5));
-                if (c.report.uncertainty.computed)
-                    out << " ± "
-                        << formatNumber(
-                               roundSignificant(c.report.uncertainty.std[i] * info.to_user, 3));
-                out << (unit.empty() ? "" : " " + unit) << "   (prior "
-                    << formatNumber(roundSignificant(c.prior[i] * info.to_user, 5)) << ")\n";
-            }
-            if (c.n1) {
-                out << "  n1 = " << formatNumber(roundSignificant(*c.n1, 4));
-                if (c.n1_std) out << " ± " << formatNumber(roundSignificant(*c.n1_std, 3));
-                out << "   (thesis model: 0; from the profile of chi2 over n1)\n";
-            }
-            if (c.slip_sinkage) {
-                out << "  slip_sinkage = " << formatNumber(roundSignificant(*c.slip_sinkage, 4));
-                if (c.slip_sinkage_std)
-                    out << " ± " << formatNumber(roundSignificant(*c.slip_sinkage_std, 3));
-                out << "   (thesis model: 0; Lyasko's S of h = h0 (1 + S s), from the profile of "
-                       "chi2 over S)\n";
-            }
-            for (const std::string& flag : c.report.uncertainty.flags)
-                out << "  note: " << flag << '\n';
-            printRun(out, *c.after, true);
-            printMetrics(out, c.after->metrics, "metrics (calibrated soil):");
-            if (c.held_out) {
-                printMetrics(out, *c.held_out_before, "held-out points, given soil:");
-                printMetrics(out, *c.held_out, "held-out points, calibrated soil:");
-            }
+    for (const analysis::SummaryRow& row : analysis::validationSummary(r)) {
+        if (row.emphasis == analysis::SummaryRow::Emphasis::kHeading) {
+            if (row.json == "/metrics") printRun(out, r.before, false);
+            if (row.json == "/calibration/metrics") printRun(out, *r.calibration->after, true);
         }
+        printSummaryRow(out, row);
     }
-    for (const std::string& note : r.notes) out << "note: " << note << '\n';
     std::cout << out.str();
 }
 
@@ -242,14 +210,7 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError("--wheel: the test has no wheel in its metadata; give --wheel");
         }
         inputs.conditions.quadratic = o->model == "quadratic";
-        analysis::ValidationSettings settings;
-        settings.experiments = o->experiments;
-        settings.data = experiment;
-        settings.calibrate = o->calibrate;
-        settings.fit_n1 = o->fit_n1;
-        settings.fit_slip_sinkage = o->fit_slip_sinkage;
-        if (!o->fit_slips.empty()) settings.fit_slips = parseValues(o->fit_slips, "--fit-slips");
-        parseNoise(o->noise, settings);
+        const analysis::ValidationSettings settings = validateSettings(*o, experiment);
         analysis::ValidationResult result;
         {
             const SignalCancellation cancellation;
@@ -261,7 +222,9 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
                 throw InputError(e.what());
             }
             progress.finish();
-            if (cancellation.requested()) {
+            if (result.status == analysis::Outcome::Status::kInvalidInput)
+                throw InputError(formatIssues(result.issues));
+            if (result.status == analysis::Outcome::Status::kCancelled) {
                 exitCancelled(cancellation,
                               "validate cancelled by " + cancellation.signalName() +
                                   ": nothing written (a calibration stopped halfway has no "
@@ -271,12 +234,12 @@ void addValidateCommand(CLI::App& app, const io::PresetLocations& locations) {
         if (o->json) {
             std::cout << analysis::toJson(result).dump(2) << '\n';
         } else {
-            printHuman(result, inputs);
+            printHuman(result);
         }
         std::cout.flush();
         // No calibrated soil, nothing predicted: exit 1 with the reason, and no soil saved.
-        if (const std::string failure = analysis::validationFailure(result); !failure.empty())
-            throw std::runtime_error(failure);
+        if (result.status == analysis::Outcome::Status::kFailed)
+            throw std::runtime_error(result.message);
         if (!o->save_soil.empty()) {
             if (const auto error = io::writeFileAtomically(
                     o->save_soil, io::toJson(result.calibration->soil).dump(2) + "\n"))

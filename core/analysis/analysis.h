@@ -10,6 +10,7 @@
 #include <any>
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -79,9 +80,34 @@ struct NamedTable {
     Table table;
 };
 
+/// One line of a result's plain summary (what `terrastudio CMD` prints without --json, what a
+/// panel formats): a label, the value as a person reads it (rounded, "± std" where there is
+/// one), its unit, a detail said after it ("prior 0.4"), and how it stands out. `json` points at
+/// what the row shows in the result's toJson (an RFC 6901 pointer; "" when the JSON does not
+/// hold it, a heading's: the object its rows come from); `number` is that value when it is a
+/// number, as the JSON holds it (its unit: m where the row shows mm, a fraction where it shows
+/// %), NaN otherwise.
+struct SummaryRow {
+    enum class Emphasis {
+        kNormal,
+        kHeading,  ///< a section's title: its rows follow
+        kWarning,  ///< a failure, a flag or a note that a reader must not miss
+    };
+    std::string label;
+    std::string value;
+    std::string unit;
+    std::string detail;
+    Emphasis emphasis = Emphasis::kNormal;
+    std::string json;
+    double number = std::numeric_limits<double>::quiet_NaN();
+};
+using Summary = std::vector<SummaryRow>;
+
 /// A result seen uniformly: its tables, notes and status, and the typed result for the figures.
 struct Outcome {
-    enum class Status { kCompleted, kCancelled, kFailed };
+    /// Completed; stopped by the cancel flag (what was computed so far); failed (no result, see
+    /// message); or invalid input (the data or settings cannot be used, see message).
+    enum class Status { kCompleted, kCancelled, kFailed, kInvalidInput };
     Status status = Status::kCompleted;
     std::string message;             ///< why it failed or stopped early
     std::vector<NamedTable> tables;  ///< the main table first

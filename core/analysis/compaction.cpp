@@ -252,6 +252,7 @@ CompactionResult computeCompaction(const Inputs& in, const CompactionSettings& s
     std::vector<bool> reached(s.depths_m.size(), false);
     for (int k = 1; k <= s.passes; ++k) {
         if (control.cancelled()) {
+            out.cancelled = true;
             out.message = "cancelled after " + std::to_string(k - 1) + " of " +
                           std::to_string(s.passes) + " passes";
             break;
@@ -451,8 +452,7 @@ Outcome compactionOutcome(CompactionResult result) {
     if (!result.map.rows.empty()) out.tables.push_back({"map", "-map", result.map});
     out.notes = result.notes;
     if (!result.ok()) {
-        out.status = result.message.rfind("cancelled", 0) == 0 ? Outcome::Status::kCancelled
-                                                               : Outcome::Status::kFailed;
+        out.status = result.cancelled ? Outcome::Status::kCancelled : Outcome::Status::kFailed;
         out.message = result.message;
     }
     out.documents.push_back({"", toJson(result)});

@@ -98,6 +98,9 @@ struct CompactionResult {
     double load_n = 0.0;
     double concentration_used = kDefaultConcentration;  ///< when one ν applies to every depth
     std::string message;  ///< non-empty: a pass found no equilibrium (the passes before are kept)
+    /// Stopped by the cancel flag (`message` says after how many passes): the field callers
+    /// test, never the message's words.
+    bool cancelled = false;
     std::vector<std::string> notes;
 
     bool ok() const { return message.empty(); }

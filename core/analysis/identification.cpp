@@ -59,6 +59,7 @@ void loadData(const Inputs& in, const IdentificationSettings& s, IdentificationR
         auto read = id::readDataSet(
             s.csv, s.skip_bad_rows ? id::BadRows::kSkip : id::BadRows::kStop, needsOf(s));
         if (!read) {
+            out.status = Outcome::Status::kInvalidInput;
             out.data_issues = read.issues();
             out.message = read.message();
             return;
@@ -376,6 +377,160 @@ nlohmann::json toJson(const IdentificationResult& result) {
     return j;
 }
 
+namespace {
+
+// The global identification's rows: where it started, its data and χ², the priors against the
+// posterior, the held-out errors, the profile intervals, the other minima.
+void addGlobalRows(const IdentificationResult& result, Summary& out) {
+    using Emphasis = SummaryRow::Emphasis;
+    const id::IdentificationReport& r = *result.report;
+    out.push_back({"started from", result.start_description, "", "", Emphasis::kNormal, "/start"});
+    out.push_back({"data", r.setup.description, "", "", Emphasis::kNormal, "/source"});
+    out.push_back({"chi2", formatNumber(roundSignificant(r.chi2, 5)), "", "", Emphasis::kNormal,
+                   "/chi2", r.chi2});
+    out.push_back({"gradient norm", formatNumber(roundSignificant(r.gradient_norm, 3)), "", "",
+                   Emphasis::kNormal, "/gradient_norm", r.gradient_norm});
+    out.push_back({"Newton decrement", formatNumber(roundSignificant(r.newton_decrement, 3)), "",
+                   "", Emphasis::kNormal, "/newton_decrement", r.newton_decrement});
+    bool header = false;
+    for (int k = 0; k < id::kFullParameterCount; ++k) {
+        const id::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
+        if (!c.active) continue;
+        const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+        if (!header) {
+            out.push_back({"prior -> posterior", "", "", "shift in prior std, posterior/prior std",
+                           Emphasis::kHeading, "/prior"});
+        }
+        header = true;
+        out.push_back({field.symbol,
+                       formatNumber(roundSignificant(c.prior_mean / field.to_si, 4)) + " ± " +
+                           formatNumber(roundSignificant(c.prior_std / field.to_si, 3)) + " -> " +
+                           formatNumber(roundSignificant(c.posterior_mean / field.to_si, 4)) +
+                           " ± " + formatNumber(roundSignificant(c.posterior_std / field.to_si, 3)),
+                       field.displayUnit(),
+                       formatFixed(c.shift_in_prior_std, 2) + ", " + formatFixed(c.std_ratio, 2),
+                       Emphasis::kNormal, "/prior/" + std::string(field.key) + "/prior_mean",
+                       c.prior_mean / field.to_si});
+    }
+    if (r.holdout.computed) {
+        out.push_back({"held-out RMS in noise std",
+                       std::to_string(r.holdout.samples) + " samples, " +
+                           std::to_string(r.holdout.folds) + " fold(s)",
+                       "", "", Emphasis::kHeading, "/holdout"});
+        for (std::size_t c = 0; c < id::kChannelCount; ++c) {
+            if (!r.holdout.channels[c]) continue;
+            const std::string name = id::channelNames()[c];
+            out.push_back({name, formatFixed(r.holdout.rms_over_noise[c], 2), "",
+                           "in fit " + formatFixed(r.holdout.rms_in_fit[c] / r.noise[c], 2),
+                           Emphasis::kNormal, "/holdout/rms_over_noise/" + name,
+                           r.holdout.rms_over_noise[c]});
+        }
+    }
+    bool profile_header = false;
+    for (int k = 0; k < id::kFullParameterCount; ++k) {
+        const id::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
+        if (!p.computed) continue;
+        const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+        if (!profile_header) {
+            out.push_back({"profile-likelihood intervals",
+                           "delta chi2 = " + formatNumber(roundSignificant(p.delta_chi2, 3)), "",
+                           "the 3-std level", Emphasis::kHeading, "/profile_interval"});
+        }
+        profile_header = true;
+        out.push_back({field.symbol,
+                       formatNumber(roundSignificant(p.lower / field.to_si, 4)) +
+                           (p.lower_at_bound ? " (bound)" : "") + " .. " +
+                           formatNumber(roundSignificant(p.upper / field.to_si, 4)) +
+                           (p.upper_at_bound ? " (bound)" : ""),
+                       field.displayUnit(), "", Emphasis::kNormal,
+                       "/profile_interval/" + std::string(field.key) + "/lower",
+                       p.lower / field.to_si});
+    }
+    for (const id::Minimum& minimum : r.ambiguity) {
+        std::string text = "another minimum with delta chi2 = " +
+                           formatNumber(roundSignificant(minimum.delta_chi2, 3)) + " (threshold " +
+                           formatNumber(roundSignificant(r.ambiguity_delta_chi2, 3)) + "):";
+        for (int k = 0; k < id::kFullParameterCount; ++k) {
+            const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
+            text.append(" ").append(field.key).append(" = ");
+            text += formatNumber(
+                roundSignificant(minimum.parameters[static_cast<std::size_t>(k)] / field.to_si, 4));
+        }
+        out.push_back({"AMBIGUOUS", text, "", "", Emphasis::kWarning, ""});
+    }
+}
+
+}  // namespace
+
+int displayDecimals(const IdentifiedField& field) {
+    const std::string key = field.key;
+    return key == "Ks_kPa" ? 1 : key == "c_kPa" ? 3 : key == "phi_deg" ? 2 : 4;
+}
+
+Summary identificationSummary(const IdentificationResult& result) {
+    using Emphasis = SummaryRow::Emphasis;
+    Summary out;
+    const bool refined = result.report.has_value();
+    out.push_back(
+        {refined ? "full-model identification (global search)" : "decoupled identification",
+         result.wheel, "", "", Emphasis::kHeading, ""});
+    if (result.status != Outcome::Status::kCompleted) {
+        out.push_back({result.status == Outcome::Status::kCancelled ? "cancelled" : "invalid input",
+                       result.message, "", "", Emphasis::kWarning, ""});
+        return out;
+    }
+    out.push_back({"samples", std::to_string(result.data.samples.size()), "", "", Emphasis::kNormal,
+                   "/samples", static_cast<double>(result.data.samples.size())});
+    const id::DecoupledParameters& p = result.identified;
+    const std::optional<id::Uncertainty> uncertainty =
+        refined ? std::optional(result.report->uncertainty) : std::nullopt;
+    for (const IdentifiedField& field : identifiedFields()) {
+        const auto full = fullParameterOf(field);
+        if (refined && !full) continue;  // n1 = 0 after the refinement
+        const bool limit = full == id::kJmax;
+        if (limit && !refined) continue;  // the decoupled model has no j_max
+        const double value = field.toUser(p.*field.member);
+        SummaryRow row{field.symbol,
+                       formatFixed(value, displayDecimals(field)),
+                       field.displayUnit(),
+                       "",
+                       Emphasis::kNormal,
+                       "/" + std::string(field.key),
+                       value};
+        if (uncertainty && uncertainty->computed && full) {
+            const double sd = uncertainty->std[static_cast<std::size_t>(*full)];
+            if (sd > 0) row.value += " ± " + formatFixed(sd / field.to_si, 4);
+        }
+        if (limit && !std::isfinite(p.*field.member)) {
+            row.value = "none";
+            row.unit.clear();
+            row.json.clear();
+            row.number = std::numeric_limits<double>::quiet_NaN();
+        }
+        if (limit && !result.report->setup.max_shear_deformation_free) row.detail = "held";
+        out.push_back(std::move(row));
+    }
+    const std::vector<id::StepReport> steps = result.steps();
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        const id::StepReport& step = steps[i];
+        std::string detail = formatFixed(step.wall_time_ms, 2) + " ms";
+        if (!step.termination.empty()) detail += ", " + step.termination;
+        out.push_back({"step " + step.name + ", |r|^2",
+                       formatNumber(roundSignificant(step.squared_residual_norm, 6)), "", detail,
+                       Emphasis::kNormal, "/steps/" + std::to_string(i) + "/squared_residual_norm",
+                       step.squared_residual_norm});
+    }
+    if (refined) {
+        addGlobalRows(result, out);
+        const std::vector<std::string>& flags = result.report->uncertainty.flags;
+        for (std::size_t f = 0; f < flags.size(); ++f) {
+            out.push_back(
+                {"note", flags[f], "", "", Emphasis::kWarning, "/flags/" + std::to_string(f)});
+        }
+    }
+    return out;
+}
+
 Result<soil::SoilParameters> identifiedSoilFile(const IdentificationResult& result,
                                                 const soil::SoilParameters& base,
                                                 const wheel::WheelParameters& wheel, double jmax) {
@@ -507,9 +662,11 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         issues.push_back({"prior_soil", quoteText(s.prior_soil_name) + " is not resolved"});
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     IdentificationResult out;
+    out.wheel = in.wheel.name;
     loadData(in, s, out);
     if (!out.message.empty()) return out;
     if (out.data.samples.empty()) {
+        out.status = Outcome::Status::kInvalidInput;
         out.message = "the data set has no samples";
         return out;
     }
@@ -536,10 +693,12 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         for (const id::Start& extra : s.starts) out.start_description += " + " + extra.label;
         if (!prior_source.empty()) out.start_description += "; prior: " + prior_source;
         if (r.status == id::IdentifyStatus::kInvalidInput) {
+            out.status = Outcome::Status::kInvalidInput;
             out.message = formatIssues(r.issues);
             return out;
         }
         if (r.status == id::IdentifyStatus::kCancelled) {
+            out.status = Outcome::Status::kCancelled;
             out.message = "cancelled";
             out.cancelled = true;
             return out;
@@ -557,6 +716,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
     } else {
         if (!out.data.columns.entry_angle || !out.data.columns.fx || !out.data.columns.fz ||
             !out.data.columns.my) {
+            out.status = Outcome::Status::kInvalidInput;
             out.message = "the decoupled fit needs entry_angle_deg, Fx_N, Fz_N and My_Nm";
             return out;
         }
@@ -633,7 +793,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
 Outcome identificationOutcome(IdentificationResult result) {
     Outcome out;
     if (!result.message.empty()) {
-        out.status = result.cancelled ? Outcome::Status::kCancelled : Outcome::Status::kFailed;
+        out.status = result.status;
         out.message = result.message;
     }
     out.tables.push_back({"parameters", "-parameters", result.parameters});

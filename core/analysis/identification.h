@@ -225,9 +225,15 @@ struct IdentificationResult {
     /// Profile-likelihood intervals (settings.profile; `computed` false for the others).
     std::array<identification::ProfileInterval, identification::kFullParameterCount> profile{};
     double profile_time_ms = 0.0;
+    std::string wheel;  ///< the wheel's name
+    /// kCompleted: fitted (usable() says whether it converged; a fit that did not is still a
+    /// result, its tables kept); kInvalidInput: nothing to fit, `message` says why and the issues
+    /// are in `data_issues` (the CSV could not be read) or the report's `issues` (data or options
+    /// the identification cannot use); kCancelled: stopped by the cancel flag before a result.
+    /// Callers test this, never the message's words. (Never kFailed.)
+    Outcome::Status status = Outcome::Status::kCompleted;
     std::string message;  ///< non-empty: there was nothing to fit (see data_issues)
-    /// Stopped by the cancel flag before a result (then `message` says "cancelled"): the one
-    /// field callers test, never the message's words.
+    /// status == kCancelled (kept for the panels that test it).
     bool cancelled = false;
     std::vector<Issue> data_issues;  ///< why the data could not be read
 
@@ -262,6 +268,16 @@ nlohmann::json covarianceJson(const identification::IdentificationReport& report
 /// "noise_estimated", "profile_interval"; always "steps" and "samples". For a result with a
 /// `message` (nothing fitted) only "steps" and "samples" mean anything.
 nlohmann::json toJson(const IdentificationResult& result);
+
+/// The result for a person, as `terrastudio identify` prints it: the kind of fit and its wheel,
+/// the samples, the identified parameters (± std, j_max "held" or identified), each step's
+/// Σr², and after the global identification where it started, χ², the priors against the
+/// posterior, the held-out errors, the profile intervals, other minima and the flags. Each
+/// number's `json` points at it in toJson(result). A cancelled result or one without data: the
+/// title and why.
+Summary identificationSummary(const IdentificationResult& result);
+/// Decimals of an identified parameter for a person (K_s in kPa/m^n is in the thousands: 1).
+int displayDecimals(const IdentifiedField& field);
 
 /// The soil an identification found, as `identify --save-soil` writes it: `base` (its γ, which
 /// the wheel data do not see) with a₀, a₁, n, n₁, c, φ, K identified, k_c = 0 and k_φ = K_s (so

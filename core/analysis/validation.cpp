@@ -9,6 +9,7 @@
 #include "core/analysis/registry.h"
 #include "core/common/units.h"
 #include "core/identification/parameters.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 namespace {
@@ -269,14 +270,43 @@ constexpr ProfiledSetting kSlipSinkageProfile{
 
 }  // namespace
 
+std::vector<Issue> validationRuleIssues(const ValidationSettings& s) {
+    std::vector<Issue> issues;
+    const char* const calibration = "belongs to the calibration: add \"calibrate\": true";
+    if (!s.fit_slips.empty() && !s.calibrate) issues.push_back({"fit_slips", calibration});
+    if (s.fit_n1 && !s.calibrate) issues.push_back({"fit_n1", calibration});
+    if (s.fit_slip_sinkage && !s.calibrate) issues.push_back({"fit_slip_sinkage", calibration});
+    if (s.fit_slip_sinkage && s.fit_n1) {
+        issues.push_back({"fit_slip_sinkage",
+                          "fit one slip-sinkage model at a time: fit_n1 or fit_slip_sinkage, "
+                          "not both"});
+    }
+    return issues;
+}
+
+std::vector<Issue> fitSlipIssues(const std::vector<double>& fit_slips,
+                                 const io::Experiment& experiment) {
+    std::vector<Issue> issues;
+    for (std::size_t i = 0; i < fit_slips.size(); ++i) {
+        const double slip = fit_slips[i];
+        if (std::none_of(experiment.points.begin(), experiment.points.end(),
+                         [slip](const io::ExperimentPoint& p) {
+                             return std::abs(p.slip - slip) <= kSlipMatch;
+                         })) {
+            issues.push_back({"fit_slips[" + std::to_string(i) + "]",
+                              formatNumber(slip) + " is not a slip of the test"});
+        }
+    }
+    return issues;
+}
+
 void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
                             ValidationSettings& out) {
-    if (r.text("experiments", out.experiments, io::Presence::kRequired) &&
-        !out.experiments.empty()) {
-        std::filesystem::path path(out.experiments);
-        if (path.is_relative() && !context.base_dir.empty()) path = context.base_dir / path;
-        out.experiments = path.string();
-        Result<io::Experiment> read = io::readExperiment(path);
+    // Required: a key the field list cannot mark (its reader's "missing" wording).
+    r.value("experiments", io::Presence::kRequired, "a string");
+    io::readFields(r, out, context.base_dir);
+    if (!out.data && !out.experiments.empty() && r.has("experiments")) {
+        Result<io::Experiment> read = io::readExperiment(out.experiments);
         if (!read) {
             for (const Issue& issue : read.issues())
                 r.report("experiments", issue.where + ": " + issue.message);
@@ -284,47 +314,14 @@ void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
             out.data = read.value();
         }
     }
-    r.boolean("calibrate", out.calibrate);
-    r.numbers("fit_slips", out.fit_slips, {-1.0, 1.0}, {}, 1);
     if (out.data) {
-        for (std::size_t i = 0; i < out.fit_slips.size(); ++i) {
-            const double s = out.fit_slips[i];
-            if (std::none_of(out.data->points.begin(), out.data->points.end(),
-                             [s](const io::ExperimentPoint& p) {
-                                 return std::abs(p.slip - s) <= kSlipMatch;
-                             })) {
-                r.report("fit_slips[" + std::to_string(i) + "]",
-                         formatNumber(s) + " is not a slip of the test");
-            }
-        }
+        for (const Issue& issue : fitSlipIssues(out.fit_slips, *out.data))
+            r.report(issue.where, issue.message);
     }
-    if (!out.fit_slips.empty() && !out.calibrate) {
-        r.report("fit_slips", "belongs to the calibration: add \"calibrate\": true");
-    }
-    r.boolean("fit_n1", out.fit_n1);
-    if (out.fit_n1 && !out.calibrate) {
-        r.report("fit_n1", "belongs to the calibration: add \"calibrate\": true");
-    }
-    r.boolean("fit_slip_sinkage", out.fit_slip_sinkage);
-    if (out.fit_slip_sinkage && !out.calibrate) {
-        r.report("fit_slip_sinkage", "belongs to the calibration: add \"calibrate\": true");
-    }
-    if (out.fit_slip_sinkage && out.fit_n1) {
-        r.report("fit_slip_sinkage",
-                 "fit one slip-sinkage model at a time: fit_n1 or fit_slip_sinkage, not both");
-    }
-    if (r.has("noise")) {
-        io::ObjectReader noise = r.object("noise");
-        for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
-            if (!kFitChannel[c]) continue;
-            const io::ExperimentColumn& column = io::experimentChannels()[c];
-            noise.number(column.name, out.noise[c], {0.0, 1e6, true, false}, column.unit);
-        }
-        noise.finish();
-    } else {
-        r.allow("noise");
-    }
+    for (const Issue& issue : validationRuleIssues(out)) r.report(issue.where, issue.message);
 }
+
+nlohmann::json toJson(const ValidationSettings& settings) { return io::fieldsToJson(settings); }
 
 ValidationMetrics computeMetrics(const std::vector<PointComparison>& points,
                                  std::optional<bool> in_fit) {
@@ -470,37 +467,38 @@ soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
 
 ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s,
                                    const Control& control) {
+    // The reader's checks, in its words, for settings built in code (a panel's, a dialog's).
     std::vector<Issue> issues = validate(in);
+    for (Issue& issue : io::fieldIssues(s)) issues.push_back(std::move(issue));
+    for (Issue& issue : validationRuleIssues(s)) issues.push_back(std::move(issue));
+    if (!s.data && s.experiments.empty()) issues.push_back({"experiments", "no test given"});
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     io::Experiment experiment;
     if (s.data) {
         experiment = *s.data;
-    } else if (s.experiments.empty()) {
-        issues.push_back({"experiments", "no test given"});
     } else {
+        // A test named but not read (code's settings): one that cannot be read is the input's
+        // problem, not the code's.
         Result<io::Experiment> read = io::readExperiment(s.experiments);
         if (!read) {
-            for (const Issue& issue : read.issues()) issues.push_back(issue);
-        } else {
-            experiment = read.value();
+            ValidationResult out;
+            out.status = Outcome::Status::kInvalidInput;
+            out.source = s.experiments;
+            out.soil = in.soil.name;
+            out.wheel = in.wheel.name;
+            out.issues = read.issues();
+            out.message = read.message();
+            return out;
         }
+        experiment = read.value();
     }
-    for (double slip : s.fit_slips) {
-        if (std::none_of(experiment.points.begin(), experiment.points.end(),
-                         [slip](const io::ExperimentPoint& p) {
-                             return std::abs(p.slip - slip) <= kSlipMatch;
-                         })) {
-            issues.push_back({"fit_slips", formatNumber(slip) + " is not a slip of the test"});
-        }
-    }
-    if (s.fit_n1 && s.fit_slip_sinkage) {
-        issues.push_back({"fit_slip_sinkage",
-                          "fit one slip-sinkage model at a time: fit_n1 or fit_slip_sinkage, "
-                          "not both"});
-    }
-    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    if (const std::vector<Issue> slips = fitSlipIssues(s.fit_slips, experiment); !slips.empty())
+        throw std::invalid_argument(formatIssues(slips));
 
     ValidationResult out;
     out.source = experiment.source;
+    out.soil = in.soil.name;
+    out.wheel = in.wheel.name;
     if (experiment.metadata && experiment.metadata->wheel) {
         const wheel::WheelParameters& w = *experiment.metadata->wheel;
         if (w.radius_m != in.wheel.radius_m || w.width_m != in.wheel.width_m) {
@@ -529,7 +527,18 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
                                 ": no prediction: " + p.failure);
         }
     }
-    if (!s.calibrate || control.cancelled()) return out;
+    if (control.cancelled()) {
+        out.status = Outcome::Status::kCancelled;
+        out.message = "cancelled: the given soil's predictions only";
+        return out;
+    }
+    if (!s.calibrate) {
+        if (const std::string failure = validationFailure(out); !failure.empty()) {
+            out.status = Outcome::Status::kFailed;
+            out.message = failure;
+        }
+        return out;
+    }
 
     Calibration cal;
     cal.prior = id::fromSoil(in.soil, in.wheel);
@@ -634,7 +643,17 @@ ValidationResult computeValidation(const Inputs& in, const ValidationSettings& s
             cal.held_out = computeMetrics(cal.after->points, false);
         }
     }
+    if (control.cancelled() || cal.report.status == id::IdentifyStatus::kCancelled) {
+        // A calibration stopped halfway is no calibration: the given soil's predictions only.
+        out.status = Outcome::Status::kCancelled;
+        out.message = "cancelled: the calibration was stopped; the given soil's predictions only";
+        return out;
+    }
     out.calibration = std::move(cal);
+    if (const std::string failure = validationFailure(out); !failure.empty()) {
+        out.status = Outcome::Status::kFailed;
+        out.message = failure;
+    }
     return out;
 }
 
@@ -748,16 +767,134 @@ std::string validationFailure(const ValidationResult& result) {
     return {};
 }
 
+namespace {
+
+using Row = SummaryRow;
+using Emphasis = SummaryRow::Emphasis;
+
+// A channel for a person: "Fx", "My", "sinkage" (the column name without its unit); the sinkage
+// shown in mm.
+std::string channelLabel(std::size_t c) {
+    const std::string name = nameOf(c);
+    return c == io::kExpSinkage ? "sinkage" : name.substr(0, name.find('_'));
+}
+double channelScale(std::size_t c) { return c == io::kExpSinkage ? 1e3 : 1.0; }
+std::string channelUnit(std::size_t c) {
+    return c == io::kExpSinkage ? "mm" : io::experimentChannels()[c].unit;
+}
+
+// The rows of one set of metrics, under its heading; `pointer` is its object in toJson. One row
+// per channel: its RMSE, the MAE, the largest relative error and the count said after it.
+void addMetricRows(Summary& out, const ValidationMetrics& metrics, const std::string& title,
+                   const std::string& pointer) {
+    out.push_back({title, "", "", "", Emphasis::kHeading, pointer});
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (!metrics[c]) continue;
+        const ChannelMetrics& m = *metrics[c];
+        const double k = channelScale(c);
+        const std::string unit = channelUnit(c);
+        const std::string detail =
+            "MAE " + formatFixed(m.mae * k, 3) + " " + unit + ", max relative error " +
+            (std::isnan(m.max_rel_error) ? std::string("-")
+                                         : formatFixed(100.0 * m.max_rel_error, 1) + " %") +
+            ", " + std::to_string(m.count) + " points";
+        out.push_back({channelLabel(c) + " RMSE", formatFixed(m.rmse * k, 3), unit, detail,
+                       Emphasis::kNormal, pointer + "/" + nameOf(c) + "/rmse", m.rmse});
+    }
+}
+
+// "0.73023 ± 0.353" (`digits` and 3 significant digits).
+std::string valueWithStd(double value, std::optional<double> std, int digits = 5) {
+    std::string text = formatNumber(roundSignificant(value, digits));
+    if (std) text += " ± " + formatNumber(roundSignificant(*std, 3));
+    return text;
+}
+
+}  // namespace
+
+Summary validationSummary(const ValidationResult& r) {
+    Summary out;
+    out.push_back({"validation", r.soil + " on " + r.wheel + " against " + r.source, "", "",
+                   Emphasis::kHeading, ""});
+    if (r.status == Outcome::Status::kInvalidInput) {
+        out.push_back({"invalid input", formatIssues(r.issues), "", "", Emphasis::kWarning, ""});
+        return out;
+    }
+    addMetricRows(out, r.before.metrics, "metrics (given soil)", "/metrics");
+    if (r.calibration) {
+        const Calibration& c = *r.calibration;
+        std::string title =
+            "calibration (identification from the load, " + r.soil + " as prior; channels";
+        for (const std::string& ch : c.channels) title += " " + ch;
+        title += ")";
+        if (!c.report.usable()) {
+            out.push_back({title + ": FAILED", c.report.message, "", "", Emphasis::kWarning,
+                           c.report.message.empty() ? "" : "/calibration/message"});
+        } else {
+            out.push_back(
+                {title, c.report.termination, "", "", Emphasis::kHeading, "/calibration"});
+            // j_max is held at the soil's (the shear limit is the soil file's): seven parameters.
+            for (int k = 0; k < id::kJmax; ++k) {
+                const auto i = static_cast<std::size_t>(k);
+                const id::ParameterInfo& info = id::parameterInfo()[i];
+                const std::string unit = std::string(info.unit) == "-" ? "" : info.unit;
+                const double value = c.report.parameters[i] * info.to_user;
+                out.push_back(
+                    {info.name,
+                     valueWithStd(value,
+                                  c.report.uncertainty.computed
+                                      ? std::optional(c.report.uncertainty.std[i] * info.to_user)
+                                      : std::nullopt),
+                     unit, "prior " + formatNumber(roundSignificant(c.prior[i] * info.to_user, 5)),
+                     Emphasis::kNormal,
+                     "/calibration/parameters/" + std::string(info.name) + "/value", value});
+            }
+            if (c.n1) {
+                out.push_back({"n1", valueWithStd(*c.n1, c.n1_std, 4), "",
+                               "thesis model: 0; from the profile of chi2 over n1",
+                               Emphasis::kNormal, "/calibration/parameters/n1/value", *c.n1});
+            }
+            if (c.slip_sinkage) {
+                out.push_back({"slip_sinkage", valueWithStd(*c.slip_sinkage, c.slip_sinkage_std, 4),
+                               "",
+                               "thesis model: 0; Lyasko's S of h = h0 (1 + S s), from the "
+                               "profile of chi2 over S",
+                               Emphasis::kNormal, "/calibration/parameters/slip_sinkage/value",
+                               *c.slip_sinkage});
+            }
+            for (std::size_t f = 0; f < c.report.uncertainty.flags.size(); ++f) {
+                out.push_back({"note", c.report.uncertainty.flags[f], "", "", Emphasis::kWarning,
+                               "/calibration/flags/" + std::to_string(f)});
+            }
+            addMetricRows(out, c.after->metrics, "metrics (calibrated soil)",
+                          "/calibration/metrics");
+            if (c.held_out) {
+                addMetricRows(out, *c.held_out_before, "held-out points, given soil",
+                              "/calibration/held_out/metrics_before");
+                addMetricRows(out, *c.held_out, "held-out points, calibrated soil",
+                              "/calibration/held_out/metrics");
+            }
+        }
+    }
+    for (std::size_t n = 0; n < r.notes.size(); ++n) {
+        out.push_back(
+            {"note", r.notes[n], "", "", Emphasis::kWarning, "/notes/" + std::to_string(n)});
+    }
+    if (r.status == Outcome::Status::kCancelled)
+        out.push_back({"cancelled", r.message, "", "", Emphasis::kWarning, ""});
+    return out;
+}
+
 Outcome validationOutcome(ValidationResult result) {
     Outcome out;
-    if (const std::string failure = validationFailure(result); !failure.empty()) {
-        out.status = Outcome::Status::kFailed;
-        out.message = failure;
-    }
+    out.status = result.status;
+    out.message = result.message;
     out.tables.push_back({"metrics", "-metrics", metricsTable(result.before.metrics)});
     out.tables.push_back({"points", "-points", pointsTable(result.before.points, false)});
     out.tables.push_back({"curves", "-curves", result.before.curves});
     out.notes = result.notes;
+    for (const Issue& issue : result.issues)
+        out.notes.push_back(issue.where + ": " + issue.message);
     if (result.calibration) {
         const Calibration& c = *result.calibration;
         if (c.report.usable()) {

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/common/declared_fields.h"
+#include "core/common/range.h"
 #include "core/identification/identify.h"
 #include "core/io/experiment.h"
 
@@ -22,6 +24,19 @@ namespace terra::analysis {
 
 struct AnalysisType;
 struct ReadContext;
+
+/// Noise std of the channels the calibration weights [N, N·m, m] (io::ExperimentChannel order;
+/// F_s and F_z are never fitted); 0: estimated from the residuals. The "noise" object.
+struct ValidationNoise {
+    std::array<double, io::kExperimentChannelCount> sigma{};
+
+    double& operator[](std::size_t channel) { return sigma[channel]; }
+    double operator[](std::size_t channel) const { return sigma[channel]; }
+
+    /// Its keys: the fitted channels' names (Fx_N, My_Nm, sinkage_m).
+    template <typename Visitor>
+    void visitFields(Visitor& v);
+};
 
 struct ValidationSettings {
     std::string experiments;  ///< the test: its CSV or its sidecar JSON (io/experiment.h)
@@ -34,7 +49,7 @@ struct ValidationSettings {
     std::vector<double> fit_slips;
     /// Noise std of each channel weighting the calibration [N, N·m, m, N, N]
     /// (io::ExperimentChannel order); 0: estimated from the residuals.
-    std::array<double, io::kExperimentChannelCount> noise{};
+    ValidationNoise noise;
     /// Calibration only: fit n₁ of the slip-sinkage exponent N = n + n₁ s too (docs/model.md,
     /// "Slip-sinkage"), by profiling χ² over n₁; false: n₁ = 0, the thesis model.
     bool fit_n1 = false;
@@ -43,14 +58,61 @@ struct ValidationSettings {
     /// with fit_n1 (one slip-sinkage model at a time).
     bool fit_slip_sinkage = false;
     /// Compute ValidationRun::curves (the model lines of the validation figures). The studio's
-    /// forces panel draws its own sweeps at the test's loads and turns this off.
+    /// forces panel draws its own sweeps at the test's loads and turns this off. Code only (no
+    /// file key).
     bool curves = true;
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson, the
+    /// command line's flags and compute's checks are made from them. The test read (`data`) and
+    /// `curves` are not file keys.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// "experiments" (required; relative to the context's directory, read at once), "calibrate",
-/// "fit_slips", "noise" ({"Fx_N", "My_Nm", "sinkage_m"}), "fit_n1", "fit_slip_sinkage".
+/// The range of a noise level given (σ > 0; absent, 0 in the member: estimated).
+inline constexpr Range kValidationNoiseRange{0.0, 1e6, true, false};
+
+template <typename Visitor>
+void ValidationNoise::visitFields(Visitor& v) {
+    for (const std::size_t c : {io::kExpFx, io::kExpMy, io::kExpSinkage}) {
+        const io::ExperimentColumn& column = io::experimentChannels()[c];
+        v(fields::number(column.name, sigma[c], kValidationNoiseRange, column.unit,
+                         "calibration: noise σ of the channel; absent: estimated", 0.0));
+    }
+}
+
+template <typename Visitor>
+void ValidationSettings::visitFields(Visitor& v) {
+    v(fields::path("experiments", experiments,
+                   "the test: its CSV or its sidecar JSON (required; read at once)"));
+    v(fields::flag("calibrate", calibrate, "fit the soil to the test first"));
+    v(fields::numbers("fit_slips", fit_slips, {-1.0, 1.0}, "",
+                      "calibration: fit on the points at these slips of the test only; the others "
+                      "are held out",
+                      1));
+    v(fields::object("noise", noise, "calibration: noise levels weighting the channels"));
+    v(fields::flag("fit_n1", fit_n1,
+                   "calibration: fit n1 of the slip-sinkage exponent N = n + n1 s too"));
+    v(fields::flag("fit_slip_sinkage", fit_slip_sinkage,
+                   "calibration: fit S of Lyasko's slip sinkage h = h0 (1 + S s) too (not with "
+                   "fit_n1)"));
+}
+
+/// The keys of ValidationSettings::visitFields, read strictly (io::readFields), then what a field
+/// list cannot say: "experiments" is required and read at once (relative to the context's
+/// directory; a bad test is a problem of the settings; a test the caller has read already, in
+/// `out.data`, is not read again), every fit slip must be a slip of the test, and the rules
+/// between keys (validationRuleIssues).
 void readValidationSettings(io::ObjectReader& r, const ReadContext& context,
                             ValidationSettings& out);
+/// The rules between keys: "fit_slips", "fit_n1" and "fit_slip_sinkage" belong to the
+/// calibration; "fit_n1" or "fit_slip_sinkage", not both.
+std::vector<Issue> validationRuleIssues(const ValidationSettings& settings);
+/// The fit slips that are no slip of `experiment`, at "fit_slips[i]".
+std::vector<Issue> fitSlipIssues(const std::vector<double>& fit_slips,
+                                 const io::Experiment& experiment);
+/// The settings' file keys (io::fieldsToJson): what readValidationSettings reads back.
+nlohmann::json toJson(const ValidationSettings& settings);
 
 /// The errors of one channel over the points that measure it and have a prediction.
 struct ChannelMetrics {
@@ -110,7 +172,15 @@ struct Calibration {
 };
 
 struct ValidationResult {
-    std::string source;  ///< the test's file
+    /// kCompleted; kCancelled: stopped by the cancel flag (the given soil's predictions are
+    /// kept, a calibration stopped halfway is dropped); kFailed: no result, `message` says why
+    /// (validationFailure); kInvalidInput: the test named by the settings could not be read
+    /// (`issues`). Callers test this, never the message's words.
+    Outcome::Status status = Outcome::Status::kCompleted;
+    std::string message;
+    std::vector<Issue> issues;  ///< kInvalidInput: every problem of the test
+    std::string source;         ///< the test's file
+    std::string soil, wheel;    ///< the given soil's and the wheel's names
     ValidationRun before;
     std::optional<Calibration> calibration;
     std::vector<std::string> notes;
@@ -134,8 +204,10 @@ soil::SoilParameters soilFromParameters(const soil::SoilParameters& prior,
                                         const identification::ParameterVector& p, double n1 = 0.0,
                                         double slip_sinkage = 0.0);
 
-/// Throws std::invalid_argument for invalid inputs or settings (a fit slip that is not in the
-/// test); a test that cannot be read is a problem of the settings (read before).
+/// Throws std::invalid_argument for invalid inputs or settings that the reader refuses (a struct
+/// built in code: a value out of its range, a fit slip that is not in the test; a programmer's
+/// error, in the reader's words); a test named by `settings.experiments` that cannot be read
+/// (no `data`) gives status kInvalidInput with its issues.
 ValidationResult computeValidation(const Inputs& inputs, const ValidationSettings& settings,
                                    const Control& control = {});
 
@@ -144,10 +216,19 @@ ValidationResult computeValidation(const Inputs& inputs, const ValidationSetting
 /// calibration "calibration": {…} (docs/cli.md, `validate`).
 nlohmann::json toJson(const ValidationResult& result);
 
-/// Why the validation is no result, or "": the calibration failed (its solver found no usable
-/// or no converged fit), the calibrated soil predicts none of the points, or, without a
-/// calibration, the given soil predicts none (every point without equilibrium: no metric).
+/// Why the validation is no result, or "" (also for a cancelled one): the calibration failed (its
+/// solver found no usable or no converged fit), the calibrated soil predicts none of the points,
+/// or, without a calibration, the given soil predicts none (every point without equilibrium: no
+/// metric).
 std::string validationFailure(const ValidationResult& result);
+
+/// The result for a person, as `terrastudio validate` prints it: the title, the metrics of the
+/// given soil, the calibration (its parameters ± std with their priors, its flags; or FAILED
+/// and why), the calibrated soil's metrics, the held-out points' metrics, the notes. A metrics
+/// row per channel shows its RMSE (the MAE, largest relative error and count in its detail).
+/// Forces and torques in N, N·m, the sinkage in mm, the largest relative error in %; each
+/// number's `json` points at it in toJson(result).
+Summary validationSummary(const ValidationResult& result);
 
 /// Tables "metrics" (main: one row, CHANNEL_rmse, CHANNEL_mae, CHANNEL_max_rel_error,
 /// CHANNEL_count per measured channel), "points", "curves" (ValidationRun::curves) and,

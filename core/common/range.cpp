@@ -19,6 +19,15 @@ std::string Range::describe() const {
            (high_open ? ")" : "]");
 }
 
+std::string formatFixed(double value, int decimals) {
+    if (!std::isfinite(value)) return "-";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    std::string text = buffer;
+    if (text[0] == '-' && text.find_first_not_of("0.", 1) == std::string::npos) text.erase(0, 1);
+    return text;
+}
+
 std::string formatNumber(double value) {
     if (std::isnan(value)) return "nan";
     if (std::isinf(value)) return value > 0 ? "inf" : "-inf";

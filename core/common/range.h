@@ -24,6 +24,11 @@ struct Range {
 /// Formats a number for messages: shortest round-trip text ("0.025", "1e-06", "nan").
 std::string formatNumber(double value);
 
+/// Fixed-point text with `decimals` decimals for tables and summaries ("5.656"); never "-0.000"
+/// (a negative zero or a tiny negative value that rounds to zero gives "0.000"); "-" for NaN or
+/// an infinity.
+std::string formatFixed(double value, int decimals);
+
 /// `value` rounded to `digits` significant decimal digits: unit conversions at the edges (rad→deg)
 /// then give back the number the user typed (29, not 29.000000000000004).
 double roundSignificant(double value, int digits = 12);

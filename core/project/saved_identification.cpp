@@ -455,6 +455,8 @@ Result<analysis::IdentificationResult> identificationResultFromJson(const json& 
         r.profile_time_ms = numberAt(j, "profile_time_ms");
         r.message = j.at("message").get<std::string>();
         r.data_issues = readKey(j, "data_issues", issuesFrom);
+        // A saved result with a message had nothing to fit (a cancelled fit is never saved).
+        if (!r.message.empty()) r.status = analysis::Outcome::Status::kInvalidInput;
         r.start_description = j.at("start_description").get<std::string>();
         // The curves are drawn per sample and the parameter table has one row: anything else
         // is not a fit this studio wrote.

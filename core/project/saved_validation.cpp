@@ -185,6 +185,10 @@ Result<analysis::ValidationResult> validationResultFromJson(const json& j,
         if (!j.at("calibration").is_null())
             r.calibration = readKey(j, "calibration", calibrationSectionFrom);
         r.notes = j.at("notes").get<std::vector<std::string>>();
+        // Its status as computed (a saved result is never cancelled nor an invalid input).
+        r.soil = r.before.soil.name;
+        r.message = analysis::validationFailure(r);
+        if (!r.message.empty()) r.status = analysis::Outcome::Status::kFailed;
         return r;
     } catch (const std::exception& e) {
         return std::vector<Issue>{{where, e.what()}};

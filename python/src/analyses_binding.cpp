@@ -38,6 +38,8 @@ const char* statusName(analysis::Outcome::Status status) {
             return "cancelled";
         case analysis::Outcome::Status::kFailed:
             return "failed";
+        case analysis::Outcome::Status::kInvalidInput:
+            return "invalid input";
     }
     return "?";
 }

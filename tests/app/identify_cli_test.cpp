@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -206,6 +207,20 @@ TEST_F(IdentifyCli, JsonCarriesTheCovarianceOfThePrintedStd) {
         for (std::size_t b = 0; b < a; ++b) EXPECT_EQ(cov[a][b], cov[b][a]) << a << ", " << b;
     }
     EXPECT_TRUE(positiveDefinite(cov));
+    // The text output is the core's summary of the same result (issue 26 item 3): each
+    // parameter as the JSON has it, to the decimals printed, with its std.
+    const CliRun text = run("identify --data " + data + " --wheel A --jmax 0.02");
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    char line[160];
+    std::snprintf(line, sizeof line, "\n  φ: %.2f ± %.4f deg\n", j["phi_deg"].get<double>(),
+                  j["std"]["phi_deg"].get<double>());
+    EXPECT_NE(text.out.find(line), std::string::npos) << line << text.out;
+    std::snprintf(line, sizeof line, "\n  K_s: %.1f ± %.4f kPa/m^n\n", j["Ks_kPa"].get<double>(),
+                  j["std"]["Ks_kPa"].get<double>());
+    EXPECT_NE(text.out.find(line), std::string::npos) << line << text.out;
+    std::snprintf(line, sizeof line, "\n  samples: %d\n", j["samples"].get<int>());
+    EXPECT_NE(text.out.find(line), std::string::npos) << line << text.out;
+    EXPECT_NE(text.out.find("\n  j_max: 0.0200 m (held)\n"), std::string::npos) << text.out;
     // A fixed parameter has no variance: it leaves the covariance.
     const auto fixed = identifyJson("--data " + data + " --wheel A --jmax 0.02 --fix a1=0.3");
     ASSERT_TRUE(fixed["covariance"].is_object()) << fixed.dump();

@@ -1,9 +1,13 @@
 #pragma once
 /// @file test_support.h
 /// What many core tests share (one definition each, so the unity build's batches do not clash):
-/// the shipped presets and sandy loam on wheel A, degrees, a substring test and the message of a
-/// rejected argument.
+/// the shipped presets and sandy loam on wheel A, degrees, a substring test, the message of a
+/// rejected argument and the check of a result's summary against its JSON.
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <numbers>
 #include <stdexcept>
@@ -40,6 +44,40 @@ inline std::string messageOf(const std::function<void()>& f) {
         return e.what();
     }
     return "(no exception)";
+}
+
+// The decimals of a number printed as `text` ("5.656" → 3, "84.0" → 1, "6" → 0).
+inline int printedDecimalsOf(const std::string& text) {
+    const std::string number = text.substr(0, text.find(' '));
+    const auto dot = number.find('.');
+    if (dot == std::string::npos || number.find('e') != std::string::npos) return 0;
+    return static_cast<int>(number.size() - dot - 1);
+}
+
+// Every number a summary shows is its JSON's, at the pointer the row names, printed to its
+// digits (the sinkage in mm, the largest relative error in %); every text row's is the JSON's
+// text; every heading's pointer is an object of the JSON.
+inline void expectSummaryIsTheJson(const analysis::Summary& summary, const nlohmann::json& j) {
+    for (const analysis::SummaryRow& row : summary) {
+        if (row.json.empty()) continue;
+        const nlohmann::json::json_pointer at(row.json);
+        ASSERT_TRUE(j.contains(at)) << row.label << " at " << row.json;
+        const nlohmann::json& value = j.at(at);
+        if (row.emphasis == analysis::SummaryRow::Emphasis::kHeading) {
+            EXPECT_TRUE(value.is_object()) << row.json;
+        } else if (value.is_string()) {
+            EXPECT_EQ(row.value, value.get<std::string>()) << row.json;
+        } else {
+            ASSERT_TRUE(value.is_number()) << row.json;
+            EXPECT_EQ(row.number, value.get<double>()) << row.label << " at " << row.json;
+            const double scale = row.unit == "mm" ? 1e3 : row.unit == "%" ? 100.0 : 1.0;
+            const double shown = std::stod(row.value);
+            const double printed = std::pow(10.0, -printedDecimalsOf(row.value));
+            // Fixed decimals, or 3 to 6 significant digits.
+            const double tolerance = std::max(0.5 * printed, 5e-3 * std::abs(row.number * scale));
+            EXPECT_NEAR(shown, row.number * scale, tolerance) << row.label << ": " << row.value;
+        }
+    }
 }
 
 }  // namespace terra::testing

@@ -1,6 +1,7 @@
 """sweep, stresses, identify, simulate and run: the registry's analyses from Python."""
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -143,6 +144,34 @@ def test_identify_fits_jmax_as_the_command_line_does(tmp_path, cli):
     assert not out["adequacy"]["flag"]
     with pytest.raises(ValueError, match="jmax_m"):
         ts.identify(data, WHEEL, jmax_m="yes")
+
+
+def test_validation_returns_what_validate_json_prints(cli, resources):
+    # Issue 26, item 3: the validation's result is described once in core (toJson), so a script's
+    # "validation" analysis from Python returns what `terrastudio validate --json` prints, key by
+    # key, the calibration with its held-out points included.
+    test = os.path.join(resources, "experiments", "ding2011-smooth-fig9-hit-lss1-80N.csv")
+    printed = cli("validate", "--experiments", test, "--soil", "hit-lss1", "--wheel",
+                  "ding2011-smooth", "--calibrate", "--noise", "Fx_N=0.5,My_Nm=0.1,sinkage_m=0.0005",
+                  "--fit-slips", "0,0.2,0.6", "--json")
+    assert printed.returncode == 0, printed.stderr
+    expected = json.loads(printed.stdout)
+    out = ts.run("validation", "hit-lss1", "ding2011-smooth", experiments=test, calibrate=True,
+                 noise={"Fx_N": 0.5, "My_Nm": 0.1, "sinkage_m": 0.0005}, fit_slips=[0, 0.2, 0.6])
+    assert out["status"] == "completed", out["message"]
+    document = out["documents"]["-validation.json"]
+    assert sorted(document) == sorted(expected)
+    for key, value in expected.items():
+        _same(document[key], value, key)
+    assert document["calibration"]["held_out"]["metrics"]["Fx_N"]["count"] == 3
+    # A flag's bad value and a script key's are refused in the same words.
+    bad = cli("validate", "--experiments", test, "--soil", "hit-lss1", "--calibrate", "--noise",
+              "Fx_N=-1")
+    assert bad.returncode == 2
+    assert "--noise Fx_N: -1 is outside the allowed range (0, 1e+06] N" in bad.stderr, bad.stderr
+    with pytest.raises(ValueError, match=r"noise.Fx_N: -1 is outside the allowed range \(0, "):
+        ts.run("validation", "hit-lss1", "ding2011-smooth", experiments=test, calibrate=True,
+               noise={"Fx_N": -1})
 
 
 def test_identify_bad_data():

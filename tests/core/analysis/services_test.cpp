@@ -172,6 +172,135 @@ TEST(IdentificationService, ACancelledFitIsMarkedCancelledNotFailed) {
     EXPECT_EQ(identificationOutcome(done).status, Outcome::Status::kCompleted);
 }
 
+// Issue 26, item 4: each result carries its status; bad data are an invalid input (not a
+// throw, not a failure), and the outcome says the same.
+TEST(IdentificationService, DataThatCannotBeUsedAreAnInvalidInput) {
+    IdentificationSettings s;
+    s.csv = "/no/such/data.csv";
+    IdentificationResult missing = computeIdentification(sandyLoamOnA(), s);
+    EXPECT_EQ(missing.status, Outcome::Status::kInvalidInput);
+    ASSERT_EQ(missing.data_issues.size(), 1u);
+    EXPECT_TRUE(terra::testing::contains(missing.data_issues[0].where, "/no/such/data.csv"))
+        << missing.data_issues[0].where;
+    EXPECT_FALSE(missing.cancelled);
+    const Outcome outcome = identificationOutcome(std::move(missing));
+    EXPECT_EQ(outcome.status, Outcome::Status::kInvalidInput);
+    EXPECT_FALSE(outcome.message.empty());
+    // The decoupled fit needs the entry angle: data from the load cannot be fitted by it.
+    IdentificationSettings decoupled;
+    decoupled.refine = false;
+    decoupled.data = identification::DataSet{};
+    decoupled.data->columns = {.entry_angle = false, .fx = true, .fz = false, .my = true};
+    decoupled.data->samples.push_back({});
+    const IdentificationResult r = computeIdentification(sandyLoamOnA(), decoupled);
+    EXPECT_EQ(r.status, Outcome::Status::kInvalidInput);
+    EXPECT_EQ(r.message, "the decoupled fit needs entry_angle_deg, Fx_N, Fz_N and My_Nm");
+    // Settings the reader refuses, built in code, are a programmer's error: thrown, in the
+    // reader's words.
+    IdentificationSettings bad;
+    bad.holdout_fraction = 1.5;
+    EXPECT_EQ(terra::testing::messageOf([&] { computeIdentification(sandyLoamOnA(), bad); }),
+              "holdout: 1.5 is outside the allowed range (0, 1)");
+}
+
+TEST(IdentificationService, ACancelledFitHasTheStatusCancelled) {
+    IdentificationSettings s;
+    s.synthetic.noise_percent = 0.0;
+    const std::atomic<bool> cancel{true};
+    const IdentificationResult r = computeIdentification(sandyLoamOnA(), s, Control{&cancel});
+    EXPECT_EQ(r.status, Outcome::Status::kCancelled);
+    EXPECT_TRUE(r.cancelled);
+    const Summary summary = identificationSummary(r);
+    ASSERT_EQ(summary.size(), 2u);
+    EXPECT_EQ(summary[1].label, "cancelled");
+    EXPECT_EQ(summary[1].emphasis, SummaryRow::Emphasis::kWarning);
+}
+
+// The summary's numbers are the JSON's (ts.identify and `identify --json` return that JSON).
+TEST(IdentificationService, ItsSummaryShowsTheJsonsValues) {
+    Inputs in = sandyLoamOnA();
+    IdentificationSettings s;
+    s.synthetic.noise_percent = 1.0;
+    s.synthetic.loads_n = {30.0, 58.86, 90.0};
+    s.synthetic.slip_count = 10;
+    s.folds = 3;
+    s.prior_items = {"phi_deg=30±5"};
+    const IdentificationResult r = computeIdentification(in, s);
+    ASSERT_EQ(r.status, Outcome::Status::kCompleted) << r.message;
+    ASSERT_TRUE(r.usable());
+    const nlohmann::json j = toJson(r);
+    const Summary summary = identificationSummary(r);
+    terra::testing::expectSummaryIsTheJson(summary, j);
+    int numbers = 0, parameters = 0;
+    for (const SummaryRow& row : summary) {
+        if (row.json.empty() || row.emphasis == SummaryRow::Emphasis::kHeading) continue;
+        numbers += std::isnan(row.number) ? 0 : 1;
+        if (row.json.find('/', 1) == std::string::npos && row.json != "/samples" &&
+            row.json != "/chi2" && row.json != "/gradient_norm" &&
+            row.json != "/newton_decrement" && row.json != "/start" && row.json != "/source")
+            ++parameters;
+    }
+    // a0, a1, Ks, n0, c, φ, K and j_max (held at the soil's).
+    EXPECT_EQ(parameters, 8);
+    EXPECT_GE(numbers, 8 + 1 + 3 + 3);  // parameters, samples, χ² and norms, steps
+    EXPECT_EQ(summary.front().label, "full-model identification (global search)");
+    EXPECT_EQ(summary.front().value, in.wheel.name);
+    const auto phi = std::find_if(summary.begin(), summary.end(), [](const SummaryRow& row) {
+        return row.json == "/prior/phi_deg/prior_mean";
+    });
+    ASSERT_NE(phi, summary.end());  // the prior against the posterior
+    const auto holdout = std::find_if(summary.begin(), summary.end(),
+                                      [](const SummaryRow& row) { return row.json == "/holdout"; });
+    ASSERT_NE(holdout, summary.end());
+    EXPECT_EQ(holdout->value, "30 samples, 3 fold(s)");
+}
+
+TEST(ValidationService, ATestThatCannotBeReadIsAnInvalidInput) {
+    ValidationSettings s;
+    s.experiments = "/no/such/test.csv";
+    ValidationResult r = computeValidation(sandyLoamOnA(), s);
+    EXPECT_EQ(r.status, Outcome::Status::kInvalidInput);
+    ASSERT_FALSE(r.issues.empty());
+    EXPECT_TRUE(
+        terra::testing::contains(r.issues[0].where + r.issues[0].message, "/no/such/test.csv"))
+        << formatIssues(r.issues);
+    EXPECT_TRUE(r.before.points.empty());
+    const Outcome outcome = validationOutcome(std::move(r));
+    EXPECT_EQ(outcome.status, Outcome::Status::kInvalidInput);
+    // A fit slip the test does not have, in a struct built in code: thrown in the reader's words.
+    ValidationSettings bad;
+    bad.experiments =
+        std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-hit-lss1-80N.csv";
+    bad.calibrate = true;
+    bad.fit_slips = {0.25};
+    EXPECT_EQ(terra::testing::messageOf([&] { computeValidation(sandyLoamOnA(), bad); }),
+              "fit_slips[0]: 0.25 is not a slip of the test");
+}
+
+TEST(ValidationService, ACancelledCalibrationIsCancelledWithTheGivenSoilsPredictions) {
+    ValidationSettings s;
+    s.experiments =
+        std::string(TERRA_RESOURCE_DIR) + "/experiments/ding2011-smooth-fig9-hit-lss1-80N.csv";
+    s.calibrate = true;
+    s.curves = false;
+    const std::atomic<bool> cancel{true};
+    ValidationResult r = computeValidation(sandyLoamOnA(), s, Control{&cancel});
+    EXPECT_EQ(r.status, Outcome::Status::kCancelled);
+    EXPECT_FALSE(r.calibration.has_value());  // a calibration stopped halfway is none
+    EXPECT_TRUE(validationFailure(r).empty());
+    // The given soil's predictions are those of a run without the calibration.
+    ValidationSettings plain = s;
+    plain.calibrate = false;
+    const ValidationResult done = computeValidation(sandyLoamOnA(), plain);
+    EXPECT_EQ(done.status, Outcome::Status::kCompleted);
+    ASSERT_TRUE(r.before.metrics[io::kExpFx].has_value());
+    EXPECT_EQ(r.before.metrics[io::kExpFx]->rmse, done.before.metrics[io::kExpFx]->rmse);
+    EXPECT_EQ(r.before.metrics[io::kExpFx]->count, 6u);
+    const Outcome outcome = validationOutcome(std::move(r));
+    EXPECT_EQ(outcome.status, Outcome::Status::kCancelled);
+    EXPECT_FALSE(outcome.message.empty());
+}
+
 TEST(StreamingService, ComputedFramesFindTheSyntheticBorder) {
     Inputs in = sandyLoamOnA();
     StreamingSettings s;

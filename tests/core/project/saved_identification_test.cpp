@@ -99,6 +99,8 @@ TEST(SavedIdentification, NonFiniteNumbersSurviveAndOthersAreRefused) {
     ASSERT_TRUE(read.ok()) << read.message();
     EXPECT_EQ(read->identified.max_shear_deformation_m, std::numeric_limits<double>::infinity());
     EXPECT_EQ(read->fit.parameters.cohesion_pa, -std::numeric_limits<double>::infinity());
+    // Nothing to fit: reopened with its status (issue 26 item 4), as the outcome reports it.
+    EXPECT_EQ(read->status, analysis::Outcome::Status::kInvalidInput);
     // A string that is not an infinity, a missing key, a short list: each refused by name.
     json bad = saved;
     bad["identified"][8] = "lots";

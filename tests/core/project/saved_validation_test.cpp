@@ -52,6 +52,8 @@ TEST(SavedCalibration, ReadsBackToTheSameCalibrationWithHeldOutPoints) {
         validationResultFromJson(json::parse(savedJson(computed).dump()), "forces.calibration");
     ASSERT_TRUE(read.ok()) << read.message();
     EXPECT_EQ(analysis::toJson(*read), analysis::toJson(computed));
+    EXPECT_EQ(read->status, analysis::Outcome::Status::kCompleted);
+    EXPECT_EQ(read->soil, computed.soil);
     // What the JSON report leaves out: the model's curves, the points' in-fit marks, the
     // calibrated soil as a whole and the held-out metrics with the given soil.
     const Table& a = read->before.curves;
@@ -94,6 +96,20 @@ TEST(SavedCalibration, AValidationWithoutCalibrationAndADamagedOneAreTold) {
     ASSERT_TRUE(read.ok()) << read.message();
     EXPECT_FALSE(read->calibration.has_value());
     EXPECT_EQ(analysis::toJson(*read), analysis::toJson(computed));
+    // A calibration that failed (its noise estimated on two sinkage readings: it interpolates)
+    // is reopened failed, with the reason it was computed with (issue 26 item 4).
+    analysis::ValidationSettings estimated = calibrationOf("ding2011-smooth-hit-lss1-80N.csv", {});
+    estimated.noise = {};
+    const analysis::ValidationResult failed =
+        analysis::computeValidation(dingOnHitLss1(), estimated);
+    ASSERT_EQ(failed.status, analysis::Outcome::Status::kFailed);
+    const Result<analysis::ValidationResult> reopened =
+        validationResultFromJson(json::parse(savedJson(failed).dump()), "x");
+    ASSERT_TRUE(reopened.ok()) << reopened.message();
+    EXPECT_EQ(reopened->status, analysis::Outcome::Status::kFailed);
+    EXPECT_EQ(reopened->message, failed.message);
+    EXPECT_TRUE(contains(reopened->message, "calibration failed: the fit interpolates"))
+        << reopened->message;
     saved["before"]["points"][0].erase("slip");
     const Result<analysis::ValidationResult> damaged = validationResultFromJson(saved, "x");
     ASSERT_FALSE(damaged.ok());
