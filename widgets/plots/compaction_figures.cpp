@@ -133,7 +133,7 @@ QColor riskBandColor(analysis::Risk risk) {
 
 Completion compactionCompletion(const analysis::CompactionResult& result) {
     if (result.ok()) return Completion::kComplete;
-    return result.message.rfind("cancelled", 0) == 0 ? Completion::kCancelled : Completion::kFailed;
+    return result.cancelled ? Completion::kCancelled : Completion::kFailed;
 }
 
 QString compactionStatus(const analysis::CompactionResult& result) {
