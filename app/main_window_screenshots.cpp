@@ -18,6 +18,7 @@
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/identification_panel.h"
+#include "widgets/panels/plot_docking.h"
 #include "widgets/panels/rover_panel.h"
 
 namespace terra::app {
@@ -227,6 +228,20 @@ int MainWindow::takeScreenshots(const QString& dir) {
     grabLayout(Layout::kSideBySide, "studio-side-by-side.png");
     grabLayout(Layout::kTiled, "studio-tiled.png");
     applyLayout(layoutForScreen());
+    // Two plots of one analysis side by side (docs/images/studio-plots-side-by-side.png): the
+    // forces panel on its static sinkage, its drawbar pull in a dock of its own beside it; then
+    // put back, the panel on its first plot.
+    if (forces) {
+        const nlohmann::json before = forces->settings();
+        showPanel(forces->name());
+        forces->applySettings({{"plot", "static-sinkage-vs-load"}});
+        for (const auto& [name, plot] : forces->plots()) {
+            if (name == "Fx_N-vs-slip") plot_docking_->tearOff(plot);
+        }
+        grabWidget(*this, "studio-plots-side-by-side.png");
+        plot_docking_->putAllBack();
+        forces->applySettings(before);
+    }
     document_->undoStack()->setClean();
     return failures == 0 ? 0 : 1;
 }
