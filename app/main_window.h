@@ -61,7 +61,8 @@ public:
                       ///< every plot back in its panel
         kCompact,     ///< a narrower column, a short tree: 1024×700; every plot back in its panel
         kSideBySide,  ///< the current panel and, beside it, its plots in docks of their own or
-                      ///< else the next panel that fits beside it
+                      ///< else the next panel that fits beside it (under it when none fits
+                      ///< beside it: 1024 px screens)
         kTiled,       ///< the panels in two rows, as many beside each other as fit the width
                       ///< (the others tabbed with them); plots in docks tabbed with their panel
     };

@@ -185,34 +185,48 @@ void MainWindow::arrangeSideBySide(std::size_t current_index, int column) {
     const int left_width = ui::dockMinimumWidth(*left);
     // Beside it: its plots in docks of their own (one under the other), else the next panel
     // that fits beside it without either scrolling sideways — beside the Project and Properties
-    // column, else in the window's whole width (the column hidden); else the next one.
-    int room = panelAreaWidth(column);
+    // column, else in the window's whole width (the column hidden). When nothing fits beside it
+    // (a 1024 px screen), its plot or the next panel goes under it instead: the panels then
+    // share the height, but neither scrolls sideways.
     std::vector<QDockWidget*> right = plot_docking_->docks(panels_[current_index]);
     // A plot needs room for its axes and legend (its dock's minimum) and some for its data.
     const auto plotWidth = [](const QDockWidget* d) {
         return std::max(kPlotWidth, d->minimumSizeHint().width());
     };
-    if (!right.empty()) {
-        if (left_width + separator + plotWidth(right.front()) > room) room = panelAreaWidth(0);
-    } else {
+    const auto needOf = [this, &plotWidth](const QDockWidget* d) {
+        return plot_docking_->panelOf(d) ? plotWidth(d) : ui::dockMinimumWidth(*d);
+    };
+    const auto fits = [&](const QDockWidget* d, int width) {
+        return left_width + separator + needOf(d) <= width;
+    };
+    int room = 0;
+    if (right.empty()) {
         QDockWidget* next = nullptr;
         for (const int width : {panelAreaWidth(column), panelAreaWidth(0)}) {
             for (std::size_t step = 1; step < panel_docks_.size() && !next; ++step) {
                 QDockWidget* d = panel_docks_[(current_index + step) % panel_docks_.size()];
-                if (left_width + separator + ui::dockMinimumWidth(*d) <= width) next = d;
+                if (fits(d, width)) next = d;
             }
-            room = width;
             if (next) break;
         }
         right.push_back(next ? next : panel_docks_[(current_index + 1) % panel_docks_.size()]);
     }
+    for (const int width : {panelAreaWidth(column), panelAreaWidth(0)}) {
+        room = width;
+        if (fits(right.front(), width)) break;
+    }
+    const bool beside = fits(right.front(), room);
+    if (!beside) {
+        room = left_width <= panelAreaWidth(column) ? panelAreaWidth(column) : panelAreaWidth(0);
+    }
     if (room > panelAreaWidth(column)) giveThePanelsTheWidth();
     panel_area_->addDockWidget(Qt::TopDockWidgetArea, left);
     left->show();
-    panel_area_->splitDockWidget(left, right.front(), Qt::Horizontal);
+    panel_area_->splitDockWidget(left, right.front(), beside ? Qt::Horizontal : Qt::Vertical);
     right.front()->show();
     for (std::size_t i = 1; i < right.size(); ++i) {
-        panel_area_->splitDockWidget(right[i - 1], right[i], Qt::Vertical);
+        panel_area_->splitDockWidget(right[i - 1], right[i],
+                                     beside ? Qt::Vertical : Qt::Horizontal);
         right[i]->show();
     }
     // The others tabbed with the panel on the left, plots with their own panel.
@@ -228,10 +242,9 @@ void MainWindow::arrangeSideBySide(std::size_t current_index, int column) {
     }
     left->raise();
     right.front()->raise();
-    // Each side the width it needs and half the spare width (a plot needs little).
-    const int right_need = plot_docking_->panelOf(right.front())
-                               ? plotWidth(right.front())
-                               : ui::dockMinimumWidth(*right.front());
+    if (!beside) return;
+    // Each side the width it needs and half the spare width.
+    const int right_need = needOf(right.front());
     const int spare = std::max(0, room - separator - left_width - right_need);
     panel_area_->resizeDocks({left, right.front()},
                              {left_width + spare / 2, right_need + spare - spare / 2},
@@ -242,13 +255,17 @@ void MainWindow::arrangeTiles(int column) {
     // Two rows (a third would leave each panel less than 200 px of height at 768 px), as many
     // panels in each as fit beside each other without scrolling sideways — beside the Project
     // and Properties column, or in the window's whole width (the column hidden) when that shows
-    // more of them; the others tabbed with them.
+    // more of them or a panel is wider than the room beside the column; the others tabbed with
+    // them.
     constexpr std::size_t kRows = 2;
     const int separator = style()->pixelMetric(QStyle::PM_DockWidgetSeparatorExtent);
     int room = panelAreaWidth(column);
     Rows rows = packTiles(panel_docks_, room, separator, kRows);
     const Rows whole = packTiles(panel_docks_, panelAreaWidth(0), separator, kRows);
-    if (cellCount(whole) > cellCount(rows)) {
+    const bool overflows = std::any_of(rows.begin(), rows.end(), [&](const auto& row) {
+        return rowWidth(row, separator) - separator > room;
+    });
+    if (cellCount(whole) > cellCount(rows) || overflows) {
         rows = whole;
         room = panelAreaWidth(0);
         giveThePanelsTheWidth();

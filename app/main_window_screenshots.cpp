@@ -229,8 +229,8 @@ int MainWindow::takeScreenshots(const QString& dir) {
     grabLayout(Layout::kTiled, "studio-tiled.png");
     applyLayout(layoutForScreen());
     // Two plots of one analysis side by side (docs/images/studio-plots-side-by-side.png): the
-    // forces panel on its static sinkage, its drawbar pull in a dock of its own beside it; then
-    // put back, the panel on its first plot.
+    // forces panel on its static sinkage, its drawbar pull in a dock of its own beside it (Side
+    // by side); then put back, the panel on the plot it showed, the layout for the screen.
     if (forces) {
         const nlohmann::json before = forces->settings();
         showPanel(forces->name());
@@ -238,9 +238,10 @@ int MainWindow::takeScreenshots(const QString& dir) {
         for (const auto& [name, plot] : forces->plots()) {
             if (name == "Fx_N-vs-slip") plot_docking_->tearOff(plot);
         }
+        applyLayout(Layout::kSideBySide);
         grabWidget(*this, "studio-plots-side-by-side.png");
-        plot_docking_->putAllBack();
         forces->applySettings(before);
+        applyLayout(layoutForScreen());
     }
     document_->undoStack()->setClean();
     return failures == 0 ? 0 : 1;

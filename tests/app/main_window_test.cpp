@@ -669,9 +669,9 @@ TEST(MainWindow, PanelDocksAreArrangedAndTheLayoutComesBack) {
             QDockWidget* d = w.panelDock(name);
             if (!d->visibleRegion().isEmpty()) continue;
             const QList<QDockWidget*> tabbed = w.panelArea()->tabifiedDockWidgets(d);
-            EXPECT_TRUE(std::any_of(tabbed.begin(), tabbed.end(),
-                                    [](QDockWidget* o) { return !o->visibleRegion().isEmpty(); }))
-                << name;
+            EXPECT_TRUE(std::any_of(tabbed.begin(), tabbed.end(), [](QDockWidget* o) {
+                return !o->visibleRegion().isEmpty();
+            })) << name;
         }
         // Torn off: the rover floats in its own window. Closing keeps the arrangement.
         w.applyLayout(MainWindow::Layout::kSideBySide);

@@ -29,8 +29,10 @@ void wait(int ms = 200) { QTest::qWait(ms); }
 const char* const kAllPanels[] = {"forces",         "stresses", "compaction",        "sensitivity",
                                   "identification", "rover",    "global-sensitivity"};
 
-/// The window of a 1366×768 screen, less the window manager's frame (Xvfb + openbox).
+/// The window of a 1366×768 and of a 1024×700 screen, less the window manager's frame (Xvfb +
+/// openbox).
 constexpr QSize kWindowAt1366x768(1350, 728);
+constexpr QSize kWindowAt1024x700(1008, 660);
 
 bool onScreen(const QDockWidget* dock) {
     return dock->isVisible() && !dock->visibleRegion().isEmpty();
@@ -115,6 +117,46 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
     EXPECT_TRUE(w.plotDocking()->tornOff().isEmpty());
     EXPECT_NE(forcesPlot(studio, "Fx_N-vs-slip")->parentWidget()->parentWidget(), nullptr);
     EXPECT_TRUE(studio.panel<ui::ForcesPanel>()->isAncestorOf(forcesPlot(studio, "Fx_N-vs-slip")));
+    QSettings().remove("window");
+}
+
+// At 1024×700 no panel fits beside another: Side by side puts the plot (or the next panel) under
+// the panel instead, Tile one panel a row, and no panel on screen scrolls sideways.
+TEST(PlotDocks, At1024x700SideBySidePutsThePlotUnderThePanel) {
+    QSettings().remove("window");
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.resize(kWindowAt1024x700);
+    wait();
+    for (const char* current : {"forces", "identification"}) {
+        w.showPanel(current);
+        studio.action("action.layout_side_by_side")->trigger();
+        wait(300);
+        int shown = 0;
+        for (const char* name : kAllPanels) {
+            if (!onScreen(w.panelDock(name))) continue;
+            ++shown;
+            expectNoSidewaysScroll(w, name, QString("1024×700, side by side from ") + current);
+        }
+        EXPECT_EQ(shown, 2) << current;
+    }
+    w.showPanel("forces");
+    QDockWidget* fx = w.plotDocking()->tearOff(forcesPlot(studio, "Fx_N-vs-slip"));
+    ASSERT_NE(fx, nullptr);
+    studio.action("action.layout_side_by_side")->trigger();
+    wait(300);
+    EXPECT_TRUE(onScreen(fx));
+    EXPECT_LT(w.panelDock("forces")->geometry().bottom(), fx->geometry().top());
+    expectNoSidewaysScroll(w, "forces", "1024×700, side by side with its plot");
+    studio.action("action.layout_tiled")->trigger();
+    wait(300);
+    int shown = 0;
+    for (const char* name : kAllPanels) {
+        if (!onScreen(w.panelDock(name))) continue;
+        ++shown;
+        expectNoSidewaysScroll(w, name, "1024×700, tiled");
+    }
+    EXPECT_EQ(shown, 2);
     QSettings().remove("window");
 }
 

@@ -14,10 +14,16 @@
 #include <QMainWindow>
 #include <QMenu>
 #include <QPushButton>
+#include <QSplitter>
 #include <QTabWidget>
 #include <QTest>
 #include <QVBoxLayout>
 
+#include "widgets/panels/compaction_panel.h"
+#include "widgets/panels/global_sensitivity_panel.h"
+#include "widgets/panels/identification_panel.h"
+#include "widgets/panels/rover_panel.h"
+#include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
 #include "widgets_test_support.h"
 
@@ -198,6 +204,59 @@ TEST(PlotDocking, APlotInALayoutGoesBackToItsPlace) {
     EXPECT_EQ(plot->parentWidget(), parent);
     EXPECT_EQ(parent->layout()->indexOf(plot), at);
     EXPECT_TRUE(plot->isVisible());
+}
+
+/// Where a plot sits in its panel: its parent and its index there (a tab's, a splitter's or a
+/// layout's).
+std::pair<QWidget*, int> placeOf(QCustomPlot* plot) {
+    QWidget* parent = plot->parentWidget();
+    if (auto* tabs = qobject_cast<QTabWidget*>(parent->parentWidget());
+        tabs && tabs->indexOf(plot) >= 0)
+        return {tabs, tabs->indexOf(plot)};
+    if (auto* splitter = qobject_cast<QSplitter*>(parent))
+        return {splitter, splitter->indexOf(plot)};
+    return {parent, parent->layout() ? parent->layout()->indexOf(plot) : -1};
+}
+
+// Every plot of every panel (in tabs, in a tab's layout, in a splitter, in the panel's layout)
+// goes into a dock of its own and back to the same place.
+TEST(PlotDocking, EveryPlotOfEveryPanelGoesBackWhereItWas) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    QMainWindow window;
+    PlotDocking docking(&window);
+    std::vector<AnalysisPanel*> panels{new ForcesPanel(&document),
+                                       new StressPanel(&document),
+                                       new CompactionPanel(&document, test::resources()),
+                                       new SensitivityPanel(&document),
+                                       new IdentificationPanel(&document),
+                                       new RoverPanel(&document, test::resources()),
+                                       new GlobalSensitivityPanel(&document)};
+    for (AnalysisPanel* panel : panels) {
+        auto* home = new QDockWidget(panel->name(), &window);
+        home->setWidget(panel);
+        window.addDockWidget(Qt::TopDockWidgetArea, home);
+        docking.addPanel(panel, home, panel->name());
+    }
+    window.resize(1300, 700);
+    window.show();
+    int plots = 0;
+    for (AnalysisPanel* panel : panels) {
+        for (const auto& [name, plot] : panel->plots()) {
+            const auto [parent, index] = placeOf(plot);
+            ASSERT_GE(index, 0) << name.toStdString();
+            QDockWidget* dock = docking.tearOff(plot);
+            ASSERT_NE(dock, nullptr) << name.toStdString();
+            EXPECT_EQ(dock->widget(), plot) << name.toStdString();
+            EXPECT_TRUE(dock->objectName().startsWith("plot." + panel->name() + "."));
+            EXPECT_NE(placeOf(plot).first, parent) << name.toStdString();
+            docking.putBack(plot);
+            EXPECT_EQ(placeOf(plot), std::make_pair(parent, index)) << name.toStdString();
+            ++plots;
+        }
+    }
+    EXPECT_GE(plots, 20);
+    EXPECT_TRUE(docking.docks().empty());
 }
 
 }  // namespace

@@ -222,7 +222,7 @@ private:
     Completion completion_ = Completion::kComplete;
     QProgressBar* progress_bar_ = nullptr;
     std::string presented_hash_;
-    std::string restored_hash_;  // the saved result's, while it is on screen
+    std::string restored_hash_;               // the saved result's, while it is on screen
     std::vector<QPointer<QWidget>> outside_;  // setPlotOutside
 };
 

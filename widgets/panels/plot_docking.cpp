@@ -58,29 +58,29 @@ PlotDocking::~PlotDocking() = default;
 
 void PlotDocking::addPanel(AnalysisPanel* panel, QDockWidget* home, const QString& title) {
     panels_.push_back(std::make_unique<Panel>(Panel{panel, home, title}));
-    panel->installPlotMenus([this, title](QCustomPlot& plot, PlotMenuHooks& hooks,
-                                          PlotDockHooks& dock) {
-        QCustomPlot* p = &plot;
-        // The panel's current plot and table are those of its current tab: a torn-off plot's
-        // menu makes its tab current while it runs (the placeholder's), so that Copy data and
-        // Export are of this plot.
-        hooks.table = [this, p, table = hooks.table] {
-            Table t;
-            withPlotCurrent(p, [&t, &table] { t = table(); });
-            return t;
-        };
-        hooks.export_plot = [this, p, export_plot = hooks.export_plot] {
-            withPlotCurrent(p, export_plot);
-        };
-        dock.in_own_dock = [this, p] { return dockOf(p) != nullptr; };
-        dock.set_own_dock = [this, p](bool own) {
-            if (own)
-                tearOff(p);
-            else
-                putBack(p);
-        };
-        dock.home = title;
-    });
+    panel->installPlotMenus(
+        [this, title](QCustomPlot& plot, PlotMenuHooks& hooks, PlotDockHooks& dock) {
+            QCustomPlot* p = &plot;
+            // The panel's current plot and table are those of its current tab: a torn-off plot's
+            // menu makes its tab current while it runs (the placeholder's), so that Copy data and
+            // Export are of this plot.
+            hooks.table = [this, p, table = hooks.table] {
+                Table t;
+                withPlotCurrent(p, [&t, &table] { t = table(); });
+                return t;
+            };
+            hooks.export_plot = [this, p, export_plot = hooks.export_plot] {
+                withPlotCurrent(p, export_plot);
+            };
+            dock.in_own_dock = [this, p] { return dockOf(p) != nullptr; };
+            dock.set_own_dock = [this, p](bool own) {
+                if (own)
+                    tearOff(p);
+                else
+                    putBack(p);
+            };
+            dock.home = title;
+        });
 }
 
 QString PlotDocking::dockName(const AnalysisPanel& panel, const QString& plot_name,
@@ -123,8 +123,7 @@ QString PlotDocking::labelOf(const Panel& panel, const QCustomPlot* plot,
     return name;
 }
 
-QWidget* PlotDocking::placeholderFor(QCustomPlot* plot, const QString& label,
-                                     const QString& home) {
+QWidget* PlotDocking::placeholderFor(QCustomPlot* plot, const QString& label, const QString& home) {
     auto* placeholder = new QWidget;
     placeholder->setObjectName("plot.placeholder");
     auto* text = new QLabel(label + " is shown in its own dock.", placeholder);

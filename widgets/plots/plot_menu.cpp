@@ -61,11 +61,12 @@ QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* pare
 void installPlotMenu(QCustomPlot& plot, PlotMenuHooks hooks, PlotDockHooks dock) {
     plot.setContextMenuPolicy(Qt::CustomContextMenu);
     QCustomPlot* p = &plot;
-    QObject::connect(p, &QWidget::customContextMenuRequested, p, [p, hooks, dock](const QPoint& at) {
-        QMenu* menu = makePlotMenu(*p, hooks, p, dock);
-        menu->setAttribute(Qt::WA_DeleteOnClose);
-        menu->popup(p->mapToGlobal(at));
-    });
+    QObject::connect(p, &QWidget::customContextMenuRequested, p,
+                     [p, hooks, dock](const QPoint& at) {
+                         QMenu* menu = makePlotMenu(*p, hooks, p, dock);
+                         menu->setAttribute(Qt::WA_DeleteOnClose);
+                         menu->popup(p->mapToGlobal(at));
+                     });
 }
 
 }  // namespace terra::ui
