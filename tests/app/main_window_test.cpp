@@ -649,7 +649,10 @@ TEST(MainWindow, PanelDocksAreArrangedAndTheLayoutComesBack) {
         QDockWidget* stresses = w.panelDock("stresses");
         ASSERT_NE(forces, nullptr);
         ASSERT_NE(stresses, nullptr);
-        // Default: the panels tabbed together, one on screen.
+        // Default: the panels tabbed together, one on screen (a 1366×768 screen's window: two
+        // panels fit beside each other when the Project and Properties column is hidden).
+        w.resize(1350, 728);
+        settle();
         w.applyLayout(MainWindow::Layout::kDefault);
         settle();
         EXPECT_EQ(w.panelArea()->tabifiedDockWidgets(forces).size(), 6u);

@@ -76,8 +76,11 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
         }
         EXPECT_EQ(shown, 2) << current;
     }
-    // Tiled: several panels on screen, the others tabbed with one of them; none scrolls
-    // sideways, not even a tabbed one brought to front.
+    // Tiled (from Default, the Project and Properties column on screen): several panels on
+    // screen, the others tabbed with one of them; none scrolls sideways, not even a tabbed one
+    // brought to front.
+    studio.action("action.layout_default")->trigger();
+    wait();
     studio.action("action.layout_tiled")->trigger();
     wait(300);
     int shown = 0;
