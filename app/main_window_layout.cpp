@@ -5,7 +5,6 @@
 // plots' names ("window/plots").
 #include <QDockWidget>
 #include <QGuiApplication>
-#include <QPointer>
 #include <QScreen>
 #include <QSettings>
 #include <QStatusBar>
@@ -80,35 +79,6 @@ Rows packTiles(const std::vector<QDockWidget*>& docks, int room, int separator,
     return rows;
 }
 
-// Sets the widths of cells of docks side by side (a cell: docks tabbed together), each at least
-// `needs` px: until the window has been laid out — hiding the Project and Properties column
-// gives the panel area its width only then — each cell's docks keep that as their minimum, so
-// that Qt's sharing out of the new width cannot squeeze one (resizeDocks alone did, a row with
-// tabbed docks at times); then the minimums are released (the widths stay).
-void setWidths(QMainWindow* area, const std::vector<std::vector<QDockWidget*>>& cells,
-               const QList<int>& widths, const QList<int>& needs) {
-    std::vector<std::vector<QPointer<QDockWidget>>> kept;
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-        kept.emplace_back(cells[i].begin(), cells[i].end());
-        for (QDockWidget* d : cells[i]) d->setMinimumWidth(needs[static_cast<int>(i)]);
-    }
-    const auto apply = [area, kept, widths](bool release) {
-        QList<QDockWidget*> fronts;
-        for (const auto& cell : kept) {
-            QDockWidget* front = nullptr;
-            for (const QPointer<QDockWidget>& d : cell) {
-                if (d && release) d->setMinimumWidth(0);
-                if (d && (!front || (d->isVisible() && !front->isVisible()))) front = d;
-            }
-            if (front) fronts << front;
-        }
-        if (!release && fronts.size() == widths.size())
-            area->resizeDocks(fronts, widths, Qt::Horizontal);
-    };
-    apply(false);
-    QTimer::singleShot(0, area, [apply] { apply(true); });
-}
-
 std::size_t cellCount(const Rows& rows) {
     std::size_t n = 0;
     for (const auto& row : rows) n += row.size();
@@ -164,6 +134,7 @@ void MainWindow::giveThePanelsTheWidth() {
 
 void MainWindow::applyLayout(Layout layout) {
     ui::AnalysisPanel* current = current_;
+    const bool column_shown = project_dock_->isVisible() || properties_dock_->isVisible();
     // Default and compact are the panels as built: every plot back in its panel.
     if (layout == Layout::kDefault || layout == Layout::kCompact) plot_docking_->putAllBack();
     std::vector<QDockWidget*> all{project_dock_, properties_dock_};
@@ -205,6 +176,11 @@ void MainWindow::applyLayout(Layout layout) {
     if (layout == Layout::kSideBySide || layout == Layout::kTiled) {
         setCurrentPanel(current);
         panel_docks_[current_index]->raise();
+        // The column just hidden gives the panel area its width only when the window is laid
+        // out: the panels' widths set now are shares of the narrower area (a row with tabbed
+        // panels came out squeezed). Once more then, the area already as wide.
+        if (column_shown && !project_dock_->isVisible() && isVisible())
+            QTimer::singleShot(0, this, [this, layout] { applyLayout(layout); });
     } else {
         showPanel(current ? current->name() : panels_.front()->name());
     }
@@ -277,8 +253,9 @@ void MainWindow::arrangeSideBySide(std::size_t current_index, int column) {
     // Each side the width it needs and half the spare width.
     const int right_need = needOf(right.front());
     const int spare = std::max(0, room - separator - left_width - right_need);
-    setWidths(panel_area_, {{left}, {right.front()}},
-              {left_width + spare / 2, right_need + spare - spare / 2}, {left_width, right_need});
+    panel_area_->resizeDocks({left, right.front()},
+                             {left_width + spare / 2, right_need + spare - spare / 2},
+                             Qt::Horizontal);
 }
 
 void MainWindow::arrangeTiles(int column) {
@@ -320,20 +297,18 @@ void MainWindow::arrangeTiles(int column) {
     for (QDockWidget* d : plot_docking_->docks()) d->show();
     // Each cell as wide as it needs and an even share of the row's spare width; each cell's
     // first panel in front.
-    // All rows in one call: a call per row re-fitted the row set before to the area.
-    std::vector<std::vector<QDockWidget*>> cells;
-    QList<int> widths, needs;
     for (const auto& row : rows) {
         const int spare =
             std::max(0, room - rowWidth(row, separator)) / static_cast<int>(row.size());
+        QList<QDockWidget*> docks;
+        QList<int> widths;
         for (const Cell& c : row) {
             c.docks.front()->raise();
-            cells.push_back(c.docks);
+            docks << c.docks.front();
             widths << c.width + spare;
-            needs << c.width;
         }
+        panel_area_->resizeDocks(docks, widths, Qt::Horizontal);
     }
-    setWidths(panel_area_, cells, widths, needs);
 }
 
 }  // namespace terra::app

@@ -75,6 +75,7 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
             expectNoSidewaysScroll(w, name, QString("side by side from ") + current);
         }
         EXPECT_EQ(shown, 2) << current;
+        EXPECT_EQ(w.size(), kWindowAt1366x768) << current;
     }
     // Tiled (from Default, the Project and Properties column on screen): several panels on
     // screen, the others tabbed with one of them; none scrolls sideways, not even a tabbed one
@@ -94,6 +95,7 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
         }
     }
     EXPECT_GE(shown, 4);
+    EXPECT_EQ(w.size(), kWindowAt1366x768);  // the window never grows past the screen
     for (const char* name : kAllPanels) {
         w.panelDock(name)->raise();
         wait(100);
@@ -109,6 +111,7 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
     EXPECT_TRUE(onScreen(fx));
     EXPECT_LT(w.panelDock("forces")->geometry().right(), fx->geometry().left());
     expectNoSidewaysScroll(w, "forces", "side by side with its plot");
+    EXPECT_EQ(w.size(), kWindowAt1366x768);
     for (const char* name : kAllPanels) {
         if (QString(name) != "forces") {
             EXPECT_FALSE(onScreen(w.panelDock(name))) << name;
