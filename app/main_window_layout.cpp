@@ -5,6 +5,7 @@
 // plots' names ("window/plots").
 #include <QDockWidget>
 #include <QGuiApplication>
+#include <QPointer>
 #include <QScreen>
 #include <QSettings>
 #include <QStatusBar>
@@ -77,6 +78,31 @@ Rows packTiles(const std::vector<QDockWidget*>& docks, int room, int separator,
         cell->width = std::max(cell->width, need);
     }
     return rows;
+}
+
+// Sets the widths of cells of docks side by side (a cell: docks tabbed together; its dock in
+// front sized). resizeDocks alone left a cell squeezed at times (a row of tabbed panels, under
+// Xvfb the second row): when the area is wide enough for every cell's need, the cells' docks
+// are held at that need as their minimum until the window has been laid out, then released
+// (the widths stay). Never held otherwise: the window must not grow past the screen.
+void setWidths(QMainWindow* area, const std::vector<std::vector<QDockWidget*>>& cells,
+               const QList<int>& widths, const QList<int>& needs, int row_width) {
+    QList<QDockWidget*> fronts;
+    for (const auto& cell : cells) fronts << cell.front();
+    if (area->width() >= row_width) {
+        std::vector<QPointer<QDockWidget>> held;
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            for (QDockWidget* d : cells[i]) {
+                d->setMinimumWidth(needs[static_cast<int>(i)]);
+                held.emplace_back(d);
+            }
+        }
+        QTimer::singleShot(0, area, [held] {
+            for (const QPointer<QDockWidget>& d : held)
+                if (d) d->setMinimumWidth(0);
+        });
+    }
+    area->resizeDocks(fronts, widths, Qt::Horizontal);
 }
 
 std::size_t cellCount(const Rows& rows) {
@@ -253,9 +279,9 @@ void MainWindow::arrangeSideBySide(std::size_t current_index, int column) {
     // Each side the width it needs and half the spare width.
     const int right_need = needOf(right.front());
     const int spare = std::max(0, room - separator - left_width - right_need);
-    panel_area_->resizeDocks({left, right.front()},
-                             {left_width + spare / 2, right_need + spare - spare / 2},
-                             Qt::Horizontal);
+    setWidths(panel_area_, {{left}, {right.front()}},
+              {left_width + spare / 2, right_need + spare - spare / 2}, {left_width, right_need},
+              left_width + separator + right_need);
 }
 
 void MainWindow::arrangeTiles(int column) {
@@ -300,14 +326,15 @@ void MainWindow::arrangeTiles(int column) {
     for (const auto& row : rows) {
         const int spare =
             std::max(0, room - rowWidth(row, separator)) / static_cast<int>(row.size());
-        QList<QDockWidget*> docks;
-        QList<int> widths;
+        std::vector<std::vector<QDockWidget*>> cells;
+        QList<int> widths, needs;
         for (const Cell& c : row) {
             c.docks.front()->raise();
-            docks << c.docks.front();
+            cells.push_back(c.docks);
             widths << c.width + spare;
+            needs << c.width;
         }
-        panel_area_->resizeDocks(docks, widths, Qt::Horizontal);
+        setWidths(panel_area_, cells, widths, needs, rowWidth(row, separator) - separator);
     }
 }
 

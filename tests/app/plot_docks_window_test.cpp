@@ -48,11 +48,31 @@ void expectNoSidewaysScroll(MainWindow& w, const QString& name, const QString& c
         << context.toStdString() << ": " << name.toStdString();
 }
 
+/// How many panels are on screen, each checked for a sideways scroll bar.
+int panelsOnScreen(MainWindow& w, const QString& context) {
+    int shown = 0;
+    for (const char* name : kAllPanels) {
+        if (!onScreen(w.panelDock(name))) continue;
+        ++shown;
+        expectNoSidewaysScroll(w, name, context);
+    }
+    return shown;
+}
+
 QCustomPlot* forcesPlot(Studio& studio, const QString& name) {
     for (const auto& [n, plot] : studio.panel<ui::ForcesPanel>()->plots()) {
         if (n == name) return plot;
     }
     return nullptr;
+}
+
+/// The forces' drawbar pull in a dock of its own, then View ▸ Layout ▸ Side by side: its dock.
+QDockWidget* forcesBesideItsDrawbarPull(Studio& studio) {
+    studio.window.showPanel("forces");
+    QDockWidget* fx = studio.window.plotDocking()->tearOff(forcesPlot(studio, "Fx_N-vs-slip"));
+    studio.action("action.layout_side_by_side")->trigger();
+    wait(300);
+    return fx;
 }
 
 TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
@@ -68,13 +88,7 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
         wait(300);
         EXPECT_EQ(w.currentPanelName(), current);
         EXPECT_TRUE(onScreen(w.panelDock(current))) << current;
-        int shown = 0;
-        for (const char* name : kAllPanels) {
-            if (!onScreen(w.panelDock(name))) continue;
-            ++shown;
-            expectNoSidewaysScroll(w, name, QString("side by side from ") + current);
-        }
-        EXPECT_EQ(shown, 2) << current;
+        EXPECT_EQ(panelsOnScreen(w, QString("side by side from ") + current), 2) << current;
         EXPECT_EQ(w.size(), kWindowAt1366x768) << current;
     }
     // Tiled (from Default, the Project and Properties column on screen): several panels on
@@ -103,11 +117,8 @@ TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
         expectNoSidewaysScroll(w, name, "tiled, brought to front");
     }
     // Side by side with a plot of the panel in a dock of its own: the panel and its plot.
-    w.showPanel("forces");
-    QDockWidget* fx = w.plotDocking()->tearOff(forcesPlot(studio, "Fx_N-vs-slip"));
+    QDockWidget* fx = forcesBesideItsDrawbarPull(studio);
     ASSERT_NE(fx, nullptr);
-    studio.action("action.layout_side_by_side")->trigger();
-    wait(300);
     EXPECT_TRUE(onScreen(fx));
     EXPECT_LT(w.panelDock("forces")->geometry().right(), fx->geometry().left());
     expectNoSidewaysScroll(w, "forces", "side by side with its plot");
@@ -138,31 +149,17 @@ TEST(PlotDocks, At1024x700SideBySidePutsThePlotUnderThePanel) {
         w.showPanel(current);
         studio.action("action.layout_side_by_side")->trigger();
         wait(300);
-        int shown = 0;
-        for (const char* name : kAllPanels) {
-            if (!onScreen(w.panelDock(name))) continue;
-            ++shown;
-            expectNoSidewaysScroll(w, name, QString("1024×700, side by side from ") + current);
-        }
-        EXPECT_EQ(shown, 2) << current;
+        EXPECT_EQ(panelsOnScreen(w, QString("1024×700, side by side from ") + current), 2)
+            << current;
     }
-    w.showPanel("forces");
-    QDockWidget* fx = w.plotDocking()->tearOff(forcesPlot(studio, "Fx_N-vs-slip"));
+    QDockWidget* fx = forcesBesideItsDrawbarPull(studio);
     ASSERT_NE(fx, nullptr);
-    studio.action("action.layout_side_by_side")->trigger();
-    wait(300);
     EXPECT_TRUE(onScreen(fx));
     EXPECT_LT(w.panelDock("forces")->geometry().bottom(), fx->geometry().top());
     expectNoSidewaysScroll(w, "forces", "1024×700, side by side with its plot");
     studio.action("action.layout_tiled")->trigger();
     wait(300);
-    int shown = 0;
-    for (const char* name : kAllPanels) {
-        if (!onScreen(w.panelDock(name))) continue;
-        ++shown;
-        expectNoSidewaysScroll(w, name, "1024×700, tiled");
-    }
-    EXPECT_EQ(shown, 2);
+    EXPECT_EQ(panelsOnScreen(w, "1024×700, tiled"), 2);
     QSettings().remove("window");
 }
 
