@@ -38,6 +38,7 @@
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
+#include "widgets/panels/plot_docking.h"
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
@@ -98,6 +99,7 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
                                 QMainWindow::AnimatedDocks | QMainWindow::GroupedDragging);
     panel_area_->setTabPosition(Qt::AllDockWidgetAreas, QTabWidget::North);
     setCentralWidget(panel_area_);
+    plot_docking_ = new ui::PlotDocking(panel_area_, this);
     for (std::size_t i = 0; i < panels_.size(); ++i) {
         ui::AnalysisPanel* panel = panels_[i];
         // A panel whose controls need more room than a small screen leaves scrolls instead of
@@ -109,7 +111,8 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         connect(d, &QDockWidget::visibilityChanged, this, [this, panel](bool visible) {
             if (visible) setCurrentPanel(panel);
         });
-        panel->installPlotMenus();
+        // Any of its plots in a dock of its own (its right-click menu), beside the panels.
+        plot_docking_->addPanel(panel, d, titles[static_cast<int>(i)]);
         connect(panel, &ui::AnalysisPanel::exportRequested, this, [this, panel] {
             setCurrentPanel(panel);
             exportCurrentPlot();
@@ -200,13 +203,9 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
     autosave_timer_->start();
 
     resize(1440, 860);
-    const QSettings settings;
-    restoreGeometry(settings.value("window/geometry").toByteArray());
+    restoreGeometry(QSettings().value("window/geometry").toByteArray());
     fitToScreen();
-    // The arrangement the user left, if this studio wrote it; else the one for the screen.
-    applyLayout(layoutForScreen());
-    restoreState(settings.value("window/state").toByteArray(), kLayoutVersion);
-    panel_area_->restoreState(settings.value("window/panels").toByteArray(), kLayoutVersion);
+    restoreWindowState();
     QTimer::singleShot(0, this, &MainWindow::offerRecovery);
 }
 
@@ -396,10 +395,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     }
     finishWritingResults();
     QFile::remove(autosavePath());
-    QSettings settings;
-    settings.setValue("window/geometry", saveGeometry());
-    settings.setValue("window/state", saveState(kLayoutVersion));
-    settings.setValue("window/panels", panel_area_->saveState(kLayoutVersion));
+    saveWindowState();
     event->accept();
 }
 

@@ -23,6 +23,7 @@ class AnalysisPanel;
 class GlobalSensitivityPanel;
 class IdentificationPanel;
 class HelpDialog;
+class PlotDocking;
 class ProjectDocument;
 }  // namespace terra::ui
 
@@ -48,19 +49,29 @@ public:
     QDockWidget* panelDock(const QString& name) const;
     /// The main window (the central widget) whose docks are the panels.
     QMainWindow* panelArea() const { return panel_area_; }
+    /// The plots shown in docks of their own (a plot's right-click "Show in its own dock").
+    ui::PlotDocking* plotDocking() const { return plot_docking_; }
 
     /// The arrangements of View ▸ Layout. Each panel is a dock (tear it off, drag it beside
-    /// another, tab it); these put them back in order.
+    /// another, tab it), and so is each plot shown in a dock of its own; these put them back in
+    /// order. None makes a panel on screen scroll sideways: a panel gets at least the width it
+    /// needs (ui::dockMinimumWidth), and panels that cannot all be beside each other are tabbed.
     enum class Layout {
-        kDefault,     ///< project and properties left, the panels tabbed: 1366×768 and up
-        kCompact,     ///< a narrower column, a short tree: 1024×700
-        kSideBySide,  ///< the current panel and the next one beside each other
-        kTiled,       ///< every panel on screen at once, in two rows
+        kDefault,     ///< project and properties left, the panels tabbed: 1366×768 and up;
+                      ///< every plot back in its panel
+        kCompact,     ///< a narrower column, a short tree: 1024×700; every plot back in its panel
+        kSideBySide,  ///< the current panel and, beside it, its plots in docks of their own or
+                      ///< else the next panel that fits beside it (under it when none fits
+                      ///< beside it: 1024 px screens)
+        kTiled,       ///< the panels in two rows, as many beside each other as fit the width
+                      ///< (the others tabbed with them); plots in docks tabbed with their panel
     };
     void applyLayout(Layout layout);
     /// The version of the saved window state (QSettings "window/state" and "window/panels", the
     /// panels' arrangement): a state of another
     /// version (older studios had fixed tabs) is ignored and the layout for the screen applied.
+    /// The plots in docks of their own are saved as "window/plots" (their dock names) and torn
+    /// off again before the panel area's state is restored; a name of no plot is ignored.
     static constexpr int kLayoutVersion = 2;
 
     /// Where the crash-recovery copy of the open project is kept.
@@ -123,6 +134,18 @@ private:
     void setCurrentPanel(ui::AnalysisPanel* panel);
     /// The layout that fits the window's screen: compact below 1366×768.
     Layout layoutForScreen() const;
+    /// The arrangement saved by saveWindowState(), else the layout for the screen
+    /// (main_window_layout.cpp).
+    void restoreWindowState();
+    void saveWindowState() const;
+    /// Side by side and tiled: main_window_layout.cpp.
+    void arrangeSideBySide(std::size_t current_index, int column);
+    void arrangeTiles(int column);
+    /// The width [px] the panel area has beside a left column `column` px wide (0: hidden).
+    int panelAreaWidth(int column) const;
+    /// Hides the Project and Properties panes (side by side and tiled, when two panels do not
+    /// fit beside them) and says so in the status bar.
+    void giveThePanelsTheWidth();
 
     io::PresetLocations locations_;
     ui::ProjectDocument* document_;
@@ -136,6 +159,7 @@ private:
     /// width changes go to the panels, never to the project and properties column (without a
     /// central widget QMainWindow split a 1024 px window half and half).
     QMainWindow* panel_area_ = nullptr;
+    ui::PlotDocking* plot_docking_ = nullptr;
     int last_window_width_ = 0;  // the project and properties docks' [px]; 0: not yet laid out
     QMenu* recent_menu_ = nullptr;
     ui::IdentificationPanel* identification_ = nullptr;

@@ -2,6 +2,8 @@
 // main_window.cpp to keep each file small. Every shortcut of docs/user-guide.md is set explicitly:
 // the platform's standard keys are empty on some desktops (Save As, Ctrl+Y under a plain X11
 // window manager), and the guide promises them everywhere.
+#include <qcustomplot.h>
+
 #include <QApplication>
 #include <QDir>
 #include <QDockWidget>
@@ -24,6 +26,7 @@
 #include "widgets/help/help_dialog.h"
 #include "widgets/panels/analysis_panel.h"
 #include "widgets/panels/experiment_actions.h"
+#include "widgets/panels/plot_docking.h"
 #include "widgets/plots/export_dialog.h"
 
 namespace terra::app {
@@ -134,6 +137,31 @@ void MainWindow::createMenus() {
         [this] { applyLayout(Layout::kSideBySide); });
     add(layout, "&Tile all panels", {}, "action.layout_tiled",
         [this] { applyLayout(Layout::kTiled); });
+    // The current panel's plots, each in a dock of its own or back in its panel (as the plot's
+    // right-click menu does), and every plot back at once.
+    QMenu* plot_docks = view->addMenu("P&lots in their own docks");
+    plot_docks->setObjectName("menu.plot_docks");
+    connect(plot_docks, &QMenu::aboutToShow, this, [this, plot_docks] {
+        plot_docks->clear();
+        if (ui::AnalysisPanel* panel = currentPanel()) {
+            for (const auto& [name, plot] : panel->plots()) {
+                QCustomPlot* p = plot;
+                QAction* a = plot_docks->addAction(name, this, [this, p](bool own) {
+                    if (own)
+                        plot_docking_->tearOff(p);
+                    else
+                        plot_docking_->putBack(p);
+                });
+                a->setCheckable(true);
+                a->setChecked(plot_docking_->dockOf(p) != nullptr);
+            }
+        }
+        plot_docks->addSeparator();
+        QAction* back = plot_docks->addAction("Put every plot back", plot_docking_,
+                                              &ui::PlotDocking::putAllBack);
+        back->setObjectName("action.plots_put_back");
+        back->setEnabled(!plot_docking_->docks().empty());
+    });
     QMenu* shown = view->addMenu("&Panels and panes");
     shown->addAction(project_dock_->toggleViewAction());
     shown->addAction(properties_dock_->toggleViewAction());

@@ -18,6 +18,7 @@
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/identification_panel.h"
+#include "widgets/panels/plot_docking.h"
 #include "widgets/panels/rover_panel.h"
 
 namespace terra::app {
@@ -227,6 +228,21 @@ int MainWindow::takeScreenshots(const QString& dir) {
     grabLayout(Layout::kSideBySide, "studio-side-by-side.png");
     grabLayout(Layout::kTiled, "studio-tiled.png");
     applyLayout(layoutForScreen());
+    // Two plots of one analysis side by side (docs/images/studio-plots-side-by-side.png): the
+    // forces panel on its static sinkage, its drawbar pull in a dock of its own beside it (Side
+    // by side); then put back, the panel on the plot it showed, the layout for the screen.
+    if (forces) {
+        const nlohmann::json before = forces->settings();
+        showPanel(forces->name());
+        forces->applySettings({{"plot", "static-sinkage-vs-load"}});
+        for (const auto& [name, plot] : forces->plots()) {
+            if (name == "Fx_N-vs-slip") plot_docking_->tearOff(plot);
+        }
+        applyLayout(Layout::kSideBySide);
+        grabWidget(*this, "studio-plots-side-by-side.png");
+        forces->applySettings(before);
+        applyLayout(layoutForScreen());
+    }
     document_->undoStack()->setClean();
     return failures == 0 ? 0 : 1;
 }

@@ -39,6 +39,7 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <algorithm>
 #include <functional>
 
 #include "core/io/atomic_file.h"
@@ -828,7 +829,10 @@ TEST(MainWindow, PanelDocksAreArrangedAndTheLayoutComesBack) {
         QDockWidget* stresses = w.panelDock("stresses");
         ASSERT_NE(forces, nullptr);
         ASSERT_NE(stresses, nullptr);
-        // Default: the panels tabbed together, one on screen.
+        // Default: the panels tabbed together, one on screen (a 1366×768 screen's window: two
+        // panels fit beside each other when the Project and Properties column is hidden).
+        w.resize(1350, 728);
+        settle();
         w.applyLayout(MainWindow::Layout::kDefault);
         settle();
         EXPECT_EQ(w.panelArea()->tabifiedDockWidgets(forces).size(), 6u);
@@ -840,11 +844,18 @@ TEST(MainWindow, PanelDocksAreArrangedAndTheLayoutComesBack) {
         EXPECT_FALSE(stresses->visibleRegion().isEmpty());
         EXPECT_LT(forces->geometry().right(), stresses->geometry().left());
         EXPECT_EQ(w.currentPanelName(), "forces");
-        // Tiled: every panel on screen.
+        // Tiled: every panel on screen or tabbed with one that is (those that do not fit beside
+        // each other without scrolling sideways; plot_docks_window_test.cpp).
         studio.action("action.layout_tiled")->trigger();
         settle();
-        for (const char* name : kPanels)
-            EXPECT_FALSE(w.panelDock(name)->visibleRegion().isEmpty()) << name;
+        for (const char* name : kPanels) {
+            QDockWidget* d = w.panelDock(name);
+            if (!d->visibleRegion().isEmpty()) continue;
+            const QList<QDockWidget*> tabbed = w.panelArea()->tabifiedDockWidgets(d);
+            EXPECT_TRUE(std::any_of(tabbed.begin(), tabbed.end(), [](QDockWidget* o) {
+                return !o->visibleRegion().isEmpty();
+            })) << name;
+        }
         // Torn off: the rover floats in its own window. Closing keeps the arrangement.
         w.applyLayout(MainWindow::Layout::kSideBySide);
         w.panelDock("rover")->setFloating(true);

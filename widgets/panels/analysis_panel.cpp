@@ -6,6 +6,7 @@
 #include <QProgressBar>
 #include <QShowEvent>
 #include <QTimer>
+#include <algorithm>
 
 #include "core/io/parameters_json.h"
 #include "widgets/document/project_document.h"
@@ -75,11 +76,23 @@ void AnalysisPanel::trackProgress(QProgressBar* bar) {
     });
 }
 
-void AnalysisPanel::installPlotMenus() {
+void AnalysisPanel::installPlotMenus(
+    const std::function<void(QCustomPlot&, PlotMenuHooks&, PlotDockHooks&)>& extend) {
     for (const auto& [name, plot] : plots()) {
-        installPlotMenu(*plot,
-                        {[this] { return currentTable(); }, [this] { emit exportRequested(); }});
+        PlotMenuHooks hooks{[this] { return currentTable(); }, [this] { emit exportRequested(); }};
+        PlotDockHooks dock;
+        if (extend) extend(*plot, hooks, dock);
+        installPlotMenu(*plot, std::move(hooks), std::move(dock));
     }
+}
+
+void AnalysisPanel::setPlotOutside(QCustomPlot* plot, bool outside) {
+    std::erase_if(outside_, [plot](const QPointer<QWidget>& p) { return !p || p == plot; });
+    if (outside) outside_.emplace_back(plot);
+}
+
+void AnalysisPanel::plotShownOutside(QCustomPlot*) {
+    if (deferred_) scheduleUpdate();
 }
 
 void AnalysisPanel::showEvent(QShowEvent* event) {
@@ -89,7 +102,9 @@ void AnalysisPanel::showEvent(QShowEvent* event) {
 
 bool AnalysisPanel::start() {
     // A hidden tab of a shown window waits until it is shown: the visible panel gets the cores.
-    if (!isVisible() && window()->isVisible()) {
+    const bool plot_outside_shown = std::any_of(outside_.begin(), outside_.end(),
+                                                [](const auto& p) { return p && p->isVisible(); });
+    if (!isVisible() && !plot_outside_shown && window()->isVisible()) {
         deferred_ = true;
         return false;
     }

@@ -12,6 +12,7 @@
 /// from the edit to the repainted plot.
 
 #include <QElapsedTimer>
+#include <QPointer>
 #include <QWidget>
 #include <any>
 #include <atomic>
@@ -33,6 +34,8 @@ class QProgressBar;
 namespace terra::ui {
 
 class ProjectDocument;
+struct PlotMenuHooks;
+struct PlotDockHooks;
 
 class AnalysisPanel : public QWidget {
     Q_OBJECT
@@ -80,8 +83,17 @@ public:
     /// ("<b>CANCELLED (partial)</b> — 1024 model evaluations"); as is when complete.
     QString markedStatus(const QString& text) const;
     /// Gives every plot of plots() the right-click menu (plot_menu.h): "Export plot…" emits
-    /// exportRequested(), "Copy data" copies currentTable().
-    void installPlotMenus();
+    /// exportRequested(), "Copy data" copies currentTable(); `extend`, when set, wraps each
+    /// plot's hooks and gives its docking ones (the studio's plot docking, plot_docking.h).
+    void installPlotMenus(
+        const std::function<void(QCustomPlot&, PlotMenuHooks&, PlotDockHooks&)>& extend = nullptr);
+    /// A plot of plots() shown outside the panel (torn off into a dock of its own,
+    /// plot_docking.h) or back inside it: while such a plot is on screen the panel computes even
+    /// when it is hidden itself (behind another panel's tab).
+    void setPlotOutside(QCustomPlot* plot, bool outside);
+    /// A plot outside the panel was shown: an update that waited for the panel to be shown runs
+    /// now. A panel drawing its plots lazily draws this one.
+    virtual void plotShownOutside(QCustomPlot* plot);
 
     /// The results on screen for the project's results file (core/project/results.h), by
     /// section: name() for the panel's main result, "name.part" for another of its results
@@ -202,7 +214,8 @@ private:
     Completion completion_ = Completion::kComplete;
     QProgressBar* progress_bar_ = nullptr;
     std::string presented_hash_;
-    std::string restored_hash_;  // the saved result's, while it is on screen
+    std::string restored_hash_;               // the saved result's, while it is on screen
+    std::vector<QPointer<QWidget>> outside_;  // setPlotOutside
 };
 
 }  // namespace terra::ui

@@ -407,7 +407,8 @@ std::vector<std::pair<QString, QCustomPlot*>> GlobalSensitivityPanel::plots() co
 }
 
 QCustomPlot* GlobalSensitivityPanel::currentPlot() const {
-    return static_cast<QCustomPlot*>(pages_->currentWidget());
+    // By index: a plot shown in a dock of its own leaves a placeholder in its tab.
+    return pages_->currentIndex() == 1 ? bands_plot_ : indices_plot_;
 }
 
 Table GlobalSensitivityPanel::currentTable() const {

@@ -369,6 +369,13 @@ void RoverPanel::drawFigure(std::size_t i) const {
     drawn_[i] = true;
 }
 
+void RoverPanel::plotShownOutside(QCustomPlot* plot) {
+    AnalysisPanel::plotShownOutside(plot);
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+        if (plots_[i] == plot) drawFigure(i);
+    }
+}
+
 std::vector<std::pair<QString, QCustomPlot*>> RoverPanel::plots() const {
     std::vector<std::pair<QString, QCustomPlot*>> out;
     for (std::size_t i = 0; i < plots_.size(); ++i) {
@@ -716,6 +723,9 @@ void RoverPanel::present(const std::any& value) {
     time_->setText(timeLabel());
     // After the scrubber is at the last row: the figure's time cursor starts there.
     if (tabs_->currentIndex() > 0) drawFigure(static_cast<std::size_t>(tabs_->currentIndex() - 1));
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+        if (plots_[i]->isVisible()) drawFigure(i);  // one in a dock of its own (plot_docking.h)
+    }
     if (t.rows.size() < 2) {
         status_->setText("No output: " + QString::fromStdString(result_.message));
         return;
@@ -853,7 +863,7 @@ void RoverPanel::scrubTo(int row) {
         if (!drawn_[i]) continue;
         setRoverTimeCursor(*plots_[i], result_.series, roverFigures()[i].key,
                            static_cast<std::size_t>(row));
-        if (tabs_->currentWidget() == plots_[i]) plots_[i]->replot(QCustomPlot::rpQueuedReplot);
+        if (plots_[i]->isVisible()) plots_[i]->replot(QCustomPlot::rpQueuedReplot);
     }
 }
 

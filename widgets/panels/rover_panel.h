@@ -74,6 +74,8 @@ public:
     /// Run (when no run goes on).
     void requestRun() override;
     QCustomPlot* currentPlot() const override;
+    /// A figure in a dock of its own is drawn when shown (the others when their tab is).
+    void plotShownOutside(QCustomPlot* plot) override;
     /// The time series; on the comparison's tab the comparison table.
     Table currentTable() const override;
     nlohmann::json settings() const override;

@@ -9,6 +9,7 @@
 #include <QTabWidget>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <array>
 
 #include "core/project/panels.h"
 #include "core/soil/soil_parameters.h"
@@ -45,6 +46,11 @@ SensitivityPanel::SensitivityPanel(ProjectDocument* document, QWidget* parent)
     fx_ = new QCustomPlot(tabs_);
     fs_ = new QCustomPlot(tabs_);
     tornado_ = new QCustomPlot(tabs_);
+    // Keys that do not change with the parameter (the plots() names do): a plot in a dock of its
+    // own comes back by this name (plot_docking.h).
+    fx_->setObjectName("sensitivity-Fx");
+    fs_->setObjectName("sensitivity-Fs");
+    tornado_->setObjectName("tornado");
     for (QCustomPlot* plot : {fx_, fs_, tornado_}) makeInteractive(plot, readout_);
     tabs_->addTab(fx_, "Drawbar pull F_x");
     tabs_->addTab(fs_, "Side force F_s");
@@ -91,11 +97,13 @@ std::vector<std::pair<QString, QCustomPlot*>> SensitivityPanel::plots() const {
 }
 
 QCustomPlot* SensitivityPanel::currentPlot() const {
-    return static_cast<QCustomPlot*>(tabs_->currentWidget());
+    // By index: a plot shown in a dock of its own leaves a placeholder in its tab.
+    const std::array<QCustomPlot*, 3> in_tab_order{fx_, fs_, tornado_};
+    return in_tab_order[static_cast<std::size_t>(std::clamp(tabs_->currentIndex(), 0, 2))];
 }
 
 Table SensitivityPanel::currentTable() const {
-    return tabs_->currentWidget() == tornado_ ? result_.tornado : result_.family.table;
+    return currentPlot() == tornado_ ? result_.tornado : result_.family.table;
 }
 
 nlohmann::json SensitivityPanel::settings() const {
@@ -119,7 +127,7 @@ void SensitivityPanel::applySettings(const nlohmann::json& json) {
     slip_angle_->setValue(applied_.slip_angles_deg.front());
     tornado_slip_->setValue(applied_.tornado_slip);
     const std::string& plot = settings->plot;
-    tabs_->setCurrentWidget(plot == "tornado" ? tornado_ : plot == "Fs" ? fs_ : fx_);
+    tabs_->setCurrentIndex(plot == "tornado" ? 2 : plot == "Fs" ? 1 : 0);
 }
 
 AnalysisPanel::Job SensitivityPanel::makeJob() {

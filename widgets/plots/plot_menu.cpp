@@ -11,7 +11,8 @@
 
 namespace terra::ui {
 
-QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* parent) {
+QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* parent,
+                    const PlotDockHooks& dock) {
     auto* menu = new QMenu(parent);
     QCustomPlot* p = &plot;
     if (hooks.export_plot) {
@@ -26,6 +27,15 @@ QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* pare
                     QApplication::clipboard()->setText(QString::fromStdString(io::toCsv(table())));
                 })
             ->setObjectName("plot.copy_data");
+    }
+    if (dock.in_own_dock && dock.set_own_dock) {
+        const bool own = dock.in_own_dock();
+        QAction* move = menu->addAction(own ? "Put back into " + dock.home : "Show in its own dock",
+                                        [set = dock.set_own_dock, own] { set(!own); });
+        move->setObjectName("plot.own_dock");
+        move->setToolTip(own ? "Return the plot to its place in the panel"
+                             : "Show the plot in a dock of its own beside the panels: drag it "
+                               "beside another, float it or tab it");
     }
     menu->addSeparator();
     QAction* legend =
@@ -48,14 +58,15 @@ QMenu* makePlotMenu(QCustomPlot& plot, const PlotMenuHooks& hooks, QWidget* pare
     return menu;
 }
 
-void installPlotMenu(QCustomPlot& plot, PlotMenuHooks hooks) {
+void installPlotMenu(QCustomPlot& plot, PlotMenuHooks hooks, PlotDockHooks dock) {
     plot.setContextMenuPolicy(Qt::CustomContextMenu);
     QCustomPlot* p = &plot;
-    QObject::connect(p, &QWidget::customContextMenuRequested, p, [p, hooks](const QPoint& at) {
-        QMenu* menu = makePlotMenu(*p, hooks, p);
-        menu->setAttribute(Qt::WA_DeleteOnClose);
-        menu->popup(p->mapToGlobal(at));
-    });
+    QObject::connect(p, &QWidget::customContextMenuRequested, p,
+                     [p, hooks, dock](const QPoint& at) {
+                         QMenu* menu = makePlotMenu(*p, hooks, p, dock);
+                         menu->setAttribute(Qt::WA_DeleteOnClose);
+                         menu->popup(p->mapToGlobal(at));
+                     });
 }
 
 }  // namespace terra::ui
