@@ -113,9 +113,9 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
         });
         // Any of its plots in a dock of its own (its right-click menu), beside the panels.
         plot_docking_->addPanel(panel, d, titles[static_cast<int>(i)]);
-        connect(panel, &ui::AnalysisPanel::exportRequested, this, [this, panel] {
+        connect(panel, &ui::AnalysisPanel::exportRequested, this, [this, panel](QCustomPlot* plot) {
             setCurrentPanel(panel);
-            exportCurrentPlot();
+            exportPlot(*panel, *plot);
         });
         // The status bar speaks of the panel in use only ("Sensitivity updated…" stayed there
         // on other tabs); a panel's own status line keeps its news.

@@ -13,6 +13,7 @@
 #include "core/io/parameters_json.h"
 #include "core/project/results.h"
 
+class QCustomPlot;
 class QDockWidget;
 class QStackedWidget;
 class QMenu;
@@ -124,6 +125,8 @@ private:
     /// The identification's fit as the global study's "identified soil" source.
     void shareIdentification();
     void exportCurrentPlot();
+    /// The export dialog for `plot` of `panel` (its right-click menu's Export plot…).
+    void exportPlot(ui::AnalysisPanel& panel, QCustomPlot& plot);
     void exportCurrentData();
     void addRecent(const QString& path);
     void rebuildRecentMenu();

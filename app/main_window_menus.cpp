@@ -206,23 +206,29 @@ void MainWindow::showHelp(bool shortcuts) {
 namespace {
 
 /// "rover-path", "forces-Fx_N-vs-slip": the tab and the plot on screen, for a file name.
-QString plotName(const ui::AnalysisPanel& panel) {
+QString plotName(const ui::AnalysisPanel& panel, const QCustomPlot* shown) {
     for (const auto& [name, plot] : panel.plots()) {
-        if (plot != panel.currentPlot()) continue;
+        if (plot != shown) continue;
         return name.startsWith(panel.name()) ? name : panel.name() + "-" + name;
     }
     return panel.name();
 }
+
+QString plotName(const ui::AnalysisPanel& panel) { return plotName(panel, panel.currentPlot()); }
 
 }  // namespace
 
 void MainWindow::exportCurrentPlot() {
     ui::AnalysisPanel* panel = currentPanel();
     if (!panel) return;
-    const QString suggested = ui::suggestedPath(document_->filePath(), plotName(*panel), ".png");
+    exportPlot(*panel, *panel->currentPlot());
+}
+
+void MainWindow::exportPlot(ui::AnalysisPanel& panel, QCustomPlot& plot) {
+    const QString suggested =
+        ui::suggestedPath(document_->filePath(), plotName(panel, &plot), ".png");
     QStringList written;
-    if (ui::ExportDialog::exportWithDialog(this, *panel->currentPlot(), panel->currentTable(),
-                                           suggested, &written)) {
+    if (ui::ExportDialog::exportWithDialog(this, plot, panel.currentTable(), suggested, &written)) {
         ui::rememberFolder(written.front());
         statusBar()->showMessage("Exported " + written.join(" and "), 8000);
     }

@@ -1,5 +1,8 @@
 #include "core/project/project.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include "core/io/json.h"
 #include "core/io/parameters_json.h"
 #include "core/project/panels.h"
@@ -106,7 +109,7 @@ Project convertPaths(Project project, Convert convert) {
         nlohmann::json& panel = project.panels[file.panel];
         if (!panel.contains(file.key) || !panel[file.key].is_string()) continue;
         std::string path = panel[file.key].get<std::string>();
-        if (file.json_only && !path.ends_with(".json")) continue;
+        if (file.json_only && !isScenarioFileName(path)) continue;
         one(path);
         panel[file.key] = path;
     }
@@ -117,7 +120,7 @@ Project convertPaths(Project project, Convert convert) {
         nlohmann::json converted = nlohmann::json::object();
         for (const auto& [name, scenario] : project.panels["rover"]["edited"].items()) {
             std::string key = name;
-            if (key.ends_with(".json")) one(key);
+            if (isScenarioFileName(key)) one(key);
             converted[key] = scenario;
         }
         project.panels["rover"]["edited"] = std::move(converted);
@@ -132,6 +135,15 @@ bool isInside(const std::filesystem::path& path, const std::filesystem::path& di
 }
 
 }  // namespace
+
+bool isScenarioFileName(std::string_view name) {
+    constexpr std::string_view kSuffix = ".json";
+    if (name.size() < kSuffix.size()) return false;
+    const std::string_view tail = name.substr(name.size() - kSuffix.size());
+    return std::equal(tail.begin(), tail.end(), kSuffix.begin(), [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == b;
+    });
+}
 
 Project withRelativePaths(const Project& project, const std::filesystem::path& project_dir) {
     const std::filesystem::path dir = std::filesystem::absolute(project_dir).lexically_normal();

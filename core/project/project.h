@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/analysis/analysis.h"
@@ -62,6 +63,10 @@ Result<Project> loadProject(const std::filesystem::path& path,
 /// ("data/run1.csv"), so that the project's folder can be moved or shared as a whole. Files
 /// elsewhere (installed presets, another disk) stay absolute. For writing a .terra file.
 Project withRelativePaths(const Project& project, const std::filesystem::path& project_dir);
+
+/// Whether a rover scenario the project names is a file (its name ends in ".json", in any case)
+/// rather than a preset's name ("straight").
+bool isScenarioFileName(std::string_view name);
 
 /// The project with every relative file name (above) resolved against `project_dir`; absolute
 /// names, as older studios wrote them, are kept. For reading a .terra file.

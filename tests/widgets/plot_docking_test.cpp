@@ -40,6 +40,26 @@ QAction* plotMenuAction(QCustomPlot& plot, const QString& name) {
     return menu->findChild<QAction*>(name);
 }
 
+// Export plot… of the streaming page's detection plot exported the estimates plot (the page's
+// currentPlot()): the menu now names its own plot.
+TEST(PlotMenuExport, EachPlotsMenuExportsThatPlot) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.installPlotMenus();
+    std::vector<QCustomPlot*> asked;
+    QObject::connect(&panel, &AnalysisPanel::exportRequested,
+                     [&asked](QCustomPlot* plot) { asked.push_back(plot); });
+    for (const auto& [name, plot] : panel.plots()) {
+        QAction* action = plotMenuAction(*plot, "plot.export");
+        ASSERT_NE(action, nullptr) << name.toStdString();
+        action->trigger();
+        ASSERT_FALSE(asked.empty()) << name.toStdString();
+        EXPECT_EQ(asked.back(), plot) << name.toStdString();
+    }
+    EXPECT_EQ(asked.size(), panel.plots().size());
+}
+
 /// A window holding the forces panel in a dock, as the studio's panel area does.
 struct DockedForces {
     DockedForces() {

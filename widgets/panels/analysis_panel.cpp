@@ -79,7 +79,9 @@ void AnalysisPanel::trackProgress(QProgressBar* bar) {
 void AnalysisPanel::installPlotMenus(
     const std::function<void(QCustomPlot&, PlotMenuHooks&, PlotDockHooks&)>& extend) {
     for (const auto& [name, plot] : plots()) {
-        PlotMenuHooks hooks{[this] { return currentTable(); }, [this] { emit exportRequested(); }};
+        QCustomPlot* shown = plot;
+        PlotMenuHooks hooks{[this] { return currentTable(); },
+                            [this, shown] { emit exportRequested(shown); }};
         PlotDockHooks dock;
         if (extend) extend(*plot, hooks, dock);
         installPlotMenu(*plot, std::move(hooks), std::move(dock));

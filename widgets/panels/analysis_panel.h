@@ -130,7 +130,9 @@ signals:
     void resultShown(double latency_ms);  ///< a new result is on screen, after the given time [ms]
     void failed(const QString& message);
     void busyChanged(bool busy);
-    void exportRequested();  ///< "Export plot…" of a plot's right-click menu
+    /// "Export plot…" of the right-click menu of `plot` (one of plots(); on a page showing two
+    /// plots it need not be currentPlot()).
+    void exportRequested(QCustomPlot* plot);
 
 protected:
     void showEvent(QShowEvent* event) override;

@@ -30,6 +30,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/json.h"
 #include "core/project/panels.h"
+#include "core/project/project.h"
 #include "core/project/saved_rover.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/document/project_document.h"
@@ -48,11 +49,12 @@ struct Comparison {
     nlohmann::json table;
 };
 
-/// The file of a scenario: a preset's name, or the path of a scenario file of the project (a
-/// name ending in ".json"); empty when there is none.
+/// The file of a scenario: a preset's name, or the path of a scenario file of the project
+/// (project::isScenarioFileName); empty when there is none.
 fs::path presetFile(const io::PresetLocations& locations, const std::string& name) {
     std::error_code ec;
-    if (name.ends_with(".json")) return fs::is_regular_file(name, ec) ? fs::path(name) : fs::path();
+    if (project::isScenarioFileName(name))
+        return fs::is_regular_file(name, ec) ? fs::path(name) : fs::path();
     for (const fs::path& dir : locations.directories) {
         const fs::path candidate = dir / "scenarios" / (name + ".json");
         if (fs::is_regular_file(candidate, ec)) return candidate;

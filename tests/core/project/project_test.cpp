@@ -147,6 +147,15 @@ TEST(ProjectFile, PathsInsideTheProjectFolderAreWrittenRelative) {
     EXPECT_EQ(moved.scenarios[0], "/mnt/usb/field/runs/a.json");
     EXPECT_EQ(moved.panels["rover"]["scenario"], "/mnt/usb/field/runs/a.json");
     EXPECT_EQ(moved.panels["rover"]["edited"]["/mnt/usb/field/runs/a.json"]["duration_s"], 2);
+    // A scenario file's suffix in any case is a file; a preset's name never is.
+    EXPECT_TRUE(isScenarioFileName("/home/ana/field/Run.JSON"));
+    EXPECT_TRUE(isScenarioFileName("runs/a.json"));
+    EXPECT_FALSE(isScenarioFileName("straight"));
+    EXPECT_FALSE(isScenarioFileName("json"));
+    Project upper = p;
+    upper.panels["rover"] = json{{"scenario", "/home/ana/field/runs/B.Json"}};
+    EXPECT_EQ(withRelativePaths(upper, "/home/ana/field").panels["rover"]["scenario"],
+              "runs/B.Json");
     // A sibling folder with the same prefix is not inside.
     EXPECT_EQ(withRelativePaths(p, "/home/ana/fie").data_sets[0], "/home/ana/field/data/run1.csv");
 }
