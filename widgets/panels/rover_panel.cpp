@@ -395,17 +395,17 @@ QCustomPlot* RoverPanel::currentPlot() const {
     return plots_[static_cast<std::size_t>(i - 1)];
 }
 
-std::string RoverPanel::currentName() const {
+std::string RoverPanel::nameAt(int index) const {
     // A scenario file's item holds its path; a preset's is its name.
-    const QVariant path = scenario_->currentData();
-    return (path.isValid() ? path.toString() : scenario_->currentText()).toStdString();
+    const QVariant path = scenario_->itemData(index);
+    return (path.isValid() ? path.toString() : scenario_->itemText(index)).toStdString();
 }
 
+std::string RoverPanel::currentName() const { return nameAt(scenario_->currentIndex()); }
+
 int RoverPanel::scenarioIndex(const std::string& name) const {
-    const QString wanted = QString::fromStdString(name);
     for (int i = 0; i < scenario_->count(); ++i) {
-        const QVariant path = scenario_->itemData(i);
-        if ((path.isValid() ? path.toString() : scenario_->itemText(i)) == wanted) return i;
+        if (nameAt(i) == name) return i;
     }
     return -1;
 }

@@ -141,6 +141,8 @@ private slots:
     void editScenario();
 
 private:
+    /// The scenario of the chooser's item `index`: a preset's name or a scenario file's path.
+    std::string nameAt(int index) const;
     std::string currentName() const;
     /// The chooser's index of the scenario `name` (a preset's name or a file's path), or -1.
     int scenarioIndex(const std::string& name) const;
