@@ -98,7 +98,8 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // (repeated_passes off); 2 the field with the memory (rear wheels in the front ruts: their
 // contact is integrated, the quadratic model has no reload branch); 3 as 2 without the stress at
 // depth; 4 as 2 with the quadratic closed form's reload branch in the ruts; 5 as 4 without the
-// stress at depth. Second arg: the step in
+// stress at depth; 6 as 4 writing each passage to the cell under the contact point only, not
+// across the wheel's width (docs/field.md F13). Second arg: the step in
 // ms; third: 1 for the implicit integrator (docs/dynamics.md, "Integrators"). Counters: real-time
 // factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
@@ -135,6 +136,7 @@ scenario::Scenario fieldRun(int kind) {
     s.field_options.repeated_passes = kind >= 2;
     if (kind == 3 || kind == 5) s.field_options.stress_depths_m.clear();
     s.options.contact.closed_form_reload = kind >= 4;
+    s.field_options.across_width = kind != 6;
     return s;
 }
 
@@ -209,6 +211,7 @@ BENCHMARK(RoverOnField)
     ->Args({2, 20, 1})
     ->Args({4, 20, 1})
     ->Args({5, 20, 1})
+    ->Args({6, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
@@ -252,6 +255,7 @@ BENCHMARK(RoverFieldMission)
     ->Args({2, 20, 1})
     ->Args({4, 20, 1})
     ->Args({5, 20, 1})
+    ->Args({6, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);

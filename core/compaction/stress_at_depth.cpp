@@ -177,8 +177,8 @@ PassMaxima passMaxima(const StressPropagation& propagation, double y_m, double z
     return out;
 }
 
-double maxVerticalStress(const StressPropagation& propagation, double y_m, double z_m,
-                         int scan_points) {
+VerticalStressPeak verticalStressPeak(const StressPropagation& propagation, double y_m, double z_m,
+                                      int scan_points) {
     requireBelow(propagation, z_m);
     const auto [lo, hi] = scanRange(propagation, z_m);
     scan_points = std::max(scan_points, 5);
@@ -189,13 +189,41 @@ double maxVerticalStress(const StressPropagation& propagation, double y_m, doubl
         const double f = propagation.verticalStressAt({lo + i * step, y_m, z_m});
         if (f > f_best) best = i, f_best = f;
     }
-    return refineMaximum(
-               [&](double x) {
-                   return propagation.verticalStressAt({x, y_m, z_m});
-               },
-               lo + std::max(best - 1, 0) * step, lo + std::min(best + 1, scan_points - 1) * step,
-               lo + best * step, f_best)
-        .second;
+    const auto [x, value] = refineMaximum(
+        [&](double x) {
+            return propagation.verticalStressAt({x, y_m, z_m});
+        },
+        lo + std::max(best - 1, 0) * step, lo + std::min(best + 1, scan_points - 1) * step,
+        lo + best * step, f_best);
+    return {x, value, step};
+}
+
+double maxVerticalStress(const StressPropagation& propagation, double y_m, double z_m,
+                         int scan_points) {
+    return verticalStressPeak(propagation, y_m, z_m, scan_points).sigma_z_pa;
+}
+
+double maxVerticalStressNear(const StressPropagation& propagation, const VerticalStressPeak& peak,
+                             double y_m, double z_m) {
+    requireBelow(propagation, z_m);
+    auto f = [&](double x) { return propagation.verticalStressAt({x, y_m, z_m}); };
+    // The parabola through x* and x* ± d (d a quarter of the scan step, ≤ z/3): its vertex, when
+    // the three values are concave and the vertex lies within ±d, is the peak to O(d³) in x;
+    // σ_z being flat there (its scale is z), the value is to O((d/z)⁴) relative.
+    const double d = 0.25 * peak.step_m;
+    const double f0 = f(peak.x_m), f_minus = f(peak.x_m - d), f_plus = f(peak.x_m + d);
+    const double curvature = f_plus - 2.0 * f0 + f_minus;
+    if (curvature < 0.0) {
+        const double shift = -0.5 * d * (f_plus - f_minus) / curvature;
+        if (std::abs(shift) <= d) return std::max({f(peak.x_m + shift), f0, f_minus, f_plus});
+    }
+    // Otherwise Brent's method within x* ± the scan step (to 2⁻²⁰ in x); a maximum at that
+    // bracket's edge may lie beyond it: the whole scan then.
+    const auto [x, value] = refineMaximum(f, peak.x_m - peak.step_m, peak.x_m + peak.step_m,
+                                          peak.x_m, std::max({f0, f_minus, f_plus}));
+    if (!(std::abs(x - peak.x_m) < 0.99 * peak.step_m))
+        return maxVerticalStress(propagation, y_m, z_m);
+    return value;
 }
 
 double verticalStressBound(const StressPropagation& propagation, double z_m) {

@@ -94,6 +94,24 @@ PassMaxima passMaxima(const StressPropagation& propagation, double y_m, double z
 double maxVerticalStress(const StressPropagation& propagation, double y_m, double z_m,
                          int scan_points = 25);
 
+/// Where σ_z peaks along x at (y, z) [m, relative to the loads], its value [Pa], and the scan's
+/// step [m]: as maxVerticalStress.
+struct VerticalStressPeak {
+    double x_m = 0.0;
+    double sigma_z_pa = 0.0;
+    double step_m = 0.0;
+};
+VerticalStressPeak verticalStressPeak(const StressPropagation& propagation, double y_m, double z_m,
+                                      int scan_points = 25);
+
+/// The largest σ_z over x at (y', z) near a known peak at a neighbouring y (the cells across a
+/// wheel's width, docs/field.md F13): the vertex of the parabola through the peak's x and x ± a
+/// quarter of its scan step; where that does not hold (values not concave, vertex beyond ±d),
+/// Brent's method within x ± the step, and the full scan when its maximum is at that bracket's
+/// edge.
+double maxVerticalStressNear(const StressPropagation& propagation, const VerticalStressPeak& peak,
+                             double y_m, double z_m);
+
 /// An upper bound of σ_z anywhere on the plane at depth z [Pa]: (ν Σ|F_z| + ν(ν − 2) Σ|F_h|) /
 /// (2π (z − z_deepest)²), from C1–C2 with cos ϑ ≤ 1 and R ≥ z − z_deepest. The red-zone search
 /// skips depths it proves green.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 #include "core/compaction/footprint.h"
@@ -42,6 +43,7 @@ FieldTerrain::FieldTerrain(std::shared_ptr<const field::FieldMap> map, const Rob
                                     std::string(map_->parameters.front().field->key) +
                                     ") are not read by the rover yet; give the soil by class");
     }
+    axle_.fill({0.0, 1.0});
     soils_.push_back(map_->base);
     for (const auto& [code, soil] : map_->legend) {
         codes_.push_back(code);
@@ -83,6 +85,8 @@ const compaction::TrackMemory* FieldTerrain::memoryUnder(int wheel, double x_m, 
         p = Passage{};
         p.open = true;
         p.key = key;
+        p.entry = {x_m, y_m};
+        p.entry_axle = axle_[static_cast<std::size_t>(wheel)];
         if (const field::CellState* s = cells_.find(key)) p.before = s->track;
     }
     return options_.repeated_passes && !p.before.untouched() ? &p.before : nullptr;
@@ -91,6 +95,7 @@ const compaction::TrackMemory* FieldTerrain::memoryUnder(int wheel, double x_m, 
 void FieldTerrain::imprint(int wheel, const WheelImprint& imprint) {
     Passage& p = passages_[static_cast<std::size_t>(wheel)];
     p.last_power_w = imprint.power_w;
+    axle_[static_cast<std::size_t>(wheel)] = imprint.axle;
     if (!p.open || !imprint.in_contact) return;
     p.max_slip = std::max(p.max_slip, std::abs(imprint.op.slip));
     if (!p.contacted || imprint.depth_m > p.max_depth_m) {
@@ -117,26 +122,86 @@ void FieldTerrain::finish() {
     }
 }
 
-double FieldTerrain::stressAt(const Passage& p, double depth_m) const {
-    double nu = options_.concentration;
-    if (!(nu > 0.0)) {
-        nu = compaction::kDefaultConcentration;
-        const soil::SoilParameters& soil = soils_[static_cast<std::size_t>(p.soil_index)];
-        if (soil.profile) {
-            const soil::SoilLayer* layer = soil.profile->layerAt(depth_m);
-            if (layer && layer->concentration) nu = *layer->concentration;
+double FieldTerrain::concentrationAt(const Passage& p, double depth_m) const {
+    if (options_.concentration > 0.0) return options_.concentration;
+    const soil::SoilParameters& soil = soils_[static_cast<std::size_t>(p.soil_index)];
+    if (soil.profile) {
+        const soil::SoilLayer* layer = soil.profile->layerAt(depth_m);
+        if (layer && layer->concentration) return *layer->concentration;
+    }
+    return compaction::kDefaultConcentration;
+}
+
+namespace {
+
+// Whether (x, y) lies inside the quadrilateral q (even–odd rule: a ray towards +x crosses its
+// edges an odd number of times; a twisted quadrilateral, a wheel turning about a point inside its
+// width, counts each of its two triangles).
+bool insideQuad(const std::array<std::array<double, 2>, 4>& q, double x, double y) {
+    bool inside = false;
+    for (std::size_t i = 0, j = 3; i < 4; j = i++) {
+        const double yi = q[i][1], yj = q[j][1];
+        if ((yi > y) != (yj > y)) {
+            const double x_cross = q[i][0] + (y - yi) / (yj - yi) * (q[j][0] - q[i][0]);
+            if (x < x_cross) inside = !inside;
         }
     }
-    const compaction::StressPropagation propagation(compaction::wheelFootprint(p.params, p.op), nu);
-    if (!(depth_m > propagation.deepestLoad())) return 0.0;
-    return compaction::maxVerticalStress(propagation, 0.0, depth_m);
+    return inside;
+}
+
+// The largest box of cells a passage's sweep is searched in: a passage spans about one cell
+// along the track and the wheel's width across it; a larger box means the contact point jumped.
+constexpr std::int64_t kMaxSweptBoxCells = 4096;
+
+}  // namespace
+
+std::vector<FieldTerrain::SweptCell> FieldTerrain::sweptCells(const Passage& p,
+                                                              std::size_t wheel) const {
+    const double h = cells_.cellSize();
+    const std::array<double, 2> exit = last_contact_[wheel].value_or(p.entry);
+    std::array<double, 2> a0 = p.entry_axle, a1 = axle_[wheel];
+    // The centre line's lateral direction over the passage (the mean axle; a wheel that turned
+    // half a revolution keeps its last one).
+    std::array<double, 2> a{a0[0] + a1[0], a0[1] + a1[1]};
+    const double a_norm = std::hypot(a[0], a[1]);
+    a = a_norm > 1e-9 ? std::array<double, 2>{a[0] / a_norm, a[1] / a_norm} : a1;
+    // The distance from the centre line (through the exit point, along the travel) to the cell's
+    // nearest point: |d| − h/2 with d the cell centre's lateral offset (exact when the track runs
+    // along the grid), 0 for a cell the line crosses.
+    auto offsetOf = [&](field::CellKey key) {
+        const double d =
+            (cells_.centreX(key.ix) - exit[0]) * a[0] + (cells_.centreY(key.iy) - exit[1]) * a[1];
+        return std::max(0.0, std::abs(d) - 0.5 * h);
+    };
+    std::vector<SweptCell> out{{p.key, options_.across_width ? offsetOf(p.key) : 0.0}};
+    if (!options_.across_width) return out;
+    // F13: the quadrilateral the wheel's width swept from the passage's entry to its exit.
+    const double w = 0.5 * wheel_.width_m;
+    const std::array<std::array<double, 2>, 4> q{{{p.entry[0] - w * a0[0], p.entry[1] - w * a0[1]},
+                                                  {p.entry[0] + w * a0[0], p.entry[1] + w * a0[1]},
+                                                  {exit[0] + w * a1[0], exit[1] + w * a1[1]},
+                                                  {exit[0] - w * a1[0], exit[1] - w * a1[1]}}};
+    double x_lo = q[0][0], x_hi = q[0][0], y_lo = q[0][1], y_hi = q[0][1];
+    for (const auto& c : q) {
+        x_lo = std::min(x_lo, c[0]), x_hi = std::max(x_hi, c[0]);
+        y_lo = std::min(y_lo, c[1]), y_hi = std::max(y_hi, c[1]);
+    }
+    const field::CellKey lo = cells_.keyAt(x_lo, y_lo), hi = cells_.keyAt(x_hi, y_hi);
+    if ((hi.ix - lo.ix + 1) * (hi.iy - lo.iy + 1) > kMaxSweptBoxCells) return out;
+    for (std::int64_t iy = lo.iy; iy <= hi.iy; ++iy) {
+        for (std::int64_t ix = lo.ix; ix <= hi.ix; ++ix) {
+            if (ix == p.key.ix && iy == p.key.iy) continue;
+            if (!insideQuad(q, cells_.centreX(ix), cells_.centreY(iy))) continue;
+            out.push_back({field::CellKey{ix, iy}, offsetOf(field::CellKey{ix, iy})});
+        }
+    }
+    return out;
 }
 
 void FieldTerrain::commit(Passage& p) {
     p.open = false;
     if (!p.contacted) return;
-    field::CellState& cell = cells_.touch(p.key);
-    if (cell.track.untouched()) ++cells_touched_;
+    const auto wheel = static_cast<std::size_t>(&p - passages_.data());
     // F11: the memory after one more wheel — it sank to its deepest point below the untouched
     // surface with N = n₀ + n₁ s, and left the shear |j(θ_r)| (Eq. 2.15, without the offset).
     // afterPass reads K_s, n and j_max, which the memory (onTrack) leaves as the soil's.
@@ -151,24 +216,72 @@ void FieldTerrain::commit(Passage& p) {
         exit_shear = 0.0;  // an operating point outside the model's domain leaves no shear
     }
     const double n = untouched.sinkage_exponent + untouched.sinkage_exponent_slip * p.op.slip;
-    cell.track = compaction::afterPass(cell.track, options_.law, untouched,
-                                       std::max(0.0, p.max_depth_m), n, exit_shear);
-    cell.max_slip = std::max(cell.max_slip, static_cast<float>(p.max_slip));
-    cell.energy_j += static_cast<float>(p.energy_j);
-    cell.travel_m += static_cast<float>(p.travel_m);
+    // The footprint of the deepest instant and its propagation at each depth's ν, built once
+    // for the passage's cells; σ_z is then taken at each cell's distance from the centre line
+    // (the cells on either side at one distance share it).
     const std::vector<double>& depths = cells_.stressDepths();
-    for (std::size_t k = 0; k < depths.size(); ++k) {
-        double sigma = 0.0;
-        try {
-            sigma = stressAt(p, depths[k]);
-        } catch (const std::invalid_argument&) {
-            sigma = 0.0;
-        }
-        cell.max_stress_pa[k] = std::max(cell.max_stress_pa[k], static_cast<float>(sigma));
+    std::vector<compaction::PointLoad> footprint;
+    try {
+        if (!depths.empty()) footprint = compaction::wheelFootprint(p.params, p.op);
+    } catch (const std::invalid_argument&) {
+        footprint.clear();  // outside the model's domain: no stress at depth from this passage
     }
-    if (options_.record_passages) {
-        const auto wheel = static_cast<int>(&p - passages_.data());
-        log_.push_back(CellPassage{time_s_, p.key, wheel, cell});
+    std::vector<std::optional<compaction::StressPropagation>> propagation(depths.size());
+    for (std::size_t k = 0; k < depths.size() && !footprint.empty(); ++k) {
+        try {
+            propagation[k].emplace(footprint, concentrationAt(p, depths[k]));
+        } catch (const std::invalid_argument&) {
+            propagation[k].reset();
+        }
+    }
+    // Per depth: the peak under the centre line (a full scan), then each cell's distance from
+    // the line by Brent's method near that peak (maxVerticalStressNear); cells at one distance
+    // share it.
+    std::vector<std::optional<compaction::VerticalStressPeak>> centre(depths.size());
+    struct Known {
+        std::size_t depth;
+        double offset_m, sigma_pa;
+    };
+    std::vector<Known> known;
+    auto sigmaAt = [&](std::size_t k, double offset_m) {
+        for (const Known& e : known) {
+            if (e.depth == k && e.offset_m == offset_m) return e.sigma_pa;
+        }
+        double sigma = 0.0;
+        const std::optional<compaction::StressPropagation>& q = propagation[k];
+        if (q && depths[k] > q->deepestLoad()) {
+            try {
+                if (!centre[k]) centre[k] = compaction::verticalStressPeak(*q, 0.0, depths[k]);
+                sigma = offset_m == 0.0 ? centre[k]->sigma_z_pa
+                                        : compaction::maxVerticalStressNear(*q, *centre[k],
+                                                                            offset_m, depths[k]);
+            } catch (const std::invalid_argument&) {
+                sigma = 0.0;
+            }
+        }
+        known.push_back({k, offset_m, sigma});
+        return sigma;
+    };
+    // F13: every cell under the wheel's width takes the pass; the energy and the distance are
+    // shared equally, so that their sums over the cells are the passage's and each cell's ratio
+    // is the passage's energy per metre.
+    const std::vector<SweptCell> swept = sweptCells(p, wheel);
+    const double share = 1.0 / static_cast<double>(swept.size());
+    for (const SweptCell& target : swept) {
+        field::CellState& cell = cells_.touch(target.key);
+        if (cell.track.untouched()) ++cells_touched_;
+        cell.track = compaction::afterPass(cell.track, options_.law, untouched,
+                                           std::max(0.0, p.max_depth_m), n, exit_shear);
+        cell.max_slip = std::max(cell.max_slip, static_cast<float>(p.max_slip));
+        cell.energy_j += static_cast<float>(p.energy_j * share);
+        cell.travel_m += static_cast<float>(p.travel_m * share);
+        for (std::size_t k = 0; k < depths.size(); ++k) {
+            const double sigma = sigmaAt(k, target.offset_m);
+            cell.max_stress_pa[k] = std::max(cell.max_stress_pa[k], static_cast<float>(sigma));
+        }
+        if (options_.record_passages) {
+            log_.push_back(CellPassage{time_s_, target.key, static_cast<int>(wheel), cell});
+        }
     }
 }
 

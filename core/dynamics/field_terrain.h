@@ -4,9 +4,9 @@
 /// surface (bilinear height and gradient, F1–F2) and soils (class 0 = the base soil, then the
 /// legend's classes in ascending code), and the cell grid's memory of every wheel that passed.
 /// Each wheel reads the memory of the cell under its contact point as the cell was when the wheel
-/// arrived there, and writes its passage back once, when it leaves the cell (F10–F11): the track
-/// memory after one more pass (compaction::afterPass), the largest slip, the energy it lost there
-/// and the largest vertical stress at the grid's depths.
+/// arrived there, and writes its passage back once, when it leaves the cell (F10–F11), to every
+/// cell under its width (F13): the track memory after one more pass (compaction::afterPass), the
+/// largest slip, the energy it lost there and the largest vertical stress at the grid's depths.
 
 #include <array>
 #include <memory>
@@ -50,9 +50,13 @@ struct FieldTerrainOptions {
     /// it, so that the maps can be drawn as they were at any time (the studio's time scrub).
     /// 88 bytes a passage.
     bool record_passages = false;
+    /// Write each passage to every cell under the wheel's width (docs/field.md F13: the cells
+    /// whose centres the wheel's width swept during the passage, and the cell under its contact
+    /// point); false: the cell under the contact point only, a track one cell wide per wheel.
+    bool across_width = true;
 };
 
-/// One wheel's passage as it was written to its cell (F10).
+/// One wheel's passage as it was written to one of its cells (F10, F13).
 struct CellPassage {
     /// The rover's time when the wheel left the cell (or the run ended with the wheel on it) [s]:
     /// the sum of the steps the terrain was told of, as the rover's own clock.
@@ -101,6 +105,9 @@ private:
     struct Passage {
         bool open = false;
         field::CellKey key;
+        // The contact point and the axle's direction when the passage opened (F13).
+        std::array<double, 2> entry{};
+        std::array<double, 2> entry_axle{0.0, 1.0};
         compaction::TrackMemory before;  // the cell's memory when the wheel arrived
         bool contacted = false;
         int soil_index = 0;
@@ -112,8 +119,16 @@ private:
         contact::ContactParameters<double> params;  // at the deepest point
         contact::OperatingPoint<double> op{};       // at the deepest point
     };
+    // A cell a passage is written to, and the distance from the wheel's centre line to the
+    // cell's nearest point (its σ_z at depth is taken there).
+    struct SweptCell {
+        field::CellKey key;
+        double offset_m = 0.0;
+    };
     void commit(Passage& passage);
-    double stressAt(const Passage& passage, double depth_m) const;
+    std::vector<SweptCell> sweptCells(const Passage& passage, std::size_t wheel) const;
+    // ν at a depth: the scenario's, else the passage's soil layer's, else 5.
+    double concentrationAt(const Passage& passage, double depth_m) const;
 
     std::shared_ptr<const field::FieldMap> map_;
     FieldTerrainOptions options_;
@@ -124,6 +139,8 @@ private:
     std::array<Passage, kWheelCount> passages_{};
     // Each wheel's last contact point (the passage's travel; F12).
     std::array<std::optional<std::array<double, 2>>, kWheelCount> last_contact_{};
+    // Each wheel's axle on the map at its last imprint (F13).
+    std::array<std::array<double, 2>, kWheelCount> axle_{};
     long cells_touched_ = 0;
     double time_s_ = 0.0;  // the sum of the steps advanced() was told of
     std::vector<CellPassage> log_;

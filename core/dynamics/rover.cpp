@@ -649,6 +649,8 @@ const RoverState& Rover::evaluate(const Commands& commands) {
             imprint.params = *soil;
             imprint.op = {ws.contact.slip, ws.contact.slip_angle_rad, ws.contact.entry_angle_rad,
                           ws.contact.exit_angle_rad, std::nullopt};
+            const double axle_xy = std::hypot(y_w.x(), y_w.y());
+            if (axle_xy > 0.0) imprint.axle = {y_w.x() / axle_xy, y_w.y() / axle_xy};
             m.terrain->imprint(i, imprint);
         }
     }

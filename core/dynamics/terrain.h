@@ -61,6 +61,9 @@ struct WheelImprint {
     double power_w = 0.0;  ///< power into the soil [W]
     contact::ContactParameters<double> params;  ///< the soil's, with the memory used (if any)
     contact::OperatingPoint<double> op{};       ///< s, β, θ_f, θ_r of the contact
+    /// The wheel's axle y_w (docs/field.md F7) projected on the map and normalised: the direction
+    /// of its width on the ground (F13).
+    std::array<double, 2> axle{0.0, 1.0};
 };
 
 /// The ground as a wheel meets it. Coordinates are the world's: x, y on the map, z up.

@@ -155,6 +155,35 @@ TEST(StressAtDepth, TheLargestValueDuringAPassOfASymmetricLoadIsUnderItsCentre) 
     }
 }
 
+// The cells across a wheel's width (docs/field.md F13) take σ_z's peak along x near the centre
+// line's: the parabola's vertex (or Brent's method, or the full scan where that does not hold)
+// equals the full scan + Brent of maxVerticalStress, on a driven wheel's footprint — a strip
+// 0.1 m wide and 0.06 m long whose pressure rises towards the front and that carries a shear
+// backwards — at depths from 3 cm to 0.6 m and offsets across and beyond the width.
+TEST(StressAtDepth, ThePeakNearANeighbouringOnesIsTheFullScans) {
+    std::vector<PointLoad> loads;
+    for (int i = 0; i < 12; ++i) {
+        const double x = -0.03 + 0.06 * (i + 0.5) / 12.0;
+        const double pressure = 80e3 * (0.4 + 0.6 * (x + 0.03) / 0.06);
+        for (int j = 0; j < 7; ++j) {
+            const double y = -0.05 + 0.1 * (j + 0.5) / 7.0;
+            const double area = (0.06 / 12.0) * (0.1 / 7.0);
+            loads.push_back({{x, y, 0.004 * std::cos(20.0 * x)},
+                             {-0.3 * pressure * area, 0.02 * pressure * area, pressure * area}});
+        }
+    }
+    const StressPropagation propagation(loads, 5.0);
+    for (const double z : {0.03, 0.1, 0.3, 0.6}) {
+        const VerticalStressPeak centre = verticalStressPeak(propagation, 0.0, z);
+        EXPECT_EQ(centre.sigma_z_pa, maxVerticalStress(propagation, 0.0, z));
+        for (const double y : {0.01, 0.02, 0.04, 0.05, 0.2, 1.0}) {
+            const double full = maxVerticalStress(propagation, y, z);
+            EXPECT_NEAR(maxVerticalStressNear(propagation, centre, y, z), full, 1e-5 * full)
+                << "z " << z << " y " << y;
+        }
+    }
+}
+
 TEST(StressAtDepth, RefusesABadConcentrationOrAPointAboveTheLoads) {
     EXPECT_THROW(StressPropagation({}, 2.0), std::invalid_argument);
     EXPECT_THROW(StressPropagation({}, std::nan("")), std::invalid_argument);

@@ -141,13 +141,14 @@ struct StraightOnField {
 
 // The shipped straight run, its wheels at 1.5 rad/s (0.14 m/s) so that the front wheels' track
 // is longer than the wheelbase within seconds.
-StraightOnField driveStraight(double duration_s, double cell_m) {
+StraightOnField driveStraight(double duration_s, double cell_m, bool across_width = true) {
     StraightOnField out;
     out.s = shipped("straight", duration_s);
     for (auto& w : out.s.wheels) w.spin_rate_rad_s = scenario::Signal::constant(1.5);
     out.s.options.contact.model = contact::ContactModel::kFull;
     FieldTerrainOptions options;
     options.cell_m = cell_m;
+    options.across_width = across_width;
     out.terrain =
         std::make_unique<FieldTerrain>(uniformField(out.s.terrain.base), out.s.robot, options);
     Rover rover(out.s.robot, *out.terrain, out.s.options, out.s.initial, out.s.commandsAt(0.0));
@@ -255,6 +256,75 @@ TEST(FieldRover, EachWheelCountsOnePassPerCell) {
         const field::CellState* between = cellAt(*run.terrain, x_rear - 0.1, 0.0);
         EXPECT_TRUE(between == nullptr || between->track.passes == 0);
     }
+}
+
+// F13: a passage is written to every cell under the wheel's width. On a straight run along the
+// grid the wheels read the same cells as with the centre line alone (the run is the same bit for
+// bit); across a track, the cells whose centres lie within b/2 of the wheel's centre line hold
+// the centre cell's passes and rut, those beyond b/2 + h nothing; the energy and distance are
+// shared, so their sums over the field are the centre-line run's and a cell's energy per metre is
+// the passage's; σ_z at depth falls off across the width (at the nearest point of each cell).
+TEST(FieldRover, APassageIsWrittenToEveryCellUnderTheWheelsWidth) {
+    const double h = 0.02;
+    const StraightOnField wide = driveStraight(10.0, h, true);
+    const StraightOnField line = driveStraight(10.0, h, false);
+    EXPECT_EQ(wide.end.position_m, line.end.position_m);
+    for (int i = 0; i < kWheelCount; ++i) {
+        EXPECT_EQ(wide.end.wheels[i].contact.sinkage_m, line.end.wheels[i].contact.sinkage_m);
+    }
+    const double b = wide.s.robot.wheel.width_m;
+    const double y_track = 0.5 * wide.s.robot.track_m;
+    const double x_rear = wide.end.position_m[0] - 0.5 * wide.s.robot.wheelbase_m;
+    ASSERT_GT(x_rear, 0.5);
+    int columns = 0;
+    for (double x = 0.5 * wide.s.robot.wheelbase_m + 0.5 * h; x < x_rear - 0.05; x += h) {
+        const field::CellState* centre = cellAt(*wide.terrain, x, y_track);
+        ASSERT_NE(centre, nullptr);
+        ASSERT_EQ(centre->track.passes, 2) << x;
+        int across = 0;
+        float last_sigma = centre->max_stress_pa[0];
+        // Outwards from the centre line (on a cell edge), cell by cell, on the outer side.
+        for (int k = 0; k < 6; ++k) {
+            const double dy = (k + 0.5) * h;  // the cell centre's distance from the line
+            const field::CellState* c = wide.terrain->cells().find(x, y_track + dy);
+            if (dy < 0.5 * b - 0.25 * h) {
+                ASSERT_NE(c, nullptr) << x << " " << dy;
+                EXPECT_EQ(c->track.passes, 2) << x << " " << dy;
+                EXPECT_FLOAT_EQ(c->track.rut_depth_m, centre->track.rut_depth_m);
+                EXPECT_NEAR(c->energy_j / c->travel_m, centre->energy_j / centre->travel_m,
+                            0.02 * centre->energy_j / centre->travel_m);
+                EXPECT_LE(c->max_stress_pa[0], last_sigma * (1.0f + 1e-6f)) << x << " " << dy;
+                last_sigma = c->max_stress_pa[0];
+                ++across;
+            } else if (dy > 0.5 * b + h) {
+                EXPECT_TRUE(c == nullptr || c->track.passes == 0) << x << " " << dy;
+            }
+        }
+        EXPECT_GE(across, 2);  // 0.107 m over 2 cm cells: 2 centres within b/2 − h/4 per side
+        ++columns;
+    }
+    EXPECT_GE(columns, 10);
+    // The centre-line run's cell under the line holds the same σ_z (both at the line).
+    const double x_mid = 0.5 * (0.5 * wide.s.robot.wheelbase_m + x_rear);
+    EXPECT_EQ(cellAt(*wide.terrain, x_mid, y_track)->max_stress_pa[0],
+              cellAt(*line.terrain, x_mid, y_track)->max_stress_pa[0]);
+    // The width's cells share the energy and the distance: the sums are the centre line's.
+    auto sums = [](const FieldTerrain& t) {
+        double energy = 0.0, travel = 0.0;
+        long cells = 0;
+        t.cells().forEachCell([&](field::CellKey, const field::CellState& c) {
+            energy += c.energy_j, travel += c.travel_m;
+            cells += c.track.passes > 0;
+        });
+        return std::array<double, 3>{energy, travel, static_cast<double>(cells)};
+    };
+    const std::array<double, 3> w = sums(*wide.terrain), l = sums(*line.terrain);
+    EXPECT_NEAR(w[0], l[0], 1e-4 * std::abs(l[0]));
+    EXPECT_NEAR(w[1], l[1], 1e-4 * l[1]);
+    // Cells passed: about b/h times the centre line's (5.35 here; 2 cm cells hold 5 or 6 centres).
+    EXPECT_GT(w[2], 4.5 * l[2]);
+    EXPECT_LT(w[2], 6.5 * l[2]);
+    EXPECT_EQ(wide.terrain->cellsTouched(), static_cast<long>(w[2]));
 }
 
 // The wheel model on its own: drawbar pull F_x at slip s and load W (the quadratic model, as

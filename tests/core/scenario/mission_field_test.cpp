@@ -76,8 +76,9 @@ TEST(MissionField, ControlledTrafficMissionLeavesTheBedsUntouched) {
 }
 
 // Three lanes 1.6 m apart on a uniform field: across the middle of each lane the four wheels
-// pass once each (F10: one passage per wheel and cell), in two tracks a track width apart; no
-// wheel passes between the lanes. Repeated, the run's maps are the same bit for bit.
+// pass once each (F10: one passage per wheel and cell) over the cells under their width (F13: a
+// 0.107 m wheel covers the centres of 2 or 3 cells of 5 cm), in two tracks a track width apart;
+// no wheel passes between the lanes. Repeated, the run's maps are the same bit for bit.
 TEST(MissionField, LanesGiveOnePassPerWheelAcrossEachLane) {
     Scenario s = shipped("straight");
     s.field = uniformField(s.terrain.base);
@@ -101,20 +102,29 @@ TEST(MissionField, LanesGiveOnePassPerWheelAcrossEachLane) {
     ASSERT_TRUE(mid);
     std::array<double, 3> in_lane{};
     double between = 0.0;
+    const double half_width = 0.5 * s.robot.wheel.width_m, h = passes.cell_m;
     for (int row = 0; row < passes.rows; ++row) {
         const double y = passes.centreY(row), n = passes.value(mid->col, row);
         const int lane = static_cast<int>(std::lround(y / 1.6));
         if (lane >= 0 && lane < 3 && std::abs(y - 1.6 * lane) < 0.4) {
             in_lane[lane] += n;
-            // The tracks lie half the 0.4 m track beside the lane's line.
+            // The tracks lie half the 0.4 m track beside the lane's line, a wheel's width wide;
+            // a cell is passed by the front and the rear wheel of its side, or by one of them
+            // where the two tracks' edges differ.
             if (n > 0.0) {
-                EXPECT_NEAR(std::abs(y - 1.6 * lane), 0.2, 0.05) << "lane " << lane;
+                EXPECT_NEAR(std::abs(y - 1.6 * lane), 0.2, half_width + 0.5 * h) << "lane " << lane;
+                EXPECT_TRUE(n == 1.0 || n == 2.0) << "lane " << lane << " y " << y << ": " << n;
             }
         } else {
             between += n;
         }
     }
-    for (int lane = 0; lane < 3; ++lane) EXPECT_EQ(in_lane[lane], 4.0) << "lane " << lane;
+    // Each of the four wheels covers 2 or 3 cell centres across its 0.107 m on 5 cm cells.
+    ASSERT_NEAR(s.robot.wheel.width_m, 0.107, 1e-9);
+    for (int lane = 0; lane < 3; ++lane) {
+        EXPECT_GE(in_lane[lane], 4 * 2.0) << "lane " << lane;
+        EXPECT_LE(in_lane[lane], 4 * 3.0) << "lane " << lane;
+    }
     EXPECT_EQ(between, 0.0);
 
     const RunResult again = runScenario(s);
