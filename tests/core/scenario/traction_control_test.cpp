@@ -37,8 +37,8 @@ Scenario towing(ControllerType type, double duration_s = 12.0) {
 
 // A stand-in for computeTraction: 0.55 on sandy loam, 0.6 on anything else (slips where the
 // thesis's soils give wheel A a positive drawbar pull at its load).
-std::optional<double> standInPlanner(const SlipPlanRequest& request) {
-    return request.soil.name == "sandy loam" ? 0.55 : 0.6;
+std::optional<SlipPlan> standInPlanner(const SlipPlanRequest& request) {
+    return SlipPlan{request.soil.name == "sandy loam" ? 0.55 : 0.6, std::nullopt};
 }
 
 RunResult run(const Scenario& s) {
