@@ -43,12 +43,10 @@ std::vector<Issue> settingsIssues(const TractionSettings& s) {
     }
     if (s.posterior_samples < scenario::kMinPosteriorSamples ||
         s.posterior_samples > scenario::kMaxPosteriorSamples) {
-        issues.push_back({"posterior_samples", std::to_string(s.posterior_samples) +
-                                                   " is outside [" +
-                                                   std::to_string(scenario::kMinPosteriorSamples) +
-                                                   ", " +
-                                                   std::to_string(scenario::kMaxPosteriorSamples) +
-                                                   "]"});
+        issues.push_back(
+            {"posterior_samples", std::to_string(s.posterior_samples) + " is outside [" +
+                                      std::to_string(scenario::kMinPosteriorSamples) + ", " +
+                                      std::to_string(scenario::kMaxPosteriorSamples) + "]"});
     }
     const FieldInfo& quantile = scenario::robustQuantileField();
     checkRange(issues, quantile.key, s.quantile, quantile.range);

@@ -1,9 +1,9 @@
 #include "core/identification/streaming.h"
 
-#include <algorithm>
-#include <array>
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -28,8 +28,8 @@ std::array<double, 3> residuals(const DecoupledParameters& p, const wheel::Wheel
 // Parameter k of the covariance's order (kDecoupledParameterCount) in p.
 double& parameterAt(DecoupledParameters& p, int k) {
     double* const members[kDecoupledParameterCount] = {
-        &p.a0,          &p.a1,          &p.pressure_modulus,   &p.n0,
-        &p.n1,          &p.cohesion_pa, &p.friction_angle_rad, &p.shear_modulus_m};
+        &p.a0, &p.a1,          &p.pressure_modulus,   &p.n0,
+        &p.n1, &p.cohesion_pa, &p.friction_angle_rad, &p.shear_modulus_m};
     return *members[k];
 }
 
@@ -92,7 +92,7 @@ void StreamingIdentifier::refit(StreamUpdate& update) {
         for (int c = 0; c < 3; ++c) sum[c] += r[c] * r[c];
     }
     for (int c = 0; c < 3; ++c) noise_[c] = std::sqrt(sum[c] / static_cast<double>(window_.size()));
-    updateCovariance();
+    if (options_.covariance) updateCovariance();
 }
 
 // The estimate's covariance, step by step as the fit runs (docs/traction.md §8): step I's a₀, a₁
@@ -147,11 +147,12 @@ void StreamingIdentifier::updateCovariance() {
         }
         conditional[channel] = information.llt().solve(Eigen::MatrixXd::Identity(p, p));
         if (channel > 0) {
-            gain[channel] = -conditional[channel] * j.transpose() * jacobian(channel, steps[0]) /
-                            variance;
+            gain[channel] =
+                -conditional[channel] * j.transpose() * jacobian(channel, steps[0]) / variance;
         }
     }
-    Eigen::MatrixXd full = Eigen::MatrixXd::Zero(kDecoupledParameterCount, kDecoupledParameterCount);
+    Eigen::MatrixXd full =
+        Eigen::MatrixXd::Zero(kDecoupledParameterCount, kDecoupledParameterCount);
     const Eigen::MatrixXd& c1 = conditional[0];
     full.block(0, 0, 2, 2) = c1;
     full.block(2, 2, 3, 3) = conditional[1] + gain[1] * c1 * gain[1].transpose();

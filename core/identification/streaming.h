@@ -26,6 +26,9 @@ struct StreamingOptions {
     std::size_t persistence = 3;   ///< far-off samples in a row that make a change
     int max_iterations = 10;       ///< per step of each warm-started refit
     DecoupledParameters initial;   ///< start of the first fit (thesis guesses by default)
+    /// Compute each estimate's covariance (StreamUpdate::covariance; ≈ 1,500 residual evaluations
+    /// a refit, docs/performance.md): off, it stays zero.
+    bool covariance = false;
 };
 
 /// The decoupled parameters in the covariance's order: a₀, a₁, K_s, n₀, n₁, c, φ, K (SI).
@@ -44,10 +47,10 @@ struct StreamUpdate {
     /// the window's residual Jacobian in the step's parameters, σ² the step's residual variance
     /// Σr²/(N − p) and P₀ the variance (hi − lo)²/12 of a uniform prior over each parameter's
     /// bounds, plus what step I's error hands on to steps II and III (docs/traction.md §8). All
-    /// zero before an estimate.
+    /// zero before an estimate and without StreamingOptions::covariance.
     DecoupledCovariance covariance{};
-    double residual_score = 0.0;     ///< largest |prediction residual| / noise scale of this sample
-    bool change_detected = false;    ///< a change of soil was confirmed at this sample
+    double residual_score = 0.0;   ///< largest |prediction residual| / noise scale of this sample
+    bool change_detected = false;  ///< a change of soil was confirmed at this sample
     std::optional<std::size_t> change_at;  ///< the sample where that change began
     std::size_t window_size = 0;
     double fit_time_ms = 0.0;  ///< wall time of this update's fit (report only)

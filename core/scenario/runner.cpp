@@ -882,6 +882,9 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
                 identification::decoupledOf(scenario.terrain.base, scenario.robot.wheel);
             streaming.initial.max_shear_deformation_m = std::numeric_limits<double>::infinity();
         }
+        // A robust set-point plans on the estimate's posterior (docs/traction.md §8).
+        streaming.covariance =
+            control.type == ControllerType::kOptimal && control.robust != RobustSlip::kNone;
         feed.emplace(*hook, scenario.robot.wheel, dt, streaming);
         if (loop) loop->streaming(hook->interval_s, streaming.window, hook->wheel);
     }

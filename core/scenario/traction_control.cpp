@@ -35,16 +35,22 @@ std::optional<ControllerType> controllerFromName(const std::string& name) {
 
 const char* robustSlipName(RobustSlip robust) {
     switch (robust) {
-        case RobustSlip::kExpected: return "expected";
-        case RobustSlip::kQuantile: return "quantile";
-        case RobustSlip::kNone: break;
+        case RobustSlip::kExpected:
+            return "expected";
+        case RobustSlip::kQuantile:
+            return "quantile";
+        case RobustSlip::kNone:
+            break;
     }
     return "none";
 }
 
 const FieldInfo& robustQuantileField() {
     static const FieldInfo field{
-        "quantile", "-", "q", "robust quantile",
+        "quantile",
+        "-",
+        "q",
+        "robust quantile",
         "The robust s* maximises this quantile of the objective over the posterior's soils "
         "(0.1: the slip whose objective is at least that good on 90 % of them; 0.5: the median)",
         Range{0.01, 0.99}};

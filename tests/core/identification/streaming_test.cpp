@@ -113,6 +113,7 @@ TEST(StreamingIdentifier, CovarianceMatchesTheSpreadOfTheEstimatesOverNoiseDraws
         StreamingOptions options;
         options.window = options.min_samples = kSamples;
         options.initial = truth;  // warm start, as the rover's identifier on its expected soil
+        options.covariance = true;
         StreamingIdentifier id(kWheelA, options);
         StreamUpdate u;
         for (int i = 0; i < kSamples; ++i) {
