@@ -126,10 +126,12 @@ void BM_ClosedLoop(benchmark::State& state) {
     s.options.contact.model = contact::ContactModel::kQuadratic;
     s.drawbar_load.force_n = scenario::Signal::constant(1.0);
     s.drawbar_load.per_speed_n_s_m = 60.0;
-    constexpr std::array<scenario::ControllerType, 4> kTypes{
+    constexpr std::array<scenario::ControllerType, 5> kTypes{
         scenario::ControllerType::kConstantSpeed, scenario::ControllerType::kFixedSlip,
-        scenario::ControllerType::kOracle, scenario::ControllerType::kOptimal};
+        scenario::ControllerType::kOracle, scenario::ControllerType::kOptimal,
+        scenario::ControllerType::kOptimal};
     s.controller.type = kTypes[static_cast<std::size_t>(state.range(0))];
+    if (state.range(0) == 4) s.controller.robust = scenario::RobustSlip::kQuantile;
     if (state.range(1) == 1) s.streaming = scenario::StreamingHook{};
     scenario::RunOptions options;
     options.slip_planner = analysis::tractionPlanner();
@@ -144,6 +146,7 @@ BENCHMARK(BM_ClosedLoop)
     ->Args({2, 0})
     ->Args({0, 1})
     ->Args({3, 1})
+    ->Args({4, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 

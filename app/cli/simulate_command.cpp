@@ -33,7 +33,7 @@ struct SimulateOptions {
 void printComparison(const nlohmann::json& table, const std::string& name) {
     std::cout << name << ": controllers compared\n"
               << "controller       distance_m  energy_J/m  energy/work  efficiency  drawbar_N  "
-                 "vs_oracle  slip_rms  settling_s  rut_mm\n";
+                 "vs_oracle  slip_rms  settling_s  band_s  rut_mm\n";
     auto cell = [](const nlohmann::json& v, int decimals, double scale = 1.0) {
         return v.is_number() ? fixed(v.get<double>() * scale, decimals) : std::string("-");
     };
@@ -51,6 +51,7 @@ void printComparison(const nlohmann::json& table, const std::string& name) {
         column(cell(row["drawbar_vs_oracle"], 3), 11);
         column(cell(row["slip_tracking_rms"], 4), 10);
         column(cell(row["settling_time_s"], 2), 12);
+        column(cell(row["settling_band_time_s"], 2), 8);
         column(cell(row["rut_depth_m"], 2, 1000.0), 8);
         std::cout << line << '\n';
     }

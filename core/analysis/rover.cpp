@@ -262,6 +262,8 @@ nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs) {
              {"mean_slip", mean_slip},
              {"slip_tracking_rms", optional(m.slip_tracking_rms)},
              {"settling_time_s", optional(t.settling_time_s)},
+             {"settling_band_time_s", optional(t.settling_band_time_s)},
+             {"settling_band", optional(t.settle_band)},
              {"rut_depth_m",
               t.rear_sinkage_count > 0
                   ? nlohmann::json(t.rear_sinkage_sum_m / static_cast<double>(t.rear_sinkage_count))
@@ -295,7 +297,7 @@ std::vector<ControllerRun> compareControllers(
 }
 
 scenario::SlipPlanner tractionPlanner() {
-    return [](const scenario::SlipPlanRequest& request) -> std::optional<double> {
+    return [](const scenario::SlipPlanRequest& request) -> std::optional<scenario::SlipPlan> {
         Inputs inputs;
         inputs.soil = request.soil;
         inputs.wheel = request.wheel;
@@ -308,8 +310,22 @@ scenario::SlipPlanner tractionPlanner() {
         settings.slip_min = request.slip_min;
         settings.slip_max = request.slip_max;
         settings.curve_points = 30;
+        const bool robust = request.posterior && request.robust != scenario::RobustSlip::kNone;
+        if (robust) {
+            settings.posterior = request.posterior;
+            settings.quantile = request.quantile;
+            settings.posterior_samples = request.posterior_samples;
+        }
         try {
-            return computeTraction(inputs, settings).optimal_slip;
+            const TractionResult r = computeTraction(inputs, settings);
+            if (!r.optimal_slip) return std::nullopt;
+            scenario::SlipPlan plan{*r.optimal_slip, r.optimal_slip_std};
+            // A robust s*, where the posterior gives one (else the estimate's own s*).
+            if (robust && request.robust == scenario::RobustSlip::kQuantile && r.robust_slip)
+                plan.slip = *r.robust_slip;
+            if (robust && request.robust == scenario::RobustSlip::kExpected && r.expected_slip)
+                plan.slip = *r.expected_slip;
+            return plan;
         } catch (const std::invalid_argument&) {
             return std::nullopt;  // an estimate outside the soil's ranges: keep the set-point
         }

@@ -11,16 +11,13 @@
 
 #include "core/common/issue.h"
 #include "core/io/json_reader.h"
+#include "core/soil/soil_posterior.h"
 
 namespace terra::analysis {
 
 /// {"parameters": [soil file keys], "mean": [...], "covariance": [[...]]}, in the keys' units
-/// (read from the identification's names too).
-struct SoilPosterior {
-    std::vector<std::string> parameters;
-    std::vector<double> mean;
-    std::vector<std::vector<double>> covariance;
-};
+/// (core/soil/soil_posterior.h: the streaming controller builds one too).
+using SoilPosterior = soil::SoilPosterior;
 
 /// The soil file key of a posterior parameter: the identification's names (`identify --json`'s
 /// and `--save-soil`'s "Ks_kPa", "n0") are the soil's "kphi" (K_s, with k_c = 0 in the saved

@@ -17,6 +17,7 @@
 #include "core/contact/operating_fields.h"
 #include "core/io/json.h"
 #include "core/io/parameters_json.h"
+#include "core/scenario/traction_control.h"
 #include "core/soil/soil_parameters.h"
 
 namespace terra::analysis {
@@ -24,7 +25,6 @@ namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 const Range kSearchSlip{0.0, 0.99};
-const Range kQuantileRange{0.01, 0.99};
 
 std::vector<Issue> settingsIssues(const TractionSettings& s) {
     std::vector<Issue> issues;
@@ -41,11 +41,15 @@ std::vector<Issue> settingsIssues(const TractionSettings& s) {
         issues.push_back(
             {"curve_points", std::to_string(s.curve_points) + " is outside [5, 10000]"});
     }
-    if (s.posterior_samples < 10 || s.posterior_samples > 100000) {
-        issues.push_back({"posterior_samples",
-                          std::to_string(s.posterior_samples) + " is outside [10, 100000]"});
+    if (s.posterior_samples < scenario::kMinPosteriorSamples ||
+        s.posterior_samples > scenario::kMaxPosteriorSamples) {
+        issues.push_back(
+            {"posterior_samples", std::to_string(s.posterior_samples) + " is outside [" +
+                                      std::to_string(scenario::kMinPosteriorSamples) + ", " +
+                                      std::to_string(scenario::kMaxPosteriorSamples) + "]"});
     }
-    checkRange(issues, "quantile", s.quantile, kQuantileRange);
+    const FieldInfo& quantile = scenario::robustQuantileField();
+    checkRange(issues, quantile.key, s.quantile, quantile.range);
     if (s.posterior) {
         const SoilPosterior& p = *s.posterior;
         const std::size_t n = p.parameters.size();
@@ -141,9 +145,10 @@ void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
     r.number("slip_min", out.slip_min, kSearchSlip);
     r.number("slip_max", out.slip_max, kSearchSlip);
     r.integer("curve_points", out.curve_points, 5, 10000);
-    r.integer("posterior_samples", out.posterior_samples, 10, 100000);
+    r.integer("posterior_samples", out.posterior_samples, scenario::kMinPosteriorSamples,
+              scenario::kMaxPosteriorSamples);
     r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
-    r.number("quantile", out.quantile, kQuantileRange);
+    r.field(scenario::robustQuantileField(), out.quantile);
     if (const nlohmann::json* posterior = r.value("posterior")) {
         SoilPosterior p;
         if (posterior->is_object()) {
@@ -307,18 +312,35 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
                                 std::to_string(s.posterior_samples) +
                                 " posterior draws fall outside a field's range and are left out");
         }
-        auto valuesAt = [&](double slip) {
+        // The objective of every drawn soil at a slip (−∞ where it has no equilibrium).
+        auto objectivesAt = [&](double slip) {
             std::vector<double> v;
-            for (const auto& p : soils) {
-                const double f = objectiveValue(s.objective, at(p, slip));
-                if (std::isfinite(f)) v.push_back(f);
-            }
+            v.reserve(soils.size());
+            for (const auto& p : soils) v.push_back(objectiveValue(s.objective, at(p, slip)));
             return v;
         };
+        auto valuesAt = [&](double slip) {
+            std::vector<double> v;
+            for (double f : objectivesAt(slip))
+                if (std::isfinite(f)) v.push_back(f);
+            return v;
+        };
+        // Each drawn soil's own s* on the curve's slips (its largest objective there).
+        std::vector<double> best_value(soils.size(), kMinusInfinity);
+        std::vector<double> best_slip(soils.size(), 0.0);
         std::size_t best_q = 0, best_mean = 0;
         for (std::size_t i = 0; i < slips.size(); ++i) {
             if (control.cancelled()) break;
-            const std::vector<double> v = valuesAt(slips[i]);
+            const std::vector<double> all = objectivesAt(slips[i]);
+            std::vector<double> v;
+            for (std::size_t k = 0; k < all.size(); ++k) {
+                if (!std::isfinite(all[k])) continue;
+                v.push_back(all[k]);
+                if (all[k] > best_value[k]) {
+                    best_value[k] = all[k];
+                    best_slip[k] = slips[i];
+                }
+            }
             TractionBand band;
             band.slip = slips[i];
             band.samples = static_cast<int>(v.size());
@@ -337,6 +359,23 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
             if (band.quantile > out.band[best_q].quantile) best_q = i;
             if (band.mean > out.band[best_mean].mean) best_mean = i;
             control.report(0.1 + 0.8 * static_cast<double>(i + 1) / slips.size());
+        }
+        if (out.band.size() == slips.size()) {
+            // The spread of s* over the posterior: the standard deviation of the drawn soils' own
+            // s* (on the curve's slips: a spacing Δ adds at most Δ²/12 of variance).
+            double sum = 0.0, sum_sq = 0.0;
+            int count = 0;
+            for (std::size_t k = 0; k < soils.size(); ++k) {
+                if (!std::isfinite(best_value[k])) continue;
+                sum += best_slip[k];
+                sum_sq += best_slip[k] * best_slip[k];
+                ++count;
+            }
+            if (count > 1) {
+                const double mean = sum / count;
+                out.optimal_slip_std =
+                    std::sqrt(std::max(0.0, (sum_sq - count * mean * mean) / (count - 1)));
+            }
         }
         if (out.band.size() == slips.size() && std::isfinite(out.band[best_q].quantile)) {
             // Robust s*: the largest lower quantile; refined between the neighbouring slips
@@ -402,6 +441,7 @@ nlohmann::json toJson(const TractionResult& r) {
             out["robust_value"] = r.robust_value;
         }
         if (r.expected_slip) out["expected_slip"] = *r.expected_slip;
+        if (r.optimal_slip_std) out["optimal_slip_std"] = *r.optimal_slip_std;
         out["invalid_samples"] = r.invalid_samples;
     }
     out["status"] = r.ok() ? "completed" : "failed";

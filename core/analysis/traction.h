@@ -74,6 +74,9 @@ struct TractionResult {
     std::optional<double> robust_slip;
     double robust_value = 0.0;
     std::optional<double> expected_slip;
+    /// The spread of s* over the posterior: the standard deviation of each drawn soil's own s*
+    /// (its largest objective on the curve's slips) [-].
+    std::optional<double> optimal_slip_std;
     int invalid_samples = 0;  ///< posterior draws outside a field's range (left out)
     std::string message;      ///< non-empty: no slip meets the cap or has an equilibrium
     std::vector<std::string> notes;
@@ -95,7 +98,7 @@ TractionResult computeTraction(const Inputs& inputs, const TractionSettings& set
 
 /// `terrastudio traction --json`: "optimal_slip", "objective", "Fx_N", "My_Nm", "efficiency",
 /// "sinkage_m" at s*, "curve": [{"slip", "Fx_N", "My_Nm", "efficiency", "sinkage_m"}, …], and
-/// with a posterior "robust_slip", "expected_slip", "band".
+/// with a posterior "robust_slip", "expected_slip", "optimal_slip_std", "band".
 nlohmann::json toJson(const TractionResult& result);
 /// Tables "curve" (with the band's columns when there is one) and "optimum".
 Outcome tractionOutcome(TractionResult result);

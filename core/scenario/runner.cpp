@@ -245,6 +245,29 @@ soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p
     return identification::soilOf(base, wheel, estimate);
 }
 
+// The streaming estimate as a posterior in the soil file's keys and units (docs/traction.md §8):
+// a₀, a₁, k_φ (K_s: k_c = 0), n (n₀), n₁, c, φ, K, the identifier's covariance converted from SI.
+soil::SoilPosterior posteriorOfEstimate(const identification::StreamUpdate& u,
+                                        const soil::SoilParameters& soil) {
+    static constexpr std::array<const char*, identification::kDecoupledParameterCount> kKeys{
+        "a0", "a1", "kphi", "n", "n1", "c_kPa", "phi_deg", "K_m"};
+    soil::SoilPosterior out;
+    std::array<double, identification::kDecoupledParameterCount> to_si{};
+    for (std::size_t k = 0; k < kKeys.size(); ++k) {
+        const soil::SoilField& field = *soil::findSoilField(kKeys[k]);
+        out.parameters.emplace_back(kKeys[k]);
+        out.mean.push_back(field.userValue(soil));
+        to_si[k] = field.to_si;
+    }
+    for (std::size_t i = 0; i < kKeys.size(); ++i) {
+        std::vector<double> row;
+        for (std::size_t j = 0; j < kKeys.size(); ++j)
+            row.push_back(u.covariance[i][j] / (to_si[i] * to_si[j]));
+        out.covariance.push_back(std::move(row));
+    }
+    return out;
+}
+
 // The closed loop of a slip controller (docs/traction.md §4–§5): at every control tick the
 // observer reads the sensors, each wheel gets its set-point (fixed, planned on the streaming
 // estimate, or the oracle's for the soil under it) and the PI its command.
@@ -310,7 +333,7 @@ public:
             const double phase = std::fmod(state.time_s / spec_.dither_period_s, 1.0);
             dither = phase < 0.5 ? spec_.dither : -spec_.dither;
         }
-        if (spec_.type == ControllerType::kOptimal) followSegments(est, dt);
+        if (spec_.type == ControllerType::kOptimal) followSegments(est, dt, state.time_s);
         // The traction-limited mode judges the set-points in force since the last tick.
         if (limiter_)
             limiter_->update(state.time_s, set_points_, applied_, at_floor_, est, drawbar_n);
@@ -376,15 +399,19 @@ public:
             const double lag = u.change_at && *u.change_at <= u.index
                                    ? static_cast<double>(u.index - *u.change_at)
                                    : 0.0;
-            segments_.push_back(
-                {odometer_m_ - lag * sample_interval_s_ * std::max(0.0, estimates().speed_m_s),
-                 std::nullopt});
+            Segment segment;
+            segment.start_m =
+                odometer_m_ - lag * sample_interval_s_ * std::max(0.0, estimates().speed_m_s);
+            segments_.push_back(std::move(segment));
             last_plan_s_.reset();
         }
         if (!u.estimated || u.window_size < usable_samples_) return;
         if (last_plan_s_ && time_s < *last_plan_s_ + spec_.replan_interval_s) return;
-        segments_.back().soil = soilOfEstimate(u.parameters, scenario_.robot.wheel);
-        ++segments_.back().revision;
+        Segment& segment = segments_.back();
+        segment.soil = soilOfEstimate(u.parameters, scenario_.robot.wheel);
+        if (spec_.robust != RobustSlip::kNone)
+            segment.posterior = posteriorOfEstimate(u, *segment.soil);
+        ++segment.revision;
         last_plan_s_ = time_s;
     }
 
@@ -398,10 +425,15 @@ public:
     const std::array<double, dynamics::kWheelCount>& applied() const { return applied_; }
     TractionMetrics& metrics() { return metrics_; }
 
-    // The settling time: from the border to the start of the last stretch within tolerance.
+    // The settling times: from the border to the start of the last stretch within tolerance
+    // (0.03, and the band the plan's posterior supports).
     void finish() {
         if (metrics_.border_time_s && settled_from_)
             metrics_.settling_time_s = *settled_from_ - *metrics_.border_time_s;
+        if (metrics_.border_time_s && band_settled_from_)
+            metrics_.settling_band_time_s = *band_settled_from_ - *metrics_.border_time_s;
+        if (plan_spread_[dynamics::kFrontLeft])
+            metrics_.settle_band = settleBand(*plan_spread_[dynamics::kFrontLeft]);
         if (limiter_) {
             metrics_.limit_switches = limiter_->switches();
             metrics_.limited_time_s = limiter_->limitedTime();
@@ -409,11 +441,21 @@ public:
     }
 
 private:
-    std::optional<double> plan(const soil::SoilParameters& soil, double load_n) const {
-        return plan(soil, load_n, spec_.objective);
+    std::optional<SlipPlan> plan(const soil::SoilParameters& soil, double load_n,
+                                 const soil::SoilPosterior* posterior = nullptr) const {
+        return plan(soil, load_n, spec_.objective, posterior);
     }
-    std::optional<double> plan(const soil::SoilParameters& soil, double load_n,
-                               SlipObjective objective) const {
+    std::optional<SlipPlan> plan(const soil::SoilParameters& soil, double load_n,
+                                 SlipObjective objective,
+                                 const soil::SoilPosterior* posterior = nullptr) const {
+        SlipPlanRequest request = planRequest(soil, load_n, objective, posterior);
+        std::optional<SlipPlan> s = planner_(request);
+        if (s) s->slip = std::clamp(s->slip, spec_.slip_min, spec_.slip_max);
+        return s;
+    }
+    SlipPlanRequest planRequest(const soil::SoilParameters& soil, double load_n,
+                                SlipObjective objective,
+                                const soil::SoilPosterior* posterior) const {
         SlipPlanRequest request;
         request.soil = soil;
         request.wheel = scenario_.robot.wheel;
@@ -422,16 +464,23 @@ private:
         request.slip_min = spec_.slip_min;
         request.slip_max = spec_.slip_max;
         request.model = scenario_.options.contact.model;  // the model the rover drives on
-        std::optional<double> s = planner_(request);
-        if (s) s = std::clamp(*s, spec_.slip_min, spec_.slip_max);
-        return s;
+        if (posterior != nullptr) {
+            request.posterior = *posterior;
+            request.robust = spec_.robust;
+            request.quantile = spec_.quantile;
+            request.posterior_samples = spec_.posterior_samples;
+        }
+        return request;
     }
+
+    // The settling band: max(0.03, 2 σ_s*) for a plan whose s* spreads by σ_s* over its posterior.
+    static double settleBand(double spread) { return std::max(kSettleTolerance, 2.0 * spread); }
 
     // optimal: the odometer (the estimated speed integrated), each wheel's stretch of soil, and
     // a new plan for a wheel that reached another stretch or whose stretch has a new estimate.
     // A wheel ρ_x behind the identifier's reaches a change ρ_x after it; its load is the mean of
     // its estimated load Ŵ_i since its last plan.
-    void followSegments(const Estimates& est, double dt) {
+    void followSegments(const Estimates& est, double dt, double time_s) {
         odometer_m_ += std::max(0.0, est.speed_m_s) * dt;
         for (int i = 0; i < dynamics::kWheelCount; ++i) {
             load_sum_n_[i] += est.load_n[i];
@@ -444,11 +493,20 @@ private:
             if (!segment.soil) continue;  // not yet planned: the wheel keeps its set-point
             if (k == wheel_segment_[i] && segment.revision == wheel_revision_[i]) continue;
             const double load = load_sum_n_[i] / static_cast<double>(load_count_[i]);
-            if (const std::optional<double> s = plan(*segment.soil, load)) set_points_[i] = *s;
+            const soil::SoilPosterior* posterior =
+                segment.posterior ? &*segment.posterior : nullptr;
+            if (const std::optional<SlipPlan> s = plan(*segment.soil, load, posterior)) {
+                set_points_[i] = s->slip;
+                plan_spread_[i] = s->spread;
+                metrics_.plans.push_back(
+                    {time_s, i, planRequest(*segment.soil, load, spec_.objective, posterior), *s});
+            }
             // The traction-limited mode's cap: the drawbar-maximising slip of the same estimate.
-            if (limiter_)
-                cap_[i] =
-                    plan(*segment.soil, load, SlipObjective::kDrawbar).value_or(spec_.slip_max);
+            if (limiter_) {
+                const std::optional<SlipPlan> cap =
+                    plan(*segment.soil, load, SlipObjective::kDrawbar);
+                cap_[i] = cap ? cap->slip : spec_.slip_max;
+            }
             wheel_segment_[i] = k;
             wheel_revision_[i] = segment.revision;
             load_sum_n_[i] = 0.0;
@@ -462,8 +520,8 @@ private:
         std::optional<double>& cached =
             oracle_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
         if (!cached) {
-            cached = plan(scenario_.soil(soil_index), static_load_n_[i]);
-            if (!cached) cached = set_points_[i];
+            const std::optional<SlipPlan> s = plan(scenario_.soil(soil_index), static_load_n_[i]);
+            cached = s ? s->slip : set_points_[i];
         }
         return *cached;
     }
@@ -474,8 +532,9 @@ private:
         std::optional<double>& cached =
             oracle_cap_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
         if (!cached) {
-            cached = plan(scenario_.soil(soil_index), static_load_n_[i], SlipObjective::kDrawbar)
-                         .value_or(spec_.slip_max);
+            const std::optional<SlipPlan> s =
+                plan(scenario_.soil(soil_index), static_load_n_[i], SlipObjective::kDrawbar);
+            cached = s ? s->slip : spec_.slip_max;
         }
         return *cached;
     }
@@ -492,11 +551,18 @@ private:
             border_soil_ = soil;
         }
         const double target = oracle(dynamics::kFrontLeft, border_soil_);
-        const bool near = std::abs(set_points_[dynamics::kFrontLeft] - target) <= kSettleTolerance;
-        if (!near) {
+        const double off = std::abs(set_points_[dynamics::kFrontLeft] - target);
+        if (off > kSettleTolerance) {
             settled_from_.reset();
         } else if (!settled_from_) {
             settled_from_ = state.time_s;
+        }
+        // Within the band the plan's posterior supports (a plan with a spread only).
+        const std::optional<double>& spread = plan_spread_[dynamics::kFrontLeft];
+        if (!spread || off > settleBand(*spread)) {
+            band_settled_from_.reset();
+        } else if (!band_settled_from_) {
+            band_settled_from_ = state.time_s;
         }
     }
 
@@ -525,8 +591,10 @@ private:
     struct Segment {
         double start_m = 0.0;
         std::optional<soil::SoilParameters> soil;
+        std::optional<soil::SoilPosterior> posterior;  // with a robust set-point
         int revision = 0;
     };
+    std::array<std::optional<double>, dynamics::kWheelCount> plan_spread_{};
     std::vector<Segment> segments_{Segment{}};
     std::array<std::size_t, dynamics::kWheelCount> wheel_segment_{};
     std::array<int, dynamics::kWheelCount> wheel_revision_{};
@@ -540,6 +608,7 @@ private:
     std::optional<double> last_plan_s_;
     int border_soil_ = 0;
     std::optional<double> settled_from_;
+    std::optional<double> band_settled_from_;
     TractionMetrics metrics_;
 };
 
@@ -813,6 +882,9 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
                 identification::decoupledOf(scenario.terrain.base, scenario.robot.wheel);
             streaming.initial.max_shear_deformation_m = std::numeric_limits<double>::infinity();
         }
+        // A robust set-point plans on the estimate's posterior (docs/traction.md §8).
+        streaming.covariance =
+            control.type == ControllerType::kOptimal && control.robust != RobustSlip::kNone;
         feed.emplace(*hook, scenario.robot.wheel, dt, streaming);
         if (loop) loop->streaming(hook->interval_s, streaming.window, hook->wheel);
     }
@@ -975,6 +1047,9 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         metrics.slip_error_count = m.slip_error_count;
         metrics.border_time_s = m.border_time_s;
         metrics.settling_time_s = m.settling_time_s;
+        metrics.settling_band_time_s = m.settling_band_time_s;
+        metrics.settle_band = m.settle_band;
+        metrics.plans = m.plans;
         metrics.limit_switches = m.limit_switches;
         metrics.limited_time_s = m.limited_time_s;
         sum.traction_limited_switches = m.limit_switches;

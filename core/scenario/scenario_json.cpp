@@ -363,7 +363,8 @@ const Range kDrawbarPerSpeedRange{0.0, 1e5};
 // "controller": {"type": constant-speed|fixed-slip|optimal|oracle, "slip", "objective",
 // "slip_min", "slip_max", "max_torque_Nm", "max_omega_rad_s", "min_omega_rad_s", "kp", "ki_per_s",
 // "interval_s", "replan_samples", "replan_interval_s", "dither", "dither_period_s",
-// "traction_limited", "limit_margin", "sensors": {...}} (docs/traction.md §5).
+// "traction_limited", "limit_margin", "robust", "quantile", "posterior_samples", "sensors": {...}}
+// (docs/traction.md §5, §8).
 void readController(ObjectReader& r, ControllerSpec& out) {
     if (!r.has("controller")) {
         r.allow("controller");
@@ -393,6 +394,13 @@ void readController(ObjectReader& r, ControllerSpec& out) {
     c.number("dither_period_s", out.dither_period_s, {0.01, 1000.0}, "s");
     c.boolean("traction_limited", out.traction_limited);
     c.number("limit_margin", out.limit_margin, range.limit_margin);
+    c.choice<RobustSlip>("robust", out.robust,
+                         {{"none", RobustSlip::kNone},
+                          {"expected", RobustSlip::kExpected},
+                          {"quantile", RobustSlip::kQuantile}});
+    c.field(robustQuantileField(), out.quantile);
+    c.integer("posterior_samples", out.posterior_samples, kMinPosteriorSamples,
+              kMaxPosteriorSamples);
     if (c.has("sensors")) {
         ObjectReader n = c.object("sensors");
         if (n.isObject()) {

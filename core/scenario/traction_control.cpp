@@ -33,6 +33,30 @@ std::optional<ControllerType> controllerFromName(const std::string& name) {
     return std::nullopt;
 }
 
+const char* robustSlipName(RobustSlip robust) {
+    switch (robust) {
+        case RobustSlip::kExpected:
+            return "expected";
+        case RobustSlip::kQuantile:
+            return "quantile";
+        case RobustSlip::kNone:
+            break;
+    }
+    return "none";
+}
+
+const FieldInfo& robustQuantileField() {
+    static const FieldInfo field{
+        "quantile",
+        "-",
+        "q",
+        "robust quantile",
+        "The robust s* maximises this quantile of the objective over the posterior's soils "
+        "(0.1: the slip whose objective is at least that good on 90 % of them; 0.5: the median)",
+        Range{0.01, 0.99}};
+    return field;
+}
+
 const std::vector<std::string>& controllerNames() {
     static const std::vector<std::string> names{"constant-speed", "fixed-slip", "optimal",
                                                 "oracle"};
@@ -293,6 +317,14 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
     if (spec.replan_samples < 1 || spec.replan_samples > 10000) {
         issues.push_back(
             {c + "replan_samples", std::to_string(spec.replan_samples) + " is outside [1, 10000]"});
+    }
+    checkRange(issues, c + robustQuantileField().key, spec.quantile, robustQuantileField().range);
+    if (spec.posterior_samples < kMinPosteriorSamples ||
+        spec.posterior_samples > kMaxPosteriorSamples) {
+        issues.push_back({c + "posterior_samples", std::to_string(spec.posterior_samples) +
+                                                       " is outside [" +
+                                                       std::to_string(kMinPosteriorSamples) + ", " +
+                                                       std::to_string(kMaxPosteriorSamples) + "]"});
     }
     const SensorSpec& s = spec.sensors;
     const std::string n = c + "sensors.";

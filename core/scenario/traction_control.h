@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/common/range.h"
 #include "core/contact/contact_parameters.h"
@@ -23,6 +24,7 @@
 #include "core/dynamics/rover.h"
 #include "core/scenario/signal.h"
 #include "core/soil/soil_parameters.h"
+#include "core/soil/soil_posterior.h"
 
 namespace terra::scenario {
 
@@ -40,6 +42,21 @@ const std::vector<std::string>& controllerNames();
 
 /// What s* maximises (analysis::TractionObjective, without including analysis/).
 enum class SlipObjective { kEfficiency, kDrawbar };
+
+/// Which slip the optimal controller plans from its soil estimate (docs/traction.md §8):
+/// s* of the estimate itself, or a robust s* over the estimate's posterior (the streaming
+/// identifier's covariance) as `terrastudio traction --posterior` computes it.
+enum class RobustSlip {
+    kNone,      ///< "none": s* of the point estimate (`optimal_slip`)
+    kExpected,  ///< "expected": the slip of the largest expected objective (`expected_slip`)
+    kQuantile,  ///< "quantile": the largest `quantile` of the objective (`robust_slip`)
+};
+const char* robustSlipName(RobustSlip robust);
+/// The robust s*'s quantile q (key "quantile"): declared once for the controller's object and
+/// `traction`'s settings (analysis/traction.h), range [0.01, 0.99].
+const FieldInfo& robustQuantileField();
+/// Soils drawn from the posterior for a robust s* ("posterior_samples", as `traction`'s).
+inline constexpr int kMinPosteriorSamples = 10, kMaxPosteriorSamples = 100000;
 
 /// The robot's sensors. Noise is Gaussian, standard deviations; the seed makes runs repeat.
 struct SensorSpec {
@@ -91,6 +108,11 @@ struct ControllerSpec {
     /// shows the need has fallen. Off by default (a plain slip controller, as before).
     bool traction_limited = false;
     double limit_margin = 0.05;  ///< the raise above the slip the robot needs [-]
+    /// optimal: plan s* of the estimate (none) or a robust s* over its posterior (expected,
+    /// quantile), with `quantile` and `posterior_samples` as `traction --posterior` (§8).
+    RobustSlip robust = RobustSlip::kNone;
+    double quantile = 0.1;
+    int posterior_samples = 200;
     SensorSpec sensors;
 
     bool closedLoop() const { return type != ControllerType::kConstantSpeed; }
@@ -127,10 +149,23 @@ struct SlipPlanRequest {
     SlipObjective objective = SlipObjective::kEfficiency;
     double slip_min = 0.05, slip_max = 0.7;
     contact::ContactModel model = contact::ContactModel::kQuadratic;
+    /// With a posterior (the soil's parameters as a normal about `soil`'s values): which slip,
+    /// its quantile and the soils drawn (TractionSettings' posterior, quantile,
+    /// posterior_samples; seed 1, as `traction`'s default).
+    std::optional<soil::SoilPosterior> posterior;
+    RobustSlip robust = RobustSlip::kNone;
+    double quantile = 0.1;
+    int posterior_samples = 200;
+};
+/// A planned slip: the set-point, and with a posterior the spread of s* over it (the standard
+/// deviation of the drawn soils' own s*, docs/traction.md §6 "Settling").
+struct SlipPlan {
+    double slip = 0.0;
+    std::optional<double> spread;
 };
 /// s*, or nullopt when the soil cannot carry the load. analysis::runRover passes
 /// computeTraction (core/scenario may not include analysis/).
-using SlipPlanner = std::function<std::optional<double>(const SlipPlanRequest&)>;
+using SlipPlanner = std::function<std::optional<SlipPlan>(const SlipPlanRequest&)>;
 
 /// What the observer believes at one control tick.
 struct Estimates {
@@ -267,6 +302,14 @@ private:
     double limited_s_ = 0.0;
 };
 
+/// One plan of the optimal controller: what it asked the planner and what it got.
+struct PlanRecord {
+    double time_s = 0.0;
+    int wheel = 0;
+    SlipPlanRequest request;
+    SlipPlan plan;
+};
+
 /// The drive's figures of merit of a run (summary.json and the comparison table).
 struct TractionMetrics {
     double drive_energy_j = 0.0;     ///< ∫ Σ τ ω dt of the spin motors [J]
@@ -282,6 +325,12 @@ struct TractionMetrics {
     /// (optimal and oracle controllers; the oracle's own is 0).
     std::optional<double> border_time_s;
     std::optional<double> settling_time_s;
+    /// The same within the band its posterior supports, max(kSettleTolerance, 2 σ_s*) with σ_s*
+    /// the spread of the plan in force (SlipPlan::spread; optimal with a robust set-point only).
+    std::optional<double> settling_band_time_s;
+    std::optional<double> settle_band;  ///< that tolerance at the end of the run [-]
+    /// The optimal controller's plans of the efficiency (or drawbar) set-points, in order.
+    std::vector<PlanRecord> plans;
     /// The traction-limited mode (when enabled): engagements plus releases, and the time with a
     /// raised set-point [s].
     std::optional<int> limit_switches;

@@ -175,6 +175,118 @@ TEST(TractionControlRun, EstimateDrivenControllerHoldsANearOptimalSetPointOnUnif
     }
 }
 
+// The optimal controller on a robust set-point (docs/traction.md §8), "robust": "quantile" with
+// q = 0.1: each plan is `traction`'s robust_slip (`--posterior` with the identifier's estimate and
+// covariance, `--points 30 --slip-min 0.05 --slip-max 0.7`, the plan's soil, wheel and load),
+// computed here again from the plan's request; the time series applies it; and on uniform soil the
+// wheels hold the set-point they are given (the true slip's mean offset within 0.02 from t = 10 s,
+// as the point-estimate controller).
+RoverSettings robustOnUniformSoil(double duration_s) {
+    RoverSettings settings = border(scenario::ControllerType::kOptimal);
+    settings.loaded->terrain.patches.clear();
+    settings.loaded->controller.robust = scenario::RobustSlip::kQuantile;
+    settings.loaded->controller.quantile = 0.1;
+    settings.duration_s = duration_s;
+    return settings;
+}
+
+TEST(TractionControlRun, RobustOptimalControllerPlansTractionsRobustSlipAndHoldsIt) {
+    const RoverResult r = runRover(robustOnUniformSoil(18.0));
+    ASSERT_EQ(r.run.status, scenario::RunResult::Status::kCompleted) << r.run.message;
+    const std::vector<scenario::PlanRecord>& plans = r.run.traction.plans;
+    ASSERT_GE(plans.size(), 8u);  // every wheel at 4.9 s and at 8.9 s at least
+    const Table& t = r.run.series;
+    const std::size_t tc = t.column("t_s");
+    int robust_plans = 0;
+    for (const scenario::PlanRecord& p : plans) {
+        ASSERT_TRUE(p.request.posterior.has_value());
+        Inputs in;
+        in.soil = p.request.soil;
+        in.wheel = p.request.wheel;
+        in.conditions.load_n = p.request.load_n;
+        in.conditions.quadratic = true;
+        TractionSettings settings;
+        settings.posterior = p.request.posterior;
+        settings.quantile = 0.1;
+        settings.curve_points = 30;
+        settings.slip_min = 0.05;
+        settings.slip_max = 0.7;
+        const TractionResult traction = computeTraction(in, settings);
+        ASSERT_TRUE(traction.robust_slip.has_value()) << "t = " << p.time_s;
+        ++robust_plans;
+        EXPECT_NEAR(p.plan.slip, std::clamp(*traction.robust_slip, 0.05, 0.7), 1e-3)
+            << "wheel " << p.wheel << " at t = " << p.time_s;
+        ASSERT_TRUE(traction.optimal_slip_std.has_value());
+        EXPECT_NEAR(*p.plan.spread, *traction.optimal_slip_std, 1e-12);
+        // The controller applies it: the wheel's planned set-point in the time series.
+        const std::size_t plan =
+            t.column(std::string(dynamics::kCornerNames[p.wheel]) + "_slip_plan");
+        bool applied = false;
+        for (const auto& row : t.rows)
+            if (row[tc] >= p.time_s && std::abs(row[plan] - p.plan.slip) < 1e-12) applied = true;
+        EXPECT_TRUE(applied) << "wheel " << p.wheel << " at t = " << p.time_s;
+    }
+    EXPECT_EQ(robust_plans, static_cast<int>(plans.size()));
+    for (const char* w : dynamics::kCornerNames) {
+        const std::string p = std::string(w) + "_";
+        double offset = 0.0;
+        int n = 0;
+        for (const auto& row : t.rows) {
+            if (row[tc] < 10.0) continue;
+            offset += row[t.column(p + "slip")] - row[t.column(p + "slip_set")];
+            ++n;
+        }
+        EXPECT_NEAR(offset / n, 0.0, 0.02) << w;
+    }
+}
+
+// Settling within the band the posterior supports (docs/traction.md §6): on traction-border with
+// a robust set-point, the band settling time recomputed from the plan records — the start of the
+// last run of front-left plans whose distance to the oracle's s* on the clayey soil (a scan of
+// the model) is at most max(0.03, 2 σ_s*) — is the one reported.
+TEST(TractionControlRun, BandSettlingTimeIsTheLastStretchOfPlansWithinTheirBand) {
+    RoverSettings settings = border(scenario::ControllerType::kOptimal);
+    settings.loaded->controller.robust = scenario::RobustSlip::kQuantile;
+    const RoverResult r = runRover(settings);
+    ASSERT_EQ(r.run.status, scenario::RunResult::Status::kCompleted) << r.run.message;
+    const scenario::TractionMetrics& m = r.run.traction;
+    ASSERT_TRUE(m.border_time_s.has_value());
+    const scenario::Scenario& s = r.scenario;
+    const double load = dynamics::staticCornerLoad(s.robot, s.options.gravity_m_s2, 0);
+    const double oracle = scannedOptimum(s.terrain.patches[0].soil, s, load);
+    // The front-left plans in force at the border and after it.
+    std::optional<double> settled_from;
+    std::optional<scenario::PlanRecord> in_force;
+    auto judge = [&](const scenario::PlanRecord& p, double from_s) {
+        const double band = std::max(0.03, 2.0 * p.plan.spread.value_or(0.0));
+        if (std::abs(p.plan.slip - oracle) > band + 2e-3) {  // 2e-3: the scan's step and Brent
+            settled_from.reset();
+        } else if (!settled_from) {
+            settled_from = from_s;
+        }
+    };
+    for (const scenario::PlanRecord& p : r.run.traction.plans) {
+        if (p.wheel != 0) continue;
+        if (p.time_s <= *m.border_time_s) {
+            in_force = p;
+            continue;
+        }
+        if (in_force) {
+            judge(*in_force, *m.border_time_s);
+            in_force.reset();
+        }
+        judge(p, p.time_s);
+    }
+    if (in_force) judge(*in_force, *m.border_time_s);
+    ASSERT_EQ(settled_from.has_value(), m.settling_band_time_s.has_value());
+    if (settled_from) EXPECT_NEAR(*m.settling_band_time_s, *settled_from - *m.border_time_s, 0.011);
+    // The strict criterion can only settle later (or never).
+    if (m.settling_time_s) {
+        ASSERT_TRUE(m.settling_band_time_s.has_value());
+        EXPECT_GE(*m.settling_time_s, *m.settling_band_time_s - 1e-9);
+    }
+}
+
 // The rear wheels take the new soil's plan where the front wheel found the border, one
 // wheelbase (0.5 m) of odometry later: not while the rear hub is still on sandy loam.
 TEST(TractionControlRun, RearWheelsTakeTheNewPlanAtTheBorder) {

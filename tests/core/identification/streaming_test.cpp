@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <vector>
 
 #include "core/identification/synthetic.h"
@@ -84,6 +86,63 @@ TEST(StreamingIdentifier, ALoneOutlierIsNotAChange) {
         if (i == 60) {
             EXPECT_GT(u.residual_score, 8.0);
         }
+    }
+}
+
+// The estimate's covariance (docs/traction.md §8) against the spread of the estimates themselves:
+// windows of decoupled-model data (the fit's own model, so its estimate is unbiased) with known
+// Gaussian noise, refitted over many noise draws; the predicted standard deviation of a₀, n₀ and φ
+// must match the empirical one.
+TEST(StreamingIdentifier, CovarianceMatchesTheSpreadOfTheEstimatesOverNoiseDraws) {
+    DecoupledParameters truth;
+    truth.a0 = 0.2;
+    truth.a1 = 0.3;
+    truth.pressure_modulus = 1.515e6;
+    truth.n0 = 0.7;
+    truth.n1 = 0.0;
+    truth.cohesion_pa = 1700.0;
+    truth.friction_angle_rad = 0.5061;
+    truth.shear_modulus_m = 0.025;
+    const double sigma[3] = {0.2, 0.5, 0.02};  // F_x, F_z [N], M_y [N·m]
+    constexpr int kWindows = 60, kSamples = 60;
+    const int tracked[3] = {0, 3, 6};  // a₀, n₀, φ
+    double sum[3] = {}, sum_sq[3] = {}, predicted[3] = {};
+    std::mt19937_64 random(7);
+    std::normal_distribution<double> normal;
+    for (int w = 0; w < kWindows; ++w) {
+        StreamingOptions options;
+        options.window = options.min_samples = kSamples;
+        options.initial = truth;  // warm start, as the rover's identifier on its expected soil
+        options.covariance = true;
+        StreamingIdentifier id(kWheelA, options);
+        StreamUpdate u;
+        for (int i = 0; i < kSamples; ++i) {
+            const double slip = 0.1 + 0.7 * i / (kSamples - 1);
+            const double theta_f = 0.25 + 0.15 * ((i * 7) % kSamples) / (kSamples - 1);
+            const DecoupledForces f = decoupledForward(truth, kWheelA, slip, theta_f);
+            Sample s;
+            s.slip = slip;
+            s.entry_angle_rad = theta_f;
+            s.fx_n = f.fx_n + sigma[0] * normal(random);
+            s.fz_n = f.fz_n + sigma[1] * normal(random);
+            s.my_nm = f.my_nm + sigma[2] * normal(random);
+            u = id.push(s);
+        }
+        ASSERT_TRUE(u.estimated);
+        const auto x = decoupledVector(u.parameters);
+        for (int k = 0; k < 3; ++k) {
+            sum[k] += x[tracked[k]];
+            sum_sq[k] += x[tracked[k]] * x[tracked[k]];
+            predicted[k] += std::sqrt(u.covariance[tracked[k]][tracked[k]]) / kWindows;
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        const double mean = sum[k] / kWindows;
+        const double empirical = std::sqrt((sum_sq[k] - kWindows * mean * mean) / (kWindows - 1));
+        // 60 draws estimate a standard deviation to ≈ ±9 % (1/√(2·59)); the steps' conditional
+        // blocks and the linearisation allow a little more.
+        EXPECT_GT(predicted[k], 0.75 * empirical) << "parameter " << tracked[k];
+        EXPECT_LT(predicted[k], 1.33 * empirical) << "parameter " << tracked[k];
     }
 }
 

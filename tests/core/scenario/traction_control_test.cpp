@@ -37,8 +37,8 @@ Scenario towing(ControllerType type, double duration_s = 12.0) {
 
 // A stand-in for computeTraction: 0.55 on sandy loam, 0.6 on anything else (slips where the
 // thesis's soils give wheel A a positive drawbar pull at its load).
-std::optional<double> standInPlanner(const SlipPlanRequest& request) {
-    return request.soil.name == "sandy loam" ? 0.55 : 0.6;
+std::optional<SlipPlan> standInPlanner(const SlipPlanRequest& request) {
+    return SlipPlan{request.soil.name == "sandy loam" ? 0.55 : 0.6, std::nullopt};
 }
 
 RunResult run(const Scenario& s) {
@@ -355,6 +355,24 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
         message(withController({{"type", "fixed-slip"}, {"limit_margin", 0}}));
     EXPECT_NE(margin.find("controller.limit_margin"), std::string::npos) << margin;
     EXPECT_NE(margin.find("(0, 0.3]"), std::string::npos) << margin;
+    // The robust set-point's keys (docs/traction.md §8): a choice, and traction's ranges.
+    const std::string robust = message(withController({{"type", "optimal"}, {"robust", "mean"}}));
+    EXPECT_NE(robust.find("controller.robust"), std::string::npos) << robust;
+    EXPECT_NE(robust.find("quantile"), std::string::npos) << robust;
+    const std::string quantile =
+        message(withController({{"type", "optimal"}, {"robust", "quantile"}, {"quantile", 1.5}}));
+    EXPECT_NE(quantile.find("controller.quantile"), std::string::npos) << quantile;
+    EXPECT_NE(quantile.find("[0.01, 0.99]"), std::string::npos) << quantile;
+    const std::string samples =
+        message(withController({{"type", "optimal"}, {"posterior_samples", 5}}));
+    EXPECT_NE(samples.find("controller.posterior_samples"), std::string::npos) << samples;
+    EXPECT_NE(samples.find("[10, "), std::string::npos) << samples;
+    const Result<Scenario> read = scenarioFromJson(
+        withController({{"type", "optimal"}, {"robust", "expected"}, {"quantile", 0.25}}), "x.json",
+        kLocations);
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read.value().controller.robust, RobustSlip::kExpected);
+    EXPECT_EQ(read.value().controller.quantile, 0.25);
     nlohmann::json load = withController({{"type", "fixed-slip"}});
     load["drawbar_load"] = {{"force_N", -1}};
     EXPECT_NE(message(load).find("drawbar_load.force_N"), std::string::npos) << message(load);
