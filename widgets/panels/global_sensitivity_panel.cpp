@@ -209,17 +209,14 @@ bool GlobalSensitivityPanel::startsByItself() {
         return true;  // the computation reports what is wrong with the settings
     }
     if (evaluations <= kAutomaticEvaluations) return true;
-    const QString text = QString(
-                             "Not computed: this study takes %L1 model evaluations — press "
-                             "Compute to run it.")
-                             .arg(evaluations);
-    status_->setText(text);
     const bool bands = pages_->currentIndex() == 1;
-    if (bands ? !bands_ : !indices_) {
-        QCustomPlot* plot = currentPlot();
-        resetPlot(*plot, "Not computed: press Compute");
-        plot->replot();
-    }
+    std::vector<QCustomPlot*> cleared;
+    if (bands ? !bands_ : !indices_) cleared.push_back(currentPlot());
+    showNotComputed(status_,
+                    QString("Not computed: this study takes %L1 model evaluations — press "
+                            "Compute to run it.")
+                        .arg(evaluations),
+                    cleared);
     return false;
 }
 
