@@ -13,6 +13,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/common/table.h"
@@ -73,6 +75,171 @@ auto readKey(const nlohmann::json& json, const char* key, F f) {
         return f(json.at(key));
     } catch (const std::exception& e) {
         throw std::invalid_argument(std::string(key) + ": " + e.what());
+    }
+}
+
+}  // namespace terra::project::saved
+
+namespace terra::project::saved {
+
+/// One key list per saved struct, read and written by the same list (as a declared field list,
+/// core/common/declared_fields.h, for results: no ranges, NaN and the infinities kept by
+/// `number`): specialise
+///
+///     template <> struct Fields<analysis::StressResult> {
+///         template <typename V>
+///         static void visit(V& v, analysis::StressResult& r) {
+///             v("table", r.table);
+///             v("entry_angle_deg", r.entry_angle_deg);
+///         }
+///     };
+///
+/// and fieldsJson(r) writes the object, fieldsFrom<S>(json) reads it back (every key required;
+/// a missing key or a value of the wrong kind throws std::invalid_argument naming the key path,
+/// "passes: 2: forces: fx: \"x\" is not a number").
+template <typename S>
+struct Fields;
+
+/// The last value of an enumeration saved as its number (specialise for each one saved): a
+/// number outside [0, last] is refused.
+template <typename E>
+struct EnumLast;
+
+/// How one member is saved: numbers by `number`, tables by tableJson, lists and optionals of
+/// any of these, enumerations as their number, and structs by their Fields. Specialise for a
+/// type that has its own JSON form (a soil profile).
+template <typename T, typename = void>
+struct Value {
+    static nlohmann::json write(const T& value);
+    static void read(const nlohmann::json& json, T& value);
+};
+
+class FieldsWriter {
+public:
+    explicit FieldsWriter(nlohmann::json& out) : out_(&out) {}
+    template <typename T>
+    void operator()(const char* key, const T& value) {
+        (*out_)[key] = Value<T>::write(value);
+    }
+
+private:
+    nlohmann::json* out_;
+};
+
+class FieldsReader {
+public:
+    explicit FieldsReader(const nlohmann::json& in) : in_(&in) {}
+    template <typename T>
+    void operator()(const char* key, T& value) {
+        readKey(*in_, key, [&value](const nlohmann::json& j) {
+            Value<T>::read(j, value);
+            return 0;
+        });
+    }
+
+private:
+    const nlohmann::json* in_;
+};
+
+template <typename S>
+nlohmann::json fieldsJson(const S& s) {
+    nlohmann::json out = nlohmann::json::object();
+    FieldsWriter w(out);
+    // One list for reading and writing: writing changes nothing.
+    Fields<S>::visit(w, const_cast<S&>(s));
+    return out;
+}
+
+template <typename S>
+S fieldsFrom(const nlohmann::json& json) {
+    if (!json.is_object()) throw std::invalid_argument(json.dump() + " is not an object");
+    S s{};
+    FieldsReader r(json);
+    Fields<S>::visit(r, s);
+    return s;
+}
+
+namespace detail {
+template <typename T>
+struct IsVector : std::false_type {};
+template <typename T>
+struct IsVector<std::vector<T>> : std::true_type {};
+template <typename T>
+struct IsOptional : std::false_type {};
+template <typename T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+template <typename T>
+struct IsArray : std::false_type {};
+template <typename T, std::size_t N>
+struct IsArray<std::array<T, N>> : std::true_type {};
+}  // namespace detail
+
+template <typename T, typename Enable>
+nlohmann::json Value<T, Enable>::write(const T& value) {
+    if constexpr (std::is_same_v<T, double>) {
+        return number(value);
+    } else if constexpr (std::is_same_v<T, bool> || std::is_integral_v<T> ||
+                         std::is_same_v<T, std::string>) {
+        return value;
+    } else if constexpr (std::is_enum_v<T>) {
+        return static_cast<int>(value);
+    } else if constexpr (std::is_same_v<T, Table>) {
+        return tableJson(value);
+    } else if constexpr (detail::IsOptional<T>::value) {
+        return value ? Value<typename T::value_type>::write(*value) : nlohmann::json(nullptr);
+    } else if constexpr (detail::IsVector<T>::value || detail::IsArray<T>::value) {
+        nlohmann::json out = nlohmann::json::array();
+        for (const auto& item : value)
+            out.push_back(Value<std::decay_t<decltype(item)>>::write(item));
+        return out;
+    } else {
+        return fieldsJson(value);
+    }
+}
+
+template <typename T, typename Enable>
+void Value<T, Enable>::read(const nlohmann::json& json, T& value) {
+    if constexpr (std::is_same_v<T, double>) {
+        value = numberOf(json);
+    } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>) {
+        value = json.get<T>();
+    } else if constexpr (std::is_integral_v<T>) {
+        if (!json.is_number_integer()) throw std::invalid_argument(json.dump() + " is not whole");
+        value = json.get<T>();
+    } else if constexpr (std::is_enum_v<T>) {
+        const int v = json.is_number_integer() ? json.get<int>() : -1;
+        if (v < 0 || v > static_cast<int>(EnumLast<T>::value))
+            throw std::invalid_argument(json.dump() + " is not a known value");
+        value = static_cast<T>(v);
+    } else if constexpr (std::is_same_v<T, Table>) {
+        value = tableFrom(json);
+    } else if constexpr (detail::IsOptional<T>::value) {
+        if (json.is_null()) {
+            value.reset();
+        } else {
+            typename T::value_type inner{};
+            Value<typename T::value_type>::read(json, inner);
+            value = std::move(inner);
+        }
+    } else if constexpr (detail::IsVector<T>::value) {
+        if (!json.is_array()) throw std::invalid_argument(json.dump() + " is not a list");
+        value.clear();
+        for (std::size_t i = 0; i < json.size(); ++i) {
+            typename T::value_type item{};
+            try {
+                Value<typename T::value_type>::read(json[i], item);
+            } catch (const std::exception& e) {
+                throw std::invalid_argument(std::to_string(i) + ": " + e.what());
+            }
+            value.push_back(std::move(item));
+        }
+    } else if constexpr (detail::IsArray<T>::value) {
+        if (!json.is_array() || json.size() != value.size())
+            throw std::invalid_argument("expected " + std::to_string(value.size()) + " values");
+        for (std::size_t i = 0; i < value.size(); ++i)
+            Value<typename T::value_type>::read(json[i], value[i]);
+    } else {
+        value = fieldsFrom<T>(json);
     }
 }
 

@@ -4,9 +4,10 @@
 /// them without recomputing (issue 27). The sidecar `NAME.terra.results` (format
 /// "terrastudio-results", version 2) holds, per section (a panel's result, or a part of it:
 /// "global-sensitivity", "global-sensitivity.bands", "identification",
-/// "identification.streaming", "rover", "forces.calibration"), the result in the section's own
-/// versioned JSON form (results.h for the global study and the bands, saved_identification.h,
-/// saved_rover.h, saved_validation.h), the
+/// "identification.streaming", "rover", "forces", "forces.calibration", "stresses",
+/// "compaction", "sensitivity"), the result in the section's own versioned JSON form (results.h
+/// for the global study and the bands, saved_identification.h, saved_rover.h,
+/// saved_validation.h, saved_analyses.h), the
 /// tables it shows, whether it was partial, its status line, and a hash of the inputs that
 /// produced it: a panel whose inputs still hash the same shows the saved result; one whose inputs
 /// changed does not show it (it computes again, or waits for its button when heavy). A sidecar,

@@ -75,6 +75,37 @@ QDockWidget* forcesBesideItsDrawbarPull(Studio& studio) {
     return fx;
 }
 
+// Tile after every panel has drawn its result (as scripts/screenshots does): a drawn global
+// study's plot asked ~600 px, its panel 1014 px, and the row it was tabbed into squeezed the panel
+// beside it (under Xvfb and openbox the compaction panel, ~50 px short) into a sideways scroll.
+TEST(PlotDocks, TiledAfterEveryPanelComputedDoesNotScrollSideways) {
+    QSettings().remove("window");
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.resize(kWindowAt1366x768);
+    wait();
+    for (const char* name : kAllPanels) {
+        w.showPanel(name);
+        wait(1500);
+    }
+    EXPECT_LE(ui::dockMinimumWidth(*w.panelDock("global-sensitivity")), 700);
+    w.showPanel("forces");
+    studio.action("action.layout_side_by_side")->trigger();
+    wait(300);
+    w.showPanel("forces");
+    studio.action("action.layout_tiled")->trigger();
+    wait(1500);
+    int shown = 0;
+    for (const char* name : kAllPanels) {
+        if (!onScreen(w.panelDock(name))) continue;
+        ++shown;
+        expectNoSidewaysScroll(w, name, "tiled after every panel computed");
+    }
+    EXPECT_GE(shown, 4);
+    EXPECT_EQ(w.size(), kWindowAt1366x768);
+    QSettings().remove("window");
+}
+
 TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
     QSettings().remove("window");
     Studio studio;

@@ -7,6 +7,7 @@
 #include <qcustomplot.h>
 
 #include <QDir>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
 #include <QLineEdit>
@@ -15,21 +16,32 @@
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "app/main_window.h"
+#include "core/analysis/compaction.h"
+#include "core/analysis/forces.h"
+#include "core/analysis/sensitivity.h"
+#include "core/analysis/soil_curves.h"
+#include "core/analysis/stresses.h"
 #include "core/identification/data_set.h"
 #include "core/identification/synthetic.h"
 #include "core/io/atomic_file.h"
 #include "core/io/experiment.h"
 #include "core/io/table_json.h"
+#include "core/project/panels.h"
 #include "widgets/document/project_document.h"
 #include "widgets/panels/calibration_dialog.h"
+#include "widgets/panels/compaction_panel.h"
 #include "widgets/panels/experiment_actions.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/global_sensitivity_panel.h"
 #include "widgets/panels/identification_panel.h"
 #include "widgets/panels/rover_panel.h"
+#include "widgets/panels/sensitivity_panel.h"
+#include "widgets/panels/stress_panel.h"
 #include "window_test_support.h"
 
 namespace terra::app {
@@ -437,6 +449,221 @@ TEST(SavedResultsWindow, ADamagedOrNewerResultsFileNeverLosesTheProject) {
     // Saving again with nothing on screen removes the file: no result for these inputs is left.
     EXPECT_EQ(studio.saveAndWaitForResults(), QString());
     EXPECT_FALSE(QFileInfo::exists(QString::fromStdString(results_path)));
+}
+
+// The quick panels (forces, stresses, compaction, sensitivity): their results are saved too and
+// reopen with zero computations; a changed input recomputes that panel once, a damaged section
+// is said and computed again. Their numbers are compared with the analyses run here from the
+// reopened project's own inputs and settings.
+
+/// Equal to 1e-12 relative, NaN to NaN (the panels and the core run the same deterministic code).
+bool sameTable(const Table& a, const Table& b) {
+    if (a.columns != b.columns || a.rows.size() != b.rows.size()) return false;
+    for (std::size_t r = 0; r < a.rows.size(); ++r) {
+        if (a.rows[r].size() != b.rows[r].size()) return false;
+        for (std::size_t c = 0; c < a.rows[r].size(); ++c) {
+            const double x = a.rows[r][c], y = b.rows[r][c];
+            if (std::isnan(x) || std::isnan(y)) {
+                if (!(std::isnan(x) && std::isnan(y))) return false;
+            } else if (std::abs(x - y) > 1e-12 * std::max({1.0, std::abs(x), std::abs(y)})) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/// Waits until `panel` shows the result of its inputs as they are now.
+bool settled(ui::AnalysisPanel& panel, int timeout_ms = 60000) {
+    QElapsedTimer timer;
+    timer.start();
+    while (timer.elapsed() < timeout_ms) {
+        const auto saved = panel.savedResults();
+        const auto it = saved.find(panel.name().toStdString());
+        if (!panel.isBusy() && it != saved.end() && it->second.inputs_hash == panel.inputsHash())
+            return true;
+        QTest::qWait(20);
+    }
+    return false;
+}
+
+const char* const kQuickPanels[] = {"forces", "stresses", "compaction", "sensitivity"};
+
+std::vector<ui::AnalysisPanel*> quickPanels(Studio& studio) {
+    return {studio.panel<ui::ForcesPanel>(), studio.panel<ui::StressPanel>(),
+            studio.panel<ui::CompactionPanel>(), studio.panel<ui::SensitivityPanel>()};
+}
+
+/// Shows each quick panel in turn until it shows the result of its inputs as they are now.
+void showQuickPanels(Studio& studio) {
+    for (ui::AnalysisPanel* panel : quickPanels(studio)) {
+        studio.window.showPanel(panel->name());
+        EXPECT_TRUE(settled(*panel)) << panel->name().toStdString();
+    }
+}
+
+/// Each quick panel computed with settings of its own, then the project saved with its results.
+void computeQuickAndSave(const QString& path) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    studio.panel<ui::StressPanel>()->applySettings({{"slip", 0.35}, {"slip_angle_deg", 5.0}});
+    studio.panel<ui::CompactionPanel>()->applySettings({{"passes", 2}, {"slip", 0.2}});
+    studio.panel<ui::SensitivityPanel>()->applySettings({{"parameter", "n"}});
+    showQuickPanels(studio);
+    QString error;
+    EXPECT_TRUE(w.document()->save(path, &error)) << error.toStdString();
+    EXPECT_EQ(studio.saveAndWaitForResults(), QString());
+}
+
+/// The four panels' results against the analyses run here on the window's project.
+void expectQuickResultsOfTheProject(Studio& studio) {
+    const project::Project& p = studio.window.document()->project();
+    const analysis::Inputs inputs = project::inputsOf(p);
+    const auto stress =
+        project::panelSettingsFromJson<project::StressPanelSettings>(p.panels.at("stresses"));
+    const auto compaction =
+        project::panelSettingsFromJson<project::CompactionPanelSettings>(p.panels.at("compaction"));
+    const auto sensitivity = project::panelSettingsFromJson<project::SensitivityPanelSettings>(
+        p.panels.at("sensitivity"));
+    ASSERT_TRUE(stress && compaction && sensitivity);
+    EXPECT_EQ(stress->analysis.slip, 0.35);
+    EXPECT_EQ(compaction->analysis.passes, 2);
+
+    auto* forces = studio.panel<ui::ForcesPanel>();
+    EXPECT_TRUE(sameTable(forces->result().table, analysis::computeForceSweep(inputs).table));
+    const analysis::SoilCurves curves = analysis::computeSoilCurves(inputs);
+    EXPECT_TRUE(sameTable(forces->soilCurves().static_sinkage, curves.static_sinkage));
+    EXPECT_TRUE(sameTable(forces->soilCurves().bulldozing, curves.bulldozing));
+
+    const analysis::StressResult stresses = analysis::computeStresses(inputs, stress->analysis);
+    EXPECT_TRUE(sameTable(studio.panel<ui::StressPanel>()->result().table, stresses.table));
+    EXPECT_EQ(studio.panel<ui::StressPanel>()->result().entry_angle_deg, stresses.entry_angle_deg);
+
+    analysis::CompactionSettings c = compaction->analysis;
+    c.map_x_points = ui::CompactionPanel::kMapXPoints;
+    c.map_z_points = ui::CompactionPanel::kMapZPoints;
+    const analysis::CompactionResult passes = analysis::computeCompaction(inputs, c);
+    auto* panel = studio.panel<ui::CompactionPanel>();
+    ASSERT_EQ(panel->result().passes.size(), 2u);
+    EXPECT_TRUE(sameTable(panel->result().map, passes.map));
+    EXPECT_TRUE(sameTable(*analysis::compactionOutcome(panel->result()).table("passes"),
+                          *analysis::compactionOutcome(passes).table("passes")));
+    EXPECT_TRUE(sameTable(*analysis::compactionOutcome(panel->result()).table("profile"),
+                          *analysis::compactionOutcome(passes).table("profile")));
+
+    const analysis::SensitivityResult family =
+        analysis::computeSensitivity(inputs, sensitivity->analysis);
+    EXPECT_TRUE(sameTable(studio.panel<ui::SensitivityPanel>()->result().family.table,
+                          family.family.table));
+    EXPECT_TRUE(sameTable(studio.panel<ui::SensitivityPanel>()->result().tornado, family.tornado));
+}
+
+TEST(SavedResultsWindow, TheQuickPanelsReopenWithTheirResultsAndComputeOnlyWhatChanged) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("quick.terra");
+    computeQuickAndSave(path);
+    std::string text;
+    ASSERT_FALSE(io::readFile((path + ".results").toStdString(), text));
+    const json saved = json::parse(text);
+    for (const char* name : kQuickPanels) EXPECT_TRUE(saved["panels"].contains(name)) << name;
+
+    Studio studio;
+    MainWindow& w = studio.window;
+    StartCounter forces(studio.panel<ui::ForcesPanel>()), stresses(studio.panel<ui::StressPanel>()),
+        compaction(studio.panel<ui::CompactionPanel>()),
+        sensitivity(studio.panel<ui::SensitivityPanel>());
+    openAndWait(studio, path);
+    const QString message = w.statusBar()->currentMessage();
+    EXPECT_TRUE(message.contains("with its saved results")) << message.toStdString();
+    for (const char* shown : {"Forces vs slip", "Stresses", "Compaction", "Sensitivity"})
+        EXPECT_TRUE(message.contains(shown)) << message.toStdString();
+    EXPECT_FALSE(message.contains("not shown")) << message.toStdString();
+    for (const char* name : kQuickPanels) {
+        w.showPanel(name);
+        QTest::qWait(200);
+    }
+    for (ui::AnalysisPanel* panel : quickPanels(studio))
+        EXPECT_TRUE(panel->showsSavedResult()) << panel->name().toStdString();
+    expectQuickResultsOfTheProject(studio);
+    EXPECT_EQ(forces.started(), 0);
+    EXPECT_EQ(stresses.started(), 0);
+    EXPECT_EQ(compaction.started(), 0);
+    EXPECT_EQ(sensitivity.started(), 0);
+    // Drawing another stress or tab is no new input: nothing computed.
+    studio.panel<ui::StressPanel>()->applySettings({{"stress", "sigma"}});
+    studio.panel<ui::SensitivityPanel>()->applySettings({{"plot", "tornado"}});
+    QTest::qWait(300);
+    EXPECT_EQ(stresses.started(), 0);
+    EXPECT_EQ(sensitivity.started(), 0);
+
+    // One input changed: that panel computes once, the others keep their saved results.
+    w.showPanel("stresses");
+    studio.panel<ui::StressPanel>()->applySettings({{"slip", 0.4}});
+    ASSERT_TRUE(settled(*studio.panel<ui::StressPanel>()));
+    QTest::qWait(300);
+    EXPECT_EQ(stresses.started(), 1);
+    EXPECT_FALSE(studio.panel<ui::StressPanel>()->showsSavedResult());
+    const analysis::Inputs inputs = project::inputsOf(w.document()->project());
+    analysis::StressSettings at_04 = project::panelSettingsFromJson<project::StressPanelSettings>(
+                                         w.document()->project().panels.at("stresses"))
+                                         ->analysis;
+    EXPECT_EQ(at_04.slip, 0.4);
+    EXPECT_TRUE(sameTable(studio.panel<ui::StressPanel>()->result().table,
+                          analysis::computeStresses(inputs, at_04).table));
+    for (const char* name : kQuickPanels) {
+        w.showPanel(name);
+        QTest::qWait(200);
+    }
+    EXPECT_EQ(forces.started(), 0);
+    EXPECT_EQ(compaction.started(), 0);
+    EXPECT_EQ(sensitivity.started(), 0);
+    EXPECT_EQ(stresses.started(), 1);
+}
+
+TEST(SavedResultsWindow, ADamagedQuickSectionIsSaidAndComputedAgain) {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("quick.terra");
+    computeQuickAndSave(path);
+    const std::string results_path = (path + ".results").toStdString();
+    std::string text;
+    ASSERT_FALSE(io::readFile(results_path, text));
+    json results = json::parse(text);
+    results["panels"]["compaction"]["result"]["passes"][1]["forces"]["fx"] = "x";
+    results["panels"]["stresses"]["result"].erase("errors");
+    ASSERT_FALSE(io::writeFileAtomically(results_path, results.dump()));
+
+    Studio studio;
+    MainWindow& w = studio.window;
+    StartCounter forces(studio.panel<ui::ForcesPanel>()), stresses(studio.panel<ui::StressPanel>()),
+        compaction(studio.panel<ui::CompactionPanel>());
+    openAndWait(studio, path);
+    const QString message = w.statusBar()->currentMessage();
+    EXPECT_TRUE(
+        message.contains("Compaction: compaction: passes: 1: forces: fx: \"x\" is not a "
+                         "number"))
+        << message.toStdString();
+    EXPECT_TRUE(message.contains("Stresses: stresses: errors")) << message.toStdString();
+    EXPECT_FALSE(studio.panel<ui::CompactionPanel>()->showsSavedResult());
+    showQuickPanels(studio);
+    QTest::qWait(300);
+    // Computed again, once each, to the numbers of the project's inputs; the forces kept.
+    EXPECT_EQ(stresses.started(), 1);
+    EXPECT_EQ(compaction.started(), 1);
+    EXPECT_EQ(forces.started(), 0);
+    EXPECT_TRUE(studio.panel<ui::ForcesPanel>()->showsSavedResult());
+    expectQuickResultsOfTheProject(studio);
+
+    // Not JSON at all: the results cannot be read, the project opens and computes.
+    ASSERT_FALSE(io::writeFileAtomically(results_path, "{\"format\": \"terrastudio-res"));
+    Studio again;
+    StartCounter forces_again(again.panel<ui::ForcesPanel>());
+    openAndWait(again, path);
+    EXPECT_TRUE(again.window.statusBar()->currentMessage().contains("cannot be read"))
+        << again.window.statusBar()->currentMessage().toStdString();
+    showQuickPanels(again);
+    EXPECT_FALSE(again.panel<ui::ForcesPanel>()->showsSavedResult());
+    EXPECT_GE(forces_again.started(), 1);
+    expectQuickResultsOfTheProject(again);
 }
 
 }  // namespace

@@ -4,12 +4,14 @@
 
 #include <QLabel>
 #include <QProgressBar>
+#include <QPushButton>
 #include <QShowEvent>
 #include <QTimer>
 #include <algorithm>
 
 #include "core/io/parameters_json.h"
 #include "widgets/document/project_document.h"
+#include "widgets/plots/figures.h"
 #include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_menu.h"
 #include "widgets/plots/plot_readout.h"
@@ -200,6 +202,51 @@ void AnalysisPanel::showSaved(const std::any& value, const std::string& hash, bo
 AnalysisPanel::Restored AnalysisPanel::restoreResult(const std::string&,
                                                      const project::SavedResult&) {
     return unreadable("this panel does not save its results");
+}
+
+std::map<std::string, project::SavedResult> AnalysisPanel::savedSection(int version,
+                                                                        nlohmann::json result,
+                                                                        std::string summary,
+                                                                        bool keep_partial) const {
+    std::map<std::string, project::SavedResult> out;
+    const bool partial = completion_ != Completion::kComplete;
+    if (!has_result_ || presented_hash_.empty() || (partial && !keep_partial)) return out;
+    project::SavedResult& saved = out[name_.toStdString()];
+    saved.inputs_hash = presented_hash_;
+    saved.version = version;
+    saved.partial = partial;
+    saved.summary = std::move(summary);
+    saved.result = std::move(result);
+    return out;
+}
+
+AnalysisPanel::Restored AnalysisPanel::restoreSection(const std::string& section,
+                                                      const project::SavedResult& saved,
+                                                      int version, const SectionReader& read) {
+    if (section != name_.toStdString()) return unreadable("not a section of this panel");
+    if (saved.version != version)
+        return unreadable("saved in form version " + std::to_string(saved.version));
+    const std::string hash = inputsHash();
+    if (saved.inputs_hash != hash) return inputsChanged();
+    std::any value;
+    try {
+        value = read(saved.result, section);
+    } catch (const std::exception& e) {
+        return unreadable(e.what());
+    }
+    showSaved(value, hash, saved.partial);
+    return restoredShown();
+}
+
+void AnalysisPanel::showNotComputed(QLabel* status, const QString& text,
+                                    const std::vector<QCustomPlot*>& cleared,
+                                    QPushButton* compute) {
+    status->setText(text);
+    if (compute) compute->show();
+    for (QCustomPlot* plot : cleared) {
+        resetPlot(*plot, "Not computed: press Compute");
+        plot->replot();
+    }
 }
 
 void AnalysisPanel::holdUpdates(bool hold) {

@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <vector>
 
 #include "core/common/table.h"
@@ -30,6 +31,7 @@
 class QCustomPlot;
 class QLabel;
 class QProgressBar;
+class QPushButton;
 
 namespace terra::ui {
 
@@ -161,6 +163,36 @@ protected:
     static Restored unreadable(const std::string& why) {
         return {Restored::Kind::kUnreadable, why};
     }
+    /// The result on screen as the panel's one section (name()) of the results file: the hash
+    /// of the inputs that produced it (presentedInputsHash()), partial when it is; nothing when
+    /// no result is on screen, or when it is partial and `keep_partial` is false (a quick panel
+    /// computes it again rather than reopen on a cancelled run).
+    std::map<std::string, project::SavedResult> savedSection(int version, nlohmann::json result,
+                                                             std::string summary,
+                                                             bool keep_partial) const;
+    /// How a panel reads its section back into what its job returns (present()'s value);
+    /// throws std::invalid_argument saying what is wrong when the JSON is not such a result.
+    using SectionReader =
+        std::function<std::any(const nlohmann::json& result, const std::string& where)>;
+    /// restoreResult for a panel with one section (savedSection): shown without computing
+    /// (showSaved) when `section` is name(), of form `version`, its inputs hash as the panel's do
+    /// now and `read` reads it (throwing std::invalid_argument with what is wrong); else
+    /// nothing changes and the answer says why.
+    Restored restoreSection(const std::string& section, const project::SavedResult& saved,
+                            int version, const SectionReader& read);
+    /// A core reader's result for a SectionReader: its value, or its message thrown.
+    template <typename T>
+    static T valueOrThrow(Result<T> read) {
+        if (!read) throw std::invalid_argument(read.message());
+        return std::move(read).value();
+    }
+    /// The "Not computed" state of a run too large to start by itself (startsByItself()):
+    /// `status` says `text`, `compute` (when given) is shown, and each plot of `cleared` is
+    /// emptied under the title "Not computed: press Compute". The compaction and global
+    /// sensitivity panels share it.
+    static void showNotComputed(QLabel* status, const QString& text,
+                                const std::vector<QCustomPlot*>& cleared,
+                                QPushButton* compute = nullptr);
 
     /// Whether an update nobody asked for (the panel's first show, a project edit) may start now,
     /// asked just before it would. A panel whose computation can be heavy says no, and shows why

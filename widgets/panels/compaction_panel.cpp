@@ -16,6 +16,7 @@
 
 #include "core/contact/operating_fields.h"
 #include "core/project/panels.h"
+#include "core/project/saved_analyses.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/compaction_figures.h"
 #include "widgets/plots/figures.h"
@@ -300,17 +301,16 @@ bool CompactionPanel::startsByItself() {
     const analysis::CompactionSettings s = current();
     const std::size_t work = static_cast<std::size_t>(s.passes) * s.depths_m.size();
     if (work <= static_cast<std::size_t>(kAutomaticPassDepths)) return true;
-    summary_->setText(QString("Not computed: %1 passes at %2 depths is a long run — press Compute "
-                              "(Ctrl+R) to run it.")
-                          .arg(s.passes)
-                          .arg(s.depths_m.size()));
-    compute_->show();
+    std::vector<QCustomPlot*> cleared;
     if (!hasResult()) {
-        for (const auto& [name, plot] : plots()) {
-            resetPlot(*plot, "Not computed: press Compute");
-            plot->replot();
-        }
+        for (const auto& [name, plot] : plots()) cleared.push_back(plot);
     }
+    showNotComputed(summary_,
+                    QString("Not computed: %1 passes at %2 depths is a long run — press Compute "
+                            "(Ctrl+R) to run it.")
+                        .arg(s.passes)
+                        .arg(s.depths_m.size()),
+                    cleared, compute_);
     return false;
 }
 
@@ -408,6 +408,22 @@ QString CompactionPanel::summaryText() const {
     for (const std::string& note : r.notes)
         parts << "<i>" + QString::fromStdString(note).toHtmlEscaped() + ".</i>";
     return parts.join(" ");
+}
+
+std::map<std::string, project::SavedResult> CompactionPanel::savedResults() const {
+    // A long run cancelled is kept (marked partial): Compute runs it again.
+    return savedSection(project::kCompactionVersion, project::savedJson(shown_.result),
+                        QString("%1 passes").arg(shown_.result.passes.size()).toStdString(), true);
+}
+
+AnalysisPanel::Restored CompactionPanel::restoreResult(const std::string& section,
+                                                       const project::SavedResult& saved) {
+    return restoreSection(
+        section, saved, project::kCompactionVersion,
+        [this](const nlohmann::json& json, const std::string& where) -> std::any {
+            // The settings it was computed with are the panel's: the inputs hash as now.
+            return Shown{current(), valueOrThrow(project::compactionResultFromJson(json, where))};
+        });
 }
 
 }  // namespace terra::ui

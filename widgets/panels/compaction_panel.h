@@ -61,6 +61,11 @@ public:
     QString summary() const;
     /// Shown with the "Not computed" line when a run is too large to start by itself.
     QPushButton* computeButton() const { return compute_; }
+    /// The study on screen ("compaction"; a cancelled one too, marked partial), for the
+    /// project's results file; restoreResult shows it again, without computing, while the soil,
+    /// wheel, conditions and the panel's settings are those it was computed from.
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
 protected:
     Job makeJob() override;

@@ -21,6 +21,7 @@
 #include <stdexcept>
 
 #include "core/project/panels.h"
+#include "core/project/saved_analyses.h"
 #include "widgets/document/project_document.h"
 #include "widgets/editors/preset_names.h"
 #include "widgets/panels/calibration_dialog.h"
@@ -350,8 +351,20 @@ void ForcesPanel::present(const std::any& value) {
 
 namespace terra::ui {
 
+nlohmann::json ForcesPanel::resultInputs() const {
+    const Project& p = document_->project();
+    return {{"soil", io::toJson(p.soil)},
+            {"wheel", io::toJson(p.wheel)},
+            {"conditions", analysis::toJson(p.conditions)},
+            {"test", project::fileStamp(p.experiment)}};
+}
+
 std::map<std::string, project::SavedResult> ForcesPanel::savedResults() const {
-    std::map<std::string, project::SavedResult> out;
+    project::SavedForces shown{result_, soil_curves_, validation_, {}};
+    for (const TestSweep& s : test_sweeps_) shown.test_sweeps.push_back({s.load_n, s.table});
+    std::map<std::string, project::SavedResult> out =
+        savedSection(project::kForcesVersion, project::savedJson(shown),
+                     QString("%1 points").arg(result_.table.rows.size()).toStdString(), false);
     if (calibration_) {
         if (std::optional<project::SavedResult> saved = calibration_->savedResult())
             out[name().toStdString() + ".calibration"] = std::move(*saved);
@@ -361,6 +374,27 @@ std::map<std::string, project::SavedResult> ForcesPanel::savedResults() const {
 
 AnalysisPanel::Restored ForcesPanel::restoreResult(const std::string& section,
                                                    const project::SavedResult& saved) {
+    if (section == name().toStdString()) {
+        if (reference_)
+            return {Restored::Kind::kInputsChanged, "a comparison soil is shown: computed again"};
+        return restoreSection(
+            section, saved, project::kForcesVersion,
+            [this](const nlohmann::json& json, const std::string& where) -> std::any {
+                project::SavedForces read = valueOrThrow(project::savedForcesFromJson(json, where));
+                ForcesOutcome out;
+                out.sweep = std::move(read.sweep);
+                out.soil = std::move(read.soil);
+                out.validation = std::move(read.validation);
+                for (project::SavedTestSweep& s : read.test_sweeps)
+                    out.test_sweeps.push_back({s.load_n, std::move(s.table)});
+                if (out.validation) {
+                    const io::Experiment* test = document_->experiment();
+                    if (!test) throw std::invalid_argument("the project's test cannot be read");
+                    out.test = std::make_shared<const io::Experiment>(*test);
+                }
+                return out;
+            });
+    }
     if (section != name().toStdString() + ".calibration")
         return unreadable("not a section of this panel");
     CalibrationDialog* dialog = openCalibration();

@@ -84,12 +84,18 @@ public:
     /// {"plot": name of the shown plot (plots())}: a project reopens on the same tab.
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
-    /// The calibration dialog's last result ("forces.calibration"; the sweeps are quick and
-    /// computed again).
+    /// The sweep, soil curves and comparison with the project's test on screen ("forces"; not
+    /// the comparison soil, which is session state) and the calibration dialog's last result
+    /// ("forces.calibration"), for the project's results file. restoreResult shows the sweep
+    /// again, without computing, while the soil, wheel, conditions and test are those it was
+    /// computed from and no comparison soil is asked for.
     std::map<std::string, project::SavedResult> savedResults() const override;
     Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
 protected:
+    /// The project's soil, wheel and conditions and its measured test's content (not the tab
+    /// shown, nor the comparison soil).
+    nlohmann::json resultInputs() const override;
     Job makeJob() override;
     void present(const std::any& result) override;
 

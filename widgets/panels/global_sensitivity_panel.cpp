@@ -43,6 +43,7 @@ constexpr Row kRows[] = {{"phi_deg", true, 20.0, 35.0}, {"c_kPa", true, 0.0, 5.0
                          {"kc", false, 4.24, 6.36},     {"kphi", false, 1212.0, 1818.0},
                          {"a0", false, 0.1, 0.3},       {"a1", false, 0.2, 0.4}};
 constexpr int kLowColumn = 1, kHighColumn = 2;
+constexpr int kPlotMinimumWidth = 200;  // [px], as before a study is drawn
 
 struct Computed {
     std::optional<analysis::GlobalSensitivityResult> indices;
@@ -127,7 +128,13 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
     pages_ = new QTabWidget(this);
     indices_plot_ = new QCustomPlot(pages_);
     bands_plot_ = new QCustomPlot(pages_);
-    for (QCustomPlot* plot : {indices_plot_, bands_plot_}) makeInteractive(plot, readout_);
+    for (QCustomPlot* plot : {indices_plot_, bands_plot_}) {
+        makeInteractive(plot, readout_);
+        // Its own minimum: a drawn study's legend and bar labels made the plot's hint ~600 px
+        // and the panel's 1000 px, wider than a tiled row leaves it (View ▸ Layout ▸ Tile then
+        // squeezed the panel beside it into a sideways scroll bar). The legend reflows instead.
+        plot->setMinimumWidth(kPlotMinimumWidth);
+    }
     pages_->addTab(indices_plot_, "Indices");
     pages_->addTab(bands_plot_, "Uncertainty bands");
     progress_timer_ = new QTimer(this);
@@ -209,17 +216,14 @@ bool GlobalSensitivityPanel::startsByItself() {
         return true;  // the computation reports what is wrong with the settings
     }
     if (evaluations <= kAutomaticEvaluations) return true;
-    const QString text = QString(
-                             "Not computed: this study takes %L1 model evaluations — press "
-                             "Compute to run it.")
-                             .arg(evaluations);
-    status_->setText(text);
     const bool bands = pages_->currentIndex() == 1;
-    if (bands ? !bands_ : !indices_) {
-        QCustomPlot* plot = currentPlot();
-        resetPlot(*plot, "Not computed: press Compute");
-        plot->replot();
-    }
+    std::vector<QCustomPlot*> cleared;
+    if (bands ? !bands_ : !indices_) cleared.push_back(currentPlot());
+    showNotComputed(status_,
+                    QString("Not computed: this study takes %L1 model evaluations — press "
+                            "Compute to run it.")
+                        .arg(evaluations),
+                    cleared);
     return false;
 }
 

@@ -12,6 +12,7 @@
 #include <array>
 
 #include "core/project/panels.h"
+#include "core/project/saved_analyses.h"
 #include "core/soil/soil_parameters.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/figures.h"
@@ -130,12 +131,17 @@ void SensitivityPanel::applySettings(const nlohmann::json& json) {
     tabs_->setCurrentIndex(plot == "tornado" ? 2 : plot == "Fs" ? 1 : 0);
 }
 
-AnalysisPanel::Job SensitivityPanel::makeJob() {
-    const analysis::Inputs inputs = project::inputsOf(document_->project());
+analysis::SensitivitySettings SensitivityPanel::current() const {
     analysis::SensitivitySettings settings = applied_;
     settings.parameter = parameter_->currentData().toString().toStdString();
     settings.slip_angles_deg = {slip_angle_->value()};
     settings.tornado_slip = tornado_slip_->value();
+    return settings;
+}
+
+AnalysisPanel::Job SensitivityPanel::makeJob() {
+    const analysis::Inputs inputs = project::inputsOf(document_->project());
+    const analysis::SensitivitySettings settings = current();
     shown_ = settings;
     return [inputs, settings](const std::atomic<bool>& cancel) -> std::any {
         return analysis::computeSensitivity(inputs, settings, {&cancel});
@@ -156,6 +162,31 @@ void SensitivityPanel::present(const std::any& value) {
     status_->setText(QString("%1 points; %2 without equilibrium")
                          .arg(result_.family.table.rows.size())
                          .arg(result_.family.warnings.size()));
+}
+
+nlohmann::json SensitivityPanel::resultInputs() const {
+    nlohmann::json inputs = AnalysisPanel::resultInputs();
+    inputs["settings"].erase("plot");
+    return inputs;
+}
+
+std::map<std::string, project::SavedResult> SensitivityPanel::savedResults() const {
+    return savedSection(project::kSensitivityVersion, project::savedJson(result_),
+                        QString("%1 points").arg(result_.family.table.rows.size()).toStdString(),
+                        false);
+}
+
+AnalysisPanel::Restored SensitivityPanel::restoreResult(const std::string& section,
+                                                        const project::SavedResult& saved) {
+    const analysis::SensitivitySettings before = shown_;
+    shown_ = current();  // what the saved study was of, when it is shown: the inputs hash as now
+    const Restored restored =
+        restoreSection(section, saved, project::kSensitivityVersion,
+                       [](const nlohmann::json& json, const std::string& where) -> std::any {
+                           return valueOrThrow(project::sensitivityResultFromJson(json, where));
+                       });
+    if (!restored.shown()) shown_ = before;
+    return restored;
 }
 
 }  // namespace terra::ui

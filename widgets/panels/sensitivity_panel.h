@@ -25,12 +25,22 @@ public:
     Table currentTable() const override;
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
+    /// The study on screen ("sensitivity"), for the project's results file; restoreResult shows
+    /// it again, without computing, while its inputs (soil, wheel, conditions, parameter, slip
+    /// angle, tornado slip) are those it was computed from.
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
 protected:
+    /// The default inputs without the tab shown.
+    nlohmann::json resultInputs() const override;
     Job makeJob() override;
     void present(const std::any& result) override;
 
 private:
+    /// The study the controls make.
+    analysis::SensitivitySettings current() const;
+
     QComboBox* parameter_;
     QDoubleSpinBox* slip_angle_;
     QDoubleSpinBox* tornado_slip_;

@@ -10,6 +10,7 @@
 
 #include "core/contact/operating_fields.h"
 #include "core/project/panels.h"
+#include "core/project/saved_analyses.h"
 #include "widgets/document/project_document.h"
 #include "widgets/plots/figures.h"
 
@@ -131,6 +132,25 @@ void StressPanel::redraw() {
                      .arg(p.conditions.load_n)
                      .arg(slip_->value())
                      .arg(slip_angle_->value()));
+}
+
+nlohmann::json StressPanel::resultInputs() const {
+    nlohmann::json inputs = AnalysisPanel::resultInputs();
+    inputs["settings"].erase("stress");
+    return inputs;
+}
+
+std::map<std::string, project::SavedResult> StressPanel::savedResults() const {
+    return savedSection(project::kStressesVersion, project::savedJson(result_),
+                        QString("%1 angles").arg(result_.table.rows.size()).toStdString(), false);
+}
+
+AnalysisPanel::Restored StressPanel::restoreResult(const std::string& section,
+                                                   const project::SavedResult& saved) {
+    return restoreSection(section, saved, project::kStressesVersion,
+                          [](const nlohmann::json& json, const std::string& where) -> std::any {
+                              return valueOrThrow(project::stressResultFromJson(json, where));
+                          });
 }
 
 }  // namespace terra::ui

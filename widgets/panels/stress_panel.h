@@ -26,8 +26,15 @@ public:
     Table currentTable() const override { return result_.table; }
     nlohmann::json settings() const override;
     void applySettings(const nlohmann::json& settings) override;
+    /// The stresses on screen ("stresses"), for the project's results file; restoreResult shows
+    /// them again, without computing, while the soil, wheel, conditions, slip and slip angle are
+    /// those they were computed from.
+    std::map<std::string, project::SavedResult> savedResults() const override;
+    Restored restoreResult(const std::string& section, const project::SavedResult& saved) override;
 
 protected:
+    /// The default inputs without the stress shown (drawing another one computes nothing).
+    nlohmann::json resultInputs() const override;
     Job makeJob() override;
     void present(const std::any& result) override;
 
