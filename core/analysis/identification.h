@@ -71,6 +71,10 @@ struct IdentificationSettings {
     /// The columns of `csv` that the reader does not use ("FILE:1: column 'x' is not read …"),
     /// passed on to the result's warnings.
     std::vector<std::string> data_warnings;
+    /// Deprecated parameter keys the reader read ("Ks" for "Ks_kPa", issue 26), each where it
+    /// was and the note naming the new key; passed on to the result's warnings (the command line
+    /// prints them with its flags' names and clears them).
+    std::vector<Issue> key_warnings;
     SyntheticSource synthetic;
     identification::DecoupledParameters guess;  ///< start of the decoupled fit (thesis's guesses)
     /// true: the global identification on the full model (identify.h; removes the decoupled
@@ -114,7 +118,9 @@ struct IdentificationSettings {
 };
 
 /// Reads "fix" ({key: value}, the refined parameters' keys of identified_parameters.h in their
-/// units), reporting an unknown key with the nearest one and a value outside its field's range.
+/// units; a deprecated key, "Ks" or "n", is read as its new one), reporting an unknown key with
+/// the nearest one and a value outside its field's range. The pairs are stored under the
+/// table's keys.
 void readFixedParameters(io::ObjectReader& r, const char* key,
                          std::vector<std::pair<std::string, double>>& out);
 /// "fix" as JSON; null when empty.
