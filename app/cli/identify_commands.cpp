@@ -226,6 +226,14 @@ analysis::IdentificationSettings identifySettings(const IdentifyOptions& o,
         nameFlags(issues, names);
         throw InputError(formatIssues(issues));
     }
+    // An old parameter key ("--prior Ks=…", issue 26) is read as its new one: said once, here,
+    // with the flag that gave it.
+    nameFlags(settings.key_warnings, names);
+    std::vector<std::string> notes;
+    for (const Issue& note : settings.key_warnings)
+        notes.push_back(note.where + ": " + note.message);
+    printLines(notes, "warning: ");
+    settings.key_warnings.clear();
     settings.csv = o.data;
     return settings;
 }
@@ -465,9 +473,10 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                 "the linearisation bias; the default); --no-refine: the decoupled fit alone")
         ->capture_default_str();
     i->add_option("--prior", identify->prior,
-                  "Gaussian priors: NAME=MEAN±STD (or +-) with NAME a0, a1, Ks [kPa/m^n], n, "
-                  "c_kPa, phi_deg, K_m, and/or one soil preset or file (±0.1 a0/a1, ±50 % Ks, c, "
-                  "K, ±0.2 n, ±5 deg phi); repeatable")
+                  "Gaussian priors: NAME=MEAN±STD (or +-) with NAME a key of the output (a0, a1, "
+                  "Ks_kPa, n0, c_kPa, phi_deg, K_m, jmax_m; the old Ks, n still read), and/or one "
+                  "soil preset or file (±0.1 a0/a1, ±50 % Ks, c, K, ±0.2 n, ±5 deg phi); "
+                  "repeatable")
         ->delimiter(',');
     i->add_option("--holdout", identify->holdout,
                   "Held-out error: predict this fraction (0, 1) of the samples from a fit "
@@ -485,7 +494,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         "Profile-likelihood intervals (delta chi2 = 9) of the parameters in a flagged "
         "trade-off or at a bound (JSON key profile_interval; up to 10 refinements per side)");
     i->add_option("--fix", identify->fix,
-                  "Refinement: keep parameters fixed, e.g. a0=0.2,a1=0.3 (keys of the output)")
+                  "Refinement: keep parameters fixed, e.g. a0=0.2,a1=0.3 (keys of the output, as "
+                  "--prior)")
         ->delimiter(',');
     i->add_option(
          "--noise", identify->noise,

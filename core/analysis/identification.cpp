@@ -29,20 +29,6 @@ double measuredOr(bool measured, double value) {
     return measured ? value : std::numeric_limits<double>::quiet_NaN();
 }
 
-id::DecoupledParameters decoupledOf(const id::ParameterVector& p) {
-    id::DecoupledParameters out;
-    out.a0 = p[id::kA0];
-    out.a1 = p[id::kA1];
-    out.pressure_modulus = p[id::kKs];
-    out.n0 = p[id::kN];
-    out.n1 = 0.0;  // the full model's N is constant
-    out.cohesion_pa = p[id::kC];
-    out.friction_angle_rad = p[id::kPhi];
-    out.shear_modulus_m = p[id::kK];
-    out.max_shear_deformation_m = p[id::kJmax];
-    return out;
-}
-
 // The data of the settings: given, read from the CSV, or synthesised from the inputs' soil.
 // The full model reads data without an entry angle (θ_f from the load) and with any channels.
 id::ColumnNeeds needsOf(const IdentificationSettings& s) {
@@ -97,6 +83,18 @@ void readFixedParameters(io::ObjectReader& r, const char* key,
         double value = 0.0;
         if (fix.number(field.key, value, field.range, field.displayUnit()))
             out.emplace_back(field.key, value);
+        // An old key ("Ks", "n") is read as the field's, stored under the field's key
+        // (readIdentificationSettings notes the deprecation).
+        for (const id::DeprecatedParameterKey& old : id::deprecatedParameterKeys()) {
+            if (field.key != std::string_view(old.key) || !fix.has(old.old_key)) continue;
+            if (fix.has(field.key)) {
+                fix.report(old.old_key, "the same parameter as '" + std::string(field.key) +
+                                            "' (its deprecated key): give one");
+                fix.allow(old.old_key);
+            } else if (fix.number(old.old_key, value, field.range, field.displayUnit())) {
+                out.emplace_back(field.key, value);
+            }
+        }
     }
     fix.finish();
 }
@@ -136,10 +134,23 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
         }
     }
     for (const Issue& issue : identificationRuleIssues(out)) r.report(issue.where, issue.message);
-    for (const std::string& item : out.prior_items) {
+    // The old keys of the parameters (issue 26) are read as their new ones and noted.
+    for (std::string& item : out.prior_items) {
         id::Priors scratch;
-        for (const Issue& issue : id::parsePriorItem(item, scratch))
+        std::vector<std::string> deprecated;
+        for (const Issue& issue : id::parsePriorItem(item, scratch, &deprecated))
             r.report("priors", issue.where + ": " + issue.message);
+        for (const std::string& note : deprecated)
+            out.key_warnings.push_back({r.where("priors"), note});
+        item = id::canonicalPriorItem(item);
+    }
+    if (const nlohmann::json* fix = r.has("fix") ? r.value("fix") : nullptr;
+        fix && fix->is_object()) {
+        for (const id::DeprecatedParameterKey& old : id::deprecatedParameterKeys()) {
+            if (fix->contains(old.old_key))
+                out.key_warnings.push_back(
+                    {r.where("fix." + std::string(old.old_key)), id::deprecationNote(old.old_key)});
+        }
     }
     if (!out.prior_soil_name.empty() && context.locations != nullptr) {
         Result<soil::SoilParameters> soil =
@@ -183,7 +194,7 @@ id::Priors priorsOf(const IdentificationSettings& s, const wheel::WheelParameter
     for (const std::string& item : s.prior_items) {
         const std::vector<Issue> bad = id::parsePriorItem(item, priors);
         issues.insert(issues.end(), bad.begin(), bad.end());
-        text += (text.empty() ? "" : " + ") + item;
+        text += (text.empty() ? "" : " + ") + id::canonicalPriorItem(item);
     }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     if (source != nullptr) *source = text;
@@ -204,7 +215,7 @@ id::IdentifyOptions identifyOptions(const IdentificationSettings& s,
     o.holdout_fraction = s.holdout_fraction;
     o.folds = s.folds;
     for (const auto& [key, value] : s.fixed) {
-        const IdentifiedField* field = findIdentifiedField(key);
+        const IdentifiedField* field = id::lookupParameter(key).field;
         if (field == nullptr) continue;
         if (const auto k = fullParameterOf(*field))
             o.fixed[static_cast<std::size_t>(*k)] = field->toSi(value);
@@ -390,8 +401,17 @@ void addGlobalRows(const IdentificationResult& result, Summary& out) {
                    "/chi2", r.chi2});
     out.push_back({"gradient norm", formatNumber(roundSignificant(r.gradient_norm, 3)), "", "",
                    Emphasis::kNormal, "/gradient_norm", r.gradient_norm});
-    out.push_back({"Newton decrement", formatNumber(roundSignificant(r.newton_decrement, 3)), "",
-                   "", Emphasis::kNormal, "/newton_decrement", r.newton_decrement});
+    // The Newton decrement gᵀH⁻¹g in a user's words (issue 27): what one more step would still
+    // gain in χ², against the change of 1 that is one std.
+    const bool at_minimum = r.newton_decrement < 0.1;
+    out.push_back({"one more step would lower chi2 by",
+                   formatNumber(roundSignificant(r.newton_decrement, 3)), "",
+                   at_minimum ? "at a minimum: less than 0.1, where a change of 1 is one std"
+                              : "not clearly at a minimum, where a change of 1 is one std: fit "
+                                "again, or fix or give priors to the parameters the data do not "
+                                "determine",
+                   at_minimum ? Emphasis::kNormal : Emphasis::kWarning, "/newton_decrement",
+                   r.newton_decrement});
     bool header = false;
     for (int k = 0; k < id::kFullParameterCount; ++k) {
         const id::PriorComparison& c = r.prior[static_cast<std::size_t>(k)];
@@ -421,11 +441,23 @@ void addGlobalRows(const IdentificationResult& result, Summary& out) {
             if (!r.holdout.channels[c]) continue;
             const std::string name = id::channelNames()[c];
             out.push_back({name, formatFixed(r.holdout.rms_over_noise[c], 2), "",
-                           "in fit " + formatFixed(r.holdout.rms_in_fit[c] / r.noise[c], 2),
+                           "RMS " + formatNumber(roundSignificant(r.holdout.rms[c], 3)) +
+                               ", in fit " + formatFixed(r.holdout.rms_in_fit[c] / r.noise[c], 2),
                            Emphasis::kNormal, "/holdout/rms_over_noise/" + name,
                            r.holdout.rms_over_noise[c]});
         }
+    } else {
+        out.push_back({"held-out error", "not computed", "", "give a holdout fraction or folds",
+                       Emphasis::kNormal, ""});
     }
+    // Whether the residuals are noise (the trend test in slip of each channel, adequacy.h).
+    out.push_back({"adequacy, smallest p", formatNumber(roundSignificant(r.adequacy.p, 2)), "",
+                   r.adequacy.flag ? "systematic misfit: the residuals follow slip, so the "
+                                     "estimate is biased and its std too small (a note says "
+                                     "where; a shear limit? identify j_max)"
+                                   : "the residuals look like noise",
+                   r.adequacy.flag ? Emphasis::kWarning : Emphasis::kNormal,
+                   std::isfinite(r.adequacy.p) ? "/adequacy/p" : "", r.adequacy.p});
     bool profile_header = false;
     for (int k = 0; k < id::kFullParameterCount; ++k) {
         const id::ProfileInterval& p = result.profile[static_cast<std::size_t>(k)];
@@ -445,6 +477,12 @@ void addGlobalRows(const IdentificationResult& result, Summary& out) {
                        field.displayUnit(), "", Emphasis::kNormal,
                        "/profile_interval/" + std::string(field.key) + "/lower",
                        p.lower / field.to_si});
+    }
+    if (r.ambiguity.empty()) {
+        out.push_back({"ambiguity", "none", "",
+                       "no other minimum within delta chi2 = " +
+                           formatNumber(roundSignificant(r.ambiguity_delta_chi2, 3)),
+                       Emphasis::kNormal, ""});
     }
     for (const id::Minimum& minimum : r.ambiguity) {
         std::string text = "another minimum with delta chi2 = " +
@@ -498,8 +536,9 @@ Summary identificationSummary(const IdentificationResult& result) {
                        "/" + std::string(field.key),
                        value};
         if (uncertainty && uncertainty->computed && full) {
-            const double sd = uncertainty->std[static_cast<std::size_t>(*full)];
-            if (sd > 0) row.value += " ± " + formatFixed(sd / field.to_si, 4);
+            // With a std: the value to the decimal place the std supports (formatAtStd).
+            const double sd = uncertainty->std[static_cast<std::size_t>(*full)] / field.to_si;
+            if (sd > 0) row.value = formatAtStd(value, sd) + " ± " + formatStd(sd);
         }
         if (limit && !std::isfinite(p.*field.member)) {
             row.value = "none";
@@ -664,6 +703,8 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
     IdentificationResult out;
     out.wheel = in.wheel.name;
     loadData(in, s, out);
+    for (const Issue& note : s.key_warnings)
+        out.warnings.push_back(note.where + ": " + note.message);
     if (!out.message.empty()) return out;
     if (out.data.samples.empty()) {
         out.status = Outcome::Status::kInvalidInput;
@@ -703,7 +744,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
             out.cancelled = true;
             return out;
         }
-        p = decoupledOf(r.parameters);
+        p = id::decoupledOf(r.parameters);
         predictions = id::predictAll(out.data, in.wheel, r.parameters, options);
         if (s.profile && r.usable()) {
             const auto profile_start = std::chrono::steady_clock::now();

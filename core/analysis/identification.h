@@ -71,6 +71,10 @@ struct IdentificationSettings {
     /// The columns of `csv` that the reader does not use ("FILE:1: column 'x' is not read …"),
     /// passed on to the result's warnings.
     std::vector<std::string> data_warnings;
+    /// Deprecated parameter keys the reader read ("Ks" for "Ks_kPa", issue 26), each where it
+    /// was and the note naming the new key; passed on to the result's warnings (the command line
+    /// prints them with its flags' names and clears them).
+    std::vector<Issue> key_warnings;
     SyntheticSource synthetic;
     identification::DecoupledParameters guess;  ///< start of the decoupled fit (thesis's guesses)
     /// true: the global identification on the full model (identify.h; removes the decoupled
@@ -114,7 +118,9 @@ struct IdentificationSettings {
 };
 
 /// Reads "fix" ({key: value}, the refined parameters' keys of identified_parameters.h in their
-/// units), reporting an unknown key with the nearest one and a value outside its field's range.
+/// units; a deprecated key, "Ks" or "n", is read as its new one), reporting an unknown key with
+/// the nearest one and a value outside its field's range. The pairs are stored under the
+/// table's keys.
 void readFixedParameters(io::ObjectReader& r, const char* key,
                          std::vector<std::pair<std::string, double>>& out);
 /// "fix" as JSON; null when empty.
@@ -269,12 +275,15 @@ nlohmann::json covarianceJson(const identification::IdentificationReport& report
 /// `message` (nothing fitted) only "steps" and "samples" mean anything.
 nlohmann::json toJson(const IdentificationResult& result);
 
-/// The result for a person, as `terrastudio identify` prints it: the kind of fit and its wheel,
-/// the samples, the identified parameters (± std, j_max "held" or identified), each step's
-/// Σr², and after the global identification where it started, χ², the priors against the
-/// posterior, the held-out errors, the profile intervals, other minima and the flags. Each
-/// number's `json` points at it in toJson(result). A cancelled result or one without data: the
-/// title and why.
+/// The result for a person, as `terrastudio identify` prints it and the identification panel
+/// shows it (widgets/panels/identification_report.h): the kind of fit and its wheel, the
+/// samples, the identified parameters (with a std: the value to the place its std supports,
+/// formatAtStd; j_max "held" or identified), each step's Σr², and after the global
+/// identification where it started, χ², the gradient norm, what one more step would gain (the
+/// Newton decrement, "at a minimum" below 0.1), the priors against the posterior, the held-out
+/// errors (or "not computed"), the adequacy test, the profile intervals, the other minima (or
+/// "ambiguity: none") and the flags. Each number's `json` points at it in toJson(result). A
+/// cancelled result or one without data: the title and why.
 Summary identificationSummary(const IdentificationResult& result);
 /// Decimals of an identified parameter for a person (K_s in kPa/m^n is in the thousands: 1).
 int displayDecimals(const IdentifiedField& field);

@@ -1,12 +1,17 @@
 #include "core/analysis/soil_posterior.h"
 
+#include "core/identification/parameters.h"
 #include "core/io/json.h"
 
 namespace terra::analysis {
 
 std::string soilKeyOf(const std::string& name) {
-    if (name == "Ks_kPa") return "kphi";
-    if (name == "n0") return "n";
+    // The identification's key (or its old one, "Ks", issue 26) of K_s and n₀, whose soil keys
+    // differ; every other identification key is its soil key.
+    using identification::DecoupledParameters;
+    const identification::ParameterLookup found = identification::lookupParameter(name);
+    if (found && found.field->member == &DecoupledParameters::pressure_modulus) return "kphi";
+    if (found && found.field->member == &DecoupledParameters::n0) return "n";
     return name;
 }
 

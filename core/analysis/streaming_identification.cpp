@@ -172,15 +172,10 @@ StreamFrame StreamingRun::push(const id::Sample& sample, double time_s) {
     frame.estimate = estimator_.push(sample);
     if (frame.estimate.estimated) {
         estimate_ = frame.estimate.parameters;
-        const id::ParameterVector& p = frame.estimate.parameters;
-        frame.parameters.a0 = p[id::kA0];
-        frame.parameters.a1 = p[id::kA1];
-        frame.parameters.pressure_modulus = p[id::kKs];
-        frame.parameters.n0 = p[id::kN];
-        frame.parameters.n1 = 0.0;
-        frame.parameters.cohesion_pa = p[id::kC];
-        frame.parameters.friction_angle_rad = p[id::kPhi];
-        frame.parameters.shear_modulus_m = p[id::kK];
+        const double jmax = frame.parameters.max_shear_deformation_m;
+        frame.parameters = id::decoupledOf(frame.estimate.parameters);
+        // j_max as the frame has always shown it (its default, none): the table unchanged.
+        frame.parameters.max_shear_deformation_m = jmax;
     } else {
         estimate_.reset();
     }

@@ -676,12 +676,14 @@ nlohmann::json toJson(const ValidationResult& r) {
         for (int k = 0; k < id::kJmax; ++k) {
             const id::ParameterInfo& info = id::parameterInfo()[static_cast<std::size_t>(k)];
             const auto i = static_cast<std::size_t>(k);
-            params[info.name] = {{"value", rep.parameters[i] * info.to_user},
-                                 {"std", rep.uncertainty.computed
-                                             ? nlohmann::json(rep.uncertainty.std[i] * info.to_user)
-                                             : nlohmann::json()},
-                                 {"prior", c.prior[i] * info.to_user},
-                                 {"at_bound", rep.at_bound[i]}};
+            // The keys this output has always had ("Ks", "n"; scripts read them).
+            params[id::oldKeyOf(id::fieldOf(static_cast<id::FullParameter>(k)))] = {
+                {"value", rep.parameters[i] * info.to_user},
+                {"std", rep.uncertainty.computed
+                            ? nlohmann::json(rep.uncertainty.std[i] * info.to_user)
+                            : nlohmann::json()},
+                {"prior", c.prior[i] * info.to_user},
+                {"at_bound", rep.at_bound[i]}};
         }
         if (c.n1) {
             params["n1"] = {{"value", *c.n1},
@@ -803,11 +805,11 @@ void addMetricRows(Summary& out, const ValidationMetrics& metrics, const std::st
     }
 }
 
-// "0.73023 ± 0.353" (`digits` and 3 significant digits).
+// "0.7302 ± 0.035": the value to the place of its std (formatAtStd); `digits` significant
+// digits without one.
 std::string valueWithStd(double value, std::optional<double> std, int digits = 5) {
-    std::string text = formatNumber(roundSignificant(value, digits));
-    if (std) text += " ± " + formatNumber(roundSignificant(*std, 3));
-    return text;
+    if (!std || !(*std > 0.0)) return formatNumber(roundSignificant(value, digits));
+    return formatAtStd(value, *std) + " ± " + formatStd(*std);
 }
 
 }  // namespace
@@ -831,23 +833,28 @@ Summary validationSummary(const ValidationResult& r) {
             out.push_back({title + ": FAILED", c.report.message, "", "", Emphasis::kWarning,
                            c.report.message.empty() ? "" : "/calibration/message"});
         } else {
-            out.push_back(
-                {title, c.report.termination, "", "", Emphasis::kHeading, "/calibration"});
+            out.push_back({title, solverOutcome(c.report.termination), "", "", Emphasis::kHeading,
+                           "/calibration"});
+            out.push_back({"chi2", formatNumber(roundSignificant(c.report.chi2, 5)), "", "",
+                           Emphasis::kNormal, "/calibration/chi2", c.report.chi2});
             // j_max is held at the soil's (the shear limit is the soil file's): seven parameters.
             for (int k = 0; k < id::kJmax; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const id::ParameterInfo& info = id::parameterInfo()[i];
                 const std::string unit = std::string(info.unit) == "-" ? "" : info.unit;
                 const double value = c.report.parameters[i] * info.to_user;
+                const std::string key =
+                    id::oldKeyOf(id::fieldOf(static_cast<id::FullParameter>(k)));
                 out.push_back(
-                    {info.name,
+                    {key,
                      valueWithStd(value,
                                   c.report.uncertainty.computed
                                       ? std::optional(c.report.uncertainty.std[i] * info.to_user)
                                       : std::nullopt),
-                     unit, "prior " + formatNumber(roundSignificant(c.prior[i] * info.to_user, 5)),
-                     Emphasis::kNormal,
-                     "/calibration/parameters/" + std::string(info.name) + "/value", value});
+                     unit,
+                     "prior " + formatNumber(roundSignificant(c.prior[i] * info.to_user, 5)) +
+                         (c.report.at_bound[i] ? ", ended at its bound" : ""),
+                     Emphasis::kNormal, "/calibration/parameters/" + key + "/value", value});
             }
             if (c.n1) {
                 out.push_back({"n1", valueWithStd(*c.n1, c.n1_std, 4), "",
@@ -885,6 +892,24 @@ Summary validationSummary(const ValidationResult& r) {
     return out;
 }
 
+std::string solverOutcome(const std::string& termination) {
+    const auto has = [&termination](const char* text) {
+        return termination.find(text) != std::string::npos;
+    };
+    if (termination.rfind("CONVERGENCE", 0) == 0) {
+        if (has("every parameter is held")) return "nothing to fit (every parameter is held)";
+        if (has("Gradient tolerance")) return "converged (the slope vanished at the minimum)";
+        if (has("Parameter tolerance")) return "converged (the parameters stopped moving)";
+        if (has("Function tolerance")) return "converged (the fit stopped improving)";
+        return "converged";
+    }
+    if (termination.rfind("NO_CONVERGENCE", 0) == 0)
+        return "stopped at its iteration limit before converging (usable; check the errors)";
+    if (termination.rfind("USER_", 0) == 0) return "stopped";
+    if (has("cannot be evaluated")) return "failed: the model cannot be evaluated at the solution";
+    return "the solver failed";
+}
+
 Outcome validationOutcome(ValidationResult result) {
     Outcome out;
     out.status = result.status;
@@ -912,9 +937,10 @@ Outcome validationOutcome(ValidationResult result) {
             for (int k = 0; k < id::kJmax; ++k) {
                 const auto i = static_cast<std::size_t>(k);
                 const id::ParameterInfo& info = id::parameterInfo()[i];
+                const std::string key =
+                    id::oldKeyOf(id::fieldOf(static_cast<id::FullParameter>(k)));
                 parameters.columns.insert(parameters.columns.end(),
-                                          {std::string(info.name), std::string(info.name) + "_std",
-                                           std::string(info.name) + "_prior"});
+                                          {key, key + "_std", key + "_prior"});
                 row.insert(row.end(), {c.report.parameters[i] * info.to_user,
                                        c.report.uncertainty.computed
                                            ? c.report.uncertainty.std[i] * info.to_user

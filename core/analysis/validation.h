@@ -228,7 +228,14 @@ std::string validationFailure(const ValidationResult& result);
 /// row per channel shows its RMSE (the MAE, largest relative error and count in its detail).
 /// Forces and torques in N, N·m, the sinkage in mm, the largest relative error in %; each
 /// number's `json` points at it in toJson(result).
+/// The parameter rows give each value to the decimal place its std supports (formatAtStd) and
+/// the prior in the detail ("prior 31.9", then ", ended at its bound" when it did); the
+/// calibration's heading says the solver's outcome in a user's words (solverOutcome).
 Summary validationSummary(const ValidationResult& result);
+
+/// A solver's termination in a user's words: Ceres' "CONVERGENCE: Function tolerance reached.
+/// |cost_change|/cost: 1.2e-07 <= 1e-06" is "converged (the fit stopped improving)".
+std::string solverOutcome(const std::string& termination);
 
 /// Tables "metrics" (main: one row, CHANNEL_rmse, CHANNEL_mae, CHANNEL_max_rel_error,
 /// CHANNEL_count per measured channel), "points", "curves" (ValidationRun::curves) and,

@@ -28,6 +28,52 @@ std::string formatFixed(double value, int decimals) {
     return text;
 }
 
+namespace {
+
+// The decimal exponent of the leading digit (0.0137 → -2, 73 → 1).
+int leadingExponent(double value) {
+    return static_cast<int>(std::floor(std::log10(std::abs(value))));
+}
+
+// `value` rounded to 10^`exponent` in plain notation (decimals only below 10^0); "0", never "-0".
+std::string atPlace(double value, int exponent) {
+    const double unit = std::pow(10.0, exponent);
+    const double rounded = std::round(value / unit) * unit;
+    if (rounded == 0.0) return "0";
+    return formatFixed(rounded, std::max(0, -exponent));
+}
+
+// `digits` significant digits, plain from 1e-4 to 1e6 without trailing zeros, else scientific.
+std::string significant(double value, int digits) {
+    const double magnitude = std::abs(value);
+    if (magnitude >= 1e-4 && magnitude < 1e6) {
+        std::string text = formatFixed(value, std::max(0, digits - 1 - leadingExponent(value)));
+        if (text.find('.') != std::string::npos) {
+            while (text.back() == '0') text.pop_back();
+            if (text.back() == '.') text.pop_back();
+        }
+        return text;
+    }
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*e", digits - 1, value);
+    return buffer;
+}
+
+}  // namespace
+
+std::string formatStd(double std) {
+    if (!(std > 0.0) || !std::isfinite(std)) return {};
+    return atPlace(std, leadingExponent(std) - 1);
+}
+
+std::string formatAtStd(double value, double std) {
+    if (!(std > 0.0) || !std::isfinite(std)) return formatNumber(value);
+    if (!std::isfinite(value)) return formatNumber(value);
+    const int place = leadingExponent(std) - 1;
+    if (value != 0.0 && leadingExponent(value) - place > 6) return significant(value, 6);
+    return atPlace(value, place);
+}
+
 std::string formatNumber(double value) {
     if (std::isnan(value)) return "nan";
     if (std::isinf(value)) return value > 0 ? "inf" : "-inf";

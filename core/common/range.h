@@ -29,6 +29,15 @@ std::string formatNumber(double value);
 /// an infinity.
 std::string formatFixed(double value, int decimals);
 
+/// A standard deviation as tables and summaries show it: rounded to the place of its second
+/// significant digit ("0.84", "0.0012", "20"); "" when there is none (≤ 0 or not finite).
+std::string formatStd(double std);
+
+/// An estimate to the decimal place its std supports, the place formatStd shows (28.8312 with a
+/// std of 0.84 → "28.83"): the digits beyond it are noise. When that place would need more than
+/// six significant digits (1.5e6 ± 20), six; without a std (formatStd ""), formatNumber.
+std::string formatAtStd(double value, double std);
+
 /// `value` rounded to `digits` significant decimal digits: unit conversions at the edges (rad→deg)
 /// then give back the number the user typed (29, not 29.000000000000004).
 double roundSignificant(double value, int digits = 12);

@@ -32,15 +32,6 @@ std::array<double, 3> decoupledResidualRms(const DataSet& data, const wheel::Whe
 
 }  // namespace
 
-const std::array<const char*, kFullParameterCount>& fullParameterNames() {
-    static const std::array<const char*, kFullParameterCount> names = [] {
-        std::array<const char*, kFullParameterCount> out{};
-        for (int k = 0; k < kFullParameterCount; ++k) out[k] = parameterInfo()[k].name;
-        return out;
-    }();
-    return names;
-}
-
 RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& wheel,
                              const DecoupledParameters& start, const RefineOptions& options) {
     wheel::requireValid(wheel);
@@ -66,7 +57,9 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     objective.fixed[kJmax] = true;  // a setting of this refinement, never estimated
     const std::vector<std::size_t> all = detail::allSamples(model.size());
     const detail::FitProblem problem(objective, all);
-    const ParameterVector u0 = toSolver(parameterVector(start, options.max_shear_deformation_m));
+    ParameterVector start_vector = vectorOf(start);
+    start_vector[kJmax] = options.max_shear_deformation_m;
+    const ParameterVector u0 = toSolver(start_vector);
     std::vector<double> u(u0.begin(), u0.end());
     const auto begin = std::chrono::steady_clock::now();
     const detail::BoxSummary summary =
@@ -82,15 +75,8 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     result.report.wall_time_ms = std::chrono::duration<double, std::milli>(end - begin).count();
     const std::array<double, kFullParameterCount> x = toPhysical(u.data());
     DecoupledParameters& p = result.parameters;
-    p = start;
-    p.a0 = x[kA0];
-    p.a1 = x[kA1];
-    p.pressure_modulus = x[kKs];
-    p.n0 = x[kN];
-    p.n1 = 0.0;
-    p.cohesion_pa = x[kC];
-    p.friction_angle_rad = x[kPhi];
-    p.shear_modulus_m = x[kK];
+    p = decoupledOf(x);
+    p.max_shear_deformation_m = start.max_shear_deformation_m;  // held, never estimated here
     if (!summary.usable) return result;
 
     int free = 0;
@@ -108,17 +94,6 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
                                 options.bound_correlation_flag)
             .uncertainty;
     return result;
-}
-
-ParameterVector parameterVector(const DecoupledParameters& p, double max_shear_deformation_m) {
-    return {p.a0,
-            p.a1,
-            p.pressure_modulus,
-            p.n0,
-            p.cohesion_pa,
-            p.friction_angle_rad,
-            p.shear_modulus_m,
-            max_shear_deformation_m};
 }
 
 }  // namespace terra::identification

@@ -16,12 +16,10 @@
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/parameters.h"
+#include "core/identification/soil_conversion.h"
 #include "core/wheel/wheel_parameters.h"
 
 namespace terra::identification {
-
-/// JSON-style names of the parameters ("a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m").
-const std::array<const char*, kFullParameterCount>& fullParameterNames();
 
 /// Options of the refinement.
 struct RefineOptions {
@@ -53,10 +51,6 @@ struct RefineResult {
     StepReport report;
     Uncertainty uncertainty;
 };
-
-/// The decoupled parameters as the full model's vector (parameters.h's order, SI; n as n₀), with
-/// `max_shear_deformation_m` as j_max.
-ParameterVector parameterVector(const DecoupledParameters& p, double max_shear_deformation_m);
 
 /// Refines `start` (typically the decoupled estimate) on the data set. Throws
 /// std::invalid_argument for an empty data set or invalid wheel.

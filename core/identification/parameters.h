@@ -2,16 +2,22 @@
 /// @file parameters.h
 /// The parameters that the full-model identification estimates, θ = (a₀, a₁, K_s, n, c, φ, K)
 /// (thesis Eqs. 2.9, 2.17, 2.18, 2.20, 2.21) and the shear limit j_max (Eq. 2.16; held at a value,
-/// +inf for none, unless identified), their names and user units, bounds, the solver's
-/// coordinates, and Gaussian priors.
+/// +inf for none, unless identified), their names and user units — the one field table of the
+/// identified parameters (issue 26: one key, unit, symbol and factor each, the old keys read as
+/// deprecated aliases) — bounds, the solver's coordinates, and Gaussian priors.
 
 #include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include "core/common/field.h"
 #include "core/common/issue.h"
+#include "core/identification/decoupled_fit.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
@@ -29,19 +35,68 @@ constexpr int kJetParameterCount = kJmax;
 /// j_max [m] (+inf: no limit).
 using ParameterVector = std::array<double, kFullParameterCount>;
 
-/// How a parameter is shown and entered (files, flags, screen).
+/// One identified parameter as it is shown and entered (files, flags, screen, JSON): its key
+/// with the unit in it ("Ks_kPa"), unit, symbol, label, tooltip, range in the user's unit and the
+/// factor to SI, stored in its member of DecoupledParameters (SI).
+using ParameterField = Field<DecoupledParameters>;
+
+/// THE table of the identified parameters, written once (parameters.cpp): a0, a1, Ks_kPa, n0,
+/// n1, c_kPa, phi_deg, K_m, jmax_m — the decoupled model's eight (n = n₀ + n₁ s) and j_max. The
+/// identification's tables and JSON, the command line's `--prior`/`--fix`, the settings readers,
+/// the studio's tables and figures, the solver's messages (parameterInfo) all read it.
+std::span<const ParameterField> parameterFields();
+
+/// A key that named a parameter before issue 26 (identification's first table: "Ks" for K_s in
+/// kPa/m^n, "n" for the constant exponent) and the key that replaces it. Still read everywhere a
+/// parameter is named, with a deprecation note naming the new key.
+struct DeprecatedParameterKey {
+    const char* old_key;  ///< "Ks"
+    const char* key;      ///< "Ks_kPa"
+};
+/// The deprecated keys: Ks → Ks_kPa, n → n0.
+std::span<const DeprecatedParameterKey> deprecatedParameterKeys();
+
+/// A parameter named by a key (the table's or a deprecated one).
+struct ParameterLookup {
+    const ParameterField* field = nullptr;  ///< nullptr: no parameter has this key
+    bool deprecated = false;                ///< the key is an old one (deprecationNote says so)
+    explicit operator bool() const { return field != nullptr; }
+};
+/// The key a field had before issue 26 ("Ks" for Ks_kPa, "n" for n0; the field's key for the
+/// others): the keys of outputs that scripts read and that keep them (`validate --json`'s
+/// "calibration.parameters" and its parameters table).
+const char* oldKeyOf(const ParameterField& field);
+/// The parameter of a key, the old keys included.
+ParameterLookup lookupParameter(std::string_view key);
+/// The field with this key (the table's keys only), or nullptr.
+const ParameterField* findParameterField(std::string_view key);
+/// "parameter key 'Ks' is deprecated: use 'Ks_kPa'" for an old key.
+std::string deprecationNote(std::string_view old_key);
+/// "unknown parameter 'Kss' (did you mean 'Ks_kPa'?); allowed: a0, a1, …" over the keys of
+/// `allowed` (the table's keys; the old keys are tried for the suggestion too).
+std::string unknownParameterMessage(std::string_view key, const std::vector<std::string>& allowed);
+/// The keys of the refined parameters (FullParameter order): a0, a1, Ks_kPa, n0, c_kPa, phi_deg,
+/// K_m, jmax_m.
+std::vector<std::string> fullParameterKeys();
+
+/// The field of a parameter of the full model (its n is n0; n1 is not refined).
+const ParameterField& fieldOf(FullParameter parameter);
+/// The full model's parameter of a field; empty for n1 (not refined).
+std::optional<FullParameter> fullParameterOf(const ParameterField& field);
+
+/// How the solver names a parameter in its messages and converts it: a view of parameterFields()
+/// in FullParameter order (name = the field's key, to_user = 1 / to_si).
 struct ParameterInfo {
-    const char*
-        name;  ///< JSON/flag key: "a0", "a1", "Ks", "n", "c_kPa", "phi_deg", "K_m", "jmax_m"
+    const char* name;    ///< the field's key: "a0", "a1", "Ks_kPa", "n0", "c_kPa", "phi_deg", …
     const char* unit;    ///< user unit: "-", "-", "kPa/m^n", "-", "kPa", "deg", "m", "m"
-    const char* symbol;  ///< "a₀", "a₁", "K_s", "n", "c", "φ", "K", "j_max"
+    const char* symbol;  ///< "a₀", "a₁", "K_s", "n₀", "c", "φ", "K", "j_max"
     double to_user;      ///< user value = SI value × to_user
 };
 
-/// The table of the eight parameters, in FullParameter order.
+/// The eight refined parameters, in FullParameter order, generated from parameterFields().
 const std::array<ParameterInfo, kFullParameterCount>& parameterInfo();
 
-/// The index of the parameter with this name ("phi_deg"), or nullopt.
+/// The index of the parameter with this key ("phi_deg"; an old key too), or nullopt.
 std::optional<FullParameter> findParameter(const std::string& name);
 
 /// Box bounds of the estimate, SI. The defaults are wide enough for every preset in resources/soils
@@ -77,7 +132,7 @@ ParameterVector toSolver(const ParameterVector& physical);
 ParameterVector physicalPerSolver(const ParameterVector& physical);
 
 /// The parameters of a soil on a wheel: K_s = k_c/b + k_φ (Eq. 2.9), n = n₀ (n₁ is not estimated),
-/// its j_max (+inf: none).
+/// its j_max (+inf: none) — vectorOf(decoupledOf(soil, wheel)) of soil_conversion.h.
 ParameterVector fromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel);
 
 /// A Gaussian prior on one parameter, SI: the estimate is penalised by ((θ − mean)/std)².
@@ -111,8 +166,14 @@ constexpr GaussianPrior kDefaultShearLimitPrior{0.02, 0.02};
 Priors priorsFromSoil(const soil::SoilParameters& soil, const wheel::WheelParameters& wheel,
                       const PriorSpreads& spreads = {});
 
-/// Parses one prior item in user units, "phi_deg=30±5" or "phi_deg=30+-5" (also "Ks=1500±500",
-/// "c_kPa=2±1"), into `priors`. Returns the problems (unknown name, bad number, std ≤ 0).
-std::vector<Issue> parsePriorItem(const std::string& item, Priors& priors);
+/// Parses one prior item in user units, "phi_deg=30±5" or "phi_deg=30+-5" (also
+/// "Ks_kPa=1500±500", "c_kPa=2±1"), into `priors`. Returns the problems (unknown name with the
+/// nearest key, bad number, std ≤ 0). An old key ("Ks=1500±500") is read as its new one, with
+/// deprecationNote in `warnings` when given.
+std::vector<Issue> parsePriorItem(const std::string& item, Priors& priors,
+                                  std::vector<std::string>* warnings = nullptr);
+/// The item with its key written as the table's ("Ks=1500±500" → "Ks_kPa=1500±500"); the item
+/// itself when its key is current or unknown.
+std::string canonicalPriorItem(const std::string& item);
 
 }  // namespace terra::identification

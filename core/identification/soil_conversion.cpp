@@ -35,4 +35,23 @@ soil::SoilParameters soilOf(const soil::SoilParameters& base, const wheel::Wheel
     return s;
 }
 
+ParameterVector vectorOf(const DecoupledParameters& p) {
+    ParameterVector out{};
+    for (const ParameterField& field : parameterFields()) {
+        if (const auto k = fullParameterOf(field))
+            out[static_cast<std::size_t>(*k)] = p.*field.member;
+    }
+    return out;
+}
+
+DecoupledParameters decoupledOf(const ParameterVector& p) {
+    DecoupledParameters out;
+    out.n1 = 0.0;  // the full model's N is constant
+    for (const ParameterField& field : parameterFields()) {
+        if (const auto k = fullParameterOf(field))
+            out.*field.member = p[static_cast<std::size_t>(*k)];
+    }
+    return out;
+}
+
 }  // namespace terra::identification

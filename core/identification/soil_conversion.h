@@ -1,10 +1,13 @@
 #pragma once
 /// @file soil_conversion.h
-/// The one pair of converters between a soil and the identified (decoupled) parameters on a
-/// wheel: K_s = k_c/b + k_φ (Eq. 2.9) one way, k_φ = K_s − k_c/b the other. Used by synthetic
-/// truths, starting guesses, identified soils, posteriors and the rover's streaming planner.
+/// The converters between the three forms of the identified parameters: a soil on a wheel, the
+/// decoupled parameters (DecoupledParameters, the hub) and the full model's parameter vector
+/// (ParameterVector, FullParameter order). Soil ↔ decoupled: K_s = k_c/b + k_φ (Eq. 2.9) one way,
+/// k_φ = K_s − k_c/b the other; decoupled ↔ vector: n = n₀ (the full model's exponent is
+/// constant, n₁ = 0). Every conversion in the program is one of these four (issue 26).
 
 #include "core/identification/decoupled_fit.h"
+#include "core/identification/parameters.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
@@ -20,5 +23,12 @@ DecoupledParameters decoupledOf(const soil::SoilParameters& soil,
 /// when finite (else the base's).
 soil::SoilParameters soilOf(const soil::SoilParameters& base, const wheel::WheelParameters& wheel,
                             const DecoupledParameters& identified);
+
+/// The full model's vector of decoupled parameters (n = n₀; n₁ dropped: the full model's n is
+/// constant).
+ParameterVector vectorOf(const DecoupledParameters& p);
+
+/// The decoupled parameters of a full-model vector (n₀ = n, n₁ = 0).
+DecoupledParameters decoupledOf(const ParameterVector& p);
 
 }  // namespace terra::identification

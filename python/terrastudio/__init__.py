@@ -13,6 +13,7 @@ Bad input raises ValueError with the command line's message (field, value, allow
 
 import math
 import os
+import warnings
 
 import numpy as np
 
@@ -350,6 +351,11 @@ def identify(data, wheel, soil="sandy-loam", **settings):
         settings["csv"] = os.fspath(data)
     out = _core._run("identification", _as_soil(soil), _as_wheel(wheel), {}, settings, columns,
                      progress)
+    # An old parameter key in fix or priors ("Ks", "n"; issue 26) was read as its new one: the
+    # core's note, as a DeprecationWarning.
+    for note in out["notes"]:
+        if "is deprecated: use" in note:
+            warnings.warn(note, DeprecationWarning, stacklevel=2)
     parameters = {k: float(v[0]) for k, v in out["tables"]["parameters"].items() if len(v)}
     result = dict(out["documents"].get("-identification.json", {}))
     result.update({
@@ -571,6 +577,17 @@ def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entr
 
 
 _IDENTIFIED_TO_SOIL = {"Ks_kPa": "kphi", "n0": "n"}
+# The identification's keys of before issue 26, still read (core: identification::
+# deprecatedParameterKeys): "Ks" is Ks_kPa; "n" is n0, already the soil's key.
+_DEPRECATED_IDENTIFIED = {"Ks": "Ks_kPa"}
+
+
+def _identified_soil_key(key):
+    if key in _DEPRECATED_IDENTIFIED:
+        warnings.warn(f"posterior: parameter key '{key}' is deprecated: use "
+                      f"'{_DEPRECATED_IDENTIFIED[key]}'", DeprecationWarning, stacklevel=4)
+        key = _DEPRECATED_IDENTIFIED[key]
+    return _IDENTIFIED_TO_SOIL.get(key, key)
 
 
 def _posterior_group(posterior, correlated, parameters):
@@ -595,7 +612,7 @@ def _posterior_group(posterior, correlated, parameters):
         raise ValueError(f"posterior: missing {', '.join(missing)}")
     # The identification's names (identify --save-soil, identify --json's "covariance") of the
     # two parameters whose soil keys differ: K_s is the saved soil's kphi (k_c = 0), n0 its n.
-    keys = [_IDENTIFIED_TO_SOIL.get(k, k) for k in group["parameters"]]
+    keys = [_identified_soil_key(k) for k in group["parameters"]]
     twice = [k for k in keys if k in parameters]
     if twice:
         raise ValueError(f"{twice[0]} is varied twice: by posterior= and by parameters")

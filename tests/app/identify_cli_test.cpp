@@ -211,12 +211,22 @@ TEST_F(IdentifyCli, JsonCarriesTheCovarianceOfThePrintedStd) {
     // parameter as the JSON has it, to the decimals printed, with its std.
     const CliRun text = run("identify --data " + data + " --wheel A --jmax 0.02");
     ASSERT_EQ(text.exit_code, 0) << text.err;
+    // Each value to the place of its std's second significant digit (the panels' rule, issue 26).
+    const auto withStd = [](double value, double sd) {
+        const int place = static_cast<int>(std::floor(std::log10(sd))) - 1;
+        const double unit = std::pow(10.0, place);
+        const int decimals = std::max(0, -place);
+        char text[80];
+        std::snprintf(text, sizeof text, "%.*f ± %.*f", decimals, std::round(value / unit) * unit,
+                      decimals, std::round(sd / unit) * unit);
+        return std::string(text);
+    };
     char line[160];
-    std::snprintf(line, sizeof line, "\n  φ: %.2f ± %.4f deg\n", j["phi_deg"].get<double>(),
-                  j["std"]["phi_deg"].get<double>());
+    std::snprintf(line, sizeof line, "\n  φ: %s deg\n",
+                  withStd(j["phi_deg"].get<double>(), j["std"]["phi_deg"].get<double>()).c_str());
     EXPECT_NE(text.out.find(line), std::string::npos) << line << text.out;
-    std::snprintf(line, sizeof line, "\n  K_s: %.1f ± %.4f kPa/m^n\n", j["Ks_kPa"].get<double>(),
-                  j["std"]["Ks_kPa"].get<double>());
+    std::snprintf(line, sizeof line, "\n  K_s: %s kPa/m^n\n",
+                  withStd(j["Ks_kPa"].get<double>(), j["std"]["Ks_kPa"].get<double>()).c_str());
     EXPECT_NE(text.out.find(line), std::string::npos) << line << text.out;
     std::snprintf(line, sizeof line, "\n  samples: %d\n", j["samples"].get<int>());
     EXPECT_NE(text.out.find(line), std::string::npos) << line << text.out;
@@ -546,6 +556,56 @@ TEST_F(IdentifyCli, StreamJsonCarriesStdAndTheConfirmedChange) {
     EXPECT_EQ(changes[0].second, border);
     EXPECT_GE(changes[0].first, changes[0].second);
     EXPECT_LE(changes[0].first, border + 10);
+}
+
+// `json` without its wall times (every "…time_ms" key), which differ from run to run.
+nlohmann::json withoutWallTimes(nlohmann::json json) {
+    if (json.is_object()) {
+        for (auto it = json.begin(); it != json.end();) {
+            if (it.key().ends_with("time_ms")) {
+                it = json.erase(it);
+            } else {
+                *it = withoutWallTimes(*it);
+                ++it;
+            }
+        }
+    } else if (json.is_array()) {
+        for (auto& element : json) element = withoutWallTimes(element);
+    }
+    return json;
+}
+
+// Issue 26: one vocabulary. The keys of before ("Ks", "n") name the same parameters as the
+// output's ("Ks_kPa", "n0"): identical JSON, and a note on stderr naming the new key; a key typed
+// wrong gets the nearest one.
+TEST_F(IdentifyCli, OldParameterKeysGiveTheSameJsonWithADeprecationNote) {
+    const std::string data = synth("vocabulary.csv",
+                                   "--soil sandy-loam --wheel A --load 30,58.86,90 "
+                                   "--slips 0.05:0.85:12 --noise fx=1%,fz=1%,my=1% --seed 3");
+    const std::string common = "identify --data " + data + " --wheel A --jmax 0.02 --starts 8 ";
+    const CliRun old_keys = run(common + "--prior Ks=1500±500 --fix n=0.7 --json");
+    const CliRun new_keys = run(common + "--prior Ks_kPa=1500±500 --fix n0=0.7 --json");
+    ASSERT_EQ(old_keys.exit_code, 0) << old_keys.err;
+    ASSERT_EQ(new_keys.exit_code, 0) << new_keys.err;
+    const nlohmann::json by_old = nlohmann::json::parse(old_keys.out);
+    const nlohmann::json by_new = nlohmann::json::parse(new_keys.out);
+    EXPECT_EQ(withoutWallTimes(by_old), withoutWallTimes(by_new));
+    EXPECT_EQ(by_new["n0"].get<double>(), 0.7);          // held
+    EXPECT_TRUE(by_new["prior"]["Ks_kPa"].is_object());  // the prior is on K_s
+    EXPECT_NE(old_keys.err.find("--prior"), std::string::npos) << old_keys.err;
+    EXPECT_NE(old_keys.err.find("'Ks' is deprecated: use 'Ks_kPa'"), std::string::npos)
+        << old_keys.err;
+    EXPECT_NE(old_keys.err.find("--fix n: parameter key 'n' is deprecated: use 'n0'"),
+              std::string::npos)
+        << old_keys.err;
+    EXPECT_EQ(new_keys.err.find("deprecated"), std::string::npos) << new_keys.err;
+
+    const CliRun typo = run(common + "--prior Ks_kpa=1500±500");
+    EXPECT_EQ(typo.exit_code, 2) << typo.err;
+    EXPECT_NE(typo.err.find("did you mean 'Ks_kPa'?"), std::string::npos) << typo.err;
+    const CliRun fix_typo = run(common + "--fix phi=30");
+    EXPECT_EQ(fix_typo.exit_code, 2) << fix_typo.err;
+    EXPECT_NE(fix_typo.err.find("did you mean \"phi_deg\"?"), std::string::npos) << fix_typo.err;
 }
 
 }  // namespace

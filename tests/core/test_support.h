@@ -74,7 +74,15 @@ inline void expectSummaryIsTheJson(const analysis::Summary& summary, const nlohm
             const double shown = std::stod(row.value);
             const double printed = std::pow(10.0, -printedDecimalsOf(row.value));
             // Fixed decimals, or 3 to 6 significant digits.
-            const double tolerance = std::max(0.5 * printed, 5e-3 * std::abs(row.number * scale));
+            double tolerance = std::max(0.5 * printed, 5e-3 * std::abs(row.number * scale));
+            // A value with its std is shown to the std's second digit ("800 ± 4200": hundreds,
+            // formatAtStd): within half that place.
+            const std::size_t pm = row.value.find(" ± ");
+            if (pm != std::string::npos) {
+                const double sd = std::stod(row.value.substr(pm + std::string(" ± ").size()));
+                tolerance =
+                    std::max(tolerance, 0.5 * std::pow(10.0, std::floor(std::log10(sd)) - 1));
+            }
             EXPECT_NEAR(shown, row.number * scale, tolerance) << row.label << ": " << row.value;
         }
     }

@@ -65,6 +65,17 @@ def test_identify_recovers_the_soil_of_noiseless_synthetic_data():
     assert len(out["curves"]["slip"]) == 12
 
 
+def test_identify_reads_the_old_parameter_keys_with_a_deprecation_warning():
+    # Issue 26: "Ks" and "n" (the keys of before) name the same parameters as "Ks_kPa" and "n0".
+    settings = dict(noise_percent=1.0, slip_count=10, starts=4)
+    new = ts.identify(None, WHEEL, SOIL, fix={"n0": 0.7}, priors=["Ks_kPa=1500±500"], **settings)
+    with pytest.warns(DeprecationWarning, match="'Ks' is deprecated: use 'Ks_kPa'"):
+        old = ts.identify(None, WHEEL, SOIL, fix={"n": 0.7}, priors=["Ks=1500±500"], **settings)
+    assert old["parameters"] == new["parameters"]
+    assert old["n0"] == 0.7
+    assert old["start"] == new["start"]
+
+
 def test_identify_from_columns_equals_from_csv(tmp_path):
     soil = ts.soil(SOIL)
     synthetic = ts.identify(None, WHEEL, soil, noise_percent=1.0, slip_count=10, refine=False)

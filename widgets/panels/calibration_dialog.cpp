@@ -19,6 +19,7 @@
 #include "core/project/project.h"
 #include "core/project/saved_validation.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/summary_html.h"
 #include "widgets/plots/completion.h"
 #include "widgets/plots/experiment_overlay.h"
 #include "widgets/plots/number_format.h"
@@ -57,31 +58,23 @@ void setupTable(QTableWidget* table, const QStringList& headers) {
     table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
 }
 
-/// The solver's termination in a user's words: Ceres' "CONVERGENCE: Function tolerance reached.
-/// |cost_change|/cost: 1.2e-07 <= 1e-06" was shown as it came.
-QString solverOutcome(const std::string& termination) {
-    const auto has = [&termination](const char* text) {
-        return termination.find(text) != std::string::npos;
-    };
-    if (termination.rfind("CONVERGENCE", 0) == 0) {
-        if (has("every parameter is held")) return "nothing to fit (every parameter is held)";
-        if (has("Gradient tolerance")) return "converged (the slope vanished at the minimum)";
-        if (has("Parameter tolerance")) return "converged (the parameters stopped moving)";
-        if (has("Function tolerance")) return "converged (the fit stopped improving)";
-        return "converged";
+/// Whether a row of the validation summary is one the dialog's tables show: a metric (the
+/// metrics table) or a calibrated parameter (the parameter table).
+bool tableRow(const analysis::SummaryRow& row) {
+    for (const char* table : {"/metrics", "/calibration/metrics", "/calibration/held_out",
+                              "/calibration/parameters/"}) {
+        if (row.json.starts_with(table)) return true;
     }
-    if (termination.rfind("NO_CONVERGENCE", 0) == 0)
-        return "stopped at its iteration limit before converging (usable; check the errors)";
-    if (termination.rfind("USER_", 0) == 0) return "stopped";
-    if (has("cannot be evaluated")) return "failed: the model cannot be evaluated at the solution";
-    return "the solver failed";
+    return false;
 }
 
-/// The size of a parameter's values: its box bound (identification/parameters.h), user unit.
-double parameterScale(std::size_t i) {
-    const id::ParameterBounds bounds;
-    return std::max(std::abs(bounds.lower[i]), std::abs(bounds.upper[i])) *
-           id::parameterInfo()[i].to_user;
+/// The summary's row of a calibrated parameter (its JSON key), or nullptr.
+const analysis::SummaryRow* parameterRow(const analysis::Summary& summary, const std::string& key) {
+    const std::string at = "/calibration/parameters/" + key + "/value";
+    for (const analysis::SummaryRow& row : summary) {
+        if (row.json == at) return &row;
+    }
+    return nullptr;
 }
 
 }  // namespace
@@ -272,30 +265,13 @@ void CalibrationDialog::showResult() {
     const analysis::ValidationResult& r = *result_;
     const analysis::Calibration& cal = *r.calibration;
     const bool usable = cal.report.usable() && cal.after;
-    QStringList lines;
-    if (usable) {
-        QStringList fitted;
-        for (const std::string& name : cal.channels) {
-            for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
-                if (name == io::experimentChannels()[c].name)
-                    fitted << channelLabel(static_cast<io::ExperimentChannel>(c));
-            }
-        }
-        lines << QString("Calibrated on %1: %2, χ² = %3.")
-                     .arg(fitted.join(", ").toHtmlEscaped(),
-                          solverOutcome(cal.report.termination).toHtmlEscaped(),
-                          formatNumber(cal.report.chi2));
-    } else {
-        lines << "<b>Calibration failed:</b> " +
-                     QString::fromStdString(cal.report.message.empty()
-                                                ? formatIssues(cal.report.issues)
-                                                : cal.report.message)
-                         .toHtmlEscaped();
+    // The core summary (what `validate` prints) but the rows the tables below show.
+    const analysis::Summary summary = analysis::validationSummary(r);
+    analysis::Summary rows;
+    for (const analysis::SummaryRow& row : summary) {
+        if (!tableRow(row)) rows.push_back(row);
     }
-    for (const std::string& flag : cal.report.uncertainty.flags)
-        lines << QString::fromStdString(flag).toHtmlEscaped();
-    for (const std::string& note : r.notes) lines << QString::fromStdString(note).toHtmlEscaped();
-    status_->setText(lines.join("<br>"));
+    status_->setText(summaryHtml(rows));
     status_shows_result_ = true;
 
     metrics_->setRowCount(0);
@@ -359,35 +335,31 @@ void CalibrationDialog::showResult() {
     }
     parameters_->setRowCount(0);
     if (!usable) return;
+    // The parameters as the summary gives them: the value to its std's place, the std, the prior
+    // (its detail: "prior 31.9", then ", ended at its bound").
+    const auto addParameter = [this](const QString& label, const QString& key,
+                                     const analysis::SummaryRow& row) {
+        const auto [value, sd] = valueAndStd(row);
+        const QString detail = QString::fromStdString(row.detail);
+        const bool at_bound = detail.contains(", ended at its bound");
+        const int at = parameters_->rowCount();
+        parameters_->insertRow(at);
+        parameters_->setItem(at, 0, cell(label, key));
+        parameters_->setItem(at, 1, cell(value + (at_bound ? " (at bound)" : "")));
+        parameters_->setItem(at, 2, cell(sd.isEmpty() ? QString::fromUtf8("–") : sd));
+        parameters_->setItem(at, 3, cell(detail.section(", ", 0, 0).remove(0, 6)));
+    };
     for (int k = 0; k < id::kJmax; ++k) {  // j_max is held at the soil's, not calibrated
-        const auto i = static_cast<std::size_t>(k);
-        const id::ParameterInfo& info = id::parameterInfo()[i];
-        const QString unit = QString::fromUtf8(info.unit);
-        const QString label =
-            QString::fromUtf8(info.symbol) + (unit == "-" ? "" : " [" + unit + "]");
-        const double value = cal.report.parameters[i] * info.to_user;
-        // The digits the std supports; without one, rounding noise as 0 (c = −1.25e-18 kPa).
-        const double sd =
-            cal.report.uncertainty.computed ? cal.report.uncertainty.std[i] * info.to_user : 0.0;
-        const QString shown =
-            sd > 0.0 ? formatWithStd(value, sd) : formatNumber(value, parameterScale(i), 5);
-        const int row = parameters_->rowCount();
-        parameters_->insertRow(row);
-        parameters_->setItem(row, 0, cell(label, QString::fromUtf8(info.name)));
-        parameters_->setItem(row, 1, cell(shown + (cal.report.at_bound[i] ? " (at bound)" : "")));
-        parameters_->setItem(row, 2, cell(formatStd(sd)));
-        parameters_->setItem(row, 3,
-                             cell(formatNumber(cal.prior[i] * info.to_user, parameterScale(i), 5)));
+        const id::ParameterField& field = id::fieldOf(static_cast<id::FullParameter>(k));
+        const std::string key = id::oldKeyOf(field);
+        if (const analysis::SummaryRow* row = parameterRow(summary, key))
+            addParameter(QString::fromStdString(field.symbolWithUnit()),
+                         QString::fromStdString(key), *row);
     }
-    if (cal.n1) {
-        const int row = parameters_->rowCount();
-        parameters_->insertRow(row);
-        parameters_->setItem(row, 0, cell("n₁", "n1"));
-        const double sd = cal.n1_std ? *cal.n1_std : 0.0;
-        parameters_->setItem(
-            row, 1, cell(sd > 0.0 ? formatWithStd(*cal.n1, sd) : formatNumber(*cal.n1, 1.0, 5)));
-        parameters_->setItem(row, 2, cell(formatStd(sd)));
-        parameters_->setItem(row, 3, cell("0"));
+    if (const analysis::SummaryRow* row = parameterRow(summary, "n1")) {
+        analysis::SummaryRow n1 = *row;
+        n1.detail = "prior 0";  // the thesis model's n₁
+        addParameter("n₁", "n1", n1);
     }
 }
 

@@ -1,8 +1,11 @@
 #pragma once
 /// @file identification_report.h
-/// What the identification panel's batch fit shows of a result besides its curves: the parameter
-/// table (identified ± std, prior, σ post/prior, truth), the report under it (the data, whether
-/// the fit is at a minimum, the held-out error, the ambiguity, the adequacy) and the status line.
+/// What the identification panel's batch fit shows of a result besides its curves, all rendered
+/// from the core summary (analysis::identificationSummary, what `identify` prints; issue 26): the
+/// parameter table (identified, std, prior, σ post/prior from the summary's rows; the truth, the
+/// panel's own), the report under it (the summary's other rows: the data, whether the fit is at
+/// a minimum, the held-out error, the ambiguity, the adequacy, the notes) and the status line
+/// (the steps' rows).
 
 #include <QString>
 #include <optional>
@@ -17,9 +20,9 @@ namespace terra::ui {
 /// synthetic data were made from (none for a CSV: "–").
 void fillParameterTable(QTableWidget& table, const analysis::IdentificationResult& result,
                         const std::optional<identification::DecoupledParameters>& truth);
-/// The report under the table, HTML lines joined by <br>.
+/// The report under the table: the summary's rows but the estimates and the steps, as HTML.
 QString identificationReport(const analysis::IdentificationResult& result);
-/// The status line of a fit: its time and each step's Σr².
+/// The status line of a fit: its time and the summary's rows of the steps.
 QString identificationSteps(const analysis::IdentificationResult& result);
 
 }  // namespace terra::ui

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/common/range.h"
+
 namespace terra::ui {
 namespace {
 
@@ -15,28 +17,17 @@ int leadingExponent(double value) {
     return static_cast<int>(std::floor(std::log10(std::abs(value))));
 }
 
-/// `value` rounded to 10^`exponent` in plain notation (decimals only below 10^0).
-QString atPlace(double value, int exponent) {
-    const double unit = std::pow(10.0, exponent);
-    const double rounded = std::round(value / unit) * unit;
-    if (rounded == 0.0) return "0";
-    return QString::number(rounded, 'f', std::max(0, -exponent));
-}
-
 }  // namespace
 
 QString formatStd(double std) {
-    if (!(std > 0.0) || !std::isfinite(std)) return QString::fromUtf8("–");
-    return atPlace(std, leadingExponent(std) - 1);
+    const std::string text = terra::formatStd(std);
+    return text.empty() ? QString::fromUtf8("–") : QString::fromStdString(text);
 }
 
 QString formatWithStd(double value, double std) {
     if (!(std > 0.0) || !std::isfinite(std)) return formatNumber(value);
     if (!std::isfinite(value)) return QString::number(value);
-    const int place = leadingExponent(std) - 1;
-    // A value far larger than its std (1.5e6 ± 20) would need many digits: its own 6 suffice.
-    if (value != 0.0 && leadingExponent(value) - place > 6) return formatNumber(value, 0.0, 6);
-    return atPlace(value, place);
+    return QString::fromStdString(formatAtStd(value, std));  // the summaries' rule (core)
 }
 
 QString formatNumber(double value, double scale, int digits) {

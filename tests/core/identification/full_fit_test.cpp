@@ -53,7 +53,7 @@ TEST(RefineFullModel, RecoversEveryParameterOnNoiseFreeSingleLoadData) {
     ASSERT_TRUE(result.report.usable) << result.report.termination;
     const auto got = valuesOf(result.parameters);
     for (int k = 0; k < kJmax; ++k) {
-        EXPECT_NEAR(got[k], kTruth[k], 1e-7 * std::abs(kTruth[k])) << fullParameterNames()[k];
+        EXPECT_NEAR(got[k], kTruth[k], 1e-7 * std::abs(kTruth[k])) << parameterInfo()[k].name;
     }
 }
 
@@ -67,9 +67,9 @@ TEST(RefineFullModel, NoisyMultiLoadEstimatesLieWithinTheirStandardDeviations) {
     ASSERT_TRUE(result.uncertainty.computed);
     const auto got = valuesOf(result.parameters);
     for (int k = 0; k < kJmax; ++k) {
-        EXPECT_GT(result.uncertainty.std[k], 0.0) << fullParameterNames()[k];
+        EXPECT_GT(result.uncertainty.std[k], 0.0) << parameterInfo()[k].name;
         EXPECT_LT(std::abs(got[k] - kTruth[k]), 5.0 * result.uncertainty.std[k])
-            << fullParameterNames()[k];
+            << parameterInfo()[k].name;
     }
     // χ² of a right model with the right noise levels is about the number of residuals (540 − 7).
     EXPECT_NEAR(result.report.squared_residual_norm, 533.0, 4 * std::sqrt(2 * 533.0));

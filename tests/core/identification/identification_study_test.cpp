@@ -70,7 +70,7 @@ TEST_P(NoiseFreeRecovery, RefinementReturnsEveryParameterToOneMillionth) {
     const auto decoupled = valuesOf(start.parameters);
     std::printf("| %s | %s |", c.soil, c.wheel);
     for (int k = 0; k < kJmax; ++k) {
-        EXPECT_NEAR(got[k], truth[k], 1e-6 * std::abs(truth[k])) << fullParameterNames()[k];
+        EXPECT_NEAR(got[k], truth[k], 1e-6 * std::abs(truth[k])) << parameterInfo()[k].name;
         std::printf(" %.4g → %.7g |", decoupled[k], got[k]);
     }
     std::printf(" %.1f ms |\n", result.report.wall_time_ms);
@@ -114,7 +114,7 @@ Coverage coverageStudy(const std::vector<double>& loads) {
             if (flag.find("c and phi") != std::string::npos)
                 cphi = flagged[kC] = flagged[kPhi] = true;
             for (int k = 0; k < kJmax; ++k) {  // "X and Y ...", "X ended at ..."
-                const std::string name = fullParameterNames()[k];
+                const std::string name = parameterInfo()[k].name;
                 if (flag.rfind(name + " ", 0) == 0 ||
                     flag.find(" and " + name + " ") != std::string::npos) {
                     flagged[k] = true;
@@ -144,7 +144,7 @@ void print(const char* label, const Coverage& cov) {
         label, cov.runs, cov.cphi_flagged);
     for (int k = 0; k < kJmax; ++k) {
         const double mean = cov.sum[k] / cov.runs;
-        std::printf("| %s | %+.2f %% | %.2f %% | %.2f %% | %d / %d |\n", fullParameterNames()[k],
+        std::printf("| %s | %+.2f %% | %.2f %% | %.2f %% | %d / %d |\n", parameterInfo()[k].name,
                     100 * mean, 100 * std::sqrt(cov.sum2[k] / cov.runs),
                     100 * cov.sum_std[k] / cov.runs, cov.covered[k], cov.judged[k]);
     }
@@ -157,7 +157,7 @@ TEST(NoisyIdentification, SingleLoadFlagsCohesionAndFriction) {
     EXPECT_GE(cov.cphi_flagged, 18);  // the data cannot separate c and φ: say so
     for (int k = 0; k < kJmax; ++k) {
         if (cov.judged[k] == 0) continue;
-        EXPECT_GE(cov.covered[k], 0.9 * cov.judged[k]) << fullParameterNames()[k];
+        EXPECT_GE(cov.covered[k], 0.9 * cov.judged[k]) << parameterInfo()[k].name;
     }
 }
 
@@ -167,8 +167,8 @@ TEST(NoisyIdentification, ThreeLoadsDetermineEveryParameterWithHonestErrors) {
     ASSERT_EQ(cov.runs, 20);
     EXPECT_LE(cov.cphi_flagged, 2);
     for (int k = 0; k < kJmax; ++k) {
-        EXPECT_GE(cov.judged[k], 12) << fullParameterNames()[k];  // Ks–n is flagged in a few runs
-        EXPECT_GE(cov.covered[k], 0.9 * cov.judged[k]) << fullParameterNames()[k];
+        EXPECT_GE(cov.judged[k], 12) << parameterInfo()[k].name;  // Ks–n is flagged in a few runs
+        EXPECT_GE(cov.covered[k], 0.9 * cov.judged[k]) << parameterInfo()[k].name;
     }
 }
 

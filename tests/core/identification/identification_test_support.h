@@ -25,9 +25,7 @@ inline ParameterVector truthOf(const contact::ContactParameters<double>& p) {
 inline const wheel::WheelParameters kWheelA{"A", "", 0.092, 0.107};
 
 /// The decoupled parameters in the order of `truthOf` (n as n₀).
-inline ParameterVector valuesOf(const DecoupledParameters& p) {
-    return parameterVector(p, p.max_shear_deformation_m);
-}
+inline ParameterVector valuesOf(const DecoupledParameters& p) { return vectorOf(p); }
 
 /// Noise-free sweeps s = 0 : 0.05 : 0.75 of `soil` at each load as a robot sees them: W per
 /// sample, the rim's sinkage r (1 − cos θ_f) measured, no θ_f and no F_z.
