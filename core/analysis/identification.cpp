@@ -399,8 +399,8 @@ void addGlobalRows(const IdentificationResult& result, Summary& out) {
     out.push_back({"data", r.setup.description, "", "", Emphasis::kNormal, "/source"});
     out.push_back({"chi2", formatNumber(roundSignificant(r.chi2, 5)), "", "", Emphasis::kNormal,
                    "/chi2", r.chi2});
-    out.push_back({"gradient norm", formatNumber(roundSignificant(r.gradient_norm, 3)), "", "",
-                   Emphasis::kNormal, "/gradient_norm", r.gradient_norm});
+    // (The gradient's norm stays in the JSON, "gradient_norm": a solver's diagnostic, which the
+    // next row says in a user's words.)
     // The Newton decrement gᵀH⁻¹g in a user's words (issue 27): what one more step would still
     // gain in χ², against the change of 1 that is one std.
     const bool at_minimum = r.newton_decrement < 0.1;

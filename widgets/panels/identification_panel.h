@@ -5,7 +5,7 @@
 /// through core/analysis/identification.h, the same procedure as `terrastudio identify`) or the
 /// decoupled fit alone, and see data against fitted curves for F_x, F_z and M_y with the
 /// parameters ± std, prior against posterior, the held-out error, the ambiguity (both answers) and
-/// the gradient norm. A CSV's fit depends on the CSV and the panel's options only, never on the
+/// the Newton decrement. A CSV's fit depends on the CSV and the panel's options only, never on the
 /// project's soil; the panel says what the fit starts from. Runs on "Fit", off the GUI thread.
 ///
 /// Its second page plays a data set back through the streaming estimator
@@ -67,7 +67,8 @@ public:
     bool dataPreviewReading() const;
     /// What the next fit starts from, as the panel shows it ("global search …", "prior: …").
     QString startDescription() const;
-    /// The batch page's status line and its report (held-out error, ambiguity, gradient norm).
+    /// The batch page's status line and its report (held-out error, ambiguity, the Newton decrement
+    /// in words).
     QString fitStatus() const;
     QString fitReport() const;
     /// The global fit's options as a user sets them: prior soil ("" none), prior items,
