@@ -88,6 +88,12 @@ const compaction::TrackMemory* FieldTerrain::memoryUnder(int wheel, double x_m, 
         p.entry = {x_m, y_m};
         p.entry_axle = axle_[static_cast<std::size_t>(wheel)];
         if (const field::CellState* s = cells_.find(key)) p.before = s->track;
+        // A wheel leaving a cell sideways (through the quarter-cell margin at its side) can enter
+        // one its last passage has just written (F13): it meets that cell as it was before its
+        // own pass, not its own rut.
+        for (const auto& [written, before] : last_written_[static_cast<std::size_t>(wheel)]) {
+            if (written.ix == key.ix && written.iy == key.iy) p.before = before;
+        }
     }
     return options_.repeated_passes && !p.before.untouched() ? &p.before : nullptr;
 }
@@ -96,6 +102,9 @@ void FieldTerrain::imprint(int wheel, const WheelImprint& imprint) {
     Passage& p = passages_[static_cast<std::size_t>(wheel)];
     p.last_power_w = imprint.power_w;
     axle_[static_cast<std::size_t>(wheel)] = imprint.axle;
+    // The first passage opened before the wheel's first imprint told its axle.
+    if (!axle_known_[static_cast<std::size_t>(wheel)]) p.entry_axle = imprint.axle;
+    axle_known_[static_cast<std::size_t>(wheel)] = true;
     if (!p.open || !imprint.in_contact) return;
     p.max_slip = std::max(p.max_slip, std::abs(imprint.op.slip));
     if (!p.contacted || imprint.depth_m > p.max_depth_m) {
@@ -119,6 +128,19 @@ void FieldTerrain::advanced(double dt_s) {
 void FieldTerrain::finish() {
     for (Passage& p : passages_) {
         if (p.open) commit(p);
+    }
+    // A last short passage that wrote no cell: its energy and distance go to the cells the
+    // wheel's last passage wrote, so that the field holds the whole run's.
+    for (std::size_t wheel = 0; wheel < carry_.size(); ++wheel) {
+        const auto& written = last_written_[wheel];
+        if (written.empty()) continue;
+        const double share = 1.0 / static_cast<double>(written.size());
+        for (const auto& [key, before] : written) {
+            field::CellState& cell = cells_.touch(key);
+            cell.energy_j += static_cast<float>(carry_[wheel].energy_j * share);
+            cell.travel_m += static_cast<float>(carry_[wheel].travel_m * share);
+        }
+        carry_[wheel] = {};
     }
 }
 
@@ -149,10 +171,6 @@ bool insideQuad(const std::array<std::array<double, 2>, 4>& q, double x, double 
     return inside;
 }
 
-// The largest box of cells a passage's sweep is searched in: a passage spans about one cell
-// along the track and the wheel's width across it; a larger box means the contact point jumped.
-constexpr std::int64_t kMaxSweptBoxCells = 4096;
-
 }  // namespace
 
 std::vector<FieldTerrain::SweptCell> FieldTerrain::sweptCells(const Passage& p,
@@ -165,18 +183,23 @@ std::vector<FieldTerrain::SweptCell> FieldTerrain::sweptCells(const Passage& p,
     std::array<double, 2> a{a0[0] + a1[0], a0[1] + a1[1]};
     const double a_norm = std::hypot(a[0], a[1]);
     a = a_norm > 1e-9 ? std::array<double, 2>{a[0] / a_norm, a[1] / a_norm} : a1;
-    // The distance from the centre line (through the exit point, along the travel) to the cell's
-    // nearest point: |d| − h/2 with d the cell centre's lateral offset (exact when the track runs
-    // along the grid), 0 for a cell the line crosses.
+    // The signed distance from the centre line (through the exit point, along the travel) to the
+    // cell's nearest point: d − sign(d) h (|ā_x| + |ā_y|)/2, d the cell centre's offset along ā (a
+    // square's half-extent along a unit vector), 0 for a cell the line crosses. Signed: σ_z is
+    // not symmetric across the wheel under a side shear.
     auto offsetOf = [&](field::CellKey key) {
         const double d =
             (cells_.centreX(key.ix) - exit[0]) * a[0] + (cells_.centreY(key.iy) - exit[1]) * a[1];
-        return std::max(0.0, std::abs(d) - 0.5 * h);
+        const double reach = 0.5 * h * (std::abs(a[0]) + std::abs(a[1]));
+        return std::copysign(std::max(0.0, std::abs(d) - reach), d);
     };
-    std::vector<SweptCell> out{{p.key, options_.across_width ? offsetOf(p.key) : 0.0}};
-    if (!options_.across_width) return out;
-    // F13: the quadrilateral the wheel's width swept from the passage's entry to its exit.
+    if (!options_.across_width) return {{p.key, 0.0}};
+    // F13: the quadrilateral the wheel's width swept from the passage's entry to its exit. A
+    // contact point that moved more than a few cells and a wheel's width within one passage
+    // jumped (a restart): the cell under it alone.
     const double w = 0.5 * wheel_.width_m;
+    if (std::hypot(exit[0] - p.entry[0], exit[1] - p.entry[1]) > 4.0 * h + 2.0 * w)
+        return {{p.key, 0.0}};
     const std::array<std::array<double, 2>, 4> q{{{p.entry[0] - w * a0[0], p.entry[1] - w * a0[1]},
                                                   {p.entry[0] + w * a0[0], p.entry[1] + w * a0[1]},
                                                   {exit[0] + w * a1[0], exit[1] + w * a1[1]},
@@ -187,21 +210,30 @@ std::vector<FieldTerrain::SweptCell> FieldTerrain::sweptCells(const Passage& p,
         y_lo = std::min(y_lo, c[1]), y_hi = std::max(y_hi, c[1]);
     }
     const field::CellKey lo = cells_.keyAt(x_lo, y_lo), hi = cells_.keyAt(x_hi, y_hi);
-    if ((hi.ix - lo.ix + 1) * (hi.iy - lo.iy + 1) > kMaxSweptBoxCells) return out;
+    std::vector<SweptCell> out;
     for (std::int64_t iy = lo.iy; iy <= hi.iy; ++iy) {
         for (std::int64_t ix = lo.ix; ix <= hi.ix; ++ix) {
-            if (ix == p.key.ix && iy == p.key.iy) continue;
             if (!insideQuad(q, cells_.centreX(ix), cells_.centreY(iy))) continue;
             out.push_back({field::CellKey{ix, iy}, offsetOf(field::CellKey{ix, iy})});
         }
     }
+    // Membership is by the quadrilateral alone, so that consecutive passages tile the band. On
+    // cells coarser than the wheel it may hold no centre: the cell under the contact point is
+    // written (F10). On finer cells an empty one is a short passage (a corner cut through the
+    // quarter-cell margin): nothing is written, its energy and distance go to the wheel's next
+    // passage (commit).
+    if (out.empty() && 2.0 * w < h) out.push_back({p.key, offsetOf(p.key)});
     return out;
 }
 
 void FieldTerrain::commit(Passage& p) {
     p.open = false;
-    if (!p.contacted) return;
     const auto wheel = static_cast<std::size_t>(&p - passages_.data());
+    std::vector<std::pair<field::CellKey, compaction::TrackMemory>>& written = last_written_[wheel];
+    if (!p.contacted) {
+        written.clear();
+        return;
+    }
     // F11: the memory after one more wheel — it sank to its deepest point below the untouched
     // surface with N = n₀ + n₁ s, and left the shear |j(θ_r)| (Eq. 2.15, without the offset).
     // afterPass reads K_s, n and j_max, which the memory (onTrack) leaves as the soil's.
@@ -266,15 +298,24 @@ void FieldTerrain::commit(Passage& p) {
     // shared equally, so that their sums over the cells are the passage's and each cell's ratio
     // is the passage's energy per metre.
     const std::vector<SweptCell> swept = sweptCells(p, wheel);
+    Carry& carry = carry_[wheel];
+    if (swept.empty()) {  // a short passage whose band holds no cell centre
+        carry.energy_j += p.energy_j, carry.travel_m += p.travel_m;
+        return;
+    }
+    const double energy_j = p.energy_j + carry.energy_j, travel_m = p.travel_m + carry.travel_m;
+    carry = {};
+    written.clear();
     const double share = 1.0 / static_cast<double>(swept.size());
     for (const SweptCell& target : swept) {
         field::CellState& cell = cells_.touch(target.key);
+        written.emplace_back(target.key, cell.track);
         if (cell.track.untouched()) ++cells_touched_;
         cell.track = compaction::afterPass(cell.track, options_.law, untouched,
                                            std::max(0.0, p.max_depth_m), n, exit_shear);
         cell.max_slip = std::max(cell.max_slip, static_cast<float>(p.max_slip));
-        cell.energy_j += static_cast<float>(p.energy_j * share);
-        cell.travel_m += static_cast<float>(p.travel_m * share);
+        cell.energy_j += static_cast<float>(energy_j * share);
+        cell.travel_m += static_cast<float>(travel_m * share);
         for (std::size_t k = 0; k < depths.size(); ++k) {
             const double sigma = sigmaAt(k, target.offset_m);
             cell.max_stress_pa[k] = std::max(cell.max_stress_pa[k], static_cast<float>(sigma));

@@ -11,6 +11,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/compaction/track_memory.h"
@@ -139,8 +140,19 @@ private:
     std::array<Passage, kWheelCount> passages_{};
     // Each wheel's last contact point (the passage's travel; F12).
     std::array<std::optional<std::array<double, 2>>, kWheelCount> last_contact_{};
-    // Each wheel's axle on the map at its last imprint (F13).
+    // Each wheel's axle on the map at its last imprint (F13), and whether it has had one.
     std::array<std::array<double, 2>, kWheelCount> axle_{};
+    std::array<bool, kWheelCount> axle_known_{};
+    // The cells each wheel's last passage wrote, with their memory before it (F13: a wheel that
+    // enters one of them next meets it as it was).
+    std::array<std::vector<std::pair<field::CellKey, compaction::TrackMemory>>, kWheelCount>
+        last_written_{};
+    // The energy and distance of a wheel's short passages that wrote no cell, added to its next.
+    struct Carry {
+        double energy_j = 0.0;
+        double travel_m = 0.0;
+    };
+    std::array<Carry, kWheelCount> carry_{};
     long cells_touched_ = 0;
     double time_s_ = 0.0;  // the sum of the steps advanced() was told of
     std::vector<CellPassage> log_;

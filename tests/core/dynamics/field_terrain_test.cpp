@@ -327,6 +327,57 @@ TEST(FieldRover, APassageIsWrittenToEveryCellUnderTheWheelsWidth) {
     EXPECT_EQ(wide.terrain->cellsTouched(), static_cast<long>(w[2]));
 }
 
+// F13 off the grid: one wheel driven by hand along a line at 30° to the grid and around an arc
+// of 0.5 m radius (less than half a turn) passes every cell of its band once — consecutive
+// passages tile the band, also where the wheel leaves a cell sideways — and never meets its own
+// pass; the cells passed are the band's area over h² (1.5 m × 0.107 m on 2 cm cells: ≈ 401),
+// within 10 % (its two ends).
+TEST(FieldRover, OneWheelOffTheGridPassesEachCellOfItsBandOnce) {
+    const scenario::Scenario s = shipped("straight", 1.0);
+    FieldTerrainOptions options;
+    options.cell_m = 0.02;
+    options.stress_depths_m.clear();
+    const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    const double step = 1e-4, length = 1.5, radius = 0.5;
+    for (const bool arc : {false, true}) {
+        FieldTerrain t(uniformField(s.terrain.base), s.robot, options);
+        const long steps = std::lround(length / step);
+        int own = 0;
+        for (long k = 0; k <= steps; ++k) {
+            const double travelled = static_cast<double>(k) * step;
+            double x = 0.31 + travelled * std::cos(M_PI / 6.0);
+            double y = 0.17 + travelled * std::sin(M_PI / 6.0);
+            double heading = M_PI / 6.0;
+            if (arc) {
+                const double angle = travelled / radius;
+                x = radius * std::cos(angle), y = radius * std::sin(angle);
+                heading = angle + 0.5 * M_PI;
+            }
+            if (t.memoryUnder(0, x, y) != nullptr) ++own;
+            WheelImprint imprint;
+            imprint.in_contact = true;
+            imprint.depth_m = 0.01;
+            imprint.power_w = 1.0;
+            imprint.params = params;
+            imprint.op = {0.2, 0.0, 0.3, 0.0, std::nullopt};
+            imprint.axle = {-std::sin(heading), std::cos(heading)};
+            t.imprint(0, imprint);
+            t.advanced(1e-3);
+        }
+        t.finish();
+        EXPECT_EQ(own, 0) << (arc ? "arc" : "line") << ": the wheel met its own pass";
+        long passed = 0, twice = 0;
+        t.cells().forEachCell([&](field::CellKey, const field::CellState& c) {
+            passed += c.track.passes > 0;
+            twice += c.track.passes > 1;
+        });
+        EXPECT_EQ(twice, 0) << (arc ? "arc" : "line");
+        const double expected = length * s.robot.wheel.width_m / (0.02 * 0.02);
+        EXPECT_NEAR(static_cast<double>(passed), expected, 0.1 * expected)
+            << (arc ? "arc" : "line");
+    }
+}
+
 // The wheel model on its own: drawbar pull F_x at slip s and load W (the quadratic model, as
 // the run below), solved for its sinkage.
 double pull(const scenario::Scenario& s, double load_n, double slip) {
