@@ -469,7 +469,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     i->add_flag("--skip-bad-rows", identify->skip_bad_rows,
                 "Skip invalid rows instead of stopping");
     i->add_flag("--refine,!--no-refine", identify->refine,
-                "Identify a0, a1, Ks, n, c, phi, K on the full model by a global search (removes "
+                "Identify a0, a1, Ks_kPa, n0, c_kPa, phi_deg, K_m on the full model by a global "
+                "search (removes "
                 "the linearisation bias; the default); --no-refine: the decoupled fit alone")
         ->capture_default_str();
     i->add_option("--prior", identify->prior,
