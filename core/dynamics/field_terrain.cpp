@@ -175,9 +175,10 @@ bool insideQuad(const std::array<std::array<double, 2>, 4>& q, double x, double 
 
 std::vector<FieldTerrain::SweptCell> FieldTerrain::sweptCells(const Passage& p,
                                                               std::size_t wheel) const {
+    if (!options_.across_width) return {{p.key, 0.0}};
     const double h = cells_.cellSize();
     const std::array<double, 2> exit = last_contact_[wheel].value_or(p.entry);
-    std::array<double, 2> a0 = p.entry_axle, a1 = axle_[wheel];
+    const std::array<double, 2> a0 = p.entry_axle, a1 = axle_[wheel];
     // The centre line's lateral direction over the passage (the mean axle; a wheel that turned
     // half a revolution keeps its last one).
     std::array<double, 2> a{a0[0] + a1[0], a0[1] + a1[1]};
@@ -193,7 +194,6 @@ std::vector<FieldTerrain::SweptCell> FieldTerrain::sweptCells(const Passage& p,
         const double reach = 0.5 * h * (std::abs(a[0]) + std::abs(a[1]));
         return std::copysign(std::max(0.0, std::abs(d) - reach), d);
     };
-    if (!options_.across_width) return {{p.key, 0.0}};
     // F13: the quadrilateral the wheel's width swept from the passage's entry to its exit. A
     // contact point that moved more than a few cells and a wheel's width within one passage
     // jumped (a restart): the cell under it alone.
