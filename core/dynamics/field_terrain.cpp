@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 #include "core/compaction/footprint.h"
@@ -38,24 +39,89 @@ FieldTerrain::FieldTerrain(std::shared_ptr<const field::FieldMap> map, const Rob
       options_(std::move(options)),
       wheel_(robot.wheel),
       cells_(makeGrid(*map_, options_)) {
-    if (!map_->parameters.empty()) {
-        throw std::invalid_argument("field: parameter rasters (" +
-                                    std::string(map_->parameters.front().field->key) +
-                                    ") are not read by the rover yet; give the soil by class");
-    }
     axle_.fill({0.0, 1.0});
     soils_.push_back(map_->base);
     for (const auto& [code, soil] : map_->legend) {
         codes_.push_back(code);
         soils_.push_back(soil);
     }
+    if (!map_->parameters.empty()) enumerateSoils();
 }
 
-int FieldTerrain::soilIndexAt(double x_m, double y_m) const {
+int FieldTerrain::classIndexAt(double x_m, double y_m) const {
     const std::optional<int> code = map_->classAt(x_m, y_m);
     if (!code) return 0;
     const auto it = std::lower_bound(codes_.begin(), codes_.end(), *code);
     return it != codes_.end() && *it == *code ? static_cast<int>(it - codes_.begin()) + 1 : 0;
+}
+
+std::vector<double> FieldTerrain::soilKey(double x_m, double y_m) const {
+    std::vector<double> key;
+    key.reserve(1 + map_->parameters.size());
+    key.push_back(classIndexAt(x_m, y_m));
+    for (const field::ParameterRaster& p : map_->parameters) {
+        const double v = p.raster.nearest(x_m, y_m);
+        key.push_back(std::isnan(v) ? std::numeric_limits<double>::infinity() : v);
+    }
+    return key;
+}
+
+// F14: every soil the map holds. Within each rectangle between consecutive cell edges of the
+// class and parameter rasters (all of them), every raster's nearest cell is one cell, so the
+// soil is one soil; their centres (and a point outside every raster) meet every soil there is.
+// Soils equal in class and values are one soil.
+void FieldTerrain::enumerateSoils() {
+    std::vector<const field::Raster*> rasters;
+    if (map_->soil_class) rasters.push_back(&*map_->soil_class);
+    for (const field::ParameterRaster& p : map_->parameters) rasters.push_back(&p.raster);
+    std::vector<double> xs, ys;
+    for (const field::Raster* r : rasters) {
+        for (int c = 0; c <= r->cols; ++c) xs.push_back(r->x_min_m + c * r->cell_m);
+        for (int k = 0; k <= r->rows; ++k) ys.push_back(r->y_min_m + k * r->cell_m);
+    }
+    std::sort(xs.begin(), xs.end());
+    std::sort(ys.begin(), ys.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+    auto add = [&](double x, double y) {
+        std::vector<double> key = soilKey(x, y);
+        if (soil_of_key_.count(key) != 0) return;
+        const auto index = static_cast<std::size_t>(key.front());
+        soil::SoilParameters soil = soils_[index];
+        for (std::size_t i = 0; i < map_->parameters.size(); ++i) {
+            if (std::isfinite(key[i + 1]))
+                soil::setUserValue(soil, *map_->parameters[i].field, key[i + 1]);
+        }
+        if (soil_of_key_.size() >= kMaxSoils) {
+            throw std::invalid_argument(
+                "field: parameters: the classes and parameter rasters make more than " +
+                std::to_string(kMaxSoils) +
+                " distinct soils, the most the rover takes; use coarser parameter rasters or "
+                "fewer distinct values");
+        }
+        // The map's own soils keep their indices (0: base, then the legend): a class cell
+        // without a parameter value is its class's soil.
+        const bool plain =
+            std::all_of(key.begin() + 1, key.end(), [](double v) { return std::isinf(v); });
+        const int at = plain ? static_cast<int>(index) : static_cast<int>(soils_.size());
+        if (!plain) soils_.push_back(std::move(soil));
+        soil_of_key_.emplace(std::move(key), at);
+    };
+    const double far = 1.0;  // beyond every raster: the base soil
+    add(xs.front() - far, ys.front() - far);
+    for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+        for (std::size_t k = 0; k + 1 < ys.size(); ++k) {
+            add(0.5 * (xs[i] + xs[i + 1]), 0.5 * (ys[k] + ys[k + 1]));
+        }
+    }
+}
+
+int FieldTerrain::soilIndexAt(double x_m, double y_m) const {
+    if (soil_of_key_.empty()) return classIndexAt(x_m, y_m);
+    const auto it = soil_of_key_.find(soilKey(x_m, y_m));
+    // Every key is enumerated (F14); a point on a shared edge whose rasters round to sides no
+    // rectangle has would take its class's soil.
+    return it != soil_of_key_.end() ? it->second : classIndexAt(x_m, y_m);
 }
 
 std::array<double, 2> FieldTerrain::gradientAt(double x_m, double y_m) const {

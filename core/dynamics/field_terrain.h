@@ -2,13 +2,15 @@
 /// @file field_terrain.h
 /// The rover's ground on a field (docs/field.md, "The rover on a field"): the field map's
 /// surface (bilinear height and gradient, F1–F2) and soils (class 0 = the base soil, then the
-/// legend's classes in ascending code), and the cell grid's memory of every wheel that passed.
+/// legend's classes in ascending code; with parameter rasters, every distinct soil the map holds:
+/// F14), and the cell grid's memory of every wheel that passed.
 /// Each wheel reads the memory of the cell under its contact point as the cell was when the wheel
 /// arrived there, and writes its passage back once, when it leaves the cell (F10–F11), to every
 /// cell under its width (F13): the track memory after one more pass (compaction::afterPass), the
 /// largest slip, the energy it lost there and the largest vertical stress at the grid's depths.
 
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -69,8 +71,11 @@ struct CellPassage {
 
 class FieldTerrain final : public TerrainModel {
 public:
+    /// The most distinct soils a field's classes and parameter rasters may make (F14).
+    static constexpr std::size_t kMaxSoils = 65536;
+
     /// Throws std::invalid_argument for a field the rover cannot drive on: parameter rasters
-    /// (not read by the rover yet), or a cell size out of CellGrid's range.
+    /// that make more than kMaxSoils distinct soils, or a cell size out of CellGrid's range.
     FieldTerrain(std::shared_ptr<const field::FieldMap> map, const RobotParameters& robot,
                  FieldTerrainOptions options = {});
 
@@ -136,6 +141,12 @@ private:
     wheel::WheelParameters wheel_;
     std::vector<soil::SoilParameters> soils_;  // 0: base, then the legend
     std::vector<int> codes_;                   // the legend's codes, ascending
+    // F14, with parameter rasters: (class soil index, each raster's value or +inf where it has
+    // none) → the soil's index in soils_.
+    std::map<std::vector<double>, int> soil_of_key_;
+    std::vector<double> soilKey(double x_m, double y_m) const;
+    int classIndexAt(double x_m, double y_m) const;
+    void enumerateSoils();
     field::CellGrid cells_;
     std::array<Passage, kWheelCount> passages_{};
     // Each wheel's last contact point (the passage's travel; F12).

@@ -276,9 +276,11 @@ class ClosedLoop {
     static constexpr double kReachMargin = 0.02;
 
 public:
+    // `field`: the field the rover drives on (its soils, F14), or none (the scenario's patches).
     ClosedLoop(const Scenario& scenario, const SlipPlanner& planner, double dt,
-               const dynamics::RoverState& start)
+               const dynamics::RoverState& start, const dynamics::FieldTerrain* field)
         : scenario_(scenario),
+          field_(field),
           spec_(scenario.controller),
           planner_(planner),
           shear_radius_m_(scenario.robot.wheel.radius_m + scenario.robot.wheel.lugShearOffset()),
@@ -304,7 +306,8 @@ public:
                 dynamics::staticCornerLoad(scenario.robot, scenario.options.gravity_m_s2, i);
             hub_x_m_[i] = (i < 2 ? 0.5 : -0.5) * scenario.robot.wheelbase_m;
         }
-        oracle_.resize(static_cast<std::size_t>(scenario.soilCount()) * dynamics::kWheelCount);
+        const int soils = field_ ? field_->soilCount() : scenario.soilCount();
+        oracle_.resize(static_cast<std::size_t>(soils) * dynamics::kWheelCount);
         oracle_cap_.resize(oracle_.size());
         cap_.fill(spec_.slip_max);
     }
@@ -514,13 +517,18 @@ private:
         }
     }
 
+    // The soil of the rover's index (WheelState::soil_index).
+    const soil::SoilParameters& soilOf(int soil_index) const {
+        return field_ ? field_->soil(soil_index) : scenario_.soil(soil_index);
+    }
+
     // The oracle's set-point for wheel i on soil `soil_index` (planned once per soil and wheel;
     // the previous set-point where the soil cannot carry the wheel).
     double oracle(int i, int soil_index) {
         std::optional<double>& cached =
             oracle_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
         if (!cached) {
-            const std::optional<SlipPlan> s = plan(scenario_.soil(soil_index), static_load_n_[i]);
+            const std::optional<SlipPlan> s = plan(soilOf(soil_index), static_load_n_[i]);
             cached = s ? s->slip : set_points_[i];
         }
         return *cached;
@@ -533,7 +541,7 @@ private:
             oracle_cap_[static_cast<std::size_t>(soil_index) * dynamics::kWheelCount + i];
         if (!cached) {
             const std::optional<SlipPlan> s =
-                plan(scenario_.soil(soil_index), static_load_n_[i], SlipObjective::kDrawbar);
+                plan(soilOf(soil_index), static_load_n_[i], SlipObjective::kDrawbar);
             cached = s ? s->slip : spec_.slip_max;
         }
         return *cached;
@@ -567,6 +575,7 @@ private:
     }
 
     const Scenario& scenario_;
+    const dynamics::FieldTerrain* field_ = nullptr;
     ControllerSpec spec_;
     SlipPlanner planner_;
     double shear_radius_m_;
@@ -846,14 +855,6 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         mission.emplace(scenario, dt);
         first = mission->commands();
     }
-    std::optional<ClosedLoop> loop;
-    if (closed) {
-        // The start state only matters for the observer's first reading; the rover takes the
-        // controller's first commands.
-        dynamics::RoverState start;
-        loop.emplace(scenario, options.slip_planner, dt, start);
-        first = loop->initial(first);
-    }
     // A field: its terrain, which the rover tells every wheel's passage (docs/field.md).
     std::unique_ptr<dynamics::FieldTerrain> field;
     if (scenario.field) {
@@ -863,6 +864,14 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
         field_options.record_passages = true;
         field = std::make_unique<dynamics::FieldTerrain>(scenario.field, scenario.robot,
                                                          std::move(field_options));
+    }
+    std::optional<ClosedLoop> loop;
+    if (closed) {
+        // The start state only matters for the observer's first reading; the rover takes the
+        // controller's first commands.
+        dynamics::RoverState start;
+        loop.emplace(scenario, options.slip_planner, dt, start, field.get());
+        first = loop->initial(first);
     }
     const std::unique_ptr<dynamics::Rover> rover_on =
         field ? std::make_unique<dynamics::Rover>(scenario.robot, *field, rover_options,

@@ -64,9 +64,6 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
                  soil::validate(soil, prefix + "terrain.legend." + std::to_string(code) + ".soil."))
                 issues.push_back(std::move(issue));
         }
-        if (!s.field->parameters.empty())
-            issues.push_back(
-                {prefix + "terrain.parameters", "parameter rasters are not read by the rover yet"});
     }
     for (std::size_t i = 0; i < s.terrain.patches.size(); ++i) {
         const std::string at = prefix + "terrain.patches[" + std::to_string(i) + "].";

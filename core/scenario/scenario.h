@@ -87,7 +87,8 @@ struct Scenario {
     /// Every wheel's command at time t [s].
     dynamics::Commands commandsAt(double t_s) const;
     /// The soils the robot can meet, indexed as the rover's WheelState::soil_index: the patch
-    /// terrain's (base, then the patches), or the field's (base, then the legend by code).
+    /// terrain's (base, then the patches), or the field's (base, then the legend by code; a
+    /// field with parameter rasters has more: dynamics::FieldTerrain's, docs/field.md F14).
     int soilCount() const;
     const soil::SoilParameters& soil(int index) const;
 };

@@ -259,11 +259,6 @@ void readFieldTerrain(ObjectReader& r, const io::PresetLocations& locations,
                 t.report("soils", "its coordinate system (.prj) differs from the height map's");
             }
         }
-        if (!f.map.parameters.empty()) {
-            t.report("parameters", "parameter rasters are not read by the rover yet (" +
-                                       std::string(f.map.parameters.front().field->key) +
-                                       "); give the soil by class");
-        }
         s.terrain.base = f.map.base;
         s.field_labels = f.labels;
         s.field = std::make_shared<const field::FieldMap>(std::move(f.map));

@@ -9,7 +9,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/compaction/footprint.h"
 #include "core/compaction/passes.h"
@@ -547,6 +549,116 @@ TEST(FieldRover, ScenarioReadsAFieldFileOrItsOwnRasters) {
         scenarioWith({{"field", fields + "field.json"}, {"cell_m", 0}}), "bad", kLocations);
     ASSERT_FALSE(bad_cell.ok());
     EXPECT_NE(bad_cell.message().find("terrain.cell_m"), std::string::npos) << bad_cell.message();
+}
+
+// F14: a parameter raster is the soil it gives. The soil-border scenario with its patch given
+// by parameter rasters over a uniform class (each soil value where the patch differs from the
+// base, no data elsewhere) drives bit for bit as the patch terrain, the oracle controller
+// included (it plans on the soil of each index), and only the soil's index differs.
+TEST(FieldRover, ParameterRastersAreTheSoilTheyGive) {
+    scenario::Scenario patch = shipped("traction-border", 40.0);
+    patch.streaming.reset();
+    patch.controller.type = scenario::ControllerType::kOracle;
+    ASSERT_EQ(patch.terrain.patches.size(), 1u);
+    const soil::SoilParameters& base = patch.terrain.base;
+    const soil::SoilParameters& other = patch.terrain.patches[0].soil;
+    const double x_border = patch.terrain.patches[0].x_min_m;
+    auto map = std::make_shared<field::FieldMap>();
+    map->base = base;
+    for (const soil::SoilField& f : soil::soilFields()) {
+        const double v = soil::userValue(other, f);
+        if (v == soil::userValue(base, f) || !std::isfinite(v)) continue;
+        field::ParameterRaster p{&f, field::makeRaster(60, 20, x_border - 10.0, -5.0, 0.5)};
+        for (int row = 0; row < p.raster.rows; ++row)
+            for (int col = 0; col < p.raster.cols; ++col)
+                p.raster.value(col, row) =
+                    p.raster.centreX(col) < x_border ? std::numeric_limits<double>::quiet_NaN() : v;
+        map->parameters.push_back(std::move(p));
+    }
+    ASSERT_GE(map->parameters.size(), 3u);  // clayey soil differs from sandy loam in most values
+    scenario::Scenario field = patch;
+    field.field = map;
+    field.field_options.repeated_passes = false;
+    // A planner of the soil's values (not its name, which the rasters keep as the base's).
+    scenario::RunOptions options;
+    options.slip_planner = [](const scenario::SlipPlanRequest& request) {
+        return std::optional<scenario::SlipPlan>(
+            scenario::SlipPlan{0.3 + 0.1 * std::tan(request.soil.friction_angle_rad) +
+                                   0.05 * request.soil.sinkage_exponent,
+                               std::nullopt});
+    };
+    const scenario::RunResult a = scenario::runScenario(patch, options);
+    const scenario::RunResult b = scenario::runScenario(field, options);
+    ASSERT_EQ(a.status, scenario::RunResult::Status::kCompleted) << a.message;
+    // The front wheels crossed the border (the rear ones stay on the base soil: 0.7 m in 40 s).
+    ASSERT_GT(a.summary.x_m + 0.5 * patch.robot.wheelbase_m, x_border + 0.1);
+    expectSameSeries(a, b, true);
+    EXPECT_EQ(last(a, "FL_soil"), 1.0);
+    EXPECT_EQ(last(b, "FL_soil"), 1.0);  // base 0, then the one soil the rasters make
+    EXPECT_EQ(last(b, "RL_soil"), 0.0);
+}
+
+// F14: the rover's soil at a point is the map's (FieldMap::soilAt, read on its own) wherever the
+// class raster and two parameter rasters of other cells and offsets overlap, and it has as many
+// soils as a fine scan of the map finds distinct (class and values); too many distinct soils are
+// refused by name.
+TEST(FieldRover, TheRoversSoilsAreTheMapsEverywhere) {
+    const soil::SoilParameters sandy = io::resolveSoil(kLocations, "sandy-loam").value();
+    const soil::SoilParameters clay = io::resolveSoil(kLocations, "clayey-soil").value();
+    auto map = std::make_shared<field::FieldMap>();
+    map->base = sandy;
+    map->legend[1] = sandy;
+    map->legend[2] = clay;
+    map->soil_class = field::makeRaster(4, 4, 0.0, 0.0, 1.0);
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) map->soil_class->value(col, row) = col < 2 ? 1 : 2;
+    field::ParameterRaster phi{soil::findSoilField("phi_deg"),
+                               field::makeRaster(5, 3, 0.25, 0.5, 0.7)};
+    field::ParameterRaster c{soil::findSoilField("c_kPa"), field::makeRaster(3, 6, -0.4, 0.3, 0.6)};
+    for (int row = 0; row < phi.raster.rows; ++row)
+        for (int col = 0; col < phi.raster.cols; ++col)
+            phi.raster.value(col, row) =
+                (col + row) % 3 == 0 ? std::numeric_limits<double>::quiet_NaN() : 20.0 + col;
+    for (int row = 0; row < c.raster.rows; ++row)
+        for (int col = 0; col < c.raster.cols; ++col)
+            c.raster.value(col, row) = 1.0 + 0.5 * (row % 2);
+    map->parameters = {phi, c};
+    const FieldTerrain terrain(map, RobotParameters{});
+    std::set<std::vector<double>> seen;
+    int points = 0;
+    for (double y = -1.0; y < 5.0; y += 0.013) {
+        for (double x = -1.0; x < 5.0; x += 0.017) {
+            const soil::SoilParameters want = map->soilAt(x, y);
+            const soil::SoilParameters& got = terrain.soil(terrain.soilIndexAt(x, y));
+            // A soil is its class (the base soil and class 1 are both sandy loam) and its values.
+            std::vector<double> values{static_cast<double>(map->classAt(x, y).value_or(-1))};
+            for (const soil::SoilField& f : soil::soilFields()) {
+                ASSERT_EQ(soil::userValue(got, f), soil::userValue(want, f))
+                    << f.key << " at (" << x << ", " << y << ")";
+                values.push_back(soil::userValue(want, f));
+            }
+            seen.insert(values);
+            ++points;
+        }
+    }
+    ASSERT_GT(points, 100000);
+    EXPECT_EQ(static_cast<std::size_t>(terrain.soilCount()), seen.size());
+
+    // 300 × 300 distinct cohesions: more soils than the rover takes.
+    auto wide = std::make_shared<field::FieldMap>();
+    wide->base = sandy;
+    field::ParameterRaster many{soil::findSoilField("c_kPa"),
+                                field::makeRaster(300, 300, 0, 0, 0.1)};
+    for (std::size_t i = 0; i < many.raster.values.size(); ++i)
+        many.raster.values[i] = 0.5 + 1e-5 * static_cast<double>(i);
+    wide->parameters.push_back(std::move(many));
+    try {
+        const FieldTerrain refused(wide, RobotParameters{});
+        ADD_FAILURE() << "90000 soils were taken";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("65536"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("parameters"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace
