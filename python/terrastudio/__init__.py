@@ -445,23 +445,64 @@ def _mission(settings):
     return row
 
 
+def _drawn_within(rng, draw, low, high):
+    """A draw redrawn until every value lies in [low, high] (20 tries, then clipped)."""
+    value = draw()
+    for _try in range(20):
+        if np.all((low <= value) & (value <= high)):
+            return value
+        value = draw()
+    return np.clip(value, low, high)
+
+
 def mission_cases(scenario, samples, *, soil_spread=None, chassis_mass_kg=None, wheels=None,
-                  seed=1):
+                  seed=1, posterior=None):
     """Cases for mission_study() drawn at random (numpy's PCG64 with `seed`: the same cases on
     every machine). soil_spread: {soil field key: std in its unit} (soil_fields(): "phi_deg",
     "c_kPa", "K_m", "n", ...): each of the scenario's soils (scenario_soils()) gets an independent
     Gaussian draw around its own value per case, redrawn until the field's range holds (20 tries,
-    then the range's nearest end); chassis_mass_kg: (low, high) drawn uniformly; wheels: a list
-    of Wheels or presets, one drawn per case. Returns a list of `samples` dicts of overrides."""
+    then the range's nearest end); posterior: {soil key ("base", a class code): a soil file
+    holding "posterior" (``identify --save-soil``'s) or its dict}: that soil's parameters drawn
+    together from the multivariate normal, correlations kept, redrawn until every value lies in
+    its range (20 tries, then clipped); the soil's other fields stay its own, except k_c = 0 when
+    K_s is drawn (the identification's K_s is the soil's k_phi with k_c = 0). chassis_mass_kg:
+    (low, high) drawn uniformly; wheels: a list of Wheels or presets, one drawn per case. Returns
+    a list of `samples` dicts of overrides."""
     samples = int(samples)
     if samples < 1:
         raise ValueError(f"samples: {samples} is not at least 1")
     rng = np.random.Generator(np.random.PCG64(int(seed)))
-    nominal = scenario_soils(scenario) if soil_spread else {}
-    fields = {f["key"]: f for f in soil_fields()} if soil_spread else {}
+    nominal = scenario_soils(scenario) if soil_spread or posterior else {}
+    fields = {f["key"]: f for f in soil_fields()} if soil_spread or posterior else {}
     for key in soil_spread or {}:
         if key not in fields:
             raise ValueError(f"soil_spread: '{key}' is not a soil field ({', '.join(fields)})")
+    drawn = {}  # soil key -> (parameter keys, mean, Cholesky factor, lows, highs)
+    for soil_key, source in (posterior or {}).items():
+        soil_key = str(soil_key)
+        if soil_key not in nominal:
+            raise ValueError(f"posterior.{soil_key}: the scenario has no soil '{soil_key}' "
+                             f"({', '.join(nominal)})")
+        group = _posterior_group(source, None, {})
+        keys = group["keys"]
+        for k in keys:
+            if k not in fields:
+                raise ValueError(f"posterior.{soil_key}: '{k}' is not a soil field")
+            if k in (soil_spread or {}):
+                raise ValueError(f"posterior.{soil_key}: {k} is varied twice: by posterior= "
+                                 "and by soil_spread=")
+        mean = np.asarray(group["mean"], dtype=float)
+        cov = np.asarray(group["covariance"], dtype=float)
+        if mean.shape != (len(keys),) or cov.shape != (len(keys), len(keys)):
+            raise ValueError(f"posterior.{soil_key}: {len(keys)} parameters, {mean.size} means "
+                             f"and a {cov.shape[0]}x{cov.shape[-1]} covariance")
+        try:
+            factor = np.linalg.cholesky(cov)
+        except np.linalg.LinAlgError:
+            raise ValueError(f"posterior.{soil_key}: the covariance is not positive definite")
+        lows = np.array([fields[k]["low"] for k in keys])
+        highs = np.array([fields[k]["high"] for k in keys])
+        drawn[soil_key] = (keys, mean, factor, lows, highs)
     if chassis_mass_kg is not None:
         mass_low, mass_high = (float(v) for v in chassis_mass_kg)
         if not 0.0 < mass_low <= mass_high:
@@ -471,11 +512,13 @@ def mission_cases(scenario, samples, *, soil_spread=None, chassis_mass_kg=None, 
     cases = []
     for _ in range(samples):
         case = {}
-        if soil_spread:
+        if soil_spread or drawn:
             soils = {}
             for key, base in nominal.items():
+                if not soil_spread and key not in drawn:
+                    continue
                 values = base.to_dict()
-                for name, std in soil_spread.items():
+                for name, std in (soil_spread or {}).items():
                     field = fields[name]
                     low, high = field["low"], field["high"]
                     centre = float(base[name])  # in the field's unit, as the spread
@@ -487,6 +530,14 @@ def mission_cases(scenario, samples, *, soil_spread=None, chassis_mass_kg=None, 
                     else:
                         value = min(max(value, low), high)
                     values[name] = value
+                if key in drawn:
+                    keys, mean, factor, lows, highs = drawn[key]
+                    x = _drawn_within(rng, lambda: mean + factor @ rng.standard_normal(len(keys)),
+                                      lows, highs)
+                    for name, value in zip(keys, x):
+                        values[name] = float(value)
+                    if "kphi" in keys:
+                        values["kc"] = 0.0
                 values["name"] = f"{values.get('name', key)} (drawn)"
                 soils[key] = values
             case["soils"] = soils

@@ -138,6 +138,7 @@ def mission_cases(
     chassis_mass_kg: tuple[float, float] | None = None,
     wheels: Sequence[Wheel | str] | None = None,
     seed: int = 1,
+    posterior: Mapping[str | int, str | os.PathLike[str] | Mapping[str, Any]] | None = None,
 ) -> list[dict[str, Any]]: ...
 def mission_study(
     scenario: str | os.PathLike[str],

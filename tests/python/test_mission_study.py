@@ -59,6 +59,40 @@ def test_drawn_cases_follow_their_distributions_and_repeat_with_the_seed():
     assert radii == {ts.wheel("A").to_dict()["r_m"], ts.wheel("B").to_dict()["r_m"]}
 
 
+def test_cases_drawn_from_a_posterior_keep_its_mean_and_correlations():
+    # An identification's posterior (identify --save-soil's form, in its names: Ks_kPa is the
+    # soil's kphi with kc = 0) for the wet hollow's class: the drawn soils' sample mean and
+    # covariance are the posterior's, against numpy's own statistics of the draws.
+    mean = [25.0, 1.2, 800.0]
+    std = np.array([2.0, 0.3, 60.0])
+    corr = np.array([[1.0, -0.8, 0.3], [-0.8, 1.0, 0.0], [0.3, 0.0, 1.0]])
+    cov = (corr * np.outer(std, std)).tolist()
+    posterior = {"posterior": {"parameters": ["phi_deg", "c_kPa", "Ks_kPa"], "mean": mean,
+                               "covariance": cov}}
+    nominal = ts.scenario_soils(FIELD)
+    cases = ts.mission_cases(FIELD, 2000, posterior={2: posterior}, seed=3)
+    assert cases == ts.mission_cases(FIELD, 2000, posterior={"2": posterior}, seed=3)
+    assert set(cases[0]["soils"]) == {"2"}  # the other soils are the scenario's own
+    x = np.array([[c["soils"]["2"][k] for k in ("phi_deg", "c_kPa", "kphi")] for c in cases])
+    n = len(x)
+    assert np.all(np.abs(x.mean(axis=0) - mean) < 4 * std / math.sqrt(n))
+    assert np.allclose(x.std(axis=0), std, rtol=0.06)
+    r = np.corrcoef(x.T)
+    assert abs(r[0, 1] + 0.8) < 0.03 and abs(r[0, 2] - 0.3) < 0.06 and abs(r[1, 2]) < 0.06
+    assert all(c["soils"]["2"]["kc"] == 0.0 for c in cases)
+    assert all(c["soils"]["2"]["K_m"] == nominal["2"]["K_m"] for c in cases)
+    # One drawn case runs.
+    [row] = ts.mission_study(FIELD, cases[:1], **SHORT)
+    assert row["status"] == "completed", row["message"]
+    with pytest.raises(ValueError, match=r"posterior\.9"):
+        ts.mission_cases(FIELD, 2, posterior={9: posterior})
+    with pytest.raises(ValueError, match="varied twice"):
+        ts.mission_cases(FIELD, 2, posterior={2: posterior}, soil_spread={"phi_deg": 1.0})
+    bad = {"parameters": ["phi_deg"], "mean": [25.0], "covariance": [[-1.0]]}
+    with pytest.raises(ValueError, match="positive definite"):
+        ts.mission_cases(FIELD, 2, posterior={2: bad})
+
+
 def test_bad_cases_name_the_key():
     with pytest.raises(ValueError, match=r"soils\.7"):
         ts.mission_study(FIELD, [{"soils": {7: "sandy-loam"}}], **SHORT)
