@@ -99,7 +99,8 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // contact is integrated, the quadratic model has no reload branch); 3 as 2 without the stress at
 // depth; 4 as 2 with the quadratic closed form's reload branch in the ruts; 5 as 4 without the
 // stress at depth; 6 as 4 writing each passage to the cell under the contact point only, not
-// across the wheel's width (docs/field.md F13). Second arg: the step in
+// across the wheel's width (docs/field.md F13); 7 as 4 with a cohesion raster of 0.5 m cells
+// (100 × 40 distinct values from 1 to 3 kPa: 4,000 soils, F14). Second arg: the step in
 // ms; third: 1 for the implicit integrator (docs/dynamics.md, "Integrators"). Counters: real-time
 // factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
@@ -131,6 +132,18 @@ scenario::Scenario fieldRun(int kind) {
         return m;
     }();
     s.field = map;
+    if (kind == 7) {
+        static const std::shared_ptr<const field::FieldMap> with_cohesion = [] {
+            auto m = std::make_shared<field::FieldMap>(*map);
+            field::ParameterRaster c{soil::findSoilField("c_kPa"),
+                                     field::makeRaster(100, 40, 0.0, 0.0, 0.5)};
+            for (std::size_t i = 0; i < c.raster.values.size(); ++i)
+                c.raster.values[i] = 1.0 + 2.0 * static_cast<double>(i) / 4000.0;
+            m->parameters.push_back(std::move(c));
+            return m;
+        }();
+        s.field = with_cohesion;
+    }
     s.terrain.base = map->base;
     s.field_options.cell_m = 0.02;
     s.field_options.repeated_passes = kind >= 2;
@@ -181,8 +194,12 @@ void RoverOnField(benchmark::State& state) {
     // does not move (wall ≈ CPU on an idle one). On the field, also the memory
     // (CellGrid::stateBytes).
     std::unique_ptr<dynamics::FieldTerrain> terrain;
-    if (s.field)
+    if (s.field) {
+        const double build_start = cpuSeconds();
         terrain = std::make_unique<dynamics::FieldTerrain>(s.field, s.robot, s.field_options);
+        state.counters["terrain_build_ms"] = 1e3 * (cpuSeconds() - build_start);
+        state.counters["soils"] = terrain->soilCount();
+    }
     std::unique_ptr<dynamics::Rover> rover =
         terrain ? std::make_unique<dynamics::Rover>(s.robot, *terrain, s.options, s.initial,
                                                     s.commandsAt(0.0))
@@ -212,6 +229,7 @@ BENCHMARK(RoverOnField)
     ->Args({4, 20, 1})
     ->Args({5, 20, 1})
     ->Args({6, 20, 1})
+    ->Args({7, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
@@ -256,6 +274,7 @@ BENCHMARK(RoverFieldMission)
     ->Args({4, 20, 1})
     ->Args({5, 20, 1})
     ->Args({6, 20, 1})
+    ->Args({7, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);

@@ -55,15 +55,13 @@ int FieldTerrain::classIndexAt(double x_m, double y_m) const {
     return it != codes_.end() && *it == *code ? static_cast<int>(it - codes_.begin()) + 1 : 0;
 }
 
-std::vector<double> FieldTerrain::soilKey(double x_m, double y_m) const {
-    std::vector<double> key;
-    key.reserve(1 + map_->parameters.size());
+void FieldTerrain::soilKey(double x_m, double y_m, std::vector<double>& key) const {
+    key.clear();
     key.push_back(classIndexAt(x_m, y_m));
     for (const field::ParameterRaster& p : map_->parameters) {
         const double v = p.raster.nearest(x_m, y_m);
         key.push_back(std::isnan(v) ? std::numeric_limits<double>::infinity() : v);
     }
-    return key;
 }
 
 // F14: every soil the map holds. Within each rectangle between consecutive cell edges of the
@@ -83,8 +81,13 @@ void FieldTerrain::enumerateSoils() {
     std::sort(ys.begin(), ys.end());
     xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
     ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+    // Neighbouring rectangles mostly share their soil: a key equal to the last one is skipped
+    // without a search.
+    std::vector<double> key, last;
     auto add = [&](double x, double y) {
-        std::vector<double> key = soilKey(x, y);
+        soilKey(x, y, key);
+        if (key == last) return;
+        last = key;
         if (soil_of_key_.count(key) != 0) return;
         const auto index = static_cast<std::size_t>(key.front());
         soil::SoilParameters soil = soils_[index];
@@ -105,12 +108,12 @@ void FieldTerrain::enumerateSoils() {
             std::all_of(key.begin() + 1, key.end(), [](double v) { return std::isinf(v); });
         const int at = plain ? static_cast<int>(index) : static_cast<int>(soils_.size());
         if (!plain) soils_.push_back(std::move(soil));
-        soil_of_key_.emplace(std::move(key), at);
+        soil_of_key_.emplace(key, at);
     };
     const double far = 1.0;  // beyond every raster: the base soil
     add(xs.front() - far, ys.front() - far);
-    for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
-        for (std::size_t k = 0; k + 1 < ys.size(); ++k) {
+    for (std::size_t k = 0; k + 1 < ys.size(); ++k) {  // along the rasters' rows
+        for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
             add(0.5 * (xs[i] + xs[i + 1]), 0.5 * (ys[k] + ys[k + 1]));
         }
     }
@@ -118,7 +121,10 @@ void FieldTerrain::enumerateSoils() {
 
 int FieldTerrain::soilIndexAt(double x_m, double y_m) const {
     if (soil_of_key_.empty()) return classIndexAt(x_m, y_m);
-    const auto it = soil_of_key_.find(soilKey(x_m, y_m));
+    std::vector<double> key;
+    key.reserve(1 + map_->parameters.size());
+    soilKey(x_m, y_m, key);
+    const auto it = soil_of_key_.find(key);
     // Every key is enumerated (F14); a point on a shared edge whose rasters round to sides no
     // rectangle has would take its class's soil.
     return it != soil_of_key_.end() ? it->second : classIndexAt(x_m, y_m);

@@ -144,7 +144,7 @@ private:
     // F14, with parameter rasters: (class soil index, each raster's value or +inf where it has
     // none) → the soil's index in soils_.
     std::map<std::vector<double>, int> soil_of_key_;
-    std::vector<double> soilKey(double x_m, double y_m) const;
+    void soilKey(double x_m, double y_m, std::vector<double>& key) const;
     int classIndexAt(double x_m, double y_m) const;
     void enumerateSoils();
     field::CellGrid cells_;
