@@ -1,7 +1,10 @@
 #include "core/io/png.h"
 
 #include <png.h>
+#include <zlib.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "core/io/atomic_file.h"
@@ -48,6 +51,33 @@ Result<std::string> toPng(const RgbaImage& image) {
     if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), 0, nullptr))
         return fail(std::string("libpng: ") + png.message);
     bytes.resize(size);
+    if (image.text.empty()) return bytes;
+    // tEXt chunks (PNG 1.2, §4.2.3.1) before the IEND chunk that ends libpng's stream (its last
+    // 12 bytes): length (big-endian), type, keyword NUL text, CRC-32 of type and data.
+    std::string chunks;
+    for (const auto& [keyword, text] : image.text) {
+        const bool keyword_ok = !keyword.empty() && keyword.size() <= 79 &&
+                                keyword.front() != ' ' && keyword.back() != ' ' &&
+                                keyword.find("  ") == std::string::npos &&
+                                std::all_of(keyword.begin(), keyword.end(), [](char c) {
+                                    const auto u = static_cast<unsigned char>(c);
+                                    return (u >= 32 && u <= 126) || u >= 161;
+                                });
+        if (!keyword_ok)
+            return fail("text keyword '" + keyword +
+                        "': 1–79 printable Latin-1 characters, no leading, trailing or double "
+                        "space");
+        if (text.find('\0') != std::string::npos)
+            return fail("text '" + keyword + "': a NUL character is not allowed");
+        const std::string body = "tEXt" + keyword + '\0' + text;
+        const auto length = static_cast<std::uint32_t>(body.size() - 4);
+        const auto crc = static_cast<std::uint32_t>(
+            crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+        for (int shift = 24; shift >= 0; shift -= 8) chunks += static_cast<char>(length >> shift);
+        chunks += body;
+        for (int shift = 24; shift >= 0; shift -= 8) chunks += static_cast<char>(crc >> shift);
+    }
+    bytes.insert(bytes.size() - 12, chunks);
     return bytes;
 }
 

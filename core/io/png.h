@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/common/issue.h"
@@ -18,6 +19,9 @@ struct RgbaImage {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> pixels;  ///< height × width × 4
+    /// Text written as tEXt chunks (keyword 1–79 Latin-1 characters without NUL, leading or
+    /// trailing or double spaces; text without NUL), e.g. {"Title", "rut depth [mm]"}.
+    std::vector<std::pair<std::string, std::string>> text;
 
     /// A picture of `width` × `height` pixels, every one (r, g, b, a).
     static RgbaImage filled(int width, int height, std::uint8_t r, std::uint8_t g, std::uint8_t b,
@@ -30,7 +34,8 @@ struct RgbaImage {
     }
 };
 
-/// The picture as PNG bytes (8-bit RGBA, libpng's fast compression), or the error.
+/// The picture as PNG bytes (8-bit RGBA, libpng's fast compression; its text as tEXt chunks
+/// before IEND), or the error (a keyword or text PNG does not allow, named).
 Result<std::string> toPng(const RgbaImage& image);
 
 /// Writes the picture as a PNG file atomically; the error message, or nothing on success.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 namespace terra::scenario {
 
@@ -261,6 +262,25 @@ io::RgbaImage renderMap(const MapLayer& layer, const LayerScale& scale, const fi
         drawText(image, left, l.labels_top, text, px);
         last_right = left + w;
     }
+    // The legend as text too (tEXt chunks), for a program that reads the picture: the scale,
+    // its ticks and colours, and where the map's cells are on the ground and in the picture.
+    nlohmann::json legend{{"layer", layer.key},   {"title", scale.title},
+                          {"unit", scale.unit},   {"factor", scale.factor},
+                          {"lower", scale.lower}, {"upper", scale.upper},
+                          {"ticks", ticks},       {"clear_zero", scale.clear_zero}};
+    nlohmann::json colours = nlohmann::json::array();
+    for (const ColorStop& stop : stops) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "#%02x%02x%02x", stop.color.r, stop.color.g, stop.color.b);
+        colours.push_back({{"at", scale.lower + stop.at * span}, {"rgb", hex}});
+    }
+    legend["colours"] = std::move(colours);
+    legend["cells"] = {{"x_min_m", shown.x_min_m}, {"y_min_m", shown.y_min_m},
+                       {"cell_m", shown.cell_m},   {"cols", shown.cols},
+                       {"rows", shown.rows},       {"cell_px", l.cell_px}};
+    if (map.epsg) legend["epsg"] = *map.epsg;
+    image.text = {
+        {"Title", scale.title}, {"Software", "TerraStudio"}, {"terrastudio:legend", legend.dump()}};
     return image;
 }
 

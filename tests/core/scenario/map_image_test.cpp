@@ -8,8 +8,11 @@
 #include <png.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
 
 #include "tests/core/test_temp_dir.h"
 
@@ -118,6 +121,76 @@ TEST(MapImage, EachMapIsAPngWithThePalettesColoursAndALegend) {
     expectBlend(centre(risk, 2, 1), {220, 60, 45}, {130, 20, 20}, 0.1 / 0.4, "risk 1.2");
     expectBlend(centre(risk, 0, 0), {215, 240, 205}, {60, 160, 60}, 0.0, "risk 0");
     EXPECT_EQ(centre(risk, 3, 1)[3], 0);
+}
+
+// A PNG's tEXt chunks read by libpng's own reader (which drops a chunk whose CRC is wrong).
+std::map<std::string, std::string> pngText(const std::filesystem::path& path) {
+    std::map<std::string, std::string> out;
+    FILE* file = std::fopen(path.c_str(), "rb");
+    if (file == nullptr) return out;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    if (setjmp(png_jmpbuf(png)) == 0) {
+        png_init_io(png, file);
+        png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);  // to IEND: every chunk
+        {
+            png_textp text = nullptr;
+            const int n = png_get_text(png, info, &text, nullptr);
+            for (int i = 0; i < n; ++i)
+                out[text[i].key] = std::string(text[i].text, text[i].text_length);
+        }
+    }
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(file);
+    return out;
+}
+
+// The legend travels as text too: a program that reads only the picture and its tEXt chunks
+// finds each cell's value from its colour on the legend's stops (the inverse of the blend, with
+// the picture's cells placed by the legend's geometry), within a colour step.
+TEST(MapImage, ThePicturesTextGivesTheLegendAProgramCanReadValuesWith) {
+    testing::TempDir temp;
+    const FieldMaps maps = smallMaps();
+    ASSERT_FALSE(writeMapPngs(maps, temp.path()));
+    const std::map<std::string, std::string> text = pngText(temp.path() / "rut_depth_m.png");
+    ASSERT_TRUE(text.count("terrastudio:legend")) << text.size();
+    EXPECT_EQ(text.at("Title"), "rut depth [mm]");
+    EXPECT_EQ(text.at("Software"), "TerraStudio");
+    const nlohmann::json legend = nlohmann::json::parse(text.at("terrastudio:legend"));
+    EXPECT_EQ(legend["layer"], "rut_depth_m");
+    EXPECT_EQ(legend["unit"], "mm");
+    EXPECT_EQ(legend["factor"], 1000.0);
+    EXPECT_EQ(legend["cells"]["x_min_m"], 2.0);
+    EXPECT_EQ(legend["cells"]["cols"], 10);
+    const int px = legend["cells"]["cell_px"];
+    const nlohmann::json& colours = legend["colours"];
+    ASSERT_EQ(colours.size(), 2u);  // the rut's two stops
+    auto rgb = [](const std::string& hex, int c) {
+        return std::stoi(hex.substr(1 + 2 * c, 2), nullptr, 16);
+    };
+    const double v0 = colours[0]["at"], v1 = colours[1]["at"];
+    const Decoded rut = decodePng(temp.path() / "rut_depth_m.png");
+    for (int col = 0; col < 10; ++col) {
+        const std::uint8_t* p = rut.at(col * px + px / 2, px / 2);  // row 0, the top
+        // The red channel falls from the first stop to the second: its fraction gives the value.
+        const double r0 = rgb(colours[0]["rgb"], 0), r1 = rgb(colours[1]["rgb"], 0);
+        const double value = v0 + (p[0] - r0) / (r1 - r0) * (v1 - v0);
+        EXPECT_NEAR(value, 1e3 * maps.rut_depth_m.value(col, 0), (v1 - v0) / std::abs(r1 - r0))
+            << "col " << col;
+    }
+    for (double tick : legend["ticks"]) EXPECT_TRUE(tick >= v0 && tick <= v1) << tick;
+    // Every map carries its own legend.
+    for (const auto& entry : mapRasters(maps)) {
+        const auto t = pngText(temp.path() / (entry.first + ".png"));
+        ASSERT_TRUE(t.count("terrastudio:legend")) << entry.first;
+        EXPECT_EQ(nlohmann::json::parse(t.at("terrastudio:legend"))["layer"], entry.first);
+    }
+    // Text PNG does not allow is refused by name, not written.
+    io::RgbaImage bad = io::RgbaImage::filled(2, 2, 0, 0, 0, 255);
+    bad.text = {{" Title", "x"}};
+    const Result<std::string> refused = io::toPng(bad);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("' Title'"), std::string::npos) << refused.message();
 }
 
 // The maps of a drive other than the risk darken along their scale: the relative luminance
