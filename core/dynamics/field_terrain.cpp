@@ -45,7 +45,38 @@ FieldTerrain::FieldTerrain(std::shared_ptr<const field::FieldMap> map, const Rob
         codes_.push_back(code);
         soils_.push_back(soil);
     }
+    class_soils_ = soils_.size();
     if (!map_->parameters.empty()) enumerateSoils();
+}
+
+std::vector<soil::SoilParameters> FieldTerrain::stepLimitSoils() const {
+    if (soils_.size() <= kStepLimitSoils) return soils_;
+    // The corners of the box of the rasters' values (a step bound for every soil inside when
+    // the corner's stiffness grows or falls with each value alone: docs/field.md, F14).
+    std::vector<std::pair<double, double>> box;
+    for (const field::ParameterRaster& p : map_->parameters) {
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (double v : p.raster.values) {
+            if (std::isnan(v)) continue;
+            lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        box.emplace_back(lo, hi);
+    }
+    const std::size_t corners = std::size_t{1} << std::min<std::size_t>(box.size(), 6);
+    std::vector<soil::SoilParameters> out(soils_.begin(), soils_.begin() + class_soils_);
+    for (std::size_t c = 0; c < class_soils_; ++c) {
+        for (std::size_t corner = 0; corner < corners; ++corner) {
+            soil::SoilParameters soil = soils_[c];
+            for (std::size_t i = 0; i < box.size(); ++i) {
+                if (box[i].first > box[i].second) continue;  // a raster without data
+                const bool high = i < 6 && ((corner >> i) & 1U) != 0;
+                soil::setUserValue(soil, *map_->parameters[i].field,
+                                   high ? box[i].second : box[i].first);
+            }
+            out.push_back(std::move(soil));
+        }
+    }
+    return out;
 }
 
 int FieldTerrain::classIndexAt(double x_m, double y_m) const {
@@ -64,57 +95,144 @@ void FieldTerrain::soilKey(double x_m, double y_m, std::vector<double>& key) con
     }
 }
 
-// F14: every soil the map holds. Within each rectangle between consecutive cell edges of the
-// class and parameter rasters (all of them), every raster's nearest cell is one cell, so the
-// soil is one soil; their centres (and a point outside every raster) meet every soil there is.
-// Soils equal in class and values are one soil.
+namespace {
+
+// One axis of a raster as Raster::cellAt sees it: the column of x (or the row of y) where the
+// point is inside the raster's extent along that axis, −1 before it and `cells` beyond it
+// (monotone in x; in y the row falls as y rises, so the class is the row counted from the other
+// end). Exactly cellAt's arithmetic, so that the classes change where cellAt's answer does.
+struct AxisClass {
+    const field::Raster* r;
+    bool y_axis;
+    int operator()(double v) const {
+        if (!y_axis) {
+            if (!(v >= r->x_min_m)) return -1;
+            if (!(v < r->xMax())) return r->cols;
+            return std::min(static_cast<int>(std::floor((v - r->x_min_m) / r->cell_m)),
+                            r->cols - 1);
+        }
+        if (!(v >= r->y_min_m)) return -1;
+        if (!(v < r->yMax())) return r->rows;
+        const int row =
+            std::min(static_cast<int>(std::floor((r->yMax() - v) / r->cell_m)), r->rows - 1);
+        return r->rows - 1 - row;  // rising with y
+    }
+    int cells() const { return y_axis ? r->rows : r->cols; }
+    double origin() const { return y_axis ? r->y_min_m : r->x_min_m; }
+    // The raster's column (or row) from a class, or −1 outside.
+    int index(int c) const {
+        if (c < 0 || c >= cells()) return -1;
+        return y_axis ? r->rows - 1 - c : c;
+    }
+};
+
+// The exact doubles where any of `axes` changes its class (the smallest v with the class of the
+// cell above each computed edge), sorted, with the midpoints between them and a point before
+// the first: a sample of every distinct tuple of classes along the axis. Consecutive samples
+// with the same tuple are one; returns each tuple of indices (column or row, −1 outside).
+std::vector<std::vector<int>> axisTuples(const std::vector<AxisClass>& axes) {
+    std::vector<double> changes;
+    for (const AxisClass& a : axes) {
+        const double h = a.r->cell_m;
+        for (int k = 0; k <= a.cells(); ++k) {
+            const double e = a.origin() + k * h;  // the edge as computed; cellAt may differ by ulps
+            const int above = a(e + 0.5 * h);
+            double v = e;
+            if (a(v) == above) {
+                for (int i = 0; i < 64 && a(std::nextafter(v, -HUGE_VAL)) == above; ++i)
+                    v = std::nextafter(v, -HUGE_VAL);
+            } else {
+                for (int i = 0; i < 64 && a(v) != above; ++i) v = std::nextafter(v, HUGE_VAL);
+            }
+            changes.push_back(v);
+        }
+    }
+    std::sort(changes.begin(), changes.end());
+    changes.erase(std::unique(changes.begin(), changes.end()), changes.end());
+    std::vector<double> samples{changes.front() - 1.0};
+    for (std::size_t i = 0; i < changes.size(); ++i) {
+        samples.push_back(changes[i]);
+        if (i + 1 < changes.size()) samples.push_back(0.5 * (changes[i] + changes[i + 1]));
+    }
+    samples.push_back(changes.back() + 1.0);
+    std::vector<std::vector<int>> tuples;
+    std::vector<int> t(axes.size());
+    for (double v : samples) {
+        for (std::size_t j = 0; j < axes.size(); ++j) t[j] = axes[j].index(axes[j](v));
+        if (tuples.empty() || tuples.back() != t) tuples.push_back(t);
+    }
+    return tuples;
+}
+
+}  // namespace
+
+// F14: every soil the map holds. Each raster's cell (Raster::cellAt) depends on x through its
+// column and on y through its row alone, so the distinct columns-of-every-raster along x (found
+// at the exact doubles where a column changes and between them) times the distinct rows along y
+// meet every combination the map has, edges included. Soils equal in class and values are one.
 void FieldTerrain::enumerateSoils() {
     std::vector<const field::Raster*> rasters;
     if (map_->soil_class) rasters.push_back(&*map_->soil_class);
     for (const field::ParameterRaster& p : map_->parameters) rasters.push_back(&p.raster);
-    std::vector<double> xs, ys;
+    std::vector<AxisClass> xs, ys;
     for (const field::Raster* r : rasters) {
-        for (int c = 0; c <= r->cols; ++c) xs.push_back(r->x_min_m + c * r->cell_m);
-        for (int k = 0; k <= r->rows; ++k) ys.push_back(r->y_min_m + k * r->cell_m);
+        xs.push_back({r, false});
+        ys.push_back({r, true});
     }
-    std::sort(xs.begin(), xs.end());
-    std::sort(ys.begin(), ys.end());
-    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
-    // Neighbouring rectangles mostly share their soil: a key equal to the last one is skipped
-    // without a search.
-    std::vector<double> key, last;
-    auto add = [&](double x, double y) {
-        soilKey(x, y, key);
-        if (key == last) return;
-        last = key;
-        if (soil_of_key_.count(key) != 0) return;
-        const auto index = static_cast<std::size_t>(key.front());
-        soil::SoilParameters soil = soils_[index];
-        for (std::size_t i = 0; i < map_->parameters.size(); ++i) {
-            if (std::isfinite(key[i + 1]))
-                soil::setUserValue(soil, *map_->parameters[i].field, key[i + 1]);
-        }
-        if (soil_of_key_.size() >= kMaxSoils) {
-            throw std::invalid_argument(
-                "field: parameters: the classes and parameter rasters make more than " +
-                std::to_string(kMaxSoils) +
-                " distinct soils, the most the rover takes; use coarser parameter rasters or "
-                "fewer distinct values");
-        }
-        // The map's own soils keep their indices (0: base, then the legend): a class cell
-        // without a parameter value is its class's soil.
-        const bool plain =
-            std::all_of(key.begin() + 1, key.end(), [](double v) { return std::isinf(v); });
-        const int at = plain ? static_cast<int>(index) : static_cast<int>(soils_.size());
-        if (!plain) soils_.push_back(std::move(soil));
-        soil_of_key_.emplace(key, at);
-    };
-    const double far = 1.0;  // beyond every raster: the base soil
-    add(xs.front() - far, ys.front() - far);
-    for (std::size_t k = 0; k + 1 < ys.size(); ++k) {  // along the rasters' rows
-        for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
-            add(0.5 * (xs[i] + xs[i + 1]), 0.5 * (ys[k] + ys[k + 1]));
+    const std::vector<std::vector<int>> cols = axisTuples(xs), rows = axisTuples(ys);
+    const bool classes = map_->soil_class.has_value();
+    std::vector<double> key(1 + map_->parameters.size()), last;
+    for (const std::vector<int>& row : rows) {
+        for (const std::vector<int>& col : cols) {
+            // The key as soilKey computes it at a point of this column and row.
+            std::size_t j = 0;
+            int class_index = 0;
+            if (classes) {
+                if (col[0] >= 0 && row[0] >= 0) {
+                    const double v = map_->soil_class->value(col[0], row[0]);
+                    if (!std::isnan(v)) {
+                        const int code = static_cast<int>(std::lround(v));
+                        const auto it = std::lower_bound(codes_.begin(), codes_.end(), code);
+                        if (it != codes_.end() && *it == code)
+                            class_index = static_cast<int>(it - codes_.begin()) + 1;
+                    }
+                }
+                j = 1;
+            }
+            key[0] = class_index;
+            for (std::size_t i = 0; i < map_->parameters.size(); ++i, ++j) {
+                double v = std::numeric_limits<double>::quiet_NaN();
+                if (col[j] >= 0 && row[j] >= 0)
+                    v = map_->parameters[i].raster.value(col[j], row[j]);
+                key[i + 1] = std::isnan(v) ? std::numeric_limits<double>::infinity() : v;
+            }
+            if (key == last || soil_of_key_.count(key) != 0) {
+                last = key;
+                continue;
+            }
+            last = key;
+            const auto index = static_cast<std::size_t>(key.front());
+            // The map's own soils keep their indices (0: base, then the legend): a class cell
+            // without a parameter value is its class's soil.
+            const bool plain =
+                std::all_of(key.begin() + 1, key.end(), [](double v) { return std::isinf(v); });
+            if (!plain && soils_.size() >= kMaxSoils) {
+                throw std::invalid_argument(
+                    "the field's classes and parameter rasters make more than " +
+                    std::to_string(kMaxSoils) +
+                    " distinct soils, the most the rover takes; use coarser parameter rasters "
+                    "or fewer distinct values");
+            }
+            const int at = plain ? static_cast<int>(index) : static_cast<int>(soils_.size());
+            if (!plain) {
+                soil::SoilParameters soil = soils_[index];
+                for (std::size_t i = 0; i < map_->parameters.size(); ++i) {
+                    if (std::isfinite(key[i + 1]))
+                        soil::setUserValue(soil, *map_->parameters[i].field, key[i + 1]);
+                }
+                soils_.push_back(std::move(soil));
+            }
+            soil_of_key_.emplace(key, at);
         }
     }
 }

@@ -84,6 +84,10 @@ public:
         return soils_[static_cast<std::size_t>(index)];
     }
     int soilIndexAt(double x_m, double y_m) const override;
+    /// Every soil, or with more than kStepLimitSoils: each class's soil and it with every corner
+    /// of the box of the parameter rasters' values (their least and greatest value each; F14).
+    std::vector<soil::SoilParameters> stepLimitSoils() const override;
+    static constexpr std::size_t kStepLimitSoils = 64;
     bool remembers() const override { return true; }
     double heightAt(double x_m, double y_m) const override { return map_->heightAt(x_m, y_m); }
     std::array<double, 2> gradientAt(double x_m, double y_m) const override;
@@ -141,6 +145,7 @@ private:
     wheel::WheelParameters wheel_;
     std::vector<soil::SoilParameters> soils_;  // 0: base, then the legend
     std::vector<int> codes_;                   // the legend's codes, ascending
+    std::size_t class_soils_ = 0;              // soils_[0, class_soils_): base and legend
     // F14, with parameter rasters: (class soil index, each raster's value or +inf where it has
     // none) → the soil's index in soils_.
     std::map<std::vector<double>, int> soil_of_key_;

@@ -116,8 +116,7 @@ StepLimit largestStableStep(const RobotParameters& robot, const TerrainModel& te
         pitch_inertia += mw * (arm_x[i] * arm_x[i] + cz * cz) + iw;
         roll_inertia += mw * (arm_y[i] * arm_y[i] + cz * cz) + it;
     }
-    for (int s = 0; s < terrain.soilCount(); ++s) {
-        const soil::SoilParameters& soil = terrain.soil(s);
+    for (const soil::SoilParameters& soil : terrain.stepLimitSoils()) {
         const auto params = contact::makeContactParameters(soil, robot.wheel);
         double k = 0.0, c = 0.0, kx = 0.0, cx2 = 0.0, ky = 0.0, cy2 = 0.0, stiffest = 0.0;
         bool carried = true;

@@ -76,6 +76,13 @@ public:
     virtual const soil::SoilParameters& soil(int index) const = 0;
     /// Index of the soil at (x, y).
     virtual int soilIndexAt(double x_m, double y_m) const = 0;
+    /// The soils the largest stable step is taken over (dynamics::largestStableStep): every
+    /// soil; a terrain of very many soils may give fewer that bound them (FieldTerrain, F14).
+    virtual std::vector<soil::SoilParameters> stepLimitSoils() const {
+        std::vector<soil::SoilParameters> out;
+        for (int i = 0; i < soilCount(); ++i) out.push_back(soil(i));
+        return out;
+    }
     /// z [m] of the untouched surface at (x, y).
     virtual double heightAt(double x_m, double y_m) const = 0;
     /// ∇z = (∂z/∂x, ∂z/∂y) [-] of the untouched surface at (x, y).

@@ -69,7 +69,13 @@ Result<std::string> toPng(const RgbaImage& image) {
                         "space");
         if (text.find('\0') != std::string::npos)
             return fail("text '" + keyword + "': a NUL character is not allowed");
-        const std::string body = "tEXt" + keyword + '\0' + text;
+        // ASCII text as tEXt; UTF-8 beyond ASCII (a title's σ) as iTXt (PNG 1.2, §4.2.3.3): the
+        // keyword, NUL, compression flag and method 0, an empty language tag and an empty
+        // translated keyword each ended by NUL, then the text.
+        const bool ascii = std::all_of(text.begin(), text.end(),
+                                       [](char c) { return static_cast<unsigned char>(c) < 128; });
+        const std::string body =
+            ascii ? "tEXt" + keyword + '\0' + text : "iTXt" + keyword + std::string(5, '\0') + text;
         const auto length = static_cast<std::uint32_t>(body.size() - 4);
         const auto crc = static_cast<std::uint32_t>(
             crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
@@ -77,6 +83,8 @@ Result<std::string> toPng(const RgbaImage& image) {
         chunks += body;
         for (int shift = 24; shift >= 0; shift -= 8) chunks += static_cast<char>(crc >> shift);
     }
+    if (bytes.size() < 12 || bytes.compare(bytes.size() - 8, 4, "IEND") != 0)
+        return fail("libpng's stream does not end with IEND");
     bytes.insert(bytes.size() - 12, chunks);
     return bytes;
 }

@@ -19,8 +19,9 @@ struct RgbaImage {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> pixels;  ///< height × width × 4
-    /// Text written as tEXt chunks (keyword 1–79 Latin-1 characters without NUL, leading or
-    /// trailing or double spaces; text without NUL), e.g. {"Title", "rut depth [mm]"}.
+    /// Text chunks: keyword (1–79 printable Latin-1 characters, no leading, trailing or double
+    /// space) and UTF-8 text without NUL, written as tEXt when ASCII, else iTXt; e.g. {"Title",
+    /// "rut depth [mm]"}.
     std::vector<std::pair<std::string, std::string>> text;
 
     /// A picture of `width` × `height` pixels, every one (r, g, b, a).
@@ -34,8 +35,8 @@ struct RgbaImage {
     }
 };
 
-/// The picture as PNG bytes (8-bit RGBA, libpng's fast compression; its text as tEXt chunks
-/// before IEND), or the error (a keyword or text PNG does not allow, named).
+/// The picture as PNG bytes (8-bit RGBA, libpng's fast compression; its text as tEXt/iTXt
+/// chunks before IEND), or the error (a keyword or text PNG does not allow, named).
 Result<std::string> toPng(const RgbaImage& image);
 
 /// Writes the picture as a PNG file atomically; the error message, or nothing on success.

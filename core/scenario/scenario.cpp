@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <iterator>
+#include <optional>
 
 #include "core/common/range.h"
+#include "core/dynamics/field_terrain.h"
 #include "core/dynamics/rover.h"
 #include "core/soil/soil_parameters.h"
 
@@ -99,12 +101,22 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     // A step the dynamics cannot take stably sent the robot 150 m and flipped it, reported as a
     // completed run (issue 28): refused here, with the largest stable step named. The implicit
     // integrator takes the vertical stiffness and damping into its step: no such bound.
+    // A field's soils (F14: parameter rasters may make too many, named here rather than thrown
+    // from the run).
+    std::optional<dynamics::FieldTerrain> field_terrain;
+    if (issues.empty() && s.field && (!implicit || !s.field->parameters.empty())) {
+        try {
+            field_terrain.emplace(s.field, s.robot, s.field_options);
+        } catch (const std::invalid_argument& e) {
+            issues.push_back(
+                {prefix + "terrain." + (s.field->parameters.empty() ? "cell_m" : "parameters"),
+                 e.what()});
+        }
+    }
     if (issues.empty() && !implicit) {
         const dynamics::StepLimit limit =
-            s.field
-                ? dynamics::largestStableStep(
-                      s.robot, dynamics::FieldTerrain(s.field, s.robot, s.field_options), s.options)
-                : dynamics::largestStableStep(s.robot, s.terrain, s.options);
+            field_terrain ? dynamics::largestStableStep(s.robot, *field_terrain, s.options)
+                          : dynamics::largestStableStep(s.robot, s.terrain, s.options);
         const double allowed = kStableStepMargin * limit.max_step_s;
         if (std::isfinite(allowed) && s.time_step_s > allowed) {
             const Range range{kTimeStepRange.low, floorSignificant(allowed, 2)};

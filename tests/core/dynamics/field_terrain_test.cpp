@@ -644,6 +644,72 @@ TEST(FieldRover, TheRoversSoilsAreTheMapsEverywhere) {
     ASSERT_GT(points, 100000);
     EXPECT_EQ(static_cast<std::size_t>(terrain.soilCount()), seen.size());
 
+    // On the cells' edges too, where floating rounding decides: rasters at projected coordinates
+    // whose edges coincide in exact arithmetic (0.3 m and 0.1 m cells offset by whole cells),
+    // probed on every computed edge and one double either side.
+    auto utm = std::make_shared<field::FieldMap>();
+    utm->base = sandy;
+    field::ParameterRaster a{soil::findSoilField("phi_deg"),
+                             field::makeRaster(12, 8, 500123.37, 5200456.11, 0.3)};
+    field::ParameterRaster b{soil::findSoilField("c_kPa"),
+                             field::makeRaster(30, 20, 500123.37 + 0.9, 5200456.11 + 0.6, 0.1)};
+    for (std::size_t i = 0; i < a.raster.values.size(); ++i)
+        a.raster.values[i] = 20.0 + 0.01 * static_cast<double>(i);
+    for (std::size_t i = 0; i < b.raster.values.size(); ++i)
+        b.raster.values[i] = 1.0 + 0.001 * static_cast<double>(i);
+    utm->parameters = {a, b};
+    const FieldTerrain on_edges(utm, RobotParameters{});
+    std::vector<double> xs, ys;
+    for (const field::ParameterRaster* r : {&a, &b}) {
+        for (int k = 0; k <= r->raster.cols; ++k)
+            xs.push_back(r->raster.x_min_m + k * r->raster.cell_m);
+        for (int k = 0; k <= r->raster.rows; ++k)
+            ys.push_back(r->raster.y_min_m + k * r->raster.cell_m);
+        for (int k = 0; k <= r->raster.rows; ++k)
+            ys.push_back(r->raster.yMax() - k * r->raster.cell_m);
+    }
+    int probes = 0;
+    for (double x0 : xs) {
+        for (double y0 : ys) {
+            for (double x : {std::nextafter(x0, -HUGE_VAL), x0, std::nextafter(x0, HUGE_VAL)}) {
+                for (double y : {std::nextafter(y0, -HUGE_VAL), y0, std::nextafter(y0, HUGE_VAL)}) {
+                    const soil::SoilParameters want = utm->soilAt(x, y);
+                    const soil::SoilParameters& got = on_edges.soil(on_edges.soilIndexAt(x, y));
+                    ASSERT_EQ(got.friction_angle_rad, want.friction_angle_rad) << x << ", " << y;
+                    ASSERT_EQ(got.cohesion_pa, want.cohesion_pa) << x << ", " << y;
+                    ++probes;
+                }
+            }
+        }
+    }
+    EXPECT_GT(probes, 20000);
+
+    // Over 64 soils the explicit step's bound is taken at the corners of the rasters' box: with
+    // k_phi and n varying over 100 cells each, it is no larger than the least of the soils' own
+    // bounds (each soil on its own, a second computation).
+    auto stiff = std::make_shared<field::FieldMap>();
+    stiff->base = sandy;
+    field::ParameterRaster kphi{soil::findSoilField("kphi"), field::makeRaster(10, 10, 0, 0, 1.0)};
+    field::ParameterRaster n{soil::findSoilField("n"), field::makeRaster(10, 10, 0, 0, 1.0)};
+    for (std::size_t i = 0; i < 100; ++i) {
+        kphi.raster.values[i] = 500.0 + 40.0 * static_cast<double>((i * 37) % 100);
+        n.raster.values[i] = 0.6 + 0.004 * static_cast<double>((i * 53) % 100);
+    }
+    stiff->parameters = {kphi, n};
+    const FieldTerrain varied(stiff, RobotParameters{});
+    ASSERT_GT(varied.soilCount(), 64);
+    EXPECT_EQ(varied.stepLimitSoils().size(), 1u + 4u);  // the base soil and its 4 corners
+    const RoverOptions options;
+    double least = HUGE_VAL;
+    for (int i = 0; i < varied.soilCount(); ++i) {
+        Terrain one;
+        one.base = varied.soil(i);
+        least = std::min(least, largestStableStep(RobotParameters{}, one, options).max_step_s);
+    }
+    ASSERT_TRUE(std::isfinite(least));
+    EXPECT_LE(largestStableStep(RobotParameters{}, varied, options).max_step_s,
+              least * (1 + 1e-12));
+
     // 300 × 300 distinct cohesions: more soils than the rover takes.
     auto wide = std::make_shared<field::FieldMap>();
     wide->base = sandy;
@@ -657,7 +723,7 @@ TEST(FieldRover, TheRoversSoilsAreTheMapsEverywhere) {
         ADD_FAILURE() << "90000 soils were taken";
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("65536"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("parameters"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("parameter rasters"), std::string::npos) << e.what();
     }
 }
 

@@ -137,7 +137,8 @@ std::map<std::string, std::string> pngText(const std::filesystem::path& path) {
             png_textp text = nullptr;
             const int n = png_get_text(png, info, &text, nullptr);
             for (int i = 0; i < n; ++i)
-                out[text[i].key] = std::string(text[i].text, text[i].text_length);
+                out[text[i].key] =
+                    text[i].text;  // NUL-ended (iTXt has itxt_length, not text_length)
         }
     }
     png_destroy_read_struct(&png, &info, nullptr);
@@ -179,6 +180,10 @@ TEST(MapImage, ThePicturesTextGivesTheLegendAProgramCanReadValuesWith) {
             << "col " << col;
     }
     for (double tick : legend["ticks"]) EXPECT_TRUE(tick >= v0 && tick <= v1) << tick;
+    // A title beyond ASCII travels as UTF-8 (iTXt), not as Latin-1 mojibake.
+    const auto risk = pngText(temp.path() / "compaction_risk.png");
+    ASSERT_TRUE(risk.count("Title"));
+    EXPECT_NE(risk.at("Title").find("σz/σpc"), std::string::npos) << risk.at("Title");
     // Every map carries its own legend.
     for (const auto& entry : mapRasters(maps)) {
         const auto t = pngText(temp.path() / (entry.first + ".png"));
