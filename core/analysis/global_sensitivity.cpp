@@ -630,22 +630,23 @@ CorrelatedParameters correlatedFromIdentification(const identification::Decouple
                                                   const wheel::WheelParameters& wheel) {
     using namespace identification;
     if (!u.computed) {
-        throw std::invalid_argument(
-            "the identification has no covariance (rank deficient: " +
-            std::string(u.flags.empty() ? "see its flags" : u.flags.front()) + ")");
+        throw std::invalid_argument("the identification has no covariance (rank deficient: " +
+                                    (u.flags.empty()
+                                         ? std::string("see its flags")
+                                         : u.flags.front().worded(ParameterNaming::kKey)) +
+                                    ")");
     }
     const soil::SoilParameters soil = identification::soilOf(base, wheel, p);
-    // The soil field carrying each refined parameter (K_s through k_φ, k_c fixed).
-    static const std::array<const char*, kFullParameterCount> kKeys{
-        "a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m", "jmax_m"};
     CorrelatedParameters out;
     std::vector<std::size_t> used;
     std::vector<double> sd;
     for (std::size_t k = 0; k < kFullParameterCount; ++k) {
         if (!(u.std[k] > 0.0) || !std::isfinite(u.std[k])) continue;
-        const soil::SoilField& field = *soil::findSoilField(kKeys[k]);
+        // The soil field carrying the refined parameter (K_s through k_φ, k_c fixed).
+        const char* key = soilKeyOf(fieldOf(static_cast<FullParameter>(k)));
+        const soil::SoilField& field = *soil::findSoilField(key);
         used.push_back(k);
-        out.keys.emplace_back(kKeys[k]);
+        out.keys.emplace_back(key);
         out.mean.push_back(soil.*field.member / field.to_si);
         sd.push_back(u.std[k] / field.to_si);
     }

@@ -115,6 +115,33 @@ std::vector<Issue> identificationRuleIssues(const IdentificationSettings& s) {
     return issues;
 }
 
+std::vector<Issue> deprecatedPriorItems(const IdentificationSettings& s) {
+    std::vector<Issue> notes;
+    for (const std::string& item : s.prior_items) {
+        id::Priors scratch;
+        std::vector<std::string> deprecated;
+        id::parsePriorItem(item, scratch, &deprecated);
+        for (std::string& note : deprecated) notes.push_back({"priors", std::move(note)});
+    }
+    return notes;
+}
+
+void noteDeprecatedParameterKeys(io::ObjectReader& r, IdentificationSettings& out,
+                                 const char* priors_key) {
+    // The old keys of the parameters (issue 26) are read as their new ones and noted.
+    for (const Issue& note : deprecatedPriorItems(out))
+        out.key_warnings.push_back({r.where(priors_key), note.message});
+    for (std::string& item : out.prior_items) item = id::canonicalPriorItem(item);
+    if (const nlohmann::json* fix = r.has("fix") ? r.value("fix") : nullptr;
+        fix && fix->is_object()) {
+        for (const id::DeprecatedParameterKey& old : id::deprecatedParameterKeys()) {
+            if (fix->contains(old.old_key))
+                out.key_warnings.push_back(
+                    {r.where("fix." + std::string(old.old_key)), id::deprecationNote(old.old_key)});
+        }
+    }
+}
+
 void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
                                 IdentificationSettings& out) {
     io::readFields(r, out, context.base_dir);
@@ -134,24 +161,12 @@ void readIdentificationSettings(io::ObjectReader& r, const ReadContext& context,
         }
     }
     for (const Issue& issue : identificationRuleIssues(out)) r.report(issue.where, issue.message);
-    // The old keys of the parameters (issue 26) are read as their new ones and noted.
     for (std::string& item : out.prior_items) {
         id::Priors scratch;
-        std::vector<std::string> deprecated;
-        for (const Issue& issue : id::parsePriorItem(item, scratch, &deprecated))
+        for (const Issue& issue : id::parsePriorItem(item, scratch))
             r.report("priors", issue.where + ": " + issue.message);
-        for (const std::string& note : deprecated)
-            out.key_warnings.push_back({r.where("priors"), note});
-        item = id::canonicalPriorItem(item);
     }
-    if (const nlohmann::json* fix = r.has("fix") ? r.value("fix") : nullptr;
-        fix && fix->is_object()) {
-        for (const id::DeprecatedParameterKey& old : id::deprecatedParameterKeys()) {
-            if (fix->contains(old.old_key))
-                out.key_warnings.push_back(
-                    {r.where("fix." + std::string(old.old_key)), id::deprecationNote(old.old_key)});
-        }
-    }
+    noteDeprecatedParameterKeys(r, out);
     if (!out.prior_soil_name.empty() && context.locations != nullptr) {
         Result<soil::SoilParameters> soil =
             io::resolveSoil(*context.locations, context.presetOrFile(out.prior_soil_name));
@@ -371,11 +386,11 @@ nlohmann::json toJson(const IdentificationResult& result) {
                            : nlohmann::json();
         }
         j["std"] = std_json;
-        j["flags"] = u.flags;
+        j["flags"] = id::worded(u.flags, id::ParameterNaming::kKey);
     }
     nlohmann::json steps = nlohmann::json::array();
     for (const id::StepReport& step : result.steps()) {
-        steps.push_back({{"step", step.name},
+        steps.push_back({{"step", step.name.worded(id::ParameterNaming::kKey)},
                          {"usable", step.usable},
                          {"termination", step.termination},
                          {"iterations", step.iterations},
@@ -490,7 +505,7 @@ void addGlobalRows(const IdentificationResult& result, Summary& out) {
                            formatNumber(roundSignificant(r.ambiguity_delta_chi2, 3)) + "):";
         for (int k = 0; k < id::kFullParameterCount; ++k) {
             const IdentifiedField& field = fieldOf(static_cast<id::FullParameter>(k));
-            text.append(" ").append(field.key).append(" = ");
+            text.append(" ").append(field.symbol).append(" = ");
             text += formatNumber(
                 roundSignificant(minimum.parameters[static_cast<std::size_t>(k)] / field.to_si, 4));
         }
@@ -554,14 +569,16 @@ Summary identificationSummary(const IdentificationResult& result) {
         const id::StepReport& step = steps[i];
         std::string detail = formatFixed(step.wall_time_ms, 2) + " ms";
         if (!step.termination.empty()) detail += ", " + step.termination;
-        out.push_back({"step " + step.name + ", |r|^2",
+        out.push_back({"step " + step.name.worded(id::ParameterNaming::kSymbol) + ", |r|^2",
                        formatNumber(roundSignificant(step.squared_residual_norm, 6)), "", detail,
                        Emphasis::kNormal, "/steps/" + std::to_string(i) + "/squared_residual_norm",
                        step.squared_residual_norm});
     }
     if (refined) {
         addGlobalRows(result, out);
-        const std::vector<std::string>& flags = result.report->uncertainty.flags;
+        // The advice names the parameters by symbol here, by key in the JSON (/flags).
+        const std::vector<std::string> flags =
+            id::worded(result.report->uncertainty.flags, id::ParameterNaming::kSymbol);
         for (std::size_t f = 0; f < flags.size(); ++f) {
             out.push_back(
                 {"note", flags[f], "", "", Emphasis::kWarning, "/flags/" + std::to_string(f)});
@@ -633,9 +650,8 @@ nlohmann::json soilPosteriorJson(const IdentificationResult& result,
     // In the identification's names and units (the interface of issue 25: "Ks_kPa", "n0", …;
     // the readers translate them back, soil_posterior.h).
     auto identificationName = [](const std::string& key) -> std::string {
-        if (key == "kphi") return "Ks_kPa";
-        if (key == "n") return "n0";
-        return key;
+        const id::ParameterField* field = id::parameterOfSoilKey(key);
+        return field ? field->key : key;
     };
     for (std::size_t a = 0; a < kept.size(); ++a) {
         keys.push_back(identificationName(c.keys[static_cast<std::size_t>(kept[a])]));
@@ -705,6 +721,14 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
     loadData(in, s, out);
     for (const Issue& note : s.key_warnings)
         out.warnings.push_back(note.where + ": " + note.message);
+    // Settings built in code (a panel's typed prior items) may name a parameter by an old key
+    // too: read as its new one, noted as the reader notes it.
+    for (const Issue& note : deprecatedPriorItems(s))
+        out.warnings.push_back(note.where + ": " + note.message);
+    for (const auto& [key, value] : s.fixed) {
+        if (id::lookupParameter(key).deprecated)
+            out.warnings.push_back("fix." + key + ": " + id::deprecationNote(key));
+    }
     if (!out.message.empty()) return out;
     if (out.data.samples.empty()) {
         out.status = Outcome::Status::kInvalidInput;
@@ -851,7 +875,7 @@ Outcome identificationOutcome(IdentificationResult result) {
     for (const id::StepReport& step : result.steps()) {
         // A step without a termination or a residual (the descent, the held-out prediction)
         // says only what it did.
-        std::string note = step.name;
+        std::string note = step.name.worded(id::ParameterNaming::kKey);
         if (!step.termination.empty()) note += ": " + step.termination;
         if (step.squared_residual_norm > 0.0)
             note += ", Σr² = " + formatNumber(step.squared_residual_norm);

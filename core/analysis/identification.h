@@ -123,6 +123,18 @@ struct IdentificationSettings {
 /// table's keys.
 void readFixedParameters(io::ObjectReader& r, const char* key,
                          std::vector<std::pair<std::string, double>>& out);
+/// The deprecated parameter keys (issue 26) of a settings object just read: each prior item with
+/// an old key ("Ks=1500±500") rewritten with its new one, and noted in `out.key_warnings`, where
+/// `priors_key` was (the command line names its flag there), as each old key of "fix" (read as its
+/// new one by readFixedParameters). The identification's reader and the identification panel's
+/// saved settings (core/project/panels.h) note them so.
+void noteDeprecatedParameterKeys(io::ObjectReader& r, IdentificationSettings& out,
+                                 const char* priors_key = "priors");
+/// The prior items of `s` with an old key: {"priors", "prior 'Ks=1500±500': parameter key 'Ks'
+/// is deprecated: use 'Ks_kPa'"} each (computeIdentification notes those of settings built in
+/// code among its warnings).
+std::vector<Issue> deprecatedPriorItems(const IdentificationSettings& s);
+
 /// "fix" as JSON; null when empty.
 nlohmann::json fixedParametersJson(const std::vector<std::pair<std::string, double>>& fixed);
 

@@ -8,11 +8,8 @@ namespace terra::analysis {
 std::string soilKeyOf(const std::string& name) {
     // The identification's key (or its old one, "Ks", issue 26) of K_s and n₀, whose soil keys
     // differ; every other identification key is its soil key.
-    using identification::DecoupledParameters;
     const identification::ParameterLookup found = identification::lookupParameter(name);
-    if (found && found.field->member == &DecoupledParameters::pressure_modulus) return "kphi";
-    if (found && found.field->member == &DecoupledParameters::n0) return "n";
-    return name;
+    return found ? identification::soilKeyOf(*found.field) : name;
 }
 
 void readPosterior(io::ObjectReader& r, SoilPosterior& out) {

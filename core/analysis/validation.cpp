@@ -1,6 +1,7 @@
 #include "core/analysis/validation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -725,7 +726,8 @@ nlohmann::json toJson(const ValidationResult& r) {
                     rep.noise[static_cast<std::size_t>(ch)];
         }
         cal["noise"] = noise;
-        if (!rep.uncertainty.flags.empty()) cal["flags"] = rep.uncertainty.flags;
+        if (!rep.uncertainty.flags.empty())
+            cal["flags"] = id::worded(rep.uncertainty.flags, id::ParameterNaming::kKey);
         cal["soil"] = io::toJson(c.soil);
         cal["points"] = pointsJson(c.after->points, true);
         cal["metrics"] = metricsJson(c.after->metrics);
@@ -785,6 +787,21 @@ std::string channelUnit(std::size_t c) {
     return c == io::kExpSinkage ? "mm" : io::experimentChannels()[c].unit;
 }
 
+// The three numbers of a channel's metrics as cells (RMSE, MAE, largest relative error), each
+// formatted once, here: the summary's metric rows and the metrics table show these texts.
+// `pointer` is the metrics' object in toJson.
+std::array<Row, 3> metricCells(const ChannelMetrics& m, std::size_t c, const std::string& pointer) {
+    const double k = channelScale(c);
+    const std::string unit = channelUnit(c), at = pointer + "/" + nameOf(c);
+    const bool relative = !std::isnan(m.max_rel_error);
+    return {
+        {{"RMSE", formatFixed(m.rmse * k, 3), unit, "", Emphasis::kNormal, at + "/rmse", m.rmse},
+         {"MAE", formatFixed(m.mae * k, 3), unit, "", Emphasis::kNormal, at + "/mae", m.mae},
+         {"max relative error", relative ? formatFixed(100.0 * m.max_rel_error, 1) : "-",
+          relative ? "%" : "", "", Emphasis::kNormal, relative ? at + "/max_rel_error" : "",
+          m.max_rel_error}}};
+}
+
 // The rows of one set of metrics, under its heading; `pointer` is its object in toJson. One row
 // per channel: its RMSE, the MAE, the largest relative error and the count said after it.
 void addMetricRows(Summary& out, const ValidationMetrics& metrics, const std::string& title,
@@ -793,15 +810,12 @@ void addMetricRows(Summary& out, const ValidationMetrics& metrics, const std::st
     for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
         if (!metrics[c]) continue;
         const ChannelMetrics& m = *metrics[c];
-        const double k = channelScale(c);
-        const std::string unit = channelUnit(c);
-        const std::string detail =
-            "MAE " + formatFixed(m.mae * k, 3) + " " + unit + ", max relative error " +
-            (std::isnan(m.max_rel_error) ? std::string("-")
-                                         : formatFixed(100.0 * m.max_rel_error, 1) + " %") +
-            ", " + std::to_string(m.count) + " points";
-        out.push_back({channelLabel(c) + " RMSE", formatFixed(m.rmse * k, 3), unit, detail,
-                       Emphasis::kNormal, pointer + "/" + nameOf(c) + "/rmse", m.rmse});
+        std::array<Row, 3> cells = metricCells(m, c, pointer);
+        Row& rmse = cells[0];
+        rmse.label = channelLabel(c) + " RMSE";
+        rmse.detail = "MAE " + cellText(cells[1]) + ", max relative error " + cellText(cells[2]) +
+                      ", " + std::to_string(m.count) + " points";
+        out.push_back(std::move(rmse));
     }
 }
 
@@ -843,10 +857,12 @@ Summary validationSummary(const ValidationResult& r) {
                 const id::ParameterInfo& info = id::parameterInfo()[i];
                 const std::string unit = std::string(info.unit) == "-" ? "" : info.unit;
                 const double value = c.report.parameters[i] * info.to_user;
-                const std::string key =
-                    id::oldKeyOf(id::fieldOf(static_cast<id::FullParameter>(k)));
+                const id::ParameterField& field = id::fieldOf(static_cast<id::FullParameter>(k));
+                // Labelled by symbol, as the identification's summary; the JSON keeps the keys of
+                // before (oldKeyOf) for the scripts that read them.
+                const std::string key = id::oldKeyOf(field);
                 out.push_back(
-                    {key,
+                    {field.symbol,
                      valueWithStd(value,
                                   c.report.uncertainty.computed
                                       ? std::optional(c.report.uncertainty.std[i] * info.to_user)
@@ -857,20 +873,24 @@ Summary validationSummary(const ValidationResult& r) {
                      Emphasis::kNormal, "/calibration/parameters/" + key + "/value", value});
             }
             if (c.n1) {
-                out.push_back({"n1", valueWithStd(*c.n1, c.n1_std, 4), "",
+                out.push_back({id::fieldOf(&id::DecoupledParameters::n1).symbol,
+                               valueWithStd(*c.n1, c.n1_std, 4), "",
                                "thesis model: 0; from the profile of chi2 over n1",
                                Emphasis::kNormal, "/calibration/parameters/n1/value", *c.n1});
             }
             if (c.slip_sinkage) {
-                out.push_back({"slip_sinkage", valueWithStd(*c.slip_sinkage, c.slip_sinkage_std, 4),
-                               "",
+                out.push_back({soil::findSoilField("slip_sinkage")->symbol,
+                               valueWithStd(*c.slip_sinkage, c.slip_sinkage_std, 4), "",
                                "thesis model: 0; Lyasko's S of h = h0 (1 + S s), from the "
                                "profile of chi2 over S",
                                Emphasis::kNormal, "/calibration/parameters/slip_sinkage/value",
                                *c.slip_sinkage});
             }
-            for (std::size_t f = 0; f < c.report.uncertainty.flags.size(); ++f) {
-                out.push_back({"note", c.report.uncertainty.flags[f], "", "", Emphasis::kWarning,
+            // The advice names the parameters by symbol here, by key in the JSON.
+            const std::vector<std::string> flags =
+                id::worded(c.report.uncertainty.flags, id::ParameterNaming::kSymbol);
+            for (std::size_t f = 0; f < flags.size(); ++f) {
+                out.push_back({"note", flags[f], "", "", Emphasis::kWarning,
                                "/calibration/flags/" + std::to_string(f)});
             }
             addMetricRows(out, c.after->metrics, "metrics (calibrated soil)",
@@ -889,6 +909,45 @@ Summary validationSummary(const ValidationResult& r) {
     }
     if (r.status == Outcome::Status::kCancelled)
         out.push_back({"cancelled", r.message, "", "", Emphasis::kWarning, ""});
+    return out;
+}
+
+std::string cellText(const SummaryRow& cell) {
+    return cell.unit.empty() ? cell.value : cell.value + " " + cell.unit;
+}
+
+MetricsTable validationMetricsTable(const ValidationResult& r) {
+    MetricsTable out;
+    std::vector<std::pair<const ValidationMetrics*, std::string>> sets{
+        {&r.before.metrics, "/metrics"}};
+    out.columns.push_back("given soil");
+    if (r.calibration && r.calibration->report.usable() && r.calibration->after) {
+        const Calibration& c = *r.calibration;
+        sets.emplace_back(&c.after->metrics, "/calibration/metrics");
+        out.columns.push_back("calibrated");
+        if (c.held_out && c.held_out_before) {
+            sets.emplace_back(&*c.held_out_before, "/calibration/held_out/metrics_before");
+            sets.emplace_back(&*c.held_out, "/calibration/held_out/metrics");
+            out.columns.insert(out.columns.end(), {"held out, given soil", "held out, calibrated"});
+        }
+    }
+    // A row per channel the given soil's metrics have, and metric.
+    for (std::size_t c = 0; c < kExperimentChannelCount; ++c) {
+        if (!r.before.metrics[c]) continue;
+        const std::size_t first = out.rows.size();
+        for (const char* metric : {"RMSE", "MAE", "max relative error"})
+            out.rows.push_back(
+                {std::string(io::experimentChannels()[c].symbol) + " " + metric, {}});
+        for (const auto& [metrics, pointer] : sets) {
+            const std::optional<ChannelMetrics>& m = (*metrics)[c];
+            for (std::size_t i = 0; i < 3; ++i) {
+                Row cell{out.rows[first + i].label, "", "", "", Emphasis::kNormal, ""};
+                if (m) cell = metricCells(*m, c, pointer)[i];
+                cell.label = out.rows[first + i].label;
+                out.rows[first + i].cells.push_back(std::move(cell));
+            }
+        }
+    }
     return out;
 }
 
@@ -961,8 +1020,8 @@ Outcome validationOutcome(ValidationResult result) {
             out.tables.push_back({"parameters", "-parameters", std::move(parameters)});
             out.notes.push_back("calibration: " + c.report.termination +
                                 ", χ² = " + formatNumber(roundSignificant(c.report.chi2, 6)));
-            for (const std::string& flag : c.report.uncertainty.flags)
-                out.notes.push_back("calibration: " + flag);
+            for (const id::ParameterText& flag : c.report.uncertainty.flags)
+                out.notes.push_back("calibration: " + flag.worded(id::ParameterNaming::kKey));
         }
     }
     out.documents.emplace_back("-validation.json", toJson(result));

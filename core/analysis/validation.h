@@ -228,10 +228,32 @@ std::string validationFailure(const ValidationResult& result);
 /// row per channel shows its RMSE (the MAE, largest relative error and count in its detail).
 /// Forces and torques in N, N·m, the sinkage in mm, the largest relative error in %; each
 /// number's `json` points at it in toJson(result).
-/// The parameter rows give each value to the decimal place its std supports (formatAtStd) and
+/// The parameter rows, labelled by symbol (K_s, n₀, φ, …; the JSON keeps the keys), give each
+/// value to the decimal place its std supports (formatAtStd) and
 /// the prior in the detail ("prior 31.9", then ", ended at its bound" when it did); the
 /// calibration's heading says the solver's outcome in a user's words (solverOutcome).
 Summary validationSummary(const ValidationResult& result);
+
+/// The validation's metrics as one table for a person (the studio's calibration dialog shows
+/// it): a row per measured channel and metric — RMSE, MAE, largest relative error — and a column
+/// per set of points: the given soil, the calibrated soil (a usable calibration), and, when the
+/// calibration held points out, those points with the given and with the calibrated soil. Each
+/// cell is the number formatted as validationSummary formats it (the same function: "5.656" "N",
+/// "84.0" "%", the sinkage in mm; value "" where the column has none for that channel), its
+/// `json` pointing at it in toJson(result).
+struct MetricsTable {
+    /// "given soil", "calibrated", "held out, given soil", "held out, calibrated" (those present).
+    std::vector<std::string> columns;
+    struct Row {
+        std::string label;              ///< "F_x RMSE", "h MAE", "M_y max relative error"
+        std::vector<SummaryRow> cells;  ///< one per column
+    };
+    std::vector<Row> rows;
+};
+MetricsTable validationMetricsTable(const ValidationResult& result);
+
+/// A cell's text: its value and unit ("5.656 N"), or "" for none.
+std::string cellText(const SummaryRow& cell);
 
 /// A solver's termination in a user's words: Ceres' "CONVERGENCE: Function tolerance reached.
 /// |cost_change|/cost: 1.2e-07 <= 1e-06" is "converged (the fit stopped improving)".

@@ -12,6 +12,7 @@
 
 #include "core/identification/box_solver.h"
 #include "core/identification/decoupled_model.h"
+#include "core/identification/parameters.h"
 
 namespace terra::identification {
 namespace {
@@ -194,7 +195,8 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
             rows.push_back({r, s.slip, s.entry_angle_rad, s.fx_n, s.fz_n, s.my_nm});
         const int n = static_cast<int>(rows.size());
         StepReport report;
-        report.name = "I: a0, a1 (Fx, Eq. 4.12)";
+        report.name = "I: " + reference(&DecoupledParameters::a0) + ", " +
+                      reference(&DecoupledParameters::a1) + " (Fx, Eq. 4.12)";
         solveStep(new ceres::AutoDiffCostFunction<Batch<StepIResidual>, ceres::DYNAMIC, 2>(
                       new Batch<StepIResidual>{std::move(rows)}, n),
                   a, {0.0, -1.0}, {1.0, 1.0}, max_iterations_per_step, report);
@@ -211,7 +213,9 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
         std::vector<double> x{p.n0, p.n1};
         StepIIProjected step{r, b, rows, std::nullopt};
         StepReport report;
-        report.name = "II: Ks, n0, n1 (Fz, Eq. 4.17)";
+        report.name = "II: " + reference(&DecoupledParameters::pressure_modulus) + ", " +
+                      reference(&DecoupledParameters::n0) + ", " +
+                      reference(&DecoupledParameters::n1) + " (Fz, Eq. 4.17)";
         p.pressure_modulus =
             solveProjected(step, x, {bounds.n0_min, bounds.n1_min}, {bounds.n0_max, bounds.n1_max},
                            bounds.ks_min, bounds.ks_max, max_iterations_per_step, report);
@@ -224,7 +228,9 @@ DecoupledFit fitDecoupled(const DataSet& data, const wheel::WheelParameters& whe
                               std::log(std::clamp(p.shear_modulus_m, bounds.k_min, bounds.k_max))};
         StepIIIProjected step{r, b, rows, std::nullopt};
         StepReport report;
-        report.name = "III: c, phi, K (My, Eq. 4.18)";
+        report.name = "III: " + reference(&DecoupledParameters::cohesion_pa) + ", " +
+                      reference(&DecoupledParameters::friction_angle_rad) + ", " +
+                      reference(&DecoupledParameters::shear_modulus_m) + " (My, Eq. 4.18)";
         p.cohesion_pa = solveProjected(step, x, {bounds.phi_min, std::log(bounds.k_min)},
                                        {bounds.phi_max, std::log(bounds.k_max)}, bounds.c_min,
                                        bounds.c_max, max_iterations_per_step, report);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/identification/data_set.h"
+#include "core/identification/parameter_text.h"
 #include "core/wheel/wheel_parameters.h"
 
 namespace terra::identification {
@@ -42,7 +43,9 @@ struct DecoupledBounds {
 
 /// The outcome of one step.
 struct StepReport {
-    std::string name;         ///< "I: a0, a1"
+    /// "I: {a0}, {a1} (Fx, Eq. 4.12)": the parameters it fits named through the table
+    /// (parameter_text.h).
+    ParameterText name;
     bool usable = false;      ///< Ceres' solution is usable
     std::string termination;  ///< Ceres' termination type and message
     int iterations = 0;

@@ -94,18 +94,23 @@ ceres::LossFunction* makeLoss(Loss loss, double scale) {
     }
 }
 
-std::string pairAdvice(int i, int j) {
+// The advice on a pair of parameters the data do not separate, each named through the table
+// (parameter_text.h): the two known valleys with what separates them, any other pair plainly.
+ParameterText pairAdvice(int i, int j) {
     const std::set<int> pair{i, j};
-    const auto& info = parameterInfo();
+    const std::string a = reference(static_cast<FullParameter>(i)),
+                      b = reference(static_cast<FullParameter>(j));
     if (pair == std::set<int>{kC, kPhi}) {
-        return "c and phi trade off (only c + sigma tan(phi) is seen at one load): add data at "
-               "several loads";
+        return a + " and " + b +
+               " trade off (one load shows only the shear strength they make together, "
+               "Eq. 2.21): add data at several loads";
     }
     if (pair == std::set<int>{kKs, kN}) {
-        return "Ks and n trade off along a flat valley: add data over a wider range of sinkage "
-               "(several loads)";
+        return a + " and " + b +
+               " trade off along a flat valley: add data over a wider range of sinkage (several "
+               "loads)";
     }
-    return std::string(info[i].name) + " and " + info[j].name + " are not separable by these data";
+    return a + " and " + b + " are not separable by these data";
 }
 
 }  // namespace
@@ -302,7 +307,6 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
             }
         }
     }
-    const auto& info = parameterInfo();
     if (!unc.computed && nf > 0) {
         unc.flags.push_back(
             "the data do not determine all free parameters (rank-deficient covariance): fix some, "
@@ -313,7 +317,7 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
             for (int b = a + 1; b < nf; ++b) {
                 const double c = unc.correlation[free[a]][free[b]];
                 if (std::abs(c) > correlation_flag) {
-                    unc.flags.push_back(pairAdvice(free[a], free[b]) + " (correlation " +
+                    unc.flags.push_back(pairAdvice(free[a], free[b]).text + " (correlation " +
                                         formatNumber(roundSignificant(c, 4)) + ")");
                 }
             }
@@ -321,15 +325,15 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
     }
     for (int k : free) {
         if (!at_bound[k]) continue;
-        unc.flags.push_back(std::string(info[k].name) +
-                            " ended at its bound: not determined by the data");
+        const std::string bounded = reference(static_cast<FullParameter>(k));
+        unc.flags.push_back(bounded + " ended at its bound: not determined by the data");
         // The covariance is conditional on k held at its bound: a parameter that trades off with
         // k has compensated for it, and its standard deviation understates its error.
         if (!unc.computed) continue;
         for (int j2 : free) {
             if (j2 == k || std::abs(unc.correlation[k][j2]) < bound_correlation_flag) continue;
-            unc.flags.push_back(std::string(info[j2].name) +
-                                " is uncertain beyond its std: it trades off with " + info[k].name +
+            unc.flags.push_back(reference(static_cast<FullParameter>(j2)) +
+                                " is uncertain beyond its std: it trades off with " + bounded +
                                 " (correlation " +
                                 formatNumber(roundSignificant(unc.correlation[k][j2], 3)) +
                                 "), which ended at its bound");

@@ -67,7 +67,11 @@ RefineResult refineFullModel(const DataSet& data, const wheel::WheelParameters& 
     const auto end = std::chrono::steady_clock::now();
 
     RefineResult result;
-    result.report.name = "IV: full model (a0, a1, Ks, n, c, phi, K)";
+    // The seven parameters it refines (j_max is held here, never estimated).
+    std::string name = "IV: full model (";
+    for (int k = 0; k < kJmax; ++k)
+        name += (k == 0 ? "" : ", ") + reference(static_cast<FullParameter>(k));
+    result.report.name = name + ")";
     result.report.usable = summary.usable;
     result.report.termination = summary.termination;
     result.report.iterations = summary.iterations;

@@ -42,7 +42,9 @@ struct Uncertainty {
     bool computed = false;  ///< false: the covariance is rank deficient (see flags)
     std::array<double, kFullParameterCount> std{};  ///< SI; 0 for fixed parameters
     std::array<std::array<double, kFullParameterCount>, kFullParameterCount> correlation{};
-    std::vector<std::string> flags;  ///< what the data do not determine, and what would fix it
+    /// What the data do not determine, and what would fix it; the parameters named through the
+    /// table (parameter_text.h: worded by key in JSON, by symbol in a summary).
+    std::vector<ParameterText> flags;
 };
 
 /// The refinement's result.

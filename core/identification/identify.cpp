@@ -752,13 +752,14 @@ IdentificationReport identify(const DataSet& data, const wheel::WheelParameters&
         report.timing.refinement_ms += first.refinement_ms;
         report.timing.covariance_ms += first.covariance_ms;
         report.shear_limit_prior = true;
+        const std::string jmax = reference(kJmax);
         report.uncertainty.flags.push_back(
-            "jmax_m: the data do not determine j_max (without a prior it ended at " +
+            "the data do not determine " + jmax + " (without a prior it ended at " +
             formatNumber(roundSignificant(unseen[kJmax] * 1e3, 3)) +
             " mm, unresolved): estimated with the prior " +
             formatNumber(kDefaultShearLimitPrior.mean * 1e3) + " ± " +
-            formatNumber(kDefaultShearLimitPrior.std * 1e3) +
-            " mm (give your own with --prior jmax_m=MEAN±STD, or hold it with --jmax)");
+            formatNumber(kDefaultShearLimitPrior.std * 1e3) + " mm (give a prior of your own on " +
+            jmax + ", or hold it at a value)");
     }
     if (report.usable() && (options.holdout_fraction > 0 || options.folds >= 2)) {
         const auto start = Clock::now();

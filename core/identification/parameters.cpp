@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/common/quoted.h"
 #include "core/common/range.h"
@@ -177,6 +178,34 @@ std::optional<FullParameter> fullParameterOf(const ParameterField& field) {
         if (&parameterTable()[static_cast<std::size_t>(index)] == &field) return full;
     }
     return std::nullopt;
+}
+
+const ParameterField& fieldOf(double DecoupledParameters::*member) {
+    for (const ParameterField& field : parameterTable()) {
+        if (field.member == member) return field;
+    }
+    throw std::invalid_argument("fieldOf: not a member of the parameter table");
+}
+
+const char* soilKeyOf(const ParameterField& field) {
+    if (field.member == &DecoupledParameters::pressure_modulus) return "kphi";
+    if (field.member == &DecoupledParameters::n0) return "n";
+    return field.key;
+}
+
+const ParameterField* parameterOfSoilKey(std::string_view soil_key) {
+    for (const ParameterField& field : parameterTable()) {
+        if (soil_key == soilKeyOf(field)) return &field;
+    }
+    return nullptr;
+}
+
+std::string reference(FullParameter parameter) {
+    return ParameterText::reference(fieldOf(parameter).key);
+}
+
+std::string reference(double DecoupledParameters::*member) {
+    return ParameterText::reference(fieldOf(member).key);
 }
 
 std::vector<std::string> fullParameterKeys() {

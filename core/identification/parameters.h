@@ -18,6 +18,7 @@
 #include "core/common/field.h"
 #include "core/common/issue.h"
 #include "core/identification/decoupled_fit.h"
+#include "core/identification/parameter_text.h"
 #include "core/soil/soil_parameters.h"
 #include "core/wheel/wheel_parameters.h"
 
@@ -83,6 +84,19 @@ std::vector<std::string> fullParameterKeys();
 const ParameterField& fieldOf(FullParameter parameter);
 /// The full model's parameter of a field; empty for n1 (not refined).
 std::optional<FullParameter> fullParameterOf(const ParameterField& field);
+/// The field of a member of DecoupledParameters (&DecoupledParameters::n1 → n1's).
+const ParameterField& fieldOf(double DecoupledParameters::*member);
+
+/// The soil file key of the field that carries a parameter in a soil made from it (soilOf, with
+/// k_c = 0): "kphi" for K_s, "n" for n₀; every other parameter's key is the soil's own.
+const char* soilKeyOf(const ParameterField& field);
+/// The parameter a soil file key carries (soilKeyOf's inverse), or nullptr.
+const ParameterField* parameterOfSoilKey(std::string_view soil_key);
+
+/// "{Ks_kPa}": how a ParameterText (parameter_text.h) names a parameter, worded as its key or
+/// symbol by the renderer.
+std::string reference(FullParameter parameter);
+std::string reference(double DecoupledParameters::*member);
 
 /// How the solver names a parameter in its messages and converts it: a view of parameterFields()
 /// in FullParameter order (name = the field's key, to_user = 1 / to_si).

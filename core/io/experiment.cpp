@@ -19,11 +19,11 @@ namespace fs = std::filesystem;
 // The conditions' ranges are the operating point's (core/contact/operating_fields.h: W in
 // (0, 1e5] N, s in [−1, 1], β in (−90°, 90°)), repeated here because io sits below contact.
 const std::array<ExperimentColumn, kExperimentChannelCount> kChannels{{
-    {"Fx_N", "N", {-1e6, 1e6}, "drawbar pull"},
-    {"My_Nm", "N·m", {-1e6, 1e6}, "driving torque"},
-    {"sinkage_m", "m", {0.0, 5.0}, "sinkage"},
-    {"Fy_N", "N", {-1e6, 1e6}, "side force"},
-    {"Fz_N", "N", {-1e6, 1e6}, "vertical force"},
+    {"Fx_N", "N", {-1e6, 1e6}, "drawbar pull", "F_x"},
+    {"My_Nm", "N·m", {-1e6, 1e6}, "driving torque", "M_y"},
+    {"sinkage_m", "m", {0.0, 5.0}, "sinkage", "h"},
+    {"Fy_N", "N", {-1e6, 1e6}, "side force", "F_s"},
+    {"Fz_N", "N", {-1e6, 1e6}, "vertical force", "F_z"},
 }};
 const std::array<ExperimentColumn, 3> kConditions{{
     {"load_N", "N", {0.0, 1e5, true, false}, "wheel load"},

@@ -31,7 +31,8 @@ struct ExperimentColumn {
     const char* name;
     const char* unit;
     Range range;
-    const char* label;  ///< "drawbar pull"
+    const char* label;        ///< "drawbar pull"
+    const char* symbol = "";  ///< "F_x", as the studio names it ("" for the conditions)
 };
 
 /// The channel columns, in ExperimentChannel order.

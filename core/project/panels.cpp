@@ -57,6 +57,10 @@ void readOldValidation(ObjectReader& r, const char* key, analysis::Identificatio
 
 void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
     io::readFields(r, out);
+    // An old parameter key in the priors (either form) or "fix" ("Ks", issue 26): read as its
+    // new one, with the note the command line gives (the panel shows it).
+    analysis::noteDeprecatedParameterKeys(
+        r, out.fit, r.has("prior_items") && !r.has("priors") ? "prior_items" : "priors");
 }
 
 void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,

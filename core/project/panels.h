@@ -138,6 +138,8 @@ void readPanelSettings(io::ObjectReader& r, StressPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, CompactionPanelSettings& out,
                        const io::PresetLocations* locations = nullptr);
 void readPanelSettings(io::ObjectReader& r, SensitivityPanelSettings& out);
+/// A parameter named by an old key in its priors or "fix" ("Ks=1500±500", issue 26) is read as
+/// its new one and noted in `out.fit.key_warnings` (the panel shows the notes).
 void readPanelSettings(io::ObjectReader& r, IdentificationPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, GlobalSensitivityPanelSettings& out);
 /// The edited scenarios are checked as scenarios when `locations` is given.

@@ -99,7 +99,7 @@ id::DecoupledParameters parametersFrom(const json& j) {
 }
 
 json stepJson(const id::StepReport& s) {
-    return {{"name", s.name},
+    return {{"name", s.name.text},
             {"usable", s.usable},
             {"termination", s.termination},
             {"iterations", s.iterations},
@@ -108,9 +108,12 @@ json stepJson(const id::StepReport& s) {
 }
 
 id::StepReport stepFrom(const json& j) {
-    return {j.at("name").get<std::string>(),        j.at("usable").get<bool>(),
-            j.at("termination").get<std::string>(), j.at("iterations").get<int>(),
-            numberAt(j, "squared_residual_norm"),   numberAt(j, "wall_time_ms")};
+    return {id::ParameterText(j.at("name").get<std::string>()),
+            j.at("usable").get<bool>(),
+            j.at("termination").get<std::string>(),
+            j.at("iterations").get<int>(),
+            numberAt(j, "squared_residual_norm"),
+            numberAt(j, "wall_time_ms")};
 }
 
 json minimumJson(const id::Minimum& m) {
@@ -148,7 +151,7 @@ json uncertaintyJson(const id::Uncertainty& u) {
     return {{"computed", u.computed},
             {"std", arrayJson(u.std)},
             {"correlation", std::move(correlation)},
-            {"flags", u.flags}};
+            {"flags", listJson(u.flags, [](const id::ParameterText& t) { return t.text; })}};
 }
 
 id::Uncertainty uncertaintyFrom(const json& j) {
@@ -161,7 +164,10 @@ id::Uncertainty uncertaintyFrom(const json& j) {
                                     " rows");
     for (std::size_t i = 0; i < kParameters; ++i)
         u.correlation[i] = arrayFrom<kParameters>(correlation[i]);
-    u.flags = j.at("flags").get<std::vector<std::string>>();
+    // The texts with their parameter references (parameter_text.h); a result saved before they
+    // named parameters so reads as the text it was.
+    for (std::string& flag : j.at("flags").get<std::vector<std::string>>())
+        u.flags.emplace_back(std::move(flag));
     return u;
 }
 

@@ -10,6 +10,7 @@
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/field/field_summary.h"
+#include "core/identification/parameters.h"
 #include "core/identification/soil_conversion.h"
 #include "core/identification/streaming.h"
 #include "core/io/atomic_file.h"
@@ -249,19 +250,22 @@ soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p
 // a₀, a₁, k_φ (K_s: k_c = 0), n (n₀), n₁, c, φ, K, the identifier's covariance converted from SI.
 soil::SoilPosterior posteriorOfEstimate(const identification::StreamUpdate& u,
                                         const soil::SoilParameters& soil) {
-    static constexpr std::array<const char*, identification::kDecoupledParameterCount> kKeys{
-        "a0", "a1", "kphi", "n", "n1", "c_kPa", "phi_deg", "K_m"};
+    // The streaming identifier's eight parameters are the table's first eight fields, in its
+    // order (a₀ … K; j_max is not estimated).
+    constexpr auto count = static_cast<std::size_t>(identification::kDecoupledParameterCount);
+    const auto fields = identification::parameterFields().first(count);
     soil::SoilPosterior out;
     std::array<double, identification::kDecoupledParameterCount> to_si{};
-    for (std::size_t k = 0; k < kKeys.size(); ++k) {
-        const soil::SoilField& field = *soil::findSoilField(kKeys[k]);
-        out.parameters.emplace_back(kKeys[k]);
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+        const char* key = identification::soilKeyOf(fields[k]);
+        const soil::SoilField& field = *soil::findSoilField(key);
+        out.parameters.emplace_back(key);
         out.mean.push_back(field.userValue(soil));
         to_si[k] = field.to_si;
     }
-    for (std::size_t i = 0; i < kKeys.size(); ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
         std::vector<double> row;
-        for (std::size_t j = 0; j < kKeys.size(); ++j)
+        for (std::size_t j = 0; j < count; ++j)
             row.push_back(u.covariance[i][j] / (to_si[i] * to_si[j]));
         out.covariance.push_back(std::move(row));
     }

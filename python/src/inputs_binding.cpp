@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/analysis/soil_posterior.h"
+#include "core/identification/parameters.h"
 #include "core/io/json_reader.h"
 #include "python/src/convert.h"
 
@@ -213,6 +215,35 @@ Wheel. Raises ValueError as the command line does.
             return out;
         },
         "Every soil field: key, unit, symbol, label, description and allowed range (file units).");
+    m.def(
+        "identified_parameters",
+        []() {
+            // The core's one table of the identified parameters (issue 26): Python names them
+            // from it, as the command line does.
+            py::list out;
+            for (const identification::ParameterField& f : identification::parameterFields()) {
+                py::dict d;
+                d["key"] = f.key, d["unit"] = f.unit, d["symbol"] = f.symbol;
+                d["label"] = f.label, d["description"] = f.description;
+                d["low"] = f.range.low, d["high"] = f.range.high, d["to_si"] = f.to_si;
+                d["refined"] = identification::fullParameterOf(f).has_value();
+                d["soil_key"] = analysis::soilKeyOf(f.key);
+                const std::string old = identification::oldKeyOf(f);
+                d["old_key"] = old == f.key ? py::object(py::none()) : py::str(old);
+                out.append(d);
+            }
+            return out;
+        },
+        "Every identified parameter (the table `identify` reads and writes): key, unit, symbol, "
+        "label, description, allowed range (its unit), to_si, refined (a parameter of the full "
+        "model), soil_key (its soil file key) and old_key (its deprecated key, or None).");
+    m.def(
+        "_deprecation_note",
+        [](const std::string& key) -> py::object {
+            if (!identification::lookupParameter(key).deprecated) return py::none();
+            return py::str(identification::deprecationNote(key));
+        },
+        py::arg("key"));
     m.def("_set_data_dir", &setDataDir);
 }
 

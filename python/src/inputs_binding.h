@@ -10,7 +10,8 @@
 
 namespace terra::python {
 
-/// Registers Soil, Wheel, soil(), wheel(), presets() and soil_fields().
+/// Registers Soil, Wheel, soil(), wheel(), presets(), soil_fields() and identified_parameters()
+/// (the identification's parameter table, core/identification/parameters.h).
 void bindInputs(pybind11::module_& m);
 
 }  // namespace terra::python

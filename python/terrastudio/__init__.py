@@ -18,8 +18,8 @@ import warnings
 import numpy as np
 
 from . import _core, _layout
-from ._core import (STATUS, Soil, Wheel, analyses, presets, sobol_design, soil, soil_fields,
-                    wheel)
+from ._core import (STATUS, Soil, Wheel, analyses, identified_parameters, presets, sobol_design,
+                    soil, soil_fields, wheel)
 
 __version__ = _core.__version__
 __all__ = [
@@ -29,6 +29,7 @@ __all__ = [
     "analyses",
     "compaction",
     "forces",
+    "identified_parameters",
     "identify",
     "morris",
     "presets",
@@ -627,16 +628,19 @@ def _study_arguments(soil, wheel, parameters, slip, slip_angle_deg, load_N, entr
         outputs=list(outputs), options=options, angle_axis=bool(angle_axis))
 
 
-_IDENTIFIED_TO_SOIL = {"Ks_kPa": "kphi", "n0": "n"}
-# The identification's keys of before issue 26, still read (core: identification::
-# deprecatedParameterKeys): "Ks" is Ks_kPa; "n" is n0, already the soil's key.
-_DEPRECATED_IDENTIFIED = {"Ks": "Ks_kPa"}
+# The identification's names of the parameters whose soil keys differ (Ks_kPa is the soil's
+# kphi, n0 its n) and their old keys (issue 26), from the core's one table
+# (identified_parameters()): an old key that is also a soil key ("n") is the soil's.
+_IDENTIFIED_TO_SOIL = {f["key"]: f["soil_key"] for f in identified_parameters()
+                       if f["soil_key"] != f["key"]}
+_DEPRECATED_IDENTIFIED = {f["old_key"]: f["key"] for f in identified_parameters()
+                          if f["old_key"] and f["old_key"] not in {s["key"] for s in soil_fields()}}
 
 
 def _identified_soil_key(key):
     if key in _DEPRECATED_IDENTIFIED:
-        warnings.warn(f"posterior: parameter key '{key}' is deprecated: use "
-                      f"'{_DEPRECATED_IDENTIFIED[key]}'", DeprecationWarning, stacklevel=4)
+        warnings.warn(f"posterior: {_core._deprecation_note(key)}", DeprecationWarning,
+                      stacklevel=4)
         key = _DEPRECATED_IDENTIFIED[key]
     return _IDENTIFIED_TO_SOIL.get(key, key)
 

@@ -76,6 +76,37 @@ def test_identify_reads_the_old_parameter_keys_with_a_deprecation_warning():
     assert old["start"] == new["start"]
 
 
+def test_the_parameter_names_are_the_cores_table_as_the_command_line_names_them(tmp_path, cli):
+    # Issue 26: one table of the identified parameters, in the core; Python reads it
+    # (identified_parameters()) and names the parameters as `identify` does: its JSON's keys,
+    # its flags' words and its deprecation note for an old key.
+    fields = ts.identified_parameters()
+    assert [f["key"] for f in fields] == ["a0", "a1", "Ks_kPa", "n0", "n1", "c_kPa", "phi_deg",
+                                          "K_m", "jmax_m"]
+    assert {f["old_key"]: f["key"] for f in fields if f["old_key"]} == {"Ks": "Ks_kPa", "n": "n0"}
+    assert {f["key"]: f["soil_key"] for f in fields if f["soil_key"] != f["key"]} == {
+        "Ks_kPa": "kphi", "n0": "n"}
+    refined = [f["key"] for f in fields if f["refined"]]
+    # One load: c and phi trade off, and the flag names them.
+    data = tmp_path / "one-load.csv"
+    made = cli("synth", "--soil", SOIL, "--wheel", WHEEL, "--load", "58.86", "--noise",
+               "fx=2%,fz=2%,my=2%", "--out", data)
+    assert made.returncode == 0, made.stderr
+    printed = cli("identify", "--data", data, "--wheel", WHEEL, "--prior", "Ks=1500±500", "--json")
+    assert printed.returncode == 0, printed.stderr
+    expected = json.loads(printed.stdout)
+    assert sorted(expected["std"]) == sorted(refined)  # a JSON object: keys in any order
+    with pytest.warns(DeprecationWarning) as said:
+        out = ts.identify(data, WHEEL, priors=["Ks=1500±500"])
+    assert sorted(out["std"]) == sorted(refined)
+    assert out["flags"] == expected["flags"]
+    assert any(f.startswith("c_kPa and phi_deg trade off") for f in out["flags"]), out["flags"]
+    # The same note: the command line's after its flag's name, Python's after "priors".
+    note = "prior 'Ks=1500±500': parameter key 'Ks' is deprecated: use 'Ks_kPa'"
+    assert f"warning: --prior: {note}" in printed.stderr.splitlines(), printed.stderr
+    assert [str(w.message) for w in said] == [f"priors: {note}"]
+
+
 def test_identify_from_columns_equals_from_csv(tmp_path):
     soil = ts.soil(SOIL)
     synthetic = ts.identify(None, WHEEL, soil, noise_percent=1.0, slip_count=10, refine=False)

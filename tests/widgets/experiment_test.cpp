@@ -452,6 +452,71 @@ TEST(ForcesPanel, CalibrationOnSomeSlipsShowsTheHeldOutErrors) {
     EXPECT_NEAR(number(metrics, 0, 4), std::sqrt(squares / 3.0), 5e-4 * held.rmse);
 }
 
+// Issue 26: the dialog's metrics are the core's, formatted once there: each cell is the core
+// metrics table's text, and each RMSE, MAE and largest relative error the text the summary that
+// `validate` prints gives that number (its RMSE row's value, and its detail).
+TEST(ForcesPanel, TheCalibrationsMetricsCellsAreTheCoreSummarysText) {
+    ProjectDocument document;
+    loadWithSetup(document);
+    ForcesPanel panel(&document);
+    CalibrationDialog* dialog = panel.openCalibration();
+    ASSERT_NE(dialog, nullptr);
+    QSignalSpy done(dialog, &CalibrationDialog::calibrationFinished);
+    dialog->setOptions(1.0, 0.0, 1.0, false);
+    dialog->setFitSlips("0, 0.2, 0.6");
+    ASSERT_TRUE(dialog->start());
+    ASSERT_TRUE(done.wait(120000));
+    ASSERT_TRUE(dialog->result().has_value());
+    const analysis::ValidationResult& r = *dialog->result();
+    ASSERT_TRUE(r.calibration && r.calibration->report.usable());
+
+    const analysis::MetricsTable table = analysis::validationMetricsTable(r);
+    const QTableWidget& metrics = *dialog->metricsTable();
+    ASSERT_EQ(table.columns.size(), 4u);  // given, calibrated, held out with each
+    ASSERT_EQ(metrics.columnCount(), 5);
+    ASSERT_EQ(metrics.rowCount(), static_cast<int>(table.rows.size()));
+    ASSERT_EQ(metrics.rowCount(), 6);  // F_x and h: RMSE, MAE, largest relative error
+    const analysis::Summary summary = analysis::validationSummary(r);
+    const auto summaryRow = [&summary](const std::string& json) -> const analysis::SummaryRow* {
+        for (const analysis::SummaryRow& row : summary) {
+            if (row.json == json) return &row;
+        }
+        return nullptr;
+    };
+    int compared = 0;
+    for (int row = 0; row < metrics.rowCount(); ++row) {
+        const analysis::MetricsTable::Row& expected = table.rows[static_cast<std::size_t>(row)];
+        EXPECT_EQ(metrics.item(row, 0)->text().toStdString(), expected.label);
+        for (int col = 0; col < 4; ++col) {
+            const analysis::SummaryRow& cell = expected.cells[static_cast<std::size_t>(col)];
+            const std::string text = metrics.item(row, col + 1)->text().toStdString();
+            EXPECT_EQ(text, analysis::cellText(cell)) << expected.label << " " << col;
+            // Empty: the set has no point of the channel (held-out points without a sinkage).
+            if (text.empty()) continue;
+            ++compared;
+            if (cell.json.empty()) {  // no relative error (a measured value of 0)
+                EXPECT_EQ(text, "-");
+                continue;
+            }
+            // The summary's RMSE row of that set of points and channel.
+            const std::string metric = cell.json.substr(cell.json.rfind('/') + 1);
+            const std::string at = cell.json.substr(0, cell.json.rfind('/')) + "/rmse";
+            const analysis::SummaryRow* rmse = summaryRow(at);
+            ASSERT_NE(rmse, nullptr) << at;
+            if (metric == "rmse") {
+                EXPECT_EQ(text, rmse->value + " " + rmse->unit) << at;
+            } else {
+                const std::string said = metric == "mae" ? "MAE " : "max relative error ";
+                EXPECT_NE(rmse->detail.find(said + text), std::string::npos)
+                    << rmse->detail << " / " << text;
+            }
+        }
+    }
+    EXPECT_GE(compared, 6 * 2 + 3 * 2);  // both soils' six, F_x held out with each
+    EXPECT_EQ(metrics.item(0, 0)->text(), "F_x RMSE");
+    EXPECT_EQ(metrics.item(3, 0)->text(), "h RMSE");
+}
+
 TEST(ForcesPanel, ACalibrationOfAnEarlierProjectOrCancelledIsNotApplied) {
     ProjectDocument document;
     loadWithSetup(document);

@@ -463,6 +463,49 @@ TEST(IdentificationPanel, TableAndReportShowSymbolsWithUnitsNotFileKeys) {
     EXPECT_TRUE(report.contains("F_x")) << report.toStdString();
 }
 
+// Issue 26: the solver's advice names the parameters through the field table — by symbol in the
+// panel's report, as the core summary words it, by key in the JSON of the same result (what
+// `identify --json` prints). One load cannot separate c and φ: the fit says so.
+TEST(IdentificationPanel, TheAdviceNamesParametersBySymbolWhereTheJsonHasKeys) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}, {"three_loads", false}});
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().usable()) << panel.result().message;
+    const QString report = panel.fitReport();
+    EXPECT_TRUE(report.contains("c and φ trade off")) << report.toStdString();
+    const QRegularExpression key("Ks_kPa|c_kPa|phi_deg|K_m|jmax_m|\\bn0\\b|\\ba0\\b|\\ba1\\b");
+    EXPECT_FALSE(report.contains(key)) << report.toStdString();
+    bool keyed = false;
+    const nlohmann::json json = analysis::toJson(panel.result());
+    for (const nlohmann::json& flag : json.at("flags"))
+        keyed |= flag.get<std::string>().starts_with("c_kPa and phi_deg trade off");
+    EXPECT_TRUE(keyed);
+}
+
+// Issue 26: a parameter named by an old key — in a project's saved priors, or typed in the prior
+// field — is read as its new one with the note the command line gives, in the panel's status.
+TEST(IdentificationPanel, AnOldParameterKeyIsReadWithTheCommandLinesNote) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    IdentificationPanel panel(&document);
+    panel.applySettings({{"refine", true}, {"priors", {"Ks=1500±500"}}});
+    EXPECT_TRUE(panel.fitStatus().contains(
+        "priors: prior 'Ks=1500±500': parameter key 'Ks' is deprecated: use 'Ks_kPa'"))
+        << panel.fitStatus().toStdString();
+    EXPECT_EQ(panel.settings()["priors"], nlohmann::json({"Ks_kPa=1500±500"}));  // saved so
+
+    panel.setFitOptions("", "n=0.7±0.1", "none", "l2");
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    ASSERT_TRUE(panel.result().usable()) << panel.result().message;
+    EXPECT_TRUE(panel.fitStatus().contains(
+        "priors: prior 'n=0.7±0.1': parameter key 'n' is deprecated: use 'n0'"))
+        << panel.fitStatus().toStdString();
+}
+
 // Issue 27, item 3: the batch fit has a Cancel, as every long computation does; a cancelled fit
 // says so the way every panel does ("CANCELLED (partial)"), applies nothing, and keeps no curve
 // of the fit before it on screen.

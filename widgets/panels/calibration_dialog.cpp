@@ -12,7 +12,6 @@
 #include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <functional>
 
 #include "core/identification/parameters.h"
 #include "core/io/parameters_json.h"
@@ -21,8 +20,6 @@
 #include "widgets/document/project_document.h"
 #include "widgets/panels/summary_html.h"
 #include "widgets/plots/completion.h"
-#include "widgets/plots/experiment_overlay.h"
-#include "widgets/plots/number_format.h"
 
 namespace terra::ui {
 namespace {
@@ -274,14 +271,15 @@ void CalibrationDialog::showResult() {
     status_->setText(summaryHtml(rows));
     status_shows_result_ = true;
 
-    metrics_->setRowCount(0);
-    // Held-out points (fit slips leaving some out): two more columns, their errors with the given
-    // and the calibrated soil.
-    const bool held_out = usable && cal.held_out && cal.held_out_before;
+    // The metrics as the core lays them out and formats them (validationMetricsTable: the
+    // numbers `validate` prints), a column per set of points.
+    const analysis::MetricsTable table = analysis::validationMetricsTable(r);
+    const bool held_out = table.columns.size() == 4;
     QStringList headers{"Metric", "Given soil", "Calibrated"};
     if (held_out)
         headers << "Held out\ngiven"
                 << "Held out\ncalibrated";
+    metrics_->setRowCount(0);
     setupTable(metrics_, headers);
     if (held_out) {
         metrics_->horizontalHeaderItem(3)->setToolTip(
@@ -289,48 +287,13 @@ void CalibrationDialog::showResult() {
         metrics_->horizontalHeaderItem(4)->setToolTip(
             "The points the calibration did not use, predicted by the calibrated soil");
     }
-    using Metric = std::optional<analysis::ChannelMetrics>;
-    // An error beside the row's largest is shown to that one's precision: 4.945e-15 mm is 0.
-    const auto row_scale = [](const Metric* const* columns, int count,
-                              double (*of)(const Metric&)) {
-        double scale = 0.0;
-        for (int col = 0; col < count; ++col) {
-            if (*columns[col]) scale = std::max(scale, std::abs(of(*columns[col])));
-        }
-        return scale;
-    };
-    for (std::size_t c = 0; c < io::kExperimentChannelCount; ++c) {
-        const auto& before = r.before.metrics[c];
-        if (!before) continue;
-        const auto channel = static_cast<io::ExperimentChannel>(c);
-        const Metric none;
-        const Metric* columns[] = {&before, usable ? &cal.after->metrics[c] : &none,
-                                   held_out ? &(*cal.held_out_before)[c] : &none,
-                                   held_out ? &(*cal.held_out)[c] : &none};
-        const QString name = channelLabel(channel).section(' ', 0, 0);
-        const int count = held_out ? 4 : 2;
-        const double rmse_scale =
-            row_scale(columns, count, [](const Metric& m) { return m->rmse; });
-        const double mae_scale = row_scale(columns, count, [](const Metric& m) { return m->mae; });
-        const std::pair<QString, std::function<QString(const analysis::ChannelMetrics&)>> rows[] = {
-            {name + " RMSE",
-             [&](const analysis::ChannelMetrics& m) {
-                 return channelValue(channel, m.rmse, rmse_scale);
-             }},
-            {name + " MAE",
-             [&](const analysis::ChannelMetrics& m) {
-                 return channelValue(channel, m.mae, mae_scale);
-             }},
-            {name + " max rel. error",
-             [](const analysis::ChannelMetrics& m) { return relativeError(m.max_rel_error); }}};
-        for (const auto& [label, format] : rows) {
-            const int row = metrics_->rowCount();
-            metrics_->insertRow(row);
-            metrics_->setItem(row, 0, cell(label));
-            for (int col = 0; col < count; ++col) {
-                const Metric& m = *columns[col];
-                metrics_->setItem(row, col + 1, cell(m ? format(*m) : QString()));
-            }
+    for (const analysis::MetricsTable::Row& row : table.rows) {
+        const int at = metrics_->rowCount();
+        metrics_->insertRow(at);
+        metrics_->setItem(at, 0, cell(QString::fromStdString(row.label)));
+        for (std::size_t col = 0; col < row.cells.size(); ++col) {
+            metrics_->setItem(at, static_cast<int>(col) + 1,
+                              cell(QString::fromStdString(analysis::cellText(row.cells[col]))));
         }
     }
     parameters_->setRowCount(0);

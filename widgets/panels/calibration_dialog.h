@@ -71,9 +71,10 @@ public:
     AnalysisPanel::Restored restore(const project::SavedResult& saved);
 
     QString statusText() const;
-    /// The metrics table (rows: channel × RMSE, MAE, max rel. error; columns: metric, given soil,
-    /// calibrated, and with held-out points: held out with the given soil, held out calibrated) and
-    /// the parameter table (symbol [unit], calibrated, ± std, prior), for tests.
+    /// The metrics table, the core's analysis::validationMetricsTable with its cells' texts (rows:
+    /// channel × RMSE, MAE, largest relative error; columns: metric, given soil, calibrated, and
+    /// with held-out points: held out with the given soil, held out calibrated) and the parameter
+    /// table (symbol [unit], calibrated, ± std, prior), for tests.
     QTableWidget* metricsTable() const { return metrics_; }
     QTableWidget* parameterTable() const { return parameters_; }
 

@@ -15,6 +15,7 @@
 #include <QPushButton>
 #include <QSignalBlocker>
 #include <QSplitter>
+#include <QStringList>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -290,6 +291,14 @@ void IdentificationFitPage::applySettings(const project::IdentificationPanelSett
     noise_->setValue(fit.synthetic.noise_percent);
     three_loads_->setChecked(s.three_loads);
     options_->applySettings(s);
+    // A parameter named by an old key in the saved priors ("Ks=…", issue 26): read as its new
+    // one, noted as the command line notes it.
+    if (!s.fit.key_warnings.empty()) {
+        QStringList notes;
+        for (const Issue& note : s.fit.key_warnings)
+            notes << QString::fromStdString(note.where + ": " + note.message).toHtmlEscaped();
+        status_->setText("<b>Warning:</b> the saved settings: " + notes.join("<br>"));
+    }
 }
 
 analysis::IdentificationSettings IdentificationFitPage::fitSettings() const {
@@ -401,7 +410,11 @@ void IdentificationFitPage::present(const std::any& value,
         truth = identification::decoupledOf(document_->project().soil, fit_wheel_);
     fillParameterTable(*parameters_, result_, truth);
     report_->setText(identificationReport(result_));
-    status_->setText(identificationSteps(result_));
+    // The fit's warnings after its steps (a column not read, an old parameter key typed).
+    QString status = identificationSteps(result_);
+    for (const std::string& warning : result_.warnings)
+        status += "<br><b>Warning:</b> " + QString::fromStdString(warning).toHtmlEscaped();
+    status_->setText(status);
 }
 
 }  // namespace terra::ui

@@ -344,6 +344,8 @@ TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
         EXPECT_TRUE(issues.empty()) << type.name << ": " << formatIssues(issues);
         if (type.name == "identification" || type.name == "streaming") continue;  // slow
         const Outcome outcome = type.run(settings, sandyLoamOnA(), {});
+        EXPECT_EQ(outcome.status, Outcome::Status::kCompleted)
+            << type.name << ": " << outcome.message;
         ASSERT_FALSE(outcome.tables.empty()) << type.name;
         EXPECT_EQ(outcome.tables.front().name, type.tables.front()) << type.name;
         for (const NamedTable& t : outcome.tables) {
@@ -410,6 +412,34 @@ TEST(Registry, EveryTypeReadsItsDefaultsAndNamesItsTables) {
     ASSERT_EQ(without.before.points.size(), validation.before.points.size());
     EXPECT_EQ(without.before.metrics[0]->rmse, validation.before.metrics[0]->rmse);
     EXPECT_EQ(findAnalysisType("forcez"), nullptr);
+}
+
+// Issue 26, item 4: one error channel. Every analysis stopped by its cancel flag before it
+// starts says so in its status — never a failure, never a message to compare — and one that
+// ran says it completed (above). Three compute one operating point (or one slip curve) without
+// looking at the flag: they complete.
+TEST(Registry, EveryTypeStoppedByItsCancelFlagHasTheStatusCancelled) {
+    const ReadContext context{&kLocations, {}};
+    const std::atomic<bool> cancel{true};
+    for (const AnalysisType& type : analysisTypes()) {
+        nlohmann::json object = nlohmann::json::object();
+        if (type.name == "rover") object = {{"scenario", "straight"}, {"duration_s", 0.5}};
+        if (type.name == "validation")
+            object = {{"experiments", std::string(TERRA_RESOURCE_DIR) +
+                                          "/experiments/ding2011-smooth-hit-lss1-80N.csv"},
+                      {"calibrate", true}};
+        std::vector<Issue> issues;
+        io::ObjectReader r(object, issues);
+        const std::any settings = type.read(r, context);
+        r.finish();
+        ASSERT_TRUE(issues.empty()) << type.name << ": " << formatIssues(issues);
+        const Outcome outcome = type.run(settings, sandyLoamOnA(), Control{&cancel});
+        const bool unstoppable =
+            type.name == "stresses" || type.name == "sinkage" || type.name == "traction";
+        EXPECT_EQ(outcome.status,
+                  unstoppable ? Outcome::Status::kCompleted : Outcome::Status::kCancelled)
+            << type.name << ": " << static_cast<int>(outcome.status) << " " << outcome.message;
+    }
 }
 
 TEST(Registry, SettingsReadersNameTheFieldAndTheRange) {

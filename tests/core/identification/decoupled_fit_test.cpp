@@ -86,7 +86,7 @@ TEST(DecoupledFit, RecoversTheTruthOnDataOfTheDecoupledModel) {
     EXPECT_NEAR(p.friction_angle_rad, truth.friction_angle_rad, 1e-8);
     EXPECT_NEAR(p.shear_modulus_m, truth.shear_modulus_m, 1e-8);
     for (const StepReport& step : fit.steps)
-        EXPECT_LT(step.squared_residual_norm, 1e-16) << step.name;
+        EXPECT_LT(step.squared_residual_norm, 1e-16) << step.name.text;
 }
 
 TEST(DecoupledFit, FullModelDataShowsTheLinearisationBias) {

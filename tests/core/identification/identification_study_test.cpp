@@ -110,16 +110,15 @@ Coverage coverageStudy(const std::vector<double>& loads) {
         if (!r.report.usable) continue;
         ++cov.runs;
         bool cphi = false, flagged[kFullParameterCount] = {};
-        for (const std::string& flag : r.uncertainty.flags) {
-            if (flag.find("c and phi") != std::string::npos)
-                cphi = flagged[kC] = flagged[kPhi] = true;
-            for (int k = 0; k < kJmax; ++k) {  // "X and Y ...", "X ended at ..."
-                const std::string name = parameterInfo()[k].name;
-                if (flag.rfind(name + " ", 0) == 0 ||
-                    flag.find(" and " + name + " ") != std::string::npos) {
-                    flagged[k] = true;
-                }
-            }
+        for (const ParameterText& flag : r.uncertainty.flags) {
+            // The parameters a flag names ("X and Y trade off", "X ended at its bound").
+            const std::vector<std::string> named = flag.parameters();
+            const auto names = [&named](FullParameter k) {
+                return std::find(named.begin(), named.end(), fieldOf(k).key) != named.end();
+            };
+            if (names(kC) && names(kPhi) && flag.text.find("trade off") != std::string::npos)
+                cphi = true;
+            for (int k = 0; k < kJmax; ++k) flagged[k] |= names(static_cast<FullParameter>(k));
         }
         cov.cphi_flagged += cphi;
         const auto got = valuesOf(r.parameters);

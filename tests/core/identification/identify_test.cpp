@@ -302,8 +302,9 @@ TEST(Identify, AShearLimitTheDataCannotSeeComesFromItsPrior) {
     ASSERT_TRUE(r.prior[kJmax].active);
     EXPECT_EQ(r.prior[kJmax].prior_mean, kDefaultShearLimitPrior.mean);
     bool said = false;
-    for (const std::string& flag : r.uncertainty.flags)
-        said |= flag.find("do not determine j_max") != std::string::npos;
+    for (const ParameterText& flag : r.uncertainty.flags)
+        said |= flag.worded(ParameterNaming::kSymbol).find("do not determine j_max") !=
+                std::string::npos;
     EXPECT_TRUE(said);
     ParameterVector truth = truthOf(soil);
     truth[kJmax] = r.parameters[kJmax];  // no truth to compare: the prior's estimate

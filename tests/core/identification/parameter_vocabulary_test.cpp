@@ -148,6 +148,30 @@ TEST(ParameterVocabulary, TheSettingsReaderTakesOldKeysAsTheNewOnesWithANote) {
         << typo_issues[0].message;
 }
 
+// Settings built in code (the studio's typed prior items) with an old key: the fit reads it as
+// the new one and its warnings give the reader's note, once.
+TEST(ParameterVocabulary, SettingsBuiltInCodeWithAnOldKeyFitAsTheNewOneWithTheNote) {
+    analysis::IdentificationSettings s;
+    s.synthetic.slip_count = 10;
+    s.design_points = 4;
+    s.prior_items = {"Ks=1500±500"};
+    s.fixed = {{"n", 0.7}};
+    const analysis::IdentificationResult old =
+        analysis::computeIdentification(terra::testing::sandyLoamOnA(), s);
+    s.prior_items = {"Ks_kPa=1500±500"};
+    s.fixed = {{"n0", 0.7}};
+    const analysis::IdentificationResult now =
+        analysis::computeIdentification(terra::testing::sandyLoamOnA(), s);
+    ASSERT_TRUE(old.usable() && now.usable()) << old.message << now.message;
+    EXPECT_EQ(old.identified.pressure_modulus, now.identified.pressure_modulus);
+    EXPECT_EQ(old.identified.n0, 0.7);
+    EXPECT_EQ(old.warnings, (std::vector<std::string>{
+                                "priors: prior 'Ks=1500±500': parameter key 'Ks' is deprecated: "
+                                "use 'Ks_kPa'",
+                                "fix.n: parameter key 'n' is deprecated: use 'n0'"}));
+    EXPECT_TRUE(now.warnings.empty());
+}
+
 // Every soil field of `got` within 1e-12 relative of `want`'s.
 void expectSoilWithinRoundTrip(const soil::SoilParameters& got, const soil::SoilParameters& want) {
     for (const soil::SoilField& field : soil::soilFields()) {

@@ -77,5 +77,36 @@ TEST(IdentificationPanelState, ABadValueIsNamedAsTheAnalysisReaderNamesIt) {
     EXPECT_TRUE(contains(message, "refnie: unknown key; did you mean \"refine\"?")) << message;
 }
 
+// Issue 26: a saved panel state that names a parameter by an old key ("Ks", "n"), in either form
+// of the priors or in "fix", is read as the new key with the note the command line gives.
+TEST(IdentificationPanelState, AnOldParameterKeyIsReadAsItsNewOneWithTheCommandLinesNote) {
+    const char* const ks = "parameter key 'Ks' is deprecated: use 'Ks_kPa'";
+    const Result<IdentificationPanelSettings> items =
+        panelSettingsFromJson<IdentificationPanelSettings>(
+            {{"priors", {"Ks=1500±500", "phi_deg=30±5"}}, {"fix", {{"n", 0.7}}}});
+    ASSERT_TRUE(items.ok()) << items.message();
+    EXPECT_EQ(items->fit.prior_items,
+              (std::vector<std::string>{"Ks_kPa=1500±500", "phi_deg=30±5"}));
+    EXPECT_EQ(items->fit.fixed, (std::vector<std::pair<std::string, double>>{{"n0", 0.7}}));
+    ASSERT_EQ(items->fit.key_warnings.size(), 2u);
+    EXPECT_EQ(items->fit.key_warnings[0].where, "priors");
+    EXPECT_EQ(items->fit.key_warnings[0].message, std::string("prior 'Ks=1500±500': ") + ks);
+    EXPECT_EQ(items->fit.key_warnings[1].where, "fix.n");
+    EXPECT_EQ(items->fit.key_warnings[1].message, "parameter key 'n' is deprecated: use 'n0'");
+    // The old text form of the priors, noted where it was.
+    const Result<IdentificationPanelSettings> text =
+        panelSettingsFromJson<IdentificationPanelSettings>({{"prior_items", "Ks=1500±500"}});
+    ASSERT_TRUE(text.ok()) << text.message();
+    EXPECT_EQ(text->fit.prior_items, (std::vector<std::string>{"Ks_kPa=1500±500"}));
+    ASSERT_EQ(text->fit.key_warnings.size(), 1u);
+    EXPECT_EQ(text->fit.key_warnings[0].where, "prior_items");
+    // Written back with the new keys; read again, nothing to note.
+    const Result<IdentificationPanelSettings> again =
+        panelSettingsFromJson<IdentificationPanelSettings>(toJson(items.value()));
+    ASSERT_TRUE(again.ok()) << again.message();
+    EXPECT_EQ(again->fit.prior_items, items->fit.prior_items);
+    EXPECT_TRUE(again->fit.key_warnings.empty());
+}
+
 }  // namespace
 }  // namespace terra::project
