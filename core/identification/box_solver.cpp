@@ -17,29 +17,94 @@ bool onUpper(const BoxProblem& p, const std::vector<double>& x, std::size_t k) {
     return x[k] >= p.upper[k] - kOnBound * (p.upper[k] - p.lower[k]);
 }
 
+// Within kNearBound of its range from a bound (not on it).
+constexpr double kNearBound = 1e-3;
+bool nearBound(const BoxProblem& p, const std::vector<double>& x, std::size_t k) {
+    const double margin = kNearBound * (p.upper[k] - p.lower[k]);
+    return x[k] <= p.lower[k] + margin || x[k] >= p.upper[k] - margin;
+}
+
 // Ends a pass once a free parameter has stayed on a bound for two successful steps: from there the
-// projected steps only crawl, and the next pass holds it.
+// projected steps only crawl, and the next pass holds it. Also ends it when a free parameter crawls
+// toward a bound it has not reached: three successful steps in a row toward the same bound, each
+// shorter than the one before, the bound within kApproachSteps of the last. Ceres' projected
+// steps shrink like that as the bound nears (a₀ → 0 at one load: 0.16 → 5e-4 in 40 iterations);
+// the caller then tries the parameter on that bound (solveInBox).
 class BoundWatch : public ceres::IterationCallback {
 public:
+    /// A crawl is tried on its bound when the bound is within this many of its last steps.
+    static constexpr double kApproachSteps = 10.0;
+
     BoundWatch(const BoxProblem& problem, const std::vector<double>& x,
-               const std::vector<bool>& held)
-        : problem_(problem), x_(x), held_(held), count_(x.size(), 0) {}
+               const std::vector<bool>& held, const std::vector<bool>& may_snap,
+               const BoxOptions& options)
+        : problem_(problem),
+          x_(x),
+          held_(held),
+          may_snap_(may_snap),
+          options_(options),
+          count_(x.size(), 0),
+          previous_(x),
+          last_move_(x.size(), 0.0),
+          approach_(x.size(), 0) {}
 
     ceres::CallbackReturnType operator()(const ceres::IterationSummary& iteration) override {
         if (!iteration.step_is_successful) return ceres::SOLVER_CONTINUE;
+        if (options_.stop && options_.stop(x_)) {
+            stopped_ = true;
+            return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+        }
         for (std::size_t k = 0; k < x_.size(); ++k) {
             if (held_[k]) continue;
-            count_[k] = onLower(problem_, x_, k) || onUpper(problem_, x_, k) ? count_[k] + 1 : 0;
+            // Steps that leave the bound by a hair and return (a₀ at 0 ↔ 1e-5 at one load, where
+            // the model is not smooth in a₀) count as staying on it.
+            const bool on = onLower(problem_, x_, k) || onUpper(problem_, x_, k);
+            const bool near = options_.bound_shortcuts && nearBound(problem_, x_, k);
+            count_[k] = on ? count_[k] + 1 : (near ? count_[k] : 0);
             if (count_[k] >= 2) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         }
-        return ceres::SOLVER_CONTINUE;
+        double snap_steps = kApproachSteps;
+        for (std::size_t k = 0; k < x_.size() && options_.bound_shortcuts; ++k) {
+            if (held_[k] || !may_snap_[k]) continue;
+            const double move = x_[k] - previous_[k];
+            const int toward = move < 0.0 ? -1 : (move > 0.0 ? 1 : 0);
+            const bool slower = std::abs(move) < last_move_[k];
+            approach_[k] =
+                toward != 0 && slower && approach_[k] * toward > 0 ? approach_[k] + toward : toward;
+            const double distance =
+                toward < 0 ? x_[k] - problem_.lower[k] : problem_.upper[k] - x_[k];
+            last_move_[k] = std::abs(move);
+            const double steps = distance / std::abs(move);
+            if (std::abs(approach_[k]) >= 3 && distance > 0.0 && steps < kApproachSteps &&
+                steps < snap_steps) {
+                snap_ = static_cast<int>(k);
+                snap_lower_ = toward < 0;
+                snap_steps = steps;
+            }
+        }
+        previous_ = x_;
+        return snap_ >= 0 ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
     }
+
+    /// The parameter heading for a bound (-1: none) and whether it is the lower one.
+    int snap() const { return snap_; }
+    bool snapLower() const { return snap_lower_; }
+    /// Whether BoxOptions::stop ended the pass.
+    bool stopped() const { return stopped_; }
 
 private:
     const BoxProblem& problem_;
     const std::vector<double>& x_;
     const std::vector<bool>& held_;
+    const std::vector<bool>& may_snap_;
+    const BoxOptions& options_;
+    bool stopped_ = false;
     std::vector<int> count_;
+    std::vector<double> previous_;
+    std::vector<double> last_move_;  // |x − previous| of the last successful step
+    std::vector<int> approach_;      // consecutive shrinking moves toward a bound, signed
+    int snap_ = -1;
+    bool snap_lower_ = false;
 };
 
 }  // namespace
@@ -97,6 +162,16 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
     }
     BoxSummary summary;
     std::vector<bool> held_on_bound(n, false);
+    // A parameter put on the bound it was heading for (BoundWatch) is a trial, held for one pass:
+    // the point before it is kept, and restored when that pass ends with a higher cost (or no
+    // pass is left to solve it). Each parameter is tried once per solve.
+    std::vector<bool> may_snap(n, true);
+    std::vector<int> releases(n, 0);
+    struct Trial {
+        int parameter = -1;
+        std::vector<double> x;
+        double cost = 0.0;
+    } trial;
     for (;;) {
         std::vector<int> held;
         for (std::size_t k = 0; k < n; ++k) {
@@ -104,6 +179,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         }
         ++summary.passes;
         bool converged = true;
+        int snap = -1;
+        bool snap_lower = false;
         if (held.size() < n) {
             ceres::Problem::Options problem_options;
             problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -130,11 +207,16 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             solver.parameter_tolerance = options.parameter_tolerance;
             solver.gradient_tolerance = options.gradient_tolerance;
             solver.use_nonmonotonic_steps = options.nonmonotonic_steps;
+            // With bounds, Ceres runs a projected Armijo line search on every step; its default
+            // cubic interpolation asks for the gradient (a full Jacobian) at the trial point,
+            // which the trust region evaluates again when it accepts the step. Quadratic
+            // interpolation needs values only: one Jacobian per accepted step instead of two.
+            if (options.bound_shortcuts) solver.line_search_interpolation_type = ceres::QUADRATIC;
             solver.logging_type = ceres::SILENT;
             solver.num_threads = 1;
             std::vector<bool> held_now(n, false);
             for (int k : held) held_now[static_cast<std::size_t>(k)] = true;
-            BoundWatch watch(problem, x, held_now);
+            BoundWatch watch(problem, x, held_now, may_snap, options);
             solver.callbacks.push_back(&watch);
             solver.update_state_every_iteration = true;
             ceres::Solver::Summary ceres_summary;
@@ -145,7 +227,31 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                                   std::string(": ") + ceres_summary.message;
             converged = ceres_summary.termination_type == ceres::CONVERGENCE ||
                         ceres_summary.termination_type == ceres::USER_SUCCESS;
+            if (!summary.usable && trial.parameter >= 0) {
+                // The pass from a trial failed: back to the point before it.
+                held_on_bound[static_cast<std::size_t>(trial.parameter)] = false;
+                x = trial.x;
+                trial.parameter = -1;
+                const bool budget_left = summary.iterations < options.max_iterations &&
+                                         summary.passes < options.max_passes;
+                summary.usable = evaluateCost(problem, x, summary.cost,
+                                              options.gradient ? &summary.gradient : nullptr);
+                if (summary.usable && budget_left) continue;
+                break;
+            }
             if (!summary.usable) break;
+            if (watch.stopped()) {
+                summary.stopped = true;
+                summary.termination = "STOPPED: the caller's stop condition holds";
+                if (!evaluateCost(problem, x, summary.cost,
+                                  options.gradient ? &summary.gradient : nullptr)) {
+                    summary.usable = false;
+                    summary.termination = "FAILURE: the cost cannot be evaluated at the solution";
+                }
+                break;
+            }
+            snap = watch.snap();
+            snap_lower = watch.snapLower();
         } else {
             summary.usable = true;
             summary.termination = "CONVERGENCE: every parameter is held";
@@ -153,6 +259,33 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         // Revise the active set: hold what the solver left on a bound, release what the gradient
         // pulls back inside.
         bool changed = false;
+        if (trial.parameter >= 0) {
+            // The pass after a trial: keep it only if it lowered the cost.
+            double cost = 0.0;
+            if (!evaluateCost(problem, x, cost) || cost > trial.cost) {
+                x = trial.x;
+                held_on_bound[static_cast<std::size_t>(trial.parameter)] = false;
+                changed = true;
+            }
+            trial.parameter = -1;
+        }
+        if (snap >= 0) {
+            const std::size_t k = static_cast<std::size_t>(snap);
+            trial.parameter = snap;
+            trial.x = x;
+            may_snap[k] = false;
+            double on_bound = 0.0;
+            x[k] = snap_lower ? problem.lower[k] : problem.upper[k];
+            // Tried only where the model can be evaluated there (from the load, a bound may be a
+            // soil that cannot carry it).
+            if (evaluateCost(problem, trial.x, trial.cost) && evaluateCost(problem, x, on_bound)) {
+                held_on_bound[k] = true;
+            } else {
+                x = trial.x;
+                trial.parameter = -1;
+            }
+            changed = true;  // the pass ended for the trial, not at a minimum
+        }
         for (std::size_t k = 0; k < n; ++k) {
             if (problem.fixed[k] || held_on_bound[k]) continue;
             if (onLower(problem, x, k) || onUpper(problem, x, k)) {
@@ -172,16 +305,35 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             break;
         }
         for (std::size_t k = 0; k < n; ++k) {
-            if (!held_on_bound[k]) continue;
+            // A parameter just put on its bound is held for one pass whatever the gradient says
+            // there: the others have not followed it yet.
+            if (!held_on_bound[k] || (snap >= 0 && static_cast<int>(k) == trial.parameter))
+                continue;
             const bool pulled_inside =
                 onLower(problem, x, k) ? summary.gradient[k] < 0.0 : summary.gradient[k] > 0.0;
-            if (pulled_inside) {
+            // A parameter released once that the solver brought back to its bound stays there:
+            // the steps inside failed (at a bound where the model is not smooth the gradient's
+            // pull is not a descent direction), and releasing it again would repeat them.
+            if (pulled_inside && (!options.bound_shortcuts || releases[k] < 1)) {
                 held_on_bound[k] = false;
+                ++releases[k];
                 changed = true;
             }
         }
         const bool budget_left =
             summary.iterations < options.max_iterations && summary.passes < options.max_passes;
+        // A trial that no pass is left to solve is undone.
+        if (trial.parameter >= 0 && !budget_left) {
+            held_on_bound[static_cast<std::size_t>(trial.parameter)] = false;
+            x = trial.x;
+            trial.parameter = -1;
+            if (!evaluateCost(problem, x, summary.cost,
+                              any_held || options.gradient ? &summary.gradient : nullptr)) {
+                summary.usable = false;
+                summary.termination = "FAILURE: the cost cannot be evaluated at the solution";
+                break;
+            }
+        }
         if ((!changed && converged) || !budget_left) {
             summary.converged = converged && !changed;
             break;

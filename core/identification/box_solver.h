@@ -5,10 +5,15 @@
 /// active set: a parameter the solver leaves exactly on its bound is held there and the others are
 /// solved again; a held parameter whose gradient points back into the box is released. Ceres'
 /// projected steps otherwise crawl along an active bound (a geometric decrease of ~0.65 per
-/// iteration, 60–200 iterations, measured on the decoupled steps of full-model data).
+/// iteration, 60–200 iterations, measured on the decoupled steps of full-model data). With
+/// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three
+/// shrinking steps toward it, the bound within ten of them) is tried on that bound for one pass,
+/// kept there only if that pass lowers the cost, and a released parameter that the solver brings
+/// back to its bound stays held.
 
 #include <ceres/ceres.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +38,15 @@ struct BoxOptions {
     bool nonmonotonic_steps = false;
     bool gradient =
         true;  ///< compute BoxSummary::gradient (else only when the active set needs it)
+    /// The shortcuts of the global search (identify.h; docs/identification.md §9): a parameter
+    /// crawling toward a bound is tried on it, steps that leave a bound by a hair and return count
+    /// as staying on it, a parameter is released from its bound once, and the projected line
+    /// search interpolates values only (no Jacobian at its trial point).
+    bool bound_shortcuts = false;
+    /// Called with x after each successful step; true ends the solve there (BoxSummary::stopped).
+    /// A multi-start search uses it to end a descent that has entered the basin of a minimum
+    /// another start has found.
+    std::function<bool(const std::vector<double>&)> stop;
 };
 
 /// The outcome.
@@ -43,6 +57,7 @@ struct BoxSummary {
     int iterations = 0;       ///< over all passes
     int passes = 0;
     double cost = 0.0;             ///< ½ Σ ρ(‖rᵢ‖²) at the solution
+    bool stopped = false;          ///< ended by BoxOptions::stop
     std::vector<bool> at_bound;    ///< held on a bound at the solution
     std::vector<double> gradient;  ///< ∂cost/∂x at the solution (every component)
 };

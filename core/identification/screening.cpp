@@ -279,12 +279,16 @@ public:
                                                J(u[kA1], 1),
                                                p[kJmax],
                                                projection_.wheel_.lugShearOffset()};
-        // With j_max free, its column ∂F/∂ln j_max (at the projected α) is a central difference
-        // (the contact model takes j_max as a plain double; observation_model.h).
+        // With j_max free, its column ∂F/∂ln j_max (at the projected α) is a forward difference
+        // from the Jet's value (the contact model takes j_max as a plain double): one double
+        // evaluation per sample, not the two of a central difference. Its error, ~1e-5 of the
+        // column (the step's first-order term and the quadrature's ~5e-11 of F over the step),
+        // only shapes the steps: the polish and the covariance take the central difference of
+        // observation_model.h.
         const int columns = shear_limit_ ? 5 : 4;
         Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m, columns);
-        contact::ContactParameters<double> up{}, down{};
-        constexpr double kStep = 1e-4;
+        contact::ContactParameters<double> up{};
+        constexpr double kStep = 1e-5;
         if (shear_limit_) {
             up = {projection_.wheel_.radius_m,
                   projection_.wheel_.width_m,
@@ -299,8 +303,6 @@ public:
                   u[kA1],
                   p[kJmax] * std::exp(kStep),
                   projection_.wheel_.lugShearOffset()};
-            down = up;
-            down.max_shear_deformation_m = p[kJmax] * std::exp(-kStep);
         }
         int row = 0;
         for (std::size_t i : projection_.samples_) {
@@ -314,9 +316,7 @@ public:
                 const contact::OperatingPoint<double> od{s.slip, s.slip_angle_rad.value_or(0.0),
                                                          s.entry_angle_rad, 0.0, std::nullopt};
                 const contact::WheelForces<double> a = contact::computeForces(up, od);
-                const contact::WheelForces<double> b = contact::computeForces(down, od);
-                limit = {(a.fx - b.fx) / (2 * kStep), (a.fz - b.fz) / (2 * kStep),
-                         (a.my - b.my) / (2 * kStep)};
+                limit = {(a.fx - f.fx.a) / kStep, (a.fz - f.fz.a) / kStep, (a.my - f.my.a) / kStep};
             }
             const auto active = model.channels(i);
             for (int c = 0; c < 3; ++c) {
