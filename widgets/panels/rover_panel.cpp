@@ -282,12 +282,17 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     control_bar->addWidget(new QLabel("Slip set-point:", this));
     control_bar->addWidget(slip_set_);
     control_bar->addWidget(traction_limited_);
-    control_bar->addWidget(new QLabel("Robust:", this));
-    control_bar->addWidget(robust_);
-    control_bar->addWidget(quantile_);
-    control_bar->addWidget(new QLabel("Estimator:", this));
-    control_bar->addWidget(identifier_);
     control_bar->addStretch(1);
+    // The optimal controller's set-point and soil estimator, on a row of their own (beside the
+    // controller the panel no longer fits 1024 px).
+    auto* optimal_bar = new QHBoxLayout;
+    optimal_bar->addWidget(new QLabel("Optimal: robust", this));
+    optimal_bar->addWidget(robust_);
+    optimal_bar->addWidget(new QLabel("quantile", this));
+    optimal_bar->addWidget(quantile_);
+    optimal_bar->addWidget(new QLabel("estimator", this));
+    optimal_bar->addWidget(identifier_);
+    optimal_bar->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
     run_bar->addWidget(compare_);
@@ -297,6 +302,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
     layout->addLayout(control_bar);
+    layout->addLayout(optimal_bar);
     layout->addLayout(run_bar);
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
