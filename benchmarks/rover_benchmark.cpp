@@ -126,12 +126,18 @@ void BM_ClosedLoop(benchmark::State& state) {
     s.options.contact.model = contact::ContactModel::kQuadratic;
     s.drawbar_load.force_n = scenario::Signal::constant(1.0);
     s.drawbar_load.per_speed_n_s_m = 60.0;
-    constexpr std::array<scenario::ControllerType, 5> kTypes{
+    constexpr std::array<scenario::ControllerType, 8> kTypes{
         scenario::ControllerType::kConstantSpeed, scenario::ControllerType::kFixedSlip,
-        scenario::ControllerType::kOracle, scenario::ControllerType::kOptimal,
-        scenario::ControllerType::kOptimal};
-    s.controller.type = kTypes[static_cast<std::size_t>(state.range(0))];
-    if (state.range(0) == 4) s.controller.robust = scenario::RobustSlip::kQuantile;
+        scenario::ControllerType::kOracle,        scenario::ControllerType::kOptimal,
+        scenario::ControllerType::kOptimal,       scenario::ControllerType::kOptimal,
+        scenario::ControllerType::kOptimal,       scenario::ControllerType::kOptimal};
+    const std::int64_t arg = state.range(0);
+    s.controller.type = kTypes[static_cast<std::size_t>(arg)];
+    // 4: robust (quantile) on the sigma points, 5: on 200 drawn soils (before docs/traction.md
+    // §8's "Cost"); 6: the full-model estimator, point estimate; 7: it with the robust set-point.
+    if (arg == 4 || arg == 5 || arg == 7) s.controller.robust = scenario::RobustSlip::kQuantile;
+    if (arg == 5) s.controller.posterior_method = scenario::PosteriorMethod::kSamples;
+    if (arg == 6 || arg == 7) s.controller.identifier = scenario::SoilIdentifier::kFull;
     if (state.range(1) == 1) s.streaming = scenario::StreamingHook{};
     scenario::RunOptions options;
     options.slip_planner = analysis::tractionPlanner();
@@ -147,6 +153,9 @@ BENCHMARK(BM_ClosedLoop)
     ->Args({0, 1})
     ->Args({3, 1})
     ->Args({4, 1})
+    ->Args({5, 1})
+    ->Args({6, 1})
+    ->Args({7, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 

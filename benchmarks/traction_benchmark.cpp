@@ -46,4 +46,27 @@ void TractionRobustSlip(benchmark::State& state) {
 }
 BENCHMARK(TractionRobustSlip)->Unit(benchmark::kMillisecond);
 
+// A plan of the rover's robust optimal controller (docs/traction.md §8, "Cost"): a 30-slip curve
+// over [0.05, 0.7], a seven-parameter posterior of the soil file's keys (a₀, a₁, k_φ, n, c, φ,
+// K; 10–15 % std, c–φ correlated). Arg: 0 200 drawn soils, 1 the 15 sigma points.
+void TractionRobustPlan(benchmark::State& state) {
+    const analysis::Inputs in = sandyLoamOnA(true);
+    analysis::TractionSettings s;
+    s.curve_points = 30;
+    s.slip_min = 0.05;
+    s.slip_max = 0.7;
+    const std::vector<double> sd{0.03, 0.03, 151.5, 0.04, 0.255, 1.5, 0.00375};
+    analysis::SoilPosterior p{{"a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"},
+                              {0.2, 0.3, 1515.0, 0.7, 1.7, 29.0, 0.025},
+                              {}};
+    p.covariance.assign(7, std::vector<double>(7, 0.0));
+    for (std::size_t i = 0; i < 7; ++i) p.covariance[i][i] = sd[i] * sd[i];
+    p.covariance[4][5] = p.covariance[5][4] = -0.6 * sd[4] * sd[5];
+    s.posterior = p;
+    s.posterior_method = state.range(0) == 1 ? scenario::PosteriorMethod::kSigmaPoints
+                                             : scenario::PosteriorMethod::kSamples;
+    for (auto _ : state) benchmark::DoNotOptimize(analysis::computeTraction(in, s));
+}
+BENCHMARK(TractionRobustPlan)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 }  // namespace

@@ -27,6 +27,10 @@ struct SimulateOptions {
     std::optional<std::string> controller;
     std::optional<double> slip;
     std::optional<std::string> traction_limited;
+    std::optional<std::string> robust;
+    std::optional<double> quantile;
+    std::optional<std::string> posterior_method;
+    std::optional<std::string> identifier;
     bool compare = false;
 };
 
@@ -173,6 +177,19 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
                     "Override the slip controllers' traction-limited mode: on or off "
                     "(docs/traction.md)")
         ->check(CLI::IsMember({"on", "off"}));
+    cmd->add_option("--robust", options->robust,
+                    "Override the optimal controller's set-point: none (s* of the soil estimate), "
+                    "expected or quantile (over its posterior; docs/traction.md)")
+        ->check(CLI::IsMember({"none", "expected", "quantile"}));
+    cmd->add_option("--quantile", options->quantile,
+                    "Override the robust set-point's quantile of the objective (0.01 to 0.99)");
+    cmd->add_option("--posterior-method", options->posterior_method,
+                    "Override how a robust set-point carries the posterior: sigma-points or "
+                    "samples")
+        ->check(CLI::IsMember({"sigma-points", "samples"}));
+    cmd->add_option("--identifier", options->identifier,
+                    "Override the optimal controller's soil estimator: decoupled or full")
+        ->check(CLI::IsMember({"decoupled", "full"}));
     cmd->add_flag("--compare", options->compare,
                   "Run every controller on the scenario; write OUT/<controller>/ and "
                   "OUT/comparison.json, print the comparison table");
@@ -199,8 +216,26 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         if (o.controller) settings.controller = scenario::controllerFromName(*o.controller);
         settings.slip = o.slip;
         if (o.traction_limited) settings.traction_limited = *o.traction_limited == "on";
+        if (o.robust) {
+            settings.robust = *o.robust == "quantile"   ? scenario::RobustSlip::kQuantile
+                              : *o.robust == "expected" ? scenario::RobustSlip::kExpected
+                                                        : scenario::RobustSlip::kNone;
+        }
+        settings.quantile = o.quantile;
+        if (o.posterior_method) {
+            settings.posterior_method = *o.posterior_method == "samples"
+                                            ? scenario::PosteriorMethod::kSamples
+                                            : scenario::PosteriorMethod::kSigmaPoints;
+        }
+        if (o.identifier) {
+            settings.identifier = *o.identifier == "full" ? scenario::SoilIdentifier::kFull
+                                                          : scenario::SoilIdentifier::kDecoupled;
+        }
         std::vector<Issue> issues;
         if (o.slip) checkRange(issues, "--slip", *o.slip, scenario::kControllerRanges.slip);
+        if (o.quantile) {
+            checkRange(issues, "--quantile", *o.quantile, scenario::robustQuantileField().range);
+        }
         if (o.compare && o.controller)
             issues.push_back({"--compare", "runs every controller: drop --controller"});
         if (o.duration_s)

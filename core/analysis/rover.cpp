@@ -133,6 +133,28 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
     if (r.number("slip", value, scenario::kControllerRanges.slip)) out.slip = value;
     bool limited = false;
     if (r.boolean("traction_limited", limited)) out.traction_limited = limited;
+    scenario::RobustSlip robust = scenario::RobustSlip::kNone;
+    if (r.choice<scenario::RobustSlip>("robust", robust,
+                                       {{"none", scenario::RobustSlip::kNone},
+                                        {"expected", scenario::RobustSlip::kExpected},
+                                        {"quantile", scenario::RobustSlip::kQuantile}}))
+        out.robust = robust;
+    if (r.field(scenario::robustQuantileField(), value)) out.quantile = value;
+    int samples = 0;
+    if (r.integer("posterior_samples", samples, scenario::kMinPosteriorSamples,
+                  scenario::kMaxPosteriorSamples))
+        out.posterior_samples = samples;
+    scenario::PosteriorMethod method = scenario::PosteriorMethod::kSigmaPoints;
+    if (r.choice<scenario::PosteriorMethod>(
+            "posterior_method", method,
+            {{"sigma-points", scenario::PosteriorMethod::kSigmaPoints},
+             {"samples", scenario::PosteriorMethod::kSamples}}))
+        out.posterior_method = method;
+    scenario::SoilIdentifier identifier = scenario::SoilIdentifier::kDecoupled;
+    if (r.choice<scenario::SoilIdentifier>("identifier", identifier,
+                                           {{"decoupled", scenario::SoilIdentifier::kDecoupled},
+                                            {"full", scenario::SoilIdentifier::kFull}}))
+        out.identifier = identifier;
     if (const dynamics::RobotField* mass = findField(dynamics::robotFields(), "chassis_mass_kg")) {
         double kg = 0.0;
         if (r.field(*mass, kg)) out.chassis_mass_kg = kg;
@@ -209,6 +231,25 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         s.controller.slip = *settings.slip;
     }
     if (settings.traction_limited) s.controller.traction_limited = *settings.traction_limited;
+    if (settings.robust) s.controller.robust = *settings.robust;
+    if (settings.quantile &&
+        checkRange(issues, scenario::robustQuantileField().key, *settings.quantile,
+                   scenario::robustQuantileField().range)) {
+        s.controller.quantile = *settings.quantile;
+    }
+    if (settings.posterior_samples) {
+        if (*settings.posterior_samples < scenario::kMinPosteriorSamples ||
+            *settings.posterior_samples > scenario::kMaxPosteriorSamples) {
+            issues.push_back({"posterior_samples",
+                              std::to_string(*settings.posterior_samples) + " is outside [" +
+                                  std::to_string(scenario::kMinPosteriorSamples) + ", " +
+                                  std::to_string(scenario::kMaxPosteriorSamples) + "]"});
+        } else {
+            s.controller.posterior_samples = *settings.posterior_samples;
+        }
+    }
+    if (settings.posterior_method) s.controller.posterior_method = *settings.posterior_method;
+    if (settings.identifier) s.controller.identifier = *settings.identifier;
     applyOverrides(settings, s, issues);
     // The overrides together with the scenario's own values (a --duration below the step, a
     // wheel too wide for the track).
@@ -315,6 +356,7 @@ scenario::SlipPlanner tractionPlanner() {
             settings.posterior = request.posterior;
             settings.quantile = request.quantile;
             settings.posterior_samples = request.posterior_samples;
+            settings.posterior_method = request.posterior_method;
         }
         try {
             const TractionResult r = computeTraction(inputs, settings);

@@ -40,11 +40,20 @@ struct RoverSettings {
     std::map<std::string, soil::SoilParameters> soils;
     /// Overrides the controller's traction-limited mode (docs/traction.md §5).
     std::optional<bool> traction_limited;
+    /// Override the optimal controller's robust set-point, its quantile, soils drawn, the
+    /// posterior's method and the streaming soil estimator (docs/traction.md §8).
+    std::optional<scenario::RobustSlip> robust;
+    std::optional<double> quantile;
+    std::optional<int> posterior_samples;
+    std::optional<scenario::PosteriorMethod> posterior_method;
+    std::optional<scenario::SoilIdentifier> identifier;
 };
 
 /// "scenario" (required; relative files against the context's directory, resolved at once),
 /// "duration_s", "time_step_s", "model" (full, quadratic), "controller" (constant-speed,
-/// fixed-slip, optimal, oracle), "slip", "traction_limited" (true, false), "chassis_mass_kg",
+/// fixed-slip, optimal, oracle), "slip", "traction_limited" (true, false), "robust" (none,
+/// expected, quantile), "quantile", "posterior_samples", "posterior_method" (sigma-points,
+/// samples), "identifier" (decoupled, full), "chassis_mass_kg",
 /// "wheel" (a preset, a file or a wheel object) and "soils" ({"base" | CODE | PATCH: a preset, a
 /// file or a soil object}).
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);

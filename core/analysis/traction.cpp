@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <boost/math/distributions/normal.hpp>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <limits>
@@ -127,6 +128,161 @@ private:
     double stored_ = 0.0;
 };
 
+// The posterior's band by the second-order transform along the Cholesky directions
+// (docs/traction.md §8, "Cost"): with x = μ + L z, z ~ N(0, I), the objective f is interpolated
+// along each direction i by the parabola through z_i = −h_i, 0, h_i (h_i = √3, the
+// divided-difference filter's choice for a normal, Nørgaard, Poulsen & Ravn 2000, Automatica
+// 36: 1627–1638; shortened where μ ± h_i L e_i would leave a field's range): slope
+// g_i = (f₊ − f₋)/(2h_i), curvature c_i = (f₊ + f₋ − 2f₀)/h_i². For f ≈ f₀ + Σ g_i z_i +
+// ½ Σ c_i z_i², E f = f₀ + ½ Σ c_i and Var f = Σ g_i² + ½ Σ c_i² (Var z² = 2), and the quantile q
+// is taken as a normal's, E f + Φ⁻¹(q) √Var f. 2d + 1 soils instead of `posterior_samples`.
+struct SecondOrder {
+    double mean = 0.0, variance = 0.0;
+};
+SecondOrder secondOrder(double f0, const std::vector<double>& plus,
+                        const std::vector<double>& minus, const std::vector<double>& step) {
+    SecondOrder out{f0, 0.0};
+    for (std::size_t i = 0; i < step.size(); ++i) {
+        const double g = (plus[i] - minus[i]) / (2.0 * step[i]);
+        const double c = (plus[i] + minus[i] - 2.0 * f0) / (step[i] * step[i]);
+        out.mean += 0.5 * c;
+        out.variance += g * g + 0.5 * c * c;
+    }
+    return out;
+}
+
+template <typename Objective>
+void sigmaPointBand(TractionResult& out, const std::vector<double>& slips,
+                    const soil::SoilParameters& nominal, const wheel::WheelParameters& wheel,
+                    const contact::ContactParameters<double>& centre, Objective objective,
+                    const TractionSettings& s, const Control& control) {
+    const SoilPosterior& post = *s.posterior;
+    const std::size_t d = post.parameters.size();
+    Eigen::MatrixXd covariance(d, d);
+    for (std::size_t i = 0; i < d; ++i)
+        for (std::size_t j = 0; j < d; ++j) covariance(i, j) = post.covariance[i][j];
+    const Eigen::MatrixXd lower = covariance.llt().matrixL();
+    std::vector<const soil::SoilField*> fields;
+    for (const std::string& key : post.parameters) fields.push_back(soil::findSoilField(key));
+    // The soil at μ + h L e_i (nullopt: outside a range or no contact parameters).
+    auto soilAt = [&](std::size_t i,
+                      double h) -> std::optional<contact::ContactParameters<double>> {
+        soil::SoilParameters soil = nominal;
+        for (std::size_t k = 0; k < d; ++k) {
+            const double value = post.mean[k] + h * lower(static_cast<Eigen::Index>(k),
+                                                          static_cast<Eigen::Index>(i));
+            if (!fields[k]->range.contains(value)) return std::nullopt;
+            soil::setUserValue(soil, *fields[k], value);
+        }
+        if (!soil::validate(soil).empty()) return std::nullopt;
+        try {
+            return contact::makeContactParameters(soil, wheel);
+        } catch (const std::invalid_argument&) {
+            return std::nullopt;
+        }
+    };
+    constexpr double kStep = 1.7320508075688772;  // √3
+    std::vector<contact::ContactParameters<double>> plus, minus;
+    std::vector<double> step;
+    int shortened = 0, dropped = 0;
+    for (std::size_t i = 0; i < d; ++i) {
+        // The largest h ≤ √3 (halving, 12 times at most) with both points in range.
+        double h = kStep;
+        std::optional<contact::ContactParameters<double>> a, b;
+        for (int k = 0; k < 12; ++k, h *= 0.5) {
+            a = soilAt(i, h);
+            b = soilAt(i, -h);
+            if (a && b) break;
+        }
+        if (!(a && b)) {
+            ++dropped;  // μ on a bound in this direction: it adds nothing
+            continue;
+        }
+        if (h < kStep) ++shortened;
+        plus.push_back(*a);
+        minus.push_back(*b);
+        step.push_back(h);
+    }
+    if (shortened + dropped > 0) {
+        out.notes.push_back(
+            std::to_string(shortened + dropped) + " of " + std::to_string(d) +
+            " sigma-point directions reach beyond a field's range: " + std::to_string(shortened) +
+            " shortened, " + std::to_string(dropped) + " left out");
+    }
+    const std::size_t m = step.size();
+    // The objective at a slip of the centre and every sigma point; false where one has none.
+    std::vector<double> f_plus(m), f_minus(m);
+    auto evaluate = [&](double slip, double& f0) {
+        f0 = objective(centre, slip);
+        bool ok = std::isfinite(f0);
+        for (std::size_t i = 0; i < m; ++i) {
+            f_plus[i] = objective(plus[i], slip);
+            f_minus[i] = objective(minus[i], slip);
+            ok = ok && std::isfinite(f_plus[i]) && std::isfinite(f_minus[i]);
+        }
+        return ok;
+    };
+    const double z = boost::math::quantile(boost::math::normal(), s.quantile);
+    const double z5 = boost::math::quantile(boost::math::normal(), 0.05);
+    // Each point's own s* on the curve's slips (for the spread of s*).
+    double best0 = kMinusInfinity, slip0 = 0.0;
+    std::vector<double> best_plus(m, kMinusInfinity), best_minus(m, kMinusInfinity);
+    std::vector<double> slip_plus(m, 0.0), slip_minus(m, 0.0);
+    std::size_t best_q = 0, best_mean = 0;
+    for (std::size_t j = 0; j < slips.size(); ++j) {
+        if (control.cancelled()) break;
+        double f0 = 0.0;
+        const bool ok = evaluate(slips[j], f0);
+        if (f0 > best0) best0 = f0, slip0 = slips[j];
+        for (std::size_t i = 0; i < m; ++i) {
+            if (f_plus[i] > best_plus[i]) best_plus[i] = f_plus[i], slip_plus[i] = slips[j];
+            if (f_minus[i] > best_minus[i]) best_minus[i] = f_minus[i], slip_minus[i] = slips[j];
+        }
+        TractionBand band;
+        band.slip = slips[j];
+        if (ok) {
+            const SecondOrder moments = secondOrder(f0, f_plus, f_minus, step);
+            const double sd = std::sqrt(moments.variance);
+            band.samples = static_cast<int>(2 * m + 1);
+            band.mean = band.p50 = moments.mean;
+            band.p5 = moments.mean + z5 * sd;
+            band.p95 = moments.mean - z5 * sd;
+            band.quantile = moments.mean + z * sd;
+        } else {
+            band.mean = band.p5 = band.p50 = band.p95 = band.quantile = kMinusInfinity;
+        }
+        out.band.push_back(band);
+        if (band.quantile > out.band[best_q].quantile) best_q = j;
+        if (band.mean > out.band[best_mean].mean) best_mean = j;
+        control.report(0.1 + 0.8 * static_cast<double>(j + 1) / slips.size());
+    }
+    if (out.band.size() != slips.size()) {
+        out.notes.push_back("cancelled: the posterior's band is partial");
+        return;
+    }
+    // The spread of s*: the same transform of each point's own s* on the curve's slips.
+    bool spread_ok = std::isfinite(best0);
+    for (std::size_t i = 0; i < m; ++i)
+        spread_ok = spread_ok && std::isfinite(best_plus[i]) && std::isfinite(best_minus[i]);
+    if (spread_ok) {
+        out.optimal_slip_std =
+            std::sqrt(std::max(0.0, secondOrder(slip0, slip_plus, slip_minus, step).variance));
+    }
+    if (!std::isfinite(out.band[best_q].quantile)) return;
+    const auto [robust, q] = refine(
+        [&](double slip) {
+            double f0 = 0.0;
+            if (!evaluate(slip, f0)) return kMinusInfinity;  // a point without equilibrium
+            const SecondOrder moments = secondOrder(f0, f_plus, f_minus, step);
+            return moments.mean + z * std::sqrt(moments.variance);
+        },
+        slips[best_q == 0 ? 0 : best_q - 1], slips[std::min(best_q + 1, slips.size() - 1)],
+        slips[best_q], out.band[best_q].quantile);
+    out.robust_slip = robust;
+    out.robust_value = q;
+    out.expected_slip = slips[best_mean];
+}
+
 }  // namespace
 
 const char* objectiveName(TractionObjective objective) {
@@ -149,6 +305,10 @@ void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
               scenario::kMaxPosteriorSamples);
     r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
     r.field(scenario::robustQuantileField(), out.quantile);
+    r.choice<scenario::PosteriorMethod>(
+        "posterior_method", out.posterior_method,
+        {{"samples", scenario::PosteriorMethod::kSamples},
+         {"sigma-points", scenario::PosteriorMethod::kSigmaPoints}});
     if (const nlohmann::json* posterior = r.value("posterior")) {
         SoilPosterior p;
         if (posterior->is_object()) {
@@ -191,6 +351,7 @@ nlohmann::json toJson(const TractionSettings& s) {
                             {"mean", s.posterior->mean},
                             {"covariance", s.posterior->covariance}};
         out["posterior_samples"] = s.posterior_samples;
+        out["posterior_method"] = scenario::posteriorMethodName(s.posterior_method);
         out["seed"] = s.seed;
     }
     writeModelChoices(s.model, out);
@@ -278,7 +439,15 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
     }
     control.report(s.posterior ? 0.1 : 1.0);
 
-    if (s.posterior && !control.cancelled()) {
+    if (s.posterior && !control.cancelled() &&
+        s.posterior_method == scenario::PosteriorMethod::kSigmaPoints) {
+        sigmaPointBand(
+            out, slips, nominal, in.wheel, params,
+            [&](const contact::ContactParameters<double>& p, double slip) {
+                return objectiveValue(s.objective, at(p, slip));
+            },
+            s, control);
+    } else if (s.posterior && !control.cancelled()) {
         const SoilPosterior& post = *s.posterior;
         const std::size_t d = post.parameters.size();
         Eigen::MatrixXd covariance(d, d);

@@ -13,6 +13,7 @@
 
 #include "core/analysis/analysis.h"
 #include "core/analysis/soil_posterior.h"
+#include "core/scenario/traction_control.h"
 
 namespace terra::analysis {
 
@@ -32,6 +33,9 @@ struct TractionSettings {
     int curve_points = 60;  ///< slips of the curve, evenly from slip_min to slip_max
     std::optional<SoilPosterior> posterior;  ///< the soil's uncertainty
     int posterior_samples = 200;             ///< soils drawn from it
+    /// How the posterior is carried through the objective: drawn soils (the default), or the
+    /// second-order transform on 2d + 1 sigma points (docs/traction.md §8, "Cost").
+    scenario::PosteriorMethod posterior_method = scenario::PosteriorMethod::kSamples;
     std::uint64_t seed = 1;
     double quantile = 0.1;  ///< robust s* maximises this quantile of the objective (0.5: median)
     ModelChoices model;
@@ -39,8 +43,8 @@ struct TractionSettings {
 
 /// "slip_angle_deg", "objective" (drawbar, efficiency), "max_sinkage_m", "slip_min",
 /// "slip_max", "curve_points", "posterior" (an object, or a file: a soil file holding
-/// "posterior", relative to `base_dir`), "posterior_samples", "seed", "quantile" and the model
-/// choices.
+/// "posterior", relative to `base_dir`), "posterior_samples", "posterior_method" (samples,
+/// sigma-points), "seed", "quantile" and the model choices.
 void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
                           const std::filesystem::path& base_dir = {});
 nlohmann::json toJson(const TractionSettings& settings);

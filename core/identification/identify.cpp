@@ -112,7 +112,7 @@ public:
            IdentificationReport& report)
         : data_(data), options_(o), report_(report), wheel_(wheel) {
         report_.setup = setupModel(data, o.source, o.load_n, o.max_shear_deformation_m,
-                                   o.sinkage_exponent_slip, o.slip_sinkage_coefficient)
+                                   o.sinkage_exponent_slip, o.slip_sinkage_coefficient, o.model)
                             .value();
         fixed_ = heldValues(o);
         report_.setup.max_shear_deformation_free = !fixed_[kJmax].has_value();
@@ -641,7 +641,8 @@ void holdout(const DataSet& data, const wheel::WheelParameters& wheel,
         const ObservationModel model(
             held, wheel,
             setupModel(held, report.setup.source, options.load_n, options.max_shear_deformation_m,
-                       options.sinkage_exponent_slip, options.slip_sinkage_coefficient)
+                       options.sinkage_exponent_slip, options.slip_sinkage_coefficient,
+                       options.model)
                 .value());
         for (std::size_t i = 0; i < held.samples.size(); ++i) {
             if (!predictions[i].ok) {
@@ -754,7 +755,7 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
     }
     const Result<ModelSetup> setup =
         setupModel(data, o.source, o.load_n, o.max_shear_deformation_m, o.sinkage_exponent_slip,
-                   o.slip_sinkage_coefficient);
+                   o.slip_sinkage_coefficient, o.model);
     if (!setup) {
         const std::vector<Issue>& more = setup.issues();
         issues.insert(issues.end(), more.begin(), more.end());
@@ -878,7 +879,7 @@ std::vector<Prediction> predictAll(const DataSet& data, const wheel::WheelParame
                                    const ParameterVector& p, const IdentifyOptions& options) {
     const Result<ModelSetup> setup =
         setupModel(data, options.source, options.load_n, options.max_shear_deformation_m,
-                   options.sinkage_exponent_slip, options.slip_sinkage_coefficient);
+                   options.sinkage_exponent_slip, options.slip_sinkage_coefficient, options.model);
     if (!setup) throw std::invalid_argument(setup.message());
     const ObservationModel model(data, wheel, setup.value());
     std::vector<Prediction> out;

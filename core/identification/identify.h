@@ -75,6 +75,9 @@ struct IdentifyOptions {
     /// S of Lyasko's slip sinkage h = h₀ (1 + S s) (docs/model.md, Eq. S.1), held at this value
     /// (a caller profiles it, as validate --calibrate --fit-slip-sinkage does); 0: the thesis.
     double slip_sinkage_coefficient = 0.0;
+    /// The wheel model fitted: the full model (the default) or the quadratic approximation
+    /// (ModelSetup::model): the rover's estimator fits the model its scenario drives on.
+    contact::ContactModel model = contact::ContactModel::kFull;
     /// Noise std per channel [N, N, N·m, m]; ≤ 0: estimated from the residuals of the fit.
     ChannelValues noise{};
     /// Parameters held at a value (SI) instead of estimated.

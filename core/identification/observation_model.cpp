@@ -39,23 +39,23 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
 
 template <typename T>
 contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
-                                 const T& entry_angle_rad) {
+                                 const T& entry_angle_rad, contact::ContactModel model) {
     const contact::OperatingPoint<T> op{T(s.slip), T(s.slip_angle_rad.value_or(0.0)),
                                         entry_angle_rad, T(0.0), std::nullopt};
-    return contact::computeForces(p, op);
+    return modelForces(p, op, model);
 }
 
 // θ_f with F_z(θ_f) = W: Newton from the last root of this sample (F_z and dF_z/dθ_f from one
 // Jet evaluation), which converges in 2–3 steps as the parameters move; the bracketing solver of
 // sinkage.h when Newton leaves (0, 90°] or stalls. nullopt: no equilibrium.
 std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& p, const Sample& s,
-                                      double load_n, double start) {
+                                      double load_n, double start, contact::ContactModel model) {
     using J = ceres::Jet<double, 1>;
     if (start > 0.0 && start < kRightAngle) {
         const contact::ContactParameters<J> pj = p.cast<J>();
         double theta = start;
         for (int step = 0; step < kNewtonSteps; ++step) {
-            const J fz = forcesAt(pj, s, J(theta, 0)).fz;
+            const J fz = forcesAt(pj, s, J(theta, 0), model).fz;
             const double error = fz.a - load_n;
             if (std::abs(error) <= kLoadTolerance * load_n) return theta;
             if (!(fz.v[0] > 0.0)) break;
@@ -68,6 +68,7 @@ std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& 
     problem.load_n = load_n;
     problem.slip = s.slip;
     problem.slip_angle_rad = s.slip_angle_rad.value_or(0.0);
+    problem.model = model;
     if (start > 0.0 && start < kRightAngle) problem.initial_guess_rad = start;
     const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
     if (!solution.ok()) return std::nullopt;
@@ -83,7 +84,7 @@ const std::array<const char*, kChannelCount>& channelNames() {
 
 Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
                               double max_shear_deformation_m, double sinkage_exponent_slip,
-                              double slip_sinkage_coefficient) {
+                              double slip_sinkage_coefficient, contact::ContactModel model) {
     std::vector<Issue> issues;
     if (data.samples.empty()) return std::vector<Issue>{{"data", "no samples"}};
     if (load_n) checkRange(issues, "load_N", *load_n, {0.0, 1e7, true, false}, "N");
@@ -98,6 +99,7 @@ Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optio
     setup.max_shear_deformation_m = max_shear_deformation_m;
     setup.sinkage_exponent_slip = sinkage_exponent_slip;
     setup.slip_sinkage_coefficient = slip_sinkage_coefficient;
+    setup.model = model;
     setup.source = source == DataSource::kAuto
                        ? (columns.entry_angle ? DataSource::kEntryAngle : DataSource::kLoad)
                        : source;
@@ -197,11 +199,11 @@ Prediction ObservationModel::predict(std::size_t i, const ParameterVector& p) co
     double theta = s.entry_angle_rad;
     if (setup_.source == DataSource::kLoad) {
         const std::optional<double> root =
-            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i]);
+            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i], setup_.model);
         if (!root) return out;
         theta = last_entry_angle_[i] = *root;
     }
-    const contact::WheelForces<double> f = forcesAt(cp, s, theta);
+    const contact::WheelForces<double> f = forcesAt(cp, s, theta, setup_.model);
     out.ok = true;
     out.entry_angle_rad = theta;
     out.values = {
@@ -224,9 +226,9 @@ std::array<double, 3> ObservationModel::shearLimitDerivative(std::size_t i,
     down[kJmax] = p[kJmax] * std::exp(-kStep);
     const Sample& s = samples_[i];
     const contact::WheelForces<double> a =
-        forcesAt(contactParameters(up, wheel_, setup_), s, entry_angle_rad);
+        forcesAt(contactParameters(up, wheel_, setup_), s, entry_angle_rad, setup_.model);
     const contact::WheelForces<double> b =
-        forcesAt(contactParameters(down, wheel_, setup_), s, entry_angle_rad);
+        forcesAt(contactParameters(down, wheel_, setup_), s, entry_angle_rad, setup_.model);
     out = {(a.fx - b.fx) / (2 * kStep), (a.fz - b.fz) / (2 * kStep), (a.my - b.my) / (2 * kStep)};
     return out;
 }
@@ -252,8 +254,9 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
         using J = ceres::Jet<double, nj>;
         std::array<J, n> uj;
         for (int k = 0; k < n; ++k) uj[k] = k < nj ? J(u[k], k) : J(u[k]);
-        const contact::WheelForces<J> f = forcesAt(
-            contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(s.entry_angle_rad));
+        const contact::WheelForces<J> f =
+            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s,
+                     J(s.entry_angle_rad), setup_.model);
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
         const std::array<double, 3> limit = setup_.max_shear_deformation_free
                                                 ? shearLimitDerivative(i, p, s.entry_angle_rad)
@@ -266,15 +269,17 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
     } else {
         // θ_f(u) from F_z(θ_f, u) = W, then one Jet over (u, θ_f): the total derivative of a
         // channel y is ∂y/∂u + ∂y/∂θ_f · dθ_f/du, dθ_f/du = −(∂F_z/∂u)/(∂F_z/∂θ_f).
-        const std::optional<double> root = solveEntryAngle(contactParameters(p, wheel_, setup_), s,
-                                                           setup_.loads_n[i], last_entry_angle_[i]);
+        const std::optional<double> root =
+            solveEntryAngle(contactParameters(p, wheel_, setup_), s, setup_.loads_n[i],
+                            last_entry_angle_[i], setup_.model);
         if (!root) return false;
         last_entry_angle_[i] = *root;
         using J = ceres::Jet<double, nj + 1>;
         std::array<J, n> uj;
         for (int k = 0; k < n; ++k) uj[k] = k < nj ? J(u[k], k) : J(u[k]);
         const contact::WheelForces<J> f =
-            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, nj));
+            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, nj),
+                     setup_.model);
         const double dfz_dtheta = f.fz.v[nj];
         if (!(dfz_dtheta > 0.0)) return false;
         std::array<double, n> partial_fz{};

@@ -19,6 +19,9 @@
 #include <vector>
 
 #include "core/common/issue.h"
+#include "core/contact/quadratic_model.h"
+#include "core/contact/sinkage.h"
+#include "core/contact/wheel_forces.h"
 #include "core/identification/data_set.h"
 #include "core/identification/parameters.h"
 #include "core/wheel/wheel_parameters.h"
@@ -57,8 +60,23 @@ struct ModelSetup {
     /// S of Lyasko's slip sinkage h = r (1 − cos θ_f)(1 + S s) (docs/model.md, Eq. S.1), held
     /// fixed (a caller profiles it); 0: the thesis model's h. It scales the sinkage channel only.
     double slip_sinkage_coefficient = 0.0;
+    /// The wheel model that predicts the forces: the full model's integrals (the default) or the
+    /// quadratic approximation's closed forms (Eqs. 2.41–2.46), the rover's `"model":
+    /// "quadratic"` — an estimator on board fits the model its planner uses (docs/traction.md
+    /// §8). Both are linear in (K_s, c, K_s tan φ) at a given θ_f, so the screening's variable
+    /// projection holds for either.
+    contact::ContactModel model = contact::ContactModel::kFull;
     std::string description;  ///< "entry angle; channels Fx_N, Fz_N, My_Nm"
 };
+
+/// The forces of `model` at `op` (contact::computeForces or computeQuadraticForces).
+template <typename T>
+contact::WheelForces<T> modelForces(const contact::ContactParameters<T>& p,
+                                    const contact::OperatingPoint<T>& op,
+                                    contact::ContactModel model) {
+    return model == contact::ContactModel::kQuadratic ? contact::computeQuadraticForces(p, op)
+                                                      : contact::computeForces(p, op);
+}
 
 /// Resolves the setup. W per sample is the `W_N` cell, else `load_n`, else the measured F_z. With
 /// the entry angle, F_z is a channel when measured or when a load is known (F_z = W); with the
@@ -66,7 +84,8 @@ struct ModelSetup {
 /// channel).
 Result<ModelSetup> setupModel(const DataSet& data, DataSource source, std::optional<double> load_n,
                               double max_shear_deformation_m, double sinkage_exponent_slip = 0.0,
-                              double slip_sinkage_coefficient = 0.0);
+                              double slip_sinkage_coefficient = 0.0,
+                              contact::ContactModel model = contact::ContactModel::kFull);
 
 /// The model's prediction for one sample.
 struct Prediction {

@@ -65,7 +65,8 @@ struct StreamingEstimator::State {
     std::unique_ptr<ObservationModel> modelOf(const Sample& s) const {
         const DataSet one({s}, options.columns);
         const Result<ModelSetup> setup =
-            setupModel(one, source, options.fit.load_n, options.fit.max_shear_deformation_m);
+            setupModel(one, source, options.fit.load_n, options.fit.max_shear_deformation_m, 0.0,
+                       0.0, options.fit.model);
         if (!setup) return nullptr;
         return std::make_unique<ObservationModel>(one, wheel, setup.value());
     }

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "core/common/range.h"
 #include "core/common/units.h"
@@ -13,6 +15,7 @@
 #include "core/identification/parameters.h"
 #include "core/identification/soil_conversion.h"
 #include "core/identification/streaming.h"
+#include "core/identification/streaming_estimator.h"
 #include "core/io/atomic_file.h"
 #include "core/io/csv.h"
 #include "core/io/raster_io.h"
@@ -162,28 +165,83 @@ private:
     double z0_, z_start_, gravity_, radius_, shear_radius_, fastest_, energy_floor_;
 };
 
-// The streaming identifier of one wheel, fed with noisy samples at its own rate.
+// The soil the streaming identifier's estimate describes: K_s carried by k_φ with k_c = 0, which
+// gives the same σ on this wheel; j_max the estimate's (+inf: none).
+soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p,
+                                    const wheel::WheelParameters& wheel) {
+    soil::SoilParameters base;
+    base.name = "streaming estimate";
+    base.cohesive_modulus = 0.0;
+    return identification::soilOf(base, wheel, p);
+}
+
+// A streaming estimate's covariance as a posterior in the soil file's keys and units
+// (docs/traction.md §8): `keys` are the soil fields of the covariance's rows (SI), in order. A
+// parameter without variance (held by the estimator) is no part of it.
+template <std::size_t N, typename Matrix>
+soil::SoilPosterior posteriorOf(const std::array<const char*, N>& keys, const Matrix& covariance,
+                                const soil::SoilParameters& soil) {
+    soil::SoilPosterior out;
+    std::array<double, N> to_si{};
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < N; ++k) {
+        if (!(covariance[k][k] > 0.0)) continue;
+        const soil::SoilField& field = *soil::findSoilField(keys[k]);
+        out.parameters.emplace_back(keys[k]);
+        out.mean.push_back(field.userValue(soil));
+        to_si[k] = field.to_si;
+        kept.push_back(k);
+    }
+    for (std::size_t i : kept) {
+        std::vector<double> row;
+        for (std::size_t j : kept) row.push_back(covariance[i][j] / (to_si[i] * to_si[j]));
+        out.covariance.push_back(std::move(row));
+    }
+    return out;
+}
+
+// What the streaming identifier of a closed-loop run hands the controller after a sample.
+struct SoilUpdate {
+    std::size_t index = 0;  // 0-based sample number
+    bool estimated = false;
+    bool change_detected = false;
+    std::optional<std::size_t> change_at;      // the sample where a confirmed change began
+    std::size_t samples = 0;                   // samples of the current soil behind the estimate
+    std::optional<soil::SoilParameters> soil;  // the estimate as a soil (when estimated)
+    std::optional<soil::SoilPosterior> posterior;  // its covariance (when asked for)
+};
+
+// The streaming identifier of one wheel, fed with noisy samples at its own rate: the decoupled
+// sliding-window refit (identification/streaming.h) or the full-model moving-horizon estimator
+// (identification/streaming_estimator.h), ControllerSpec::identifier (docs/traction.md §8).
 class StreamingFeed {
 public:
     StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt,
-                  const identification::StreamingOptions& options = {})
+                  const identification::StreamingOptions& options, bool posterior)
         : hook_(hook),
-          identifier_(wheel, options),
+          wheel_(wheel),
+          posterior_(posterior),
+          decoupled_(std::in_place, wheel, options),
           random_(hook.seed),
           every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
-        table_.columns = {"t_s",  "slip",  "theta_f_deg",    "Fx_N",
-                          "Fz_N", "My_Nm", "estimated",      "Ks_Pa_mN",
-                          "n0",   "c_Pa",  "phi_deg",        "K_m",
-                          "a0",   "a1",    "residual_score", "change_detected",
-                          "soil"};
+        table_.columns = columns("residual_score");
+    }
+    StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt,
+                  const identification::StreamingEstimatorOptions& options, bool posterior)
+        : hook_(hook),
+          wheel_(wheel),
+          posterior_(posterior),
+          full_(std::in_place, wheel, options),
+          random_(hook.seed),
+          every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
+        table_.columns = columns("nis");
     }
 
     // With `estimates` (a closed-loop run) the sample's slip, load and M_y are the observer's,
     // θ_f and F_x the sinkage sensor's and hub load cell's noisy readings; without, the noisy
     // truth as before.
-    std::optional<identification::StreamUpdate> observe(long step,
-                                                        const dynamics::RoverState& state,
-                                                        const Estimates* estimates = nullptr) {
+    std::optional<SoilUpdate> observe(long step, const dynamics::RoverState& state,
+                                      const Estimates* estimates = nullptr) {
         if (step % every_ != 0) return std::nullopt;
         const dynamics::WheelState& w = state.wheels[hook_.wheel];
         if (!w.contact.in_contact || w.contact.sunk) return std::nullopt;
@@ -209,14 +267,58 @@ public:
             sample.my_nm = w.contact.forces.my + noise(hook_.torque_noise_nm);
         }
         sample.time_s = state.time_s;
-        const identification::StreamUpdate u = identifier_.push(sample);
-        const auto& p = u.parameters;
+        SoilUpdate out;
+        identification::DecoupledParameters p;
+        double score = 0.0;
+        if (decoupled_) {
+            const identification::StreamUpdate u = decoupled_->push(sample);
+            p = u.parameters;
+            score = u.residual_score;
+            out.index = u.index;
+            out.estimated = u.estimated;
+            out.change_detected = u.change_detected;
+            out.change_at = u.change_at;
+            out.samples = u.window_size;
+            if (u.estimated) {
+                // The decoupled estimate carries no j_max: the planner's soil has none.
+                identification::DecoupledParameters estimate = p;
+                estimate.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+                out.soil = soilOfEstimate(estimate, wheel_);
+                if (posterior_) {
+                    static constexpr std::array<const char*,
+                                                identification::kDecoupledParameterCount>
+                        kKeys{"a0", "a1", "kphi", "n", "n1", "c_kPa", "phi_deg", "K_m"};
+                    out.posterior = posteriorOf(kKeys, u.covariance, *out.soil);
+                }
+            }
+        } else {
+            const identification::StreamEstimate u = full_->push(sample);
+            score = u.nis;
+            out.index = u.index;
+            out.estimated = u.estimated;
+            out.change_detected = u.change_detected;
+            out.change_at = u.change_at;
+            // Samples of this soil: from the start, or from where the last change began.
+            if (u.change_detected)
+                soil_start_ = u.change_at && *u.change_at <= u.index ? *u.change_at : u.index;
+            out.samples = u.index + 1 - soil_start_;
+            if (u.estimated) {
+                p = identification::decoupledOf(u.parameters);
+                out.soil = soilOfEstimate(p, wheel_);
+                if (posterior_) {
+                    // The seven parameters of the soil (j_max is held, not estimated).
+                    static constexpr std::array<const char*, identification::kJmax> kKeys{
+                        "a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"};
+                    out.posterior = posteriorOf(kKeys, full_->covariance(), *out.soil);
+                }
+            }
+        }
         table_.rows.push_back(
             {state.time_s, sample.slip, units::radToDeg(sample.entry_angle_rad), sample.fx_n,
-             sample.fz_n, sample.my_nm, u.estimated ? 1.0 : 0.0, p.pressure_modulus, p.n0,
+             sample.fz_n, sample.my_nm, out.estimated ? 1.0 : 0.0, p.pressure_modulus, p.n0,
              p.cohesion_pa, units::radToDeg(p.friction_angle_rad), p.shear_modulus_m, p.a0, p.a1,
-             u.residual_score, u.change_detected ? 1.0 : 0.0, static_cast<double>(w.soil_index)});
-        return u;
+             score, out.change_detected ? 1.0 : 0.0, static_cast<double>(w.soil_index)});
+        return out;
     }
 
     int wheel() const { return hook_.wheel; }
@@ -224,53 +326,25 @@ public:
     Table take() { return std::move(table_); }
 
 private:
+    static std::vector<std::string> columns(const char* score) {
+        return {
+            "t_s", "slip", "theta_f_deg", "Fx_N", "Fz_N", "My_Nm", "estimated", "Ks_Pa_mN",
+            "n0",  "c_Pa", "phi_deg",     "K_m",  "a0",   "a1",    score,       "change_detected",
+            "soil"};
+    }
     double noise(double sigma) { return sigma > 0.0 ? sigma * normal_(random_) : 0.0; }
 
     StreamingHook hook_;
-    identification::StreamingIdentifier identifier_;
+    wheel::WheelParameters wheel_;
+    bool posterior_ = false;
+    std::optional<identification::StreamingIdentifier> decoupled_;
+    std::optional<identification::StreamingEstimator> full_;
+    std::size_t soil_start_ = 0;
     std::mt19937_64 random_;
     std::normal_distribution<double> normal_{0.0, 1.0};
     long every_;
     Table table_;
 };
-
-// The soil the streaming identifier's estimate describes: K_s carried by k_φ with k_c = 0, which
-// gives the same σ on this wheel; j_max unknown: none.
-soil::SoilParameters soilOfEstimate(const identification::DecoupledParameters& p,
-                                    const wheel::WheelParameters& wheel) {
-    soil::SoilParameters base;
-    base.name = "streaming estimate";
-    base.cohesive_modulus = 0.0;
-    identification::DecoupledParameters estimate = p;
-    estimate.max_shear_deformation_m = std::numeric_limits<double>::infinity();
-    return identification::soilOf(base, wheel, estimate);
-}
-
-// The streaming estimate as a posterior in the soil file's keys and units (docs/traction.md §8):
-// a₀, a₁, k_φ (K_s: k_c = 0), n (n₀), n₁, c, φ, K, the identifier's covariance converted from SI.
-soil::SoilPosterior posteriorOfEstimate(const identification::StreamUpdate& u,
-                                        const soil::SoilParameters& soil) {
-    // The streaming identifier's eight parameters are the table's first eight fields, in its
-    // order (a₀ … K; j_max is not estimated).
-    constexpr auto count = static_cast<std::size_t>(identification::kDecoupledParameterCount);
-    const auto fields = identification::parameterFields().first(count);
-    soil::SoilPosterior out;
-    std::array<double, identification::kDecoupledParameterCount> to_si{};
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-        const char* key = identification::soilKeyOf(fields[k]);
-        const soil::SoilField& field = *soil::findSoilField(key);
-        out.parameters.emplace_back(key);
-        out.mean.push_back(field.userValue(soil));
-        to_si[k] = field.to_si;
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-        std::vector<double> row;
-        for (std::size_t j = 0; j < count; ++j)
-            row.push_back(u.covariance[i][j] / (to_si[i] * to_si[j]));
-        out.covariance.push_back(std::move(row));
-    }
-    return out;
-}
 
 // The closed loop of a slip controller (docs/traction.md §4–§5): at every control tick the
 // observer reads the sensors, each wheel gets its set-point (fixed, planned on the streaming
@@ -399,7 +473,7 @@ public:
     // identifier's wheel is planned on once the window is usable, then every replan_interval_s;
     // a confirmed change opens a new stretch of soil, planned on once the window is usable again.
     // Each wheel takes a stretch's plan, at its own estimated load, once it has reached it.
-    void streamed(const identification::StreamUpdate& u, double time_s) {
+    void streamed(const SoilUpdate& u, double time_s) {
         if (spec_.type != ControllerType::kOptimal) return;
         if (u.change_detected) {
             // Where the change began: the odometer less the samples since its first far-off one.
@@ -412,12 +486,11 @@ public:
             segments_.push_back(std::move(segment));
             last_plan_s_.reset();
         }
-        if (!u.estimated || u.window_size < usable_samples_) return;
+        if (!u.estimated || !u.soil || u.samples < usable_samples_) return;
         if (last_plan_s_ && time_s < *last_plan_s_ + spec_.replan_interval_s) return;
         Segment& segment = segments_.back();
-        segment.soil = soilOfEstimate(u.parameters, scenario_.robot.wheel);
-        if (spec_.robust != RobustSlip::kNone)
-            segment.posterior = posteriorOfEstimate(u, *segment.soil);
+        segment.soil = u.soil;
+        if (spec_.robust != RobustSlip::kNone) segment.posterior = u.posterior;
         ++segment.revision;
         last_plan_s_ = time_s;
     }
@@ -476,6 +549,7 @@ private:
             request.robust = spec_.robust;
             request.quantile = spec_.quantile;
             request.posterior_samples = spec_.posterior_samples;
+            request.posterior_method = spec_.posterior_method;
         }
         return request;
     }
@@ -885,21 +959,51 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     dynamics::Rover& rover = *rover_on;
     std::optional<StreamingFeed> feed;
     if (hook) {
-        identification::StreamingOptions streaming;
-        // A closed-loop robot starts from the soil it expects (the map's base soil): at a single
-        // load and a narrow band of slip the window cannot tell K_s from n (docs/traction.md §6),
-        // and the thesis's generic first guess leaves the fit at its bounds.
-        if (closed) {
-            // The streaming estimator never sees j_max: its start carries none.
-            streaming.initial =
-                identification::decoupledOf(scenario.terrain.base, scenario.robot.wheel);
-            streaming.initial.max_shear_deformation_m = std::numeric_limits<double>::infinity();
-        }
         // A robust set-point plans on the estimate's posterior (docs/traction.md §8).
-        streaming.covariance =
+        const bool posterior =
             control.type == ControllerType::kOptimal && control.robust != RobustSlip::kNone;
-        feed.emplace(*hook, scenario.robot.wheel, dt, streaming);
-        if (loop) loop->streaming(hook->interval_s, streaming.window, hook->wheel);
+        // The expected soil (the map's base soil) on this wheel, without j_max.
+        identification::DecoupledParameters expected =
+            identification::decoupledOf(scenario.terrain.base, scenario.robot.wheel);
+        expected.max_shear_deformation_m = std::numeric_limits<double>::infinity();
+        if (closed && control.identifier == SoilIdentifier::kFull) {
+            // The full-model estimator (docs/traction.md §8): it fits the model the rover drives
+            // on and its planner plans on, starts its search from the expected soil too, and
+            // estimates the noise levels at each (re)initialisation. j_max is unknown to the
+            // robot: none.
+            identification::StreamingEstimatorOptions estimator;
+            estimator.fit.model = scenario.options.contact.model;
+            // Its estimate is planned on as a soil (k_c = 0, k_φ = K_s): the bounds are held
+            // inside the soil fields' ranges (n ≥ 0.1, where the identification allows 0.05).
+            for (const auto& [parameter, key] : std::initializer_list<std::pair<int, const char*>>{
+                     {identification::kA0, "a0"},
+                     {identification::kA1, "a1"},
+                     {identification::kKs, "kphi"},
+                     {identification::kN, "n"},
+                     {identification::kC, "c_kPa"},
+                     {identification::kPhi, "phi_deg"},
+                     {identification::kK, "K_m"}}) {
+                const Range range = soil::findSoilField(key)->siRange();
+                double& low = estimator.fit.bounds.lower[parameter];
+                double& high = estimator.fit.bounds.upper[parameter];
+                const double inward = 1e-9 * (range.high - range.low);
+                low = std::max(low, range.low + (range.low_open ? inward : 0.0));
+                high = std::min(high, range.high - (range.high_open ? inward : 0.0));
+            }
+            estimator.fit.starts.push_back({"expected soil", identification::vectorOf(expected)});
+            feed.emplace(*hook, scenario.robot.wheel, dt, estimator, posterior);
+            if (loop) loop->streaming(hook->interval_s, estimator.history, hook->wheel);
+        } else {
+            identification::StreamingOptions streaming;
+            // A closed-loop robot starts from the soil it expects (the map's base soil): at a
+            // single load and a narrow band of slip the window cannot tell K_s from n
+            // (docs/traction.md §6), and the thesis's generic first guess leaves the fit at its
+            // bounds. The streaming estimator never sees j_max: its start carries none.
+            if (closed) streaming.initial = expected;
+            streaming.covariance = posterior;
+            feed.emplace(*hook, scenario.robot.wheel, dt, streaming, posterior);
+            if (loop) loop->streaming(hook->interval_s, streaming.window, hook->wheel);
+        }
     }
     const bool loaded = scenario.drawbar_load.active();
     double drawbar_n = 0.0;

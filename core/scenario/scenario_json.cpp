@@ -358,7 +358,8 @@ const Range kDrawbarPerSpeedRange{0.0, 1e5};
 // "controller": {"type": constant-speed|fixed-slip|optimal|oracle, "slip", "objective",
 // "slip_min", "slip_max", "max_torque_Nm", "max_omega_rad_s", "min_omega_rad_s", "kp", "ki_per_s",
 // "interval_s", "replan_samples", "replan_interval_s", "dither", "dither_period_s",
-// "traction_limited", "limit_margin", "robust", "quantile", "posterior_samples", "sensors": {...}}
+// "traction_limited", "limit_margin", "robust", "quantile", "posterior_samples",
+// "posterior_method", "identifier", "sensors": {...}}
 // (docs/traction.md §5, §8).
 void readController(ObjectReader& r, ControllerSpec& out) {
     if (!r.has("controller")) {
@@ -396,6 +397,12 @@ void readController(ObjectReader& r, ControllerSpec& out) {
     c.field(robustQuantileField(), out.quantile);
     c.integer("posterior_samples", out.posterior_samples, kMinPosteriorSamples,
               kMaxPosteriorSamples);
+    c.choice<PosteriorMethod>(
+        "posterior_method", out.posterior_method,
+        {{"sigma-points", PosteriorMethod::kSigmaPoints}, {"samples", PosteriorMethod::kSamples}});
+    c.choice<SoilIdentifier>(
+        "identifier", out.identifier,
+        {{"decoupled", SoilIdentifier::kDecoupled}, {"full", SoilIdentifier::kFull}});
     if (c.has("sensors")) {
         ObjectReader n = c.object("sensors");
         if (n.isObject()) {

@@ -45,6 +45,14 @@ const char* robustSlipName(RobustSlip robust) {
     return "none";
 }
 
+const char* soilIdentifierName(SoilIdentifier identifier) {
+    return identifier == SoilIdentifier::kFull ? "full" : "decoupled";
+}
+
+const char* posteriorMethodName(PosteriorMethod method) {
+    return method == PosteriorMethod::kSamples ? "samples" : "sigma-points";
+}
+
 const FieldInfo& robustQuantileField() {
     static const FieldInfo field{
         "quantile",
@@ -115,12 +123,6 @@ const Estimates& Observer::update(const dynamics::RoverState& truth, double draw
         est_.speed_m_s += std::min(1.0, 2.0 * wc * fix_dt) * innovation;
         bias_estimate_m_s2_ -= wc * wc * fix_dt * innovation;
     }
-    // Loads: static share plus the longitudinal transfer of the forces at the ground against the
-    // inertia and the pull acting at the centre of mass' height, (m a + F_d) h / L.
-    const double height =
-        robot_.com_height_m * robot_.chassis_mass_kg / robot_.totalMass() + robot_.wheel.radius_m;
-    const double transfer =
-        (robot_.totalMass() * est_.accel_m_s2 + drawbar_n) * height / robot_.wheelbase_m;
     for (int i = 0; i < dynamics::kWheelCount; ++i) {
         const dynamics::WheelState& w = truth.wheels[i];
         const double previous_rate = est_.spin_rate_rad_s[i];
@@ -134,12 +136,24 @@ const Estimates& Observer::update(const dynamics::RoverState& truth, double draw
         const double rim = shear_radius_m_ * rate;
         est_.slip[i] =
             rim > kStillRim ? std::clamp(1.0 - est_.hub_speed_m_s[i] / rim, -1.0, 1.0) : 0.0;
-        est_.load_n[i] = std::max(0.0, static_load_n_[i] + (i < 2 ? -0.5 : 0.5) * transfer);
         est_.torque_nm[i] = measure(w.motor_torque_nm, sensors_.torque_noise_nm);
         est_.resistance_nm[i] =
             est_.torque_nm[i] -
             (first_ ? 0.0 : robot_.wheel_spin_inertia_kg_m2 * (rate - previous_rate) / dt);
     }
+    // Loads: the static share plus the longitudinal transfer. The pitch balance of the whole robot
+    // about the middle of the wheelbase at the hubs' height (docs/traction.md §4): the wheels'
+    // forces act at the hubs (no arm), the chassis' inertia m_c â and the implement's pull F_d at
+    // the chassis' centre of mass, d above the hubs, and the soil's resistance torques on the
+    // wheels with the wheels' spin-up, Σ (M_y + I_w ω̇) = Σ τ (the motors' torques). So the front
+    // axle loses and the rear gains [d (m_c â + F_d) + Σ τ̂] / L.
+    double torques = 0.0;
+    for (double t : est_.torque_nm) torques += t;
+    const double transfer =
+        (robot_.com_height_m * (robot_.chassis_mass_kg * est_.accel_m_s2 + drawbar_n) + torques) /
+        robot_.wheelbase_m;
+    for (int i = 0; i < dynamics::kWheelCount; ++i)
+        est_.load_n[i] = std::max(0.0, static_load_n_[i] + (i < 2 ? -0.5 : 0.5) * transfer);
     first_ = false;
     return est_;
 }

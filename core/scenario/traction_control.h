@@ -52,6 +52,26 @@ enum class RobustSlip {
     kQuantile,  ///< "quantile": the largest `quantile` of the objective (`robust_slip`)
 };
 const char* robustSlipName(RobustSlip robust);
+
+/// The streaming soil estimator whose estimate the optimal controller plans on (key
+/// "identifier", docs/traction.md §8): the thesis's decoupled model refitted on a sliding window
+/// (identification/streaming.h), or the seven-parameter wheel model of the scenario's contact
+/// model as a moving-horizon estimate (identification/streaming_estimator.h).
+enum class SoilIdentifier {
+    kDecoupled,  ///< "decoupled"
+    kFull,       ///< "full"
+};
+const char* soilIdentifierName(SoilIdentifier identifier);
+
+/// How a robust s* carries the posterior through the objective (key "posterior_method",
+/// docs/traction.md §8, "Cost"): soils drawn at random (`posterior_samples` of them), or the
+/// 2d + 1 sigma points of a second-order divided-difference transform (Nørgaard, Poulsen & Ravn
+/// 2000), whose mean and variance of the objective give its quantile as a normal's.
+enum class PosteriorMethod {
+    kSigmaPoints,  ///< "sigma-points"
+    kSamples,      ///< "samples"
+};
+const char* posteriorMethodName(PosteriorMethod method);
 /// The robust s*'s quantile q (key "quantile"): declared once for the controller's object and
 /// `traction`'s settings (analysis/traction.h), range [0.01, 0.99].
 const FieldInfo& robustQuantileField();
@@ -113,6 +133,12 @@ struct ControllerSpec {
     RobustSlip robust = RobustSlip::kNone;
     double quantile = 0.1;
     int posterior_samples = 200;
+    /// optimal, robust: how the posterior is carried through the objective.
+    PosteriorMethod posterior_method = PosteriorMethod::kSigmaPoints;
+    /// optimal: the streaming soil estimator planned on (docs/traction.md §9: the full model's
+    /// plans are far closer to the oracle's after the border, but on uniform sandy loam it
+    /// raises a false change and plans 0.07 low; the decoupled identifier stays the default).
+    SoilIdentifier identifier = SoilIdentifier::kDecoupled;
     SensorSpec sensors;
 
     bool closedLoop() const { return type != ControllerType::kConstantSpeed; }
@@ -156,6 +182,7 @@ struct SlipPlanRequest {
     RobustSlip robust = RobustSlip::kNone;
     double quantile = 0.1;
     int posterior_samples = 200;
+    PosteriorMethod posterior_method = PosteriorMethod::kSamples;
 };
 /// A planned slip: the set-point, and with a posterior the spread of s* over it (the standard
 /// deviation of the drawn soils' own s*, docs/traction.md §6 "Settling").

@@ -372,8 +372,11 @@ def identify(data, wheel, soil="sandy-loam", **settings):
 def simulate(scenario="straight", **settings):
     """A rover scenario run (thesis chapter 3): a preset name (presets("scenarios")) or a file;
     duration_s, time_step_s, model, controller ("constant-speed", "fixed-slip", "optimal",
-    "oracle"), slip (the fixed set-point) and traction_limited (True, False: the slip
-    controllers' traction-limited mode) override the scenario's (docs/traction.md). Returns {"summary": {...},
+    "oracle"), slip (the fixed set-point), traction_limited (True, False: the slip
+    controllers' traction-limited mode) and the optimal controller's robust ("none", "expected",
+    "quantile"), quantile, posterior_samples, posterior_method ("sigma-points", "samples") and
+    identifier ("decoupled", "full": its streaming soil estimator) override the scenario's
+    (docs/traction.md). Returns {"summary": {...},
     "timeseries": {column: array}, "status", "message", "notes"} (and "streaming" when the
     scenario identifies the soil as it drives). A mission scenario (docs/field.md, "Missions")
     runs the same way: its summary has "mission_completed", "path_error_rms_m" and the rest, its

@@ -80,3 +80,30 @@ def test_compare_controllers_is_the_command_lines_table(cli, tmp_path):
     assert rows[1]["distance_m"] == fixed["summary"]["distance_m"]
     with pytest.raises(ValueError, match="controller"):
         ts.compare_controllers("traction-load-change", controller="oracle")
+
+
+def test_simulate_takes_the_robust_set_point_and_the_soil_estimator(cli, tmp_path):
+    # The optimal controller's robust keys (docs/traction.md section 8) as the scenario's
+    # controller object and simulate's flags take them: the same run byte for byte.
+    robust = ts.simulate("traction-border", duration_s=7.0, controller="optimal",
+                         robust="quantile", quantile=0.2, posterior_method="sigma-points")
+    assert robust["status"] == "completed"
+    run = cli("simulate", "--scenario", "traction-border", "--duration", 7, "--controller",
+              "optimal", "--robust", "quantile", "--quantile", 0.2, "--posterior-method",
+              "sigma-points", "--out", tmp_path)
+    assert run.returncode == 0, run.stderr
+    with open(tmp_path / "timeseries.csv") as f:
+        header = f.readline().strip().split(",")
+        plans = [float(line.split(",")[header.index("FL_slip_plan")]) for line in f]
+    assert plans == pytest.approx(list(robust["timeseries"]["FL_slip_plan"]), abs=1e-12)
+    # Planned on the posterior: other set-points than the point estimate's once planned.
+    point = ts.simulate("traction-border", duration_s=7.0, controller="optimal", robust="none")
+    assert list(point["timeseries"]["FL_slip_plan"]) != list(robust["timeseries"]["FL_slip_plan"])
+    # The full-model estimator: its streaming table carries the normalised innovation.
+    full = ts.simulate("traction-border", duration_s=4.0, controller="optimal", identifier="full")
+    assert full["status"] == "completed"
+    assert "nis" in full["streaming"] and "residual_score" not in full["streaming"]
+    with pytest.raises(ValueError, match="quantile"):
+        ts.simulate("traction-border", duration_s=1.0, quantile=1.5)
+    with pytest.raises(ValueError, match="identifier"):
+        ts.simulate("traction-border", duration_s=1.0, identifier="kalman")

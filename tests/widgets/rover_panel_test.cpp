@@ -15,6 +15,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/scenario/scenario_json.h"
 #include "widgets/plots/rover_figures.h"
 #include "widgets_test_support.h"
 
@@ -301,6 +302,58 @@ TEST(RoverPanelEditing, ControllerFieldsEditTheScenarioAndRunIt) {
     EXPECT_EQ(controller->currentText(), "constant-speed");
     EXPECT_FALSE(slip->isEnabled());
     EXPECT_FALSE(limited->isChecked());
+}
+
+TEST(RoverPanelEditing, RobustAndEstimatorFieldsEditTheOptimalController) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    panel.applySettings({{"scenario", "straight"}});
+    auto* controller = panel.findChild<QComboBox*>("rover.controller");
+    auto* robust = panel.findChild<QComboBox*>("rover.robust");
+    auto* quantile = panel.findChild<QDoubleSpinBox*>("rover.quantile");
+    auto* identifier = panel.findChild<QComboBox*>("rover.identifier");
+    ASSERT_NE(controller, nullptr);
+    ASSERT_NE(robust, nullptr);
+    ASSERT_NE(quantile, nullptr);
+    ASSERT_NE(identifier, nullptr);
+    // The scenario's defaults, and only the optimal controller has them to edit.
+    const scenario::ControllerSpec defaults;
+    EXPECT_EQ(robust->currentText().toStdString(), scenario::robustSlipName(defaults.robust));
+    EXPECT_EQ(quantile->value(), defaults.quantile);
+    EXPECT_EQ(identifier->currentText().toStdString(),
+              scenario::soilIdentifierName(defaults.identifier));
+    EXPECT_FALSE(robust->isEnabled());
+    EXPECT_FALSE(identifier->isEnabled());
+    // The quantile's range is the declared field's, as the reader's.
+    EXPECT_EQ(quantile->minimum(), scenario::robustQuantileField().range.low);
+    EXPECT_EQ(quantile->maximum(), scenario::robustQuantileField().range.high);
+
+    controller->setCurrentText("optimal");
+    EXPECT_TRUE(robust->isEnabled());
+    EXPECT_TRUE(identifier->isEnabled());
+    EXPECT_FALSE(quantile->isEnabled());  // only for the quantile set-point
+    robust->setCurrentText("quantile");
+    EXPECT_TRUE(quantile->isEnabled());
+    quantile->setValue(0.25);
+    identifier->setCurrentText("full");
+    auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
+    EXPECT_EQ(json["controller"]["type"], "optimal");
+    EXPECT_EQ(json["controller"]["robust"], "quantile");
+    EXPECT_EQ(json["controller"]["quantile"], 0.25);
+    EXPECT_EQ(json["controller"]["identifier"], "full");
+    // The edited scenario reads back with those keys (the reader the run uses).
+    const Result<scenario::Scenario> read =
+        scenario::scenarioFromJson(json, "edited.json", test::resources());
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->controller.robust, scenario::RobustSlip::kQuantile);
+    EXPECT_EQ(read->controller.quantile, 0.25);
+    EXPECT_EQ(read->controller.identifier, scenario::SoilIdentifier::kFull);
+
+    // Revert: the file's (none) again.
+    panel.revertScenario();
+    EXPECT_EQ(robust->currentText().toStdString(), scenario::robustSlipName(defaults.robust));
+    EXPECT_FALSE(robust->isEnabled());
 }
 
 }  // namespace

@@ -163,6 +163,28 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
         "When the wheels stall with their slip above the set-point (a slope, a heavy implement), "
         "raise the set-point to the slip the robot needs, up to the drawbar-maximising slip, and "
         "drop back when the need falls (edits the scenario's controller; docs/traction.md §5)");
+    robust_ = new QComboBox(this);
+    robust_->setObjectName("rover.robust");
+    for (const char* name : {"none", "expected", "quantile"}) robust_->addItem(name);
+    robust_->setToolTip(
+        "Optimal: plan s* of the soil estimate (none), or over its posterior the slip of the "
+        "largest expected efficiency (expected) or of its largest lower quantile (quantile) "
+        "(edits the scenario's controller; docs/traction.md §8)");
+    quantile_ = new QDoubleSpinBox(this);
+    quantile_->setObjectName("rover.quantile");
+    const FieldInfo& quantile = scenario::robustQuantileField();
+    quantile_->setRange(quantile.range.low, quantile.range.high);
+    quantile_->setDecimals(2);
+    quantile_->setSingleStep(0.05);
+    quantile_->setToolTip(QString::fromUtf8(quantile.description));
+    quantile_->setKeyboardTracking(false);
+    identifier_ = new QComboBox(this);
+    identifier_->setObjectName("rover.identifier");
+    for (const char* name : {"decoupled", "full"}) identifier_->addItem(name);
+    identifier_->setToolTip(
+        "Optimal: the streaming soil estimator it plans on: the thesis's decoupled model on a "
+        "sliding window, or the full wheel model's moving-horizon estimator (edits the "
+        "scenario's controller; docs/traction.md §8)");
     run_ = new QPushButton("Run", this);
     compare_ = new QPushButton("Compare controllers", this);
     compare_->setObjectName("rover.compare");
@@ -261,6 +283,16 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     control_bar->addWidget(slip_set_);
     control_bar->addWidget(traction_limited_);
     control_bar->addStretch(1);
+    // The optimal controller's set-point and soil estimator, on a row of their own (beside the
+    // controller the panel no longer fits 1024 px).
+    auto* optimal_bar = new QHBoxLayout;
+    optimal_bar->addWidget(new QLabel("Optimal: robust", this));
+    optimal_bar->addWidget(robust_);
+    optimal_bar->addWidget(new QLabel("quantile", this));
+    optimal_bar->addWidget(quantile_);
+    optimal_bar->addWidget(new QLabel("estimator", this));
+    optimal_bar->addWidget(identifier_);
+    optimal_bar->addStretch(1);
     auto* run_bar = new QHBoxLayout;
     run_bar->addWidget(run_);
     run_bar->addWidget(compare_);
@@ -270,6 +302,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(bar);
     layout->addLayout(control_bar);
+    layout->addLayout(optimal_bar);
     layout->addLayout(run_bar);
     layout->addWidget(tabs_, 1);
     layout->addWidget(status_);
@@ -296,6 +329,12 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
             [this](double slip) { setControllerValue("slip", slip); });
     connect(traction_limited_, &QCheckBox::toggled, this,
             [this](bool on) { setControllerValue("traction_limited", on); });
+    connect(robust_, &QComboBox::currentTextChanged, this,
+            [this](const QString& robust) { setControllerValue("robust", robust.toStdString()); });
+    connect(quantile_, &QDoubleSpinBox::valueChanged, this,
+            [this](double q) { setControllerValue("quantile", q); });
+    connect(identifier_, &QComboBox::currentTextChanged, this,
+            [this](const QString& name) { setControllerValue("identifier", name.toStdString()); });
     connect(scrubber_, &QSlider::valueChanged, this, &RoverPanel::scrubTo);
     connect(layer_, &QComboBox::currentIndexChanged, this, [this] {
         const QString key = layerKey();
@@ -537,22 +576,40 @@ void RoverPanel::showScenarioState() {
         const QSignalBlocker block_type(controller_);
         const QSignalBlocker block_slip(slip_set_);
         const QSignalBlocker block_limited(traction_limited_);
+        const QSignalBlocker block_robust(robust_);
+        const QSignalBlocker block_quantile(quantile_);
+        const QSignalBlocker block_identifier(identifier_);
         const scenario::ControllerSpec defaults;
         std::string type = scenario::controllerName(defaults.type);
         double slip = defaults.slip;
         bool limited = defaults.traction_limited;
+        std::string robust = scenario::robustSlipName(defaults.robust);
+        double quantile = defaults.quantile;
+        std::string identifier = scenario::soilIdentifierName(defaults.identifier);
         if (json.is_object() && json.contains("controller") && json["controller"].is_object()) {
             const nlohmann::json& c = json["controller"];
             if (c.contains("type") && c["type"].is_string()) type = c["type"].get<std::string>();
             if (c.contains("slip") && c["slip"].is_number()) slip = c["slip"].get<double>();
             if (c.contains("traction_limited") && c["traction_limited"].is_boolean())
                 limited = c["traction_limited"].get<bool>();
+            if (c.contains("robust") && c["robust"].is_string())
+                robust = c["robust"].get<std::string>();
+            if (c.contains("quantile") && c["quantile"].is_number())
+                quantile = c["quantile"].get<double>();
+            if (c.contains("identifier") && c["identifier"].is_string())
+                identifier = c["identifier"].get<std::string>();
         }
         controller_->setCurrentText(QString::fromStdString(type));
         slip_set_->setValue(slip);
         slip_set_->setEnabled(type == "fixed-slip" || type == "optimal");
         traction_limited_->setChecked(limited);
         traction_limited_->setEnabled(type != "constant-speed");
+        robust_->setCurrentText(QString::fromStdString(robust));
+        quantile_->setValue(quantile);
+        identifier_->setCurrentText(QString::fromStdString(identifier));
+        robust_->setEnabled(type == "optimal");
+        quantile_->setEnabled(type == "optimal" && robust == "quantile");
+        identifier_->setEnabled(type == "optimal");
     }
     previewScenario();
 }
@@ -760,6 +817,7 @@ void RoverPanel::showComparison() {
         {"drawbar_vs_oracle", "drawbar /\noracle's", 3, 1.0},
         {"slip_tracking_rms", "slip\nRMS", 4, 1.0},
         {"settling_time_s", "settling\n[s]", 2, 1.0},
+        {"settling_band_time_s", "settling in\nband [s]", 2, 1.0},
         {"rut_depth_m", "rut\n[mm]", 2, 1e3},
     };
     QStringList headers{"controller"};
@@ -794,7 +852,8 @@ Table RoverPanel::comparisonAsTable() const {
     t.label_column = "controller";
     t.columns = {"distance_m",        "energy_per_m_J",  "energy_per_drawbar_work",
                  "mean_efficiency",   "mean_drawbar_N",  "drawbar_vs_oracle",
-                 "slip_tracking_rms", "settling_time_s", "rut_depth_m"};
+                 "slip_tracking_rms", "settling_time_s", "settling_band_time_s",
+                 "rut_depth_m"};
     for (const nlohmann::json& row : comparison_) {
         t.labels.push_back(row.value("controller", std::string()));
         std::vector<double> values;

@@ -192,6 +192,9 @@ private:
     QComboBox* controller_;        // the scenario's "controller" type (docs/traction.md §5)
     QDoubleSpinBox* slip_set_;     // and its fixed set-point "slip"
     QCheckBox* traction_limited_;  // and its "traction_limited" mode
+    QComboBox* robust_;            // optimal: its "robust" set-point (docs/traction.md §8)
+    QDoubleSpinBox* quantile_;     // and that set-point's "quantile"
+    QComboBox* identifier_;        // optimal: its soil estimator, "identifier"
     QPushButton* run_;
     QPushButton* compare_;
     QPushButton* cancel_;

@@ -207,6 +207,9 @@ TEST(TractionControlRun, RobustOptimalControllerPlansTractionsRobustSlipAndHolds
         in.conditions.quadratic = true;
         TractionSettings settings;
         settings.posterior = p.request.posterior;
+        // The controller's way through the posterior (sigma points by default, §8 "Cost").
+        EXPECT_EQ(p.request.posterior_method, scenario::PosteriorMethod::kSigmaPoints);
+        settings.posterior_method = p.request.posterior_method;
         settings.quantile = 0.1;
         settings.curve_points = 30;
         settings.slip_min = 0.05;

@@ -166,6 +166,34 @@ TEST(TractionControl, ObserverTracksTheTruthItDoesNotSee) {
     }
 }
 
+TEST(TractionControl, ObserverLoadCarriesTheDriveTorquesPitchMoment) {
+    // The streaming samples of a closed-loop run carry the observer's load Ŵ of the front-left
+    // wheel as F_z (docs/traction.md §4); the truth is the series' FL_Fz_N at the same instant.
+    // Towing ~10 N with ~3.5 N·m of drive torque, the front wheels lose ~4.7 N each: the pull at
+    // the chassis' centre of mass alone explains 2.3 N of it, the torques' reaction the rest.
+    Scenario s = towing(ControllerType::kFixedSlip, 10.0);
+    s.streaming = StreamingHook{};
+    s.streaming->interval_s = 0.1;
+    const RunResult r = run(s);
+    const std::size_t t = r.series.column("t_s"), fz = r.series.column("FL_Fz_N");
+    const std::size_t st = r.streaming.column("t_s"), load = r.streaming.column("Fz_N");
+    double error = 0.0, drop = 0.0;
+    int n = 0;
+    for (const auto& sample : r.streaming.rows) {
+        if (sample[st] < 3.0) continue;
+        for (const auto& row : r.series.rows) {
+            if (std::abs(row[t] - sample[st]) > 1e-9) continue;
+            error += sample[load] - row[fz];
+            drop += dynamics::staticCornerLoad(s.robot, s.options.gravity_m_s2, 0) - row[fz];
+            ++n;
+        }
+    }
+    ASSERT_GT(n, 30);
+    EXPECT_GT(drop / n, 3.0);  // the transfer is real and large
+    // Unbiased to 0.3 N (the pull alone at the centre of mass left it 2.6 N high).
+    EXPECT_LT(std::abs(error / n), 0.3) << "drop " << drop / n;
+}
+
 TEST(TractionControl, WithoutGnssTheAccelerometerBiasMakesTheSpeedDrift) {
     Scenario s = towing(ControllerType::kFixedSlip);
     s.controller.sensors.gnss_rate_hz = 0.0;
@@ -373,6 +401,24 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
     ASSERT_TRUE(read.ok()) << read.message();
     EXPECT_EQ(read.value().controller.robust, RobustSlip::kExpected);
     EXPECT_EQ(read.value().controller.quantile, 0.25);
+    EXPECT_EQ(read.value().controller.posterior_method, PosteriorMethod::kSigmaPoints);
+    EXPECT_EQ(read.value().controller.identifier, SoilIdentifier::kDecoupled);
+    // The soil estimator and the posterior's method (docs/traction.md §8): choices.
+    const std::string identifier =
+        message(withController({{"type", "optimal"}, {"identifier", "kalman"}}));
+    EXPECT_NE(identifier.find("controller.identifier"), std::string::npos) << identifier;
+    EXPECT_NE(identifier.find("decoupled"), std::string::npos) << identifier;
+    const std::string method =
+        message(withController({{"type", "optimal"}, {"posterior_method", "grid"}}));
+    EXPECT_NE(method.find("controller.posterior_method"), std::string::npos) << method;
+    EXPECT_NE(method.find("sigma-points"), std::string::npos) << method;
+    const Result<Scenario> chosen = scenarioFromJson(
+        withController(
+            {{"type", "optimal"}, {"identifier", "full"}, {"posterior_method", "samples"}}),
+        "x.json", kLocations);
+    ASSERT_TRUE(chosen.ok()) << chosen.message();
+    EXPECT_EQ(chosen->controller.identifier, SoilIdentifier::kFull);
+    EXPECT_EQ(chosen->controller.posterior_method, PosteriorMethod::kSamples);
     nlohmann::json load = withController({{"type", "fixed-slip"}});
     load["drawbar_load"] = {{"force_N", -1}};
     EXPECT_NE(message(load).find("drawbar_load.force_N"), std::string::npos) << message(load);
