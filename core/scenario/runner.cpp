@@ -285,10 +285,12 @@ public:
                 estimate.max_shear_deformation_m = std::numeric_limits<double>::infinity();
                 out.soil = soilOfEstimate(estimate, wheel_);
                 if (posterior_) {
-                    static constexpr std::array<const char*,
-                                                identification::kDecoupledParameterCount>
-                        kKeys{"a0", "a1", "kphi", "n", "n1", "c_kPa", "phi_deg", "K_m"};
-                    out.posterior = posteriorOf(kKeys, u.covariance, *out.soil);
+                    // The streaming identifier's eight parameters are the table's first
+                    // eight fields, in its order (a₀ … K).
+                    std::array<const char*, identification::kDecoupledParameterCount> keys{};
+                    for (std::size_t k = 0; k < keys.size(); ++k)
+                        keys[k] = identification::soilKeyOf(identification::parameterFields()[k]);
+                    out.posterior = posteriorOf(keys, u.covariance, *out.soil);
                 }
             }
         } else {
@@ -307,9 +309,12 @@ public:
                 out.soil = soilOfEstimate(p, wheel_);
                 if (posterior_) {
                     // The seven parameters of the soil (j_max is held, not estimated).
-                    static constexpr std::array<const char*, identification::kJmax> kKeys{
-                        "a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"};
-                    out.posterior = posteriorOf(kKeys, full_->covariance(), *out.soil);
+                    std::array<const char*, identification::kJmax> keys{};
+                    for (std::size_t k = 0; k < keys.size(); ++k) {
+                        keys[k] = identification::soilKeyOf(
+                            identification::fieldOf(static_cast<identification::FullParameter>(k)));
+                    }
+                    out.posterior = posteriorOf(keys, full_->covariance(), *out.soil);
                 }
             }
         }
