@@ -181,6 +181,7 @@ analysis::CorrelatedParameters posteriorOf(
     const Result<analysis::SoilPosterior> read = analysis::readPosteriorFile(path);
     if (!read) throw InputError("--posterior: " + formatIssues(read.issues()));
     const analysis::SoilPosterior& p = read.value();
+    for (const std::string& note : p.notes) std::cerr << "warning: --posterior " << note << '\n';
     for (const std::string& key : p.parameters) {
         for (const analysis::UncertainParameter& q : independent) {
             if (q.key == key)

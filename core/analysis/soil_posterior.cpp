@@ -14,7 +14,13 @@ std::string soilKeyOf(const std::string& name) {
 
 void readPosterior(io::ObjectReader& r, SoilPosterior& out) {
     r.texts("parameters", out.parameters, io::Presence::kRequired);
-    for (std::string& name : out.parameters) name = soilKeyOf(name);
+    for (std::string& name : out.parameters) {
+        // An old key (issue 26) is read as its new one, with the note the flags give.
+        if (identification::lookupParameter(name).deprecated)
+            out.notes.push_back(r.where("parameters") + ": " +
+                                identification::deprecationNote(name));
+        name = soilKeyOf(name);
+    }
     r.numbers("mean", out.mean, Range{-1e300, 1e300}, {}, 1, 100, io::Presence::kRequired);
     if (const nlohmann::json* rows = r.array("covariance", io::Presence::kRequired)) {
         for (std::size_t i = 0; i < rows->size(); ++i) {

@@ -390,6 +390,7 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
         throw std::invalid_argument(formatIssues(issues));
     TractionResult out;
     out.objective = s.objective;
+    if (s.posterior) out.notes = s.posterior->notes;  // an old parameter key, read as its new one
     // The nominal soil: the given one with the posterior's mean.
     soil::SoilParameters nominal = in.soil;
     if (s.posterior) {

@@ -16,6 +16,8 @@ struct SoilPosterior {
     std::vector<std::string> parameters;
     std::vector<double> mean;
     std::vector<std::vector<double>> covariance;
+    /// What reading it noted (an old parameter key read as its new one, issue 26); not data.
+    std::vector<std::string> notes;
 };
 
 }  // namespace terra::soil

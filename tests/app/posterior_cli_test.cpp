@@ -128,4 +128,36 @@ TEST_F(PosteriorCli, AParameterGivenTwiceOrAMorrisStudyIsRefused) {
     EXPECT_NE(r.err.find("parameters"), std::string::npos) << r.err;
 }
 
+// A posterior with the identification's old key "Ks" (issue 26) is read as Ks_kPa, k_phi in the
+// soil, with the deprecation note the flags give — by traction's notes and bands' warnings — and
+// samples the same soils as one written with the new key.
+TEST_F(PosteriorCli, AnOldParameterKeyInAPosteriorIsReadWithTheFlagsNote) {
+    auto write = [&](const std::string& name, const char* ks_key) {
+        const std::string path = (dir_ / name).string();
+        std::ofstream(path) << json{{"parameters", {"phi_deg", ks_key}},
+                                    {"mean", {29.0, 1500.0}},
+                                    {"covariance", {{1.0, 0.0}, {0.0, 400.0}}}}
+                                   .dump();
+        return path;
+    };
+    const std::string old_file = write("old.json", "Ks"), new_file = write("new.json", "Ks_kPa");
+    const std::string traction =
+        "traction --soil sandy-loam --wheel A --samples 20 --model quadratic --json --posterior ";
+    const CliRun old_run = run(traction + old_file), new_run = run(traction + new_file);
+    ASSERT_EQ(old_run.exit_code, 0) << old_run.err;
+    ASSERT_EQ(new_run.exit_code, 0) << new_run.err;
+    EXPECT_NE(old_run.err.find("parameter key 'Ks' is deprecated: use 'Ks_kPa'"), std::string::npos)
+        << old_run.err;
+    EXPECT_EQ(new_run.err.find("deprecated"), std::string::npos) << new_run.err;
+    json a = json::parse(old_run.out), b = json::parse(new_run.out);
+    EXPECT_EQ(a["robust_slip"], b["robust_slip"]);
+    const std::string bands =
+        "bands --soil sandy-loam --wheel A --slip 0.3 --samples 50 --posterior ";
+    const CliRun old_bands = run(bands + old_file);
+    ASSERT_EQ(old_bands.exit_code, 0) << old_bands.err;
+    EXPECT_NE(old_bands.err.find("warning: --posterior"), std::string::npos) << old_bands.err;
+    EXPECT_NE(old_bands.err.find("'Ks' is deprecated"), std::string::npos) << old_bands.err;
+    EXPECT_EQ(old_bands.out, run(bands + new_file).out);
+}
+
 }  // namespace
