@@ -37,7 +37,10 @@ SinkageStudy computeSinkage(const Inputs& in, const SinkageSettings& s, const Co
                          "entry_angle_deg",
                          "sinkage_m"};
     for (double w : loads) {
-        if (control.cancelled()) break;
+        if (control.cancelled()) {
+            out.cancelled = true;
+            break;
+        }
         const double bekker = contact::bekkerStaticSinkage(p, w);
         const auto exact = contact::solveStaticSinkage(p, w, contact::StaticContact::kSymmetric);
         const auto front = contact::solveStaticSinkage(p, w, contact::StaticContact::kFrontHalf);
@@ -75,6 +78,7 @@ SinkageStudy computeSinkage(const Inputs& in, const SinkageSettings& s, const Co
 
 Outcome sinkageOutcome(SinkageStudy study) {
     Outcome out;
+    if (study.cancelled) out.status = Outcome::Status::kCancelled;
     out.tables.push_back({"sinkage", "", study.table});
     out.notes = study.notes;
     out.result = std::move(study);

@@ -28,6 +28,7 @@ struct SinkageStudy {
     Table table;
     /// The solves without a solution and loads beyond Bekker's validity (h > r/3).
     std::vector<std::string> notes;
+    bool cancelled = false;  ///< stopped by the cancel flag: the loads after the last row missing
 };
 
 /// Throws std::invalid_argument for invalid inputs or settings.

@@ -2,6 +2,7 @@
 
 #include "core/identification/parameters.h"
 #include "core/io/json.h"
+#include "core/soil/soil_parameters.h"
 
 namespace terra::analysis {
 
@@ -15,8 +16,9 @@ std::string soilKeyOf(const std::string& name) {
 void readPosterior(io::ObjectReader& r, SoilPosterior& out) {
     r.texts("parameters", out.parameters, io::Presence::kRequired);
     for (std::string& name : out.parameters) {
-        // An old key (issue 26) is read as its new one, with the note the flags give.
-        if (identification::lookupParameter(name).deprecated)
+        // An old identification key (issue 26) is read as its new one, with the note the flags
+        // give; "n" is also the soil file's key of n₀, which a posterior may use: no note.
+        if (identification::lookupParameter(name).deprecated && !soil::findSoilField(name))
             out.notes.push_back(r.where("parameters") + ": " +
                                 identification::deprecationNote(name));
         name = soilKeyOf(name);

@@ -45,13 +45,18 @@ nlohmann::json toJson(const StressSettings& s) {
     return out;
 }
 
-StressResult computeStresses(const Inputs& in, const StressSettings& settings, const Control&) {
+StressResult computeStresses(const Inputs& in, const StressSettings& settings,
+                             const Control& control) {
     std::vector<Issue> issues;
     checkRange(issues, "step_deg", settings.step_deg, kStepRange, "deg");
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     const contact::ContactParameters<double> params = in.contact();
     const double beta = units::degToRad(settings.slip_angle_deg);
     StressResult out;
+    if (control.cancelled()) {
+        out.cancelled = true;
+        return out;
+    }
     out.table.columns = {"theta_deg",      "sigma_kPa",     "tau_kPa",        "tau_t_kPa",
                          "tau_l_kPa",      "j_m",           "sigma_quad_kPa", "tau_quad_kPa",
                          "tau_t_quad_kPa", "tau_l_quad_kPa"};
@@ -107,7 +112,10 @@ Table errorTable(const StressResult& result) {
 
 Outcome stressOutcome(StressResult result) {
     Outcome out;
-    if (!result.message.empty()) {
+    if (result.cancelled) {
+        out.status = Outcome::Status::kCancelled;
+        out.message = "cancelled";
+    } else if (!result.message.empty()) {
         // No equilibrium: there is no grid, and an error table would read as zero errors (an
         // expectation on it would pass). The analysis failed, with the reason.
         out.status = Outcome::Status::kFailed;

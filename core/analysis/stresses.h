@@ -46,6 +46,7 @@ struct StressResult {
     double entry_angle_deg = 0.0;                         ///< θ_f used (given or solved)
     double max_stress_angle_deg = 0.0;  ///< θ_m used (Eq. 2.18 or fixed, inside [θ_r, θ_f])
     std::string message;                ///< non-empty: no equilibrium at this load
+    bool cancelled = false;             ///< stopped by the cancel flag: the grid is partial
 };
 
 /// Throws std::invalid_argument for invalid inputs or settings.

@@ -258,6 +258,7 @@ void sigmaPointBand(TractionResult& out, const std::vector<double>& slips,
     }
     if (out.band.size() != slips.size()) {
         out.notes.push_back("cancelled: the posterior's band is partial");
+        out.cancelled = true;
         return;
     }
     // The spread of s*: the same transform of each point's own s* on the curve's slips.
@@ -410,7 +411,14 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
     std::vector<double> slips;
     for (int i = 0; i < s.curve_points; ++i)
         slips.push_back(s.slip_min + (s.slip_max - s.slip_min) * i / (s.curve_points - 1));
-    for (double slip : slips) out.curve.push_back(at(params, slip));
+    for (double slip : slips) {
+        if (control.cancelled()) {
+            out.cancelled = true;
+            out.message = "cancelled";
+            return out;
+        }
+        out.curve.push_back(at(params, slip));
+    }
     std::size_t best = 0;
     for (std::size_t i = 1; i < out.curve.size(); ++i)
         if (objectiveValue(s.objective, out.curve[i]) >
@@ -564,6 +572,7 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
             out.expected_slip = slips[best_mean];
         } else if (control.cancelled()) {
             out.notes.push_back("cancelled: the posterior's band is partial");
+            out.cancelled = true;
         }
     }
     control.report(1.0);
@@ -656,7 +665,10 @@ Outcome tractionOutcome(TractionResult result) {
     out.tables.push_back({"curve", "", std::move(curve)});
     out.tables.push_back({"optimum", "-optimum", std::move(optimum)});
     out.notes = result.notes;
-    if (!result.ok()) {
+    if (result.cancelled) {
+        out.status = Outcome::Status::kCancelled;
+        if (!result.ok()) out.message = result.message;
+    } else if (!result.ok()) {
         out.status = Outcome::Status::kFailed;
         out.message = result.message;
     }

@@ -84,6 +84,7 @@ struct TractionResult {
     int invalid_samples = 0;  ///< posterior draws outside a field's range (left out)
     std::string message;      ///< non-empty: no slip meets the cap or has an equilibrium
     std::vector<std::string> notes;
+    bool cancelled = false;  ///< stopped by the cancel flag: the curve or the band is partial
 
     bool ok() const { return optimal_slip.has_value(); }
 };
