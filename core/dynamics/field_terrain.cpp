@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/common/range.h"
 #include "core/compaction/footprint.h"
 #include "core/compaction/stress_at_depth.h"
 #include "core/contact/stress_field.h"
@@ -180,6 +181,16 @@ void FieldTerrain::enumerateSoils() {
         ys.push_back({r, true});
     }
     const std::vector<std::vector<int>> cols = axisTuples(xs), rows = axisTuples(ys);
+    // The product is walked key by key (≈ 10 ns each): rasters whose edges interleave over a
+    // large field (a long strip crossing another) would take minutes, refused by name instead.
+    const double keys = static_cast<double>(cols.size()) * static_cast<double>(rows.size());
+    if (keys > kMaxSoilKeys) {
+        throw std::invalid_argument(
+            "the field's classes and parameter rasters cut it into " + formatNumber(keys) +
+            " pieces of distinct cells, more than the " + formatNumber(kMaxSoilKeys) +
+            " the rover enumerates; use parameter rasters on the class raster's grid or "
+            "coarser ones");
+    }
     const bool classes = map_->soil_class.has_value();
     std::vector<double> key(1 + map_->parameters.size()), last;
     for (const std::vector<int>& row : rows) {

@@ -73,6 +73,9 @@ class FieldTerrain final : public TerrainModel {
 public:
     /// The most distinct soils a field's classes and parameter rasters may make (F14).
     static constexpr std::size_t kMaxSoils = 65536;
+    /// The most pieces (distinct columns of all rasters × distinct rows) F14 enumerates: about
+    /// 3 s at 10 ns a piece.
+    static constexpr double kMaxSoilKeys = 3e8;
 
     /// Throws std::invalid_argument for a field the rover cannot drive on: parameter rasters
     /// that make more than kMaxSoils distinct soils, or a cell size out of CellGrid's range.

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <iterator>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "core/common/range.h"
 #include "core/dynamics/field_terrain.h"
@@ -37,6 +39,11 @@ int Scenario::soilCount() const {
 const soil::SoilParameters& Scenario::soil(int index) const {
     if (!field) return terrain.soil(index);
     if (index == 0) return field->base;
+    // The soils of a field's parameter rasters are its FieldTerrain's (F14), not the map's.
+    if (index < 0 || static_cast<std::size_t>(index) > field->legend.size())
+        throw std::out_of_range("Scenario::soil: index " + std::to_string(index) +
+                                " is not one of the field's classes (FieldTerrain::soil has the "
+                                "soils of its parameter rasters)");
     return std::next(field->legend.begin(), index - 1)->second;
 }
 

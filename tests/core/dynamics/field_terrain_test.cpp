@@ -25,6 +25,7 @@ namespace terra::dynamics {
 namespace {
 
 using terra::testing::kLocations;
+using terra::testing::messageOf;
 
 scenario::Scenario shipped(const std::string& name, double duration_s) {
     Result<scenario::Scenario> s = scenario::resolveScenario(kLocations, name);
@@ -709,6 +710,20 @@ TEST(FieldRover, TheRoversSoilsAreTheMapsEverywhere) {
     ASSERT_TRUE(std::isfinite(least));
     EXPECT_LE(largestStableStep(RobotParameters{}, varied, options).max_step_s,
               least * (1 + 1e-12));
+
+    // A long east–west strip crossing a long north–south one: 10¹⁰ pieces, refused by name
+    // before any is walked.
+    auto strips = std::make_shared<field::FieldMap>();
+    strips->base = sandy;
+    field::ParameterRaster east{soil::findSoilField("c_kPa"),
+                                field::makeRaster(100000, 1, 0, 0, 0.01)};
+    field::ParameterRaster north{soil::findSoilField("phi_deg"),
+                                 field::makeRaster(1, 100000, 0, 0, 0.01)};
+    std::fill(east.raster.values.begin(), east.raster.values.end(), 1.0);
+    std::fill(north.raster.values.begin(), north.raster.values.end(), 30.0);
+    strips->parameters = {east, north};
+    EXPECT_NE(messageOf([&] { FieldTerrain refused(strips, RobotParameters{}); }).find("pieces"),
+              std::string::npos);
 
     // 300 × 300 distinct cohesions: more soils than the rover takes.
     auto wide = std::make_shared<field::FieldMap>();
