@@ -151,6 +151,16 @@ SecondOrder secondOrder(double f0, const std::vector<double>& plus,
     return out;
 }
 
+// Appends the band at the next slip of the curve, keeping the indices of the largest quantile
+// and the largest mean.
+void addBand(TractionResult& out, const TractionBand& band, std::size_t& best_q,
+             std::size_t& best_mean) {
+    const std::size_t j = out.band.size();
+    out.band.push_back(band);
+    if (band.quantile > out.band[best_q].quantile) best_q = j;
+    if (band.mean > out.band[best_mean].mean) best_mean = j;
+}
+
 template <typename Objective>
 void sigmaPointBand(TractionResult& out, const std::vector<double>& slips,
                     const soil::SoilParameters& nominal, const wheel::WheelParameters& wheel,
@@ -251,9 +261,7 @@ void sigmaPointBand(TractionResult& out, const std::vector<double>& slips,
         } else {
             band.mean = band.p5 = band.p50 = band.p95 = band.quantile = kMinusInfinity;
         }
-        out.band.push_back(band);
-        if (band.quantile > out.band[best_q].quantile) best_q = j;
-        if (band.mean > out.band[best_mean].mean) best_mean = j;
+        addBand(out, band, best_q, best_mean);
         control.report(0.1 + 0.8 * static_cast<double>(j + 1) / slips.size());
     }
     if (out.band.size() != slips.size()) {
@@ -533,9 +541,7 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
             } else {
                 band.mean = band.p5 = band.p50 = band.p95 = band.quantile = kMinusInfinity;
             }
-            out.band.push_back(band);
-            if (band.quantile > out.band[best_q].quantile) best_q = i;
-            if (band.mean > out.band[best_mean].mean) best_mean = i;
+            addBand(out, band, best_q, best_mean);
             control.report(0.1 + 0.8 * static_cast<double>(i + 1) / slips.size());
         }
         if (out.band.size() == slips.size()) {

@@ -80,11 +80,14 @@ std::vector<soil::SoilParameters> FieldTerrain::stepLimitSoils() const {
     return out;
 }
 
-int FieldTerrain::classIndexAt(double x_m, double y_m) const {
-    const std::optional<int> code = map_->classAt(x_m, y_m);
+int FieldTerrain::classIndexOf(std::optional<int> code) const {
     if (!code) return 0;
     const auto it = std::lower_bound(codes_.begin(), codes_.end(), *code);
     return it != codes_.end() && *it == *code ? static_cast<int>(it - codes_.begin()) + 1 : 0;
+}
+
+int FieldTerrain::classIndexAt(double x_m, double y_m) const {
+    return classIndexOf(map_->classAt(x_m, y_m));
 }
 
 void FieldTerrain::soilKey(double x_m, double y_m, std::vector<double>& key) const {
@@ -199,15 +202,9 @@ void FieldTerrain::enumerateSoils() {
             std::size_t j = 0;
             int class_index = 0;
             if (classes) {
-                if (col[0] >= 0 && row[0] >= 0) {
-                    const double v = map_->soil_class->value(col[0], row[0]);
-                    if (!std::isnan(v)) {
-                        const int code = static_cast<int>(std::lround(v));
-                        const auto it = std::lower_bound(codes_.begin(), codes_.end(), code);
-                        if (it != codes_.end() && *it == code)
-                            class_index = static_cast<int>(it - codes_.begin()) + 1;
-                    }
-                }
+                if (col[0] >= 0 && row[0] >= 0)
+                    class_index =
+                        classIndexOf(field::classCode(map_->soil_class->value(col[0], row[0])));
                 j = 1;
             }
             key[0] = class_index;

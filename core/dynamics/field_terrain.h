@@ -153,6 +153,7 @@ private:
     // none) → the soil's index in soils_.
     std::map<std::vector<double>, int> soil_of_key_;
     void soilKey(double x_m, double y_m, std::vector<double>& key) const;
+    int classIndexOf(std::optional<int> code) const;  // 0: no code or none in the legend
     int classIndexAt(double x_m, double y_m) const;
     void enumerateSoils();
     field::CellGrid cells_;

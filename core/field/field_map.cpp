@@ -52,11 +52,14 @@ LocalSlope FieldMap::slopeUnder(double x_m, double y_m, double heading_rad) cons
     return {std::atan(g.dot(d)), std::atan(g.dot(left))};
 }
 
+std::optional<int> classCode(double value) {
+    if (std::isnan(value)) return std::nullopt;
+    return static_cast<int>(std::lround(value));
+}
+
 std::optional<int> FieldMap::classAt(double x_m, double y_m) const {
     if (!soil_class) return std::nullopt;
-    const double v = soil_class->nearest(x_m, y_m);
-    if (std::isnan(v)) return std::nullopt;
-    return static_cast<int>(std::lround(v));
+    return classCode(soil_class->nearest(x_m, y_m));
 }
 
 soil::SoilParameters FieldMap::soilAt(double x_m, double y_m) const {

@@ -57,6 +57,9 @@ struct FieldMap {
     soil::SoilParameters soilAt(double x_m, double y_m) const;
 };
 
+/// The class code a class raster's value stands for: the nearest whole number, none for no data.
+std::optional<int> classCode(double value);
+
 /// The EPSG code of the field's coordinate system: the first of its rasters (height, soil
 /// classes, parameters) that names one (a GeoTIFF's; the field reader refuses rasters that name
 /// different ones, core/io/field_json.h), or none.

@@ -218,23 +218,13 @@ class StreamingFeed {
 public:
     StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt,
                   const identification::StreamingOptions& options, bool posterior)
-        : hook_(hook),
-          wheel_(wheel),
-          posterior_(posterior),
-          decoupled_(std::in_place, wheel, options),
-          random_(hook.seed),
-          every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
-        table_.columns = columns("residual_score");
+        : StreamingFeed(hook, wheel, dt, posterior, "residual_score") {
+        decoupled_.emplace(wheel, options);
     }
     StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt,
                   const identification::StreamingEstimatorOptions& options, bool posterior)
-        : hook_(hook),
-          wheel_(wheel),
-          posterior_(posterior),
-          full_(std::in_place, wheel, options),
-          random_(hook.seed),
-          every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
-        table_.columns = columns("nis");
+        : StreamingFeed(hook, wheel, dt, posterior, "nis") {
+        full_.emplace(wheel, options);
     }
 
     // With `estimates` (a closed-loop run) the sample's slip, load and M_y are the observer's,
@@ -331,6 +321,16 @@ public:
     Table take() { return std::move(table_); }
 
 private:
+    // What both identifiers share; `score` names the series' column of the fit's score.
+    StreamingFeed(const StreamingHook& hook, const wheel::WheelParameters& wheel, double dt,
+                  bool posterior, const char* score)
+        : hook_(hook),
+          wheel_(wheel),
+          posterior_(posterior),
+          random_(hook.seed),
+          every_(std::max<long>(1, std::lround(hook.interval_s / dt))) {
+        table_.columns = columns(score);
+    }
     static std::vector<std::string> columns(const char* score) {
         return {
             "t_s", "slip", "theta_f_deg", "Fx_N", "Fz_N", "My_Nm", "estimated", "Ks_Pa_mN",
