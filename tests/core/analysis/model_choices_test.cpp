@@ -23,7 +23,7 @@ std::pair<ModelChoices, std::vector<Issue>> readChoices(const nlohmann::json& js
     return {out, issues};
 }
 
-std::string issueAt(const std::vector<Issue>& issues, const std::string& key) {
+std::string choiceIssueAt(const std::vector<Issue>& issues, const std::string& key) {
     for (const Issue& issue : issues) {
         if (issue.where == "script.json: analyses[0]." + key) return issue.message;
     }
@@ -80,21 +80,22 @@ TEST(ModelChoicesKeys, BadValuesAreNamedWithTheirRanges) {
                                           {"bulldozing", "hegedos"},
                                           {"bulldozin", "bekker"}});
     EXPECT_EQ(issues.size(), 4u) << formatIssues(issues);
-    EXPECT_EQ(issueAt(issues, "exit_angle_deg"), "5 is outside the allowed range [-90, 0] deg");
-    EXPECT_EQ(issueAt(issues, "max_stress_angle_deg"),
+    EXPECT_EQ(choiceIssueAt(issues, "exit_angle_deg"),
+              "5 is outside the allowed range [-90, 0] deg");
+    EXPECT_EQ(choiceIssueAt(issues, "max_stress_angle_deg"),
               "95 is outside the allowed range [-90, 90] deg");
-    EXPECT_TRUE(contains(issueAt(issues, "bulldozing"), "did you mean \"hegedus\""))
+    EXPECT_TRUE(contains(choiceIssueAt(issues, "bulldozing"), "did you mean \"hegedus\""))
         << formatIssues(issues);
-    EXPECT_TRUE(contains(issueAt(issues, "bulldozin"), "did you mean \"bulldozing\""))
+    EXPECT_TRUE(contains(choiceIssueAt(issues, "bulldozin"), "did you mean \"bulldozing\""))
         << formatIssues(issues);
     const auto [r, r_issues] = readChoices({{"rut_ratio", 1.5}});
-    EXPECT_EQ(issueAt(r_issues, "rut_ratio"), "1.5 is outside the allowed range [0, 1]");
+    EXPECT_EQ(choiceIssueAt(r_issues, "rut_ratio"), "1.5 is outside the allowed range [0, 1]");
 }
 
 TEST(ModelChoicesKeys, ExitAngleOrRutRatioNotBoth) {
     const auto [m, issues] = readChoices({{"exit_angle_deg", -5.0}, {"rut_ratio", 0.5}});
     ASSERT_EQ(issues.size(), 1u) << formatIssues(issues);
-    EXPECT_EQ(issueAt(issues, "rut_ratio"), "give exit_angle_deg or rut_ratio, not both");
+    EXPECT_EQ(choiceIssueAt(issues, "rut_ratio"), "give exit_angle_deg or rut_ratio, not both");
 }
 
 // A struct that lists the choices with fields::members(model) reads and checks them the same way.
