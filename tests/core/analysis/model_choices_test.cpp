@@ -112,5 +112,23 @@ TEST(ModelChoicesKeys, AStructBuiltInCodeIsCheckedInTheReadersWords) {
     EXPECT_TRUE(io::fieldIssues(ModelChoices{}).empty());
 }
 
+// The key table of the docs (fields::describeFields) lists the four keys, through a struct that
+// holds the choices as members.
+struct ChoicesHolder {
+    ModelChoices model;
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::members(model));
+    }
+};
+
+TEST(ModelChoicesKeys, TheKeyTableListsTheChoices) {
+    std::vector<std::string> keys;
+    for (const fields::FieldDoc& doc : fields::describeFields<ChoicesHolder>())
+        keys.push_back(doc.key);
+    EXPECT_EQ(keys, (std::vector<std::string>{"exit_angle_deg", "rut_ratio", "max_stress_angle_deg",
+                                              "bulldozing"}));
+}
+
 }  // namespace
 }  // namespace terra::analysis
