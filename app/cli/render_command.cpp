@@ -4,10 +4,12 @@
 
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"
+#include "app/cli/settings_flags.h"
 #include "app/cli/signals.h"
 #include "app/headless_application.h"
 #include "core/analysis/forces.h"
@@ -33,8 +35,11 @@ int render(const RenderOptions& o, const io::PresetLocations& locations) {
                         o.model.inputFiles());
     analysis::Inputs inputs = o.model.inputs(locations);
     inputs.conditions.load_n = o.load_n;
-    analysis::ForcesSettings settings;
-    settings.model = o.model.choices();
+    // The model flags as the forces' settings object, read by their reader (exit 2 names the flag).
+    nlohmann::json object = nlohmann::json::object();
+    addModelChoices(o.model, object);
+    const analysis::ForcesSettings settings =
+        readFlagSettings<analysis::ForcesSettings>(object, analysis::readForcesSettings, {});
     const SignalCancellation cancellation;
     TerminalProgress progress("render");
     const analysis::ForcesResult result =

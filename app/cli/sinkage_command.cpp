@@ -4,6 +4,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/settings_flags.h"
 #include "core/analysis/sinkage_study.h"
 #include "core/common/range.h"
 #include "core/common/table.h"
@@ -21,6 +22,18 @@ struct SinkageOptions {
     bool json = false;
     std::string out;
 };
+
+// The flags as the analysis's settings object (the keys of SinkageSettings::visitFields), read by
+// its reader: the loads' range and its words are the reader's, named by the flags.
+analysis::SinkageSettings sinkageSettings(const SinkageOptions& o) {
+    nlohmann::json object{{"loads_N", parseValues(o.loads, "--load")},
+                          {"slip", o.settings.slip},
+                          {"slip_angle_deg", o.settings.slip_angle_deg}};
+    addModelChoices(o.model, object);
+    return readFlagSettings<analysis::SinkageSettings>(
+        object, analysis::readSinkageSettings,
+        {{"loads_N", "--load"}, {"slip", "--slip"}, {"slip_angle_deg", "--slip-angle"}});
+}
 
 }  // namespace
 
@@ -42,14 +55,7 @@ void addSinkageCommand(CLI::App& app, const io::PresetLocations& locations) {
         const SinkageOptions& o = *options;
         refuseInputAsOutput("--out", o.out, o.model.inputFiles());
         const analysis::Inputs inputs = o.model.inputs(locations);
-        analysis::SinkageSettings settings = o.settings;
-        settings.loads_n = parseValues(o.loads, "--load");
-        settings.model = o.model.choices();
-        std::vector<Issue> issues;
-        const FieldInfo& load = contact::loadField();
-        for (double w : settings.loads_n)
-            checkRange(issues, "--load", w, load.range, load.displayUnit());
-        if (!issues.empty()) throw InputError(formatIssues(issues));
+        const analysis::SinkageSettings settings = sinkageSettings(o);
         const analysis::SinkageStudy study = analysis::computeSinkage(inputs, settings);
         printLines(study.notes, "note: ");
         const Table& table = study.table;

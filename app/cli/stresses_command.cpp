@@ -7,6 +7,7 @@
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
+#include "app/cli/settings_flags.h"
 #include "core/analysis/stresses.h"
 #include "core/common/range.h"
 #include "core/contact/operating_fields.h"
@@ -23,6 +24,21 @@ struct StressOptions {
     bool json = false;
     std::string out;
 };
+
+// The flags as the analysis's settings object (the keys of StressSettings::visitFields), read by
+// its reader: the ranges and their words are the reader's, named by the flags.
+analysis::StressSettings stressSettings(const StressOptions& o) {
+    const analysis::StressSettings& s = o.settings;
+    nlohmann::json object{
+        {"slip", s.slip}, {"slip_angle_deg", s.slip_angle_deg}, {"step_deg", s.step_deg}};
+    if (s.entry_angle_deg) object["entry_angle_deg"] = *s.entry_angle_deg;
+    addModelChoices(o.model, object);
+    return readFlagSettings<analysis::StressSettings>(object, analysis::readStressSettings,
+                                                      {{"slip", "--slip"},
+                                                       {"slip_angle_deg", "--slip-angle"},
+                                                       {"step_deg", "--step"},
+                                                       {"entry_angle_deg", "--entry-angle"}});
+}
 
 }  // namespace
 
@@ -43,8 +59,8 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_option("--entry-angle", s.entry_angle_deg,
                     "Fixed entry angle theta_f [deg] instead of a load (Table 2.3: 30)")
         ->excludes(load);
-    cmd->add_option("--step", s.step_deg, "Grid step [deg]")
-        ->check(CLI::Range(1e-4, 10.0))
+    cmd->add_option("--step", s.step_deg,
+                    "Grid step [deg] in " + analysis::kStressStepRange.describe())
         ->capture_default_str();
     cmd->add_flag("--json", options->json, "JSON: the error summary and the grid");
     cmd->add_option("--out", options->out,
@@ -55,8 +71,7 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         refuseInputAsOutput("--out", o.out, o.model.inputFiles());
         analysis::Inputs inputs = o.model.inputs(locations);
         if (o.load_n) inputs.conditions.load_n = *o.load_n;
-        analysis::StressSettings settings = o.settings;
-        settings.model = o.model.choices();
+        const analysis::StressSettings settings = stressSettings(o);
         const analysis::StressResult result = analysis::computeStresses(inputs, settings);
         if (!result.message.empty()) throw std::runtime_error(result.message);
         const Table& grid = result.table;

@@ -4,6 +4,7 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"
+#include "app/cli/settings_flags.h"
 #include "app/cli/signals.h"
 #include "core/analysis/forces.h"
 #include "core/analysis/sensitivity.h"
@@ -49,12 +50,34 @@ struct SweepOptions {
         if (load_n) in.conditions.load_n = *load_n;
         return in;
     }
-    analysis::ForcesSettings forces() const {
-        analysis::ForcesSettings s;
-        s.model = model.choices();
-        s.entry_angle_deg = entry_angle_deg;
-        if (!slips.empty()) s.slips = parseValues(slips, "--slips");
+    // The flags of the sweep as its settings object (the keys of ForcesSettings::visitFields).
+    nlohmann::json forcesObject() const {
+        nlohmann::json s = nlohmann::json::object();
+        if (entry_angle_deg) s["entry_angle_deg"] = *entry_angle_deg;
+        if (!slips.empty()) s["slips"] = parseValues(slips, "--slips");
+        addModelChoices(model, s);
         return s;
+    }
+    // The forces' settings of the flags, read by their reader (exit 2 names the flag).
+    analysis::ForcesSettings forces() const {
+        return readFlagSettings<analysis::ForcesSettings>(
+            forcesObject(), analysis::readForcesSettings, forcesFlags());
+    }
+    // The sensitivity's: the sweep's keys and its own.
+    analysis::SensitivitySettings sensitivitySettings() const {
+        nlohmann::json s = forcesObject();
+        s["parameter"] = sensitivity.parameter;
+        s["slip_angle_deg"] = parseValues(slip_angles, slip_angles_flag);
+        if (!values.empty()) s["values"] = parseValues(values, "--values");
+        FlagNames names = forcesFlags();
+        names.insert(names.end(), {{"parameter", "--parameter"},
+                                   {"slip_angle_deg", slip_angles_flag},
+                                   {"values", "--values"}});
+        return readFlagSettings<analysis::SensitivitySettings>(s, analysis::readSensitivitySettings,
+                                                               names, sensitivity);
+    }
+    static FlagNames forcesFlags() {
+        return {{"entry_angle_deg", "--entry-angle"}, {"slips", "--slips"}};
     }
 };
 
@@ -109,10 +132,11 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
         ->capture_default_str();
     cmd->callback([sweep, &locations] {
         const analysis::Inputs inputs = sweep->inputs(locations);
+        const analysis::ForcesSettings settings = sweep->forces();
         const SignalCancellation cancellation;
         TerminalProgress progress("sweep");
         const analysis::ForcesResult result = analysis::computeForceSweep(
-            inputs, sweep->forces(), {cancellation.flag(), progress.callback()});
+            inputs, settings, {cancellation.flag(), progress.callback()});
         progress.finish();
         emit(*sweep, result, cancellation);
     });
@@ -138,10 +162,7 @@ void addSweepCommands(CLI::App& app, const io::PresetLocations& locations) {
         ->needs(parameter);
     s->callback([sens, &locations] {
         const analysis::Inputs inputs = sens->inputs(locations);
-        analysis::SensitivitySettings settings = sens->sensitivity;
-        settings.slip_angles_deg = inputs.conditions.slip_angles_deg;
-        settings.sweep = sens->forces();
-        if (!sens->values.empty()) settings.values = parseValues(sens->values, "--values");
+        const analysis::SensitivitySettings settings = sens->sensitivitySettings();
         const SignalCancellation cancellation;
         TerminalProgress progress("sensitivity");
         const analysis::SensitivityResult result = analysis::computeSensitivity(

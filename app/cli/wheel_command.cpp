@@ -8,6 +8,7 @@
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"
+#include "app/cli/settings_flags.h"
 #include "app/cli/signals.h"
 #include "core/analysis/operating_point.h"
 #include "core/common/range.h"
@@ -320,7 +321,11 @@ void addWheelCommand(CLI::App& app, const io::PresetLocations& locations) {
         in.slip_angle_deg = o.slip_angle_deg;
         in.entry_angle_deg = o.entry_angle_deg;
         in.load_n = o.load_n;
-        in.model = o.model.choices();
+        // The model flags as the choices' settings object, read by their reader.
+        nlohmann::json choices = nlohmann::json::object();
+        addModelChoices(o.model, choices);
+        in.model =
+            readFlagSettings<analysis::ModelChoices>(choices, analysis::readModelChoices, {});
         const PointResult result = evaluate(p, o, in);
         if (!result.failure.empty()) throw std::runtime_error(result.failure);
         if (!result.warning.empty()) std::cerr << "warning: " << result.warning << '\n';

@@ -4,6 +4,7 @@
 
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 
@@ -25,39 +26,65 @@ std::vector<Issue> validate(const Inputs& inputs) {
     return issues;
 }
 
-void readModelChoices(io::ObjectReader& r, ModelChoices& out) {
+void exitConditionRule(io::ObjectReader& r) {
     const FieldInfo& exit = contact::exitAngleField();
     const FieldInfo& rut = contact::rutRatioField();
     if (r.has(exit.key) && r.has(rut.key)) {
         r.report(rut.key, std::string("give ") + exit.key + " or " + rut.key + ", not both");
     }
-    // Angles converted as the command line always has (units::degToRad), bit for bit.
+}
+
+void readExitAngle(io::ObjectReader& r, const char* key, contact::ExitCondition& out) {
+    exitConditionRule(r);
+    const FieldInfo& exit = contact::exitAngleField();
+    double value = 0.0;
+    if (r.number(key, value, exit.range, exit.displayUnit()))
+        out = {contact::ExitCondition::Kind::kAngle, units::degToRad(value)};
+}
+
+nlohmann::json exitAngleJson(const contact::ExitCondition& exit) {
+    if (exit.kind != contact::ExitCondition::Kind::kAngle || exit.value == 0.0) return nullptr;
+    return roundSignificant(units::radToDeg(exit.value));
+}
+
+void readRutRatio(io::ObjectReader& r, const char* key, contact::ExitCondition& out) {
+    double value = 0.0;
+    if (r.number(key, value, contact::rutRatioField().range))
+        out = {contact::ExitCondition::Kind::kRutRatio, value};
+}
+
+nlohmann::json rutRatioJson(const contact::ExitCondition& exit) {
+    if (exit.kind != contact::ExitCondition::Kind::kRutRatio) return nullptr;
+    return exit.value;
+}
+
+void readMaxStressAngle(io::ObjectReader& r, const char* key, std::optional<double>& out_rad) {
     const FieldInfo& theta_m = contact::maxStressAngleField();
     double value = 0.0;
-    if (r.number(exit.key, value, exit.range, exit.displayUnit())) {
-        out.exit = {contact::ExitCondition::Kind::kAngle, units::degToRad(value)};
-    }
-    if (r.number(rut.key, value, rut.range))
-        out.exit = {contact::ExitCondition::Kind::kRutRatio, value};
-    if (r.number(theta_m.key, value, theta_m.range, theta_m.displayUnit())) {
-        out.max_stress_angle_rad = units::degToRad(value);
-    }
-    r.choice<contact::BulldozingModel>("bulldozing", out.bulldozing,
+    if (r.number(key, value, theta_m.range, theta_m.displayUnit()))
+        out_rad = units::degToRad(value);
+}
+
+nlohmann::json maxStressAngleJson(const std::optional<double>& rad) {
+    if (!rad) return nullptr;
+    return roundSignificant(units::radToDeg(*rad));
+}
+
+void readBulldozing(io::ObjectReader& r, const char* key, contact::BulldozingModel& out) {
+    r.choice<contact::BulldozingModel>(key, out,
                                        {{"bekker", contact::BulldozingModel::kBekker},
                                         {"hegedus", contact::BulldozingModel::kHegedus}});
 }
 
+nlohmann::json bulldozingJson(const contact::BulldozingModel& model) {
+    if (model != contact::BulldozingModel::kHegedus) return nullptr;
+    return "hegedus";
+}
+
+void readModelChoices(io::ObjectReader& r, ModelChoices& out) { io::readFields(r, out); }
+
 void writeModelChoices(const ModelChoices& choices, nlohmann::json& out) {
-    if (choices.exit.kind == contact::ExitCondition::Kind::kRutRatio) {
-        out[contact::rutRatioField().key] = choices.exit.value;
-    } else if (choices.exit.value != 0.0) {
-        out[contact::exitAngleField().key] = roundSignificant(units::radToDeg(choices.exit.value));
-    }
-    if (choices.max_stress_angle_rad) {
-        out[contact::maxStressAngleField().key] =
-            roundSignificant(units::radToDeg(*choices.max_stress_angle_rad));
-    }
-    if (choices.bulldozing == contact::BulldozingModel::kHegedus) out["bulldozing"] = "hegedus";
+    out.update(io::fieldsToJson(choices));
 }
 
 const Table* Outcome::table(std::string_view name) const {

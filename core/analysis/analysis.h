@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/analysis/conditions.h"
+#include "core/common/declared_fields.h"
 #include "core/common/issue.h"
 #include "core/common/table.h"
 #include "core/contact/bulldozing.h"
@@ -64,12 +65,55 @@ struct ModelChoices {
     contact::ExitCondition exit;                 ///< θ_r or rut ratio λ (Eq. 2.12)
     std::optional<double> max_stress_angle_rad;  ///< fixed θ_m; empty: Eq. 2.18
     contact::BulldozingModel bulldozing = contact::BulldozingModel::kBekker;  ///< Eq. 2.27
+
+    /// Its file keys, one line each (core/common/declared_fields.h): "exit_angle_deg" or
+    /// "rut_ratio" (not both), "max_stress_angle_deg" and "bulldozing". A settings struct that
+    /// holds the choices lists them with `fields::members(model)`.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// Reads "exit_angle_deg" or "rut_ratio", "max_stress_angle_deg" and "bulldozing" (bekker,
-/// hegedus); absent keys keep the defaults.
+// The custom kinds of ModelChoices' list: what no kind says. The angles are converted as the
+// command line always has (read: units::degToRad; written: roundSignificant(radToDeg)), bit for
+// bit; θ_r and λ are one member under two keys; "bulldozing" is written only when not Bekker's.
+
+/// "exit_angle_deg" [deg] → a θ_r exit condition; also reports the rule between the two keys
+/// of the exit condition (exitConditionRule), so that every reader of the list checks it.
+void readExitAngle(io::ObjectReader& r, const char* key, contact::ExitCondition& out);
+/// θ_r in degrees when the condition is an angle other than 0 (the default); else null.
+nlohmann::json exitAngleJson(const contact::ExitCondition& exit);
+/// "rut_ratio" λ → a rut-ratio exit condition.
+void readRutRatio(io::ObjectReader& r, const char* key, contact::ExitCondition& out);
+/// λ when the condition is a rut ratio; else null.
+nlohmann::json rutRatioJson(const contact::ExitCondition& exit);
+/// "max_stress_angle_deg" [deg] → θ_m [rad].
+void readMaxStressAngle(io::ObjectReader& r, const char* key, std::optional<double>& out_rad);
+nlohmann::json maxStressAngleJson(const std::optional<double>& rad);
+/// "bulldozing": bekker or hegedus.
+void readBulldozing(io::ObjectReader& r, const char* key, contact::BulldozingModel& out);
+nlohmann::json bulldozingJson(const contact::BulldozingModel& model);
+/// The rule between the keys of the exit condition that a list cannot say: θ_r or λ, not both
+/// ("give exit_angle_deg or rut_ratio, not both", at "rut_ratio").
+void exitConditionRule(io::ObjectReader& r);
+
+template <typename Visitor>
+void ModelChoices::visitFields(Visitor& v) {
+    v(fields::custom("exit_angle_deg", exit, "number", "[-90, 0] deg",
+                     "exit angle θ_r (≤ 0); not with rut_ratio", readExitAngle, exitAngleJson));
+    v(fields::custom("rut_ratio", exit, "number", "[0, 1]",
+                     "rut ratio λ = h_r/h_f giving θ_r (Eq. 2.12); not with exit_angle_deg",
+                     readRutRatio, rutRatioJson));
+    v(fields::custom("max_stress_angle_deg", max_stress_angle_rad, "number", "[-90, 90] deg",
+                     "fixed θ_m instead of Eq. 2.18; absent: Eq. 2.18", readMaxStressAngle,
+                     maxStressAngleJson));
+    v(fields::custom("bulldozing", bulldozing, "name", "bekker, hegedus",
+                     "side-wall pressure coefficients (Eq. 2.27)", readBulldozing, bulldozingJson));
+}
+
+/// The keys of ModelChoices::visitFields (io::readFields); absent keys keep the defaults. Other
+/// code calls it for a struct that does not list the choices itself.
 void readModelChoices(io::ObjectReader& r, ModelChoices& out);
-/// The non-default choices as JSON (the keys readModelChoices reads).
+/// The non-default choices as JSON (io::fieldsToJson), merged into `out`.
 void writeModelChoices(const ModelChoices& choices, nlohmann::json& out);
 
 /// One table of a result.

@@ -1,19 +1,17 @@
 #include "core/analysis/forces.h"
 
+#include <stdexcept>
+
 #include "core/analysis/registry.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 
-void readForcesSettings(io::ObjectReader& r, ForcesSettings& out) {
-    readModelChoices(r, out.model);
-    const FieldInfo& theta_f = contact::entryAngleField();
-    double value = 0.0;
-    if (r.number(theta_f.key, value, theta_f.range, theta_f.displayUnit()))
-        out.entry_angle_deg = value;
-    r.numbers("slips", out.slips, contact::slipField().range, {}, 1);
-}
+void readForcesSettings(io::ObjectReader& r, ForcesSettings& out) { io::readFields(r, out); }
+
+nlohmann::json toJson(const ForcesSettings& settings) { return io::fieldsToJson(settings); }
 
 SweepSpec forcesSpec(const Inputs& in, const ForcesSettings& settings, const Control& control) {
     SweepSpec spec;
@@ -38,6 +36,9 @@ SweepSpec forcesSpec(const Inputs& in, const ForcesSettings& settings, const Con
 
 ForcesResult computeForceSweep(const Inputs& in, const ForcesSettings& settings,
                                const Control& control) {
+    // The reader's checks, in its words, for settings built in code (a panel's, a test's).
+    if (const std::vector<Issue> issues = io::fieldIssues(settings); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
     return sweepSlip(in.contact(), forcesSpec(in, settings, control));
 }
 

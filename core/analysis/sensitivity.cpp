@@ -1,5 +1,6 @@
 #include "core/analysis/sensitivity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -7,6 +8,7 @@
 #include "core/common/quoted.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 namespace {
@@ -53,56 +55,70 @@ std::vector<SensitivityParameter> parametersOf(const SensitivitySettings& s,
 
 }  // namespace
 
-void readSensitivitySettings(io::ObjectReader& r, SensitivitySettings& out) {
+void readSensitivityParameter(io::ObjectReader& r, const char* key, std::string& out) {
     std::vector<std::string> names{"all"};
     for (const soil::SoilField& f : soil::soilFields()) names.emplace_back(f.key);
-    const bool parameter_ok =
-        r.choiceName("parameter", out.parameter, names) || !r.has("parameter");
-    // Any finite numbers here; their range is the parameter's field's, checked below.
-    const bool values_ok =
-        r.numbers("values", out.values, {-1e300, 1e300}, {}, 1) || !r.has("values");
+    r.choiceName(key, out, names);
+}
+
+nlohmann::json sensitivityParameterJson(const std::string& parameter) { return parameter; }
+
+void readSensitivitySlipAngles(io::ObjectReader& r, const char* key, std::vector<double>& out) {
     const FieldInfo& beta = contact::slipAngleField();
-    if (const nlohmann::json* v = r.value("slip_angle_deg"); v && v->is_array()) {
-        r.numbers("slip_angle_deg", out.slip_angles_deg, beta.range, beta.displayUnit(), 1);
+    if (const nlohmann::json* v = r.value(key); v && v->is_array()) {
+        r.numbers(key, out, beta.range, beta.displayUnit(), 1);
     } else {
         double value = 0.0;
-        if (r.number("slip_angle_deg", value, beta.range, beta.displayUnit()))
-            out.slip_angles_deg = {value};
-    }
-    const FieldInfo& count = slipCountField();
-    r.integer(count.key, out.slip_count, static_cast<int>(count.range.low),
-              static_cast<int>(count.range.high));
-    r.number("tornado_slip", out.tornado_slip, contact::slipField().range);
-    readForcesSettings(r, out.sweep);
-    // The values against the parameter's field (or Table 4.1's variations when none are given).
-    if (parameter_ok && values_ok) {
-        std::vector<Issue> issues;
-        parametersOf(out, issues);
-        for (Issue& issue : issues) r.report(issue.where, std::move(issue.message));
+        if (r.number(key, value, beta.range, beta.displayUnit())) out = {value};
     }
 }
 
-nlohmann::json toJson(const SensitivitySettings& s) {
-    nlohmann::json out{
-        {"parameter", s.parameter}, {"slip_count", s.slip_count}, {"tornado_slip", s.tornado_slip}};
-    if (s.slip_angles_deg.size() == 1) {
-        out["slip_angle_deg"] = s.slip_angles_deg.front();
-    } else {
-        out["slip_angle_deg"] = s.slip_angles_deg;
-    }
-    if (!s.values.empty()) out["values"] = s.values;
-    if (s.sweep.entry_angle_deg) out["entry_angle_deg"] = *s.sweep.entry_angle_deg;
-    if (!s.sweep.slips.empty()) out["slips"] = s.sweep.slips;
-    writeModelChoices(s.sweep.model, out);
-    return out;
+nlohmann::json sensitivitySlipAnglesJson(const std::vector<double>& slip_angles_deg) {
+    if (slip_angles_deg.empty()) return nullptr;
+    if (slip_angles_deg.size() == 1) return slip_angles_deg.front();
+    return slip_angles_deg;
 }
+
+std::vector<Issue> sensitivityRuleIssues(const SensitivitySettings& settings) {
+    std::vector<Issue> issues;
+    parametersOf(settings, issues);
+    return issues;
+}
+
+void reportSensitivityRules(io::ObjectReader& r, const SensitivitySettings& settings) {
+    const auto bad = [&r](const char* key) {
+        const std::string at = r.where(key);
+        return std::any_of(r.issues().begin(), r.issues().end(), [&at](const Issue& issue) {
+            return issue.where == at || issue.where.starts_with(at + "[");
+        });
+    };
+    if (bad("parameter") || bad("values")) return;
+    for (Issue& issue : sensitivityRuleIssues(settings))
+        r.report(issue.where, std::move(issue.message));
+}
+
+void readSensitivitySettings(io::ObjectReader& r, SensitivitySettings& out) {
+    io::readFields(r, out);
+    reportSensitivityRules(r, out);
+}
+
+nlohmann::json toJson(const SensitivitySettings& s) { return io::fieldsToJson(s); }
 
 SensitivityResult computeSensitivity(const Inputs& in, const SensitivitySettings& settings,
                                      const Control& control) {
-    std::vector<Issue> issues;
-    const std::vector<SensitivityParameter> parameters = parametersOf(settings, issues);
+    // The reader's checks, in its words, for settings built in code (the panel's, a test's);
+    // the parameter's values when the list found nothing wrong with them.
+    std::vector<Issue> issues = io::fieldIssues(settings);
+    const bool listed_ok = std::none_of(issues.begin(), issues.end(), [](const Issue& issue) {
+        return issue.where.starts_with("parameter") || issue.where.starts_with("values");
+    });
+    if (listed_ok) {
+        for (Issue& issue : sensitivityRuleIssues(settings)) issues.push_back(std::move(issue));
+    }
     if (settings.slip_angles_deg.empty()) issues.push_back({"slip_angle_deg", "no slip angle"});
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    std::vector<Issue> checked;  // empty: checked above
+    const std::vector<SensitivityParameter> parameters = parametersOf(settings, checked);
     Inputs family_inputs = in;
     family_inputs.conditions.slip_angles_deg = settings.slip_angles_deg;
     ForcesSettings sweep = settings.sweep;

@@ -7,25 +7,24 @@
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
 #include "core/contact/sinkage.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 
-void readSinkageSettings(io::ObjectReader& r, SinkageSettings& out) {
-    const FieldInfo& load = contact::loadField();
-    r.numbers("loads_N", out.loads_n, load.range, load.displayUnit(), 1);
-    const FieldInfo& slip = contact::slipField();
-    r.number(slip.key, out.slip, slip.range);
-    const FieldInfo& beta = contact::slipAngleField();
-    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
-    readModelChoices(r, out.model);
-}
+void readSinkageSettings(io::ObjectReader& r, SinkageSettings& out) { io::readFields(r, out); }
+
+nlohmann::json toJson(const SinkageSettings& settings) { return io::fieldsToJson(settings); }
 
 SinkageStudy computeSinkage(const Inputs& in, const SinkageSettings& s, const Control& control) {
     const std::vector<double> loads =
         s.loads_n.empty() ? std::vector<double>{in.conditions.load_n} : s.loads_n;
-    std::vector<Issue> issues;
-    const FieldInfo& load = contact::loadField();
-    for (double w : loads) checkRange(issues, load.key, w, load.range, load.displayUnit());
+    // The reader's checks, in its words, for settings built in code; the conditions' load when
+    // the settings give none.
+    std::vector<Issue> issues = io::fieldIssues(s);
+    if (s.loads_n.empty()) {
+        const FieldInfo& load = contact::loadField();
+        checkRange(issues, load.key, in.conditions.load_n, load.range, load.displayUnit());
+    }
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     const auto p = in.contact();
     SinkageStudy out;

@@ -10,13 +10,10 @@
 #include "core/common/units.h"
 #include "core/contact/bulldozing.h"
 #include "core/contact/sinkage.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 namespace {
-
-const Range kPoints{2.0, 10000.0};
-const Range kSinkageFraction{0.0, 1.0, true, false};
-const Range kLoadFactor{0.0, 100.0, true, false};
 
 double staticSinkageMm(const contact::ContactParameters<double>& p, double load_n,
                        contact::StaticContact contact) {
@@ -27,20 +24,16 @@ double staticSinkageMm(const contact::ContactParameters<double>& p, double load_
 }  // namespace
 
 void readSoilCurvesSettings(io::ObjectReader& r, SoilCurvesSettings& out) {
-    r.integer("points", out.points, static_cast<int>(kPoints.low), static_cast<int>(kPoints.high));
-    r.number("max_sinkage_fraction_of_radius", out.max_sinkage_fraction_of_radius,
-             kSinkageFraction);
-    r.number("max_load_factor", out.max_load_factor, kLoadFactor);
+    io::readFields(r, out);
 }
+
+nlohmann::json toJson(const SoilCurvesSettings& settings) { return io::fieldsToJson(settings); }
 
 SoilCurves computeSoilCurves(const Inputs& in, const SoilCurvesSettings& settings,
                              const Control& control) {
-    std::vector<Issue> issues;
-    checkRange(issues, "points", settings.points, kPoints);
-    checkRange(issues, "max_sinkage_fraction_of_radius", settings.max_sinkage_fraction_of_radius,
-               kSinkageFraction);
-    checkRange(issues, "max_load_factor", settings.max_load_factor, kLoadFactor);
-    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    // The reader's checks, in its words, for settings built in code (the forces panel's).
+    if (const std::vector<Issue> issues = io::fieldIssues(settings); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
     const auto p = in.contact();
     const int n = settings.points;
     SoilCurves out;

@@ -18,10 +18,29 @@ struct SoilCurvesSettings {
     double max_sinkage_fraction_of_radius = 0.5;
     /// Largest load of the static-sinkage curve as a multiple of the conditions' W.
     double max_load_factor = 2.0;
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson and
+    /// compute's checks.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// "points" [2, 10000], "max_sinkage_fraction_of_radius" (0, 1], "max_load_factor" (0, 100].
+template <typename Visitor>
+void SoilCurvesSettings::visitFields(Visitor& v) {
+    v(fields::integer("points", points, 2, 10000, "grid size of each curve"));
+    v(fields::number("max_sinkage_fraction_of_radius", max_sinkage_fraction_of_radius,
+                     {0.0, 1.0, true, false}, "",
+                     "largest sinkage of the bulldozing curve as a fraction of r"));
+    v(fields::number(
+        "max_load_factor", max_load_factor, {0.0, 100.0, true, false}, "",
+        "largest load of the static-sinkage curve as a multiple of the conditions' W"));
+}
+
+/// The keys of SoilCurvesSettings::visitFields, read strictly (io::readFields): "points"
+/// [2, 10000], "max_sinkage_fraction_of_radius" (0, 1], "max_load_factor" (0, 100].
 void readSoilCurvesSettings(io::ObjectReader& r, SoilCurvesSettings& out);
+/// The settings' file keys (io::fieldsToJson).
+nlohmann::json toJson(const SoilCurvesSettings& settings);
 
 struct SoilCurves {
     /// sinkage_mm, entry_angle_deg, Fb_bekker_N, Fb_hegedus_N: F_b of one side wall over the
@@ -37,7 +56,7 @@ struct SoilCurves {
 };
 
 /// Both curves (partial tables when cancelled). Throws std::invalid_argument for invalid inputs
-/// or settings.
+/// or settings (a struct built in code is checked as its reader would read it: io::fieldIssues).
 SoilCurves computeSoilCurves(const Inputs& inputs, const SoilCurvesSettings& settings = {},
                              const Control& control = {});
 /// Tables "static_sinkage" (main) and "bulldozing".

@@ -7,11 +7,10 @@
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 namespace {
-
-const Range kStepRange{1e-4, 10.0};  // [deg]: a grid of at most ~1e6 points, at least one step
 
 double plainZero(double value) { return value == 0.0 ? 0.0 : value; }
 
@@ -22,34 +21,15 @@ const std::vector<std::string>& stressNames() {
     return names;
 }
 
-void readStressSettings(io::ObjectReader& r, StressSettings& out) {
-    const FieldInfo& slip = contact::slipField();
-    r.number(slip.key, out.slip, slip.range);
-    const FieldInfo& beta = contact::slipAngleField();
-    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
-    const FieldInfo& theta_f = contact::entryAngleField();
-    double value = 0.0;
-    if (r.number(theta_f.key, value, theta_f.range, theta_f.displayUnit()))
-        out.entry_angle_deg = value;
-    r.number("step_deg", out.step_deg, kStepRange, "deg");
-    r.choiceName("stress", out.stress, stressNames());
-    readModelChoices(r, out.model);
-}
+void readStressSettings(io::ObjectReader& r, StressSettings& out) { io::readFields(r, out); }
 
-nlohmann::json toJson(const StressSettings& s) {
-    nlohmann::json out{
-        {"slip", s.slip}, {"slip_angle_deg", s.slip_angle_deg}, {"stress", s.stress}};
-    if (s.entry_angle_deg) out["entry_angle_deg"] = *s.entry_angle_deg;
-    if (s.step_deg != StressSettings{}.step_deg) out["step_deg"] = s.step_deg;
-    writeModelChoices(s.model, out);
-    return out;
-}
+nlohmann::json toJson(const StressSettings& s) { return io::fieldsToJson(s); }
 
 StressResult computeStresses(const Inputs& in, const StressSettings& settings,
                              const Control& control) {
-    std::vector<Issue> issues;
-    checkRange(issues, "step_deg", settings.step_deg, kStepRange, "deg");
-    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    // The reader's checks, in its words, for settings built in code (the panel's, a test's).
+    if (const std::vector<Issue> issues = io::fieldIssues(settings); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
     const contact::ContactParameters<double> params = in.contact();
     const double beta = units::degToRad(settings.slip_angle_deg);
     StressResult out;

@@ -11,6 +11,8 @@
 #include <string>
 
 #include "core/analysis/analysis.h"
+#include "core/common/range.h"
+#include "core/contact/operating_fields.h"
 #include "core/contact/quadratic_model.h"
 
 namespace terra::analysis {
@@ -27,14 +29,39 @@ struct StressSettings {
     double step_deg = 0.01;
     std::string stress = "all";  ///< what the figure shows: all, sigma, tau, tau_t, tau_l
     ModelChoices model;          ///< θ_r and θ_m (the bulldozing choice does not apply)
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson, the
+    /// command line's flags, the stress panel's saved state and compute's checks.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
 /// The names a figure can show (StressSettings::stress).
 const std::vector<std::string>& stressNames();
 
-/// "slip", "slip_angle_deg", "entry_angle_deg", "step_deg", "stress" and the model choices.
+/// The range of the grid step [deg]: a grid of at most ~1e6 points, at least one step.
+inline constexpr Range kStressStepRange{1e-4, 10.0};
+
+template <typename Visitor>
+void StressSettings::visitFields(Visitor& v) {
+    v(fields::number("slip", slip, contact::slipField().range, "", "slip ratio s"));
+    v(fields::number("slip_angle_deg", slip_angle_deg, contact::slipAngleField().range, "deg",
+                     "slip angle β"));
+    v(fields::number("entry_angle_deg", entry_angle_deg, contact::entryAngleField().range, "deg",
+                     "fixed entry angle θ_f; absent: solved so that F_z = W"));
+    v(fields::number("step_deg", step_deg, kStressStepRange, "deg",
+                     "grid step of the table and of the errors"));
+    fields::Enum<std::string> shown{"stress", &stress, {}, "what the figure shows"};
+    for (const std::string& name : stressNames()) shown.names.push_back({name.c_str(), name});
+    v(shown);
+    v(fields::members(model));
+}
+
+/// The keys of StressSettings::visitFields, read strictly (io::readFields): "slip",
+/// "slip_angle_deg", "entry_angle_deg", "step_deg", "stress" and the model choices.
 void readStressSettings(io::ObjectReader& r, StressSettings& out);
-/// The settings as JSON (the keys readStressSettings reads).
+/// The settings' file keys (io::fieldsToJson): a default value is written, an absent entry
+/// angle left out.
 nlohmann::json toJson(const StressSettings& settings);
 
 struct StressResult {
@@ -49,7 +76,8 @@ struct StressResult {
     bool cancelled = false;             ///< stopped by the cancel flag: the grid is partial
 };
 
-/// Throws std::invalid_argument for invalid inputs or settings.
+/// Throws std::invalid_argument for invalid inputs or settings (a struct built in code is
+/// checked as its reader would read it: io::fieldIssues).
 StressResult computeStresses(const Inputs& inputs, const StressSettings& settings = {},
                              const Control& control = {});
 /// The errors as a table: stress_index (0 σ, 1 τ, 2 τ_t, 3 τ_l), rmse_kPa, mae_kPa.

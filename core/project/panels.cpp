@@ -13,11 +13,9 @@ namespace terra::project {
 
 using io::ObjectReader;
 
-void readPanelSettings(ObjectReader& r, ForcesPanelSettings& out) { r.text("plot", out.plot); }
+void readPanelSettings(ObjectReader& r, ForcesPanelSettings& out) { io::readFields(r, out); }
 
-void readPanelSettings(ObjectReader& r, StressPanelSettings& out) {
-    analysis::readStressSettings(r, out.analysis);
-}
+void readPanelSettings(ObjectReader& r, StressPanelSettings& out) { io::readFields(r, out); }
 
 void readPanelSettings(ObjectReader& r, CompactionPanelSettings& out,
                        const io::PresetLocations* locations) {
@@ -25,8 +23,8 @@ void readPanelSettings(ObjectReader& r, CompactionPanelSettings& out,
 }
 
 void readPanelSettings(ObjectReader& r, SensitivityPanelSettings& out) {
-    analysis::readSensitivitySettings(r, out.analysis);
-    r.choiceName("plot", out.plot, {"Fx", "Fs", "tornado"});
+    io::readFields(r, out);
+    analysis::reportSensitivityRules(r, out.analysis);
 }
 
 std::vector<std::string> splitPriorItems(const std::string& text) {
@@ -111,17 +109,13 @@ nlohmann::json toJson(const GlobalSensitivityPanelSettings& s) {
             {"seed", s.seed}};
 }
 
-nlohmann::json toJson(const ForcesPanelSettings& s) { return {{"plot", s.plot}}; }
+nlohmann::json toJson(const ForcesPanelSettings& s) { return io::fieldsToJson(s); }
 
-nlohmann::json toJson(const StressPanelSettings& s) { return analysis::toJson(s.analysis); }
+nlohmann::json toJson(const StressPanelSettings& s) { return io::fieldsToJson(s); }
 
 nlohmann::json toJson(const CompactionPanelSettings& s) { return analysis::toJson(s.analysis); }
 
-nlohmann::json toJson(const SensitivityPanelSettings& s) {
-    nlohmann::json out = analysis::toJson(s.analysis);
-    out["plot"] = s.plot;
-    return out;
-}
+nlohmann::json toJson(const SensitivityPanelSettings& s) { return io::fieldsToJson(s); }
 
 nlohmann::json toJson(const IdentificationPanelSettings& s) { return io::fieldsToJson(s); }
 

@@ -3,9 +3,10 @@
 /// What each studio panel saves in a .terra file's "panels" object: the settings of its
 /// analysis and what it shows (a tab, a page). Read strictly like the rest of the file, so a
 /// project never opens half-understood. The stresses, compaction, sensitivity and
-/// identification panels store their analysis's own settings struct (the identification's read
-/// and written by its declared field list, core/common/declared_fields.h); the forces,
-/// global-sensitivity and rover panels a struct of their controls.
+/// identification panels store their analysis's own settings struct (the identification's, the
+/// stresses' and the sensitivity's read and written by their declared field lists,
+/// core/common/declared_fields.h); the forces, global-sensitivity and rover panels a struct of
+/// their controls (the forces panel's on its declared field list too).
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -26,11 +27,22 @@ namespace terra::project {
 /// "forces": the tab shown ("Fx_N-vs-slip", … as the panel names its plots).
 struct ForcesPanelSettings {
     std::string plot;
+
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::text("plot", plot, "the tab shown"));
+    }
 };
 
-/// "stresses": the analysis's settings (slip, slip angle, the stress shown, …).
+/// "stresses": the analysis's settings (slip, slip angle, the stress shown, …), read and written
+/// by their declared field list.
 struct StressPanelSettings {
     analysis::StressSettings analysis;
+
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::members(analysis));
+    }
 };
 
 /// "compaction": the analysis's settings (slip, passes, profile, ν, width, map, …).
@@ -38,10 +50,19 @@ struct CompactionPanelSettings {
     analysis::CompactionSettings analysis;
 };
 
-/// "sensitivity": the analysis's settings and the tab shown (Fx, Fs, tornado).
+/// "sensitivity": the analysis's settings (their declared field list) and the tab shown (Fx,
+/// Fs, tornado).
 struct SensitivityPanelSettings {
     analysis::SensitivitySettings analysis;
     std::string plot = "Fx";
+
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::members(analysis));
+        v(fields::choice("plot", plot,
+                         {{"Fx", std::string("Fx")}, {"Fs", "Fs"}, {"tornado", "tornado"}},
+                         "the tab shown"));
+    }
 };
 
 /// The held-out choices of the identification panel: "hold out 20 %" (~1 in 5 samples

@@ -68,7 +68,7 @@ TEST(Cli, BadInputExitsTwoAndNamesTheProblem) {
         {"wheel --soil sandy-loam --wheel A --entry-angle 30 --load 50", "excludes"},
         {"wheel --soil sandy-loam --wheel A --entry-angle 30 --model cubic", "model"},
         {"sweep --soil sandy-loam --slips 0:1.1:12",
-         "slip: 1.1 is outside the allowed range [-1, 1]"},
+         "--slips[11]: 1.1 is outside the allowed range [-1, 1]"},
         {"sensitivity --parameter phi_deg --values 20,70", "phi_deg"},
         {"wheel --bogus", "bogus"},
     };
@@ -469,6 +469,45 @@ TEST(Cli, RenderWritesTheDefaultAnalysisHeadlessly) {
         EXPECT_GT(std::filesystem::file_size(png), 1000u) << png;
     }
     std::filesystem::remove_all(dir);
+}
+
+// The flags of sweep, sensitivity, stresses, sinkage, render and wheel become their analysis's
+// settings object, read by its own reader (issue 26): the reader's words, named by the flag,
+// exit 2.
+TEST(Cli, AnalysisFlagsAreReadByTheSettingsReaderAndNamedByTheFlag) {
+    struct Case {
+        std::string args;
+        std::string expected;
+    } cases[] = {
+        {"sweep --soil sandy-loam --slips 0.1,1.5",
+         "--slips[1]: 1.5 is outside the allowed range [-1, 1]"},
+        {"sweep --soil sandy-loam --exit-angle 5",
+         "--exit-angle: 5 is outside the allowed range [-90, 0] deg"},
+        {"sweep --soil sandy-loam --entry-angle 95",
+         "--entry-angle: 95 is outside the allowed range (0, 90] deg"},
+        {"sensitivity --parameter phi", "--parameter: \"phi\" is not one of"},
+        {"sensitivity --parameter phi", "did you mean \"phi_deg\""},
+        {"sensitivity --slip-angle 95",
+         "--slip-angle[0]: 95 is outside the allowed range (-90, 90) deg"},
+        {"sensitivity --parameter phi_deg --values 20,70", "--values[1]: phi_deg = 70 is outside"},
+        {"stresses --step 20", "--step: 20 is outside the allowed range [1e-04, 10] deg"},
+        {"stresses --slip 1.5", "--slip: 1.5 is outside the allowed range [-1, 1]"},
+        {"stresses --rut-ratio 2", "--rut-ratio: 2 is outside the allowed range [0, 1]"},
+        {"sinkage --load 40,0", "--load[1]: 0 is outside the allowed range [0.01, 1e+05] N"},
+        {"sinkage --slip-angle -90",
+         "--slip-angle: -90 is outside the allowed range (-90, 90) deg"},
+        {"render --max-stress-angle 95 --out /tmp/terra_render_never",
+         "--max-stress-angle: 95 is outside the allowed range [-90, 90] deg"},
+        {"wheel --load 50 --exit-angle 1",
+         "--exit-angle: 1 is outside the allowed range [-90, 0] deg"},
+    };
+    for (const Case& c : cases) {
+        const CliRun r = run(c.args);
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_TRUE(r.out.empty()) << c.args << "\n" << r.out;
+    }
+    EXPECT_FALSE(std::filesystem::exists("/tmp/terra_render_never"));
 }
 
 }  // namespace
