@@ -279,6 +279,57 @@ BENCHMARK(RoverFieldMission)
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 
+// The 1-hour mission that covers the field (issue 23's memory figure; docs/performance.md,
+// "Memory"): on the 50 m × 20 m field of 2 cm cells, twelve 46 m lanes 1.6 m apart joined by
+// headland turns, followed by the pure-pursuit controller at 0.14 m/s (≈ 500 m in the hour, as
+// far as the circling mission above but over new ground almost all the way, so the cell state
+// grows with every metre). Args as RoverFieldMission. Counters: wall and CPU seconds, the
+// loop's real-time factor, cells touched, the cell state's bytes, and the process's peak
+// resident memory (run it alone: --benchmark_filter=RoverFieldLanes, since the peak is the
+// process's whole life).
+void RoverFieldLanes(benchmark::State& state) {
+    scenario::Scenario s = fieldRun(state);
+    s.duration_s = 3600.0;
+    s.output_interval_s = 1.0;
+    s.initial = {2.0, 1.5, 0.0, 0.0};
+    scenario::MissionSpec mission;
+    scenario::LanesSpec lanes;
+    lanes.start_m = {2.0, 1.5};
+    lanes.length_m = 46.0;
+    lanes.spacing_m = 1.6;
+    lanes.count = 12;
+    lanes.turn_radius_m = 0.8;
+    mission.lanes = lanes;
+    mission.speed_m_s = 0.14;
+    s.mission = mission;
+    if (const std::vector<Issue> issues = scenario::validate(mission, s.robot); !issues.empty()) {
+        state.SkipWithError(issues.front().message.c_str());
+        return;
+    }
+    double wall = 0.0, loop = 0.0, cpu = 0.0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = cpuSeconds();
+        scenario::RunResult r = scenario::runScenario(s);
+        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        cpu += cpuSeconds() - cpu_start;
+        if (r.status != scenario::RunResult::Status::kCompleted)
+            state.SkipWithError(r.message.c_str());
+        loop += s.duration_s / r.summary.real_time_factor.value_or(0.0);
+        state.counters["cells_touched"] = static_cast<double>(r.summary.cells_touched.value_or(0));
+        state.counters["distance_m"] = r.summary.distance_m;
+        benchmark::DoNotOptimize(r.summary.x_m);
+    }
+    const double n = static_cast<double>(state.iterations());
+    state.counters["wall_s"] = wall / n;
+    state.counters["cpu_s"] = cpu / n;
+    state.counters["loop_real_time_factor"] = s.duration_s * n / loop;
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+BENCHMARK(RoverFieldLanes)->Args({4, 20, 1})->Unit(benchmark::kSecond)->Iterations(1);
+
 namespace {
 
 // A mission run (issue 23, item 3; docs/performance.md, "Missions"): the shipped missions, whole.

@@ -519,7 +519,10 @@ void FieldTerrain::commit(Passage& p) {
             cell.max_stress_pa[k] = std::max(cell.max_stress_pa[k], static_cast<float>(sigma));
         }
         if (options_.record_passages) {
-            log_.push_back(CellPassage{time_s_, target.key, static_cast<int>(wheel), cell});
+            log_.push_back(CellPassage{time_s_, target.key, cell.track.rut_depth_m,
+                                       cell.track.passes,
+                                       depths.empty() ? 0.0f : cell.max_stress_pa[0], cell.max_slip,
+                                       cell.energy_j, cell.travel_m});
         }
     }
 }

@@ -10,6 +10,7 @@
 /// largest slip, the energy it lost there and the largest vertical stress at the grid's depths.
 
 #include <array>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -49,9 +50,9 @@ struct FieldTerrainOptions {
     std::vector<double> stress_depths_m{0.3};
     /// ν for the stress at depth; 0: the layer's own ν at each depth, else 5 (Söhne's "normal").
     double concentration = 0.0;
-    /// Keep every passage written (FieldTerrain::passages): when and where, and the cell after
-    /// it, so that the maps can be drawn as they were at any time (the studio's time scrub).
-    /// 88 bytes a passage.
+    /// Keep every passage written (FieldTerrain::passages): when and where, and what the maps
+    /// show of the cell after it, so that the maps can be drawn as they were at any time (the
+    /// studio's time scrub). 56 bytes a passage.
     bool record_passages = false;
     /// Write each passage to every cell under the wheel's width (docs/field.md F13: the cells
     /// whose centres the wheel's width swept during the passage, and the cell under its contact
@@ -59,14 +60,20 @@ struct FieldTerrainOptions {
     bool across_width = true;
 };
 
-/// One wheel's passage as it was written to one of its cells (F10, F13).
+/// One wheel's passage as it was written to one of its cells (F10, F13): what the maps show of
+/// the cell once the passage was written (the cell's whole state is 72 bytes, this 56; a 1-hour
+/// mission writes ~10⁶ of them).
 struct CellPassage {
     /// The rover's time when the wheel left the cell (or the run ended with the wheel on it) [s]:
     /// the sum of the steps the terrain was told of, as the rover's own clock.
     double time_s = 0.0;
     field::CellKey key;
-    int wheel = 0;
-    field::CellState after;  ///< the cell's state once the passage was written
+    double rut_depth_m = 0.0;    ///< z_p after it (CellState::track)
+    int passes = 0;              ///< wheels that have passed, this one included
+    float max_stress_pa = 0.0f;  ///< largest σ_z at the first stress depth (0: none)
+    float max_slip = 0.0f;       ///< CellState::max_slip after it
+    float energy_j = 0.0f;       ///< CellState::energy_j after it
+    float travel_m = 0.0f;       ///< CellState::travel_m after it
 };
 
 class FieldTerrain final : public TerrainModel {
@@ -110,7 +117,10 @@ public:
     long cellsTouched() const { return cells_touched_; }
     /// Every passage written, in the order written (time non-decreasing), when
     /// options().record_passages; empty otherwise.
-    const std::vector<CellPassage>& passages() const { return log_; }
+    const std::deque<CellPassage>& passages() const { return log_; }
+    /// The passages, handed over (the terrain's log is empty after it): the runner frees them
+    /// once the maps' history is drawn from them, before it draws the maps.
+    std::deque<CellPassage> takePassages() { return std::exchange(log_, {}); }
 
 private:
     // One wheel's passage over one cell (F10): opened when the wheel's contact point enters the
@@ -175,7 +185,8 @@ private:
     std::array<Carry, kWheelCount> carry_{};
     long cells_touched_ = 0;
     double time_s_ = 0.0;  // the sum of the steps advanced() was told of
-    std::vector<CellPassage> log_;
+    // A deque: a long run's log grows in blocks, never copied to a buffer twice its size.
+    std::deque<CellPassage> log_;
 };
 
 }  // namespace terra::dynamics

@@ -43,8 +43,9 @@ struct CellKey {
 /// Cells of side `cell_m` from the origin (x₀, y₀), unbounded in every direction.
 class CellGrid {
 public:
-    /// Cells per tile side: 32 × 32 cells (72 KiB of state) per tile.
-    static constexpr int kTileCells = 32;
+    /// Cells per tile side: 8 × 8 cells (4.5 KiB of state) per tile. A wheel's band is a few
+    /// cells wide: small tiles hold little beside it (docs/performance.md, "Memory").
+    static constexpr int kTileCells = 4;
 
     /// Throws std::invalid_argument when cell_m is not in (0, 100] m, the origin is not finite,
     /// there are more than kMaxStressDepths depths or a depth is not in (0, 10] m.

@@ -62,7 +62,8 @@ void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
 }
 
 void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
-                       const io::PresetLocations* locations) {
+                       const io::PresetLocations* locations,
+                       const std::filesystem::path& base_dir) {
     r.text("scenario", out.scenario);
     if (!r.has("edited")) {
         r.allow("edited");
@@ -75,7 +76,7 @@ void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
         edited.allow(name);
         if (locations != nullptr) {
             const Result<scenario::Scenario> parsed =
-                scenario::scenarioFromJson(scenario, "", *locations);
+                scenario::scenarioFromJson(scenario, "", *locations, base_dir);
             for (const Issue& issue : parsed.issues())
                 edited.report(name,
                               (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
@@ -123,7 +124,8 @@ nlohmann::json toJson(const RoverPanelSettings& s) {
     return {{"scenario", s.scenario}, {"edited", s.edited}};
 }
 
-void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
+void readPanels(ObjectReader& panels, const io::PresetLocations* locations,
+                const std::filesystem::path& base_dir) {
     // Each panel's settings are read into a default-constructed value (by reference: GCC 12
     // warns of a maybe-uninitialized vector when a temporary is copied into the lambda).
     auto check = [&](const char* name, auto& settings) {
@@ -133,8 +135,9 @@ void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
         }
         ObjectReader r = panels.object(name);
         using Settings = std::remove_cvref_t<decltype(settings)>;
-        if constexpr (std::is_same_v<Settings, RoverPanelSettings> ||
-                      std::is_same_v<Settings, CompactionPanelSettings>) {
+        if constexpr (std::is_same_v<Settings, RoverPanelSettings>) {
+            readPanelSettings(r, settings, locations, base_dir);
+        } else if constexpr (std::is_same_v<Settings, CompactionPanelSettings>) {
             readPanelSettings(r, settings, locations);
         } else {
             readPanelSettings(r, settings);

@@ -9,6 +9,7 @@
 /// their controls (the forces panel's on its declared field list too).
 
 #include <cstdint>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -163,9 +164,11 @@ void readPanelSettings(io::ObjectReader& r, SensitivityPanelSettings& out);
 /// its new one and noted in `out.fit.key_warnings` (the panel shows the notes).
 void readPanelSettings(io::ObjectReader& r, IdentificationPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, GlobalSensitivityPanelSettings& out);
-/// The edited scenarios are checked as scenarios when `locations` is given.
+/// The edited scenarios are checked as scenarios when `locations` is given, their relative file
+/// names read against `base_dir` (the project's folder).
 void readPanelSettings(io::ObjectReader& r, RoverPanelSettings& out,
-                       const io::PresetLocations* locations = nullptr);
+                       const io::PresetLocations* locations = nullptr,
+                       const std::filesystem::path& base_dir = {});
 
 nlohmann::json toJson(const ForcesPanelSettings& settings);
 nlohmann::json toJson(const StressPanelSettings& settings);
@@ -177,7 +180,8 @@ nlohmann::json toJson(const RoverPanelSettings& settings);
 
 /// Checks a "panels" object: forces, stresses, compaction, sensitivity, identification, rover,
 /// global-sensitivity (each optional); another panel name is an unknown key.
-void readPanels(io::ObjectReader& panels, const io::PresetLocations* locations);
+void readPanels(io::ObjectReader& panels, const io::PresetLocations* locations,
+                const std::filesystem::path& base_dir = {});
 
 /// One panel's settings from JSON (what the panel stored), every problem in the result.
 template <typename Settings>

@@ -30,7 +30,8 @@ nlohmann::json toJson(const Project& project) {
 }
 
 Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where,
-                                const io::PresetLocations* locations) {
+                                const io::PresetLocations* locations,
+                                const std::filesystem::path& project_dir) {
     std::vector<Issue> issues;
     ObjectReader r(json, issues, where);
     if (!r.isObject()) return issues;
@@ -63,7 +64,7 @@ Result<Project> projectFromJson(const nlohmann::json& json, const std::string& w
     // the data sets), so a moved test file does not keep the project from opening.
     r.text("experiment", project.experiment);
     ObjectReader panels = r.object("panels");
-    readPanels(panels, locations);
+    readPanels(panels, locations, project_dir);
     panels.finish();
     if (panels.isObject() && r.has("panels")) project.panels = json["panels"];
     r.finish();
@@ -75,7 +76,7 @@ Result<Project> loadProject(const std::filesystem::path& path,
                             const io::PresetLocations* locations) {
     return io::readJsonFileWith<Project>(
         path, [&](const nlohmann::json& document, const std::string& source) {
-            return projectFromJson(document, source, locations);
+            return projectFromJson(document, source, locations, path.parent_path());
         });
 }
 
@@ -113,7 +114,8 @@ Project convertPaths(Project project, Convert convert) {
         one(path);
         panel[file.key] = path;
     }
-    // The rover panel's edits are kept by scenario: a scenario file's edit by its path.
+    // The rover panel's edits are kept by scenario: a scenario file's edit by its path. An edit's
+    // robot file (a robot dropped onto the window) is a file name too; a preset's name is not.
     if (project.panels.contains("rover") && project.panels["rover"].is_object() &&
         project.panels["rover"].contains("edited") &&
         project.panels["rover"]["edited"].is_object()) {
@@ -121,7 +123,15 @@ Project convertPaths(Project project, Convert convert) {
         for (const auto& [name, scenario] : project.panels["rover"]["edited"].items()) {
             std::string key = name;
             if (isScenarioFileName(key)) one(key);
-            converted[key] = scenario;
+            nlohmann::json edit = scenario;
+            if (edit.is_object() && edit.contains("robot") && edit["robot"].is_string()) {
+                std::string robot = edit["robot"].get<std::string>();
+                if (isScenarioFileName(robot)) {
+                    one(robot);
+                    edit["robot"] = robot;
+                }
+            }
+            converted[key] = std::move(edit);
         }
         project.panels["rover"]["edited"] = std::move(converted);
     }

@@ -49,9 +49,11 @@ nlohmann::json toJson(const Project& project);
 
 /// A project from JSON; every problem is listed with its field path under `where` (the file).
 /// The panels' settings are checked too (panels.h); with `locations`, the scenarios edited in the
-/// rover panel are checked as scenarios.
+/// rover panel are checked as scenarios, their relative file names (a dropped robot's, written
+/// relative by withRelativePaths) read against `project_dir`, the project file's folder.
 Result<Project> projectFromJson(const nlohmann::json& json, const std::string& where,
-                                const io::PresetLocations* locations = nullptr);
+                                const io::PresetLocations* locations = nullptr,
+                                const std::filesystem::path& project_dir = {});
 
 /// Reads a .terra file (strict JSON, then projectFromJson).
 Result<Project> loadProject(const std::filesystem::path& path,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <initializer_list>
 #include <limits>
 #include <random>
@@ -815,24 +816,28 @@ std::vector<double> precompressionBySoil(const dynamics::FieldTerrain& terrain) 
 
 // F11–F12 of a cell: the largest |s| of the wheels that passed, and the energy lost there per
 // metre travelled over it; no data (NaN) where no wheel passed.
-double cellSlip(const field::CellState& c) {
-    return c.track.passes > 0 ? static_cast<double>(c.max_slip)
-                              : std::numeric_limits<double>::quiet_NaN();
+// (A cell's state and a recorded passage, CellPassage, carry the same fields.)
+double slipOver(int passes, float max_slip) {
+    return passes > 0 ? static_cast<double>(max_slip) : std::numeric_limits<double>::quiet_NaN();
 }
-double cellEnergyPerMetre(const field::CellState& c) {
-    return c.track.passes > 0 && c.travel_m > 0.0f
-               ? static_cast<double>(c.energy_j) / static_cast<double>(c.travel_m)
+double energyPerMetreOver(int passes, float energy_j, float travel_m) {
+    return passes > 0 && travel_m > 0.0f
+               ? static_cast<double>(energy_j) / static_cast<double>(travel_m)
                : std::numeric_limits<double>::quiet_NaN();
 }
+double cellSlip(const field::CellState& c) { return slipOver(c.track.passes, c.max_slip); }
+double cellEnergyPerMetre(const field::CellState& c) {
+    return energyPerMetreOver(c.track.passes, c.energy_j, c.travel_m);
+}
 
-// The history of the maps (MapHistory): each recorded passage inside the maps with the value of
-// every map at its cell after it, by the same rules as fieldMaps.
-MapHistory mapHistory(const dynamics::FieldTerrain& terrain, const FieldMaps& maps,
+// The history of the maps (MapHistory): each recorded passage inside the maps (of the geometry
+// of `grid`) with the value of every map at its cell after it, by the same rules as fieldMaps.
+// Takes the terrain's passages and frees them once drawn.
+MapHistory mapHistory(dynamics::FieldTerrain& terrain, const field::Raster& grid,
                       const std::vector<double>& precompression) {
     MapHistory h;
-    const std::vector<dynamics::CellPassage>& log = terrain.passages();
+    const std::deque<dynamics::CellPassage> log = terrain.takePassages();
     const field::CellGrid& cells = terrain.cells();
-    const field::Raster& grid = maps.rut_depth_m;  // every map has this geometry
     std::vector<double>& rut = h.values["rut_depth_m"];
     std::vector<double>& passes = h.values["passes"];
     std::vector<double>& risk = h.values["compaction_risk"];
@@ -848,20 +853,20 @@ MapHistory mapHistory(const dynamics::FieldTerrain& terrain, const FieldMaps& ma
         if (!at) continue;  // driven off the maps: not drawn on them either
         h.time_s.push_back(p.time_s);
         h.cell.push_back(static_cast<std::int32_t>(at->row * grid.cols + at->col));
-        rut.push_back(p.after.track.rut_depth_m);
-        passes.push_back(static_cast<double>(p.after.track.passes));
+        rut.push_back(p.rut_depth_m);
+        passes.push_back(static_cast<double>(p.passes));
         const double sigma_pc = precompression[static_cast<std::size_t>(terrain.soilIndexAt(x, y))];
-        risk.push_back(sigma_pc > 0.0 ? static_cast<double>(p.after.max_stress_pa[0]) / sigma_pc
-                                      : nan);
-        slip.push_back(cellSlip(p.after));
-        energy.push_back(cellEnergyPerMetre(p.after));
+        risk.push_back(sigma_pc > 0.0 ? static_cast<double>(p.max_stress_pa) / sigma_pc : nan);
+        slip.push_back(slipOver(p.passes, p.max_slip));
+        energy.push_back(energyPerMetreOver(p.passes, p.energy_j, p.travel_m));
     }
     return h;
 }
 
 // The maps of a field run over the field's extent (or the cells touched, for a field without
-// rasters), on the memory's cells.
-FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
+// rasters), on the memory's cells. The history is drawn first, from the terrain's passages, which
+// are then freed: the run's peak memory holds the passages or the other four maps, not both.
+FieldMaps fieldMaps(dynamics::FieldTerrain& terrain) {
     const field::CellGrid& cells = terrain.cells();
     std::array<double, 4> box{0.0, 0.0, cells.cellSize(), cells.cellSize()};
     if (const auto e = field::extent(terrain.map())) {
@@ -875,6 +880,8 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
     maps.rut_depth_m =
         cells.toRaster(box[0], box[1], box[2], box[3],
                        [](const field::CellState& c) { return c.track.rut_depth_m; });
+    const std::vector<double> precompression = precompressionBySoil(terrain);
+    maps.history = mapHistory(terrain, maps.rut_depth_m, precompression);
     maps.passes = cells.toRaster(box[0], box[1], box[2], box[3], [](const field::CellState& c) {
         return static_cast<double>(c.track.passes);
     });
@@ -886,7 +893,6 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
         [](const field::CellState& c) { return static_cast<double>(c.max_stress_pa[0]); });
     const std::vector<double>& depths = cells.stressDepths();
     maps.risk_depth_m = depths.empty() ? std::numeric_limits<double>::quiet_NaN() : depths.front();
-    const std::vector<double> precompression = precompressionBySoil(terrain);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     field::Raster& risk = maps.compaction_risk;
     // When every soil has σ_pc (or none has) the cells no wheel touched need no soil lookup: their
@@ -907,7 +913,6 @@ FieldMaps fieldMaps(const dynamics::FieldTerrain& terrain) {
             v = sigma_pc > 0.0 ? v / sigma_pc : nan;
         }
     }
-    maps.history = mapHistory(terrain, maps, precompression);
     // The maps lie in the field's coordinate system (their GeoTIFFs say so).
     const std::optional<int> epsg = field::epsgCode(terrain.map());
     for (const auto& entry : mapRasters(maps)) entry.second->epsg = epsg;
@@ -941,8 +946,8 @@ RunResult runScenario(const Scenario& scenario, const RunOptions& options) {
     // A field: its terrain, which the rover tells every wheel's passage (docs/field.md).
     std::unique_ptr<dynamics::FieldTerrain> field;
     if (scenario.field) {
-        // Every passage is kept for the maps' history (MapHistory: 88 bytes a passage while the
-        // run goes on, 36 in the result).
+        // Every passage is kept for the maps' history (MapHistory: 56 bytes a passage while the
+        // run goes on, 52 in the result: its time, cell and the five maps' values).
         dynamics::FieldTerrainOptions field_options = scenario.field_options;
         field_options.record_passages = true;
         field = std::make_unique<dynamics::FieldTerrain>(scenario.field, scenario.robot,

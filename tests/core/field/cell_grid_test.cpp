@@ -38,14 +38,18 @@ TEST(CellGrid, TilesAreAllocatedOnlyWhereWheelsGo) {
             grid.touch(x, y).track.passes += 1;
             const long ix = static_cast<long>(std::floor(x / cell));
             const long iy = static_cast<long>(std::floor(y / cell));
-            tiles.insert({ix >= 0 ? ix / 32 : (ix - 31) / 32, iy >= 0 ? iy / 32 : (iy - 31) / 32});
+            constexpr long t = CellGrid::kTileCells;
+            tiles.insert(
+                {ix >= 0 ? ix / t : (ix - t + 1) / t, iy >= 0 ? iy / t : (iy - t + 1) / t});
         }
     }
     EXPECT_EQ(grid.tileCount(), tiles.size());
-    // 100 m / (32 × 5 cm) = 62.5 tiles along, the strip within one or two tile rows.
-    EXPECT_LE(grid.tileCount(), 2u * 63u);
-    // A whole 100 m × 100 m field would be 62.5² ≈ 3,900 tiles.
-    EXPECT_LT(grid.stateBytes(), 3900u * 32u * 32u * sizeof(CellState) / 20u);
+    // 100 m / (4 × 5 cm) = 500 tiles along; the 0.4 m strip (8 cells) covers two or three tile
+    // rows.
+    static_assert(CellGrid::kTileCells == 4);
+    EXPECT_LE(grid.tileCount(), 3u * 500u);
+    // A whole 100 m × 100 m field would be 500² tiles: the strip holds under 1 % of it.
+    EXPECT_LT(grid.stateBytes(), 500u * 500u * 4u * 4u * sizeof(CellState) / 100u);
     const auto [lo, hi] = grid.touchedBounds();
     EXPECT_EQ(lo.ix, 0);
     EXPECT_GE(hi.ix, static_cast<std::int64_t>(100.0 / cell) - 1);

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include "core/io/atomic_file.h"
 #include "core/io/json.h"
 #include "core/project/panels.h"
 #include "tests/core/test_support.h"
+#include "tests/core/test_temp_dir.h"
 
 namespace terra::project {
 namespace {
@@ -158,6 +160,59 @@ TEST(ProjectFile, PathsInsideTheProjectFolderAreWrittenRelative) {
               "runs/B.Json");
     // A sibling folder with the same prefix is not inside.
     EXPECT_EQ(withRelativePaths(p, "/home/ana/fie").data_sets[0], "/home/ana/field/data/run1.csv");
+}
+
+// Issue 27: a robot file dropped onto the window is kept in the scenario's edit; inside the
+// project's folder it is written relative and follows a moved folder, like the scenario files.
+TEST(ProjectFile, ADroppedRobotFileInTheProjectFolderIsWrittenRelative) {
+    Project p = sandyLoam();
+    p.panels["rover"] =
+        json{{"scenario", "straight"},
+             {"edited",
+              {{"straight", json{{"duration_s", 3}, {"robot", "/home/ana/field/robots/r2.json"}}},
+               {"counter-steer", json{{"robot", "/opt/robots/big.JSON"}}},
+               {"pulse-steering", json{{"robot", "default"}}},
+               {"soil-border", json{{"robot", json{{"wheelbase_m", 0.6}}}}}}}};
+    const Project written = withRelativePaths(p, "/home/ana/field");
+    const json& edited = written.panels["rover"]["edited"];
+    EXPECT_EQ(edited["straight"]["robot"], "robots/r2.json");
+    EXPECT_EQ(edited["straight"]["duration_s"], 3);
+    EXPECT_EQ(edited["counter-steer"]["robot"], "/opt/robots/big.JSON");  // outside: kept
+    EXPECT_EQ(edited["pulse-steering"]["robot"], "default");              // a preset's name
+    EXPECT_EQ(edited["soil-border"]["robot"]["wheelbase_m"], 0.6);        // an object
+    const Project reopened = withAbsolutePaths(written, "/mnt/usb/field");
+    const json& moved = reopened.panels["rover"]["edited"];
+    EXPECT_EQ(moved["straight"]["robot"], "/mnt/usb/field/robots/r2.json");
+    EXPECT_EQ(moved["counter-steer"]["robot"], "/opt/robots/big.JSON");
+    EXPECT_EQ(moved["pulse-steering"]["robot"], "default");
+}
+
+// The file itself: a project whose rover edit names its robot relative to the project's folder
+// opens (the edit is checked as a scenario with the robot read from that folder, not from the
+// working directory), and the robot resolves in the folder the project was moved to.
+TEST(ProjectFile, AProjectWithARelativeRobotOpensFromItsMovedFolder) {
+    const testing::TempDir dir;
+    const std::filesystem::path folder = dir.path() / "moved-project";
+    std::filesystem::create_directories(folder / "robots");
+    std::filesystem::copy_file(std::filesystem::path(TERRA_RESOURCE_DIR) / "robots/default.json",
+                               folder / "robots/r2.json");
+    json straight =
+        io::readJsonFile(std::filesystem::path(TERRA_RESOURCE_DIR) / "scenarios/straight.json")
+            .value();
+    straight["robot"] = "robots/r2.json";
+    Project p = sandyLoam();
+    p.panels["rover"] = json{{"scenario", "straight"}, {"edited", {{"straight", straight}}}};
+    ASSERT_FALSE(io::writeFileAtomically(folder / "p.terra", toJson(p).dump(2)));
+    const Result<Project> opened = loadProject(folder / "p.terra", &kLocations);
+    ASSERT_TRUE(opened.ok()) << opened.message();
+    const Project absolute = withAbsolutePaths(*opened, folder);
+    EXPECT_EQ(absolute.panels["rover"]["edited"]["straight"]["robot"],
+              (folder / "robots/r2.json").generic_string());
+    // Without its robot file the project is refused, the robot named.
+    std::filesystem::remove(folder / "robots/r2.json");
+    const Result<Project> missing = loadProject(folder / "p.terra", &kLocations);
+    ASSERT_FALSE(missing.ok());
+    EXPECT_TRUE(contains(missing.message(), "r2.json")) << missing.message();
 }
 
 }  // namespace
