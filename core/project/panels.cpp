@@ -63,29 +63,35 @@ void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
         r, out.fit, r.has("prior_items") && !r.has("priors") ? "prior_items" : "priors");
 }
 
-void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
-                       const io::PresetLocations* locations) {
-    r.text("scenario", out.scenario);
-    if (!r.has("edited")) {
-        r.allow("edited");
+void readEditedScenarios(ObjectReader& r, const char* key, nlohmann::json& out) {
+    if (!r.has(key)) {
+        r.allow(key);
         return;
     }
-    ObjectReader edited = r.object("edited");
+    ObjectReader edited = r.object(key);
     if (!edited.isObject()) return;
-    const nlohmann::json& all = *r.value("edited");
+    const nlohmann::json& all = *r.value(key);
     for (const auto& [name, scenario] : all.items()) {
         edited.allow(name);
-        if (locations != nullptr) {
-            const Result<scenario::Scenario> parsed =
-                scenario::scenarioFromJson(scenario, "", *locations);
-            for (const Issue& issue : parsed.issues())
-                edited.report(name,
-                              (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
-        } else if (!scenario.is_object()) {
+        if (!scenario.is_object())
             edited.report(name, "expected a scenario object, got " + io::describeJson(scenario));
-        }
     }
-    out.edited = all;
+    out = all;
+}
+
+void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
+                       const io::PresetLocations* locations) {
+    io::readFields(r, out);
+    // Each edited scenario checked as a scenario (the presets it may name are needed).
+    if (locations == nullptr || !r.has("edited") || !r.value("edited")->is_object()) return;
+    for (const auto& [name, scenario] : r.value("edited")->items()) {
+        if (!scenario.is_object()) continue;  // reported by readEditedScenarios
+        const Result<scenario::Scenario> parsed =
+            scenario::scenarioFromJson(scenario, "", *locations);
+        for (const Issue& issue : parsed.issues())
+            r.report("edited." + name,
+                     (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
+    }
 }
 
 void readPanelSettings(ObjectReader& r, GlobalSensitivityPanelSettings& out) {
@@ -125,9 +131,7 @@ nlohmann::json toJson(const SensitivityPanelSettings& s) {
 
 nlohmann::json toJson(const IdentificationPanelSettings& s) { return io::fieldsToJson(s); }
 
-nlohmann::json toJson(const RoverPanelSettings& s) {
-    return {{"scenario", s.scenario}, {"edited", s.edited}};
-}
+nlohmann::json toJson(const RoverPanelSettings& s) { return io::fieldsToJson(s); }
 
 void readPanels(ObjectReader& panels, const io::PresetLocations* locations) {
     // Each panel's settings are read into a default-constructed value (by reference: GCC 12
