@@ -86,7 +86,7 @@ struct IdentifyOptions {
     std::vector<std::string> noise;   // fx=, fz=, my= noise levels for the refinement weights
     std::optional<std::string> jmax;  // --jmax VALUE (held) or "fit" (identified)
     std::string stream;               // --stream FILE: one estimate per sample
-    std::size_t window = identification::StreamingEstimatorOptions{}.window;
+    std::optional<int> window;        // --stream: samples of the moving horizon
     // The full model's global identification (core/identification/identify.h).
     std::vector<std::string> prior;  // name=mean±std items, or one soil preset/file
     std::optional<double> holdout;   // fraction in (0, 1)
@@ -270,26 +270,39 @@ void saveSoil(const IdentifyOptions& o, const analysis::IdentificationResult& re
     std::cerr << "wrote " << o.save_soil << ": the identified soil" << what << '\n';
 }
 
+// The flags of --stream as the streaming identification's settings object (the keys of
+// StreamingSettings::visitFields), read by its own reader: the ranges and their messages are the
+// reader's, named here by the flags. --stream itself is not a key of the object: the command
+// reads the file once, when it plays it (its FILE:LINE issues, the --skip-bad-rows hint).
+analysis::StreamingSettings streamSettings(const IdentifyOptions& o) {
+    nlohmann::json object{{"skip_bad_rows", o.skip_bad_rows}};
+    if (o.window) object["window"] = *o.window;
+    if (o.load_n) object["load_N"] = *o.load_n;
+    std::vector<Issue> issues;
+    io::ObjectReader reader(object, issues);
+    analysis::StreamingSettings settings;
+    analysis::readStreamingSettings(reader, {}, settings);
+    reader.finish();
+    if (!issues.empty()) {
+        nameFlags(
+            issues,
+            {{"skip_bad_rows", "--skip-bad-rows"}, {"window", "--window"}, {"load_N", "--load"}});
+        throw InputError(formatIssues(issues));
+    }
+    return settings;
+}
+
 // `identify --stream FILE`: the samples fed one at a time to the streaming estimator on the full
 // model (core/analysis/streaming_identification.h), one line per sample (JSON Lines with --json):
 // the estimate with its std, the normalised innovation, the CUSUM, and a confirmed change of
 // soil as `change_at` (the sample where it began) on the line of the sample that confirmed it.
 void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
                const std::optional<soil::SoilParameters>& guess) {
-    analysis::StreamingSettings settings;
+    analysis::StreamingSettings settings = streamSettings(o);
     settings.csv = o.stream;
-    settings.skip_bad_rows = o.skip_bad_rows;
-    settings.options.window = o.window;
-    settings.options.fit.load_n = o.load_n;
     const JmaxChoice jmax = parseJmax(o.jmax);
     if (jmax.fit) throw InputError("--jmax fit does not apply to --stream: give a value");
     if (jmax.value_m) settings.options.fit.max_shear_deformation_m = *jmax.value_m;
-    if (o.load_n) {
-        std::vector<Issue> issues;
-        const FieldInfo& load = contact::loadField();
-        checkRange(issues, "--load", *o.load_n, load.range, load.displayUnit());
-        if (!issues.empty()) throw InputError(formatIssues(issues));
-    }
     if (guess) {
         settings.options.fit.starts.push_back(
             {"guess " + o.guess, identification::fromSoil(*guess, inputs.wheel)});
@@ -458,9 +471,8 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
     data_option->excludes(stream_option);
     i->add_option("--window", identify->window,
                   "With --stream: samples in the moving horizon (older ones live on in the "
-                  "arrival cost)")
-        ->capture_default_str()
-        ->check(CLI::Range(std::size_t{1}, std::size_t{1000}));
+                  "arrival cost; default " +
+                      std::to_string(identification::StreamingEstimatorOptions{}.window) + ")");
     i->add_option("--wheel", identify->wheel, "Wheel preset or JSON file")->capture_default_str();
     i->add_option("--guess", identify->guess,
                   "Optional extra start: soil preset or JSON file (the global search needs none; "

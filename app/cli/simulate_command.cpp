@@ -8,9 +8,11 @@
 #include "app/cli/commands.h"
 #include "app/cli/progress.h"
 #include "app/cli/signals.h"
+#include "core/analysis/registry.h"
 #include "core/analysis/rover.h"
 #include "core/common/range.h"
 #include "core/io/atomic_file.h"
+#include "core/io/json_reader.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
 
@@ -33,6 +35,53 @@ struct SimulateOptions {
     std::optional<std::string> identifier;
     bool compare = false;
 };
+
+// The flags as the rover's settings object (the keys of RoverSettings::visitFields), read by its
+// own reader: the ranges, the names and their messages are the reader's, named here by the
+// flags. The scenario is resolved by the command (its message as before); what the overrides do
+// to it (a step the robot cannot take) is checked when it runs, named by the scenario.
+nlohmann::json settingsObject(const SimulateOptions& o) {
+    nlohmann::json s{{"scenario", o.scenario}};
+    if (o.duration_s) s["duration_s"] = *o.duration_s;
+    if (o.time_step_s) s["time_step_s"] = *o.time_step_s;
+    if (o.model) s["model"] = *o.model;
+    if (o.controller) s["controller"] = *o.controller;
+    if (o.slip) s["slip"] = *o.slip;
+    if (o.traction_limited) s["traction_limited"] = *o.traction_limited == "on";
+    if (o.robust) s["robust"] = *o.robust;
+    if (o.quantile) s["quantile"] = *o.quantile;
+    if (o.posterior_method) s["posterior_method"] = *o.posterior_method;
+    if (o.identifier) s["identifier"] = *o.identifier;
+    return s;
+}
+
+// The rover's settings of the flags, read by its reader (exit 2 names the flag, the value and
+// what is allowed, in the reader's words), without the presets: the scenario is not resolved.
+analysis::RoverSettings simulateSettings(const SimulateOptions& o) {
+    const nlohmann::json object = settingsObject(o);
+    std::vector<Issue> issues;
+    io::ObjectReader reader(object, issues);
+    analysis::RoverSettings settings;
+    analysis::readRoverSettings(reader, {}, settings);
+    reader.finish();
+    if (o.compare && o.controller)
+        issues.push_back({"--compare", "runs every controller: drop --controller"});
+    if (!issues.empty()) {
+        nameFlags(issues, {{"scenario", "--scenario"},
+                           {"duration_s", "--duration"},
+                           {"time_step_s", "--step"},
+                           {"model", "--model"},
+                           {"controller", "--controller"},
+                           {"slip", "--slip"},
+                           {"traction_limited", "--traction-limited"},
+                           {"robust", "--robust"},
+                           {"quantile", "--quantile"},
+                           {"posterior_method", "--posterior-method"},
+                           {"identifier", "--identifier"}});
+        throw InputError(formatIssues(issues));
+    }
+    return settings;
+}
 
 void printComparison(const nlohmann::json& table, const std::string& name) {
     std::cout << name << ": controllers compared\n"
@@ -166,12 +215,10 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
     cmd->add_flag("--json", options->json, "Print the summary as JSON");
     cmd->add_option("--duration", options->duration_s, "Override the scenario's duration [s]");
     cmd->add_option("--step", options->time_step_s, "Override the scenario's time step [s]");
-    cmd->add_option("--model", options->model, "Override the contact model: full or quadratic")
-        ->check(CLI::IsMember({"full", "quadratic"}));
+    cmd->add_option("--model", options->model, "Override the contact model: full or quadratic");
     cmd->add_option("--controller", options->controller,
                     "Override the controller: constant-speed, fixed-slip, optimal or oracle "
-                    "(docs/traction.md)")
-        ->check(CLI::IsMember(scenario::controllerNames()));
+                    "(docs/traction.md)");
     cmd->add_option("--slip", options->slip, "Override the controller's fixed slip set-point");
     cmd->add_option("--traction-limited", options->traction_limited,
                     "Override the slip controllers' traction-limited mode: on or off "
@@ -179,17 +226,14 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         ->check(CLI::IsMember({"on", "off"}));
     cmd->add_option("--robust", options->robust,
                     "Override the optimal controller's set-point: none (s* of the soil estimate), "
-                    "expected or quantile (over its posterior; docs/traction.md)")
-        ->check(CLI::IsMember({"none", "expected", "quantile"}));
+                    "expected or quantile (over its posterior; docs/traction.md)");
     cmd->add_option("--quantile", options->quantile,
                     "Override the robust set-point's quantile of the objective (0.01 to 0.99)");
     cmd->add_option("--posterior-method", options->posterior_method,
                     "Override how a robust set-point carries the posterior: sigma-points or "
-                    "samples")
-        ->check(CLI::IsMember({"sigma-points", "samples"}));
+                    "samples");
     cmd->add_option("--identifier", options->identifier,
-                    "Override the optimal controller's soil estimator: decoupled or full")
-        ->check(CLI::IsMember({"decoupled", "full"}));
+                    "Override the optimal controller's soil estimator: decoupled or full");
     cmd->add_flag("--compare", options->compare,
                   "Run every controller on the scenario; write OUT/<controller>/ and "
                   "OUT/comparison.json, print the comparison table");
@@ -201,48 +245,12 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
             refuseInputAsOutput("--out", std::filesystem::path(o.out) / file,
                                 {{"--scenario", o.scenario}});
         }
-        // The rover service (core/analysis/rover.h), as the studio's rover panel and scripts.
-        analysis::RoverSettings settings;
-        settings.scenario = o.scenario;
+        // The rover service (core/analysis/rover.h), as the studio's rover panel and scripts:
+        // the flags are its settings object, read by its own reader.
+        analysis::RoverSettings settings = simulateSettings(o);
         Result<scenario::Scenario> loaded = scenario::resolveScenario(locations, o.scenario);
         if (!loaded) throw InputError(loaded.message());
         settings.loaded = loaded.value();
-        settings.duration_s = o.duration_s;
-        settings.time_step_s = o.time_step_s;
-        if (o.model) {
-            settings.model = *o.model == "quadratic" ? contact::ContactModel::kQuadratic
-                                                     : contact::ContactModel::kFull;
-        }
-        if (o.controller) settings.controller = scenario::controllerFromName(*o.controller);
-        settings.slip = o.slip;
-        if (o.traction_limited) settings.traction_limited = *o.traction_limited == "on";
-        if (o.robust) {
-            settings.robust = *o.robust == "quantile"   ? scenario::RobustSlip::kQuantile
-                              : *o.robust == "expected" ? scenario::RobustSlip::kExpected
-                                                        : scenario::RobustSlip::kNone;
-        }
-        settings.quantile = o.quantile;
-        if (o.posterior_method) {
-            settings.posterior_method = *o.posterior_method == "samples"
-                                            ? scenario::PosteriorMethod::kSamples
-                                            : scenario::PosteriorMethod::kSigmaPoints;
-        }
-        if (o.identifier) {
-            settings.identifier = *o.identifier == "full" ? scenario::SoilIdentifier::kFull
-                                                          : scenario::SoilIdentifier::kDecoupled;
-        }
-        std::vector<Issue> issues;
-        if (o.slip) checkRange(issues, "--slip", *o.slip, scenario::kControllerRanges.slip);
-        if (o.quantile) {
-            checkRange(issues, "--quantile", *o.quantile, scenario::robustQuantileField().range);
-        }
-        if (o.compare && o.controller)
-            issues.push_back({"--compare", "runs every controller: drop --controller"});
-        if (o.duration_s)
-            checkRange(issues, "--duration", *o.duration_s, scenario::kDurationRange, "s");
-        if (o.time_step_s)
-            checkRange(issues, "--step", *o.time_step_s, scenario::kTimeStepRange, "s");
-        if (!issues.empty()) throw InputError(formatIssues(issues));
 
         if (o.compare) {
             compare(settings, o);

@@ -10,6 +10,7 @@
 #include "core/analysis/registry.h"
 #include "core/analysis/traction.h"
 #include "core/common/units.h"
+#include "core/io/declared_json.h"
 #include "core/io/json_reader.h"
 #include "core/io/parameters_json.h"
 #include "core/scenario/scenario_json.h"
@@ -96,23 +97,58 @@ void applyOverrides(const RoverSettings& settings, scenario::Scenario& s,
 
 }  // namespace
 
+void readWheelOverride(io::ObjectReader& r, const char* key,
+                       std::optional<wheel::WheelParameters>& out) {
+    // A name needs the context's presets: readRoverSettings resolves it.
+    if (const nlohmann::json* value = r.value(key); value != nullptr && !value->is_string()) {
+        out = readPresetOrObject<wheel::WheelParameters>(r, {}, *value, key, io::wheelFromJson,
+                                                         io::resolveWheel);
+    }
+}
+
+void readSoilOverrides(io::ObjectReader& r, const char* key,
+                       std::map<std::string, soil::SoilParameters>& out) {
+    const nlohmann::json* soils = r.value(key);
+    if (soils == nullptr) return;
+    if (!soils->is_object()) {
+        r.report(key, "expected an object of soils by \"base\", class code or patch number, not " +
+                          io::describeJson(*soils));
+        return;
+    }
+    for (const auto& [name, value] : soils->items()) {
+        if (value.is_string()) continue;  // a preset or file: readRoverSettings
+        if (auto soil = readPresetOrObject<soil::SoilParameters>(
+                r, {}, value, std::string(key) + "." + name, io::soilFromJson, io::resolveSoil))
+            out[name] = *soil;
+    }
+}
+
+nlohmann::json wheelOverrideJson(const std::optional<wheel::WheelParameters>& wheel) {
+    return wheel ? io::toJson(*wheel) : nlohmann::json();
+}
+
+nlohmann::json soilOverridesJson(const std::map<std::string, soil::SoilParameters>& soils) {
+    if (soils.empty()) return nullptr;
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, soil] : soils) out[key] = io::toJson(soil);
+    return out;
+}
+
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out) {
-    if (r.text("scenario", out.scenario, io::Presence::kRequired)) {
-        if (context.locations != nullptr) {
-            Result<scenario::Scenario> loaded =
-                scenario::resolveScenario(*context.locations, context.presetOrFile(out.scenario));
-            if (loaded) {
-                out.loaded = loaded.value();
-            } else {
-                for (const Issue& issue : loaded.issues())
-                    r.report("scenario",
-                             (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
-            }
+    // Required: a key the field list cannot mark (its reader's "missing" wording).
+    r.value("scenario", io::Presence::kRequired, "a string");
+    io::readFields(r, out);
+    if (r.has("scenario") && r.value("scenario")->is_string() && context.locations != nullptr) {
+        Result<scenario::Scenario> loaded =
+            scenario::resolveScenario(*context.locations, context.presetOrFile(out.scenario));
+        if (loaded) {
+            out.loaded = loaded.value();
+        } else {
+            for (const Issue& issue : loaded.issues())
+                r.report("scenario",
+                         (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
         }
     }
-    double value = 0.0;
-    if (r.number("duration_s", value, scenario::kDurationRange, "s")) out.duration_s = value;
-    if (r.number("time_step_s", value, scenario::kTimeStepRange, "s")) out.time_step_s = value;
     // The overrides against the scenario's own step and duration (a duration below one step),
     // while the file's position is at hand.
     if (out.loaded && (out.duration_s || out.time_step_s)) {
@@ -127,54 +163,17 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
                 r.report(issue.where, issue.message);
         }
     }
-    std::string controller;
-    if (r.choiceName("controller", controller, scenario::controllerNames()))
-        out.controller = scenario::controllerFromName(controller);
-    if (r.number("slip", value, scenario::kControllerRanges.slip)) out.slip = value;
-    bool limited = false;
-    if (r.boolean("traction_limited", limited)) out.traction_limited = limited;
-    scenario::RobustSlip robust = scenario::RobustSlip::kNone;
-    if (r.choice<scenario::RobustSlip>("robust", robust,
-                                       {{"none", scenario::RobustSlip::kNone},
-                                        {"expected", scenario::RobustSlip::kExpected},
-                                        {"quantile", scenario::RobustSlip::kQuantile}}))
-        out.robust = robust;
-    if (r.field(scenario::robustQuantileField(), value)) out.quantile = value;
-    int samples = 0;
-    if (r.integer("posterior_samples", samples, scenario::kMinPosteriorSamples,
-                  scenario::kMaxPosteriorSamples))
-        out.posterior_samples = samples;
-    scenario::PosteriorMethod method = scenario::PosteriorMethod::kSigmaPoints;
-    if (r.choice<scenario::PosteriorMethod>(
-            "posterior_method", method,
-            {{"sigma-points", scenario::PosteriorMethod::kSigmaPoints},
-             {"samples", scenario::PosteriorMethod::kSamples}}))
-        out.posterior_method = method;
-    scenario::SoilIdentifier identifier = scenario::SoilIdentifier::kDecoupled;
-    if (r.choice<scenario::SoilIdentifier>("identifier", identifier,
-                                           {{"decoupled", scenario::SoilIdentifier::kDecoupled},
-                                            {"full", scenario::SoilIdentifier::kFull}}))
-        out.identifier = identifier;
-    if (const dynamics::RobotField* mass = findField(dynamics::robotFields(), "chassis_mass_kg")) {
-        double kg = 0.0;
-        if (r.field(*mass, kg)) out.chassis_mass_kg = kg;
-    }
-    if (const nlohmann::json* wheel = r.value("wheel")) {
+    // A wheel or soils named by preset or file, found through the context.
+    if (const nlohmann::json* wheel = r.value("wheel"); wheel != nullptr && wheel->is_string()) {
         out.wheel = readPresetOrObject<wheel::WheelParameters>(r, context, *wheel, "wheel",
                                                                io::wheelFromJson, io::resolveWheel);
     }
-    if (const nlohmann::json* soils = r.value("soils")) {
-        if (!soils->is_object()) {
-            r.report("soils",
-                     "expected an object of soils by \"base\", class code or patch "
-                     "number, not " +
-                         io::describeJson(*soils));
-        } else {
-            for (const auto& [key, value] : soils->items()) {
-                if (auto soil = readPresetOrObject<soil::SoilParameters>(
-                        r, context, value, "soils." + key, io::soilFromJson, io::resolveSoil))
-                    out.soils[key] = *soil;
-            }
+    if (const nlohmann::json* soils = r.value("soils"); soils != nullptr && soils->is_object()) {
+        for (const auto& [key, value] : soils->items()) {
+            if (!value.is_string()) continue;  // an object: readSoilOverrides
+            if (auto soil = readPresetOrObject<soil::SoilParameters>(
+                    r, context, value, "soils." + key, io::soilFromJson, io::resolveSoil))
+                out.soils[key] = *soil;
         }
     }
     // The overrides against the scenario they change (a class the field does not have, a wheel
@@ -186,13 +185,9 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
         if (issues.empty()) issues = scenario::validate(s);
         for (const Issue& issue : issues) r.report(issue.where, issue.message);
     }
-    contact::ContactModel model = contact::ContactModel::kFull;
-    if (r.choice<contact::ContactModel>("model", model,
-                                        {{"full", contact::ContactModel::kFull},
-                                         {"quadratic", contact::ContactModel::kQuadratic}})) {
-        out.model = model;
-    }
 }
+
+nlohmann::json toJson(const RoverSettings& settings) { return io::fieldsToJson(settings); }
 
 std::vector<std::pair<std::string, soil::SoilParameters>> overridableSoils(
     const scenario::Scenario& s) {
@@ -214,40 +209,21 @@ scenario::Scenario roverScenario(const RoverSettings& settings) {
         throw std::invalid_argument("scenario '" + settings.scenario + "' is not resolved");
     }
     scenario::Scenario s = *settings.loaded;
-    std::vector<Issue> issues;
-    if (settings.duration_s &&
-        checkRange(issues, "duration_s", *settings.duration_s, scenario::kDurationRange, "s")) {
-        s.duration_s = *settings.duration_s;
-    }
-    if (settings.time_step_s &&
-        checkRange(issues, "time_step_s", *settings.time_step_s, scenario::kTimeStepRange, "s")) {
+    // The reader's checks, in its words, for settings built in code (a panel's, a test's).
+    std::vector<Issue> issues = io::fieldIssues(settings);
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
+    if (settings.duration_s) s.duration_s = *settings.duration_s;
+    if (settings.time_step_s) {
         s.time_step_s = *settings.time_step_s;
         s.output_interval_s = std::max(s.output_interval_s, s.time_step_s);
     }
     if (settings.model) s.options.contact.model = *settings.model;
     if (settings.controller) s.controller.type = *settings.controller;
-    if (settings.slip &&
-        checkRange(issues, "slip", *settings.slip, scenario::kControllerRanges.slip)) {
-        s.controller.slip = *settings.slip;
-    }
+    if (settings.slip) s.controller.slip = *settings.slip;
     if (settings.traction_limited) s.controller.traction_limited = *settings.traction_limited;
     if (settings.robust) s.controller.robust = *settings.robust;
-    if (settings.quantile &&
-        checkRange(issues, scenario::robustQuantileField().key, *settings.quantile,
-                   scenario::robustQuantileField().range)) {
-        s.controller.quantile = *settings.quantile;
-    }
-    if (settings.posterior_samples) {
-        if (*settings.posterior_samples < scenario::kMinPosteriorSamples ||
-            *settings.posterior_samples > scenario::kMaxPosteriorSamples) {
-            issues.push_back({"posterior_samples",
-                              std::to_string(*settings.posterior_samples) + " is outside [" +
-                                  std::to_string(scenario::kMinPosteriorSamples) + ", " +
-                                  std::to_string(scenario::kMaxPosteriorSamples) + "]"});
-        } else {
-            s.controller.posterior_samples = *settings.posterior_samples;
-        }
-    }
+    if (settings.quantile) s.controller.quantile = *settings.quantile;
+    if (settings.posterior_samples) s.controller.posterior_samples = *settings.posterior_samples;
     if (settings.posterior_method) s.controller.posterior_method = *settings.posterior_method;
     if (settings.identifier) s.controller.identifier = *settings.identifier;
     applyOverrides(settings, s, issues);

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/common/declared_fields.h"
+#include "core/io/declared_optional.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario.h"
 
@@ -47,16 +49,89 @@ struct RoverSettings {
     std::optional<int> posterior_samples;
     std::optional<scenario::PosteriorMethod> posterior_method;
     std::optional<scenario::SoilIdentifier> identifier;
+
+    /// Its file keys, one line each (core/common/declared_fields.h; the overrides absent unless
+    /// given, core/io/declared_optional.h): the reader, toJson, the command line's flags and
+    /// runRover's checks are made from them. The resolved scenario (`loaded`) is not a file key.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// "scenario" (required; relative files against the context's directory, resolved at once),
-/// "duration_s", "time_step_s", "model" (full, quadratic), "controller" (constant-speed,
-/// fixed-slip, optimal, oracle), "slip", "traction_limited" (true, false), "robust" (none,
-/// expected, quantile), "quantile", "posterior_samples", "posterior_method" (sigma-points,
-/// samples), "identifier" (decoupled, full), "chassis_mass_kg",
-/// "wheel" (a preset, a file or a wheel object) and "soils" ({"base" | CODE | PATCH: a preset, a
-/// file or a soil object}).
+/// "wheel" as a wheel object; a preset or file name is left to readRoverSettings (which finds it
+/// through the context's presets). Problems are reported at `key`.
+void readWheelOverride(io::ObjectReader& r, const char* key,
+                       std::optional<wheel::WheelParameters>& out);
+/// "soils" ({"base" | CODE | PATCH: a soil object}); names of presets or files are left to
+/// readRoverSettings.
+void readSoilOverrides(io::ObjectReader& r, const char* key,
+                       std::map<std::string, soil::SoilParameters>& out);
+/// Their JSON: the wheel's and each soil's file object; null when empty.
+nlohmann::json wheelOverrideJson(const std::optional<wheel::WheelParameters>& wheel);
+nlohmann::json soilOverridesJson(const std::map<std::string, soil::SoilParameters>& soils);
+
+template <typename Visitor>
+void RoverSettings::visitFields(Visitor& v) {
+    using scenario::ControllerType;
+    using scenario::PosteriorMethod;
+    using scenario::RobustSlip;
+    using scenario::SoilIdentifier;
+    v(fields::text("scenario", scenario,
+                   "a scenario preset or file (required; relative to the script, resolved at "
+                   "once)"));
+    v(fields::number("duration_s", duration_s, scenario::kDurationRange, "s",
+                     "overrides the scenario's duration"));
+    v(fields::number("time_step_s", time_step_s, scenario::kTimeStepRange, "s",
+                     "overrides the scenario's time step"));
+    v(io::optionalChoice<ControllerType>("controller", controller,
+                                         {{"constant-speed", ControllerType::kConstantSpeed},
+                                          {"fixed-slip", ControllerType::kFixedSlip},
+                                          {"optimal", ControllerType::kOptimal},
+                                          {"oracle", ControllerType::kOracle}},
+                                         "constant-speed, fixed-slip, optimal, oracle",
+                                         "overrides the controller's type"));
+    v(fields::number("slip", slip, scenario::kControllerRanges.slip, "",
+                     "overrides the controller's fixed slip set-point"));
+    v(io::optionalFlag("traction_limited", traction_limited,
+                       "overrides the slip controllers' traction-limited mode"));
+    v(io::optionalChoice<RobustSlip>("robust", robust,
+                                     {{"none", RobustSlip::kNone},
+                                      {"expected", RobustSlip::kExpected},
+                                      {"quantile", RobustSlip::kQuantile}},
+                                     "none, expected, quantile",
+                                     "overrides the optimal controller's robust set-point"));
+    v(fields::field(scenario::robustQuantileField(), quantile));
+    v(io::optionalInteger("posterior_samples", posterior_samples, scenario::kMinPosteriorSamples,
+                          scenario::kMaxPosteriorSamples, "[10, 100000]",
+                          "overrides the soils drawn from the posterior"));
+    v(io::optionalChoice<PosteriorMethod>(
+        "posterior_method", posterior_method,
+        {{"sigma-points", PosteriorMethod::kSigmaPoints}, {"samples", PosteriorMethod::kSamples}},
+        "sigma-points, samples", "overrides how a robust set-point carries the posterior"));
+    v(io::optionalChoice<SoilIdentifier>(
+        "identifier", identifier,
+        {{"decoupled", SoilIdentifier::kDecoupled}, {"full", SoilIdentifier::kFull}},
+        "decoupled, full", "overrides the optimal controller's soil estimator"));
+    v(fields::field(*findField(dynamics::robotFields(), "chassis_mass_kg"), chassis_mass_kg));
+    v(fields::custom("wheel", wheel, "preset, path or object", "a wheel preset, file or object",
+                     "the wheel of all four corners", readWheelOverride, wheelOverrideJson));
+    v(fields::custom("soils", soils, "object", "{\"base\" | class code | patch number: soil}",
+                     "soils replaced, each a preset, file or soil object", readSoilOverrides,
+                     soilOverridesJson));
+    v(io::optionalChoice<contact::ContactModel>(
+        "model", model,
+        {{"full", contact::ContactModel::kFull}, {"quadratic", contact::ContactModel::kQuadratic}},
+        "full, quadratic", "overrides the contact model"));
+}
+
+/// The keys of RoverSettings::visitFields, read strictly (io::readFields), then what a field list
+/// cannot say: "scenario" is required and resolved at once (relative files against the context's
+/// directory), a wheel or soils named by preset or file are found through the context, and the
+/// overrides are checked against the scenario they change (a duration below one step, a step the
+/// robot cannot take, a class the field does not have, a wheel too wide for the track).
 void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSettings& out);
+/// The settings' file keys (io::fieldsToJson): the scenario's name, the overrides given, the
+/// wheel and soils as objects; what readRoverSettings reads back.
+nlohmann::json toJson(const RoverSettings& settings);
 
 /// The soils a run's "soils" override can replace, by its keys: "base", then a field's class
 /// codes ("1", "2", …) or a patch terrain's patch numbers ("1", …), each with its soil as the
@@ -65,7 +140,7 @@ std::vector<std::pair<std::string, soil::SoilParameters>> overridableSoils(
     const scenario::Scenario& scenario);
 
 /// The scenario with the overrides applied; throws std::invalid_argument when it is not
-/// resolved or an override is out of range.
+/// resolved or an override is out of range (the reader's checks, in its words: io::fieldIssues).
 scenario::Scenario roverScenario(const RoverSettings& settings);
 
 /// The figures of a run (rover_figures.h draws them), in the panel's order, and the top view.

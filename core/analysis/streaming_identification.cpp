@@ -10,6 +10,8 @@
 #include "core/analysis/registry.h"
 #include "core/contact/contact_parameters.h"
 #include "core/identification/synthetic.h"
+#include "core/io/declared_json.h"
+#include "core/io/parameters_json.h"
 
 namespace terra::analysis {
 namespace {
@@ -17,8 +19,6 @@ namespace {
 namespace id = identification;
 
 constexpr double kDefaultPeriodS = 0.01;  // 100 Hz when the data carry no time
-constexpr int kMaxWindow = 1000;          // a horizon beyond this costs more than a refit
-const Range kNoisePercent{0.0, 100.0};
 
 // One soil's sweep in a scrambled, fixed order (stride coprime to the count).
 std::vector<id::Sample> scrambledSweep(const soil::SoilParameters& soil, const SoilBorderSpec& spec,
@@ -82,39 +82,37 @@ Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_row
 
 void readStreamingSettings(io::ObjectReader& r, const ReadContext& context,
                            StreamingSettings& out) {
-    r.boolean("skip_bad_rows", out.skip_bad_rows);
-    if (r.text("csv", out.csv) && !out.csv.empty()) {
-        std::filesystem::path path(out.csv);
-        if (path.is_relative() && !context.base_dir.empty()) path = context.base_dir / path;
-        out.csv = path.string();
+    io::readFields(r, out, context.base_dir);
+    if (r.has("csv") && !out.csv.empty()) {
         if (Result<StreamSource> read = readStreamSource(out.csv, out.skip_bad_rows); !read) {
             for (const Issue& issue : read.issues())
                 r.report("csv", issue.where + ": " + issue.message);
         }
     }
-    if (r.text("second_soil", out.second_soil) || out.csv.empty()) {
-        if (context.locations != nullptr) {
-            Result<soil::SoilParameters> soil =
-                io::resolveSoil(*context.locations, context.presetOrFile(out.second_soil));
-            if (soil) {
-                out.second = soil.value();
-            } else {
-                r.report("second_soil", soil.message());
-            }
+    const nlohmann::json* second = r.value("second_soil");
+    if (((second != nullptr && second->is_string()) || out.csv.empty()) &&
+        context.locations != nullptr) {
+        Result<soil::SoilParameters> soil =
+            io::resolveSoil(*context.locations, context.presetOrFile(out.second_soil));
+        if (soil) {
+            out.second = soil.value();
+        } else {
+            r.report("second_soil", soil.message());
         }
     }
-    r.number("noise_percent", out.noise_percent, kNoisePercent, "%");
-    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max() - 1);
-    int window = static_cast<int>(out.options.window);
-    if (r.integer("window", window, 1, kMaxWindow))
-        out.options.window = static_cast<std::size_t>(window);
-    double load = 0.0;
-    const FieldInfo& load_field = contact::loadField();
-    if (r.number("load_N", load, load_field.range, load_field.displayUnit()))
-        out.options.fit.load_n = load;
+}
+
+nlohmann::json toJson(const StreamingSettings& settings) { return io::fieldsToJson(settings); }
+
+void readStreamingWindow(io::ObjectReader& r, const char* key, std::size_t& out) {
+    int window = static_cast<int>(out);
+    if (r.integer(key, window, 1, kMaxStreamingWindow)) out = static_cast<std::size_t>(window);
 }
 
 StreamSource streamSource(const Inputs& in, const StreamingSettings& s) {
+    // The reader's checks, in its words, for settings built in code (a panel's, a test's).
+    if (const std::vector<Issue> issues = io::fieldIssues(s); !issues.empty())
+        throw std::invalid_argument(formatIssues(issues));
     if (!s.csv.empty()) {
         Result<StreamSource> read = readStreamSource(s.csv, s.skip_bad_rows);
         if (!read) throw std::invalid_argument(read.message());
@@ -122,9 +120,6 @@ StreamSource streamSource(const Inputs& in, const StreamingSettings& s) {
     }
     if (!s.second)
         throw std::invalid_argument("second_soil: the soil after the border is not resolved");
-    std::vector<Issue> issues;
-    checkRange(issues, "noise_percent", s.noise_percent, kNoisePercent, "%");
-    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     SoilBorderSpec spec;
     spec.first = in.soil;
     spec.second = *s.second;

@@ -10,13 +10,17 @@
 /// script's "streaming" analysis.
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/common/declared_fields.h"
 #include "core/common/issue.h"
+#include "core/common/range.h"
+#include "core/contact/operating_fields.h"
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/streaming_estimator.h"
@@ -58,6 +62,10 @@ StreamSource synthesiseSoilBorder(const SoilBorderSpec& spec);
 /// listed in `warnings`.
 Result<StreamSource> readStreamSource(const std::string& path, bool skip_bad_rows);
 
+/// The range of the synthetic noise [%] and of the moving horizon [samples].
+inline constexpr Range kStreamingNoisePercentRange{0.0, 100.0};
+inline constexpr int kMaxStreamingWindow = 1000;  ///< beyond it a refit costs less
+
 struct StreamingSettings {
     std::string csv;             ///< data file; empty: a synthetic drive over a soil border
     bool skip_bad_rows = false;  ///< false: a bad row stops the read, every bad row listed
@@ -67,13 +75,45 @@ struct StreamingSettings {
     double noise_percent = 1.0;  ///< synthetic: σ as % of each channel's largest value
     std::uint64_t seed = 1;      ///< synthetic: noise seed
     /// The estimator's options (window, change test, the model of its fits); `columns` is set
-    /// from the data when played.
+    /// from the data when played. Its file keys: "window" and "load_N".
     identification::StreamingEstimatorOptions options;
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson, the
+    /// command line's flags and compute's checks are made from them. The resolved second soil
+    /// and the estimator's other options are not file keys.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// "csv" (relative to the context's directory), "skip_bad_rows", "second_soil" (resolved through
-/// the context's presets), "noise_percent", "seed", "window" (the moving horizon), "load_N".
+/// "window": a whole number in [1, kMaxStreamingWindow] into the estimator's std::size_t.
+void readStreamingWindow(io::ObjectReader& r, const char* key, std::size_t& out);
+inline nlohmann::json streamingWindowJson(const std::size_t& window) { return window; }
+
+template <typename Visitor>
+void StreamingSettings::visitFields(Visitor& v) {
+    v(fields::flag("skip_bad_rows", skip_bad_rows,
+                   "true: bad rows of the CSV are skipped (listed); false: they stop the read"));
+    v(fields::path("csv", csv,
+                   "data set CSV (full-model columns), read at once; empty: a synthetic drive "
+                   "over a soil border"));
+    v(fields::text("second_soil", second_soil,
+                   "synthetic: the soil after the border (preset or JSON file)"));
+    v(fields::number("noise_percent", noise_percent, kStreamingNoisePercentRange, "%",
+                     "synthetic: noise σ as % of each channel's largest value"));
+    v(fields::integer("seed", seed, 0, std::numeric_limits<std::uint64_t>::max() - 1,
+                      "synthetic: noise seed (the second soil uses seed + 1)"));
+    v(fields::custom("window", options.window, "whole number", "[1, 1000]",
+                     "samples of the moving horizon", readStreamingWindow, streamingWindowJson));
+    v(fields::field(contact::loadField(), options.fit.load_n));
+}
+
+/// The keys of StreamingSettings::visitFields, read strictly (io::readFields), then what a field
+/// list cannot say: "csv" is read at once (relative to the context's directory; a bad file is a
+/// problem of the settings) and "second_soil" is resolved through the context's presets (when no
+/// CSV is given, the default too).
 void readStreamingSettings(io::ObjectReader& r, const ReadContext& context, StreamingSettings& out);
+/// The settings' file keys (io::fieldsToJson): what readStreamingSettings reads back.
+nlohmann::json toJson(const StreamingSettings& settings);
 
 /// The data the settings name: the CSV, or the drive from the inputs' soil onto the second soil
 /// at the conditions' load. Throws std::invalid_argument when it cannot be read or made.

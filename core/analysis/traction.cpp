@@ -16,6 +16,7 @@
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 #include "core/io/json.h"
 #include "core/io/parameters_json.h"
 #include "core/scenario/traction_control.h"
@@ -25,62 +26,34 @@ namespace terra::analysis {
 namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
-const Range kSearchSlip{0.0, 0.99};
 
-std::vector<Issue> settingsIssues(const TractionSettings& s) {
-    std::vector<Issue> issues;
-    checkRange(issues, "slip_angle_deg", s.slip_angle_deg, contact::slipAngleField().range, "deg");
-    checkRange(issues, "slip_min", s.slip_min, kSearchSlip);
-    checkRange(issues, "slip_max", s.slip_max, kSearchSlip);
-    if (issues.empty() && !(s.slip_min < s.slip_max)) {
-        issues.push_back({"slip_max", formatNumber(s.slip_max) +
-                                          " must be above slip_min = " + formatNumber(s.slip_min)});
+// The posterior's own rules (a field list cannot say them): soil fields, sizes, definiteness.
+void addPosteriorIssues(const SoilPosterior& p, std::vector<Issue>& issues) {
+    const std::size_t n = p.parameters.size();
+    if (n == 0) issues.push_back({"posterior.parameters", "no parameters"});
+    for (const std::string& key : p.parameters) {
+        if (!soil::findSoilField(key))
+            issues.push_back({"posterior.parameters", quoteText(key) + " is not a soil field"});
     }
-    if (s.max_sinkage_m)
-        checkRange(issues, "max_sinkage_m", *s.max_sinkage_m, {0.0, 1.0, true}, "m");
-    if (s.curve_points < 5 || s.curve_points > 10000) {
+    if (p.mean.size() != n) {
+        issues.push_back({"posterior.mean", std::to_string(p.mean.size()) + " values for " +
+                                                std::to_string(n) + " parameters"});
+    }
+    bool square = p.covariance.size() == n;
+    for (const auto& row : p.covariance) square = square && row.size() == n;
+    if (!square) {
         issues.push_back(
-            {"curve_points", std::to_string(s.curve_points) + " is outside [5, 10000]"});
-    }
-    if (s.posterior_samples < scenario::kMinPosteriorSamples ||
-        s.posterior_samples > scenario::kMaxPosteriorSamples) {
-        issues.push_back(
-            {"posterior_samples", std::to_string(s.posterior_samples) + " is outside [" +
-                                      std::to_string(scenario::kMinPosteriorSamples) + ", " +
-                                      std::to_string(scenario::kMaxPosteriorSamples) + "]"});
-    }
-    const FieldInfo& quantile = scenario::robustQuantileField();
-    checkRange(issues, quantile.key, s.quantile, quantile.range);
-    if (s.posterior) {
-        const SoilPosterior& p = *s.posterior;
-        const std::size_t n = p.parameters.size();
-        if (n == 0) issues.push_back({"posterior.parameters", "no parameters"});
-        for (const std::string& key : p.parameters) {
-            if (!soil::findSoilField(key))
-                issues.push_back({"posterior.parameters", quoteText(key) + " is not a soil field"});
-        }
-        if (p.mean.size() != n) {
-            issues.push_back({"posterior.mean", std::to_string(p.mean.size()) + " values for " +
-                                                    std::to_string(n) + " parameters"});
-        }
-        bool square = p.covariance.size() == n;
-        for (const auto& row : p.covariance) square = square && row.size() == n;
-        if (!square) {
-            issues.push_back({"posterior.covariance",
-                              "must be " + std::to_string(n) + " x " + std::to_string(n)});
-        } else if (n > 0) {
-            Eigen::MatrixXd c(n, n);
-            for (std::size_t i = 0; i < n; ++i)
-                for (std::size_t j = 0; j < n; ++j) c(i, j) = p.covariance[i][j];
-            const Eigen::LLT<Eigen::MatrixXd> llt(c);
-            if (!c.isApprox(c.transpose(), 1e-9) || llt.info() != Eigen::Success) {
-                issues.push_back({"posterior.covariance", "is not symmetric positive definite"});
-            }
+            {"posterior.covariance", "must be " + std::to_string(n) + " x " + std::to_string(n)});
+    } else if (n > 0) {
+        Eigen::MatrixXd c(n, n);
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = 0; j < n; ++j) c(i, j) = p.covariance[i][j];
+        const Eigen::LLT<Eigen::MatrixXd> llt(c);
+        if (!c.isApprox(c.transpose(), 1e-9) || llt.info() != Eigen::Success) {
+            issues.push_back({"posterior.covariance", "is not symmetric positive definite"});
         }
     }
-    return issues;
 }
-
 double quantileOf(std::vector<double> values, double q) {
     if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
     std::sort(values.begin(), values.end());
@@ -298,74 +271,54 @@ const char* objectiveName(TractionObjective objective) {
     return objective == TractionObjective::kDrawbar ? "drawbar" : "efficiency";
 }
 
-void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
-                          const std::filesystem::path& base_dir) {
-    const FieldInfo& beta = contact::slipAngleField();
-    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
-    r.choice(
-        "objective", out.objective,
-        {{"drawbar", TractionObjective::kDrawbar}, {"efficiency", TractionObjective::kEfficiency}});
-    double value = 0.0;
-    if (r.number("max_sinkage_m", value, {0.0, 1.0, true}, "m")) out.max_sinkage_m = value;
-    r.number("slip_min", out.slip_min, kSearchSlip);
-    r.number("slip_max", out.slip_max, kSearchSlip);
-    r.integer("curve_points", out.curve_points, 5, 10000);
-    r.integer("posterior_samples", out.posterior_samples, scenario::kMinPosteriorSamples,
-              scenario::kMaxPosteriorSamples);
-    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
-    r.field(scenario::robustQuantileField(), out.quantile);
-    r.choice<scenario::PosteriorMethod>(
-        "posterior_method", out.posterior_method,
-        {{"samples", scenario::PosteriorMethod::kSamples},
-         {"sigma-points", scenario::PosteriorMethod::kSigmaPoints}});
-    if (const nlohmann::json* posterior = r.value("posterior")) {
-        SoilPosterior p;
-        if (posterior->is_object()) {
-            io::ObjectReader pr = r.object("posterior");
-            readPosterior(pr, p);
-            pr.finish();
-            out.posterior = p;
-        } else if (posterior->is_string()) {
-            // A soil file with its posterior (`identify --save-soil`): only "posterior" is read.
-            std::filesystem::path path = posterior->get<std::string>();
-            if (path.is_relative() && !base_dir.empty()) path = base_dir / path;
-            Result<SoilPosterior> file = readPosteriorFile(path);
-            if (!file) {
-                for (const Issue& issue : file.issues()) r.report("posterior", formatIssue(issue));
-            } else {
-                out.posterior = file.value();
-            }
-        } else {
-            r.report("posterior",
-                     "expected an object or a file, got " + io::describeJson(*posterior));
-        }
+void readPosteriorObject(io::ObjectReader& r, const char* key, std::optional<SoilPosterior>& out) {
+    const nlohmann::json* posterior = r.value(key);
+    if (posterior == nullptr || posterior->is_string()) return;  // a file: readTractionSettings
+    if (!posterior->is_object()) {
+        r.report(key, "expected an object or a file, got " + io::describeJson(*posterior));
+        return;
     }
-    readModelChoices(r, out.model);
-    for (Issue& issue : settingsIssues(out)) {
-        if (issue.where.rfind("posterior", 0) == 0 || issue.where == "slip_max")
-            r.report(issue.where, std::move(issue.message));
-    }
+    SoilPosterior p;
+    io::ObjectReader pr = r.object(key);
+    readPosterior(pr, p);
+    pr.finish();
+    out = p;
 }
 
-nlohmann::json toJson(const TractionSettings& s) {
-    nlohmann::json out{{"slip_angle_deg", s.slip_angle_deg},
-                       {"objective", objectiveName(s.objective)},
-                       {"slip_min", s.slip_min},
-                       {"slip_max", s.slip_max},
-                       {"curve_points", s.curve_points},
-                       {"quantile", s.quantile}};
-    if (s.max_sinkage_m) out["max_sinkage_m"] = *s.max_sinkage_m;
-    if (s.posterior) {
-        out["posterior"] = {{"parameters", s.posterior->parameters},
-                            {"mean", s.posterior->mean},
-                            {"covariance", s.posterior->covariance}};
-        out["posterior_samples"] = s.posterior_samples;
-        out["posterior_method"] = scenario::posteriorMethodName(s.posterior_method);
-        out["seed"] = s.seed;
-    }
-    writeModelChoices(s.model, out);
-    return out;
+nlohmann::json posteriorJson(const std::optional<SoilPosterior>& p) {
+    if (!p) return nullptr;
+    return {{"parameters", p->parameters}, {"mean", p->mean}, {"covariance", p->covariance}};
 }
+
+std::vector<Issue> tractionRuleIssues(const TractionSettings& s) {
+    std::vector<Issue> issues;
+    if (!(s.slip_min < s.slip_max)) {
+        issues.push_back({"slip_max", formatNumber(s.slip_max) +
+                                          " must be above slip_min = " + formatNumber(s.slip_min)});
+    }
+    if (s.posterior) addPosteriorIssues(*s.posterior, issues);
+    return issues;
+}
+
+void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
+                          const std::filesystem::path& base_dir) {
+    io::readFields(r, out);
+    // A soil file with its posterior (`identify --save-soil`): only "posterior" is read.
+    if (const nlohmann::json* posterior = r.value("posterior");
+        posterior != nullptr && posterior->is_string()) {
+        std::filesystem::path path = posterior->get<std::string>();
+        if (path.is_relative() && !base_dir.empty()) path = base_dir / path;
+        Result<SoilPosterior> file = readPosteriorFile(path);
+        if (!file) {
+            for (const Issue& issue : file.issues()) r.report("posterior", formatIssue(issue));
+        } else {
+            out.posterior = file.value();
+        }
+    }
+    for (Issue& issue : tractionRuleIssues(out)) r.report(issue.where, std::move(issue.message));
+}
+
+nlohmann::json toJson(const TractionSettings& s) { return io::fieldsToJson(s); }
 
 double objectiveValue(TractionObjective objective, const TractionPoint& p) {
     if (!p.ok) return kMinusInfinity;
@@ -395,8 +348,10 @@ TractionPoint tractionPoint(const contact::ContactParameters<double>& params, do
 
 TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
                                const Control& control) {
-    if (std::vector<Issue> issues = settingsIssues(s); !issues.empty())
-        throw std::invalid_argument(formatIssues(issues));
+    // The reader's checks, in its words, for settings built in code (the planner's, a test's).
+    std::vector<Issue> issues = io::fieldIssues(s);
+    for (Issue& issue : tractionRuleIssues(s)) issues.push_back(std::move(issue));
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     TractionResult out;
     out.objective = s.objective;
     if (s.posterior) out.notes = s.posterior->notes;  // an old parameter key, read as its new one

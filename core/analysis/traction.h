@@ -7,12 +7,16 @@
 /// the posterior). `terrastudio traction`, a script's "traction" and Python's ts.traction.
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/analysis/analysis.h"
 #include "core/analysis/soil_posterior.h"
+#include "core/common/declared_fields.h"
+#include "core/common/range.h"
+#include "core/contact/operating_fields.h"
 #include "core/scenario/traction_control.h"
 
 namespace terra::analysis {
@@ -23,6 +27,9 @@ enum class TractionObjective {
     kEfficiency,  ///< η = F_x r (1 − s) / M_y [-] (output power over input power)
 };
 const char* objectiveName(TractionObjective objective);
+
+/// The range of the searched slips [-].
+inline constexpr Range kTractionSlipRange{0.0, 0.99};
 
 struct TractionSettings {
     double slip_angle_deg = 0.0;  ///< β [deg]
@@ -39,14 +46,62 @@ struct TractionSettings {
     std::uint64_t seed = 1;
     double quantile = 0.1;  ///< robust s* maximises this quantile of the objective (0.5: median)
     ModelChoices model;
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson, the
+    /// command line's flags and compute's checks are made from them, the model choices included
+    /// (ModelChoices' own list).
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-/// "slip_angle_deg", "objective" (drawbar, efficiency), "max_sinkage_m", "slip_min",
-/// "slip_max", "curve_points", "posterior" (an object, or a file: a soil file holding
-/// "posterior", relative to `base_dir`), "posterior_samples", "posterior_method" (samples,
-/// sigma-points), "seed", "quantile" and the model choices.
+/// "posterior" as an object (readPosterior); a file name is left to readTractionSettings, which
+/// resolves it against its directory. Problems are reported at `key`.
+void readPosteriorObject(io::ObjectReader& r, const char* key, std::optional<SoilPosterior>& out);
+/// "posterior" as JSON ({"parameters", "mean", "covariance"}); null when empty.
+nlohmann::json posteriorJson(const std::optional<SoilPosterior>& posterior);
+
+template <typename Visitor>
+void TractionSettings::visitFields(Visitor& v) {
+    const FieldInfo& beta = contact::slipAngleField();
+    v(fields::number(beta.key, slip_angle_deg, beta.range, "deg", "slip angle β"));
+    v(fields::choice(
+        "objective", objective,
+        {{"drawbar", TractionObjective::kDrawbar}, {"efficiency", TractionObjective::kEfficiency}},
+        "what s* maximises: drawbar pull F_x or tractive efficiency"));
+    v(fields::number("max_sinkage_m", max_sinkage_m, {0.0, 1.0, true}, "m",
+                     "cap on the sinkage; absent: none"));
+    v(fields::number("slip_min", slip_min, kTractionSlipRange, "", "smallest slip searched"));
+    v(fields::number("slip_max", slip_max, kTractionSlipRange, "",
+                     "largest slip searched (above slip_min)"));
+    v(fields::integer("curve_points", curve_points, 5, 10000,
+                      "slips of the curve, evenly from slip_min to slip_max"));
+    v(fields::integer("posterior_samples", posterior_samples, scenario::kMinPosteriorSamples,
+                      scenario::kMaxPosteriorSamples, "posterior: soils drawn from it"));
+    v(fields::integer("seed", seed, 0, std::numeric_limits<std::uint64_t>::max(),
+                      "posterior: seed of the draws"));
+    v(fields::field(scenario::robustQuantileField(), quantile));
+    v(fields::choice("posterior_method", posterior_method,
+                     {{"samples", scenario::PosteriorMethod::kSamples},
+                      {"sigma-points", scenario::PosteriorMethod::kSigmaPoints}},
+                     "posterior: drawn soils, or the second-order transform on sigma points"));
+    v(fields::custom("posterior", posterior, "object or path",
+                     "{parameters, mean, covariance}, or a soil file holding \"posterior\"",
+                     "the soil's uncertainty: the band and a robust s*", readPosteriorObject,
+                     posteriorJson));
+    v(fields::members(model));
+}
+
+/// The keys of TractionSettings::visitFields, read strictly (io::readFields), then what a field
+/// list cannot say: a "posterior" file (a soil file holding "posterior", relative to
+/// `base_dir`) and the rules between keys
+/// (tractionRuleIssues).
 void readTractionSettings(io::ObjectReader& r, TractionSettings& out,
                           const std::filesystem::path& base_dir = {});
+/// The rules a field list cannot say: slip_max above slip_min; the posterior's parameters soil
+/// fields, its mean and covariance of their count, the covariance symmetric positive definite.
+std::vector<Issue> tractionRuleIssues(const TractionSettings& settings);
+/// The settings' file keys (io::fieldsToJson) and the non-default model choices: what
+/// readTractionSettings reads back.
 nlohmann::json toJson(const TractionSettings& settings);
 
 /// The wheel at one slip.

@@ -61,30 +61,37 @@ void readPanelSettings(ObjectReader& r, IdentificationPanelSettings& out) {
         r, out.fit, r.has("prior_items") && !r.has("priors") ? "prior_items" : "priors");
 }
 
+void readEditedScenarios(ObjectReader& r, const char* key, nlohmann::json& out) {
+    if (!r.has(key)) {
+        r.allow(key);
+        return;
+    }
+    ObjectReader edited = r.object(key);
+    if (!edited.isObject()) return;
+    const nlohmann::json& all = *r.value(key);
+    for (const auto& [name, scenario] : all.items()) {
+        edited.allow(name);
+        if (!scenario.is_object())
+            edited.report(name, "expected a scenario object, got " + io::describeJson(scenario));
+    }
+    out = all;
+}
+
 void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
                        const io::PresetLocations* locations,
                        const std::filesystem::path& base_dir) {
-    r.text("scenario", out.scenario);
-    if (!r.has("edited")) {
-        r.allow("edited");
-        return;
+    io::readFields(r, out);
+    // Each edited scenario checked as a scenario (the presets it may name are needed; its relative
+    // file names, a dropped robot's, against the project's folder).
+    if (locations == nullptr || !r.has("edited") || !r.value("edited")->is_object()) return;
+    for (const auto& [name, scenario] : r.value("edited")->items()) {
+        if (!scenario.is_object()) continue;  // reported by readEditedScenarios
+        const Result<scenario::Scenario> parsed =
+            scenario::scenarioFromJson(scenario, "", *locations, base_dir);
+        for (const Issue& issue : parsed.issues())
+            r.report("edited." + name,
+                     (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
     }
-    ObjectReader edited = r.object("edited");
-    if (!edited.isObject()) return;
-    const nlohmann::json& all = *r.value("edited");
-    for (const auto& [name, scenario] : all.items()) {
-        edited.allow(name);
-        if (locations != nullptr) {
-            const Result<scenario::Scenario> parsed =
-                scenario::scenarioFromJson(scenario, "", *locations, base_dir);
-            for (const Issue& issue : parsed.issues())
-                edited.report(name,
-                              (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
-        } else if (!scenario.is_object()) {
-            edited.report(name, "expected a scenario object, got " + io::describeJson(scenario));
-        }
-    }
-    out.edited = all;
 }
 
 void readPanelSettings(ObjectReader& r, GlobalSensitivityPanelSettings& out) {
@@ -120,9 +127,7 @@ nlohmann::json toJson(const SensitivityPanelSettings& s) { return io::fieldsToJs
 
 nlohmann::json toJson(const IdentificationPanelSettings& s) { return io::fieldsToJson(s); }
 
-nlohmann::json toJson(const RoverPanelSettings& s) {
-    return {{"scenario", s.scenario}, {"edited", s.edited}};
-}
+nlohmann::json toJson(const RoverPanelSettings& s) { return io::fieldsToJson(s); }
 
 void readPanels(ObjectReader& panels, const io::PresetLocations* locations,
                 const std::filesystem::path& base_dir) {

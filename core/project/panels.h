@@ -84,11 +84,12 @@ struct IdentificationPanelSettings {
     analysis::IdentificationSettings fit;
     bool three_loads = true;   ///< synthesise at ½W, W, 1½W (one load cannot separate c and φ)
     std::string page = "fit";  ///< fit or streaming
-    std::string stream_csv;    ///< empty: a synthetic drive over a soil border
-    std::string stream_second_soil = analysis::StreamingSettings{}.second_soil;
-    double stream_noise_percent = analysis::StreamingSettings{}.noise_percent;
+    /// The streaming playback's settings (the analysis's own struct): its data (csv; empty: a
+    /// synthetic drive over a soil border), second soil, noise and bad rows, saved under the keys
+    /// "stream_csv", "stream_second_soil", "stream_noise_percent", "stream_skip_bad_rows" with
+    /// the ranges of StreamingSettings::visitFields. Its other keys are not the panel's.
+    analysis::StreamingSettings stream;
     double stream_speed = 1.0;  ///< sample time per wall time; 0: as fast as possible
-    bool stream_skip_bad_rows = analysis::StreamingSettings{}.skip_bad_rows;
     /// The fit's wheel: "" the data's when they name one (a sidecar JSON beside the CSV), else
     /// the project's; "project"; or a wheel preset's name.
     std::string wheel;
@@ -119,14 +120,14 @@ void IdentificationPanelSettings::visitFields(Visitor& v) {
     v(fields::flag("three_loads", three_loads, "synthesise at ½W, W, 1½W"));
     v(fields::choice("page", page, {{"fit", std::string("fit")}, {"streaming", "streaming"}},
                      "the page shown"));
-    v(fields::text("stream_csv", stream_csv, "streaming: the data; empty: synthetic"));
-    v(fields::text("stream_second_soil", stream_second_soil,
+    v(fields::text("stream_csv", stream.csv, "streaming: the data; empty: synthetic"));
+    v(fields::text("stream_second_soil", stream.second_soil,
                    "streaming: the soil after the border"));
-    v(fields::number("stream_noise_percent", stream_noise_percent, {0.0, 100.0}, "%",
-                     "streaming: synthetic noise"));
+    v(fields::number("stream_noise_percent", stream.noise_percent,
+                     analysis::kStreamingNoisePercentRange, "%", "streaming: synthetic noise"));
     v(fields::number("stream_speed", stream_speed, {0.0, 1000.0}, "",
                      "streaming: sample time per wall time; 0: as fast as possible"));
-    v(fields::flag("stream_skip_bad_rows", stream_skip_bad_rows, "streaming: skip bad rows"));
+    v(fields::flag("stream_skip_bad_rows", stream.skip_bad_rows, "streaming: skip bad rows"));
     v(fields::text("wheel", wheel, "the fit's wheel: \"\", \"project\" or a preset"));
     v(fields::choice(
         "jmax", jmax,
@@ -152,7 +153,23 @@ struct GlobalSensitivityPanelSettings {
 struct RoverPanelSettings {
     std::string scenario;
     nlohmann::json edited = nlohmann::json::object();
+
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
+
+/// "edited": an object of scenario objects by name, kept as JSON (each is checked as a scenario
+/// by readPanelSettings when it is given the presets).
+void readEditedScenarios(io::ObjectReader& r, const char* key, nlohmann::json& out);
+inline nlohmann::json editedScenariosJson(const nlohmann::json& edited) { return edited; }
+
+template <typename Visitor>
+void RoverPanelSettings::visitFields(Visitor& v) {
+    v(fields::text("scenario", scenario, "the scenario chosen: a preset's name or a file"));
+    v(fields::custom("edited", edited, "object", "{name: scenario object}",
+                     "the scenarios edited in the panel", readEditedScenarios,
+                     editedScenariosJson));
+}
 
 void readPanelSettings(io::ObjectReader& r, ForcesPanelSettings& out);
 void readPanelSettings(io::ObjectReader& r, StressPanelSettings& out);

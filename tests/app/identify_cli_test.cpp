@@ -440,6 +440,26 @@ TEST_F(IdentifyCli, ProfileIntervalsOfAFlaggedTradeOff) {
     EXPECT_NE(stream.err.find("--profile"), std::string::npos) << stream.err;
 }
 
+// --stream's flags are the streaming identification's settings object read by its reader: its
+// wording, named by the flag, exit 2.
+TEST_F(IdentifyCli, StreamFlagsOutOfRangeGetTheReadersWordsNamedByTheFlag) {
+    const std::string data = synth("s.csv", "--soil sandy-loam --wheel A --slips 0.05:0.85:12");
+    CliRun r = run("identify --stream " + data + " --wheel A --window 0");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--window: 0 is outside the allowed range [1, 1000]"), std::string::npos)
+        << r.err;
+    r = run("identify --stream " + data + " --wheel A --window 1001");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--window: 1001 is outside the allowed range [1, 1000]"),
+              std::string::npos)
+        << r.err;
+    r = run("identify --stream " + data + " --wheel A --load 0");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--load: 0 is outside the allowed range [0.01, 1e+05] N"),
+              std::string::npos)
+        << r.err;
+}
+
 // Bad values: exit 2, naming the flag, the value and what is allowed.
 TEST_F(IdentifyCli, BadFlagValuesExitTwoNamingFlagValueAndRange) {
     const std::string data = synth("d.csv", "--soil sandy-loam --wheel A --slips 0.05:0.85:12");

@@ -193,6 +193,32 @@ TEST(SimulateCli, ComparesTheControllers) {
     fs::remove_all(dir);
 }
 
+// The override flags are the rover's settings object read by its reader: its wording, named by
+// the flag, exit 2, before anything runs.
+TEST(SimulateCli, ABadOverrideGetsTheReadersWordsNamedByTheFlag) {
+    const fs::path dir = outDir("flags");
+    SimRun r = simulate("--scenario straight --slip 1.5 --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--slip: 1.5 is outside the allowed range"), std::string::npos) << r.err;
+    r = simulate("--scenario straight --duration -1 --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--duration: -1 is outside the allowed range (0, 86400] s"),
+              std::string::npos)
+        << r.err;
+    r = simulate("--scenario straight --posterior-method sigmapoints --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--posterior-method: \"sigmapoints\" is not one of sigma-points, samples"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("did you mean \"sigma-points\""), std::string::npos) << r.err;
+    r = simulate("--scenario straight --controller optimall --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--controller: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("did you mean \"optimal\""), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "summary.json"));
+    fs::remove_all(dir);
+}
+
 TEST(SimulateCli, ControllerOverrideAndBadSlip) {
     const fs::path dir = outDir("controller");
     const SimRun r = simulate(

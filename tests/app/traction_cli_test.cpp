@@ -53,4 +53,19 @@ TEST(TractionCli, BadFlagsAreNamedAndAnImpossibleCapFails) {
     EXPECT_TRUE(contains(r.err, "sinkage")) << r.err;
 }
 
+// The flags are the settings object read by the analysis's reader: its wording, named by the
+// flag, exit 2.
+TEST(TractionCli, AFlagOutOfRangeGetsTheReadersWordsNamedByTheFlag) {
+    CliRun r = run("traction --points 3");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "--points: 3 is outside the allowed range [5, 10000]")) << r.err;
+    r = run("traction --samples 5");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "--samples: 5 is outside the allowed range [10, 1e+05]")) << r.err;
+    r = run("traction --objective effciency");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.err, "--objective: ")) << r.err;
+    EXPECT_TRUE(contains(r.err, "did you mean \"efficiency\"")) << r.err;
+}
+
 }  // namespace

@@ -41,7 +41,7 @@ IdentificationStreamingPage::IdentificationStreamingPage(ProjectDocument* docume
     noise_ = new QDoubleSpinBox(page);
     noise_->setRange(0.0, 20.0);
     noise_->setSuffix(" % noise");
-    noise_->setValue(project::IdentificationPanelSettings{}.stream_noise_percent);
+    noise_->setValue(analysis::StreamingSettings{}.noise_percent);
     noise_->setToolTip(
         "Synthetic noise σ as a percentage of each channel's largest value (Eq. 5.1)");
     file_ = new QLineEdit(page);
@@ -364,19 +364,19 @@ QString IdentificationStreamingPage::summary(bool finished) const {
 }
 
 void IdentificationStreamingPage::writeSettings(project::IdentificationPanelSettings& s) const {
-    s.stream_csv = source_->currentIndex() == 1 ? file_->text().toStdString() : "";
-    s.stream_second_soil = second_soil_->currentData().toString().toStdString();
-    s.stream_noise_percent = noise_->value();
+    s.stream.csv = source_->currentIndex() == 1 ? file_->text().toStdString() : "";
+    s.stream.second_soil = second_soil_->currentData().toString().toStdString();
+    s.stream.noise_percent = noise_->value();
     s.stream_speed = speed_->currentData().toDouble();
-    s.stream_skip_bad_rows = skip_bad_rows_->isChecked();
+    s.stream.skip_bad_rows = skip_bad_rows_->isChecked();
 }
 
 void IdentificationStreamingPage::applySettings(const project::IdentificationPanelSettings& s) {
-    setStreamSource(QString::fromStdString(s.stream_csv),
-                    QString::fromStdString(s.stream_second_soil));
-    noise_->setValue(s.stream_noise_percent);
+    setStreamSource(QString::fromStdString(s.stream.csv),
+                    QString::fromStdString(s.stream.second_soil));
+    noise_->setValue(s.stream.noise_percent);
     setStreamSpeed(s.stream_speed);
-    skip_bad_rows_->setChecked(s.stream_skip_bad_rows);
+    skip_bad_rows_->setChecked(s.stream.skip_bad_rows);
 }
 
 Table IdentificationStreamingPage::framesTable() const { return analysis::framesTable(frames_); }
