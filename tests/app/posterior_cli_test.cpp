@@ -116,7 +116,7 @@ TEST_F(PosteriorCli, AParameterGivenTwiceOrAMorrisStudyIsRefused) {
     EXPECT_EQ(r.exit_code, 2);
     // The reader's words (issue 26), named by the flag that gave the key the second time.
     EXPECT_NE(r.err.find("--posterior '"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("': \"phi_deg\" is varied twice"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(": \"phi_deg\" is varied twice"), std::string::npos) << r.err;
     r = run("gsa --method morris --posterior " + soil);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--posterior"), std::string::npos) << r.err;
