@@ -141,6 +141,11 @@ std::vector<Issue> compactionRuleIssues(const CompactionSettings& s) {
             break;
         }
     }
+    return issues;
+}
+
+std::vector<Issue> compactionRunIssues(const CompactionSettings& s) {
+    std::vector<Issue> issues;
     if (!(s.reload.k0_pa_m + s.reload.au_pa_m2 > 0.0)) {
         issues.push_back({"reload_k0_kPa_m",
                           "the reload stiffness k0 + Au z must be > 0: give "
@@ -198,6 +203,7 @@ CompactionResult computeCompaction(const Inputs& in, const CompactionSettings& s
     // The reader's checks, in its words, for settings built in code (a panel's, Python's).
     std::vector<Issue> issues = io::fieldIssues(s);
     for (Issue& issue : compactionRuleIssues(s)) issues.push_back(std::move(issue));
+    for (Issue& issue : compactionRunIssues(s)) issues.push_back(std::move(issue));
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     const contact::ContactParameters<double> untouched = in.contact();
     CompactionResult out;

@@ -120,9 +120,12 @@ void CompactionSettings::visitFields(Visitor& v) {
 void readCompactionSettings(io::ObjectReader& r, CompactionSettings& out,
                             const io::PresetLocations* locations = nullptr,
                             const std::filesystem::path& base_dir = {});
-/// The rules between keys: at least one depth, depths increasing, a reload stiffness
-/// k₀ + A_u z > 0, a map of at least 2 × 2 points showing a pass that exists.
+/// The rule between values the reader checks too: at least one depth, depths increasing.
 std::vector<Issue> compactionRuleIssues(const CompactionSettings& settings);
+/// What computeCompaction checks beside the reader, as it always has (a panel merges a
+/// partial object into its state, so a map pass beyond the passes it is about to set must read):
+/// a reload stiffness k₀ + A_u z > 0, a map of at least 2 × 2 points showing a pass that exists.
+std::vector<Issue> compactionRunIssues(const CompactionSettings& settings);
 /// The settings' file keys (io::fieldsToJson) and the model choices.
 nlohmann::json toJson(const CompactionSettings& settings);
 

@@ -119,10 +119,6 @@ TEST(CompactionCli, BadProfilesAndFlagsNameTheLayerAndField) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.err, "--concentration: 2 is outside the allowed range [2.5, 12]"))
         << r.err;
-    r = run("compaction --reload-k0 0");
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(contains(r.err, "--reload-k0: the reload stiffness k0 + Au z must be > 0"))
-        << r.err;
     r = run("compaction --profile no-such-profile");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.err, "profile")) << r.err;
