@@ -28,7 +28,7 @@ struct CompactionOptions {
     std::string out;
 };
 
-// The flags as the analysis's settings object (the keys of readCompactionSettings).
+// The flags as the analysis's settings object (the keys of CompactionSettings::visitFields).
 nlohmann::json settingsObject(const CompactionOptions& o) {
     nlohmann::json s = nlohmann::json::object();
     if (o.slip) s["slip"] = *o.slip;

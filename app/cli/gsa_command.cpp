@@ -4,10 +4,8 @@
 // the command and a script's analysis compute the same table (docs/cli.md, "gsa", "bands").
 #include <cmath>
 #include <iostream>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <tuple>
 
 #include "app/cli/cli_support.h"
 #include "app/cli/commands.h"
@@ -23,8 +21,6 @@
 
 namespace terra::app {
 namespace {
-
-constexpr int kMaxSamples = 1 << 24;
 
 struct StudyOptions {
     ModelOptions model;
@@ -70,72 +66,42 @@ double number(const std::string& flag, const std::string& whole, const std::stri
     return value;
 }
 
-// KEY=REST: the soil field and the text after '='.
-std::pair<const soil::SoilField*, std::string> assignment(const std::string& flag,
-                                                          const std::string& text,
-                                                          const std::string& form) {
+// KEY=REST: the key and the text after '=' (the key is the reader's to check).
+std::pair<std::string, std::string> assignment(const std::string& flag, const std::string& text,
+                                               const std::string& form) {
     const auto equals = text.find('=');
     if (equals == std::string::npos) bad(flag, text, "expected " + form);
-    const std::string key = text.substr(0, equals);
-    const soil::SoilField* field = soil::findSoilField(key);
-    if (!field) {
-        std::vector<std::string> keys;
-        std::string all;
-        for (const soil::SoilField& f : soil::soilFields()) {
-            keys.emplace_back(f.key);
-            all += (all.empty() ? "" : ", ") + std::string(f.key);
-        }
-        const std::string near = nearestName(key, keys);
-        bad(flag, text,
-            "\"" + key + "\" is not a soil field" +
-                (near.empty() ? "" : " (did you mean \"" + near + "\"?)") + "; fields: " + all);
-    }
-    return {field, text.substr(equals + 1)};
+    return {text.substr(0, equals), text.substr(equals + 1)};
 }
 
-void inField(const std::string& flag, const std::string& text, const soil::SoilField& field,
-             double value) {
-    std::vector<Issue> issues;
-    if (!checkRange(issues, field.key, value, field.range, field.displayUnit()))
-        bad(flag, text, field.key + std::string(" = ") + issues.front().message);
-}
-
-std::pair<double, double> range(const std::string& flag, const std::string& text,
-                                const std::string& part, const soil::SoilField& field) {
+// LOW:HIGH as two numbers (their range and order are the reader's to check).
+nlohmann::json range(const std::string& flag, const std::string& text, const std::string& part) {
     const auto colon = part.find(':');
     if (colon == std::string::npos || part.find(':', colon + 1) != std::string::npos)
         bad(flag, text, "expected a range LOW:HIGH, got " + io::quoteCell(part));
-    const double low = number(flag, text, part.substr(0, colon));
-    const double high = number(flag, text, part.substr(colon + 1));
-    inField(flag, text, field, low);
-    inField(flag, text, field, high);
-    if (!(low < high))
-        bad(flag, text, "low " + formatNumber(low) + " must be below high " + formatNumber(high));
-    return {low, high};
+    return {number(flag, text, part.substr(0, colon)), number(flag, text, part.substr(colon + 1))};
 }
 
-analysis::UncertainParameter uniformOf(const std::string& text) {
-    const auto [field, rest] = assignment("--param", text, "KEY=LOW:HIGH (e.g. phi_deg=20:35)");
-    const auto [low, high] = range("--param", text, rest, *field);
-    return {field->key, gsa::Uniform{low, high}};
+// --param KEY=LOW:HIGH as an element of the study's "parameters".
+nlohmann::json uniformOf(const std::string& text) {
+    const auto [key, rest] = assignment("--param", text, "KEY=LOW:HIGH (e.g. phi_deg=20:35)");
+    return {{"key", key}, {"range", range("--param", text, rest)}};
 }
 
-analysis::UncertainParameter normalOf(const std::string& text) {
-    const auto [field, rest] =
+// --normal KEY=MEAN,SD[,LOW:HIGH] as an element of the study's "parameters".
+nlohmann::json normalOf(const std::string& text) {
+    const auto [key, rest] =
         assignment("--normal", text, "KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH (e.g. phi_deg=29,2)");
     std::vector<std::string> parts;
     std::stringstream stream(rest);
     for (std::string part; std::getline(stream, part, ',');) parts.push_back(part);
     if (parts.size() != 2 && parts.size() != 3)
         bad("--normal", text, "expected KEY=MEAN,SD or KEY=MEAN,SD,LOW:HIGH");
-    gsa::Normal n;
-    n.mean = number("--normal", text, parts[0]);
-    n.sd = number("--normal", text, parts[1]);
-    if (!(n.sd > 0.0)) bad("--normal", text, "sd " + parts[1] + " must be above 0");
-    if (parts.size() == 3) {
-        std::tie(n.low, n.high) = range("--normal", text, parts[2], *field);
-    }
-    return {field->key, n};
+    nlohmann::json out{
+        {"key", key},
+        {"normal", {number("--normal", text, parts[0]), number("--normal", text, parts[1])}}};
+    if (parts.size() == 3) out["bounds"] = range("--normal", text, parts[2]);
+    return out;
 }
 
 std::vector<std::string> names(const std::string& text) {
@@ -153,15 +119,6 @@ void checkCount(const std::string& flag, long long value, long long low, long lo
     }
 }
 
-void checkValues(const std::string& flag, const std::string& text,
-                 const std::vector<double>& values, const FieldInfo& field) {
-    for (double v : values) {
-        std::vector<Issue> issues;
-        if (!checkRange(issues, flag, v, field.range, field.displayUnit()))
-            bad(flag, text, issues.front().message);
-    }
-}
-
 // The soil and wheel of the flags: a --posterior file that is a soil file (`identify
 // --save-soil`) is also the soil when --soil is not given, so that the posterior's mean and the
 // fields it does not vary (k_c = 0, γ, j_max) are the identified soil's.
@@ -173,117 +130,124 @@ analysis::Inputs inputsOf(const StudyOptions& o, const io::PresetLocations& loca
     return model.inputs(locations);
 }
 
-// --posterior FILE as the study's correlated group (soil file keys and units, correlations
-// kept); a key also given by --param or --normal is an error naming it. The group's keys, shape
-// and definiteness are checked with the rest of the study.
-analysis::CorrelatedParameters posteriorOf(
-    const std::string& path, const std::vector<analysis::UncertainParameter>& independent) {
+// --posterior FILE as the study's "correlated" group (soil file keys and units, correlations
+// kept); its notes are printed. Its keys, shape and definiteness, and a key also given by
+// --param or --normal, are the reader's to check.
+nlohmann::json posteriorOf(const std::string& path) {
     const Result<analysis::SoilPosterior> read = analysis::readPosteriorFile(path);
     if (!read) throw InputError("--posterior: " + formatIssues(read.issues()));
     const analysis::SoilPosterior& p = read.value();
     for (const std::string& note : p.notes) std::cerr << "warning: --posterior " << note << '\n';
-    for (const std::string& key : p.parameters) {
-        for (const analysis::UncertainParameter& q : independent) {
-            if (q.key == key)
-                throw InputError(key + " is varied twice: by --posterior " + path +
-                                 " and by --param/--normal");
-        }
-    }
-    return {p.parameters, p.mean, p.covariance};
+    return {{"keys", p.parameters}, {"mean", p.mean}, {"covariance", p.covariance}};
 }
 
-// The study of the flags, every flag checked (exit 2 naming it, its value and the range).
-analysis::StudyDefinition definitionOf(const StudyOptions& o,
-                                       const io::PresetLocations& locations) {
+// The flags of a study as its settings object (the keys of StudyDefinition::visitFields), read
+// by the analysis's own reader: the soil fields, ranges, outputs and their messages are the
+// reader's, named by the flags (nameStudyFlags). Left to the flags: the forms KEY=LOW:HIGH and
+// KEY=MEAN,SD[,LOW:HIGH], the number lists and --threads. `parameter_flags` gets each
+// parameter's flag and text ("--param 'phi_deg=20:35'"), in the order of "parameters".
+nlohmann::json studyObject(const StudyOptions& o, std::vector<std::string>& parameter_flags) {
     std::vector<NamedInput> inputs = o.model.inputFiles();
     if (o.posterior) inputs.push_back({"--posterior", *o.posterior});
     refuseInputAsOutput("--out", o.out, inputs);
     refuseInputAsOutput("--csv", o.csv, inputs);
-    analysis::StudyDefinition d;
+    nlohmann::json s = nlohmann::json::object();
     // The parameters in the order they were given, --param and --normal interleaved.
     std::size_t u = 0, n = 0;
-    std::vector<analysis::UncertainParameter> parameters;
+    nlohmann::json parameters = nlohmann::json::array();
+    auto addUniform = [&](const std::string& text) {
+        parameters.push_back(uniformOf(text));
+        parameter_flags.push_back("--param " + io::quoteCell(text));
+    };
+    auto addNormal = [&](const std::string& text) {
+        parameters.push_back(normalOf(text));
+        parameter_flags.push_back("--normal " + io::quoteCell(text));
+    };
     for (const CLI::Option* option : o.command->parse_order()) {
-        if (option->get_name() == "--param" && u < o.uniform.size())
-            parameters.push_back(uniformOf(o.uniform[u++]));
-        if (option->get_name() == "--normal" && n < o.normal.size())
-            parameters.push_back(normalOf(o.normal[n++]));
+        if (option->get_name() == "--param" && u < o.uniform.size()) addUniform(o.uniform[u++]);
+        if (option->get_name() == "--normal" && n < o.normal.size()) addNormal(o.normal[n++]);
     }
-    for (; u < o.uniform.size(); ++u) parameters.push_back(uniformOf(o.uniform[u]));
-    for (; n < o.normal.size(); ++n) parameters.push_back(normalOf(o.normal[n]));
-    for (std::size_t i = 0; i < parameters.size(); ++i) {
-        for (std::size_t j = 0; j < i; ++j) {
-            if (parameters[i].key == parameters[j].key)
-                throw InputError(parameters[i].key + " is varied twice (--param/--normal)");
-        }
-    }
+    for (; u < o.uniform.size(); ++u) addUniform(o.uniform[u]);
+    for (; n < o.normal.size(); ++n) addNormal(o.normal[n]);
     if (o.posterior) {
         // The posterior alone, or with the independent parameters given beside it (never the
         // default ranges, which would vary its keys a second time).
-        d.correlated = posteriorOf(*o.posterior, parameters);
-        d.parameters = std::move(parameters);
+        s["correlated"] = posteriorOf(*o.posterior);
+        s["parameters"] = std::move(parameters);
     } else if (!parameters.empty()) {
-        d.parameters = std::move(parameters);
+        s["parameters"] = std::move(parameters);
     }
-    if (!o.outputs.empty()) {
-        d.outputs = names(o.outputs);
-        for (const std::string& name : d.outputs) {
-            if (gsa::findOutput(name)) continue;
-            std::string all;
-            for (const std::string& known : gsa::outputNames())
-                all += (all.empty() ? "" : ",") + known;
-            const std::string near = nearestName(name, gsa::outputNames());
-            bad("--outputs", o.outputs,
-                "\"" + name + "\" is not an output" +
-                    (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
-                    "; outputs: " + all);
+    if (!o.outputs.empty()) s["outputs"] = names(o.outputs);
+    if (!o.slips.empty()) s["slips"] = parseValues(o.slips, "--slip");
+    s["slip_angles_deg"] = parseValues(o.slip_angles, "--slip-angle");
+    if (o.load_n) s["load_N"] = *o.load_n;
+    if (o.entry_angle_deg) s["entry_angle_deg"] = *o.entry_angle_deg;
+    s["seed"] = o.seed;
+    s["max_failed_fraction"] = o.max_failed_fraction;
+    nlohmann::json compaction = nlohmann::json::object();
+    if (o.depth_m) compaction["depth_m"] = *o.depth_m;
+    if (o.passes) compaction["passes"] = *o.passes;
+    if (o.concentration) compaction["concentration"] = *o.concentration;
+    if (!compaction.empty()) s["compaction"] = std::move(compaction);
+    return s;
+}
+
+// The reader's issues named by the flags: a parameter's by its flag and text, the posterior's
+// by its file, the others by the flag of their key ("slips[1]" → "--slip[1]").
+void nameStudyFlags(std::vector<Issue>& issues, const StudyOptions& o,
+                    const std::vector<std::string>& parameter_flags) {
+    for (Issue& issue : issues) {
+        for (std::size_t i = 0; i < parameter_flags.size(); ++i) {
+            const std::string prefix = "parameters[" + std::to_string(i) + "]";
+            if (issue.where.rfind(prefix, 0) == 0) issue.where = parameter_flags[i];
         }
+        if (o.posterior && issue.where.rfind("correlated", 0) == 0)
+            issue.where = "--posterior " + io::quoteCell(*o.posterior);
     }
-    if (!o.slips.empty()) {
-        d.slips = parseValues(o.slips, "--slip");
-        checkValues("--slip", o.slips, d.slips, contact::slipField());
+    nameFlags(issues, {{"parameters", "--param"},
+                       {"outputs", "--outputs"},
+                       {"slips", "--slip"},
+                       {"slip_angles_deg", "--slip-angle"},
+                       {"load_N", "--load"},
+                       {"entry_angle_deg", "--entry-angle"},
+                       {"seed", "--seed"},
+                       {"max_failed_fraction", "--max-failed-fraction"},
+                       {"compaction.depth_m", "--depth"},
+                       {"compaction.passes", "--passes"},
+                       {"compaction.concentration", "--concentration"},
+                       {"method", "--method"},
+                       {"samples", "--samples"},
+                       {"levels", "--levels"},
+                       {"resamples", "--resamples"},
+                       {"confidence", "--confidence"},
+                       {"percentiles", "--percentiles"}});
+}
+
+// Settings of the flags read by `read` (the analysis's reader), every problem named by its flag
+// (exit 2); then what the flags give beside the settings object: the model choices, the
+// threads and a --profile found among the presets.
+template <typename Settings, typename Read>
+Settings readStudySettings(const StudyOptions& o, const nlohmann::json& object,
+                           const std::vector<std::string>& parameter_flags,
+                           const io::PresetLocations& locations, Read read) {
+    std::vector<Issue> issues;
+    io::ObjectReader reader(object, issues);
+    Settings settings;
+    read(reader, settings);
+    reader.finish();
+    if (!issues.empty()) {
+        nameStudyFlags(issues, o, parameter_flags);
+        throw InputError(formatIssues(issues));
     }
-    d.slip_angles_deg = parseValues(o.slip_angles, "--slip-angle");
-    checkValues("--slip-angle", o.slip_angles, d.slip_angles_deg, contact::slipAngleField());
-    if (o.load_n) {
-        checkValues("--load", formatNumber(*o.load_n), {*o.load_n}, contact::loadField());
-        d.load_n = o.load_n;
-    }
-    if (o.entry_angle_deg) {
-        checkValues("--entry-angle", formatNumber(*o.entry_angle_deg), {*o.entry_angle_deg},
-                    contact::entryAngleField());
-        d.entry_angle_deg = o.entry_angle_deg;
-    }
-    d.seed = o.seed;
-    if (!(o.max_failed_fraction >= 0.0 && o.max_failed_fraction <= 1.0)) {
-        bad("--max-failed-fraction", formatNumber(o.max_failed_fraction),
-            "outside the allowed range [0, 1]");
-    }
-    d.max_failed_fraction = o.max_failed_fraction;
     checkCount("--threads", o.threads, 0, 1024);
-    d.threads = o.threads;
-    d.model = o.model.choices();
-    if (o.depth_m) {
-        if (!(*o.depth_m > 0.0 && *o.depth_m <= 10.0))
-            bad("--depth", formatNumber(*o.depth_m), "outside the allowed range (0, 10] m");
-        d.compaction.depth_m = *o.depth_m;
-    }
-    if (o.passes) {
-        checkCount("--passes", *o.passes, 1, 100);
-        d.compaction.passes = *o.passes;
-    }
-    if (o.concentration) {
-        if (!(*o.concentration >= 2.5 && *o.concentration <= 12.0))
-            bad("--concentration", formatNumber(*o.concentration),
-                "outside the allowed range [2.5, 12]");
-        d.compaction.concentration = o.concentration;
-    }
+    settings.study.threads = o.threads;
+    settings.study.model = o.model.choices();
     if (o.profile) {
         Result<soil::SoilProfile> profile = io::resolveProfile(locations, *o.profile);
         if (!profile) throw InputError("--profile: " + profile.message());
-        d.compaction.profile = profile.value();
+        settings.study.compaction.profile = profile.value();
     }
-    return d;
+    return settings;
 }
 
 void addStudyOptions(CLI::App& cmd, StudyOptions& o, const std::string& slips_default,
@@ -395,33 +359,19 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
     cmd->callback([study, &locations] {
         const StudyOptions& o = *study;
         const analysis::Inputs inputs = inputsOf(o, locations);
-        analysis::GlobalSensitivitySettings s;
-        s.study = definitionOf(o, locations);
-        s.method =
-            o.method == "morris" ? analysis::GsaMethod::kMorris : analysis::GsaMethod::kSobol;
+        std::vector<std::string> parameter_flags;
+        nlohmann::json object = studyObject(o, parameter_flags);
+        object["method"] = o.method;
         if (o.samples) {
-            checkCount("--samples", *o.samples, 2, kMaxSamples);
-            s.samples = static_cast<std::size_t>(*o.samples);
-        } else if (s.method == analysis::GsaMethod::kMorris) {
-            s.samples = gsa::MorrisOptions{}.trajectories;
+            object["samples"] = *o.samples;
+        } else if (o.method == "morris") {
+            object["samples"] = gsa::MorrisOptions{}.trajectories;
         }
-        checkCount("--levels", o.levels, 2, 1000);
-        if (o.levels % 2 != 0) bad("--levels", std::to_string(o.levels), "must be even");
-        checkCount("--resamples", o.resamples, 0, 1000000);
-        if (!(o.confidence > 0.0 && o.confidence < 1.0))
-            bad("--confidence", formatNumber(o.confidence), "outside the allowed range (0, 1)");
-        s.levels = o.levels;
-        s.resamples = o.resamples;
-        s.confidence_level = o.confidence;
-        if (s.method == analysis::GsaMethod::kMorris) {
-            for (const analysis::UncertainParameter& p : s.study.parameters) {
-                if (!std::holds_alternative<gsa::Uniform>(p.distribution))
-                    bad("--normal", p.key, "Morris screening needs ranges (--param KEY=LOW:HIGH)");
-            }
-            if (o.posterior)
-                bad("--posterior", *o.posterior,
-                    "Morris screening needs ranges (--param KEY=LOW:HIGH)");
-        }
+        object["levels"] = o.levels;
+        object["resamples"] = o.resamples;
+        object["confidence"] = o.confidence;
+        const auto s = readStudySettings<analysis::GlobalSensitivitySettings>(
+            o, object, parameter_flags, locations, analysis::readGlobalSensitivitySettings);
         const SignalCancellation cancellation;
         TerminalProgress progress("gsa", progressMode(o));
         analysis::Outcome outcome =
@@ -446,21 +396,12 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
     b->callback([bands, &locations] {
         const StudyOptions& o = *bands;
         const analysis::Inputs inputs = inputsOf(o, locations);
-        analysis::UncertaintyBandSettings s;
-        const std::vector<std::string> outputs = s.study.outputs;
-        s.study = definitionOf(o, locations);
-        if (o.outputs.empty()) s.study.outputs = outputs;
-        if (o.slips.empty()) s.study.slips.clear();  // 0 … slip_max in slip_count points
-        if (o.samples) {
-            checkCount("--samples", *o.samples, 2, kMaxSamples);
-            s.samples = static_cast<std::size_t>(*o.samples);
-        }
-        s.percentiles = parseValues(o.percentiles, "--percentiles");
-        for (double q : s.percentiles) {
-            if (!(q >= 0.0 && q <= 100.0))
-                bad("--percentiles", o.percentiles,
-                    formatNumber(q) + " is outside the allowed range [0, 100]");
-        }
+        std::vector<std::string> parameter_flags;
+        nlohmann::json object = studyObject(o, parameter_flags);
+        if (o.samples) object["samples"] = *o.samples;
+        object["percentiles"] = parseValues(o.percentiles, "--percentiles");
+        const auto s = readStudySettings<analysis::UncertaintyBandSettings>(
+            o, object, parameter_flags, locations, analysis::readUncertaintyBandSettings);
         const SignalCancellation cancellation;
         TerminalProgress progress("bands", progressMode(o));
         analysis::Outcome outcome =

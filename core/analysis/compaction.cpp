@@ -10,66 +10,16 @@
 #include "core/common/units.h"
 #include "core/compaction/stress_at_depth.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 
 namespace terra::analysis {
 namespace {
 
-const Range kDepthRange{0.0, 10.0, true};    // [m]
-const Range kConcentrationRange{2.5, 12.0};  // ν: 3 Boussinesq … 6 very soft (and room)
-constexpr int kMaxPasses = 1000;
-constexpr int kMaxMapPoints = 1000;  // per axis
-constexpr std::size_t kMaxDepths = 2000;
 // Depths this close to the deepest load are inside the discretised footprint's near field.
 constexpr double kNearField = 1e-3;  // [m]
 
 double stressFor(const compaction::StressMeasures& m, RiskStress which) {
     return which == RiskStress::kMajor ? m.major : m.sigma_z;
-}
-
-std::vector<Issue> settingsIssues(const CompactionSettings& s) {
-    std::vector<Issue> issues;
-    checkRange(issues, contact::slipField().key, s.slip, contact::slipField().range);
-    checkRange(issues, "slip_angle_deg", s.slip_angle_deg, contact::slipAngleField().range, "deg");
-    if (s.concentration) checkRange(issues, "concentration", *s.concentration, kConcentrationRange);
-    if (s.depths_m.empty()) issues.push_back({"depths_m", "give at least one depth"});
-    if (s.depths_m.size() > kMaxDepths) {
-        issues.push_back({"depths_m", std::to_string(s.depths_m.size()) + " depths: at most " +
-                                          std::to_string(kMaxDepths)});
-    }
-    for (std::size_t i = 0; i < s.depths_m.size() && i < kMaxDepths; ++i) {
-        checkRange(issues, "depths_m[" + std::to_string(i) + "]", s.depths_m[i], kDepthRange, "m");
-        if (i > 0 && !(s.depths_m[i] > s.depths_m[i - 1])) {
-            issues.push_back({"depths_m[" + std::to_string(i) + "]",
-                              "depths must increase (" + formatNumber(s.depths_m[i]) + " after " +
-                                  formatNumber(s.depths_m[i - 1]) + ")"});
-        }
-    }
-    if (s.passes < 1 || s.passes > kMaxPasses) {
-        issues.push_back({"passes", std::to_string(s.passes) + " is outside [1, " +
-                                        std::to_string(kMaxPasses) + "]"});
-    }
-    checkRange(issues, "reload_k0_kPa_m", s.reload.k0_pa_m / 1e3, Range{0.0, 1e9}, "kPa/m");
-    checkRange(issues, "reload_Au_kPa_m2", s.reload.au_pa_m2 / 1e3, Range{0.0, 1e12}, "kPa/m2");
-    if (!(s.reload.k0_pa_m + s.reload.au_pa_m2 > 0.0)) {
-        issues.push_back({"reload_k0_kPa_m",
-                          "the reload stiffness k0 + Au z must be > 0: give "
-                          "k0 > 0 or Au > 0"});
-    }
-    const bool map = s.map_x_points != 0 || s.map_z_points != 0;
-    if (map && (s.map_x_points < 2 || s.map_z_points < 2 || s.map_x_points > kMaxMapPoints ||
-                s.map_z_points > kMaxMapPoints)) {
-        issues.push_back({"map_points", std::to_string(s.map_x_points) + " x " +
-                                            std::to_string(s.map_z_points) +
-                                            ": each count in [2, 1000], or both 0 (no map)"});
-    }
-    if (map && (s.map_pass < 1 || s.map_pass > s.passes)) {
-        issues.push_back({"map_pass", std::to_string(s.map_pass) + " is outside [1, passes = " +
-                                          std::to_string(s.passes) + "]"});
-    }
-    if (s.profile) {
-        for (Issue& issue : soil::validate(*s.profile)) issues.push_back(std::move(issue));
-    }
-    return issues;
 }
 
 // Propagations of one footprint, one per ν in use.
@@ -120,91 +70,134 @@ std::vector<double> CompactionSettings::defaultDepths() {
     return out;
 }
 
-void readCompactionSettings(io::ObjectReader& r, CompactionSettings& out,
-                            const io::PresetLocations* locations,
-                            const std::filesystem::path& base_dir) {
-    const FieldInfo& slip = contact::slipField();
-    r.number(slip.key, out.slip, slip.range);
-    r.number("slip_angle_deg", out.slip_angle_deg, contact::slipAngleField().range, "deg");
-    double nu = 0.0;
-    if (r.number("concentration", nu, kConcentrationRange)) out.concentration = nu;
-    if (r.numbers("depths_m", out.depths_m, kDepthRange, "m", 1, kMaxDepths)) {
-        for (std::size_t i = 1; i < out.depths_m.size(); ++i) {
-            if (!(out.depths_m[i] > out.depths_m[i - 1])) {
-                r.report("depths_m", "depths must increase (" + formatNumber(out.depths_m[i]) +
-                                         " after " + formatNumber(out.depths_m[i - 1]) + ")");
-                break;
-            }
-        }
+const FieldInfo& reloadK0Field() {
+    static const FieldInfo field{
+        "reload_k0_kPa_m",
+        "kPa/m",
+        "k0",
+        "reload stiffness k0",
+        "k0 of the reload stiffness k_u = k0 + Au z_u of the repeated passes",
+        {0.0, 1e9},
+        1e3};
+    return field;
+}
+
+const FieldInfo& reloadAuField() {
+    static const FieldInfo field{
+        "reload_Au_kPa_m2",
+        "kPa/m2",
+        "Au",
+        "reload stiffness Au",
+        "Au of the reload stiffness k_u = k0 + Au z_u of the repeated passes",
+        {0.0, 1e12},
+        1e3};
+    return field;
+}
+
+void readProfileKey(io::ObjectReader& r, const char* key, std::optional<soil::SoilProfile>& out) {
+    const nlohmann::json* profile = r.value(key);
+    if (profile == nullptr || profile->is_string()) return;  // a name: readCompactionSettings
+    if (!profile->is_object()) {
+        r.report(key, "expected a profile object, a preset name or a path, got " +
+                          io::describeJson(*profile));
+        return;
     }
-    r.integer("passes", out.passes, 1, kMaxPasses);
-    r.choice("width", out.width,
-             {{"uniform", compaction::WidthProfile::kUniform},
-              {"parabolic", compaction::WidthProfile::kParabolic}});
-    r.choice("risk_stress", out.risk_stress,
-             {{"sigma_z", RiskStress::kVertical}, {"sigma_1", RiskStress::kMajor}});
-    double value = 0.0;
-    if (r.number("reload_k0_kPa_m", value, Range{0.0, 1e9}, "kPa/m"))
-        out.reload.k0_pa_m = value * 1e3;
-    if (r.number("reload_Au_kPa_m2", value, Range{0.0, 1e12}, "kPa/m2"))
-        out.reload.au_pa_m2 = value * 1e3;
-    r.boolean("shear_memory", out.reload.shear_memory);
-    if (const nlohmann::json* profile = r.value("profile")) {
-        if (profile->is_object()) {
-            io::ObjectReader p = r.object("profile");
-            out.profile = io::readProfile(p);
-            p.finish();
-        } else if (profile->is_string()) {
-            std::string name = profile->get<std::string>();
-            std::filesystem::path path(name);
-            if (path.has_parent_path() && path.is_relative() && !base_dir.empty())
-                name = (base_dir / path).string();
-            Result<soil::SoilProfile> read =
-                locations ? io::resolveProfile(*locations, name) : io::loadProfile(name);
-            if (read) {
-                out.profile = read.value();
-            } else {
-                for (const Issue& issue : read.issues())
-                    r.report("profile", issue.where + ": " + issue.message);
-            }
-        } else {
-            r.report("profile", "expected a profile object, a preset name or a path, got " +
-                                    io::describeJson(*profile));
-        }
-    }
+    io::ObjectReader p = r.object(key);
+    out = io::readProfile(p);
+    p.finish();
+}
+
+nlohmann::json writeProfileKey(const std::optional<soil::SoilProfile>& profile) {
+    return profile ? io::toJson(*profile) : nlohmann::json();
+}
+
+void readMapPoints(io::ObjectReader& r, const char* key, CompactionSettings& out) {
     std::vector<double> map;
-    if (r.numbers("map_points", map, Range{0.0, kMaxMapPoints}, {}, 2, 2)) {
+    if (r.numbers(key, map, Range{0.0, kMaxCompactionMapPoints}, {}, 2, 2)) {
         out.map_x_points = static_cast<int>(map[0]);
         out.map_z_points = static_cast<int>(map[1]);
     }
-    r.integer("map_pass", out.map_pass, 1, kMaxPasses);
-    readModelChoices(r, out.model);
 }
 
-nlohmann::json toJson(const CompactionSettings& s) {
-    nlohmann::json out{{"slip", s.slip},
-                       {"slip_angle_deg", s.slip_angle_deg},
-                       {"depths_m", s.depths_m},
-                       {"passes", s.passes},
-                       {"width", compaction::widthProfileName(s.width)},
-                       {"risk_stress", s.risk_stress == RiskStress::kMajor ? "sigma_1" : "sigma_z"},
-                       {"reload_k0_kPa_m", s.reload.k0_pa_m / 1e3},
-                       {"reload_Au_kPa_m2", s.reload.au_pa_m2 / 1e3},
-                       {"shear_memory", s.reload.shear_memory}};
-    if (s.concentration) out["concentration"] = *s.concentration;
-    if (s.profile) out["profile"] = io::toJson(*s.profile);
-    if (s.map_x_points > 0) {
-        out["map_points"] = {s.map_x_points, s.map_z_points};
-        out["map_pass"] = s.map_pass;
-    }
-    writeModelChoices(s.model, out);
-    return out;
+nlohmann::json writeMapPoints(const CompactionSettings& s) {
+    return s.map_x_points > 0 ? nlohmann::json{s.map_x_points, s.map_z_points} : nlohmann::json();
 }
+
+void readMapPass(io::ObjectReader& r, const char* key, CompactionSettings& out) {
+    r.integer(key, out.map_pass, 1, kMaxCompactionPasses);
+}
+
+nlohmann::json writeMapPass(const CompactionSettings& s) {
+    return s.map_x_points > 0 ? nlohmann::json(s.map_pass) : nlohmann::json();
+}
+
+std::vector<Issue> compactionRuleIssues(const CompactionSettings& s) {
+    std::vector<Issue> issues;
+    if (s.depths_m.empty()) issues.push_back({"depths_m", "give at least one depth"});
+    for (std::size_t i = 1; i < s.depths_m.size(); ++i) {
+        if (!(s.depths_m[i] > s.depths_m[i - 1])) {
+            issues.push_back({"depths_m", "depths must increase (" + formatNumber(s.depths_m[i]) +
+                                              " after " + formatNumber(s.depths_m[i - 1]) + ")"});
+            break;
+        }
+    }
+    return issues;
+}
+
+std::vector<Issue> compactionRunIssues(const CompactionSettings& s) {
+    std::vector<Issue> issues;
+    if (!(s.reload.k0_pa_m + s.reload.au_pa_m2 > 0.0)) {
+        issues.push_back({"reload_k0_kPa_m",
+                          "the reload stiffness k0 + Au z must be > 0: give "
+                          "k0 > 0 or Au > 0"});
+    }
+    const bool map = s.map_x_points != 0 || s.map_z_points != 0;
+    if (map &&
+        (s.map_x_points < 2 || s.map_z_points < 2 || s.map_x_points > kMaxCompactionMapPoints ||
+         s.map_z_points > kMaxCompactionMapPoints)) {
+        issues.push_back({"map_points", std::to_string(s.map_x_points) + " x " +
+                                            std::to_string(s.map_z_points) +
+                                            ": each count in [2, 1000], or both 0 (no map)"});
+    }
+    if (map && (s.map_pass < 1 || s.map_pass > s.passes)) {
+        issues.push_back({"map_pass", std::to_string(s.map_pass) + " is outside [1, passes = " +
+                                          std::to_string(s.passes) + "]"});
+    }
+    return issues;
+}
+
+void readCompactionSettings(io::ObjectReader& r, CompactionSettings& out,
+                            const io::PresetLocations* locations,
+                            const std::filesystem::path& base_dir) {
+    io::readFields(r, out);
+    // A profile by preset name or path: found where the caller's presets are.
+    if (const nlohmann::json* profile = r.has("profile") ? r.value("profile") : nullptr;
+        profile != nullptr && profile->is_string()) {
+        std::string name = profile->get<std::string>();
+        std::filesystem::path path(name);
+        if (path.has_parent_path() && path.is_relative() && !base_dir.empty())
+            name = (base_dir / path).string();
+        Result<soil::SoilProfile> read =
+            locations ? io::resolveProfile(*locations, name) : io::loadProfile(name);
+        if (read) {
+            out.profile = read.value();
+        } else {
+            for (const Issue& issue : read.issues())
+                r.report("profile", issue.where + ": " + issue.message);
+        }
+    }
+    for (Issue& issue : compactionRuleIssues(out)) r.report(issue.where, std::move(issue.message));
+}
+
+nlohmann::json toJson(const CompactionSettings& s) { return io::fieldsToJson(s); }
 
 CompactionResult computeCompaction(const Inputs& in, const CompactionSettings& s,
                                    const Control& control) {
-    if (std::vector<Issue> issues = settingsIssues(s); !issues.empty())
-        throw std::invalid_argument(formatIssues(issues));
+    // The reader's checks, in its words, for settings built in code (a panel's, Python's).
+    std::vector<Issue> issues = io::fieldIssues(s);
+    for (Issue& issue : compactionRuleIssues(s)) issues.push_back(std::move(issue));
+    for (Issue& issue : compactionRunIssues(s)) issues.push_back(std::move(issue));
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     const contact::ContactParameters<double> untouched = in.contact();
     CompactionResult out;
     out.load_n = in.conditions.load_n;

@@ -13,9 +13,11 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/common/declared_fields.h"
 #include "core/compaction/footprint.h"
 #include "core/compaction/passes.h"
 #include "core/compaction/track_memory.h"
+#include "core/contact/operating_fields.h"
 #include "core/io/parameters_json.h"
 #include "core/soil/soil_profile.h"
 
@@ -27,6 +29,18 @@ enum class RiskStress {
     kVertical,  ///< σ_z: like for like with σ_pc from uniaxial tests (the default)
     kMajor,     ///< σ₁: the major principal stress
 };
+
+/// The limits of the compaction's settings (their field list's ranges).
+inline constexpr Range kCompactionDepthRange{0.0, 10.0, true};    ///< a depth [m]
+inline constexpr Range kCompactionConcentrationRange{2.5, 12.0};  ///< ν: 3 Boussinesq … 6 soft
+inline constexpr int kMaxCompactionPasses = 1000;
+inline constexpr int kMaxCompactionMapPoints = 1000;  ///< per axis
+inline constexpr std::size_t kMaxCompactionDepths = 2000;
+
+/// "reload_k0_kPa_m" and "reload_Au_kPa_m2": the reload law's k₀ [kPa/m in the file, Pa/m in
+/// the member] and A_u [kPa/m², Pa/m²].
+const FieldInfo& reloadK0Field();
+const FieldInfo& reloadAuField();
 
 struct CompactionSettings {
     double slip = 0.1;            ///< s [-] of every pass
@@ -48,18 +62,74 @@ struct CompactionSettings {
     ModelChoices model;
 
     static std::vector<double> defaultDepths();
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson and
+    /// compute's checks are made from them. The model choices are read and written beside it.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
 
-using compaction::kDefaultConcentration;  ///< ν: Söhne's "normal" soil
+/// "profile": an object read at once; a preset name or a path is left to
+/// readCompactionSettings (it needs the preset locations and the file's directory).
+void readProfileKey(io::ObjectReader& r, const char* key, std::optional<soil::SoilProfile>& out);
+nlohmann::json writeProfileKey(const std::optional<soil::SoilProfile>& profile);
+/// "map_points" [x, z] and "map_pass": written only with a map (map_x_points > 0).
+void readMapPoints(io::ObjectReader& r, const char* key, CompactionSettings& out);
+nlohmann::json writeMapPoints(const CompactionSettings& settings);
+void readMapPass(io::ObjectReader& r, const char* key, CompactionSettings& out);
+nlohmann::json writeMapPass(const CompactionSettings& settings);
 
-/// Reads "slip", "slip_angle_deg", "concentration", "depths_m", "passes", "width" (uniform,
-/// parabolic), "risk_stress" (sigma_z, sigma_1), "reload_k0_kPa_m", "reload_Au_kPa_m2",
-/// "shear_memory", "profile" (an object, a preset name or a path, relative to `base_dir`),
-/// "map_points" ([x, z]), "map_pass" and the model choices.
+template <typename Visitor>
+void CompactionSettings::visitFields(Visitor& v) {
+    const FieldInfo& s = contact::slipField();
+    v(fields::number(s.key, slip, s.range, "", "slip s of every pass"));
+    v(fields::number("slip_angle_deg", slip_angle_deg, contact::slipAngleField().range, "deg",
+                     "slip angle β"));
+    v(fields::number("concentration", concentration, kCompactionConcentrationRange, "",
+                     "concentration factor ν for every depth; absent: each layer's, else 5"));
+    v(fields::numbers("depths_m", depths_m, kCompactionDepthRange, "m",
+                      "depths of the profile below the untouched surface, ascending", 1,
+                      kMaxCompactionDepths));
+    v(fields::integer("passes", passes, 1, kMaxCompactionPasses,
+                      "wheels on the same track, each at the same load and slip"));
+    v(fields::choice("width", width,
+                     {{"uniform", compaction::WidthProfile::kUniform},
+                      {"parabolic", compaction::WidthProfile::kParabolic}},
+                     "the stress across the width"));
+    v(fields::choice("risk_stress", risk_stress,
+                     {{"sigma_z", RiskStress::kVertical}, {"sigma_1", RiskStress::kMajor}},
+                     "the stress compared with sigma_pc"));
+    v(fields::field(reloadK0Field(), reload.k0_pa_m));
+    v(fields::field(reloadAuField(), reload.au_pa_m2));
+    v(fields::flag("shear_memory", reload.shear_memory,
+                   "carry the shear deformation of earlier passes"));
+    v(fields::custom("profile", profile, "object or name", "a profile object, a preset or a path",
+                     "the soil profile; absent: the soil's own, or none", readProfileKey,
+                     writeProfileKey));
+    v(fields::custom("map_points", *this, "2 whole numbers", "[2, 1000] each, or [0, 0]",
+                     "the x-z map of stress: points along x and z (absent: no map)", readMapPoints,
+                     writeMapPoints));
+    v(fields::custom("map_pass", *this, "whole number", "[1, passes]",
+                     "the pass the map shows (with map_points)", readMapPass, writeMapPass));
+    v(fields::members(model));
+}
+
+/// The keys of CompactionSettings::visitFields read strictly (io::readFields), then what a
+/// list cannot say: a "profile" given by preset name or path (found in `locations`, else read
+/// as a path relative to `base_dir`) and compactionRuleIssues.
 void readCompactionSettings(io::ObjectReader& r, CompactionSettings& out,
                             const io::PresetLocations* locations = nullptr,
                             const std::filesystem::path& base_dir = {});
+/// The rule between values the reader checks too: at least one depth, depths increasing.
+std::vector<Issue> compactionRuleIssues(const CompactionSettings& settings);
+/// What computeCompaction checks beside the reader, as it always has (a panel merges a
+/// partial object into its state, so a map pass beyond the passes it is about to set must read):
+/// a reload stiffness k₀ + A_u z > 0, a map of at least 2 × 2 points showing a pass that exists.
+std::vector<Issue> compactionRunIssues(const CompactionSettings& settings);
+/// The settings' file keys (io::fieldsToJson), the model choices among them.
 nlohmann::json toJson(const CompactionSettings& settings);
+
+using compaction::kDefaultConcentration;  ///< ν: Söhne's "normal" soil
 
 using compaction::Risk;
 using compaction::riskName;

@@ -11,6 +11,7 @@
 #include "core/common/range.h"
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
+#include "core/io/declared_json.h"
 #include "core/io/parameters_json.h"
 #include "core/soil/soil_parameters.h"
 
@@ -28,9 +29,13 @@ const soil::SoilField* soilField(const std::string& key, std::vector<Issue>& iss
                                  const std::string& where) {
     const soil::SoilField* field = soil::findSoilField(key);
     if (!field) {
-        const std::string near = nearestName(key, soilKeys());
+        const std::vector<std::string> keys = soilKeys();
+        const std::string near = nearestName(key, keys);
+        std::string all;
+        for (const std::string& k : keys) all += (all.empty() ? "" : ", ") + k;
         issues.push_back({where, quoteText(key, '"') + " is not a soil field" +
-                                     (near.empty() ? "" : " (did you mean \"" + near + "\"?)")});
+                                     (near.empty() ? "" : " (did you mean \"" + near + "\"?)") +
+                                     "; fields: " + all});
     }
     return field;
 }
@@ -132,7 +137,6 @@ std::vector<Issue> definitionIssues(const StudyDefinition& d) {
     if (d.load_n && d.entry_angle_deg) {
         issues.push_back({"entry_angle_deg", "give load_N or entry_angle_deg, not both"});
     }
-    checkRange(issues, "max_failed_fraction", d.max_failed_fraction, {0.0, 1.0});
     return issues;
 }
 
@@ -161,106 +165,6 @@ bool readPair(io::ObjectReader& r, std::string_view key, double& a, double& b) {
     a = values[0];
     b = values[1];
     return true;
-}
-
-void readParameters(io::ObjectReader& r, StudyDefinition& out) {
-    const nlohmann::json* array = r.array("parameters");
-    if (!array) return;
-    out.parameters.clear();
-    for (std::size_t i = 0; i < array->size(); ++i) {
-        io::ObjectReader e = r.element("parameters", *array, i);
-        UncertainParameter p;
-        // Checked against the soil fields with the other problems (definitionIssues).
-        e.text("key", p.key, io::Presence::kRequired);
-        const bool uniform = e.has("range"), normal = e.has("normal");
-        if (uniform == normal) {
-            e.report({}, "give \"range\": [low, high] or \"normal\": [mean, sd], one of them");
-        }
-        if (uniform) {
-            gsa::Uniform u;
-            readPair(e, "range", u.low, u.high);
-            p.distribution = u;
-        } else {
-            gsa::Normal n;
-            readPair(e, "normal", n.mean, n.sd);
-            if (e.has("bounds")) readPair(e, "bounds", n.low, n.high);
-            p.distribution = n;
-        }
-        if (uniform && e.has("bounds")) e.report("bounds", "bounds are for a normal distribution");
-        e.allow("bounds");
-        e.finish();
-        out.parameters.push_back(std::move(p));
-    }
-}
-
-void readCorrelated(io::ObjectReader& r, StudyDefinition& out) {
-    if (!r.has("correlated")) return;
-    io::ObjectReader c = r.object("correlated");
-    CorrelatedParameters group;
-    c.texts("keys", group.keys, io::Presence::kRequired);
-    c.numbers("mean", group.mean, {-1e300, 1e300}, {}, 1, 100, io::Presence::kRequired);
-    if (const nlohmann::json* rows = c.array("covariance", io::Presence::kRequired)) {
-        for (std::size_t i = 0; i < rows->size(); ++i) {
-            const nlohmann::json& row = (*rows)[i];
-            std::vector<double> values;
-            bool ok = row.is_array();
-            for (std::size_t j = 0; ok && j < row.size(); ++j) {
-                ok = row[j].is_number() && std::isfinite(row[j].get<double>());
-                if (ok) values.push_back(row[j].get<double>());
-            }
-            if (!ok) {
-                c.report("covariance", "row " + std::to_string(i) +
-                                           " must be an array of finite numbers, got " +
-                                           io::describeJson(row));
-            }
-            group.covariance.push_back(std::move(values));
-        }
-    }
-    c.finish();
-    out.correlated = std::move(group);
-}
-
-// The variance decomposition needs a valid space: the covariance's definiteness is checked by
-// building it.
-void checkSpace(io::ObjectReader& r, const StudyDefinition& d) {
-    try {
-        spaceOf(d);
-    } catch (const std::invalid_argument& e) {
-        r.report(d.correlated ? "correlated" : "parameters", e.what());
-    }
-}
-
-void readDefinitionKeys(io::ObjectReader& r, StudyDefinition& out, bool slips_required) {
-    readParameters(r, out);
-    readCorrelated(r, out);
-    r.texts("outputs", out.outputs);
-    r.numbers("slips", out.slips, contact::slipField().range, {}, 1, 100000,
-              slips_required ? io::Presence::kRequired : io::Presence::kOptional);
-    const FieldInfo& beta = contact::slipAngleField();
-    r.numbers("slip_angles_deg", out.slip_angles_deg, beta.range, beta.displayUnit(), 1);
-    const FieldInfo& load = contact::loadField();
-    double value = 0.0;
-    if (r.number(load.key, value, load.range, load.displayUnit())) out.load_n = value;
-    const FieldInfo& theta_f = contact::entryAngleField();
-    if (r.number(theta_f.key, value, theta_f.range, theta_f.displayUnit()))
-        out.entry_angle_deg = value;
-    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
-    r.number("max_failed_fraction", out.max_failed_fraction, {0.0, 1.0});
-    readModelChoices(r, out.model);
-    if (r.has("compaction")) {
-        io::ObjectReader c = r.object("compaction");
-        readCompactionStudy(c, out.compaction);
-        c.finish();
-    }
-}
-
-void reportIssues(io::ObjectReader& r, const StudyDefinition& d, bool slips_needed) {
-    std::vector<Issue> issues = definitionIssues(d);
-    for (Issue& issue : issues) {
-        if (!slips_needed && issue.where == "slips") continue;
-        r.report(issue.where, std::move(issue.message));
-    }
-    if (parameterIssues(d).empty()) checkSpace(r, d);
 }
 
 gsa::RunControl runControl(const Control& control, int threads) {
@@ -300,6 +204,134 @@ Eigen::MatrixXd outputBlock(const Eigen::MatrixXd& m, std::size_t output, std::s
 }
 
 }  // namespace
+
+void readUncertainParameters(io::ObjectReader& r, const char* key,
+                             std::vector<UncertainParameter>& out) {
+    const nlohmann::json* array = r.array(key);
+    if (!array) return;
+    out.clear();
+    for (std::size_t i = 0; i < array->size(); ++i) {
+        io::ObjectReader e = r.element(key, *array, i);
+        UncertainParameter p;
+        // Checked against the soil fields with the other problems (studyRuleIssues).
+        e.text("key", p.key, io::Presence::kRequired);
+        const bool uniform = e.has("range"), normal = e.has("normal");
+        if (uniform == normal) {
+            e.report({}, "give \"range\": [low, high] or \"normal\": [mean, sd], one of them");
+        }
+        if (uniform) {
+            gsa::Uniform u;
+            readPair(e, "range", u.low, u.high);
+            p.distribution = u;
+        } else {
+            gsa::Normal n;
+            readPair(e, "normal", n.mean, n.sd);
+            if (e.has("bounds")) readPair(e, "bounds", n.low, n.high);
+            p.distribution = n;
+        }
+        if (uniform && e.has("bounds")) e.report("bounds", "bounds are for a normal distribution");
+        e.allow("bounds");
+        e.finish();
+        out.push_back(std::move(p));
+    }
+}
+
+nlohmann::json writeUncertainParameters(const std::vector<UncertainParameter>& parameters) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const UncertainParameter& p : parameters) {
+        nlohmann::json item{{"key", p.key}};
+        if (const auto* u = std::get_if<gsa::Uniform>(&p.distribution)) {
+            item["range"] = {u->low, u->high};
+        } else {
+            const auto& n = std::get<gsa::Normal>(p.distribution);
+            item["normal"] = {n.mean, n.sd};
+            if (std::isfinite(n.low) && std::isfinite(n.high)) item["bounds"] = {n.low, n.high};
+        }
+        out.push_back(std::move(item));
+    }
+    return out;
+}
+
+void readCorrelatedParameters(io::ObjectReader& r, const char* key,
+                              std::optional<CorrelatedParameters>& out) {
+    if (!r.has(key)) {
+        r.allow(key);
+        return;
+    }
+    io::ObjectReader c = r.object(key);
+    CorrelatedParameters group;
+    c.texts("keys", group.keys, io::Presence::kRequired);
+    c.numbers("mean", group.mean, {-1e300, 1e300}, {}, 1, 100, io::Presence::kRequired);
+    if (const nlohmann::json* rows = c.array("covariance", io::Presence::kRequired)) {
+        for (std::size_t i = 0; i < rows->size(); ++i) {
+            const nlohmann::json& row = (*rows)[i];
+            std::vector<double> values;
+            bool ok = row.is_array();
+            for (std::size_t j = 0; ok && j < row.size(); ++j) {
+                ok = row[j].is_number() && std::isfinite(row[j].get<double>());
+                if (ok) values.push_back(row[j].get<double>());
+            }
+            if (!ok) {
+                c.report("covariance", "row " + std::to_string(i) +
+                                           " must be an array of finite numbers, got " +
+                                           io::describeJson(row));
+            }
+            group.covariance.push_back(std::move(values));
+        }
+    }
+    c.finish();
+    out = std::move(group);
+}
+
+nlohmann::json writeCorrelatedParameters(const std::optional<CorrelatedParameters>& group) {
+    if (!group) return nullptr;
+    return {{"keys", group->keys}, {"mean", group->mean}, {"covariance", group->covariance}};
+}
+
+void readSampleCount(io::ObjectReader& r, const char* key, std::size_t& out) {
+    int samples = static_cast<int>(out);
+    if (r.integer(key, samples, 2, 1 << 24)) out = static_cast<std::size_t>(samples);
+}
+
+nlohmann::json writeSampleCount(const std::size_t& samples) { return samples; }
+
+void readCompactionStudyKey(io::ObjectReader& r, const char* key, gsa::CompactionStudy& out) {
+    if (!r.has(key)) {
+        r.allow(key);
+        return;
+    }
+    io::ObjectReader c = r.object(key);
+    readCompactionStudy(c, out);
+    c.finish();
+}
+
+nlohmann::json writeCompactionStudy(const gsa::CompactionStudy& study) {
+    nlohmann::json out{
+        {"depth_m", study.depth_m},
+        {"passes", study.passes},
+        {"risk_stress", study.measure == compaction::RiskMeasure::kMajor ? "sigma_1" : "sigma_z"}};
+    if (study.concentration) out["concentration"] = *study.concentration;
+    if (study.profile) out["profile"] = io::toJson(*study.profile);
+    return out;
+}
+
+std::vector<Issue> studyRuleIssues(const StudyDefinition& d, bool slips_needed) {
+    std::vector<Issue> issues;
+    for (Issue& issue : definitionIssues(d)) {
+        if (!slips_needed && issue.where == "slips") continue;
+        issues.push_back(std::move(issue));
+    }
+    // The variance decomposition needs a valid space: the covariance's definiteness is checked
+    // by building it.
+    if (parameterIssues(d).empty()) {
+        try {
+            spaceOf(d);
+        } catch (const std::invalid_argument& e) {
+            issues.push_back({d.correlated ? "correlated" : "parameters", e.what()});
+        }
+    }
+    return issues;
+}
 
 void readCompactionStudy(io::ObjectReader& c, gsa::CompactionStudy& study) {
     c.number("depth_m", study.depth_m, Range{0.0, 10.0, true}, "m");
@@ -345,30 +377,32 @@ gsa::WheelStudy wheelStudyOf(const Inputs& in, const StudyDefinition& d) {
 }
 
 void readStudyDefinition(io::ObjectReader& r, StudyDefinition& out) {
-    readDefinitionKeys(r, out, false);
-    reportIssues(r, out, true);
+    io::readFields(r, out);
+    for (Issue& issue : studyRuleIssues(out)) r.report(issue.where, std::move(issue.message));
+}
+
+std::vector<Issue> globalSensitivityRuleIssues(const GlobalSensitivitySettings& s) {
+    std::vector<Issue> issues = studyRuleIssues(s.study);
+    if (s.levels % 2 != 0) issues.push_back({"levels", std::to_string(s.levels) + " must be even"});
+    if (s.method == GsaMethod::kMorris) {
+        for (std::size_t i = 0; i < s.study.parameters.size(); ++i) {
+            if (!std::holds_alternative<gsa::Uniform>(s.study.parameters[i].distribution)) {
+                issues.push_back({"parameters[" + std::to_string(i) + "]",
+                                  "Morris screening needs ranges, not distributions"});
+            }
+        }
+        if (s.study.correlated) issues.push_back({"correlated", "Morris screening needs ranges"});
+    }
+    return issues;
 }
 
 void readGlobalSensitivitySettings(io::ObjectReader& r, GlobalSensitivitySettings& out) {
-    readStudyDefinition(r, out.study);
-    r.choice<GsaMethod>("method", out.method,
-                        {{"sobol", GsaMethod::kSobol}, {"morris", GsaMethod::kMorris}});
-    int samples = static_cast<int>(out.samples);
-    if (r.integer("samples", samples, 2, 1 << 24)) out.samples = static_cast<std::size_t>(samples);
-    r.integer("levels", out.levels, 2, 1000);
-    if (out.levels % 2 != 0) r.report("levels", std::to_string(out.levels) + " must be even");
-    r.integer("resamples", out.resamples, 0, 1000000);
-    r.number("confidence", out.confidence_level, {0.0, 1.0, true, true});
-    if (out.method == GsaMethod::kMorris) {
-        for (std::size_t i = 0; i < out.study.parameters.size(); ++i) {
-            if (!std::holds_alternative<gsa::Uniform>(out.study.parameters[i].distribution)) {
-                r.report("parameters[" + std::to_string(i) + "]",
-                         "Morris screening needs ranges, not distributions");
-            }
-        }
-        if (out.study.correlated) r.report("correlated", "Morris screening needs ranges");
-    }
+    io::readFields(r, out);
+    for (Issue& issue : globalSensitivityRuleIssues(out))
+        r.report(issue.where, std::move(issue.message));
 }
+
+nlohmann::json toJson(const GlobalSensitivitySettings& s) { return io::fieldsToJson(s); }
 
 gsa::StudyStatus GlobalSensitivityResult::status() const {
     return sobol ? sobol->status : morris->status;
@@ -476,6 +510,10 @@ nlohmann::json GlobalSensitivityResult::toJson() const {
 GlobalSensitivityResult computeGlobalSensitivity(const Inputs& inputs,
                                                  const GlobalSensitivitySettings& s,
                                                  const Control& control) {
+    // The reader's checks, in its words, for settings built in code (the panel's, Python's).
+    std::vector<Issue> issues = io::fieldIssues(s);
+    for (Issue& issue : globalSensitivityRuleIssues(s)) issues.push_back(std::move(issue));
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     const gsa::WheelStudy study = wheelStudyOf(inputs, s.study);
     gsa::BootstrapOptions bootstrap;
     bootstrap.resamples = s.resamples;
@@ -537,15 +575,13 @@ StudyDefinition bandStudyDefaults() {
 }
 
 void readUncertaintyBandSettings(io::ObjectReader& r, UncertaintyBandSettings& out) {
-    readDefinitionKeys(r, out.study, false);
-    reportIssues(r, out.study, !out.study.slips.empty());
-    const FieldInfo& count = slipCountField();
-    r.integer(count.key, out.slip_count, static_cast<int>(count.range.low),
-              static_cast<int>(count.range.high));
-    int samples = static_cast<int>(out.samples);
-    if (r.integer("samples", samples, 2, 1 << 24)) out.samples = static_cast<std::size_t>(samples);
-    r.numbers("percentiles", out.percentiles, {0.0, 100.0}, "%", 1, 100);
+    io::readFields(r, out);
+    // No slips: 0 … the conditions' slip_max in slip_count points.
+    for (Issue& issue : studyRuleIssues(out.study, false))
+        r.report(issue.where, std::move(issue.message));
 }
+
+nlohmann::json toJson(const UncertaintyBandSettings& s) { return io::fieldsToJson(s); }
 
 Table UncertaintyBandResult::table() const {
     Table t = bands.table();
@@ -563,6 +599,10 @@ Table UncertaintyBandResult::table() const {
 UncertaintyBandResult computeUncertaintyBands(const Inputs& inputs,
                                               const UncertaintyBandSettings& s,
                                               const Control& control) {
+    // The reader's checks, in its words, for settings built in code (the panel's, Python's).
+    std::vector<Issue> issues = io::fieldIssues(s);
+    for (Issue& issue : studyRuleIssues(s.study, false)) issues.push_back(std::move(issue));
+    if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
     StudyDefinition definition = s.study;
     if (definition.slips.empty())
         definition.slips = linspace(0.0, inputs.conditions.slip_max, s.slip_count);

@@ -10,11 +10,15 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/analysis/conditions.h"
+#include "core/common/declared_fields.h"
+#include "core/contact/operating_fields.h"
 #include "core/gsa/parameter_space.h"
 #include "core/gsa/uncertainty_bands.h"
 #include "core/gsa/wheel_studies.h"
@@ -62,7 +66,58 @@ struct StudyDefinition {
     /// Where the compaction outputs (max_sigma_z_kPa, red_to_depth_m, rut_depth_m) are
     /// evaluated: "compaction": {"depth_m", "passes", "concentration", "profile" (an object)}.
     gsa::CompactionStudy compaction;
+
+    /// Its file keys, one line each (core/common/declared_fields.h), shared by the two analyses'
+    /// lists, the model choices among them. `threads` is not a file key.
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
+
+/// "parameters": an array of {"key", and "range": [low, high] or "normal": [mean, sd] with an
+/// optional "bounds": [low, high]} (each key checked against the soil fields with the rules,
+/// studyRuleIssues). The writer gives a normal's bounds when both are finite.
+void readUncertainParameters(io::ObjectReader& r, const char* key,
+                             std::vector<UncertainParameter>& out);
+nlohmann::json writeUncertainParameters(const std::vector<UncertainParameter>& parameters);
+/// "correlated": {"keys", "mean", "covariance"} (absent: none).
+void readCorrelatedParameters(io::ObjectReader& r, const char* key,
+                              std::optional<CorrelatedParameters>& out);
+nlohmann::json writeCorrelatedParameters(const std::optional<CorrelatedParameters>& group);
+/// "samples": a whole number in [2, 2^24] (read as an int: its range in the reader's words).
+void readSampleCount(io::ObjectReader& r, const char* key, std::size_t& out);
+nlohmann::json writeSampleCount(const std::size_t& samples);
+/// "compaction": the object readCompactionStudy reads.
+void readCompactionStudyKey(io::ObjectReader& r, const char* key, gsa::CompactionStudy& out);
+nlohmann::json writeCompactionStudy(const gsa::CompactionStudy& study);
+
+template <typename Visitor>
+void StudyDefinition::visitFields(Visitor& v) {
+    v(fields::custom("parameters", parameters, "list of objects",
+                     "{\"key\", \"range\": [low, high]} or {\"key\", \"normal\": [mean, sd], "
+                     "\"bounds\": [low, high]}",
+                     "the independent uncertain soil parameters, in the soil file's units",
+                     readUncertainParameters, writeUncertainParameters));
+    v(fields::custom("correlated", correlated, "object", "{\"keys\", \"mean\", \"covariance\"}",
+                     "soil parameters varying together, X ~ N(mean, covariance)",
+                     readCorrelatedParameters, writeCorrelatedParameters));
+    v(fields::texts("outputs", outputs, "the outputs studied (gsa::outputNames())"));
+    v(fields::numbers("slips", slips, contact::slipField().range, "", "the slips s", 1));
+    v(fields::numbers("slip_angles_deg", slip_angles_deg, contact::slipAngleField().range, "deg",
+                      "the slip angles beta", 1));
+    v(fields::number("load_N", load_n, contact::loadField().range, "N",
+                     "wheel load W; absent: the conditions' (unless entry_angle_deg)"));
+    v(fields::number("entry_angle_deg", entry_angle_deg, contact::entryAngleField().range, "deg",
+                     "a fixed entry angle instead of a load"));
+    v(fields::integer("seed", seed, 0, std::numeric_limits<std::uint64_t>::max(),
+                      "the same seed gives the same numbers"));
+    v(fields::number("max_failed_fraction", max_failed_fraction, {0.0, 1.0}, "",
+                     "largest share of samples without equilibrium at a point"));
+    v(fields::custom("compaction", compaction, "object",
+                     "depth_m, passes, concentration, risk_stress, profile",
+                     "where the compaction outputs are evaluated", readCompactionStudyKey,
+                     writeCompactionStudy));
+    v(fields::members(model));
+}
 
 /// The gsa study these settings make of the inputs: the inputs' soil as the base soil (fields
 /// not varied keep its values), the conditions' contact model. Throws std::invalid_argument
@@ -79,20 +134,46 @@ struct GlobalSensitivitySettings {
     int levels = 4;              ///< Morris grid levels p (even)
     int resamples = 1000;        ///< bootstrap resamples of the confidence intervals
     double confidence_level = 0.95;
+
+    /// Its file keys: the study's and the method's (core/common/declared_fields.h).
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::members(study));
+        v(fields::choice("method", method,
+                         {{"sobol", GsaMethod::kSobol}, {"morris", GsaMethod::kMorris}},
+                         "Sobol' indices or Morris screening"));
+        v(fields::custom("samples", samples, "whole number", "[2, 16777216]",
+                         "Sobol': base samples N; Morris: trajectories r", readSampleCount,
+                         writeSampleCount));
+        v(fields::integer("levels", levels, 2, 1000, "Morris grid levels p (even)"));
+        v(fields::integer("resamples", resamples, 0, 1000000,
+                          "bootstrap resamples of the confidence intervals"));
+        v(fields::number("confidence", confidence_level, {0.0, 1.0, true, true}, "",
+                         "confidence level of the intervals"));
+    }
 };
 
 /// The keys of a study's "compaction" object: "depth_m", "passes", "concentration",
 /// "risk_stress" and "profile" (an object; readProfile).
 void readCompactionStudy(io::ObjectReader& r, gsa::CompactionStudy& out);
 
-/// The keys of a study definition (shared with the bands): "parameters" (an array of {"key",
-/// and "range": [low, high] or "normal": [mean, sd] with an optional "bounds": [low, high]}),
-/// "correlated" ({"keys", "mean", "covariance"}), "outputs", "slips", "slip_angles_deg",
-/// "load_N" or "entry_angle_deg", "seed", "max_failed_fraction" and the model choices. A key
-/// outside the soil fields, a range outside its field's or an empty list is reported.
+/// What a study's field list cannot say: a parameter key outside the soil fields or varied
+/// twice, a range or bounds outside its field's or empty, sd <= 0, a correlated group of the
+/// wrong shape or not positive definite, an unknown output, no slips (`slips_needed`) or slip
+/// angles, load_N and entry_angle_deg both given.
+std::vector<Issue> studyRuleIssues(const StudyDefinition& definition, bool slips_needed = true);
+
+/// The keys of StudyDefinition::visitFields read strictly (io::readFields), then the model
+/// choices and studyRuleIssues.
 void readStudyDefinition(io::ObjectReader& r, StudyDefinition& out);
-/// Those keys and "method" (sobol, morris), "samples", "levels", "resamples", "confidence".
+/// The keys of GlobalSensitivitySettings::visitFields (the study's and "method", "samples",
+/// "levels", "resamples", "confidence"; the model choices among them), then
+/// globalSensitivityRuleIssues.
 void readGlobalSensitivitySettings(io::ObjectReader& r, GlobalSensitivitySettings& out);
+/// studyRuleIssues and the method's: even levels, Morris screening on ranges only.
+std::vector<Issue> globalSensitivityRuleIssues(const GlobalSensitivitySettings& settings);
+/// The settings' file keys (io::fieldsToJson), the model choices among them.
+nlohmann::json toJson(const GlobalSensitivitySettings& settings);
 
 struct GlobalSensitivityResult {
     GsaMethod method = GsaMethod::kSobol;
@@ -135,10 +216,28 @@ struct UncertaintyBandSettings {
     int slip_count = 20;
     std::size_t samples = 512;                         ///< Monte Carlo samples M
     std::vector<double> percentiles{5.0, 50.0, 95.0};  ///< each in [0, 100]
+
+    /// Its file keys: the study's and the bands' (core/common/declared_fields.h).
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::members(study));
+        const FieldInfo& count = slipCountField();
+        v(fields::integer(count.key, slip_count, static_cast<int>(count.range.low),
+                          static_cast<int>(count.range.high),
+                          "slips 0 ... slip_max of the grid when no slips are given"));
+        v(fields::custom("samples", samples, "whole number", "[2, 16777216]",
+                         "Monte Carlo samples M", readSampleCount, writeSampleCount));
+        v(fields::numbers("percentiles", percentiles, {0.0, 100.0}, "%", "the percentiles drawn", 1,
+                          100));
+    }
 };
 
-/// The study definition's keys (slips optional) and "slip_count", "samples", "percentiles".
+/// The keys of UncertaintyBandSettings::visitFields (the study's, slips optional, and
+/// "slip_count", "samples", "percentiles"; the model choices among them), then
+/// studyRuleIssues.
 void readUncertaintyBandSettings(io::ObjectReader& r, UncertaintyBandSettings& out);
+/// The settings' file keys (io::fieldsToJson), the model choices among them.
+nlohmann::json toJson(const UncertaintyBandSettings& settings);
 
 struct UncertaintyBandResult {
     gsa::BandResult bands;

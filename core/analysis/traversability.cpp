@@ -12,6 +12,7 @@
 #include "core/common/units.h"
 #include "core/contact/contact_parameters.h"
 #include "core/field/field_summary.h"
+#include "core/io/declared_json.h"
 #include "core/io/json_reader.h"
 #include "core/scenario/map_image.h"
 #include "core/scenario/map_layers.h"
@@ -20,26 +21,9 @@ namespace terra::analysis {
 
 namespace {
 
-const Range kSlipRange{0.0, 0.99};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Loads are binned to this fraction of the level-ground load (T3): 0.25 %.
 constexpr double kLoadBin = 0.0025;
-
-std::vector<Issue> settingsIssues(const TraversabilitySettings& s) {
-    std::vector<Issue> issues;
-    if (s.headings < 1 || s.headings > 360)
-        issues.push_back({"headings", std::to_string(s.headings) + " is outside [1, 360]"});
-    if (s.cell_m) checkRange(issues, "cell_m", *s.cell_m, {0.0, 100.0, true, false}, "m");
-    checkRange(issues, "slip_min", s.slip_min, kSlipRange);
-    checkRange(issues, "slip_max", s.slip_max, kSlipRange);
-    if (issues.empty() && !(s.slip_min < s.slip_max))
-        issues.push_back({"slip_max", formatNumber(s.slip_max) +
-                                          " must be above slip_min = " + formatNumber(s.slip_min)});
-    if (s.curve_points < 10 || s.curve_points > 5000)
-        issues.push_back(
-            {"curve_points", std::to_string(s.curve_points) + " is outside [10, 5000]"});
-    return issues;
-}
 
 // The F_x(s) curve of one soil at one load (T2), on evenly spaced slips.
 struct Curve {
@@ -76,37 +60,32 @@ const char* statusName(TraverseStatus status) {
     return "?";
 }
 
-void readTraversabilitySettings(io::ObjectReader& r, TraversabilitySettings& out) {
-    r.integer("headings", out.headings, 1, 360);
-    double cell = 0.0;
-    if (r.number("cell_m", cell, {0.0, 100.0, true, false}, "m")) out.cell_m = cell;
-    r.number("slip_min", out.slip_min, kSlipRange);
-    r.number("slip_max", out.slip_max, kSlipRange);
-    r.integer("curve_points", out.curve_points, 10, 5000);
-    r.boolean("quadratic", out.quadratic);
-    readModelChoices(r, out.model);
-    for (Issue& issue : settingsIssues(out)) {
-        if (issue.where == "slip_max") r.report(issue.where, std::move(issue.message));
+std::vector<Issue> traversabilityRuleIssues(const TraversabilitySettings& s) {
+    std::vector<Issue> issues;
+    if (kTraversabilitySlipRange.contains(s.slip_min) &&
+        kTraversabilitySlipRange.contains(s.slip_max) && !(s.slip_min < s.slip_max)) {
+        issues.push_back({"slip_max", formatNumber(s.slip_max) +
+                                          " must be above slip_min = " + formatNumber(s.slip_min)});
     }
+    return issues;
 }
 
-nlohmann::json toJson(const TraversabilitySettings& s) {
-    nlohmann::json out{{"headings", s.headings},
-                       {"slip_min", s.slip_min},
-                       {"slip_max", s.slip_max},
-                       {"curve_points", s.curve_points},
-                       {"quadratic", s.quadratic}};
-    if (s.cell_m) out["cell_m"] = *s.cell_m;
-    writeModelChoices(s.model, out);
-    return out;
+void readTraversabilitySettings(io::ObjectReader& r, TraversabilitySettings& out) {
+    io::readFields(r, out);
+    for (Issue& issue : traversabilityRuleIssues(out))
+        r.report(issue.where, std::move(issue.message));
 }
+
+nlohmann::json toJson(const TraversabilitySettings& s) { return io::fieldsToJson(s); }
 
 TraversabilityResult computeTraversability(const field::FieldMap& field,
                                            const dynamics::RobotParameters& robot,
                                            const TraversabilitySettings& s,
                                            const Control& control) {
-    if (std::vector<Issue> issues = settingsIssues(s); !issues.empty())
-        throw std::invalid_argument(formatIssues(issues));
+    // The reader's checks, in its words, for settings built in code (Python's, a test's).
+    std::vector<Issue> settings_issues = io::fieldIssues(s);
+    for (Issue& issue : traversabilityRuleIssues(s)) settings_issues.push_back(std::move(issue));
+    if (!settings_issues.empty()) throw std::invalid_argument(formatIssues(settings_issues));
     if (std::vector<Issue> issues = wheel::validate(robot.wheel); !issues.empty())
         throw std::invalid_argument(formatIssues(issues));
     const std::optional<std::array<double, 4>> box = field::extent(field);

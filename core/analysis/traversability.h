@@ -14,12 +14,16 @@
 #include <vector>
 
 #include "core/analysis/analysis.h"
+#include "core/common/declared_fields.h"
 #include "core/dynamics/robot.h"
 #include "core/field/field_map.h"
 #include "core/field/raster.h"
 #include "core/io/png.h"
 
 namespace terra::analysis {
+
+/// The slips a traversability map may search [-].
+inline constexpr Range kTraversabilitySlipRange{0.0, 0.99};
 
 struct TraversabilitySettings {
     int headings = 8;              ///< headings evenly from 0 (along +x), counter-clockwise
@@ -29,11 +33,33 @@ struct TraversabilitySettings {
     int curve_points = 200;  ///< slips of each F_x(s) curve the search interpolates
     bool quadratic = true;   ///< the quadratic closed form (the rover's), else full model
     ModelChoices model;
+
+    /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson and
+    /// compute's checks are made from them. The model choices are read and written beside it.
+    template <typename Visitor>
+    void visitFields(Visitor& v) {
+        v(fields::integer("headings", headings, 1, 360,
+                          "headings evenly from 0 (along +x), counter-clockwise"));
+        v(fields::number("cell_m", cell_m, {0.0, 100.0, true, false}, "m",
+                         "the map's cell; absent: the height map's (or 1 m)"));
+        v(fields::number("slip_min", slip_min, kTraversabilitySlipRange, "",
+                         "the smallest slip searched"));
+        v(fields::number("slip_max", slip_max, kTraversabilitySlipRange, "",
+                         "the largest slip searched (above slip_min)"));
+        v(fields::integer("curve_points", curve_points, 10, 5000,
+                          "slips of each F_x(s) curve the search interpolates"));
+        v(fields::flag("quadratic", quadratic,
+                       "the quadratic closed form (the rover's); false: the full model"));
+        v(fields::members(model));
+    }
 };
 
-/// "headings" [1, 360], "cell_m" (0, 100], "slip_min", "slip_max" (0 < min < max < 1),
-/// "curve_points" [10, 5000], "quadratic" and the model choices.
+/// The keys of TraversabilitySettings::visitFields read strictly (io::readFields), the model
+/// choices among them, then traversabilityRuleIssues.
 void readTraversabilitySettings(io::ObjectReader& r, TraversabilitySettings& out);
+/// The rule between keys: slip_min below slip_max (when both are in their range).
+std::vector<Issue> traversabilityRuleIssues(const TraversabilitySettings& settings);
+/// The settings' file keys (io::fieldsToJson), the model choices among them.
 nlohmann::json toJson(const TraversabilitySettings& settings);
 
 /// What a wheel can do on a cell under a heading.

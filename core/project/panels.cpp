@@ -94,28 +94,21 @@ void readPanelSettings(ObjectReader& r, RoverPanelSettings& out,
     }
 }
 
-void readPanelSettings(ObjectReader& r, GlobalSensitivityPanelSettings& out) {
-    r.choiceName("page", out.page, {"indices", "bands"});
-    r.choiceName("method", out.method, {"sobol", "morris"});
-    r.choiceName("output", out.output, gsa::outputNames());
-    r.numbers("slips", out.slips, contact::slipField().range, {}, 1, 1000);
-    const FieldInfo& beta = contact::slipAngleField();
-    r.number(beta.key, out.slip_angle_deg, beta.range, beta.displayUnit());
-    r.integer("samples", out.samples, 2, 1 << 20);
-    r.integer("band_samples", out.band_samples, 2, 1 << 20);
-    r.integer("seed", out.seed, 0, std::numeric_limits<std::uint64_t>::max());
+const std::vector<fields::Name<std::string>>& globalSensitivityOutputNames() {
+    static const std::vector<std::string> names = gsa::outputNames();
+    static const std::vector<fields::Name<std::string>> choices = [] {
+        std::vector<fields::Name<std::string>> out;
+        for (const std::string& name : names) out.push_back({name.c_str(), name});
+        return out;
+    }();
+    return choices;
 }
 
-nlohmann::json toJson(const GlobalSensitivityPanelSettings& s) {
-    return {{"page", s.page},
-            {"method", s.method},
-            {"output", s.output},
-            {"slips", s.slips},
-            {"slip_angle_deg", s.slip_angle_deg},
-            {"samples", s.samples},
-            {"band_samples", s.band_samples},
-            {"seed", s.seed}};
+void readPanelSettings(ObjectReader& r, GlobalSensitivityPanelSettings& out) {
+    io::readFields(r, out);
 }
+
+nlohmann::json toJson(const GlobalSensitivityPanelSettings& s) { return io::fieldsToJson(s); }
 
 nlohmann::json toJson(const ForcesPanelSettings& s) { return io::fieldsToJson(s); }
 

@@ -4,12 +4,13 @@
 /// analysis and what it shows (a tab, a page). Read strictly like the rest of the file, so a
 /// project never opens half-understood. The stresses, compaction, sensitivity and
 /// identification panels store their analysis's own settings struct (the identification's, the
-/// stresses' and the sensitivity's read and written by their declared field lists,
-/// core/common/declared_fields.h); the forces, global-sensitivity and rover panels a struct of
-/// their controls (the forces panel's on its declared field list too).
+/// stresses', the sensitivity's and the compaction's read and written by their declared field
+/// lists, core/common/declared_fields.h); the forces, global-sensitivity and rover panels a struct
+/// of their controls (each on a declared field list too).
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "core/analysis/streaming_identification.h"
 #include "core/analysis/stresses.h"
 #include "core/common/declared_fields.h"
+#include "core/contact/operating_fields.h"
 #include "core/io/json_reader.h"
 #include "core/io/parameters_json.h"
 
@@ -137,7 +139,8 @@ void IdentificationPanelSettings::visitFields(Visitor& v) {
 }
 
 /// "global-sensitivity": the page shown, the study's method, grid and sample sizes (the ranges
-/// of its parameter table are not saved: they start from docs/sensitivity.md's example).
+/// of its parameter table are not saved: they start from docs/sensitivity.md's example), read
+/// and written by its declared field list.
 struct GlobalSensitivityPanelSettings {
     std::string page = "indices";  ///< indices or bands
     std::string method = "sobol";  ///< sobol or morris
@@ -147,7 +150,32 @@ struct GlobalSensitivityPanelSettings {
     int samples = 1024;      ///< Sobol' base samples or Morris trajectories
     int band_samples = 256;  ///< Monte Carlo samples of the bands
     std::uint64_t seed = 1;
+
+    template <typename Visitor>
+    void visitFields(Visitor& v);
 };
+
+/// The outputs a global-sensitivity panel may show, as names of its "output" choice.
+const std::vector<fields::Name<std::string>>& globalSensitivityOutputNames();
+
+template <typename Visitor>
+void GlobalSensitivityPanelSettings::visitFields(Visitor& v) {
+    v(fields::choice("page", page, {{"indices", std::string("indices")}, {"bands", "bands"}},
+                     "the page shown"));
+    v(fields::choice("method", method, {{"sobol", std::string("sobol")}, {"morris", "morris"}},
+                     "Sobol' indices or Morris screening"));
+    v(fields::Enum<std::string>{"output", &output, globalSensitivityOutputNames(),
+                                "the output shown"});
+    v(fields::numbers("slips", slips, contact::slipField().range, "", "the slips", 1, 1000));
+    v(fields::number("slip_angle_deg", slip_angle_deg, contact::slipAngleField().range, "deg",
+                     "the slip angle"));
+    v(fields::integer("samples", samples, 2, 1 << 20,
+                      "Sobol' base samples or Morris trajectories"));
+    v(fields::integer("band_samples", band_samples, 2, 1 << 20,
+                      "Monte Carlo samples of the bands"));
+    v(fields::integer("seed", seed, 0, std::numeric_limits<std::uint64_t>::max(),
+                      "the same seed gives the same numbers"));
+}
 
 /// "rover": the scenario chosen and the scenarios edited in the panel (name → scenario JSON).
 struct RoverPanelSettings {

@@ -111,13 +111,14 @@ TEST(CompactionCli, BadProfilesAndFlagsNameTheLayerAndField) {
 
     r = run("compaction --passes 0");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(contains(r.err, "--passes")) << r.err;
+    EXPECT_TRUE(contains(r.err, "--passes: 0 is outside the allowed range [1, 1000]")) << r.err;
     r = run("compaction --depths 0.3,0.2");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(contains(r.err, "--depths")) << r.err;
+    EXPECT_TRUE(contains(r.err, "--depths: depths must increase (0.2 after 0.3)")) << r.err;
     r = run("compaction --concentration 2");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(contains(r.err, "--concentration")) << r.err;
+    EXPECT_TRUE(contains(r.err, "--concentration: 2 is outside the allowed range [2.5, 12]"))
+        << r.err;
     r = run("compaction --profile no-such-profile");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.err, "profile")) << r.err;

@@ -266,22 +266,38 @@ TEST_P(GsaBadFlags, ExitTwoNamingFlagValueAndRange) {
     EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+// The flags are the analysis's settings object read by its own reader (issue 26): the messages
+// are the reader's, named by the flag (a parameter by its flag and text).
 INSTANTIATE_TEST_SUITE_P(
     Flags, GsaBadFlags,
     ::testing::Values(
         BadFlag{"gsa --param phi_deg=20:95",
-                "--param 'phi_deg=20:95': phi_deg = 95 is outside the allowed range [0, 60) deg"},
-        BadFlag{"gsa --param phi=20:35", "did you mean \"phi_deg\""},
+                "--param 'phi_deg=20:95': 95 is outside the allowed range [0, 60) deg"},
+        BadFlag{"gsa --param phi=20:35",
+                "--param 'phi=20:35': \"phi\" is not a soil field (did you mean \"phi_deg\"?)"},
         BadFlag{"gsa --param phi_deg=35:20", "low 35 must be below high 20"},
         BadFlag{"gsa --param phi_deg=20", "expected a range LOW:HIGH"},
-        BadFlag{"gsa --normal phi_deg=29,-2", "sd -2 must be above 0"},
-        BadFlag{"gsa --outputs Fx_N,sinkage", "did you mean \"sinkage_m\""},
-        BadFlag{"gsa --samples 1", "--samples '1': outside the allowed range [2, 16777216]"},
-        BadFlag{"gsa --slip 0.3,1.5", "--slip '0.3,1.5': 1.5 is outside the allowed range [-1, 1]"},
-        BadFlag{"gsa --slip-angle 95", "--slip-angle '95'"}, BadFlag{"gsa --load -3", "--load"},
+        BadFlag{"gsa --normal phi_deg=29,-2", "--normal 'phi_deg=29,-2': sd -2 must be above 0"},
+        BadFlag{"gsa --outputs Fx_N,sinkage",
+                "--outputs[1]: \"sinkage\" is not an output (did you mean \"sinkage_m\"?)"},
+        BadFlag{"gsa --samples 1", "--samples: 1 is outside the allowed range [2, 16777216]"},
+        BadFlag{"gsa --slip 0.3,1.5", "--slip[1]: 1.5 is outside the allowed range [-1, 1]"},
+        BadFlag{"gsa --slip-angle 95",
+                "--slip-angle[0]: 95 is outside the allowed range (-90, 90) deg"},
+        BadFlag{"gsa --load -3", "--load: -3 is outside the allowed range [0.01, 1e+05] N"},
         BadFlag{"gsa --method sobel", "--method"},
-        BadFlag{"gsa --method morris --normal phi_deg=29,2", "Morris screening needs ranges"},
-        BadFlag{"gsa --param phi_deg=20:30 --normal phi_deg=29,2", "phi_deg is varied twice"},
-        BadFlag{"bands --percentiles 5,150", "150 is outside the allowed range [0, 100]"}));
+        BadFlag{"gsa --method morris --normal phi_deg=29,2",
+                "--normal 'phi_deg=29,2': Morris screening needs ranges, not distributions"},
+        BadFlag{"gsa --param phi_deg=20:30 --normal phi_deg=29,2",
+                "--normal 'phi_deg=29,2': \"phi_deg\" is varied twice"},
+        BadFlag{"gsa --levels 3", "--levels: 3 must be even"},
+        BadFlag{"gsa --confidence 1", "--confidence: 1 is outside the allowed range (0, 1)"},
+        BadFlag{"gsa --max-failed-fraction 2",
+                "--max-failed-fraction: 2 is outside the allowed range [0, 1]"},
+        BadFlag{"gsa --depth 20", "--depth: 20 is outside the allowed range (0, 10] m"},
+        BadFlag{"gsa --passes 0", "--passes: 0 is outside the allowed range [1, 100]"},
+        BadFlag{"bands --samples 1", "--samples: 1 is outside the allowed range [2, 16777216]"},
+        BadFlag{"bands --percentiles 5,150",
+                "--percentiles[1]: 150 is outside the allowed range [0, 100] %"}));
 
 }  // namespace
