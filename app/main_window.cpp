@@ -86,6 +86,7 @@ MainWindow::MainWindow(const io::PresetLocations& locations, QWidget* parent)
                global};
     const QStringList titles{"Forces vs slip", "Stresses",       "Compaction",        "Sensitivity",
                              "Identification", "Rover scenario", "Global sensitivity"};
+    for (ui::AnalysisPanel* panel : panels_) panel->rememberDefaultSettings();
     identification_ = identification;
     global_ = global;
     // The identified soil's covariance feeds the global study's "identified soil" source.
@@ -266,7 +267,7 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     document_->reset(*project, QFileInfo(path).absoluteFilePath());
     for (ui::AnalysisPanel* panel : panels_) {
         const std::string name = panel->name().toStdString();
-        if (project->panels.contains(name)) panel->applySettings(project->panels[name]);
+        if (project->panels.contains(name)) panel->applyFileSettings(project->panels[name]);
     }
     // The panels taking the file's settings write them back (in their own form, defaults
     // filled in): that is not an edit. The opened project is what is on disk.

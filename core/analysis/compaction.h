@@ -64,7 +64,7 @@ struct CompactionSettings {
     static std::vector<double> defaultDepths();
 
     /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson and
-    /// compute's checks are made from them. The model choices are read and written beside it.
+    /// compute's checks are made from them, the model choices among them.
     template <typename Visitor>
     void visitFields(Visitor& v);
 };

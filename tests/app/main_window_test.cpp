@@ -647,6 +647,45 @@ nlohmann::json shippedJson(const QString& relative) {
     return nlohmann::json::parse(file.readAll().toStdString());
 }
 
+// A project's panel settings leave out what is at its default or absent (no fixed θ_f, Bekker's
+// bulldozing): opening it after another project gave those keys the other project's values (a
+// reviewer's finding). The file's keys now go over the panel's defaults.
+TEST(MainWindow, APanelKeyTheFileLeavesOutTakesItsDefaultNotThePreviousProjects) {
+    QTemporaryDir dir;
+    Studio studio;
+    const QString base = dir.filePath("base.terra");
+    QString error;
+    ASSERT_TRUE(studio.window.document()->save(base, &error)) << error.toStdString();
+    QFile file(base);
+    ASSERT_TRUE(file.open(QIODevice::ReadOnly));
+    const nlohmann::json project = nlohmann::json::parse(file.readAll().toStdString());
+    nlohmann::json a = project, b = project;
+    a["panels"]["stresses"] = {{"slip", 0.3}, {"entry_angle_deg", 30}, {"bulldozing", "hegedus"}};
+    b["panels"]["stresses"] = {{"slip", 0.2}};
+    ASSERT_TRUE(writeJson(dir.filePath("a.terra"), a));
+    ASSERT_TRUE(writeJson(dir.filePath("b.terra"), b));
+    ui::AnalysisPanel* stresses = nullptr;
+    for (ui::AnalysisPanel* panel : studio.window.findChildren<ui::AnalysisPanel*>()) {
+        if (panel->name() == "stresses") stresses = panel;
+    }
+    ASSERT_NE(stresses, nullptr);
+    const nlohmann::json defaults = stresses->settings();
+    ASSERT_FALSE(defaults.contains("entry_angle_deg"));
+    ASSERT_TRUE(studio.window.openProject(dir.filePath("a.terra"), true));
+    settle(50);
+    EXPECT_EQ(stresses->settings().value("entry_angle_deg", 0.0), 30.0);
+    EXPECT_EQ(stresses->settings().value("bulldozing", ""), "hegedus");
+    ASSERT_TRUE(studio.window.openProject(dir.filePath("b.terra"), true));
+    settle(50);
+    const nlohmann::json opened = stresses->settings();
+    EXPECT_EQ(opened.value("slip", 0.0), 0.2);
+    EXPECT_FALSE(opened.contains("entry_angle_deg")) << opened.dump();
+    EXPECT_FALSE(opened.contains("bulldozing")) << opened.dump();
+    nlohmann::json expected = defaults;
+    expected["slip"] = 0.2;
+    EXPECT_EQ(opened, expected);
+}
+
 // Issue 27: a scenario or a robot file could not be dropped.
 TEST(MainWindow, DroppedScenariosAndRobotsGoToTheRoverPanel) {
     QTemporaryDir dir;

@@ -269,9 +269,15 @@ void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
 }
 
 nlohmann::json AnalysisPanel::withChanges(const nlohmann::json& changes) const {
-    nlohmann::json all = settings();
+    nlohmann::json all = from_defaults_ ? default_settings_ : settings();
     if (changes.is_object()) all.update(changes);
     return all;
+}
+
+void AnalysisPanel::applyFileSettings(const nlohmann::json& file) {
+    from_defaults_ = true;
+    applySettings(file);
+    from_defaults_ = false;
 }
 
 void AnalysisPanel::storeSettings() {

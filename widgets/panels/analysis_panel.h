@@ -54,6 +54,13 @@ public:
     /// Panel settings (saved in the project's "panels" object).
     virtual nlohmann::json settings() const { return nlohmann::json::object(); }
     virtual void applySettings(const nlohmann::json&) {}
+    /// Remembers the panel's settings as they are now as its defaults (the window calls it once
+    /// its panels are built, before any project is opened).
+    void rememberDefaultSettings() { default_settings_ = settings(); }
+    /// A project file's settings of this panel, whole: the keys the file leaves out (a writer
+    /// leaves out a default or an absent value, e.g. no fixed θ_f) take the defaults, never the
+    /// values of the project open before.
+    void applyFileSettings(const nlohmann::json& file);
 
     bool isBusy() const { return runner_.isRunning(); }
     double lastLatencyMs() const { return last_latency_ms_; }
@@ -225,6 +232,8 @@ protected:
     ProjectDocument* document_;
 
 private:
+    nlohmann::json default_settings_ = nlohmann::json::object();
+    bool from_defaults_ = false;  // applyFileSettings: withChanges starts from the defaults
     /// Longest time the screen may go without a new result while edits keep arriving [ms].
     static constexpr qint64 kMaxFrameGapMs = 150;
     bool start();  // true when a computation runs after it
