@@ -267,7 +267,9 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     document_->reset(*project, QFileInfo(path).absoluteFilePath());
     for (ui::AnalysisPanel* panel : panels_) {
         const std::string name = panel->name().toStdString();
-        if (project->panels.contains(name)) panel->applyFileSettings(project->panels[name]);
+        // A panel the file does not name (a project saved before the panel existed) takes its
+        // defaults, never the state of the project open before.
+        panel->applyFileSettings(project->panels.value(name, nlohmann::json::object()));
     }
     // The panels taking the file's settings write them back (in their own form, defaults
     // filled in): that is not an edit. The opened project is what is on disk.

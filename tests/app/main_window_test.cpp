@@ -662,6 +662,9 @@ TEST(MainWindow, APanelKeyTheFileLeavesOutTakesItsDefaultNotThePreviousProjects)
     nlohmann::json a = project, b = project;
     a["panels"]["stresses"] = {{"slip", 0.3}, {"entry_angle_deg", 30}, {"bulldozing", "hegedus"}};
     b["panels"]["stresses"] = {{"slip", 0.2}};
+    // A panel the file does not name at all (a project older than the panel) takes its defaults.
+    a["panels"]["rover"] = {{"scenario", "soil-border"}};
+    b["panels"].erase("rover");
     ASSERT_TRUE(writeJson(dir.filePath("a.terra"), a));
     ASSERT_TRUE(writeJson(dir.filePath("b.terra"), b));
     ui::AnalysisPanel* stresses = nullptr;
@@ -669,12 +672,17 @@ TEST(MainWindow, APanelKeyTheFileLeavesOutTakesItsDefaultNotThePreviousProjects)
         if (panel->name() == "stresses") stresses = panel;
     }
     ASSERT_NE(stresses, nullptr);
+    ui::AnalysisPanel* rover = studio.panel<ui::RoverPanel>();
+    ASSERT_NE(rover, nullptr);
+    const nlohmann::json rover_defaults = rover->settings();
+    ASSERT_NE(rover_defaults.value("scenario", ""), "soil-border");
     const nlohmann::json defaults = stresses->settings();
     ASSERT_FALSE(defaults.contains("entry_angle_deg"));
     ASSERT_TRUE(studio.window.openProject(dir.filePath("a.terra"), true));
     settle(50);
     EXPECT_EQ(stresses->settings().value("entry_angle_deg", 0.0), 30.0);
     EXPECT_EQ(stresses->settings().value("bulldozing", ""), "hegedus");
+    EXPECT_EQ(rover->settings().value("scenario", ""), "soil-border");
     ASSERT_TRUE(studio.window.openProject(dir.filePath("b.terra"), true));
     settle(50);
     const nlohmann::json opened = stresses->settings();
@@ -684,6 +692,7 @@ TEST(MainWindow, APanelKeyTheFileLeavesOutTakesItsDefaultNotThePreviousProjects)
     nlohmann::json expected = defaults;
     expected["slip"] = 0.2;
     EXPECT_EQ(opened, expected);
+    EXPECT_EQ(rover->settings(), rover_defaults);
 }
 
 // Issue 27: a scenario or a robot file could not be dropped.
