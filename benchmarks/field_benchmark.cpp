@@ -234,19 +234,9 @@ BENCHMARK(RoverOnField)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
 
-// A 1-hour mission on the 2 cm field (issue 23: ≤ 4 s wall, ≤ 200 MB): the robot circles on
-// the field (front wheels steered 4°: a circle of ≈ 7 m radius, ≈ 4 laps in the hour, so from
-// the second lap on every wheel is in a remembered cell), at the step and integrator of the 2nd
-// and 3rd argument, with the memory (kind 2 or 4: first argument). One run: wall time, the loop's
-// real-time factor, and the process's peak resident memory (getrusage; it includes the field's
-// rasters, built once for all the benchmarks of this program, and the run's maps).
-void RoverFieldMission(benchmark::State& state) {
-    scenario::Scenario s = fieldRun(state);
-    s.duration_s = 3600.0;
-    s.output_interval_s = 1.0;
-    s.initial = {25.0, 3.0, 0.0, 0.0};
-    for (int i = 0; i < 2; ++i)
-        s.wheels[i].steer_angle_rad = scenario::Signal::constant(4.0 * M_PI / 180.0);
+// Runs a 1-hour field mission as the benchmark's iterations: wall and CPU seconds, the loop's
+// real-time factor, cells touched, distance, and the process's peak resident memory.
+void timeMission(benchmark::State& state, const scenario::Scenario& s) {
     double wall = 0.0, loop = 0.0, cpu = 0.0;
     for (auto _ : state) {
         const auto start = std::chrono::steady_clock::now();
@@ -268,6 +258,22 @@ void RoverFieldMission(benchmark::State& state) {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// A 1-hour mission on the 2 cm field (issue 23: ≤ 4 s wall, ≤ 200 MB): the robot circles on
+// the field (front wheels steered 4°: a circle of ≈ 7 m radius, ≈ 4 laps in the hour, so from
+// the second lap on every wheel is in a remembered cell), at the step and integrator of the 2nd
+// and 3rd argument, with the memory (kind 2 or 4: first argument). One run: wall time, the loop's
+// real-time factor, and the process's peak resident memory (getrusage; it includes the field's
+// rasters, built once for all the benchmarks of this program, and the run's maps).
+void RoverFieldMission(benchmark::State& state) {
+    scenario::Scenario s = fieldRun(state);
+    s.duration_s = 3600.0;
+    s.output_interval_s = 1.0;
+    s.initial = {25.0, 3.0, 0.0, 0.0};
+    for (int i = 0; i < 2; ++i)
+        s.wheels[i].steer_angle_rad = scenario::Signal::constant(4.0 * M_PI / 180.0);
+    timeMission(state, s);
 }
 BENCHMARK(RoverFieldMission)
     ->Args({2, 20, 1})
@@ -306,27 +312,7 @@ void RoverFieldLanes(benchmark::State& state) {
         state.SkipWithError(issues.front().message.c_str());
         return;
     }
-    double wall = 0.0, loop = 0.0, cpu = 0.0;
-    for (auto _ : state) {
-        const auto start = std::chrono::steady_clock::now();
-        const double cpu_start = cpuSeconds();
-        scenario::RunResult r = scenario::runScenario(s);
-        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        cpu += cpuSeconds() - cpu_start;
-        if (r.status != scenario::RunResult::Status::kCompleted)
-            state.SkipWithError(r.message.c_str());
-        loop += s.duration_s / r.summary.real_time_factor.value_or(0.0);
-        state.counters["cells_touched"] = static_cast<double>(r.summary.cells_touched.value_or(0));
-        state.counters["distance_m"] = r.summary.distance_m;
-        benchmark::DoNotOptimize(r.summary.x_m);
-    }
-    const double n = static_cast<double>(state.iterations());
-    state.counters["wall_s"] = wall / n;
-    state.counters["cpu_s"] = cpu / n;
-    state.counters["loop_real_time_factor"] = s.duration_s * n / loop;
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    timeMission(state, s);
 }
 BENCHMARK(RoverFieldLanes)->Args({4, 20, 1})->Unit(benchmark::kSecond)->Iterations(1);
 
