@@ -50,7 +50,7 @@ struct FieldTerrainOptions {
     std::vector<double> stress_depths_m{0.3};
     /// ν for the stress at depth; 0: the layer's own ν at each depth, else 5 (Söhne's "normal").
     double concentration = 0.0;
-    /// Keep every passage written (FieldTerrain::passages): when and where, and what the maps
+    /// Keep every passage written (FieldTerrain::takePassages): when and where, and what the maps
     /// show of the cell after it, so that the maps can be drawn as they were at any time (the
     /// studio's time scrub). 56 bytes a passage.
     bool record_passages = false;
@@ -116,10 +116,8 @@ public:
     /// Cells that at least one wheel passed over.
     long cellsTouched() const { return cells_touched_; }
     /// Every passage written, in the order written (time non-decreasing), when
-    /// options().record_passages; empty otherwise.
-    const std::deque<CellPassage>& passages() const { return log_; }
-    /// The passages, handed over (the terrain's log is empty after it): the runner frees them
-    /// once the maps' history is drawn from them, before it draws the maps.
+    /// options().record_passages (empty otherwise), handed over: the terrain's log is empty after
+    /// it. The runner frees them once the maps' history is drawn from them, before the maps.
     std::deque<CellPassage> takePassages() { return std::exchange(log_, {}); }
 
 private:
