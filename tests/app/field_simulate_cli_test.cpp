@@ -23,12 +23,7 @@ fs::path tempDir(const std::string& name) {
     return dir;
 }
 
-std::string readText(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using terra::test::readText;
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

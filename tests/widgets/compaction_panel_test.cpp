@@ -33,12 +33,7 @@ QCustomPlot* plotNamed(const CompactionPanel& panel, const QString& name) {
     return nullptr;
 }
 
-const QCPGraph* graphNamed(const QCustomPlot& plot, const QString& name) {
-    for (int i = 0; i < plot.graphCount(); ++i) {
-        if (plot.graph(i)->name() == name) return plot.graph(i);
-    }
-    return nullptr;
-}
+using test::graphNamed;
 
 int itemsOf(const QCustomPlot& plot, const char* class_name) {
     int count = 0;

@@ -36,7 +36,7 @@ constexpr double kIssueRounding = 0.06;  // the issue's values have one decimal 
 
 using test::namedPlot;
 
-QCPGraph* graphNamed(QCustomPlot& plot, const QString& prefix) {
+QCPGraph* graphStartingWith(QCustomPlot& plot, const QString& prefix) {
     for (int g = 0; g < plot.graphCount(); ++g) {
         if (plot.graph(g)->name().startsWith(prefix)) return plot.graph(g);
     }
@@ -187,7 +187,7 @@ TEST(ForcesPanel, OverlaysTheMeasuredPointsOnTheModelAtTheMeasuredLoad) {
     // Drawbar pull: the six measured points, as in the file, with their own legend entry.
     QCustomPlot* fx = namedPlot(panel, "Fx_N-vs-slip");
     ASSERT_NE(fx, nullptr);
-    QCPGraph* measured = graphNamed(*fx, "measured");
+    QCPGraph* measured = graphStartingWith(*fx, "measured");
     ASSERT_NE(measured, nullptr);
     EXPECT_EQ(measured->name(), "measured, W = 80 N, β = 0°");
     EXPECT_EQ(measured->lineStyle(), QCPGraph::lsNone);
@@ -200,7 +200,7 @@ TEST(ForcesPanel, OverlaysTheMeasuredPointsOnTheModelAtTheMeasuredLoad) {
     EXPECT_TRUE(fx->legend->hasItemWithPlottable(measured));
     // The project's slip angles (5° … 30°) do not include the test's 0°: the model at the test's
     // conditions is drawn too, and it is the model the issue quotes (the paper's soil).
-    QCPGraph* model = graphNamed(*fx, "model, W = 80 N, β = 0°");
+    QCPGraph* model = graphStartingWith(*fx, "model, W = 80 N, β = 0°");
     ASSERT_NE(model, nullptr);
     for (int i = 0; i < 6; ++i) {
         const auto it = model->data()->findBegin(kSlips[i] - 1e-9, false);
@@ -216,7 +216,7 @@ TEST(ForcesPanel, OverlaysTheMeasuredPointsOnTheModelAtTheMeasuredLoad) {
     QCustomPlot* sinkage = namedPlot(panel, "sinkage_m-vs-slip");
     ASSERT_NE(sinkage, nullptr);
     EXPECT_TRUE(sinkage->yAxis->label().contains("[mm]"));
-    QCPGraph* measured_h = graphNamed(*sinkage, "measured");
+    QCPGraph* measured_h = graphStartingWith(*sinkage, "measured");
     ASSERT_NE(measured_h, nullptr);
     ASSERT_EQ(measured_h->dataCount(), 2);
     EXPECT_DOUBLE_EQ(measured_h->data()->at(0)->value, 5.0);
@@ -240,8 +240,8 @@ TEST(ForcesPanel, OverlaysTheMeasuredPointsOnTheModelAtTheMeasuredLoad) {
     EXPECT_EQ(data.rows.size(), 600u + 100u + 6u);
 
     // Torque and side force are not measured in this test: no measured graph there.
-    EXPECT_EQ(graphNamed(*namedPlot(panel, "My_Nm-vs-slip"), "measured"), nullptr);
-    EXPECT_EQ(graphNamed(*namedPlot(panel, "Fs_N-vs-slip"), "measured"), nullptr);
+    EXPECT_EQ(graphStartingWith(*namedPlot(panel, "My_Nm-vs-slip"), "measured"), nullptr);
+    EXPECT_EQ(graphStartingWith(*namedPlot(panel, "Fs_N-vs-slip"), "measured"), nullptr);
 }
 
 // A test at two loads and slip angles: one measured series per condition, and the model drawn
@@ -266,8 +266,8 @@ TEST(ForcesPanel, OverlaysEachConditionOfATestAndTheModelOnlyWhereTheProjectLack
     for (int g = 0; g < fx->graphCount(); ++g) names << fx->graph(g)->name();
     EXPECT_TRUE(names.contains("model, W = 40 N, β = 0°")) << names.join("; ").toStdString();
     EXPECT_FALSE(names.contains("model, W = 58.86 N, β = 5°")) << names.join("; ").toStdString();
-    QCPGraph* low = graphNamed(*fx, "measured, W = 40 N, β = 0°");
-    QCPGraph* high = graphNamed(*fx, "measured, W = 58.86 N, β = 5°");
+    QCPGraph* low = graphStartingWith(*fx, "measured, W = 40 N, β = 0°");
+    QCPGraph* high = graphStartingWith(*fx, "measured, W = 58.86 N, β = 5°");
     ASSERT_NE(low, nullptr);
     ASSERT_NE(high, nullptr);
     EXPECT_EQ(low->dataCount(), 2);
@@ -279,7 +279,7 @@ TEST(ForcesPanel, OverlaysEachConditionOfATestAndTheModelOnlyWhereTheProjectLack
     at_test.conditions.load_n = 40.0;
     at_test.conditions.slip_angles_deg = {0.0};
     const Table expected = analysis::computeForceSweep(at_test).table;
-    QCPGraph* model = graphNamed(*fx, "model, W = 40 N");
+    QCPGraph* model = graphStartingWith(*fx, "model, W = 40 N");
     ASSERT_EQ(model->dataCount(), static_cast<int>(expected.rows.size()));
     EXPECT_DOUBLE_EQ(model->data()->at(30)->value, expected.rows[30][expected.column("Fx_N")]);
 }

@@ -26,11 +26,7 @@ QCustomPlot* plotNamed(const RoverPanel& panel, const QString& name) {
     return nullptr;
 }
 
-QCPGraph* graphNamed(QCustomPlot& plot, const QString& name) {
-    for (int i = 0; i < plot.graphCount(); ++i)
-        if (plot.graph(i)->name() == name) return plot.graph(i);
-    return nullptr;
-}
+using test::graphNamed;
 
 /// A shipped traction scenario under `controller`, cut to `duration_s`, optionally with the fixed
 /// set-point `slip`.

@@ -30,4 +30,12 @@ inline QCustomPlot* namedPlot(ForcesPanel& panel, const QString& name) {
     return nullptr;
 }
 
+/// The graph of `plot` whose legend name is exactly `name`, or nullptr.
+inline QCPGraph* graphNamed(const QCustomPlot& plot, const QString& name) {
+    for (int i = 0; i < plot.graphCount(); ++i) {
+        if (plot.graph(i)->name() == name) return plot.graph(i);
+    }
+    return nullptr;
+}
+
 }  // namespace terra::ui::test
