@@ -47,14 +47,21 @@ terra_install_dependencies() {
 # Configures and builds the Release tree in build/ (or $TERRA_BUILD_DIR). A new tree uses Ninja:
 # it compiles a target's files while the libraries it links are still being linked, where make
 # waits for each library (docs/install.md, "Build time"); a tree configured before keeps its
-# generator (CMake refuses to change it).
+# generator (CMake refuses to change it). When ccache is installed (it is not in the package
+# list: a fresh machine has nothing cached), a new tree compiles through it, so a second clone or
+# worktree on the same machine reuses the first one's objects.
 terra_build() {
   local root="$1"
   local build="${TERRA_BUILD_DIR:-$root/build}"
-  local generator=()
-  if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja > /dev/null; then
-    generator=(-G Ninja)
+  local options=()
+  if [ ! -f "$build/CMakeCache.txt" ]; then
+    if command -v ninja > /dev/null; then
+      options+=(-G Ninja)
+    fi
+    if command -v ccache > /dev/null; then
+      options+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+    fi
   fi
-  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release
+  cmake -S "$root" -B "$build" "${options[@]}" -DCMAKE_BUILD_TYPE=Release
   cmake --build "$build" -j "$(nproc)"
 }

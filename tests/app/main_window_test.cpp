@@ -176,6 +176,51 @@ TEST(MainWindow, NoPanelScrollsSidewaysAt1024x700) {
     global->applySettings({{"page", "indices"}});
 }
 
+// Issue 27: at 1024×700 the fitted parameters' table showed 3 of its rows — the report under it
+// (held-out error, ambiguity, adequacy) took the height. After a fit every parameter row is in
+// view without scrolling the table, and Fit and the report are still on screen.
+TEST(MainWindow, EveryFittedParameterIsInViewAt1024x700) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.applyLayout(MainWindow::Layout::kCompact);
+    w.resize(1024, 700);
+    w.showPanel("identification");
+    settle();
+    auto* panel = w.findChild<ui::IdentificationPanel*>();
+    ASSERT_NE(panel, nullptr);
+    QSignalSpy shown(panel, &ui::AnalysisPanel::resultShown);
+    panel->requestRun();  // synthetic data from the project's soil, the full model
+    ASSERT_TRUE(shown.wait(60000)) << "the fit did not finish";
+    settle(200);
+    auto* table = panel->findChild<QTableWidget*>("identification.parameters");
+    ASSERT_NE(table, nullptr);
+    ASSERT_GE(table->rowCount(), 7);  // a₀, a₁, K_s, n, c, φ, K at least
+    int rows_height = 0;
+    for (int row = 0; row < table->rowCount(); ++row) rows_height += table->rowHeight(row);
+    EXPECT_GE(table->viewport()->height(), rows_height)
+        << table->rowCount() << " rows of " << table->rowHeight(0) << " px in a "
+        << table->viewport()->height() << " px table";
+    // Fit, Apply and at least two lines of the report are on screen without scrolling the page.
+    for (const char* name :
+         {"identification.fit", "identification.apply", "identification.report"}) {
+        const QWidget* widget = panel->findChild<QWidget*>(name);
+        ASSERT_NE(widget, nullptr) << name;
+        EXPECT_FALSE(widget->visibleRegion().isEmpty()) << name;
+    }
+    const auto* report = panel->findChild<QWidget*>("identification.report");
+    EXPECT_GE(report->visibleRegion().boundingRect().height(),
+              2 * report->fontMetrics().lineSpacing());
+    for (QWidget* parent = panel->parentWidget(); parent != nullptr;
+         parent = parent->parentWidget()) {
+        if (auto* area = qobject_cast<QScrollArea*>(parent)) {
+            EXPECT_FALSE(area->verticalScrollBar()->isVisible())
+                << "the page scrolls: at its width it needs "
+                << area->widget()->heightForWidth(area->viewport()->width()) << " px of "
+                << area->viewport()->height();
+        }
+    }
+}
+
 // The Properties pane at 1024×700 in the compact layout: every page (soil, wheel, conditions,
 // data sets, scenarios, experiment) fits the pane's width — no sideways scroll bar (the soil
 // page's sliders once pushed it out by a few pixels).

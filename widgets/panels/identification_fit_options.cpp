@@ -263,7 +263,7 @@ QString IdentificationFitOptions::wheelDescription() const {
     if (choice.isEmpty() && data_wheel_) {
         text += QString(": the data's wheel (%1)").arg(data_wheel_source_);
     } else if (choice.isEmpty()) {
-        text += synthetic ? QString(": the project's wheel (the synthetic data are made with it)")
+        text += synthetic ? QString(": the project's wheel, the synthetic data's")
                           : QString(": the project's wheel (the data name no wheel)");
     } else if (choice == "project") {
         text += ": the project's wheel, chosen";

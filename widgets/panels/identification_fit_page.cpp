@@ -13,6 +13,8 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalBlocker>
 #include <QSplitter>
 #include <QStringList>
@@ -65,6 +67,7 @@ IdentificationFitPage::IdentificationFitPage(ProjectDocument* document, QWidget*
     three_loads_->setToolTip(
         "One load cannot separate c and φ when the data are noisy (full_fit.h)");
     fit_ = new QPushButton("Fit", this);
+    fit_->setObjectName("identification.fit");
     fit_->setDefault(true);
     cancel_fit_ = new QPushButton("Cancel", this);
     cancel_fit_->setObjectName("identification.cancel");
@@ -80,6 +83,7 @@ IdentificationFitPage::IdentificationFitPage(ProjectDocument* document, QWidget*
         tabs_->addTab(plot, QString::fromUtf8(channel));
     }
     parameters_ = new QTableWidget(0, 6, this);
+    parameters_->setObjectName("identification.parameters");
     parameters_->setHorizontalHeaderLabels(
         {"Parameter", "Identified", "± std", "Prior", "σ post/prior", "Truth"});
     parameters_->horizontalHeaderItem(4)->setToolTip(
@@ -91,6 +95,7 @@ IdentificationFitPage::IdentificationFitPage(ProjectDocument* document, QWidget*
     // The CSV before a fit: its first rows, what is read of it and what will be fitted.
     preview_ = new DataPreviewWidget(this);
     report_ = new QLabel(this);
+    report_->setObjectName("identification.report");
     report_->setWordWrap(true);
     report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     report_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
@@ -100,8 +105,12 @@ IdentificationFitPage::IdentificationFitPage(ProjectDocument* document, QWidget*
     parameters_->horizontalHeader()->setStretchLastSection(true);
     parameters_->setWordWrap(false);
     parameters_->verticalHeader()->hide();
+    // Rows as tall as a line of text (the style's 30 px left room for 3 of 9 rows at 1024×700).
+    parameters_->verticalHeader()->setMinimumSectionSize(fontMetrics().height() + 4);
+    parameters_->verticalHeader()->setDefaultSectionSize(fontMetrics().height() + 4);
     parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     apply_ = new QPushButton("Apply identified soil to project", this);
+    apply_->setObjectName("identification.apply");
     apply_->setToolTip(
         "Replace the project's soil by the identified parameters (a₀, a₁, K_s, n, n₁, c, φ, K); "
         "k_c : k_φ and γ stay the project soil's, and j_max unless the fit held or identified "
@@ -132,7 +141,15 @@ IdentificationFitPage::IdentificationFitPage(ProjectDocument* document, QWidget*
     side_tabs_->setTabVisible(1, false);
     side_layout->addWidget(side_tabs_, 2);
     side_layout->addWidget(apply_);
-    side_layout->addWidget(report_, 1);
+    // The report scrolls in what the table leaves: a long one (flags, adequacy) once took the
+    // height of the table's rows.
+    auto* report_area = new QScrollArea(side);
+    report_area->setWidget(report_);
+    report_area->setWidgetResizable(true);
+    report_area->setFrameShape(QFrame::NoFrame);
+    report_area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    report_area->setMinimumHeight(2 * fontMetrics().lineSpacing());
+    side_layout->addWidget(report_area, 1);
     auto* splitter = new QSplitter(this);
     splitter->addWidget(tabs_);
     splitter->addWidget(side);
@@ -384,6 +401,7 @@ void IdentificationFitPage::present(const std::any& value,
         // The previous fit's curves and table are not this one's: cleared, so that the plots,
         // the table and an export say the same.
         parameters_->setRowCount(0);
+        fitTableToRows();
         for (QCustomPlot* plot : plots_) {
             plot->clearPlottables();
             plot->replot();
@@ -409,12 +427,26 @@ void IdentificationFitPage::present(const std::any& value,
     if (file_->text().isEmpty())
         truth = identification::decoupledOf(document_->project().soil, fit_wheel_);
     fillParameterTable(*parameters_, result_, truth);
+    fitTableToRows();
     report_->setText(identificationReport(result_));
     // The fit's warnings after its steps (a column not read, an old parameter key typed).
     QString status = identificationSteps(result_);
     for (const std::string& warning : result_.warnings)
         status += "<br><b>Warning:</b> " + QString::fromStdString(warning).toHtmlEscaped();
     status_->setText(status);
+}
+
+void IdentificationFitPage::fitTableToRows() {
+    if (parameters_->rowCount() == 0) {
+        parameters_->setMinimumHeight(0);
+        return;
+    }
+    int height =
+        parameters_->horizontalHeader()->sizeHint().height() + 2 * parameters_->frameWidth();
+    for (int row = 0; row < parameters_->rowCount(); ++row) height += parameters_->rowHeight(row);
+    // A side panel narrower than the columns shows a horizontal scroll bar under the rows.
+    height += parameters_->horizontalScrollBar()->sizeHint().height();
+    parameters_->setMinimumHeight(height);
 }
 
 }  // namespace terra::ui

@@ -88,6 +88,9 @@ signals:
 private:
     void updateDataControls();
     void updateDataPreview();
+    /// The parameters' table as tall as its rows (none: no minimum), so that the layout gives it
+    /// their height before the report's: at 1024×700 it showed 3 of 9 rows (issue 27).
+    void fitTableToRows();
 
     ProjectDocument* document_;
     QLineEdit* file_;
