@@ -41,7 +41,7 @@ void TractionRobustSlip(benchmark::State& state) {
     const analysis::Inputs in = sandyLoamOnA(true);
     analysis::TractionSettings s;
     s.posterior =
-        analysis::SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}};
+        analysis::SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}, {}};
     for (auto _ : state) benchmark::DoNotOptimize(analysis::computeTraction(in, s));
 }
 BENCHMARK(TractionRobustSlip)->Unit(benchmark::kMillisecond);
@@ -58,6 +58,7 @@ void TractionRobustPlan(benchmark::State& state) {
     const std::vector<double> sd{0.03, 0.03, 151.5, 0.04, 0.255, 1.5, 0.00375};
     analysis::SoilPosterior p{{"a0", "a1", "kphi", "n", "c_kPa", "phi_deg", "K_m"},
                               {0.2, 0.3, 1515.0, 0.7, 1.7, 29.0, 0.025},
+                              {},
                               {}};
     p.covariance.assign(7, std::vector<double>(7, 0.0));
     for (std::size_t i = 0; i < 7; ++i) p.covariance[i][i] = sd[i] * sd[i];

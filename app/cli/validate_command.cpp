@@ -110,11 +110,13 @@ void printRun(std::ostream& out, const analysis::ValidationRun& run, bool with_f
         out << buffer;
         for (std::size_t c = 0; c < measured.size(); ++c) {
             if (!measured[c]) continue;
-            const std::optional<double> predicted =
-                p.predicted ? std::optional(p.values[c]) : std::nullopt;
+            const std::string predicted =
+                p.point.measured[c]
+                    ? (p.predicted ? fixed(p.values[c] * displayScale(c), 2) : std::string("-"))
+                    : std::string();
             std::snprintf(buffer, sizeof buffer, "  %10s %10s",
                           cellOf(p.point.measured[c], displayScale(c), 2).c_str(),
-                          p.point.measured[c] ? cellOf(predicted, displayScale(c), 2).c_str() : "");
+                          predicted.c_str());
             out << buffer;
         }
         if (with_fit) out << (p.in_fit ? "  yes" : "  held out");

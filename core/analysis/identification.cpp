@@ -15,6 +15,7 @@
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
 #include "core/contact/wheel_forces.h"
+#include "core/identification/parameter_text.h"
 #include "core/identification/synthetic.h"
 #include "core/io/declared_json.h"
 #include "core/io/parameters_json.h"
@@ -568,7 +569,7 @@ Summary identificationSummary(const IdentificationResult& result) {
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const id::StepReport& step = steps[i];
         std::string detail = formatFixed(step.wall_time_ms, 2) + " ms";
-        if (!step.termination.empty()) detail += ", " + step.termination;
+        if (!step.termination.empty()) detail += ", " + id::solverOutcome(step.termination);
         out.push_back({"step " + step.name.worded(id::ParameterNaming::kSymbol) + ", |r|^2",
                        formatNumber(roundSignificant(step.squared_residual_norm, 6)), "", detail,
                        Emphasis::kNormal, "/steps/" + std::to_string(i) + "/squared_residual_norm",

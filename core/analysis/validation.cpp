@@ -9,6 +9,7 @@
 #include "core/analysis/operating_point.h"
 #include "core/analysis/registry.h"
 #include "core/common/units.h"
+#include "core/identification/parameter_text.h"
 #include "core/identification/parameters.h"
 #include "core/io/declared_json.h"
 
@@ -847,8 +848,8 @@ Summary validationSummary(const ValidationResult& r) {
             out.push_back({title + ": FAILED", c.report.message, "", "", Emphasis::kWarning,
                            c.report.message.empty() ? "" : "/calibration/message"});
         } else {
-            out.push_back({title, solverOutcome(c.report.termination), "", "", Emphasis::kHeading,
-                           "/calibration"});
+            out.push_back({title, identification::solverOutcome(c.report.termination), "", "",
+                           Emphasis::kHeading, "/calibration"});
             out.push_back({"chi2", formatNumber(roundSignificant(c.report.chi2, 5)), "", "",
                            Emphasis::kNormal, "/calibration/chi2", c.report.chi2});
             // j_max is held at the soil's (the shear limit is the soil file's): seven parameters.
@@ -949,24 +950,6 @@ MetricsTable validationMetricsTable(const ValidationResult& r) {
         }
     }
     return out;
-}
-
-std::string solverOutcome(const std::string& termination) {
-    const auto has = [&termination](const char* text) {
-        return termination.find(text) != std::string::npos;
-    };
-    if (termination.rfind("CONVERGENCE", 0) == 0) {
-        if (has("every parameter is held")) return "nothing to fit (every parameter is held)";
-        if (has("Gradient tolerance")) return "converged (the slope vanished at the minimum)";
-        if (has("Parameter tolerance")) return "converged (the parameters stopped moving)";
-        if (has("Function tolerance")) return "converged (the fit stopped improving)";
-        return "converged";
-    }
-    if (termination.rfind("NO_CONVERGENCE", 0) == 0)
-        return "stopped at its iteration limit before converging (usable; check the errors)";
-    if (termination.rfind("USER_", 0) == 0) return "stopped";
-    if (has("cannot be evaluated")) return "failed: the model cannot be evaluated at the solution";
-    return "the solver failed";
 }
 
 Outcome validationOutcome(ValidationResult result) {

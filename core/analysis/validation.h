@@ -231,7 +231,8 @@ std::string validationFailure(const ValidationResult& result);
 /// The parameter rows, labelled by symbol (K_s, n₀, φ, …; the JSON keeps the keys), give each
 /// value to the decimal place its std supports (formatAtStd) and
 /// the prior in the detail ("prior 31.9", then ", ended at its bound" when it did); the
-/// calibration's heading says the solver's outcome in a user's words (solverOutcome).
+/// calibration's heading says the solver's outcome in a user's words
+/// (identification::solverOutcome).
 Summary validationSummary(const ValidationResult& result);
 
 /// The validation's metrics as one table for a person (the studio's calibration dialog shows
@@ -254,10 +255,6 @@ MetricsTable validationMetricsTable(const ValidationResult& result);
 
 /// A cell's text: its value and unit ("5.656 N"), or "" for none.
 std::string cellText(const SummaryRow& cell);
-
-/// A solver's termination in a user's words: Ceres' "CONVERGENCE: Function tolerance reached.
-/// |cost_change|/cost: 1.2e-07 <= 1e-06" is "converged (the fit stopped improving)".
-std::string solverOutcome(const std::string& termination);
 
 /// Tables "metrics" (main: one row, CHANNEL_rmse, CHANNEL_mae, CHANNEL_max_rel_error,
 /// CHANNEL_count per measured channel), "points", "curves" (ValidationRun::curves) and,

@@ -32,7 +32,16 @@ void scan(const std::string& text, Reference reference, Plain plain) {
 
 }  // namespace
 
-std::string ParameterText::reference(std::string_view key) { return "{" + std::string(key) + "}"; }
+std::string ParameterText::reference(std::string_view key) {
+    // Appended, not "{" + key + "}": GCC 12 at -O3 warns of a bound it cannot prove (a false
+    // -Wstringop-overflow inside char_traits).
+    std::string text;
+    text.reserve(key.size() + 2);
+    text.push_back('{');
+    text.append(key);
+    text.push_back('}');
+    return text;
+}
 
 std::string ParameterText::worded(ParameterNaming naming) const {
     std::string out;
@@ -63,6 +72,31 @@ std::vector<std::string> worded(const std::vector<ParameterText>& texts, Paramet
     out.reserve(texts.size());
     for (const ParameterText& text : texts) out.push_back(text.worded(naming));
     return out;
+}
+
+std::string solverOutcome(const std::string& termination) {
+    const auto has = [&termination](const char* text) {
+        return termination.find(text) != std::string::npos;
+    };
+    const auto starts = [&termination](const char* kind) {
+        return termination.rfind(kind, 0) == 0;
+    };
+    if (starts("CONVERGENCE")) {
+        if (has("every parameter is held")) return "nothing to fit (every parameter is held)";
+        if (has("Gradient tolerance")) return "converged (the slope vanished at the minimum)";
+        if (has("Parameter tolerance")) return "converged (the parameters stopped moving)";
+        if (has("Function tolerance")) return "converged (the fit stopped improving)";
+        return "converged";
+    }
+    if (starts("NO_CONVERGENCE"))
+        return "stopped at its iteration limit before converging (usable; check the errors)";
+    if (starts("STOPPED")) return "stopped in the basin of a minimum found before";
+    if (starts("USER_")) return "stopped";
+    if (starts("FAILURE")) {
+        return has("cannot be evaluated") ? "failed: the model cannot be evaluated at the solution"
+                                          : "the solver failed";
+    }
+    return termination;
 }
 
 }  // namespace terra::identification

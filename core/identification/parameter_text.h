@@ -45,4 +45,10 @@ struct ParameterText {
 /// Each text worded (ParameterText::worded).
 std::vector<std::string> worded(const std::vector<ParameterText>& texts, ParameterNaming naming);
 
+/// A termination in a user's words (issue 27: no optimizer wording on screen): Ceres'
+/// "CONVERGENCE: Function tolerance reached. |cost_change|/cost: 1.2e-07 <= 1e-06" is "converged
+/// (the fit stopped improving)", NO_CONVERGENCE, FAILURE and STOPPED (box_solver.h) likewise; a
+/// text that is not a solver's termination (a step's own note) is returned as it is.
+std::string solverOutcome(const std::string& termination);
+
 }  // namespace terra::identification

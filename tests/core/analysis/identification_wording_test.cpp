@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "core/analysis/identification.h"
+#include "core/identification/parameter_text.h"
 #include "tests/core/test_support.h"
 
 namespace terra::analysis {
@@ -71,6 +72,57 @@ TEST(IdentificationWording, TheDecoupledStepsNameTheirParametersByKeyInJsonBySym
     EXPECT_EQ(labels, (std::vector<std::string>{"step I: a₀, a₁ (Fx, Eq. 4.12), |r|^2",
                                                 "step II: K_s, n₀, n₁ (Fz, Eq. 4.17), |r|^2",
                                                 "step III: c, φ, K (My, Eq. 4.18), |r|^2"}));
+}
+
+// Issue 27: the steps say how each ended in a user's words ("converged (the fit stopped
+// improving)"), not Ceres' "CONVERGENCE: Function tolerance reached. |cost_change|/cost: … <= …";
+// the JSON keeps the solver's own termination for a script.
+TEST(IdentificationWording, TheStepsSayHowTheyEndedInAUsersWords) {
+    for (const bool refine : {false, true}) {
+        IdentificationSettings s;
+        s.refine = refine;
+        const IdentificationResult r = computeIdentification(terra::testing::sandyLoamOnA(), s);
+        ASSERT_EQ(r.status, Outcome::Status::kCompleted) << r.message;
+        const nlohmann::json j = toJson(r);
+        bool ceres_in_json = false;
+        for (const nlohmann::json& step : j["steps"])
+            ceres_in_json |= step.value("termination", "").starts_with("CONVERGENCE");
+        EXPECT_TRUE(ceres_in_json) << j["steps"].dump();
+        int steps = 0;
+        bool converged = false;
+        for (const SummaryRow& row : identificationSummary(r)) {
+            if (!row.json.starts_with("/steps/")) continue;
+            ++steps;
+            converged |= contains(row.detail, "converged");
+            for (const char* optimizer : {"CONVERGENCE", "cost_change", "tolerance", "<="})
+                EXPECT_FALSE(contains(row.detail, optimizer)) << refine << ": " << row.detail;
+        }
+        EXPECT_EQ(steps, static_cast<int>(j["steps"].size()));
+        EXPECT_TRUE(converged) << refine;
+    }
+}
+
+TEST(IdentificationWording, EachKindOfTerminationHasItsWords) {
+    using identification::solverOutcome;
+    EXPECT_EQ(solverOutcome("CONVERGENCE: Function tolerance reached. |cost_change|/cost: "
+                            "1.2e-07 <= 1e-06"),
+              "converged (the fit stopped improving)");
+    EXPECT_EQ(solverOutcome("CONVERGENCE: Gradient tolerance reached. Gradient max norm: 1e-11 "
+                            "<= 1e-10"),
+              "converged (the slope vanished at the minimum)");
+    EXPECT_EQ(solverOutcome("CONVERGENCE: every parameter is held"),
+              "nothing to fit (every parameter is held)");
+    EXPECT_TRUE(solverOutcome("NO_CONVERGENCE: Maximum number of iterations reached.")
+                    .starts_with("stopped at its iteration limit"));
+    EXPECT_EQ(solverOutcome("STOPPED: the caller's stop condition holds"),
+              "stopped in the basin of a minimum found before");
+    EXPECT_EQ(solverOutcome("FAILURE: the cost cannot be evaluated at the solution"),
+              "failed: the model cannot be evaluated at the solution");
+    EXPECT_EQ(solverOutcome("FAILURE: Residual and Jacobian evaluation failed."),
+              "the solver failed");
+    // A step's own note is not a solver's termination: kept as it is.
+    EXPECT_EQ(solverOutcome("best χ² on the subset after the linear projection"),
+              "best χ² on the subset after the linear projection");
 }
 
 }  // namespace

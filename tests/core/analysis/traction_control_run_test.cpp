@@ -282,7 +282,9 @@ TEST(TractionControlRun, BandSettlingTimeIsTheLastStretchOfPlansWithinTheirBand)
     }
     if (in_force) judge(*in_force, *m.border_time_s);
     ASSERT_EQ(settled_from.has_value(), m.settling_band_time_s.has_value());
-    if (settled_from) EXPECT_NEAR(*m.settling_band_time_s, *settled_from - *m.border_time_s, 0.011);
+    if (settled_from) {
+        EXPECT_NEAR(*m.settling_band_time_s, *settled_from - *m.border_time_s, 0.011);
+    }
     // The strict criterion can only settle later (or never).
     if (m.settling_time_s) {
         ASSERT_TRUE(m.settling_band_time_s.has_value());

@@ -153,7 +153,7 @@ TEST(TractionSettingsKeys, ComputeChecksASettingsStructBuiltInCode) {
     EXPECT_EQ(messageOf([&] { computeTraction(sandyLoamOnA(), s); }),
               "slip_max: 0.2 must be above slip_min = 0.8");
     s = {};
-    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{1.0, 2.0}, {2.0, 1.0}}};
+    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{1.0, 2.0}, {2.0, 1.0}}, {}};
     EXPECT_EQ(messageOf([&] { computeTraction(sandyLoamOnA(), s); }),
               "posterior.covariance: is not symmetric positive definite");
     EXPECT_TRUE(computeTraction(sandyLoamOnA(), TractionSettings{}).ok());

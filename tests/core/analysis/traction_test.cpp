@@ -81,7 +81,7 @@ TEST(Traction, ASinkageCapMovesTheOptimumToTheCap) {
 TEST(Traction, APosteriorGivesABandAndARobustSlip) {
     const Inputs in = sandyLoamOnA(true);
     TractionSettings s;
-    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}};
+    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}, {}};
     s.posterior_samples = 100;
     const TractionResult r = computeTraction(in, s);
     ASSERT_TRUE(r.ok()) << r.message;
@@ -106,7 +106,7 @@ TEST(Traction, ANarrowPosteriorIsTheNominalSoil) {
     TractionSettings s;
     s.slip_min = 0.4;
     s.slip_max = 0.8;
-    s.posterior = SoilPosterior{{"phi_deg"}, {29.0}, {{1e-10}}};
+    s.posterior = SoilPosterior{{"phi_deg"}, {29.0}, {{1e-10}}, {}};
     s.posterior_samples = 20;
     const TractionResult r = computeTraction(in, s);
     ASSERT_TRUE(r.robust_slip);
@@ -166,7 +166,7 @@ TEST(Traction, SigmaPointsGiveTheMomentsOfANearlyQuadraticObjective) {
     const Inputs in = presetOnA("sandy-loam");
     TractionSettings s = plannerSettings();
     const double sigma = 0.3;  // [deg]
-    s.posterior = SoilPosterior{{"phi_deg"}, {29.0}, {{sigma * sigma}}};
+    s.posterior = SoilPosterior{{"phi_deg"}, {29.0}, {{sigma * sigma}}, {}};
     s.posterior_method = scenario::PosteriorMethod::kSigmaPoints;
     const TractionResult r = computeTraction(in, s);
     ASSERT_EQ(r.band.size(), r.curve.size());
@@ -235,14 +235,14 @@ TEST(Traction, BadSettingsAreNamed) {
     s.slip_max = 0.2;
     EXPECT_THROW(computeTraction(sandyLoamOnA(true), s), std::invalid_argument);
     s = {};
-    s.posterior = SoilPosterior{{"phi"}, {29.0}, {{1.0}}};
+    s.posterior = SoilPosterior{{"phi"}, {29.0}, {{1.0}}, {}};
     try {
         computeTraction(sandyLoamOnA(true), s);
         FAIL();
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("posterior.parameters"), std::string::npos);
     }
-    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{1.0, 2.0}, {2.0, 1.0}}};
+    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{1.0, 2.0}, {2.0, 1.0}}, {}};
     EXPECT_THROW(computeTraction(sandyLoamOnA(true), s), std::invalid_argument);  // not SPD
 }
 

@@ -27,7 +27,7 @@ struct OldKey {
     const char* old_key;
     const char* key;
     FullParameter parameter;
-    double(DecoupledParameters::*member);
+    double DecoupledParameters::*member;
 };
 const OldKey kOldKeys[] = {{"Ks", "Ks_kPa", kKs, &DecoupledParameters::pressure_modulus},
                            {"n", "n0", kN, &DecoupledParameters::n0}};
