@@ -61,18 +61,10 @@ const std::vector<std::pair<std::string, std::string>>& compactionFlagNames() {
     return names;
 }
 
+// The core summary (what the compaction panel shows), then the depth and pass tables.
 void printText(const analysis::Inputs& in, const analysis::CompactionSettings& s,
                const analysis::CompactionResult& r) {
-    std::cout << in.soil.name << ", " << in.wheel.name << ": W = " << formatNumber(r.load_n)
-              << " N, s = " << formatNumber(s.slip) << ", beta = " << formatNumber(s.slip_angle_deg)
-              << " deg, nu = "
-              << (s.concentration ? formatNumber(*s.concentration)
-                                  : std::string(r.profile ? "per layer" : "5"))
-              << ", " << s.passes << (s.passes == 1 ? " pass" : " passes") << '\n';
-    if (r.profile) {
-        std::cout << "profile " << r.profile->name << " (" << r.profile->layers.size()
-                  << " layers)\n";
-    }
+    printSummary(std::cout, analysis::compactionSummary(in, s, r));
     std::cout << "largest stress under the centre line during the passes:\n"
               << "  depth [m]  sigma_z [kPa]  p [kPa]  sigma_1 [kPa]"
               << (r.profile ? "  sigma_pc [kPa]  risk" : "") << '\n';
@@ -89,12 +81,6 @@ void printText(const analysis::Inputs& in, const analysis::CompactionSettings& s
             std::cout << line;
         }
         std::cout << '\n';
-    }
-    if (r.red_to_depth_m) {
-        std::cout << (*r.red_to_depth_m > 0.0
-                          ? "red (stress > 1.1 sigma_pc) down to " + fixed(*r.red_to_depth_m, 3) +
-                                " m\n"
-                          : std::string("no red zone (stress <= 1.1 sigma_pc at every depth)\n"));
     }
     std::cout << "  pass  sinkage [mm]  increment [mm]  rut [mm]    Fx [N]   My [Nm]";
     if (r.profile) std::cout << "  bulk density per layer [Mg/m3]";
@@ -175,14 +161,17 @@ void addCompactionCommand(CLI::App& app, const io::PresetLocations& locations) {
         }
         settings.model = o.model.choices();
         const analysis::CompactionResult result = analysis::computeCompaction(inputs, settings);
-        for (const std::string& note : result.notes) std::cerr << "note: " << note << '\n';
+        // The printed text's summary says the notes; otherwise (the JSON, the CSV on stdout, no
+        // pass) stderr does.
+        const bool text = !o.json && (o.out.empty() || o.out != "-") && !result.passes.empty();
+        if (!text)
+            for (const std::string& note : result.notes) std::cerr << "note: " << note << '\n';
         if (o.json) {
             writeOutput(o.out, analysis::toJson(result).dump(2) + "\n");
         } else if (!o.out.empty()) {
             writeOutput(o.out, io::toCsv(analysis::compactionOutcome(result).tables.front().table));
         }
-        if (!o.json && (o.out.empty() || o.out != "-") && !result.passes.empty())
-            printText(inputs, settings, result);
+        if (text) printText(inputs, settings, result);
         if (!result.ok()) throw std::runtime_error(result.message);
     });
 }

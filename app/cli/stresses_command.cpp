@@ -1,7 +1,6 @@
 // `terrastudio stresses`: σ, τ, τ_t, τ_l and j over the contact (Eqs. 2.13–2.22), exact and from
 // the quadratic approximation (Eqs. 2.36–2.38), with RMSE and MAE (Eqs. 2.39–2.40, Tables 2.4–2.5):
 // core/analysis/stresses.h, as the studio's stress panel and a script's "stresses".
-#include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -12,7 +11,6 @@
 #include "core/common/range.h"
 #include "core/contact/operating_fields.h"
 #include "core/io/csv.h"
-#include "core/io/table_json.h"
 
 namespace terra::app {
 namespace {
@@ -75,22 +73,9 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
         const analysis::StressResult result = analysis::computeStresses(inputs, settings);
         if (!result.message.empty()) throw std::runtime_error(result.message);
         const Table& grid = result.table;
-        const char* names[] = {"sigma", "tau", "tau_t", "tau_l"};
         const bool to_file = !o.out.empty() && o.out != "-";
-        // θ_m as the user typed it (15, not 15.000000000000002), or Eq. 2.18's value.
-        const double theta_m_deg = plainZero(roundSignificant(result.max_stress_angle_deg));
         if (o.json) {
-            nlohmann::json summary;
-            for (int k = 0; k < 4; ++k) {
-                summary[std::string(names[k]) + "_rmse_kPa"] = result.errors[k].rmse / 1e3;
-                summary[std::string(names[k]) + "_mae_kPa"] = result.errors[k].mae / 1e3;
-            }
-            summary["max_stress_angle_deg"] = theta_m_deg;
-            summary["entry_angle_deg"] = plainZero(roundSignificant(result.entry_angle_deg));
-            summary["points"] = grid.rows.size();
-            writeOutput(
-                o.out,
-                nlohmann::json{{"errors", summary}, {"grid", io::toJson(grid)}}.dump(2) + "\n");
+            writeOutput(o.out, analysis::toJson(result).dump(2) + "\n");
             if (to_file) std::cerr << "wrote " << o.out << ": " << grid.rows.size() << " angles\n";
             return;
         }
@@ -100,23 +85,7 @@ void addStressesCommand(CLI::App& app, const io::PresetLocations& locations) {
             if (!to_file) return;
             std::cerr << "wrote " << o.out << ": " << grid.rows.size() << " angles\n";
         }
-        std::cout << inputs.soil.name << ", " << inputs.wheel.name
-                  << ": s = " << formatNumber(settings.slip)
-                  << ", beta = " << formatNumber(settings.slip_angle_deg) << " deg, theta_f = "
-                  << (settings.entry_angle_deg ? formatNumber(*settings.entry_angle_deg) + " deg"
-                                               : fixed(result.entry_angle_deg, 4) + " deg (W = " +
-                                                     formatNumber(inputs.conditions.load_n) + " N)")
-                  << ", theta_m = " << fixed(theta_m_deg, 4)
-                  << " deg\nquadratic approximation vs exact over " << grid.rows.size()
-                  << " angles (step " << formatNumber(settings.step_deg) << " deg):\n"
-                  << "            sigma      tau    tau_t    tau_l\n";
-        std::cout << "  RMSE kPa";
-        for (int k = 0; k < 4; ++k)
-            std::cout << ' ' << std::setw(8) << fixed(result.errors[k].rmse / 1e3, 4);
-        std::cout << "\n  MAE  kPa";
-        for (int k = 0; k < 4; ++k)
-            std::cout << ' ' << std::setw(8) << fixed(result.errors[k].mae / 1e3, 4);
-        std::cout << '\n';
+        printSummary(std::cout, analysis::stressSummary(inputs, settings, result));
     });
 }
 

@@ -52,25 +52,10 @@ const std::vector<std::pair<std::string, std::string>>& tractionFlagNames() {
     return names;
 }
 
+// The core summary (what the panels would show), then the curve.
 void printText(const analysis::Inputs& in, const analysis::TractionSettings& s,
                const analysis::TractionResult& r) {
-    std::cout << in.soil.name << ", " << in.wheel.name
-              << ": W = " << formatNumber(in.conditions.load_n)
-              << " N, beta = " << formatNumber(s.slip_angle_deg) << " deg, objective "
-              << analysis::objectiveName(s.objective)
-              << (s.max_sinkage_m ? ", sinkage <= " + formatNumber(*s.max_sinkage_m) + " m" : "")
-              << '\n';
-    const analysis::TractionPoint& p = r.at_optimum;
-    std::cout << "s* = " << fixed(*r.optimal_slip, 4) << ": Fx = " << fixed(p.fx_n, 3)
-              << " N, My = " << fixed(p.my_nm, 4) << " Nm, efficiency = " << fixed(p.efficiency, 4)
-              << ", sinkage = " << fixed(p.sinkage_m * 1e3, 3) << " mm\n";
-    if (r.robust_slip) {
-        std::cout << "posterior (" << s.posterior_samples
-                  << " soils): robust s* = " << fixed(*r.robust_slip, 4) << " (largest "
-                  << formatNumber(s.quantile * 100) << " % quantile of the "
-                  << analysis::objectiveName(s.objective) << ": " << fixed(r.robust_value, 4)
-                  << "), largest mean at s = " << fixed(*r.expected_slip, 4) << '\n';
-    }
+    printSummary(std::cout, analysis::tractionSummary(in, s, r));
     std::cout << "     slip    Fx [N]   My [Nm]  efficiency  sinkage [mm]\n";
     const std::size_t step = std::max<std::size_t>(1, r.curve.size() / 12);
     for (std::size_t i = 0; i < r.curve.size(); i += step) {
@@ -143,7 +128,11 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
         }
         settings.model = o.model.choices();
         const analysis::TractionResult result = analysis::computeTraction(inputs, settings);
-        for (const std::string& note : result.notes) std::cerr << "note: " << note << '\n';
+        // The printed text's summary says the notes; otherwise (the JSON, the CSV on stdout, no
+        // s*) stderr does.
+        const bool text = !o.json && o.out != "-";
+        if (!text || !result.ok())
+            for (const std::string& note : result.notes) std::cerr << "note: " << note << '\n';
         if (!result.ok()) throw std::runtime_error(result.message);
         if (o.json) {
             writeOutput(o.out, analysis::toJson(result).dump(2) + "\n");
@@ -151,7 +140,7 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
         }
         if (!o.out.empty())
             writeOutput(o.out, io::toCsv(analysis::tractionOutcome(result).tables.front().table));
-        if (o.out != "-") printText(inputs, settings, result);
+        if (text) printText(inputs, settings, result);
     });
 }
 

@@ -87,6 +87,20 @@ void writeModelChoices(const ModelChoices& choices, nlohmann::json& out) {
     out.update(io::fieldsToJson(choices));
 }
 
+const char* statusName(Outcome::Status status) {
+    switch (status) {
+        case Outcome::Status::kCompleted:
+            return "completed";
+        case Outcome::Status::kCancelled:
+            return "cancelled";
+        case Outcome::Status::kFailed:
+            return "failed";
+        case Outcome::Status::kInvalidInput:
+            return "invalid input";
+    }
+    return "?";
+}
+
 const Table* Outcome::table(std::string_view name) const {
     if (tables.empty()) return nullptr;
     if (name.empty()) return &tables.front().table;

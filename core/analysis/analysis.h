@@ -163,4 +163,8 @@ struct Outcome {
     const Table* table(std::string_view name = {}) const;
 };
 
+/// A status as the results' JSON and Python's run() spell it: "completed", "cancelled",
+/// "failed", "invalid input".
+const char* statusName(Outcome::Status status);
+
 }  // namespace terra::analysis

@@ -403,9 +403,83 @@ nlohmann::json toJson(const CompactionResult& r) {
     }
     out["passes"] = passes;
     if (r.profile) out["soil_profile"] = io::toJson(*r.profile);
-    out["status"] = r.ok() ? "completed" : "failed";
+    out["status"] = statusName(r.status());
     if (!r.message.empty()) out["message"] = r.message;
     out["notes"] = r.notes;
+    return out;
+}
+
+Summary compactionSummary(const Inputs& in, const CompactionSettings& s,
+                          const CompactionResult& r) {
+    using Emphasis = SummaryRow::Emphasis;
+    Summary out;
+    const std::string nu = s.concentration ? formatNumber(*s.concentration)
+                           : r.profile     ? std::string("per layer")
+                                           : formatNumber(kDefaultConcentration);
+    out.push_back({"compaction",
+                   in.soil.name + ", " + in.wheel.name + ", W = " + formatNumber(r.load_n) +
+                       " N, s = " + formatNumber(s.slip) +
+                       ", beta = " + formatNumber(s.slip_angle_deg) + " deg, nu = " + nu + ", " +
+                       std::to_string(s.passes) + (s.passes == 1 ? " pass" : " passes"),
+                   "", "", Emphasis::kHeading, ""});
+    if (!r.ok()) {
+        out.push_back({statusName(r.status()), r.message, "",
+                       r.passes.empty() ? "" : "the passes before are kept", Emphasis::kWarning,
+                       "/message"});
+    }
+    if (r.profile) {
+        out.push_back({"profile", r.profile->name, "",
+                       std::to_string(r.profile->layers.size()) + " layers", Emphasis::kNormal,
+                       "/soil_profile/name"});
+    } else {
+        out.push_back({"profile", "none", "", "no sigma_pc, no risk", Emphasis::kNormal, ""});
+    }
+    if (!r.passes.empty()) {
+        const CompactionPass& last = r.passes.back();
+        const std::string at = "/passes/" + std::to_string(r.passes.size() - 1);
+        const std::string pass = std::to_string(last.pass);
+        out.push_back({"rut after pass " + pass, formatFixed(last.rut_depth_m * 1e3, 3), "mm", "",
+                       Emphasis::kNormal, at + "/rut_depth_m", last.rut_depth_m});
+        out.push_back({"sinkage in pass " + pass, formatFixed(last.sinkage_m * 1e3, 3), "mm", "",
+                       Emphasis::kNormal, at + "/sinkage_m", last.sinkage_m});
+    }
+    if (r.red_to_depth_m && *r.red_to_depth_m > 0.0) {
+        out.push_back({"red zone down to", formatFixed(*r.red_to_depth_m, 3), "m",
+                       "stress > 1.1 sigma_pc", Emphasis::kWarning, "/red_to_depth_m",
+                       *r.red_to_depth_m});
+    } else if (r.red_to_depth_m) {
+        out.push_back({"red zone", "none", "", "stress <= 1.1 sigma_pc at every depth",
+                       Emphasis::kNormal, "/red_to_depth_m", *r.red_to_depth_m});
+    }
+    if (r.profile && !r.passes.empty() &&
+        r.passes.back().bulk_density_kg_m3.size() == r.profile->layers.size()) {
+        const CompactionPass& last = r.passes.back();
+        const std::string at = "/passes/" + std::to_string(r.passes.size() - 1);
+        out.push_back({"bulk density after pass " + std::to_string(last.pass), "", "", "",
+                       Emphasis::kHeading, at});
+        for (std::size_t l = 0; l < r.profile->layers.size(); ++l) {
+            const soil::SoilLayer& layer = r.profile->layers[l];
+            const double before = layer.bulk_density_kg_m3 / 1e3;
+            const double after = last.bulk_density_kg_m3[l] / 1e3;
+            SummaryRow row{formatNumber(layer.top_m) + "-" + formatNumber(layer.bottom_m) + " m",
+                           formatFixed(after, 3),
+                           "Mg/m3",
+                           "unchanged",
+                           Emphasis::kNormal,
+                           at + "/bulk_density_Mg_m3/" + std::to_string(l),
+                           after};
+            if (std::abs(after - before) >= kDensityShownMg_m3) {
+                const double change = 100.0 * (after - before) / before;
+                row.detail = "from " + formatFixed(before, 3) + ", " + (change > 0 ? "+" : "") +
+                             formatFixed(change, 2) + " %";
+            }
+            out.push_back(std::move(row));
+        }
+    }
+    for (std::size_t n = 0; n < r.notes.size(); ++n) {
+        out.push_back(
+            {"note", r.notes[n], "", "", Emphasis::kWarning, "/notes/" + std::to_string(n)});
+    }
     return out;
 }
 

@@ -174,6 +174,14 @@ struct CompactionResult {
     std::vector<std::string> notes;
 
     bool ok() const { return message.empty(); }
+    /// kCancelled: stopped by the cancel flag; kFailed: a pass found no equilibrium (`message`);
+    /// else kCompleted; the passes before are kept in both. Invalid inputs or settings throw
+    /// (computeCompaction), so never kInvalidInput.
+    Outcome::Status status() const {
+        return cancelled ? Outcome::Status::kCancelled
+               : ok()    ? Outcome::Status::kCompleted
+                         : Outcome::Status::kFailed;
+    }
 };
 
 /// Throws std::invalid_argument for invalid inputs or settings (each named).
@@ -181,8 +189,24 @@ CompactionResult computeCompaction(const Inputs& inputs, const CompactionSetting
                                    const Control& control = {});
 
 /// The JSON of `terrastudio compaction --json` (docs/cli.md): "profile", "red_to_depth_m",
-/// "passes" and the inputs that made them.
+/// "passes" and the inputs that made them; "status" (statusName(result.status())), "notes",
+/// and "message" when there is one.
 nlohmann::json toJson(const CompactionResult& result);
+
+/// A layer's bulk density shown as "unchanged" when it moved less than this [Mg/m³] (the last
+/// digit the summary shows; below the yield point a layer keeps its density, compaction.md K3).
+inline constexpr double kDensityShownMg_m3 = 5e-4;
+
+/// The result for a person, as `terrastudio compaction` prints it above its tables and the
+/// compaction panel shows it: a heading with the soil, the wheel, the load W, s, β, ν and the
+/// passes; why it stopped (cancelled or failed, the passes before kept); the profile (or none:
+/// no σ_pc, no risk); the rut and the sinkage of the last pass [mm]; the red zone's depth [m]
+/// (a warning) or none; each layer's bulk density after the last pass [Mg/m³] (and before it,
+/// when it changed); the
+/// notes as warnings. Each number's `json` points at it in toJson(result) (the rut's and the
+/// sinkage's `number` in m).
+Summary compactionSummary(const Inputs& inputs, const CompactionSettings& settings,
+                          const CompactionResult& result);
 
 /// Tables "profile" (the envelope), "passes" and "map"; the document "compaction".
 Outcome compactionOutcome(CompactionResult result);

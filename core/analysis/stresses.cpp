@@ -8,6 +8,7 @@
 #include "core/common/units.h"
 #include "core/contact/operating_fields.h"
 #include "core/io/declared_json.h"
+#include "core/io/table_json.h"
 
 namespace terra::analysis {
 namespace {
@@ -78,6 +79,61 @@ StressResult computeStresses(const Inputs& in, const StressSettings& settings,
                                   q.sigma / 1e3, q.tau / 1e3, q.tau_t / 1e3, q.tau_l / 1e3});
     }
     out.errors = contact::quadraticApproximationErrors(params, op, step);
+    return out;
+}
+
+namespace {
+
+constexpr const char* kStressKeys[] = {"sigma", "tau", "tau_t", "tau_l"};
+
+}  // namespace
+
+nlohmann::json toJson(const StressResult& r) {
+    nlohmann::json errors;
+    for (std::size_t k = 0; k < 4; ++k) {
+        errors[std::string(kStressKeys[k]) + "_rmse_kPa"] = r.errors[k].rmse / 1e3;
+        errors[std::string(kStressKeys[k]) + "_mae_kPa"] = r.errors[k].mae / 1e3;
+    }
+    // θ_m and θ_f as typed (15, not 15.000000000000002), or as solved.
+    errors["max_stress_angle_deg"] = plainZero(roundSignificant(r.max_stress_angle_deg));
+    errors["entry_angle_deg"] = plainZero(roundSignificant(r.entry_angle_deg));
+    errors["points"] = r.table.rows.size();
+    nlohmann::json out{{"errors", errors}, {"grid", io::toJson(r.table)}};
+    out["status"] = statusName(r.status());
+    if (!r.message.empty()) out["message"] = r.message;
+    return out;
+}
+
+Summary stressSummary(const Inputs& in, const StressSettings& s, const StressResult& r) {
+    using Emphasis = SummaryRow::Emphasis;
+    Summary out;
+    out.push_back({"stresses",
+                   in.soil.name + ", " + in.wheel.name + ", s = " + formatNumber(s.slip) +
+                       ", beta = " + formatNumber(s.slip_angle_deg) + " deg",
+                   "", "", Emphasis::kHeading, ""});
+    if (r.status() != Outcome::Status::kCompleted) {
+        out.push_back({statusName(r.status()), r.message, "", "", Emphasis::kWarning,
+                       r.message.empty() ? "" : "/message"});
+        return out;
+    }
+    const double theta_f = plainZero(roundSignificant(r.entry_angle_deg));
+    const double theta_m = plainZero(roundSignificant(r.max_stress_angle_deg));
+    out.push_back(
+        {"theta_f", s.entry_angle_deg ? formatNumber(theta_f) : formatFixed(theta_f, 4), "deg",
+         s.entry_angle_deg ? "given"
+                           : "from F_z = W = " + formatNumber(in.conditions.load_n) + " N",
+         Emphasis::kNormal, "/errors/entry_angle_deg", theta_f});
+    out.push_back({"theta_m", formatFixed(theta_m, 4), "deg", "", Emphasis::kNormal,
+                   "/errors/max_stress_angle_deg", theta_m});
+    out.push_back({"quadratic approximation vs exact",
+                   std::to_string(r.table.rows.size()) + " angles", "",
+                   "step " + formatNumber(s.step_deg) + " deg", Emphasis::kHeading, "/errors"});
+    for (std::size_t k = 0; k < 4; ++k) {
+        const std::string key = kStressKeys[k];
+        out.push_back({key + " RMSE", formatFixed(r.errors[k].rmse / 1e3, 4), "kPa",
+                       "MAE " + formatFixed(r.errors[k].mae / 1e3, 4) + " kPa", Emphasis::kNormal,
+                       "/errors/" + key + "_rmse_kPa", r.errors[k].rmse / 1e3});
+    }
     return out;
 }
 

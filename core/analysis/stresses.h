@@ -74,12 +74,33 @@ struct StressResult {
     double max_stress_angle_deg = 0.0;  ///< θ_m used (Eq. 2.18 or fixed, inside [θ_r, θ_f])
     std::string message;                ///< non-empty: no equilibrium at this load
     bool cancelled = false;             ///< stopped by the cancel flag: the grid is partial
+
+    /// kCancelled: stopped by the cancel flag; kFailed: no equilibrium at this load (`message`);
+    /// else kCompleted. Invalid inputs or settings throw (computeStresses): never kInvalidInput.
+    Outcome::Status status() const {
+        return cancelled         ? Outcome::Status::kCancelled
+               : message.empty() ? Outcome::Status::kCompleted
+                                 : Outcome::Status::kFailed;
+    }
 };
 
 /// Throws std::invalid_argument for invalid inputs or settings (a struct built in code is
 /// checked as its reader would read it: io::fieldIssues).
 StressResult computeStresses(const Inputs& inputs, const StressSettings& settings = {},
                              const Control& control = {});
+/// `terrastudio stresses --json`: "errors": {"sigma_rmse_kPa", "sigma_mae_kPa", … for sigma,
+/// tau, tau_t, tau_l, "entry_angle_deg", "max_stress_angle_deg" (as typed: 15, not
+/// 15.000000000000002), "points"}, "grid" (the table's columns), "status"
+/// (statusName(result.status())) and "message" when there is one.
+nlohmann::json toJson(const StressResult& result);
+/// The result for a person, as `terrastudio stresses` prints it: a heading with the soil, the
+/// wheel, s and β; θ_f (given, or solved from F_z = W) and θ_m [deg]; under a heading with the
+/// grid's angles and step, each stress's RMSE of the quadratic approximation [kPa] with its MAE
+/// after it (Tables 2.4–2.5). Without an equilibrium, or cancelled: the heading and why. Each
+/// number's `json` points at it in toJson(result).
+Summary stressSummary(const Inputs& inputs, const StressSettings& settings,
+                      const StressResult& result);
+
 /// The errors as a table: stress_index (0 σ, 1 τ, 2 τ_t, 3 τ_l), rmse_kPa, mae_kPa.
 Table errorTable(const StressResult& result);
 /// Tables "stresses" and "errors"; with no equilibrium (StressResult::message), no table and

@@ -584,9 +584,65 @@ nlohmann::json toJson(const TractionResult& r) {
         if (r.optimal_slip_std) out["optimal_slip_std"] = *r.optimal_slip_std;
         out["invalid_samples"] = r.invalid_samples;
     }
-    out["status"] = r.ok() ? "completed" : "failed";
+    out["status"] = statusName(r.status());
     if (!r.message.empty()) out["message"] = r.message;
     out["notes"] = r.notes;
+    return out;
+}
+
+Summary tractionSummary(const Inputs& in, const TractionSettings& s, const TractionResult& r) {
+    using Emphasis = SummaryRow::Emphasis;
+    Summary out;
+    const std::string objective = objectiveName(s.objective);
+    out.push_back(
+        {"traction",
+         in.soil.name + ", " + in.wheel.name + ", W = " + formatNumber(in.conditions.load_n) +
+             " N, beta = " + formatNumber(s.slip_angle_deg) + " deg, objective " + objective +
+             (s.max_sinkage_m ? ", sinkage <= " + formatNumber(*s.max_sinkage_m) + " m" : ""),
+         "", "", Emphasis::kHeading, ""});
+    if (!r.ok()) {
+        out.push_back({statusName(r.status()), r.message, "", "", Emphasis::kWarning,
+                       r.message.empty() ? "" : "/message"});
+    } else {
+        const TractionPoint& p = r.at_optimum;
+        out.push_back({"s*", formatFixed(*r.optimal_slip, 4), "", "", Emphasis::kNormal,
+                       "/optimal_slip", *r.optimal_slip});
+        out.push_back({"Fx", formatFixed(p.fx_n, 3), "N", "", Emphasis::kNormal, "/Fx_N", p.fx_n});
+        out.push_back(
+            {"My", formatFixed(p.my_nm, 4), "Nm", "", Emphasis::kNormal, "/My_Nm", p.my_nm});
+        out.push_back({"efficiency", formatFixed(p.efficiency, 4), "", "", Emphasis::kNormal,
+                       "/efficiency", p.efficiency});
+        out.push_back({"sinkage", formatFixed(p.sinkage_m * 1e3, 3), "mm", "", Emphasis::kNormal,
+                       "/sinkage_m", p.sinkage_m});
+    }
+    if (r.robust_slip) {
+        const std::string quantile = formatNumber(s.quantile * 100) + " %";
+        const bool drawbar = s.objective == TractionObjective::kDrawbar;
+        out.push_back({"posterior",
+                       s.posterior_method == scenario::PosteriorMethod::kSigmaPoints
+                           ? std::string("sigma points")
+                           : std::to_string(s.posterior_samples) + " soils",
+                       "", "", Emphasis::kHeading, ""});
+        out.push_back({"robust s*", formatFixed(*r.robust_slip, 4), "",
+                       "maximises the " + quantile + " quantile of the " + objective,
+                       Emphasis::kNormal, "/robust_slip", *r.robust_slip});
+        out.push_back({quantile + " quantile of the " + objective + " there",
+                       formatFixed(r.robust_value, drawbar ? 3 : 4), drawbar ? "N" : "", "",
+                       Emphasis::kNormal, "/robust_value", r.robust_value});
+        if (r.expected_slip) {
+            out.push_back({"largest mean at s", formatFixed(*r.expected_slip, 4), "", "",
+                           Emphasis::kNormal, "/expected_slip", *r.expected_slip});
+        }
+        if (r.optimal_slip_std) {
+            out.push_back({"spread of s*", formatFixed(*r.optimal_slip_std, 4), "",
+                           "std over the posterior", Emphasis::kNormal, "/optimal_slip_std",
+                           *r.optimal_slip_std});
+        }
+    }
+    for (std::size_t n = 0; n < r.notes.size(); ++n) {
+        out.push_back(
+            {"note", r.notes[n], "", "", Emphasis::kWarning, "/notes/" + std::to_string(n)});
+    }
     return out;
 }
 

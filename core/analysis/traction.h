@@ -142,6 +142,14 @@ struct TractionResult {
     bool cancelled = false;  ///< stopped by the cancel flag: the curve or the band is partial
 
     bool ok() const { return optimal_slip.has_value(); }
+    /// kCancelled: stopped by the cancel flag (an s* found before it is kept, the band partial);
+    /// kFailed: no s* (`message` says why); else kCompleted. Invalid inputs or settings throw
+    /// (computeTraction), so never kInvalidInput.
+    Outcome::Status status() const {
+        return cancelled ? Outcome::Status::kCancelled
+               : ok()    ? Outcome::Status::kCompleted
+                         : Outcome::Status::kFailed;
+    }
 };
 
 /// The objective's value at a point (F_x, or η; −∞ where the point is not ok).
@@ -158,8 +166,17 @@ TractionResult computeTraction(const Inputs& inputs, const TractionSettings& set
 
 /// `terrastudio traction --json`: "optimal_slip", "objective", "Fx_N", "My_Nm", "efficiency",
 /// "sinkage_m" at s*, "curve": [{"slip", "Fx_N", "My_Nm", "efficiency", "sinkage_m"}, …], and
-/// with a posterior "robust_slip", "expected_slip", "optimal_slip_std", "band".
+/// with a posterior "robust_slip", "robust_value", "expected_slip", "optimal_slip_std", "band";
+/// always "status" (statusName(result.status())), "notes", and "message" when there is one.
 nlohmann::json toJson(const TractionResult& result);
+/// The result for a person, as `terrastudio traction` prints it above its curve: a heading
+/// with the soil, the wheel, the load W, β, the objective and the sinkage cap; then s*, F_x
+/// [N], M_y [N m], η and the sinkage [mm] at s*; with a posterior's robust s*, a heading and
+/// the robust s*, the objective's quantile there, the slip of the largest mean and the spread
+/// of s*; the notes as warnings. Without an s*: the heading and why (cancelled or failed).
+/// Each number's `json` points at it in toJson(result) (the sinkage's `number` in m).
+Summary tractionSummary(const Inputs& inputs, const TractionSettings& settings,
+                        const TractionResult& result);
 /// Tables "curve" (with the band's columns when there is one) and "optimum".
 Outcome tractionOutcome(TractionResult result);
 

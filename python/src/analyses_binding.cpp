@@ -30,20 +30,6 @@ const analysis::AnalysisType& typeNamed(const std::string& name) {
                                 (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
 }
 
-const char* statusName(analysis::Outcome::Status status) {
-    switch (status) {
-        case analysis::Outcome::Status::kCompleted:
-            return "completed";
-        case analysis::Outcome::Status::kCancelled:
-            return "cancelled";
-        case analysis::Outcome::Status::kFailed:
-            return "failed";
-        case analysis::Outcome::Status::kInvalidInput:
-            return "invalid input";
-    }
-    return "?";
-}
-
 // A data set given as columns (the CSV columns of data_set.h), read by the CSV reader so that
 // the same rows are refused with the same messages.
 identification::DataSet dataFromColumns(const py::dict& columns, bool skip_bad_rows, bool refine) {
@@ -126,7 +112,7 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
         },
         progress);
     py::dict out;
-    out["status"] = statusName(outcome.status);
+    out["status"] = analysis::statusName(outcome.status);
     out["message"] = outcome.message;
     py::dict tables;
     for (const analysis::NamedTable& t : outcome.tables)

@@ -22,6 +22,17 @@ def test_scalars_give_the_command_lines_json(cli):
     assert out["red_to_depth_m"] == expected["red_to_depth_m"]
 
 
+def test_the_dict_is_the_command_lines_json_key_by_key(cli):
+    # Issue 26: one toJson in core; Python returns what `compaction --json` prints, every key.
+    out = ts.compaction("sandy-loam", "B", load_N=800.0, slip=0.2, profile="clay-wet", passes=2,
+                        depths_m=[0.1, 0.2, 0.4])
+    run = cli("compaction", "--soil", "sandy-loam", "--wheel", "B", "--load", 800, "--slip", 0.2,
+              "--profile", "clay-wet", "--passes", 2, "--depths", "0.1,0.2,0.4", "--json")
+    assert run.returncode == 0, run.stderr
+    assert out == json.loads(run.stdout)
+    assert out["status"] == "completed"
+
+
 def test_arrays_broadcast_and_each_element_is_its_own_run():
     loads = np.array([60.0, 120.0, 240.0])
     out = ts.compaction("sandy-loam", "A", load_N=loads[:, None], slip=np.array([0.1, 0.3]),

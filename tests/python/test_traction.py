@@ -19,6 +19,21 @@ def test_the_best_slip_is_the_command_lines(cli):
         out["Fx_N"] * ts.wheel("A").r_m * (1 - out["optimal_slip"]) / out["My_Nm"], rel=1e-12)
 
 
+def test_the_dict_is_the_command_lines_json_key_by_key(tmp_path, cli):
+    # Issue 26: one toJson in core; Python returns what `traction --json` prints, every key
+    # (the status and the notes too), with a posterior.
+    soil = tmp_path / "identified.json"
+    soil.write_text(json.dumps({"posterior": {"parameters": ["phi_deg", "n"], "mean": [29.0, 0.7],
+                                              "covariance": [[4.0, -0.05], [-0.05, 0.0025]]}}))
+    out = ts.traction("sandy-loam", "B", load_N=400.0, posterior=soil, posterior_samples=20,
+                      curve_points=12, model="quadratic")
+    run = cli("traction", "--soil", "sandy-loam", "--wheel", "B", "--load", 400, "--posterior",
+              soil, "--samples", 20, "--points", 12, "--model", "quadratic", "--json")
+    assert run.returncode == 0, run.stderr
+    assert out == json.loads(run.stdout)
+    assert out["status"] == "completed"
+
+
 def test_a_posterior_file_gives_a_robust_slip(tmp_path, cli):
     soil = tmp_path / "identified.json"
     soil.write_text(json.dumps({"posterior": {"parameters": ["phi_deg", "n"], "mean": [29.0, 0.7],

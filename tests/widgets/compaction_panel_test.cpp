@@ -112,8 +112,8 @@ TEST(CompactionPanel, ThreePassesGiveThreePointsAndADeeperRut) {
     EXPECT_GT(rut->data()->at(2)->value, rut->data()->at(0)->value);
     EXPECT_DOUBLE_EQ(rut->data()->at(0)->value, one_pass_rut_m * 1e3);  // pass 1 is unchanged
     EXPECT_GT(panel.result().passes.back().rut_depth_m, one_pass_rut_m);
-    EXPECT_TRUE(panel.summary().contains("Rut after pass 3")) << panel.summary().toStdString();
-    EXPECT_TRUE(panel.summary().contains("No profile")) << panel.summary().toStdString();
+    EXPECT_TRUE(panel.summary().contains("rut after pass 3")) << panel.summary().toStdString();
+    EXPECT_TRUE(panel.summary().contains("profile: none")) << panel.summary().toStdString();
 }
 
 TEST(CompactionPanel, SettingsRoundTrip) {

@@ -18,13 +18,12 @@
 #include "core/project/panels.h"
 #include "core/project/saved_analyses.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/summary_html.h"
 #include "widgets/plots/compaction_figures.h"
 #include "widgets/plots/figures.h"
 
 namespace terra::ui {
 namespace {
-
-constexpr double kDensityShownMg_m3 = 5e-4;  // the summary's last digit of ρ_b [Mg/m³]
 
 /// JSON equal up to rounding in the last digits (a profile read back from its JSON converts
 /// Mg/m³ and hPa again).
@@ -363,51 +362,13 @@ void CompactionPanel::redraw() {
 }
 
 QString CompactionPanel::summaryText() const {
-    const analysis::CompactionResult& r = shown_.result;
-    QStringList parts;
-    if (!r.ok()) {
-        parts << markedStatus(QString::fromStdString(r.message).toHtmlEscaped() +
-                              "; the passes before are shown.");
-    }
-    if (!r.profile) {
-        parts << "No profile: no σ_pc, no risk (choose a profile).";
-    } else if (r.red_to_depth_m && *r.red_to_depth_m > 0.0) {
-        parts << QString("<b>Red zone</b> (σ > 1.1 σ_pc) to z = %1 m.")
-                     .arg(*r.red_to_depth_m, 0, 'f', 3);
-    } else if (r.red_to_depth_m) {
-        parts << "No red zone (σ ≤ 1.1 σ_pc at every depth).";
-    }
-    if (!r.passes.empty()) {
-        const analysis::CompactionPass& last = r.passes.back();
-        parts << QString("Rut after pass %1: %2 mm (sinkage %3 mm).")
-                     .arg(last.pass)
-                     .arg(last.rut_depth_m * 1e3, 0, 'f', 2)
-                     .arg(last.sinkage_m * 1e3, 0, 'f', 2);
-        if (r.profile && last.bulk_density_kg_m3.size() == r.profile->layers.size()) {
-            QStringList layers;
-            for (std::size_t l = 0; l < r.profile->layers.size(); ++l) {
-                const soil::SoilLayer& layer = r.profile->layers[l];
-                const double before = layer.bulk_density_kg_m3 / 1e3;
-                const double after = last.bulk_density_kg_m3[l] / 1e3;
-                const QString depths = QString("%1–%2 m").arg(layer.top_m).arg(layer.bottom_m);
-                // Below the yield point a layer keeps its density (docs/compaction.md, K3).
-                if (std::abs(after - before) < kDensityShownMg_m3) {
-                    layers << QString("%1 %2 unchanged").arg(depths).arg(before, 0, 'f', 3);
-                } else {
-                    layers << QString("%1 %2 → %3 (%4%5 %)")
-                                  .arg(depths)
-                                  .arg(before, 0, 'f', 3)
-                                  .arg(after, 0, 'f', 3)
-                                  .arg(after > before ? "+" : "")
-                                  .arg(100.0 * (after - before) / before, 0, 'f', 2);
-                }
-            }
-            parts << "Bulk density [Mg/m³]: " + layers.join("; ") + ".";
-        }
-    }
-    for (const std::string& note : r.notes)
-        parts << "<i>" + QString::fromStdString(note).toHtmlEscaped() + ".</i>";
-    return parts.join(" ");
+    // The core summary (what `terrastudio compaction` prints) but its heading, which the plots'
+    // titles give; a cancelled or failed run marked first.
+    const analysis::Summary summary = analysis::compactionSummary(
+        project::inputsOf(document_->project()), shown_.settings, shown_.result);
+    const std::span<const analysis::SummaryRow> rows(summary.begin() + 1, summary.end());
+    const QString status = shown_.result.ok() ? QString() : markedStatus(QString());
+    return status.isEmpty() ? summaryHtml(rows) : status + "<br>" + summaryHtml(rows);
 }
 
 std::map<std::string, project::SavedResult> CompactionPanel::savedResults() const {

@@ -57,7 +57,9 @@ public:
     /// The pass the depth profile shows: 0 for the envelope over all passes.
     int shownPass() const;
     void showPass(int pass);
-    /// The results line under the plots (red zone, rut, bulk density per layer).
+    /// The results under the plots: the core summary (analysis::compactionSummary, what
+    /// `terrastudio compaction` prints) but its heading, through summaryHtml: the rut, the red
+    /// zone, the bulk density per layer, the notes.
     QString summary() const;
     /// Shown with the "Not computed" line when a run is too large to start by itself.
     QPushButton* computeButton() const { return compute_; }

@@ -2,6 +2,7 @@
 
 #include <QRegularExpression>
 #include <QStringList>
+#include <utility>
 
 #include "widgets/panels/data_preview.h"
 
@@ -11,9 +12,19 @@ namespace {
 // The summary's plain-text notation in a person's symbols.
 QString symbols(const std::string& text) {
     static const QRegularExpression chi2("\\bchi2\\b"), std_word("\\bstd\\b");
+    // The plain-text spelling of the Greek symbols the command line prints (θ_f, σ_pc, τ_l, β).
+    static const std::pair<QRegularExpression, QString> greek[] = {
+        {QRegularExpression("\\btheta_(f|m|r)\\b"), "θ_\\1"},
+        {QRegularExpression("\\bsigma_(pc|z|1)\\b"), "σ_\\1"},
+        {QRegularExpression("\\bsigma\\b"), "σ"},
+        {QRegularExpression("\\btau_(t|l)\\b"), "τ_\\1"},
+        {QRegularExpression("\\btau\\b"), "τ"},
+        {QRegularExpression("\\bbeta\\b"), "β"},
+        {QRegularExpression("\\bnu\\b"), "ν"}};
     QString out = withChannelSymbols(QString::fromStdString(text)).toHtmlEscaped();
     out.replace(chi2, "χ²");
     out.replace(std_word, "σ");
+    for (const auto& [pattern, symbol] : greek) out.replace(pattern, symbol);
     return out;
 }
 

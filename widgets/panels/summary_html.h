@@ -12,7 +12,9 @@
 namespace terra::ui {
 
 /// One row: "label: value unit (detail)"; a heading's label bold, a warning's row bold. The text
-/// is escaped; channel names ("Fx_N"), "chi2" and "std" are shown as F_x, χ², σ.
+/// is escaped; channel names ("Fx_N"), "chi2" and "std" are shown as F_x, χ², σ, and the
+/// Greek names the command line spells out (theta_f, sigma_pc, sigma, tau_l, beta, nu) as θ_f,
+/// σ_pc, σ, τ_l, β, ν.
 QString summaryRowHtml(const analysis::SummaryRow& row);
 /// The rows, joined by <br>.
 QString summaryHtml(std::span<const analysis::SummaryRow> rows);

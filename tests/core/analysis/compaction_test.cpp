@@ -1,14 +1,19 @@
 // The compaction analysis (core/analysis/compaction.h) against its parts: pass 1 is the
 // single-wheel model exactly; the envelope is the largest of the passes' profiles; the studies'
-// compaction outputs (core/gsa/wheel_target.h) are the analysis's numbers for the same soil.
+// compaction outputs (core/gsa/wheel_target.h) are the analysis's numbers for the same soil; the
+// summary a person reads against the JSON, and the status of a failed or cancelled run.
 #include "core/analysis/compaction.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
 
 #include "core/analysis/operating_point.h"
 #include "core/common/units.h"
 #include "core/gsa/wheel_target.h"
 #include "core/io/parameters_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::analysis {
 namespace {
@@ -99,6 +104,104 @@ TEST(CompactionAnalysis, StudyOutputsAreTheAnalysissNumbers) {
             if (v.depth_m == 0.3) at_03 = v.max.sigma_z / 1e3;
         EXPECT_NEAR(values.values(i, 2), at_03, 1e-6 * at_03) << i;
     }
+}
+
+// The summary row whose value sits at `pointer` in the JSON, or nullptr.
+const SummaryRow* compactionRowAt(const Summary& summary, const std::string& pointer) {
+    const auto at = std::find_if(summary.begin(), summary.end(),
+                                 [&](const SummaryRow& row) { return row.json == pointer; });
+    return at == summary.end() ? nullptr : &*at;
+}
+
+// Issue 26: the summary `terrastudio compaction` prints and the panel shows holds the JSON's
+// numbers (ts.compaction returns that JSON): the last pass's rut and sinkage, the red zone (a
+// warning) and each layer's density after the last pass.
+TEST(CompactionAnalysis, ItsSummaryShowsTheJsonsValues) {
+    const Inputs in = heavyWheel();
+    const CompactionSettings s = clayWet(3);
+    const CompactionResult r = computeCompaction(in, s);
+    ASSERT_EQ(r.status(), Outcome::Status::kCompleted) << r.message;
+    const nlohmann::json j = toJson(r);
+    EXPECT_EQ(j.at("status"), "completed");
+    const Summary summary = compactionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, j);
+    EXPECT_NE(summary.front().value.find("W = 800 N, s = 0.2"), std::string::npos);
+    EXPECT_NE(summary.front().value.find("3 passes"), std::string::npos);
+    const SummaryRow* rut = compactionRowAt(summary, "/passes/2/rut_depth_m");
+    ASSERT_NE(rut, nullptr);
+    EXPECT_EQ(rut->label, "rut after pass 3");
+    EXPECT_EQ(rut->number, r.passes[2].rut_depth_m);
+    ASSERT_NE(compactionRowAt(summary, "/passes/2/sinkage_m"), nullptr);
+    const SummaryRow* red = compactionRowAt(summary, "/red_to_depth_m");
+    ASSERT_NE(red, nullptr);
+    EXPECT_EQ(red->emphasis, SummaryRow::Emphasis::kWarning);
+    EXPECT_GT(red->number, 0.1);
+    EXPECT_EQ(compactionRowAt(summary, "/soil_profile/name")->value, "clay, wet");
+    // A row per layer: the red topsoil denser than it was, the subsoil unchanged (1.45 Mg/m³).
+    const std::size_t layers = s.profile->layers.size();
+    for (std::size_t l = 0; l < layers; ++l)
+        ASSERT_NE(compactionRowAt(summary, "/passes/2/bulk_density_Mg_m3/" + std::to_string(l)),
+                  nullptr);
+    const SummaryRow* top = compactionRowAt(summary, "/passes/2/bulk_density_Mg_m3/0");
+    EXPECT_GT(top->number, s.profile->layers[0].bulk_density_kg_m3 / 1e3);
+    EXPECT_EQ(top->detail.rfind("from ", 0), 0u) << top->detail;
+    const SummaryRow* bottom =
+        compactionRowAt(summary, "/passes/2/bulk_density_Mg_m3/" + std::to_string(layers - 1));
+    EXPECT_EQ(bottom->value, "1.450");
+    EXPECT_EQ(bottom->detail, "unchanged");
+}
+
+TEST(CompactionAnalysis, WithoutAProfileTheSummaryHasNoRisk) {
+    const Inputs in = heavyWheel();
+    CompactionSettings s;
+    s.slip = 0.2;
+    const CompactionResult r = computeCompaction(in, s);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const Summary summary = compactionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, toJson(r));
+    const auto profile = std::find_if(summary.begin(), summary.end(),
+                                      [](const SummaryRow& row) { return row.label == "profile"; });
+    ASSERT_NE(profile, summary.end());
+    EXPECT_EQ(profile->value, "none");
+    EXPECT_NE(summary.front().value.find("nu = 5"), std::string::npos) << summary.front().value;
+    for (const SummaryRow& row : summary) {
+        EXPECT_EQ(row.json.find("red_to_depth_m"), std::string::npos) << row.label;
+        EXPECT_EQ(row.json.find("bulk_density"), std::string::npos) << row.label;
+    }
+}
+
+TEST(CompactionAnalysis, ALoadWithoutEquilibriumFailsWithAWarning) {
+    Inputs in = heavyWheel();
+    in.wheel = io::resolveWheel(locations(), "A").value();  // the small wheel sinks to its axle
+    in.conditions.load_n = 5000.0;
+    const CompactionSettings s = clayWet(2);
+    const CompactionResult r = computeCompaction(in, s);
+    EXPECT_EQ(r.status(), Outcome::Status::kFailed);
+    const nlohmann::json j = toJson(r);
+    EXPECT_EQ(j.at("status"), "failed");
+    const Summary summary = compactionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, j);
+    const SummaryRow* failed = compactionRowAt(summary, "/message");
+    ASSERT_NE(failed, nullptr);
+    EXPECT_EQ(failed->label, "failed");
+    EXPECT_EQ(failed->emphasis, SummaryRow::Emphasis::kWarning);
+    EXPECT_NE(failed->value.find("no equilibrium"), std::string::npos) << failed->value;
+}
+
+TEST(CompactionAnalysis, ACancelledRunHasTheStatusCancelled) {
+    const Inputs in = heavyWheel();
+    const CompactionSettings s = clayWet(3);
+    const std::atomic<bool> cancel{true};
+    const CompactionResult r = computeCompaction(in, s, Control{&cancel});
+    EXPECT_EQ(r.status(), Outcome::Status::kCancelled);
+    EXPECT_TRUE(r.passes.empty());
+    EXPECT_EQ(toJson(r).at("status"), "cancelled");
+    EXPECT_EQ(compactionOutcome(r).status, Outcome::Status::kCancelled);
+    const Summary summary = compactionSummary(in, s, r);
+    const SummaryRow* cancelled = compactionRowAt(summary, "/message");
+    ASSERT_NE(cancelled, nullptr);
+    EXPECT_EQ(cancelled->label, "cancelled");
+    EXPECT_EQ(cancelled->value, "cancelled after 0 of 3 passes");
 }
 
 }  // namespace

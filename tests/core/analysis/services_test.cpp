@@ -3,6 +3,7 @@
 // its defaults, names its tables).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -47,6 +48,45 @@ TEST(StressService, ReproducesTables24And25AtTable23sPoint) {
     EXPECT_EQ(r.table.rows.back()[r.table.column("theta_deg")], 30.0);
     const Table errors = errorTable(r);
     EXPECT_EQ(errors.rows[3][errors.column("rmse_kPa")], r.errors[3].rmse / 1e3);
+}
+
+// Issue 26: the summary `terrastudio stresses` prints shows the JSON's numbers, the thesis's
+// Tables 2.4–2.5 to their four decimals; without an equilibrium it is a failure that says why.
+TEST(StressService, ItsSummaryShowsTheJsonsValuesAndTables24And25) {
+    Inputs in = sandyLoamOnA();
+    in.soil.max_shear_deformation_m = INFINITY;
+    StressSettings s;
+    s.entry_angle_deg = 30.0;
+    s.model.max_stress_angle_rad = units::degToRad(15.0);
+    const StressResult r = computeStresses(in, s);
+    ASSERT_EQ(r.status(), Outcome::Status::kCompleted) << r.message;
+    const nlohmann::json j = toJson(r);
+    EXPECT_EQ(j.at("status"), "completed");
+    EXPECT_EQ(j.at(nlohmann::json::json_pointer("/errors/max_stress_angle_deg")),
+              15.0);  // as typed
+    EXPECT_EQ(j.at(nlohmann::json::json_pointer("/errors/points")), 3001);
+    const Summary summary = stressSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, j);
+    const char* rmse[] = {"2.1623", "0.4808", "0.4315", "0.2121"};
+    const char* mae[] = {"1.7427", "0.3558", "0.3214", "0.1524"};
+    const char* keys[] = {"sigma", "tau", "tau_t", "tau_l"};
+    for (int k = 0; k < 4; ++k) {
+        const auto row = std::find_if(summary.begin(), summary.end(), [&](const SummaryRow& x) {
+            return x.json == "/errors/" + std::string(keys[k]) + "_rmse_kPa";
+        });
+        ASSERT_NE(row, summary.end()) << keys[k];
+        EXPECT_EQ(row->value, rmse[k]);
+        EXPECT_EQ(row->detail, "MAE " + std::string(mae[k]) + " kPa");
+    }
+    in.conditions.load_n = 1e5;  // no equilibrium: the wheel sinks to its axle
+    s.entry_angle_deg.reset();
+    const StressResult failed = computeStresses(in, s);
+    EXPECT_EQ(failed.status(), Outcome::Status::kFailed);
+    const Summary why = stressSummary(in, s, failed);
+    ASSERT_EQ(why.size(), 2u);
+    EXPECT_EQ(why[1].label, "failed");
+    EXPECT_EQ(why[1].emphasis, SummaryRow::Emphasis::kWarning);
+    EXPECT_EQ(why[1].value, toJson(failed).at("message"));
 }
 
 // Bekker's static sinkage, Eq. 2.8 as corrected (E2), typed here from Table 2.1:

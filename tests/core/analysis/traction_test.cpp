@@ -1,14 +1,18 @@
 // The best slip (core/analysis/traction.h): s* against a brute-force scan of the model; η at one
-// point from the wheel's own forces; the sinkage cap; the posterior's band and robust slip.
+// point from the wheel's own forces; the sinkage cap; the posterior's band and robust slip; the
+// summary a person reads against the JSON, and the status of a failed or cancelled search.
 #include "core/analysis/traction.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
 #include "core/analysis/operating_point.h"
 #include "core/io/parameters_json.h"
+#include "tests/core/test_support.h"
 
 namespace terra::analysis {
 namespace {
@@ -244,6 +248,116 @@ TEST(Traction, BadSettingsAreNamed) {
     }
     s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{1.0, 2.0}, {2.0, 1.0}}, {}};
     EXPECT_THROW(computeTraction(sandyLoamOnA(true), s), std::invalid_argument);  // not SPD
+}
+
+// The summary row whose value sits at `pointer` in the JSON, or nullptr.
+const SummaryRow* tractionRowAt(const Summary& summary, const std::string& pointer) {
+    const auto at = std::find_if(summary.begin(), summary.end(),
+                                 [&](const SummaryRow& row) { return row.json == pointer; });
+    return at == summary.end() ? nullptr : &*at;
+}
+
+// Issue 26: the summary `terrastudio traction` prints shows the JSON's numbers (ts.traction
+// returns that JSON), and η at s* is the wheel's own power ratio.
+TEST(Traction, ItsSummaryShowsTheJsonsValues) {
+    Inputs in = sandyLoamOnA(true);
+    in.conditions.load_n = 70.0;
+    const TractionSettings s;
+    const TractionResult r = computeTraction(in, s);
+    ASSERT_EQ(r.status(), Outcome::Status::kCompleted) << r.message;
+    const nlohmann::json j = toJson(r);
+    EXPECT_EQ(j.at("status"), "completed");
+    const Summary summary = tractionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, j);
+    EXPECT_EQ(summary.front().emphasis, SummaryRow::Emphasis::kHeading);
+    EXPECT_NE(summary.front().value.find("W = 70 N"), std::string::npos) << summary.front().value;
+    const SummaryRow* slip = tractionRowAt(summary, "/optimal_slip");
+    const SummaryRow* fx = tractionRowAt(summary, "/Fx_N");
+    const SummaryRow* my = tractionRowAt(summary, "/My_Nm");
+    const SummaryRow* efficiency = tractionRowAt(summary, "/efficiency");
+    const SummaryRow* sinkage = tractionRowAt(summary, "/sinkage_m");
+    ASSERT_TRUE(slip && fx && my && efficiency && sinkage);
+    EXPECT_EQ(sinkage->unit, "mm");
+    EXPECT_EQ(fx->unit, "N");
+    // η = F_x r (1 − s) / M_y from the rows' own numbers.
+    EXPECT_NEAR(efficiency->number,
+                fx->number * in.wheel.radius_m * (1.0 - slip->number) / my->number, 1e-12);
+    // No posterior: none of its rows; no note, no warning.
+    EXPECT_EQ(tractionRowAt(summary, "/robust_slip"), nullptr);
+    for (const SummaryRow& row : summary) {
+        EXPECT_NE(row.label, "posterior");
+        EXPECT_NE(row.emphasis, SummaryRow::Emphasis::kWarning) << row.label << ": " << row.value;
+    }
+}
+
+TEST(Traction, APosteriorAddsTheRobustRows) {
+    const Inputs in = sandyLoamOnA(true);
+    TractionSettings s;
+    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}};
+    s.posterior_samples = 50;
+    s.curve_points = 20;
+    const TractionResult r = computeTraction(in, s);
+    ASSERT_TRUE(r.robust_slip) << r.message;
+    const Summary summary = tractionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, toJson(r));
+    const auto heading = std::find_if(summary.begin(), summary.end(), [](const SummaryRow& row) {
+        return row.label == "posterior";
+    });
+    ASSERT_NE(heading, summary.end());
+    EXPECT_EQ(heading->value, "50 soils");
+    for (const char* pointer :
+         {"/robust_slip", "/robust_value", "/expected_slip", "/optimal_slip_std"}) {
+        const SummaryRow* row = tractionRowAt(summary, pointer);
+        ASSERT_NE(row, nullptr) << pointer;
+        EXPECT_GT(row - &*heading, 0) << pointer << " comes under the posterior's heading";
+    }
+    EXPECT_EQ(tractionRowAt(summary, "/robust_slip")->number, *r.robust_slip);
+}
+
+TEST(Traction, ACapNoSlipMeetsIsAFailureWithAWarning) {
+    const Inputs in = sandyLoamOnA(true);
+    TractionSettings s;
+    s.max_sinkage_m = 1e-4;
+    const TractionResult r = computeTraction(in, s);
+    EXPECT_EQ(r.status(), Outcome::Status::kFailed);
+    const nlohmann::json j = toJson(r);
+    EXPECT_EQ(j.at("status"), "failed");
+    EXPECT_FALSE(j.contains("optimal_slip"));
+    const Summary summary = tractionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, j);
+    ASSERT_EQ(summary.size(), 2u);
+    EXPECT_NE(summary[0].value.find("sinkage <= "), std::string::npos) << summary[0].value;
+    EXPECT_EQ(summary[1].label, "failed");
+    EXPECT_EQ(summary[1].emphasis, SummaryRow::Emphasis::kWarning);
+    EXPECT_NE(summary[1].value.find("keeps the sinkage below"), std::string::npos);
+}
+
+TEST(Traction, AnOptimumAtTheSearchsBoundIsAWarningRow) {
+    const Inputs in = sandyLoamOnA(true);
+    TractionSettings s;
+    s.objective = TractionObjective::kDrawbar;  // F_x grows with slip: s* at slip_max
+    s.slip_max = 0.3;
+    const TractionResult r = computeTraction(in, s);
+    ASSERT_EQ(r.status(), Outcome::Status::kCompleted);
+    const Summary summary = tractionSummary(in, s, r);
+    terra::testing::expectSummaryIsTheJson(summary, toJson(r));
+    const SummaryRow* note = tractionRowAt(summary, "/notes/0");
+    ASSERT_NE(note, nullptr);
+    EXPECT_EQ(note->emphasis, SummaryRow::Emphasis::kWarning);
+    EXPECT_NE(note->value.find("upper bound"), std::string::npos) << note->value;
+}
+
+TEST(Traction, ACancelledSearchHasTheStatusCancelled) {
+    const Inputs in = sandyLoamOnA(true);
+    const std::atomic<bool> cancel{true};
+    const TractionResult r = computeTraction(in, {}, Control{&cancel});
+    EXPECT_EQ(r.status(), Outcome::Status::kCancelled);
+    EXPECT_EQ(toJson(r).at("status"), "cancelled");
+    EXPECT_EQ(tractionOutcome(r).status, Outcome::Status::kCancelled);
+    const Summary summary = tractionSummary(in, {}, r);
+    ASSERT_EQ(summary.size(), 2u);
+    EXPECT_EQ(summary[1].label, "cancelled");
+    EXPECT_EQ(summary[1].emphasis, SummaryRow::Emphasis::kWarning);
 }
 
 }  // namespace
