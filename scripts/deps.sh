@@ -48,8 +48,10 @@ terra_install_dependencies() {
 # it compiles a target's files while the libraries it links are still being linked, where make
 # waits for each library (docs/install.md, "Build time"); a tree configured before keeps its
 # generator (CMake refuses to change it). When ccache is installed (it is not in the package
-# list: a fresh machine has nothing cached), a new tree compiles through it, so a second clone or
-# worktree on the same machine reuses the first one's objects.
+# list: a fresh machine has nothing cached), a new tree compiles through it, with the paths taken
+# relative to the checkout and the settings precompiled headers need (CCACHE_BASEDIR,
+# CCACHE_SLOPPINESS), so that a rebuild, another clone or a worktree on the same machine reuses
+# the objects already compiled. Such a tree needs ccache for as long as it is used.
 terra_build() {
   local root="$1"
   local build="${TERRA_BUILD_DIR:-$root/build}"
@@ -59,7 +61,7 @@ terra_build() {
       options+=(-G Ninja)
     fi
     if command -v ccache > /dev/null; then
-      options+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+      options+=("-DCMAKE_CXX_COMPILER_LAUNCHER=env;CCACHE_BASEDIR=$root;CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime;ccache")
     fi
   fi
   cmake -S "$root" -B "$build" "${options[@]}" -DCMAKE_BUILD_TYPE=Release

@@ -877,7 +877,7 @@ Outcome identificationOutcome(IdentificationResult result) {
         // A step without a termination or a residual (the descent, the held-out prediction)
         // says only what it did.
         std::string note = step.name.worded(id::ParameterNaming::kKey);
-        if (!step.termination.empty()) note += ": " + step.termination;
+        if (!step.termination.empty()) note += ": " + id::solverOutcome(step.termination);
         if (step.squared_residual_norm > 0.0)
             note += ", Σr² = " + formatNumber(step.squared_residual_norm);
         out.notes.push_back(std::move(note));

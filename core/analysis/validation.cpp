@@ -1001,8 +1001,9 @@ Outcome validationOutcome(ValidationResult result) {
             }
             parameters.rows.push_back(std::move(row));
             out.tables.push_back({"parameters", "-parameters", std::move(parameters)});
-            out.notes.push_back("calibration: " + c.report.termination +
-                                ", χ² = " + formatNumber(roundSignificant(c.report.chi2, 6)));
+            out.notes.push_back(
+                "calibration: " + identification::solverOutcome(c.report.termination) +
+                ", χ² = " + formatNumber(roundSignificant(c.report.chi2, 6)));
             for (const id::ParameterText& flag : c.report.uncertainty.flags)
                 out.notes.push_back("calibration: " + flag.worded(id::ParameterNaming::kKey));
         }

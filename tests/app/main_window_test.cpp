@@ -183,7 +183,7 @@ TEST(MainWindow, EveryFittedParameterIsInViewAt1024x700) {
     Studio studio;
     MainWindow& w = studio.window;
     w.applyLayout(MainWindow::Layout::kCompact);
-    w.resize(1024, 700);
+    w.resize(1008, 660);  // a 1024×700 screen less openbox's frame
     w.showPanel("identification");
     settle();
     auto* panel = w.findChild<ui::IdentificationPanel*>();

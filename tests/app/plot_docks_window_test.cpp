@@ -12,9 +12,11 @@
 #include <QSettings>
 #include <QTabWidget>
 #include <QTest>
+#include <algorithm>
 
 #include "app/main_window.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/analysis_panel.h"
 #include "widgets/panels/forces_panel.h"
 #include "widgets/panels/plot_docking.h"
 #include "window_test_support.h"
@@ -91,9 +93,20 @@ TEST(PlotDocks, TiledAfterEveryPanelComputedDoesNotScrollSideways) {
     MainWindow& w = studio.window;
     w.resize(kWindowAt1366x768);
     wait();
+    // Each panel's result drawn before the layout changes: on a loaded machine (ctest runs two
+    // tests a core) a computation may take longer than a fixed wait.
     for (const char* name : kAllPanels) {
         w.showPanel(name);
-        wait(1500);
+        wait(300);
+        const auto panels = w.findChildren<ui::AnalysisPanel*>();
+        EXPECT_TRUE(QTest::qWaitFor(
+            [&panels] {
+                return std::none_of(panels.begin(), panels.end(),
+                                    [](const ui::AnalysisPanel* p) { return p->isBusy(); });
+            },
+            60000))
+            << name;
+        wait(300);
     }
     EXPECT_LE(ui::dockMinimumWidth(*w.panelDock("global-sensitivity")), 700);
     w.showPanel("forces");

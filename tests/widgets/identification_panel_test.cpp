@@ -463,6 +463,39 @@ TEST(IdentificationPanel, TableAndReportShowSymbolsWithUnitsNotFileKeys) {
     EXPECT_TRUE(report.contains("F_x")) << report.toStdString();
 }
 
+// Issue 27: the status line is one sentence (the time, whether the solver's steps converged) so
+// that the page fits 1024×700 with every parameter row in view; each step, with its time and how
+// it ended in a user's words, is at the end of the report.
+TEST(IdentificationPanel, TheStatusLineSaysTheFitConvergedAndTheReportListsItsSteps) {
+    for (const bool refine : {false, true}) {
+        ProjectDocument document;
+        test::resetToDefault(document);
+        IdentificationPanel panel(&document);
+        panel.applySettings({{"refine", refine}});
+        panel.recompute();
+        ASSERT_TRUE(test::waitForResult(panel, 120000));
+        ASSERT_TRUE(panel.result().message.empty()) << panel.result().message;
+        const QString status = panel.fitStatus();
+        EXPECT_TRUE(status.startsWith("Fit in ")) << status.toStdString();
+        EXPECT_TRUE(status.contains(refine ? ", converged" : ", every step converged"))
+            << status.toStdString();
+        EXPECT_FALSE(status.contains("|r|") || status.contains("<br>")) << status.toStdString();
+        const QString report = panel.fitReport();
+        const auto steps = panel.result().steps();
+        ASSERT_GE(steps.size(), 3u);
+        for (const auto& step : steps) {
+            const QString name =
+                QString::fromStdString(step.name.worded(identification::ParameterNaming::kSymbol));
+            EXPECT_TRUE(report.contains(name.toHtmlEscaped())) << name.toStdString();
+        }
+        EXPECT_TRUE(report.contains("converged (the fit stopped improving)") ||
+                    report.contains("converged (the slope vanished at the minimum)"))
+            << report.toStdString();
+        // The steps come after the rest of the report.
+        EXPECT_GT(report.indexOf("step "), report.indexOf("samples")) << report.toStdString();
+    }
+}
+
 // Issue 26: the solver's advice names the parameters through the field table — by symbol in the
 // panel's report, as the core summary words it, by key in the JSON of the same result (what
 // `identify --json` prints). One load cannot separate c and φ: the fit says so.

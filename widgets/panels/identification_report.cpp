@@ -4,6 +4,7 @@
 #include <QTableWidget>
 #include <cmath>
 
+#include "core/identification/parameter_text.h"
 #include "widgets/panels/summary_html.h"
 #include "widgets/plots/number_format.h"
 
@@ -90,24 +91,43 @@ void fillParameterTable(QTableWidget& table, const analysis::IdentificationResul
 }
 
 QString identificationReport(const analysis::IdentificationResult& result) {
-    // The core summary (what `identify` prints) but the estimates, which the table shows, and the
-    // steps, which the status line shows.
+    // The core summary (what `identify` prints) but the estimates, which the table shows; the
+    // steps last, under the rest.
     const analysis::Summary summary = analysis::identificationSummary(result);
     analysis::Summary rows;
+    analysis::Summary steps;
     for (const SummaryRow& row : summary) {
-        if (isEstimateRow(summary, row) || row.json.starts_with("/steps/")) continue;
-        rows.push_back(row);
+        if (isEstimateRow(summary, row)) continue;
+        (row.json.starts_with("/steps/") ? steps : rows).push_back(row);
     }
+    rows.insert(rows.end(), steps.begin(), steps.end());
     return summaryHtml(rows);
 }
 
 QString identificationSteps(const analysis::IdentificationResult& result) {
-    QStringList steps;
-    for (const SummaryRow& row : analysis::identificationSummary(result)) {
-        if (!row.json.starts_with("/steps/")) continue;
-        steps << summaryRowHtml(row);
+    // One line: the time, and whether the solver's steps converged (the report lists each).
+    QStringList unconverged;
+    int solved = 0;
+    for (const identification::StepReport& step : result.steps()) {
+        const std::string& t = step.termination;
+        const bool solver = t.starts_with("CONVERGENCE") || t.starts_with("NO_CONVERGENCE") ||
+                            t.starts_with("FAILURE") || t.starts_with("STOPPED") ||
+                            t.starts_with("USER_");
+        if (!solver) continue;
+        ++solved;
+        if (t.starts_with("CONVERGENCE")) continue;
+        unconverged << QString::fromStdString(
+                           step.name.worded(identification::ParameterNaming::kSymbol) + ": " +
+                           identification::solverOutcome(t))
+                           .toHtmlEscaped();
     }
-    return QString("Fit in %1 ms. ").arg(result.fit_time_ms, 0, 'f', 0) + steps.join(";  ");
+    QString line = QString("Fit in %1 ms").arg(result.fit_time_ms, 0, 'f', 0);
+    if (solved > 0) {
+        line += unconverged.isEmpty()
+                    ? (solved == 1 ? QString(", converged") : QString(", every step converged"))
+                    : QString("; not converged: ") + unconverged.join("; ");
+    }
+    return line + " (the steps are at the end of the report).";
 }
 
 }  // namespace terra::ui

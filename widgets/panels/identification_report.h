@@ -4,8 +4,9 @@
 /// from the core summary (analysis::identificationSummary, what `identify` prints; issue 26): the
 /// parameter table (identified, std, prior, σ post/prior from the summary's rows; the truth, the
 /// panel's own), the report under it (the summary's other rows: the data, whether the fit is at
-/// a minimum, the held-out error, the ambiguity, the adequacy, the notes) and the status line
-/// (the steps' rows).
+/// a minimum, the held-out error, the ambiguity, the adequacy, the notes, then each step) and the
+/// status line (the time, and whether the solver's steps converged: one line, so that the page
+/// fits 1024×700 with every parameter row in view).
 
 #include <QString>
 #include <optional>
@@ -20,9 +21,10 @@ namespace terra::ui {
 /// synthetic data were made from (none for a CSV: "–").
 void fillParameterTable(QTableWidget& table, const analysis::IdentificationResult& result,
                         const std::optional<identification::DecoupledParameters>& truth);
-/// The report under the table: the summary's rows but the estimates and the steps, as HTML.
+/// The report under the table: the summary's rows but the estimates, the steps last, as HTML.
 QString identificationReport(const analysis::IdentificationResult& result);
-/// The status line of a fit: its time and the summary's rows of the steps.
+/// The status line of a fit: its time and whether each solver step converged (those that did
+/// not named, in a user's words: identification::solverOutcome).
 QString identificationSteps(const analysis::IdentificationResult& result);
 
 }  // namespace terra::ui

@@ -99,6 +99,11 @@ TEST(IdentificationWording, TheStepsSayHowTheyEndedInAUsersWords) {
         }
         EXPECT_EQ(steps, static_cast<int>(j["steps"].size()));
         EXPECT_TRUE(converged) << refine;
+        // The notes a script's report.md shows (`terrastudio run`) say it the same way.
+        for (const std::string& note : identificationOutcome(r).notes) {
+            for (const char* optimizer : {"CONVERGENCE", "cost_change", "<="})
+                EXPECT_FALSE(contains(note, optimizer)) << refine << ": " << note;
+        }
     }
 }
 

@@ -293,7 +293,7 @@ TEST(Traction, ItsSummaryShowsTheJsonsValues) {
 TEST(Traction, APosteriorAddsTheRobustRows) {
     const Inputs in = sandyLoamOnA(true);
     TractionSettings s;
-    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}};
+    s.posterior = SoilPosterior{{"phi_deg", "n"}, {29.0, 0.7}, {{4.0, -0.05}, {-0.05, 0.0025}}, {}};
     s.posterior_samples = 50;
     s.curve_points = 20;
     const TractionResult r = computeTraction(in, s);
