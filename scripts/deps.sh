@@ -10,6 +10,8 @@
 # --no-install-recommends: the recommended packages of this list (SciPy, pandas, numba, LLVM's
 # tools, Qt 5, GTK, systemd: 131 packages on a fresh machine) are not used by the build or the
 # tests and took 80 of the install's 139 s (docs/install.md, "Build time").
+# A script that needs more than the product (scripts/screenshots: openbox; scripts/package:
+# file, which CPack's package generator runs) passes them: terra_install_dependencies openbox.
 # Uses sudo only when not root.
 
 TERRA_PACKAGES=(
@@ -26,7 +28,7 @@ TERRA_PACKAGES=(
 terra_install_dependencies() {
   local missing=()
   local package
-  for package in "${TERRA_PACKAGES[@]}"; do
+  for package in "${TERRA_PACKAGES[@]}" "$@"; do
     if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
       missing+=("$package")
     fi
