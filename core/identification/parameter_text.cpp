@@ -99,4 +99,12 @@ std::string solverOutcome(const std::string& termination) {
     return termination;
 }
 
+std::optional<bool> solverConverged(const std::string& termination) {
+    if (termination.starts_with("CONVERGENCE")) return true;
+    for (const char* kind : {"NO_CONVERGENCE", "STOPPED", "USER_", "FAILURE"}) {
+        if (termination.starts_with(kind)) return false;
+    }
+    return std::nullopt;
+}
+
 }  // namespace terra::identification

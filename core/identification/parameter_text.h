@@ -11,6 +11,7 @@
 /// is one string that a saved result keeps as it is; a text saved before it named parameters so
 /// has no reference and is worded as it was written.
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,5 +51,8 @@ std::vector<std::string> worded(const std::vector<ParameterText>& texts, Paramet
 /// (the fit stopped improving)", NO_CONVERGENCE, FAILURE and STOPPED (box_solver.h) likewise; a
 /// text that is not a solver's termination (a step's own note) is returned as it is.
 std::string solverOutcome(const std::string& termination);
+/// Whether a solver's termination is a convergence (CONVERGENCE) or not (NO_CONVERGENCE, STOPPED,
+/// USER_, FAILURE); none for a text that is not a solver's termination (a step's own note).
+std::optional<bool> solverConverged(const std::string& termination);
 
 }  // namespace terra::identification

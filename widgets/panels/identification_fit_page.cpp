@@ -430,7 +430,7 @@ void IdentificationFitPage::present(const std::any& value,
     fitTableToRows();
     report_->setText(identificationReport(result_));
     // The fit's warnings after its steps (a column not read, an old parameter key typed).
-    QString status = identificationSteps(result_);
+    QString status = identificationStatus(result_);
     for (const std::string& warning : result_.warnings)
         status += "<br><b>Warning:</b> " + QString::fromStdString(warning).toHtmlEscaped();
     status_->setText(status);

@@ -104,21 +104,18 @@ QString identificationReport(const analysis::IdentificationResult& result) {
     return summaryHtml(rows);
 }
 
-QString identificationSteps(const analysis::IdentificationResult& result) {
+QString identificationStatus(const analysis::IdentificationResult& result) {
     // One line: the time, and whether the solver's steps converged (the report lists each).
     QStringList unconverged;
     int solved = 0;
     for (const identification::StepReport& step : result.steps()) {
-        const std::string& t = step.termination;
-        const bool solver = t.starts_with("CONVERGENCE") || t.starts_with("NO_CONVERGENCE") ||
-                            t.starts_with("FAILURE") || t.starts_with("STOPPED") ||
-                            t.starts_with("USER_");
-        if (!solver) continue;
+        const std::optional<bool> converged = identification::solverConverged(step.termination);
+        if (!converged) continue;  // a step's own note, not a solver's end
         ++solved;
-        if (t.starts_with("CONVERGENCE")) continue;
+        if (*converged) continue;
         unconverged << QString::fromStdString(
                            step.name.worded(identification::ParameterNaming::kSymbol) + ": " +
-                           identification::solverOutcome(t))
+                           identification::solverOutcome(step.termination))
                            .toHtmlEscaped();
     }
     QString line = QString("Fit in %1 ms").arg(result.fit_time_ms, 0, 'f', 0);

@@ -25,6 +25,6 @@ void fillParameterTable(QTableWidget& table, const analysis::IdentificationResul
 QString identificationReport(const analysis::IdentificationResult& result);
 /// The status line of a fit: its time and whether each solver step converged (those that did
 /// not named, in a user's words: identification::solverOutcome).
-QString identificationSteps(const analysis::IdentificationResult& result);
+QString identificationStatus(const analysis::IdentificationResult& result);
 
 }  // namespace terra::ui

@@ -123,6 +123,15 @@ TEST(IdentificationWording, EachKindOfTerminationHasItsWords) {
               "stopped in the basin of a minimum found before");
     EXPECT_EQ(solverOutcome("FAILURE: the cost cannot be evaluated at the solution"),
               "failed: the model cannot be evaluated at the solution");
+    // Which of them converged, and a step's own note, which is no solver's end.
+    using identification::solverConverged;
+    EXPECT_EQ(solverConverged("CONVERGENCE: Function tolerance reached."), true);
+    EXPECT_EQ(solverConverged("CONVERGENCE: every parameter is held"), true);
+    EXPECT_EQ(solverConverged("NO_CONVERGENCE: Maximum number of iterations reached."), false);
+    EXPECT_EQ(solverConverged("STOPPED: the caller's stop condition holds"), false);
+    EXPECT_EQ(solverConverged("USER_SUCCESS: stopped by the callback"), false);
+    EXPECT_EQ(solverConverged("FAILURE: the cost cannot be evaluated at the solution"), false);
+    EXPECT_EQ(solverConverged("best χ² on the subset after the linear projection"), std::nullopt);
     EXPECT_EQ(solverOutcome("FAILURE: Residual and Jacobian evaluation failed."),
               "the solver failed");
     // A step's own note is not a solver's termination: kept as it is.
