@@ -27,9 +27,6 @@ struct Row {
     std::string warning;
 };
 
-// Degrees as the user typed them (90° typed is 90° checked), as contact::requireValid does.
-double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
-
 // One slip angle over all slips, warm-starting each solve from the previous one.
 // `done` is called after each slip.
 std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSpec& spec,
@@ -46,8 +43,8 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
             const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
             if (!solution.ok()) {
                 rows.push_back({{},
-                                "β = " + formatNumber(deg(beta)) + "°, s = " + formatNumber(s) +
-                                    ": " + solution.message});
+                                "β = " + formatNumber(roundedDegrees(beta)) +
+                                    "°, s = " + formatNumber(s) + ": " + solution.message});
                 previous.reset();
                 done();
                 continue;
@@ -63,10 +60,21 @@ std::vector<Row> sweepOneAngle(const ContactParameters<double>& p, const SweepSp
                 : contact::computeQuadraticForces(p, op, spec.bulldozing);
         // Given angles as typed (25, not 25.000000000000004); a solved θ_f keeps every digit, so
         // that the row reproduces its forces exactly. No negative zeros anywhere in the row.
-        const double theta_f_deg = spec.load_n ? units::radToDeg(theta_f) : deg(theta_f);
+        const double theta_f_deg = spec.load_n ? units::radToDeg(theta_f) : roundedDegrees(theta_f);
         const double h = contact::slipSinkage(p.radius_m, theta_f, s, p.slip_sinkage_coefficient);
-        std::vector<double> values{deg(beta), s,    theta_f_deg, deg(theta_r), h,    f.fx, f.fy,
-                                   f.fz,      f.mx, f.my,        f.mz,         f.fb, f.fs};
+        std::vector<double> values{roundedDegrees(beta),
+                                   s,
+                                   theta_f_deg,
+                                   roundedDegrees(theta_r),
+                                   h,
+                                   f.fx,
+                                   f.fy,
+                                   f.fz,
+                                   f.mx,
+                                   f.my,
+                                   f.mz,
+                                   f.fb,
+                                   f.fs};
         for (double& v : values) v = v == 0.0 ? 0.0 : v;
         rows.push_back({std::move(values), {}});
         done();
@@ -82,19 +90,19 @@ void validateSpec(const SweepSpec& spec) {
     if (spec.slips.empty()) issues.push_back({"slips", "no slip values to sweep"});
     if (spec.slip_angles_rad.empty()) issues.push_back({"slip_angles", "no slip angles to sweep"});
     for (double s : spec.slips) check(contact::slipField(), s);
-    for (double b : spec.slip_angles_rad) check(contact::slipAngleField(), deg(b));
+    for (double b : spec.slip_angles_rad) check(contact::slipAngleField(), roundedDegrees(b));
     if (spec.load_n) {
         check(contact::loadField(), *spec.load_n);
     } else {
-        check(contact::entryAngleField(), deg(spec.entry_angle_rad));
+        check(contact::entryAngleField(), roundedDegrees(spec.entry_angle_rad));
     }
     if (spec.exit.kind == contact::ExitCondition::Kind::kRutRatio) {
         check(contact::rutRatioField(), spec.exit.value);
     } else {
-        check(contact::exitAngleField(), deg(spec.exit.value));
+        check(contact::exitAngleField(), roundedDegrees(spec.exit.value));
     }
     if (spec.max_stress_angle_rad)
-        check(contact::maxStressAngleField(), deg(*spec.max_stress_angle_rad));
+        check(contact::maxStressAngleField(), roundedDegrees(*spec.max_stress_angle_rad));
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/common/units.h"
+
 namespace terra {
 
 bool Range::contains(double value) const {
@@ -89,6 +91,8 @@ double roundSignificant(double value, int digits) {
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
     return std::strtod(buffer, nullptr);
 }
+
+double roundedDegrees(double rad) { return roundSignificant(units::radToDeg(rad)); }
 
 bool checkRange(std::vector<Issue>& issues, const std::string& field, double value,
                 const Range& range, const std::string& unit) {

@@ -42,6 +42,10 @@ std::string formatAtStd(double value, double std);
 /// then give back the number the user typed (29, not 29.000000000000004).
 double roundSignificant(double value, int digits = 12);
 
+/// An angle in radians as the edges write it in degrees: radToDeg, then roundSignificant (an
+/// input of 15° is written 15 again).
+double roundedDegrees(double rad);
+
 /// Appends an issue when `value` is NaN, infinite or outside `range`; returns whether it was fine.
 bool checkRange(std::vector<Issue>& issues, const std::string& field, double value,
                 const Range& range, const std::string& unit = {});

@@ -26,9 +26,6 @@ constexpr std::size_t kBlock = 16;
 // At most this many bad inputs are listed in one error message; the rest are counted.
 constexpr std::size_t kMaxListed = 10;
 
-// Degrees as the user typed them (90° typed is 90° checked), as contact::requireValid does.
-double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
-
 // One input array: `count` values or one broadcast value.
 struct Column {
     const double* data = nullptr;
@@ -136,7 +133,7 @@ void checkPoint(std::vector<Issue>& issues, const Prepared& prep, std::size_t i)
     if (prep.has_slip_angle && due(prep.slip_angle)) {
         const double b = prep.slip_angle.at(i);
         if (!(std::abs(b) < 0.999999 * units::kPi / 2.0)) {
-            checkRange(issues, indexed("slip_angle_deg", prep.slip_angle, i), deg(b),
+            checkRange(issues, indexed("slip_angle_deg", prep.slip_angle, i), roundedDegrees(b),
                        contact::slipAngleField().range, "deg");
         }
     }
@@ -146,7 +143,7 @@ void checkPoint(std::vector<Issue>& issues, const Prepared& prep, std::size_t i)
     } else if (!prep.has_load && due(prep.entry)) {
         const double t = prep.entry.at(i);
         if (!(t > 1e-9 && t < 0.999999 * units::kPi / 2.0)) {
-            checkRange(issues, indexed("entry_angle_deg", prep.entry, i), deg(t),
+            checkRange(issues, indexed("entry_angle_deg", prep.entry, i), roundedDegrees(t),
                        {0.0, 90.0, true, false}, "deg");
         }
     }
@@ -307,11 +304,11 @@ void requireValid(const ModelOptions& options) {
     if (options.exit.kind == contact::ExitCondition::Kind::kRutRatio) {
         checkRange(issues, "rut_ratio", options.exit.value, contact::rutRatioField().range);
     } else {
-        checkRange(issues, "exit_angle_deg", deg(options.exit.value),
+        checkRange(issues, "exit_angle_deg", roundedDegrees(options.exit.value),
                    contact::exitAngleField().range, "deg");
     }
     if (options.max_stress_angle_rad) {
-        checkRange(issues, "max_stress_angle_deg", deg(*options.max_stress_angle_rad),
+        checkRange(issues, "max_stress_angle_deg", roundedDegrees(*options.max_stress_angle_rad),
                    contact::maxStressAngleField().range, "deg");
     }
     checkRange(issues, "integration.tolerance", options.integration.tolerance,

@@ -23,8 +23,6 @@ constexpr const char* kOutputNames[] = {"Fx_N",           "Fy_N",
                                         "exit_angle_deg", "max_sigma_z_kPa",
                                         "red_to_depth_m", "rut_depth_m"};
 
-double deg(double rad) { return roundSignificant(units::radToDeg(rad)); }
-
 std::string unitSuffix(const soil::SoilField& field) {
     return std::string(field.unit) == "-" ? "" : std::string(" ") + field.unit;
 }
@@ -149,11 +147,11 @@ void requireValid(const WheelStudy& study) {
         checkRange(issues, field.key, value, field.range, field.displayUnit());
     };
     for (double s : grid.slips) check(contact::slipField(), s);
-    for (double b : grid.slip_angles_rad) check(contact::slipAngleField(), deg(b));
+    for (double b : grid.slip_angles_rad) check(contact::slipAngleField(), roundedDegrees(b));
     if (grid.load_n) {
         check(contact::loadField(), *grid.load_n);
     } else {
-        check(contact::entryAngleField(), deg(grid.entry_angle_rad));
+        check(contact::entryAngleField(), roundedDegrees(grid.entry_angle_rad));
     }
     if (study.outputs.empty()) issues.push_back({"outputs", "no output to study"});
     for (std::size_t i = 0; i < study.outputs.size(); ++i) {

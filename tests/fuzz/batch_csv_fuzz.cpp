@@ -12,7 +12,7 @@
 #include "core/io/csv.h"
 #include "tests/fuzz/fuzz_support.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+TERRA_FUZZ_HARNESS(batch_csv) {
     using namespace terra;
     static const std::vector<io::NumericColumn> kColumns = {
         io::numericColumn(contact::slipField()),

@@ -8,7 +8,7 @@
 #include "core/identification/data_set.h"
 #include "tests/fuzz/fuzz_support.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+TERRA_FUZZ_HARNESS(data_set_csv) {
     using namespace terra::identification;
     const std::string text = terra::fuzz::textOf(data, size);
     for (BadRows policy : {BadRows::kStop, BadRows::kSkip}) {

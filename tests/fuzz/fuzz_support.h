@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 
 #include "core/common/issue.h"
@@ -56,4 +57,30 @@ void checkResult(const Result<T>& result) {
     }
 }
 
+#ifdef TERRA_FUZZ_REPLAY
+/// The replay build's harnesses by name (replay_main.cpp). Each harness file registers its entry
+/// point here, so that all of them build as one unity batch into one executable.
+using Harness = int (*)(const std::uint8_t* data, std::size_t size);
+std::map<std::string, Harness>& harnesses();
+inline bool registerHarness(const char* name, Harness harness) {
+    harnesses()[name] = harness;
+    return true;
+}
+#endif
+
 }  // namespace terra::fuzz
+
+/// A harness's entry point, named after its file (soil_json for soil_json_fuzz.cpp): libFuzzer's
+/// LLVMFuzzerTestOneInput in the fuzzing build (scripts/fuzz), a function registered under that
+/// name in the replay build (tests/fuzz/CMakeLists.txt), where nine entry points of one name
+/// could not share an executable.
+#ifdef TERRA_FUZZ_REPLAY
+#define TERRA_FUZZ_HARNESS(name)                                             \
+    static int terraFuzz_##name(const std::uint8_t* data, std::size_t size); \
+    [[maybe_unused]] static const bool terraFuzzRegistered_##name =          \
+        terra::fuzz::registerHarness(#name, &terraFuzz_##name);              \
+    static int terraFuzz_##name(const std::uint8_t* data, std::size_t size)
+#else
+#define TERRA_FUZZ_HARNESS(name) \
+    extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+#endif

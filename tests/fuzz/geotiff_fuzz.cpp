@@ -10,7 +10,7 @@
 #include "core/io/geotiff.h"
 #include "tests/fuzz/fuzz_support.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+TERRA_FUZZ_HARNESS(geotiff) {
     using namespace terra;
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
     const Result<field::Raster> raster = io::parseGeoTiff(bytes, "fuzz.tif");

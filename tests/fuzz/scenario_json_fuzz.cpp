@@ -9,7 +9,7 @@
 #include "core/scenario/scenario_json.h"
 #include "tests/fuzz/fuzz_support.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+TERRA_FUZZ_HARNESS(scenario_json) {
     using namespace terra;
     const std::string text = fuzz::textOf(data, size);
     const Result<nlohmann::json> json = io::parseJson(text, "fuzz.json");
