@@ -170,6 +170,9 @@ StreamingFigures::StreamingFigures(QCustomPlot* estimates, QCustomPlot* detectio
     // The current sample's F_x, above its rect (inside it would cover data).
     detection_->plotLayout()->insertRow(2);
     current_label_ = new QCPTextElement(detection_, "", QFont("sans", 9));
+    // Two short lines, and never the plot's minimum width: one line of it widened the streaming
+    // page past a 1024×700 screen (less openbox's frame) once a sample was shown.
+    current_label_->setMinimumSize(1, 0);
     detection_->plotLayout()->addElement(2, 0, current_label_);
 
     // One sample axis: dragging or zooming one rect moves all of a figure's rects.
@@ -269,7 +272,7 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count,
     label->setFont(QFont("sans", 8));
     if (true_border) markVertical(*true_border, kGrey, Qt::DashLine, "true border");
     current_label_->setText(
-        "F_x at the current sample (○): measured (●) and predicted by the estimate before it (×)");
+        "F_x at the current sample (○):\nmeasured (●), predicted by the estimate before it (×)");
 }
 
 void StreamingFigures::setTruth(
@@ -357,12 +360,12 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
         current_->addData(static_cast<double>(f.estimate.index), f.fx_measured_n);
         current_label_->setText(
             std::isfinite(f.fx_predicted_n)
-                ? QString("F_x at sample %1 (t = %2 s, ○): measured %3 N (●), predicted %4 N (×)")
+                ? QString("F_x at sample %1 (t = %2 s, ○):\nmeasured %3 N (●), predicted %4 N (×)")
                       .arg(f.estimate.index)
                       .arg(f.time_s, 0, 'f', 2)
                       .arg(f.fx_measured_n, 0, 'f', 2)
                       .arg(f.fx_predicted_n, 0, 'f', 2)
-                : QString("F_x at sample %1 (t = %2 s, ○): measured %3 N (●), no estimate yet")
+                : QString("F_x at sample %1 (t = %2 s, ○):\nmeasured %3 N (●), no estimate yet")
                       .arg(f.estimate.index)
                       .arg(f.time_s, 0, 'f', 2)
                       .arg(f.fx_measured_n, 0, 'f', 2));
