@@ -7,6 +7,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QSignalSpy>
+#include <QTextDocument>
 #include <cmath>
 
 #include "core/common/units.h"
@@ -46,6 +47,38 @@ TEST(StressPanel, PlottedNormalStressFollowsBekkersLawInFrontOfTheMaximum) {
     // The quadratic interpolates the exact σ at θ_m (Eq. 2.38): same value there.
     EXPECT_GT(r.errors[0].rmse, 0.0);
     EXPECT_LT(r.errors[0].mae, r.errors[0].rmse + 1e-12);  // MAE ≤ RMSE always
+}
+
+// Issue 26 item 3: the results line under the plot is the core summary `terrastudio stresses`
+// prints, in the panel's notation: θ_f (solved from F_z = W), θ_m and each stress's RMSE and MAE
+// at the core's four decimals, from the result the panel holds.
+TEST(StressPanel, TheResultsLineIsTheCoreSummary) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    StressPanel panel(&document);
+    ASSERT_TRUE(test::waitForResult(panel));
+    const analysis::StressResult& r = panel.result();
+    ASSERT_TRUE(r.message.empty()) << r.message;
+    auto* line = panel.findChild<QLabel*>("stresses.summary");
+    ASSERT_NE(line, nullptr);
+    QTextDocument html;
+    html.setHtml(line->text());
+    const QString text = html.toPlainText();
+    const auto fixed4 = [](double v) { return QString::number(v, 'f', 4); };
+    EXPECT_TRUE(
+        text.contains("θ_f: " + fixed4(r.entry_angle_deg) + " deg (from F_z = W = 58.86 N)"))
+        << text.toStdString();
+    EXPECT_TRUE(text.contains("θ_m: " + fixed4(r.max_stress_angle_deg) + " deg"))
+        << text.toStdString();
+    const char* names[] = {"σ", "τ", "τ_t", "τ_l"};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_TRUE(text.contains(
+            QString("%1 RMSE: %2 kPa (MAE %3 kPa)")
+                .arg(names[k], fixed4(r.errors[k].rmse / 1e3), fixed4(r.errors[k].mae / 1e3))))
+            << names[k] << ": " << text.toStdString();
+    }
+    // Two lines: θ, then the approximation's errors under their heading.
+    EXPECT_EQ(line->text().count("<br>"), 1) << line->text().toStdString();
 }
 
 // A tornado where both extremes of a parameter move F_x the same way (k_c: +2 and +6 N) must

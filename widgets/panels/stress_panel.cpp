@@ -12,6 +12,7 @@
 #include "core/project/panels.h"
 #include "core/project/saved_analyses.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/summary_html.h"
 #include "widgets/plots/figures.h"
 
 namespace terra::ui {
@@ -37,6 +38,7 @@ StressPanel::StressPanel(ProjectDocument* document, QWidget* parent)
     stress_->addItem("Tangential shear τ_t", "tau_t");
     stress_->addItem("Lateral shear τ_l", "tau_l");
     info_ = new QLabel(this);
+    info_->setObjectName("stresses.summary");
     info_->setTextFormat(Qt::RichText);
     info_->setWordWrap(true);
     readout_ = new QLabel(this);
@@ -104,23 +106,15 @@ AnalysisPanel::Job StressPanel::makeJob() {
 
 void StressPanel::present(const std::any& value) {
     result_ = std::any_cast<analysis::StressResult>(value);
-    if (!result_.message.empty()) {
-        info_->setText("<b>No equilibrium:</b> " +
-                       QString::fromStdString(result_.message).toHtmlEscaped());
-    } else {
-        QString text = QString("θ_f = %1°, θ_m = %2°. Quadratic approximation (0.01° grid): ")
-                           .arg(result_.entry_angle_deg, 0, 'f', 2)
-                           .arg(result_.max_stress_angle_deg, 0, 'f', 2);
-        const char* names[] = {"σ", "τ", "τ_t", "τ_l"};
-        for (int i = 0; i < 4; ++i) {
-            text += QString("%1 RMSE %2 / MAE %3 kPa%4")
-                        .arg(names[i])
-                        .arg(result_.errors[i].rmse / 1e3, 0, 'f', 3)
-                        .arg(result_.errors[i].mae / 1e3, 0, 'f', 3)
-                        .arg(i < 3 ? ";  " : "");
-        }
-        info_->setText(text);
-    }
+    // The core summary (what `terrastudio stresses` prints) without its heading, which the plot's
+    // title gives: θ_f and how it was found, θ_m, each stress's RMSE and MAE of the quadratic
+    // approximation; a failed or cancelled run says so and why. The inputs and settings are the
+    // panel's own: a result is only shown while they are those it was computed from (a change
+    // computes again; a saved result is restored only for the same ones).
+    const analysis::Summary summary =
+        analysis::stressSummary(project::inputsOf(document_->project()), current(), result_);
+    info_->setText(summaryParagraphHtml(
+        std::span<const analysis::SummaryRow>(summary.begin() + 1, summary.end())));
     redraw();
 }
 

@@ -47,6 +47,16 @@ QString summaryHtml(std::span<const analysis::SummaryRow> rows) {
     return lines.join("<br>");
 }
 
+QString summaryParagraphHtml(std::span<const analysis::SummaryRow> rows) {
+    QString out;
+    for (const analysis::SummaryRow& row : rows) {
+        if (!out.isEmpty())
+            out += row.emphasis == analysis::SummaryRow::Emphasis::kHeading ? "<br>" : "; ";
+        out += summaryRowHtml(row);
+    }
+    return out;
+}
+
 std::pair<QString, QString> valueAndStd(const analysis::SummaryRow& row) {
     const QString value = QString::fromStdString(row.value);
     const qsizetype at = value.indexOf(" ± ");

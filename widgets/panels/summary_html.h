@@ -18,6 +18,10 @@ namespace terra::ui {
 QString summaryRowHtml(const analysis::SummaryRow& row);
 /// The rows, joined by <br>.
 QString summaryHtml(std::span<const analysis::SummaryRow> rows);
+/// The rows as a short paragraph, for a results line under a plot (a line a row would take the
+/// plot's height at 1024×700): a heading starts a new line, the other rows follow on it, joined
+/// by "; ".
+QString summaryParagraphHtml(std::span<const analysis::SummaryRow> rows);
 /// The row's value split at " ± ": the value and its std ("" when the row has none).
 std::pair<QString, QString> valueAndStd(const analysis::SummaryRow& row);
 
