@@ -522,7 +522,7 @@ Outcome compactionOutcome(CompactionResult result) {
         out.status = result.cancelled ? Outcome::Status::kCancelled : Outcome::Status::kFailed;
         out.message = result.message;
     }
-    out.documents.push_back({"", toJson(result)});
+    out.documents.push_back({".json", toJson(result)});
     out.result = std::move(result);
     return out;
 }

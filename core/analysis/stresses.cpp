@@ -160,6 +160,7 @@ Outcome stressOutcome(StressResult result) {
         out.tables.push_back({"stresses", "", result.table});
         out.tables.push_back({"errors", "-errors", errorTable(result)});
     }
+    out.documents.push_back({".json", toJson(result)});  // what `stresses --json` prints
     out.result = std::move(result);
     return out;
 }

@@ -689,7 +689,7 @@ Outcome tractionOutcome(TractionResult result) {
         out.status = Outcome::Status::kFailed;
         out.message = result.message;
     }
-    out.documents.push_back({"", toJson(result)});
+    out.documents.push_back({".json", toJson(result)});
     out.result = std::move(result);
     return out;
 }

@@ -199,7 +199,8 @@ def stresses(soil, wheel, slip=0.3, slip_angle_deg=12.0, *, entry_angle_deg=None
 
     entry_angle_deg given, or solved so that F_z = load_N (default 58.86 N). Returns {"stresses":
     {theta_deg, sigma_kPa, tau_kPa, ...}, "errors": {stress_index, rmse_kPa, mae_kPa},
-    "entry_angle_deg", "max_stress_angle_deg", "message"}.
+    "entry_angle_deg", "max_stress_angle_deg", "message", "document"}; "document" is the dict
+    ``terrastudio stresses --json`` prints ("errors", "grid", "status").
     """
     conditions = {} if load_N is None else {"load_N": load_N}
     settings = {"slip": slip, "slip_angle_deg": slip_angle_deg, "step_deg": step_deg}
@@ -213,6 +214,7 @@ def stresses(soil, wheel, slip=0.3, slip_angle_deg=12.0, *, entry_angle_deg=None
         "entry_angle_deg": out["entry_angle_deg"],
         "max_stress_angle_deg": out["max_stress_angle_deg"],
         "message": out["message"],
+        "document": out["documents"][".json"],
     }
 
 
@@ -245,7 +247,7 @@ def compaction(soil="sandy-loam", wheel="A", load_N=None, slip=0.1, slip_angle_d
             else:
                 local[key] = float(value)
         out = run("compaction", soil, wheel, conditions=conditions, **local)
-        document = out["documents"].get("", {})
+        document = out["documents"].get(".json", {})
         if out["status"] != "completed" and not document.get("passes"):
             raise RuntimeError(out["message"])
         return document
@@ -305,7 +307,7 @@ def traction(soil="sandy-loam", wheel="A", load_N=None, slip_angle_deg=0.0, *,
     out = run("traction", soil, wheel, conditions=conditions, **local)
     if out["status"] != "completed":
         raise RuntimeError(out["message"])
-    return out["documents"][""]
+    return out["documents"][".json"]
 
 
 def field(path, *, traversability=None):

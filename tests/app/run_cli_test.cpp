@@ -162,6 +162,33 @@ TEST_F(RunCommand, RoverAnalysisWritesFiguresSeriesAndTheSameSummaryAsSimulate) 
               readText(dir_ / "sim" / "timeseries.csv"));
 }
 
+// A traction and a compaction analysis wrote their JSON to files named as the analysis, with no
+// extension ("best", "soil"). Each JSON document is now <name>.json and is what the subcommand's
+// --json prints for the same settings; the stress field's is written too.
+TEST_F(RunCommand, EachAnalysisWritesItsJsonToANameEndingInJson) {
+    const fs::path script = writeScript(nlohmann::json::parse(R"({"analyses": [
+        {"name": "best", "type": "traction"},
+        {"name": "soil", "type": "compaction", "passes": 2},
+        {"name": "field", "type": "stresses", "step_deg": 0.5}]})"));
+    const CliRun r = run("run " + script.string() + " --out " + (dir_ / "out").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    for (const auto& entry : fs::directory_iterator(dir_ / "out"))
+        EXPECT_TRUE(entry.path().has_extension()) << entry.path();
+    const std::array<std::pair<const char*, const char*>, 3> runs{{
+        {"best", "traction --json"},
+        {"soil", "compaction --passes 2 --json"},
+        {"field", "stresses --step 0.5 --json"},
+    }};
+    for (const auto& [name, command] : runs) {
+        const fs::path file = dir_ / "out" / (std::string(name) + ".json");
+        ASSERT_TRUE(fs::exists(file)) << file;
+        const CliRun direct = run(command);
+        ASSERT_EQ(direct.exit_code, 0) << command << ": " << direct.err;
+        EXPECT_EQ(nlohmann::json::parse(readText(file)), nlohmann::json::parse(direct.out))
+            << command;
+    }
+}
+
 TEST_F(RunCommand, FailedRoverExpectationExitsOne) {
     // A straight run does not turn 5–10°: the expectation fails, the outputs are still written.
     const fs::path script = writeScript(roverScript(5.0, 10.0));

@@ -48,6 +48,17 @@ def test_stresses_at_a_given_entry_angle():
     assert len(out["errors"]["rmse_kPa"]) == 4
 
 
+def test_stresses_document_is_what_stresses_json_prints(cli):
+    # Issue 26: one toJson in core; ts.stresses carries what `stresses --json` prints, every key.
+    out = ts.stresses(SOIL, WHEEL, slip=0.2, slip_angle_deg=5.0, load_N=80.0, step_deg=0.5)
+    run = cli("stresses", "--soil", SOIL, "--wheel", WHEEL, "--slip", 0.2, "--slip-angle", 5,
+              "--load", 80, "--step", 0.5, "--json")
+    assert run.returncode == 0, run.stderr
+    assert out["document"] == json.loads(run.stdout)
+    assert out["document"]["status"] == "completed"
+    assert out["document"]["errors"]["entry_angle_deg"] == pytest.approx(out["entry_angle_deg"])
+
+
 def test_identify_recovers_the_soil_of_noiseless_synthetic_data():
     # Data made from the soil without noise: the full-model refinement lands on that soil (the
     # decoupled start is a linearisation and is off by itself).
