@@ -267,7 +267,7 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count,
     label->position->setAxisRect(score);
     label->position->setCoords(0.01, threshold);
     label->setPositionAlignment(Qt::AlignLeft | Qt::AlignBottom);
-    label->setText(QString("threshold %1").arg(threshold));
+    label->setText(QString("threshold %1").arg(threshold, 0, 'g', 3));  // 13.8, not 13.8155
     label->setColor(kRed);
     label->setFont(QFont("sans", 8));
     if (true_border) markVertical(*true_border, kGrey, Qt::DashLine, "true border");
@@ -349,7 +349,7 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
             changes_.push_back(*u.change_at);
             markVertical(*u.change_at, kRed, Qt::SolidLine,
                          QString("change at %1").arg(*u.change_at),
-                         QString("change at %1 (confirmed at %2)").arg(*u.change_at).arg(u.index));
+                         QString("change at %1\n(confirmed at %2)").arg(*u.change_at).arg(u.index));
             confirmed_.push_back(u.index);
         }
         ++frames_;
