@@ -345,9 +345,8 @@ void addGsaCommands(CLI::App& app, const io::PresetLocations& locations) {
     addStudyOptions(*cmd, *study, "0.1,0.3,0.6",
                     "Sobol': base samples N (N (d + 2) model runs per point; default 4096); "
                     "Morris: trajectories (default 64)");
-    cmd->add_option("--method", study->method, "sobol or morris")
-        ->check(CLI::IsMember({"sobol", "morris"}))
-        ->capture_default_str();
+    // Checked by the analysis's reader, as a script's "method" is ("did you mean").
+    cmd->add_option("--method", study->method, "sobol or morris")->capture_default_str();
     cmd->add_option("--levels", study->levels, "Morris grid levels p (even)")
         ->capture_default_str();
     cmd->add_option("--resamples", study->resamples,
