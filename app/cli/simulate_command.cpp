@@ -111,39 +111,7 @@ void printComparison(const nlohmann::json& table, const std::string& name) {
 }
 
 void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const std::string& out) {
-    const scenario::Summary& m = r.summary;
-    std::cout << s.name << ": " << fixed(m.duration_s, 3) << " s simulated in " << m.steps
-              << " steps of " << formatNumber(s.time_step_s) << " s\n"
-              << "  final pose   x = " << fixed(m.x_m, 4) << " m, y = " << fixed(m.y_m, 4)
-              << " m, yaw = " << fixed(m.yaw_rad * 180.0 / M_PI, 3) << " deg\n"
-              << "  distance     " << fixed(m.distance_m, 4) << " m\n"
-              << "  mean slip   ";
-    for (int i = 0; i < dynamics::kWheelCount; ++i) {
-        std::cout << " " << dynamics::kCornerNames[i] << " " << fixed(m.mean_slip[i], 4);
-    }
-    std::cout << "\n  motor energy " << fixed(m.energy_j, 3) << " J (into the soil "
-              << fixed(m.dissipated_j, 3) << " J)\n";
-    if (r.maps && m.cells_touched) {
-        const auto [rut_min, rut_max] = r.maps->rut_depth_m.valueRange();
-        const auto [risk_min, risk_max] = r.maps->compaction_risk.valueRange();
-        (void)rut_min, (void)risk_min;
-        std::cout << "  field        " << *m.cells_touched << " cells of "
-                  << formatNumber(r.maps->passes.cell_m) << " m touched, deepest rut "
-                  << fixed(1000.0 * rut_max, 2) << " mm, largest risk at "
-                  << formatNumber(r.maps->risk_depth_m) << " m "
-                  << (std::isnan(risk_max) ? std::string("(no profile)") : fixed(risk_max, 3))
-                  << '\n';
-    }
-    if (m.mission) {
-        const scenario::MissionOutcome& mission = *m.mission;
-        std::cout << "  mission      "
-                  << (mission.completed ? "completed at t = " + fixed(*mission.time_s, 2) + " s"
-                                        : std::string("not completed"))
-                  << ", " << fixed(mission.progress_m, 2) << " of "
-                  << fixed(mission.path_length_m, 2) << " m of path, off it by "
-                  << fixed(100.0 * mission.error_rms_m, 1) << " cm RMS, "
-                  << fixed(100.0 * mission.error_max_m, 1) << " cm at most\n";
-    }
+    printSummary(std::cout, analysis::roverSummary(r, s));  // the core's words and digits
     std::cout << "wrote " << out << "/timeseries.csv, " << out << "/summary.json"
               << (r.streaming.columns.empty() ? "" : ", " + out + "/streaming.csv");
     if (r.maps) {

@@ -361,6 +361,68 @@ RoverResult runRover(const RoverSettings& settings, const Control& control) {
     return out;
 }
 
+Summary roverSummary(const scenario::RunResult& run, const scenario::Scenario& scenario) {
+    using Emphasis = SummaryRow::Emphasis;
+    const scenario::Summary& m = run.summary;
+    Summary out;
+    out.push_back(
+        {scenario.name, formatFixed(m.duration_s, 3) + " s simulated", "",
+         std::to_string(m.steps) + " steps of " + formatNumber(scenario.time_step_s) + " s",
+         Emphasis::kHeading, ""});
+    if (run.status != scenario::RunResult::Status::kCompleted) {
+        const bool cancelled = run.status == scenario::RunResult::Status::kCancelled;
+        out.push_back({"status", cancelled ? "cancelled" : "diverged", "", run.message,
+                       Emphasis::kWarning, "/status"});
+    }
+    const auto number = [&out](std::string label, double value, int decimals, std::string unit,
+                               std::string json, std::string detail = {}, double scale = 1.0) {
+        out.push_back({std::move(label), formatFixed(scale * value, decimals), std::move(unit),
+                       std::move(detail), Emphasis::kNormal, std::move(json), value});
+    };
+    number("final x", m.x_m, 4, "m", "/x_m");
+    number("final y", m.y_m, 4, "m", "/y_m");
+    number("final yaw", m.yaw_rad, 3, "deg", "/yaw_rad", {}, units::radToDeg(1.0));
+    number("distance", m.distance_m, 4, "m", "/distance_m");
+    for (int i = 0; i < dynamics::kWheelCount; ++i) {
+        const std::string corner = dynamics::kCornerNames[i];
+        number("mean slip " + corner, m.mean_slip[i], 4, "", "/mean_slip/" + corner);
+    }
+    number("motor energy", m.energy_j, 3, "J", "/energy_J",
+           "into the soil " + formatFixed(m.dissipated_j, 3) + " J");
+    if (run.maps && m.cells_touched) {
+        out.push_back({"cells touched", std::to_string(*m.cells_touched), "",
+                       "of " + formatNumber(run.maps->passes.cell_m) + " m", Emphasis::kNormal,
+                       "/cells_touched", static_cast<double>(*m.cells_touched)});
+        number("deepest rut", run.maps->rut_depth_m.valueRange().second, 2, "mm",
+               "/max_rut_depth_m", {}, 1000.0);
+        const double risk = run.maps->compaction_risk.valueRange().second;
+        const std::string at = "at " + formatNumber(run.maps->risk_depth_m) + " m";
+        if (std::isnan(risk)) {
+            out.push_back({"largest compaction risk", "none", "", at + ": no soil profile",
+                           Emphasis::kNormal, ""});
+        } else {
+            number("largest compaction risk", risk, 3, "", "/max_compaction_risk", at);
+        }
+    }
+    if (m.mission) {
+        const scenario::MissionOutcome& mission = *m.mission;
+        if (mission.completed && mission.time_s) {
+            number("mission completed at", *mission.time_s, 2, "s", "/mission_time_s");
+        } else {
+            out.push_back({"mission", "not completed", "", "", Emphasis::kWarning, ""});
+        }
+        number("path progress", mission.progress_m, 2, "m", "/path_progress_m",
+               "of " + formatFixed(mission.path_length_m, 2) + " m of path");
+        number("path error RMS", mission.error_rms_m, 1, "cm", "/path_error_rms_m",
+               "at most " + formatFixed(100.0 * mission.error_max_m, 1) + " cm", 100.0);
+    }
+    const nlohmann::json j = scenario::toJson(run, scenario);
+    if (j.contains("warning"))
+        out.push_back(
+            {"warning", j["warning"].get<std::string>(), "", "", Emphasis::kWarning, "/warning"});
+    return out;
+}
+
 Table roverSummaryTable(const RoverResult& result) {
     const nlohmann::json summary = scenario::toJson(result.run, result.scenario);
     const Table& series = result.run.series;

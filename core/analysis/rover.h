@@ -164,6 +164,14 @@ RoverResult runRover(const RoverSettings& settings, const Control& control = {})
 /// run (max_abs_y_m, max_abs_yaw_deg: a straight line stays on its line all along).
 Table roverSummaryTable(const RoverResult& result);
 
+/// The run for a person, as `terrastudio simulate` prints it: a heading with the scenario, the
+/// simulated time and the steps; the status when not completed; the final pose (yaw in deg), the
+/// distance, each wheel's mean slip, the motor energy (and into the soil); a field run's cells
+/// touched, deepest rut and largest compaction risk at its depth; a mission's time, progress and
+/// path error; the energy balance's warning. Each number's `json` points at it in
+/// scenario::toJson(run, scenario).
+Summary roverSummary(const scenario::RunResult& run, const scenario::Scenario& scenario);
+
 /// Tables "summary" (main, not written as CSV), "timeseries", "streaming" (when the scenario has
 /// the hook); the document "-summary.json"; notes: the status, warnings and the final pose. A
 /// diverged run is a failure, a cancelled one cancelled; both keep their partial tables.

@@ -1254,6 +1254,10 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
         const auto [lo, hi] = result.maps->rut_depth_m.valueRange();
         (void)lo;
         j["max_rut_depth_m"] = hi;
+        // The largest compaction risk over the touched cells; null on a field without a profile.
+        const double risk = result.maps->compaction_risk.valueRange().second;
+        j["max_compaction_risk"] =
+            std::isnan(risk) ? nlohmann::json(nullptr) : nlohmann::json(risk);
     }
     if (std::abs(s.energy_balance_error) > kEnergyBalanceTolerance) {
         j["warning"] = "the energy balance is off by " +

@@ -126,7 +126,8 @@ struct RunResult {
 RunResult runScenario(const Scenario& scenario, const RunOptions& options = {});
 
 /// The summary as JSON: duration_s, x_m, y_m, yaw_rad, distance_m, mean_slip {FL, FR, RL, RR},
-/// energy_J and the rest, with "status" and "scenario".
+/// energy_J and the rest, with "status" and "scenario"; a field run's cells_touched, risk_depth_m,
+/// max_rut_depth_m and max_compaction_risk (null without a profile).
 nlohmann::json toJson(const RunResult& result, const Scenario& scenario);
 
 /// The names of a field run's maps in the output directory.

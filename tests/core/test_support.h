@@ -98,7 +98,12 @@ inline void expectSummaryIsTheJson(const analysis::Summary& summary, const nlohm
         } else {
             ASSERT_TRUE(value.is_number()) << row.json;
             EXPECT_EQ(row.number, value.get<double>()) << row.label << " at " << row.json;
-            const double scale = row.unit == "mm" ? 1e3 : row.unit == "%" ? 100.0 : 1.0;
+            // Shown in mm, %, cm, or degrees of a JSON angle in radians.
+            const bool radians = row.unit == "deg" && row.json.ends_with("_rad");
+            const double scale = row.unit == "mm"                      ? 1e3
+                                 : row.unit == "%" || row.unit == "cm" ? 100.0
+                                 : radians                             ? 180.0 / std::numbers::pi
+                                                                       : 1.0;
             const double shown = std::stod(row.value);
             const double printed = std::pow(10.0, -printedDecimalsOf(row.value));
             // Fixed decimals, or 3 to 6 significant digits.
