@@ -39,20 +39,20 @@ ContactParameters<double> makeContactParameters(const soil::SoilParameters& soil
 }
 
 void requireValid(const OperatingPoint<double>& op) {
-    // Compare in the user's degrees, rounded so that 90° typed is 90° checked.
-    auto deg = [](double rad) { return roundSignificant(units::radToDeg(rad)); };
+    // Compare in the user's degrees, rounded so that 90° typed is 90° checked (roundedDegrees).
     std::vector<Issue> issues;
     auto check = [&](const FieldInfo& field, double value) {
         checkRange(issues, field.key, value, field.range, field.displayUnit());
     };
     check(slipField(), op.slip);
-    check(slipAngleField(), deg(op.slip_angle_rad));
-    check(entryAngleField(), deg(op.entry_angle_rad));
+    check(slipAngleField(), roundedDegrees(op.slip_angle_rad));
+    check(entryAngleField(), roundedDegrees(op.entry_angle_rad));
     // θ_r below −θ_f and θ_m outside [θ_r, θ_f] are brought inside by the model
     // (clampedExitAngle, clampedMaxStressAngle in contact_angles.h; docs/model.md), so only their
     // own ranges are checked here.
-    check(exitAngleField(), deg(op.exit_angle_rad));
-    if (op.max_stress_angle_rad) check(maxStressAngleField(), deg(*op.max_stress_angle_rad));
+    check(exitAngleField(), roundedDegrees(op.exit_angle_rad));
+    if (op.max_stress_angle_rad)
+        check(maxStressAngleField(), roundedDegrees(*op.max_stress_angle_rad));
     if (!issues.empty()) throw std::invalid_argument(formatIssues(issues));
 }
 

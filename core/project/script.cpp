@@ -286,6 +286,11 @@ Result<Script> scriptFromJson(const json& document, const std::string& where,
                                  "'\\', a control character such as a line break, or longer than "
                                  "100 characters)");
         }
+        // The run's own files: an analysis's NAME.json or NAME.md would overwrite them.
+        if (item.name == "manifest" || item.name == "report") {
+            a.report("name", quoteText(item.name, '"') +
+                                 " is reserved: the run writes manifest.json and report.md");
+        }
         for (std::size_t j = 0; j < i && j < script.analyses.size(); ++j) {
             if (script.analyses[j].name == item.name) {
                 a.report("name", quoteText(item.name, '"') + " is also the name of analyses[" +

@@ -163,6 +163,7 @@ TEST(MainWindow, NoPanelScrollsSidewaysAt1024x700) {
     w.applyLayout(MainWindow::Layout::kCompact);
     w.resize(1008, 660);  // a 1024×700 screen less openbox's frame
     settle();
+    ASSERT_EQ(w.size(), QSize(1008, 660));  // not clamped by a larger minimum size
     for (const char* name : kPanels) {
         expectFits(w, name);
     }

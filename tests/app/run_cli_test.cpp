@@ -361,6 +361,18 @@ TEST_F(StrictScript, AnAnalysisNameWithALineBreakIsRefused) {
     expectRejected(runJson(script), "analyses[0].name: \"f\\x1b[2Jx\" cannot start a file name");
 }
 
+// An analysis named "manifest" would write manifest.json over the run's own (a reviewer's
+// finding, once stresses, traction and compaction write NAME.json): the name is reserved.
+TEST_F(StrictScript, TheRunsOwnFileNamesAreReserved) {
+    nlohmann::json script = forcesScript(0, 1);
+    for (const char* name : {"manifest", "report"}) {
+        script["analyses"][0]["name"] = name;
+        expectRejected(runJson(script), std::string("analyses[0].name: \"") + name +
+                                            "\" is reserved: the run writes manifest.json and "
+                                            "report.md");
+    }
+}
+
 TEST_F(StrictScript, CommentsAreAllowedWhereverAKeyIs) {
     const double fx = singlePointFx();
     nlohmann::json script = forcesScript(fx - 1e-6, fx + 1e-6);

@@ -62,12 +62,15 @@ TEST(RoverSummary, AFieldRunShowsItsCellsRutAndRisk) {
 }
 
 TEST(RoverSummary, AMissionShowsItsProgressAndPathError) {
-    const RoverResult r = runFor("mission-controlled-traffic", 1.0);
+    // The cross slope's lanes: the robot crabs off its path by centimetres within 20 s (on the
+    // controlled-traffic field it stays exactly on it, and a missing cm scale would pass).
+    const RoverResult r = runFor("mission-slope-lanes", 20.0);
     const Summary summary = roverSummary(r.run, r.scenario);
     terra::testing::expectSummaryIsTheJson(summary, scenario::toJson(r.run, r.scenario));
     EXPECT_TRUE(hasRow(summary, "mission"));  // not completed in 1 s
     EXPECT_TRUE(hasRow(summary, "path progress"));
     EXPECT_TRUE(hasRow(summary, "path error RMS"));
+    EXPECT_GT(scenario::toJson(r.run, r.scenario)["path_error_rms_m"].get<double>(), 0.01);
 }
 
 TEST(RoverSummary, ACancelledRunSaysSo) {
