@@ -98,31 +98,6 @@ struct IdentifyOptions {
     std::string save_soil;         // --save-soil OUT.json: the soil with its posterior
 };
 
-// --jmax: a value in metres (held; the soil field's range) or "fit" (identified).
-struct JmaxChoice {
-    std::optional<double> value_m;
-    bool fit = false;
-};
-JmaxChoice parseJmax(const std::optional<std::string>& text) {
-    JmaxChoice out;
-    if (!text) return out;
-    if (*text == "fit") {
-        out.fit = true;
-        return out;
-    }
-    double value = 0.0;
-    const soil::SoilField& field = *soil::findSoilField("jmax_m");
-    if (!parseStrictNumber(*text, value)) {
-        throw InputError("--jmax " + *text + ": expected a length in m within [" +
-                         formatNumber(field.range.low) + ", " + formatNumber(field.range.high) +
-                         "], or 'fit' to identify it");
-    }
-    std::vector<Issue> issues;
-    checkRange(issues, "--jmax", value, field.range, field.displayUnit());
-    if (!issues.empty()) throw InputError(formatIssues(issues));
-    out.value_m = value;
-    return out;
-}
 // The flags as the identification's settings object (the keys of IdentificationSettings::
 // visitFields), read by its own reader: the ranges, kinds and their messages are the reader's,
 // named here by the flags (flagNames). What is left to the flags: the forms of their values
@@ -278,15 +253,26 @@ analysis::StreamingSettings streamSettings(const IdentifyOptions& o) {
     nlohmann::json object{{"skip_bad_rows", o.skip_bad_rows}};
     if (o.window) object["window"] = *o.window;
     if (o.load_n) object["load_N"] = *o.load_n;
+    // --jmax VALUE: the model's j_max held, a key of the settings as for a batch fit; the
+    // streaming estimator cannot identify it.
+    if (o.jmax && *o.jmax == "fit")
+        throw InputError("--jmax fit does not apply to --stream: give a value");
+    if (o.jmax) {
+        double value = 0.0;
+        if (!parseStrictNumber(*o.jmax, value))
+            throw InputError("--jmax " + *o.jmax + ": expected a length in m (--stream)");
+        object["jmax_m"] = value;
+    }
     std::vector<Issue> issues;
     io::ObjectReader reader(object, issues);
     analysis::StreamingSettings settings;
     analysis::readStreamingSettings(reader, {}, settings);
     reader.finish();
     if (!issues.empty()) {
-        nameFlags(
-            issues,
-            {{"skip_bad_rows", "--skip-bad-rows"}, {"window", "--window"}, {"load_N", "--load"}});
+        nameFlags(issues, {{"skip_bad_rows", "--skip-bad-rows"},
+                           {"window", "--window"},
+                           {"load_N", "--load"},
+                           {"jmax_m", "--jmax"}});
         throw InputError(formatIssues(issues));
     }
     return settings;
@@ -300,9 +286,6 @@ void runStream(const IdentifyOptions& o, const analysis::Inputs& inputs,
                const std::optional<soil::SoilParameters>& guess) {
     analysis::StreamingSettings settings = streamSettings(o);
     settings.csv = o.stream;
-    const JmaxChoice jmax = parseJmax(o.jmax);
-    if (jmax.fit) throw InputError("--jmax fit does not apply to --stream: give a value");
-    if (jmax.value_m) settings.options.fit.max_shear_deformation_m = *jmax.value_m;
     if (guess) {
         settings.options.fit.starts.push_back(
             {"guess " + o.guess, identification::fromSoil(*guess, inputs.wheel)});

@@ -24,6 +24,7 @@
 #include "core/identification/data_set.h"
 #include "core/identification/decoupled_fit.h"
 #include "core/identification/streaming_estimator.h"
+#include "core/soil/soil_parameters.h"
 
 namespace terra::analysis {
 
@@ -75,7 +76,7 @@ struct StreamingSettings {
     double noise_percent = 1.0;  ///< synthetic: σ as % of each channel's largest value
     std::uint64_t seed = 1;      ///< synthetic: noise seed
     /// The estimator's options (window, change test, the model of its fits); `columns` is set
-    /// from the data when played. Its file keys: "window" and "load_N".
+    /// from the data when played. Its file keys: "window", "load_N" and "jmax_m".
     identification::StreamingEstimatorOptions options;
 
     /// Its file keys, one line each (core/common/declared_fields.h): the reader, toJson, the
@@ -105,6 +106,9 @@ void StreamingSettings::visitFields(Visitor& v) {
     v(fields::custom("window", options.window, "whole number", "[1, 1000]",
                      "samples of the moving horizon", readStreamingWindow, streamingWindowJson));
     v(fields::field(contact::loadField(), options.fit.load_n));
+    // The model's shear-deformation limit held at a value (+inf: none), as identification's.
+    v(fields::field(*soil::findSoilField("jmax_m"), options.fit.max_shear_deformation_m,
+                    std::numeric_limits<double>::infinity()));
 }
 
 /// The keys of StreamingSettings::visitFields, read strictly (io::readFields), then what a field

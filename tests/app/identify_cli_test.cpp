@@ -458,6 +458,14 @@ TEST_F(IdentifyCli, StreamFlagsOutOfRangeGetTheReadersWordsNamedByTheFlag) {
     EXPECT_NE(r.err.find("--load: 0 is outside the allowed range [0.01, 1e+05] N"),
               std::string::npos)
         << r.err;
+    // --jmax is the settings' "jmax_m" (issue 26: it was set beside the reader).
+    r = run("identify --stream " + data + " --wheel A --jmax 5");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--jmax: 5 is outside the allowed range [1e-04, 1] m"), std::string::npos)
+        << r.err;
+    r = run("identify --stream " + data + " --wheel A --jmax fit");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--jmax fit does not apply to --stream"), std::string::npos) << r.err;
 }
 
 // Bad values: exit 2, naming the flag, the value and what is allowed.

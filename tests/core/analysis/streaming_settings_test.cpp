@@ -1,11 +1,13 @@
 // The streaming identification's settings on their declared field list
-// (StreamingSettings::visitFields): the keys scripts hold, the estimator's "window" and "load_N"
-// among them, are read as before into their members, toJson writes what the reader reads back, a
-// bad value is named with its range, and a struct built in code is checked in the reader's words.
+// (StreamingSettings::visitFields): the keys scripts hold, the estimator's "window", "load_N" and
+// "jmax_m" among them, are read as before into their members, toJson writes what the reader reads
+// back, a bad value is named with its range, and a struct built in code is checked in the reader's
+// words.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "core/analysis/registry.h"
@@ -58,7 +60,8 @@ TEST_F(StreamingSettingsKeys, EveryKeyOfAScriptIsReadIntoItsMember) {
                                    {"noise_percent", 2.5},
                                    {"seed", 9},
                                    {"window", 8},
-                                   {"load_N", 60.0}});
+                                   {"load_N", 60.0},
+                                   {"jmax_m", 0.02}});
     ASSERT_TRUE(issues.empty()) << formatIssues(issues);
     EXPECT_EQ(s.csv, (dir_ / "data.csv").string());  // relative to the script
     EXPECT_TRUE(s.skip_bad_rows);
@@ -69,6 +72,7 @@ TEST_F(StreamingSettingsKeys, EveryKeyOfAScriptIsReadIntoItsMember) {
     EXPECT_EQ(s.seed, 9u);
     EXPECT_EQ(s.options.window, 8u);
     EXPECT_EQ(s.options.fit.load_n, 60.0);
+    EXPECT_EQ(s.options.fit.max_shear_deformation_m, 0.02);  // the model's j_max held [m]
 
     const nlohmann::json j = toJson(s);
     EXPECT_EQ(j, (nlohmann::json{{"csv", (dir_ / "data.csv").string()},
@@ -77,7 +81,8 @@ TEST_F(StreamingSettingsKeys, EveryKeyOfAScriptIsReadIntoItsMember) {
                                  {"noise_percent", 2.5},
                                  {"seed", 9},
                                  {"window", 8},
-                                 {"load_N", 60.0}}));
+                                 {"load_N", 60.0},
+                                 {"jmax_m", 0.02}}));
     const auto [back, back_issues] = read(j);
     ASSERT_TRUE(back_issues.empty()) << formatIssues(back_issues);
     EXPECT_EQ(toJson(back), j);
@@ -88,6 +93,8 @@ TEST_F(StreamingSettingsKeys, AbsentKeysKeepTheDefaults) {
     ASSERT_TRUE(issues.empty()) << formatIssues(issues);
     EXPECT_EQ(toJson(s), toJson(StreamingSettings{}));
     EXPECT_FALSE(toJson(s).contains("load_N"));  // none: the data's loads
+    EXPECT_FALSE(toJson(s).contains("jmax_m"));  // none: no shear-deformation limit
+    EXPECT_EQ(s.options.fit.max_shear_deformation_m, std::numeric_limits<double>::infinity());
     EXPECT_EQ(s.options.window, identification::StreamingEstimatorOptions{}.window);
     ASSERT_TRUE(s.second.has_value());  // no CSV: the default second soil is resolved
     EXPECT_EQ(s.second->name, io::resolveSoil(kLocations, "clayey-soil").value().name);
