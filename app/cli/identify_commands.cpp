@@ -98,6 +98,15 @@ struct IdentifyOptions {
     std::string save_soil;         // --save-soil OUT.json: the soil with its posterior
 };
 
+// --jmax VALUE as the settings' "jmax_m", for a batch fit and --stream alike: a number here, its
+// range checked by the settings' reader.
+void setJmax(const std::string& text, nlohmann::json& object, const char* expected) {
+    double value = 0.0;
+    if (!parseStrictNumber(text, value))
+        throw InputError("--jmax " + text + ": expected " + expected);
+    object["jmax_m"] = value;
+}
+
 // The flags as the identification's settings object (the keys of IdentificationSettings::
 // visitFields), read by its own reader: the ranges, kinds and their messages are the reader's,
 // named here by the flags (flagNames). What is left to the flags: the forms of their values
@@ -155,12 +164,7 @@ nlohmann::json settingsObject(const IdentifyOptions& o,
     if (o.jmax && *o.jmax == "fit") {
         s["fit_jmax"] = true;
     } else if (o.jmax) {
-        double value = 0.0;
-        if (!parseStrictNumber(*o.jmax, value))
-            throw InputError("--jmax " + *o.jmax +
-                             ": expected a length in m, or 'fit' to "
-                             "identify it");
-        s["jmax_m"] = value;
+        setJmax(*o.jmax, s, "a length in m, or 'fit' to identify it");
     }
     return s;
 }
@@ -257,12 +261,7 @@ analysis::StreamingSettings streamSettings(const IdentifyOptions& o) {
     // streaming estimator cannot identify it.
     if (o.jmax && *o.jmax == "fit")
         throw InputError("--jmax fit does not apply to --stream: give a value");
-    if (o.jmax) {
-        double value = 0.0;
-        if (!parseStrictNumber(*o.jmax, value))
-            throw InputError("--jmax " + *o.jmax + ": expected a length in m (--stream)");
-        object["jmax_m"] = value;
-    }
+    if (o.jmax) setJmax(*o.jmax, object, "a length in m (--stream)");
     std::vector<Issue> issues;
     io::ObjectReader reader(object, issues);
     analysis::StreamingSettings settings;
