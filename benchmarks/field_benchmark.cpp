@@ -100,7 +100,8 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // depth; 4 as 2 with the quadratic closed form's reload branch in the ruts; 5 as 4 without the
 // stress at depth; 6 as 4 writing each passage to the cell under the contact point only, not
 // across the wheel's width (docs/field.md F13); 7 as 4 with a cohesion raster of 0.5 m cells
-// (100 × 40 distinct values from 1 to 3 kPa: 4,000 soils, F14). Second arg: the step in
+// (100 × 40 distinct values from 1 to 3 kPa: 4,000 soils, F14); 8 as 4 with each wheel reading
+// the memory of its contact point's cell for its whole width (F15 off). Second arg: the step in
 // ms; third: 1 for the implicit integrator (docs/dynamics.md, "Integrators"). Counters: real-time
 // factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
@@ -150,6 +151,7 @@ scenario::Scenario fieldRun(int kind) {
     if (kind == 3 || kind == 5) s.field_options.stress_depths_m.clear();
     s.options.contact.closed_form_reload = kind >= 4;
     s.field_options.across_width = kind != 6;
+    s.field_options.read_across_width = kind != 8;  // 8: kind 4 read at the contact point (F15)
     return s;
 }
 
@@ -230,6 +232,7 @@ BENCHMARK(RoverOnField)
     ->Args({5, 20, 1})
     ->Args({6, 20, 1})
     ->Args({7, 20, 1})
+    ->Args({8, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
@@ -281,6 +284,7 @@ BENCHMARK(RoverFieldMission)
     ->Args({5, 20, 1})
     ->Args({6, 20, 1})
     ->Args({7, 20, 1})
+    ->Args({8, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);

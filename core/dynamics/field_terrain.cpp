@@ -289,11 +289,105 @@ const compaction::TrackMemory* FieldTerrain::memoryUnder(int wheel, double x_m, 
         // A wheel leaving a cell sideways (through the quarter-cell margin at its side) can enter
         // one its last passage has just written (F13): it meets that cell as it was before its
         // own pass, not its own rut.
-        for (const auto& [written, before] : last_written_[static_cast<std::size_t>(wheel)]) {
-            if (written.ix == key.ix && written.iy == key.iy) p.before = before;
-        }
+        ownBefore(static_cast<std::size_t>(wheel), key, p.before);
+        sampleBand(static_cast<std::size_t>(wheel), p);
     }
     return options_.repeated_passes && !p.before.untouched() ? &p.before : nullptr;
+}
+
+int FieldTerrain::bandSamples() const {
+    // Points h/4 apart at most over the sampled width b − h/2 (bandStep), the middle one on the
+    // contact point.
+    const double h = cells_.cellSize();
+    const double span = wheel_.width_m - 0.5 * h;
+    if (!(span > 0.0)) return 1;
+    const int gaps = static_cast<int>(std::min<double>(std::ceil(span / (0.25 * h)), 1e6));
+    return std::min(gaps % 2 == 0 ? gaps + 1 : gaps + 2, kMaxBandSamples);
+}
+
+namespace {
+
+// Two memories a wheel meets alike: onTrack reads neither the pass count nor anything but these.
+bool sameGround(const compaction::TrackMemory& a, const compaction::TrackMemory& b) {
+    return a.untouched() == b.untouched() && a.max_sinkage_m == b.max_sinkage_m &&
+           a.max_pressure_pa == b.max_pressure_pa && a.rut_depth_m == b.rut_depth_m &&
+           a.shear_m == b.shear_m;
+}
+
+}  // namespace
+
+void FieldTerrain::sampleBand(std::size_t wheel, const Passage& p) {
+    std::vector<compaction::TrackMemory>& memories = band_memory_[wheel];
+    std::vector<BandShare>& band = band_[wheel];
+    memories.clear();
+    band.clear();
+    const int samples = bandSamples();
+    if (!options_.repeated_passes || !options_.across_width || !options_.read_across_width ||
+        samples == 1)
+        return;
+    // F15: m points t_j = (j − (m − 1)/2) (b − h/2)/(m − 1) along the axle through the contact
+    // point, from a quarter cell inside one edge of the width to a quarter cell inside the other
+    // (a wheel in the exact track of one before it meets that wheel's band, whose written cells
+    // reach at least b/2 − h/4 from its centre line, F13), the middle one the contact point (its
+    // cell's memory is p.before), each standing for an m-th of the width. Each cell is met as it
+    // was before the wheel's own last passage (F13).
+    memories.reserve(kMaxBandSamples);
+    std::array<int, kMaxBandSamples> count{};
+    bool differs = false;
+    const double step = (wheel_.width_m - 0.5 * cells_.cellSize()) / (samples - 1);
+    const std::array<double, 2> axle = p.entry_axle;
+    for (int j = 0; j < samples; ++j) {
+        const double t = (j - 0.5 * (samples - 1)) * step;
+        const field::CellKey key = cells_.keyAt(p.entry[0] + t * axle[0], p.entry[1] + t * axle[1]);
+        compaction::TrackMemory memory;
+        if (const field::CellState* s = cells_.find(key)) memory = s->track;
+        ownBefore(wheel, key, memory);
+        differs = differs || !sameGround(memory, p.before);
+        std::size_t g = 0;
+        while (g < memories.size() && !sameGround(memories[g], memory)) ++g;
+        if (g == memories.size()) memories.push_back(memory);
+        ++count[g];
+    }
+    if (!differs) {
+        memories.clear();
+        return;
+    }
+    for (std::size_t g = 0; g < memories.size(); ++g) {
+        band.push_back({memories[g].untouched() ? nullptr : &memories[g],
+                        static_cast<double>(count[g]) / samples});
+    }
+}
+
+void FieldTerrain::ownBefore(std::size_t wheel, field::CellKey key,
+                             compaction::TrackMemory& memory) const {
+    auto find = [&](const std::vector<std::pair<field::CellKey, compaction::TrackMemory>>& list) {
+        for (const auto& [written, before] : list) {
+            if (written.ix == key.ix && written.iy == key.iy) {
+                memory = before;
+                return true;
+            }
+        }
+        return false;
+    };
+    for (const auto& list : recent_written_[wheel]) {
+        if (find(list)) return;
+    }
+    find(last_written_[wheel]);
+}
+
+void FieldTerrain::archiveWritten(std::size_t wheel) {
+    auto& recent = recent_written_[wheel];
+    if (recent.size() == kRecentPassages) {
+        // Reuse the oldest list's storage for the last one (no allocation once warmed up).
+        std::vector<std::pair<field::CellKey, compaction::TrackMemory>> oldest =
+            std::move(recent.front());
+        recent.pop_front();
+        oldest.swap(last_written_[wheel]);
+        recent.push_back(std::move(oldest));
+    } else {
+        recent.push_back(last_written_[wheel]);
+    }
+    last_written_[wheel].clear();
 }
 
 void FieldTerrain::imprint(int wheel, const WheelImprint& imprint) {
@@ -311,6 +405,7 @@ void FieldTerrain::imprint(int wheel, const WheelImprint& imprint) {
         p.soil_index = imprint.soil_index;
         p.params = imprint.params;
         p.op = imprint.op;
+        p.footprint_scale = imprint.footprint_scale;
     }
 }
 
@@ -429,7 +524,7 @@ void FieldTerrain::commit(Passage& p) {
     const auto wheel = static_cast<std::size_t>(&p - passages_.data());
     std::vector<std::pair<field::CellKey, compaction::TrackMemory>>& written = last_written_[wheel];
     if (!p.contacted) {
-        written.clear();
+        archiveWritten(wheel);
         return;
     }
     // F11: the memory after one more wheel — it sank to its deepest point below the untouched
@@ -453,6 +548,10 @@ void FieldTerrain::commit(Passage& p) {
     std::vector<compaction::PointLoad> footprint;
     try {
         if (!depths.empty()) footprint = compaction::wheelFootprint(p.params, p.op);
+        // F15: the most loaded part's footprint, scaled to carry the wheel's load.
+        if (p.footprint_scale != 1.0) {
+            for (compaction::PointLoad& load : footprint) load.force *= p.footprint_scale;
+        }
     } catch (const std::invalid_argument&) {
         footprint.clear();  // outside the model's domain: no stress at depth from this passage
     }
@@ -503,7 +602,7 @@ void FieldTerrain::commit(Passage& p) {
     }
     const double energy_j = p.energy_j + carry.energy_j, travel_m = p.travel_m + carry.travel_m;
     carry = {};
-    written.clear();
+    archiveWritten(wheel);
     const double share = 1.0 / static_cast<double>(swept.size());
     for (const SweptCell& target : swept) {
         field::CellState& cell = cells_.touch(target.key);

@@ -5,9 +5,10 @@
 /// legend's classes in ascending code; with parameter rasters, every distinct soil the map holds:
 /// F14), and the cell grid's memory of every wheel that passed.
 /// Each wheel reads the memory of the cell under its contact point as the cell was when the wheel
-/// arrived there, and writes its passage back once, when it leaves the cell (F10–F11), to every
-/// cell under its width (F13): the track memory after one more pass (compaction::afterPass), the
-/// largest slip, the energy it lost there and the largest vertical stress at the grid's depths.
+/// arrived there (across its width where the memories differ, F15), and writes its passage back
+/// once, when it leaves the cell (F10–F11), to every cell under its width (F13): the track memory
+/// after one more pass (compaction::afterPass), the largest slip, the energy it lost there and the
+/// largest vertical stress at the grid's depths.
 
 #include <array>
 #include <deque>
@@ -58,6 +59,10 @@ struct FieldTerrainOptions {
     /// whose centres the wheel's width swept during the passage, and the cell under its contact
     /// point); false: the cell under the contact point only, a track one cell wide per wheel.
     bool across_width = true;
+    /// A wheel meets the memories across its width where they differ (docs/field.md F15: a rut's
+    /// edge); false: the memory of the cell under its contact point for the whole width (F10).
+    /// Only with across_width (a one-cell-wide rut is met by the contact point alone).
+    bool read_across_width = true;
 };
 
 /// One wheel's passage as it was written to one of its cells (F10, F13): what the maps show of
@@ -103,6 +108,19 @@ public:
     std::array<double, 2> gradientAt(double x_m, double y_m) const override;
 
     const compaction::TrackMemory* memoryUnder(int wheel, double x_m, double y_m) override;
+    /// F15: the memories met across the wheel's width, sampled when its passage opened at
+    /// bandSamples() points along its axle through the contact point (the middle one the contact
+    /// point's cell); empty when they all equal memoryUnder's, when the passage writes one cell
+    /// (`across_width` false), when `read_across_width` is false or when the wheels meet untouched
+    /// soil (`repeated_passes` false).
+    std::span<const BandShare> memoriesAcross(int wheel) const override {
+        return band_[static_cast<std::size_t>(wheel)];
+    }
+    /// The points across a wheel's width that F15 samples: the least odd count whose points
+    /// spread over b − h/2 are at most h/4 apart (b the wheel's width, h the cell side), at most
+    /// kMaxBandSamples; 1 (the contact point) when b ≤ h/2.
+    int bandSamples() const;
+    static constexpr int kMaxBandSamples = 41;
     compaction::ReloadLaw reloadLaw() const override { return options_.law; }
     void imprint(int wheel, const WheelImprint& imprint) override;
     void advanced(double dt_s) override;
@@ -139,6 +157,7 @@ private:
         double last_power_w = 0.0;
         contact::ContactParameters<double> params;  // at the deepest point
         contact::OperatingPoint<double> op{};       // at the deepest point
+        double footprint_scale = 1.0;               // at the deepest point (F15)
     };
     // A cell a passage is written to, and the distance from the wheel's centre line to the
     // cell's nearest point (its σ_z at depth is taken there).
@@ -175,12 +194,27 @@ private:
     // enters one of them next meets it as it was).
     std::array<std::vector<std::pair<field::CellKey, compaction::TrackMemory>>, kWheelCount>
         last_written_{};
+    // The same of the kRecentPassages passages before the last, oldest first (F15: a wheel's
+    // width reaches back over cells its own earlier passages wrote), and the rule that reads
+    // them: `memory` becomes the cell's memory before the earliest of the wheel's own recent
+    // passages over it, if any.
+    static constexpr std::size_t kRecentPassages = 3;
+    std::array<std::deque<std::vector<std::pair<field::CellKey, compaction::TrackMemory>>>,
+               kWheelCount>
+        recent_written_{};
+    void ownBefore(std::size_t wheel, field::CellKey key, compaction::TrackMemory& memory) const;
+    void archiveWritten(std::size_t wheel);
     // The energy and distance of a wheel's short passages that wrote no cell, added to its next.
     struct Carry {
         double energy_j = 0.0;
         double travel_m = 0.0;
     };
     std::array<Carry, kWheelCount> carry_{};
+    // F15: each wheel's band when its memories differ across its width; the shares point into
+    // band_memory_, whose capacity (kMaxBandSamples) is reserved so that they stay valid.
+    void sampleBand(std::size_t wheel, const Passage& passage);
+    std::array<std::vector<compaction::TrackMemory>, kWheelCount> band_memory_;
+    std::array<std::vector<BandShare>, kWheelCount> band_;
     long cells_touched_ = 0;
     double time_s_ = 0.0;  // the sum of the steps advanced() was told of
     // A deque: a long run's log grows in blocks, never copied to a buffer twice its size.

@@ -220,9 +220,11 @@ struct Rover::Impl {
     // (F_x, F_s, load) in the wheel frame R = [x_w y_w n] by forward differences of the contact
     // in v_x, v_y and the sinkage h (h = r − n·(hub − c), so ∂h/∂x_hub = −n), and the corner's
     // damper −c n nᵀ; the load's parts only while the soil pushes (load > 0).
-    void contactJacobians(int i, const contact::ContactParameters<double>& soil,
-                          const WheelKinematics& k, const WheelState& ws, const btVector3& x_w,
-                          const btVector3& y_w, const btVector3& n) {
+    // `forcesAt(q)`: the wheel's forces at kinematics q (one soil, or a band's parts, F15).
+    template <class ForcesAt>
+    void contactJacobians(int i, const ForcesAt& forcesAt, const WheelKinematics& k,
+                          const WheelState& ws, const btVector3& x_w, const btVector3& y_w,
+                          const btVector3& n) {
         force_by_velocity[i].setZero();
         force_by_position[i].setZero();
         if (!ws.contact.in_contact) return;
@@ -233,8 +235,7 @@ struct Rover::Impl {
         const Eigen::Vector3d f0 = forces(ws.contact.forces);
         auto derivative = [&](WheelKinematics q, double WheelKinematics::*of, double delta) {
             q.*of += delta;
-            return Eigen::Vector3d((forces(evaluateContact(soil, q, options.contact).forces) - f0) /
-                                   delta);
+            return Eigen::Vector3d((forces(forcesAt(q)) - f0) / delta);
         };
         const double dv =
             kJacobianStep * std::max({std::abs(k.forward_speed_m_s), std::abs(k.rim_speed_m_s),
@@ -251,6 +252,68 @@ struct Rover::Impl {
         frame.col(2) = toEigen(n);
         force_by_velocity[i] = frame * local * frame.transpose();
         force_by_position[i] = -(frame * by_sinkage) * toEigen(n).transpose();
+    }
+
+    // F15 (docs/field.md): a wheel whose width meets different memories (a rut's edge). Each part
+    // of the band is the section model on its own memory — its rut z_p lowers its surface, so its
+    // sinkage is h − z_p — and carries its share of the width of each force and moment; the
+    // rigid wheel sinks to one h across its width. band_params[i] holds each part's contact
+    // parameters, band_largest[i] the part that carries the most load (share × F_z; the first of
+    // equals): its θ_f, θ_r and memory stand for the wheel's in the imprint (F11), its footprint
+    // scaled by band_scale[i] to the wheel's F_z.
+    std::array<std::vector<contact::ContactParameters<double>>, kWheelCount> band_params;
+    std::array<std::vector<double>, kWheelCount> band_rut;
+    std::array<std::size_t, kWheelCount> band_largest{};
+    std::array<double, kWheelCount> band_scale{};
+
+    void bandContact(int i, const contact::ContactParameters<double>& untouched,
+                     std::span<const BandShare> band, double depth, WheelKinematics& k,
+                     WheelState& ws) {
+        auto& params = band_params[i];
+        auto& rut = band_rut[i];
+        params.clear();
+        rut.clear();
+        for (const BandShare& part : band) {
+            params.push_back(
+                part.memory ? compaction::onTrack(untouched, *part.memory, terrain->reloadLaw())
+                            : untouched);
+            rut.push_back(part.memory ? part.memory->rut_depth_m : 0.0);
+        }
+        k.sinkage_m = depth;
+        ws.contact = bandForces(i, band, k, &band_largest[i], &band_scale[i]);
+    }
+
+    // The band's contact at kinematics q, q.sinkage_m the depth below the untouched surface.
+    // `representative`: where the part that carries the most load is written; `scale`: the
+    // band's F_z over that part's F_z for the whole width (WheelImprint::footprint_scale).
+    WheelContact bandForces(int i, std::span<const BandShare> band, const WheelKinematics& q,
+                            std::size_t* representative = nullptr, double* scale = nullptr) const {
+        WheelContact out;
+        double representative_fz = 0.0;
+        contact::WheelForces<double>& f = out.forces;
+        double most = -1.0;
+        for (std::size_t g = 0; g < band.size(); ++g) {
+            WheelKinematics part = q;
+            part.sinkage_m = q.sinkage_m - band_rut[i][g];
+            const WheelContact c = evaluateContact(band_params[i][g], part, options.contact);
+            const double w = band[g].share;
+            f.fx += w * c.forces.fx, f.fy += w * c.forces.fy, f.fz += w * c.forces.fz;
+            f.mx += w * c.forces.mx, f.my += w * c.forces.my, f.mz += w * c.forces.mz;
+            f.fb += w * c.forces.fb, f.fs += w * c.forces.fs;
+            out.in_contact = out.in_contact || c.in_contact;
+            out.sunk = out.sunk || c.sunk;
+            // slip and β are the kinematics' (the same in every part); the angles the part's.
+            if (w * c.forces.fz > most) {
+                most = w * c.forces.fz;
+                out.slip = c.slip, out.slip_angle_rad = c.slip_angle_rad;
+                out.entry_angle_rad = c.entry_angle_rad, out.exit_angle_rad = c.exit_angle_rad;
+                representative_fz = c.forces.fz;
+                if (representative) *representative = g;
+            }
+        }
+        out.sinkage_m = q.sinkage_m;
+        if (scale) *scale = representative_fz > 0.0 ? f.fz / representative_fz : 1.0;
+        return out;
     }
 
     // The composite's twist: its centre of mass' velocity and the chassis' angular velocity.
@@ -610,7 +673,13 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         ws.passes_before = memory ? memory->passes : 0;
         const contact::ContactParameters<double>* soil = &m.soils[ws.soil_index];
         contact::ContactParameters<double> on_track;
-        if (memory == nullptr || memory->untouched()) {
+        const std::span<const BandShare> band = m.terrain->memoriesAcross(i);
+        if (!band.empty()) {
+            // F15: the width's parts meet different memories (a rut's edge); each part carries
+            // its share of the section's forces, and the imprint is the most loaded part's.
+            m.bandContact(i, *soil, band, depth, k, ws);
+            soil = &m.band_params[i][m.band_largest[i]];
+        } else if (memory == nullptr || memory->untouched()) {
             k.sinkage_m = depth;
             ws.contact = evaluateContact(*soil, k, m.options.contact);
         } else {
@@ -636,7 +705,17 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         const double power = -(m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega));
         m.soil_power += power;
         if (m.options.integrator == Integrator::kImplicit) {
-            m.contactJacobians(i, *soil, k, ws, x_w, y_w, n);
+            if (band.empty()) {
+                const auto forcesAt = [&](const WheelKinematics& q) {
+                    return evaluateContact(*soil, q, m.options.contact).forces;
+                };
+                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n);
+            } else {
+                const auto forcesAt = [&](const WheelKinematics& q) {
+                    return m.bandForces(i, band, q).forces;
+                };
+                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n);
+            }
         }
         if (m.terrain->remembers()) {
             WheelImprint imprint;
@@ -650,6 +729,7 @@ const RoverState& Rover::evaluate(const Commands& commands) {
                           ws.contact.exit_angle_rad, std::nullopt};
             const double axle_xy = std::hypot(y_w.x(), y_w.y());
             if (axle_xy > 0.0) imprint.axle = {y_w.x() / axle_xy, y_w.y() / axle_xy};
+            if (!band.empty()) imprint.footprint_scale = m.band_scale[i];
             m.terrain->imprint(i, imprint);
         }
     }

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,17 @@ struct WheelImprint {
     /// The wheel's axle y_w (docs/field.md F7) projected on the map and normalised: the direction
     /// of its width on the ground (F13).
     std::array<double, 2> axle{0.0, 1.0};
+    /// F15: where the width met different memories (memoriesAcross), `params` and `op` are the
+    /// part's that carries the most load, and this the wheel's F_z over that part's F_z for its
+    /// whole width: the footprint of the stress at depth is that part's, scaled to carry the
+    /// wheel's load. 1 otherwise.
+    double footprint_scale = 1.0;
+};
+
+/// A part of a wheel's width and the memory of the soil under it (docs/field.md, F15).
+struct BandShare {
+    const compaction::TrackMemory* memory = nullptr;  ///< nullptr: untouched soil
+    double share = 1.0;                               ///< of the wheel's width, (0, 1]
 };
 
 /// The ground as a wheel meets it. Coordinates are the world's: x, y on the map, z up.
@@ -98,6 +110,14 @@ public:
     virtual const compaction::TrackMemory* memoryUnder(int wheel, double x_m, double y_m) {
         (void)wheel, (void)x_m, (void)y_m;
         return nullptr;
+    }
+    /// The memories under the width of wheel `wheel` where memoryUnder last placed it, when they
+    /// differ across it (F15: a wheel on a rut's edge), each with its share of the width (the
+    /// shares sum to 1); empty when the whole width meets memoryUnder's memory. Called right after
+    /// memoryUnder; valid until its next call.
+    virtual std::span<const BandShare> memoriesAcross(int wheel) const {
+        (void)wheel;
+        return {};
     }
     /// The reload law that memoryUnder's memories are met with.
     virtual compaction::ReloadLaw reloadLaw() const { return {}; }

@@ -267,6 +267,7 @@ void readFieldTerrain(ObjectReader& r, const io::PresetLocations& locations,
     t.boolean("repeated_passes", o.repeated_passes);
     t.boolean("shear_memory", o.law.shear_memory);
     t.boolean("across_width", o.across_width);
+    t.boolean("read_across_width", o.read_across_width);
     t.number("cell_m", o.cell_m, {0.001, 100.0}, "m");
     double risk_depth = o.stress_depths_m.front();
     if (t.number("risk_depth_m", risk_depth, {0.01, 10.0}, "m")) o.stress_depths_m = {risk_depth};

@@ -356,7 +356,8 @@ TEST(FieldRover, OneWheelOffTheGridPassesEachCellOfItsBandOnce) {
                 x = radius * std::cos(angle), y = radius * std::sin(angle);
                 heading = angle + 0.5 * M_PI;
             }
-            if (t.memoryUnder(0, x, y) != nullptr) ++own;
+            // Nor across its width (F15): every band it samples is untouched.
+            if (t.memoryUnder(0, x, y) != nullptr || !t.memoriesAcross(0).empty()) ++own;
             WheelImprint imprint;
             imprint.in_contact = true;
             imprint.depth_m = 0.01;
@@ -393,6 +394,131 @@ double pull(const scenario::Scenario& s, double load_n, double slip) {
     const compaction::SolvedPass p = compaction::solvePass(params, {}, {}, c);
     EXPECT_TRUE(p.ok) << p.message;
     return p.forces.fx;
+}
+
+// F15 at the terrain: a wheel driven beside a band another wheel wrote meets the band's memory
+// over the share of its width that overlaps it. Wheel 0 runs along y = 0 on 2 cm cells and writes
+// the cells whose centres lie within b/2 (y = ±0.01, ±0.03, ±0.05: the band [−0.06, 0.06] m);
+// wheel 1 runs along y = d. The share of its width in the band is the overlap of
+// [d − b/2, d + b/2] with it over b, within one sample's share and a quarter cell at each end.
+TEST(FieldRover, AWheelBesideABandMeetsItOverTheShareOfItsWidthThatOverlapsIt) {
+    const scenario::Scenario s = shipped("straight", 1.0);
+    FieldTerrainOptions options;
+    options.cell_m = 0.02;
+    options.stress_depths_m.clear();
+    const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
+    const double b = s.robot.wheel.width_m;
+    auto drive = [&](FieldTerrain& t, int wheel, double y, auto&& each) {
+        for (double x = 0.003; x < 1.0; x += 1e-3) {
+            const compaction::TrackMemory* centre = t.memoryUnder(wheel, x, y);
+            each(x, centre, t.memoriesAcross(wheel));
+            WheelImprint imprint;
+            imprint.in_contact = true;
+            imprint.depth_m = 0.01;
+            imprint.params = params;
+            imprint.op = {0.2, 0.0, 0.3, 0.0, std::nullopt};
+            t.imprint(wheel, imprint);
+            t.advanced(1e-3);
+        }
+        t.finish();
+    };
+    for (const double d : {0.0, 0.02, 0.04, 0.06, 0.08, 0.1, 0.12, 0.2}) {
+        FieldTerrain t(uniformField(s.terrain.base), s.robot, options);
+        ASSERT_EQ(t.bandSamples(), 21);  // (b − h/2)/(h/4) = 19.4 gaps: 20, so 21 points
+        const double tolerance = 1.0 / t.bandSamples() + 0.25 * 0.02 / b;
+        drive(t, 0, 0.0, [](double, const compaction::TrackMemory*, std::span<const BandShare>) {});
+        const double overlap =
+            std::max(0.0, std::min(d + 0.5 * b, 0.06) - std::max(d - 0.5 * b, -0.06)) / b;
+        int checked = 0;
+        drive(
+            t, 1, d,
+            [&](double x, const compaction::TrackMemory* centre, std::span<const BandShare> band) {
+                if (x < 0.2 || x > 0.8) return;  // away from the band's two ends
+                double share = 0.0;
+                if (band.empty()) {
+                    share = centre != nullptr ? 1.0 : 0.0;
+                } else {
+                    double total = 0.0;
+                    for (const BandShare& part : band) {
+                        total += part.share;
+                        if (part.memory != nullptr) share += part.share;
+                        EXPECT_GT(part.share, 0.0);
+                    }
+                    EXPECT_NEAR(total, 1.0, 1e-12);
+                }
+                EXPECT_NEAR(share, overlap, tolerance) << "d = " << d << ", x = " << x;
+                ++checked;
+            });
+        EXPECT_GT(checked, 500) << d;
+    }
+}
+
+// F15 in the rover: crab steering (every wheel at δ) puts the rear wheels' tracks L sin δ beside
+// the front wheels' (L = 0.5 m), from in the front rut (δ = 0) to clear of it (18.7°: 0.16 m,
+// more than b + the band's cell). Between the two, a rear wheel meets the rut over the share of
+// its width that overlaps it: its sinkage below the untouched surface falls and its resistance
+// torque grows steadily with the offset, strictly between the two limits (read across the width
+// off, the contact point's cell decides for the whole width: at 3.07° the wheel is still all in
+// the rut, and the torque is not monotone). The limits themselves are the same runs bit for bit.
+TEST(FieldRover, ARearWheelOnTheFrontRutsEdgeSinksBetweenInTheRutAndBesideIt) {
+    auto run = [](double steer_deg, bool across) {
+        const nlohmann::json j = {
+            {"robot", "default"},
+            {"duration_s", 12},
+            {"time_step_s", 0.001},
+            {"output_interval_s", 0.01},
+            {"model", "quadratic"},
+            {"initial", {{"x_m", 0.01}, {"y_m", 0.01}}},
+            {"terrain", "sandy-loam"},
+            {"wheels", {{"all", {{"omega_rad_s", 2.0}, {"steer_deg", steer_deg}}}}}};
+        Result<scenario::Scenario> s = scenario::scenarioFromJson(j, "crab", kLocations);
+        EXPECT_TRUE(s.ok()) << s.message();
+        scenario::Scenario sc = s.value();
+        sc.field = uniformField(sc.terrain.base);
+        sc.field_options.cell_m = 0.02;
+        sc.field_options.stress_depths_m.clear();
+        sc.field_options.read_across_width = across;
+        return scenario::runScenario(sc);
+    };
+    // The rear-left wheel's mean sinkage [mm] and resistance torque [N·m] once it runs in (or
+    // beside) the front-left wheel's track (t ≥ 7 s: the robot has moved more than 0.5 m).
+    auto rear = [](const scenario::RunResult& r) {
+        const std::size_t t = r.series.column("t_s"), h = r.series.column("RL_sinkage_m"),
+                          my = r.series.column("RL_My_Nm");
+        double sum_h = 0.0, sum_my = 0.0;
+        int n = 0;
+        for (const auto& row : r.series.rows) {
+            if (row[t] < 7.0) continue;
+            sum_h += row[h], sum_my += row[my], ++n;
+        }
+        return std::array<double, 2>{1e3 * sum_h / n, sum_my / n};
+    };
+    const double angles[] = {0.0, 3.07, 6.15, 9.26, 18.7};
+    std::vector<std::array<double, 2>> band, centre;
+    std::vector<scenario::RunResult> ends;
+    for (const double steer : angles) {
+        const scenario::RunResult a = run(steer, true), b = run(steer, false);
+        band.push_back(rear(a));
+        centre.push_back(rear(b));
+        if (steer == angles[0] || steer == angles[4]) {
+            SCOPED_TRACE(steer);
+            expectSameSeries(a, b, false);
+        }
+    }
+    const double in_rut = band.front()[0], beside = band.back()[0];
+    ASSERT_GT(in_rut - beside, 0.5);  // mm: the rut lowers the rear wheel (measured 5.20 − 4.16)
+    for (std::size_t k = 1; k < band.size(); ++k) {
+        SCOPED_TRACE(angles[k]);
+        EXPECT_LT(band[k][0], band[k - 1][0] - 0.1 * (in_rut - beside) / 4);
+        EXPECT_GT(band[k][1], band[k - 1][1]);
+        if (k + 1 < band.size()) {
+            EXPECT_GT(band[k][0], beside + 0.1 * (in_rut - beside));
+            EXPECT_LT(band[k][0], in_rut - 0.1 * (in_rut - beside));
+        }
+    }
+    // The contact point's cell alone: at 3.07° (0.027 m beside, the contact point still in the
+    // band) the wheel sinks as in the rut, within 2 % of the gap.
+    EXPECT_NEAR(centre[1][0], in_rut, 0.02 * (in_rut - beside));
 }
 
 // On a uniform slope α uphill the four wheels carry m g cos α along the normal and pull
@@ -527,7 +653,8 @@ TEST(FieldRover, ScenarioReadsAFieldFileOrItsOwnRasters) {
              {"soils", fields + "soil-classes.asc"},
              {"legend", {{"1", "sandy-loam"}, {"2", "lean-clay-wet"}, {"3", "sandy-loam"}}},
              {"cell_m", 0.05},
-             {"repeated_passes", false}}),
+             {"repeated_passes", false},
+             {"read_across_width", false}}),
         "inline", kLocations);
     ASSERT_TRUE(inline_maps.ok()) << inline_maps.message();
     for (const scenario::Scenario* s : {&by_file.value(), &inline_maps.value()}) {
@@ -538,6 +665,8 @@ TEST(FieldRover, ScenarioReadsAFieldFileOrItsOwnRasters) {
     }
     EXPECT_EQ(inline_maps.value().field_options.cell_m, 0.05);
     EXPECT_FALSE(inline_maps.value().field_options.repeated_passes);
+    EXPECT_FALSE(inline_maps.value().field_options.read_across_width);
+    EXPECT_TRUE(by_file.value().field_options.read_across_width);
     // Without "soil" the base soil is the lowest class's.
     EXPECT_EQ(inline_maps.value().terrain.base.name, inline_maps.value().soil(1).name);
 
