@@ -12,6 +12,7 @@
 #include <QDoubleSpinBox>
 #include <QSignalSpy>
 #include <QSlider>
+#include <QTextDocument>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -57,6 +58,45 @@ QString pulseText(RoverPanel& panel, double duration_s) {
     auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
     json["duration_s"] = duration_s;
     return QString::fromStdString(json.dump(2));
+}
+
+// The results line is the core summary, as `terrastudio simulate` prints it: the same numbers
+// at the same decimals, read back from the run's own summary (the final pose, yaw in degrees,
+// the distance, each wheel's mean slip, the motor energy).
+TEST(RoverPanelSummary, TheResultsLineIsTheCoreSummary) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    RoverPanel panel(&document, test::resources());
+    QString error;
+    auto json = nlohmann::json::parse(panel.scenarioText().toStdString());
+    json["duration_s"] = 3.0;
+    ASSERT_TRUE(panel.setScenarioText(QString::fromStdString(json.dump(2)), &error))
+        << error.toStdString();
+    panel.recompute();
+    ASSERT_TRUE(test::waitForResult(panel, 120000));
+    const scenario::Summary& s = panel.result().summary;
+    auto* line = panel.findChild<QLabel*>("rover.summary");
+    ASSERT_NE(line, nullptr);
+    QTextDocument html;
+    html.setHtml(line->text());
+    const QString text = html.toPlainText();
+    const auto fixed = [](double v, int decimals) { return QString::number(v, 'f', decimals); };
+    EXPECT_TRUE(text.startsWith("Completed on sandy loam")) << text.toStdString();
+    EXPECT_TRUE(text.contains("3.000 s simulated (3000 steps of 0.001 s)")) << text.toStdString();
+    EXPECT_TRUE(text.contains("final x: " + fixed(s.x_m, 4) + " m")) << text.toStdString();
+    EXPECT_TRUE(text.contains("final yaw: " + fixed(s.yaw_rad * 180.0 / kPi, 3) + " deg"))
+        << text.toStdString();
+    EXPECT_TRUE(text.contains("distance: " + fixed(s.distance_m, 4) + " m")) << text.toStdString();
+    const char* corners[] = {"FL", "FR", "RL", "RR"};
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_TRUE(text.contains(QString("mean slip %1: %2")
+                                      .arg(corners[i])
+                                      .arg(fixed(s.mean_slip[static_cast<std::size_t>(i)], 4))))
+            << corners[i] << ": " << text.toStdString();
+    }
+    EXPECT_TRUE(text.contains("motor energy: " + fixed(s.energy_j, 3) + " J (into the soil " +
+                              fixed(s.dissipated_j, 3) + " J)"))
+        << text.toStdString();
 }
 
 TEST(RoverPanelTopView, ScrubbingMovesTheRobotToTheSeriesPoseWithoutRecomputing) {

@@ -34,6 +34,7 @@
 #include "core/project/saved_rover.h"
 #include "core/scenario/scenario_json.h"
 #include "widgets/document/project_document.h"
+#include "widgets/panels/summary_html.h"
 #include "widgets/plots/field_layers.h"
 #include "widgets/plots/figures.h"
 #include "widgets/plots/rover_figures.h"
@@ -197,6 +198,7 @@ RoverPanel::RoverPanel(ProjectDocument* document, io::PresetLocations locations,
     progress_ = new QProgressBar(this);
     trackProgress(progress_);
     status_ = new QLabel(this);
+    status_->setObjectName("rover.summary");
     status_->setWordWrap(true);
     readout_ = new QLabel(this);
     tabs_ = new QTabWidget(this);
@@ -642,16 +644,6 @@ QString soilsOf(const scenario::Scenario& scenario) {
     return text;
 }
 
-/// ", 92 cells touched, deepest rut 4.52 mm" for a field run (its maps), else "".
-QString fieldSummary(const scenario::RunResult& run) {
-    if (!run.maps || !run.summary.cells_touched) return {};
-    const auto [lo, hi] = run.maps->rut_depth_m.valueRange();
-    (void)lo;
-    return QString(", %1 cells touched, deepest rut %2 mm")
-        .arg(*run.summary.cells_touched)
-        .arg(std::isfinite(hi) ? hi * 1e3 : 0.0, 0, 'f', 2);
-}
-
 }  // namespace
 
 void RoverPanel::retitle(const QString& title) {
@@ -881,22 +873,14 @@ Table RoverPanel::currentTable() const {
 }
 
 QString RoverPanel::summaryText() const {
-    const auto& s = result_.summary;
-    const QString body =
-        QString(
-            "on %8 — %1 s simulated, final pose x = %2 m, y = %3 m, yaw = %4°, distance "
-            "%5 m, motor energy %6 J%9%7")
-            .arg(s.duration_s, 0, 'f', 2)
-            .arg(s.x_m, 0, 'f', 3)
-            .arg(s.y_m, 0, 'f', 3)
-            .arg(s.yaw_rad * 180.0 / 3.14159265358979, 0, 'f', 2)
-            .arg(s.distance_m, 0, 'f', 3)
-            .arg(s.energy_j, 0, 'f', 1)
-            .arg(result_.message.empty() ? QString()
-                                         : ". " + QString::fromStdString(result_.message))
-            .arg(soilsOf(shown_).toHtmlEscaped())
-            .arg(fieldSummary(result_));
-    return completion() == Completion::kComplete ? "Completed " + body : markedStatus(body);
+    // The core summary (what `terrastudio simulate` prints: the simulated time, the final pose,
+    // the distance, each wheel's mean slip, the motor energy; a field run's cells, deepest rut and
+    // largest compaction risk; a mission's time, progress and path error; the status and the
+    // energy balance's warning), in its words and digits, after the soils it ran on.
+    const analysis::Summary summary = analysis::roverSummary(result_, shown_);
+    const QString on = "on " + soilsOf(shown_).toHtmlEscaped();
+    return (completion() == Completion::kComplete ? "Completed " + on : markedStatus(on)) + "<br>" +
+           summaryParagraphHtml(summary);
 }
 
 QString RoverPanel::timeLabel() const {
