@@ -40,21 +40,6 @@ const std::vector<std::pair<std::string, std::string>>& fieldFlagNames() {
     return names;
 }
 
-void printTraversability(std::ostream& out, const analysis::TraversabilityResult& r) {
-    out << "traversability for " << formatNumber(r.robot_mass_kg) << " kg on " << r.grid.cols
-        << " x " << r.grid.rows << " cells of " << formatNumber(r.grid.cell_m) << " m (" << r.curves
-        << " slip curves):\n";
-    out << "  heading [deg]  stalled cells  braking cells  largest slip\n";
-    for (const analysis::HeadingMap& m : r.headings) {
-        const double hi = m.slip.valueRange().second;
-        char line[160];
-        std::snprintf(line, sizeof line, "  %13s  %13zu  %13zu  %12s\n",
-                      fixed(m.heading_rad * kDeg, 1).c_str(), m.stalled, m.braking,
-                      std::isnan(hi) ? "-" : fixed(hi, 3).c_str());
-        out << line;
-    }
-}
-
 void printText(std::ostream& out, const field::FieldSummary& s) {
     out << (s.name.empty() ? "field" : s.name) << ": " << formatNumber(s.x_max_m - s.x_min_m)
         << " x " << formatNumber(s.y_max_m - s.y_min_m) << " m (x " << formatNumber(s.x_min_m)
@@ -167,7 +152,7 @@ void addFieldCommand(CLI::App& app, const io::PresetLocations& locations) {
         } else {
             std::ostringstream text;
             printText(text, summary);
-            if (trav) printTraversability(text, *trav);
+            if (trav) printSummary(text, analysis::traversabilitySummary(*trav));
             writeOutput(o.out, text.str());
         }
     });

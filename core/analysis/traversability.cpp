@@ -217,6 +217,48 @@ nlohmann::json toJson(const TraversabilityResult& r) {
             {"cancelled", r.cancelled}};
 }
 
+Summary traversabilitySummary(const TraversabilityResult& r) {
+    using Emphasis = SummaryRow::Emphasis;
+    const nlohmann::json j = toJson(r);
+    Summary out;
+    out.push_back({"traversability", formatNumber(r.robot_mass_kg) + " kg robot", "",
+                   std::to_string(r.grid.cols) + " x " + std::to_string(r.grid.rows) +
+                       " cells of " + formatNumber(r.grid.cell_m) + " m, " +
+                       std::to_string(r.curves) + " slip curves",
+                   Emphasis::kHeading, ""});
+    if (r.cancelled) out.push_back({"status", "cancelled", "", "", Emphasis::kWarning, ""});
+    const auto count = [&](std::string label, const std::string& pointer) {
+        const double n = j.at(nlohmann::json::json_pointer(pointer)).get<double>();
+        out.push_back({std::move(label), std::to_string(static_cast<long long>(n)), "", "",
+                       Emphasis::kNormal, pointer, n});
+    };
+    count("cells", "/cells");
+    count("cells where a heading stalls", "/stall_cells");
+    // The largest slip needed: none where every cell and heading stalls or brakes.
+    auto slip = [&](std::string label, const std::string& pointer, std::string detail) {
+        const nlohmann::json& v = j.at(nlohmann::json::json_pointer(pointer));
+        if (v.is_null()) {
+            out.push_back({std::move(label), "none", "", std::move(detail), Emphasis::kNormal, ""});
+        } else {
+            out.push_back({std::move(label), formatFixed(v.get<double>(), 3), "", std::move(detail),
+                           Emphasis::kNormal, pointer, v.get<double>()});
+        }
+    };
+    slip("largest slip", "/max_slip", "");
+    for (std::size_t k = 0; k < r.headings.size(); ++k) {
+        const std::string at = "/headings/" + std::to_string(k);
+        const HeadingMap& m = r.headings[k];
+        const std::string heading =
+            "heading " +
+            formatFixed(j.at(nlohmann::json::json_pointer(at + "/heading_deg")).get<double>(), 1) +
+            " deg";
+        count(heading + ", stalled cells", at + "/stalled");
+        out.back().detail = std::to_string(m.braking) + " braking";
+        slip(heading + ", largest slip", at + "/max_slip", "");
+    }
+    return out;
+}
+
 Table traversabilityTable(const TraversabilityResult& r, const field::FieldMap& field) {
     Table t;
     t.columns = {"x_m", "y_m", "heading_deg", "grade_deg", "slip", "status"};

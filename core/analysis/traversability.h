@@ -99,6 +99,11 @@ TraversabilityResult computeTraversability(const field::FieldMap& field,
 ///  "stall_cells" (cells where some heading stalls), "max_slip", "robot_mass_kg", "curves",
 ///  "cancelled"}.
 nlohmann::json toJson(const TraversabilityResult& result);
+/// The map for a person, as `terrastudio field --traversability` prints it: a heading with the
+/// robot's mass, the grid and the slip curves; the cells, the cells where some heading stalls,
+/// the largest slip needed; then one row per heading: its stalled cells, with its braking cells
+/// and largest slip; "cancelled" when it was. Each number's `json` points at it in toJson(result).
+Summary traversabilitySummary(const TraversabilityResult& result);
 /// One row per cell and heading: x_m, y_m, heading_deg, grade_deg, slip, status.
 Table traversabilityTable(const TraversabilityResult& result, const field::FieldMap& field);
 

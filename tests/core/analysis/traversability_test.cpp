@@ -12,6 +12,7 @@
 #include "core/io/parameters_json.h"
 #include "core/scenario/map_image.h"
 #include "core/scenario/map_layers.h"
+#include "tests/core/test_support.h"
 
 namespace terra::analysis {
 namespace {
@@ -106,6 +107,31 @@ TEST(Traversability, TooSteepStalls) {
     const nlohmann::json j = toJson(out);
     EXPECT_EQ(j["headings"][0]["stalled"], 24);
     EXPECT_EQ(j["stall_cells"], 24);
+}
+
+// The summary `terrastudio field --traversability` prints: every number is the JSON's at the
+// pointer its row names (expectSummaryIsTheJson), a heading that stalls everywhere has no
+// largest slip ("none"), and the counts are the maps' own (24 stalled cells up the 0.6 grade).
+TEST(Traversability, TheSummaryIsTheJson) {
+    TraversabilitySettings s;
+    s.headings = 4;
+    const TraversabilityResult out = computeTraversability(plane(0.6, "dry-sand"), robot(), s);
+    const Summary summary = traversabilitySummary(out);
+    terra::testing::expectSummaryIsTheJson(summary, toJson(out));
+    auto row = [&](const std::string& label) -> const SummaryRow& {
+        for (const SummaryRow& r : summary) {
+            if (r.label == label) return r;
+        }
+        ADD_FAILURE() << "no row " << label;
+        return summary.front();
+    };
+    EXPECT_EQ(row("heading 0.0 deg, stalled cells").value, "24");
+    EXPECT_EQ(row("heading 0.0 deg, largest slip").value, "none");
+    EXPECT_EQ(row("heading 90.0 deg, stalled cells").value, "0");
+    EXPECT_EQ(row("heading 90.0 deg, largest slip").json, "/headings/1/max_slip");
+    EXPECT_EQ(row("cells where a heading stalls").value, "24");
+    EXPECT_EQ(summary.front().emphasis, SummaryRow::Emphasis::kHeading);
+    EXPECT_EQ(summary.size(), 4u + 2u * 4u);
 }
 
 // Issue 23 item 4: the traversability map as a picture with its legend. Each cell's colour is the
