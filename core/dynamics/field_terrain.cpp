@@ -289,18 +289,26 @@ const compaction::TrackMemory* FieldTerrain::memoryUnder(int wheel, double x_m, 
         // A wheel leaving a cell sideways (through the quarter-cell margin at its side) can enter
         // one its last passage has just written (F13): it meets that cell as it was before its
         // own pass, not its own rut.
-        ownBefore(static_cast<std::size_t>(wheel), key, p.before);
+        ownBefore(static_cast<std::size_t>(wheel), key, p.before, options_.read_across_width);
         sampleBand(static_cast<std::size_t>(wheel), p);
     }
     return options_.repeated_passes && !p.before.untouched() ? &p.before : nullptr;
 }
 
-int FieldTerrain::bandSamples() const {
-    // Points h/4 apart at most over the sampled width b − h/2 (bandStep), the middle one on the
-    // contact point.
-    const double h = cells_.cellSize();
-    const double span = wheel_.width_m - 0.5 * h;
+double FieldTerrain::bandSpan(const std::array<double, 2>& axle) const {
+    // A written cell's centre lies within b/2 of its writer's centre line (F13), and a point lies
+    // within h (|a_x| + |a_y|)/2 of its cell's centre along a (a square's half-extent along a unit
+    // vector): the points within b/2 − h (|a_x| + |a_y|)/2 of a centre line fall in that line's
+    // written cells, wherever the line lies on the grid.
+    const double reach = cells_.cellSize() * (std::abs(axle[0]) + std::abs(axle[1]));
+    return std::max(0.0, wheel_.width_m - reach);
+}
+
+int FieldTerrain::bandSamples(const std::array<double, 2>& axle) const {
+    // Points h/4 apart at most over the span, the middle one on the contact point.
+    const double span = bandSpan(axle);
     if (!(span > 0.0)) return 1;
+    const double h = cells_.cellSize();
     const int gaps = static_cast<int>(std::min<double>(std::ceil(span / (0.25 * h)), 1e6));
     return std::min(gaps % 2 == 0 ? gaps + 1 : gaps + 2, kMaxBandSamples);
 }
@@ -321,45 +329,47 @@ void FieldTerrain::sampleBand(std::size_t wheel, const Passage& p) {
     std::vector<BandShare>& band = band_[wheel];
     memories.clear();
     band.clear();
-    const int samples = bandSamples();
+    const std::array<double, 2> axle = p.entry_axle;
+    const int samples = bandSamples(axle);
     if (!options_.repeated_passes || !options_.across_width || !options_.read_across_width ||
         samples == 1)
         return;
-    // F15: m points t_j = (j − (m − 1)/2) (b − h/2)/(m − 1) along the axle through the contact
-    // point, from a quarter cell inside one edge of the width to a quarter cell inside the other
-    // (a wheel in the exact track of one before it meets that wheel's band, whose written cells
-    // reach at least b/2 − h/4 from its centre line, F13), the middle one the contact point (its
-    // cell's memory is p.before), each standing for an m-th of the width. Each cell is met as it
-    // was before the wheel's own last passage (F13).
+    // F15: m points t_j = (j − (m − 1)/2) S/(m − 1) along the axle through the contact point, S =
+    // bandSpan (b less a cell's extent along the axle: a wheel in the exact track of one before it
+    // meets that wheel's written band at every point), the middle one the contact point (its
+    // cell's memory is p.before). Point j stands for the width between its neighbours' midpoints,
+    // the two outer ones out to the width's edges ±b/2. Each cell is met as it was before the
+    // wheel's own recent passages (F13, ownBefore).
     memories.reserve(kMaxBandSamples);
-    std::array<int, kMaxBandSamples> count{};
+    std::array<double, kMaxBandSamples> width{};
     bool differs = false;
-    const double step = (wheel_.width_m - 0.5 * cells_.cellSize()) / (samples - 1);
-    const std::array<double, 2> axle = p.entry_axle;
+    const double b = wheel_.width_m;
+    const double step = bandSpan(axle) / (samples - 1);
     for (int j = 0; j < samples; ++j) {
         const double t = (j - 0.5 * (samples - 1)) * step;
+        const double from = j == 0 ? -0.5 * b : t - 0.5 * step;
+        const double to = j == samples - 1 ? 0.5 * b : t + 0.5 * step;
         const field::CellKey key = cells_.keyAt(p.entry[0] + t * axle[0], p.entry[1] + t * axle[1]);
         compaction::TrackMemory memory;
         if (const field::CellState* s = cells_.find(key)) memory = s->track;
-        ownBefore(wheel, key, memory);
+        ownBefore(wheel, key, memory, true);
         differs = differs || !sameGround(memory, p.before);
         std::size_t g = 0;
         while (g < memories.size() && !sameGround(memories[g], memory)) ++g;
         if (g == memories.size()) memories.push_back(memory);
-        ++count[g];
+        width[g] += to - from;
     }
     if (!differs) {
         memories.clear();
         return;
     }
     for (std::size_t g = 0; g < memories.size(); ++g) {
-        band.push_back({memories[g].untouched() ? nullptr : &memories[g],
-                        static_cast<double>(count[g]) / samples});
+        band.push_back({memories[g].untouched() ? nullptr : &memories[g], width[g] / b});
     }
 }
 
-void FieldTerrain::ownBefore(std::size_t wheel, field::CellKey key,
-                             compaction::TrackMemory& memory) const {
+void FieldTerrain::ownBefore(std::size_t wheel, field::CellKey key, compaction::TrackMemory& memory,
+                             bool recent) const {
     auto find = [&](const std::vector<std::pair<field::CellKey, compaction::TrackMemory>>& list) {
         for (const auto& [written, before] : list) {
             if (written.ix == key.ix && written.iy == key.iy) {
@@ -369,14 +379,17 @@ void FieldTerrain::ownBefore(std::size_t wheel, field::CellKey key,
         }
         return false;
     };
-    for (const auto& list : recent_written_[wheel]) {
-        if (find(list)) return;
+    if (recent) {
+        for (const auto& list : recent_written_[wheel]) {
+            if (find(list)) return;
+        }
     }
     find(last_written_[wheel]);
 }
 
 void FieldTerrain::archiveWritten(std::size_t wheel) {
     auto& recent = recent_written_[wheel];
+    if (last_written_[wheel].empty()) return;  // a passage that wrote nothing is not remembered
     if (recent.size() == kRecentPassages) {
         // Reuse the oldest list's storage for the last one (no allocation once warmed up).
         std::vector<std::pair<field::CellKey, compaction::TrackMemory>> oldest =

@@ -93,6 +93,9 @@ public:
     /// that make more than kMaxSoils distinct soils, or a cell size out of CellGrid's range.
     FieldTerrain(std::shared_ptr<const field::FieldMap> map, const RobotParameters& robot,
                  FieldTerrainOptions options = {});
+    // The bands (memoriesAcross) point into the terrain's own storage.
+    FieldTerrain(const FieldTerrain&) = delete;
+    FieldTerrain& operator=(const FieldTerrain&) = delete;
 
     int soilCount() const override { return static_cast<int>(soils_.size()); }
     const soil::SoilParameters& soil(int index) const override {
@@ -116,10 +119,12 @@ public:
     std::span<const BandShare> memoriesAcross(int wheel) const override {
         return band_[static_cast<std::size_t>(wheel)];
     }
-    /// The points across a wheel's width that F15 samples: the least odd count whose points
-    /// spread over b − h/2 are at most h/4 apart (b the wheel's width, h the cell side), at most
-    /// kMaxBandSamples; 1 (the contact point) when b ≤ h/2.
-    int bandSamples() const;
+    /// The width F15 samples for a wheel whose axle (on the map, normalised) is `axle`:
+    /// b − h (|a_x| + |a_y|), never below 0 (b the wheel's width, h the cell side).
+    double bandSpan(const std::array<double, 2>& axle) const;
+    /// The points F15 samples across it: the least odd count at most h/4 apart, at most
+    /// kMaxBandSamples; 1 (the contact point alone) when the span is 0.
+    int bandSamples(const std::array<double, 2>& axle) const;
     static constexpr int kMaxBandSamples = 41;
     compaction::ReloadLaw reloadLaw() const override { return options_.law; }
     void imprint(int wheel, const WheelImprint& imprint) override;
@@ -194,15 +199,16 @@ private:
     // enters one of them next meets it as it was).
     std::array<std::vector<std::pair<field::CellKey, compaction::TrackMemory>>, kWheelCount>
         last_written_{};
-    // The same of the kRecentPassages passages before the last, oldest first (F15: a wheel's
-    // width reaches back over cells its own earlier passages wrote), and the rule that reads
-    // them: `memory` becomes the cell's memory before the earliest of the wheel's own recent
-    // passages over it, if any.
+    // The same of the kRecentPassages passages before the last that wrote cells, oldest first
+    // (F15: a wheel's width reaches back over cells its own earlier passages wrote), and the rule
+    // that reads them: `memory` becomes the cell's memory before the earliest of the wheel's own
+    // last kRecentPassages + 1 passages over it (`recent`), or before its last one only (F13).
     static constexpr std::size_t kRecentPassages = 3;
     std::array<std::deque<std::vector<std::pair<field::CellKey, compaction::TrackMemory>>>,
                kWheelCount>
         recent_written_{};
-    void ownBefore(std::size_t wheel, field::CellKey key, compaction::TrackMemory& memory) const;
+    void ownBefore(std::size_t wheel, field::CellKey key, compaction::TrackMemory& memory,
+                   bool recent) const;
     void archiveWritten(std::size_t wheel);
     // The energy and distance of a wheel's short passages that wrote no cell, added to its next.
     struct Carry {
