@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QApplication>
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QProgressBar>
@@ -729,6 +730,52 @@ TEST(IdentificationStreaming, SettingsRoundTrip) {
     EXPECT_DOUBLE_EQ(s["stream_speed"].get<double>(), 10.0);
     EXPECT_DOUBLE_EQ(s["stream_noise_percent"].get<double>(), 2.5);
     EXPECT_EQ(panel.currentPlot(), panel.plots()[3].second);  // the streaming page's figure
+}
+
+// The true border's label and a change's label next to it do not run into each other (issue
+// 27: "true border" and "change at 101" touched over the estimates at every playback of the
+// shipped border): with a change one sample after the border, the two labels' boxes are apart in
+// both figures; with a change far from the border, the border's label stays at the top.
+TEST(StreamingFigures, TheBorderAndAChangeNextToItAreLabelledApart) {
+    auto labelled = [](QCustomPlot& plot, const QString& start) -> QCPItemText* {
+        for (int i = 0; i < plot.itemCount(); ++i) {
+            auto* text = qobject_cast<QCPItemText*>(plot.item(i));
+            if (text && text->text().startsWith(start)) return text;
+        }
+        return nullptr;
+    };
+    for (const std::size_t change : {std::size_t{101}, std::size_t{160}}) {
+        QCustomPlot estimates, detection;
+        estimates.resize(600, 450);
+        detection.resize(500, 450);
+        StreamingFigures figures(&estimates, &detection);
+        figures.reset("Estimates", 202, std::size_t{100}, 13.8);
+        analysis::StreamFrame frame;
+        frame.estimate.index = change + 3;
+        frame.estimate.change_detected = true;
+        frame.estimate.change_at = change;
+        figures.append({frame});
+        estimates.show();
+        detection.show();
+        QApplication::processEvents();
+        figures.replot();
+        for (QCustomPlot* plot : {&estimates, &detection}) {
+            QCPItemText* border = labelled(*plot, "true border");
+            QCPItemText* found = labelled(*plot, "change at");
+            ASSERT_NE(border, nullptr);
+            ASSERT_NE(found, nullptr);
+            const QRectF a(border->topLeft->pixelPosition(), border->bottomRight->pixelPosition());
+            const QRectF b(found->topLeft->pixelPosition(), found->bottomRight->pixelPosition());
+            EXPECT_FALSE(a.intersects(b.adjusted(-2, -2, 2, 2)))
+                << "change at " << change << ": " << a.top() << " " << a.bottom() << " / "
+                << b.top() << " " << b.bottom();
+            if (change == 160) {
+                EXPECT_LT(a.bottom(), b.bottom() + 1.0);  // both at the top
+            } else {
+                EXPECT_GT(a.top(), b.bottom());  // the border's below the change's
+            }
+        }
+    }
 }
 
 }  // namespace

@@ -270,7 +270,10 @@ void StreamingFigures::reset(const QString& title, std::size_t sample_count,
     label->setText(QString("threshold %1").arg(threshold, 0, 'g', 3));  // 13.8, not 13.8155
     label->setColor(kRed);
     label->setFont(QFont("sans", 8));
-    if (true_border) markVertical(*true_border, kGrey, Qt::DashLine, "true border");
+    border_ = true_border;
+    border_labels_.clear();
+    if (true_border)
+        border_labels_ = markVertical(*true_border, kGrey, Qt::DashLine, "true border");
     current_label_->setText(
         "F_x at the current sample (○):\nmeasured (●), predicted by the estimate before it (×)");
 }
@@ -295,8 +298,10 @@ void StreamingFigures::setTruth(
     }
 }
 
-void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::PenStyle style,
-                                    const QString& label, const QString& long_label) {
+std::vector<QCPItemText*> StreamingFigures::markVertical(std::size_t index, const QColor& color,
+                                                         Qt::PenStyle style, const QString& label,
+                                                         const QString& long_label) {
+    std::vector<QCPItemText*> labels;
     const double x =
         static_cast<double>(index) - 0.5;  // between the last old and the first new sample
     for (std::size_t i = 0; i < rects_.size(); ++i) {
@@ -322,8 +327,10 @@ void StreamingFigures::markVertical(std::size_t index, const QColor& color, Qt::
             text->setText(i == 3 && !long_label.isEmpty() ? long_label : label);
             text->setColor(color);
             text->setFont(QFont("sans", 8));
+            labels.push_back(text);
         }
     }
+    return labels;
 }
 
 void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
@@ -351,6 +358,17 @@ void StreamingFigures::append(const std::vector<StreamFrame>& frames) {
                          QString("change at %1").arg(*u.change_at),
                          QString("change at %1\n(confirmed at %2)").arg(*u.change_at).arg(u.index));
             confirmed_.push_back(u.index);
+            // A change found within a tenth of the run of the true border: its label at the top
+            // would run into the border's, which moves to mid-height on a light background.
+            const double near = 0.1 * static_cast<double>(std::max<std::size_t>(sample_count_, 10));
+            if (border_ && std::abs(static_cast<double>(*u.change_at) -
+                                    static_cast<double>(*border_)) < near) {
+                for (QCPItemText* text : border_labels_) {
+                    text->position->setCoords(text->position->coords().x(), 0.5);
+                    text->setPositionAlignment(Qt::AlignRight | Qt::AlignVCenter);
+                    text->setBrush(QColor(255, 255, 255, 210));
+                }
+            }
         }
         ++frames_;
     }

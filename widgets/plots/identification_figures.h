@@ -16,6 +16,7 @@
 class QCustomPlot;
 class QCPAxisRect;
 class QCPGraph;
+class QCPItemText;
 class QCPTextElement;
 
 #include "widgets/plots/completion.h"
@@ -55,8 +56,10 @@ public:
 private:
     QCPAxisRect* addRect(QCustomPlot* plot, int row, const QString& left, const QString& right,
                          bool log);
-    void markVertical(std::size_t index, const QColor& color, Qt::PenStyle style,
-                      const QString& label, const QString& long_label = {});
+    /// The labels it made (one per figure).
+    std::vector<QCPItemText*> markVertical(std::size_t index, const QColor& color,
+                                           Qt::PenStyle style, const QString& label,
+                                           const QString& long_label = {});
 
     QCustomPlot* estimates_;
     QCustomPlot* detection_;
@@ -70,6 +73,10 @@ private:
     double threshold_ = 13.8155;
     std::vector<std::size_t> changes_;
     std::vector<std::size_t> confirmed_;
+    // The true border (a synthetic source) and its labels: moved to mid-height when a change is
+    // marked next to it, so that the two labels do not run into each other.
+    std::optional<std::size_t> border_;
+    std::vector<QCPItemText*> border_labels_;
 };
 
 }  // namespace terra::ui
