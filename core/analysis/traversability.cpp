@@ -155,7 +155,7 @@ TraversabilityResult computeTraversability(const field::FieldMap& field,
         }
         for (int col = 0; col < cols; ++col) {
             const double x = out.grid.centreX(col), y = out.grid.centreY(row);
-            out.grid.value(col, row) = field.slopeAt(x, y) * 180.0 / std::numbers::pi;
+            out.grid.value(col, row) = units::radToDeg(field.slopeAt(x, y));
             const soil::SoilParameters soil = field.soilAt(x, y);
             std::vector<double> key;
             for (const soil::SoilField& f : soil::soilFields()) key.push_back(soil.*f.member);
@@ -199,7 +199,7 @@ nlohmann::json toJson(const TraversabilityResult& r) {
         const auto [lo, hi] = m.slip.valueRange();
         (void)lo;
         headings.push_back(
-            {{"heading_deg", m.heading_rad * 180.0 / std::numbers::pi},
+            {{"heading_deg", units::radToDeg(m.heading_rad)},
              {"stalled", m.stalled},
              {"braking", m.braking},
              {"max_slip", std::isnan(hi) ? nlohmann::json(nullptr) : nlohmann::json(hi)}});
@@ -266,10 +266,9 @@ Table traversabilityTable(const TraversabilityResult& r, const field::FieldMap& 
         for (int col = 0; col < r.grid.cols; ++col) {
             const double x = r.grid.centreX(col), y = r.grid.centreY(row);
             for (const HeadingMap& m : r.headings) {
-                t.rows.push_back(
-                    {x, y, m.heading_rad * 180.0 / std::numbers::pi,
-                     field.slopeUnder(x, y, m.heading_rad).grade_rad * 180.0 / std::numbers::pi,
-                     m.slip.value(col, row), m.status.value(col, row)});
+                t.rows.push_back({x, y, units::radToDeg(m.heading_rad),
+                                  units::radToDeg(field.slopeUnder(x, y, m.heading_rad).grade_rad),
+                                  m.slip.value(col, row), m.status.value(col, row)});
             }
         }
     }

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "core/common/units.h"
 
 namespace terra::field {
 
@@ -40,8 +41,8 @@ FieldSummary summarize(const FieldMap& field, const std::map<int, std::string>& 
         const std::optional<Raster> slope = slopeRaster(field);
         double sum = 0.0;
         for (double v : slope->values) {
-            s.max_slope_rad = std::max(s.max_slope_rad, v * std::numbers::pi / 180.0);
-            sum += v * std::numbers::pi / 180.0;
+            s.max_slope_rad = std::max(s.max_slope_rad, units::degToRad(v));
+            sum += units::degToRad(v);
         }
         s.mean_slope_rad = sum / static_cast<double>(slope->values.size());
     }
@@ -86,7 +87,7 @@ std::optional<Raster> slopeRaster(const FieldMap& field) {
                 e > w ? (h.value(e, row) - h.value(w, row)) / ((e - w) * h.cell_m) : 0.0;
             const double gy =
                 so > n ? (h.value(col, n) - h.value(col, so)) / ((so - n) * h.cell_m) : 0.0;
-            r.value(col, row) = std::atan(std::hypot(gx, gy)) * 180.0 / std::numbers::pi;
+            r.value(col, row) = units::radToDeg(std::atan(std::hypot(gx, gy)));
         }
     }
     return r;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/common/units.h"
 #include "core/io/csv.h"
 #include "core/io/json.h"
 #include "core/io/json_reader.h"
@@ -206,12 +207,11 @@ Result<FieldFile> fieldFromJson(const json& json_value, const std::string& where
 }
 
 nlohmann::json toJson(const field::FieldSummary& s) {
-    constexpr double kDeg = 180.0 / 3.14159265358979323846;
     json j = {{"name", s.name},
               {"extent_m", {s.x_min_m, s.y_min_m, s.x_max_m, s.y_max_m}},
               {"height_m", s.height_min_m ? json{*s.height_min_m, *s.height_max_m} : json(nullptr)},
-              {"max_slope_deg", s.max_slope_rad * kDeg},
-              {"mean_slope_deg", s.mean_slope_rad * kDeg},
+              {"max_slope_deg", units::radToDeg(s.max_slope_rad)},
+              {"mean_slope_deg", units::radToDeg(s.mean_slope_rad)},
               {"height_cell_m", s.height_cell_m},
               {"class_cell_m", s.class_cell_m},
               {"classes", json::array()},
