@@ -225,6 +225,10 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             summary.usable = ceres_summary.IsSolutionUsable();
             summary.termination = ceres::TerminationTypeToString(ceres_summary.termination_type) +
                                   std::string(": ") + ceres_summary.message;
+            // The only callback is the bound watch: its end of a pass says why (a step that the
+            // budget leaves as the last is worded by solverOutcome).
+            if (ceres_summary.termination_type == ceres::USER_SUCCESS)
+                summary.termination = "USER_SUCCESS: a parameter reached its bound";
             converged = ceres_summary.termination_type == ceres::CONVERGENCE ||
                         ceres_summary.termination_type == ceres::USER_SUCCESS;
             if (!summary.usable && trial.parameter >= 0) {

@@ -91,7 +91,11 @@ std::string solverOutcome(const std::string& termination) {
     if (starts("NO_CONVERGENCE"))
         return "stopped at its iteration limit before converging (usable; check the errors)";
     if (starts("STOPPED")) return "stopped in the basin of a minimum found before";
-    if (starts("USER_")) return "stopped";
+    if (starts("USER_SUCCESS")) {
+        return "stopped when a parameter reached its bound, with no iterations left for a last "
+               "pass (usable; check the errors)";
+    }
+    if (starts("USER_")) return "stopped by the caller";
     if (starts("FAILURE")) {
         return has("cannot be evaluated") ? "failed: the model cannot be evaluated at the solution"
                                           : "the solver failed";

@@ -48,8 +48,10 @@ std::vector<std::string> worded(const std::vector<ParameterText>& texts, Paramet
 
 /// A termination in a user's words (issue 27: no optimizer wording on screen): Ceres'
 /// "CONVERGENCE: Function tolerance reached. |cost_change|/cost: 1.2e-07 <= 1e-06" is "converged
-/// (the fit stopped improving)", NO_CONVERGENCE, FAILURE and STOPPED (box_solver.h) likewise; a
-/// text that is not a solver's termination (a step's own note) is returned as it is.
+/// (the fit stopped improving)", NO_CONVERGENCE, FAILURE and STOPPED (box_solver.h) likewise,
+/// USER_SUCCESS (the box solver's bound watch ended the last pass the budget allowed) and another
+/// USER_ (a caller's stop); a text that is not a solver's termination (a step's own note) is
+/// returned as it is.
 std::string solverOutcome(const std::string& termination);
 /// Whether a solver's termination is a convergence (CONVERGENCE) or not (NO_CONVERGENCE, STOPPED,
 /// USER_, FAILURE); none for a text that is not a solver's termination (a step's own note).

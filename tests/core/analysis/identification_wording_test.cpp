@@ -123,6 +123,11 @@ TEST(IdentificationWording, EachKindOfTerminationHasItsWords) {
               "stopped in the basin of a minimum found before");
     EXPECT_EQ(solverOutcome("FAILURE: the cost cannot be evaluated at the solution"),
               "failed: the model cannot be evaluated at the solution");
+    // The bound watch's end of a pass, left as the last by the budget, and a caller's stop.
+    EXPECT_TRUE(solverOutcome("USER_SUCCESS: a parameter reached its bound")
+                    .starts_with("stopped when a parameter reached its bound"));
+    EXPECT_EQ(solverOutcome("USER_FAILURE: User callback returned SOLVER_ABORT."),
+              "stopped by the caller");
     // Which of them converged, and a step's own note, which is no solver's end.
     using identification::solverConverged;
     EXPECT_EQ(solverConverged("CONVERGENCE: Function tolerance reached."), true);
