@@ -330,6 +330,14 @@ TEST(FieldRover, APassageIsWrittenToEveryCellUnderTheWheelsWidth) {
     EXPECT_EQ(wide.terrain->cellsTouched(), static_cast<long>(w[2]));
 }
 
+// A field memory of cells h wide, with σ_z kept at `depths` (none: no stress at depth).
+FieldTerrainOptions cellsOf(double h, std::vector<double> depths = {}) {
+    FieldTerrainOptions options;
+    options.cell_m = h;
+    options.stress_depths_m = std::move(depths);
+    return options;
+}
+
 // F13 off the grid: one wheel driven by hand along a line at 30° to the grid and around an arc
 // of 0.5 m radius (less than half a turn) passes every cell of its band once — consecutive
 // passages tile the band, also where the wheel leaves a cell sideways — and never meets its own
@@ -337,9 +345,7 @@ TEST(FieldRover, APassageIsWrittenToEveryCellUnderTheWheelsWidth) {
 // within 10 % (its two ends).
 TEST(FieldRover, OneWheelOffTheGridPassesEachCellOfItsBandOnce) {
     const scenario::Scenario s = shipped("straight", 1.0);
-    FieldTerrainOptions options;
-    options.cell_m = 0.02;
-    options.stress_depths_m.clear();
+    const FieldTerrainOptions options = cellsOf(0.02);
     const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
     const double step = 1e-4, length = 1.5, radius = 0.5;
     for (const bool arc : {false, true}) {
@@ -427,9 +433,7 @@ void driveLine(FieldTerrain& t, const contact::ContactParameters<double>& params
 // (the outer ones: half a cell beyond the span, plus half a step of at most h/4).
 TEST(FieldRover, AWheelBesideABandMeetsItOverTheShareOfItsWidthThatOverlapsIt) {
     const scenario::Scenario s = shipped("straight", 1.0);
-    FieldTerrainOptions options;
-    options.cell_m = 0.02;
-    options.stress_depths_m.clear();
+    const FieldTerrainOptions options = cellsOf(0.02);
     const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
     const double b = s.robot.wheel.width_m, h = 0.02;
     const double tolerance = (0.5 * h + 0.125 * h) / b;
@@ -483,9 +487,7 @@ TEST(FieldRover, AWheelInTheExactTrackOfAnotherMeetsItsBandAcrossItsWidth) {
     const scenario::Scenario s = shipped("straight", 1.0);
     const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
     for (const double h : {0.02, 0.1}) {
-        FieldTerrainOptions options;
-        options.cell_m = h;
-        options.stress_depths_m.clear();
+        const FieldTerrainOptions options = cellsOf(h);
         for (const double angle : {0.0, M_PI / 6.0}) {
             for (int k = 0; k < 10; ++k) {
                 const double y0 = 0.1 * k * h + 1e-4;
@@ -520,9 +522,7 @@ TEST(FieldRover, AWheelInTheExactTrackOfAnotherMeetsItsBandAcrossItsWidth) {
 // band exactly twice the largest σ_z of the same passage at scale 1.
 TEST(FieldRover, TheFootprintScaleScalesTheStressAtDepth) {
     const scenario::Scenario s = shipped("straight", 1.0);
-    FieldTerrainOptions options;
-    options.cell_m = 0.02;
-    options.stress_depths_m = {0.2};
+    FieldTerrainOptions options = cellsOf(0.02, {0.2});
     options.concentration = 5.0;
     const auto params = contact::makeContactParameters(s.terrain.base, s.robot.wheel);
     FieldTerrain once(uniformField(s.terrain.base), s.robot, options);
