@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "core/common/range.h"
 #include "core/compaction/footprint.h"
@@ -388,19 +389,11 @@ void FieldTerrain::ownBefore(std::size_t wheel, field::CellKey key, compaction::
 }
 
 void FieldTerrain::archiveWritten(std::size_t wheel) {
+    auto& last = last_written_[wheel];
+    if (last.empty()) return;  // a passage that wrote nothing is not remembered
     auto& recent = recent_written_[wheel];
-    if (last_written_[wheel].empty()) return;  // a passage that wrote nothing is not remembered
-    if (recent.size() == kRecentPassages) {
-        // Reuse the oldest list's storage for the last one (no allocation once warmed up).
-        std::vector<std::pair<field::CellKey, compaction::TrackMemory>> oldest =
-            std::move(recent.front());
-        recent.pop_front();
-        oldest.swap(last_written_[wheel]);
-        recent.push_back(std::move(oldest));
-    } else {
-        recent.push_back(last_written_[wheel]);
-    }
-    last_written_[wheel].clear();
+    recent.push_back(std::exchange(last, {}));
+    if (recent.size() > kRecentPassages) recent.pop_front();
 }
 
 void FieldTerrain::imprint(int wheel, const WheelImprint& imprint) {
