@@ -31,6 +31,10 @@ struct Sample {
     std::optional<double> load_n;          ///< W [N]
     std::optional<double> time_s;          ///< t [s]
     std::optional<double> sinkage_m;  ///< h [m], measured sinkage (Eq. 2.12: r (1 − cos θ_f))
+    /// σ_s [-]: the standard error of `slip` when it is an estimate (a robot's observer, whose
+    /// slip is 1 − v̂/(r ω) with v̂ uncertain). The streaming estimator carries it into the
+    /// innovation covariance (errors in variables, docs/identification.md §8); no file column.
+    std::optional<double> slip_std;
 };
 
 /// Which of the columns that a sample always carries were measured (a column the file lacks

@@ -244,6 +244,8 @@ public:
             if (state.time_s < 1.0 || !(estimates->slip[i] > 0.0 && estimates->slip[i] < 0.9))
                 return std::nullopt;
             sample.slip = std::clamp(estimates->slip[i], -0.98, 0.98);
+            // How well ŝ is known (∞ without GNSS: then the slip is taken as given, as before).
+            if (std::isfinite(estimates->slip_std[i])) sample.slip_std = estimates->slip_std[i];
             sample.entry_angle_rad = std::clamp(
                 w.contact.entry_angle_rad + noise(hook_.entry_angle_noise_rad), 1e-3, 1.5);
             sample.fx_n = w.contact.forces.fx + noise(hook_.force_noise_n);

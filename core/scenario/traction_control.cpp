@@ -71,6 +71,45 @@ const std::vector<std::string>& controllerNames() {
     return names;
 }
 
+namespace {
+
+// The complementary filter's error e = (e_v, e_b) (speed, and bias minus its estimate) evolves
+// linearly: each tick e_v += (e_b + n_a) Δt; at a fix (innovation n_g − e_v) e_v ← (1 − k) e_v +
+// k n_g and e_b ← e_b + c (n_g − e_v), k = min(1, 2 ω_c Δt_g), c = ω_c² Δt_g. Its covariance
+// P ← A P Aᵀ + Q is iterated over GNSS periods until the period's mean variance settles; the
+// stationary standard deviation is its square root (docs/traction.md §4).
+double stationarySpeedStd(const SensorSpec& sensors, double dt, long gnss_every) {
+    if (gnss_every <= 0) return std::numeric_limits<double>::infinity();
+    const double fix_dt = static_cast<double>(gnss_every) * dt;
+    const double wc = 1.0 / sensors.filter_time_constant_s;
+    const double k = std::min(1.0, 2.0 * wc * fix_dt), c = wc * wc * fix_dt;
+    const double qa = std::pow(sensors.accel_noise_m_s2 * dt, 2);
+    const double qg = std::pow(sensors.gnss_speed_noise_m_s, 2);
+    double pvv = 0.0, pvb = 0.0, pbb = 0.0, mean = 0.0;
+    for (int period = 0; period < 100000; ++period) {
+        double sum = 0.0;
+        for (long tick = 1; tick <= gnss_every; ++tick) {
+            // A = [[1, Δt], [0, 1]], Q = diag(σ_a² Δt², 0).
+            pvv += 2.0 * dt * pvb + dt * dt * pbb + qa;
+            pvb += dt * pbb;
+            if (tick == gnss_every) {
+                // F = [[1 − k, 0], [−c, 1]], noise (k, c) n_g.
+                const double vv = (1 - k) * (1 - k) * pvv + k * k * qg;
+                const double vb = (1 - k) * (pvb - c * pvv) + k * c * qg;
+                const double bb = pbb - 2.0 * c * pvb + c * c * pvv + c * c * qg;
+                pvv = vv, pvb = vb, pbb = bb;
+            }
+            sum += pvv;
+        }
+        const double next = sum / static_cast<double>(gnss_every);
+        if (std::abs(next - mean) <= 1e-12 * next) return std::sqrt(next);
+        mean = next;
+    }
+    return std::sqrt(mean);
+}
+
+}  // namespace
+
 Observer::Observer(const dynamics::RobotParameters& robot, const SensorSpec& sensors,
                    double gravity_m_s2, double interval_s, const dynamics::RoverState& start,
                    double initial_speed_m_s)
@@ -89,6 +128,7 @@ Observer::Observer(const dynamics::RobotParameters& robot, const SensorSpec& sen
     if (sensors.gnss_rate_hz > 0.0) {
         gnss_every_ = std::max<long>(1, std::lround(1.0 / (sensors.gnss_rate_hz * interval_s)));
     }
+    speed_std_m_s_ = stationarySpeedStd(sensors, interval_s, gnss_every_);
     // The robot knows it starts as told (at rest, or at the scenario's initial speed).
     est_.speed_m_s = initial_speed_m_s;
     previous_speed_m_s_ = start.forward_speed_m_s;
@@ -136,6 +176,17 @@ const Estimates& Observer::update(const dynamics::RoverState& truth, double draw
         const double rim = shear_radius_m_ * rate;
         est_.slip[i] =
             rim > kStillRim ? std::clamp(1.0 - est_.hub_speed_m_s[i] / rim, -1.0, 1.0) : 0.0;
+        // σ_ŝ² = (σ_hub / (r ω))² + (v̂_hub σ_ω / (r ω²))², σ_hub² = σ_v² cos² δ +
+        // σ_ψ̇² (x sin δ − y cos δ)² (v̂_hub = v̂ cos δ + ψ̇ (x sin δ − y cos δ)).
+        const double arm = hub_x_m_[i] * std::sin(delta) - hub_y_m_[i] * std::cos(delta);
+        const double hub_var = std::pow(speed_std_m_s_ * std::cos(delta), 2) +
+                               std::pow(sensors_.gyro_noise_rad_s * arm, 2);
+        est_.slip_std[i] = rim > kStillRim
+                               ? std::sqrt(hub_var / (rim * rim) +
+                                           std::pow(est_.hub_speed_m_s[i] / rim *
+                                                        sensors_.encoder_noise_rad_s / rate,
+                                                    2))
+                               : 1.0;
         est_.torque_nm[i] = measure(w.motor_torque_nm, sensors_.torque_noise_nm);
         est_.resistance_nm[i] =
             est_.torque_nm[i] -

@@ -136,8 +136,8 @@ struct ControllerSpec {
     /// optimal, robust: how the posterior is carried through the objective.
     PosteriorMethod posterior_method = PosteriorMethod::kSigmaPoints;
     /// optimal: the streaming soil estimator planned on (docs/traction.md §9: the full model's
-    /// plans are far closer to the oracle's after the border, but on uniform sandy loam it
-    /// raises a false change and plans 0.07 low; the decoupled identifier stays the default).
+    /// plans are far closer to the oracle's after the border, and with the observer's σ_ŝ it no
+    /// longer raises a false change on uniform soil; the decoupled identifier stays the default).
     SoilIdentifier identifier = SoilIdentifier::kDecoupled;
     SensorSpec sensors;
 
@@ -202,8 +202,11 @@ struct Estimates {
     std::array<double, dynamics::kWheelCount> spin_rate_rad_s{};  ///< encoders [rad/s]
     std::array<double, dynamics::kWheelCount> hub_speed_m_s{};    ///< v̂_hub [m/s]
     std::array<double, dynamics::kWheelCount> slip{};             ///< ŝ [-]
-    std::array<double, dynamics::kWheelCount> load_n{};           ///< Ŵ [N]
-    std::array<double, dynamics::kWheelCount> torque_nm{};        ///< measured motor torque
+    /// σ_ŝ [-]: the standard error of ŝ from the speed estimate's and the encoder's (∞ with no
+    /// GNSS: the speed's error then grows without bound; 1 for a wheel at rest).
+    std::array<double, dynamics::kWheelCount> slip_std{};
+    std::array<double, dynamics::kWheelCount> load_n{};         ///< Ŵ [N]
+    std::array<double, dynamics::kWheelCount> torque_nm{};      ///< measured motor torque
     std::array<double, dynamics::kWheelCount> resistance_nm{};  ///< M̂_y = τ − I_w ω̇ [N·m]
 };
 
@@ -219,6 +222,9 @@ public:
     const Estimates& estimates() const { return est_; }
     /// A noisy reading of the true value, σ = `sigma` (for the identifier's measured channels).
     double measure(double truth, double sigma);
+    /// The stationary standard deviation of the speed estimate's error, averaged over a GNSS
+    /// period [m/s] (docs/traction.md §4, "How well the slip is known"); ∞ without GNSS.
+    double speedStd() const { return speed_std_m_s_; }
 
 private:
     dynamics::RobotParameters robot_;
@@ -234,6 +240,7 @@ private:
     double bias_estimate_m_s2_ = 0.0;
     long ticks_ = 0;
     long gnss_every_ = 0;  // ticks between GNSS fixes; 0: none
+    double speed_std_m_s_ = 0.0;
     bool first_ = true;
 };
 

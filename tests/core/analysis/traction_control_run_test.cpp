@@ -175,6 +175,48 @@ TEST(TractionControlRun, EstimateDrivenControllerHoldsANearOptimalSetPointOnUnif
     }
 }
 
+// The full-model estimator on uniform soil (docs/traction.md §9): after a set-point step of the
+// dither the robot all but stops and the observer's slip is not known to better than ±0.1; the
+// samples say so (σ_ŝ, §4) and the estimator carries it into its innovations, so no change of
+// soil is raised. Seeds 1 and 7 are the two of 1–8 where, with the slip taken as exact, the same
+// run confirmed a false change at 6.5 s. Every wheel's plan from 10 s is worth at least 0.88 of
+// the best efficiency: over seeds 1–8 the worst wheel's worst plan is 0.900–0.979 for this
+// estimator (0.900 at seed 7) and 0.883–0.940 for the decoupled identifier, the default.
+constexpr double kUniformWorstOfEightSeeds = 0.88;
+TEST(TractionControlRun, FullEstimatorRaisesNoChangeOnUniformSoilWhereTheSlipIsUnknown) {
+    for (unsigned seed : {1u, 7u}) {
+        SCOPED_TRACE(seed);
+        RoverSettings settings = border(scenario::ControllerType::kOptimal);
+        settings.loaded->terrain.patches.clear();
+        settings.loaded->controller.identifier = scenario::SoilIdentifier::kFull;
+        settings.loaded->controller.sensors.seed = seed;
+        settings.loaded->streaming->seed = seed;
+        settings.duration_s = 24.0;
+        const RoverResult r = runRover(settings);
+        ASSERT_EQ(r.run.status, scenario::RunResult::Status::kCompleted) << r.run.message;
+        const Table& st = r.run.streaming;
+        const std::size_t change = st.column("change_detected");
+        int changes = 0;
+        for (const auto& row : st.rows) changes += row[change] != 0.0;
+        EXPECT_EQ(changes, 0);
+        const scenario::Scenario& s = r.scenario;
+        const Table& t = r.run.series;
+        const std::size_t tc = t.column("t_s");
+        for (const char* w : dynamics::kCornerNames) {
+            const std::string p = std::string(w) + "_";
+            double load = 0.0;
+            int n = 0;
+            for (const auto& row : t.rows)
+                if (row[tc] >= 10.0) load += row[t.column(p + "load_N")], ++n;
+            const EfficiencyRatio ratio(s.terrain.base, s, load / n);
+            double worst = 1.0;
+            for (const auto& row : t.rows)
+                if (row[tc] >= 10.0) worst = std::min(worst, ratio(row[t.column(p + "slip_plan")]));
+            EXPECT_GT(worst, kUniformWorstOfEightSeeds) << w;
+        }
+    }
+}
+
 // The optimal controller on a robust set-point (docs/traction.md §8), "robust": "quantile" with
 // q = 0.1: each plan is `traction`'s robust_slip (`--posterior` with the identifier's estimate and
 // covariance, `--points 30 --slip-min 0.05 --slip-max 0.7`, the plan's soil, wheel and load),

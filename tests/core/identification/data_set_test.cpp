@@ -76,9 +76,10 @@ TEST(DataSet, MissingColumnsAreNamed) {
 
 TEST(DataSet, CsvRoundTrip) {
     DataSet data;
-    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0, 0.012});
     data.samples.push_back(
-        {0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01, std::nullopt});
+        {0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0, 0.012, std::nullopt});
+    data.samples.push_back({0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01,
+                            std::nullopt, std::nullopt});
     const auto read = parseDataSet(toCsv(data), "rt.csv", BadRows::kStop);
     ASSERT_TRUE(read.ok()) << read.message();
     ASSERT_EQ(read->data.samples.size(), 2u);

@@ -209,6 +209,40 @@ TEST(StreamingEstimator, ALoneOutlierIsNeitherAChangeNorUsed) {
     }
 }
 
+// A robot's slip is an estimate (docs/identification.md §8, "An uncertain slip"): here every
+// sample after the first initialisation carries a slip off by N(0, 0.01²) and says so
+// (`slip_std`), and the estimator's innovations stay χ² (mean 1 per channel) with no false
+// change; the same samples without `slip_std` are far from χ² and raise changes on one soil.
+TEST(StreamingEstimator, AnUncertainSlipIsCarriedIntoTheInnovations) {
+    constexpr double kSlipStd = 0.01;
+    std::vector<Sample> samples = drive(soils::sandyLoam(), 16, 6);
+    boost::random::mt19937_64 engine(7);
+    boost::random::normal_distribution<double> normal(0.0, kSlipStd);
+    for (std::size_t i = 30; i < samples.size(); ++i) samples[i].slip += normal(engine);
+    StreamingEstimatorOptions o = estimatorOptions();
+    o.fit.noise = {kNoise[0], kNoise[1], kNoise[2], 0.0};
+    for (bool declared : {true, false}) {
+        SCOPED_TRACE(declared);
+        StreamingEstimator estimator(kWheelA, o);
+        double nis = 0.0;
+        int n = 0, changes = 0;
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            Sample sample = samples[i];
+            if (declared && i >= 30) sample.slip_std = kSlipStd;
+            const StreamEstimate e = estimator.push(sample);
+            changes += e.change_detected;
+            if (i >= 300 && e.channels > 0) nis += e.nis / e.channels, ++n;
+        }
+        if (declared) {
+            EXPECT_EQ(changes, 0);
+            EXPECT_NEAR(nis / n, 1.0, 0.2);
+        } else {
+            EXPECT_GT(changes, 0);
+            EXPECT_GT(nis / n, 1.4);
+        }
+    }
+}
+
 TEST(StreamingEstimator, GivenNoiseLevelsAreKept) {
     StreamingEstimatorOptions o = estimatorOptions();
     o.fit.noise = {kNoise[0], kNoise[1], kNoise[2], 0.0};

@@ -166,6 +166,42 @@ TEST(TractionControl, ObserverTracksTheTruthItDoesNotSee) {
     }
 }
 
+TEST(TractionControl, ObserverKnowsHowWellItKnowsTheSpeedAndTheSlip) {
+    // The speed estimate's stationary σ_v comes from the complementary filter's error covariance
+    // (docs/traction.md §4); here it is checked against the filter itself, run for 2000 s on a
+    // robot at a constant 0.1 m/s with every wheel at a slip of 0.3: the RMS of v̂ − v, and the
+    // RMS of (ŝ − s)/σ_ŝ, which is 1 when σ_ŝ is right.
+    const Scenario s = towing(ControllerType::kFixedSlip);
+    constexpr double kSpeed = 0.1, kSlip = 0.3, kDt = 0.01;
+    const double shear_radius = s.robot.wheel.radius_m + s.robot.wheel.lugShearOffset();
+    dynamics::RoverState truth;
+    truth.forward_speed_m_s = kSpeed;
+    for (dynamics::WheelState& w : truth.wheels)
+        w.spin_rate_rad_s = kSpeed / (shear_radius * (1.0 - kSlip));
+    Observer observer(s.robot, s.controller.sensors, 9.81, kDt, truth, kSpeed);
+    const double sigma_v = observer.speedStd();
+    double speed_error = 0.0, z = 0.0;
+    long n = 0;
+    for (long tick = 0; tick < 200000; ++tick) {
+        truth.time_s = tick * kDt;
+        const Estimates& e = observer.update(truth, 0.0);
+        if (tick < 2000) continue;  // the bias estimate settles (time constant 1 s)
+        speed_error += std::pow(e.speed_m_s - kSpeed, 2);
+        z += std::pow((e.slip[1] - kSlip) / e.slip_std[1], 2);
+        ++n;
+    }
+    // Σ of ~2000 correlation times: the RMS within 5 %.
+    EXPECT_NEAR(std::sqrt(speed_error / n), sigma_v, 0.05 * sigma_v);
+    EXPECT_NEAR(std::sqrt(z / n), 1.0, 0.05);
+    // GNSS at 5 Hz with σ = 3 mm/s through a 1 s filter: ≈ 2 mm/s, below one fix's noise.
+    EXPECT_GT(sigma_v, 1e-3);
+    EXPECT_LT(sigma_v, s.controller.sensors.gnss_speed_noise_m_s);
+    // Without GNSS the speed's error has no bound.
+    SensorSpec dead_reckoning = s.controller.sensors;
+    dead_reckoning.gnss_rate_hz = 0.0;
+    EXPECT_TRUE(std::isinf(Observer(s.robot, dead_reckoning, 9.81, kDt, truth, kSpeed).speedStd()));
+}
+
 TEST(TractionControl, ObserverLoadCarriesTheDriveTorquesPitchMoment) {
     // The streaming samples of a closed-loop run carry the observer's load Ŵ of the front-left
     // wheel as F_z (docs/traction.md §4); the truth is the series' FL_Fz_N at the same instant.
