@@ -243,7 +243,9 @@ void addSimulateCommand(CLI::App& app, const io::PresetLocations& locations) {
         if (const auto error = scenario::writeResults(result, s, o.out))
             throw std::runtime_error(*error);
         const nlohmann::json summary = scenario::toJson(result, s);
-        if (summary.contains("warning")) {
+        // The warning once: the human summary has it as a row; with --json stdout is for
+        // programs, so a person reading the terminal gets it on stderr.
+        if (o.json && summary.contains("warning")) {
             std::cerr << "warning: " << summary["warning"].get<std::string>() << '\n';
         }
         if (o.json) {

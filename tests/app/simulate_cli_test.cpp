@@ -135,6 +135,31 @@ TEST(SimulateCli, AStepTheDynamicsCannotTakeIsRefusedNamingTheLargestStableStep)
     fs::remove_all(pulse);
 }
 
+// A run whose energy balance is off is said once: as a row of the human summary, or on stderr
+// beside --json's "warning" key (counter-steer at the largest step the reader allows diverges).
+TEST(SimulateCli, TheEnergyBalanceWarningIsSaidOnce) {
+    const fs::path dir = outDir("balance");
+    const std::string args =
+        "--scenario counter-steer --model quadratic --step 0.008 "
+        "--duration 10 --out " +
+        dir.string();
+    auto count = [](const std::string& text, const std::string& what) {
+        int n = 0;
+        for (std::size_t at = text.find(what); at != std::string::npos;
+             at = text.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    const SimRun human = simulate(args);
+    EXPECT_EQ(human.exit_code, 1) << human.err;  // it diverges: the error names that
+    EXPECT_EQ(count(human.out, "warning: the energy balance is off by"), 1) << human.out;
+    EXPECT_EQ(count(human.err, "warning"), 0) << human.err;
+    const SimRun json = simulate(args + " --json");
+    EXPECT_TRUE(nlohmann::json::parse(json.out).contains("warning"));
+    EXPECT_EQ(count(json.err, "warning: the energy balance is off by"), 1) << json.err;
+    fs::remove_all(dir);
+}
+
 TEST(SimulateCli, CtrlCStopsAndStillWritesWhatWasComputed) {
     const fs::path dir = outDir("cancel");
     const fs::path out_file = dir.string() + ".stdout";
