@@ -262,6 +262,35 @@ TEST(MainWindow, PropertiesPaneDoesNotScrollSidewaysAt1024x700) {
     EXPECT_GE(soil->slider("phi_deg")->width(), 40);
 }
 
+// Issue 27: at 1024×700 (1008×660 inside openbox's frame) in the compact layout the soil page,
+// the Properties pane's tallest and most edited, is whole: no vertical scroll bar, every field and
+// slider visible without scrolling.
+TEST(MainWindow, SoilPropertiesFitWithoutScrollingAt1024x700) {
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.applyLayout(MainWindow::Layout::kCompact);
+    w.resize(1008, 660);
+    settle();
+    ASSERT_EQ(w.size(), QSize(1008, 660));
+    QDockWidget* dock = w.findChild<QDockWidget*>("properties_dock");
+    ASSERT_NE(dock, nullptr);
+    auto* area = qobject_cast<QScrollArea*>(dock->widget());
+    ASSERT_NE(area, nullptr);
+    auto* pages = qobject_cast<QStackedWidget*>(area->widget());
+    ASSERT_NE(pages, nullptr);
+    pages->setCurrentIndex(0);
+    settle(50);
+    auto* soil = w.findChild<ui::SoilEditor*>();
+    ASSERT_NE(soil, nullptr);
+    EXPECT_LE(soil->minimumSizeHint().height(), area->viewport()->height());
+    EXPECT_FALSE(area->verticalScrollBar()->isVisible());
+    for (const soil::SoilField& field : soil::soilFields()) {
+        QWidget* box = soil->spinBox(field.key);
+        const QRect in_viewport(box->mapTo(area->viewport(), QPoint(0, 0)), box->size());
+        EXPECT_TRUE(area->viewport()->rect().contains(in_viewport)) << field.key;
+    }
+}
+
 // The toolbar's Undo and Redo keep their short names (the step they would undo is in their
 // tooltip and in the Edit menu), so the toolbar does not change width with every edit.
 TEST(MainWindow, ToolbarUndoRedoKeepShortNames) {

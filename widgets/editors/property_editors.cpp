@@ -203,6 +203,9 @@ SoilEditor::SoilEditor(ProjectDocument* document, const io::PresetLocations& loc
         });
     }
     grid->setColumnStretch(2, 1);
+    // Rows 3 px apart (the style's 6 made the pane 19 px too tall for the compact layout at
+    // 1024×700: a vertical scroll bar over the most edited page).
+    grid->setVerticalSpacing(3);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(6, 6, 6, 6);
     layout->addLayout(grid);
