@@ -22,6 +22,8 @@ const io::NumericColumn kEntryAngleDeg{
 const io::NumericColumn kEntryAngleRad{"entry_angle_rad", {0.0, units::kPi / 2, true, true}, "rad"};
 // Sinkage up to the largest wheel radius anyone puts in a file (10 m).
 const io::NumericColumn kSinkage{"sinkage_m", {0.0, 10.0}, "m"};
+// The slip's standard error (a robot's observer): at most the slip's whole range.
+const io::NumericColumn kSlipStd{"slip_std", {0.0, 2.0}, ""};
 const io::NumericColumn kSlipAngleDeg{
     "slip_angle_deg", {-90.0, 90.0, true, true}, "deg", units::degToRad};
 
@@ -40,7 +42,7 @@ const std::vector<std::string>& dataSetColumns() {
     static const std::vector<std::string> columns{
         "slip", "entry_angle_deg", "entry_angle_rad", "Fx_N",
         "Fz_N", "My_Nm",           "slip_angle_deg",  "Fy_N",
-        "W_N",  "time_s",          "sinkage_m"};
+        "W_N",  "time_s",          "sinkage_m",       "slip_std"};
     return columns;
 }
 
@@ -54,7 +56,7 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
               c_fz = find(doc.header, "Fz_N"), c_my = find(doc.header, "My_Nm"),
               c_beta = find(doc.header, "slip_angle_deg"), c_fy = find(doc.header, "Fy_N"),
               c_load = find(doc.header, "W_N"), c_time = find(doc.header, "time_s"),
-              c_sinkage = find(doc.header, "sinkage_m");
+              c_sinkage = find(doc.header, "sinkage_m"), c_slip_std = find(doc.header, "slip_std");
     // A column the reader does not know is data the fit would lose without a word: a misspelt
     // channel ("Fz_M", "fz_N") whose known name is absent stops the read (every row would lose
     // that channel), any other unknown column is listed as a warning.
@@ -118,6 +120,7 @@ Result<DataSetRead> parseDataSet(const std::string& text, const std::string& whe
         s.load_n = optional(c_load, {"W_N", {0.0, kMaxForce, true, false}, "N"});
         s.time_s = optional(c_time, {"time_s", {-kMaxTime, kMaxTime}, "s"});
         s.sinkage_m = optional(c_sinkage, kSinkage);
+        s.slip_std = optional(c_slip_std, kSlipStd);
         if (bad.size() == before) out.data.samples.push_back(s);
     }
     if (!bad.empty() && policy == BadRows::kStop) return bad;
@@ -134,13 +137,14 @@ Result<DataSetRead> readDataSet(const std::filesystem::path& path, BadRows polic
 }
 
 std::string toCsv(const DataSet& data) {
-    bool beta = false, fy = false, load = false, time = false, sinkage = false;
+    bool beta = false, fy = false, load = false, time = false, sinkage = false, slip_std = false;
     for (const Sample& s : data.samples) {
         beta |= s.slip_angle_rad.has_value();
         fy |= s.fy_n.has_value();
         load |= s.load_n.has_value();
         time |= s.time_s.has_value();
         sinkage |= s.sinkage_m.has_value();
+        slip_std |= s.slip_std.has_value();
     }
     const DataColumns& c = data.columns;
     std::string out = "slip";
@@ -153,6 +157,7 @@ std::string toCsv(const DataSet& data) {
     if (load) out += ",W_N";
     if (time) out += ",time_s";
     if (sinkage) out += ",sinkage_m";
+    if (slip_std) out += ",slip_std";
     out += '\n';
     auto cell = [](const std::optional<double>& v) {
         return v ? "," + formatNumber(*v) : std::string(",");
@@ -171,6 +176,7 @@ std::string toCsv(const DataSet& data) {
         if (load) out += cell(s.load_n);
         if (time) out += cell(s.time_s);
         if (sinkage) out += cell(s.sinkage_m);
+        if (slip_std) out += cell(s.slip_std);
         out += '\n';
     }
     return out;

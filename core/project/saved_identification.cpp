@@ -44,11 +44,17 @@ std::vector<Issue> issuesFrom(const json& j) {
 }
 
 json sampleJson(const id::Sample& s) {
-    return {{"slip", number(s.slip)},           {"entry_angle_rad", number(s.entry_angle_rad)},
-            {"fx_n", number(s.fx_n)},           {"fz_n", number(s.fz_n)},
-            {"my_nm", number(s.my_nm)},         {"slip_angle_rad", optionalJson(s.slip_angle_rad)},
-            {"fy_n", optionalJson(s.fy_n)},     {"load_n", optionalJson(s.load_n)},
-            {"time_s", optionalJson(s.time_s)}, {"sinkage_m", optionalJson(s.sinkage_m)}};
+    return {{"slip", number(s.slip)},
+            {"entry_angle_rad", number(s.entry_angle_rad)},
+            {"fx_n", number(s.fx_n)},
+            {"fz_n", number(s.fz_n)},
+            {"my_nm", number(s.my_nm)},
+            {"slip_angle_rad", optionalJson(s.slip_angle_rad)},
+            {"fy_n", optionalJson(s.fy_n)},
+            {"load_n", optionalJson(s.load_n)},
+            {"time_s", optionalJson(s.time_s)},
+            {"sinkage_m", optionalJson(s.sinkage_m)},
+            {"slip_std", optionalJson(s.slip_std)}};
 }
 
 id::Sample sampleFrom(const json& j) {
@@ -63,6 +69,7 @@ id::Sample sampleFrom(const json& j) {
     s.load_n = optionalAt(j, "load_n");
     s.time_s = optionalAt(j, "time_s");
     s.sinkage_m = optionalAt(j, "sinkage_m");
+    s.slip_std = optionalAt(j, "slip_std");  // absent in files written before it
     return s;
 }
 

@@ -102,10 +102,13 @@ double stationarySpeedStd(const SensorSpec& sensors, double dt, long gnss_every)
             sum += pvv;
         }
         const double next = sum / static_cast<double>(gnss_every);
+        // An unstable filter (a time constant too short for the fix rate: at 5 Hz below ~0.14 s)
+        // grows without bound: its error has no stationary σ.
+        if (!std::isfinite(next)) return std::numeric_limits<double>::infinity();
         if (std::abs(next - mean) <= 1e-12 * next) return std::sqrt(next);
         mean = next;
     }
-    return std::sqrt(mean);
+    return std::numeric_limits<double>::infinity();  // did not settle
 }
 
 }  // namespace

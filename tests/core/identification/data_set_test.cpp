@@ -76,8 +76,7 @@ TEST(DataSet, MissingColumnsAreNamed) {
 
 TEST(DataSet, CsvRoundTrip) {
     DataSet data;
-    data.samples.push_back(
-        {0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0, 0.012, std::nullopt});
+    data.samples.push_back({0.25, 0.3, -1.5, 58.86, 0.5, 0.1, -2.0, 58.86, 0.0, 0.012, 0.031});
     data.samples.push_back({0.5, 0.31, 0.5, 58.9, 0.6, std::nullopt, std::nullopt, 80.0, 0.01,
                             std::nullopt, std::nullopt});
     const auto read = parseDataSet(toCsv(data), "rt.csv", BadRows::kStop);
@@ -93,6 +92,7 @@ TEST(DataSet, CsvRoundTrip) {
         EXPECT_EQ(a.fy_n, b.fy_n);
         EXPECT_EQ(a.time_s, b.time_s);
         EXPECT_EQ(a.sinkage_m, b.sinkage_m);
+        EXPECT_EQ(a.slip_std, b.slip_std);  // 0.031, and none on the second row
     }
     EXPECT_NEAR(*read->data.samples[0].slip_angle_rad, 0.1, 1e-15);
 }
@@ -101,28 +101,30 @@ TEST(DataSet, CsvRoundTrip) {
 // rad, entry_angle_deg = 1e-320 passed (0, 90) as 0 rad.
 TEST(DataSet, EveryColumnHasARange) {
     const std::string header =
-        "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm,slip_angle_deg,Fy_N,W_N,time_s\n";
+        "slip,entry_angle_deg,Fx_N,Fz_N,My_Nm,slip_angle_deg,Fy_N,W_N,time_s,slip_std\n";
     struct Case {
         const char* row;
         const char* message;
     };
     for (const Case& c : {
-             Case{"0.1,20,1,2,3,1e308,0,50,0",
+             Case{"0.1,20,1,2,3,1e308,0,50,0,0.01",
                   "slip_angle_deg = 1e+308 is outside the allowed range (-90, 90) deg"},
-             Case{"0.1,1e-320,1,2,3,0,0,50,0",
+             Case{"0.1,1e-320,1,2,3,0,0,50,0,0.01",
                   "entry_angle_deg = '1e-320' is subnormal (magnitude below 2.2e-308), too small "
                   "to compute with; allowed range (0, 90) deg"},
-             Case{"0.1,20,2e7,2,3,0,0,50,0",
+             Case{"0.1,20,2e7,2,3,0,0,50,0,0.01",
                   "Fx_N = 2e+07 is outside the allowed range [-1e+07, 1e+07] N"},
-             Case{"0.1,20,1,1e999,3,0,0,50,0",
+             Case{"0.1,20,1,1e999,3,0,0,50,0,0.01",
                   "Fz_N = '1e999' overflows a double; allowed range [-1e+07, 1e+07] N"},
-             Case{"0.1,20,1,2,-2e7,0,0,50,0",
+             Case{"0.1,20,1,2,-2e7,0,0,50,0,0.01",
                   "My_Nm = -2e+07 is outside the allowed range [-1e+07, 1e+07] N·m"},
-             Case{"0.1,20,1,2,3,0,inf,50,0",
+             Case{"0.1,20,1,2,3,0,inf,50,0,0.01",
                   "Fy_N = 'inf' is not a finite number; allowed range [-1e+07, 1e+07] N"},
-             Case{"0.1,20,1,2,3,0,0,0,0", "W_N = 0 is outside the allowed range (0, 1e+07] N"},
-             Case{"0.1,20,1,2,3,0,0,50,2e12",
+             Case{"0.1,20,1,2,3,0,0,0,0,0.01", "W_N = 0 is outside the allowed range (0, 1e+07] N"},
+             Case{"0.1,20,1,2,3,0,0,50,2e12,0.01",
                   "time_s = 2e+12 is outside the allowed range [-1e+12, 1e+12] s"},
+             Case{"0.1,20,1,2,3,0,0,50,0,-0.01",
+                  "slip_std = -0.01 is outside the allowed range [0, 2]"},
          }) {
         const auto read = parseDataSet(header + c.row + "\n", "d.csv", BadRows::kStop);
         ASSERT_FALSE(read.ok()) << c.row;

@@ -88,6 +88,28 @@ TEST_P(IdentificationRoundTrip, ReadsBackToTheSameFitAndReport) {
 
 INSTANTIATE_TEST_SUITE_P(GlobalAndDecoupled, IdentificationRoundTrip, ::testing::Bool());
 
+// A sample's slip standard error (the data file's `slip_std` column) is kept; a section written
+// before the key existed reads without it.
+TEST(SavedIdentification, TheSlipStandardErrorOfASampleIsKept) {
+    analysis::IdentificationSettings s;
+    s.refine = false;
+    s.synthetic.slip_count = 10;
+    analysis::IdentificationResult computed = analysis::computeIdentification(sandyLoamOnA(), s);
+    ASSERT_TRUE(computed.message.empty()) << computed.message;
+    computed.data.samples[3].slip_std = 0.025;
+    json saved = json::parse(savedJson(computed).dump());
+    const Result<analysis::IdentificationResult> read =
+        identificationResultFromJson(saved, "identification");
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->data.samples[3].slip_std, 0.025);
+    EXPECT_FALSE(read->data.samples[2].slip_std.has_value());
+    for (json& sample : saved["data"]["samples"]) sample.erase("slip_std");
+    const Result<analysis::IdentificationResult> older =
+        identificationResultFromJson(saved, "identification");
+    ASSERT_TRUE(older.ok()) << older.message();
+    EXPECT_FALSE(older->data.samples[3].slip_std.has_value());
+}
+
 TEST(SavedIdentification, NonFiniteNumbersSurviveAndOthersAreRefused) {
     analysis::IdentificationResult r;
     r.identified.max_shear_deformation_m = std::numeric_limits<double>::infinity();

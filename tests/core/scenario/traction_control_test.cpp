@@ -200,6 +200,10 @@ TEST(TractionControl, ObserverKnowsHowWellItKnowsTheSpeedAndTheSlip) {
     SensorSpec dead_reckoning = s.controller.sensors;
     dead_reckoning.gnss_rate_hz = 0.0;
     EXPECT_TRUE(std::isinf(Observer(s.robot, dead_reckoning, 9.81, kDt, truth, kSpeed).speedStd()));
+    // Nor with a filter too fast for its fixes (0.05 s at 5 Hz: k = 1, c = 80, unstable).
+    SensorSpec too_fast = s.controller.sensors;
+    too_fast.filter_time_constant_s = 0.05;
+    EXPECT_TRUE(std::isinf(Observer(s.robot, too_fast, 9.81, kDt, truth, kSpeed).speedStd()));
 }
 
 TEST(TractionControl, ObserverLoadCarriesTheDriveTorquesPitchMoment) {
