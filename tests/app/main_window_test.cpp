@@ -233,15 +233,19 @@ TEST(MainWindow, EveryFittedParameterIsInViewAt1024x700) {
 // The Properties pane at 1024×700 in the compact layout: every page (soil, wheel, conditions,
 // data sets, scenarios, experiment) fits the pane's width — no sideways scroll bar (the soil
 // page's sliders once pushed it out by a few pixels).
+// The compact layout at `size`, and the Properties pane's scroll area (nullptr if not found).
+QScrollArea* compactPropertiesArea(MainWindow& w, QSize size) {
+    w.applyLayout(MainWindow::Layout::kCompact);
+    w.resize(size);
+    settle();
+    QDockWidget* dock = w.findChild<QDockWidget*>("properties_dock");
+    return dock ? qobject_cast<QScrollArea*>(dock->widget()) : nullptr;
+}
+
 TEST(MainWindow, PropertiesPaneDoesNotScrollSidewaysAt1024x700) {
     Studio studio;
     MainWindow& w = studio.window;
-    w.applyLayout(MainWindow::Layout::kCompact);
-    w.resize(1024, 700);
-    settle();
-    QDockWidget* dock = w.findChild<QDockWidget*>("properties_dock");
-    ASSERT_NE(dock, nullptr);
-    auto* area = qobject_cast<QScrollArea*>(dock->widget());
+    QScrollArea* area = compactPropertiesArea(w, QSize(1024, 700));
     ASSERT_NE(area, nullptr);
     auto* pages = qobject_cast<QStackedWidget*>(area->widget());
     ASSERT_NE(pages, nullptr);
@@ -268,13 +272,8 @@ TEST(MainWindow, PropertiesPaneDoesNotScrollSidewaysAt1024x700) {
 TEST(MainWindow, SoilPropertiesFitWithoutScrollingAt1024x700) {
     Studio studio;
     MainWindow& w = studio.window;
-    w.applyLayout(MainWindow::Layout::kCompact);
-    w.resize(1008, 660);
-    settle();
+    QScrollArea* area = compactPropertiesArea(w, QSize(1008, 660));
     ASSERT_EQ(w.size(), QSize(1008, 660));
-    QDockWidget* dock = w.findChild<QDockWidget*>("properties_dock");
-    ASSERT_NE(dock, nullptr);
-    auto* area = qobject_cast<QScrollArea*>(dock->widget());
     ASSERT_NE(area, nullptr);
     auto* pages = qobject_cast<QStackedWidget*>(area->widget());
     ASSERT_NE(pages, nullptr);
