@@ -71,6 +71,11 @@ const std::vector<std::string>& controllerNames() {
     return names;
 }
 
+double gnssFixInterval(const SensorSpec& sensors, double interval_s) {
+    const long every = std::max<long>(1, std::lround(1.0 / (sensors.gnss_rate_hz * interval_s)));
+    return static_cast<double>(every) * interval_s;
+}
+
 namespace {
 
 // The complementary filter's error e = (e_v, e_b) (speed, and bias minus its estimate) evolves
@@ -129,7 +134,7 @@ Observer::Observer(const dynamics::RobotParameters& robot, const SensorSpec& sen
         hub_y_m_[i] = (i % 2 == 0 ? 0.5 : -0.5) * robot.track_m;
     }
     if (sensors.gnss_rate_hz > 0.0) {
-        gnss_every_ = std::max<long>(1, std::lround(1.0 / (sensors.gnss_rate_hz * interval_s)));
+        gnss_every_ = std::lround(gnssFixInterval(sensors, interval_s) / interval_s);
     }
     speed_std_m_s_ = stationarySpeedStd(sensors, interval_s, gnss_every_);
     // The robot knows it starts as told (at rest, or at the scenario's initial speed).
@@ -411,6 +416,20 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
         issues.push_back({n + "gnss_rate_Hz", formatNumber(s.gnss_rate_hz) +
                                                   " Hz is faster than the control rate " +
                                                   formatNumber(1.0 / spec.interval_s) + " Hz"});
+    } else if (s.gnss_rate_hz > 0.0 && spec.interval_s > 0.0 && s.filter_time_constant_s > 0.0) {
+        // The complementary filter is stable only for τ > Δt_g/√2 (docs/traction.md §4, "How
+        // well the slip is known"): a shorter one makes the speed estimate diverge.
+        const double fix_dt = gnssFixInterval(s, spec.interval_s);
+        const double shortest = fix_dt / std::sqrt(2.0);
+        if (!(s.filter_time_constant_s > shortest)) {
+            issues.push_back({n + "filter_time_constant_s",
+                              formatNumber(s.filter_time_constant_s) +
+                                  " s makes the speed filter unstable with a GNSS fix every " +
+                                  formatNumber(fix_dt) + " s (it needs more than that over √2, " +
+                                  formatNumber(roundSignificant(shortest, 4)) +
+                                  " s; docs/traction.md §4); allowed range (" +
+                                  formatNumber(roundSignificant(shortest, 4)) + ", 100] s"});
+        }
     }
     checkRange(issues, prefix + "drawbar_load.per_speed_N_s_m", load.per_speed_n_s_m, {0.0, 1e5},
                "N·s/m");

@@ -211,6 +211,10 @@ struct Estimates {
     std::array<double, dynamics::kWheelCount> resistance_nm{};  ///< M̂_y = τ − I_w ω̇ [N·m]
 };
 
+/// The time between GNSS fixes as the observer takes them: a whole number of control ticks [s]
+/// (the rate must be positive).
+double gnssFixInterval(const SensorSpec& sensors, double interval_s);
+
 /// The simulated sensors and the observer (docs/traction.md §4). update() is called at every
 /// control tick with the true state; it draws the measurements and updates the estimates.
 class Observer {

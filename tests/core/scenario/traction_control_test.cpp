@@ -200,10 +200,16 @@ TEST(TractionControl, ObserverKnowsHowWellItKnowsTheSpeedAndTheSlip) {
     SensorSpec dead_reckoning = s.controller.sensors;
     dead_reckoning.gnss_rate_hz = 0.0;
     EXPECT_TRUE(std::isinf(Observer(s.robot, dead_reckoning, 9.81, kDt, truth, kSpeed).speedStd()));
-    // Nor with a filter too fast for its fixes (0.05 s at 5 Hz: k = 1, c = 80, unstable).
-    SensorSpec too_fast = s.controller.sensors;
-    too_fast.filter_time_constant_s = 0.05;
-    EXPECT_TRUE(std::isinf(Observer(s.robot, too_fast, 9.81, kDt, truth, kSpeed).speedStd()));
+    // Nor with a filter too fast for its fixes: stable only for τ > Δt_g/√2 (the eigenvalues of
+    // one period's transition, docs/traction.md §4), 0.1414 s at 5 Hz. The covariance recursion
+    // settles just above that and grows without bound just below it.
+    const double shortest = 0.2 / std::sqrt(2.0);
+    for (double factor : {0.98, 1.02, 0.35}) {
+        SensorSpec sensors = s.controller.sensors;
+        sensors.filter_time_constant_s = factor * shortest;
+        const double sd = Observer(s.robot, sensors, 9.81, kDt, truth, kSpeed).speedStd();
+        EXPECT_EQ(std::isinf(sd), factor < 1.0) << factor << " " << sd;
+    }
 }
 
 TEST(TractionControl, ObserverLoadCarriesTheDriveTorquesPitchMoment) {
@@ -431,6 +437,16 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
         message(withController({{"type", "optimal"}, {"robust", "quantile"}, {"quantile", 1.5}}));
     EXPECT_NE(quantile.find("controller.quantile"), std::string::npos) << quantile;
     EXPECT_NE(quantile.find("[0.01, 0.99]"), std::string::npos) << quantile;
+    // A speed filter too fast for its GNSS fixes diverges: refused, with the shortest stable τ.
+    const std::string filter = message(
+        withController({{"type", "fixed-slip"}, {"sensors", {{"filter_time_constant_s", 0.1}}}}));
+    EXPECT_NE(filter.find("controller.sensors.filter_time_constant_s"), std::string::npos)
+        << filter;
+    EXPECT_NE(filter.find("(0.1414, 100] s"), std::string::npos) << filter;
+    EXPECT_TRUE(scenarioFromJson(withController({{"type", "fixed-slip"},
+                                                 {"sensors", {{"filter_time_constant_s", 0.15}}}}),
+                                 "x.json", kLocations)
+                    .ok());
     const std::string samples =
         message(withController({{"type", "optimal"}, {"posterior_samples", 5}}));
     EXPECT_NE(samples.find("controller.posterior_samples"), std::string::npos) << samples;
