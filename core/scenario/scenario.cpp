@@ -90,7 +90,7 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
                                      " must be < y_max_m = " + formatNumber(p.y_max_m)});
         }
     }
-    for (Issue& issue : validate(s.controller, s.drawbar_load, prefix))
+    for (Issue& issue : validate(s.controller, s.drawbar_load, prefix, s.time_step_s))
         issues.push_back(std::move(issue));
     if (s.mission) {
         for (Issue& issue : validate(*s.mission, s.robot, prefix + "mission."))

@@ -359,8 +359,14 @@ double TractionLimiter::stepFloor(double mean_plan) {
     return floor_;
 }
 
+double controlTick(double interval_s, double time_step_s) {
+    if (!(time_step_s > 0.0)) return interval_s;
+    return static_cast<double>(std::max<long>(1, std::lround(interval_s / time_step_s))) *
+           time_step_s;
+}
+
 std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
-                            const std::string& prefix) {
+                            const std::string& prefix, double time_step_s) {
     std::vector<Issue> issues;
     const std::string c = prefix + "controller.";
     const ControllerRanges& r = kControllerRanges;
@@ -412,23 +418,28 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
     checkRange(issues, n + "filter_time_constant_s", s.filter_time_constant_s, {0.01, 100.0}, "s");
     checkRange(issues, n + "sinkage_noise_m", s.sinkage_noise_m, {0.0, 0.1}, "m");
     checkRange(issues, n + "hub_force_noise_N", s.hub_force_noise_n, {0.0, 1e4}, "N");
-    if (s.gnss_rate_hz > 0.0 && spec.interval_s > 0.0 && 1.0 / s.gnss_rate_hz < spec.interval_s) {
+    // The control tick as the run takes it: a whole number of physics steps.
+    const double tick = controlTick(spec.interval_s, time_step_s);
+    if (s.gnss_rate_hz > 0.0 && tick > 0.0 && 1.0 / s.gnss_rate_hz < tick) {
         issues.push_back({n + "gnss_rate_Hz", formatNumber(s.gnss_rate_hz) +
                                                   " Hz is faster than the control rate " +
-                                                  formatNumber(1.0 / spec.interval_s) + " Hz"});
-    } else if (s.gnss_rate_hz > 0.0 && spec.interval_s > 0.0 && s.filter_time_constant_s > 0.0) {
+                                                  formatNumber(1.0 / tick) + " Hz"});
+    } else if (s.gnss_rate_hz > 0.0 && tick > 0.0 && s.filter_time_constant_s > 0.0) {
         // The complementary filter is stable only for τ > Δt_g/√2 (docs/traction.md §4, "How
         // well the slip is known"): a shorter one makes the speed estimate diverge.
-        const double fix_dt = gnssFixInterval(s, spec.interval_s);
+        const double fix_dt = gnssFixInterval(s, tick);
         const double shortest = fix_dt / std::sqrt(2.0);
         if (!(s.filter_time_constant_s > shortest)) {
+            // Shown rounded up to four digits: every value of the range printed is accepted.
+            const double scale = std::pow(10.0, 3.0 - std::floor(std::log10(shortest)));
+            const std::string bound = formatNumber(std::ceil(shortest * scale) / scale);
             issues.push_back({n + "filter_time_constant_s",
                               formatNumber(s.filter_time_constant_s) +
                                   " s makes the speed filter unstable with a GNSS fix every " +
-                                  formatNumber(fix_dt) + " s (it needs more than that over √2, " +
-                                  formatNumber(roundSignificant(shortest, 4)) +
-                                  " s; docs/traction.md §4); allowed range (" +
-                                  formatNumber(roundSignificant(shortest, 4)) + ", 100] s"});
+                                  formatNumber(roundSignificant(fix_dt, 6)) +
+                                  " s (it needs more than that over √2; docs/traction.md §4); "
+                                  "allowed range (" +
+                                  bound + ", 100] s"});
         }
     }
     checkRange(issues, prefix + "drawbar_load.per_speed_N_s_m", load.per_speed_n_s_m, {0.0, 1e5},

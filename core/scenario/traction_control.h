@@ -379,8 +379,13 @@ struct TractionMetrics {
 /// |s_set − s*_oracle| within which a set-point counts as settled [-].
 inline constexpr double kSettleTolerance = 0.03;
 
-/// Every problem of the controller and the drawbar load (names under `prefix`).
+/// The control period as a run takes it: `interval_s` rounded to a whole number (≥ 1) of physics
+/// steps of `time_step_s` (`interval_s` itself when the step is not positive).
+double controlTick(double interval_s, double time_step_s);
+
+/// Every problem of the controller and the drawbar load (names under `prefix`); the sensors'
+/// checks take the control tick on physics steps of `time_step_s` (controlTick).
 std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
-                            const std::string& prefix = {});
+                            const std::string& prefix = {}, double time_step_s = 0.0);
 
 }  // namespace terra::scenario

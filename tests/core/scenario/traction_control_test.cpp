@@ -442,7 +442,15 @@ TEST(TractionControl, ReaderNamesTheFieldAndItsRange) {
         withController({{"type", "fixed-slip"}, {"sensors", {{"filter_time_constant_s", 0.1}}}}));
     EXPECT_NE(filter.find("controller.sensors.filter_time_constant_s"), std::string::npos)
         << filter;
-    EXPECT_NE(filter.find("(0.1414, 100] s"), std::string::npos) << filter;
+    EXPECT_NE(filter.find("(0.1415, 100] s"), std::string::npos) << filter;  // 0.14142 rounded up
+    // The tick the run takes: 0.01 s on 4 ms steps is 12 ms, a fix every 17 ticks (0.204 s), so
+    // 0.142 s, stable on 1 ms steps, is refused there (the bound 0.1443 s).
+    nlohmann::json coarse =
+        withController({{"type", "fixed-slip"}, {"sensors", {{"filter_time_constant_s", 0.142}}}});
+    EXPECT_TRUE(scenarioFromJson(coarse, "x.json", kLocations).ok());
+    coarse["time_step_s"] = 0.004;
+    const std::string on_steps = message(coarse);
+    EXPECT_NE(on_steps.find("(0.1443, 100] s"), std::string::npos) << on_steps;
     EXPECT_TRUE(scenarioFromJson(withController({{"type", "fixed-slip"},
                                                  {"sensors", {{"filter_time_constant_s", 0.15}}}}),
                                  "x.json", kLocations)
