@@ -370,7 +370,7 @@ public:
           spec_(scenario.controller),
           planner_(planner),
           shear_radius_m_(scenario.robot.wheel.radius_m + scenario.robot.wheel.lugShearOffset()),
-          every_(std::lround(controlTick(spec_.interval_s, dt) / dt)),
+          every_(stepsPerTick(spec_.interval_s, dt)),
           observer_(scenario.robot, spec_.sensors, scenario.options.gravity_m_s2,
                     static_cast<double>(every_) * dt, start, scenario.initial.speed_m_s),
           controller_(spec_, shear_radius_m_) {
@@ -719,7 +719,7 @@ public:
           spec_(*scenario.mission),
           pursuit_(Path::ofMission(spec_), spec_.lookahead_m,
                    maxCurvature(scenario.robot, spec_.max_steer_rad)),
-          every_(std::lround(controlTick(spec_.interval_s, dt) / dt)),
+          every_(stepsPerTick(spec_.interval_s, dt)),
           // The centre between the axles lies com_x behind the composite centre of mass.
           com_x_m_(robot_.com_forward_m * robot_.chassis_mass_kg / robot_.totalMass()) {
         outcome_.path_length_m = pursuit_.path().length();

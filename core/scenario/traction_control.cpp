@@ -71,12 +71,21 @@ const std::vector<std::string>& controllerNames() {
     return names;
 }
 
-double gnssFixInterval(const SensorSpec& sensors, double interval_s) {
-    const long every = std::max<long>(1, std::lround(1.0 / (sensors.gnss_rate_hz * interval_s)));
-    return static_cast<double>(every) * interval_s;
+long ticksPerFix(const SensorSpec& sensors, double tick_s) {
+    return std::max<long>(1, std::lround(1.0 / (sensors.gnss_rate_hz * tick_s)));
 }
 
 namespace {
+
+// The complementary filter's gains at a fix: the speed's k = 2ζω_c Δt_g (ζ = 1, at most 1) and the
+// bias's c = ω_c² Δt_g, ω_c = 1/τ (docs/traction.md §4).
+struct FilterGains {
+    double k, c;
+};
+FilterGains filterGains(const SensorSpec& sensors, double fix_dt) {
+    const double wc = 1.0 / sensors.filter_time_constant_s;
+    return {std::min(1.0, 2.0 * wc * fix_dt), wc * wc * fix_dt};
+}
 
 // The complementary filter's error e = (e_v, e_b) (speed, and bias minus its estimate) evolves
 // linearly: each tick e_v += (e_b + n_a) Δt; at a fix (innovation n_g − e_v) e_v ← (1 − k) e_v +
@@ -85,9 +94,7 @@ namespace {
 // stationary standard deviation is its square root (docs/traction.md §4).
 double stationarySpeedStd(const SensorSpec& sensors, double dt, long gnss_every) {
     if (gnss_every <= 0) return std::numeric_limits<double>::infinity();
-    const double fix_dt = static_cast<double>(gnss_every) * dt;
-    const double wc = 1.0 / sensors.filter_time_constant_s;
-    const double k = std::min(1.0, 2.0 * wc * fix_dt), c = wc * wc * fix_dt;
+    const auto [k, c] = filterGains(sensors, static_cast<double>(gnss_every) * dt);
     const double qa = std::pow(sensors.accel_noise_m_s2 * dt, 2);
     const double qg = std::pow(sensors.gnss_speed_noise_m_s, 2);
     double pvv = 0.0, pvb = 0.0, pbb = 0.0, mean = 0.0;
@@ -134,7 +141,7 @@ Observer::Observer(const dynamics::RobotParameters& robot, const SensorSpec& sen
         hub_y_m_[i] = (i % 2 == 0 ? 0.5 : -0.5) * robot.track_m;
     }
     if (sensors.gnss_rate_hz > 0.0) {
-        gnss_every_ = std::lround(gnssFixInterval(sensors, interval_s) / interval_s);
+        gnss_every_ = ticksPerFix(sensors, interval_s);
     }
     speed_std_m_s_ = stationarySpeedStd(sensors, interval_s, gnss_every_);
     // The robot knows it starts as told (at rest, or at the scenario's initial speed).
@@ -165,11 +172,10 @@ const Estimates& Observer::update(const dynamics::RoverState& truth, double draw
     ++ticks_;
     if (gnss_every_ > 0 && ticks_ % gnss_every_ == 0) {
         const double fix = measure(truth.forward_speed_m_s, sensors_.gnss_speed_noise_m_s);
-        const double fix_dt = static_cast<double>(gnss_every_) * dt;
-        const double wc = 1.0 / sensors_.filter_time_constant_s;
+        const auto [k, c] = filterGains(sensors_, static_cast<double>(gnss_every_) * dt);
         const double innovation = fix - est_.speed_m_s;
-        est_.speed_m_s += std::min(1.0, 2.0 * wc * fix_dt) * innovation;
-        bias_estimate_m_s2_ -= wc * wc * fix_dt * innovation;
+        est_.speed_m_s += k * innovation;
+        bias_estimate_m_s2_ -= c * innovation;
     }
     for (int i = 0; i < dynamics::kWheelCount; ++i) {
         const dynamics::WheelState& w = truth.wheels[i];
@@ -177,18 +183,19 @@ const Estimates& Observer::update(const dynamics::RoverState& truth, double draw
         const double rate = measure(w.spin_rate_rad_s, sensors_.encoder_noise_rad_s);
         est_.spin_rate_rad_s[i] = rate;
         const double delta = w.steer_angle_rad;  // the steering encoder (taken as exact)
+        const double cos_d = std::cos(delta), sin_d = std::sin(delta);
         // Hub velocity v + ψ̇ ẑ × arm, along the steered wheel's heading.
         const double vx = est_.speed_m_s - est_.yaw_rate_rad_s * hub_y_m_[i];
         const double vy = est_.yaw_rate_rad_s * hub_x_m_[i];
-        est_.hub_speed_m_s[i] = vx * std::cos(delta) + vy * std::sin(delta);
+        est_.hub_speed_m_s[i] = vx * cos_d + vy * sin_d;
         const double rim = shear_radius_m_ * rate;
         est_.slip[i] =
             rim > kStillRim ? std::clamp(1.0 - est_.hub_speed_m_s[i] / rim, -1.0, 1.0) : 0.0;
         // σ_ŝ² = (σ_hub / (r ω))² + (v̂_hub σ_ω / (r ω²))², σ_hub² = σ_v² cos² δ +
         // σ_ψ̇² (x sin δ − y cos δ)² (v̂_hub = v̂ cos δ + ψ̇ (x sin δ − y cos δ)).
-        const double arm = hub_x_m_[i] * std::sin(delta) - hub_y_m_[i] * std::cos(delta);
-        const double hub_var = std::pow(speed_std_m_s_ * std::cos(delta), 2) +
-                               std::pow(sensors_.gyro_noise_rad_s * arm, 2);
+        const double arm = hub_x_m_[i] * sin_d - hub_y_m_[i] * cos_d;
+        const double hub_var =
+            std::pow(speed_std_m_s_ * cos_d, 2) + std::pow(sensors_.gyro_noise_rad_s * arm, 2);
         est_.slip_std[i] = rim > kStillRim
                                ? std::sqrt(hub_var / (rim * rim) +
                                            std::pow(est_.hub_speed_m_s[i] / rim *
@@ -359,10 +366,8 @@ double TractionLimiter::stepFloor(double mean_plan) {
     return floor_;
 }
 
-double controlTick(double interval_s, double time_step_s) {
-    if (!(time_step_s > 0.0)) return interval_s;
-    return static_cast<double>(std::max<long>(1, std::lround(interval_s / time_step_s))) *
-           time_step_s;
+long stepsPerTick(double interval_s, double time_step_s) {
+    return std::max<long>(1, std::lround(interval_s / time_step_s));
 }
 
 std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
@@ -419,7 +424,10 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
     checkRange(issues, n + "sinkage_noise_m", s.sinkage_noise_m, {0.0, 0.1}, "m");
     checkRange(issues, n + "hub_force_noise_N", s.hub_force_noise_n, {0.0, 1e4}, "N");
     // The control tick as the run takes it: a whole number of physics steps.
-    const double tick = controlTick(spec.interval_s, time_step_s);
+    const double tick =
+        time_step_s > 0.0
+            ? static_cast<double>(stepsPerTick(spec.interval_s, time_step_s)) * time_step_s
+            : spec.interval_s;
     if (s.gnss_rate_hz > 0.0 && tick > 0.0 && 1.0 / s.gnss_rate_hz < tick) {
         issues.push_back({n + "gnss_rate_Hz", formatNumber(s.gnss_rate_hz) +
                                                   " Hz is faster than the control rate " +
@@ -427,7 +435,7 @@ std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
     } else if (s.gnss_rate_hz > 0.0 && tick > 0.0 && s.filter_time_constant_s > 0.0) {
         // The complementary filter is stable only for τ > Δt_g/√2 (docs/traction.md §4, "How
         // well the slip is known"): a shorter one makes the speed estimate diverge.
-        const double fix_dt = gnssFixInterval(s, tick);
+        const double fix_dt = static_cast<double>(ticksPerFix(s, tick)) * tick;
         const double shortest = fix_dt / std::sqrt(2.0);
         if (!(s.filter_time_constant_s > shortest)) {
             // Shown rounded up to four digits: every value of the range printed is accepted.

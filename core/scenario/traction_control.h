@@ -211,9 +211,9 @@ struct Estimates {
     std::array<double, dynamics::kWheelCount> resistance_nm{};  ///< M̂_y = τ − I_w ω̇ [N·m]
 };
 
-/// The time between GNSS fixes as the observer takes them: a whole number of control ticks [s]
-/// (the rate must be positive).
-double gnssFixInterval(const SensorSpec& sensors, double interval_s);
+/// The control ticks of `tick_s` between GNSS fixes as the observer takes them (≥ 1; the rate
+/// must be positive).
+long ticksPerFix(const SensorSpec& sensors, double tick_s);
 
 /// The simulated sensors and the observer (docs/traction.md §4). update() is called at every
 /// control tick with the true state; it draws the measurements and updates the estimates.
@@ -379,12 +379,13 @@ struct TractionMetrics {
 /// |s_set − s*_oracle| within which a set-point counts as settled [-].
 inline constexpr double kSettleTolerance = 0.03;
 
-/// The control period as a run takes it: `interval_s` rounded to a whole number (≥ 1) of physics
-/// steps of `time_step_s` (`interval_s` itself when the step is not positive).
-double controlTick(double interval_s, double time_step_s);
+/// The physics steps of `time_step_s` (> 0) in a control period of `interval_s`, as a run takes
+/// it: the nearest whole number, at least 1.
+long stepsPerTick(double interval_s, double time_step_s);
 
 /// Every problem of the controller and the drawbar load (names under `prefix`); the sensors'
-/// checks take the control tick on physics steps of `time_step_s` (controlTick).
+/// checks take the control tick on physics steps of `time_step_s` (stepsPerTick; `interval_s`
+/// itself when the step is not positive).
 std::vector<Issue> validate(const ControllerSpec& spec, const DrawbarLoad& load,
                             const std::string& prefix = {}, double time_step_s = 0.0);
 
