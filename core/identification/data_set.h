@@ -32,9 +32,9 @@ struct Sample {
     std::optional<double> time_s;          ///< t [s]
     std::optional<double> sinkage_m;  ///< h [m], measured sinkage (Eq. 2.12: r (1 − cos θ_f))
     /// σ_s [-]: the standard error of `slip` when it is an estimate (a robot's observer, whose
-    /// slip is 1 − v̂/(r ω) with v̂ uncertain); column `slip_std`. The streaming estimator
-    /// carries it into the innovation covariance (errors in variables, docs/identification.md
-    /// §8); the batch fits take the slip as exact.
+    /// slip is 1 − v̂/(r ω) with v̂ uncertain); column `slip_std`. Every fit of the full wheel
+    /// model, batch and streaming, carries it (ObservationModel::residuals: errors in variables,
+    /// docs/identification.md §8); the decoupled fits take the slip as exact.
     std::optional<double> slip_std;
 };
 

@@ -39,25 +39,41 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
 
 template <typename T>
 contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
-                                 const T& entry_angle_rad, contact::ContactModel model) {
-    const contact::OperatingPoint<T> op{T(s.slip), T(s.slip_angle_rad.value_or(0.0)),
-                                        entry_angle_rad, T(0.0), std::nullopt};
+                                 const T& entry_angle_rad, contact::ContactModel model,
+                                 const T& slip) {
+    const contact::OperatingPoint<T> op{slip, T(s.slip_angle_rad.value_or(0.0)), entry_angle_rad,
+                                        T(0.0), std::nullopt};
     return modelForces(p, op, model);
 }
 
+template <typename T>
+contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
+                                 const T& entry_angle_rad, contact::ContactModel model) {
+    return forcesAt(p, s, entry_angle_rad, model, T(s.slip));
+}
+
+bool uncertainSlip(const Sample& s) { return s.slip_std && *s.slip_std > 0.0; }
+
 // θ_f with F_z(θ_f) = W: Newton from the last root of this sample (F_z and dF_z/dθ_f from one
 // Jet evaluation), which converges in 2–3 steps as the parameters move; the bracketing solver of
-// sinkage.h when Newton leaves (0, 90°] or stalls. nullopt: no equilibrium.
+// sinkage.h when Newton leaves (0, 90°] or stalls. nullopt: no equilibrium. When Newton ends
+// it, the Jet was evaluated at the root returned: `by_angle` (if given) gets ∂(F_x, F_z, M_y)/∂θ_f
+// there; else it is left empty.
 std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& p, const Sample& s,
-                                      double load_n, double start, contact::ContactModel model) {
+                                      double load_n, double start, contact::ContactModel model,
+                                      std::optional<std::array<double, 3>>* by_angle = nullptr) {
     using J = ceres::Jet<double, 1>;
     if (start > 0.0 && start < kRightAngle) {
         const contact::ContactParameters<J> pj = p.cast<J>();
         double theta = start;
         for (int step = 0; step < kNewtonSteps; ++step) {
-            const J fz = forcesAt(pj, s, J(theta, 0), model).fz;
+            const contact::WheelForces<J> f = forcesAt(pj, s, J(theta, 0), model);
+            const J& fz = f.fz;
             const double error = fz.a - load_n;
-            if (std::abs(error) <= kLoadTolerance * load_n) return theta;
+            if (std::abs(error) <= kLoadTolerance * load_n) {
+                if (by_angle) *by_angle = std::array<double, 3>{f.fx.v[0], fz.v[0], f.my.v[0]};
+                return theta;
+            }
             if (!(fz.v[0] > 0.0)) break;
             const double next = theta - error / fz.v[0];
             if (!(next > 0.0 && next < kRightAngle)) break;
@@ -193,13 +209,18 @@ double ObservationModel::measured(std::size_t i, Channel c) const {
 }
 
 Prediction ObservationModel::predict(std::size_t i, const ParameterVector& p) const {
+    return predictAt(i, p, nullptr);
+}
+
+Prediction ObservationModel::predictAt(std::size_t i, const ParameterVector& p,
+                                       std::optional<std::array<double, 3>>* by_angle) const {
     Prediction out;
     const Sample& s = samples_[i];
     const contact::ContactParameters<double> cp = contactParameters(p, wheel_, setup_);
     double theta = s.entry_angle_rad;
     if (setup_.source == DataSource::kLoad) {
         const std::optional<double> root =
-            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i], setup_.model);
+            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i], setup_.model, by_angle);
         if (!root) return out;
         theta = last_entry_angle_[i] = *root;
     }
@@ -233,6 +254,45 @@ std::array<double, 3> ObservationModel::shearLimitDerivative(std::size_t i,
     return out;
 }
 
+std::optional<ChannelValues> ObservationModel::slipSlope(std::size_t i,
+                                                         const ParameterVector& p) const {
+    std::optional<std::array<double, 3>> by_angle;
+    const Prediction prediction = predictAt(i, p, &by_angle);
+    if (!prediction.ok) return std::nullopt;
+    return slipSlopeAt(i, p, prediction.entry_angle_rad, by_angle ? &*by_angle : nullptr);
+}
+
+std::optional<ChannelValues> ObservationModel::slipSlopeAt(
+    std::size_t i, const ParameterVector& p, double entry_angle_rad,
+    const std::array<double, 3>* by_angle) const {
+    using J = ceres::Jet<double, 1>;
+    const Sample& s = samples_[i];
+    const contact::ContactParameters<J> pj = contactParameters(p, wheel_, setup_).cast<J>();
+    const contact::WheelForces<J> f =
+        forcesAt(pj, s, J(entry_angle_rad), setup_.model, J(s.slip, 0));
+    ChannelValues g{f.fx.v[0], f.fz.v[0], f.my.v[0], 0.0};
+    if (setup_.source != DataSource::kLoad) return g;
+    // θ_f moves with s so that F_z stays W.
+    std::array<double, 3> partial{};
+    if (by_angle) {
+        partial = *by_angle;
+    } else {
+        const contact::WheelForces<J> t = forcesAt(pj, s, J(entry_angle_rad, 0), setup_.model);
+        partial = {t.fx.v[0], t.fz.v[0], t.my.v[0]};
+    }
+    if (!(partial[1] > 0.0)) return std::nullopt;
+    const double dtheta_ds = -g[kFzChannel] / partial[1];
+    g[kFxChannel] += partial[0] * dtheta_ds;
+    g[kMyChannel] += partial[2] * dtheta_ds;
+    g[kFzChannel] = 0.0;  // F_z = W at every slip
+    // h = r (1 − cos θ_f)(1 + S s), the factor's S only for s > 0 (Eq. S.1, slipSinkageFactor).
+    const double r_m = wheel_.radius_m, S = setup_.slip_sinkage_coefficient;
+    g[kSinkageChannel] =
+        contact::slipSinkageFactor(s.slip, S) * r_m * std::sin(entry_angle_rad) * dtheta_ds +
+        (S != 0.0 && s.slip > 0.0 ? r_m * (1.0 - std::cos(entry_angle_rad)) * S : 0.0);
+    return g;
+}
+
 bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelValues& sigma,
                                  double* r, double* jacobian) const {
     constexpr int n = kFullParameterCount;
@@ -246,10 +306,13 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
         const auto physical = toPhysical(u);
         std::copy(physical.begin(), physical.end(), p.begin());
     }
+    double entry_angle_rad = s.entry_angle_rad;
+    std::optional<std::array<double, 3>> by_angle;  // ∂(F_x, F_z, M_y)/∂θ_f, from the load's Jet
     if (!jacobian) {
-        const Prediction prediction = predict(i, p);
+        const Prediction prediction = predictAt(i, p, uncertainSlip(s) ? &by_angle : nullptr);
         if (!prediction.ok) return false;
         value = prediction.values;
+        entry_angle_rad = prediction.entry_angle_rad;
     } else if (setup_.source == DataSource::kEntryAngle) {
         using J = ceres::Jet<double, nj>;
         std::array<J, n> uj;
@@ -282,6 +345,8 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
                      setup_.model);
         const double dfz_dtheta = f.fz.v[nj];
         if (!(dfz_dtheta > 0.0)) return false;
+        entry_angle_rad = *root;
+        by_angle = {f.fx.v[nj], dfz_dtheta, f.my.v[nj]};
         std::array<double, n> partial_fz{};
         std::array<std::array<double, n>, 3> partial{};
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
@@ -318,6 +383,34 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
             for (int k = 0; k < n; ++k) jacobian[row * n + k] = derivative[c][k] * w;
         }
         ++row;
+    }
+    if (uncertainSlip(s)) {
+        const std::optional<ChannelValues> slope =
+            slipSlopeAt(i, p, entry_angle_rad, by_angle ? &*by_angle : nullptr);
+        if (!slope) return false;
+        std::array<double, kChannelCount> g{};  // ∂r/∂s of the rows
+        row = 0;
+        for (int c = 0; c < kChannelCount; ++c) {
+            if (active[c]) g[row++] = (*slope)[c] / sigma[c];
+        }
+        double norm = 0.0;
+        for (int a = 0; a < row; ++a) norm += g[a] * g[a];
+        norm = std::sqrt(norm);
+        if (!std::isfinite(norm)) return false;
+        if (norm > 0.0) {
+            const double alpha = 1.0 - 1.0 / std::sqrt(1.0 + std::pow(*s.slip_std * norm, 2));
+            for (int a = 0; a < row; ++a) g[a] /= norm;
+            double along = 0.0;
+            for (int a = 0; a < row; ++a) along += g[a] * r[a];
+            for (int a = 0; a < row; ++a) r[a] -= alpha * g[a] * along;
+            if (jacobian) {
+                for (int k = 0; k < n; ++k) {
+                    double column = 0.0;
+                    for (int a = 0; a < row; ++a) column += g[a] * jacobian[a * n + k];
+                    for (int a = 0; a < row; ++a) jacobian[a * n + k] -= alpha * g[a] * column;
+                }
+            }
+        }
     }
     return true;
 }

@@ -116,10 +116,31 @@ public:
     /// (parameters.h), and, when `jacobian` is not null, their derivatives ∂r/∂u (row-major,
     /// residualCount(i) × kFullParameterCount). False when the load cannot be carried. Keeps the
     /// last θ_f of each sample as the next solve's start (not thread-safe).
+    ///
+    /// A sample with a slip of standard error σ_s (`Sample::slip_std`, errors in variables)
+    /// has residuals of covariance I + σ_s² g gᵀ, g = ∂r/∂s (slipSlope over σ): r and the
+    /// Jacobian come whitened by its inverse square root W = I − α ĝ ĝᵀ,
+    /// α = 1 − 1/√(1 + σ_s² |g|²), so that ‖r‖² = eᵀ (I + σ_s² g gᵀ)⁻¹ e (W taken as a constant
+    /// of u in the Jacobian; docs/identification.md §8, "An uncertain slip").
     bool residuals(std::size_t i, const double* u, const ChannelValues& sigma, double* r,
                    double* jacobian) const;
 
+    /// ∂(prediction)/∂s of sample i's channels at SI parameters p [channel units per unit of
+    /// slip], exact (a Jet along s); with θ_f solved from the load, through
+    /// dθ_f/ds = −(∂F_z/∂s)/(∂F_z/∂θ_f), so the F_z entry is 0. nullopt when the load cannot be
+    /// carried.
+    std::optional<ChannelValues> slipSlope(std::size_t i, const ParameterVector& p) const;
+
 private:
+    // predict; with θ_f solved from the load, `by_angle` (if given) gets ∂(F_x, F_z, M_y)/∂θ_f
+    // at the root when the solve's last Jet was there (Newton), else is left empty.
+    Prediction predictAt(std::size_t i, const ParameterVector& p,
+                         std::optional<std::array<double, 3>>* by_angle) const;
+    // slipSlope at the entry angle θ_f; `by_angle` ∂(F_x, F_z, M_y)/∂θ_f when the caller has
+    // them (else one more Jet evaluation along θ_f). nullopt when ∂F_z/∂θ_f ≤ 0.
+    std::optional<ChannelValues> slipSlopeAt(std::size_t i, const ParameterVector& p,
+                                             double entry_angle_rad,
+                                             const std::array<double, 3>* by_angle) const;
     std::array<double, 3> shearLimitDerivative(std::size_t i, const ParameterVector& p,
                                                double entry_angle_rad) const;
 

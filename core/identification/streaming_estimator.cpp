@@ -24,23 +24,7 @@ struct Member {
     Eigen::VectorXd r;
     Eigen::Matrix<double, Eigen::Dynamic, kP> j;
     Vector at;  // where r and j were evaluated
-    // Errors in variables: with a slip of standard error σ_s the residual's covariance is
-    // I + σ_s² g gᵀ (g = ∂r/∂s); r and j are whitened by W = I − α ĝ ĝᵀ,
-    // α = 1 − 1/√(1 + σ_s² |g|²), so that ‖W r‖² = rᵀ (I + σ_s² g gᵀ)⁻¹ r. Empty: W = I.
-    Eigen::VectorXd slip_direction;  // ĝ
-    double slip_alpha = 0.0;         // α
-
-    void whiten(double* r_data, Eigen::Index rows) const {
-        if (slip_alpha == 0.0) return;
-        Eigen::Map<Eigen::VectorXd> v(r_data, rows);
-        v -= slip_alpha * slip_direction * slip_direction.dot(v);
-    }
-    // r and j, as just evaluated.
-    void whitenLinearisation() {
-        if (slip_alpha == 0.0) return;
-        whiten(r.data(), r.size());
-        j -= slip_alpha * slip_direction * (slip_direction.transpose() * j);
-    }
+    // A sample with an uncertain slip comes whitened from ObservationModel::residuals.
 };
 
 }  // namespace
@@ -98,33 +82,8 @@ struct StreamingEstimator::State {
         for (int k = 0; k < kP; ++k) {
             if (fixed[k]) m.j.col(k).setZero();
         }
-        m.whitenLinearisation();
         m.at = u;
         return true;
-    }
-
-    // g = ∂r/∂s of a sample at the estimate (central difference, one-sided at the slip's
-    // bounds), for the errors-in-variables whitening of a sample whose slip is uncertain.
-    // Sets the member's ĝ and α; leaves W = I when the sample has no σ_s or g cannot be had.
-    void slipWhitening(Member& m, const Sample& sample, const double* at) const {
-        if (!sample.slip_std || !(*sample.slip_std > 0.0)) return;
-        constexpr double kStep = 1e-3;
-        const double up = std::min(sample.slip + kStep, 0.999);
-        const double down = std::max(sample.slip - kStep, -0.999);
-        Eigen::VectorXd r_up(m.r.size()), r_down(m.r.size());
-        for (auto [slip, out] : {std::pair{up, &r_up}, std::pair{down, &r_down}}) {
-            Sample shifted = sample;
-            shifted.slip = slip;
-            const std::unique_ptr<ObservationModel> model = modelOf(shifted);
-            if (!model || model->residualCount(0) != m.r.size() ||
-                !model->residuals(0, at, sigma, out->data(), nullptr))
-                return;
-        }
-        const Eigen::VectorXd g = (r_up - r_down) / (up - down);
-        const double norm = g.norm();
-        if (!std::isfinite(norm) || norm == 0.0) return;
-        m.slip_direction = g / norm;
-        m.slip_alpha = 1.0 - 1.0 / std::sqrt(1.0 + std::pow(*sample.slip_std * norm, 2));
     }
 
     // The inverse of an information matrix on some parameters (zero elsewhere).
@@ -161,7 +120,6 @@ struct StreamingEstimator::State {
         std::vector<double> r(kChannelCount);
         for (const Member& m : window) {
             if (!m.model->residuals(0, v.data(), sigma, r.data(), nullptr)) return INFINITY;
-            m.whiten(r.data(), m.model->residualCount(0));
             for (int c = 0; c < m.model->residualCount(0); ++c) value += r[c] * r[c];
         }
         return value;
@@ -351,9 +309,6 @@ struct StreamingEstimator::State {
             for (int c = 0; c < kP; ++c) {
                 if (fixed[c]) m.j.col(c).setZero();
             }
-            m.slip_alpha = 0.0;
-            slipWhitening(m, segment[k].sample, at.data());
-            m.whitenLinearisation();
             const Eigen::MatrixXd innovation =
                 m.j * p * m.j.transpose() + Eigen::MatrixXd::Identity(rows[k], rows[k]);
             nis[k] = m.r.dot(innovation.ldlt().solve(m.r));
@@ -490,10 +445,8 @@ StreamEstimate StreamingEstimator::push(const Sample& sample) {
     Member member;
     member.model = s.modelOf(sample);
     if (!member.model || !s.linearise(member)) return finish();  // cannot be predicted: skipped
-    // An uncertain slip: the residual and its Jacobian whitened by I + σ_s² g gᵀ, so the
+    // An uncertain slip comes whitened by I + σ_s² g gᵀ (ObservationModel::residuals), so the
     // innovation below is ε = rᵀ (H P Hᵀ + I + σ_s² g gᵀ)⁻¹ r in the whitened coordinates.
-    s.slipWhitening(member, sample, s.u.data());
-    member.whitenLinearisation();
     // The information fades; the covariance before this sample grows with it.
     const double keep = 1.0 - 1.0 / s.options.memory_samples;
     s.arrival_information *= keep;

@@ -133,7 +133,8 @@ TEST(StreamingEstimator, SoilBorderIsConfirmedWithinTenSamples) {
 // samples), 1 % noise as above. The initialisation then sees only the first sweep's low slips,
 // and every later sample lies at a slip or load it has not seen.
 std::vector<Sample> monotone(const contact::ContactParameters<double>& soil,
-                             const std::vector<double>& loads, int per_load, std::uint64_t seed) {
+                             const std::vector<double>& loads, int per_load, std::uint64_t seed,
+                             double noise_scale = 1.0) {
     boost::random::mt19937_64 engine(seed);
     boost::random::normal_distribution<double> normal(0.0, 1.0);
     std::vector<Sample> out;
@@ -143,9 +144,9 @@ std::vector<Sample> monotone(const contact::ContactParameters<double>& soil,
         for (int i = 0; i < per_load; ++i) spec.slips.push_back(0.9 * i / (per_load - 1));
         for (Sample s : synthesize(soil, spec).data.samples) {
             s.load_n = load;
-            s.fx_n += kNoise[0] * normal(engine);
-            s.fz_n += kNoise[1] * normal(engine);
-            s.my_nm += kNoise[2] * normal(engine);
+            s.fx_n += noise_scale * kNoise[0] * normal(engine);
+            s.fz_n += noise_scale * kNoise[1] * normal(engine);
+            s.my_nm += noise_scale * kNoise[2] * normal(engine);
             out.push_back(s);
         }
     }
@@ -241,6 +242,34 @@ TEST(StreamingEstimator, AnUncertainSlipIsCarriedIntoTheInnovations) {
             EXPECT_GT(nis / n, 1.4);
         }
     }
+}
+
+// Per-load monotone sweeps (three loads × 30 slips of sandy loam, then three × 20 of clayey soil)
+// of exact forces whose slips are off by N(0, 0.01²), as a robot's slip estimate is. Declared
+// (`slip_std`), every fit weighs a sample by what its slip allows — the batch fits of the
+// initialisation, the refits and the confirmation as the streaming update does — and the border
+// is found once, in its place; undeclared, the same sandy loam alone raises false changes.
+TEST(StreamingEstimator, UncertainSlipsOfPerLoadSweepsRaiseNoFalseChangeInTheBatchFits) {
+    constexpr double kSlipStd = 0.01;
+    int undeclared_changes = 0;
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE(seed);
+        boost::random::mt19937_64 engine(seed + 100);
+        boost::random::normal_distribution<double> normal(0.0, kSlipStd);
+        std::vector<Sample> sand = monotone(soils::sandyLoam(), {30.0, 58.86, 90.0}, 30, seed, 0);
+        std::vector<Sample> clay =
+            monotone(soils::clayeySoil(0.02), {30.0, 58.86, 90.0}, 20, seed + 10, 0);
+        for (auto* part : {&sand, &clay}) {
+            for (Sample& s : *part) s.slip += normal(engine);
+        }
+        StreamingEstimator plain(kWheelA, estimatorOptions());
+        for (const Sample& s : sand) undeclared_changes += plain.push(s).change_detected;
+        for (auto* part : {&sand, &clay}) {
+            for (Sample& s : *part) s.slip_std = kSlipStd;
+        }
+        expectOneBorder(sand, clay);
+    }
+    EXPECT_GE(undeclared_changes, 3);  // 5 measured
 }
 
 TEST(StreamingEstimator, GivenNoiseLevelsAreKept) {
