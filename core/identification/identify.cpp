@@ -475,7 +475,16 @@ private:
                                                            best.u[k] >= upper[k] - margin);
         }
         const int dof = std::max(1, report_.residuals - free_);
-        const double scale = report_.noise_estimated ? report_.chi2 / dof : 1.0;
+        double scale = report_.noise_estimated ? report_.chi2 / dof : 1.0;
+        // Estimated levels come from the unwhitened residuals, which hold the scatter of
+        // uncertain slips that the whitening carries again (docs/identification.md §8, "An
+        // uncertain slip"): χ² then falls below its degrees of freedom for that reason alone, and
+        // does not shrink the covariance.
+        if (report_.noise_estimated && std::any_of(all_.begin(), all_.end(), [this](std::size_t i) {
+                const std::optional<double> slip_std = model_->sample(i).slip_std;
+                return slip_std && *slip_std > 0.0;
+            }))
+            scale = std::max(scale, 1.0);
         std::vector<bool> at_bound(report_.at_bound.begin(), report_.at_bound.end());
         const detail::AtSolution at = detail::analyseSolution(
             objective_, all_, best.u, at_bound, scale, options_.correlation_flag, 0.5);

@@ -8,8 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <boost/random/mersenne_twister.hpp>
+#include <boost/random/normal_distribution.hpp>
 #include <cmath>
 
+#include "core/identification/identify.h"
 #include "core/identification/synthetic.h"
 #include "tests/core/contact/test_soils.h"
 #include "tests/core/identification/identification_test_support.h"
@@ -148,6 +151,43 @@ TEST(ObservationModel, ASlipWithoutAStandardErrorIsTakenAsExact) {
         ASSERT_TRUE(declared_zero.residuals(i, u.data(), sigma, b.data(), jb.data()));
         EXPECT_EQ(a, b);
         EXPECT_EQ(ja, jb);
+    }
+}
+
+// A batch fit with its noise estimated: the levels come from the unwhitened residuals, which
+// hold the uncertain slips' scatter the whitening carries again, so χ² falls below its degrees
+// of freedom; the covariance is then not shrunk by χ²/dof (docs/identification.md §8): the std
+// are those of the same fit with the estimated levels given (scale 1), not smaller.
+TEST(ObservationModel, UncertainSlipsDoNotShrinkAnEstimatedNoiseFitsCovariance) {
+    SyntheticSpec spec;
+    spec.loads_n = {30.0, 58.86, 90.0};
+    for (int i = 0; i < 40; ++i) spec.slips.push_back(0.05 + 0.8 * i / 39.0);
+    spec.noise.fx.relative = 0.01;
+    spec.noise.fz.relative = 0.01;
+    spec.noise.my.relative = 0.01;
+    DataSet data = synthesize(soils::sandyLoam(), spec).data;
+    boost::random::mt19937_64 engine(3);
+    boost::random::normal_distribution<double> normal(0.0, 0.01);
+    for (Sample& s : data.samples) {
+        s.slip += normal(engine);
+        s.slip_std = 0.01;
+    }
+    IdentifyOptions o;
+    o.max_shear_deformation_m = 0.02;
+    const IdentificationReport estimated = identify(data, kWheelA, o);
+    ASSERT_TRUE(estimated.usable()) << estimated.message;
+    ASSERT_TRUE(estimated.noise_estimated);
+    const int dof = estimated.residuals - 7;
+    EXPECT_LT(estimated.chi2, 0.9 * dof);  // the double-counted scatter
+    o.noise = estimated.noise;
+    const IdentificationReport given = identify(data, kWheelA, o);
+    ASSERT_TRUE(given.usable()) << given.message;
+    for (int k = 0; k < kJmax; ++k) {
+        EXPECT_NEAR(estimated.parameters[k], given.parameters[k],
+                    1e-6 * std::abs(given.parameters[k]));
+        EXPECT_NEAR(estimated.uncertainty.std[k], given.uncertainty.std[k],
+                    1e-3 * given.uncertainty.std[k])
+            << parameterInfo()[k].name;
     }
 }
 
