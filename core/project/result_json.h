@@ -96,9 +96,14 @@ namespace terra::project::saved {
 ///
 /// and fieldsJson(r) writes the object, fieldsFrom<S>(json) reads it back (every key required;
 /// a missing key or a value of the wrong kind throws std::invalid_argument naming the key path,
-/// "passes: 2: forces: fx: \"x\" is not a number").
+/// "passes: 2: forces: fx: \"x\" is not a number"). A key that files written before it lack is
+/// listed as `v("key", member, saved::kSince)`: absent, the member keeps its default.
 template <typename S>
 struct Fields;
+
+/// A key that came after the first files of its struct: a file without it still reads.
+enum class Presence { kRequired, kSince };
+inline constexpr Presence kSince = Presence::kSince;
 
 /// The last value of an enumeration saved as its number (specialise for each one saved): a
 /// number outside [0, last] is refused.
@@ -118,7 +123,7 @@ class FieldsWriter {
 public:
     explicit FieldsWriter(nlohmann::json& out) : out_(&out) {}
     template <typename T>
-    void operator()(const char* key, const T& value) {
+    void operator()(const char* key, const T& value, Presence = Presence::kRequired) {
         (*out_)[key] = Value<T>::write(value);
     }
 
@@ -130,7 +135,8 @@ class FieldsReader {
 public:
     explicit FieldsReader(const nlohmann::json& in) : in_(&in) {}
     template <typename T>
-    void operator()(const char* key, T& value) {
+    void operator()(const char* key, T& value, Presence presence = Presence::kRequired) {
+        if (presence == Presence::kSince && !in_->contains(key)) return;
         readKey(*in_, key, [&value](const nlohmann::json& j) {
             Value<T>::read(j, value);
             return 0;

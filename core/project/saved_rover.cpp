@@ -4,151 +4,112 @@
 
 #include "core/project/result_json.h"
 
+namespace terra::project::saved {
+
+template <>
+struct Fields<scenario::MissionOutcome> {
+    template <typename V>
+    static void visit(V& v, scenario::MissionOutcome& m) {
+        v("completed", m.completed);
+        v("path_length_m", m.path_length_m);
+        v("progress_m", m.progress_m);
+        v("error_rms_m", m.error_rms_m);
+        v("error_max_m", m.error_max_m);
+        v("time_s", m.time_s);
+    }
+};
+
+template <>
+struct Fields<scenario::Summary> {
+    template <typename V>
+    static void visit(V& v, scenario::Summary& s) {
+        v("duration_s", s.duration_s);
+        v("x_m", s.x_m);
+        v("y_m", s.y_m);
+        v("yaw_rad", s.yaw_rad);
+        v("distance_m", s.distance_m);
+        v("mean_slip", s.mean_slip);
+        v("energy_j", s.energy_j);
+        v("dissipated_j", s.dissipated_j);
+        v("kinetic_change_j", s.kinetic_change_j);
+        v("potential_change_j", s.potential_change_j);
+        v("energy_balance_error", s.energy_balance_error);
+        v("max_sinkage_m", s.max_sinkage_m);
+        v("sunk_steps", s.sunk_steps);
+        v("steps", s.steps);
+        // The traction metrics came with the slip controllers, the rest with the field rover.
+        v("energy_per_m_j", s.energy_per_m_j, kSince);
+        v("mean_efficiency", s.mean_efficiency, kSince);
+        v("slip_tracking_rms", s.slip_tracking_rms, kSince);
+        v("traction_limited_switches", s.traction_limited_switches, kSince);
+        v("traction_limited_s", s.traction_limited_s, kSince);
+        v("real_time_factor", s.real_time_factor, kSince);
+        v("cells_touched", s.cells_touched, kSince);
+        v("mission", s.mission, kSince);  // null: a run without a mission
+    }
+};
+
+template <>
+struct Fields<scenario::TractionMetrics> {
+    template <typename V>
+    static void visit(V& v, scenario::TractionMetrics& t) {
+        v("drive_energy_j", t.drive_energy_j);
+        v("wheel_output_j", t.wheel_output_j);
+        v("wheel_input_j", t.wheel_input_j);
+        v("drawbar_work_j", t.drawbar_work_j);
+        v("slip_error_sq_sum", t.slip_error_sq_sum);
+        v("slip_error_count", t.slip_error_count);
+        v("rear_sinkage_sum_m", t.rear_sinkage_sum_m);
+        v("rear_sinkage_count", t.rear_sinkage_count);
+        v("border_time_s", t.border_time_s, kSince);
+        v("settling_time_s", t.settling_time_s, kSince);
+        v("settling_band_time_s", t.settling_band_time_s, kSince);
+        v("settle_band", t.settle_band, kSince);
+        v("limit_switches", t.limit_switches, kSince);
+        v("limited_time_s", t.limited_time_s, kSince);
+        // Not saved: `plans` (each with its request's soil and posterior); the set-points they
+        // gave are the series' <wheel>_slip_plan columns.
+    }
+};
+
+/// A map of a field run (its coordinate system is the scenario's, not saved).
+template <>
+struct Fields<field::Raster> {
+    template <typename V>
+    static void visit(V& v, field::Raster& r) {
+        v("cols", r.cols);
+        v("rows", r.rows);
+        v("x_min_m", r.x_min_m);
+        v("y_min_m", r.y_min_m);
+        v("cell_m", r.cell_m);
+        v("values", r.values);
+    }
+};
+
+}  // namespace terra::project::saved
+
 namespace terra::project {
 namespace {
 
 using nlohmann::json;
+using saved::fieldsFrom;
+using saved::fieldsJson;
 using saved::number;
 using saved::numberAt;
-using saved::optionalAt;
-using saved::optionalJson;
 using saved::readKey;
+
+using Numbers = saved::Value<std::vector<double>>;
 
 constexpr const char* kStatus[] = {"completed", "cancelled", "diverged"};
 
-json missionJson(const std::optional<scenario::MissionOutcome>& m) {
-    if (!m) return nullptr;
-    return {{"completed", m->completed},
-            {"path_length_m", number(m->path_length_m)},
-            {"progress_m", number(m->progress_m)},
-            {"error_rms_m", number(m->error_rms_m)},
-            {"error_max_m", number(m->error_max_m)},
-            {"time_s", optionalJson(m->time_s)}};
-}
-
-std::optional<scenario::MissionOutcome> missionFrom(const json& j) {
-    // A file written before missions has no key; a run without a mission null.
-    if (!j.contains("mission") || j.at("mission").is_null()) return std::nullopt;
-    const json& m = j.at("mission");
-    scenario::MissionOutcome o;
-    o.completed = m.at("completed").get<bool>();
-    o.path_length_m = numberAt(m, "path_length_m");
-    o.progress_m = numberAt(m, "progress_m");
-    o.error_rms_m = numberAt(m, "error_rms_m");
-    o.error_max_m = numberAt(m, "error_max_m");
-    o.time_s = optionalAt(m, "time_s");
-    return o;
-}
-
-json summaryJson(const scenario::Summary& s) {
-    return {{"duration_s", number(s.duration_s)},
-            {"x_m", number(s.x_m)},
-            {"y_m", number(s.y_m)},
-            {"yaw_rad", number(s.yaw_rad)},
-            {"distance_m", number(s.distance_m)},
-            {"mean_slip", saved::arrayJson(s.mean_slip)},
-            {"energy_j", number(s.energy_j)},
-            {"dissipated_j", number(s.dissipated_j)},
-            {"kinetic_change_j", number(s.kinetic_change_j)},
-            {"potential_change_j", number(s.potential_change_j)},
-            {"energy_balance_error", number(s.energy_balance_error)},
-            {"max_sinkage_m", number(s.max_sinkage_m)},
-            {"sunk_steps", s.sunk_steps},
-            {"steps", s.steps},
-            {"energy_per_m_j", optionalJson(s.energy_per_m_j)},
-            {"mean_efficiency", optionalJson(s.mean_efficiency)},
-            {"slip_tracking_rms", optionalJson(s.slip_tracking_rms)},
-            {"real_time_factor", optionalJson(s.real_time_factor)},
-            {"cells_touched", s.cells_touched ? json(*s.cells_touched) : json(nullptr)},
-            {"mission", missionJson(s.mission)}};
-}
-
-scenario::Summary summaryFrom(const json& j) {
-    scenario::Summary s;
-    s.duration_s = numberAt(j, "duration_s");
-    s.x_m = numberAt(j, "x_m");
-    s.y_m = numberAt(j, "y_m");
-    s.yaw_rad = numberAt(j, "yaw_rad");
-    s.distance_m = numberAt(j, "distance_m");
-    s.mean_slip = saved::arrayFrom<dynamics::kWheelCount>(j.at("mean_slip"));
-    s.energy_j = numberAt(j, "energy_j");
-    s.dissipated_j = numberAt(j, "dissipated_j");
-    s.kinetic_change_j = numberAt(j, "kinetic_change_j");
-    s.potential_change_j = numberAt(j, "potential_change_j");
-    s.energy_balance_error = numberAt(j, "energy_balance_error");
-    s.max_sinkage_m = numberAt(j, "max_sinkage_m");
-    s.sunk_steps = j.at("sunk_steps").get<int>();
-    s.steps = j.at("steps").get<long>();
-    s.energy_per_m_j = optionalAt(j, "energy_per_m_j");
-    s.mean_efficiency = optionalAt(j, "mean_efficiency");
-    s.slip_tracking_rms = optionalAt(j, "slip_tracking_rms");
-    // Both keys came with the field rover: a file written before them has neither.
-    s.real_time_factor = optionalAt(j, "real_time_factor");
-    if (const std::optional<double> cells = optionalAt(j, "cells_touched"))
-        s.cells_touched = static_cast<long>(*cells);
-    s.mission = missionFrom(j);
-    return s;
-}
-
-json tractionJson(const scenario::TractionMetrics& t) {
-    return {{"drive_energy_j", number(t.drive_energy_j)},
-            {"wheel_output_j", number(t.wheel_output_j)},
-            {"wheel_input_j", number(t.wheel_input_j)},
-            {"drawbar_work_j", number(t.drawbar_work_j)},
-            {"slip_error_sq_sum", number(t.slip_error_sq_sum)},
-            {"slip_error_count", t.slip_error_count},
-            {"rear_sinkage_sum_m", number(t.rear_sinkage_sum_m)},
-            {"rear_sinkage_count", t.rear_sinkage_count},
-            {"border_time_s", optionalJson(t.border_time_s)},
-            {"settling_time_s", optionalJson(t.settling_time_s)}};
-}
-
-scenario::TractionMetrics tractionFrom(const json& j) {
-    scenario::TractionMetrics t;
-    t.drive_energy_j = numberAt(j, "drive_energy_j");
-    t.wheel_output_j = numberAt(j, "wheel_output_j");
-    t.wheel_input_j = numberAt(j, "wheel_input_j");
-    t.drawbar_work_j = numberAt(j, "drawbar_work_j");
-    t.slip_error_sq_sum = numberAt(j, "slip_error_sq_sum");
-    t.slip_error_count = j.at("slip_error_count").get<long>();
-    t.rear_sinkage_sum_m = numberAt(j, "rear_sinkage_sum_m");
-    t.rear_sinkage_count = j.at("rear_sinkage_count").get<long>();
-    t.border_time_s = optionalAt(j, "border_time_s");
-    t.settling_time_s = optionalAt(j, "settling_time_s");
-    return t;
-}
-
 std::vector<double> numbersFrom(const json& j) {
-    if (!j.is_array()) throw std::invalid_argument("expected an array of numbers");
     std::vector<double> out;
-    out.reserve(j.size());
-    for (const json& v : j) out.push_back(saved::numberOf(v));
+    Numbers::read(j, out);
     return out;
-}
-
-json numbersJson(const std::vector<double>& values) {
-    json out = json::array();
-    for (double v : values) out.push_back(number(v));
-    return out;
-}
-
-json rasterJson(const field::Raster& r) {
-    return {{"cols", r.cols},
-            {"rows", r.rows},
-            {"x_min_m", number(r.x_min_m)},
-            {"y_min_m", number(r.y_min_m)},
-            {"cell_m", number(r.cell_m)},
-            {"values", numbersJson(r.values)}};
 }
 
 field::Raster rasterFrom(const json& j) {
-    field::Raster r;
-    r.cols = j.at("cols").get<int>();
-    r.rows = j.at("rows").get<int>();
-    r.x_min_m = numberAt(j, "x_min_m");
-    r.y_min_m = numberAt(j, "y_min_m");
-    r.cell_m = numberAt(j, "cell_m");
-    r.values = readKey(j, "values", numbersFrom);
+    field::Raster r = fieldsFrom<field::Raster>(j);
     if (r.cols < 0 || r.rows < 0 ||
         r.values.size() != static_cast<std::size_t>(r.cols) * static_cast<std::size_t>(r.rows))
         throw std::invalid_argument(std::to_string(r.values.size()) + " values for " +
@@ -160,13 +121,13 @@ field::Raster rasterFrom(const json& j) {
 // A field run's maps: the rasters by key (mapRasters) and the history.
 json mapsJson(const scenario::FieldMaps& m) {
     json rasters = json::object();
-    for (const auto& [key, raster] : scenario::mapRasters(m)) rasters[key] = rasterJson(*raster);
+    for (const auto& [key, raster] : scenario::mapRasters(m)) rasters[key] = fieldsJson(*raster);
     json values = json::object();
-    for (const auto& [key, v] : m.history.values) values[key] = numbersJson(v);
+    for (const auto& [key, v] : m.history.values) values[key] = Numbers::write(v);
     return {{"risk_depth_m", number(m.risk_depth_m)},
             {"rasters", std::move(rasters)},
             {"history",
-             {{"time_s", numbersJson(m.history.time_s)},
+             {{"time_s", Numbers::write(m.history.time_s)},
               {"cell", m.history.cell},
               {"values", std::move(values)}}}};
 }
@@ -220,9 +181,9 @@ json savedJson(const SavedRoverRun& r) {
     return {{"status", kStatus[static_cast<int>(r.run.status)]},
             {"message", r.run.message},
             {"series", saved::tableJson(r.run.series)},
-            {"summary", summaryJson(r.run.summary)},
+            {"summary", fieldsJson(r.run.summary)},
             {"streaming", saved::tableJson(r.run.streaming)},
-            {"traction", tractionJson(r.run.traction)},
+            {"traction", fieldsJson(r.run.traction)},
             {"scenario_name", r.scenario_name},
             {"scenario", r.scenario},
             {"maps", r.run.maps ? mapsJson(*r.run.maps) : json(nullptr)}};
@@ -244,9 +205,9 @@ Result<SavedRoverRun> savedRoverRunFromJson(const json& j, const std::string& wh
                                                               "or diverged"}};
         r.run.message = j.at("message").get<std::string>();
         r.run.series = readKey(j, "series", saved::tableFrom);
-        r.run.summary = readKey(j, "summary", summaryFrom);
+        r.run.summary = readKey(j, "summary", fieldsFrom<scenario::Summary>);
         r.run.streaming = readKey(j, "streaming", saved::tableFrom);
-        r.run.traction = readKey(j, "traction", tractionFrom);
+        r.run.traction = readKey(j, "traction", fieldsFrom<scenario::TractionMetrics>);
         // A patch run, or a file written before field runs kept their maps: none.
         if (j.contains("maps") && !j["maps"].is_null()) r.run.maps = readKey(j, "maps", mapsFrom);
         r.scenario_name = j.at("scenario_name").get<std::string>();

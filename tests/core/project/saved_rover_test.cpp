@@ -125,6 +125,60 @@ TEST(SavedRover, ACancelledRunStaysCancelledAndDamageIsNamed) {
     EXPECT_NE(refused.message().find("summary: x_m"), std::string::npos) << refused.message();
 }
 
+// The figures a slip controller's run adds (docs/traction.md): the settling within the
+// posterior's band and the traction-limited mode's switches and raised time read back (they were
+// dropped before the saved summary was a declared field list); a file written before any of the
+// keys that came later reads, with them empty.
+TEST(SavedRover, AControlledRunKeepsItsSettlingAndTractionLimitedFigures) {
+    SavedRoverRun run;
+    run.run.series.columns = {"t_s"};
+    run.run.series.rows = {{0.0}};
+    scenario::Summary& m = run.run.summary;
+    m.traction_limited_switches = 3;
+    m.traction_limited_s = 11.5;
+    m.real_time_factor = 812.0;
+    m.cells_touched = 4321;
+    scenario::TractionMetrics& t = run.run.traction;
+    t.border_time_s = 5.4;
+    t.settling_time_s = 8.1;
+    t.settling_band_time_s = 6.25;
+    t.settle_band = 0.041;
+    t.limit_switches = 3;
+    t.limited_time_s = 11.5;
+    run.scenario = json::object();
+    const json saved = json::parse(savedJson(run).dump());
+    const Result<SavedRoverRun> read = savedRoverRunFromJson(saved, "rover");
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_EQ(read->run.summary.traction_limited_switches, 3);
+    EXPECT_EQ(read->run.summary.traction_limited_s, 11.5);
+    EXPECT_EQ(read->run.summary.cells_touched, 4321);
+    EXPECT_EQ(read->run.traction.settling_band_time_s, 6.25);
+    EXPECT_EQ(read->run.traction.settle_band, 0.041);
+    EXPECT_EQ(read->run.traction.limit_switches, 3);
+    EXPECT_EQ(read->run.traction.limited_time_s, 11.5);
+    EXPECT_EQ(read->run.traction.border_time_s, 5.4);
+
+    json old = saved;
+    for (const char* key :
+         {"energy_per_m_j", "mean_efficiency", "slip_tracking_rms", "traction_limited_switches",
+          "traction_limited_s", "real_time_factor", "cells_touched", "mission"})
+        ASSERT_EQ(old["summary"].erase(key), 1u) << key;
+    for (const char* key : {"border_time_s", "settling_time_s", "settling_band_time_s",
+                            "settle_band", "limit_switches", "limited_time_s"})
+        ASSERT_EQ(old["traction"].erase(key), 1u) << key;
+    const Result<SavedRoverRun> before = savedRoverRunFromJson(old, "rover");
+    ASSERT_TRUE(before.ok()) << before.message();
+    EXPECT_FALSE(before->run.summary.traction_limited_s);
+    EXPECT_FALSE(before->run.summary.cells_touched);
+    EXPECT_FALSE(before->run.traction.settling_band_time_s);
+    EXPECT_EQ(before->run.traction.drive_energy_j, run.run.traction.drive_energy_j);
+    // A key every file has stays required.
+    old["summary"].erase("x_m");
+    const Result<SavedRoverRun> damaged = savedRoverRunFromJson(old, "rover");
+    ASSERT_FALSE(damaged.ok());
+    EXPECT_NE(damaged.message().find("summary: x_m"), std::string::npos) << damaged.message();
+}
+
 // A field run keeps its maps and their history (cropped to the driven area, as the rover panel
 // saves them): read back, every raster and every passage is the same, so the studio draws the
 // layers and scrubs them without running again. A file from before (no "maps") reads without.
