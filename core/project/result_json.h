@@ -110,6 +110,12 @@ inline constexpr Presence kSince = Presence::kSince;
 template <typename E>
 struct EnumLast;
 
+/// A struct saved compactly, as the list of its Fields' values in their order ([n, sweeps, k, F,
+/// share, p] for a trend test) rather than an object: specialise as std::true_type next to its
+/// Fields. The keys then only name a wrong value in messages.
+template <typename S>
+struct Compact : std::false_type {};
+
 /// How one member is saved: numbers by `number`, tables by tableJson, lists and optionals of
 /// any of these, enumerations as their number, and structs by their Fields. Specialise for a
 /// type that has its own JSON form (a soil profile).
@@ -147,21 +153,77 @@ private:
     const nlohmann::json* in_;
 };
 
+/// Compact structs: the values in order, and back (the count checked).
+class PositionalWriter {
+public:
+    explicit PositionalWriter(nlohmann::json& out) : out_(&out) {}
+    template <typename T>
+    void operator()(const char*, const T& value, Presence = Presence::kRequired) {
+        out_->push_back(Value<T>::write(value));
+    }
+
+private:
+    nlohmann::json* out_;
+};
+
+class PositionalReader {
+public:
+    explicit PositionalReader(const nlohmann::json& in) : in_(&in) {}
+    template <typename T>
+    void operator()(const char* key, T& value, Presence = Presence::kRequired) {
+        const std::size_t i = next_++;
+        if (i >= in_->size())
+            throw std::invalid_argument(std::string(key) + ": missing (value " +
+                                        std::to_string(i + 1) + ")");
+        readKey(*in_, i, key, value);
+    }
+    std::size_t read() const { return next_; }
+
+private:
+    static void readKey(const nlohmann::json& in, std::size_t i, const char* key, auto& value) {
+        try {
+            Value<std::decay_t<decltype(value)>>::read(in[i], value);
+        } catch (const std::exception& e) {
+            throw std::invalid_argument(std::string(key) + ": " + e.what());
+        }
+    }
+    const nlohmann::json* in_;
+    std::size_t next_ = 0;
+};
+
 template <typename S>
 nlohmann::json fieldsJson(const S& s) {
-    nlohmann::json out = nlohmann::json::object();
-    FieldsWriter w(out);
-    // One list for reading and writing: writing changes nothing.
-    Fields<S>::visit(w, const_cast<S&>(s));
-    return out;
+    if constexpr (Compact<S>::value) {
+        nlohmann::json out = nlohmann::json::array();
+        PositionalWriter w(out);
+        Fields<S>::visit(w, const_cast<S&>(s));
+        return out;
+    } else {
+        nlohmann::json out = nlohmann::json::object();
+        FieldsWriter w(out);
+        // One list for reading and writing: writing changes nothing.
+        Fields<S>::visit(w, const_cast<S&>(s));
+        return out;
+    }
 }
 
 template <typename S>
 S fieldsFrom(const nlohmann::json& json) {
-    if (!json.is_object()) throw std::invalid_argument(json.dump() + " is not an object");
     S s{};
-    FieldsReader r(json);
-    Fields<S>::visit(r, s);
+    if constexpr (Compact<S>::value) {
+        std::size_t count = 0;
+        auto counter = [&count](const char*, auto&&...) { ++count; };
+        Fields<S>::visit(counter, s);
+        if (!json.is_array() || json.size() != count)
+            throw std::invalid_argument(json.dump() + ": expected a list of " +
+                                        std::to_string(count) + " values");
+        PositionalReader r(json);
+        Fields<S>::visit(r, s);
+    } else {
+        if (!json.is_object()) throw std::invalid_argument(json.dump() + " is not an object");
+        FieldsReader r(json);
+        Fields<S>::visit(r, s);
+    }
     return s;
 }
 
@@ -178,6 +240,10 @@ template <typename T>
 struct IsArray : std::false_type {};
 template <typename T, std::size_t N>
 struct IsArray<std::array<T, N>> : std::true_type {};
+template <typename T>
+struct IsPair : std::false_type {};
+template <typename A, typename B>
+struct IsPair<std::pair<A, B>> : std::true_type {};
 }  // namespace detail
 
 template <typename T, typename Enable>
@@ -193,6 +259,9 @@ nlohmann::json Value<T, Enable>::write(const T& value) {
         return tableJson(value);
     } else if constexpr (detail::IsOptional<T>::value) {
         return value ? Value<typename T::value_type>::write(*value) : nlohmann::json(nullptr);
+    } else if constexpr (detail::IsPair<T>::value) {  // [first, second]
+        return nlohmann::json::array({Value<typename T::first_type>::write(value.first),
+                                      Value<typename T::second_type>::write(value.second)});
     } else if constexpr (detail::IsVector<T>::value || detail::IsArray<T>::value) {
         nlohmann::json out = nlohmann::json::array();
         for (const auto& item : value)
@@ -227,6 +296,11 @@ void Value<T, Enable>::read(const nlohmann::json& json, T& value) {
             Value<typename T::value_type>::read(json, inner);
             value = std::move(inner);
         }
+    } else if constexpr (detail::IsPair<T>::value) {
+        if (!json.is_array() || json.size() != 2)
+            throw std::invalid_argument(json.dump() + " is not a pair");
+        Value<typename T::first_type>::read(json[0], value.first);
+        Value<typename T::second_type>::read(json[1], value.second);
     } else if constexpr (detail::IsVector<T>::value) {
         if (!json.is_array()) throw std::invalid_argument(json.dump() + " is not a list");
         value.clear();

@@ -30,18 +30,6 @@ struct Value<identification::IdentificationReport> {
     }
 };
 
-/// A point of a χ² profile: [x, χ²].
-template <>
-struct Value<std::pair<double, double>> {
-    static nlohmann::json write(const std::pair<double, double>& p) {
-        return nlohmann::json::array({number(p.first), number(p.second)});
-    }
-    static void read(const nlohmann::json& json, std::pair<double, double>& p) {
-        const std::array<double, 2> xy = arrayFrom<2>(json);
-        p = {xy[0], xy[1]};
-    }
-};
-
 template <>
 struct Fields<analysis::ChannelMetrics> {
     template <typename V>
