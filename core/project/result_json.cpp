@@ -34,13 +34,6 @@ double numberAt(const json& j, const char* key) {
     }
 }
 
-json optionalJson(const std::optional<double>& v) { return v ? number(*v) : json(nullptr); }
-
-std::optional<double> optionalAt(const json& j, const char* key) {
-    if (!j.contains(key) || j.at(key).is_null()) return std::nullopt;
-    return numberAt(j, key);
-}
-
 json tableJson(const Table& table) {
     json rows = json::array();
     for (const std::vector<double>& row : table.rows) {

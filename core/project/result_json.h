@@ -29,10 +29,6 @@ double numberOf(const nlohmann::json& v);
 /// `json.at(key)` read by numberOf.
 double numberAt(const nlohmann::json& json, const char* key);
 
-nlohmann::json optionalJson(const std::optional<double>& v);  ///< null when empty
-/// Absent or null: empty (an optional NaN is not written: `number` of NaN is null too).
-std::optional<double> optionalAt(const nlohmann::json& json, const char* key);
-
 nlohmann::json tableJson(const Table& table);
 Table tableFrom(const nlohmann::json& json);
 
@@ -40,33 +36,6 @@ nlohmann::json matrixJson(const Eigen::MatrixXd& m);
 Eigen::MatrixXd matrixFrom(const nlohmann::json& json);
 nlohmann::json vectorJson(const Eigen::VectorXd& v);
 Eigen::VectorXd vectorFrom(const nlohmann::json& json);
-
-template <std::size_t N>
-nlohmann::json arrayJson(const std::array<double, N>& values) {
-    nlohmann::json out = nlohmann::json::array();
-    for (double v : values) out.push_back(number(v));
-    return out;
-}
-
-/// Exactly N numbers; throws for another count.
-template <std::size_t N>
-std::array<double, N> arrayFrom(const nlohmann::json& json) {
-    if (!json.is_array() || json.size() != N)
-        throw std::invalid_argument("expected " + std::to_string(N) + " numbers");
-    std::array<double, N> out{};
-    for (std::size_t i = 0; i < N; ++i) out[i] = numberOf(json[i]);
-    return out;
-}
-
-/// Exactly N booleans; throws for another count.
-template <std::size_t N>
-std::array<bool, N> flagsFrom(const nlohmann::json& json) {
-    if (!json.is_array() || json.size() != N)
-        throw std::invalid_argument("expected " + std::to_string(N) + " booleans");
-    std::array<bool, N> out{};
-    for (std::size_t i = 0; i < N; ++i) out[i] = json[i].get<bool>();
-    return out;
-}
 
 /// `f(json.at(key))`, the key named in the message of what it throws ("summary: x_m: …").
 template <typename F>

@@ -157,7 +157,9 @@ TEST(SavedResults, NumbersKeepTheirInfinitiesAndStrangersAreRefused) {
     EXPECT_EQ(saved::numberOf(json(2.5)), 2.5);
     EXPECT_THROW(saved::numberOf(json("nan")), std::invalid_argument);
     EXPECT_THROW(saved::numberOf(json(true)), std::invalid_argument);
-    EXPECT_THROW(saved::arrayFrom<3>(json{1.0, 2.0}), std::invalid_argument);
+    std::array<double, 3> three{};
+    using Three = saved::Value<std::array<double, 3>>;
+    EXPECT_THROW(Three::read(json{1.0, 2.0}, three), std::invalid_argument);
 }
 
 TEST(UncertaintyBandsRoundTrip, ReadsBackToTheSameBands) {
