@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/common/issue.h"
 #include "core/common/table.h"
 
 namespace terra::project::saved {
@@ -81,7 +82,8 @@ struct EnumLast;
 
 /// A struct saved compactly, as the list of its Fields' values in their order ([n, sweeps, k, F,
 /// share, p] for a trend test) rather than an object: specialise as std::true_type next to its
-/// Fields. The keys then only name a wrong value in messages.
+/// Fields. The keys then only name a wrong value in messages; every value is required (kSince
+/// has no meaning there: a compact form that grows is a new form).
 template <typename S>
 struct Compact : std::false_type {};
 
@@ -140,22 +142,14 @@ public:
     explicit PositionalReader(const nlohmann::json& in) : in_(&in) {}
     template <typename T>
     void operator()(const char* key, T& value, Presence = Presence::kRequired) {
-        const std::size_t i = next_++;
-        if (i >= in_->size())
-            throw std::invalid_argument(std::string(key) + ": missing (value " +
-                                        std::to_string(i + 1) + ")");
-        readKey(*in_, i, key, value);
-    }
-    std::size_t read() const { return next_; }
-
-private:
-    static void readKey(const nlohmann::json& in, std::size_t i, const char* key, auto& value) {
         try {
-            Value<std::decay_t<decltype(value)>>::read(in[i], value);
+            Value<T>::read(in_->at(next_++), value);
         } catch (const std::exception& e) {
             throw std::invalid_argument(std::string(key) + ": " + e.what());
         }
     }
+
+private:
     const nlohmann::json* in_;
     std::size_t next_ = 0;
 };
@@ -291,5 +285,17 @@ void Value<T, Enable>::read(const nlohmann::json& json, T& value) {
         value = fieldsFrom<T>(json);
     }
 }
+
+/// An issue as [where, message] (a data file's skipped rows, a fit's issues).
+template <>
+struct Compact<Issue> : std::true_type {};
+template <>
+struct Fields<Issue> {
+    template <typename V>
+    static void visit(V& v, Issue& i) {
+        v("where", i.where);
+        v("message", i.message);
+    }
+};
 
 }  // namespace terra::project::saved

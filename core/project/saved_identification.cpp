@@ -15,6 +15,7 @@ template <>
 struct EnumLast<id::DataSource> {
     static constexpr id::DataSource value = id::DataSource::kLoad;
 };
+// The force model's only saved form (a second specialisation elsewhere would clash: keep it here).
 template <>
 struct EnumLast<contact::ContactModel> {
     static constexpr contact::ContactModel value = contact::ContactModel::kQuadratic;
@@ -27,18 +28,6 @@ struct Value<id::ParameterText> {
     static nlohmann::json write(const id::ParameterText& t) { return t.text; }
     static void read(const nlohmann::json& json, id::ParameterText& t) {
         t = id::ParameterText(json.get<std::string>());
-    }
-};
-
-// Compact: [where, message].
-template <>
-struct Compact<Issue> : std::true_type {};
-template <>
-struct Fields<Issue> {
-    template <typename V>
-    static void visit(V& v, Issue& i) {
-        v("where", i.where);
-        v("message", i.message);
     }
 };
 
@@ -388,6 +377,14 @@ json savedJson(const id::IdentificationReport& report) { return saved::fieldsJso
 
 id::IdentificationReport identificationReportFromJson(const json& j) {
     return saved::fieldsFrom<id::IdentificationReport>(j);
+}
+
+json saved::Value<id::IdentificationReport>::write(const id::IdentificationReport& report) {
+    return fieldsJson(report);
+}
+
+void saved::Value<id::IdentificationReport>::read(const json& j, id::IdentificationReport& report) {
+    report = fieldsFrom<id::IdentificationReport>(j);
 }
 
 json savedJson(const analysis::IdentificationResult& r) { return saved::fieldsJson(r); }

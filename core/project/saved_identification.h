@@ -15,6 +15,7 @@
 #include "core/analysis/identification.h"
 #include "core/analysis/streaming_identification.h"
 #include "core/common/issue.h"
+#include "core/project/result_json.h"
 
 namespace terra::project {
 
@@ -50,3 +51,16 @@ nlohmann::json savedJson(const SavedStream& stream);
 Result<SavedStream> savedStreamFromJson(const nlohmann::json& json, const std::string& where);
 
 }  // namespace terra::project
+
+namespace terra::project::saved {
+
+/// A fit's report inside another saved result (the calibration's, saved_validation.cpp) is written
+/// as savedJson(IdentificationReport) writes it: declared here, where every user sees it, and
+/// defined once in saved_identification.cpp.
+template <>
+struct Value<identification::IdentificationReport> {
+    static nlohmann::json write(const identification::IdentificationReport& report);
+    static void read(const nlohmann::json& json, identification::IdentificationReport& report);
+};
+
+}  // namespace terra::project::saved

@@ -37,7 +37,8 @@ struct Fields<scenario::Summary> {
         v("max_sinkage_m", s.max_sinkage_m);
         v("sunk_steps", s.sunk_steps);
         v("steps", s.steps);
-        // The traction metrics came with the slip controllers, the rest with the field rover.
+        // Optional keys the old reader also took absent (kSince): the first three have always
+        // been written; the rest came with the traction-limited mode and the field rover.
         v("energy_per_m_j", s.energy_per_m_j, kSince);
         v("mean_efficiency", s.mean_efficiency, kSince);
         v("slip_tracking_rms", s.slip_tracking_rms, kSince);

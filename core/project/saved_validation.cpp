@@ -19,17 +19,6 @@ struct Value<soil::SoilParameters> {
     }
 };
 
-/// A fit's report as the saved identification writes it (saved_identification.h).
-template <>
-struct Value<identification::IdentificationReport> {
-    static nlohmann::json write(const identification::IdentificationReport& r) {
-        return savedJson(r);
-    }
-    static void read(const nlohmann::json& json, identification::IdentificationReport& r) {
-        r = identificationReportFromJson(json);
-    }
-};
-
 template <>
 struct Fields<analysis::ChannelMetrics> {
     template <typename V>
@@ -95,6 +84,7 @@ struct Fields<analysis::ValidationResult> {
     template <typename V>
     static void visit(V& v, analysis::ValidationResult& r) {
         v("source", r.source);
+        v("wheel", r.wheel, kSince);  // not saved before: such a file reads with no name
         v("before", r.before);
         v("calibration", r.calibration);
         v("notes", r.notes);

@@ -139,6 +139,7 @@ TEST(SavedRover, AControlledRunKeepsItsSettlingAndTractionLimitedFigures) {
     m.real_time_factor = 812.0;
     m.cells_touched = 4321;
     scenario::TractionMetrics& t = run.run.traction;
+    t.drive_energy_j = 812.5;
     t.border_time_s = 5.4;
     t.settling_time_s = 8.1;
     t.settling_band_time_s = 6.25;
@@ -157,6 +158,9 @@ TEST(SavedRover, AControlledRunKeepsItsSettlingAndTractionLimitedFigures) {
     EXPECT_EQ(read->run.traction.limit_switches, 3);
     EXPECT_EQ(read->run.traction.limited_time_s, 11.5);
     EXPECT_EQ(read->run.traction.border_time_s, 5.4);
+    EXPECT_EQ(read->run.traction.settling_time_s, 8.1);
+    EXPECT_EQ(read->run.summary.real_time_factor, 812.0);
+    EXPECT_EQ(read->run.traction.drive_energy_j, 812.5);
 
     json old = saved;
     for (const char* key :

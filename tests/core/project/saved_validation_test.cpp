@@ -54,6 +54,10 @@ TEST(SavedCalibration, ReadsBackToTheSameCalibrationWithHeldOutPoints) {
     EXPECT_EQ(analysis::toJson(*read), analysis::toJson(computed));
     EXPECT_EQ(read->status, analysis::Outcome::Status::kCompleted);
     EXPECT_EQ(read->soil, computed.soil);
+    // The summary's heading ("soil on wheel against test") as computed: the wheel is saved.
+    EXPECT_FALSE(computed.wheel.empty());
+    EXPECT_EQ(analysis::validationSummary(*read).front().value,
+              analysis::validationSummary(computed).front().value);
     // What the JSON report leaves out: the model's curves, the points' in-fit marks, the
     // calibrated soil as a whole and the held-out metrics with the given soil.
     const Table& a = read->before.curves;
