@@ -103,11 +103,29 @@ void printComparison(const nlohmann::json& table, const std::string& name) {
         column(cell(row["mean_drawbar_N"], 3), 11);
         column(cell(row["drawbar_vs_oracle"], 3), 11);
         column(cell(row["slip_tracking_rms"], 4), 10);
-        column(cell(row["settling_time_s"], 2), 12);
-        column(cell(row["settling_band_time_s"], 2), 8);
+        // After a border a controller with a set-point to reach (optimal, oracle) that did not
+        // reach it "never" settled; "-" where settling is not defined (no border, no plan, no
+        // robust band).
+        const std::string controller = row["controller"].get<std::string>();
+        const bool plans = controller == "optimal" || controller == "oracle";
+        auto settling = [&](const char* key, bool defined) {
+            return row[key].is_number() ? cell(row[key], 2)
+                   : defined            ? std::string("never")
+                                        : std::string("-");
+        };
+        column(settling("settling_time_s", plans && row["border_time_s"].is_number()), 12);
+        column(settling("settling_band_time_s", plans && row["border_time_s"].is_number() &&
+                                                    row["settling_band"].is_number()),
+               8);
         column(cell(row["rut_depth_m"], 2, 1000.0), 8);
         std::cout << line << '\n';
     }
+    std::cout << "energy/work: motor energy per joule of drawbar work, lower is better "
+                 "(energy_J/m favours the robot that pulls least)\n"
+              << "vs_oracle: drawbar pull over the oracle's; settling_s: from the first border "
+                 "until the set-point stays within 0.03 of the oracle's\n"
+              << "(band_s: within its posterior's band); never: not by the end; -: not "
+                 "defined\n";
 }
 
 void printHuman(const scenario::RunResult& r, const scenario::Scenario& s, const std::string& out) {

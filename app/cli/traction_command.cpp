@@ -133,11 +133,10 @@ void addTractionCommand(CLI::App& app, const io::PresetLocations& locations) {
         const bool text = !o.json && o.out != "-";
         if (!text || !result.ok())
             for (const std::string& note : result.notes) std::cerr << "note: " << note << '\n';
+        // The JSON is written either way (its "status" says failed, with the message), then exit 1.
+        if (o.json) writeOutput(o.out, analysis::toJson(result).dump(2) + "\n");
         if (!result.ok()) throw std::runtime_error(result.message);
-        if (o.json) {
-            writeOutput(o.out, analysis::toJson(result).dump(2) + "\n");
-            return;
-        }
+        if (o.json) return;
         if (!o.out.empty())
             writeOutput(o.out, io::toCsv(analysis::tractionOutcome(result).tables.front().table));
         if (text) printText(inputs, settings, result);

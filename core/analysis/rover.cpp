@@ -278,6 +278,7 @@ nlohmann::json controllerComparison(const std::vector<ControllerRun>& runs) {
               oracle_pull > 0.0 ? nlohmann::json(pull / oracle_pull) : nlohmann::json(nullptr)},
              {"mean_slip", mean_slip},
              {"slip_tracking_rms", optional(m.slip_tracking_rms)},
+             {"border_time_s", optional(t.border_time_s)},
              {"settling_time_s", optional(t.settling_time_s)},
              {"settling_band_time_s", optional(t.settling_band_time_s)},
              {"settling_band", optional(t.settle_band)},

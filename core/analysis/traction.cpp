@@ -409,6 +409,14 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
                             " bound (" + formatNumber(slips[best]) + "): the " +
                             objectiveName(s.objective) + " still grows beyond it");
     }
+    // The best there is may still not pull (a tight sinkage cap, a soil that barely carries the
+    // load): η = F_x r (1 − s)/M_y is then negative, and the plan drives without traction.
+    if (!(out.at_optimum.fx_n > 0.0)) {
+        out.notes.push_back(
+            "at s* the wheel does not pull (F_x = " + formatNumber(out.at_optimum.fx_n) +
+            " N): no slip in [" + formatNumber(s.slip_min) + ", " + formatNumber(s.slip_max) + "]" +
+            (s.max_sinkage_m ? " within the sinkage cap" : "") + " gives drawbar pull here");
+    }
     control.report(s.posterior ? 0.1 : 1.0);
 
     if (s.posterior && !control.cancelled() &&

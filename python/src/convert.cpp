@@ -34,6 +34,9 @@ nlohmann::json toJson(py::handle object) {
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
+        // Python's encoder writes NaN and Infinity, which JSON has not: name the key instead.
+        const py::object named = py::module_::import("terrastudio").attr("_non_finite")(object);
+        if (!named.is_none()) throw std::invalid_argument(py::str(named));
         throw std::invalid_argument(std::string("not JSON: ") + e.what());
     }
 }

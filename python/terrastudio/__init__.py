@@ -83,6 +83,26 @@ def _plain(value):
     raise TypeError(f"{type(value).__name__} is not a number, string, list or dict")
 
 
+def _non_finite(value, path=""):
+    """The key path of the first NaN or infinity in an object passed to the core, worded as the
+    command line words it ("load_N: nan is not a finite number"); None when there is none."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            found = _non_finite(item, f"{path}.{key}" if path else str(key))
+            if found:
+                return found
+    elif isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            found = _non_finite(item, f"{path}[{i}]")
+            if found:
+                return found
+    elif hasattr(value, "tolist"):
+        return _non_finite(value.tolist(), path)
+    elif isinstance(value, float) and not math.isfinite(value):
+        return f"{path}: {value} is not a finite number"
+    return None
+
+
 def _as_soil(value):
     return value if isinstance(value, Soil) else soil(value)
 

@@ -51,6 +51,18 @@ TEST(TractionCli, BadFlagsAreNamedAndAnImpossibleCapFails) {
     r = run("traction --max-sinkage 0.0001");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(contains(r.err, "sinkage")) << r.err;
+    // A cap that only slips without pull meet: s* is reported, and a note says it does not pull.
+    r = run("traction --soil sandy-loam --wheel A --max-sinkage 0.004 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json weak = json::parse(r.out);
+    EXPECT_LE(weak["Fx_N"].get<double>(), 0.0);
+    EXPECT_TRUE(contains(weak["notes"].dump(), "does not pull")) << r.out;
+    // With --json the failure is still a JSON document (docs/cli.md: "status" always), exit 1.
+    r = run("traction --max-sinkage 0.0001 --json");
+    EXPECT_EQ(r.exit_code, 1);
+    const json failed = json::parse(r.out);
+    EXPECT_EQ(failed["status"], "failed");
+    EXPECT_TRUE(contains(failed["message"].get<std::string>(), "sinkage")) << r.out;
 }
 
 // The flags are the settings object read by the analysis's reader: its wording, named by the

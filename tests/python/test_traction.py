@@ -51,6 +51,12 @@ def test_a_cap_no_slip_meets_raises():
         ts.traction("sandy-loam", "A", max_sinkage_m=1e-4)
 
 
+def test_a_non_finite_number_is_named_by_its_key():
+    # As the command line words it, not the JSON parser's error (NaN is not JSON).
+    with pytest.raises(ValueError, match="load_N: nan is not a finite number"):
+        ts.traction("sandy-loam", "A", load_N=float("nan"))
+
+
 def test_simulate_takes_a_controller_and_the_summary_has_its_metrics():
     fixed = ts.simulate("traction-load-change", duration_s=4.0, controller="fixed-slip", slip=0.2)
     assert fixed["status"] == "completed"
