@@ -145,8 +145,10 @@ void readRoverSettings(io::ObjectReader& r, const ReadContext& context, RoverSet
             out.loaded = loaded.value();
         } else {
             for (const Issue& issue : loaded.issues())
-                r.report("scenario",
-                         (issue.where.empty() ? "" : issue.where + ": ") + issue.message);
+                r.report(
+                    "scenario",
+                    (issue.where.empty() || issue.where == "scenario" ? "" : issue.where + ": ") +
+                        issue.message);
         }
     }
     // The overrides against the scenario's own step and duration (a duration below one step),

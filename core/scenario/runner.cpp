@@ -1235,6 +1235,7 @@ nlohmann::json toJson(const RunResult& result, const Scenario& scenario) {
     auto optional = [](const std::optional<double>& v) {
         return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     };
+    j["controller"] = controllerName(scenario.controller.type);  // the one that drove the run
     j["energy_per_m_J"] = optional(s.energy_per_m_j);
     j["mean_efficiency"] = optional(s.mean_efficiency);
     j["slip_tracking_rms"] = optional(s.slip_tracking_rms);

@@ -210,6 +210,7 @@ TEST(SimulateCli, ComparesTheControllers) {
         const auto summary = nlohmann::json::parse(in);
         EXPECT_EQ(summary["energy_per_m_J"], table[i]["energy_per_m_J"]);
         EXPECT_EQ(summary["slip_tracking_rms"], table[i]["slip_tracking_rms"]);
+        EXPECT_EQ(summary["controller"], names[i]);  // which controller drove it
     }
     EXPECT_TRUE(table[0]["slip_tracking_rms"].is_null());  // constant speed has no set-point
     EXPECT_DOUBLE_EQ(table[3]["drawbar_vs_oracle"].get<double>(), 1.0);

@@ -51,6 +51,13 @@ def test_a_cap_no_slip_meets_raises():
         ts.traction("sandy-loam", "A", max_sinkage_m=1e-4)
 
 
+def test_an_unknown_scenario_is_named_once():
+    with pytest.raises(ValueError) as e:
+        ts.compare_controllers("no-such-scenario")
+    assert "'no-such-scenario' is neither a file nor a scenario" in str(e.value)
+    assert "scenario: scenario:" not in str(e.value)
+
+
 def test_a_non_finite_number_is_named_by_its_key():
     # As the command line words it, not the JSON parser's error (NaN is not JSON).
     with pytest.raises(ValueError, match="load_N: nan is not a finite number"):
