@@ -326,7 +326,8 @@ double objectiveValue(TractionObjective objective, const TractionPoint& p) {
 }
 
 TractionPoint tractionPoint(const contact::ContactParameters<double>& params, double load_n,
-                            double slip, const TractionSettings& s, contact::ContactModel model) {
+                            double slip, const TractionSettings& s, contact::ContactModel model,
+                            std::string* failure) {
     PointSpec spec;
     spec.slip = slip;
     spec.slip_angle_deg = s.slip_angle_deg;
@@ -336,6 +337,7 @@ TractionPoint tractionPoint(const contact::ContactParameters<double>& params, do
     const PointResult r = evaluatePoint(params, spec);
     TractionPoint p;
     p.slip = slip;
+    if (failure) *failure = r.failure;
     if (!r.failure.empty()) return p;
     p.fx_n = r.forces.fx;
     p.my_nm = r.forces.my;
@@ -389,11 +391,19 @@ TractionResult computeTraction(const Inputs& in, const TractionSettings& s,
             best = i;
     const double best_value = objectiveValue(s.objective, out.curve[best]);
     if (!std::isfinite(best_value)) {
-        out.message = s.max_sinkage_m
-                          ? "no slip in [" + formatNumber(s.slip_min) + ", " +
-                                formatNumber(s.slip_max) + "] keeps the sinkage below " +
-                                formatNumber(*s.max_sinkage_m) + " m"
-                          : "no slip has an equilibrium at this load";
+        out.message =
+            s.max_sinkage_m
+                ? "no slip in [" + formatNumber(s.slip_min) + ", " + formatNumber(s.slip_max) +
+                      "] keeps the sinkage below " + formatNumber(*s.max_sinkage_m) + " m"
+                : [&] {
+                      // Why, in the sinkage solver's words (how much the soil carries).
+                      std::string why;
+                      tractionPoint(params, load, slips.front(), s, model, &why);
+                      return "no slip has an equilibrium at this load" +
+                             (why.empty()
+                                  ? std::string()
+                                  : " (at s = " + formatNumber(slips.front()) + ": " + why + ")");
+                  }();
         return out;
     }
     const double a = slips[best == 0 ? 0 : best - 1];

@@ -156,9 +156,10 @@ struct TractionResult {
 double objectiveValue(TractionObjective objective, const TractionPoint& point);
 
 /// The wheel at slip s: θ_f from F_z = W, forces (full or quadratic model), η, sinkage.
+/// `failure` (if given) gets the sinkage solver's reason when there is no equilibrium, else "".
 TractionPoint tractionPoint(const contact::ContactParameters<double>& params, double load_n,
                             double slip, const TractionSettings& settings,
-                            contact::ContactModel model);
+                            contact::ContactModel model, std::string* failure = nullptr);
 
 /// Throws std::invalid_argument for invalid inputs or settings.
 TractionResult computeTraction(const Inputs& inputs, const TractionSettings& settings = {},

@@ -57,6 +57,11 @@ TEST(TractionCli, BadFlagsAreNamedAndAnImpossibleCapFails) {
     const json weak = json::parse(r.out);
     EXPECT_LE(weak["Fx_N"].get<double>(), 0.0);
     EXPECT_TRUE(contains(weak["notes"].dump(), "does not pull")) << r.out;
+    // A load the soil cannot carry: the reason says how much it carries.
+    r = run("traction --soil sandy-loam --wheel A --load 5000");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(contains(r.err, "no slip has an equilibrium at this load")) << r.err;
+    EXPECT_TRUE(contains(r.err, "the soil carries only")) << r.err;
     // With --json the failure is still a JSON document (docs/cli.md: "status" always), exit 1.
     r = run("traction --max-sinkage 0.0001 --json");
     EXPECT_EQ(r.exit_code, 1);
