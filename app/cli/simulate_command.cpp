@@ -15,6 +15,7 @@
 #include "core/io/json_reader.h"
 #include "core/scenario/runner.h"
 #include "core/scenario/scenario_json.h"
+#include "core/scenario/traction_control.h"
 
 namespace terra::app {
 namespace {
@@ -123,7 +124,8 @@ void printComparison(const nlohmann::json& table, const std::string& name) {
     std::cout << "energy/work: motor energy per joule of drawbar work, lower is better "
                  "(energy_J/m favours the robot that pulls least)\n"
               << "vs_oracle: drawbar pull over the oracle's; settling_s: from the first border "
-                 "until the set-point stays within 0.03 of the oracle's\n"
+                 "until the set-point stays within "
+              << formatNumber(scenario::kSettleTolerance) << " of the oracle's\n"
               << "(band_s: within its posterior's band); never: not by the end; -: not "
                  "defined\n";
 }
