@@ -114,7 +114,14 @@ TEST(PlotDocks, TiledAfterEveryPanelComputedDoesNotScrollSideways) {
     wait(300);
     w.showPanel("forces");
     studio.action("action.layout_tiled")->trigger();
-    wait(1500);
+    // The tiling settles over several event-loop turns; on a loaded machine (ctest runs two test
+    // processes a core) a fixed wait was sometimes too short.
+    const auto shownDocks = [&w] {
+        return std::count_if(std::begin(kAllPanels), std::end(kAllPanels),
+                             [&w](const char* name) { return onScreen(w.panelDock(name)); });
+    };
+    EXPECT_TRUE(QTest::qWaitFor([&] { return shownDocks() >= 4; }, 15000));
+    wait(500);
     int shown = 0;
     for (const char* name : kAllPanels) {
         if (!onScreen(w.panelDock(name))) continue;

@@ -36,7 +36,7 @@ DataSet byAngle(double slip_angle_rad) {
     return synthesize(soils::sandyLoam(), spec).data;
 }
 
-struct Case {
+struct ObservationCase {
     const char* name;
     DataSet data;
     DataSource source;
@@ -44,7 +44,7 @@ struct Case {
     double slip_sinkage;  // S of Eq. S.1
 };
 
-std::vector<Case> cases() {
+std::vector<ObservationCase> cases() {
     DataSet load = fromLoad(soils::sandyLoam(), {40.0, 80.0});
     return {{"entry angle, full", byAngle(0.0), DataSource::kEntryAngle,
              contact::ContactModel::kFull, 0.0},
@@ -55,7 +55,7 @@ std::vector<Case> cases() {
             {"load, quadratic", load, DataSource::kLoad, contact::ContactModel::kQuadratic, 0.0}};
 }
 
-ObservationModel modelOf(const Case& c, const DataSet& data) {
+ObservationModel modelOf(const ObservationCase& c, const DataSet& data) {
     const Result<ModelSetup> setup =
         setupModel(data, c.source, std::nullopt, 0.02, 0.0, c.slip_sinkage, c.model);
     EXPECT_TRUE(setup.ok()) << setup.message();
@@ -65,7 +65,7 @@ ObservationModel modelOf(const Case& c, const DataSet& data) {
 TEST(ObservationModel, SlipSlopeIsTheCentralDifferenceOfThePrediction) {
     const ParameterVector p = truthOf(soils::sandyLoam());
     constexpr double h = 1e-5;
-    for (const Case& c : cases()) {
+    for (const ObservationCase& c : cases()) {
         SCOPED_TRACE(c.name);
         const ObservationModel model = modelOf(c, c.data);
         for (std::size_t i = 0; i < c.data.samples.size(); i += 2) {
@@ -100,7 +100,7 @@ TEST(ObservationModel, AnUncertainSlipWhitensByTheInverseSquareRootOfItsCovarian
     const ParameterVector u = toSolver(p);
     const ChannelValues sigma{0.2, 0.9, 0.02, 2e-4};
     constexpr int n = kFullParameterCount;
-    for (const Case& c : cases()) {
+    for (const ObservationCase& c : cases()) {
         SCOPED_TRACE(c.name);
         DataSet uncertain = c.data;
         for (Sample& s : uncertain.samples) s.slip_std = 0.03;
@@ -137,7 +137,7 @@ TEST(ObservationModel, AnUncertainSlipWhitensByTheInverseSquareRootOfItsCovarian
 }
 
 TEST(ObservationModel, ASlipWithoutAStandardErrorIsTakenAsExact) {
-    const Case c = cases()[2];
+    const ObservationCase c = cases()[2];
     DataSet zero = c.data;
     for (Sample& s : zero.samples) s.slip_std = 0.0;
     const ObservationModel exact = modelOf(c, c.data), declared_zero = modelOf(c, zero);
