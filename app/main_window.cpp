@@ -283,6 +283,8 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     reading_results_ = QFileInfo::exists(results_path);
     for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(reading_results_);
     if (!reading_results_) {
+        // No results file: what the panels show is of the project before.
+        for (ui::AnalysisPanel* panel : panels_) panel->projectReplaced();
         statusBar()->showMessage("Opened " + path, 6000);
         return true;
     }
@@ -299,9 +301,20 @@ void MainWindow::newProject() {
     if (!maybeSave()) return;
     ++opening_;  // saved results still being read are of the project before: never shown
     reading_results_ = false;
-    for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(false);
-    document_->reset(ui::ProjectDocument::defaultProject(locations_));
+    // What runs for the project being closed is dropped; the panels take a new project's
+    // settings (their defaults, never the project before's) and drop its results.
+    for (ui::AnalysisPanel* panel : panels_) panel->discardRunning();
+    const project::Project fresh = ui::ProjectDocument::defaultProject(locations_);
+    document_->reset(fresh);
+    for (ui::AnalysisPanel* panel : panels_) {
+        panel->applyFileSettings(
+            fresh.panels.value(panel->name().toStdString(), nlohmann::json::object()));
+    }
     adoptPanelSettings();
+    for (ui::AnalysisPanel* panel : panels_) {
+        panel->holdUpdates(false);
+        panel->projectReplaced();
+    }
 }
 
 void MainWindow::adoptPanelSettings() {

@@ -20,6 +20,7 @@ void MainWindow::showSavedResults(const QString& path,
                (part.empty() ? QString() : " (" + QString::fromStdString(part.substr(1)) + ")");
     };
     bool identified = false;
+    std::vector<bool> restored(panels_.size(), false);
     if (results) {
         // The identification first: the global study's "identified soil" source depends on it.
         std::vector<std::size_t> order(panels_.size());
@@ -30,22 +31,26 @@ void MainWindow::showSavedResults(const QString& path,
             const std::string name = panels_[i]->name().toStdString();
             for (const auto& [section, saved] : results->panels) {
                 if (section != name && !section.starts_with(name + ".")) continue;
-                const ui::AnalysisPanel::Restored restored =
+                const ui::AnalysisPanel::Restored outcome =
                     panels_[i]->restoreResult(section, saved);
-                if (restored.shown()) {
+                if (outcome.shown()) {
                     shown << title(i, section);
+                    restored[i] = true;
                     identified = identified || panels_[i] == identification_;
                 } else {
-                    not_shown << title(i, section) + ": " +
-                                     QString::fromStdString(restored.message);
+                    not_shown << title(i, section) + ": " + QString::fromStdString(outcome.message);
                 }
             }
         }
         for (const Issue& issue : results->unreadable)
             not_shown << QString::fromStdString(issue.where + ": " + issue.message);
     }
-    for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(false);
     reading_results_ = false;
+    for (std::size_t i = 0; i < panels_.size(); ++i) {
+        panels_[i]->holdUpdates(false);
+        // A panel that shows none of the file's results shows the project before's: dropped.
+        if (!restored[i]) panels_[i]->projectReplaced();
+    }
     if (identified) shareIdentification();
     QString message = "Opened " + path;
     if (!results) {

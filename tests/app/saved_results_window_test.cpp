@@ -269,6 +269,78 @@ TEST(SavedResultsWindow, ChangedSettingsAreNotShownWithOldResults) {
     EXPECT_EQ(studio.window.document()->project().panels["identification"]["noise_percent"], 3.5);
 }
 
+// Issue 27, item 3 (found by a new user's audit): a second project opened in the same window
+// without a results file, and File ▸ New, showed the project before's fit, rover run and
+// indices as their own ("Saved with the project", the seed of the new one beside them), and New
+// kept its settings. Every panel now drops what it showed; nothing heavy starts by itself.
+TEST(SavedResultsWindow, AnotherProjectOrANewOneShowsNoneOfTheResultsBefore) {
+    QTemporaryDir dir;
+    const QString first = dir.filePath("first.terra");
+    Studio studio;
+    MainWindow& w = studio.window;
+    auto* identification = studio.panel<ui::IdentificationPanel>();
+    auto* rover = studio.panel<ui::RoverPanel>();
+    auto* global = studio.panel<ui::GlobalSensitivityPanel>();
+    w.showPanel("identification");
+    identification->recompute();
+    ASSERT_TRUE(waitForResult(*identification));
+    w.showPanel("rover");
+    rover->applySettings({{"scenario", "straight"}});
+    QString error;
+    ASSERT_TRUE(rover->setScenarioText(shortStraight(*rover), &error)) << error.toStdString();
+    rover->recompute();
+    ASSERT_TRUE(waitForResult(*rover));
+    global->setSamples(48);
+    w.showPanel("global-sensitivity");
+    global->compute();
+    ASSERT_TRUE(waitForResult(*global));
+    ASSERT_TRUE(global->indices().has_value());
+    ASSERT_TRUE(w.document()->save(first, &error)) << error.toStdString();
+    ASSERT_EQ(studio.saveAndWaitForResults(), QString());
+
+    // The same project with a heavy study and another seed, and no results file.
+    std::string text;
+    ASSERT_FALSE(io::readFile(first.toStdString(), text));
+    json project = json::parse(text);
+    project["panels"]["global-sensitivity"]["samples"] = 100000;
+    project["panels"]["global-sensitivity"]["seed"] = 2;
+    const QString second = dir.filePath("second.terra");
+    ASSERT_FALSE(io::writeFileAtomically(second.toStdString(), project.dump(1)));
+    StartCounter fits(identification), runs(rover), studies(global);
+    ASSERT_TRUE(w.openProject(second, true));
+    QTest::qWait(500);
+    EXPECT_FALSE(identification->hasResult());
+    EXPECT_TRUE(identification->result().curves.rows.empty());
+    EXPECT_FALSE(rover->hasResult());
+    EXPECT_TRUE(rover->result().series.rows.empty());
+    EXPECT_FALSE(global->hasResult());
+    EXPECT_FALSE(global->indices().has_value());
+    EXPECT_TRUE(global->statusText().contains("Not computed"))
+        << global->statusText().toStdString();
+    EXPECT_EQ(fits.started(), 0);
+    EXPECT_EQ(runs.started(), 0);
+    EXPECT_EQ(studies.started(), 0);
+    // Saved now, the second project carries none of the first one's results.
+    ASSERT_EQ(studio.saveAndWaitForResults(), QString());
+    std::string saved;
+    if (!io::readFile((second + ".results").toStdString(), saved)) {
+        for (const char* section : {"\"identification\"", "\"rover\"", "\"global-sensitivity\""})
+            EXPECT_EQ(saved.find(section), std::string::npos) << section;
+    }
+
+    // File ▸ New after a run: the defaults, and no run on screen.
+    rover->recompute();
+    ASSERT_TRUE(waitForResult(*rover));
+    ASSERT_TRUE(w.document()->save(second, &error)) << error.toStdString();  // nothing to ask
+    studio.action("action.new")->trigger();
+    QTest::qWait(500);
+    EXPECT_TRUE(rover->result().series.rows.empty());
+    EXPECT_FALSE(rover->hasResult());
+    EXPECT_EQ(global->settings().value("samples", 0),
+              project::GlobalSensitivityPanelSettings{}.samples);
+    EXPECT_EQ(global->settings().value("seed", 0), 1);
+}
+
 // Issue 27, item 5: a project folder moved as a whole keeps the fit of its data file (the saved
 // result names the file by its content, not its path); an edited data file does not.
 TEST(SavedResultsWindow, AMovedProjectFolderKeepsTheFitOfItsDataFile) {

@@ -27,6 +27,7 @@
 #include "widgets/plots/plot_export.h"
 #include "widgets/plots/plot_legend.h"
 #include "widgets/plots/plot_menu.h"
+#include "widgets/plots/plot_readout.h"
 #include "widgets_test_support.h"
 
 namespace terra::ui {
@@ -269,6 +270,55 @@ TEST(PlotReadout, NamesTheNearestCurvePointWithItsUnits) {
         if (tracer && tracer->position->coords() == QPointF(key, value)) ring = true;
     }
     EXPECT_TRUE(ring);
+}
+
+// The read-out beside the Model box was cut and squeezed the status into two lines, moving the
+// plots by 6 px as the mouse moved (at 1024 px; a new user's audit): on a line of its own, at
+// 700 px wide, its text whole and the plots still.
+TEST(PlotReadout, AReadoutNeverMovesThePlotsAndIsShownWhole) {
+    Shown s;
+    s.panel->resize(700, 600);
+    QTest::qWait(50);
+    auto* tabs = s.panel->findChild<QTabWidget*>();
+    ASSERT_NE(tabs, nullptr);
+    const QRect before = tabs->geometry();
+    const auto pointed = s.plot->graph(0)->data()->at(30);
+    QTest::mouseMove(s.plot, QPoint(qRound(s.plot->xAxis->coordToPixel(pointed->key)),
+                                    qRound(s.plot->yAxis->coordToPixel(pointed->value))));
+    QTest::qWait(50);
+    auto* readout = s.panel->findChild<QLabel*>("forces.readout");
+    ASSERT_NE(readout, nullptr);
+    ASSERT_TRUE(readout->text().startsWith("Slip ratio")) << readout->text().toStdString();
+    EXPECT_EQ(tabs->geometry(), before);
+    EXPECT_LE(readout->fontMetrics().horizontalAdvance(readout->text()), readout->width())
+        << readout->text().toStdString();
+}
+
+// A category axis (the tornado's parameters) is read by its category, not by the bar's offset
+// position on it: "Soil parameter = 0.81" (a new user's audit, issue 27).
+TEST(PlotReadout, ACategoryAxisNamesTheCategory) {
+    QCustomPlot plot;
+    plot.resize(400, 300);
+    auto ticker = QSharedPointer<QCPAxisTickerText>::create();
+    ticker->addTick(1.0, "φ");
+    ticker->addTick(2.0, "k_c");
+    plot.xAxis->setTicker(ticker);
+    plot.xAxis->setLabel("Soil parameter");
+    plot.yAxis->setLabel("Change of F_x [%]");
+    auto* bars = new QCPBars(plot.xAxis, plot.yAxis);
+    bars->setName("φ −10 %");
+    bars->addData(0.81, 5.0);
+    bars->addData(1.81, -3.0);
+    plot.xAxis->setRange(0.0, 3.0);
+    plot.yAxis->setRange(-6.0, 6.0);
+    plot.replot();
+    const QPointF near_kc(plot.xAxis->coordToPixel(1.81) + 2, plot.yAxis->coordToPixel(-3.0) - 1);
+    EXPECT_EQ(readoutText(plot, near_kc), "Soil parameter = k_c,  Change of F_x = -3 %  — φ −10 %");
+    // A tick that names itself is shown as it is.
+    ticker->clear();
+    ticker->addTick(1.0, "s = 0.1");
+    ticker->addTick(2.0, "s = 0.3");
+    EXPECT_EQ(readoutText(plot, near_kc), "s = 0.3,  Change of F_x = -3 %  — φ −10 %");
 }
 
 }  // namespace

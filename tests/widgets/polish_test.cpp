@@ -125,6 +125,30 @@ TEST(EditorSpinBox, ARefusedKeystrokeIsNamedAsAKeyOfANamedField) {
     EXPECT_TRUE(messageOf(editor).contains("the key \"x\"")) << messageOf(editor).toStdString();
 }
 
+// A value in range with more decimals than the field keeps was refused as "outside the allowed
+// range [0, 200]" (a new user's audit, issue 27): it is said as what it is.
+TEST(EditorRefusalMessages, MoreDecimalsThanTheFieldKeepsAreNotCalledOutOfRange) {
+    ProjectDocument document;
+    test::resetToDefault(document);
+    SoilEditor editor(&document, test::resources());
+    editor.show();
+    ValidatedSpinBox* c = editor.spinBox("c_kPa");
+    ASSERT_EQ(c->decimals(), 2);
+    c->setFocus();
+    c->selectAll();
+    QTest::keyClicks(c, "0.0023");
+    const QString message = messageOf(editor);
+    EXPECT_TRUE(message.contains("keeps 2 decimals")) << message.toStdString();
+    EXPECT_TRUE(message.contains("0.00")) << message.toStdString();
+    EXPECT_FALSE(message.contains("outside")) << message.toStdString();
+    EXPECT_DOUBLE_EQ(c->value(), 1.7);  // not committed
+    // Out of range is still said so.
+    c->selectAll();
+    QTest::keyClicks(c, "250");
+    EXPECT_TRUE(messageOf(editor).contains("outside the allowed range"))
+        << messageOf(editor).toStdString();
+}
+
 // A refused grouser height stayed under the wheel's fields many edits later.
 TEST(EditorStaleMessages, AnEditorsRefusalGoesAtTheNextEditOfTheProject) {
     ProjectDocument document;

@@ -154,6 +154,17 @@ QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
         flag(true, {});
         return state;
     }
+    if (parsed && range_.contains(value) && value >= minimum() && value <= maximum()) {
+        // In range, but with more decimals than the field keeps (Qt refuses those): said as such,
+        // not as out of range ("c = 0.0023 kPa is outside [0, 200]" was false).
+        last_text_ = number;
+        flag(false, QString("%1 = %2 %3: this field keeps %4 decimals (it would be %5)")
+                        .arg(name_, number, unit_)
+                        .arg(decimals())
+                        .arg(locale().toString(value, 'f', decimals()))
+                        .simplified());
+        return QValidator::Intermediate;
+    }
     if (parsed) {
         // Out of range: keep the whole text on screen ("75", not the "7" a refused keystroke
         // leaves), flagged with the range; it is never committed (revertIfInvalid()).

@@ -254,6 +254,14 @@ void AnalysisPanel::holdUpdates(bool hold) {
     if (!hold && deferred_) scheduleUpdate();
 }
 
+void AnalysisPanel::projectReplaced() {
+    has_result_ = false;
+    completion_ = Completion::kComplete;
+    presented_hash_.clear();
+    restored_hash_.clear();
+    if (live_) scheduleUpdate();  // a panel computing on Run alone waits for it
+}
+
 void AnalysisPanel::makeInteractive(QCustomPlot* plot, QLabel* readout) {
     plot->setInteractions(QCP::iRangeDrag | QCP::iRangeZoom);
     // The read-out's text must never widen the panel (a scroll bar would come and go with the

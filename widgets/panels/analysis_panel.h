@@ -132,6 +132,12 @@ public:
     /// off the GUI thread: a panel shown meanwhile must not start what the file may hold); the
     /// updates asked meanwhile run when released, unless a saved result was shown.
     void holdUpdates(bool hold);
+    /// Another project was opened (or a new one made) and no saved result of it is shown here:
+    /// the result on screen is the project before's, never shown as this one's. It is dropped
+    /// (not saved with this project, not offered for export as its own) and the panel computes
+    /// again, or says "not computed" when its study does not start by itself. A panel holding
+    /// results of its own (a fit, a run, indices) clears them, then calls this.
+    virtual void projectReplaced();
     /// The hash of what the panel's next computation would read (resultInputs()).
     std::string inputsHash() const { return project::inputsHash(resultInputs()); }
 

@@ -84,8 +84,14 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     status_->setWordWrap(true);
     status_->setMinimumWidth(60);
     status_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    // The read-out on a line of its own under the plots, one text line high whether empty or
+    // not: beside the Model box a long read-out was cut ("… F_x = -0.3902 N — [") and squeezed
+    // the status into two lines, moving the tabs by 6 px with the mouse (a new user's audit).
     readout_ = new QLabel(this);
-    readout_->setMinimumWidth(260);
+    readout_->setObjectName("forces.readout");
+    readout_->setMinimumWidth(120);
+    readout_->setMinimumHeight(readout_->fontMetrics().height());
+    readout_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
     tabs_ = new QTabWidget(this);
     for (const SweepQuantity& quantity : panelQuantities()) {
         auto* plot = new QCustomPlot(tabs_);
@@ -111,7 +117,6 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     bar->addWidget(new QLabel("Model:", this));
     bar->addWidget(model_);
     bar->addWidget(status_, 1);
-    bar->addWidget(readout_);
 
     // A reference soil drawn dashed over the project's curves (a row of its own: fits 1024 px).
     compare_ = new QToolButton(this);
@@ -180,6 +185,7 @@ ForcesPanel::ForcesPanel(ProjectDocument* document, QWidget* parent)
     layout->addLayout(bar);
     layout->addLayout(compare_bar);
     layout->addWidget(tabs_, 1);
+    layout->addWidget(readout_);
     layout->addWidget(test_box_);
     connect(calibrate_, &QPushButton::clicked, this, [this] {
         CalibrationDialog* dialog = openCalibration();

@@ -101,8 +101,12 @@ GlobalSensitivityPanel::GlobalSensitivityPanel(ProjectDocument* document, QWidge
     method_->addItem("Sobol' (S1, ST)", "sobol");
     method_->addItem("Morris (μ*, σ)", "morris");
     output_ = new QComboBox(this);
-    for (const char* name : {"Fx_N", "Fs_N", "My_Nm", "sinkage_m", "entry_angle_deg", "Fz_N"})
-        output_->addItem(name, name);
+    // Shown by name, stored by key (the settings' and the CLI's `output`).
+    const std::pair<const char*, const char*> outputs[] = {
+        {"Drawbar pull F_x", "Fx_N"},           {"Side force F_s", "Fs_N"},
+        {"Wheel torque M_y", "My_Nm"},          {"Sinkage h", "sinkage_m"},
+        {"Entry angle θ_f", "entry_angle_deg"}, {"Vertical force F_z", "Fz_N"}};
+    for (const auto& [shown, key] : outputs) output_->addItem(shown, key);
     slips_ = new QLineEdit("0.1,0.3,0.6", this);
     slip_angle_ = new QDoubleSpinBox(this);
     slip_angle_->setRange(-60.0, 60.0);
@@ -225,6 +229,15 @@ bool GlobalSensitivityPanel::startsByItself() {
                         .arg(evaluations),
                     cleared);
     return false;
+}
+
+void GlobalSensitivityPanel::projectReplaced() {
+    indices_.reset();
+    indices_hash_.clear();
+    bands_.reset();
+    bands_hash_.clear();
+    showNotComputed(status_, "Not computed yet: press Compute.", {indices_plot_, bands_plot_});
+    AnalysisPanel::projectReplaced();  // computes again when the study is light
 }
 
 void GlobalSensitivityPanel::showPage(int page) { pages_->setCurrentIndex(page); }
@@ -396,9 +409,13 @@ void GlobalSensitivityPanel::redraw() {
             .arg(p.conditions.load_n)
             .arg(slip_angle_->value());
     // Each page's title says whether its own study was cancelled (the other page's may not be).
+    // The mark on a line of its own: after the second line it cut the title at both ends on a
+    // ~400 px plot (1024×700).
     auto marked = [&title](gsa::StudyStatus status) {
-        return markedTitle(title, status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
-                                                                         : Completion::kComplete);
+        const QString mark =
+            completionMark(status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
+                                                                  : Completion::kComplete);
+        return mark.isEmpty() ? title : title + "\n" + mark;
     };
     if (indices_ && output < indices_->outputs().size())
         plotGlobalIndices(*indices_plot_, *indices_, output, 0, marked(indices_->status()));

@@ -92,6 +92,7 @@ protected:
     void present(const std::any& result) override;
     /// Only a study of at most kAutomaticEvaluations; a larger one shows "not computed".
     bool startsByItself() override;
+    void projectReplaced() override;
 
 private:
     analysis::StudyDefinition definition() const;

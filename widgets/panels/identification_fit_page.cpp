@@ -383,6 +383,19 @@ void IdentificationFitPage::showFailure(const QString& message) {
     status_->setText("<b>Error:</b> " + message.toHtmlEscaped());
 }
 
+void IdentificationFitPage::clearResult() {
+    result_ = analysis::IdentificationResult{};
+    apply_->setEnabled(false);
+    report_->clear();
+    parameters_->setRowCount(0);
+    fitTableToRows();
+    for (QCustomPlot* plot : plots_) {
+        plot->clearPlottables();
+        plot->replot();
+    }
+    status_->setText("Not fitted yet: press Fit.");
+}
+
 void IdentificationFitPage::present(const std::any& value,
                                     const std::function<QString(const QString&)>& marked) {
     result_ = std::any_cast<analysis::IdentificationResult>(value);

@@ -78,6 +78,8 @@ public:
     /// The running fit's state: Fit and Cancel follow it.
     void setBusy(bool busy);
     void showFailure(const QString& message);
+    /// No fit on screen (another project was opened): curves, table and report cleared.
+    void clearResult();
 
 signals:
     /// Fit was pressed and the prior items are valid.

@@ -138,6 +138,13 @@ nlohmann::json IdentificationPanel::resultInputs() const {
             {"csv", project::fileStamp(fit_->dataFile().trimmed().toStdString())}};
 }
 
+void IdentificationPanel::projectReplaced() {
+    fit_->clearResult();
+    fit_hash_.clear();
+    streaming_->clearResult();
+    AnalysisPanel::projectReplaced();
+}
+
 // --- Both pages ----------------------------------------------------------------------------------
 
 std::vector<std::pair<QString, QCustomPlot*>> IdentificationPanel::plots() const {

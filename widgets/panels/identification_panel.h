@@ -141,6 +141,7 @@ protected:
     Job makeJob() override;
     void present(const std::any& result) override;
     nlohmann::json resultInputs() const override;
+    void projectReplaced() override;
 
 signals:
     /// The streaming playback ended: finished, stopped or failed (StreamingPlayback::State).

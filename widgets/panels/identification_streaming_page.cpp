@@ -314,6 +314,14 @@ void IdentificationStreamingPage::playbackStateChanged(StreamingPlayback::State 
     emit playbackEnded(state);
 }
 
+void IdentificationStreamingPage::clearResult() {
+    stopPlayback();
+    resetFigures(0);
+    figures_->replot();
+    hash_.clear();
+    status_->setText("Not played yet: press Play.");
+}
+
 void IdentificationStreamingPage::resetFigures(std::size_t count) {
     frames_.clear();
     frames_.reserve(count);

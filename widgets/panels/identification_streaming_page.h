@@ -72,6 +72,8 @@ public:
     std::optional<project::SavedResult> savedResult() const;
     /// Shows a saved playback whose inputs hash `hash`, without playing it again.
     void showSaved(project::SavedStream stream, const std::string& hash);
+    /// No playback on screen (another project was opened): stopped, its figures emptied.
+    void clearResult();
 
 signals:
     /// Play starts a new run (the panel stores its settings).

@@ -688,6 +688,22 @@ void RoverPanel::previewScenario() {
                          .arg(soilsOf(preview_).toHtmlEscaped()));
 }
 
+void RoverPanel::projectReplaced() {
+    result_ = scenario::RunResult{};
+    shown_ = scenario::Scenario{};
+    shown_name_.clear();
+    shown_json_ = nullptr;
+    comparison_ = nlohmann::json::array();
+    showComparison();
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+        plots_[i]->clearPlottables();
+        plots_[i]->replot();
+        drawn_[i] = false;
+    }
+    AnalysisPanel::projectReplaced();
+    previewScenario();  // the top view: the scenario's soils and start, "not run yet"
+}
+
 void RoverPanel::editScenario() {
     ScenarioDialog dialog(scenario_->currentText(), scenarioText(), locations_, this);
     if (dialog.exec() != QDialog::Accepted) return;

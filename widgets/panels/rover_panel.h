@@ -136,6 +136,7 @@ protected:
     void present(const std::any& result) override;
     /// The scenario's JSON (edited or the file's): all a run depends on.
     nlohmann::json resultInputs() const override;
+    void projectReplaced() override;
 
 private slots:
     void editScenario();

@@ -130,6 +130,26 @@ QString readoutPart(const QString& label, double value) {
         .arg(unit.isEmpty() ? "" : " " + unit);
 }
 
+namespace {
+
+/// A category axis (text ticks: the tornado's parameters, the slips of grouped bars) names the
+/// category nearest `key` ("Soil parameter = k_c"), not its position on the axis (0.81).
+QString keyPart(const QCPAxis& axis, double key) {
+    const auto ticker = axis.ticker().dynamicCast<QCPAxisTickerText>();
+    if (!ticker || ticker->ticks().isEmpty()) return readoutPart(axis.label(), key);
+    auto nearest = ticker->ticks().constBegin();
+    for (auto it = ticker->ticks().constBegin(); it != ticker->ticks().constEnd(); ++it) {
+        if (std::abs(it.key() - key) < std::abs(nearest.key() - key)) nearest = it;
+    }
+    const QString name = axis.label().section(" [", 0, 0);
+    const QString category = QString(nearest.value()).replace('\n', ' ');
+    // A tick that names itself ("s = 0.1") is shown as is.
+    if (name.isEmpty() || category.contains('=')) return category;
+    return QString("%1 = %2").arg(name, category);
+}
+
+}  // namespace
+
 QString readoutText(QCustomPlot& plot, const QPointF& pixel) {
     const std::optional<PlotPoint> point = nearestPoint(plot, pixel);
     if (!point) return colourMapText(plot, pixel);
@@ -137,8 +157,9 @@ QString readoutText(QCustomPlot& plot, const QPointF& pixel) {
     QCPAxis* x = p.keyAxis()->orientation() == Qt::Horizontal ? p.keyAxis() : p.valueAxis();
     QCPAxis* y = x == p.keyAxis() ? p.valueAxis() : p.keyAxis();
     const bool key_is_x = x == p.keyAxis();
-    const QString text = join({readoutPart(x->label(), key_is_x ? point->key : point->value),
-                               readoutPart(y->label(), key_is_x ? point->value : point->key)});
+    const QString text =
+        key_is_x ? join({keyPart(*x, point->key), readoutPart(y->label(), point->value)})
+                 : join({readoutPart(x->label(), point->value), keyPart(*y, point->key)});
     return p.name().isEmpty() ? text : text + "  — " + p.name();
 }
 
