@@ -56,6 +56,9 @@ TEST(PlotCompletionWords, TheSameWordsForEveryKindOfPartialResult) {
     EXPECT_EQ(completionMark(Completion::kCancelled), "CANCELLED (partial)");
     EXPECT_EQ(markedTitle("sandy loam", Completion::kDiverged), "sandy loam — DIVERGED (partial)");
     EXPECT_EQ(markedTitle("sandy loam", Completion::kComplete), "sandy loam");
+    // Two lines: the mark on a third, not at the end of the second (cut on a narrow plot).
+    EXPECT_EQ(markedTitle("sandy loam, wheel A\ns = 0.1", Completion::kCancelled),
+              "sandy loam, wheel A\ns = 0.1\nCANCELLED (partial)");
     EXPECT_EQ(progressFormat(Completion::kComplete), "%p %");
     EXPECT_EQ(progressFormat(Completion::kCancelled), "%p % (cancelled)");
     EXPECT_EQ(progressFormat(Completion::kFailed), "%p % (failed)");

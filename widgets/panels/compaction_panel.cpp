@@ -333,7 +333,9 @@ void CompactionPanel::present(const std::any& value) {
 QString CompactionPanel::baseTitle() const {
     const Project& p = document_->project();
     const analysis::CompactionSettings& s = shown_.settings;
-    return QString("%1, %2, W = %3 N, s = %4, β = %5°")
+    // Two lines: on one, with "envelope of 3 passes" after it, it was cut at both ends in a
+    // tiled panel (1366×768) and at 1024×700.
+    return QString("%1, %2, W = %3 N\ns = %4, β = %5°")
         .arg(QString::fromStdString(p.soil.name), QString::fromStdString(p.wheel.name))
         .arg(shown_.result.load_n)
         .arg(s.slip)

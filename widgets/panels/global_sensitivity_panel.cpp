@@ -409,13 +409,9 @@ void GlobalSensitivityPanel::redraw() {
             .arg(p.conditions.load_n)
             .arg(slip_angle_->value());
     // Each page's title says whether its own study was cancelled (the other page's may not be).
-    // The mark on a line of its own: after the second line it cut the title at both ends on a
-    // ~400 px plot (1024×700).
     auto marked = [&title](gsa::StudyStatus status) {
-        const QString mark =
-            completionMark(status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
-                                                                  : Completion::kComplete);
-        return mark.isEmpty() ? title : title + "\n" + mark;
+        return markedTitle(title, status == gsa::StudyStatus::kCancelled ? Completion::kCancelled
+                                                                         : Completion::kComplete);
     };
     if (indices_ && output < indices_->outputs().size())
         plotGlobalIndices(*indices_plot_, *indices_, output, 0, marked(indices_->status()));

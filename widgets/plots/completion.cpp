@@ -27,7 +27,10 @@ QString completionMark(Completion completion) {
 
 QString markedTitle(const QString& title, Completion completion) {
     const QString mark = completionMark(completion);
-    return mark.isEmpty() ? title : title + " — " + mark;
+    if (mark.isEmpty()) return title;
+    // A title of two lines (soil, wheel and load; then the case) takes the mark on a third: after
+    // the second it made the line too long for a ~400 px plot.
+    return title.contains('\n') ? title + "\n" + mark : title + " — " + mark;
 }
 
 QString progressFormat(Completion completion) {

@@ -18,7 +18,8 @@ enum class Completion {
 /// "" when complete, else "CANCELLED (partial)", "DIVERGED (partial)" or "FAILED (partial)".
 QString completionMark(Completion completion);
 
-/// `title` followed by " — " and completionMark() when the result is partial.
+/// `title` followed by " — " and completionMark() when the result is partial (a title of two or
+/// more lines: the mark on a line of its own).
 QString markedTitle(const QString& title, Completion completion);
 
 /// A progress bar's format: "%p %" when complete, else "%p % (cancelled)", "%p % (diverged)" or
