@@ -383,9 +383,7 @@ void IdentificationFitPage::showFailure(const QString& message) {
     status_->setText("<b>Error:</b> " + message.toHtmlEscaped());
 }
 
-void IdentificationFitPage::clearResult() {
-    result_ = analysis::IdentificationResult{};
-    apply_->setEnabled(false);
+void IdentificationFitPage::clearShown() {
     report_->clear();
     parameters_->setRowCount(0);
     fitTableToRows();
@@ -393,6 +391,12 @@ void IdentificationFitPage::clearResult() {
         plot->clearPlottables();
         plot->replot();
     }
+}
+
+void IdentificationFitPage::clearResult() {
+    result_ = analysis::IdentificationResult{};
+    apply_->setEnabled(false);
+    clearShown();
     status_->setText("Not fitted yet: press Fit.");
 }
 
@@ -410,15 +414,9 @@ void IdentificationFitPage::present(const std::any& value,
         status_->setText(
             marked("Fit cancelled before it found a minimum: nothing fitted, "
                    "nothing to apply (Fit runs it again)."));
-        report_->clear();
         // The previous fit's curves and table are not this one's: cleared, so that the plots,
         // the table and an export say the same.
-        parameters_->setRowCount(0);
-        fitTableToRows();
-        for (QCustomPlot* plot : plots_) {
-            plot->clearPlottables();
-            plot->replot();
-        }
+        clearShown();
         return;
     }
     if (!result_.message.empty()) {

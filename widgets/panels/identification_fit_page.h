@@ -93,6 +93,8 @@ private:
     /// The parameters' table as tall as its rows (none: no minimum), so that the layout gives it
     /// their height before the report's: at 1024×700 it showed 3 of 9 rows (issue 27).
     void fitTableToRows();
+    /// Empties the report, the parameters' table and the plots (no fit of these inputs shown).
+    void clearShown();
 
     ProjectDocument* document_;
     QLineEdit* file_;
