@@ -89,6 +89,21 @@ TEST(PanelHonestStates, ACancelledGlobalStudySaysSoInTheBarTheStatusTheTitleAndT
         << line.toStdString();
     EXPECT_FALSE(line.contains("updated")) << line.toStdString();
 
+    // Saved and shown again (a reopened project): how far it got is not saved, so its bar says
+    // what it is instead of "0 % (cancelled)" (a new user's audit, issue 27).
+    const auto saved = panel.savedResults();
+    ASSERT_EQ(saved.count("global-sensitivity"), 1u);
+    {
+        GlobalSensitivityPanel reopened(&document);
+        reopened.applySettings(panel.settings());
+        ASSERT_TRUE(
+            reopened.restoreResult("global-sensitivity", saved.at("global-sensitivity")).shown());
+        auto* bar = reopened.findChild<QProgressBar*>();
+        ASSERT_NE(bar, nullptr);
+        EXPECT_EQ(bar->text(), "CANCELLED (partial) — saved");
+        EXPECT_EQ(reopened.completion(), Completion::kCancelled);
+    }
+
     // A complete study afterwards is 100 % and unmarked everywhere.
     QSignalSpy shown(&panel, &AnalysisPanel::resultShown);
     panel.setSamples(32);

@@ -194,8 +194,11 @@ void AnalysisPanel::showSaved(const std::any& value, const std::string& hash, bo
     present(value);
     has_result_ = true;
     if (progress_bar_) {
+        // How far a saved partial run got is not saved: its bar says what it is, not "0 %".
         progress_bar_->setValue(completion_ == Completion::kComplete ? 100 : 0);
-        progress_bar_->setFormat(progressFormat(completion_));
+        progress_bar_->setFormat(completion_ == Completion::kComplete
+                                     ? progressFormat(completion_)
+                                     : completionMark(completion_) + " — saved");
     }
 }
 
