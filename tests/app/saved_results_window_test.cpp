@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QComboBox>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
 #include <QLineEdit>
 #include <QSignalSpy>
+#include <QStandardItemModel>
 #include <QStatusBar>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -295,6 +297,16 @@ TEST(SavedResultsWindow, AnotherProjectOrANewOneShowsNoneOfTheResultsBefore) {
     global->compute();
     ASSERT_TRUE(waitForResult(*global));
     ASSERT_TRUE(global->indices().has_value());
+    // The fit is offered to the global study as a source (its covariance).
+    auto identifiedSource = [global]() -> const QStandardItem* {
+        for (QComboBox* box : global->findChildren<QComboBox*>()) {
+            const int i = box->findText("Identified soil's covariance");
+            if (i >= 0) return static_cast<QStandardItemModel*>(box->model())->item(i);
+        }
+        return nullptr;
+    };
+    ASSERT_NE(identifiedSource(), nullptr);
+    EXPECT_TRUE(identifiedSource()->isEnabled());
     ASSERT_TRUE(w.document()->save(first, &error)) << error.toStdString();
     ASSERT_EQ(studio.saveAndWaitForResults(), QString());
 
@@ -317,6 +329,7 @@ TEST(SavedResultsWindow, AnotherProjectOrANewOneShowsNoneOfTheResultsBefore) {
     EXPECT_FALSE(global->indices().has_value());
     EXPECT_TRUE(global->statusText().contains("Not computed"))
         << global->statusText().toStdString();
+    EXPECT_FALSE(identifiedSource()->isEnabled()) << "the project before's fit is no source";
     EXPECT_EQ(fits.started(), 0);
     EXPECT_EQ(runs.started(), 0);
     EXPECT_EQ(studies.started(), 0);

@@ -236,6 +236,9 @@ void GlobalSensitivityPanel::projectReplaced() {
     indices_hash_.clear();
     bands_.reset();
     bands_hash_.clear();
+    // The identified soil of the project before is no source (the studio shares the opened
+    // project's again when it shows its fit).
+    setIdentification({}, identification::Uncertainty{});
     showNotComputed(status_, "Not computed yet: press Compute.", {indices_plot_, bands_plot_});
     AnalysisPanel::projectReplaced();  // computes again when the study is light
 }
