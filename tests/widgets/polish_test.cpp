@@ -125,9 +125,10 @@ TEST(EditorSpinBox, ARefusedKeystrokeIsNamedAsAKeyOfANamedField) {
     EXPECT_TRUE(messageOf(editor).contains("the key \"x\"")) << messageOf(editor).toStdString();
 }
 
-// A value in range with more decimals than the field keeps was refused as "outside the allowed
-// range [0, 200]" (a new user's audit, issue 27): it is said as what it is.
-TEST(EditorRefusalMessages, MoreDecimalsThanTheFieldKeepsAreNotCalledOutOfRange) {
+// A value in range with more decimals than the box showed was refused as "outside the allowed
+// range [0, 200]" (a new user's audit, issue 27): the box takes it, as it shows a file's 0.00234,
+// up to its most decimals; beyond those it says so, not "out of range".
+TEST(EditorRefusalMessages, MoreDecimalsAreTakenAndNeverCalledOutOfRange) {
     ProjectDocument document;
     test::resetToDefault(document);
     SoilEditor editor(&document, test::resources());
@@ -137,11 +138,20 @@ TEST(EditorRefusalMessages, MoreDecimalsThanTheFieldKeepsAreNotCalledOutOfRange)
     c->setFocus();
     c->selectAll();
     QTest::keyClicks(c, "0.0023");
+    EXPECT_TRUE(
+        QTest::qWaitFor([&document] { return document.project().soil.cohesion_pa == 2.3; }, 3000))
+        << document.project().soil.cohesion_pa;
+    EXPECT_EQ(c->cleanText(), "0.0023");
+    EXPECT_TRUE(messageOf(editor).isEmpty()) << messageOf(editor).toStdString();
+    // Beyond the box's most decimals (6): said as such, not committed.
+    c->selectAll();
+    QTest::keyClicks(c, "0.00000001");
+    QTest::qWait(50);  // the box took what it could (6 decimals) after the keys
     const QString message = messageOf(editor);
-    EXPECT_TRUE(message.contains("keeps 2 decimals")) << message.toStdString();
-    EXPECT_TRUE(message.contains("0.00")) << message.toStdString();
+    EXPECT_TRUE(message.contains("keeps 6 decimals")) << message.toStdString();
     EXPECT_FALSE(message.contains("outside")) << message.toStdString();
-    EXPECT_DOUBLE_EQ(c->value(), 1.7);  // not committed
+    QTest::qWait(600);
+    EXPECT_DOUBLE_EQ(document.project().soil.cohesion_pa, 2.3);
     // Out of range is still said so.
     c->selectAll();
     QTest::keyClicks(c, "250");

@@ -155,9 +155,31 @@ QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
         return state;
     }
     if (parsed && range_.contains(value) && value >= minimum() && value <= maximum()) {
-        // In range, but with more decimals than the field keeps (Qt refuses those): said as such,
-        // not as out of range ("c = 0.0023 kPa is outside [0, 200]" was false).
+        // In range, with more decimals than the box shows now (Qt refuses those). Up to
+        // kMaxDecimals the box takes them, as it shows a value from a file (0.00234): once this
+        // validation has returned, the decimals are raised and the typed text put back.
         last_text_ = number;
+        const int needed = decimalsShowing(value, base_decimals_, kMaxDecimals);
+        if (needed > decimals()) {
+            auto* self = const_cast<ValidatedSpinBox*>(this);
+            QTimer::singleShot(0, self, [self, needed] {
+                if (needed <= self->decimals()) return;
+                // The text as it is now (keys typed since included), put back after the change.
+                const QString typed = self->lineEdit()->text();
+                const int cursor = self->lineEdit()->cursorPosition();
+                {
+                    const QSignalBlocker block(self);
+                    self->setDecimals(needed);  // rewrites the text from the committed value
+                }
+                self->lineEdit()->setText(typed);  // validated again
+                self->lineEdit()->setCursorPosition(cursor);
+                self->debounce_->start();  // committed as if typed
+            });
+            flag(true, {});
+            return QValidator::Intermediate;
+        }
+        // Beyond kMaxDecimals: said as such, not as out of range ("c = 0.0023 kPa is outside
+        // [0, 200]" was false).
         flag(false, QString("%1 = %2 %3: this field keeps %4 decimals (it would be %5)")
                         .arg(name_, number, unit_)
                         .arg(decimals())
