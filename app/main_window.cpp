@@ -281,10 +281,14 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
     const QString results_path = QString::fromStdString(
         project::resultsPathFor(QFileInfo(path).absoluteFilePath().toStdString()).string());
     reading_results_ = QFileInfo::exists(results_path);
-    for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(reading_results_);
+    // What the panels show is of the project before: dropped from every panel (held while the
+    // results file is read, so that the quick panels' updates wait for it), before the file's
+    // sections are restored over it, section by section.
+    for (ui::AnalysisPanel* panel : panels_) {
+        panel->holdUpdates(reading_results_);
+        panel->projectReplaced();
+    }
     if (!reading_results_) {
-        // No results file: what the panels show is of the project before.
-        for (ui::AnalysisPanel* panel : panels_) panel->projectReplaced();
         statusBar()->showMessage("Opened " + path, 6000);
         return true;
     }

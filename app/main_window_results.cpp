@@ -20,7 +20,6 @@ void MainWindow::showSavedResults(const QString& path,
                (part.empty() ? QString() : " (" + QString::fromStdString(part.substr(1)) + ")");
     };
     bool identified = false;
-    std::vector<bool> restored(panels_.size(), false);
     if (results) {
         // The identification first: the global study's "identified soil" source depends on it.
         std::vector<std::size_t> order(panels_.size());
@@ -35,8 +34,8 @@ void MainWindow::showSavedResults(const QString& path,
                     panels_[i]->restoreResult(section, saved);
                 if (outcome.shown()) {
                     shown << title(i, section);
-                    restored[i] = true;
-                    identified = identified || panels_[i] == identification_;
+                    // The fit (not the streaming playback) is what the global study may use.
+                    identified = identified || section == identification_->name().toStdString();
                 } else {
                     not_shown << title(i, section) + ": " + QString::fromStdString(outcome.message);
                 }
@@ -45,12 +44,8 @@ void MainWindow::showSavedResults(const QString& path,
         for (const Issue& issue : results->unreadable)
             not_shown << QString::fromStdString(issue.where + ": " + issue.message);
     }
+    for (ui::AnalysisPanel* panel : panels_) panel->holdUpdates(false);
     reading_results_ = false;
-    for (std::size_t i = 0; i < panels_.size(); ++i) {
-        panels_[i]->holdUpdates(false);
-        // A panel that shows none of the file's results shows the project before's: dropped.
-        if (!restored[i]) panels_[i]->projectReplaced();
-    }
     if (identified) shareIdentification();
     QString message = "Opened " + path;
     if (!results) {

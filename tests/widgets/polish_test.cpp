@@ -152,6 +152,21 @@ TEST(EditorRefusalMessages, MoreDecimalsAreTakenAndNeverCalledOutOfRange) {
     EXPECT_FALSE(message.contains("outside")) << message.toStdString();
     QTest::qWait(600);
     EXPECT_DOUBLE_EQ(document.project().soil.cohesion_pa, 2.3);
+    // An exact value typed with extra zeros ("1.500" in a box of two decimals), and Enter at
+    // once after the keys (before the raise was queued to run): taken, not refused or reverted.
+    c->selectAll();
+    QTest::keyClicks(c, "1.500");
+    QTest::keyClick(c, Qt::Key_Return);
+    EXPECT_TRUE(QTest::qWaitFor(
+        [&document] { return document.project().soil.cohesion_pa == 1500.0; }, 3000))
+        << document.project().soil.cohesion_pa;
+    EXPECT_TRUE(messageOf(editor).isEmpty()) << messageOf(editor).toStdString();
+    c->selectAll();
+    QTest::keyClicks(c, "0.0005");
+    QTest::keyClick(c, Qt::Key_Return);
+    EXPECT_TRUE(
+        QTest::qWaitFor([&document] { return document.project().soil.cohesion_pa == 0.5; }, 3000))
+        << document.project().soil.cohesion_pa;
     // Out of range is still said so.
     c->selectAll();
     QTest::keyClicks(c, "250");

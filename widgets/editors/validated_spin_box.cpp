@@ -8,6 +8,7 @@
 #include <QTimer>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace terra::ui {
 
@@ -84,6 +85,21 @@ void ValidatedSpinBox::setCommittedValue(double value) {
     if (had_message) emit messageChanged({});  // outside the blocker: the editor's line clears
 }
 
+void ValidatedSpinBox::applyPendingDecimals() {
+    const int needed = std::exchange(pending_decimals_, 0);
+    if (needed <= decimals()) return;
+    // The text as it is now (keys typed since included), put back after the change.
+    const QString typed = lineEdit()->text();
+    const int cursor = lineEdit()->cursorPosition();
+    {
+        const QSignalBlocker block(this);
+        setDecimals(needed);  // rewrites the text from the committed value
+    }
+    lineEdit()->setText(typed);  // validated again: acceptable now
+    lineEdit()->setCursorPosition(cursor);
+    debounce_->start();  // committed as if typed
+}
+
 void ValidatedSpinBox::commitTyped() {
     if (!valid_ || !hasAcceptableInput()) return;  // flagged or intermediate ("", "-", "1e"): wait
     interpretText();  // emits valueChanged when the value differs from the shown one
@@ -95,7 +111,10 @@ void ValidatedSpinBox::revertIfInvalid() {
 }
 
 void ValidatedSpinBox::keyPressEvent(QKeyEvent* event) {
-    if (event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) debounce_->stop();
+    if (event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) {
+        applyPendingDecimals();  // typed decimals taken before Enter commits the text
+        debounce_->stop();
+    }
     if ((event->key() == Qt::Key_Return || event->key() == Qt::Key_Enter) && !valid_) {
         revertIfInvalid();
         event->accept();
@@ -110,6 +129,7 @@ void ValidatedSpinBox::focusInEvent(QFocusEvent* event) {
 }
 
 void ValidatedSpinBox::focusOutEvent(QFocusEvent* event) {
+    applyPendingDecimals();
     debounce_->stop();  // QAbstractSpinBox commits acceptable text on focus-out itself
     revertIfInvalid();
     QDoubleSpinBox::focusOutEvent(event);
@@ -159,22 +179,19 @@ QValidator::State ValidatedSpinBox::validate(QString& text, int& pos) const {
         // kMaxDecimals the box takes them, as it shows a value from a file (0.00234): once this
         // validation has returned, the decimals are raised and the typed text put back.
         last_text_ = number;
-        const int needed = decimalsShowing(value, base_decimals_, kMaxDecimals);
+        // The decimals the value needs, or that were typed ("1.500" is 1.5, typed with three).
+        const qsizetype point = number.indexOf(locale().decimalPoint());
+        qsizetype typed = 0;
+        while (point >= 0 && point + 1 + typed < number.size() &&
+               number[point + 1 + typed].isDigit())
+            ++typed;
+        const int needed = std::min(
+            std::max(decimalsShowing(value, base_decimals_, kMaxDecimals), static_cast<int>(typed)),
+            kMaxDecimals);
         if (needed > decimals()) {
             auto* self = const_cast<ValidatedSpinBox*>(this);
-            QTimer::singleShot(0, self, [self, needed] {
-                if (needed <= self->decimals()) return;
-                // The text as it is now (keys typed since included), put back after the change.
-                const QString typed = self->lineEdit()->text();
-                const int cursor = self->lineEdit()->cursorPosition();
-                {
-                    const QSignalBlocker block(self);
-                    self->setDecimals(needed);  // rewrites the text from the committed value
-                }
-                self->lineEdit()->setText(typed);  // validated again
-                self->lineEdit()->setCursorPosition(cursor);
-                self->debounce_->start();  // committed as if typed
-            });
+            self->pending_decimals_ = std::max(pending_decimals_, needed);
+            QTimer::singleShot(0, self, [self] { self->applyPendingDecimals(); });
             flag(true, {});
             return QValidator::Intermediate;
         }

@@ -75,6 +75,10 @@ private:
     mutable bool valid_ = true;
     double committed_ = 0.0;
     QTimer* debounce_;
+    /// Typed decimals the box takes (validate() found them in range): raised once the validation
+    /// has returned, or at Enter or focus-out, whichever comes first.
+    int pending_decimals_ = 0;
+    void applyPendingDecimals();
 };
 
 }  // namespace terra::ui

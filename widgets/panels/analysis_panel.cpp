@@ -31,6 +31,7 @@ AnalysisPanel::AnalysisPanel(ProjectDocument* document, const QString& name, QWi
 AnalysisPanel::~AnalysisPanel() = default;  // the runner cancels its job and waits for it
 
 void AnalysisPanel::scheduleUpdate() {
+    wanted_ = true;
     runner_.supersede();
     since_edit_.start();
     // The running result is stale now: cancel it, unless the screen has not changed for
@@ -49,6 +50,7 @@ void AnalysisPanel::scheduleUpdate() {
 void AnalysisPanel::cancelRunning() { runner_.cancel(); }
 
 void AnalysisPanel::discardRunning() {
+    wanted_ = false;  // what ran was the project before's: nothing follows it by itself
     runner_.cancel();
     first_shown_revision_ = runner_.supersede();
 }
@@ -133,6 +135,7 @@ bool AnalysisPanel::start() {
         return false;
     }
     running_hash_ = inputsHash();
+    wanted_ = false;
     emit busyChanged(true);
     runner_.start([job](const analysis::Control& control) { return job(*control.cancel); });
     return true;
@@ -145,7 +148,9 @@ void AnalysisPanel::finished(const AnalysisRunner::Outcome& outcome) {
         if (!outcome.cancelled && outcome.error.isEmpty() &&
             outcome.revision >= first_shown_revision_)
             presentOutcome(outcome);
-        if (!start()) emit busyChanged(false);  // waiting (hidden, or not by itself): not busy
+        // The newest state follows only when one was asked since (not after discardRunning: a
+        // fit or run of the project before would start again by itself on Open or New).
+        if (!wanted_ || !start()) emit busyChanged(false);  // waiting, or nothing asked
         return;
     }
     emit busyChanged(false);
@@ -262,6 +267,10 @@ void AnalysisPanel::projectReplaced() {
     completion_ = Completion::kComplete;
     presented_hash_.clear();
     restored_hash_.clear();
+    if (progress_bar_) {
+        progress_bar_->setValue(0);
+        progress_bar_->setFormat(progressFormat(completion_));
+    }
     if (live_) scheduleUpdate();  // a panel computing on Run alone waits for it
 }
 

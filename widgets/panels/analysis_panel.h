@@ -254,6 +254,7 @@ private:
     bool deferred_ = false;  // an update waits until the panel is shown
     bool live_ = true;
     bool requested_ = false;  // recompute() asked for the next computation
+    bool wanted_ = false;     // an update was asked since the last start or discard
     bool held_ = false;       // holdUpdates(true)
     QElapsedTimer since_edit_;
     QElapsedTimer since_shown_;  // since the last present()

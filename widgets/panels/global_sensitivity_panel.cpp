@@ -240,7 +240,8 @@ void GlobalSensitivityPanel::projectReplaced() {
     // project's again when it shows its fit).
     setIdentification({}, identification::Uncertainty{});
     showNotComputed(status_, "Not computed yet: press Compute.", {indices_plot_, bands_plot_});
-    AnalysisPanel::projectReplaced();  // computes again when the study is light
+    AnalysisPanel::projectReplaced();
+    scheduleUpdate();  // computes again when the study is light, else says "not computed"
 }
 
 void GlobalSensitivityPanel::showPage(int page) { pages_->setCurrentIndex(page); }

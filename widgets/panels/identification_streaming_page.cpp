@@ -316,6 +316,12 @@ void IdentificationStreamingPage::playbackStateChanged(StreamingPlayback::State 
 
 void IdentificationStreamingPage::clearResult() {
     stopPlayback();
+    truth_.clear();
+    border_.reset();
+    count_ = 0;
+    description_.clear();
+    warnings_.clear();
+    stopped_ = false;
     resetFigures(0);
     figures_->replot();
     hash_.clear();

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <memory>
 
 #include "core/analysis/rover.h"
 #include "core/io/atomic_file.h"
@@ -694,6 +695,7 @@ void RoverPanel::projectReplaced() {
     shown_name_.clear();
     shown_json_ = nullptr;
     comparison_ = nlohmann::json::array();
+    title_.clear();
     showComparison();
     for (std::size_t i = 0; i < plots_.size(); ++i) {
         plots_[i]->clearPlottables();
@@ -702,6 +704,16 @@ void RoverPanel::projectReplaced() {
     }
     AnalysisPanel::projectReplaced();
     previewScenario();  // the top view: the scenario's soils and start, "not run yet"
+    if (isBusy()) {
+        // A discarded run still ending: the preview once it has (previewScenario waits for it).
+        auto connection = std::make_shared<QMetaObject::Connection>();
+        *connection =
+            connect(this, &AnalysisPanel::busyChanged, this, [this, connection](bool busy) {
+                if (busy) return;
+                disconnect(*connection);
+                if (result_.series.rows.empty()) previewScenario();
+            });
+    }
 }
 
 void RoverPanel::editScenario() {
