@@ -262,32 +262,15 @@ bool MainWindow::openProject(const QString& path, bool quiet) {
                                  QString::fromStdString(project.message()));
         return false;
     }
-    // What runs for the project being closed is dropped, never shown over the opened one.
-    for (ui::AnalysisPanel* panel : panels_) panel->discardRunning();
-    document_->reset(*project, QFileInfo(path).absoluteFilePath());
-    for (ui::AnalysisPanel* panel : panels_) {
-        const std::string name = panel->name().toStdString();
-        // A panel the file does not name (a project saved before the panel existed) takes its
-        // defaults, never the state of the project open before.
-        panel->applyFileSettings(project->panels.value(name, nlohmann::json::object()));
-    }
-    // The panels taking the file's settings write them back (in their own form, defaults
-    // filled in): that is not an edit. The opened project is what is on disk.
-    adoptPanelSettings();
-    addRecent(QFileInfo(path).absoluteFilePath());
+    const QString absolute = QFileInfo(path).absoluteFilePath();
     // The results saved beside it, read off the GUI thread (a rover run is 10⁵ numbers) and shown
     // where the inputs are unchanged: nothing is recomputed, and nothing starts meanwhile.
     const int opening = ++opening_;
-    const QString results_path = QString::fromStdString(
-        project::resultsPathFor(QFileInfo(path).absoluteFilePath().toStdString()).string());
+    const QString results_path =
+        QString::fromStdString(project::resultsPathFor(absolute.toStdString()).string());
     reading_results_ = QFileInfo::exists(results_path);
-    // What the panels show is of the project before: dropped from every panel (held while the
-    // results file is read, so that the quick panels' updates wait for it), before the file's
-    // sections are restored over it, section by section.
-    for (ui::AnalysisPanel* panel : panels_) {
-        panel->holdUpdates(reading_results_);
-        panel->projectReplaced();
-    }
+    replaceProject(*project, absolute, reading_results_);
+    addRecent(absolute);
     if (!reading_results_) {
         statusBar()->showMessage("Opened " + path, 6000);
         return true;
@@ -305,18 +288,28 @@ void MainWindow::newProject() {
     if (!maybeSave()) return;
     ++opening_;  // saved results still being read are of the project before: never shown
     reading_results_ = false;
-    // What runs for the project being closed is dropped; the panels take a new project's
-    // settings (their defaults, never the project before's) and drop its results.
+    replaceProject(ui::ProjectDocument::defaultProject(locations_), {}, false);
+}
+
+void MainWindow::replaceProject(const project::Project& project, const QString& file_path,
+                                bool hold) {
+    // What runs for the project being closed is dropped, never shown over the new one.
     for (ui::AnalysisPanel* panel : panels_) panel->discardRunning();
-    const project::Project fresh = ui::ProjectDocument::defaultProject(locations_);
-    document_->reset(fresh);
+    document_->reset(project, file_path);
     for (ui::AnalysisPanel* panel : panels_) {
+        // A panel the file does not name (a project saved before the panel existed, or a new
+        // project) takes its defaults, never the state of the project open before.
         panel->applyFileSettings(
-            fresh.panels.value(panel->name().toStdString(), nlohmann::json::object()));
+            project.panels.value(panel->name().toStdString(), nlohmann::json::object()));
     }
+    // The panels taking the file's settings write them back (in their own form, defaults
+    // filled in): that is not an edit. The opened project is what is on disk.
     adoptPanelSettings();
+    // What the panels show is of the project before: dropped from every panel (held while a
+    // results file is read, so that the quick panels' updates wait for it), before the file's
+    // sections are restored over it, section by section.
     for (ui::AnalysisPanel* panel : panels_) {
-        panel->holdUpdates(false);
+        panel->holdUpdates(hold);
         panel->projectReplaced();
     }
 }

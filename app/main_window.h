@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/io/parameters_json.h"
+#include "core/project/project.h"
 #include "core/project/results.h"
 
 class QCustomPlot;
@@ -121,6 +122,9 @@ private:
     /// The identification panel's data (a CSV chosen, listed or dropped), the panel on screen.
     void useData(const QString& path);
     void adoptPanelSettings();
+    /// The document becomes `project` (at `file_path`, empty for a new one): the panels drop what
+    /// runs and what they show, take its settings, and wait while `hold` (its results are read).
+    void replaceProject(const project::Project& project, const QString& file_path, bool hold);
     void showSavedResults(const QString& path, const Result<project::SavedResults>& results);
     /// The identification's fit as the global study's "identified soil" source.
     void shareIdentification();
