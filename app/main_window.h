@@ -171,7 +171,9 @@ private:
     QMenu* recent_menu_ = nullptr;
     ui::IdentificationPanel* identification_ = nullptr;
     ui::GlobalSensitivityPanel* global_ = nullptr;
-    int opening_ = 0;               // counts openings: results read for an earlier one are dropped
+    int opening_ = 0;  // counts openings: results read for an earlier one are dropped
+    int layouts_applied_ =
+        0;  // counts applyLayout calls: a later choice cancels a pending re-apply
     bool reading_results_ = false;  // the opened project's saved results are being read
     /// The results sidecar being written off the GUI thread by the last save (nullptr: none).
     QFutureWatcher<std::optional<std::string>>* writing_results_ = nullptr;

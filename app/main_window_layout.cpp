@@ -159,6 +159,7 @@ void MainWindow::giveThePanelsTheWidth() {
 }
 
 void MainWindow::applyLayout(Layout layout) {
+    const int applied = ++layouts_applied_;
     ui::AnalysisPanel* current = current_;
     const bool column_shown = project_dock_->isVisible() || properties_dock_->isVisible();
     // Default and compact are the panels as built: every plot back in its panel.
@@ -167,6 +168,10 @@ void MainWindow::applyLayout(Layout layout) {
     all.insert(all.end(), panel_docks_.begin(), panel_docks_.end());
     const std::vector<QDockWidget*> plot_docks = plot_docking_->docks();
     all.insert(all.end(), plot_docks.begin(), plot_docks.end());
+    // A width the layout before held (setWidths) is released now, not only when its timer
+    // fires: still held, it counted twice in the docks' needs (dockMinimumWidth) and a layout
+    // chosen right after another (or on a loaded machine) packed one panel a row.
+    for (QDockWidget* d : all) d->setMinimumWidth(0);
     // From scratch: every dock docked and shown (a floating one comes back into the window).
     for (QDockWidget* d : all) d->setFloating(false);
     removeDockWidget(project_dock_);
@@ -205,8 +210,12 @@ void MainWindow::applyLayout(Layout layout) {
         // The column just hidden gives the panel area its width only when the window is laid
         // out: the panels' widths set now are shares of the narrower area (a row with tabbed
         // panels came out squeezed). Once more then, the area already as wide.
-        if (column_shown && !project_dock_->isVisible() && isVisible())
-            QTimer::singleShot(0, this, [this, layout] { applyLayout(layout); });
+        // Not when another layout has been chosen in the meantime: it would be undone.
+        if (column_shown && !project_dock_->isVisible() && isVisible()) {
+            QTimer::singleShot(0, this, [this, layout, applied] {
+                if (applied == layouts_applied_) applyLayout(layout);
+            });
+        }
     } else {
         showPanel(current ? current->name() : panels_.front()->name());
     }

@@ -133,6 +133,24 @@ TEST(PlotDocks, TiledAfterEveryPanelComputedDoesNotScrollSideways) {
     QSettings().remove("window");
 }
 
+// Tiled chosen before the event loop has turned after Side by side: the two panels side by side
+// still held at their widths (until a zero timer releases them) once counted that width twice and
+// packed one panel a row, two on screen (CI, under load, where a 300 ms wait was not enough).
+TEST(PlotDocks, TiledRightAfterSideBySideShowsSeveralPanels) {
+    QSettings().remove("window");
+    Studio studio;
+    MainWindow& w = studio.window;
+    w.resize(kWindowAt1366x768);
+    wait();
+    w.showPanel("forces");
+    studio.action("action.layout_side_by_side")->trigger();
+    studio.action("action.layout_tiled")->trigger();
+    wait(500);
+    EXPECT_GE(panelsOnScreen(w, "tiled right after side by side"), 4);
+    EXPECT_EQ(w.size(), kWindowAt1366x768);
+    QSettings().remove("window");
+}
+
 TEST(PlotDocks, SideBySideAndTiledPanelsDoNotScrollSidewaysAt1366x768) {
     QSettings().remove("window");
     Studio studio;
