@@ -44,6 +44,7 @@
 #include "widgets/panels/rover_panel.h"
 #include "widgets/panels/sensitivity_panel.h"
 #include "widgets/panels/stress_panel.h"
+#include "widgets/plots/figures.h"
 #include "window_test_support.h"
 
 namespace terra::app {
@@ -323,8 +324,15 @@ TEST(SavedResultsWindow, AnotherProjectOrANewOneShowsNoneOfTheResultsBefore) {
     QTest::qWait(500);
     EXPECT_FALSE(identification->hasResult());
     EXPECT_TRUE(identification->result().curves.rows.empty());
+    // The fit's plots no longer titled with the old fit's samples.
+    for (const auto& [name, plot] : identification->plots())
+        EXPECT_FALSE(ui::plotTitle(*plot).contains("samples")) << name.toStdString();
     EXPECT_FALSE(rover->hasResult());
     EXPECT_TRUE(rover->result().series.rows.empty());
+    // The time scrubber of no run: the old run's range and time gone.
+    EXPECT_EQ(rover->scrubber()->maximum(), 0);
+    EXPECT_FALSE(rover->scrubber()->isEnabled());
+    EXPECT_EQ(rover->timeLabel(), "t = – s");
     EXPECT_FALSE(global->hasResult());
     EXPECT_FALSE(global->indices().has_value());
     EXPECT_TRUE(global->statusText().contains("Not computed"))

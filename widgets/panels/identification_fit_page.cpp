@@ -389,6 +389,8 @@ void IdentificationFitPage::clearShown() {
     fitTableToRows();
     for (QCustomPlot* plot : plots_) {
         plot->clearPlottables();
+        // The title named the shown fit's samples and source: not over emptied axes.
+        setPlotTitle(*plot, "No fit shown");
         plot->replot();
     }
 }

@@ -697,6 +697,16 @@ void RoverPanel::projectReplaced() {
     comparison_ = nlohmann::json::array();
     title_.clear();
     showComparison();
+    // The time scrubber of no run: empty, stopped, "t = – s".
+    play_->setChecked(false);
+    play_->setEnabled(false);
+    {
+        const QSignalBlocker block(scrubber_);
+        scrubber_->setRange(0, 0);
+        scrubber_->setValue(0);
+    }
+    scrubber_->setEnabled(false);
+    time_->setText(timeLabel());
     for (std::size_t i = 0; i < plots_.size(); ++i) {
         plots_[i]->clearPlottables();
         plots_[i]->replot();
