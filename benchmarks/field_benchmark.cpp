@@ -101,7 +101,8 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // stress at depth; 6 as 4 writing each passage to the cell under the contact point only, not
 // across the wheel's width (docs/field.md F13); 7 as 4 with a cohesion raster of 0.5 m cells
 // (100 × 40 distinct values from 1 to 3 kPa: 4,000 soils, F14); 8 as 4 with each wheel reading
-// the memory of its contact point's cell for its whole width (F15 off). Second arg: the step in
+// the memory of its contact point's cell for its whole width (F15 off); 9 as 4 with the full
+// scan for σ_z's peak at every passage (F16 off). Second arg: the step in
 // ms; third: 1 for the implicit integrator (docs/dynamics.md, "Integrators"). Counters: real-time
 // factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
@@ -152,6 +153,7 @@ scenario::Scenario fieldRun(int kind) {
     s.options.contact.closed_form_reload = kind >= 4;
     s.field_options.across_width = kind != 6;
     s.field_options.read_across_width = kind != 8;  // 8: kind 4 read at the contact point (F15)
+    if (kind == 9) s.field_options.full_scan_every = 1;  // kind 4 without F16
     return s;
 }
 
@@ -285,6 +287,7 @@ BENCHMARK(RoverFieldMission)
     ->Args({6, 20, 1})
     ->Args({7, 20, 1})
     ->Args({8, 20, 1})
+    ->Args({9, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);

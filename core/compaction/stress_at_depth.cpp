@@ -203,27 +203,40 @@ double maxVerticalStress(const StressPropagation& propagation, double y_m, doubl
     return verticalStressPeak(propagation, y_m, z_m, scan_points).sigma_z_pa;
 }
 
-double maxVerticalStressNear(const StressPropagation& propagation, const VerticalStressPeak& peak,
-                             double y_m, double z_m) {
+VerticalStressPeak verticalStressPeakNear(const StressPropagation& propagation,
+                                          const VerticalStressPeak& guess, double y_m, double z_m) {
     requireBelow(propagation, z_m);
     auto f = [&](double x) { return propagation.verticalStressAt({x, y_m, z_m}); };
     // The parabola through x* and x* ± d (d a quarter of the scan step, ≤ z/3): its vertex, when
     // the three values are concave and the vertex lies within ±d, is the peak to O(d³) in x;
     // σ_z being flat there (its scale is z), the value is to O((d/z)⁴) relative.
-    const double d = 0.25 * peak.step_m;
-    const double f0 = f(peak.x_m), f_minus = f(peak.x_m - d), f_plus = f(peak.x_m + d);
+    const double d = 0.25 * guess.step_m;
+    const double x0 = guess.x_m;
+    const double f0 = f(x0), f_minus = f(x0 - d), f_plus = f(x0 + d);
+    // The best of the three as a start, the middle one on ties.
+    VerticalStressPeak best{x0, f0, guess.step_m};
+    if (f_minus > best.sigma_z_pa) best = {x0 - d, f_minus, guess.step_m};
+    if (f_plus > best.sigma_z_pa) best = {x0 + d, f_plus, guess.step_m};
     const double curvature = f_plus - 2.0 * f0 + f_minus;
     if (curvature < 0.0) {
         const double shift = -0.5 * d * (f_plus - f_minus) / curvature;
-        if (std::abs(shift) <= d) return std::max({f(peak.x_m + shift), f0, f_minus, f_plus});
+        if (std::abs(shift) <= d) {
+            const double at_vertex = f(x0 + shift);
+            if (at_vertex >= best.sigma_z_pa) best = {x0 + shift, at_vertex, guess.step_m};
+            return best;
+        }
     }
     // Otherwise Brent's method within x* ± the scan step (to 2⁻²⁰ in x); a maximum at that
     // bracket's edge may lie beyond it: the whole scan then.
-    const auto [x, value] = refineMaximum(f, peak.x_m - peak.step_m, peak.x_m + peak.step_m,
-                                          peak.x_m, std::max({f0, f_minus, f_plus}));
-    if (!(std::abs(x - peak.x_m) < 0.99 * peak.step_m))
-        return maxVerticalStress(propagation, y_m, z_m);
-    return value;
+    const auto [x, value] =
+        refineMaximum(f, x0 - guess.step_m, x0 + guess.step_m, best.x_m, best.sigma_z_pa);
+    if (!(std::abs(x - x0) < 0.99 * guess.step_m)) return verticalStressPeak(propagation, y_m, z_m);
+    return {x, value, guess.step_m};
+}
+
+double maxVerticalStressNear(const StressPropagation& propagation, const VerticalStressPeak& peak,
+                             double y_m, double z_m) {
+    return verticalStressPeakNear(propagation, peak, y_m, z_m).sigma_z_pa;
 }
 
 double verticalStressBound(const StressPropagation& propagation, double z_m) {

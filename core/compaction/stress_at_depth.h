@@ -112,6 +112,12 @@ VerticalStressPeak verticalStressPeak(const StressPropagation& propagation, doub
 double maxVerticalStressNear(const StressPropagation& propagation, const VerticalStressPeak& peak,
                              double y_m, double z_m);
 
+/// The same search from a guess of the peak (the last passage's, docs/field.md F16), returning
+/// where the peak is, its value and the guess's step; the full scan (verticalStressPeak) when the
+/// maximum lies beyond the guess ± its step.
+VerticalStressPeak verticalStressPeakNear(const StressPropagation& propagation,
+                                          const VerticalStressPeak& guess, double y_m, double z_m);
+
 /// An upper bound of σ_z anywhere on the plane at depth z [Pa]: (ν Σ|F_z| + ν(ν − 2) Σ|F_h|) /
 /// (2π (z − z_deepest)²), from C1–C2 with cos ϑ ≤ 1 and R ≥ z − z_deepest. The red-zone search
 /// skips depths it proves green.

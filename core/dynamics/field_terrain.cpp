@@ -569,10 +569,21 @@ void FieldTerrain::commit(Passage& p) {
             propagation[k].reset();
         }
     }
-    // Per depth: the peak under the centre line (a full scan), then each cell's distance from
-    // the line by Brent's method near that peak (maxVerticalStressNear); cells at one distance
-    // share it.
+    // Per depth: the peak under the centre line — from the wheel's last passage's peak (F16),
+    // else and every options_.full_scan_every passages by the full scan —, then each cell's
+    // distance from the line by Brent's method near that peak (maxVerticalStressNear); cells at one
+    // distance share it.
     std::vector<std::optional<compaction::VerticalStressPeak>> centre(depths.size());
+    std::vector<std::optional<compaction::VerticalStressPeak>>& last_peak = last_peak_[wheel];
+    last_peak.resize(depths.size());
+    const bool full_scan = ++since_full_scan_[wheel] >= options_.full_scan_every;
+    if (full_scan) since_full_scan_[wheel] = 0;
+    auto centrePeak = [&](std::size_t k, const compaction::StressPropagation& q) {
+        centre[k] = last_peak[k] && !full_scan
+                        ? compaction::verticalStressPeakNear(q, *last_peak[k], 0.0, depths[k])
+                        : compaction::verticalStressPeak(q, 0.0, depths[k]);
+        last_peak[k] = centre[k];
+    };
     struct Known {
         std::size_t depth;
         double offset_m, sigma_pa;
@@ -586,7 +597,7 @@ void FieldTerrain::commit(Passage& p) {
         const std::optional<compaction::StressPropagation>& q = propagation[k];
         if (q && depths[k] > q->deepestLoad()) {
             try {
-                if (!centre[k]) centre[k] = compaction::verticalStressPeak(*q, 0.0, depths[k]);
+                if (!centre[k]) centrePeak(k, *q);
                 sigma = offset_m == 0.0 ? centre[k]->sigma_z_pa
                                         : compaction::maxVerticalStressNear(*q, *centre[k],
                                                                             offset_m, depths[k]);

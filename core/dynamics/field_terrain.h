@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/compaction/stress_at_depth.h"
 #include "core/compaction/track_memory.h"
 #include "core/dynamics/robot.h"
 #include "core/dynamics/terrain.h"
@@ -63,6 +64,10 @@ struct FieldTerrainOptions {
     /// edge); false: the memory of the cell under its contact point for the whole width (F10).
     /// Only with across_width (a one-cell-wide rut is met by the contact point alone).
     bool read_across_width = true;
+    /// The peak of σ_z under a wheel's centre line is searched from the wheel's last passage's
+    /// peak, with the full scan every this many passages of the wheel (docs/field.md F16); ≤ 1: the
+    /// full scan every passage.
+    int full_scan_every = 16;
 };
 
 /// One wheel's passage as it was written to one of its cells (F10, F13): what the maps show of
@@ -216,6 +221,11 @@ private:
         double travel_m = 0.0;
     };
     std::array<Carry, kWheelCount> carry_{};
+    // F16: each wheel's last peak of σ_z under its centre line at each risk depth (the next
+    // passage's search starts there), and its passages since the last full scan.
+    std::array<std::vector<std::optional<compaction::VerticalStressPeak>>, kWheelCount>
+        last_peak_{};
+    std::array<int, kWheelCount> since_full_scan_{};
     // F15: each wheel's band when its memories differ across its width; the shares point into
     // band_memory_, whose capacity (kMaxBandSamples) is reserved so that they stay valid.
     void sampleBand(std::size_t wheel, const Passage& passage);

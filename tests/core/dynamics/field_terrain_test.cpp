@@ -330,6 +330,48 @@ TEST(FieldRover, APassageIsWrittenToEveryCellUnderTheWheelsWidth) {
     EXPECT_EQ(wide.terrain->cellsTouched(), static_cast<long>(w[2]));
 }
 
+// F16: the peak of σ_z under a wheel's centre line, searched from the wheel's last passage's
+// peak (a full scan every 16 passages), is the full scan's at every passage, within 10⁻⁵: on a
+// run that turns (the front wheels at 8°) across a soil border into a softer soil (the loads and
+// the footprints change) at a shallow and a deep depth. The stress at depth is an output only:
+// the run's memory is the same bit for bit.
+TEST(FieldRover, TheStressPeakFromTheLastPassageIsTheFullScans) {
+    scenario::Scenario s = shipped("straight", 12.0);
+    for (auto& w : s.wheels) w.spin_rate_rad_s = scenario::Signal::constant(1.5);
+    for (int i = 0; i < 2; ++i)
+        s.wheels[i].steer_angle_rad = scenario::Signal::constant(8.0 * M_PI / 180.0);
+    soil::SoilParameters softer = s.terrain.base;
+    softer.frictional_modulus *= 0.5;
+    softer.cohesion_pa *= 0.5;
+    auto run = [&](int full_scan_every) {
+        FieldTerrainOptions options;
+        options.cell_m = 0.02;
+        options.stress_depths_m = {0.05, 0.3};
+        options.full_scan_every = full_scan_every;
+        auto terrain = std::make_unique<FieldTerrain>(borderField(s.terrain.base, softer, 0.8),
+                                                      s.robot, options);
+        Rover rover(s.robot, *terrain, s.options, s.initial, s.commandsAt(0.0));
+        const long steps = std::lround(s.duration_s / s.time_step_s);
+        for (long k = 0; k < steps; ++k) rover.step(s.time_step_s, s.commandsAt(0.0));
+        terrain->finish();
+        return terrain;
+    };
+    const auto warm = run(16), full = run(1);
+    long cells = 0;
+    full->cells().forEachCell([&](field::CellKey key, const field::CellState& c) {
+        const field::CellState* w = warm->cells().find(key);
+        ASSERT_NE(w, nullptr);
+        EXPECT_EQ(w->track.passes, c.track.passes);
+        EXPECT_EQ(w->track.rut_depth_m, c.track.rut_depth_m);
+        for (std::size_t k = 0; k < 2; ++k) {
+            EXPECT_NEAR(w->max_stress_pa[k], c.max_stress_pa[k], 1e-5f * c.max_stress_pa[k]) << k;
+        }
+        cells += c.track.passes > 0 && c.max_stress_pa[1] > 0.0f;
+    });
+    EXPECT_GT(cells, 700);  // 1.7 m driven, 4 wheels, 5–6 cells across each
+    EXPECT_EQ(warm->cellsTouched(), full->cellsTouched());
+}
+
 // A field memory of cells h wide, with σ_z kept at `depths` (none: no stress at depth).
 FieldTerrainOptions cellsOf(double h, std::vector<double> depths = {}) {
     FieldTerrainOptions options;
