@@ -102,7 +102,8 @@ BENCHMARK(FieldTouchContactCells)->Unit(benchmark::kNanosecond);
 // across the wheel's width (docs/field.md F13); 7 as 4 with a cohesion raster of 0.5 m cells
 // (100 × 40 distinct values from 1 to 3 kPa: 4,000 soils, F14); 8 as 4 with each wheel reading
 // the memory of its contact point's cell for its whole width (F15 off); 9 as 4 with the full
-// scan for σ_z's peak at every passage (F16 off). Second arg: the step in
+// scan for σ_z's peak at every passage (F16 off); 10 as 4 with the contact Jacobians every
+// other step (docs/dynamics.md I6). Second arg: the step in
 // ms; third: 1 for the implicit integrator (docs/dynamics.md, "Integrators"). Counters: real-time
 // factor, bytes of cell state, cells touched.
 scenario::Scenario fieldRun(int kind) {
@@ -154,6 +155,7 @@ scenario::Scenario fieldRun(int kind) {
     s.field_options.across_width = kind != 6;
     s.field_options.read_across_width = kind != 8;  // 8: kind 4 read at the contact point (F15)
     if (kind == 9) s.field_options.full_scan_every = 1;  // kind 4 without F16
+    if (kind == 10) s.options.jacobian_every = 2;        // kind 4 with I6
     return s;
 }
 
@@ -235,6 +237,7 @@ BENCHMARK(RoverOnField)
     ->Args({6, 20, 1})
     ->Args({7, 20, 1})
     ->Args({8, 20, 1})
+    ->Args({10, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
@@ -288,6 +291,7 @@ BENCHMARK(RoverFieldMission)
     ->Args({7, 20, 1})
     ->Args({8, 20, 1})
     ->Args({9, 20, 1})
+    ->Args({10, 20, 1})
     ->Args({4, 40, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);

@@ -5,6 +5,7 @@
 /// A scalar type T must provide the usual arithmetic, comparisons and the math functions found by
 /// argument-dependent lookup (sin, cos, pow, exp, expm1, sqrt, acos, tan); ceres::Jet does.
 
+#include <cmath>
 #include <type_traits>
 
 namespace terra {
@@ -24,6 +25,26 @@ T scalarCast(const U& x) {
         return x;
     } else {
         return T(scalarValue(x));
+    }
+}
+
+/// tan x for a soil's constant angle (its friction angle φ and c_s = tan(π/4 + φ/2), evaluated
+/// at every contact evaluation while the soil rarely changes): for a `double`, the last argument
+/// and its tangent are remembered per call site (`Site`, any distinct type) and thread, and the
+/// same argument returns the same tangent, bit for bit; any other scalar is computed.
+template <typename Site, typename T>
+T rememberedTan(const T& x) {
+    using std::tan;
+    if constexpr (std::is_same_v<T, double>) {
+        thread_local double last_x = std::nan("");
+        thread_local double last_tan = std::nan("");
+        if (x != last_x) {  // NaN never equals: computed, as a NaN argument is
+            last_tan = tan(x);
+            last_x = x;
+        }
+        return last_tan;
+    } else {
+        return tan(x);
     }
 }
 

@@ -20,7 +20,8 @@ enum class BulldozingModel {
 template <typename T>
 void bulldozingCoefficients(const ContactParameters<T>& p, BulldozingModel model, T& a_s, T& b_s) {
     using std::tan;
-    const T c_s = tan(std::numbers::pi / 4.0 + p.friction_angle_rad / 2.0);
+    struct PassiveTan {};
+    const T c_s = rememberedTan<PassiveTan>(std::numbers::pi / 4.0 + p.friction_angle_rad / 2.0);
     b_s = 2.0 * p.cohesion_pa * c_s;
     if (model == BulldozingModel::kBekker) {
         a_s = p.unit_weight_n_m3 * c_s * c_s;

@@ -30,6 +30,10 @@ struct QuadraticRegion {
     T lower;  ///< ˡθ_i [rad]
     T upper;  ///< ᵘθ_i [rad]
     Parabola<T> sigma, tau, tau_t, tau_l;
+    /// sin and cos of the bounds and of the origin of x, as the fit computed them for its stress
+    /// samples (the forces' integrals need them again); absent, they are computed.
+    bool has_trig = false;
+    T sin_lower{}, cos_lower{}, sin_upper{}, cos_upper{}, sin_origin{}, cos_origin{};
 };
 
 /// The quadratic approximation of the whole contact.
@@ -58,19 +62,47 @@ Parabola<T> interpolate(const T& h, const T& p0, const T& p_mid, const T& p_end)
     return {a, b, p0};
 }
 
+// A contact angle with its sine, cosine and stresses (computed once for the fit and the
+// integrals).
 template <typename T>
-QuadraticRegion<T> fitRegion(const StressField<T>& field, const T& theta_m, const T& theta_end,
-                             const StressSample<T>& at_m) {
-    const T h = theta_end - theta_m;
-    const StressSample<T> mid = field.at(theta_m + 0.5 * h);  // θ_fm or θ_rm, Eq. 2.36
-    const StressSample<T> end = field.at(theta_end);
+struct Node {
+    T theta, sin, cos;
+    StressSample<T> stress;
+};
+
+template <typename T>
+Node<T> nodeAt(const StressField<T>& field, const T& theta) {
+    using std::cos;
+    using std::sin;
+    Node<T> node{theta, sin(theta), cos(theta), {}};
+    node.stress = field.at(theta, node.sin, node.cos);  // = field.at(θ)
+    return node;
+}
+
+// The region from `start` (the origin of x: θ_m, or a kink) to θ_end; the node at θ_end is also
+// given to `at_end` when asked (the next region's start).
+template <typename T>
+QuadraticRegion<T> fitRegion(const StressField<T>& field, const Node<T>& start, const T& theta_end,
+                             Node<T>* at_end = nullptr) {
+    const T h = theta_end - start.theta;
+    const StressSample<T> mid = field.at(start.theta + 0.5 * h);  // θ_fm or θ_rm, Eq. 2.36
+    const Node<T> end = nodeAt(field, theta_end);
+    if (at_end) *at_end = end;
+    const Node<T>& lower = h >= 0.0 ? start : end;
+    const Node<T>& upper = h >= 0.0 ? end : start;
     QuadraticRegion<T> region;
-    region.lower = h >= 0.0 ? theta_m : theta_end;
-    region.upper = h >= 0.0 ? theta_end : theta_m;
-    region.sigma = interpolate(h, at_m.sigma, mid.sigma, end.sigma);
-    region.tau = interpolate(h, at_m.tau, mid.tau, end.tau);
-    region.tau_t = interpolate(h, at_m.tau_t, mid.tau_t, end.tau_t);
-    region.tau_l = interpolate(h, at_m.tau_l, mid.tau_l, end.tau_l);
+    region.lower = lower.theta;
+    region.upper = upper.theta;
+    region.has_trig = true;
+    region.sin_lower = lower.sin, region.cos_lower = lower.cos;
+    region.sin_upper = upper.sin, region.cos_upper = upper.cos;
+    region.sin_origin = start.sin, region.cos_origin = start.cos;
+    const StressSample<T>& a = start.stress;
+    const StressSample<T>& e = end.stress;
+    region.sigma = interpolate(h, a.sigma, mid.sigma, e.sigma);
+    region.tau = interpolate(h, a.tau, mid.tau, e.tau);
+    region.tau_t = interpolate(h, a.tau_t, mid.tau_t, e.tau_t);
+    region.tau_l = interpolate(h, a.tau_l, mid.tau_l, e.tau_l);
     return region;
 }
 
@@ -127,7 +159,7 @@ TrigMoments<T> trigMoments(const T& t) {
     return m;
 }
 
-// Adds ∫ over [x0, x1] of one region (upper minus lower: E3).
+// Adds ∫ over [x0, x1] of one region (upper minus lower: E3); θ_m is the region's origin of x.
 template <typename T>
 void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums) {
     using std::cos;
@@ -144,7 +176,8 @@ void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums
         // cos θ_m Σ p_k S_k, where C_k, S_k are the moments ∫ x^k cos x, ∫ x^k sin x over [x0, x1]
         // (one end is x = 0), whose series have no cancellation.
         const TrigMoments<T> m1 = trigMoments(x1), m0 = trigMoments(x0);
-        const T sm = sin(theta_m), cm = cos(theta_m);
+        const T sm = q.has_trig ? q.sin_origin : T(sin(theta_m));
+        const T cm = q.has_trig ? q.cos_origin : T(cos(theta_m));
         auto moments = [&](const Parabola<T>& p, T& with_cos, T& with_sin) {
             const T coefficient[3] = {p.c, p.b, p.a};
             T c_sum(0.0), s_sum(0.0);
@@ -165,8 +198,10 @@ void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums
         sums.mz += tau_l_sin;
         return;
     }
-    const T s0 = sin(q.lower), c0 = cos(q.lower);
-    const T s1 = sin(q.upper), c1 = cos(q.upper);
+    const T s0 = q.has_trig ? q.sin_lower : T(sin(q.lower));
+    const T c0 = q.has_trig ? q.cos_lower : T(cos(q.lower));
+    const T s1 = q.has_trig ? q.sin_upper : T(sin(q.upper));
+    const T c1 = q.has_trig ? q.cos_upper : T(cos(q.upper));
     auto cosInt = [&](const Parabola<T>& p) {
         return integralCos(p, x1, s1, c1) - integralCos(p, x0, s0, c0);
     };
@@ -184,10 +219,9 @@ void addRegion(const QuadraticRegion<T>& q, const T& theta_m, ForceSums<T>& sums
 /// Fits the parabolas of Eq. 2.37 by exact interpolation (Eq. 2.38, E4): five stress evaluations.
 template <typename T>
 QuadraticStress<T> fitQuadraticStress(const StressField<T>& field) {
-    const T& theta_m = field.maxStressAngle();
-    const StressSample<T> at_m = field.at(theta_m);
-    return {theta_m, detail::fitRegion(field, theta_m, field.entryAngle(), at_m),
-            detail::fitRegion(field, theta_m, field.exitAngle(), at_m)};
+    const detail::Node<T> m = detail::nodeAt(field, field.maxStressAngle());
+    return {m.theta, detail::fitRegion(field, m, field.entryAngle()),
+            detail::fitRegion(field, m, field.exitAngle())};
 }
 
 namespace detail {
@@ -206,17 +240,18 @@ void weightShear(const StressField<T>& field, QuadraticRegion<T>& region) {
 // (docs/model.md, "The quadratic reload branch", Q1–Q3): the parabola through θ_m, the middle
 // and θ_k, then the one through θ_k, the middle and the end, each in x measured from its own start.
 template <typename T>
-void addRememberedRegion(const StressField<T>& field, const T& theta_m, const T& end,
-                         const StressSample<T>& at_m, double kink, ForceSums<T>& sums) {
-    const bool split = std::isfinite(kink) && (kink - theta_m) * (end - kink) > 0.0;
+void addRememberedRegion(const StressField<T>& field, const Node<T>& m, const T& end, double kink,
+                         ForceSums<T>& sums) {
+    const bool split = std::isfinite(kink) && (kink - m.theta) * (end - kink) > 0.0;
     const T k = split ? T(kink) : end;
-    QuadraticRegion<T> near = fitRegion(field, theta_m, k, at_m);
+    Node<T> at_k;  // θ_k, where the far parabola starts
+    QuadraticRegion<T> near = fitRegion(field, m, k, split ? &at_k : nullptr);
     if (field.lugged()) weightShear(field, near);
-    addRegion(near, theta_m, sums);
+    addRegion(near, m.theta, sums);
     if (!split) return;
-    QuadraticRegion<T> far = fitRegion(field, k, end, field.at(k));
+    QuadraticRegion<T> far = fitRegion(field, at_k, end);
     if (field.lugged()) weightShear(field, far);
-    addRegion(far, k, sums);
+    addRegion(far, at_k.theta, sums);
 }
 
 }  // namespace detail
@@ -232,11 +267,10 @@ WheelForces<T> computeQuadraticForces(const ContactParameters<T>& p, const Opera
     const StressField<T> field(p, op);
     detail::ForceSums<T> sums;
     if (field.remembers()) {
-        const T& theta_m = field.maxStressAngle();
-        const StressSample<T> at_m = field.at(theta_m);
+        const detail::Node<T> m = detail::nodeAt(field, field.maxStressAngle());
         const std::array<double, 2> kinks = detail::reloadKinks(field);
-        detail::addRememberedRegion(field, theta_m, field.entryAngle(), at_m, kinks[0], sums);
-        detail::addRememberedRegion(field, theta_m, field.exitAngle(), at_m, kinks[1], sums);
+        detail::addRememberedRegion(field, m, field.entryAngle(), kinks[0], sums);
+        detail::addRememberedRegion(field, m, field.exitAngle(), kinks[1], sums);
         return assembleForces(p, op, sums, bulldozing);
     }
     QuadraticStress<T> q = fitQuadraticStress(field);

@@ -64,7 +64,8 @@ public:
         using std::cos;
         using std::sin;
         using std::tan;
-        tan_phi_ = tan(p.friction_angle_rad);
+        struct FrictionTan {};
+        tan_phi_ = rememberedTan<FrictionTan>(p.friction_angle_rad);
         cos_entry_ = cos(entry_);
         sin_entry_ = sin(entry_);
         versine_entry_ = sin_entry_ * sin_entry_ / (1.0 + cos_entry_);

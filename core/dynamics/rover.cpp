@@ -180,6 +180,13 @@ struct Rover::Impl {
     // soil's force on the hub (world frame) against the hub's velocity and position.
     std::array<Eigen::Matrix3d, kWheelCount> force_by_velocity;  // ∂F/∂v_hub [N·s/m]
     std::array<Eigen::Matrix3d, kWheelCount> force_by_position;  // ∂F/∂x_hub [N/m]
+    // I6: the last Jacobians taken in the wheel's frame (∂(F_x, F_s, F_z)/∂(v_x, v_y) with the
+    // damper, and ∂/∂h), the evaluations since (−1: none to reuse), and whether the wheel was
+    // pushing and on a band then.
+    std::array<Eigen::Matrix3d, kWheelCount> local_jacobian;
+    std::array<Eigen::Vector3d, kWheelCount> sinkage_jacobian;
+    std::array<int, kWheelCount> jacobian_age{-1, -1, -1, -1};
+    std::array<bool, kWheelCount> jacobian_pushing{}, jacobian_band{};
 
     RoverState state;
     // The ledger's kinetic and potential energy are computed when asked for (energy()), not at
@@ -224,28 +231,44 @@ struct Rover::Impl {
     template <class ForcesAt>
     void contactJacobians(int i, const ForcesAt& forcesAt, const WheelKinematics& k,
                           const WheelState& ws, const btVector3& x_w, const btVector3& y_w,
-                          const btVector3& n) {
+                          const btVector3& n, bool band) {
         force_by_velocity[i].setZero();
         force_by_position[i].setZero();
-        if (!ws.contact.in_contact) return;
+        if (!ws.contact.in_contact) {
+            jacobian_age[i] = -1;
+            return;
+        }
         const bool pushing = ws.load_n > 0.0;
-        auto forces = [&](const contact::WheelForces<double>& f) {
-            return Eigen::Vector3d(f.fx, f.fs, pushing ? f.fz : 0.0);
-        };
-        const Eigen::Vector3d f0 = forces(ws.contact.forces);
-        auto derivative = [&](WheelKinematics q, double WheelKinematics::*of, double delta) {
-            q.*of += delta;
-            return Eigen::Vector3d((forces(forcesAt(q)) - f0) / delta);
-        };
-        const double dv =
-            kJacobianStep * std::max({std::abs(k.forward_speed_m_s), std::abs(k.rim_speed_m_s),
-                                      options.contact.regularisation_speed_m_s});
-        Eigen::Matrix3d local;
-        local.col(0) = derivative(k, &WheelKinematics::forward_speed_m_s, dv);
-        local.col(1) = derivative(k, &WheelKinematics::lateral_speed_m_s, dv);
-        local.col(2) = Eigen::Vector3d(0.0, 0.0, pushing ? -damping[i] : 0.0);
-        const Eigen::Vector3d by_sinkage =
-            derivative(k, &WheelKinematics::sinkage_m, kJacobianStep * k.sinkage_m);
+        // I6: the wheel-frame Jacobians of the last evaluation that took them, while they are
+        // younger than jacobian_every evaluations and the wheel still pushes alike, on one soil or
+        // a band alike; the frame below is this evaluation's.
+        const bool reuse = jacobian_age[i] >= 0 && jacobian_age[i] + 1 < options.jacobian_every &&
+                           jacobian_pushing[i] == pushing && jacobian_band[i] == band;
+        if (reuse) {
+            ++jacobian_age[i];
+        } else {
+            auto forces = [&](const contact::WheelForces<double>& f) {
+                return Eigen::Vector3d(f.fx, f.fs, pushing ? f.fz : 0.0);
+            };
+            const Eigen::Vector3d f0 = forces(ws.contact.forces);
+            auto derivative = [&](WheelKinematics q, double WheelKinematics::*of, double delta) {
+                q.*of += delta;
+                return Eigen::Vector3d((forces(forcesAt(q)) - f0) / delta);
+            };
+            const double dv =
+                kJacobianStep * std::max({std::abs(k.forward_speed_m_s), std::abs(k.rim_speed_m_s),
+                                          options.contact.regularisation_speed_m_s});
+            local_jacobian[i].col(0) = derivative(k, &WheelKinematics::forward_speed_m_s, dv);
+            local_jacobian[i].col(1) = derivative(k, &WheelKinematics::lateral_speed_m_s, dv);
+            local_jacobian[i].col(2) = Eigen::Vector3d(0.0, 0.0, pushing ? -damping[i] : 0.0);
+            sinkage_jacobian[i] =
+                derivative(k, &WheelKinematics::sinkage_m, kJacobianStep * k.sinkage_m);
+            jacobian_age[i] = 0;
+            jacobian_pushing[i] = pushing;
+            jacobian_band[i] = band;
+        }
+        const Eigen::Matrix3d& local = local_jacobian[i];
+        const Eigen::Vector3d& by_sinkage = sinkage_jacobian[i];
         Eigen::Matrix3d frame;
         frame.col(0) = toEigen(x_w);
         frame.col(1) = toEigen(y_w);
@@ -709,12 +732,12 @@ const RoverState& Rover::evaluate(const Commands& commands) {
                 const auto forcesAt = [&](const WheelKinematics& q) {
                     return evaluateContact(*soil, q, m.options.contact).forces;
                 };
-                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n);
+                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n, false);
             } else {
                 const auto forcesAt = [&](const WheelKinematics& q) {
                     return m.bandForces(i, band, q).forces;
                 };
-                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n);
+                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n, true);
             }
         }
         if (m.terrain->remembers()) {

@@ -57,6 +57,10 @@ struct RoverOptions {
     /// that always reaches its commanded rate (the thesis's robot, and every constant-speed run).
     double max_motor_torque_nm = std::numeric_limits<double>::infinity();
     Integrator integrator = Integrator::kExplicit;
+    /// The implicit integrator's contact Jacobians (in the wheel's frame) are taken every this
+    /// many steps and reused in between, while the wheel stays in contact and pushing
+    /// (docs/dynamics.md, "Integrators", I6); 1: every step.
+    int jacobian_every = 1;
 };
 
 /// One wheel at one instant (the quantities the forces of the coming step were computed from).

@@ -98,6 +98,12 @@ std::vector<Issue> validate(const Scenario& s, const std::string& prefix) {
     }
     checkRange(issues, prefix + "initial.speed_m_s", s.initial.speed_m_s, {0.0, 100.0}, "m/s");
     const bool implicit = s.options.integrator == dynamics::Integrator::kImplicit;
+    if (s.options.jacobian_every != 1 && !implicit) {
+        issues.push_back({prefix + "jacobian_every",
+                          "only the implicit integrator takes contact Jacobians: with "
+                          "\"integrator\": \"explicit\" the allowed value is 1"});
+    }
+    checkRange(issues, prefix + "jacobian_every", s.options.jacobian_every, {1, 10}, "");
     if (implicit && s.controller.closedLoop()) {
         issues.push_back({prefix + "integrator",
                           "\"implicit\" needs the ideal spin servos, and a closed-loop "

@@ -584,6 +584,7 @@ Scenario readScenario(ObjectReader& r, const io::PresetLocations& locations,
     r.choice<dynamics::Integrator>("integrator", s.options.integrator,
                                    {{"explicit", dynamics::Integrator::kExplicit},
                                     {"implicit", dynamics::Integrator::kImplicit}});
+    r.integer("jacobian_every", s.options.jacobian_every, 1, 10);
     const FieldInfo& exit = contact::exitAngleField();
     r.field(exit, s.options.contact.exit_angle_rad);
 
