@@ -172,8 +172,8 @@ private:
     ui::IdentificationPanel* identification_ = nullptr;
     ui::GlobalSensitivityPanel* global_ = nullptr;
     int opening_ = 0;  // counts openings: results read for an earlier one are dropped
-    int layouts_applied_ =
-        0;  // counts applyLayout calls: a later choice cancels a pending re-apply
+    // The layout applyLayout was last asked for: what its deferred re-apply applies.
+    Layout chosen_layout_ = Layout::kDefault;
     bool reading_results_ = false;  // the opened project's saved results are being read
     /// The results sidecar being written off the GUI thread by the last save (nullptr: none).
     QFutureWatcher<std::optional<std::string>>* writing_results_ = nullptr;

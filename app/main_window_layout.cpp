@@ -159,7 +159,7 @@ void MainWindow::giveThePanelsTheWidth() {
 }
 
 void MainWindow::applyLayout(Layout layout) {
-    const int applied = ++layouts_applied_;
+    chosen_layout_ = layout;
     ui::AnalysisPanel* current = current_;
     const bool column_shown = project_dock_->isVisible() || properties_dock_->isVisible();
     // Default and compact are the panels as built: every plot back in its panel.
@@ -210,12 +210,10 @@ void MainWindow::applyLayout(Layout layout) {
         // The column just hidden gives the panel area its width only when the window is laid
         // out: the panels' widths set now are shares of the narrower area (a row with tabbed
         // panels came out squeezed). Once more then, the area already as wide.
-        // Not when another layout has been chosen in the meantime: it would be undone.
-        if (column_shown && !project_dock_->isVisible() && isVisible()) {
-            QTimer::singleShot(0, this, [this, layout, applied] {
-                if (applied == layouts_applied_) applyLayout(layout);
-            });
-        }
+        // The layout chosen last, not this one: a layout chosen before the re-apply runs (Tiled
+        // right after Side by side, the column already hidden) asks for none of its own.
+        if (column_shown && !project_dock_->isVisible() && isVisible())
+            QTimer::singleShot(0, this, [this] { applyLayout(chosen_layout_); });
     } else {
         showPanel(current ? current->name() : panels_.front()->name());
     }

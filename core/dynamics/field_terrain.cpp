@@ -576,12 +576,20 @@ void FieldTerrain::commit(Passage& p) {
     std::vector<std::optional<compaction::VerticalStressPeak>> centre(depths.size());
     std::vector<std::optional<compaction::VerticalStressPeak>>& last_peak = last_peak_[wheel];
     last_peak.resize(depths.size());
-    const bool full_scan = ++since_full_scan_[wheel] >= options_.full_scan_every;
-    if (full_scan) since_full_scan_[wheel] = 0;
+    // Counted once a passage that searches a peak (not one that writes no cell or has no
+    // footprint), so that every options_.full_scan_every-th such passage scans.
+    std::optional<bool> full_scan;
     auto centrePeak = [&](std::size_t k, const compaction::StressPropagation& q) {
-        centre[k] = last_peak[k] && !full_scan
-                        ? compaction::verticalStressPeakNear(q, *last_peak[k], 0.0, depths[k])
-                        : compaction::verticalStressPeak(q, 0.0, depths[k]);
+        if (!full_scan) {
+            full_scan = ++since_full_scan_[wheel] >= options_.full_scan_every;
+            if (*full_scan) since_full_scan_[wheel] = 0;
+        }
+        if (last_peak[k] && !*full_scan) {
+            centre[k] = compaction::verticalStressPeakNear(q, *last_peak[k], 0.0, depths[k]);
+        } else {
+            centre[k] = compaction::verticalStressPeak(q, 0.0, depths[k]);
+            ++full_scans_;
+        }
         last_peak[k] = centre[k];
     };
     struct Known {

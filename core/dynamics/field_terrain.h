@@ -143,6 +143,9 @@ public:
     const FieldTerrainOptions& options() const { return options_; }
     /// Cells that at least one wheel passed over.
     long cellsTouched() const { return cells_touched_; }
+    /// The σ_z peaks under a wheel's centre line found by the full scan, one a passage and depth
+    /// (F16: the others start from the wheel's last passage's peak).
+    long fullScans() const { return full_scans_; }
     /// Every passage written, in the order written (time non-decreasing), when
     /// options().record_passages (empty otherwise), handed over: the terrain's log is empty after
     /// it. The runner frees them once the maps' history is drawn from them, before the maps.
@@ -226,6 +229,7 @@ private:
     std::array<std::vector<std::optional<compaction::VerticalStressPeak>>, kWheelCount>
         last_peak_{};
     std::array<int, kWheelCount> since_full_scan_{};
+    long full_scans_ = 0;
     // F15: each wheel's band when its memories differ across its width; the shares point into
     // band_memory_, whose capacity (kMaxBandSamples) is reserved so that they stay valid.
     void sampleBand(std::size_t wheel, const Passage& passage);

@@ -186,7 +186,16 @@ struct Rover::Impl {
     std::array<Eigen::Matrix3d, kWheelCount> local_jacobian;
     std::array<Eigen::Vector3d, kWheelCount> sinkage_jacobian;
     std::array<int, kWheelCount> jacobian_age{-1, -1, -1, -1};
-    std::array<bool, kWheelCount> jacobian_pushing{}, jacobian_band{};
+    std::array<bool, kWheelCount> jacobian_pushing{};
+    // What the wheel met when its Jacobians were taken: its soil, and untouched soil, a track
+    // (the reload law) or a band of parts (F15) — a change of either changes the stiffness.
+    struct ContactRegime {
+        int soil_index = -1;
+        int kind = 0;           // 0 untouched, 1 on a track, 2 a band
+        std::size_t parts = 0;  // the band's parts
+        bool operator==(const ContactRegime&) const = default;
+    };
+    std::array<ContactRegime, kWheelCount> jacobian_regime{};
 
     RoverState state;
     // The ledger's kinetic and potential energy are computed when asked for (energy()), not at
@@ -231,7 +240,7 @@ struct Rover::Impl {
     template <class ForcesAt>
     void contactJacobians(int i, const ForcesAt& forcesAt, const WheelKinematics& k,
                           const WheelState& ws, const btVector3& x_w, const btVector3& y_w,
-                          const btVector3& n, bool band) {
+                          const btVector3& n, const ContactRegime& regime) {
         force_by_velocity[i].setZero();
         force_by_position[i].setZero();
         if (!ws.contact.in_contact) {
@@ -240,10 +249,10 @@ struct Rover::Impl {
         }
         const bool pushing = ws.load_n > 0.0;
         // I6: the wheel-frame Jacobians of the last evaluation that took them, while they are
-        // younger than jacobian_every evaluations and the wheel still pushes alike, on one soil or
-        // a band alike; the frame below is this evaluation's.
+        // younger than jacobian_every evaluations and the wheel still pushes alike and meets the
+        // same soil the same way; the frame below is this evaluation's.
         const bool reuse = jacobian_age[i] >= 0 && jacobian_age[i] + 1 < options.jacobian_every &&
-                           jacobian_pushing[i] == pushing && jacobian_band[i] == band;
+                           jacobian_pushing[i] == pushing && jacobian_regime[i] == regime;
         if (reuse) {
             ++jacobian_age[i];
         } else {
@@ -265,7 +274,7 @@ struct Rover::Impl {
                 derivative(k, &WheelKinematics::sinkage_m, kJacobianStep * k.sinkage_m);
             jacobian_age[i] = 0;
             jacobian_pushing[i] = pushing;
-            jacobian_band[i] = band;
+            jacobian_regime[i] = regime;
         }
         const Eigen::Matrix3d& local = local_jacobian[i];
         const Eigen::Vector3d& by_sinkage = sinkage_jacobian[i];
@@ -728,16 +737,20 @@ const RoverState& Rover::evaluate(const Commands& commands) {
         const double power = -(m.wheel_force[i].dot(hub_velocity) + m.wheel_moment[i].dot(omega));
         m.soil_power += power;
         if (m.options.integrator == Integrator::kImplicit) {
+            const Impl::ContactRegime regime{
+                ws.soil_index,
+                !band.empty() ? 2 : (memory == nullptr || memory->untouched() ? 0 : 1),
+                band.size()};
             if (band.empty()) {
                 const auto forcesAt = [&](const WheelKinematics& q) {
                     return evaluateContact(*soil, q, m.options.contact).forces;
                 };
-                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n, false);
+                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n, regime);
             } else {
                 const auto forcesAt = [&](const WheelKinematics& q) {
                     return m.bandForces(i, band, q).forces;
                 };
-                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n, true);
+                m.contactJacobians(i, forcesAt, k, ws, x_w, y_w, n, regime);
             }
         }
         if (m.terrain->remembers()) {

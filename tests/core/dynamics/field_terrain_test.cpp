@@ -370,6 +370,10 @@ TEST(FieldRover, TheStressPeakFromTheLastPassageIsTheFullScans) {
     });
     EXPECT_GT(cells, 700);  // 1.7 m driven, 4 wheels, 5–6 cells across each
     EXPECT_EQ(warm->cellsTouched(), full->cellsTouched());
+    // The search did start from the last passage's peak: one passage in 16 (and each wheel's
+    // first) scanned, per depth.
+    EXPECT_GT(full->fullScans(), 200);
+    EXPECT_LT(warm->fullScans(), full->fullScans() / 8);
 }
 
 // A field memory of cells h wide, with σ_z kept at `depths` (none: no stress at depth).

@@ -132,6 +132,11 @@ TEST(RoverIntegrator, WithTheJacobiansEveryOtherStepTheRunsStayWithinOnePercent)
     for (const char* column : {"x_m", "y_m", "yaw_deg"}) {
         EXPECT_LT(seriesError(ref, fast, column), kGoal) << column;
     }
+    // The Jacobians were reused: the run is not the every-step run.
+    const scenario::RunResult every_step =
+        scenario::runScenario(shippedWith("pulse-steering", Integrator::kImplicit, kFastStep));
+    EXPECT_NE(fast.summary.x_m, every_step.summary.x_m);
+    EXPECT_NE(fast.summary.dissipated_j, every_step.summary.dissipated_j);
 }
 
 TEST(RoverIntegrator, PulseSteeringFollowsTheReferenceSeries) {
