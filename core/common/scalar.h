@@ -6,6 +6,7 @@
 /// argument-dependent lookup (sin, cos, pow, exp, expm1, sqrt, acos, tan); ceres::Jet does.
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 namespace terra {
@@ -36,8 +37,9 @@ template <typename Site, typename T>
 T rememberedTan(const T& x) {
     using std::tan;
     if constexpr (std::is_same_v<T, double>) {
-        thread_local double last_x = std::nan("");
-        thread_local double last_tan = std::nan("");
+        // Constant-initialised (no guard on each call): NaN never equals an argument.
+        thread_local double last_x = std::numeric_limits<double>::quiet_NaN();
+        thread_local double last_tan = 0.0;
         if (x != last_x) {  // NaN never equals: computed, as a NaN argument is
             last_tan = tan(x);
             last_x = x;

@@ -57,6 +57,14 @@ void expectNoSidewaysScroll(MainWindow& w, const QString& name, const QString& c
         << context.toStdString() << ": " << name.toStdString();
 }
 
+/// The panels on screen, by name.
+QStringList panelsShown(MainWindow& w) {
+    QStringList names;
+    for (const char* name : kAllPanels)
+        if (onScreen(w.panelDock(name))) names << name;
+    return names;
+}
+
 /// How many panels are on screen, each checked for a sideways scroll bar.
 int panelsOnScreen(MainWindow& w, const QString& context) {
     int shown = 0;
@@ -116,11 +124,7 @@ TEST(PlotDocks, TiledAfterEveryPanelComputedDoesNotScrollSideways) {
     studio.action("action.layout_tiled")->trigger();
     // The tiling settles over several event-loop turns; on a loaded machine (ctest runs two test
     // processes a core) a fixed wait was sometimes too short.
-    const auto shownDocks = [&w] {
-        return std::count_if(std::begin(kAllPanels), std::end(kAllPanels),
-                             [&w](const char* name) { return onScreen(w.panelDock(name)); });
-    };
-    EXPECT_TRUE(QTest::qWaitFor([&] { return shownDocks() >= 4; }, 15000));
+    EXPECT_TRUE(QTest::qWaitFor([&w] { return panelsShown(w).size() >= 4; }, 15000));
     wait(500);
     int shown = 0;
     for (const char* name : kAllPanels) {
@@ -142,13 +146,6 @@ TEST(PlotDocks, TiledRightAfterSideBySideShowsSeveralPanels) {
     MainWindow& w = studio.window;
     w.resize(kWindowAt1366x768);
     wait();
-    // The panels on screen once a layout has settled, by name.
-    const auto onScreenNames = [&w] {
-        QStringList names;
-        for (const char* name : kAllPanels)
-            if (onScreen(w.panelDock(name))) names << name;
-        return names;
-    };
     // The tiling after a settled Side by side, then the same chosen before the event loop turns:
     // the same panels on screen (it gets the re-apply with the column hidden, as the other does).
     w.showPanel("forces");
@@ -156,7 +153,7 @@ TEST(PlotDocks, TiledRightAfterSideBySideShowsSeveralPanels) {
     wait(500);
     studio.action("action.layout_tiled")->trigger();
     wait(500);
-    const QStringList settled = onScreenNames();
+    const QStringList settled = panelsShown(w);
     studio.action("action.layout_default")->trigger();
     wait(500);
     w.showPanel("forces");
@@ -164,7 +161,7 @@ TEST(PlotDocks, TiledRightAfterSideBySideShowsSeveralPanels) {
     studio.action("action.layout_tiled")->trigger();
     wait(500);
     EXPECT_GE(panelsOnScreen(w, "tiled right after side by side"), 4);
-    EXPECT_EQ(onScreenNames(), settled);
+    EXPECT_EQ(panelsShown(w), settled);
     EXPECT_EQ(w.size(), kWindowAt1366x768);
     QSettings().remove("window");
 }
