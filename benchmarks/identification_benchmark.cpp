@@ -96,7 +96,8 @@ BENCHMARK(globalIdentification)
 // resources/soils), wheel (0 A, 1 B: Table 5.1), loads (1: 91 samples at W; 3: 30 + 30 + 31 at
 // ½W, W, 1½W), j_max (0: held at the truth, --jmax; 1: identified, --jmax fit); 1 % noise,
 // θ_f measured. W is 58.86 N on A, 98 N on B. `ok` is 1 when every parameter is within three std
-// of the truth (the speed is worth nothing otherwise).
+// of the truth (the speed is worth nothing otherwise). Last argument: IdentifyOptions::threads
+// (1 or 2); wall time (UseRealTime), the CPU column being the calling thread's alone.
 struct BenchSoil {
     const char* name;
     double n, c_kpa, phi_deg, kc, kphi, k_m, jmax_m;
@@ -134,6 +135,7 @@ void globalIdentificationMatrix(benchmark::State& state) {
     spec.seed = 5;
     const DataSet d = synthesize(p, spec).data;
     IdentifyOptions options;
+    options.threads = static_cast<int>(state.range(4));
     if (fit) {
         options.fit_max_shear_deformation = true;
     } else {
@@ -162,8 +164,9 @@ void globalIdentificationMatrix(benchmark::State& state) {
     state.counters["cov_ms"] = r.timing.covariance_ms;
 }
 BENCHMARK(globalIdentificationMatrix)
-    ->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 3}, {0, 1}})
-    ->Unit(benchmark::kMillisecond);
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 3}, {0, 1}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // One streaming update (window of 60 samples, warm start) in steady state.
 void streamingUpdate(benchmark::State& state) {

@@ -96,6 +96,7 @@ struct IdentifyOptions {
     std::optional<double> load_n;  // W of rows without a W_N cell
     bool profile = false;          // profile-likelihood intervals of the flagged parameters
     std::string save_soil;         // --save-soil OUT.json: the soil with its posterior
+    std::optional<int> threads;    // the global search's threads; default: one per core
 };
 
 // --jmax VALUE as the settings' "jmax_m", for a batch fit and --stream alike: a number here, its
@@ -505,6 +506,9 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
                   "as an eighth parameter (with a prior of 20 ± 20 mm when the data do not "
                   "determine it; --prior jmax_m=MEAN±STD gives another); default: none, not "
                   "taken from --guess");
+    i->add_option("--threads", identify->threads,
+                  "Full model: threads of the global search (0: one per core, the default; the "
+                  "same numbers whatever the count)");
     i->callback([identify, refine = i->get_option("--refine"), &locations] {
         const IdentifyOptions& o = *identify;
         if (o.data.empty() == o.stream.empty())
@@ -512,11 +516,14 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         const bool streaming = !o.stream.empty();
         if (streaming && refine->count() > 0 && o.refine)
             throw InputError("--refine does not apply to --stream");
-        if (streaming &&
-            (!o.prior.empty() || o.holdout || o.folds || o.starts || o.loss != "l2" || o.profile))
+        if (streaming && (!o.prior.empty() || o.holdout || o.folds || o.starts || o.loss != "l2" ||
+                          o.profile || o.threads))
             throw InputError(
-                "--prior, --holdout, --folds, --starts, --loss and --profile do not apply to "
-                "--stream");
+                "--prior, --holdout, --folds, --starts, --loss, --profile and --threads do not "
+                "apply to --stream");
+        if (o.threads && (*o.threads < 0 || *o.threads > 64))
+            throw InputError("--threads " + std::to_string(*o.threads) +
+                             ": outside the allowed range [0, 64] (0: one per core)");
         if (streaming && !o.save_soil.empty())
             throw InputError("--save-soil does not apply to --stream");
         ModelOptions names;
@@ -542,11 +549,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             refuseInputAsOutput("--save-soil", o.save_soil, files);
         }
         const bool global_flags = !o.prior.empty() || o.holdout || o.folds || o.starts ||
-                                  o.load_n || o.loss != "l2" || o.profile;
+                                  o.load_n || o.loss != "l2" || o.profile || o.threads;
         if (!o.refine && (!o.fix.empty() || !o.noise.empty() || o.jmax || global_flags)) {
             throw InputError(
-                "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss, --load and "
-                "--profile belong to the full model (drop --no-refine)");
+                "--fix, --noise, --jmax, --prior, --holdout, --folds, --starts, --loss, --load, "
+                "--profile and --threads belong to the full model (drop --no-refine)");
         }
         analysis::IdentificationSettings settings = identifySettings(o, locations);
         settings.guess = guess;
@@ -558,8 +565,9 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
         TerminalProgress progress("identify");
         analysis::IdentificationResult result;
         try {
-            result = analysis::computeIdentification(inputs, settings,
-                                                     {cancellation.flag(), progress.callback()});
+            analysis::Control control{cancellation.flag(), progress.callback()};
+            control.threads = o.threads.value_or(0);
+            result = analysis::computeIdentification(inputs, settings, control);
         } catch (const std::invalid_argument& e) {
             throw InputError(e.what());
         }

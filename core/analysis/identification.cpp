@@ -748,6 +748,7 @@ IdentificationResult computeIdentification(const Inputs& in, const Identificatio
         std::string prior_source;
         priorsOf(s, in.wheel, &prior_source);
         id::IdentifyOptions options = identifyOptions(s, in.wheel, jmax);
+        options.threads = control.threads;
         options.progress = [&control](double fraction) {
             control.report(fraction);
             return !control.cancelled();

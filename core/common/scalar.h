@@ -50,4 +50,26 @@ T rememberedTan(const T& x) {
     }
 }
 
+/// pow(base, exponent) for base > 0 (the caller guarantees it). For a `double` it is std::pow.
+/// For an automatic-differentiation scalar with plain (double) parts, one pow instead of the two
+/// that ceres::Jet's pow(Jet, Jet) evaluates (its ∂/∂base is g·pow(a, g − 1); here g·pow(a, g)/a,
+/// equal to rounding), and log(a) only when the exponent carries derivatives: the stress field's
+/// K_s (r(cos θ − cos θ_f))^N, evaluated at every quadrature node, mostly with a constant
+/// exponent or a constant base (docs/identification.md §9).
+template <typename T>
+T positivePow(const T& base, const T& exponent) {
+    using std::pow;
+    if constexpr (std::is_arithmetic_v<T>) {
+        return pow(base, exponent);
+    } else if constexpr (requires { requires std::is_same_v<decltype(base.a), double>; }) {
+        const double p = std::pow(base.a, exponent.a);
+        T out(p);
+        if (!(base.v.array() == 0.0).all()) out.v = (exponent.a * p / base.a) * base.v;
+        if (!(exponent.v.array() == 0.0).all()) out.v += (p * std::log(base.a)) * exponent.v;
+        return out;
+    } else {
+        return pow(base, exponent);
+    }
+}
+
 }  // namespace terra

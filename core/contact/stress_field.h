@@ -133,7 +133,6 @@ public:
 
     /// σ(θ) given the versine 1 − cos θ = sin²θ/(1 + cos θ) (only used in front of θ_m).
     T normalStress(const T& theta, const T& versine) const {
-        using std::pow;
         // Front: cos θ − cos θ_f = (1 − cos θ_f) − (1 − cos θ), both versines exact: its error is
         // eps (1 − cos θ_f), as small as the rounding of θ itself allows (the integrator's nodes
         // carry eps θ_f), instead of eps of the plain cosines' difference (~eps/θ_f² relative).
@@ -148,9 +147,9 @@ public:
             // virgin curve K_s z^N at the depth z = z_p + d below the untouched surface.
             const T depth = radius_ * base;
             if (depth < reload_depth_) return reload_modulus_ * depth;
-            return modulus_ * pow(rut_depth_ + depth, exponent_);
+            return modulus_ * positivePow(T(rut_depth_ + depth), exponent_);
         }
-        return modulus_ * pow(radius_ * base, exponent_);
+        return modulus_ * positivePow(T(radius_ * base), exponent_);
     }
 
     /// All stresses at θ (Eqs. 2.14–2.22).

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/common/range.h"
+#include "core/common/worker_pool.h"
 
 namespace terra::identification::detail {
 namespace {
@@ -17,32 +18,43 @@ constexpr int kP = kFullParameterCount;
 class DataCost final : public ceres::CostFunction {
 public:
     DataCost(const ObservationModel& model, std::vector<std::size_t> samples,
-             const ChannelValues& sigma)
-        : model_(model), samples_(std::move(samples)), sigma_(sigma) {
+             const ChannelValues& sigma, WorkerPool* pool)
+        : model_(model), samples_(std::move(samples)), sigma_(sigma), pool_(pool) {
         int n = 0;
-        for (std::size_t i : samples_) n += model_.residualCount(i);
+        for (std::size_t i : samples_) {
+            first_.push_back(n);
+            n += model_.residualCount(i);
+        }
         set_num_residuals(n);
         mutable_parameter_block_sizes()->push_back(kP);
     }
 
+    // Each sample writes its own rows (on the pool's threads when there is one).
     bool Evaluate(double const* const* parameters, double* residuals,
                   double** jacobians) const override {
         double* jacobian = jacobians ? jacobians[0] : nullptr;
-        int row = 0;
-        for (std::size_t i : samples_) {
-            if (!model_.residuals(i, parameters[0], sigma_, residuals + row,
-                                  jacobian ? jacobian + row * kP : nullptr)) {
-                return false;
+        std::vector<char> ok(samples_.size(), 0);
+        const auto part = [&](std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
+                const int row = first_[t];
+                ok[t] = model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
+                                         jacobian ? jacobian + row * kP : nullptr);
             }
-            row += model_.residualCount(i);
+        };
+        if (pool_) {
+            pool_->forEach(samples_.size(), part);
+        } else {
+            part(0, samples_.size());
         }
-        return true;
+        return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
     }
 
 private:
     const ObservationModel& model_;
     std::vector<std::size_t> samples_;
     ChannelValues sigma_;
+    WorkerPool* pool_;
+    std::vector<int> first_;
 };
 
 // (θ_k(u) − mean)/std for each active prior of a free parameter.
@@ -121,19 +133,59 @@ std::vector<std::size_t> allSamples(std::size_t n) {
     return all;
 }
 
+namespace {
+
+// Every sample's weighted residuals and their Jacobian (rows of kP, row-major) at u, in sample
+// order, on the objective's pool when it has one: each sample is one thread's, and the callers
+// add them up in sample order, so the sums are the same whatever the thread count. ok[t] is
+// whether sample t's model evaluation succeeded.
+struct SampleRows {
+    std::vector<int> first;  // first residual of each sample
+    std::vector<double> r, j;
+    std::vector<char> ok;
+
+    SampleRows(const Objective& objective, const std::vector<std::size_t>& samples,
+               const double* u) {
+        const ObservationModel& model = *objective.model;
+        int rows = 0;
+        for (std::size_t i : samples) {
+            first.push_back(rows);
+            rows += model.residualCount(i);
+        }
+        r.assign(static_cast<std::size_t>(rows), 0.0);
+        j.assign(static_cast<std::size_t>(rows) * kP, 0.0);
+        ok.assign(samples.size(), 0);
+        const auto part = [&](std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
+                const auto row = static_cast<std::size_t>(first[t]);
+                ok[t] = model.residuals(samples[t], u, objective.sigma, r.data() + row,
+                                        j.data() + row * kP);
+            }
+        };
+        if (objective.pool) {
+            objective.pool->forEach(samples.size(), part);
+        } else {
+            part(0, samples.size());
+        }
+    }
+};
+
+}  // namespace
+
 FitProblem::FitProblem(const Objective& objective, const std::vector<std::size_t>& samples) {
     const ObservationModel& model = *objective.model;
     for (std::size_t i : samples) data_residuals_ += model.residualCount(i);
     if (objective.loss == Loss::kSquared) {
-        costs_.push_back(std::make_unique<DataCost>(model, samples, objective.sigma));
+        costs_.push_back(
+            std::make_unique<DataCost>(model, samples, objective.sigma, objective.pool));
         losses_.push_back(nullptr);
     } else {
         for (std::size_t i : samples) {
             const int channels = model.residualCount(i);
             const double scale =
                 objective.loss_scale > 0 ? objective.loss_scale : defaultLossScale(channels);
-            costs_.push_back(
-                std::make_unique<DataCost>(model, std::vector<std::size_t>{i}, objective.sigma));
+            costs_.push_back(std::make_unique<DataCost>(model, std::vector<std::size_t>{i},
+                                                        objective.sigma, nullptr));
             losses_.emplace_back(makeLoss(objective.loss, scale));
         }
     }
@@ -226,10 +278,12 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
     // JᵀJ of the data, each sample's rows weighted by the loss's ρ'(s), plus the priors.
     Eigen::Matrix<double, kP, kP> h = Eigen::Matrix<double, kP, kP>::Zero();
     Eigen::Matrix<double, kP, 1> g_all = Eigen::Matrix<double, kP, 1>::Zero();
-    std::vector<double> r(kChannelCount), j(kChannelCount * kP);
-    for (std::size_t i : samples) {
-        const int m = model.residualCount(i);
-        if (!model.residuals(i, u.data(), objective.sigma, r.data(), j.data())) continue;
+    const SampleRows rows(objective, samples, u.data());
+    for (std::size_t t = 0; t < samples.size(); ++t) {
+        const int m = model.residualCount(samples[t]);
+        if (!rows.ok[t]) continue;
+        const double* r = rows.r.data() + rows.first[t];
+        const double* j = rows.j.data() + static_cast<std::size_t>(rows.first[t]) * kP;
         double weight = 1.0;
         if (objective.loss != Loss::kSquared) {
             double s = 0.0;
@@ -241,10 +295,10 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
             loss->Evaluate(s, rho);
             weight = rho[1];
         }
-        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kP, Eigen::RowMajor>> jm(
-            j.data(), m, kP);
+        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kP, Eigen::RowMajor>> jm(j, m,
+                                                                                              kP);
         h += weight * jm.transpose() * jm;
-        g_all += weight * jm.transpose() * Eigen::Map<const Eigen::VectorXd>(r.data(), m);
+        g_all += weight * jm.transpose() * Eigen::Map<const Eigen::VectorXd>(r, m);
     }
     const std::array<double, kP> physical = toPhysical(u.data());
     ParameterVector p;
@@ -350,16 +404,16 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                           upper = toSolver(objective.bounds.upper);
     double chi2 = chiSquare(problem, u);
     int steps = 0;
-    std::vector<double> r(kChannelCount), j(kChannelCount * kP);
     for (; steps < max_steps && std::isfinite(chi2); ++steps) {
         Eigen::Matrix<double, kP, kP> h = Eigen::Matrix<double, kP, kP>::Zero();
         Eigen::Matrix<double, kP, 1> g = Eigen::Matrix<double, kP, 1>::Zero();
-        for (std::size_t i : samples) {
-            const int m = model.residualCount(i);
-            if (!model.residuals(i, u.data(), objective.sigma, r.data(), j.data())) return steps;
+        const SampleRows rows(objective, samples, u.data());
+        for (std::size_t t = 0; t < samples.size(); ++t) {
+            const int m = model.residualCount(samples[t]);
+            if (!rows.ok[t]) return steps;
             const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kP, Eigen::RowMajor>> jm(
-                j.data(), m, kP);
-            const Eigen::Map<const Eigen::VectorXd> rm(r.data(), m);
+                rows.j.data() + static_cast<std::size_t>(rows.first[t]) * kP, m, kP);
+            const Eigen::Map<const Eigen::VectorXd> rm(rows.r.data() + rows.first[t], m);
             h += jm.transpose() * jm;
             g += jm.transpose() * rm;
         }

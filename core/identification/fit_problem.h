@@ -16,6 +16,10 @@
 #include "core/identification/identify.h"
 #include "core/identification/observation_model.h"
 
+namespace terra {
+class WorkerPool;
+}
+
 namespace terra::identification::detail {
 
 /// Everything that defines the objective (besides the samples used).
@@ -27,6 +31,8 @@ struct Objective {
     double loss_scale = 0.0;  ///< 0: √(χ²₀.₉₅) of each sample's channel count
     std::array<bool, kFullParameterCount> fixed{};
     ParameterBounds bounds;
+    /// Threads for the projected problem's per-sample loops (screening.h); null: one.
+    WorkerPool* pool = nullptr;
 };
 
 /// The objective on a set of samples as a BoxProblem (solver coordinates u, parameters.h). With the

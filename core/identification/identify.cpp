@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <thread>
 
 #include "core/common/range.h"
+#include "core/common/worker_pool.h"
 #include "core/identification/fit_problem.h"
 #include "core/identification/screening.h"
 
@@ -118,6 +120,16 @@ public:
         report_.setup.max_shear_deformation_free = !fixed_[kJmax].has_value();
         model_.emplace(data, wheel, report_.setup);
         objective_.model = &*model_;
+        // Threads for the projected problem (θ_f measured); from the load the observation model
+        // warms its θ_f solves from the last one per sample, which threads would share.
+        const int threads =
+            o.threads > 0
+                ? o.threads
+                : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+        if (threads > 1 && report_.setup.source == DataSource::kEntryAngle) {
+            pool_.emplace(threads);
+            objective_.pool = &*pool_;
+        }
         provisional_ = provisionalNoise(*model_, o.noise);
         objective_.sigma = provisional_;
         objective_.priors = o.priors;
@@ -188,18 +200,38 @@ private:
             options_.design_points, vary, options_.design, base, options_.seed);
         for (std::size_t d = 0; d < design.size(); ++d)
             starts.push_back({"design " + std::to_string(d + 1), design[d]});
-        const detail::LinearProjection projection(objective_, screening_, wheel_);
+        // The starts are shared among the pool's threads (each projection on its 12 samples in
+        // one thread), 16 at a time between progress reports.
+        Objective serial = objective_;
+        serial.pool = nullptr;
+        const detail::LinearProjection projection(serial, screening_, wheel_);
         const FitProblem screening_problem(objective_, screening_);
-        for (std::size_t s = 0; s < starts.size(); ++s) {
-            StartReport r;
-            r.label = starts[s].label;
-            r.start = admissible(starts[s].parameters);
-            ParameterVector p = r.start;
-            r.screening_cost = projected ? projection.project(p)
-                                         : detail::chiSquare(screening_problem, solverOf(p));
-            r.end = p;
-            report_.starts.push_back(r);
-            if (s % 8 == 7 && !progress(0.3 * (s + 1.0) / starts.size())) return;
+        std::vector<StartReport> screened(starts.size());
+        const auto screenPart = [&](std::size_t begin, std::size_t end) {
+            for (std::size_t s = begin; s < end; ++s) {
+                StartReport& r = screened[s];
+                r.label = starts[s].label;
+                r.start = admissible(starts[s].parameters);
+                ParameterVector p = r.start;
+                r.screening_cost = projected ? projection.project(p)
+                                             : detail::chiSquare(screening_problem, solverOf(p));
+                r.end = p;
+            }
+        };
+        constexpr std::size_t kBlock = 16;
+        for (std::size_t first = 0; first < starts.size(); first += kBlock) {
+            const std::size_t count = std::min(kBlock, starts.size() - first);
+            const auto block = [&](std::size_t begin, std::size_t end) {
+                screenPart(first + begin, first + end);
+            };
+            if (projected && objective_.pool) {
+                objective_.pool->forEach(count, block);
+            } else {
+                block(0, count);
+            }
+            for (std::size_t s = first; s < first + count; ++s)
+                report_.starts.push_back(screened[s]);
+            if (!progress(0.3 * static_cast<double>(first + count) / starts.size())) return;
         }
     }
 
@@ -593,6 +625,7 @@ private:
     IdentificationReport& report_;
     wheel::WheelParameters wheel_;
     std::optional<ObservationModel> model_;
+    std::optional<WorkerPool> pool_;  // IdentifyOptions::threads > 1, θ_f measured
     Objective objective_;
     ChannelValues provisional_{};
     int free_ = 0;
@@ -751,6 +784,7 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
     }
     checkRange(issues, "design_points", o.design_points, {0, 100000});
     checkRange(issues, "descents", o.descents, {1, 1000});
+    checkRange(issues, "threads", o.threads, {0, 64});
     checkRange(issues, "subset_samples", o.subset_samples, {0, 1e9});
     checkRange(issues, "screening_samples", o.screening_samples, {0, 1e9});
     checkRange(issues, "loss_scale", o.loss_scale, {0.0, 1e6});

@@ -111,6 +111,10 @@ struct IdentifyOptions {
     int folds = 0;
     /// Seed of the design's shift and of the held-out selection.
     std::uint64_t seed = 1;
+    /// Threads, the caller's included (1: none started; 0: one per hardware thread, at most 8).
+    /// With θ_f measured the screening's starts and every evaluation's samples are shared among
+    /// them; the result is the same whatever the count (docs/identification.md §9).
+    int threads = 1;
 
     /// Progress in [0, 1]; return false to cancel (the report then says so).
     std::function<bool(double)> progress;

@@ -7,7 +7,9 @@
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/uniform_real_distribution.hpp>
 #include <cmath>
+#include <functional>
 
+#include "core/common/worker_pool.h"
 #include "core/contact/wheel_forces.h"
 
 namespace terra::identification::detail {
@@ -109,8 +111,20 @@ LinearProjection::LinearProjection(const Objective& objective, std::vector<std::
                                    const wheel::WheelParameters& wheel)
     : objective_(objective), samples_(std::move(samples)), wheel_(wheel) {
     for (std::size_t i : samples_) {
+        first_row_.push_back(static_cast<std::size_t>(data_rows_));
         const auto active = objective_.model->channels(i);
         for (int c = 0; c < 3; ++c) data_rows_ += active[c];
+    }
+}
+
+void LinearProjection::forSamples(const std::function<void(std::size_t)>& body) const {
+    const auto part = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) body(t);
+    };
+    if (objective_.pool) {
+        objective_.pool->forEach(samples_.size(), part);
+    } else {
+        part(0, samples_.size());
     }
 }
 
@@ -131,15 +145,19 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
                                            J(p[kA1]),
                                            p[kJmax],
                                            wheel_.lugShearOffset()};
-    out.rows.clear();
-    out.y.clear();
-    for (std::size_t i : samples_) {
+    // Each sample's rows in their own place (first_row_), so that the samples can be shared
+    // among the pool's threads; the same numbers whatever their count.
+    out.rows.assign(static_cast<std::size_t>(data_rows_), Eigen::RowVector3d::Zero());
+    out.y.assign(static_cast<std::size_t>(data_rows_), 0.0);
+    forSamples([&](std::size_t t) {
+        const std::size_t i = samples_[t];
         const Sample& s = model.sample(i);
         const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
                                             J(s.entry_angle_rad), J(0.0), std::nullopt};
         const contact::WheelForces<J> f = modelForces(cp, op, model.setup().model);
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
         const auto active = model.channels(i);
+        std::size_t row = first_row_[t];
         for (int c = 0; c < 3; ++c) {
             if (!active[c]) continue;
             // ∂F/∂c = Q, ∂F/∂φ = K_s R / cos²φ, ∂F/∂K_s = P + tan φ R.
@@ -147,11 +165,11 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
             const double r = channel[c]->v[2] * (1.0 / (kNominalModulus * (1.0 + tan0 * tan0)));
             const double pk = channel[c]->v[0] - tan0 * r;
             const double w = 1.0 / objective_.sigma[c];
-            out.rows.emplace_back(pk * kModulusUnit * w, q * kCohesionUnit * w,
-                                  r * kModulusUnit * w);
-            out.y.push_back(model.measured(i, static_cast<Channel>(c)) * w);
+            out.rows[row] = {pk * kModulusUnit * w, q * kCohesionUnit * w, r * kModulusUnit * w};
+            out.y[row] = model.measured(i, static_cast<Channel>(c)) * w;
+            ++row;
         }
-    }
+    });
     // Priors on K_s and c are rows of the linear problem; priors on a₀, a₁, n, K are constants.
     const Priors& priors = objective_.priors;
     const auto& fixed = objective_.fixed;
@@ -304,8 +322,8 @@ public:
                   p[kJmax] * std::exp(kStep),
                   projection_.wheel_.lugShearOffset()};
         }
-        int row = 0;
-        for (std::size_t i : projection_.samples_) {
+        projection_.forSamples([&](std::size_t t) {
+            const std::size_t i = projection_.samples_[t];
             const Sample& s = model.sample(i);
             const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
                                                 J(s.entry_angle_rad), J(0.0), std::nullopt};
@@ -319,6 +337,7 @@ public:
                 limit = {(a.fx - f.fx.a) / kStep, (a.fz - f.fz.a) / kStep, (a.my - f.my.a) / kStep};
             }
             const auto active = model.channels(i);
+            auto row = static_cast<Eigen::Index>(projection_.first_row_[t]);
             for (int c = 0; c < 3; ++c) {
                 if (!active[c]) continue;
                 const double w = 1.0 / projection_.objective_.sigma[c];
@@ -326,7 +345,7 @@ public:
                 if (shear_limit_) d(row, 4) = limit[c] * w;
                 ++row;
             }
-        }
+        });
         // Kaufman: J = P⊥ D, P⊥ the projector onto the complement of Φ N, N a basis of the
         // directions α can still move in on its face.
         Eigen::MatrixXd phi(m, 3);

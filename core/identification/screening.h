@@ -10,6 +10,7 @@
 /// bounds, tan φ_min ≤ α₃/α₁ ≤ tan φ_max): only four parameters are sampled, and the c–φ and
 /// K_s direction of the search disappear.
 
+#include <functional>
 #include <vector>
 
 #include "core/identification/fit_problem.h"
@@ -38,11 +39,14 @@ private:
     struct Linearised;
     class Cost;
     bool linearise(const ParameterVector& p, Linearised& out) const;
+    /// body(t) for every t < samples_.size(), on the objective's pool when it has one.
+    void forSamples(const std::function<void(std::size_t)>& body) const;
 
     const Objective& objective_;
     std::vector<std::size_t> samples_;
     wheel::WheelParameters wheel_;
     int data_rows_ = 0;
+    std::vector<std::size_t> first_row_;  // each sample's first data row
 };
 
 /// `count` points of a Halton sequence (bases 2, 3, 5, …) over the dimensions marked in `vary`,

@@ -440,6 +440,25 @@ TEST_F(IdentifyCli, ProfileIntervalsOfAFlaggedTradeOff) {
     EXPECT_NE(stream.err.find("--profile"), std::string::npos) << stream.err;
 }
 
+// --threads shares the global search among threads: the same JSON, but for the steps' times,
+// with one thread and with two; --stream does not take it.
+TEST_F(IdentifyCli, ThreadsGiveTheSameIdentification) {
+    const std::string data =
+        synth("t.csv", "--soil clayey-soil --wheel B --slips 0:0.9:31 --noise fx=1%,fz=1%,my=1%");
+    nlohmann::json one = nlohmann::json::parse(
+        run("identify --data " + data + " --wheel B --jmax 0.009 --json --threads 1").out);
+    nlohmann::json two = nlohmann::json::parse(
+        run("identify --data " + data + " --wheel B --jmax 0.009 --json --threads 2").out);
+    ASSERT_TRUE(one.contains("phi_deg") && one["steps"].is_array()) << one.dump();
+    for (nlohmann::json* j : {&one, &two}) {
+        for (nlohmann::json& step : (*j)["steps"]) step.erase("time_ms");
+    }
+    EXPECT_EQ(one, two);
+    const CliRun stream = run("identify --stream " + data + " --wheel B --threads 2");
+    EXPECT_EQ(stream.exit_code, 2);
+    EXPECT_NE(stream.err.find("--threads"), std::string::npos) << stream.err;
+}
+
 // --stream's flags are the streaming identification's settings object read by its reader: its
 // wording, named by the flag, exit 2.
 TEST_F(IdentifyCli, StreamFlagsOutOfRangeGetTheReadersWordsNamedByTheFlag) {
@@ -489,6 +508,9 @@ TEST_F(IdentifyCli, BadFlagValuesExitTwoNamingFlagValueAndRange) {
         {"--load -5", {"--load", "-5"}},
         {"--no-refine --prior phi_deg=30±5", {"--prior", "--no-refine"}},
         {"--no-refine --profile", {"--profile", "--no-refine"}},
+        {"--threads -1", {"--threads", "-1", "[0, 64]"}},
+        {"--threads 65", {"--threads", "65", "[0, 64]"}},
+        {"--no-refine --threads 2", {"--threads", "--no-refine"}},
     };
     for (const Case& c : cases) {
         const CliRun r = run("identify --data " + data + " --wheel A " + c.flags);

@@ -357,7 +357,9 @@ std::function<std::any(const std::atomic<bool>&)> IdentificationFitPage::makeJob
             if (!soil) throw std::invalid_argument("prior: " + soil.message());
             settings.prior_soil = *soil;
         }
-        return analysis::computeIdentification(inputs, settings, {&cancel});
+        analysis::Control control{&cancel};
+        control.threads = 0;  // one per core: the search's result does not depend on it
+        return analysis::computeIdentification(inputs, settings, control);
     };
 }
 

@@ -160,6 +160,45 @@ TEST(Identify, TheSearchFindsTheMinimumTheTruthsOwnStartReaches) {
     EXPECT_EQ(cases, 36);
 }
 
+TEST(Identify, TwoThreadsGiveTheSameAnswerAsOne) {
+    // IdentifyOptions::threads shares the screening's starts and each evaluation's samples among
+    // threads; every sum is still taken in sample order, so the report is the same bit for bit:
+    // clay on B at one load (the crawl toward a₀'s bound, two noise rounds) with j_max held and
+    // identified (its prior refit), and three loads.
+    const ContactParameters<double> soil = clayOnB();
+    for (const bool three : {false, true}) {
+        for (const bool fit_jmax : {false, true}) {
+            const DataSet data = three ? sweeps(soil, {49.0, 98.0, 147.0}, 0.01, 5)
+                                       : sweeps(soil, {98.0}, 0.01, 5, 91);
+            IdentifyOptions one = optionsFor(soil);
+            one.fit_max_shear_deformation = fit_jmax;
+            IdentifyOptions two = one;
+            two.threads = 2;
+            const IdentificationReport a = identify(data, kWheelB, one);
+            const IdentificationReport b = identify(data, kWheelB, two);
+            const std::string where = std::string(three ? "three loads" : "one load") +
+                                      (fit_jmax ? ", j_max identified" : ", j_max held");
+            ASSERT_TRUE(a.usable()) << where;
+            EXPECT_EQ(a.chi2, b.chi2) << where;
+            EXPECT_EQ(a.iterations, b.iterations) << where;
+            for (int k = 0; k < kFullParameterCount; ++k) {
+                EXPECT_EQ(a.parameters[k], b.parameters[k]) << where << ", parameter " << k;
+                EXPECT_EQ(a.uncertainty.std[k], b.uncertainty.std[k]) << where << ", std " << k;
+            }
+            ASSERT_EQ(a.starts.size(), b.starts.size()) << where;
+            for (std::size_t s = 0; s < a.starts.size(); ++s)
+                EXPECT_EQ(a.starts[s].screening_cost, b.starts[s].screening_cost) << where;
+            EXPECT_EQ(a.uncertainty.flags, b.uncertainty.flags) << where;
+        }
+    }
+    // Out of range: an error naming the option.
+    IdentifyOptions bad = optionsFor(soil);
+    bad.threads = -1;
+    const IdentificationReport r = identify(sweeps(soil, {98.0}, 0.01, 5), kWheelB, bad);
+    EXPECT_FALSE(r.usable());
+    EXPECT_NE(r.message.find("threads"), std::string::npos) << r.message;
+}
+
 TEST(Identify, NoiseFreeThesisDataGiveTheTruthWithoutAGuess) {
     // Table 5.2: one load of 6 kg, s = 0 : 0.01 : 0.9, θ_f measured.
     const DataSet data = sweeps(soils::sandyLoam(), {58.86}, 0.0, 1, 91);

@@ -1,0 +1,84 @@
+#include "core/common/worker_pool.h"
+
+#include <algorithm>
+
+namespace terra {
+
+WorkerPool::WorkerPool(int threads) {
+    const int count = std::max(1, threads);
+    errors_.resize(static_cast<std::size_t>(count));
+    for (int t = 1; t < count; ++t) workers_.emplace_back([this, t] { work(t); });
+}
+
+WorkerPool::~WorkerPool() {
+    {
+        const std::lock_guard lock(mutex_);
+        stop_ = true;
+    }
+    start_.notify_all();
+    for (std::thread& t : workers_) t.join();
+}
+
+std::pair<std::size_t, std::size_t> WorkerPool::part(int index) const {
+    const std::size_t parts = workers_.size() + 1;
+    const std::size_t i = static_cast<std::size_t>(index);
+    return {n_ * i / parts, n_ * (i + 1) / parts};
+}
+
+void WorkerPool::forEach(std::size_t n,
+                         const std::function<void(std::size_t, std::size_t)>& body) {
+    if (workers_.empty() || n < 2) {
+        body(0, n);
+        return;
+    }
+    {
+        const std::lock_guard lock(mutex_);
+        body_ = &body;
+        n_ = n;
+        pending_ = static_cast<int>(workers_.size());
+        std::fill(errors_.begin(), errors_.end(), nullptr);
+        ++generation_;
+    }
+    start_.notify_all();
+    const auto [begin, end] = part(0);
+    try {
+        body(begin, end);
+    } catch (...) {
+        errors_[0] = std::current_exception();
+    }
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [this] { return pending_ == 0; });
+    body_ = nullptr;
+    for (const std::exception_ptr& e : errors_) {
+        if (e) std::rethrow_exception(e);
+    }
+}
+
+void WorkerPool::work(int index) {
+    unsigned long seen = 0;
+    for (;;) {
+        const std::function<void(std::size_t, std::size_t)>* body = nullptr;
+        std::pair<std::size_t, std::size_t> range;
+        {
+            std::unique_lock lock(mutex_);
+            start_.wait(lock, [&] { return stop_ || generation_ != seen; });
+            if (stop_) return;
+            seen = generation_;
+            body = body_;
+            range = part(index);
+        }
+        std::exception_ptr error;
+        try {
+            if (range.first < range.second) (*body)(range.first, range.second);
+        } catch (...) {
+            error = std::current_exception();
+        }
+        {
+            const std::lock_guard lock(mutex_);
+            errors_[static_cast<std::size_t>(index)] = error;
+            if (--pending_ == 0) done_.notify_one();
+        }
+    }
+}
+
+}  // namespace terra

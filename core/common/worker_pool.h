@@ -1,0 +1,47 @@
+#pragma once
+/// @file worker_pool.h
+/// A few threads kept for the life of one computation, for loops too short to start threads for
+/// each time: an identification evaluates its model on ~100 samples a few hundred times, each
+/// evaluation 0.2–2 ms (docs/identification.md §9, "Two threads").
+
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace terra {
+
+class WorkerPool {
+public:
+    /// `threads` in all, the caller's included (threads − 1 workers are started); at least 1.
+    explicit WorkerPool(int threads);
+    ~WorkerPool();
+    WorkerPool(const WorkerPool&) = delete;
+    WorkerPool& operator=(const WorkerPool&) = delete;
+
+    int threads() const { return static_cast<int>(workers_.size()) + 1; }
+
+    /// Runs body(begin, end) on contiguous parts of [0, n), one per thread (the caller runs the
+    /// first), and returns when all are done; an exception of a part is rethrown here (the first
+    /// part's first). Not reentrant: the body must not call forEach of the same pool.
+    void forEach(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body);
+
+private:
+    void work(int index);
+    std::pair<std::size_t, std::size_t> part(int index) const;
+
+    std::vector<std::thread> workers_;
+    std::mutex mutex_;
+    std::condition_variable start_, done_;
+    const std::function<void(std::size_t, std::size_t)>* body_ = nullptr;
+    std::size_t n_ = 0;
+    unsigned long generation_ = 0;
+    int pending_ = 0;
+    bool stop_ = false;
+    std::vector<std::exception_ptr> errors_;
+};
+
+}  // namespace terra
