@@ -53,8 +53,8 @@ struct Control {
     const std::atomic<bool>* cancel;       ///< set: stop early, keep what was computed
     std::function<void(double)> progress;  ///< fraction done in [0, 1]; may be empty
     /// Threads the analysis may use, the caller's included (1: none started; 0: one per
-    /// hardware thread). The identification's global search uses them (IdentifyOptions::
-    /// threads); the result is the same whatever the count.
+    /// hardware thread, at most 8). The identification's global search uses them
+    /// (IdentifyOptions::threads); the result is the same whatever the count.
     int threads = 1;
 
     bool cancelled() const { return cancel != nullptr && cancel->load(std::memory_order_relaxed); }

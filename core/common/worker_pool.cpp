@@ -1,22 +1,31 @@
 #include "core/common/worker_pool.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace terra {
 
 WorkerPool::WorkerPool(int threads) {
     const int count = std::max(1, threads);
     errors_.resize(static_cast<std::size_t>(count));
-    for (int t = 1; t < count; ++t) workers_.emplace_back([this, t] { work(t); });
+    try {
+        for (int t = 1; t < count; ++t) workers_.emplace_back([this, t] { work(t); });
+    } catch (...) {
+        stopWorkers();  // the threads started so far (a joinable std::thread may not be dropped)
+        throw;
+    }
 }
 
-WorkerPool::~WorkerPool() {
+WorkerPool::~WorkerPool() { stopWorkers(); }
+
+void WorkerPool::stopWorkers() {
     {
         const std::lock_guard lock(mutex_);
         stop_ = true;
     }
     start_.notify_all();
     for (std::thread& t : workers_) t.join();
+    workers_.clear();
 }
 
 std::pair<std::size_t, std::size_t> WorkerPool::part(int index) const {
@@ -25,8 +34,16 @@ std::pair<std::size_t, std::size_t> WorkerPool::part(int index) const {
     return {n_ * i / parts, n_ * (i + 1) / parts};
 }
 
-void WorkerPool::forEach(std::size_t n,
-                         const std::function<void(std::size_t, std::size_t)>& body) {
+void WorkerPool::forEach(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {
+    if (busy_.exchange(true)) {
+        throw std::logic_error(
+            "WorkerPool::forEach: already running (called from inside a forEach of the same "
+            "pool, or from two threads at once)");
+    }
+    struct Idle {
+        std::atomic<bool>& busy;
+        ~Idle() { busy = false; }
+    } idle{busy_};
     if (workers_.empty() || n < 2) {
         body(0, n);
         return;

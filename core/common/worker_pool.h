@@ -4,6 +4,7 @@
 /// each time: an identification evaluates its model on ~100 samples a few hundred times, each
 /// evaluation 0.2–2 ms (docs/identification.md §9, "Two threads").
 
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -26,11 +27,13 @@ public:
 
     /// Runs body(begin, end) on contiguous parts of [0, n), one per thread (the caller runs the
     /// first), and returns when all are done; an exception of a part is rethrown here (the first
-    /// part's first). Not reentrant: the body must not call forEach of the same pool.
+    /// part's first). Not reentrant: a body that calls forEach of the same pool gets
+    /// std::logic_error (it would wait for itself).
     void forEach(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body);
 
 private:
     void work(int index);
+    void stopWorkers();
     std::pair<std::size_t, std::size_t> part(int index) const;
 
     std::vector<std::thread> workers_;
@@ -41,6 +44,7 @@ private:
     unsigned long generation_ = 0;
     int pending_ = 0;
     bool stop_ = false;
+    std::atomic<bool> busy_{false};  // inside forEach
     std::vector<std::exception_ptr> errors_;
 };
 

@@ -33,19 +33,25 @@ public:
     bool Evaluate(double const* const* parameters, double* residuals,
                   double** jacobians) const override {
         double* jacobian = jacobians ? jacobians[0] : nullptr;
+        if (!pool_) {
+            // One thread: stop at the first sample that fails (from the load, each evaluation
+            // moves that sample's warm start for θ_f; the samples after it keep theirs).
+            for (std::size_t t = 0; t < samples_.size(); ++t) {
+                const int row = first_[t];
+                if (!model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
+                                      jacobian ? jacobian + row * kP : nullptr))
+                    return false;
+            }
+            return true;
+        }
         std::vector<char> ok(samples_.size(), 0);
-        const auto part = [&](std::size_t begin, std::size_t end) {
+        pool_->forEach(samples_.size(), [&](std::size_t begin, std::size_t end) {
             for (std::size_t t = begin; t < end; ++t) {
                 const int row = first_[t];
                 ok[t] = model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
                                          jacobian ? jacobian + row * kP : nullptr);
             }
-        };
-        if (pool_) {
-            pool_->forEach(samples_.size(), part);
-        } else {
-            part(0, samples_.size());
-        }
+        });
         return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
     }
 
@@ -138,14 +144,15 @@ namespace {
 // Every sample's weighted residuals and their Jacobian (rows of kP, row-major) at u, in sample
 // order, on the objective's pool when it has one: each sample is one thread's, and the callers
 // add them up in sample order, so the sums are the same whatever the thread count. ok[t] is
-// whether sample t's model evaluation succeeded.
+// whether sample t's model evaluation succeeded; with `stop_at_failure` and no pool the samples
+// after the first that fails are not evaluated (ok false), as one thread always did.
 struct SampleRows {
     std::vector<int> first;  // first residual of each sample
     std::vector<double> r, j;
     std::vector<char> ok;
 
-    SampleRows(const Objective& objective, const std::vector<std::size_t>& samples,
-               const double* u) {
+    SampleRows(const Objective& objective, const std::vector<std::size_t>& samples, const double* u,
+               bool stop_at_failure) {
         const ObservationModel& model = *objective.model;
         int rows = 0;
         for (std::size_t i : samples) {
@@ -165,7 +172,10 @@ struct SampleRows {
         if (objective.pool) {
             objective.pool->forEach(samples.size(), part);
         } else {
-            part(0, samples.size());
+            for (std::size_t t = 0; t < samples.size(); ++t) {
+                part(t, t + 1);
+                if (stop_at_failure && !ok[t]) break;
+            }
         }
     }
 };
@@ -278,7 +288,7 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
     // JᵀJ of the data, each sample's rows weighted by the loss's ρ'(s), plus the priors.
     Eigen::Matrix<double, kP, kP> h = Eigen::Matrix<double, kP, kP>::Zero();
     Eigen::Matrix<double, kP, 1> g_all = Eigen::Matrix<double, kP, 1>::Zero();
-    const SampleRows rows(objective, samples, u.data());
+    const SampleRows rows(objective, samples, u.data(), false);
     for (std::size_t t = 0; t < samples.size(); ++t) {
         const int m = model.residualCount(samples[t]);
         if (!rows.ok[t]) continue;
@@ -407,7 +417,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
     for (; steps < max_steps && std::isfinite(chi2); ++steps) {
         Eigen::Matrix<double, kP, kP> h = Eigen::Matrix<double, kP, kP>::Zero();
         Eigen::Matrix<double, kP, 1> g = Eigen::Matrix<double, kP, 1>::Zero();
-        const SampleRows rows(objective, samples, u.data());
+        const SampleRows rows(objective, samples, u.data(), true);
         for (std::size_t t = 0; t < samples.size(); ++t) {
             const int m = model.residualCount(samples[t]);
             if (!rows.ok[t]) return steps;

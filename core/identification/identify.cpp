@@ -201,7 +201,7 @@ private:
         for (std::size_t d = 0; d < design.size(); ++d)
             starts.push_back({"design " + std::to_string(d + 1), design[d]});
         // The starts are shared among the pool's threads (each projection on its 12 samples in
-        // one thread), 16 at a time between progress reports.
+        // one thread), 8 at a time between progress reports (as before there were threads).
         Objective serial = objective_;
         serial.pool = nullptr;
         const detail::LinearProjection projection(serial, screening_, wheel_);
@@ -218,7 +218,7 @@ private:
                 r.end = p;
             }
         };
-        constexpr std::size_t kBlock = 16;
+        constexpr std::size_t kBlock = 8;
         for (std::size_t first = 0; first < starts.size(); first += kBlock) {
             const std::size_t count = std::min(kBlock, starts.size() - first);
             const auto block = [&](std::size_t begin, std::size_t end) {

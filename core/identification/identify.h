@@ -112,8 +112,10 @@ struct IdentifyOptions {
     /// Seed of the design's shift and of the held-out selection.
     std::uint64_t seed = 1;
     /// Threads, the caller's included (1: none started; 0: one per hardware thread, at most 8).
-    /// With θ_f measured the screening's starts and every evaluation's samples are shared among
-    /// them; the result is the same whatever the count (docs/identification.md §9).
+    /// With θ_f measured the screening's starts, and the samples of the model's evaluations, are
+    /// shared among them (with a robust loss the descents and refinement stay on one: they
+    /// evaluate each sample apart); the result is the same whatever the count
+    /// (docs/identification.md §9). From the load the search runs on one thread.
     int threads = 1;
 
     /// Progress in [0, 1]; return false to cancel (the report then says so).

@@ -84,8 +84,12 @@ py::dict mapsToDict(const scenario::FieldMaps& maps) {
 
 py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
              const wheel::WheelParameters& wheel, const py::dict& conditions,
-             const py::dict& settings, py::object data, const py::object& progress) {
+             const py::dict& settings, py::object data, const py::object& progress, int threads) {
     const analysis::AnalysisType& type = typeNamed(type_name);
+    if (threads < 0 || threads > 64) {
+        throw std::invalid_argument("threads: " + std::to_string(threads) +
+                                    " is outside the allowed range [0, 64] (0: one per core)");
+    }
     const nlohmann::json conditions_json = toJson(conditions);
     const nlohmann::json settings_json = toJson(settings);
     std::vector<Issue> issues;
@@ -108,7 +112,9 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
     }
     const analysis::Outcome outcome = runInterruptible(
         [&](const WorkControl& work) {
-            return type.run(typed, inputs, analysis::Control{work.cancel, work.progress});
+            analysis::Control control{work.cancel, work.progress};
+            control.threads = threads;
+            return type.run(typed, inputs, control);
         },
         progress);
     py::dict out;
@@ -177,7 +183,8 @@ py::dict scenarioSoils(const std::string& name) {
 void bindAnalyses(py::module_& m) {
     m.def("_scenario_soils", &scenarioSoils, py::arg("scenario"));
     m.def("_run", &run, py::arg("type"), py::arg("soil"), py::arg("wheel"), py::arg("conditions"),
-          py::arg("settings"), py::arg("data") = py::none(), py::arg("progress") = py::none());
+          py::arg("settings"), py::arg("data") = py::none(), py::arg("progress") = py::none(),
+          py::arg("threads") = 1);
     m.def("_compare_controllers", &compareControllers, py::arg("settings"),
           py::arg("progress") = py::none());
     m.def(

@@ -344,7 +344,7 @@ def field(path, *, traversability=None):
     return _core._field(os.fspath(path), traversability)
 
 
-def identify(data, wheel, soil="sandy-loam", **settings):
+def identify(data, wheel, soil="sandy-loam", *, threads=1, **settings):
     """Soil identification from wheel data (thesis chapters 4-5): the global identification on
     the full model (or, with refine=False, the decoupled fit alone) with its uncertainty.
 
@@ -354,7 +354,9 @@ def identify(data, wheel, soil="sandy-loam", **settings):
     (refine, fix, noise, skip_bad_rows, jmax_m, priors, loss, holdout, folds, starts, load_N,
     profile). jmax_m: j_max [m] held at that value, or "fit" to identify it as an eighth
     parameter (``identify --jmax fit``; with a prior of 20 ± 20 mm when the data do not
-    determine it, and a flag that says so).
+    determine it, and a flag that says so). threads: threads of the global search (1, the
+    default: none started; 0: one per core, as ``identify --threads``); the same numbers
+    whatever the count.
 
     Returns every key of ``terrastudio identify --json`` (the parameters a0, ..., K_m, jmax_m, "std",
     "flags", "covariance", "prior", "holdout", "ambiguity", "steps", "samples", ...; a test
@@ -373,7 +375,7 @@ def identify(data, wheel, soil="sandy-loam", **settings):
     elif data is not None:
         settings["csv"] = os.fspath(data)
     out = _core._run("identification", _as_soil(soil), _as_wheel(wheel), {}, settings, columns,
-                     progress)
+                     progress, threads)
     # An old parameter key in fix or priors ("Ks", "n"; issue 26) was read as its new one: the
     # core's note, as a DeprecationWarning.
     for note in out["notes"]:

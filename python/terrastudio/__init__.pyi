@@ -121,6 +121,8 @@ def identify(
     data: str | os.PathLike[str] | Mapping[str, ArrayLike] | None,
     wheel: WheelSpec,
     soil: SoilSpec = "sandy-loam",
+    *,
+    threads: int = 1,
     **settings: Any,
 ) -> dict[str, Any]: ...
 def simulate(scenario: str | os.PathLike[str] = "straight", **settings: Any) -> dict[str, Any]: ...

@@ -227,6 +227,20 @@ def test_validation_returns_what_validate_json_prints(cli, resources):
                noise={"Fx_N": -1})
 
 
+def test_identify_gives_the_same_numbers_on_two_threads():
+    # Issue 25, item 7: the global search shared among threads (identify --threads): the same
+    # parameters, std and flags, bit for bit; a count out of range is a ValueError naming it.
+    settings = dict(noise_percent=1.0, slip_count=31, loads_N=[30.0, 60.0, 90.0], jmax_m=0.02)
+    one = ts.identify(None, WHEEL, SOIL, **settings)
+    two = ts.identify(None, WHEEL, SOIL, threads=2, **settings)
+    assert one["usable"] and two["usable"]
+    assert one["parameters"] == two["parameters"]
+    assert one["flags"] == two["flags"]
+    assert one["covariance"] == two["covariance"]
+    with pytest.raises(ValueError, match=r"threads: -1 is outside the allowed range \[0, 64\]"):
+        ts.identify(None, WHEEL, SOIL, threads=-1, **settings)
+
+
 def test_identify_bad_data():
     with pytest.raises(ValueError, match="slip"):
         ts.identify({"slip": [0.1, 3.0], "entry_angle_deg": [20, 20], "Fx_N": [1, 2],

@@ -72,5 +72,20 @@ TEST(WorkerPool, AnExceptionOfAPartReachesTheCallerAndThePoolGoesOn) {
     EXPECT_EQ(sum, 0 + 1 + 2 + 3);
 }
 
+TEST(WorkerPool, AForEachInsideAForEachIsRefused) {
+    // It would wait for itself: refused with std::logic_error, from the caller's part (a
+    // worker's part would rethrow the same through the caller), and the pool goes on.
+    WorkerPool pool(2);
+    EXPECT_THROW(pool.forEach(2,
+                              [&](std::size_t begin, std::size_t) {
+                                  if (begin == 0) pool.forEach(1, [](std::size_t, std::size_t) {});
+                              }),
+                 std::logic_error);
+    std::atomic<int> count{0};
+    pool.forEach(
+        2, [&](std::size_t begin, std::size_t end) { count += static_cast<int>(end - begin); });
+    EXPECT_EQ(count, 2);
+}
+
 }  // namespace
 }  // namespace terra
