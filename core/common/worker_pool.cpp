@@ -71,6 +71,16 @@ void WorkerPool::forEach(std::size_t n, const std::function<void(std::size_t, st
     }
 }
 
+void WorkerPool::forEachIndex(std::size_t n, const std::function<void(std::size_t)>& body) {
+    const std::size_t stride =
+        std::min<std::size_t>(workers_.size() + 1, std::max<std::size_t>(n, 1));
+    forEach(stride, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            for (std::size_t i = k; i < n; i += stride) body(i);
+        }
+    });
+}
+
 void WorkerPool::work(int index) {
     unsigned long seen = 0;
     for (;;) {

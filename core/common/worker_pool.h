@@ -31,6 +31,11 @@ public:
     /// std::logic_error (it would wait for itself).
     void forEach(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body);
 
+    /// Runs body(i) for every i < n, thread k taking i = k, k + threads, k + 2·threads, …:
+    /// interleaved, so that work that grows or shrinks along i (a slip sweep's samples) is shared
+    /// evenly. The same rules as forEach.
+    void forEachIndex(std::size_t n, const std::function<void(std::size_t)>& body);
+
 private:
     void work(int index);
     void stopWorkers();

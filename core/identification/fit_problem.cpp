@@ -45,12 +45,10 @@ public:
             return true;
         }
         std::vector<char> ok(samples_.size(), 0);
-        pool_->forEach(samples_.size(), [&](std::size_t begin, std::size_t end) {
-            for (std::size_t t = begin; t < end; ++t) {
-                const int row = first_[t];
-                ok[t] = model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
-                                         jacobian ? jacobian + row * kP : nullptr);
-            }
+        pool_->forEachIndex(samples_.size(), [&](std::size_t t) {
+            const int row = first_[t];
+            ok[t] = model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
+                                     jacobian ? jacobian + row * kP : nullptr);
         });
         return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
     }
@@ -162,18 +160,16 @@ struct SampleRows {
         r.assign(static_cast<std::size_t>(rows), 0.0);
         j.assign(static_cast<std::size_t>(rows) * kP, 0.0);
         ok.assign(samples.size(), 0);
-        const auto part = [&](std::size_t begin, std::size_t end) {
-            for (std::size_t t = begin; t < end; ++t) {
-                const auto row = static_cast<std::size_t>(first[t]);
-                ok[t] = model.residuals(samples[t], u, objective.sigma, r.data() + row,
-                                        j.data() + row * kP);
-            }
+        const auto one = [&](std::size_t t) {
+            const auto row = static_cast<std::size_t>(first[t]);
+            ok[t] = model.residuals(samples[t], u, objective.sigma, r.data() + row,
+                                    j.data() + row * kP);
         };
         if (objective.pool) {
-            objective.pool->forEach(samples.size(), part);
+            objective.pool->forEachIndex(samples.size(), one);
         } else {
             for (std::size_t t = 0; t < samples.size(); ++t) {
-                part(t, t + 1);
+                one(t);
                 if (stop_at_failure && !ok[t]) break;
             }
         }

@@ -118,13 +118,10 @@ LinearProjection::LinearProjection(const Objective& objective, std::vector<std::
 }
 
 void LinearProjection::forSamples(const std::function<void(std::size_t)>& body) const {
-    const auto part = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t t = begin; t < end; ++t) body(t);
-    };
     if (objective_.pool) {
-        objective_.pool->forEach(samples_.size(), part);
+        objective_.pool->forEachIndex(samples_.size(), body);
     } else {
-        part(0, samples_.size());
+        for (std::size_t t = 0; t < samples_.size(); ++t) body(t);
     }
 }
 

@@ -34,6 +34,24 @@ TEST(WorkerPool, EveryIndexOnceOnEveryThreadCount) {
     }
 }
 
+TEST(WorkerPool, EveryIndexOnceInterleaved) {
+    // forEachIndex: thread k takes k, k + threads, …; every index once whatever the counts.
+    for (const int threads : {1, 2, 3}) {
+        WorkerPool pool(threads);
+        for (const std::size_t n : {0u, 1u, 2u, 7u, 91u}) {
+            std::vector<std::atomic<int>> seen(n);
+            pool.forEachIndex(n, [&](std::size_t i) { ++seen[i]; });
+            for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(seen[i], 1) << threads << ", " << n;
+        }
+    }
+    // Two threads: the even indices on one thread, the odd on the other.
+    WorkerPool pool(2);
+    std::vector<std::thread::id> by(10);
+    pool.forEachIndex(10, [&](std::size_t i) { by[i] = std::this_thread::get_id(); });
+    for (std::size_t i = 2; i < 10; ++i) EXPECT_EQ(by[i], by[i - 2]) << i;
+    EXPECT_NE(by[0], by[1]);
+}
+
 TEST(WorkerPool, RunsThePartsOnSeveralThreads) {
     WorkerPool pool(2);
     std::set<std::thread::id> ids;
