@@ -521,9 +521,11 @@ void addIdentifyCommands(CLI::App& app, const io::PresetLocations& locations) {
             throw InputError(
                 "--prior, --holdout, --folds, --starts, --loss, --profile and --threads do not "
                 "apply to --stream");
-        if (o.threads && (*o.threads < 0 || *o.threads > 64))
+        constexpr int kMaxThreads = identification::IdentifyOptions::kMaxThreads;
+        if (o.threads && (*o.threads < 0 || *o.threads > kMaxThreads))
             throw InputError("--threads " + std::to_string(*o.threads) +
-                             ": outside the allowed range [0, 64] (0: one per core)");
+                             ": outside the allowed range [0, " + std::to_string(kMaxThreads) +
+                             "] (0: one per core)");
         if (streaming && !o.save_soil.empty())
             throw InputError("--save-soil does not apply to --stream");
         ModelOptions names;

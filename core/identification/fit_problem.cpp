@@ -14,42 +14,63 @@ namespace {
 
 constexpr int kP = kFullParameterCount;
 
+// Each sample's first residual row among `samples` (the rows of sample t start at first[t]), and
+// the rows in all.
+std::vector<int> firstRows(const ObservationModel& model, const std::vector<std::size_t>& samples,
+                           int& rows) {
+    std::vector<int> first;
+    rows = 0;
+    for (std::size_t i : samples) {
+        first.push_back(rows);
+        rows += model.residualCount(i);
+    }
+    return first;
+}
+
+// Sample t's weighted residuals at u into r + first[t], and their Jacobian (rows of kP,
+// row-major) into j + first[t]·kP when j is given; whether each sample's model evaluation
+// succeeded. On the pool when there is one: each sample is one thread's, written to its own
+// rows, so the numbers are the same whatever the thread count. Without a pool and with
+// `stop_at_failure`, the samples after the first that fails are not evaluated (false), as one
+// thread always did (from the load, each evaluation moves that sample's warm start for θ_f).
+std::vector<char> evaluateSamples(const ObservationModel& model,
+                                  const std::vector<std::size_t>& samples,
+                                  const std::vector<int>& first, const double* u,
+                                  const ChannelValues& sigma, WorkerPool* pool, double* r,
+                                  double* j, bool stop_at_failure) {
+    std::vector<char> ok(samples.size(), 0);
+    const auto one = [&](std::size_t t) {
+        const auto row = static_cast<std::size_t>(first[t]);
+        ok[t] = model.residuals(samples[t], u, sigma, r + row, j ? j + row * kP : nullptr);
+    };
+    if (pool) {
+        pool->forEachIndex(samples.size(), one);
+    } else {
+        for (std::size_t t = 0; t < samples.size(); ++t) {
+            one(t);
+            if (stop_at_failure && !ok[t]) break;
+        }
+    }
+    return ok;
+}
+
 // The data residuals of some samples in one cost function of the 7 solver coordinates.
 class DataCost final : public ceres::CostFunction {
 public:
     DataCost(const ObservationModel& model, std::vector<std::size_t> samples,
              const ChannelValues& sigma, WorkerPool* pool)
         : model_(model), samples_(std::move(samples)), sigma_(sigma), pool_(pool) {
-        int n = 0;
-        for (std::size_t i : samples_) {
-            first_.push_back(n);
-            n += model_.residualCount(i);
-        }
-        set_num_residuals(n);
+        int rows = 0;
+        first_ = firstRows(model_, samples_, rows);
+        set_num_residuals(rows);
         mutable_parameter_block_sizes()->push_back(kP);
     }
 
-    // Each sample writes its own rows (on the pool's threads when there is one).
     bool Evaluate(double const* const* parameters, double* residuals,
                   double** jacobians) const override {
-        double* jacobian = jacobians ? jacobians[0] : nullptr;
-        if (!pool_) {
-            // One thread: stop at the first sample that fails (from the load, each evaluation
-            // moves that sample's warm start for θ_f; the samples after it keep theirs).
-            for (std::size_t t = 0; t < samples_.size(); ++t) {
-                const int row = first_[t];
-                if (!model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
-                                      jacobian ? jacobian + row * kP : nullptr))
-                    return false;
-            }
-            return true;
-        }
-        std::vector<char> ok(samples_.size(), 0);
-        pool_->forEachIndex(samples_.size(), [&](std::size_t t) {
-            const int row = first_[t];
-            ok[t] = model_.residuals(samples_[t], parameters[0], sigma_, residuals + row,
-                                     jacobian ? jacobian + row * kP : nullptr);
-        });
+        const std::vector<char> ok =
+            evaluateSamples(model_, samples_, first_, parameters[0], sigma_, pool_, residuals,
+                            jacobians ? jacobians[0] : nullptr, true);
         return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
     }
 
@@ -139,11 +160,8 @@ std::vector<std::size_t> allSamples(std::size_t n) {
 
 namespace {
 
-// Every sample's weighted residuals and their Jacobian (rows of kP, row-major) at u, in sample
-// order, on the objective's pool when it has one: each sample is one thread's, and the callers
-// add them up in sample order, so the sums are the same whatever the thread count. ok[t] is
-// whether sample t's model evaluation succeeded; with `stop_at_failure` and no pool the samples
-// after the first that fails are not evaluated (ok false), as one thread always did.
+// Every sample's weighted residuals and their Jacobian at u (evaluateSamples), for the callers
+// to add up in sample order: the sums are then the same whatever the thread count.
 struct SampleRows {
     std::vector<int> first;  // first residual of each sample
     std::vector<double> r, j;
@@ -151,28 +169,12 @@ struct SampleRows {
 
     SampleRows(const Objective& objective, const std::vector<std::size_t>& samples, const double* u,
                bool stop_at_failure) {
-        const ObservationModel& model = *objective.model;
         int rows = 0;
-        for (std::size_t i : samples) {
-            first.push_back(rows);
-            rows += model.residualCount(i);
-        }
+        first = firstRows(*objective.model, samples, rows);
         r.assign(static_cast<std::size_t>(rows), 0.0);
         j.assign(static_cast<std::size_t>(rows) * kP, 0.0);
-        ok.assign(samples.size(), 0);
-        const auto one = [&](std::size_t t) {
-            const auto row = static_cast<std::size_t>(first[t]);
-            ok[t] = model.residuals(samples[t], u, objective.sigma, r.data() + row,
-                                    j.data() + row * kP);
-        };
-        if (objective.pool) {
-            objective.pool->forEachIndex(samples.size(), one);
-        } else {
-            for (std::size_t t = 0; t < samples.size(); ++t) {
-                one(t);
-                if (stop_at_failure && !ok[t]) break;
-            }
-        }
+        ok = evaluateSamples(*objective.model, samples, first, u, objective.sigma, objective.pool,
+                             r.data(), j.data(), stop_at_failure);
     }
 };
 

@@ -784,7 +784,7 @@ std::vector<Issue> validate(const DataSet& data, const wheel::WheelParameters& w
     }
     checkRange(issues, "design_points", o.design_points, {0, 100000});
     checkRange(issues, "descents", o.descents, {1, 1000});
-    checkRange(issues, "threads", o.threads, {0, 64});
+    checkRange(issues, "threads", o.threads, {0, IdentifyOptions::kMaxThreads});
     checkRange(issues, "subset_samples", o.subset_samples, {0, 1e9});
     checkRange(issues, "screening_samples", o.screening_samples, {0, 1e9});
     checkRange(issues, "loss_scale", o.loss_scale, {0.0, 1e6});

@@ -117,6 +117,7 @@ struct IdentifyOptions {
     /// evaluate each sample apart); the result is the same whatever the count
     /// (docs/identification.md §9). From the load the search runs on one thread.
     int threads = 1;
+    static constexpr int kMaxThreads = 64;  ///< the largest `threads` accepted
 
     /// Progress in [0, 1]; return false to cancel (the report then says so).
     std::function<bool(double)> progress;

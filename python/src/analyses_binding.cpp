@@ -86,9 +86,11 @@ py::dict run(const std::string& type_name, const soil::SoilParameters& soil,
              const wheel::WheelParameters& wheel, const py::dict& conditions,
              const py::dict& settings, py::object data, const py::object& progress, int threads) {
     const analysis::AnalysisType& type = typeNamed(type_name);
-    if (threads < 0 || threads > 64) {
+    constexpr int kMaxThreads = identification::IdentifyOptions::kMaxThreads;
+    if (threads < 0 || threads > kMaxThreads) {
         throw std::invalid_argument("threads: " + std::to_string(threads) +
-                                    " is outside the allowed range [0, 64] (0: one per core)");
+                                    " is outside the allowed range [0, " +
+                                    std::to_string(kMaxThreads) + "] (0: one per core)");
     }
     const nlohmann::json conditions_json = toJson(conditions);
     const nlohmann::json settings_json = toJson(settings);
