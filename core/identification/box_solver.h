@@ -5,11 +5,11 @@
 /// active set: a parameter the solver leaves exactly on its bound is held there and the others are
 /// solved again; a held parameter whose gradient points back into the box is released. Ceres'
 /// projected steps otherwise crawl along an active bound (a geometric decrease of ~0.65 per
-/// iteration, 60–200 iterations, measured on the decoupled steps of full-model data). With
+/// iteration, 60–200 iterations, measured on the decoupled steps of full-model data). A released
+/// parameter that the solver brings back to its bound stays held (released once per solve). With
 /// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three
 /// shrinking steps toward it, the bound within ten of them) is tried on that bound for one pass,
-/// kept there only if that pass lowers the cost, and a released parameter that the solver brings
-/// back to its bound stays held.
+/// kept there only if that pass lowers the cost.
 
 #include <ceres/ceres.h>
 
@@ -40,8 +40,8 @@ struct BoxOptions {
         true;  ///< compute BoxSummary::gradient (else only when the active set needs it)
     /// The shortcuts of the global search (identify.h; docs/identification.md §9): a parameter
     /// crawling toward a bound is tried on it, steps that leave a bound by a hair and return count
-    /// as staying on it, a parameter is released from its bound once, and the projected line
-    /// search interpolates values only (no Jacobian at its trial point).
+    /// as staying on it, and the projected line search interpolates values only (no Jacobian at
+    /// its trial point).
     bool bound_shortcuts = false;
     /// Called with x after each successful step; true ends the solve there (BoxSummary::stopped).
     /// A multi-start search uses it to end a descent that has entered the basin of a minimum

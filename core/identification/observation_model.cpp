@@ -39,17 +39,16 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
 
 template <typename T>
 contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
-                                 const T& entry_angle_rad, contact::ContactModel model,
-                                 const T& slip) {
+                                 const T& entry_angle_rad, const ModelSetup& setup, const T& slip) {
     const contact::OperatingPoint<T> op{slip, T(s.slip_angle_rad.value_or(0.0)), entry_angle_rad,
                                         T(0.0), std::nullopt};
-    return modelForces(p, op, model);
+    return modelForces(p, op, setup);
 }
 
 template <typename T>
 contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
-                                 const T& entry_angle_rad, contact::ContactModel model) {
-    return forcesAt(p, s, entry_angle_rad, model, T(s.slip));
+                                 const T& entry_angle_rad, const ModelSetup& setup) {
+    return forcesAt(p, s, entry_angle_rad, setup, T(s.slip));
 }
 
 bool uncertainSlip(const Sample& s) { return s.slip_std && *s.slip_std > 0.0; }
@@ -60,14 +59,14 @@ bool uncertainSlip(const Sample& s) { return s.slip_std && *s.slip_std > 0.0; }
 // it, the Jet was evaluated at the root returned: `by_angle` (if given) gets ∂(F_x, F_z, M_y)/∂θ_f
 // there; else it is left empty.
 std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& p, const Sample& s,
-                                      double load_n, double start, contact::ContactModel model,
+                                      double load_n, double start, const ModelSetup& setup,
                                       std::optional<std::array<double, 3>>* by_angle = nullptr) {
     using J = ceres::Jet<double, 1>;
     if (start > 0.0 && start < kRightAngle) {
         const contact::ContactParameters<J> pj = p.cast<J>();
         double theta = start;
         for (int step = 0; step < kNewtonSteps; ++step) {
-            const contact::WheelForces<J> f = forcesAt(pj, s, J(theta, 0), model);
+            const contact::WheelForces<J> f = forcesAt(pj, s, J(theta, 0), setup);
             const J& fz = f.fz;
             const double error = fz.a - load_n;
             if (std::abs(error) <= kLoadTolerance * load_n) {
@@ -84,7 +83,7 @@ std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& 
     problem.load_n = load_n;
     problem.slip = s.slip;
     problem.slip_angle_rad = s.slip_angle_rad.value_or(0.0);
-    problem.model = model;
+    problem.model = setup.model;
     if (start > 0.0 && start < kRightAngle) problem.initial_guess_rad = start;
     const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
     if (!solution.ok()) return std::nullopt;
@@ -220,11 +219,11 @@ Prediction ObservationModel::predictAt(std::size_t i, const ParameterVector& p,
     double theta = s.entry_angle_rad;
     if (setup_.source == DataSource::kLoad) {
         const std::optional<double> root =
-            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i], setup_.model, by_angle);
+            solveEntryAngle(cp, s, setup_.loads_n[i], last_entry_angle_[i], setup_, by_angle);
         if (!root) return out;
         theta = last_entry_angle_[i] = *root;
     }
-    const contact::WheelForces<double> f = forcesAt(cp, s, theta, setup_.model);
+    const contact::WheelForces<double> f = forcesAt(cp, s, theta, setup_);
     out.ok = true;
     out.entry_angle_rad = theta;
     out.values = {
@@ -247,9 +246,9 @@ std::array<double, 3> ObservationModel::shearLimitDerivative(std::size_t i,
     down[kJmax] = p[kJmax] * std::exp(-kStep);
     const Sample& s = samples_[i];
     const contact::WheelForces<double> a =
-        forcesAt(contactParameters(up, wheel_, setup_), s, entry_angle_rad, setup_.model);
+        forcesAt(contactParameters(up, wheel_, setup_), s, entry_angle_rad, setup_);
     const contact::WheelForces<double> b =
-        forcesAt(contactParameters(down, wheel_, setup_), s, entry_angle_rad, setup_.model);
+        forcesAt(contactParameters(down, wheel_, setup_), s, entry_angle_rad, setup_);
     out = {(a.fx - b.fx) / (2 * kStep), (a.fz - b.fz) / (2 * kStep), (a.my - b.my) / (2 * kStep)};
     return out;
 }
@@ -268,8 +267,7 @@ std::optional<ChannelValues> ObservationModel::slipSlopeAt(
     using J = ceres::Jet<double, 1>;
     const Sample& s = samples_[i];
     const contact::ContactParameters<J> pj = contactParameters(p, wheel_, setup_).cast<J>();
-    const contact::WheelForces<J> f =
-        forcesAt(pj, s, J(entry_angle_rad), setup_.model, J(s.slip, 0));
+    const contact::WheelForces<J> f = forcesAt(pj, s, J(entry_angle_rad), setup_, J(s.slip, 0));
     ChannelValues g{f.fx.v[0], f.fz.v[0], f.my.v[0], 0.0};
     if (setup_.source != DataSource::kLoad) return g;
     // θ_f moves with s so that F_z stays W.
@@ -277,7 +275,7 @@ std::optional<ChannelValues> ObservationModel::slipSlopeAt(
     if (by_angle) {
         partial = *by_angle;
     } else {
-        const contact::WheelForces<J> t = forcesAt(pj, s, J(entry_angle_rad, 0), setup_.model);
+        const contact::WheelForces<J> t = forcesAt(pj, s, J(entry_angle_rad, 0), setup_);
         partial = {t.fx.v[0], t.fz.v[0], t.my.v[0]};
     }
     if (!(partial[1] > 0.0)) return std::nullopt;
@@ -319,7 +317,7 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
         for (int k = 0; k < n; ++k) uj[k] = k < nj ? J(u[k], k) : J(u[k]);
         const contact::WheelForces<J> f =
             forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s,
-                     J(s.entry_angle_rad), setup_.model);
+                     J(s.entry_angle_rad), setup_);
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
         const std::array<double, 3> limit = setup_.max_shear_deformation_free
                                                 ? shearLimitDerivative(i, p, s.entry_angle_rad)
@@ -334,15 +332,14 @@ bool ObservationModel::residuals(std::size_t i, const double* u, const ChannelVa
         // channel y is ∂y/∂u + ∂y/∂θ_f · dθ_f/du, dθ_f/du = −(∂F_z/∂u)/(∂F_z/∂θ_f).
         const std::optional<double> root =
             solveEntryAngle(contactParameters(p, wheel_, setup_), s, setup_.loads_n[i],
-                            last_entry_angle_[i], setup_.model);
+                            last_entry_angle_[i], setup_);
         if (!root) return false;
         last_entry_angle_[i] = *root;
         using J = ceres::Jet<double, nj + 1>;
         std::array<J, n> uj;
         for (int k = 0; k < n; ++k) uj[k] = k < nj ? J(u[k], k) : J(u[k]);
-        const contact::WheelForces<J> f =
-            forcesAt(contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, nj),
-                     setup_.model);
+        const contact::WheelForces<J> f = forcesAt(
+            contactParameters(toPhysical(uj.data()), wheel_, setup_), s, J(*root, nj), setup_);
         const double dfz_dtheta = f.fz.v[nj];
         if (!(dfz_dtheta > 0.0)) return false;
         entry_angle_rad = *root;

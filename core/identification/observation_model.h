@@ -66,16 +66,22 @@ struct ModelSetup {
     /// §8). Both are linear in (K_s, c, K_s tan φ) at a given θ_f, so the screening's variable
     /// projection holds for either.
     contact::ContactModel model = contact::ContactModel::kFull;
+    /// How the full model's integrals are evaluated: the default adaptive rule, or the Gauss rule
+    /// alone (IntegrationOptions::gauss_only) for the search's screening and descents, which the
+    /// refinement on the default rule finishes (docs/identification.md §9, "fourth pass").
+    contact::IntegrationOptions integration{};
     std::string description;  ///< "entry angle; channels Fx_N, Fz_N, My_Nm"
 };
 
-/// The forces of `model` at `op` (contact::computeForces or computeQuadraticForces).
+/// The forces of the setup's model at `op` (contact::computeForces with its integration, or
+/// computeQuadraticForces).
 template <typename T>
 contact::WheelForces<T> modelForces(const contact::ContactParameters<T>& p,
-                                    const contact::OperatingPoint<T>& op,
-                                    contact::ContactModel model) {
-    return model == contact::ContactModel::kQuadratic ? contact::computeQuadraticForces(p, op)
-                                                      : contact::computeForces(p, op);
+                                    const contact::OperatingPoint<T>& op, const ModelSetup& setup) {
+    return setup.model == contact::ContactModel::kQuadratic
+               ? contact::computeQuadraticForces(p, op)
+               : contact::computeForces(p, op, contact::BulldozingModel::kBekker,
+                                        setup.integration);
 }
 
 /// Resolves the setup. W per sample is the `W_N` cell, else `load_n`, else the measured F_z. With

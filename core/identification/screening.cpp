@@ -151,7 +151,7 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
         const Sample& s = model.sample(i);
         const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
                                             J(s.entry_angle_rad), J(0.0), std::nullopt};
-        const contact::WheelForces<J> f = modelForces(cp, op, model.setup().model);
+        const contact::WheelForces<J> f = modelForces(cp, op, model.setup());
         const J* channel[3] = {&f.fx, &f.fz, &f.my};
         const auto active = model.channels(i);
         std::size_t row = first_row_[t];
@@ -324,13 +324,13 @@ public:
             const Sample& s = model.sample(i);
             const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
                                                 J(s.entry_angle_rad), J(0.0), std::nullopt};
-            const contact::WheelForces<J> f = modelForces(cp, op, model.setup().model);
+            const contact::WheelForces<J> f = modelForces(cp, op, model.setup());
             const J* channel[3] = {&f.fx, &f.fz, &f.my};
             std::array<double, 3> limit{};
             if (shear_limit_) {
                 const contact::OperatingPoint<double> od{s.slip, s.slip_angle_rad.value_or(0.0),
                                                          s.entry_angle_rad, 0.0, std::nullopt};
-                const contact::WheelForces<double> a = modelForces(up, od, model.setup().model);
+                const contact::WheelForces<double> a = modelForces(up, od, model.setup());
                 limit = {(a.fx - f.fx.a) / kStep, (a.fz - f.fz.a) / kStep, (a.my - f.my.a) / kStep};
             }
             const auto active = model.channels(i);

@@ -14,6 +14,8 @@ namespace {
 using testing::kDeg;
 
 constexpr double kAgreement = 1e-8;  // relative, fast integrator vs adaptive reference
+// relative, the Gauss rule alone (IntegrationOptions::gauss_only) vs adaptive reference
+constexpr double kGaussAlone = 1e-4;
 
 struct SoilCase {
     const char* soil;
@@ -235,6 +237,39 @@ TEST(WheelForces, AgreesWithTheReferenceInHardCases) {
         }
     }
     EXPECT_EQ(cases, 720);
+}
+
+TEST(WheelForces, GaussRuleAloneIsCloseToTheReferenceWhereNoPieceIsBisected) {
+    // IntegrationOptions::gauss_only (the identification's screening and descents): the 7-point
+    // Gauss rule on the initial pieces, against the adaptive tanh-sinh reference, over the
+    // measured tests' range (driving and braking, θ_f 5–35°, θ_r = 0, small slip angles).
+    IntegrationOptions gauss;
+    gauss.gauss_only = true;
+    double worst = 0.0;
+    for (const SoilCase& c : thesisSoils()) {
+        for (double s : {0.0, 0.05, 0.2, 0.5, 0.9, -0.3}) {
+            for (double beta : {0.0, 5.0}) {
+                for (double theta_f : {5.0, 15.0, 35.0}) {
+                    const OperatingPoint<double> op{s, beta * kDeg, theta_f * kDeg, 0.0,
+                                                    std::nullopt};
+                    IntegrationReport adaptive, alone;
+                    computeForces(c.params, op, BulldozingModel::kBekker, {}, &adaptive);
+                    const auto f =
+                        computeForces(c.params, op, BulldozingModel::kBekker, gauss, &alone);
+                    const double error = relativeError(f, computeForcesReference(c.params, op));
+                    worst = std::max(worst, error);
+                    EXPECT_LT(error, kGaussAlone)
+                        << c.soil << " s=" << s << " beta=" << beta << " tf=" << theta_f;
+                    // The pieces before bisection: never more than the adaptive rule's.
+                    EXPECT_LE(alone.pieces, adaptive.pieces);
+                    EXPECT_GE(alone.pieces, 1);
+                    EXPECT_TRUE(std::isnan(alone.error_estimate));
+                }
+            }
+        }
+    }
+    // Not the adaptive rule's own answer: the Gauss sums differ from it.
+    EXPECT_GT(worst, 1e-12);
 }
 
 TEST(WheelForces, ReportsWhenThePieceCapIsHit) {
