@@ -263,6 +263,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         // Revise the active set: hold what the solver left on a bound, release what the gradient
         // pulls back inside.
         bool changed = false;
+        bool kept_against_gradient = false;
         if (trial.parameter >= 0) {
             // The pass after a trial: keep it only if it lowered the cost.
             double cost = 0.0;
@@ -325,6 +326,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                 held_on_bound[k] = false;
                 ++releases[k];
                 changed = true;
+            } else if (pulled_inside) {
+                kept_against_gradient = true;
             }
         }
         const bool budget_left =
@@ -343,6 +346,11 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         }
         if ((!changed && converged) || !budget_left) {
             summary.converged = converged && !changed;
+            if (summary.converged && kept_against_gradient) {
+                summary.termination +=
+                    " (a parameter stays on its bound although the gradient "
+                    "points inside: released once, the solver brought it back)";
+            }
             break;
         }
     }

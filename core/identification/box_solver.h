@@ -6,7 +6,9 @@
 /// solved again; a held parameter whose gradient points back into the box is released. Ceres'
 /// projected steps otherwise crawl along an active bound (a geometric decrease of ~0.65 per
 /// iteration, 60–200 iterations, measured on the decoupled steps of full-model data). A released
-/// parameter that the solver brings back to its bound stays held (released once per solve). With
+/// parameter that the solver brings back to its bound stays held (released once per solve): the
+/// solve may then end there, converged, with the gradient pointing inside, which its termination
+/// says. With
 /// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three
 /// shrinking steps toward it, the bound within ten of them) is tried on that bound for one pass,
 /// kept there only if that pass lowers the cost.

@@ -405,7 +405,8 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
 }
 
 int polish(const Objective& objective, const std::vector<std::size_t>& samples,
-           std::vector<double>& u, int max_steps, double tolerance) {
+           std::vector<double>& u, int max_steps, double tolerance, bool* finished) {
+    if (finished) *finished = false;
     const ObservationModel& model = *objective.model;
     const FitProblem problem(objective, samples);
     const ParameterVector lower = toSolver(objective.bounds.lower),
@@ -444,7 +445,10 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
             if (!objective.fixed[k] && !on_bound) moving.push_back(k);
         }
         const int n = static_cast<int>(moving.size());
-        if (n == 0) break;
+        if (n == 0) {
+            if (finished) *finished = true;
+            break;
+        }
         Eigen::MatrixXd hm(n, n);
         Eigen::VectorXd gm(n);
         for (int a = 0; a < n; ++a) {
@@ -463,7 +467,10 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
               (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) *
               d.asDiagonal() * gm);
         const double predicted = -gm.dot(step);  // the χ² the Gauss–Newton model removes
-        if (!(predicted > tolerance)) break;
+        if (!(predicted > tolerance)) {
+            if (finished) *finished = true;
+            break;
+        }
         bool improved = false;
         for (double t = 1.0; t > 1e-4 && !improved; t *= 0.5) {
             std::vector<double> next = u;

@@ -5,6 +5,7 @@
 #include <boost/random/mersenne_twister.hpp>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <thread>
 
@@ -124,9 +125,11 @@ public:
         // the Gauss rule alone (7 stresses per piece instead of 15, ≤ 3e-5 relative on these
         // data); the polish or a last solve on the default rule finishes every minimum
         // (docs/identification.md §9, "fourth pass").
-        ModelSetup coarse = report_.setup;
-        coarse.integration.gauss_only = true;
-        coarse_model_.emplace(data, wheel, coarse);
+        if (o.gauss_rule_search) {
+            ModelSetup coarse = report_.setup;
+            coarse.integration.gauss_only = true;
+            coarse_model_.emplace(data, wheel, coarse);
+        }
         // Threads for the projected problem (θ_f measured); from the load the observation model
         // warms its θ_f solves from the last one per sample, which threads would share.
         const int threads =
@@ -275,22 +278,10 @@ private:
         // adds no minimum (the distinct filter would merge it). At one load every descent tends to
         // meet one minimum, after 20 iterations each. Compared on the walked coordinates (with θ_f
         // measured, K_s, c and φ stand still during the projected descent).
-        std::array<bool, kP> walked{};
-        for (int k = 0; k < kP; ++k) {
-            walked[k] =
-                !objective_.fixed[k] && !(projectable() && (k == kKs || k == kC || k == kPhi));
-        }
         detail::BoxOptions descent_options = detail::descentOptions();
         descent_options.bound_shortcuts = projectable();
-        descent_options.stop = [&](const std::vector<double>& u) {
-            for (const Local& found : locals_) {
-                double d = 0.0;
-                for (int k = 0; k < kP; ++k) {
-                    if (walked[k]) d = std::max(d, std::abs(u[k] - found.u[k]) / width_[k]);
-                }
-                if (d < 0.01) return true;
-            }
-            return false;
+        descent_options.stop = [this](const std::vector<double>& u) {
+            return inBasinOfOne(u, locals_, locals_.size());
         };
         for (std::size_t c = 0; c < chosen.size(); ++c) {
             StartReport& r = report_.starts[chosen[c]];
@@ -330,10 +321,28 @@ private:
         locals_ = std::move(distinct);
     }
 
-    // The objective on the Gauss rule alone (coarse_model_).
+    // Whether u is within 0.01 of the design box (the distinct-minimum distance) of one of the
+    // first `count` of `found`, on the coordinates the solver walks (with θ_f measured, K_s, c
+    // and φ stand still during a projected solve): in its basin.
+    bool inBasinOfOne(const std::vector<double>& u, const std::vector<Local>& found,
+                      std::size_t count) const {
+        for (std::size_t j = 0; j < count; ++j) {
+            double d = 0.0;
+            for (int k = 0; k < kP; ++k) {
+                const bool walked =
+                    !objective_.fixed[k] && !(projectable() && (k == kKs || k == kC || k == kPhi));
+                if (walked) d = std::max(d, std::abs(u[k] - found[j].u[k]) / width_[k]);
+            }
+            if (d < 0.01) return true;
+        }
+        return false;
+    }
+
+    // The objective on the Gauss rule alone (coarse_model_; the objective itself without
+    // IdentifyOptions::gauss_rule_search).
     Objective coarseObjective() const {
         Objective coarse = objective_;
-        coarse.model = &*coarse_model_;
+        if (coarse_model_) coarse.model = &*coarse_model_;
         return coarse;
     }
 
@@ -344,26 +353,21 @@ private:
         return coarse ? 1e-6 * std::clamp(2.0 * l.summary.cost, 1e-9, 1.0) : 1e-6;
     }
 
-    // Whether the refinement's rounds may walk the Gauss rule alone: its predictions at p differ
-    // from the default rule's by at most a tenth of the noise levels (RMS over the subset, per
-    // channel), so that its minimum is within about a tenth of a std of the objective's and the
-    // default rule finishes it in a few iterations. Not on noise-free data, whose levels fall
+    // Whether a refinement round may walk the Gauss rule alone: at p its predictions differ from
+    // the default rule's by at most a tenth of the noise levels on every sample of the subset and
+    // every channel, so that its minimum is within about a tenth of a std of the objective's and
+    // the default rule finishes it in a step or two. Not on noise-free data, whose levels fall
     // below the Gauss rule's ~1e-5 (relative) difference.
     bool gaussRuleSuffices(const ParameterVector& p, const ChannelValues& sigma) const {
-        ChannelValues squares{};
-        std::array<int, kChannelCount> count{};
+        if (!coarse_model_) return false;
         for (std::size_t i : subset_) {
             const Prediction exact = model_->predict(i, p), gauss = coarse_model_->predict(i, p);
             if (!exact.ok || !gauss.ok) return false;
             const std::array<bool, kChannelCount> channels = model_->channels(i);
             for (int c = 0; c < kChannelCount; ++c) {
-                if (!channels[c]) continue;
-                squares[c] += std::pow(exact.values[c] - gauss.values[c], 2);
-                ++count[c];
+                if (channels[c] && !(std::abs(exact.values[c] - gauss.values[c]) <= 0.1 * sigma[c]))
+                    return false;
             }
-        }
-        for (int c = 0; c < kChannelCount; ++c) {
-            if (count[c] > 0 && !(std::sqrt(squares[c] / count[c]) <= 0.1 * sigma[c])) return false;
         }
         return true;
     }
@@ -395,12 +399,21 @@ private:
         const bool estimate = std::any_of(options_.noise.begin(), options_.noise.end(),
                                           [](double s) { return !(s > 0); });
         if (estimate) objective_.sigma = scaled.sigma;
-        const bool coarse = gaussRuleSuffices(physicalOf(locals_[0].u), scaled.sigma);
+        bool coarse = false;  // the last round walked the Gauss rule
         constexpr int kRounds = 3;
         for (int round = 0; round < kRounds; ++round) {
-            for (Local& l : refined) {
-                solveAll(l, coarse ? coarseObjective() : objective_);
+            // Checked at each round's best start with its noise levels (they may shrink).
+            coarse = gaussRuleSuffices(physicalOf(refined[0].u), objective_.sigma);
+            // A refinement that enters the basin of a minimum refined before it in this round
+            // ends there and is dropped: it would meet that minimum (sandy loam on A, one load,
+            // j_max identified: three starts refined to one minimum, 57 + 20 + 15 iterations).
+            for (std::size_t j = 0; j < refined.size(); ++j) {
+                const auto stop = [this, &refined, j](const std::vector<double>& u) {
+                    return inBasinOfOne(u, refined, j);
+                };
+                solveAll(refined[j], coarse ? coarseObjective() : objective_, stop);
                 if (cancelled_) return;
+                if (refined[j].summary.stopped) refined.erase(refined.begin() + j--);
             }
             std::sort(refined.begin(), refined.end(), [](const Local& a, const Local& b) {
                 return a.summary.usable && (!b.summary.usable || a.summary.cost < b.summary.cost);
@@ -431,6 +444,7 @@ private:
             objective_.sigma = sigma;
             if (change < 0.1 || round + 1 == kRounds) break;
         }
+        if (cancelled_) return;
         // Rounds that walked the Gauss rule alone end within about a tenth of a std of the
         // objective's minimum: with squares, the Gauss–Newton polish below finishes each on the
         // default rule (one or two steps); with a robust loss, or where the rounds ended short of
@@ -447,9 +461,21 @@ private:
         // gradient comes with its covariance).
         const FitProblem problem(objective_, all_);
         for (Local& l : refined) {
-            if (options_.loss == Loss::kSquared && l.summary.usable)
+            if (options_.loss == Loss::kSquared && l.summary.usable) {
+                bool finished = false;
                 l.summary.iterations +=
-                    detail::polish(objective_, all_, l.u, 4, polishTolerance(coarse, l));
+                    detail::polish(objective_, all_, l.u, 4, polishTolerance(coarse, l), &finished);
+                if (coarse && !finished) {
+                    // The polish did not finish what the Gauss rule left (a failed line search
+                    // or row, or four steps): the solver on the default rule does, then the
+                    // polish as without the Gauss rule.
+                    const int before = l.summary.iterations;
+                    solveAll(l, objective_);
+                    l.summary.iterations += before;
+                    if (l.summary.usable)
+                        l.summary.iterations += detail::polish(objective_, all_, l.u, 4, 1e-6);
+                }
+            }
             double cost = 0.0;
             l.summary.usable = l.summary.usable && detail::evaluateCost(problem.box(), l.u, cost);
             l.summary.cost = cost;
@@ -511,10 +537,12 @@ private:
 
     // Refines one minimum on all samples: on the projected problem (four parameters walked, the
     // valleys of K_s–n and c–φ gone) when it is the same objective, else on all seven.
-    void solveAll(Local& l, const Objective& objective) {
+    void solveAll(Local& l, const Objective& objective,
+                  std::function<bool(const std::vector<double>&)> stop = {}) {
         // The gradient is computed afterwards, at the polished minimum.
         detail::BoxOptions options = detail::refinementOptions();
         options.gradient = false;
+        options.stop = std::move(stop);
         // The box solver's shortcuts (box_solver.h) on the projected problem only: from the load
         // (seven parameters, θ_f solved in every residual) they cost more passes than they save
         // (three loads, 1 % noise: 101 → 182 ms measured).

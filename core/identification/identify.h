@@ -118,6 +118,10 @@ struct IdentifyOptions {
     /// (docs/identification.md §9). From the load the search runs on one thread.
     int threads = 1;
     static constexpr int kMaxThreads = 64;  ///< the largest `threads` accepted
+    /// The search's screening, descents and (where the noise allows) refinement rounds on the
+    /// 7-point Gauss rule alone, finished on the default rule (docs/identification.md §9, "fourth
+    /// pass"); false: the default rule throughout (the same minimum, ~1.5× the time).
+    bool gauss_rule_search = true;
 
     /// Progress in [0, 1]; return false to cancel (the report then says so).
     std::function<bool(double)> progress;

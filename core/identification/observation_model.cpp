@@ -84,6 +84,7 @@ std::optional<double> solveEntryAngle(const contact::ContactParameters<double>& 
     problem.slip = s.slip;
     problem.slip_angle_rad = s.slip_angle_rad.value_or(0.0);
     problem.model = setup.model;
+    problem.integration = setup.integration;
     if (start > 0.0 && start < kRightAngle) problem.initial_guess_rad = start;
     const contact::SinkageSolution solution = contact::solveEntryAngle(p, problem);
     if (!solution.ok()) return std::nullopt;

@@ -245,7 +245,8 @@ TEST(WheelForces, GaussRuleAloneIsCloseToTheReferenceWhereNoPieceIsBisected) {
     // measured tests' range (driving and braking, θ_f 5–35°, θ_r = 0, small slip angles).
     IntegrationOptions gauss;
     gauss.gauss_only = true;
-    double worst = 0.0;
+    double worst = 0.0, worst_unbisected = 0.0;
+    int unbisected = 0;
     for (const SoilCase& c : thesisSoils()) {
         for (double s : {0.0, 0.05, 0.2, 0.5, 0.9, -0.3}) {
             for (double beta : {0.0, 5.0}) {
@@ -262,6 +263,10 @@ TEST(WheelForces, GaussRuleAloneIsCloseToTheReferenceWhereNoPieceIsBisected) {
                         << c.soil << " s=" << s << " beta=" << beta << " tf=" << theta_f;
                     // The pieces before bisection: never more than the adaptive rule's.
                     EXPECT_LE(alone.pieces, adaptive.pieces);
+                    if (alone.pieces == adaptive.pieces) {
+                        worst_unbisected = std::max(worst_unbisected, error);
+                        ++unbisected;
+                    }
                     EXPECT_GE(alone.pieces, 1);
                     EXPECT_TRUE(std::isnan(alone.error_estimate));
                 }
@@ -270,6 +275,10 @@ TEST(WheelForces, GaussRuleAloneIsCloseToTheReferenceWhereNoPieceIsBisected) {
     }
     // Not the adaptive rule's own answer: the Gauss sums differ from it.
     EXPECT_GT(worst, 1e-12);
+    // Where the adaptive rule bisects nothing (173 of the 216 cases; 7.9e-8 measured), the Gauss
+    // rule differs by less than the adaptive rule's own tolerance, 1e-7.
+    EXPECT_GT(unbisected, 100);
+    EXPECT_LT(worst_unbisected, 1e-7);
 }
 
 TEST(WheelForces, ReportsWhenThePieceCapIsHit) {
