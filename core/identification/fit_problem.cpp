@@ -405,8 +405,8 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
 }
 
 int polish(const Objective& objective, const std::vector<std::size_t>& samples,
-           std::vector<double>& u, int max_steps, double tolerance, bool* finished) {
-    if (finished) *finished = false;
+           std::vector<double>& u, int max_steps, double tolerance, double* remaining) {
+    if (remaining) *remaining = INFINITY;
     const ObservationModel& model = *objective.model;
     const FitProblem problem(objective, samples);
     const ParameterVector lower = toSolver(objective.bounds.lower),
@@ -446,7 +446,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
         }
         const int n = static_cast<int>(moving.size());
         if (n == 0) {
-            if (finished) *finished = true;
+            if (remaining) *remaining = 0.0;
             break;
         }
         Eigen::MatrixXd hm(n, n);
@@ -467,10 +467,8 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
               (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) *
               d.asDiagonal() * gm);
         const double predicted = -gm.dot(step);  // the χ² the Gauss–Newton model removes
-        if (!(predicted > tolerance)) {
-            if (finished) *finished = true;
-            break;
-        }
+        if (remaining) *remaining = predicted > tolerance ? predicted : 0.0;
+        if (!(predicted > tolerance)) break;
         bool improved = false;
         for (double t = 1.0; t > 1e-4 && !improved; t *= 0.5) {
             std::vector<double> next = u;
