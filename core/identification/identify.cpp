@@ -450,11 +450,8 @@ private:
         // default rule (one or two steps); with a robust loss, or where the rounds ended short of
         // a minimum (the iteration budget), the solver on the default rule.
         for (Local& l : refined) {
-            if (!coarse || (options_.loss == Loss::kSquared && l.summary.converged)) continue;
-            const int coarse_iterations = l.summary.iterations;
-            solveAll(l, objective_);
-            l.summary.iterations += coarse_iterations;
-            if (cancelled_) return;
+            if (coarse && (options_.loss != Loss::kSquared || !l.summary.converged))
+                solveOnDefaultRule(l);
         }
         // χ² of the full seven-parameter objective at each minimum, with the final noise levels,
         // after Gauss–Newton polishing where the damped solver stopped short (the best one's
@@ -471,9 +468,7 @@ private:
                     // four steps): the solver on the default rule finishes, then the polish as
                     // without the Gauss rule. (In the flat one-load valleys four steps end
                     // ~3e-4 above what the solver reaches, which is not worth its ~10 ms.)
-                    const int before = l.summary.iterations;
-                    solveAll(l, objective_);
-                    l.summary.iterations += before;
+                    solveOnDefaultRule(l);
                     if (l.summary.usable)
                         l.summary.iterations += detail::polish(objective_, all_, l.u, 4, 1e-6);
                 }
@@ -535,6 +530,14 @@ private:
     bool projectable() const {
         return report_.setup.source == DataSource::kEntryAngle && options_.loss == Loss::kSquared &&
                !(options_.priors[kPhi] && !objective_.fixed[kPhi]);
+    }
+
+    // The last solve of a minimum that rounds on the Gauss rule left: on the default rule, its
+    // iterations added to theirs.
+    void solveOnDefaultRule(Local& l) {
+        const int before = l.summary.iterations;
+        solveAll(l, objective_);
+        l.summary.iterations += before;
     }
 
     // Refines one minimum on all samples: on the projected problem (four parameters walked, the
