@@ -3,9 +3,10 @@
 /// Internal (included by identification .cpp files only: Ceres types must not reach the public
 /// headers). Ceres' trust-region solver on one parameter block with box bounds, wrapped in an
 /// active set: a parameter the solver leaves exactly on its bound is held there and the others are
-/// solved again; a held parameter whose gradient points back into the box is released. Ceres'
-/// projected steps otherwise crawl along an active bound (a geometric decrease of ~0.65 per
-/// iteration, 60–200 iterations, measured on the decoupled steps of full-model data). A released
+/// solved again; a held parameter whose gradient points back into the box is released. (A step
+/// that leaves the box is clamped onto it, without Ceres' projected line search, which made a
+/// parameter crawl toward an active bound: a geometric decrease of ~0.65 per iteration, 60–200
+/// iterations, measured on the decoupled steps of full-model data.) A released
 /// parameter that the solver brings back to its bound stays held (released once per solve): the
 /// solve may then end there, converged, with the gradient pointing inside, which its termination
 /// says. With
