@@ -179,6 +179,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         }
         ++summary.passes;
         bool converged = true;
+        bool ceres_converged = false;  // Ceres' own criteria ended the pass
         int snap = -1;
         bool snap_lower = false;
         if (held.size() < n) {
@@ -233,6 +234,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             // budget leaves as the last is worded by solverOutcome).
             if (ceres_summary.termination_type == ceres::USER_SUCCESS)
                 summary.termination = "USER_SUCCESS: a parameter reached its bound";
+            ceres_converged = ceres_summary.termination_type == ceres::CONVERGENCE;
             converged = ceres_summary.termination_type == ceres::CONVERGENCE ||
                         ceres_summary.termination_type == ceres::USER_SUCCESS;
             if (!summary.usable && trial.parameter >= 0) {
@@ -300,6 +302,10 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             if (onLower(problem, x, k) || onUpper(problem, x, k)) {
                 held_on_bound[k] = true;
                 changed = true;
+                // Free through a pass that converged there: it had its release (releasing it
+                // now would repeat that pass: a₀ at 0 at one load, where the steps inside all
+                // fail, 8 rejected steps a pass).
+                if (ceres_converged) releases[k] = std::max(releases[k], 1);
             }
         }
         // The gradient decides which held parameters to release; without any held, and when the

@@ -437,53 +437,81 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                 g(k) += w * (p[k] - objective.priors[k]->mean) / objective.priors[k]->std;
             }
         }
-        std::vector<int> moving;
+        // The scaled Gauss–Newton step of the parameters in `moving` (pseudo-inverse below 1e-14
+        // of the largest eigenvalue); a parameter on its bound whose step leaves the box is
+        // dropped and the step solved again without it.
+        std::array<int, kP> side{};  // -1 on the lower bound, +1 on the upper, else 0
         for (int k = 0; k < kP; ++k) {
             const double margin = 1e-9 * (upper[k] - lower[k]);
-            const bool on_bound =
-                (u[k] <= lower[k] + margin && g(k) > 0) || (u[k] >= upper[k] - margin && g(k) < 0);
-            if (!objective.fixed[k] && !on_bound) moving.push_back(k);
+            side[k] = u[k] <= lower[k] + margin ? -1 : (u[k] >= upper[k] - margin ? 1 : 0);
         }
-        const int n = static_cast<int>(moving.size());
-        if (n == 0) {
-            if (remaining) *remaining = 0.0;
-            break;
-        }
-        Eigen::MatrixXd hm(n, n);
-        Eigen::VectorXd gm(n);
-        for (int a = 0; a < n; ++a) {
-            gm(a) = g(moving[a]);
-            for (int b = 0; b < n; ++b) hm(a, b) = h(moving[a], moving[b]);
-        }
-        const Eigen::VectorXd d = hm.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(d.asDiagonal() * hm *
-                                                                   d.asDiagonal());
-        const Eigen::VectorXd values = eigen.eigenvalues();
-        const double cutoff = 1e-14 * values.maxCoeff();
-        Eigen::VectorXd inverse = values;
-        for (int a = 0; a < n; ++a) inverse(a) = values(a) > cutoff ? 1.0 / values(a) : 0.0;
-        const Eigen::VectorXd step =
-            -(d.asDiagonal() *
-              (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) *
-              d.asDiagonal() * gm);
-        const double predicted = -gm.dot(step);  // the χ² the Gauss–Newton model removes
-        if (remaining) *remaining = predicted > tolerance ? predicted : 0.0;
-        if (!(predicted > tolerance)) break;
-        bool improved = false;
-        for (double t = 1.0; t > 1e-4 && !improved; t *= 0.5) {
-            std::vector<double> next = u;
-            for (int a = 0; a < n; ++a) {
-                const int k = moving[a];
-                next[k] = std::clamp(u[k] + t * step(a), lower[k], upper[k]);
+        const auto gaussNewton = [&](std::vector<int>& moving, Eigen::VectorXd& step) {
+            for (;;) {
+                const int n = static_cast<int>(moving.size());
+                if (n == 0) return 0.0;
+                Eigen::MatrixXd hm(n, n);
+                Eigen::VectorXd gm(n);
+                for (int a = 0; a < n; ++a) {
+                    gm(a) = g(moving[a]);
+                    for (int b = 0; b < n; ++b) hm(a, b) = h(moving[a], moving[b]);
+                }
+                const Eigen::VectorXd d = hm.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+                const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(d.asDiagonal() * hm *
+                                                                           d.asDiagonal());
+                const Eigen::VectorXd values = eigen.eigenvalues();
+                const double cutoff = 1e-14 * values.maxCoeff();
+                Eigen::VectorXd inverse = values;
+                for (int a = 0; a < n; ++a) inverse(a) = values(a) > cutoff ? 1.0 / values(a) : 0.0;
+                step = -(d.asDiagonal() *
+                         (eigen.eigenvectors() * inverse.asDiagonal() *
+                          eigen.eigenvectors().transpose()) *
+                         d.asDiagonal() * gm);
+                std::vector<int> inside;
+                for (int a = 0; a < n; ++a) {
+                    if (side[moving[a]] * step(a) <= 0.0) inside.push_back(moving[a]);
+                }
+                if (inside.size() == moving.size()) return -gm.dot(step);  // χ² it removes
+                moving = std::move(inside);
             }
-            const double value = chiSquare(problem, next);
-            if (value < chi2) {
-                u = next;
-                chi2 = value;
-                improved = true;
+        };
+        // First with the parameters on a bound that the gradient pulls inside; where the model
+        // has a kink at that bound (a₀ = 0 at one load), its slope inside is not the gradient's
+        // and the step fails: one trial, then the step again with them held.
+        bool improved = false, ended = false;
+        for (const bool hold : {false, true}) {
+            std::vector<int> moving;
+            for (int k = 0; k < kP; ++k) {
+                const bool pushed_out = (side[k] < 0 && g(k) > 0) || (side[k] > 0 && g(k) < 0);
+                if (!objective.fixed[k] && !pushed_out && !(hold && side[k] != 0))
+                    moving.push_back(k);
             }
+            Eigen::VectorXd step;
+            const double predicted = gaussNewton(moving, step);
+            if (moving.empty() || !(predicted > tolerance)) {
+                if (remaining) *remaining = 0.0;
+                ended = true;
+                break;
+            }
+            if (remaining) *remaining = predicted;
+            bool leaves_bound = false;
+            for (int k : moving) leaves_bound |= side[k] != 0;
+            for (double t = 1.0; t > (leaves_bound ? 0.75 : 1e-4) && !improved; t *= 0.5) {
+                std::vector<double> next = u;
+                for (std::size_t a = 0; a < moving.size(); ++a) {
+                    const int k = moving[a];
+                    next[k] = std::clamp(u[k] + t * step(static_cast<Eigen::Index>(a)), lower[k],
+                                         upper[k]);
+                }
+                const double value = chiSquare(problem, next);
+                if (value < chi2) {
+                    u = next;
+                    chi2 = value;
+                    improved = true;
+                }
+            }
+            if (improved || !leaves_bound) break;
         }
-        if (!improved) break;
+        if (ended || !improved) break;
     }
     return steps;
 }
