@@ -24,12 +24,13 @@ bool nearBound(const BoxProblem& p, const std::vector<double>& x, std::size_t k)
     return x[k] <= p.lower[k] + margin || x[k] >= p.upper[k] - margin;
 }
 
-// Ends a pass once a free parameter has stayed on a bound for two successful steps: from there the
-// projected steps only crawl, and the next pass holds it. Also ends it when a free parameter crawls
-// toward a bound it has not reached: three successful steps in a row toward the same bound, each
-// shorter than the one before, the bound within kApproachSteps of the last. Ceres' projected
-// steps shrink like that as the bound nears (a₀ → 0 at one load: 0.16 → 5e-4 in 40 iterations);
-// the caller then tries the parameter on that bound (solveInBox).
+// Ends a pass once a free parameter has stayed on a bound for two successful steps: the next pass
+// holds it. Also ends it when a free parameter crawls toward a bound it has not reached: three
+// successful steps in a row toward the same bound, each shorter than the one before, the bound
+// within kApproachSteps of the last; the caller then tries the parameter on that bound
+// (solveInBox). (Ceres' projected line search made such crawls: a₀ → 0 at one load, 0.16 → 5e-4
+// in 40 iterations. Without it, a step past the bound is clamped onto it and the crawl is rare:
+// the rule measured neutral, docs/identification.md §9, "fifth pass".)
 class BoundWatch : public ceres::IterationCallback {
 public:
     /// A crawl is tried on its bound when the bound is within this many of its last steps.
@@ -167,6 +168,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
     // pass is left to solve it). Each parameter is tried once per solve.
     std::vector<bool> may_snap(n, true);
     std::vector<int> releases(n, 0);
+    // Free through a pass that Ceres ended converged, with it on its bound (this revision only).
+    std::vector<bool> landed(n, false);
     struct Trial {
         int parameter = -1;
         std::vector<double> x;
@@ -270,6 +273,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         // pulls back inside.
         bool changed = false;
         bool kept_against_gradient = false;
+        std::fill(landed.begin(), landed.end(), false);
         if (trial.parameter >= 0) {
             // The pass after a trial: keep it only if it lowered the cost.
             double cost = 0.0;
@@ -302,10 +306,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             if (onLower(problem, x, k) || onUpper(problem, x, k)) {
                 held_on_bound[k] = true;
                 changed = true;
-                // Free through a pass that converged there: it had its release (releasing it
-                // now would repeat that pass: a₀ at 0 at one load, where the steps inside all
-                // fail, 8 rejected steps a pass).
-                if (ceres_converged) releases[k] = std::max(releases[k], 1);
+                landed[k] = ceres_converged;
             }
         }
         // The gradient decides which held parameters to release; without any held, and when the
@@ -332,7 +333,13 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             // the load too: a calibration on three slips of a lugged wheel spent its six passes
             // of one iteration each releasing one parameter and holding it again, and ended
             // "not converged" 0.54 in χ² above the minimum found with one release.)
-            if (pulled_inside && releases[k] < 1) {
+            if (pulled_inside && landed[k]) {
+                // It was free through a pass that converged with it there, the gradient pulling
+                // it inside: that pass was its release (releasing it now would repeat it: a₀ at 0
+                // at one load, a kink where every step inside fails, 8 rejected steps a pass).
+                releases[k] = std::max(releases[k], 1);
+                kept_against_gradient = true;
+            } else if (pulled_inside && releases[k] < 1) {
                 held_on_bound[k] = false;
                 ++releases[k];
                 changed = true;
@@ -359,7 +366,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             if (summary.converged && kept_against_gradient) {
                 summary.termination +=
                     " (a parameter stays on its bound although the gradient "
-                    "points inside: released once, the solver brought it back)";
+                    "points inside: the steps that took it inside failed)";
             }
             break;
         }

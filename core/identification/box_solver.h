@@ -43,9 +43,8 @@ struct BoxOptions {
     bool gradient =
         true;  ///< compute BoxSummary::gradient (else only when the active set needs it)
     /// The shortcuts of the global search (identify.h; docs/identification.md §9): a parameter
-    /// crawling toward a bound is tried on it, steps that leave a bound by a hair and return count
-    /// as staying on it, and the projected line search interpolates values only (no Jacobian at
-    /// its trial point).
+    /// crawling toward a bound is tried on it, and steps that leave a bound by a hair and return
+    /// count as staying on it.
     bool bound_shortcuts = false;
     /// Called with x after each successful step; true ends the solve there (BoxSummary::stopped).
     /// A multi-start search uses it to end a descent that has entered the basin of a minimum

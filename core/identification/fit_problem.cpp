@@ -413,6 +413,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                           upper = toSolver(objective.bounds.upper);
     double chi2 = chiSquare(problem, u);
     int steps = 0;
+    bool kinked = false;  // a step off a bound failed: parameters on a bound are held from then on
     for (; steps < max_steps && std::isfinite(chi2); ++steps) {
         Eigen::Matrix<double, kP, kP> h = Eigen::Matrix<double, kP, kP>::Zero();
         Eigen::Matrix<double, kP, 1> g = Eigen::Matrix<double, kP, 1>::Zero();
@@ -468,7 +469,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                          d.asDiagonal() * gm);
                 std::vector<int> inside;
                 for (int a = 0; a < n; ++a) {
-                    if (side[moving[a]] * step(a) <= 0.0) inside.push_back(moving[a]);
+                    if (!(side[moving[a]] * step(a) > 0.0)) inside.push_back(moving[a]);
                 }
                 if (inside.size() == moving.size()) return -gm.dot(step);  // χ² it removes
                 moving = std::move(inside);
@@ -476,9 +477,11 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
         };
         // First with the parameters on a bound that the gradient pulls inside; where the model
         // has a kink at that bound (a₀ = 0 at one load), its slope inside is not the gradient's
-        // and the step fails: one trial, then the step again with them held.
+        // and the step fails: two trials (the full step and a thousandth of it, which a smooth
+        // model would accept), then the step again with them held, for the rest of the call.
         bool improved = false, ended = false;
         for (const bool hold : {false, true}) {
+            if (!hold && kinked) continue;
             std::vector<int> moving;
             for (int k = 0; k < kP; ++k) {
                 const bool pushed_out = (side[k] < 0 && g(k) > 0) || (side[k] > 0 && g(k) < 0);
@@ -495,7 +498,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
             if (remaining) *remaining = predicted;
             bool leaves_bound = false;
             for (int k : moving) leaves_bound |= side[k] != 0;
-            for (double t = 1.0; t > (leaves_bound ? 0.75 : 1e-4) && !improved; t *= 0.5) {
+            for (double t = 1.0; t > 1e-4 && !improved; t *= leaves_bound ? 1e-3 : 0.5) {
                 std::vector<double> next = u;
                 for (std::size_t a = 0; a < moving.size(); ++a) {
                     const int k = moving[a];
@@ -510,6 +513,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                 }
             }
             if (improved || !leaves_bound) break;
+            kinked = true;
         }
         if (ended || !improved) break;
     }

@@ -89,9 +89,11 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
 /// Marquardt damping crawls along a valley whose width is near the rounding of the normal
 /// equations (one load, no noise: c–φ), where an undamped step on the scaled normal equations
 /// (pseudo-inverse below 1e-14 of the largest eigenvalue) lands on the minimum in one or two.
-/// A parameter on a bound moves only where the gradient and the step take it inside, and only
-/// if that step's first trial lowers χ²; else the step is solved again with it held (the model
-/// has a kink at a₀ = 0, where the slope inside is not the gradient). Returns the steps taken;
+/// A parameter on a bound moves only where the gradient and the step take it inside, and such a
+/// step gets two trials (the full step and a thousandth of it) instead of the backtracking; if
+/// both fail, every parameter on a bound is held for the rest of the call and the step solved
+/// again without them (the model has a kink at a₀ = 0, where the slope inside is not the
+/// gradient's). Returns the steps taken;
 /// `remaining` (if given) gets the χ² that the last Gauss–Newton model still predicted it could
 /// remove: 0 when it ended on `tolerance` (or nothing is left to move), else that of its last step
 /// (a failed line search, `max_steps`), +inf when a row failed before any.
