@@ -168,8 +168,6 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
     // pass is left to solve it). Each parameter is tried once per solve.
     std::vector<bool> may_snap(n, true);
     std::vector<int> releases(n, 0);
-    // Free through a pass that Ceres ended converged, with it on its bound (this revision only).
-    std::vector<bool> landed(n, false);
     struct Trial {
         int parameter = -1;
         std::vector<double> x;
@@ -273,7 +271,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         // pulls back inside.
         bool changed = false;
         bool kept_against_gradient = false;
-        std::fill(landed.begin(), landed.end(), false);
+        // Free through the pass just solved, which Ceres ended converged with it on its bound.
+        std::vector<bool> landed(n, false);
         if (trial.parameter >= 0) {
             // The pass after a trial: keep it only if it lowered the cost.
             double cost = 0.0;

@@ -8,7 +8,8 @@
 /// parameter crawl toward an active bound: a geometric decrease of ~0.65 per iteration, 60–200
 /// iterations, measured on the decoupled steps of full-model data.) A released
 /// parameter that the solver brings back to its bound stays held (released once per solve; a
-/// parameter free through a pass that converged with it on its bound has had its release): the
+/// parameter free through a pass that converged with it on its bound, the gradient pulling it
+/// inside, has had its release): the
 /// solve may then end there, converged, with the gradient pointing inside, which its termination
 /// says. With
 /// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three

@@ -404,6 +404,45 @@ AtSolution analyseSolution(const Objective& objective, const std::vector<std::si
     return out;
 }
 
+namespace {
+
+// The scaled Gauss–Newton step (pseudo-inverse below 1e-14 of the largest eigenvalue) of the
+// parameters in `moving`, on the normal equations h, g; a parameter on its bound (side −1 lower,
+// +1 upper) whose step leaves the box is dropped from `moving` and the step solved again without
+// it. Returns the χ² the step removes by the Gauss–Newton model (0 when nothing moves).
+double gaussNewtonStep(const Eigen::Matrix<double, kP, kP>& h,
+                       const Eigen::Matrix<double, kP, 1>& g, const std::array<int, kP>& side,
+                       std::vector<int>& moving, Eigen::VectorXd& step) {
+    for (;;) {
+        const int n = static_cast<int>(moving.size());
+        if (n == 0) return 0.0;
+        Eigen::MatrixXd hm(n, n);
+        Eigen::VectorXd gm(n);
+        for (int a = 0; a < n; ++a) {
+            gm(a) = g(moving[a]);
+            for (int b = 0; b < n; ++b) hm(a, b) = h(moving[a], moving[b]);
+        }
+        const Eigen::VectorXd d = hm.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(d.asDiagonal() * hm *
+                                                                   d.asDiagonal());
+        const Eigen::VectorXd values = eigen.eigenvalues();
+        const double cutoff = 1e-14 * values.maxCoeff();
+        Eigen::VectorXd inverse = values;
+        for (int a = 0; a < n; ++a) inverse(a) = values(a) > cutoff ? 1.0 / values(a) : 0.0;
+        step = -(d.asDiagonal() *
+                 (eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose()) *
+                 d.asDiagonal() * gm);
+        std::vector<int> inside;
+        for (int a = 0; a < n; ++a) {
+            if (!(side[moving[a]] * step(a) > 0.0)) inside.push_back(moving[a]);
+        }
+        if (inside.size() == moving.size()) return -gm.dot(step);
+        moving = std::move(inside);
+    }
+}
+
+}  // namespace
+
 int polish(const Objective& objective, const std::vector<std::size_t>& samples,
            std::vector<double>& u, int max_steps, double tolerance, double* remaining) {
     if (remaining) *remaining = INFINITY;
@@ -438,43 +477,11 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                 g(k) += w * (p[k] - objective.priors[k]->mean) / objective.priors[k]->std;
             }
         }
-        // The scaled Gauss–Newton step of the parameters in `moving` (pseudo-inverse below 1e-14
-        // of the largest eigenvalue); a parameter on its bound whose step leaves the box is
-        // dropped and the step solved again without it.
         std::array<int, kP> side{};  // -1 on the lower bound, +1 on the upper, else 0
         for (int k = 0; k < kP; ++k) {
             const double margin = 1e-9 * (upper[k] - lower[k]);
             side[k] = u[k] <= lower[k] + margin ? -1 : (u[k] >= upper[k] - margin ? 1 : 0);
         }
-        const auto gaussNewton = [&](std::vector<int>& moving, Eigen::VectorXd& step) {
-            for (;;) {
-                const int n = static_cast<int>(moving.size());
-                if (n == 0) return 0.0;
-                Eigen::MatrixXd hm(n, n);
-                Eigen::VectorXd gm(n);
-                for (int a = 0; a < n; ++a) {
-                    gm(a) = g(moving[a]);
-                    for (int b = 0; b < n; ++b) hm(a, b) = h(moving[a], moving[b]);
-                }
-                const Eigen::VectorXd d = hm.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-                const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(d.asDiagonal() * hm *
-                                                                           d.asDiagonal());
-                const Eigen::VectorXd values = eigen.eigenvalues();
-                const double cutoff = 1e-14 * values.maxCoeff();
-                Eigen::VectorXd inverse = values;
-                for (int a = 0; a < n; ++a) inverse(a) = values(a) > cutoff ? 1.0 / values(a) : 0.0;
-                step = -(d.asDiagonal() *
-                         (eigen.eigenvectors() * inverse.asDiagonal() *
-                          eigen.eigenvectors().transpose()) *
-                         d.asDiagonal() * gm);
-                std::vector<int> inside;
-                for (int a = 0; a < n; ++a) {
-                    if (!(side[moving[a]] * step(a) > 0.0)) inside.push_back(moving[a]);
-                }
-                if (inside.size() == moving.size()) return -gm.dot(step);  // χ² it removes
-                moving = std::move(inside);
-            }
-        };
         // First with the parameters on a bound that the gradient pulls inside; where the model
         // has a kink at that bound (a₀ = 0 at one load), its slope inside is not the gradient's
         // and the step fails: two trials (the full step and a thousandth of it, which a smooth
@@ -489,16 +496,16 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                     moving.push_back(k);
             }
             Eigen::VectorXd step;
-            const double predicted = gaussNewton(moving, step);
+            const double predicted = gaussNewtonStep(h, g, side, moving, step);
             if (moving.empty() || !(predicted > tolerance)) {
                 if (remaining) *remaining = 0.0;
                 ended = true;
                 break;
             }
             if (remaining) *remaining = predicted;
-            bool leaves_bound = false;
-            for (int k : moving) leaves_bound |= side[k] != 0;
-            for (double t = 1.0; t > 1e-4 && !improved; t *= leaves_bound ? 1e-3 : 0.5) {
+            bool off_bound = false;  // the step moves a parameter off its bound
+            for (int k : moving) off_bound |= side[k] != 0;
+            for (double t = 1.0; t > 1e-4 && !improved; t *= off_bound ? 1e-3 : 0.5) {
                 std::vector<double> next = u;
                 for (std::size_t a = 0; a < moving.size(); ++a) {
                     const int k = moving[a];
@@ -512,7 +519,7 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                     improved = true;
                 }
             }
-            if (improved || !leaves_bound) break;
+            if (improved || !off_bound) break;
             kinked = true;
         }
         if (ended || !improved) break;

@@ -470,7 +470,8 @@ private:
                     // ~3e-4 above what the solver reaches, which is not worth its ~10 ms.)
                     solveOnDefaultRule(l);
                     if (l.summary.usable)
-                        l.summary.iterations += detail::polish(objective_, all_, l.u, 4, 1e-6);
+                        l.summary.iterations +=
+                            detail::polish(objective_, all_, l.u, 4, polishTolerance(false, l));
                 }
             }
             double cost = 0.0;

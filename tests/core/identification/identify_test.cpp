@@ -204,7 +204,8 @@ TEST(Identify, TwoThreadsGiveTheSameAnswerAsOne) {
 TEST(Identify, ThePolishHoldsAParameterAtAKinkOfItsBound) {
     // At one load the minimum can put a₀ on its bound 0, where the model has a kink: the gradient
     // pulls a₀ inside, but χ² rises as soon as a₀ leaves 0. The Gauss–Newton polish (polish(),
-    // fit_problem.h) then tries a₀ inside once and, failing, takes its step with a₀ held, ending
+    // fit_problem.h) then tries a₀ inside twice (the full step and a thousandth of it) and,
+    // failing, takes its step with a₀ held, ending
     // on its tolerance; before, every trial of its line search failed, it reported ~1 of χ² left
     // (1.064 here), and the solver on the default rule ran again for 7e-6 of χ² (~35 ms).
     // Clayey soil on A, one load, 1 % noise, j_max held (the globalIdentificationMatrix cell).
