@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <bit>
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/uniform_real_distribution.hpp>
 #include <cmath>
@@ -22,9 +23,13 @@ constexpr double kModulusUnit = 1e6, kCohesionUnit = 1e3;
 // up to the quadrature error; realistic ones keep the integrator's adaptive splits realistic).
 constexpr double kNominalModulus = 1e6, kNominalCohesion = 1e3, kNominalFriction = 0.5;
 
-// min ½ αᵀGα − bᵀα subject to C α = e (equalities) and A α ≤ d (inequalities), three unknowns:
-// the minimiser restricted to each face of the feasible polytope (a set of active inequalities)
-// is tried, and the best feasible one is the answer (the problem is convex, so it is the minimum).
+// min ½ αᵀGα − bᵀα subject to C α = e (equalities) and A α ≤ d (inequalities), three unknowns.
+// On a face of the feasible polytope (a set of active inequalities held as equalities) the
+// minimiser and the multipliers μ solve the KKT system [G Cᵀ; C 0] (α, μ) = (b, e). The problem
+// is convex, so the KKT conditions are sufficient: the first face, by increasing number of active
+// inequalities, whose minimiser is feasible and whose active multipliers are non-negative holds
+// the minimum. Should rounding leave no face passing that test, the best feasible minimiser of
+// all faces is the answer, as it always is.
 struct SmallQp {
     Eigen::Matrix3d g;
     Eigen::Vector3d b;
@@ -33,11 +38,22 @@ struct SmallQp {
     std::vector<Eigen::RowVector3d> in_rows;
     std::vector<double> in_values;
 
-    bool solveOnFace(const std::vector<int>& active, Eigen::Vector3d& x) const {
-        const int m = static_cast<int>(eq_rows.size() + active.size());
-        if (m > 3) return false;
-        Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(3 + m, 3 + m);
-        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 + m);
+    // At most three rows on a face: the KKT system is at most 6 × 6, on the stack.
+    using Kkt = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+    using KktVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
+    struct OnFace {
+        Eigen::Vector3d x;
+        bool feasible = false;
+        bool kkt = false;  // feasible, a stationary point of the face, active multipliers ≥ 0
+    };
+
+    OnFace solveOnFace(unsigned mask) const {
+        OnFace out;
+        const int equalities = static_cast<int>(eq_rows.size());
+        const int m = equalities + std::popcount(mask);
+        Kkt kkt = Kkt::Zero(3 + m, 3 + m);
+        KktVector rhs = KktVector::Zero(3 + m);
         kkt.topLeftCorner<3, 3>() = g;
         rhs.head<3>() = b;
         int row = 3;
@@ -47,41 +63,62 @@ struct SmallQp {
             rhs(row) = value;
             ++row;
         };
-        for (std::size_t k = 0; k < eq_rows.size(); ++k) add(eq_rows[k], eq_values[k]);
-        for (int k : active) add(in_rows[k], in_values[k]);
+        for (int k = 0; k < equalities; ++k) add(eq_rows[k], eq_values[k]);
+        for (std::size_t k = 0; k < in_rows.size(); ++k) {
+            if (mask & (1u << k)) add(in_rows[k], in_values[k]);
+        }
         // Complete orthogonal decomposition: with collinear columns (a tiny n makes K_s and
         // K_s tan φ nearly so) the KKT matrix is singular, and its minimum-norm solution is one
         // of the equally good minimisers.
-        x = kkt.completeOrthogonalDecomposition().solve(rhs).head<3>();
-        if (!x.allFinite()) return false;
+        const KktVector z = kkt.completeOrthogonalDecomposition().solve(rhs);
+        out.x = z.head<3>();
+        if (!z.allFinite()) return out;
         for (std::size_t k = 0; k < in_rows.size(); ++k) {
-            if (in_rows[k].dot(x) > in_values[k] + 1e-9 * (1.0 + std::abs(in_values[k])))
-                return false;
+            if (in_rows[k].dot(out.x) > in_values[k] + 1e-9 * (1.0 + std::abs(in_values[k])))
+                return out;
         }
-        return true;
+        out.feasible = true;
+        if ((kkt * z - rhs).norm() > 1e-9 * (1.0 + rhs.norm())) return out;
+        for (int r = 3 + equalities; r < 3 + m; ++r) {
+            if (z(r) < -1e-10) return out;
+        }
+        out.kkt = true;
+        return out;
     }
 
     // The minimum and the rows that hold on its face (equalities and active inequalities).
     bool solve(Eigen::Vector3d& best, std::vector<Eigen::RowVector3d>& face) const {
         const int n = static_cast<int>(in_rows.size());
-        double best_value = INFINITY;
-        for (int mask = 0; mask < (1 << n); ++mask) {
-            std::vector<int> active;
+        const int room = 3 - static_cast<int>(eq_rows.size());
+        const auto faceOf = [&](unsigned mask) {
+            face = eq_rows;
             for (int k = 0; k < n; ++k) {
-                if (mask & (1 << k)) active.push_back(k);
+                if (mask & (1u << k)) face.push_back(in_rows[k]);
             }
-            Eigen::Vector3d x;
-            if (!solveOnFace(active, x)) continue;
-            const double value = 0.5 * x.dot(g * x) - b.dot(x);
-            if (value < best_value) {
-                best_value = value;
-                best = x;
-                face = eq_rows;
-                for (int k : active) face.push_back(in_rows[k]);
+        };
+        double best_value = INFINITY;
+        unsigned best_mask = 0;
+        for (int count = 0; count <= std::min(room, n); ++count) {
+            for (unsigned mask = 0; mask < (1u << n); ++mask) {
+                if (std::popcount(mask) != count) continue;
+                const OnFace f = solveOnFace(mask);
+                if (f.kkt) {
+                    best = f.x;
+                    faceOf(mask);
+                    return true;
+                }
+                if (!f.feasible) continue;
+                const double value = 0.5 * f.x.dot(g * f.x) - b.dot(f.x);
+                if (value < best_value) {
+                    best_value = value;
+                    best = f.x;
+                    best_mask = mask;
+                }
             }
-            if (mask == 0) break;  // the unconstrained minimiser is feasible: it is the minimum
         }
-        return std::isfinite(best_value);
+        if (!std::isfinite(best_value)) return false;
+        faceOf(best_mask);
+        return true;
     }
 };
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -12,6 +13,7 @@
 #include "core/contact/quadratic_model.h"
 #include "core/identification/fit_problem.h"
 #include "core/identification/observation_model.h"
+#include "core/identification/screening.h"
 #include "core/identification/synthetic.h"
 #include "core/io/parameters_json.h"
 #include "tests/core/contact/test_soils.h"
@@ -242,6 +244,87 @@ TEST(Identify, ThePolishHoldsAParameterAtAKinkOfItsBound) {
     EXPECT_EQ(remaining, 0.0);
     EXPECT_EQ(u[kA0], 0.0);
     EXPECT_LE(detail::chiSquare(problem, u), chi2);
+}
+
+TEST(Identify, TheProjectionIsTheBoundedMinimumOverTheLinearParameters) {
+    // With θ_f measured, K_s, c and φ follow (a₀, a₁, n, K) as a bounded linear least-squares
+    // problem (screening.h), solved face by face, stopping at the first face that meets the KKT
+    // conditions. Checked against the full model: χ² at the projected (K_s, c, φ) is the
+    // projection's, and no point of a grid over the feasible (K_s, c, φ) around it is lower.
+    // Clay on B, one load, 1 % noise; the default bounds, then bounds that cut off the truth's
+    // c (≤ 1 kPa) and φ (≤ 10°), alone and together, so that one or two bounds hold.
+    const ContactParameters<double> clay = clayOnB();
+    const DataSet data = sweeps(clay, {98.0}, 0.01, 8, 31);
+    const ObservationModel model(
+        data, kWheelB, setupModel(data, DataSource::kEntryAngle, std::nullopt, 0.009).value());
+    const std::vector<std::size_t> all = detail::allSamples(model.size());
+    struct Case {
+        const char* name;
+        double c_upper, phi_upper;
+        bool c_held, phi_held;  // the bound that must hold at the truth's projection
+    };
+    const double default_c = IdentifyOptions{}.bounds.upper[kC],
+                 default_phi = IdentifyOptions{}.bounds.upper[kPhi];
+    const std::vector<Case> cases = {{"default bounds", default_c, default_phi, false, false},
+                                     {"c <= 1 kPa", 1e3, default_phi, true, false},
+                                     {"phi <= 10 deg", default_c, 10.0 * kDeg, false, true},
+                                     {"both", 1e3, 10.0 * kDeg, true, true}};
+    // The truth's (a₀, a₁, n, K) and a point off it.
+    std::vector<ParameterVector> points = {truthOf(clay), truthOf(clay)};
+    points[1][kA0] = 0.3;
+    points[1][kN] = 0.6;
+    points[1][kK] = 0.015;
+    for (const Case& c : cases) {
+        detail::Objective objective;
+        objective.model = &model;
+        objective.sigma = {0.01 * 40.0, 0.01 * 98.0, 0.01 * 4.0};
+        objective.fixed[kJmax] = true;
+        objective.bounds = IdentifyOptions{}.bounds;
+        objective.bounds.upper[kC] = c.c_upper;
+        objective.bounds.upper[kPhi] = c.phi_upper;
+        const detail::LinearProjection projection(objective, all, kWheelB);
+        const detail::FitProblem problem(objective, all);
+        const auto chi2At = [&](const ParameterVector& p) {
+            const ParameterVector u = toSolver(p);
+            return detail::chiSquare(problem, std::vector<double>(u.begin(), u.end()));
+        };
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            SCOPED_TRACE(std::string(c.name) + ", point " + std::to_string(i));
+            ParameterVector p = points[i];
+            const double projected = projection.project(p);
+            ASSERT_TRUE(std::isfinite(projected));
+            const double full = chi2At(p);
+            EXPECT_NEAR(full, projected, 1e-5 * projected);
+            EXPECT_GE(p[kC], objective.bounds.lower[kC] - 1e-9);
+            EXPECT_LE(p[kC], c.c_upper * (1 + 1e-9));
+            EXPECT_LE(p[kPhi], c.phi_upper * (1 + 1e-9));
+            if (i == 0 && c.c_held) EXPECT_NEAR(p[kC], c.c_upper, 1e-6 * c.c_upper);
+            if (i == 0 && c.phi_held) EXPECT_NEAR(p[kPhi], c.phi_upper, 1e-9);
+            // A grid around it, K_s ± 20 %, c and φ ± 20 % of their upper bound, clipped to the
+            // bounds: no point of it is lower, nor is any point a hundredth of the way to one
+            // (the feasible directions' first-order test, which a coarse grid alone would miss
+            // at a face with a wrong sign: c on 0 where it should be on 1 kPa). A point clipped
+            // back onto the projection's own is no lower: rounding allowed.
+            double lowest = INFINITY, lowest_near = INFINITY;
+            for (int a = -3; a <= 3; ++a) {
+                for (int b = -3; b <= 3; ++b) {
+                    for (int d = -3; d <= 3; ++d) {
+                        ParameterVector q = p;
+                        q[kKs] = p[kKs] * (1.0 + 0.2 * a / 3.0);
+                        q[kC] = std::clamp(p[kC] + 0.2 * b / 3.0 * c.c_upper,
+                                           objective.bounds.lower[kC], c.c_upper);
+                        q[kPhi] = std::clamp(p[kPhi] + 0.2 * d / 3.0 * c.phi_upper,
+                                             objective.bounds.lower[kPhi], c.phi_upper);
+                        lowest = std::min(lowest, chi2At(q));
+                        for (int k : {kKs, kC, kPhi}) q[k] = p[k] + 0.01 * (q[k] - p[k]);
+                        lowest_near = std::min(lowest_near, chi2At(q));
+                    }
+                }
+            }
+            EXPECT_GE(lowest, full * (1.0 - 1e-9));
+            EXPECT_GE(lowest_near, full * (1.0 - 1e-9));
+        }
+    }
 }
 
 TEST(Identify, TheGaussRuleSearchEndsAtTheDefaultRulesMinimum) {
