@@ -1,9 +1,32 @@
 #include "core/common/worker_pool.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 namespace terra {
+namespace {
+
+// Spins, for at most 200 µs, until ready() holds; whether it did. Sleeping on a condition
+// variable and being woken costs a futex call each way, tens of µs on a virtual machine: as much
+// as a thread's share of one of the search's descent evaluations (12 of 24 samples, ~30 µs).
+// Between such evaluations a thread waits a few µs, so it rarely sleeps; past 200 µs (the end
+// of a search's parallel phase) it sleeps as before. Each turn yields the processor, so that
+// with more threads than processors (two identifications at once on two cores) the spinning
+// thread gives way to the one it waits for: a pause instruction instead made that case 2.6×
+// slower. Measured in docs/performance.md ("Sixth pass").
+template <typename Ready>
+bool spinUntil(Ready ready) {
+    constexpr auto kSpin = std::chrono::microseconds(200);
+    const auto deadline = std::chrono::steady_clock::now() + kSpin;
+    for (int k = 0;; ++k) {
+        if (ready()) return true;
+        std::this_thread::yield();
+        if ((k & 7) == 7 && std::chrono::steady_clock::now() > deadline) return false;
+    }
+}
+
+}  // namespace
 
 WorkerPool::WorkerPool(int threads) {
     const int count = std::max(1, threads);
@@ -63,8 +86,10 @@ void WorkerPool::forEach(std::size_t n, const std::function<void(std::size_t, st
     } catch (...) {
         errors_[0] = std::current_exception();
     }
-    std::unique_lock lock(mutex_);
-    done_.wait(lock, [this] { return pending_ == 0; });
+    if (!spinUntil([this] { return pending_.load() == 0; })) {
+        std::unique_lock lock(mutex_);
+        done_.wait(lock, [this] { return pending_ == 0; });
+    }
     body_ = nullptr;
     for (const std::exception_ptr& e : errors_) {
         if (e) std::rethrow_exception(e);
@@ -86,6 +111,7 @@ void WorkerPool::work(int index) {
     for (;;) {
         const std::function<void(std::size_t, std::size_t)>* body = nullptr;
         std::pair<std::size_t, std::size_t> range;
+        spinUntil([&] { return stop_.load() || generation_.load() != seen; });
         {
             std::unique_lock lock(mutex_);
             start_.wait(lock, [&] { return stop_ || generation_ != seen; });

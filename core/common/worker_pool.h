@@ -2,7 +2,8 @@
 /// @file worker_pool.h
 /// A few threads kept for the life of one computation, for loops too short to start threads for
 /// each time: an identification evaluates its model on ~100 samples a few hundred times, each
-/// evaluation 0.2–2 ms (docs/identification.md §9, "Two threads").
+/// evaluation 0.05–2 ms (docs/identification.md §9, "Two threads"). A thread waiting for the
+/// next loop or for the others' parts yields for up to 200 µs before it sleeps (worker_pool.cpp).
 
 #include <atomic>
 #include <condition_variable>
@@ -46,9 +47,9 @@ private:
     std::condition_variable start_, done_;
     const std::function<void(std::size_t, std::size_t)>* body_ = nullptr;
     std::size_t n_ = 0;
-    unsigned long generation_ = 0;
-    int pending_ = 0;
-    bool stop_ = false;
+    std::atomic<unsigned long> generation_{0};
+    std::atomic<int> pending_{0};
+    std::atomic<bool> stop_{false};
     std::atomic<bool> busy_{false};  // inside forEach
     std::vector<std::exception_ptr> errors_;
 };
