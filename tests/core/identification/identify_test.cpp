@@ -298,8 +298,12 @@ TEST(Identify, TheProjectionIsTheBoundedMinimumOverTheLinearParameters) {
             EXPECT_GE(p[kC], objective.bounds.lower[kC] - 1e-9);
             EXPECT_LE(p[kC], c.c_upper * (1 + 1e-9));
             EXPECT_LE(p[kPhi], c.phi_upper * (1 + 1e-9));
-            if (i == 0 && c.c_held) EXPECT_NEAR(p[kC], c.c_upper, 1e-6 * c.c_upper);
-            if (i == 0 && c.phi_held) EXPECT_NEAR(p[kPhi], c.phi_upper, 1e-9);
+            if (i == 0 && c.c_held) {
+                EXPECT_NEAR(p[kC], c.c_upper, 1e-6 * c.c_upper);
+            }
+            if (i == 0 && c.phi_held) {
+                EXPECT_NEAR(p[kPhi], c.phi_upper, 1e-9);
+            }
             // A grid around it, K_s ± 20 %, c and φ ± 20 % of their upper bound, clipped to the
             // bounds: no point of it is lower, nor is any point a hundredth of the way to one
             // (the feasible directions' first-order test, which a coarse grid alone would miss
