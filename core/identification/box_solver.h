@@ -11,7 +11,8 @@
 /// parameter free through a pass that converged with it on its bound, the gradient pulling it
 /// inside, has had its release): the
 /// solve may then end there, converged, with the gradient pointing inside, which its termination
-/// says. Before a parameter on its bound is released (or at the start, where it starts on one),
+/// says. Before a parameter on its bound is released (or, with bound_shortcuts, at the start,
+/// where it starts on one),
 /// two trial steps inside (the Gauss–Newton step along it alone, and a thousandth of it) tell a
 /// kink of the cost there, where every step inside fails: it is then held as if released once
 /// already, instead of a pass of rejected steps. With

@@ -52,6 +52,7 @@ TEST(BoxSolver, AParameterAtAKinkOfItsBoundIsHeldWithoutRejectedSteps) {
     std::vector<double> x = {3.0, 0.0};
     BoxOptions options;
     options.gradient = true;
+    options.bound_shortcuts = true;  // as in the global search, which tests a start on a bound
     const BoxSummary s = solveInBox(problem, x, options);
     ASSERT_TRUE(s.usable);
     EXPECT_TRUE(s.converged) << s.termination;
