@@ -111,12 +111,10 @@ private:
 }  // namespace
 
 bool evaluateCost(const BoxProblem& problem, const std::vector<double>& x, double& cost,
-                  std::vector<double>* gradient, std::vector<double>* curvature) {
+                  std::vector<double>* gradient) {
     const std::size_t n = x.size();
     cost = 0.0;
     if (gradient) gradient->assign(n, 0.0);
-    if (!gradient) curvature = nullptr;
-    if (curvature) curvature->assign(n, 0.0);
     const double* parameters[1] = {x.data()};
     std::vector<double> residuals, jacobian;
     for (std::size_t b = 0; b < problem.costs.size(); ++b) {
@@ -135,11 +133,8 @@ bool evaluateCost(const BoxProblem& problem, const std::vector<double>& x, doubl
         cost += 0.5 * rho[0];
         if (!gradient) continue;
         for (std::size_t i = 0; i < m; ++i) {
-            for (std::size_t k = 0; k < n; ++k) {
-                const double d = jacobian[i * n + k];
-                (*gradient)[k] += rho[1] * d * residuals[i];
-                if (curvature) (*curvature)[k] += rho[1] * d * d;
-            }
+            for (std::size_t k = 0; k < n; ++k)
+                (*gradient)[k] += rho[1] * jacobian[i * n + k] * residuals[i];
         }
     }
     return std::isfinite(cost);
@@ -160,32 +155,6 @@ double projectedGradientNorm(const BoxProblem& problem, const std::vector<double
     return norm;
 }
 
-namespace {
-
-// Whether parameter k, on its bound with the gradient g pulling it inside, is at a kink of the
-// model: the cost rises both at the Gauss–Newton step along k alone, −g/h (h the diagonal of the
-// Gauss–Newton Hessian), and at a thousandth of it, which a smooth cost accepts (its decrease is
-// first order there). At one load a₀ sits on its bound 0 in most minima, where every step inside
-// fails: releasing it cost the solver a pass of ~8 rejected steps (ones that shrink the trust
-// region until the function tolerance ends it), in each solve that met the minimum, the
-// refinement's noise rounds included. Two cost evaluations instead (docs/identification.md §9,
-// "sixth pass").
-bool stepsInsideFail(const BoxProblem& problem, const std::vector<double>& x, std::size_t k,
-                     double g, double h, double cost) {
-    if (!(h > 0.0) || !std::isfinite(g)) return false;
-    const double step = -g / h;
-    for (double fraction : {1.0, 1e-3}) {
-        std::vector<double> trial = x;
-        trial[k] = std::clamp(x[k] + fraction * step, problem.lower[k], problem.upper[k]);
-        if (trial[k] == x[k]) return false;
-        double trial_cost = 0.0;
-        if (!evaluateCost(problem, trial, trial_cost) || trial_cost < cost) return false;
-    }
-    return true;
-}
-
-}  // namespace
-
 BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                       const BoxOptions& options) {
     const std::size_t n = x.size();
@@ -199,32 +168,6 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
     // pass is left to solve it). Each parameter is tried once per solve.
     std::vector<bool> may_snap(n, true);
     std::vector<int> releases(n, 0);
-    // A parameter that starts on its bound at a kink (a refinement's noise round from the last
-    // one's minimum, a₀ on 0) is held from the first pass, as if released once already. In the
-    // global search only (bound_shortcuts): elsewhere (the decoupled fit, the streaming
-    // estimator) parameters start on bounds where the cost is smooth, and the test's Jacobian
-    // and two costs made those fits ~4 % slower.
-    const auto on_bound = [&](std::size_t k) {
-        return !problem.fixed[k] && (onLower(problem, x, k) || onUpper(problem, x, k));
-    };
-    bool starts_on_bound = false;
-    for (std::size_t k = 0; k < n; ++k) starts_on_bound = starts_on_bound || on_bound(k);
-    if (starts_on_bound && options.bound_shortcuts) {
-        double cost = 0.0;
-        std::vector<double> gradient, curvature;
-        if (evaluateCost(problem, x, cost, &gradient, &curvature)) {
-            for (std::size_t k = 0; k < n; ++k) {
-                if (!on_bound(k)) continue;
-                const bool pulled_inside =
-                    onLower(problem, x, k) ? gradient[k] < 0.0 : gradient[k] > 0.0;
-                if (pulled_inside &&
-                    stepsInsideFail(problem, x, k, gradient[k], curvature[k], cost)) {
-                    held_on_bound[k] = true;
-                    releases[k] = 1;
-                }
-            }
-        }
-    }
     struct Trial {
         int parameter = -1;
         std::vector<double> x;
@@ -370,10 +313,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         const bool any_held =
             std::find(held_on_bound.begin(), held_on_bound.end(), true) != held_on_bound.end();
         summary.gradient.clear();
-        std::vector<double> curvature;
         if (!evaluateCost(problem, x, summary.cost,
-                          any_held || options.gradient ? &summary.gradient : nullptr,
-                          any_held ? &curvature : nullptr)) {
+                          any_held || options.gradient ? &summary.gradient : nullptr)) {
             summary.usable = false;
             summary.termination = "FAILURE: the cost cannot be evaluated at the solution";
             break;
@@ -397,16 +338,10 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                 // at one load, a kink where every step inside fails, 8 rejected steps a pass).
                 releases[k] = std::max(releases[k], 1);
                 kept_against_gradient = true;
-            } else if (pulled_inside && releases[k] < 1 &&
-                       !stepsInsideFail(problem, x, k, summary.gradient[k], curvature[k],
-                                        summary.cost)) {
+            } else if (pulled_inside && releases[k] < 1) {
                 held_on_bound[k] = false;
                 ++releases[k];
                 changed = true;
-            } else if (pulled_inside && releases[k] < 1) {
-                // A kink (stepsInsideFail): as if released once and brought back.
-                releases[k] = 1;
-                kept_against_gradient = true;
             } else if (pulled_inside) {
                 kept_against_gradient = true;
             }

@@ -11,11 +11,7 @@
 /// parameter free through a pass that converged with it on its bound, the gradient pulling it
 /// inside, has had its release): the
 /// solve may then end there, converged, with the gradient pointing inside, which its termination
-/// says. Before a parameter on its bound is released (or, with bound_shortcuts, at the start,
-/// where it starts on one),
-/// two trial steps inside (the Gauss–Newton step along it alone, and a thousandth of it) tell a
-/// kink of the cost there, where every step inside fails: it is then held as if released once
-/// already, instead of a pass of rejected steps. With
+/// says. With
 /// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three
 /// shrinking steps toward it, the bound within ten of them) is tried on that bound for one pass,
 /// kept there only if that pass lowers the cost.
@@ -73,11 +69,9 @@ struct BoxSummary {
 /// Solves min cost(x) within the bounds, starting from x (clamped into the box).
 BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x, const BoxOptions& options);
 
-/// cost(x) and, when `gradient` is given, ∂cost/∂x, and when `curvature` is given too, the
-/// diagonal of the Gauss–Newton Hessian, Σᵢ ρ′ (∂rᵢ/∂x_k)²; false when a cost function fails.
+/// cost(x) and, when `gradient` is given, ∂cost/∂x; false when a cost function fails.
 bool evaluateCost(const BoxProblem& problem, const std::vector<double>& x, double& cost,
-                  std::vector<double>* gradient = nullptr,
-                  std::vector<double>* curvature = nullptr);
+                  std::vector<double>* gradient = nullptr);
 
 /// The largest |component| of the gradient projected on the box: components of parameters held
 /// (fixed, or on a bound with the gradient pointing out of the box) count as zero.

@@ -29,7 +29,10 @@ constexpr double kNominalModulus = 1e6, kNominalCohesion = 1e3, kNominalFriction
 // is convex, so the KKT conditions are sufficient: the first face, by increasing number of active
 // inequalities, whose minimiser is feasible and whose active multipliers are non-negative holds
 // the minimum. Should rounding leave no face passing that test, the best feasible minimiser of
-// all faces is the answer, as it always is.
+// all faces is the answer, as it was before this rule. Where the minimiser is not unique (G
+// singular: a tiny n) or a multiplier is zero, the face found first may differ from the one the
+// best-value rule picked (the same value; α and its face, which shapes the Kaufman Jacobian, may
+// differ): on the 144 cells of the identification matrix it made no difference.
 struct SmallQp {
     Eigen::Matrix3d g;
     Eigen::Vector3d b;
@@ -52,6 +55,7 @@ struct SmallQp {
         OnFace out;
         const int equalities = static_cast<int>(eq_rows.size());
         const int m = equalities + std::popcount(mask);
+        if (m > 3) return out;  // more rows than unknowns (and than Kkt's 6 × 6)
         Kkt kkt = Kkt::Zero(3 + m, 3 + m);
         KktVector rhs = KktVector::Zero(3 + m);
         kkt.topLeftCorner<3, 3>() = g;
