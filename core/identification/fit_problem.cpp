@@ -514,8 +514,29 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                 }
                 const double value = chiSquare(problem, next);
                 if (value < chi2) {
+                    // A full step that gained ρ = 1.2–1.9 times what the model predicted (the
+                    // cost curves less along it than Gauss–Newton's model: the one-load valleys,
+                    // where the steps otherwise shrink by ~0.6 each) is stretched to the minimum
+                    // of the parabola through both ends and the slope, 1/(2 − ρ) of it, kept
+                    // where that is lower (docs/identification.md §9, "seventh pass").
+                    double best = value;
+                    const double rho = (chi2 - value) / predicted;
+                    if (t == 1.0 && rho >= 1.2 && rho <= 1.9) {
+                        std::vector<double> far = u;
+                        for (std::size_t a = 0; a < moving.size(); ++a) {
+                            const int k = moving[a];
+                            far[k] =
+                                std::clamp(u[k] + step(static_cast<Eigen::Index>(a)) / (2.0 - rho),
+                                           lower[k], upper[k]);
+                        }
+                        const double stretched = chiSquare(problem, far);
+                        if (stretched < value) {
+                            next = std::move(far);
+                            best = stretched;
+                        }
+                    }
                     u = next;
-                    chi2 = value;
+                    chi2 = best;
                     improved = true;
                 }
             }
