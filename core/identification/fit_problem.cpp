@@ -505,13 +505,18 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
             if (remaining) *remaining = predicted;
             bool off_bound = false;  // the step moves a parameter off its bound
             for (int k : moving) off_bound |= side[k] != 0;
-            for (double t = 1.0; t > 1e-4 && !improved; t *= off_bound ? 1e-3 : 0.5) {
-                std::vector<double> next = u;
+            // u + t·step, clamped into the box.
+            const auto along = [&](double t) {
+                std::vector<double> at = u;
                 for (std::size_t a = 0; a < moving.size(); ++a) {
                     const int k = moving[a];
-                    next[k] = std::clamp(u[k] + t * step(static_cast<Eigen::Index>(a)), lower[k],
-                                         upper[k]);
+                    at[k] = std::clamp(u[k] + t * step(static_cast<Eigen::Index>(a)), lower[k],
+                                       upper[k]);
                 }
+                return at;
+            };
+            for (double t = 1.0; t > 1e-4 && !improved; t *= off_bound ? 1e-3 : 0.5) {
+                std::vector<double> next = along(t);
                 const double value = chiSquare(problem, next);
                 if (value < chi2) {
                     // A full step that gained ρ = 1.2–1.9 times what the model predicted (the
@@ -522,20 +527,14 @@ int polish(const Objective& objective, const std::vector<std::size_t>& samples,
                     double best = value;
                     const double rho = (chi2 - value) / predicted;
                     if (t == 1.0 && rho >= 1.2 && rho <= 1.9) {
-                        std::vector<double> far = u;
-                        for (std::size_t a = 0; a < moving.size(); ++a) {
-                            const int k = moving[a];
-                            far[k] =
-                                std::clamp(u[k] + step(static_cast<Eigen::Index>(a)) / (2.0 - rho),
-                                           lower[k], upper[k]);
-                        }
+                        std::vector<double> far = along(1.0 / (2.0 - rho));
                         const double stretched = chiSquare(problem, far);
                         if (stretched < value) {
                             next = std::move(far);
                             best = stretched;
                         }
                     }
-                    u = next;
+                    u = std::move(next);
                     chi2 = best;
                     improved = true;
                 }
