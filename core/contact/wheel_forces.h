@@ -22,6 +22,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <type_traits>
 
 #include "core/common/scalar.h"
 #include "core/contact/bulldozing.h"
@@ -116,11 +117,11 @@ struct Region {
 };
 
 // A piece [u0, u1] of a region with its Kronrod sums and error estimates.
-template <typename T>
+template <typename T, typename Sums = ForceSums<T>>
 struct Piece {
     int region;
     double u0, u1;
-    ForceSums<T> sums;
+    Sums sums;
     double error;          // max |Kronrod − Gauss| of ∫F_x, ∫F_z, ∫M_y
     double lateral_error;  // max |Kronrod − Gauss| of ∫F_y, ∫M_x, ∫M_z
 };
@@ -181,6 +182,108 @@ void evaluatePiece(const StressField<T>& field, const Region<T>& region, const K
     piece.sums = k;
 }
 
+// The contact integrals as linear forms in α = (K_s, c, K_s tan φ), in which the stresses are
+// linear (Eqs. 2.17, 2.20: σ = K_s σ₁, τ = (c + σ tan φ) e with σ₁ and e free of α): the sums per
+// unit K_s of σ alone (`modulus`), per unit c (`cohesion`) and per unit K_s tan φ (`friction`),
+// so that ForceSums = K_s modulus + c cohesion + K_s tan φ friction. docs/identification.md §9,
+// "eighth pass".
+struct LinearSums {
+    ForceSums<double> modulus, cohesion, friction;
+
+    LinearSums& operator+=(const LinearSums& o) {
+        modulus += o.modulus, cohesion += o.cohesion, friction += o.friction;
+        return *this;
+    }
+};
+
+// The stress field of unit coefficients (K_s = 1, c = 1, φ = 0: σ = σ₁, τ = e) and the α at which
+// the adaptive rule judges its pieces (computeLinearForces' `nominal`).
+struct LinearField : StressField<double> {
+    LinearField(const ContactParameters<double>& unit, const OperatingPoint<double>& op,
+                const std::array<double, 3>& nominal_alpha)
+        : StressField<double>(unit, op), nominal(nominal_alpha) {}
+    std::array<double, 3> nominal;
+
+    ForceSums<double> combine(const LinearSums& s) const {
+        const auto one = [this](double m, double c, double f) {
+            return nominal[0] * m + nominal[1] * c + nominal[2] * f;
+        };
+        return {one(s.modulus.fx, s.cohesion.fx, s.friction.fx),
+                one(s.modulus.fy, s.cohesion.fy, s.friction.fy),
+                one(s.modulus.fz, s.cohesion.fz, s.friction.fz),
+                one(s.modulus.mx, s.cohesion.mx, s.friction.mx),
+                one(s.modulus.my, s.cohesion.my, s.friction.my),
+                one(s.modulus.mz, s.cohesion.mz, s.friction.mz)};
+    }
+};
+
+// The plain values of a piece's or a total's sums: the sums' own for ForceSums, the nominal α's
+// combination for LinearSums (the adaptive rule's error scale).
+template <typename T>
+ForceSums<double> plainSums(const StressField<T>&, const ForceSums<T>& s) {
+    return {scalarValue(s.fx), scalarValue(s.fy), scalarValue(s.fz),
+            scalarValue(s.mx), scalarValue(s.my), scalarValue(s.mz)};
+}
+inline ForceSums<double> plainSums(const LinearField& field, const LinearSums& s) {
+    return field.combine(s);
+}
+
+// evaluatePiece for the linear forms: one double stress evaluation per node gives σ₁ and e (with
+// the shear's direction), and the three forms follow by products; the error is that of the
+// nominal α's combination, as the Jet of the same α would have it. (T is double: the parameter
+// only lets integrateContact's call evaluatePiece<T, true> name this overload too.)
+template <typename T = double, bool GaussOnly = false>
+void evaluatePiece(const LinearField& field, const Region<double>& region, const KronrodRule& rule,
+                   Piece<double, LinearSums>& piece) {
+    static_assert(std::is_same_v<T, double>);
+    LinearSums k;
+    ForceSums<double> gauss;
+    const double du = piece.u1 - piece.u0;
+    for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+        if constexpr (GaussOnly) {
+            if (rule.gauss_weights[i] == 0.0) continue;
+        }
+        double jacobian = 0.0;
+        const double theta = region.theta(piece.u0 + du * rule.nodes[i], jacobian);
+        const double s = std::sin(theta);
+        const double c = std::cos(theta);
+        StressSample<double> st = field.at(theta, s, c);  // σ = σ₁, τ = e
+        if (field.lugged()) {
+            st.tau_t *= field.shearRadiusRatio();
+            st.tau_l *= field.shearRadiusRatio();
+        }
+        const double w =
+            region.length * (jacobian * du) * (GaussOnly ? rule.gauss_weights[i] : rule.weights[i]);
+        const double sigma = st.sigma;
+        // Per unit c: σ = 0, τ = e; per unit K_s tan φ: σ = 0, τ = σ₁ e; per unit K_s: σ₁, τ = 0.
+        const double ct = w * st.tau_t, cl = w * st.tau_l;
+        k.modulus.fx += -w * sigma * s, k.modulus.fz += w * sigma * c;
+        k.cohesion.fx += ct * c, k.cohesion.fz += ct * s, k.cohesion.fy += cl;
+        k.cohesion.mx += cl * c, k.cohesion.my += ct, k.cohesion.mz += cl * s;
+        const double ft = ct * sigma, fl = cl * sigma;
+        k.friction.fx += ft * c, k.friction.fz += ft * s, k.friction.fy += fl;
+        k.friction.mx += fl * c, k.friction.my += ft, k.friction.mz += fl * s;
+        if (!GaussOnly && rule.gauss_weights[i] != 0.0) {
+            const double g = rule.gauss_weights[i] / rule.weights[i];
+            const double sigma0 = field.nominal[0] * sigma;                     // K_s σ₁
+            const double shear0 = field.nominal[1] + field.nominal[2] * sigma;  // c + σ tan φ
+            const double tt = g * shear0 * ct, tl = g * shear0 * cl;
+            gauss.fx += tt * c - g * w * sigma0 * s, gauss.fz += g * w * sigma0 * c + tt * s;
+            gauss.fy += tl, gauss.mx += tl * c, gauss.my += tt, gauss.mz += tl * s;
+        }
+    }
+    if constexpr (GaussOnly) {
+        piece.error = piece.lateral_error = 0.0;
+    } else {
+        const ForceSums<double> v = field.combine(k);
+        piece.error = std::max(
+            {std::abs(v.fx - gauss.fx), std::abs(v.fz - gauss.fz), std::abs(v.my - gauss.my)});
+        piece.lateral_error = std::max(
+            {std::abs(v.fy - gauss.fy), std::abs(v.mx - gauss.mx), std::abs(v.mz - gauss.mz)});
+    }
+    piece.sums = k;
+}
+
 template <typename T>
 ShearGeometry shearGeometry(const ContactParameters<T>& p, const StressField<T>& field) {
     // j (and so its kinks) is computed on the shearing radius r_s (r for a smooth wheel).
@@ -216,10 +319,9 @@ std::array<double, 2> reloadKinks(const StressField<T>& field) {
 // ∫τ_t, ∫τ_l sin θ over [θ_r, θ_f]: both regions, split at the kinks and the scale splits, then
 // adaptive bisection of the piece with the largest relative error estimate until every estimate
 // is below the tolerance or the piece cap is reached.
-template <typename T>
-ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T>& field,
-                              const IntegrationOptions& options,
-                              IntegrationReport* report = nullptr) {
+template <typename T, typename Field = StressField<T>, typename Sums = ForceSums<T>>
+Sums integrateContact(const ContactParameters<T>& p, const Field& field,
+                      const IntegrationOptions& options, IntegrationReport* report = nullptr) {
     constexpr int kCapacity = 96;
     // Below this fraction of the other group's scale the in-plane or lateral integrals need only
     // absolute accuracy (F_x, F_z ~ 1e-9 F_y when σ ≡ 0 and β = 89°; F_y ~ 1e-7 F_z at β = 1e-5°).
@@ -236,12 +338,14 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
     // Uninitialised storage: value-initialising 96 pieces (8 kB for double) on every call cost
     // ~5 % of a whole evaluation. Pieces are created in order and destroyed on return.
     struct Storage {
-        alignas(Piece<T>) unsigned char bytes[sizeof(Piece<T>) * kCapacity];
+        alignas(Piece<T, Sums>) unsigned char bytes[sizeof(Piece<T, Sums>) * kCapacity];
         int count = 0;
-        Piece<T>& operator[](int i) {
-            return *std::launder(reinterpret_cast<Piece<T>*>(bytes) + i);
+        Piece<T, Sums>& operator[](int i) {
+            return *std::launder(reinterpret_cast<Piece<T, Sums>*>(bytes) + i);
         }
-        Piece<T>& add() { return *::new (bytes + sizeof(Piece<T>) * count++) Piece<T>(); }
+        Piece<T, Sums>& add() {
+            return *::new (bytes + sizeof(Piece<T, Sums>) * count++) Piece<T, Sums>();
+        }
         ~Storage() { std::destroy_n(&(*this)[0], count); }
     } pieces;
     int& count = pieces.count;
@@ -274,7 +378,7 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
         std::sort(breaks.begin() + 1, breaks.begin() + n - 1);
         for (int b = 0; b + 1 < n && count < kCapacity; ++b) {
             if (!(breaks[b + 1] > breaks[b])) continue;
-            Piece<T>& piece = pieces.add();
+            Piece<T, Sums>& piece = pieces.add();
             piece.region = r;
             piece.u0 = breaks[b];
             piece.u1 = breaks[b + 1];
@@ -286,19 +390,18 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
         }
     }
     if (options.gauss_only) {
-        ForceSums<T> total;
+        Sums total;
         for (int i = 0; i < count; ++i) total += pieces[i].sums;
         if (report) *report = {count, true, std::numeric_limits<double>::quiet_NaN()};
         return total;
     }
     const int limit = std::clamp(options.max_pieces, count, kCapacity);
     while (count > 0) {
-        ForceSums<T> total;
+        Sums total;
         for (int i = 0; i < count; ++i) total += pieces[i].sums;
-        const double in_plane = std::abs(scalarValue(total.fz)) + std::abs(scalarValue(total.fx)) +
-                                std::abs(scalarValue(total.my));
-        const double lateral = std::abs(scalarValue(total.fy)) + std::abs(scalarValue(total.mx)) +
-                               std::abs(scalarValue(total.mz));
+        const ForceSums<double> plain = plainSums(field, total);
+        const double in_plane = std::abs(plain.fz) + std::abs(plain.fx) + std::abs(plain.my);
+        const double lateral = std::abs(plain.fy) + std::abs(plain.mx) + std::abs(plain.mz);
         const double scale = std::max(in_plane, kFloor * lateral);
         const double lateral_scale = std::max(lateral, kFloor * in_plane);
         // Error relative to the allowed one; 0/0 (no lateral motion) is 0.
@@ -320,8 +423,8 @@ ForceSums<T> integrateContact(const ContactParameters<T>& p, const StressField<T
             return total;
         }
         // Bisect the worst piece in u.
-        Piece<T>& left = pieces[worst];
-        Piece<T>& right = pieces.add();
+        Piece<T, Sums>& left = pieces[worst];
+        Piece<T, Sums>& right = pieces.add();
         const double middle = 0.5 * (left.u0 + left.u1);
         right.region = left.region;
         right.u0 = middle;
@@ -377,6 +480,39 @@ WheelForces<T> computeForces(const ContactParameters<T>& p, const OperatingPoint
     const StressField<T> field(p, op);
     const detail::ForceSums<T> sums = detail::integrateContact(p, field, options, report);
     return assembleForces(p, op, sums, bulldozing);
+}
+
+/// F_x, F_z and M_y of the full model per unit coefficient of α = (K_s, c, K_s tan φ), in which
+/// they are linear: F = K_s P + c Q + K_s tan φ R (Eqs. 2.17, 2.20, 2.23, 2.31, 2.34; the
+/// bulldozing of Eq. 2.30 is not in them). One stress evaluation in double per node instead of a
+/// Jet's (docs/identification.md §9, "eighth pass"). `nominal` is the α at which the adaptive
+/// rule judges its pieces (the same pieces as computeForces at that α); `p`'s own K_s, c and φ
+/// are not used. Precondition: !p.remembers() (the reload law is not linear in K_s).
+struct LinearForces {
+    std::array<double, 3> fx{}, fz{}, my{};  ///< [P, Q, R] of each
+};
+
+inline LinearForces computeLinearForces(ContactParameters<double> p,
+                                        const OperatingPoint<double>& op,
+                                        const std::array<double, 3>& nominal,
+                                        const IntegrationOptions& options = {}) {
+    p.pressure_modulus = 1.0;
+    p.cohesion_pa = 1.0;
+    p.friction_angle_rad = 0.0;
+    const detail::LinearField field(p, op, nominal);
+    const detail::LinearSums sums =
+        detail::integrateContact<double, detail::LinearField, detail::LinearSums>(p, field,
+                                                                                  options);
+    const double rb = p.radius_m * p.width_m;
+    const double r2b = rb * (p.lugged() ? p.shearRadius() : p.radius_m);
+    LinearForces out;
+    const detail::ForceSums<double>* forms[3] = {&sums.modulus, &sums.cohesion, &sums.friction};
+    for (int k = 0; k < 3; ++k) {
+        out.fx[k] = rb * forms[k]->fx;
+        out.fz[k] = rb * forms[k]->fz;
+        out.my[k] = r2b * forms[k]->my;
+    }
+    return out;
 }
 
 }  // namespace terra::contact

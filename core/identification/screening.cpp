@@ -187,21 +187,37 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
     // among the pool's threads; the same numbers whatever their count.
     out.rows.assign(static_cast<std::size_t>(data_rows_), Eigen::RowVector3d::Zero());
     out.y.assign(static_cast<std::size_t>(data_rows_), 0.0);
+    // F = K_s P + c Q + K_s tan φ R: the full model's forms by one double stress evaluation per
+    // node (contact::computeLinearForces); the quadratic model's by the Jet of the nominal α.
+    const bool linear_forms = model.setup().model == contact::ContactModel::kFull;
+    const contact::ContactParameters<double> unit = cp.cast<double>();
+    const std::array<double, 3> nominal{kNominalModulus, kNominalCohesion, kNominalModulus * tan0};
     forSamples([&](std::size_t t) {
         const std::size_t i = samples_[t];
         const Sample& s = model.sample(i);
-        const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
-                                            J(s.entry_angle_rad), J(0.0), std::nullopt};
-        const contact::WheelForces<J> f = modelForces(cp, op, model.setup());
-        const J* channel[3] = {&f.fx, &f.fz, &f.my};
+        std::array<std::array<double, 3>, 3> forms{};  // [F_x, F_z, M_y][P, Q, R]
+        if (linear_forms) {
+            const contact::LinearForces f = contact::computeLinearForces(
+                unit,
+                {s.slip, s.slip_angle_rad.value_or(0.0), s.entry_angle_rad, 0.0, std::nullopt},
+                nominal, model.setup().integration);
+            forms = {f.fx, f.fz, f.my};
+        } else {
+            const contact::OperatingPoint<J> op{J(s.slip), J(s.slip_angle_rad.value_or(0.0)),
+                                                J(s.entry_angle_rad), J(0.0), std::nullopt};
+            const contact::WheelForces<J> f = modelForces(cp, op, model.setup());
+            const J* channel[3] = {&f.fx, &f.fz, &f.my};
+            for (int c = 0; c < 3; ++c) {
+                // ∂F/∂c = Q, ∂F/∂φ = K_s R / cos²φ, ∂F/∂K_s = P + tan φ R.
+                const double r = channel[c]->v[2] * (1.0 / (kNominalModulus * (1.0 + tan0 * tan0)));
+                forms[c] = {channel[c]->v[0] - tan0 * r, channel[c]->v[1], r};
+            }
+        }
         const auto active = model.channels(i);
         std::size_t row = first_row_[t];
         for (int c = 0; c < 3; ++c) {
             if (!active[c]) continue;
-            // ∂F/∂c = Q, ∂F/∂φ = K_s R / cos²φ, ∂F/∂K_s = P + tan φ R.
-            const double q = channel[c]->v[1];
-            const double r = channel[c]->v[2] * (1.0 / (kNominalModulus * (1.0 + tan0 * tan0)));
-            const double pk = channel[c]->v[0] - tan0 * r;
+            const auto& [pk, q, r] = forms[c];
             const double w = 1.0 / objective_.sigma[c];
             out.rows[row] = {pk * kModulusUnit * w, q * kCohesionUnit * w, r * kModulusUnit * w};
             out.y[row] = model.measured(i, static_cast<Channel>(c)) * w;
