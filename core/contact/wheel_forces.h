@@ -22,6 +22,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <stdexcept>
 #include <type_traits>
 
 #include "core/common/scalar.h"
@@ -487,7 +488,8 @@ WheelForces<T> computeForces(const ContactParameters<T>& p, const OperatingPoint
 /// bulldozing of Eq. 2.30 is not in them). One stress evaluation in double per node instead of a
 /// Jet's (docs/identification.md §9, "eighth pass"). `nominal` is the α at which the adaptive
 /// rule judges its pieces (the same pieces as computeForces at that α); `p`'s own K_s, c and φ
-/// are not used. Precondition: !p.remembers() (the reload law is not linear in K_s).
+/// are not used. Throws std::invalid_argument when p.remembers() (the reload law of a track is
+/// not linear in K_s).
 struct LinearForces {
     std::array<double, 3> fx{}, fz{}, my{};  ///< [P, Q, R] of each
 };
@@ -496,6 +498,11 @@ inline LinearForces computeLinearForces(ContactParameters<double> p,
                                         const OperatingPoint<double>& op,
                                         const std::array<double, 3>& nominal,
                                         const IntegrationOptions& options = {}) {
+    if (p.remembers()) {
+        throw std::invalid_argument(
+            "computeLinearForces: a remembered track (rut_depth_m, reload_depth_m > 0) reloads "
+            "elastically, not linearly in K_s");
+    }
     p.pressure_modulus = 1.0;
     p.cohesion_pa = 1.0;
     p.friction_angle_rad = 0.0;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -127,6 +128,16 @@ TEST(LinearForces, ANominalCoefficientFarFromTheSoilsKeepsTheIntegrationAccuracy
                 << c.name << " s=" << op.slip;
         }
     }
+}
+
+TEST(LinearForces, RefuseARememberedTrack) {
+    // Behind the rut's bottom the soil reloads with k_u d, not K_s z^N: not linear in K_s.
+    ContactParameters<double> p = testing::sandyLoam();
+    p.rut_depth_m = 0.01;
+    p.reload_depth_m = 0.002;
+    p.reload_modulus_pa_m = 4e6;
+    const OperatingPoint<double> op{0.3, 0.0, 20.0 * kDeg, 0.0, std::nullopt};
+    EXPECT_THROW(computeLinearForces(p, op, linearAlphaOf(p)), std::invalid_argument);
 }
 
 }  // namespace linear_forces_test
