@@ -2,7 +2,9 @@
 /// @file wheel_forces.h
 /// Forces and moments on a rigid wheel from the stresses of the contact (thesis Eqs. 2.23–2.35),
 /// by numerical integration that is exact to ~1e-9 relative in a few dozen stress evaluations.
-/// Templated on the scalar (double for simulation, ceres::Jet for identification).
+/// Templated on the scalar (double for simulation, ceres::Jet for identification); and, for the
+/// identification's projection, the forces as linear forms in (K_s, c, K_s tan φ) in double
+/// (computeLinearForces).
 ///
 /// Integration (derivation and accuracy study in docs/model.md, "Integration"):
 /// - the contact splits at θ_m into a front region [θ_m, θ_f] and a rear region [θ_r, θ_m];
@@ -23,6 +25,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "core/common/scalar.h"
@@ -231,8 +234,9 @@ inline ForceSums<double> plainSums(const LinearField& field, const LinearSums& s
 
 // evaluatePiece for the linear forms: one double stress evaluation per node gives σ₁ and e (with
 // the shear's direction), and the three forms follow by products; the error is that of the
-// nominal α's combination, as the Jet of the same α would have it. (T is double: the parameter
-// only lets integrateContact's call evaluatePiece<T, true> name this overload too.)
+// nominal α's combination, as the Jet of the same α would have it. Its node loop follows the
+// generic evaluatePiece above (keep the two in step). (T is double: the parameter only lets
+// integrateContact's call evaluatePiece<T, true> name this overload too.)
 template <typename T = double, bool GaussOnly = false>
 void evaluatePiece(const LinearField& field, const Region<double>& region, const KronrodRule& rule,
                    Piece<double, LinearSums>& piece) {
@@ -253,8 +257,8 @@ void evaluatePiece(const LinearField& field, const Region<double>& region, const
             st.tau_t *= field.shearRadiusRatio();
             st.tau_l *= field.shearRadiusRatio();
         }
-        const double w =
-            region.length * (jacobian * du) * (GaussOnly ? rule.gauss_weights[i] : rule.weights[i]);
+        const double dtheta = region.length * (jacobian * du);
+        const double w = dtheta * (GaussOnly ? rule.gauss_weights[i] : rule.weights[i]);
         const double sigma = st.sigma;
         // Per unit c: σ = 0, τ = e; per unit K_s tan φ: σ = 0, τ = σ₁ e; per unit K_s: σ₁, τ = 0.
         const double ct = w * st.tau_t, cl = w * st.tau_l;
@@ -265,11 +269,12 @@ void evaluatePiece(const LinearField& field, const Region<double>& region, const
         k.friction.fx += ft * c, k.friction.fz += ft * s, k.friction.fy += fl;
         k.friction.mx += fl * c, k.friction.my += ft, k.friction.mz += fl * s;
         if (!GaussOnly && rule.gauss_weights[i] != 0.0) {
-            const double g = rule.gauss_weights[i] / rule.weights[i];
+            // The nominal α's integrands on the Gauss weights, as the generic evaluatePiece.
+            const double wg = dtheta * rule.gauss_weights[i];
             const double sigma0 = field.nominal[0] * sigma;                     // K_s σ₁
             const double shear0 = field.nominal[1] + field.nominal[2] * sigma;  // c + σ tan φ
-            const double tt = g * shear0 * ct, tl = g * shear0 * cl;
-            gauss.fx += tt * c - g * w * sigma0 * s, gauss.fz += g * w * sigma0 * c + tt * s;
+            const double tt = wg * shear0 * st.tau_t, tl = wg * shear0 * st.tau_l;
+            gauss.fx += tt * c - wg * sigma0 * s, gauss.fz += wg * sigma0 * c + tt * s;
             gauss.fy += tl, gauss.mx += tl * c, gauss.my += tt, gauss.mz += tl * s;
         }
     }
@@ -336,8 +341,9 @@ Sums integrateContact(const ContactParameters<T>& p, const Field& field,
                                    field.entryAngle() - field.maxStressAngle(), true, q},
                                   {field.exitAngle(), field.maxStressAngle(),
                                    field.maxStressAngle() - field.exitAngle(), false, q}};
-    // Uninitialised storage: value-initialising 96 pieces (8 kB for double) on every call cost
-    // ~5 % of a whole evaluation. Pieces are created in order and destroyed on return.
+    // Uninitialised storage: value-initialising 96 pieces (8 kB for double, 17 kB for the linear
+    // forms) on every call cost ~5 % of a whole evaluation. Pieces are created in order and
+    // destroyed on return.
     struct Storage {
         alignas(Piece<T, Sums>) unsigned char bytes[sizeof(Piece<T, Sums>) * kCapacity];
         int count = 0;
@@ -484,32 +490,34 @@ WheelForces<T> computeForces(const ContactParameters<T>& p, const OperatingPoint
 }
 
 /// F_x, F_z and M_y of the full model per unit coefficient of α = (K_s, c, K_s tan φ), in which
-/// they are linear: F = K_s P + c Q + K_s tan φ R (Eqs. 2.17, 2.20, 2.23, 2.31, 2.34; the
-/// bulldozing of Eq. 2.30 is not in them). One stress evaluation in double per node instead of a
-/// Jet's (docs/identification.md §9, "eighth pass"). `nominal` is the α at which the adaptive
-/// rule judges its pieces (the same pieces as computeForces at that α); `p`'s own K_s, c and φ
-/// are not used. Throws std::invalid_argument when p.remembers() (the reload law of a track is
-/// not linear in K_s).
+/// they are linear: F = K_s P + c Q + K_s tan φ R (computeLinearForces).
 struct LinearForces {
     std::array<double, 3> fx{}, fz{}, my{};  ///< [P, Q, R] of each
 };
 
+/// The linear forms of LinearForces (Eqs. 2.17, 2.20, 2.23, 2.31, 2.34; the bulldozing of Eq.
+/// 2.30 is not in them): one stress evaluation in double per node instead of a Jet's
+/// (docs/identification.md §9, "eighth pass"). `nominal` is the α at which the adaptive rule
+/// judges its pieces (the pieces of computeForces at that α; on the Gauss rule they do not
+/// depend on α); `p`'s own K_s, c and φ are not used. Throws std::invalid_argument when the track
+/// reloads (reload_depth_m > 0: k_u d is not linear in K_s); a rut alone is linear.
 inline LinearForces computeLinearForces(ContactParameters<double> p,
                                         const OperatingPoint<double>& op,
                                         const std::array<double, 3>& nominal,
-                                        const IntegrationOptions& options = {}) {
-    if (p.remembers()) {
+                                        const IntegrationOptions& options = {},
+                                        IntegrationReport* report = nullptr) {
+    if (p.reload_depth_m > 0.0) {
         throw std::invalid_argument(
-            "computeLinearForces: a remembered track (rut_depth_m, reload_depth_m > 0) reloads "
-            "elastically, not linearly in K_s");
+            "computeLinearForces: reload_depth_m = " + std::to_string(p.reload_depth_m) +
+            " m > 0: the track reloads elastically (k_u d), not linearly in K_s; allowed: 0");
     }
     p.pressure_modulus = 1.0;
     p.cohesion_pa = 1.0;
     p.friction_angle_rad = 0.0;
     const detail::LinearField field(p, op, nominal);
     const detail::LinearSums sums =
-        detail::integrateContact<double, detail::LinearField, detail::LinearSums>(p, field,
-                                                                                  options);
+        detail::integrateContact<double, detail::LinearField, detail::LinearSums>(p, field, options,
+                                                                                  report);
     const double rb = p.radius_m * p.width_m;
     const double r2b = rb * (p.lugged() ? p.shearRadius() : p.radius_m);
     LinearForces out;

@@ -233,7 +233,8 @@ BoxOptions refinementOptions() {
     o.function_tolerance = 1e-10;
     o.parameter_tolerance = 1e-12;
     o.gradient_tolerance = 1e-16;
-    // The K_s–n and c–φ valleys are long and flat: let the trust region walk along them.
+    // The K_s–n and c–φ valleys are long and flat: let the trust region walk along them. (The
+    // projected refinement, which has no such valleys, turns this off: identify.cpp, solveAll.)
     o.nonmonotonic_steps = true;
     return o;
 }

@@ -561,8 +561,8 @@ private:
         }
         // Monotonic steps on the projected problem: non-monotonic ones let the trust region walk
         // the long K_s–n and c–φ valleys of the seven-parameter problem, which the projection
-        // removes; on the four or five parameters walked here they mostly cycle, a step up
-        // accepted and then the step back (docs/identification.md §9, "eighth pass").
+        // removes; on the four or five parameters walked here they can cycle, a step up accepted
+        // and then the step back (docs/identification.md §9, "eighth pass").
         options.nonmonotonic_steps = false;
         const FitProblem problem(objective, all_);
         const detail::LinearProjection projection(objective, all_, wheel_);

@@ -19,8 +19,10 @@ namespace {
 // The linear parameters are solved for in units of order one: K_s and K_s tan φ in MPa/m^n, c in
 // kPa.
 constexpr double kModulusUnit = 1e6, kCohesionUnit = 1e3;
-// Nominal values of (K_s, c, φ) at which the basis is extracted (any values give the same basis
-// up to the quadrature error; realistic ones keep the integrator's adaptive splits realistic).
+// Nominal values of (K_s, c, φ) at which the adaptive integrator judges its pieces for the basis
+// (any values give the same basis up to the quadrature error; realistic ones keep its splits
+// realistic; on the Gauss rule they do not matter), and at which the quadratic model's Jet is
+// taken.
 constexpr double kNominalModulus = 1e6, kNominalCohesion = 1e3, kNominalFriction = 0.5;
 
 // min ½ αᵀGα − bᵀα subject to C α = e (equalities) and A α ≤ d (inequalities), three unknowns.
@@ -190,7 +192,7 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
     // F = K_s P + c Q + K_s tan φ R: the full model's forms by one double stress evaluation per
     // node (contact::computeLinearForces); the quadratic model's by the Jet of the nominal α.
     const bool linear_forms = model.setup().model == contact::ContactModel::kFull;
-    const contact::ContactParameters<double> unit = cp.cast<double>();
+    const contact::ContactParameters<double> shape = cp.cast<double>();  // K_s, c, φ unused
     const std::array<double, 3> nominal{kNominalModulus, kNominalCohesion, kNominalModulus * tan0};
     forSamples([&](std::size_t t) {
         const std::size_t i = samples_[t];
@@ -198,7 +200,7 @@ bool LinearProjection::linearise(const ParameterVector& p, Linearised& out) cons
         std::array<std::array<double, 3>, 3> forms{};  // [F_x, F_z, M_y][P, Q, R]
         if (linear_forms) {
             const contact::LinearForces f = contact::computeLinearForces(
-                unit,
+                shape,
                 {s.slip, s.slip_angle_rad.value_or(0.0), s.entry_angle_rad, 0.0, std::nullopt},
                 nominal, model.setup().integration);
             forms = {f.fx, f.fz, f.my};

@@ -25,7 +25,16 @@ struct LinearCase {
 std::vector<LinearCase> linearCases() {
     ContactParameters<double> lugged = testing::sandyLoam();
     lugged.lug_shear_offset_m = 0.004;  // r_s = r + λ_s h_g
+    ContactParameters<double> carried = testing::sandyLoam();
+    carried.shear_offset_m = 0.005;  // j₀ from earlier passes
+    ContactParameters<double> rut = testing::clayeySoil();
+    rut.rut_depth_m = 0.01;  // a rut without reload: σ = K_s (z_p + d)^N, still linear
+    ContactParameters<double> slip_exponent = testing::drySand();
+    slip_exponent.sinkage_exponent_slip = 0.3;  // N = n₀ + n₁ s
     return {{"sandy loam", testing::sandyLoam()},
+            {"sandy loam, j0 = 5 mm", carried},
+            {"clayey soil, rut", rut},
+            {"dry sand, n1 = 0.3", slip_exponent},
             {"dry sand", testing::drySand()},
             {"clayey soil", testing::clayeySoil()},
             {"sandy loam, no j_max", testing::sandyLoam(INFINITY)},
@@ -41,6 +50,7 @@ std::vector<OperatingPoint<double>> linearPoints() {
                 out.push_back({s, beta * kDeg, theta_f * kDeg, -3.0 * kDeg, std::nullopt});
             }
         }
+        out.push_back({s, 0.0, 20.0 * kDeg, 0.0, 6.0 * kDeg});  // θ_m given
     }
     return out;
 }
@@ -65,14 +75,16 @@ TEST(LinearForces, CombinedWithTheSoilsCoefficientsGiveTheIntegratedForces) {
                 const WheelForces<double> f =
                     computeForces(c.soil, op, BulldozingModel::kBekker, options);
                 const LinearForces l = computeLinearForces(c.soil, op, alpha, options);
-                const double scale = std::abs(f.fx) + std::abs(f.fz) + std::abs(f.my) / 0.092;
+                const double scale =
+                    std::abs(f.fx) + std::abs(f.fz) + std::abs(f.my) / c.soil.shearRadius();
                 const std::string where = c.name + " s=" + std::to_string(op.slip) +
                                           " beta=" + std::to_string(op.slip_angle_rad / kDeg) +
                                           " tf=" + std::to_string(op.entry_angle_rad / kDeg) +
                                           (gauss ? " gauss" : " default");
                 EXPECT_NEAR(combineForm(l.fx, alpha), f.fx, 1e-12 * scale) << where;
                 EXPECT_NEAR(combineForm(l.fz, alpha), f.fz, 1e-12 * scale) << where;
-                EXPECT_NEAR(combineForm(l.my, alpha), f.my, 1e-12 * scale * 0.092) << where;
+                EXPECT_NEAR(combineForm(l.my, alpha), f.my, 1e-12 * scale * c.soil.shearRadius())
+                    << where;
             }
         }
     }
@@ -95,16 +107,19 @@ TEST(LinearForces, FormsAreTheDerivativesOfTheForces) {
             const LinearForces l = computeLinearForces(c.soil, op, alpha);
             const J* channel[3] = {&f.fx, &f.fz, &f.my};
             const std::array<double, 3>* form[3] = {&l.fx, &l.fz, &l.my};
+            // One scale for the three channels (F_x alone may be near 0 where K_s P is not).
+            const double r_s = c.soil.shearRadius();
+            const double scale = std::abs(f.fx.a) + std::abs(f.fz.a) + std::abs(f.my.a) / r_s;
             for (int k = 0; k < 3; ++k) {
                 const auto& [pk, q, r] = *form[k];
-                const double scale = std::abs(channel[k]->a) + 1e-9;
+                const double tolerance = 1e-11 * scale * (k == 2 ? r_s : 1.0);
                 EXPECT_NEAR(q * c.soil.cohesion_pa, channel[k]->v[1] * c.soil.cohesion_pa,
-                            1e-11 * scale)
+                            tolerance)
                     << c.name << " channel " << k << " s=" << op.slip;
-                EXPECT_NEAR(r * c.soil.pressure_modulus * sec2, channel[k]->v[2], 1e-11 * scale)
+                EXPECT_NEAR(r * c.soil.pressure_modulus * sec2, channel[k]->v[2], tolerance)
                     << c.name << " channel " << k << " s=" << op.slip;
                 EXPECT_NEAR((pk + tan_phi * r) * c.soil.pressure_modulus,
-                            channel[k]->v[0] * c.soil.pressure_modulus, 1e-11 * scale)
+                            channel[k]->v[0] * c.soil.pressure_modulus, tolerance)
                     << c.name << " channel " << k << " s=" << op.slip;
             }
         }
@@ -121,13 +136,40 @@ TEST(LinearForces, ANominalCoefficientFarFromTheSoilsKeepsTheIntegrationAccuracy
         for (const OperatingPoint<double>& op : linearPoints()) {
             const WheelForces<double> f = computeForces(c.soil, op);
             const LinearForces l = computeLinearForces(c.soil, op, nominal);
-            const double scale = std::abs(f.fx) + std::abs(f.fz) + std::abs(f.my) / 0.092;
+            const double scale =
+                std::abs(f.fx) + std::abs(f.fz) + std::abs(f.my) / c.soil.shearRadius();
             EXPECT_NEAR(combineForm(l.fx, alpha), f.fx, 1e-8 * scale) << c.name << " s=" << op.slip;
             EXPECT_NEAR(combineForm(l.fz, alpha), f.fz, 1e-8 * scale) << c.name << " s=" << op.slip;
-            EXPECT_NEAR(combineForm(l.my, alpha), f.my, 1e-8 * scale * 0.092)
+            EXPECT_NEAR(combineForm(l.my, alpha), f.my, 1e-8 * scale * c.soil.shearRadius())
                 << c.name << " s=" << op.slip;
         }
     }
+}
+
+TEST(LinearForces, TheAdaptiveRuleMakesThePiecesOfTheForcesAtTheNominalCoefficients) {
+    // With the tolerance at 1e-10 the rule bisects; judged at the soil's own α it must make the
+    // pieces computeForces makes there and report the same error estimate (to 1e-15: once the
+    // pieces meet the tolerance their Kronrod–Gauss differences are ~1e-13 of F, a few hundred
+    // roundings, and the two sums round differently).
+    IntegrationOptions options;
+    options.tolerance = 1e-10;
+    int bisected = 0;
+    for (const LinearCase& c : linearCases()) {
+        const std::array<double, 3> alpha = linearAlphaOf(c.soil);
+        for (const OperatingPoint<double>& op : linearPoints()) {
+            IntegrationReport forces, forms;
+            computeForces(c.soil, op, BulldozingModel::kBekker, options, &forces);
+            computeLinearForces(c.soil, op, alpha, options, &forms);
+            EXPECT_EQ(forms.pieces, forces.pieces) << c.name << " s=" << op.slip;
+            EXPECT_EQ(forms.converged, forces.converged) << c.name << " s=" << op.slip;
+            EXPECT_NEAR(forms.error_estimate, forces.error_estimate, 1e-15)
+                << c.name << " s=" << op.slip;
+            IntegrationReport plain;
+            computeForces(c.soil, op, BulldozingModel::kBekker, IntegrationOptions{}, &plain);
+            bisected += forces.pieces > plain.pieces;
+        }
+    }
+    EXPECT_GT(bisected, 50);  // the rule did bisect, and the pieces were compared there
 }
 
 TEST(LinearForces, RefuseARememberedTrack) {
