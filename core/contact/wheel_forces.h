@@ -130,6 +130,32 @@ struct Piece {
     double lateral_error;  // max |Kronrod − Gauss| of ∫F_y, ∫M_x, ∫M_z
 };
 
+// The stresses at node u of a region (sin θ, cos θ and dθ/du·du with them), the shear ones weighted
+// for the lug model: the shear acts on the cylinder of radius r_s = ρ r (docs/model.md, "Lugs"):
+// its area element is r_s b dθ, so the shear integrands carry ρ here and the moments' lever arm
+// r_s the other ρ (assembleForces).
+template <typename T>
+struct NodeStress {
+    StressSample<T> st;
+    T s, c, dtheta;
+};
+
+template <typename T>
+NodeStress<T> nodeStress(const StressField<T>& field, const Region<T>& region, double u,
+                         double du) {
+    using std::cos;
+    using std::sin;
+    double jacobian = 0.0;
+    const T theta = region.theta(u, jacobian);
+    NodeStress<T> n{{}, sin(theta), cos(theta), T(region.length * (jacobian * du))};
+    n.st = field.at(theta, n.s, n.c);
+    if (field.lugged()) {
+        n.st.tau_t *= field.shearRadiusRatio();
+        n.st.tau_l *= field.shearRadiusRatio();
+    }
+    return n;
+}
+
 // Integrates the six integrands over one piece with the 15-point Kronrod rule; the error is the
 // largest difference to the embedded 7-point Gauss rule (on the plain values). `GaussOnly`: the
 // sums of the Gauss rule alone, errors 0 (a template argument: a run-time test in this loop cost
@@ -137,8 +163,6 @@ struct Piece {
 template <typename T, bool GaussOnly = false>
 void evaluatePiece(const StressField<T>& field, const Region<T>& region, const KronrodRule& rule,
                    Piece<T>& piece) {
-    using std::cos;
-    using std::sin;
     ForceSums<T> k;
     double g[6] = {0, 0, 0, 0, 0, 0};
     const double du = piece.u1 - piece.u0;
@@ -146,19 +170,11 @@ void evaluatePiece(const StressField<T>& field, const Region<T>& region, const K
         if constexpr (GaussOnly) {
             if (rule.gauss_weights[i] == 0.0) continue;
         }
-        double jacobian = 0.0;
-        const T theta = region.theta(piece.u0 + du * rule.nodes[i], jacobian);
-        const T s = sin(theta);
-        const T c = cos(theta);
-        StressSample<T> st = field.at(theta, s, c);
-        if (field.lugged()) {
-            // The shear acts on the cylinder of radius r_s = ρ r (docs/model.md, "Lugs"): its
-            // area element is r_s b dθ, so the shear integrands carry ρ here and the moments' lever
-            // arm r_s the other ρ (assembleForces).
-            st.tau_t *= field.shearRadiusRatio();
-            st.tau_l *= field.shearRadiusRatio();
-        }
-        const T dtheta = region.length * (jacobian * du);
+        const NodeStress<T> n = nodeStress(field, region, piece.u0 + du * rule.nodes[i], du);
+        const StressSample<T>& st = n.st;
+        const T& s = n.s;
+        const T& c = n.c;
+        const T& dtheta = n.dtheta;
         const T fx = st.tau_t * c - st.sigma * s;
         const T fz = st.sigma * c + st.tau_t * s;
         const T mx = st.tau_l * c;
@@ -234,8 +250,8 @@ inline ForceSums<double> plainSums(const LinearField& field, const LinearSums& s
 
 // evaluatePiece for the linear forms: one double stress evaluation per node gives σ₁ and e (with
 // the shear's direction), and the three forms follow by products; the error is that of the
-// nominal α's combination, as the Jet of the same α would have it. Its node loop follows the
-// generic evaluatePiece above (keep the two in step). (T is double: the parameter only lets
+// nominal α's combination, as the Jet of the same α would have it. The nodes' stresses come from
+// nodeStress, as the generic evaluatePiece's. (T is double: the parameter only lets
 // integrateContact's call evaluatePiece<T, true> name this overload too.)
 template <typename T = double, bool GaussOnly = false>
 void evaluatePiece(const LinearField& field, const Region<double>& region, const KronrodRule& rule,
@@ -248,16 +264,10 @@ void evaluatePiece(const LinearField& field, const Region<double>& region, const
         if constexpr (GaussOnly) {
             if (rule.gauss_weights[i] == 0.0) continue;
         }
-        double jacobian = 0.0;
-        const double theta = region.theta(piece.u0 + du * rule.nodes[i], jacobian);
-        const double s = std::sin(theta);
-        const double c = std::cos(theta);
-        StressSample<double> st = field.at(theta, s, c);  // σ = σ₁, τ = e
-        if (field.lugged()) {
-            st.tau_t *= field.shearRadiusRatio();
-            st.tau_l *= field.shearRadiusRatio();
-        }
-        const double dtheta = region.length * (jacobian * du);
+        // σ = σ₁, τ = e (unit coefficients).
+        const NodeStress<double> n = nodeStress(field, region, piece.u0 + du * rule.nodes[i], du);
+        const StressSample<double>& st = n.st;
+        const double s = n.s, c = n.c, dtheta = n.dtheta;
         const double w = dtheta * (GaussOnly ? rule.gauss_weights[i] : rule.weights[i]);
         const double sigma = st.sigma;
         // Per unit c: σ = 0, τ = e; per unit K_s tan φ: σ = 0, τ = σ₁ e; per unit K_s: σ₁, τ = 0.
