@@ -395,19 +395,25 @@ private:
         if (refined.empty()) refined.push_back(locals_[0]);
         // With estimated noise: fit with the levels the subset's best minimum shows, estimate them
         // again from the best fit on all samples, and fit again while they still move by more
-        // than 10 % (once or twice).
+        // than 10 % (once or twice). The rounds walk the first minimum alone; the others are
+        // refined once, with the levels the rounds settled on (refining them in every round
+        // repeated their work: sandy loam on A, one load, j_max identified, seed 6: 9.5 of 41 ms;
+        // docs/identification.md §9, "ninth pass"). When one of them fits better than the first,
+        // the levels are estimated again at it and, if they moved by 10 % or more, every minimum
+        // is refined once more.
         const bool estimate = std::any_of(options_.noise.begin(), options_.noise.end(),
                                           [](double s) { return !(s > 0); });
         if (estimate) objective_.sigma = scaled.sigma;
-        bool coarse = false;  // the last round walked the Gauss rule
-        constexpr int kRounds = 3;
-        for (int round = 0; round < kRounds; ++round) {
-            // Checked at each round's best start with its noise levels (they may shrink).
+        bool coarse = false;  // the last solve walked the Gauss rule
+        // Solves refined[first..] with the current levels, each checked at the best start (they
+        // may shrink); a refinement that enters the basin of a minimum refined before it with
+        // these levels ends there and is dropped: it would meet that minimum (sandy loam on A,
+        // one load, j_max identified: three starts refined to one minimum, 57 + 20 + 15
+        // iterations). Then sorted, best first, and starts that met merged: the polish would
+        // only repeat the same work on them (they are merged below anyway).
+        const auto solveFrom = [&](std::size_t first) {
             coarse = gaussRuleSuffices(physicalOf(refined[0].u), objective_.sigma);
-            // A refinement that enters the basin of a minimum refined before it in this round
-            // ends there and is dropped: it would meet that minimum (sandy loam on A, one load,
-            // j_max identified: three starts refined to one minimum, 57 + 20 + 15 iterations).
-            for (std::size_t j = 0; j < refined.size(); ++j) {
+            for (std::size_t j = first; j < refined.size(); ++j) {
                 const auto stop = [this, &refined, j](const std::vector<double>& u) {
                     return inBasinOfOne(u, refined, j);
                 };
@@ -418,16 +424,16 @@ private:
             std::sort(refined.begin(), refined.end(), [](const Local& a, const Local& b) {
                 return a.summary.usable && (!b.summary.usable || a.summary.cost < b.summary.cost);
             });
-            // Starts that met on all samples are one minimum from here on: the next round and the
-            // polish would only repeat the same work on it (they are merged below anyway).
             mergeMet(refined);
-            if (!progress(0.6 + 0.35 * (round + 1.0) / kRounds) || !estimate) break;
+        };
+        // The levels at the best minimum, stored; returns how far they moved. With squares and
+        // no prior, the minimum depends on the ratios of the levels only (a common factor scales
+        // χ², not its minimiser): what counts is how far those ratios move. Otherwise (priors,
+        // robust losses) the levels themselves.
+        const auto estimateLevels = [&] {
             const ChannelValues sigma =
                 estimatedNoise(*model_, physicalOf(refined[0].u), all_, free_, options_.noise,
                                provisional_, options_.loss != Loss::kSquared);
-            // With squares and no prior, the minimum depends on the ratios of the levels only (a
-            // common factor scales χ², not its minimiser): what counts is how far those ratios
-            // move. Otherwise (priors, robust losses) the levels themselves.
             double change = 0.0;
             if (scaleFree()) {
                 double low = kInfinity, high = 0.0;
@@ -442,9 +448,36 @@ private:
                     change = std::max(change, std::abs(sigma[c] / objective_.sigma[c] - 1.0));
             }
             objective_.sigma = sigma;
-            if (change < 0.1 || round + 1 == kRounds) break;
+            return change;
+        };
+        constexpr int kRounds = 3;
+        if (!estimate) {
+            solveFrom(0);
+        } else {
+            // The rounds on the first minimum alone (the others wait in `waiting`).
+            std::vector<Local> waiting(refined.begin() + 1, refined.end());
+            refined.resize(1);
+            for (int round = 0; round < kRounds; ++round) {
+                solveFrom(0);
+                if (cancelled_) return;
+                if (!progress(0.6 + 0.35 * (round + 1.0) / (kRounds + 1)) || estimateLevels() < 0.1)
+                    break;
+            }
+            if (cancelled_) return;
+            if (!waiting.empty()) {
+                const std::size_t best = refined[0].start;
+                const bool usable = refined[0].summary.usable;
+                refined.insert(refined.end(), waiting.begin(), waiting.end());
+                solveFrom(1);
+                if (cancelled_) return;
+                if ((refined[0].start != best || !usable) && estimateLevels() >= 0.1) {
+                    solveFrom(0);
+                    if (cancelled_) return;
+                    estimateLevels();
+                }
+            }
         }
-        if (cancelled_) return;
+        if (!progress(0.95)) return;
         // Rounds that walked the Gauss rule alone end within about a tenth of a std of the
         // objective's minimum: with squares, the Gauss–Newton polish below finishes each on the
         // default rule (one or two steps); with a robust loss, or where the rounds ended short of
