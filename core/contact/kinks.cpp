@@ -4,6 +4,7 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "core/contact/shear_deformation.h"
 
@@ -130,6 +131,12 @@ void addGraded(Kinks& kinks, const ShearGeometry& g, double centre, double width
 
 }  // namespace
 
+double peakShearDeformation(const ShearGeometry& g) {
+    if (!(g.velocity_ratio <= 1.0)) return std::numeric_limits<double>::infinity();
+    if (!(g.entry_angle_rad > g.exit_angle_rad)) return 0.0;
+    return Shear{g}.magnitude(g.exit_angle_rad);
+}
+
 Kinks findScaleSplits(const ShearGeometry& g) {
     Kinks splits;
     if (!(g.entry_angle_rad > g.exit_angle_rad)) return splits;
@@ -154,7 +161,9 @@ Kinks findScaleSplits(const ShearGeometry& g) {
             addGraded(splits, g, -star, width, true, true, false, 0.25);
         }
     }
-    const double depth = std::min(g.shear_modulus_m, g.max_shear_m);
+    const double depth = peakShearDeformation(g) < g.max_shear_m
+                             ? g.shear_modulus_m
+                             : std::min(g.shear_modulus_m, g.max_shear_m);
     const double rate = g.radius_m * std::hypot(1.0 - kappa * std::cos(g.entry_angle_rad), lateral);
     // Only a thin layer: a wider one is resolved by the end mapping of the front region.
     if (depth > 0.0 && rate > 0.0) {

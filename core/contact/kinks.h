@@ -47,7 +47,15 @@ Kinks findKinks(const ShearGeometry& geometry);
 ///   w = κ tan β / (κ sin θ* + √(2κ · κ tan β)), which for the locked wheel (κ = ∞) is
 ///   tan β / (1 + √(2 tan β)) at ±90°;
 /// - the rise of 1 − exp(−j/K) behind θ_f (Eq. 2.20): one-sided below θ_f, w = min(K, j_max) /
-///   (r |(1 − κ cos θ_f, κ tan β)|), the angle over which j grows by K (or reaches j_max).
+///   (r |(1 − κ cos θ_f, κ tan β)|), the angle over which j grows by K (or reaches j_max); K
+///   alone when j stays below j_max over the whole contact (peakShearDeformation), so that the
+///   pieces then do not depend on j_max at all.
 Kinks findScaleSplits(const ShearGeometry& geometry);
+
+/// The largest shear deformation |j| over the contact [θ_r, θ_f] (before the j_max limit, without
+/// j₀) of a driven wheel (κ ≤ 1): |j(θ_r)|, since j_t ≥ r (1 − κ)(θ_f − θ) ≥ 0 falls with θ
+/// (dj_t/dθ = r (κ cos θ − 1) ≤ 0) and so does |j_l| = r κ |tan β| (θ_f − θ). +inf when braking
+/// or locked (κ > 1), where it is not bounded here.
+double peakShearDeformation(const ShearGeometry& geometry);
 
 }  // namespace terra::contact

@@ -499,6 +499,19 @@ WheelForces<T> computeForces(const ContactParameters<T>& p, const OperatingPoint
     return assembleForces(p, op, sums, bulldozing);
 }
 
+/// Whether computeForces at `op` is the same for every j_max ≥ `limit` as without a limit, to
+/// the last bit: the shear deformation with j₀ stays below `limit` (by a margin of 1e-9 of it)
+/// over the whole contact, so neither the integrand (Eq. 2.16) nor its pieces (the j_max kink,
+/// the rise's splits: kinks.h) use j_max. Known for a driven wheel (κ ≤ 1: the shear is largest
+/// at θ_r, peakShearDeformation); false when braking or locked. `p`'s own j_max is not used.
+inline bool shearLimitUnreached(const ContactParameters<double>& p,
+                                const OperatingPoint<double>& op, double limit) {
+    const StressField<double> field(p, op);
+    if (field.locked() || !field.driving()) return false;
+    const double peak = peakShearDeformation(detail::shearGeometry(p, field));
+    return peak + field.shearOffset() < limit * (1.0 - 1e-9);
+}
+
 /// F_x, F_z and M_y of the full model per unit coefficient of α = (K_s, c, K_s tan φ), in which
 /// they are linear: F = K_s P + c Q + K_s tan φ R (computeLinearForces).
 struct LinearForces {

@@ -151,6 +151,58 @@ TEST(WheelForces, ShearLimitActsExactlyBelowTheLargestDeformation) {
     EXPECT_LT(relativeError(clipped, computeForcesReference(clipped_params, op)), kAgreement);
 }
 
+TEST(WheelForces, AShearLimitNeverReachedChangesNothingToTheBit) {
+    // shearLimitUnreached (what lets the identification skip j_max's difference where the data
+    // do not reach it): for a driven wheel the largest deformation is j(θ_r) plus j₀, written out
+    // here by hand (Eq. 2.14, on the shearing radius). Any j_max above it gives the forces without
+    // a limit to the bit (no clipped node, no kink, the same pieces); just below it the predicate
+    // is false. Braking and the locked wheel are never claimed.
+    const double r = testing::kRadiusA;
+    int unreached = 0;
+    for (const ContactParameters<double>& soil :
+         {testing::sandyLoam(), testing::clayeySoil(), testing::heavyClay(), testing::drySand()}) {
+        for (double lug : {0.0, 0.004}) {
+            for (double offset : {0.0, 0.002}) {
+                ContactParameters<double> p = soil;
+                p.lug_shear_offset_m = lug;
+                p.shear_offset_m = offset;
+                const double rs = p.lugged() ? p.shearRadius() : r;
+                for (double s : {0.0, 0.05, 0.2, 0.5, 0.9}) {
+                    for (double beta : {0.0, 5.0 * kDeg}) {
+                        for (double tf : {10.0 * kDeg, 25.0 * kDeg, 40.0 * kDeg}) {
+                            const double tr = -3.0 * kDeg;
+                            const OperatingPoint<double> op{s, beta, tf, tr, std::nullopt};
+                            const double kappa = 1.0 - s;
+                            const double jt =
+                                rs * ((tf - tr) - kappa * (std::sin(tf) - std::sin(tr)));
+                            const double jl = rs * kappa * std::tan(beta) * (tf - tr);
+                            const double peak = std::hypot(jt, jl) + offset;
+                            EXPECT_FALSE(shearLimitUnreached(p, op, peak * (1 - 1e-6)));
+                            const double limit = peak * (1 + 1e-6);
+                            ASSERT_TRUE(shearLimitUnreached(p, op, limit)) << s << " " << tf;
+                            ++unreached;
+                            p.max_shear_deformation_m = INFINITY;
+                            const auto none = computeForces(p, op);
+                            for (double jmax : {limit, 2.0 * limit, 50.0 * limit}) {
+                                p.max_shear_deformation_m = jmax;
+                                const auto f = computeForces(p, op);
+                                EXPECT_EQ(f.fx, none.fx);
+                                EXPECT_EQ(f.fy, none.fy);
+                                EXPECT_EQ(f.fz, none.fz);
+                                EXPECT_EQ(f.my, none.my);
+                                EXPECT_EQ(f.mz, none.mz);
+                            }
+                        }
+                    }
+                }
+                for (double s : {-0.3, -1.0})
+                    EXPECT_FALSE(shearLimitUnreached(p, {s, 0.0, 0.4, 0.0, std::nullopt}, 10.0));
+            }
+        }
+    }
+    EXPECT_EQ(unreached, 4 * 2 * 2 * 5 * 2 * 3);
+}
+
 TEST(WheelForces, DrawbarPullGrowsWithSlipAndBrakingPullsBack) {
     const auto p = testing::sandyLoam();
     double previous = -1e9;
