@@ -161,10 +161,15 @@ Kinks findScaleSplits(const ShearGeometry& g) {
             addGraded(splits, g, -star, width, true, true, false, 0.25);
         }
     }
-    const double depth = peakShearDeformation(g) < g.max_shear_m
-                             ? g.shear_modulus_m
-                             : std::min(g.shear_modulus_m, g.max_shear_m);
+    double depth = std::min(g.shear_modulus_m, g.max_shear_m);
     const double rate = g.radius_m * std::hypot(1.0 - kappa * std::cos(g.entry_angle_rad), lateral);
+    // A limit the shear never reaches does not set the width, so that no piece then depends on
+    // j_max (shearLimitUnreached). (A driven wheel's j(θ_r) is at least about rate · span / 4,
+    // so such a rise is not thin and adds no split either way; checked only where it would.)
+    const double span = g.entry_angle_rad - g.exit_angle_rad;
+    if (depth < g.shear_modulus_m && depth < rate * span / 16.0 &&
+        peakShearDeformation(g) < g.max_shear_m)
+        depth = g.shear_modulus_m;
     // Only a thin layer: a wider one is resolved by the end mapping of the front region.
     if (depth > 0.0 && rate > 0.0) {
         addGraded(splits, g, g.entry_angle_rad, depth / rate, true, false, false, 1.0 / 16.0);

@@ -49,7 +49,8 @@ Kinks findKinks(const ShearGeometry& geometry);
 /// - the rise of 1 − exp(−j/K) behind θ_f (Eq. 2.20): one-sided below θ_f, w = min(K, j_max) /
 ///   (r |(1 − κ cos θ_f, κ tan β)|), the angle over which j grows by K (or reaches j_max); K
 ///   alone when j stays below j_max over the whole contact (peakShearDeformation), so that the
-///   pieces then do not depend on j_max at all.
+///   pieces then do not depend on j_max at all (such a rise is not thin anyway for a driven
+///   wheel: the guarantee costs nothing where it does not act).
 Kinks findScaleSplits(const ShearGeometry& geometry);
 
 /// The largest shear deformation |j| over the contact [θ_r, θ_f] (before the j_max limit, without

@@ -107,6 +107,7 @@ struct Local {
     std::vector<double> u;
     double subset_chi2 = 0.0;
     BoxSummary summary;
+    bool coarse = false;  // its last refinement walked the Gauss rule alone
 };
 
 class Search {
@@ -404,20 +405,32 @@ private:
         const bool estimate = std::any_of(options_.noise.begin(), options_.noise.end(),
                                           [](double s) { return !(s > 0); });
         if (estimate) objective_.sigma = scaled.sigma;
-        bool coarse = false;  // the last solve walked the Gauss rule
-        // Solves refined[first..] with the current levels, each checked at the best start (they
-        // may shrink); a refinement that enters the basin of a minimum refined before it with
-        // these levels ends there and is dropped: it would meet that minimum (sandy loam on A,
-        // one load, j_max identified: three starts refined to one minimum, 57 + 20 + 15
-        // iterations). Then sorted, best first, and starts that met merged: the polish would
-        // only repeat the same work on them (they are merged below anyway).
+        // Solves refined[first..] with the current levels, on the Gauss rule alone when it
+        // suffices at the best start (checked with these levels: they may shrink); a refinement
+        // that enters the basin of a minimum refined before it ends there and is dropped: it would
+        // meet that minimum (sandy loam on A, one load, j_max identified: three starts refined to
+        // one minimum, 57 + 20 + 15 iterations). The minima before `first`, refined with earlier
+        // levels, get their cost again with these (on the same rule), so that all compare. Then
+        // sorted, best first, and starts that met merged: the polish would only repeat the same
+        // work on them (they are merged below anyway).
         const auto solveFrom = [&](std::size_t first) {
-            coarse = gaussRuleSuffices(physicalOf(refined[0].u), objective_.sigma);
+            const bool coarse = gaussRuleSuffices(physicalOf(refined[0].u), objective_.sigma);
+            const Objective objective = coarse ? coarseObjective() : objective_;
+            if (first > 0) {
+                const FitProblem problem(objective, all_);
+                for (std::size_t j = 0; j < first; ++j) {
+                    double cost = 0.0;
+                    if (refined[j].summary.usable &&
+                        detail::evaluateCost(problem.box(), refined[j].u, cost))
+                        refined[j].summary.cost = cost;
+                }
+            }
             for (std::size_t j = first; j < refined.size(); ++j) {
                 const auto stop = [this, &refined, j](const std::vector<double>& u) {
                     return inBasinOfOne(u, refined, j);
                 };
-                solveAll(refined[j], coarse ? coarseObjective() : objective_, stop);
+                solveAll(refined[j], objective, stop);
+                refined[j].coarse = coarse;
                 if (cancelled_) return;
                 if (refined[j].summary.stopped) refined.erase(refined.begin() + j--);
             }
@@ -483,7 +496,7 @@ private:
         // default rule (one or two steps); with a robust loss, or where the rounds ended short of
         // a minimum (the iteration budget), the solver on the default rule.
         for (Local& l : refined) {
-            if (coarse && (options_.loss != Loss::kSquared || !l.summary.converged))
+            if (l.coarse && (options_.loss != Loss::kSquared || !l.summary.converged))
                 solveOnDefaultRule(l);
         }
         // χ² of the full seven-parameter objective at each minimum, with the final noise levels,
@@ -494,8 +507,8 @@ private:
             if (options_.loss == Loss::kSquared && l.summary.usable) {
                 double remaining = 0.0;
                 l.summary.iterations += detail::polish(objective_, all_, l.u, 4,
-                                                       polishTolerance(coarse, l), &remaining);
-                if (coarse && remaining > 0.01) {
+                                                       polishTolerance(l.coarse, l), &remaining);
+                if (l.coarse && remaining > 0.01) {
                     // The polish left more than 0.01 of χ² (a tenth of a std along one
                     // direction) of what the Gauss rule left (a failed line search or row, or
                     // four steps): the solver on the default rule finishes, then the polish as
