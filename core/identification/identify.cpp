@@ -479,11 +479,10 @@ private:
             if (cancelled_) return;
             if (!waiting.empty()) {
                 const std::size_t best = refined[0].start;
-                const bool usable = refined[0].summary.usable;
                 refined.insert(refined.end(), waiting.begin(), waiting.end());
                 solveFrom(1);
                 if (cancelled_) return;
-                if ((refined[0].start != best || !usable) && estimateLevels() >= 0.1) {
+                if (refined[0].start != best && estimateLevels() >= 0.1) {
                     solveFrom(0);
                     if (cancelled_) return;
                     estimateLevels();

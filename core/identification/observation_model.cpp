@@ -37,12 +37,17 @@ contact::ContactParameters<T> contactParameters(const std::array<T, kFullParamet
             wheel.lugShearOffset()};
 }
 
+// The sample's operating point at θ_f (θ_r = 0, θ_m from a₀, a₁), at `slip`.
+template <typename T>
+contact::OperatingPoint<T> operatingPointAt(const Sample& s, const T& entry_angle_rad,
+                                            const T& slip) {
+    return {slip, T(s.slip_angle_rad.value_or(0.0)), entry_angle_rad, T(0.0), std::nullopt};
+}
+
 template <typename T>
 contact::WheelForces<T> forcesAt(const contact::ContactParameters<T>& p, const Sample& s,
                                  const T& entry_angle_rad, const ModelSetup& setup, const T& slip) {
-    const contact::OperatingPoint<T> op{slip, T(s.slip_angle_rad.value_or(0.0)), entry_angle_rad,
-                                        T(0.0), std::nullopt};
-    return modelForces(p, op, setup);
+    return modelForces(p, operatingPointAt(s, entry_angle_rad, slip), setup);
 }
 
 template <typename T>
@@ -249,10 +254,8 @@ std::array<double, 3> ObservationModel::shearLimitDerivative(std::size_t i,
     // Where the shear never reaches j_max (a driven wheel at low slip) the two evaluations are
     // the same to the bit, pieces included: 0, without them.
     if (setup_.model == contact::ContactModel::kFull &&
-        contact::shearLimitUnreached(
-            contactParameters(p, wheel_, setup_),
-            {s.slip, s.slip_angle_rad.value_or(0.0), entry_angle_rad, 0.0, std::nullopt},
-            down[kJmax]))
+        contact::shearLimitUnreached(contactParameters(p, wheel_, setup_),
+                                     operatingPointAt(s, entry_angle_rad, s.slip), down[kJmax]))
         return out;
     const contact::WheelForces<double> a =
         forcesAt(contactParameters(up, wheel_, setup_), s, entry_angle_rad, setup_);
