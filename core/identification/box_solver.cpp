@@ -35,23 +35,33 @@ class BoundWatch : public ceres::IterationCallback {
 public:
     /// A crawl is tried on its bound when the bound is within this many of its last steps.
     static constexpr double kApproachSteps = 10.0;
+    /// The iterations a trial's pass has to fall below the cost before the trial: on the
+    /// identification matrix every kept trial did so within three, and the undone ones ran up to
+    /// 40 (j_max put on its lower bound; docs/identification.md §9, "tenth pass").
+    static constexpr int kTrialIterations = 8;
 
+    /// `trial_cost`: the cost before the trial when this pass is a trial's, else +inf.
     BoundWatch(const BoxProblem& problem, const std::vector<double>& x,
                const std::vector<bool>& held, const std::vector<bool>& may_snap,
-               const BoxOptions& options)
+               const BoxOptions& options, double trial_cost)
         : problem_(problem),
           x_(x),
           held_(held),
           may_snap_(may_snap),
           options_(options),
+          trial_cost_(trial_cost),
           count_(x.size(), 0),
           previous_(x),
           last_move_(x.size(), 0.0),
           approach_(x.size(), 0) {}
 
     ceres::CallbackReturnType operator()(const ceres::IterationSummary& iteration) override {
+        // A trial's pass that has not fallen below the cost before the trial by now ends: the
+        // trial will be undone (solveInBox).
+        if (iteration.iteration >= kTrialIterations && iteration.cost > trial_cost_)
+            return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         if (!iteration.step_is_successful) return ceres::SOLVER_CONTINUE;
-        if (options_.stop && options_.stop(x_)) {
+        if (options_.stop && options_.stop(x_, iteration.cost, problem_)) {
             stopped_ = true;
             return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         }
@@ -99,6 +109,7 @@ private:
     const std::vector<bool>& held_;
     const std::vector<bool>& may_snap_;
     const BoxOptions& options_;
+    const double trial_cost_;
     bool stopped_ = false;
     std::vector<int> count_;
     std::vector<double> previous_;
@@ -138,6 +149,22 @@ bool evaluateCost(const BoxProblem& problem, const std::vector<double>& x, doubl
         }
     }
     return std::isfinite(cost);
+}
+
+bool downhillTo(const BoxProblem& problem, const std::vector<double>& x, double cost,
+                const std::vector<double>& minimum, double minimum_cost,
+                const std::vector<bool>& walked, double ridge) {
+    double previous = cost;
+    std::vector<double> v = x;
+    for (double t : {0.25, 0.5, 0.75}) {
+        for (std::size_t k = 0; k < x.size(); ++k) {
+            if (walked[k]) v[k] = x[k] + t * (minimum[k] - x[k]);
+        }
+        double c = 0.0;
+        if (!evaluateCost(problem, v, c) || !(c <= previous + ridge)) return false;
+        previous = c;
+    }
+    return minimum_cost <= previous + ridge;
 }
 
 double projectedGradientNorm(const BoxProblem& problem, const std::vector<double>& x,
@@ -222,7 +249,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             solver.num_threads = 1;
             std::vector<bool> held_now(n, false);
             for (int k : held) held_now[static_cast<std::size_t>(k)] = true;
-            BoundWatch watch(problem, x, held_now, may_snap, options);
+            BoundWatch watch(problem, x, held_now, may_snap, options,
+                             trial.parameter >= 0 ? trial.cost : INFINITY);
             solver.callbacks.push_back(&watch);
             solver.update_state_every_iteration = true;
             ceres::Solver::Summary ceres_summary;

@@ -14,7 +14,8 @@
 /// says. With
 /// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three
 /// shrinking steps toward it, the bound within ten of them) is tried on that bound for one pass,
-/// kept there only if that pass lowers the cost.
+/// kept there only if that pass lowers the cost (below the cost before the trial within eight
+/// iterations, or the pass ends there and the trial is undone).
 
 #include <ceres/ceres.h>
 
@@ -47,10 +48,11 @@ struct BoxOptions {
     /// crawling toward a bound is tried on it, and steps that leave a bound by a hair and return
     /// count as staying on it.
     bool bound_shortcuts = false;
-    /// Called with x after each successful step; true ends the solve there (BoxSummary::stopped).
-    /// A multi-start search uses it to end a descent that has entered the basin of a minimum
-    /// another start has found.
-    std::function<bool(const std::vector<double>&)> stop;
+    /// Called with x after each successful step, its cost and the problem (to evaluate the cost
+    /// elsewhere: evaluateCost); true ends the solve there (BoxSummary::stopped). A multi-start
+    /// search uses it to end a descent that has entered the basin of a minimum another start has
+    /// found.
+    std::function<bool(const std::vector<double>& x, double cost, const BoxProblem& problem)> stop;
 };
 
 /// The outcome.
@@ -72,6 +74,15 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x, const B
 /// cost(x) and, when `gradient` is given, ∂cost/∂x; false when a cost function fails.
 bool evaluateCost(const BoxProblem& problem, const std::vector<double>& x, double& cost,
                   std::vector<double>* gradient = nullptr);
+
+/// The hill–valley test of multi-start clustering (Ursem 1999; docs/identification.md §9,
+/// "tenth pass"): whether x, at `cost`, lies downhill of `minimum`, at `minimum_cost`. The cost
+/// at the points 1/4, 1/2 and 3/4 of the way along the straight segment from x to the minimum
+/// (on the coordinates marked in `walked`; the others keep x's values), and at the minimum, rises
+/// nowhere by more than `ridge` over the point before it: no ridge that these points see.
+bool downhillTo(const BoxProblem& problem, const std::vector<double>& x, double cost,
+                const std::vector<double>& minimum, double minimum_cost,
+                const std::vector<bool>& walked, double ridge);
 
 /// The largest |component| of the gradient projected on the box: components of parameters held
 /// (fixed, or on a bound with the gradient pointing out of the box) count as zero.

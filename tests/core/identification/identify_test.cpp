@@ -841,5 +841,99 @@ TEST(Priors, ParseUserItemsInUserUnits) {
     EXPECT_EQ(preset[kC]->std, 1e3);
 }
 
+// r = (h (x² − 1), y): two minima, (±1, 0), parted at x = 0 by a ridge of cost h²/2.
+struct DoubleWell {
+    double h = 1.0;
+    template <typename T>
+    bool operator()(const T* x, T* r) const {
+        r[0] = T(h) * (x[0] * x[0] - T(1.0));
+        r[1] = x[1];
+        return true;
+    }
+};
+
+detail::BoxProblem doubleWell(double h, std::unique_ptr<ceres::CostFunction>& owner) {
+    owner.reset(new ceres::AutoDiffCostFunction<DoubleWell, 2, 2>(new DoubleWell{h}));
+    detail::BoxProblem problem;
+    problem.costs = {owner.get()};
+    problem.losses = {nullptr};
+    problem.lower = {-2.0, -2.0};
+    problem.upper = {2.0, 2.0};
+    problem.fixed = {false, false};
+    return problem;
+}
+
+TEST(BoxSolver, TheHillValleyTestSeesTheRidgeBetweenTwoWells) {
+    std::unique_ptr<ceres::CostFunction> owner;
+    const detail::BoxProblem problem = doubleWell(1.0, owner);
+    const std::vector<bool> both{true, true};
+    const auto cost = [&](std::vector<double> x) {
+        double c = 0.0;
+        EXPECT_TRUE(detail::evaluateCost(problem, x, c));
+        return c;
+    };
+    // (0.3, 0.4) lies in the well of (1, 0): the cost falls all the way.
+    EXPECT_TRUE(
+        detail::downhillTo(problem, {0.3, 0.4}, cost({0.3, 0.4}), {1.0, 0.0}, 0.0, both, 0.0));
+    // (−0.5, 0) lies in the other well: at x = −0.125 (a quarter of the way) the cost is
+    // (1 − 0.125²)²/2 = 0.484, above its 0.281.
+    EXPECT_FALSE(
+        detail::downhillTo(problem, {-0.5, 0.0}, cost({-0.5, 0.0}), {1.0, 0.0}, 0.0, both, 0.0));
+    EXPECT_FALSE(
+        detail::downhillTo(problem, {-0.5, 0.0}, cost({-0.5, 0.0}), {1.0, 0.0}, 0.0, both, 0.2));
+    // A ridge lower than `ridge` does not count: 0.203 above the start at x = −0.125.
+    EXPECT_TRUE(
+        detail::downhillTo(problem, {-0.5, 0.0}, cost({-0.5, 0.0}), {1.0, 0.0}, 0.0, both, 0.21));
+    // The minimum itself higher than the last point (a minimum of other noise levels) counts as
+    // a ridge: the cost at (1, 0) is 0; given as 0.2, the rise from 0.051 at x = 0.825 is one.
+    EXPECT_TRUE(
+        detail::downhillTo(problem, {0.3, 0.0}, cost({0.3, 0.0}), {1.0, 0.0}, 0.0, both, 0.05));
+    EXPECT_FALSE(
+        detail::downhillTo(problem, {0.3, 0.0}, cost({0.3, 0.0}), {1.0, 0.0}, 0.2, both, 0.05));
+    // Only the walked coordinates move: y held at 3 adds 4.5 to every point, x still falls.
+    EXPECT_TRUE(detail::downhillTo(problem, {0.3, 3.0}, cost({0.3, 3.0}), {1.0, 0.0},
+                                   cost({1.0, 3.0}), {true, false}, 0.0));
+}
+
+// x crawls toward its lower bound 0.45 and stops at 0.5; y follows x: r = (x − 0.5)², W (y − x)².
+struct CrawlToABound {
+    template <typename T>
+    bool operator()(const T* x, T* r) const {
+        r[0] = (x[0] - T(0.5)) * (x[0] - T(0.5));
+        r[1] = T(1e3) * (x[1] - x[0]) * (x[1] - x[0]);
+        return true;
+    }
+};
+
+TEST(BoxSolver, ATrialOnABoundThatDoesNotPayIsUndoneWithinEightIterations) {
+    // Gauss–Newton halves x − 0.5 each step: 0.7, 0.6, 0.55, 0.525, three shrinking steps toward
+    // the lower bound, which is then 3 of them away: x is tried on it. There the cost is at
+    // least (0.05)⁴/2 = 3.1e-6, above the 2e-7 before the trial, whatever y does: the trial must
+    // be undone, and the solve end at x = 0.5 as without the shortcuts (box_solver.cpp,
+    // BoundWatch::kTrialIterations).
+    ceres::AutoDiffCostFunction<CrawlToABound, 2, 2> f(new CrawlToABound);
+    detail::BoxProblem problem;
+    problem.costs = {&f};
+    problem.losses = {nullptr};
+    problem.lower = {0.45, -10.0};
+    problem.upper = {2.0, 10.0};
+    problem.fixed = {false, false};
+    detail::BoxOptions options = detail::refinementOptions();
+    options.nonmonotonic_steps = false;
+    std::vector<double> plain{0.7, 0.7};
+    const detail::BoxSummary reference = detail::solveInBox(problem, plain, options);
+    options.bound_shortcuts = true;
+    std::vector<double> x{0.7, 0.7};
+    const detail::BoxSummary s = detail::solveInBox(problem, x, options);
+    ASSERT_TRUE(s.usable) << s.termination;
+    EXPECT_GT(s.passes, 1);  // the trial's pass
+    EXPECT_NEAR(x[0], 0.5, 1e-3);
+    EXPECT_NEAR(x[0], plain[0], 1e-3);
+    // The trial costs its pass, cut at eight iterations: the solve resumes from the point before
+    // it (without the cut the pass ran 14, while y followed x to the bound; 46 iterations in all
+    // against the plain solve's 33).
+    EXPECT_LE(s.iterations, reference.iterations + 8);
+}
+
 }  // namespace
 }  // namespace terra::identification
