@@ -56,12 +56,17 @@ public:
           approach_(x.size(), 0) {}
 
     ceres::CallbackReturnType operator()(const ceres::IterationSummary& iteration) override {
+        // The cost at x_: the least of the successful steps' (with nonmonotonic steps Ceres keeps
+        // the best point in x_, and a rejected step reports its candidate's cost).
+        if (iteration.step_is_successful) best_cost_ = std::min(best_cost_, iteration.cost);
         // A trial's pass that has not fallen below the cost before the trial by now ends: the
         // trial will be undone (solveInBox).
-        if (iteration.iteration >= kTrialIterations && iteration.cost > trial_cost_)
+        if (iteration.iteration >= kTrialIterations && best_cost_ > trial_cost_) {
+            trial_cut_ = true;
             return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+        }
         if (!iteration.step_is_successful) return ceres::SOLVER_CONTINUE;
-        if (options_.stop && options_.stop(x_, iteration.cost, problem_)) {
+        if (options_.stop && options_.stop(x_, best_cost_, problem_)) {
             stopped_ = true;
             return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         }
@@ -102,6 +107,8 @@ public:
     bool snapLower() const { return snap_lower_; }
     /// Whether BoxOptions::stop ended the pass.
     bool stopped() const { return stopped_; }
+    /// Whether a trial's pass was ended for not paying (kTrialIterations).
+    bool trialCut() const { return trial_cut_; }
 
 private:
     const BoxProblem& problem_;
@@ -110,7 +117,9 @@ private:
     const std::vector<bool>& may_snap_;
     const BoxOptions& options_;
     const double trial_cost_;
+    double best_cost_ = INFINITY;
     bool stopped_ = false;
+    bool trial_cut_ = false;
     std::vector<int> count_;
     std::vector<double> previous_;
     std::vector<double> last_move_;  // |x − previous| of the last successful step
@@ -261,8 +270,11 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                                   std::string(": ") + ceres_summary.message;
             // The only callback is the bound watch: its end of a pass says why (a step that the
             // budget leaves as the last is worded by solverOutcome).
-            if (ceres_summary.termination_type == ceres::USER_SUCCESS)
-                summary.termination = "USER_SUCCESS: a parameter reached its bound";
+            if (ceres_summary.termination_type == ceres::USER_SUCCESS) {
+                summary.termination = watch.trialCut()
+                                          ? "USER_SUCCESS: a trial on a bound did not pay"
+                                          : "USER_SUCCESS: a parameter reached its bound";
+            }
             ceres_converged = ceres_summary.termination_type == ceres::CONVERGENCE;
             converged = ceres_summary.termination_type == ceres::CONVERGENCE ||
                         ceres_summary.termination_type == ceres::USER_SUCCESS;

@@ -48,7 +48,8 @@ struct BoxOptions {
     /// crawling toward a bound is tried on it, and steps that leave a bound by a hair and return
     /// count as staying on it.
     bool bound_shortcuts = false;
-    /// Called with x after each successful step, its cost and the problem (to evaluate the cost
+    /// Called with x after each successful step, its cost (the least of the pass's successful
+    /// steps': with nonmonotonic steps x is the best point) and the problem (to evaluate the cost
     /// elsewhere: evaluateCost); true ends the solve there (BoxSummary::stopped). A multi-start
     /// search uses it to end a descent that has entered the basin of a minimum another start has
     /// found.
@@ -76,10 +77,11 @@ bool evaluateCost(const BoxProblem& problem, const std::vector<double>& x, doubl
                   std::vector<double>* gradient = nullptr);
 
 /// The hill–valley test of multi-start clustering (Ursem 1999; docs/identification.md §9,
-/// "tenth pass"): whether x, at `cost`, lies downhill of `minimum`, at `minimum_cost`. The cost
+/// "tenth pass"): whether `minimum`, at `minimum_cost`, lies downhill of x, at `cost`. The cost
 /// at the points 1/4, 1/2 and 3/4 of the way along the straight segment from x to the minimum
 /// (on the coordinates marked in `walked`; the others keep x's values), and at the minimum, rises
-/// nowhere by more than `ridge` over the point before it: no ridge that these points see.
+/// nowhere by more than `ridge` (in cost, not relative) over the point before it: no ridge that
+/// these points see.
 bool downhillTo(const BoxProblem& problem, const std::vector<double>& x, double cost,
                 const std::vector<double>& minimum, double minimum_cost,
                 const std::vector<bool>& walked, double ridge);

@@ -343,38 +343,43 @@ private:
         return false;
     }
 
-    // Whether u (at `cost` on `box`) lies downhill of one of the first `count` minima of `found`
-    // (detail::downhillTo; their costs on the same box): then the solve from u would end at that
-    // minimum, as inBasinOfOne, which sees it only within 0.01 of the design box (sandy loam on
-    // A, one load, j_max identified, seed 5: two refinements of 17 and 29 iterations ended
-    // there). Tried within kDownhillRadius of the design box of it (the max norm of
-    // inBasinOfOne), and again once the distance has fallen below kDownhillShrink of the last
-    // tried (`tested`) or kRetest steps later (`since`, counting the steps): three evaluations a
-    // try, a handful of tries a solve. Ridges below kRidge of the cost do not count (0.05 of χ²:
-    // the height of a point 0.22 std from a minimum along one direction): minima they part are
-    // one to the data, and a minimum refined under levels estimated since lies a little off the
-    // new levels' minimum (0.007 of χ² measured).
+    // Whether one of the first `count` minima of `found` lies downhill of u (at `cost` on `box`;
+    // detail::downhillTo): then the solve from u would end at that minimum, as inBasinOfOne says
+    // only within 0.01 of the design box (sandy loam on A, one load, j_max identified, seed 5:
+    // two refinements of 17 and 29 iterations ended there). Tried within kDownhillRadius of the
+    // design box of a minimum (the max norm of inBasinOfOne), and again once the distance has
+    // fallen below kDownhillShrink of the last tried (`tested`) or kRetest steps later (`since`),
+    // both kept per minimum: three evaluations a try, a handful of tries a solve. The minima's
+    // costs are those solveFrom gives them, on the full objective with these levels: on a
+    // projected solve at least the box's at the same point (their K_s, c, φ projected with
+    // earlier levels), erring toward fewer stops. Ridges below kRidge in cost do not count (0.05
+    // of χ²: the height of a point 0.22 std from a minimum along one direction): minima they part
+    // are one to the data, and a minimum refined under levels estimated since lies a little off
+    // the new levels' minimum (0.007 of χ² measured).
     static constexpr double kDownhillRadius = 0.12;
     static constexpr double kDownhillShrink = 0.7;
     static constexpr double kRidge = 0.025;
     static constexpr int kRetest = 5;
     bool downhillToOne(const std::vector<double>& u, double cost, const detail::BoxProblem& box,
-                       const std::vector<Local>& found, std::size_t count, double& tested,
-                       int& since) const {
-        ++since;
+                       const std::vector<Local>& found, std::size_t count,
+                       std::vector<double>& tested, std::vector<int>& since) const {
+        if (count == 0) return false;
+        tested.resize(count, kInfinity);
+        since.resize(count, 0);
         std::vector<bool> walked_now(kP);
         for (int k = 0; k < kP; ++k) walked_now[k] = walked(k);
         for (std::size_t j = 0; j < count; ++j) {
             const Local& m = found[j];
+            ++since[j];
             if (!m.summary.usable || !(m.summary.cost < cost)) continue;
             double d = 0.0;
             for (int k = 0; k < kP; ++k) {
                 if (walked(k)) d = std::max(d, std::abs(u[k] - m.u[k]) / width_[k]);
             }
-            if (!(d < kDownhillRadius && (d <= kDownhillShrink * tested || since >= kRetest)))
+            if (!(d < kDownhillRadius && (d <= kDownhillShrink * tested[j] || since[j] >= kRetest)))
                 continue;
-            tested = d;
-            since = 0;
+            tested[j] = d;
+            since[j] = 0;
             if (detail::downhillTo(box, u, cost, m.u, m.summary.cost, walked_now, kRidge))
                 return true;
         }
@@ -468,8 +473,9 @@ private:
                 }
             }
             for (std::size_t j = first; j < refined.size(); ++j) {
-                // `tested`: the distance of the last downhill test; `since`: the steps since.
-                const auto stop = [this, &refined, j, tested = kInfinity, since = 0](
+                // Per earlier minimum: the distance of the last downhill test, the steps since.
+                const auto stop = [this, &refined, j, tested = std::vector<double>(),
+                                   since = std::vector<int>()](
                                       const std::vector<double>& u, double cost,
                                       const detail::BoxProblem& box) mutable {
                     return inBasinOfOne(u, refined, j) ||
@@ -523,10 +529,13 @@ private:
                     break;
             }
             if (cancelled_) return;
-            // The others ranked again as they were chosen (within three times the threshold),
-            // now with the settled levels and against the best minimum refined: one chosen with
-            // the subset's levels may lie far above with these (sandy loam on B, one load, j_max
-            // identified, seed 5: 24 iterations to a minimum 61 of χ² above the best).
+            // The others ranked again by the rule that chose them (within three times the
+            // threshold), now with the settled levels: one chosen with the subset's levels may lie
+            // far above with these (sandy loam on B, one load, j_max identified, seed 5: 24
+            // iterations to a minimum 61 of χ² above the best). Against the refined best, which is
+            // stricter than the first ranking against the unrefined one: a minimum that would
+            // refine into the threshold from more than three times it above is lost (none in the
+            // 144 matrix cells: the three dropped there were not ambiguous).
             if (!waiting.empty()) {
                 const FitProblem problem(objective_, all_);
                 const double best_chi2 = detail::chiSquare(problem, refined[0].u);
