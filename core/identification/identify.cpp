@@ -328,17 +328,23 @@ private:
         return !objective_.fixed[k] && !(projectable() && (k == kKs || k == kC || k == kPhi));
     }
 
+    // The distance of u from v on the walked coordinates: the largest |u − v| in units of the
+    // design box.
+    double walkedDistance(const std::vector<double>& u, const std::vector<double>& v) const {
+        double d = 0.0;
+        for (int k = 0; k < kP; ++k) {
+            if (walked(k)) d = std::max(d, std::abs(u[k] - v[k]) / width_[k]);
+        }
+        return d;
+    }
+
     // Whether u is within 0.01 of the design box (the distinct-minimum distance) of one of the
     // first `count` of `found`, on the coordinates the solver walks (with θ_f measured, K_s, c
     // and φ stand still during a projected solve): in its basin.
     bool inBasinOfOne(const std::vector<double>& u, const std::vector<Local>& found,
                       std::size_t count) const {
         for (std::size_t j = 0; j < count; ++j) {
-            double d = 0.0;
-            for (int k = 0; k < kP; ++k) {
-                if (walked(k)) d = std::max(d, std::abs(u[k] - found[j].u[k]) / width_[k]);
-            }
-            if (d < 0.01) return true;
+            if (walkedDistance(u, found[j].u) < 0.01) return true;
         }
         return false;
     }
@@ -372,10 +378,7 @@ private:
             const Local& m = found[j];
             ++since[j];
             if (!m.summary.usable || !(m.summary.cost < cost)) continue;
-            double d = 0.0;
-            for (int k = 0; k < kP; ++k) {
-                if (walked(k)) d = std::max(d, std::abs(u[k] - m.u[k]) / width_[k]);
-            }
+            const double d = walkedDistance(u, m.u);
             if (!(d < kDownhillRadius && (d <= kDownhillShrink * tested[j] || since[j] >= kRetest)))
                 continue;
             tested[j] = d;
