@@ -43,13 +43,14 @@ public:
     /// `trial_cost`: the cost before the trial when this pass is a trial's, else +inf.
     BoundWatch(const BoxProblem& problem, const std::vector<double>& x,
                const std::vector<bool>& held, const std::vector<bool>& may_snap,
-               const BoxOptions& options, double trial_cost)
+               const BoxOptions& options, double trial_cost, bool extrapolate)
         : problem_(problem),
           x_(x),
           held_(held),
           may_snap_(may_snap),
           options_(options),
           trial_cost_(trial_cost),
+          extrapolate_(extrapolate),
           count_(x.size(), 0),
           previous_(x),
           last_move_(x.size(), 0.0),
@@ -99,8 +100,18 @@ public:
             }
         }
         previous_ = x_;
-        return snap_ >= 0 ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
+        if (snap_ >= 0) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+        // Not in a trial's pass until it is below the cost before the trial (it is kept then).
+        return extrapolate_ && best_cost_ < trial_cost_ && crawling()
+                   ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                   : ceres::SOLVER_CONTINUE;
     }
+
+    /// The last step of a geometric crawl and its ratio (BoxOptions::extrapolate); q = 0: none.
+    const std::vector<double>& crawlStep() const { return step_; }
+    double crawlRatio() const { return crawl_ratio_; }
+    /// The cost at x: the least of the pass's successful steps'.
+    double cost() const { return best_cost_; }
 
     /// The parameter heading for a bound (-1: none) and whether it is the lower one.
     int snap() const { return snap_; }
@@ -111,12 +122,42 @@ public:
     bool trialCut() const { return trial_cut_; }
 
 private:
+    // Whether the steps so far make a geometric crawl: three successful steps in a row, each
+    // along (or against: an oscillation) the one before, within kCrawlCosine, and shorter by a
+    // ratio whose size is in [kCrawlLeast, kCrawlMost], the two signed ratios within
+    // kCrawlSpread of each other.
+    static constexpr double kCrawlCosine = 0.98, kCrawlLeast = 0.2, kCrawlMost = 0.85,
+                            kCrawlSpread = 0.15;
+    bool crawling() {
+        std::vector<double> step(x_.size());
+        double dot = 0.0, norm = 0.0, last_norm = 0.0;
+        for (std::size_t k = 0; k < x_.size(); ++k) {
+            step[k] = x_[k] - crawl_from_[k];
+            if (!step_.empty()) dot += step[k] * step_[k];
+            norm += step[k] * step[k];
+            if (!step_.empty()) last_norm += step_[k] * step_[k];
+        }
+        crawl_from_ = x_;
+        const double size = last_norm > 0.0 ? std::sqrt(norm / last_norm) : 0.0;
+        const double ratio = dot < 0.0 ? -size : size;
+        const bool geometric = norm > 0.0 && last_norm > 0.0 &&
+                               std::abs(dot) >= kCrawlCosine * std::sqrt(norm * last_norm) &&
+                               size >= kCrawlLeast && size <= kCrawlMost;
+        const bool steady =
+            geometric && last_ratio_ != 0.0 && std::abs(ratio - last_ratio_) <= kCrawlSpread;
+        last_ratio_ = geometric ? ratio : 0.0;
+        step_ = std::move(step);
+        crawl_ratio_ = steady ? ratio : 0.0;
+        return steady;
+    }
+
     const BoxProblem& problem_;
     const std::vector<double>& x_;
     const std::vector<bool>& held_;
     const std::vector<bool>& may_snap_;
     const BoxOptions& options_;
     const double trial_cost_;
+    const bool extrapolate_;
     double best_cost_ = INFINITY;
     bool stopped_ = false;
     bool trial_cut_ = false;
@@ -126,6 +167,10 @@ private:
     std::vector<int> approach_;      // consecutive shrinking moves toward a bound, signed
     int snap_ = -1;
     bool snap_lower_ = false;
+    std::vector<double> crawl_from_ = x_;  // x at the last successful step
+    std::vector<double> step_;             // the last successful step
+    double last_ratio_ = 0.0;              // its ratio to the step before, if geometric
+    double crawl_ratio_ = 0.0;
 };
 
 }  // namespace
@@ -209,6 +254,13 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         std::vector<double> x;
         double cost = 0.0;
     } trial;
+    // Whether a crawl may still be extrapolated: not after one whose limit cost more.
+    bool extrapolate = options.extrapolate;
+    // The passes' budget (BoxOptions::max_passes) does not count the extrapolations'.
+    const auto budgetLeft = [&] {
+        return summary.iterations < options.max_iterations &&
+               summary.passes - summary.extrapolations < options.max_passes;
+    };
     for (;;) {
         std::vector<int> held;
         for (std::size_t k = 0; k < n; ++k) {
@@ -259,7 +311,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             std::vector<bool> held_now(n, false);
             for (int k : held) held_now[static_cast<std::size_t>(k)] = true;
             BoundWatch watch(problem, x, held_now, may_snap, options,
-                             trial.parameter >= 0 ? trial.cost : INFINITY);
+                             trial.parameter >= 0 ? trial.cost : INFINITY, extrapolate);
             solver.callbacks.push_back(&watch);
             solver.update_state_every_iteration = true;
             ceres::Solver::Summary ceres_summary;
@@ -283,8 +335,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                 held_on_bound[static_cast<std::size_t>(trial.parameter)] = false;
                 x = trial.x;
                 trial.parameter = -1;
-                const bool budget_left = summary.iterations < options.max_iterations &&
-                                         summary.passes < options.max_passes;
+                const bool budget_left = budgetLeft();
                 summary.usable = evaluateCost(problem, x, summary.cost,
                                               options.gradient ? &summary.gradient : nullptr);
                 if (summary.usable && budget_left) continue;
@@ -303,6 +354,26 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             }
             snap = watch.snap();
             snap_lower = watch.snapLower();
+            if (watch.crawlRatio() != 0.0 && budgetLeft()) {
+                // A geometric crawl: on from the limit of its series when that costs less (the
+                // active set is left as it is; the next pass revises it).
+                ++summary.extrapolations;
+                trial.parameter = -1;  // a trial's pass extrapolates below its cost: kept
+                const double q = watch.crawlRatio();
+                std::vector<double> far = x;
+                for (std::size_t k = 0; k < n; ++k) {
+                    far[k] = std::clamp(x[k] + watch.crawlStep()[k] * q / (1.0 - q),
+                                        problem.lower[k], problem.upper[k]);
+                }
+                double cost = 0.0;
+                if (evaluateCost(problem, far, cost) && cost < watch.cost()) {
+                    x = std::move(far);
+                } else {
+                    extrapolate = false;
+                }
+                continue;
+            }
+            if (watch.crawlRatio() != 0.0) converged = false;  // cut short, no pass left
         } else {
             summary.usable = true;
             summary.termination = "CONVERGENCE: every parameter is held";
@@ -386,8 +457,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                 kept_against_gradient = true;
             }
         }
-        const bool budget_left =
-            summary.iterations < options.max_iterations && summary.passes < options.max_passes;
+        const bool budget_left = budgetLeft();
         // A trial that no pass is left to solve is undone.
         if (trial.parameter >= 0 && !budget_left) {
             held_on_bound[static_cast<std::size_t>(trial.parameter)] = false;

@@ -15,7 +15,10 @@
 /// BoxOptions::bound_shortcuts, a parameter that crawls toward a bound it has not reached (three
 /// shrinking steps toward it, the bound within ten of them) is tried on that bound for one pass,
 /// kept there only if that pass lowers the cost (below the cost before the trial within eight
-/// iterations, or the pass ends there and the trial is undone).
+/// iterations, or the pass ends there and the trial is undone). With BoxOptions::extrapolate, a
+/// geometric crawl (steps along one direction, each a steady fraction q of the one before: Gauss–
+/// Newton's linear convergence where the residuals curve) ends its pass, and the next pass starts
+/// from the limit of the series when the cost there is lower.
 
 #include <ceres/ceres.h>
 
@@ -48,6 +51,10 @@ struct BoxOptions {
     /// crawling toward a bound is tried on it, and steps that leave a bound by a hair and return
     /// count as staying on it.
     bool bound_shortcuts = false;
+    /// Extrapolate a geometric crawl: successful steps that keep their direction and shrink by
+    /// a steady ratio q (Gauss–Newton's linear convergence along a flat valley) end the pass, and
+    /// the next starts from x + d q/(1 − q), the limit of the series, when its cost is lower.
+    bool extrapolate = false;
     /// Called with x after each successful step, its cost (the least of the pass's successful
     /// steps': with nonmonotonic steps x is the best point) and the problem (to evaluate the cost
     /// elsewhere: evaluateCost); true ends the solve there (BoxSummary::stopped). A multi-start
@@ -63,9 +70,10 @@ struct BoxSummary {
     std::string termination;  ///< Ceres' termination type and message of the last pass
     int iterations = 0;       ///< over all passes
     int passes = 0;
-    double cost = 0.0;             ///< ½ Σ ρ(‖rᵢ‖²) at the solution
-    bool stopped = false;          ///< ended by BoxOptions::stop
-    std::vector<bool> at_bound;    ///< held on a bound at the solution
+    int extrapolations = 0;      ///< crawls extrapolated (BoxOptions::extrapolate), accepted or not
+    double cost = 0.0;           ///< ½ Σ ρ(‖rᵢ‖²) at the solution
+    bool stopped = false;        ///< ended by BoxOptions::stop
+    std::vector<bool> at_bound;  ///< held on a bound at the solution
     std::vector<double> gradient;  ///< ∂cost/∂x at the solution (every component)
 };
 

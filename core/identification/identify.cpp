@@ -668,6 +668,9 @@ private:
         // (seven parameters, θ_f solved in every residual) they cost more passes than they save
         // (three loads, 1 % noise: 101 → 182 ms measured).
         options.bound_shortcuts = projectable();
+        // Gauss–Newton crawls along the one-load valleys, each step ~0.55 of the one before:
+        // extrapolated to the limit (box_solver.h; docs/identification.md §9, "eleventh pass").
+        options.extrapolate = projectable();
         if (!projectable()) {
             const FitProblem problem(objective, all_);
             l.summary = detail::solveInBox(problem.box(), l.u, options);
