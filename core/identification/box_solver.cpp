@@ -60,6 +60,7 @@ public:
         // The cost at x_: the least of the successful steps' (with nonmonotonic steps Ceres keeps
         // the best point in x_, and a rejected step reports its candidate's cost).
         if (iteration.step_is_successful) best_cost_ = std::min(best_cost_, iteration.cost);
+        radius_ = iteration.trust_region_radius;
         // A trial's pass that has not fallen below the cost before the trial by now ends: the
         // trial will be undone (solveInBox).
         if (iteration.iteration >= kTrialIterations && best_cost_ > trial_cost_) {
@@ -112,6 +113,8 @@ public:
     double crawlRatio() const { return crawl_ratio_; }
     /// The cost at x: the least of the pass's successful steps'.
     double cost() const { return best_cost_; }
+    /// The trust region's radius after the last iteration.
+    double radius() const { return radius_; }
 
     /// The parameter heading for a bound (-1: none) and whether it is the lower one.
     int snap() const { return snap_; }
@@ -159,6 +162,7 @@ private:
     const double trial_cost_;
     const bool extrapolate_;
     double best_cost_ = INFINITY;
+    double radius_ = 0.0;
     bool stopped_ = false;
     bool trial_cut_ = false;
     std::vector<int> count_;
@@ -256,6 +260,9 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
     } trial;
     // Whether a crawl may still be extrapolated: not after one whose limit cost more.
     bool extrapolate = options.extrapolate;
+    // The trust region's radius that the pass after an extrapolation starts with: the crawl's
+    // (0: Ceres' default).
+    double radius = 0.0;
     // The passes' budget (BoxOptions::max_passes) does not count the extrapolations'.
     const auto budgetLeft = [&] {
         return summary.iterations < options.max_iterations &&
@@ -297,6 +304,8 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             solver.parameter_tolerance = options.parameter_tolerance;
             solver.gradient_tolerance = options.gradient_tolerance;
             solver.use_nonmonotonic_steps = options.nonmonotonic_steps;
+            if (radius > 0.0) solver.initial_trust_region_radius = radius;
+            radius = 0.0;
             // No line search. With bounds, Ceres otherwise runs a projected Armijo line search
             // along every step before it evaluates the step's end again: ≥ 2 evaluations per
             // step, and where the step leaves the box the search backs off along it, so that a
@@ -366,6 +375,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                                         problem.lower[k], problem.upper[k]);
                 }
                 double cost = 0.0;
+                radius = watch.radius();
                 if (evaluateCost(problem, far, cost) && cost < watch.cost()) {
                     x = std::move(far);
                 } else {
