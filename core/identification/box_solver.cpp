@@ -30,7 +30,9 @@ bool nearBound(const BoxProblem& p, const std::vector<double>& x, std::size_t k)
 // within kApproachSteps of the last; the caller then tries the parameter on that bound
 // (solveInBox). (Ceres' projected line search made such crawls: a₀ → 0 at one load, 0.16 → 5e-4
 // in 40 iterations. Without it, a step past the bound is clamped onto it and the crawl is rare:
-// the rule measured neutral, docs/identification.md §9, "fifth pass".)
+// the rule measured neutral, docs/identification.md §9, "fifth pass".) With extrapolation
+// (BoxOptions::extrapolate), also ends it on a geometric crawl (crawling()): the caller goes on
+// from the limit of its series.
 class BoundWatch : public ceres::IterationCallback {
 public:
     /// A crawl is tried on its bound when the bound is within this many of its last steps.
@@ -60,7 +62,6 @@ public:
         // The cost at x_: the least of the successful steps' (with nonmonotonic steps Ceres keeps
         // the best point in x_, and a rejected step reports its candidate's cost).
         if (iteration.step_is_successful) best_cost_ = std::min(best_cost_, iteration.cost);
-        radius_ = iteration.trust_region_radius;
         // A trial's pass that has not fallen below the cost before the trial by now ends: the
         // trial will be undone (solveInBox).
         if (iteration.iteration >= kTrialIterations && best_cost_ > trial_cost_) {
@@ -102,19 +103,22 @@ public:
         }
         previous_ = x_;
         if (snap_ >= 0) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-        // Not in a trial's pass until it is below the cost before the trial (it is kept then).
-        return extrapolate_ && best_cost_ < trial_cost_ && crawling()
-                   ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
-                   : ceres::SOLVER_CONTINUE;
+        // The steps are followed through the whole pass; a crawl ends it, in a trial's pass
+        // only once below the cost before the trial (the trial is kept then).
+        if (extrapolate_ && crawling() && best_cost_ < trial_cost_) {
+            crawled_ = true;
+            return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+        }
+        return ceres::SOLVER_CONTINUE;
     }
 
-    /// The last step of a geometric crawl and its ratio (BoxOptions::extrapolate); q = 0: none.
+    /// Whether a geometric crawl ended the pass; its last step and that step's ratio q to the
+    /// one before (negative: an oscillation).
+    bool crawled() const { return crawled_; }
     const std::vector<double>& crawlStep() const { return step_; }
     double crawlRatio() const { return crawl_ratio_; }
     /// The cost at x: the least of the pass's successful steps'.
     double cost() const { return best_cost_; }
-    /// The trust region's radius after the last iteration.
-    double radius() const { return radius_; }
 
     /// The parameter heading for a bound (-1: none) and whether it is the lower one.
     int snap() const { return snap_; }
@@ -162,7 +166,6 @@ private:
     const double trial_cost_;
     const bool extrapolate_;
     double best_cost_ = INFINITY;
-    double radius_ = 0.0;
     bool stopped_ = false;
     bool trial_cut_ = false;
     std::vector<int> count_;
@@ -175,6 +178,7 @@ private:
     std::vector<double> step_;             // the last successful step
     double last_ratio_ = 0.0;              // its ratio to the step before, if geometric
     double crawl_ratio_ = 0.0;
+    bool crawled_ = false;
 };
 
 }  // namespace
@@ -260,9 +264,6 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
     } trial;
     // Whether a crawl may still be extrapolated: not after one whose limit cost more.
     bool extrapolate = options.extrapolate;
-    // The trust region's radius that the pass after an extrapolation starts with: the crawl's
-    // (0: Ceres' default).
-    double radius = 0.0;
     // The passes' budget (BoxOptions::max_passes) does not count the extrapolations'.
     const auto budgetLeft = [&] {
         return summary.iterations < options.max_iterations &&
@@ -304,8 +305,6 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             solver.parameter_tolerance = options.parameter_tolerance;
             solver.gradient_tolerance = options.gradient_tolerance;
             solver.use_nonmonotonic_steps = options.nonmonotonic_steps;
-            if (radius > 0.0) solver.initial_trust_region_radius = radius;
-            radius = 0.0;
             // No line search. With bounds, Ceres otherwise runs a projected Armijo line search
             // along every step before it evaluates the step's end again: ≥ 2 evaluations per
             // step, and where the step leaves the box the search backs off along it, so that a
@@ -363,27 +362,46 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             }
             snap = watch.snap();
             snap_lower = watch.snapLower();
-            if (watch.crawlRatio() != 0.0 && budgetLeft()) {
-                // A geometric crawl: on from the limit of its series when that costs less (the
-                // active set is left as it is; the next pass revises it).
+            // A geometric crawl: on from the limit of its series when that costs less (Aitken's
+            // Δ² extrapolation along the step; the active set is left as it is, the next pass
+            // revises it). Its pass is not counted against max_passes: only the iterations can
+            // run out.
+            if (watch.crawled() && summary.iterations < options.max_iterations) {
                 ++summary.extrapolations;
                 trial.parameter = -1;  // a trial's pass extrapolates below its cost: kept
                 const double q = watch.crawlRatio();
                 std::vector<double> far = x;
                 for (std::size_t k = 0; k < n; ++k) {
+                    if (problem.fixed[k]) continue;
                     far[k] = std::clamp(x[k] + watch.crawlStep()[k] * q / (1.0 - q),
                                         problem.lower[k], problem.upper[k]);
                 }
                 double cost = 0.0;
-                radius = watch.radius();
                 if (evaluateCost(problem, far, cost) && cost < watch.cost()) {
                     x = std::move(far);
+                    // The caller's stop sees the point as it sees every step's.
+                    if (options.stop && options.stop(x, cost, problem)) {
+                        summary.stopped = true;
+                        summary.termination = "STOPPED: the caller's stop condition holds";
+                        summary.usable =
+                            evaluateCost(problem, x, summary.cost,
+                                         options.gradient ? &summary.gradient : nullptr);
+                        if (!summary.usable) {
+                            summary.termination =
+                                "FAILURE: the cost cannot be evaluated at the solution";
+                        }
+                        break;
+                    }
                 } else {
                     extrapolate = false;
                 }
                 continue;
             }
-            if (watch.crawlRatio() != 0.0) converged = false;  // cut short, no pass left
+            if (watch.crawled()) {
+                // The iterations ran out in the crawl: Ceres would have stopped there too.
+                converged = false;
+                summary.termination = "NO_CONVERGENCE: the iteration limit came within a crawl";
+            }
         } else {
             summary.usable = true;
             summary.termination = "CONVERGENCE: every parameter is held";

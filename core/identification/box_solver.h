@@ -40,7 +40,7 @@ struct BoxProblem {
 struct BoxOptions {
     int max_iterations = 200;      ///< over all passes
     int iterations_per_pass = 25;  ///< before the active set is revised
-    int max_passes = 6;
+    int max_passes = 6;            ///< not counting the passes a crawl ends (extrapolate)
     double function_tolerance = 1e-10;
     double parameter_tolerance = 1e-10;
     double gradient_tolerance = 1e-12;
