@@ -62,6 +62,7 @@ public:
         // The cost at x_: the least of the successful steps' (with nonmonotonic steps Ceres keeps
         // the best point in x_, and a rejected step reports its candidate's cost).
         if (iteration.step_is_successful) best_cost_ = std::min(best_cost_, iteration.cost);
+        radius_ = iteration.trust_region_radius;
         // A trial's pass that has not fallen below the cost before the trial by now ends: the
         // trial will be undone (solveInBox).
         if (iteration.iteration >= kTrialIterations && best_cost_ > trial_cost_) {
@@ -105,7 +106,7 @@ public:
         if (snap_ >= 0) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         // The steps are followed through the whole pass; a crawl ends it, in a trial's pass
         // only once below the cost before the trial (the trial is kept then).
-        if (extrapolate_ && crawling() && best_cost_ < trial_cost_) {
+        if (extrapolate_ && crawling() && best_cost_ < trial_cost_ && radius_ >= kCrawlRadius) {
             crawled_ = true;
             return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
         }
@@ -135,6 +136,10 @@ private:
     // kCrawlSpread of each other.
     static constexpr double kCrawlCosine = 0.98, kCrawlLeast = 0.2, kCrawlMost = 0.85,
                             kCrawlSpread = 0.15;
+    // A crawl is extrapolated only while the trust region's radius is at least Ceres' initial
+    // one: the steps are then Gauss–Newton's own, their shrinking the residuals' curvature, not
+    // the damping of a trust region that rejected steps.
+    static constexpr double kCrawlRadius = 1e4;
     bool crawling() {
         std::vector<double> step(x_.size());
         double dot = 0.0, norm = 0.0, last_norm = 0.0;
@@ -179,6 +184,7 @@ private:
     double last_ratio_ = 0.0;              // its ratio to the step before, if geometric
     double crawl_ratio_ = 0.0;
     bool crawled_ = false;
+    double radius_ = 0.0;  // the trust region's radius after the last iteration
 };
 
 }  // namespace
