@@ -137,9 +137,9 @@ private:
     static constexpr double kCrawlCosine = 0.98, kCrawlLeast = 0.2, kCrawlMost = 0.85,
                             kCrawlSpread = 0.15;
     // A crawl is extrapolated only while the trust region's radius is at least Ceres' initial
-    // one: the steps are then Gauss–Newton's own, their shrinking the residuals' curvature, not
-    // the damping of a trust region that rejected steps.
-    static constexpr double kCrawlRadius = 1e4;
+    // one (10⁴, which solveInBox leaves as it is): the steps are then Gauss–Newton's own, their
+    // shrinking the residuals' curvature, not the damping of a trust region that rejected steps.
+    static inline const double kCrawlRadius = ceres::Solver::Options().initial_trust_region_radius;
     bool crawling() {
         std::vector<double> step(x_.size());
         double dot = 0.0, norm = 0.0, last_norm = 0.0;
@@ -275,6 +275,16 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
         return summary.iterations < options.max_iterations &&
                summary.passes - summary.extrapolations < options.max_passes;
     };
+    // The caller's stop ended the solve at x (after a step, or an extrapolation).
+    const auto endStopped = [&] {
+        summary.stopped = true;
+        summary.termination = "STOPPED: the caller's stop condition holds";
+        if (!evaluateCost(problem, x, summary.cost,
+                          options.gradient ? &summary.gradient : nullptr)) {
+            summary.usable = false;
+            summary.termination = "FAILURE: the cost cannot be evaluated at the solution";
+        }
+    };
     for (;;) {
         std::vector<int> held;
         for (std::size_t k = 0; k < n; ++k) {
@@ -357,13 +367,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
             }
             if (!summary.usable) break;
             if (watch.stopped()) {
-                summary.stopped = true;
-                summary.termination = "STOPPED: the caller's stop condition holds";
-                if (!evaluateCost(problem, x, summary.cost,
-                                  options.gradient ? &summary.gradient : nullptr)) {
-                    summary.usable = false;
-                    summary.termination = "FAILURE: the cost cannot be evaluated at the solution";
-                }
+                endStopped();
                 break;
             }
             snap = watch.snap();
@@ -387,15 +391,7 @@ BoxSummary solveInBox(const BoxProblem& problem, std::vector<double>& x,
                     x = std::move(far);
                     // The caller's stop sees the point as it sees every step's.
                     if (options.stop && options.stop(x, cost, problem)) {
-                        summary.stopped = true;
-                        summary.termination = "STOPPED: the caller's stop condition holds";
-                        summary.usable =
-                            evaluateCost(problem, x, summary.cost,
-                                         options.gradient ? &summary.gradient : nullptr);
-                        if (!summary.usable) {
-                            summary.termination =
-                                "FAILURE: the cost cannot be evaluated at the solution";
-                        }
+                        endStopped();
                         break;
                     }
                 } else {
